@@ -1,0 +1,154 @@
+/* dsn/dsn.h - discrete spot noise runtime: load a .dsnt asset, evaluate the noise per point or per tile.
+
+   What it does
+     Evaluates, at any integer lattice point, a Gaussian-looking texture defined by a small texton (spot)
+     baked offline by dsn-bake: F(x) = sum_i t(x - x_i) over a Poisson point process, normalized and
+     colour-transformed (the formula is in dsn/format.h). The impulses are not stored anywhere: they are
+     recomputed on demand from a stateless hash of (cell, seed, impulse index).
+
+   What it guarantees
+     - Same asset bytes + same configuration + same point = same output bits, on every compiler, CPU,
+       endianness and optimization level. The evaluation path is integer-only; float output is a final
+       conversion of the fixed-point value.
+     - Per-point and tile evaluation give identical bits.
+     - No heap, no libm, no exceptions, no global mutable state: every function is reentrant, and a
+       configured dsn_noise may be shared read-only between threads.
+     - Every input has a defined result: every int32 coordinate (the lattice is the 2^32 x 2^32 torus,
+       so a window may straddle the 32-bit wrap), every seed, every period; invalid arguments return a
+       negative dsn_error code (dsn/format.h), never undefined behaviour.
+     - The loader validates the asset in place and keeps pointers into the caller's buffer: the buffer
+       must outlive the dsn_asset and every dsn_noise made from it.
+
+   How to call it
+       dsn_asset asset;
+       dsn_noise noise;
+       dsn_config config;
+       int32_t rgb[3];
+       int err = dsn_asset_load(&asset, bytes, size);           // bytes: the .dsnt file contents
+       if (err != DSN_OK) { puts(dsn_error_message(err)); return; }
+       dsn_config_defaults(&config);                            // seed 0, asset density, no period
+       config.seed = 1234;
+       err = dsn_noise_init(&noise, &asset, &config);
+       if (err != DSN_OK) { puts(dsn_error_message(err)); return; }
+       dsn_eval_fixed(&noise, x, y, rgb);                       // Q16.16: 65536 is intensity 1.0
+
+   Fixed-point output: channel values are int32 Q16.16 (DSN_ONE = 1.0, the exemplar's white), saturated
+   to the int32 range. Grey assets fill one value, RGB assets three.
+*/
+#ifndef DSN_DSN_H
+#define DSN_DSN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dsn/format.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define DSN_ONE 65536 /* 1.0 in the Q16.16 output */
+#define DSN_MAX_CHANNELS 3
+#define DSN_TILE_MAX_SIDE 65536u /* tile width and height are at most this */
+
+/* A validated view of an asset. Every field is read-only information; `texton` points into the
+   caller's buffer (quantized values as described in format.h). */
+typedef struct dsn_asset {
+    const unsigned char *texton;
+    uint32_t version_minor;
+    uint32_t channels;      /* 1 or 3 */
+    uint32_t bits;          /* 8 or 16 */
+    uint32_t shape;         /* DSN_SHAPE_RECTANGLE or DSN_SHAPE_DISK */
+    uint32_t interpolation; /* DSN_INTERPOLATION_LATTICE or DSN_INTERPOLATION_BILINEAR */
+    uint32_t width, height; /* odd, 1..255 */
+    uint32_t support_size;  /* |S|: number of support points */
+    uint32_t default_impacts_q16; /* 0 when the asset gives none */
+    uint32_t scale[3];      /* value = raw / 2^40 */
+    int32_t mean[3];        /* Q8.24 */
+    int32_t color_transform[9]; /* Q8.24, row-major */
+    uint32_t bake_iterations, bake_seed, bake_rme_q24;
+    uint32_t exemplar_width, exemplar_height;
+} dsn_asset;
+
+/* Validates `size` bytes at `bytes` as a .dsnt asset and fills `asset`. Returns DSN_OK or the first
+   failure in the order documented in format.h. On failure `asset` is zeroed. */
+int dsn_asset_load(dsn_asset *asset, const void *bytes, size_t size);
+
+/* The quantized texton value of `channel` at texton row `row` (0 = top) and column `column`
+   (0 = left); 0 for any index out of range. */
+int32_t dsn_asset_texton_value(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel);
+
+/* A static, one-line, human-readable message for any code (unknown codes included). */
+const char *dsn_error_message(int code);
+
+/* ---- Configuration ---- */
+
+#define DSN_FLAG_NO_COLOR_TRANSFORM 1u /* use the identity instead of the asset's transform */
+#define DSN_FLAG_ALLOW_LATTICE_CONTINUOUS 2u /* continuous mode on a lattice-baked texton */
+#define DSN_FLAGS_ALL (DSN_FLAG_NO_COLOR_TRANSFORM | DSN_FLAG_ALLOW_LATTICE_CONTINUOUS)
+
+typedef struct dsn_config {
+    uint32_t seed;        /* any value */
+    uint32_t impacts_q16; /* impacts per pixel, Q16.16; 0 = the asset's default (30 if it has none).
+                             Accepted range [DSN_IMPACTS_MIN_Q16, DSN_IMPACTS_MAX_Q16]. */
+    uint32_t period_x;    /* 0 = not periodic along x; otherwise value(x + period_x, y) == value(x, y) */
+    uint32_t period_y;    /* 0 = not periodic along y */
+    uint32_t flags;       /* DSN_FLAG_* ; unknown bits are an error */
+} dsn_config;
+
+/* seed 0, impacts 0 (asset default), no period, no flags. */
+void dsn_config_defaults(dsn_config *config);
+
+/* The configured noise: caller-owned, a few hundred bytes, no pointers but the asset's texton. Fields
+   are private to the runtime and may change between versions. */
+typedef struct dsn_noise {
+    dsn_asset asset;
+    uint32_t seed;
+    uint32_t flags;
+    uint32_t impacts_q16;
+    uint32_t period[2];      /* 0 = not periodic */
+    uint32_t cell_shift;     /* cells are (1 << cell_shift) lattice points wide */
+    uint32_t radius[2];      /* (width - 1) / 2, (height - 1) / 2 */
+    int64_t gain[9];         /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
+    int64_t offset[3];       /* fixed-point mean minus the expected sum */
+    uint32_t poisson_size;   /* entries used in poisson_cdf */
+    uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of the per-cell count, 32-bit */
+    uint8_t poisson_guide[64]; /* first candidate count per top-6-bit bucket of the uniform */
+} dsn_noise;
+
+/* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
+   normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS,
+   DSN_ERR_PERIOD or DSN_ERR_ARGUMENT (unknown flag bits). */
+int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config);
+
+/* ---- Per-point evaluation (lattice) ---- */
+
+/* out[channels]: Q16.16 values at lattice point (x, y). */
+void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out);
+/* out[channels]: the same value as float, exactly fixed / 65536 rounded to float. */
+void dsn_eval_float(const dsn_noise *noise, int32_t x, int32_t y, float *out);
+/* out[channels]: the same value clamped to [0, 1] and rounded to 0..255 (half up). */
+void dsn_eval_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out);
+
+/* Conversions used by the functions above, for callers that keep fixed-point values. */
+float dsn_fixed_to_float(int32_t value);
+uint8_t dsn_fixed_to_u8(int32_t value);
+
+/* ---- Tile evaluation (lattice) ----
+   Pixel (i, j) of a width x height tile at (x0, y0) is the point ((int32)(x0 + i), (int32)(y0 + j)) with
+   the additions done modulo 2^32: exactly what the per-point functions return there. Output is row-major,
+   top row (y0) first, channels interleaved: width * height * channels values. `scratch` must hold at
+   least dsn_tile_scratch_size() bytes (it may be null when that is 0); it needs no alignment. */
+size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
+int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                   int32_t *out, void *scratch, size_t scratch_size);
+int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                   float *out, void *scratch, size_t scratch_size);
+int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                uint8_t *out, void *scratch, size_t scratch_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DSN_DSN_H */

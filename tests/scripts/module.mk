@@ -1,0 +1,2 @@
+# tests/scripts: shell tests run by `make test`, each counted as one test.
+TEST_SCRIPTS += tests/scripts/install-and-link
