@@ -1,0 +1,163 @@
+// asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h and writes files
+// atomically (temporary file in the destination folder, fsync, rename).
+#include "dsn/asset_writer.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <stdexcept>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace dsn {
+namespace {
+
+void require(bool condition, const char *message) {
+    if (!condition) throw std::invalid_argument(std::string("asset: ") + message);
+}
+
+bool is_valid_side(uint32_t side) { return side >= 1 && side <= DSN_FORMAT_MAX_SIDE && side % 2 == 1; }
+
+// The same checks as the loader's steps 9-13 (format.h), so that no written asset is rejected.
+void validate(const AssetFields &fields) {
+    require(fields.channels == 1 || fields.channels == 3, "channels must be 1 or 3");
+    require(fields.bits == 8 || fields.bits == 16, "bits must be 8 or 16");
+    require(fields.shape == DSN_SHAPE_RECTANGLE || fields.shape == DSN_SHAPE_DISK, "unknown shape");
+    require(fields.shape != DSN_SHAPE_DISK || fields.width == fields.height, "a disk texton must be square");
+    require(fields.interpolation == DSN_INTERPOLATION_LATTICE ||
+                fields.interpolation == DSN_INTERPOLATION_BILINEAR,
+            "unknown interpolation");
+    require(is_valid_side(fields.width) && is_valid_side(fields.height),
+            "texton width and height must be odd, 1..255");
+    require(fields.default_impacts_q16 == 0 || (fields.default_impacts_q16 >= DSN_IMPACTS_MIN_Q16 &&
+                                                 fields.default_impacts_q16 <= DSN_IMPACTS_MAX_Q16),
+            "default impacts per pixel out of range");
+    for (uint32_t c = 0; c < 3; c++) {
+        bool used = c < fields.channels;
+        require(!used || fields.scale[c] != 0, "a used channel has scale 0");
+        require(used || (fields.scale[c] == 0 && fields.mean[c] == 0), "unused channel fields must be 0");
+    }
+    if (fields.channels == 1)
+        for (int i = 1; i < 9; i++) require(fields.color_transform[i] == 0, "grey transform must be 1x1");
+    require(fields.exemplar_width <= 0xFFFFu && fields.exemplar_height <= 0xFFFFu,
+            "exemplar size must fit 16 bits");
+    require(fields.texton.size() == size_t(fields.width) * fields.height * fields.channels,
+            "texton must hold width * height * channels values");
+    const int32_t limit = fields.bits == 8 ? 127 : 32767;
+    size_t index = 0;
+    for (uint32_t row = 0; row < fields.height; row++)
+        for (uint32_t column = 0; column < fields.width; column++)
+            for (uint32_t c = 0; c < fields.channels; c++, index++) {
+                int32_t value = fields.texton[index];
+                require(value >= -limit && value <= limit, "texton value outside the quantization range");
+                require(value == 0 || dsn_in_support(fields.shape, fields.width, row, column),
+                        "texton value outside the disk support");
+            }
+}
+
+} // namespace
+
+void set_identity_color_transform(AssetFields &fields) {
+    for (int i = 0; i < 9; i++) fields.color_transform[i] = 0;
+    for (uint32_t c = 0; c < fields.channels && c < 3; c++) fields.color_transform[c * 3 + c] = DSN_Q24_ONE;
+}
+
+std::vector<unsigned char> encode_asset(const AssetFields &fields) {
+    validate(fields);
+    const size_t value_bytes = fields.bits / 8;
+    const size_t total = DSN_FORMAT_HEADER_SIZE + fields.texton.size() * value_bytes + DSN_FORMAT_CRC_SIZE;
+    std::vector<unsigned char> bytes(total, 0);
+    unsigned char *p = bytes.data();
+    std::memcpy(p, DSN_FORMAT_MAGIC, DSN_FORMAT_MAGIC_SIZE);
+    dsn_write_u16le(p + DSN_OFFSET_VERSION_MAJOR, DSN_FORMAT_VERSION_MAJOR);
+    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR, DSN_FORMAT_VERSION_MINOR);
+    dsn_write_u32le(p + DSN_OFFSET_HEADER_SIZE, DSN_FORMAT_HEADER_SIZE);
+    dsn_write_u32le(p + DSN_OFFSET_TOTAL_SIZE, uint32_t(total));
+    p[DSN_OFFSET_CHANNELS] = uint8_t(fields.channels);
+    p[DSN_OFFSET_BITS] = uint8_t(fields.bits);
+    p[DSN_OFFSET_SHAPE] = uint8_t(fields.shape);
+    p[DSN_OFFSET_INTERPOLATION] = uint8_t(fields.interpolation);
+    dsn_write_u16le(p + DSN_OFFSET_WIDTH, uint16_t(fields.width));
+    dsn_write_u16le(p + DSN_OFFSET_HEIGHT, uint16_t(fields.height));
+    dsn_write_u32le(p + DSN_OFFSET_DEFAULT_IMPACTS, fields.default_impacts_q16);
+    for (int c = 0; c < 3; c++) {
+        dsn_write_u32le(p + DSN_OFFSET_SCALE + 4 * c, fields.scale[c]);
+        dsn_write_i32le(p + DSN_OFFSET_MEAN + 4 * c, fields.mean[c]);
+    }
+    for (int i = 0; i < 9; i++) dsn_write_i32le(p + DSN_OFFSET_COLOR_TRANSFORM + 4 * i, fields.color_transform[i]);
+    dsn_write_u32le(p + DSN_OFFSET_BAKE_ITERATIONS, fields.bake_iterations);
+    dsn_write_u32le(p + DSN_OFFSET_BAKE_SEED, fields.bake_seed);
+    dsn_write_u32le(p + DSN_OFFSET_BAKE_RME, fields.bake_rme_q24);
+    dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_WIDTH, uint16_t(fields.exemplar_width));
+    dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_HEIGHT, uint16_t(fields.exemplar_height));
+    unsigned char *texton = p + DSN_FORMAT_HEADER_SIZE;
+    for (size_t i = 0; i < fields.texton.size(); i++) {
+        if (value_bytes == 1) texton[i] = uint8_t(fields.texton[i] & 0xFF);
+        else dsn_write_u16le(texton + 2 * i, uint16_t(fields.texton[i] & 0xFFFF));
+    }
+    dsn_write_u32le(p + total - DSN_FORMAT_CRC_SIZE, dsn_crc32(0, p, total - DSN_FORMAT_CRC_SIZE));
+    return bytes;
+}
+
+namespace {
+
+std::string folder_of(const std::string &path) {
+    size_t slash = path.find_last_of('/');
+    if (slash == std::string::npos) return ".";
+    return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+[[noreturn]] void fail_write(const std::string &path, int error) {
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
+}
+
+bool write_all(int fd, const unsigned char *data, size_t size) {
+    while (size > 0) {
+        ssize_t written = ::write(fd, data, size);
+        if (written < 0 && errno == EINTR) continue;
+        if (written <= 0) return false;
+        data += written;
+        size -= size_t(written);
+    }
+    return true;
+}
+
+} // namespace
+
+void write_file_atomically(const std::string &path, const std::vector<unsigned char> &bytes) {
+    // Renaming over a device, pipe or folder would replace it (or fail late): only regular files.
+    struct stat existing;
+    if (::stat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
+        if (S_ISDIR(existing.st_mode)) fail_write(path, EISDIR);
+        throw std::runtime_error("cannot write " + path + ": not a regular file");
+    }
+    std::string temporary = folder_of(path) + "/.dsn-write-XXXXXX";
+    std::vector<char> name(temporary.begin(), temporary.end());
+    name.push_back('\0');
+    int fd = ::mkstemp(name.data());
+    if (fd < 0) fail_write(path, errno);
+    bool written = write_all(fd, bytes.data(), bytes.size()) && ::fsync(fd) == 0;
+    int error = errno;
+    if (::close(fd) != 0 && written) {
+        written = false;
+        error = errno;
+    }
+    // mkstemp creates the file 0600; give it the permissions an ordinary new file would have.
+    mode_t mask = ::umask(0);
+    ::umask(mask);
+    if (written && ::chmod(name.data(), 0666 & ~mask) != 0) {
+        written = false;
+        error = errno;
+    }
+    if (written && ::rename(name.data(), path.c_str()) != 0) {
+        written = false;
+        error = errno;
+    }
+    if (!written) {
+        ::unlink(name.data());
+        fail_write(path, error);
+    }
+}
+
+} // namespace dsn
