@@ -147,6 +147,65 @@ int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t widt
 int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                 uint8_t *out, void *scratch, size_t scratch_size);
 
+/* ==== Continuous mode (renderer mode) ===============================================================
+   Evaluates the noise at continuous texture coordinates, for renderers that zoom, rotate and warp.
+   The impulses form a continuous Poisson process of the same intensity (exact per-cell Poisson counts
+   from the same table, positions uniform in the cell with 16 fractional bits per axis) and the texton
+   is read with bilinear interpolation (zero beyond its window), in integer arithmetic only. Sampled on
+   the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi xi1)/3)(2/3 + cos(2 pi xi2)/3);
+   a texton baked with `dsn-bake --interpolation bilinear` compensates it. The continuous functions
+   return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was configured with
+   DSN_FLAG_ALLOW_LATTICE_CONTINUOUS.
+
+   Coordinates are Q32.32 fixed point in texel units, in an int64_t: value / 2^32 texels. The integer
+   part wraps modulo 2^32 like the lattice coordinates, so every int64_t is a point of the same
+   2^32 x 2^32 torus, and ((int64_t)x << 32) is the lattice point x. Periods apply as in lattice mode.
+   The same guarantees hold: same bits everywhere, no heap, no float on the evaluation path, and a
+   regular grid (tile) gives exactly the bits of the per-point function at each grid point. */
+
+#define DSN_COORDINATE_ONE ((int64_t)1 << 32) /* 1.0 texel in Q32.32 */
+
+/* IEEE-754 value -> Q32.32 coordinate, computed from the bits with integer operations (identical on
+   every platform, float unit or not): value * 2^32 rounded toward minus infinity, reduced modulo 2^64
+   (that is, the coordinate modulo 2^32 texels, the torus). NaN and +-Inf give 0. */
+int64_t dsn_coordinate_from_double(double value);
+int64_t dsn_coordinate_from_float(float value);
+
+/* DSN_OK when the continuous functions may be used with `noise`, else DSN_ERR_NULL or
+   DSN_ERR_CONTINUOUS_MISMATCH. */
+int dsn_continuous_check(const dsn_noise *noise);
+
+/* out[channels]: Q16.16 values at the continuous point (x, y) (Q32.32). On an error every channel of
+   `out` is set to 0 and the error is returned. */
+int dsn_eval_continuous_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out);
+/* The same from float64 coordinates (converted by dsn_coordinate_from_double), output as float
+   (exactly fixed / 65536 rounded to float). */
+int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float *out);
+
+/* A regular grid of continuous points: pixel (i, j) is the point
+   (origin_x + i * column_step_x + j * row_step_x, origin_y + i * column_step_y + j * row_step_y),
+   all in Q32.32 with the arithmetic done modulo 2^64. Steps (a, 0) and (0, a) give a zoom by 1/a; any
+   other pair of vectors gives rotations and shears. */
+typedef struct dsn_grid {
+    int64_t origin_x, origin_y;
+    int64_t column_step_x, column_step_y; /* from pixel (i, j) to (i + 1, j) */
+    int64_t row_step_x, row_step_y;       /* from pixel (i, j) to (i, j + 1) */
+} dsn_grid;
+
+/* Tile evaluation on a grid: width x height pixels, row-major, top row (j = 0) first, channels
+   interleaved, exactly the per-point values. `scratch` as in lattice tile evaluation (at least
+   dsn_continuous_tile_scratch_size() bytes, no alignment needed). Returns DSN_OK, DSN_ERR_NULL,
+   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
+size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                        uint32_t height);
+int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                              uint32_t height, int32_t *out, void *scratch, size_t scratch_size);
+int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                              uint32_t height, float *out, void *scratch, size_t scratch_size);
+int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                           uint8_t *out, void *scratch, size_t scratch_size);
+/* ==== End of the continuous mode ===================================================================== */
+
 #ifdef __cplusplus
 }
 #endif
