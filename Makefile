@@ -47,7 +47,7 @@ TEST_SCRIPTS :=      # run by `make test` after the doctest runner, each counted
 BENCH_PROGRAMS :=    # built and run by `make bench`
 INSTALL_PROGRAMS :=  # copied to $(PREFIX)/bin by `make install`
 
-.PHONY: all deps test demo bench install clean format format-check
+.PHONY: all deps test demo bench install clean format format-check sanitize
 all: $(LIBDSN) $(LIBDSN_BAKE) $(TOOLS)
 
 include $(sort $(wildcard examples/*/module.mk tests/*/module.mk))
@@ -94,6 +94,13 @@ demo: deps
 	@$(MAKE) --no-print-directory all
 	@if [ -x examples/demo/make-demo ]; then BUILD="$(BUILD)" examples/demo/make-demo "$(EXEMPLAR)"; \
 	 else echo "demo: the baker is not there yet (build/bin/dsn-bake); nothing to show"; fi
+
+# The whole test suite again, built with clang's AddressSanitizer and UndefinedBehaviorSanitizer; the
+# first report stops the run (-fno-sanitize-recover).
+SANITIZE_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+sanitize: deps
+	@$(MAKE) --no-print-directory test BUILD=$(BUILD)/sanitize CXX=clang++ CC=clang \
+	    CXXFLAGS="-O1 -g $(SANITIZE_FLAGS)" LDFLAGS="$(SANITIZE_FLAGS)" DSN_SANITIZE_FLAGS="$(SANITIZE_FLAGS)"
 
 bench: deps
 	@$(MAKE) --no-print-directory all $(BENCH_PROGRAMS)

@@ -1,0 +1,36 @@
+# tests/fuzz: libFuzzer targets (clang, ASan + UBSan). `make fuzz FUZZ_SECONDS=N` builds each
+# tests/fuzz/fuzz_NAME.cpp and runs it for N seconds from its committed seed corpus
+# tests/fuzz/corpus/NAME/ (new inputs go to a scratch copy in $(BUILD)/fuzz, never into the tree).
+# The asset CRC check is compiled out (FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION) so inputs reach the
+# field checks.
+FUZZ_SECONDS ?= 60
+FUZZ_CXX ?= clang++
+FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_FLAGS = -std=c++17 -O1 -g $(FUZZ_SANITIZERS) -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION \
+    -ffp-contract=off -Iinclude $(PACKAGE_CFLAGS)
+FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.cpp,%,$(wildcard tests/fuzz/fuzz_*.cpp))
+FUZZ_PROGRAMS := $(FUZZ_NAMES:%=$(BUILD)/fuzz/fuzz_%)
+FUZZ_LIBRARY_SOURCES := $(RUNTIME_SOURCES) $(OFFLINE_SOURCES)
+FUZZ_LIBRARY_OBJECTS := $(FUZZ_LIBRARY_SOURCES:%.cpp=$(BUILD)/fuzz/obj/%.o)
+
+$(BUILD)/fuzz/obj/%.o: %.cpp
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
+
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.cpp $(FUZZ_LIBRARY_OBJECTS)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer $^ -o $@ $(PACKAGE_LIBS) -lpthread
+
+.PHONY: fuzz fuzz-build
+fuzz-build: deps
+	@$(MAKE) --no-print-directory $(FUZZ_PROGRAMS)
+
+fuzz: fuzz-build
+	@for name in $(FUZZ_NAMES); do \
+	    scratch=$(BUILD)/fuzz/corpus-$$name; mkdir -p $$scratch tests/fuzz/corpus/$$name; \
+	    echo "== fuzz_$$name for $(FUZZ_SECONDS) s"; \
+	    $(BUILD)/fuzz/fuzz_$$name -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	        -artifact_prefix=$(BUILD)/fuzz/ $$scratch tests/fuzz/corpus/$$name > $(BUILD)/fuzz/$$name.log 2>&1 \
+	        || { tail -n 40 $(BUILD)/fuzz/$$name.log; echo "fuzz_$$name: FAILED (artifact in $(BUILD)/fuzz/)"; exit 1; }; \
+	    grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' $(BUILD)/fuzz/$$name.log | sed "s/^/fuzz_$$name: /"; \
+	done
