@@ -1,0 +1,269 @@
+/* golden.cpp - the cross test's golden program: evaluates the runtime on the fixed assets and prints one
+   FNV-1a 64 hash per (kind of output, asset), plus one per kind over all assets.
+
+   Every target (compiler, optimization level, CPU, endianness, microcontroller) must print the same
+   lines as tests/cross/golden.txt. Values are hashed as little-endian bytes whatever the host, float32
+   outputs as their IEEE bits. The program allocates nothing and prints through golden_write() only, so
+   it runs unchanged on a bare-metal Cortex-M. A new kind of output (the continuous mode, say) is one
+   function and one line in `kinds` below. */
+#include <stdint.h>
+#include <string.h>
+
+#include "dsn/dsn.h"
+#include "golden_assets.h"
+#include "golden_output.h"
+
+namespace {
+
+struct Fnv {
+    uint64_t state;
+};
+
+const uint64_t fnv_offset_basis = 0xCBF29CE484222325ull;
+const uint64_t fnv_prime = 0x100000001B3ull;
+
+void hash_byte(Fnv *hash, uint32_t byte) { hash->state = (hash->state ^ (byte & 0xFFu)) * fnv_prime; }
+
+void hash_u32(Fnv *hash, uint32_t value) {
+    for (uint32_t shift = 0; shift < 32; shift += 8) hash_byte(hash, value >> shift);
+}
+
+void hash_u64(Fnv *hash, uint64_t value) {
+    hash_u32(hash, static_cast<uint32_t>(value));
+    hash_u32(hash, static_cast<uint32_t>(value >> 32));
+}
+
+void hash_fixed(Fnv *hash, const int32_t *values, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) hash_u32(hash, static_cast<uint32_t>(values[i]));
+}
+
+void hash_float(Fnv *hash, const float *values, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) {
+        uint32_t bits;
+        memcpy(&bits, &values[i], sizeof bits);
+        hash_u32(hash, bits);
+    }
+}
+
+void hash_u8(Fnv *hash, const uint8_t *values, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) hash_byte(hash, values[i]);
+}
+
+/* A tile of the lattice; the additions x + i and y + j wrap modulo 2^32 like the runtime's. */
+struct Window {
+    int32_t x, y;
+    uint32_t width, height;
+};
+
+int32_t wrapped(int32_t origin, uint32_t step) {
+    const uint32_t sum = static_cast<uint32_t>(origin) + step;
+    return sum >= 0x80000000u ? -static_cast<int32_t>(~sum) - 1 : static_cast<int32_t>(sum);
+}
+
+/* Ordinary points, the sign change at 0, both int32 ends and the 32-bit wrap, far cells. */
+const Window lattice_windows[] = {
+    {0, 0, 6, 5},
+    {-3, -2, 5, 4},
+    {INT32_MAX - 2, INT32_MAX - 1, 5, 4}, /* wraps to INT32_MIN on both axes */
+    {INT32_MIN, INT32_MAX, 4, 3},         /* x at the low end, y wraps */
+    {1234567891, -987654321, 4, 4},
+};
+
+/* Tileable windows span more than one period, around 0 and across the wrap. */
+const Window tileable_windows[] = {
+    {-5, -3, 20, 6},
+    {INT32_MAX - 3, INT32_MIN + 9, 8, 3},
+};
+
+struct Setting {
+    uint32_t seed, impacts_q16, period_x, period_y, flags;
+};
+
+/* Seeds at 0, the top of the range and in between; densities from the minimum to 100 per pixel. */
+const Setting lattice_settings[] = {
+    {0u, 0u, 0u, 0u, 0u},
+    {1234567u, DSN_IMPACTS_MIN_Q16, 0u, 0u, 0u},
+    {0xFFFFFFFFu, (30u << 16) + (1u << 15), 0u, 0u, 0u},
+    {0x9E3779B9u, 100u << 16, 0u, 0u, DSN_FLAG_NO_COLOR_TRANSFORM},
+};
+
+const Setting tileable_settings[] = {
+    {77u, 0u, 16u, 8u, 0u},
+    {0xFFFFFFFFu, 9u << 16, 12u, 0u, 0u},
+};
+
+const uint32_t max_window_values = 20u * 6u * DSN_MAX_CHANNELS;
+const size_t scratch_capacity = 64u * 1024u;
+
+/* Caller-owned buffers for tile outputs and scratch: static so that nothing large sits on a small
+   microcontroller stack. The golden program is single-threaded. */
+int32_t tile_fixed_values[max_window_values];
+float tile_float_values[max_window_values];
+uint8_t tile_u8_values[max_window_values];
+unsigned char tile_scratch[scratch_capacity];
+
+/* Each evaluator hashes one window and returns DSN_OK or the runtime's error. */
+typedef int (*Evaluator)(const dsn_noise *noise, const Window &window, Fnv *hash);
+
+int scratch_for(const dsn_noise *noise, const Window &window, size_t *size) {
+    *size = dsn_tile_scratch_size(noise, window.width, window.height);
+    return *size <= scratch_capacity && window.width * window.height * DSN_MAX_CHANNELS <= max_window_values
+               ? DSN_OK
+               : DSN_ERR_SCRATCH;
+}
+
+int point_fixed(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    for (uint32_t j = 0; j < window.height; j++)
+        for (uint32_t i = 0; i < window.width; i++) {
+            int32_t values[DSN_MAX_CHANNELS];
+            dsn_eval_fixed(noise, wrapped(window.x, i), wrapped(window.y, j), values);
+            hash_fixed(hash, values, noise->asset.channels);
+        }
+    return DSN_OK;
+}
+
+int tile_fixed(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    size_t scratch_size;
+    int err = scratch_for(noise, window, &scratch_size);
+    if (err == DSN_OK)
+        err = dsn_tile_fixed(noise, window.x, window.y, window.width, window.height, tile_fixed_values,
+                             tile_scratch, scratch_size);
+    if (err == DSN_OK)
+        hash_fixed(hash, tile_fixed_values, window.width * window.height * noise->asset.channels);
+    return err;
+}
+
+/* Per point, then the same window as a tile: both conversions of the API edge. */
+int float_outputs(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    size_t scratch_size;
+    for (uint32_t j = 0; j < window.height; j++)
+        for (uint32_t i = 0; i < window.width; i++) {
+            float values[DSN_MAX_CHANNELS];
+            dsn_eval_float(noise, wrapped(window.x, i), wrapped(window.y, j), values);
+            hash_float(hash, values, noise->asset.channels);
+        }
+    int err = scratch_for(noise, window, &scratch_size);
+    if (err == DSN_OK)
+        err = dsn_tile_float(noise, window.x, window.y, window.width, window.height, tile_float_values,
+                             tile_scratch, scratch_size);
+    if (err == DSN_OK)
+        hash_float(hash, tile_float_values, window.width * window.height * noise->asset.channels);
+    return err;
+}
+
+int u8_outputs(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    size_t scratch_size;
+    for (uint32_t j = 0; j < window.height; j++)
+        for (uint32_t i = 0; i < window.width; i++) {
+            uint8_t values[DSN_MAX_CHANNELS];
+            dsn_eval_u8(noise, wrapped(window.x, i), wrapped(window.y, j), values);
+            hash_u8(hash, values, noise->asset.channels);
+        }
+    int err = scratch_for(noise, window, &scratch_size);
+    if (err == DSN_OK)
+        err = dsn_tile_u8(noise, window.x, window.y, window.width, window.height, tile_u8_values,
+                          tile_scratch, scratch_size);
+    if (err == DSN_OK) hash_u8(hash, tile_u8_values, window.width * window.height * noise->asset.channels);
+    return err;
+}
+
+int point_then_tile(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    const int err = point_fixed(noise, window, hash);
+    return err == DSN_OK ? tile_fixed(noise, window, hash) : err;
+}
+
+#define GOLDEN_COUNT(array) static_cast<uint32_t>(sizeof(array) / sizeof((array)[0]))
+
+/* Which settings and windows a kind of output is evaluated under. */
+struct Plan {
+    const Setting *settings;
+    uint32_t setting_count;
+    const Window *windows;
+    uint32_t window_count;
+};
+
+const Plan lattice_plan = {lattice_settings, GOLDEN_COUNT(lattice_settings), lattice_windows,
+                           GOLDEN_COUNT(lattice_windows)};
+const Plan tileable_plan = {tileable_settings, GOLDEN_COUNT(tileable_settings), tileable_windows,
+                            GOLDEN_COUNT(tileable_windows)};
+
+struct Kind {
+    const char *name;
+    Evaluator evaluate;
+    const Plan *plan;
+};
+
+const Kind kinds[] = {
+    {"point", point_fixed, &lattice_plan},
+    {"tile", tile_fixed, &lattice_plan}, /* the same bytes as "point": the two paths must agree */
+    {"float32", float_outputs, &lattice_plan},
+    {"u8", u8_outputs, &lattice_plan},
+    {"tileable", point_then_tile, &tileable_plan},
+};
+
+void write_line(const char *kind, const char *asset, const char *detail) {
+    golden_write(kind);
+    golden_write(" ");
+    golden_write(asset);
+    golden_write(" ");
+    golden_write(detail);
+    golden_write("\n");
+}
+
+void write_hash(const char *kind, const char *asset, uint64_t value) {
+    char hex[17];
+    for (int digit = 15; digit >= 0; digit--, value >>= 4) hex[digit] = "0123456789abcdef"[value & 15u];
+    hex[16] = '\0';
+    write_line(kind, asset, hex);
+}
+
+void write_error(const char *kind, const char *asset, int err) {
+    golden_write("error ");
+    write_line(kind, asset, dsn_error_message(err));
+}
+
+/* Hashes one kind over every setting and window of one asset. */
+int hash_asset(const Kind &kind, const dsn_asset *asset, Fnv *hash) {
+    const Plan &plan = *kind.plan;
+    for (uint32_t s = 0; s < plan.setting_count; s++) {
+        const Setting &setting = plan.settings[s];
+        dsn_config config;
+        dsn_noise noise;
+        dsn_config_defaults(&config);
+        config.seed = setting.seed;
+        config.impacts_q16 = setting.impacts_q16;
+        config.period_x = setting.period_x;
+        config.period_y = setting.period_y;
+        config.flags = setting.flags;
+        int err = dsn_noise_init(&noise, asset, &config);
+        for (uint32_t w = 0; err == DSN_OK && w < plan.window_count; w++)
+            err = kind.evaluate(&noise, plan.windows[w], hash);
+        if (err != DSN_OK) return err;
+    }
+    return DSN_OK;
+}
+
+} // namespace
+
+int main() {
+    int failures = 0;
+    for (uint32_t k = 0; k < GOLDEN_COUNT(kinds); k++) {
+        Fnv all = {fnv_offset_basis};
+        for (uint32_t a = 0; a < CROSS_ASSET_COUNT; a++) {
+            const cross_asset &bytes = cross_assets[a];
+            Fnv hash = {fnv_offset_basis};
+            dsn_asset asset;
+            int err = dsn_asset_load(&asset, bytes.bytes, bytes.size);
+            if (err == DSN_OK) err = hash_asset(kinds[k], &asset, &hash);
+            if (err != DSN_OK) {
+                write_error(kinds[k].name, bytes.name, err);
+                failures++;
+                continue;
+            }
+            write_hash(kinds[k].name, bytes.name, hash.state);
+            hash_u64(&all, hash.state);
+        }
+        write_hash(kinds[k].name, "all", all.state);
+    }
+    return failures == 0 ? 0 : 1;
+}
