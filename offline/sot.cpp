@@ -1,0 +1,335 @@
+// sot.cpp - synthesis-oriented texton by alternating projections: the random-phase start, the pruned
+// fast iteration and the straightforward full-FFT reference it is tested against.
+//
+// Why pruned: in each iteration the spatial side is non-zero only on the (2r+1)^2 support, and only the
+// support is needed back from the inverse transform. The textons are real, so only half the spectrum
+// (xi1 = 0..M/2) is kept, in columns. Inverse: column FFTs of the half spectrum keep only the 2r+1
+// support rows, then row FFTs of those rows only, two real rows packed in one complex transform.
+// Forward: the same in reverse. Per iteration that is about C (M + 2r + 1) transforms of one side instead
+// of 2 C (M + N).
+#include "dsn/bake.h"
+#include "kiss_plan.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace dsn {
+namespace {
+
+using Complex = std::complex<float>;
+
+size_t wrap(int offset, int size) { return size_t(((offset % size) + size) % size); }
+
+// splitmix64: a counter-based generator, so the white noise depends on the seed only.
+uint64_t mix(uint64_t state) {
+    state += 0x9E3779B97F4A7C15ull;
+    state = (state ^ (state >> 30)) * 0xBF58476D1CE4E5B9ull;
+    state = (state ^ (state >> 27)) * 0x94D049BB133111EBull;
+    return state ^ (state >> 31);
+}
+
+// Uniform in (0, 1): 53 random bits, never 0.
+double uniform(uint64_t seed, uint64_t counter) {
+    return (double(mix(seed * 0xD1B54A32D192ED03ull + counter) >> 11) + 0.5) / 9007199254740992.0;
+}
+
+// Sums of one projection step, for the RME (all in double).
+struct ProjectionSums {
+    double texton_energy = 0, cross = 0;
+};
+
+// For `count` frequencies of `channels` planes (plane c starts at texton + c * stride): measures
+// |T|^2 and |T_u^* T|, then imposes the modulus: T_c = T_u,c z/|z|, z = sum_c conj(T_u,c) T_c.
+// Plain real arithmetic: std::complex products go through the slow NaN-checking __muldc3.
+void project_modulus(Complex *texton, const Complex *model, size_t count, size_t stride, int channels,
+                     double weight, bool impose, ProjectionSums &sums) {
+    double texton_energy = 0, cross = 0;
+    for (size_t i = 0; i < count; i++) {
+        double inner_real = 0, inner_imag = 0;
+        for (int c = 0; c < channels; c++) {
+            const double t_real = texton[size_t(c) * stride + i].real(),
+                         t_imag = texton[size_t(c) * stride + i].imag();
+            const double u_real = model[size_t(c) * stride + i].real(),
+                         u_imag = model[size_t(c) * stride + i].imag();
+            texton_energy += t_real * t_real + t_imag * t_imag;
+            inner_real += u_real * t_real + u_imag * t_imag;
+            inner_imag += u_real * t_imag - u_imag * t_real;
+        }
+        const double modulus = std::sqrt(inner_real * inner_real + inner_imag * inner_imag);
+        cross += modulus;
+        if (!impose) continue;
+        const double phase_real = modulus > 0 ? inner_real / modulus : 0,
+                     phase_imag = modulus > 0 ? inner_imag / modulus : 0;
+        for (int c = 0; c < channels; c++) {
+            const double u_real = model[size_t(c) * stride + i].real(),
+                         u_imag = model[size_t(c) * stride + i].imag();
+            texton[size_t(c) * stride + i] = Complex(float(u_real * phase_real - u_imag * phase_imag),
+                                                     float(u_real * phase_imag + u_imag * phase_real));
+        }
+    }
+    sums.texton_energy += weight * texton_energy;
+    sums.cross += weight * cross;
+}
+
+double rme_from_sums(double model_energy, const ProjectionSums &sums) {
+    if (!(model_energy > 0)) return 0;
+    return std::sqrt(std::max(0.0, model_energy + sums.texton_energy - 2 * sums.cross) / model_energy);
+}
+
+bool should_stop(const std::vector<double> &rme, const SotOptions &options) {
+    if (!(options.stop_tolerance > 0) || options.stop_window < 1) return false;
+    const size_t window = size_t(options.stop_window);
+    if (rme.size() <= window) return false;
+    return rme[rme.size() - 1 - window] - rme.back() < options.stop_tolerance;
+}
+
+// The reference: full inverse and forward 2-D FFTs of every channel in every iteration.
+class ReferenceIteration {
+  public:
+    ReferenceIteration(const Spectrum &target, const Support &support)
+        : target_(target), support_(support), texton_(),
+          inverse_(make_fft_plan_2d(target.width, target.height, true)),
+          forward_(make_fft_plan_2d(target.width, target.height, false)), buffer_(target.plane_size()) {}
+
+    void start(uint32_t seed) { texton_ = random_phase_start(target_, seed); }
+
+    // One iteration; returns the RME of the support-limited texton, imposes the modulus if asked.
+    double step(bool impose) {
+        const size_t plane = target_.plane_size();
+        Image torus;
+        torus.width = target_.width;
+        torus.height = target_.height;
+        torus.channels = 1;
+        torus.values.resize(plane);
+        cropped_.clear();
+        for (int c = 0; c < target_.channels; c++) {
+            Complex *channel = &texton_.values[size_t(c) * plane];
+            kiss_fftnd(inverse_.get(), as_kiss(channel), as_kiss(buffer_.data()));
+            for (size_t i = 0; i < plane; i++) torus.values[i] = buffer_[i].real() / double(plane);
+            Texton cropped = crop_to_support(torus, support_);
+            cropped_.insert(cropped_.end(), cropped.values.begin(), cropped.values.end());
+            std::fill(buffer_.begin(), buffer_.end(), Complex(0));
+            const int side = support_.side(), r = support_.radius;
+            for (int dy = -r; dy <= r; dy++)
+                for (int dx = -r; dx <= r; dx++)
+                    buffer_[wrap(dy, target_.height) * size_t(target_.width) + wrap(dx, target_.width)] =
+                        float(cropped.values[size_t(dy + r) * size_t(side) + size_t(dx + r)]);
+            kiss_fftnd(forward_.get(), as_kiss(buffer_.data()), as_kiss(channel));
+        }
+        double model_energy = 0;
+        for (const Complex &value : target_.values) model_energy += std::norm(std::complex<double>(value));
+        ProjectionSums sums;
+        project_modulus(texton_.values.data(), target_.values.data(), plane, plane, target_.channels, 1.0,
+                        impose, sums);
+        return rme_from_sums(model_energy, sums);
+    }
+
+    const std::vector<double> &texton_values() const { return cropped_; }
+
+  private:
+    const Spectrum &target_;
+    const Support &support_;
+    Spectrum texton_;
+    FftPlan2d inverse_, forward_;
+    std::vector<Complex> buffer_;
+    std::vector<double> cropped_;
+};
+
+// The pruned iteration on the half spectrum (see the top of the file).
+class PrunedIteration {
+  public:
+    PrunedIteration(const Spectrum &target, const Support &support)
+        : width_(target.width), height_(target.height), channels_(target.channels), radius_(support.radius),
+          side_(support.side()), half_(target.width / 2 + 1), mask_(support.mask),
+          column_inverse_(make_fft_plan(target.height, true)),
+          column_forward_(make_fft_plan(target.height, false)),
+          row_inverse_(make_fft_plan(target.width, true)), row_forward_(make_fft_plan(target.width, false)),
+          model_(half_of(target)), spectrum_(model_.size()), rows_(size_t(channels_ * side_ * half_)),
+          texton_(size_t(channels_ * side_ * side_)), column_in_(size_t(height_)),
+          column_out_(size_t(height_)), row_in_(size_t(width_)), row_out_(size_t(width_)),
+          column_weight_(size_t(half_), 2.0) {
+        column_weight_[0] = 1;
+        if (width_ % 2 == 0) column_weight_[size_t(half_ - 1)] = 1; // xi1 = M/2 is its own conjugate
+        for (size_t k = 0; k < size_t(half_); k++)
+            for (size_t i = 0; i < size_t(height_); i++)
+                for (int c = 0; c < channels_; c++)
+                    model_energy_ +=
+                        column_weight_[k] * std::norm(std::complex<double>(model_[column(c, k) + i]));
+    }
+
+    void start(const Spectrum &start) { spectrum_ = half_of(start); }
+
+    double step(bool impose) {
+        spectrum_to_texton();
+        texton_to_spectrum();
+        ProjectionSums sums;
+        const size_t stride = size_t(half_) * size_t(height_);
+        for (size_t k = 0; k < size_t(half_); k++)
+            project_modulus(&spectrum_[column(0, k)], &model_[column(0, k)], size_t(height_), stride,
+                            channels_, column_weight_[k], impose, sums);
+        return rme_from_sums(model_energy_, sums);
+    }
+
+    const std::vector<double> &texton_values() const { return texton_; }
+
+  private:
+    size_t column(int c, size_t k) const { return (size_t(c) * size_t(half_) + k) * size_t(height_); }
+    size_t row_count() const { return size_t(channels_) * size_t(side_); }
+
+    // Columns xi1 = 0..M/2 of every channel, each column contiguous over xi2.
+    std::vector<Complex> half_of(const Spectrum &full) const {
+        std::vector<Complex> half(size_t(channels_) * size_t(half_) * size_t(height_));
+        const size_t plane = full.plane_size();
+        for (int c = 0; c < channels_; c++)
+            for (size_t k = 0; k < size_t(half_); k++)
+                for (size_t xi2 = 0; xi2 < size_t(height_); xi2++)
+                    half[column(c, k) + xi2] = full.values[size_t(c) * plane + xi2 * size_t(width_) + k];
+        return half;
+    }
+
+    // Inverse: columns -> support rows -> support values (masked), scaled by 1 / (M N).
+    void spectrum_to_texton() {
+        for (int c = 0; c < channels_; c++)
+            for (size_t k = 0; k < size_t(half_); k++) {
+                kiss_fft(column_inverse_.get(), as_kiss(&spectrum_[column(c, k)]),
+                         as_kiss(column_out_.data()));
+                for (int dy = 0; dy < side_; dy++)
+                    rows_[(size_t(c) * size_t(side_) + size_t(dy)) * size_t(half_) + k] =
+                        column_out_[wrap(dy - radius_, height_)];
+            }
+        const float normalization = 1.0f / (float(width_) * float(height_));
+        for (size_t a = 0; a < row_count(); a += 2) {
+            const size_t b = a + 1;
+            const Complex *first = &rows_[a * size_t(half_)];
+            const Complex *second = b < row_count() ? &rows_[b * size_t(half_)] : nullptr;
+            pack_hermitian_rows(first, second);
+            kiss_fft(row_inverse_.get(), as_kiss(row_in_.data()), as_kiss(row_out_.data()));
+            const size_t dy = a % size_t(side_);
+            for (int dx = 0; dx < side_; dx++) {
+                const Complex value = row_out_[wrap(dx - radius_, width_)] * normalization;
+                const size_t mask_index = dy * size_t(side_) + size_t(dx);
+                texton_[a * size_t(side_) + size_t(dx)] = mask_[mask_index] ? value.real() : 0.0;
+                if (second)
+                    texton_[b * size_t(side_) + size_t(dx)] =
+                        mask_[(b % size_t(side_)) * size_t(side_) + size_t(dx)] ? value.imag() : 0.0;
+            }
+        }
+    }
+
+    // row_in_ = A + i B over the full row, A and B Hermitian spectra given by their halves.
+    void pack_hermitian_rows(const Complex *first, const Complex *second) {
+        for (size_t k = 0; k < size_t(width_); k++) {
+            const bool upper = k >= size_t(half_);
+            const size_t source = upper ? size_t(width_) - k : k;
+            Complex a = first[source], b = second ? second[source] : Complex(0);
+            if (upper) {
+                a = std::conj(a);
+                b = std::conj(b);
+            } else if (k == 0 || (width_ % 2 == 0 && k == size_t(half_ - 1))) {
+                a = a.real(); // self-conjugate frequencies are real for a real row
+                b = b.real();
+            }
+            row_in_[k] = Complex(a.real() - b.imag(), a.imag() + b.real());
+        }
+    }
+
+    // Forward: support rows (two real rows per complex FFT) -> half rows -> columns.
+    void texton_to_spectrum() {
+        std::fill(row_in_.begin(), row_in_.end(), Complex(0));
+        for (size_t a = 0; a < row_count(); a += 2) {
+            const size_t b = a + 1;
+            for (int dx = 0; dx < side_; dx++)
+                row_in_[wrap(dx - radius_, width_)] =
+                    Complex(float(texton_[a * size_t(side_) + size_t(dx)]),
+                            b < row_count() ? float(texton_[b * size_t(side_) + size_t(dx)]) : 0.0f);
+            kiss_fft(row_forward_.get(), as_kiss(row_in_.data()), as_kiss(row_out_.data()));
+            for (size_t k = 0; k < size_t(half_); k++) {
+                const Complex z = row_out_[k],
+                              mirror = std::conj(row_out_[(size_t(width_) - k) % size_t(width_)]);
+                rows_[a * size_t(half_) + k] = (z + mirror) * 0.5f;
+                if (b < row_count()) {
+                    const Complex difference = z - mirror; // = 2i B
+                    rows_[b * size_t(half_) + k] =
+                        Complex(difference.imag() * 0.5f, -difference.real() * 0.5f);
+                }
+            }
+        }
+        std::fill(column_in_.begin(), column_in_.end(), Complex(0));
+        for (int c = 0; c < channels_; c++)
+            for (size_t k = 0; k < size_t(half_); k++) {
+                for (int dy = 0; dy < side_; dy++)
+                    column_in_[wrap(dy - radius_, height_)] =
+                        rows_[(size_t(c) * size_t(side_) + size_t(dy)) * size_t(half_) + k];
+                kiss_fft(column_forward_.get(), as_kiss(column_in_.data()),
+                         as_kiss(&spectrum_[column(c, k)]));
+            }
+    }
+
+    int width_, height_, channels_, radius_, side_, half_;
+    std::vector<unsigned char> mask_;
+    FftPlan column_inverse_, column_forward_, row_inverse_, row_forward_;
+    std::vector<Complex> model_, spectrum_, rows_;
+    std::vector<double> texton_;
+    std::vector<Complex> column_in_, column_out_, row_in_, row_out_;
+    std::vector<double> column_weight_;
+    double model_energy_ = 0;
+};
+
+template <typename Iteration>
+SotResult run_iterations(Iteration &iteration, const Spectrum &target, const Support &support,
+                         const SotOptions &options) {
+    SotResult result;
+    for (int done = 0; done < options.iterations; done++) {
+        const bool last = done + 1 == options.iterations;
+        result.rme_per_iteration.push_back(iteration.step(!last));
+        if (options.progress) options.progress(done + 1, options.iterations, result.rme_per_iteration.back());
+        if (should_stop(result.rme_per_iteration, options)) break;
+    }
+    result.texton.support = support;
+    result.texton.channels = target.channels;
+    result.texton.values = iteration.texton_values();
+    return result;
+}
+
+} // namespace
+
+Spectrum random_phase_start(const Spectrum &target, uint32_t seed) {
+    Image noise;
+    noise.width = target.width;
+    noise.height = target.height;
+    noise.channels = 1;
+    noise.values.resize(target.plane_size());
+    for (size_t i = 0; i < noise.values.size(); i++) // Box-Muller: a Gaussian white noise
+        noise.values[i] = std::sqrt(-2 * std::log(uniform(seed, 2 * i))) *
+                          std::cos(6.283185307179586 * uniform(seed, 2 * i + 1));
+    const Spectrum noise_spectrum = forward_dft(noise);
+    Spectrum start = target;
+    const size_t plane = target.plane_size();
+    for (size_t i = 0; i < plane; i++) {
+        const std::complex<double> value = noise_spectrum.values[i];
+        const double modulus = std::abs(value);
+        const std::complex<double> phase = modulus > 0 ? value / modulus : 1.0;
+        for (int c = 0; c < target.channels; c++) {
+            Complex &entry = start.values[size_t(c) * plane + i];
+            entry = Complex(std::complex<double>(entry) * phase);
+        }
+    }
+    return start;
+}
+
+SotResult sot_alternating_projections(const Spectrum &target, const Support &support,
+                                      const SotOptions &options) {
+    if (options.iterations < 1) throw std::invalid_argument("iterations must be at least 1");
+    if (target.width < 2 * support.side() - 1 || target.height < 2 * support.side() - 1)
+        throw std::invalid_argument("the spectrum is smaller than S - S");
+    if (options.reference) {
+        ReferenceIteration iteration(target, support);
+        iteration.start(options.seed);
+        return run_iterations(iteration, target, support, options);
+    }
+    PrunedIteration iteration(target, support);
+    iteration.start(random_phase_start(target, options.seed));
+    return run_iterations(iteration, target, support, options);
+}
+
+} // namespace dsn
