@@ -93,6 +93,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* The inline helpers below are C; C++ code built with -Wold-style-cast (the runtime) includes them too. */
+#if defined(__cplusplus) && defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#endif
+
 #define DSN_FORMAT_MAGIC "\x89" "DSN\r\n\x1a\n"
 #define DSN_FORMAT_MAGIC_SIZE 8u
 #define DSN_FORMAT_VERSION_MAJOR 1u
@@ -243,5 +249,9 @@ static inline int dsn_in_support(uint32_t shape, uint32_t width, uint32_t row, u
     uint32_t ax = column > r ? column - r : r - column, ay = row > r ? row - r : r - row;
     return shape != DSN_SHAPE_DISK || ax * ax + ay * ay <= r * r;
 }
+
+#if defined(__cplusplus) && defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 #endif /* DSN_FORMAT_H */
