@@ -104,15 +104,18 @@ void dsn_config_defaults(dsn_config *config);
 typedef struct dsn_noise {
     dsn_asset asset;
     uint32_t seed;
+    uint32_t seed_column, seed_row; /* hashes of the seed mixed into the cell keys */
     uint32_t flags;
     uint32_t impacts_q16;
     uint32_t period[2];      /* 0 = not periodic */
     uint32_t cell_shift;     /* cells are (1 << cell_shift) lattice points wide */
     uint32_t radius[2];      /* (width - 1) / 2, (height - 1) / 2 */
+    uint32_t gain_shift;     /* fraction bits of gain and offset */
     int64_t gain[9];         /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
     int64_t offset[3];       /* fixed-point mean minus the expected sum */
+    uint32_t poisson_parts;  /* a cell's count is the sum of this many draws from the table */
     uint32_t poisson_size;   /* entries used in poisson_cdf */
-    uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of the per-cell count, 32-bit */
+    uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of one draw, 32-bit */
     uint8_t poisson_guide[64]; /* first candidate count per top-6-bit bucket of the uniform */
 } dsn_noise;
 

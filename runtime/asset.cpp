@@ -1,0 +1,199 @@
+/* runtime/asset.cpp - validates a .dsnt asset in place (format.h, in its documented order) and reads
+   texton values; also the static error messages. */
+#include "dsn/dsn.h"
+
+namespace {
+
+void clear_asset(dsn_asset *asset) {
+    unsigned char *bytes = static_cast<unsigned char *>(static_cast<void *>(asset));
+    for (size_t i = 0; i < sizeof *asset; i++) bytes[i] = 0;
+}
+
+int check_magic(const unsigned char *bytes) {
+    const unsigned char *magic = reinterpret_cast<const unsigned char *>(DSN_FORMAT_MAGIC);
+    int head_differs = 0, tail_differs = 0;
+    for (uint32_t i = 0; i < 4; i++) head_differs |= bytes[i] != magic[i];
+    for (uint32_t i = 4; i < DSN_FORMAT_MAGIC_SIZE; i++) tail_differs |= bytes[i] != magic[i];
+    if (head_differs) return DSN_ERR_BAD_MAGIC;
+    /* Only the CR, LF and SUB bytes differ: the signature of a text-mode transfer. */
+    return tail_differs ? DSN_ERR_TEXT_MODE : DSN_OK;
+}
+
+/* Steps 3 to 7: sizes, version and checksum. */
+int check_envelope(const unsigned char *bytes, size_t size) {
+    if (size < DSN_FORMAT_HEADER_SIZE + DSN_FORMAT_CRC_SIZE) return DSN_ERR_TRUNCATED;
+    if (dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MAJOR) != DSN_FORMAT_VERSION_MAJOR) return DSN_ERR_VERSION;
+    uint32_t header_size = dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE);
+    uint32_t total_size = dsn_read_u32le(bytes + DSN_OFFSET_TOTAL_SIZE);
+    if (header_size < DSN_FORMAT_HEADER_SIZE || total_size < DSN_FORMAT_CRC_SIZE ||
+        header_size > total_size - DSN_FORMAT_CRC_SIZE)
+        return DSN_ERR_HEADER_SIZE;
+    if (total_size > size) return DSN_ERR_TRUNCATED;
+#ifndef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+    uint32_t stored_crc = dsn_read_u32le(bytes + total_size - DSN_FORMAT_CRC_SIZE);
+    if (dsn_crc32(0, bytes, total_size - DSN_FORMAT_CRC_SIZE) != stored_crc) return DSN_ERR_CRC;
+#endif
+    return DSN_OK;
+}
+
+int check_reserved(const unsigned char *bytes) {
+    if (dsn_read_u32le(bytes + DSN_OFFSET_FLAGS) != 0) return DSN_ERR_RESERVED;
+    for (uint32_t i = 0; i < DSN_RESERVED_SIZE; i++)
+        if (bytes[DSN_OFFSET_RESERVED + i] != 0) return DSN_ERR_RESERVED;
+    return DSN_OK;
+}
+
+/* Steps 9 and 10: the texton's shape and the exact file size. */
+int read_geometry(dsn_asset *asset, const unsigned char *bytes) {
+    asset->channels = bytes[DSN_OFFSET_CHANNELS];
+    asset->bits = bytes[DSN_OFFSET_BITS];
+    asset->shape = bytes[DSN_OFFSET_SHAPE];
+    asset->interpolation = bytes[DSN_OFFSET_INTERPOLATION];
+    asset->width = dsn_read_u16le(bytes + DSN_OFFSET_WIDTH);
+    asset->height = dsn_read_u16le(bytes + DSN_OFFSET_HEIGHT);
+    if (asset->channels != 1 && asset->channels != 3) return DSN_ERR_CHANNELS;
+    if (asset->bits != 8 && asset->bits != 16) return DSN_ERR_BITS;
+    if (asset->shape > DSN_SHAPE_DISK || (asset->shape == DSN_SHAPE_DISK && asset->width != asset->height))
+        return DSN_ERR_SHAPE;
+    if (asset->interpolation > DSN_INTERPOLATION_BILINEAR) return DSN_ERR_INTERPOLATION;
+    if (asset->width % 2 == 0 || asset->width > DSN_FORMAT_MAX_SIDE || asset->height % 2 == 0 ||
+        asset->height > DSN_FORMAT_MAX_SIDE)
+        return DSN_ERR_DIMENSIONS;
+    /* At most 255 * 255 * 3 * 2 bytes; the sum is done in 64 bits since header_size is any uint32. */
+    uint64_t texton_bytes = uint64_t(asset->width) * asset->height * asset->channels * (asset->bits / 8);
+    uint64_t expected = uint64_t(dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE)) + texton_bytes + 4u;
+    if (expected != dsn_read_u32le(bytes + DSN_OFFSET_TOTAL_SIZE)) return DSN_ERR_TOTAL_SIZE;
+    asset->support_size = dsn_support_size(asset->shape, asset->width, asset->height);
+    return DSN_OK;
+}
+
+/* Steps 11 and 12: the normalization fields. */
+int read_normalization(dsn_asset *asset, const unsigned char *bytes) {
+    for (uint32_t c = 0; c < 3; c++) {
+        asset->scale[c] = dsn_read_u32le(bytes + DSN_OFFSET_SCALE + 4 * c);
+        asset->mean[c] = dsn_read_i32le(bytes + DSN_OFFSET_MEAN + 4 * c);
+    }
+    for (uint32_t c = 0; c < 9; c++)
+        asset->color_transform[c] = dsn_read_i32le(bytes + DSN_OFFSET_COLOR_TRANSFORM + 4 * c);
+    for (uint32_t c = 0; c < asset->channels; c++)
+        if (asset->scale[c] == 0) return DSN_ERR_SCALE;
+    asset->default_impacts_q16 = dsn_read_u32le(bytes + DSN_OFFSET_DEFAULT_IMPACTS);
+    uint32_t impacts = asset->default_impacts_q16;
+    if (impacts != 0 && (impacts < DSN_IMPACTS_MIN_Q16 || impacts > DSN_IMPACTS_MAX_Q16))
+        return DSN_ERR_IMPACTS;
+    for (uint32_t c = asset->channels; c < 3; c++)
+        if (asset->scale[c] != 0 || asset->mean[c] != 0) return DSN_ERR_RESERVED;
+    if (asset->channels == 1)
+        for (uint32_t c = 1; c < 9; c++)
+            if (asset->color_transform[c] != 0) return DSN_ERR_COLOR_TRANSFORM;
+    return DSN_OK;
+}
+
+/* Step 13: no reserved value, nothing outside the disk. */
+int check_texton(const dsn_asset *asset) {
+    for (uint32_t row = 0; row < asset->height; row++)
+        for (uint32_t column = 0; column < asset->width; column++) {
+            int inside = dsn_in_support(asset->shape, asset->width, row, column);
+            for (uint32_t c = 0; c < asset->channels; c++) {
+                int32_t value = dsn_asset_texton_value(asset, row, column, c);
+                int32_t reserved = asset->bits == 8 ? -128 : -32768;
+                if (value == reserved || (!inside && value != 0)) return DSN_ERR_TEXTON;
+            }
+        }
+    return DSN_OK;
+}
+
+int load(dsn_asset *asset, const unsigned char *bytes, size_t size) {
+    if (size < DSN_FORMAT_MAGIC_SIZE) return DSN_ERR_TRUNCATED;
+    int err = check_magic(bytes);
+    if (err == DSN_OK) err = check_envelope(bytes, size);
+    if (err == DSN_OK) err = check_reserved(bytes);
+    if (err == DSN_OK) err = read_geometry(asset, bytes);
+    if (err == DSN_OK) err = read_normalization(asset, bytes);
+    if (err != DSN_OK) return err;
+    asset->texton = bytes + dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE);
+    err = check_texton(asset);
+    if (err != DSN_OK) return err;
+    asset->version_minor = dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR);
+    asset->bake_iterations = dsn_read_u32le(bytes + DSN_OFFSET_BAKE_ITERATIONS);
+    asset->bake_seed = dsn_read_u32le(bytes + DSN_OFFSET_BAKE_SEED);
+    asset->bake_rme_q24 = dsn_read_u32le(bytes + DSN_OFFSET_BAKE_RME);
+    asset->exemplar_width = dsn_read_u16le(bytes + DSN_OFFSET_EXEMPLAR_WIDTH);
+    asset->exemplar_height = dsn_read_u16le(bytes + DSN_OFFSET_EXEMPLAR_HEIGHT);
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" int dsn_asset_load(dsn_asset *asset, const void *bytes, size_t size) {
+    if (asset == 0) return DSN_ERR_NULL;
+    clear_asset(asset);
+    if (bytes == 0) return DSN_ERR_NULL;
+    int err = load(asset, static_cast<const unsigned char *>(bytes), size);
+    if (err != DSN_OK) clear_asset(asset);
+    return err;
+}
+
+extern "C" int32_t dsn_asset_texton_value(const dsn_asset *asset, uint32_t row, uint32_t column,
+                                          uint32_t channel) {
+    if (asset == 0 || asset->texton == 0 || row >= asset->height || column >= asset->width ||
+        channel >= asset->channels)
+        return 0;
+    uint32_t index = (row * asset->width + column) * asset->channels + channel;
+    return asset->bits == 8 ? dsn_read_i8(asset->texton + index) : dsn_read_i16le(asset->texton + 2 * index);
+}
+
+extern "C" const char *dsn_error_message(int code) {
+    switch (code) {
+    case DSN_OK:
+        return "success";
+    case DSN_ERR_NULL:
+        return "a required pointer argument is null";
+    case DSN_ERR_TRUNCATED:
+        return "the buffer ends before the asset does (truncated file)";
+    case DSN_ERR_BAD_MAGIC:
+        return "not a .dsnt asset (bad magic)";
+    case DSN_ERR_TEXT_MODE:
+        return "the asset's magic was damaged by a text-mode (CR/LF) transfer";
+    case DSN_ERR_VERSION:
+        return "unsupported .dsnt major version";
+    case DSN_ERR_HEADER_SIZE:
+        return "header size out of range";
+    case DSN_ERR_TOTAL_SIZE:
+        return "total size inconsistent with the header fields";
+    case DSN_ERR_CRC:
+        return "checksum mismatch: the asset is damaged";
+    case DSN_ERR_RESERVED:
+        return "a reserved bit, byte or unused-channel field is not 0";
+    case DSN_ERR_CHANNELS:
+        return "channel count is not 1 or 3";
+    case DSN_ERR_BITS:
+        return "quantization bits is not 8 or 16";
+    case DSN_ERR_SHAPE:
+        return "unknown support shape, or a disk that is not square";
+    case DSN_ERR_INTERPOLATION:
+        return "unknown interpolation";
+    case DSN_ERR_DIMENSIONS:
+        return "texton width/height is zero, even or above 255";
+    case DSN_ERR_SCALE:
+        return "a used channel has scale 0";
+    case DSN_ERR_IMPACTS:
+        return "impacts per pixel out of range";
+    case DSN_ERR_COLOR_TRANSFORM:
+        return "grey asset with non-zero unused colour transform entries";
+    case DSN_ERR_TEXTON:
+        return "reserved texton value, or non-zero value outside the support";
+    case DSN_ERR_PERIOD:
+        return "period out of range";
+    case DSN_ERR_CONTINUOUS_MISMATCH:
+        return "continuous mode on a lattice-baked asset is not allowed";
+    case DSN_ERR_SCRATCH:
+        return "scratch buffer missing or too small";
+    case DSN_ERR_TILE_SIZE:
+        return "tile width or height is 0 or too large";
+    case DSN_ERR_ARGUMENT:
+        return "an argument is out of its documented range";
+    default:
+        return "unknown error code";
+    }
+}

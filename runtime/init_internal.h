@@ -1,0 +1,18 @@
+/* runtime/init_internal.h - the steps of dsn_noise_init that live in their own files. Internal. */
+#ifndef DSN_INIT_INTERNAL_H
+#define DSN_INIT_INTERNAL_H
+
+#include "dsn/dsn.h"
+
+/* Largest mean of one Poisson draw: keeps the table short (<= ~50 entries) and exp(-mean) far above
+   the 2^-62 resolution of the fixed-point computation. Denser cells sum several draws. */
+#define DSN_POISSON_MEAN_MAX 16u
+
+/* Fills poisson_parts, poisson_size, poisson_cdf and poisson_guide for cells whose mean count is
+   cell_mean_q32 / 2^32 (> 0). */
+void dsn_internal_build_poisson_table(dsn_noise *noise, uint64_t cell_mean_q32);
+
+/* Fills gain_shift, gain and offset from the asset, impacts_q16 and flags. */
+void dsn_internal_compute_normalization(dsn_noise *noise);
+
+#endif /* DSN_INIT_INTERNAL_H */

@@ -1,0 +1,97 @@
+/* runtime/noise_init.cpp - dsn_config_defaults and dsn_noise_init: checks the configuration, chooses the
+   cell size, then builds the Poisson table and the normalization (their own files). */
+#include "init_internal.h"
+#include "noise_internal.h"
+
+namespace {
+
+/* Expected cost of one per-point evaluation with cells of side c = 2^shift, in hash evaluations
+   (Q16): a point visits on average (w - 1 + c)(h - 1 + c) / c^2 cells, each costing its key plus one
+   hash per Poisson draw, and examines lambda (w - 1 + c)(h - 1 + c) impulses, one hash each.
+   Small cells waste hashes on empty cells, large cells examine impulses that fall outside the window;
+   for the usual 31 x 31 texton at 30 impacts per pixel the minimum is c = 16 (8.3 cells, 66 impulses,
+   mean count 8 per cell, one draw). The tile path is insensitive to the choice. */
+uint64_t point_cost_q16(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift, uint64_t parts) {
+    uint64_t side = uint64_t(1) << shift;
+    uint64_t area = (asset->width - 1 + side) * (asset->height - 1 + side);
+    uint64_t cells_q16 = (area << 16) / (side * side);
+    uint64_t impulses_q16 = area * impacts_q16 / asset->support_size;
+    return cells_q16 * (1 + parts) + impulses_q16;
+}
+
+/* Mean impulse count of a cell, lambda c^2, in Q32. */
+uint64_t cell_mean_q32(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift) {
+    uint64_t numerator = (uint64_t(impacts_q16) << (2 * shift)) << 16; /* < 2^58 */
+    return (numerator + asset->support_size / 2) / asset->support_size;
+}
+
+uint64_t poisson_parts(uint64_t mean_q32) {
+    const uint64_t part_max_q32 = uint64_t(DSN_POISSON_MEAN_MAX) << 32;
+    return (mean_q32 + part_max_q32 - 1) / part_max_q32;
+}
+
+uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16) {
+    /* At most 2^8: the continuous mode needs >= 8 fractional position bits of the 16 per axis. */
+    uint32_t best_shift = 0;
+    uint64_t best_cost = UINT64_MAX;
+    for (uint32_t shift = 0; shift <= 8; shift++) {
+        uint64_t cost = point_cost_q16(asset, impacts_q16, shift,
+                                       poisson_parts(cell_mean_q32(asset, impacts_q16, shift)));
+        if (cost <= best_cost) {
+            best_cost = cost;
+            best_shift = shift;
+        }
+    }
+    return best_shift;
+}
+
+/* A dsn_asset that dsn_asset_load did not fill (or that was altered) must not reach the evaluators. */
+int asset_is_usable(const dsn_asset *asset) {
+    return asset->texton != 0 && (asset->channels == 1 || asset->channels == 3) &&
+           (asset->bits == 8 || asset->bits == 16) && asset->width % 2 == 1 &&
+           asset->width <= DSN_FORMAT_MAX_SIDE && asset->height % 2 == 1 &&
+           asset->height <= DSN_FORMAT_MAX_SIDE &&
+           asset->support_size == dsn_support_size(asset->shape, asset->width, asset->height);
+}
+
+void clear_noise(dsn_noise *noise) {
+    unsigned char *bytes = static_cast<unsigned char *>(static_cast<void *>(noise));
+    for (size_t i = 0; i < sizeof *noise; i++) bytes[i] = 0;
+}
+
+} // namespace
+
+extern "C" void dsn_config_defaults(dsn_config *config) {
+    if (config == 0) return;
+    config->seed = 0;
+    config->impacts_q16 = 0;
+    config->period_x = 0;
+    config->period_y = 0;
+    config->flags = 0;
+}
+
+extern "C" int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config) {
+    if (noise == 0 || asset == 0 || config == 0) return DSN_ERR_NULL;
+    clear_noise(noise);
+    if (!asset_is_usable(asset) || (config->flags & ~DSN_FLAGS_ALL) != 0) return DSN_ERR_ARGUMENT;
+    uint32_t impacts = config->impacts_q16 != 0          ? config->impacts_q16
+                       : asset->default_impacts_q16 != 0 ? asset->default_impacts_q16
+                                                         : DSN_IMPACTS_DEFAULT_Q16;
+    if (impacts < DSN_IMPACTS_MIN_Q16 || impacts > DSN_IMPACTS_MAX_Q16) return DSN_ERR_IMPACTS;
+    /* Every period 1 .. 2^32 - 1 is valid (0 = none); DSN_ERR_PERIOD is kept for future limits. */
+
+    noise->asset = *asset;
+    noise->seed = config->seed;
+    noise->seed_column = dsn_mix32(config->seed ^ 0x68E31DA4u);
+    noise->seed_row = dsn_mix32(config->seed + 0xB5297A4Du);
+    noise->flags = config->flags;
+    noise->impacts_q16 = impacts;
+    noise->period[0] = config->period_x;
+    noise->period[1] = config->period_y;
+    noise->radius[0] = (asset->width - 1) / 2;
+    noise->radius[1] = (asset->height - 1) / 2;
+    noise->cell_shift = choose_cell_shift(asset, impacts);
+    dsn_internal_build_poisson_table(noise, cell_mean_q32(asset, impacts, noise->cell_shift));
+    dsn_internal_compute_normalization(noise);
+    return DSN_OK;
+}

@@ -1,0 +1,225 @@
+/* runtime/noise_internal.h - building blocks shared by the lattice and continuous evaluators: hashing of
+   cells and impulses, exact Poisson counts, fixed-point normalization, and the walk over the cells that
+   can reach a window (periodic or not). Internal to libdsn; not installed.
+
+   The impulse process (DESIGN.md section 3). The plane is the 2^32 x 2^32 torus cut into square cells of
+   side c = 2^cell_shift (a power of two divides 2^32, so cells tile the torus exactly and there are
+   2^(32 - cell_shift) distinct cell indices per axis, none repeated). Cell (cx, cy) has a 32-bit key;
+   from the key come its impulse count (exact Poisson, possibly the sum of several independent draws, see
+   poisson_parts) and then the position of each impulse k, all by stateless hashing:
+
+       key       = cell_key(noise, cx, cy)
+       count     = cell_impulse_count(noise, key)            stream values 0 .. parts-1
+       impulse k = cell_stream(key, parts + k)               low 16 bits: x, high 16 bits: y
+
+   Each 16-bit half is a position inside the cell in units of 2^-(16 - cell_shift) lattice steps: the
+   lattice position is its top cell_shift bits, and the continuous mode reads the whole half as a
+   fixed-point position, so the lattice impulse is exactly the floor of the continuous one. */
+#ifndef DSN_NOISE_INTERNAL_H
+#define DSN_NOISE_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dsn/dsn.h"
+
+/* ---- Hashing ---- */
+
+/* lowbias32 (C. Wellons' hash prospector): a bijection of the 32-bit integers with a near-ideal
+   avalanche. Being a bijection is what makes x -> cell_key(x, y) free of any period. */
+static inline uint32_t dsn_mix32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7FEB352Du;
+    x ^= x >> 15;
+    x *= 0x846CA68Bu;
+    x ^= x >> 16;
+    return x;
+}
+
+/* Key of cell (cx, cy). For a fixed row and seed, cx -> key is mix((cx ^ a) + b): a bijection, so no
+   two cells of a row share a key. The seed enters twice (seed_column, seed_row, precomputed at init) so
+   that two seeds are not simply shifted copies of each other. The row part is split out so that loops
+   over a row of cells compute it once. */
+static inline uint32_t dsn_row_key(const dsn_noise *noise, uint32_t cell_y) {
+    return dsn_mix32(cell_y + noise->seed_row);
+}
+
+static inline uint32_t dsn_cell_key_in_row(const dsn_noise *noise, uint32_t cell_x, uint32_t row_key) {
+    return dsn_mix32((cell_x ^ noise->seed_column) + row_key);
+}
+
+static inline uint32_t dsn_cell_key(const dsn_noise *noise, uint32_t cell_x, uint32_t cell_y) {
+    return dsn_cell_key_in_row(noise, cell_x, dsn_row_key(noise, cell_y));
+}
+
+/* Value `index` of a cell's random stream: a Weyl step then the mixer. */
+static inline uint32_t dsn_cell_stream(uint32_t key, uint32_t index) {
+    return dsn_mix32(key + index * 0x9E3779B9u);
+}
+
+/* ---- Exact Poisson counts ---- */
+
+/* Inverse CDF: the smallest n with uniform < poisson_cdf[n], or poisson_size when there is none (the
+   tail beyond the table has probability below 2^-32). The guide gives the first candidate for the top
+   6 bits of the uniform, so the search is one or two comparisons on average. */
+static inline uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform) {
+    uint32_t n = noise->poisson_guide[uniform >> 26];
+    while (n < noise->poisson_size && uniform >= noise->poisson_cdf[n]) n++;
+    return n;
+}
+
+/* Impulse count of the cell with this key: the sum of poisson_parts independent draws (a sum of
+   independent Poisson variables is Poisson; splitting keeps the table small for dense cells). */
+static inline uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key) {
+    uint32_t count = 0, part;
+    for (part = 0; part < noise->poisson_parts; part++)
+        count += dsn_poisson_draw(noise, dsn_cell_stream(key, part));
+    return count;
+}
+
+/* The hash of impulse k of a cell (k counts from 0). */
+static inline uint32_t dsn_impulse_hash(const dsn_noise *noise, uint32_t key, uint32_t k) {
+    return dsn_cell_stream(key, noise->poisson_parts + k);
+}
+
+/* 16-bit in-cell positions of an impulse (units of 2^-(16 - cell_shift) lattice steps). */
+static inline uint32_t dsn_impulse_bits_x(uint32_t hash) { return hash & 0xFFFFu; }
+static inline uint32_t dsn_impulse_bits_y(uint32_t hash) { return hash >> 16; }
+
+/* Lattice offset of an impulse inside its cell: the top cell_shift bits of its 16-bit position. */
+static inline uint32_t dsn_impulse_offset(uint32_t bits16, uint32_t cell_shift) {
+    return bits16 >> (16u - cell_shift);
+}
+
+/* ---- Fixed-point normalization ----
+   out_c = round((offset_c + sum_k gain_ck * Q_k) / 2^gain_shift), saturated to int32, with Q_k the
+   integer sum of the quantized texton values of channel k (taken modulo 2^32 and read as int32, which
+   both evaluators do identically; it cannot wrap unless ~65000 full-scale impulses hit one point).
+   Init guarantees |gain| < 2^29 and |offset| < 2^61, so |sum| < 3 2^60 + 2^61 < 2^63 - 2^32. */
+static inline int32_t dsn_round_saturate(int64_t accumulated, uint32_t shift) {
+    /* Shifting a negative number is implementation-defined: move to uint64 with a 2^63 bias first
+       (the conversion is modulo 2^64, and the rounding half cannot overflow given the bound above). */
+    const uint64_t bias = uint64_t(1) << 63;
+    uint64_t biased = uint64_t(accumulated) + bias + ((uint64_t(1) << shift) >> 1);
+    int64_t value = int64_t(biased >> shift) - int64_t(bias >> shift);
+    if (value > INT32_MAX) return INT32_MAX;
+    if (value < INT32_MIN) return INT32_MIN;
+    return int32_t(value);
+}
+
+static inline int32_t dsn_signed_sum(uint32_t sum) {
+    return (sum & 0x80000000u) ? -int32_t(~sum) - 1 : int32_t(sum);
+}
+
+/* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */
+static inline void dsn_normalize(const dsn_noise *noise, const uint32_t *sums, int32_t *out) {
+    uint32_t c, k, channels = noise->asset.channels;
+    for (c = 0; c < channels; c++) {
+        int64_t accumulated = noise->offset[c];
+        for (k = 0; k < channels; k++) accumulated += noise->gain[c * 3 + k] * dsn_signed_sum(sums[k]);
+        out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
+    }
+}
+
+/* ---- Walking the cells that can reach a window, along one axis ----
+   A window is the run of lattice coordinates [start, start + length) of one axis (a single point has
+   length 1). An impulse at axis position p reaches window index j when the texton index
+   start + j - p + radius lies in [0, 2 radius]. A span is one group of candidate cells: cells
+   first_cell .. first_cell + cell_count - 1 (indices modulo 2^(32 - cell_shift)) whose impulses have
+   positions p = (cell << cell_shift) + offset, accepted only when p <= last_position, and reach the
+   window with texton index  j + (base - p)  (uint32 arithmetic). Without a period there is one span on
+   the whole torus. With a period P, the coordinate is reduced to [0, P), the impulses live on [0, P)
+   (cells cut at P, impulses at >= P discarded) and the window meets several copies m of that interval:
+   span m has base = start + radius - m P. */
+typedef struct dsn_span {
+    uint32_t first_cell;
+    uint32_t cell_count;
+    uint32_t base;
+    uint32_t last_position;
+} dsn_span;
+
+typedef struct dsn_axis {
+    uint32_t radius, shift, period; /* period 0: not periodic */
+    uint32_t length;                /* window length */
+    int64_t start;                  /* periodic: window start reduced to [0, P); else the uint32 start */
+    int64_t first_copy;             /* periodic: index m of the first copy met */
+    uint32_t span_count;
+} dsn_axis;
+
+/* floor(a / b) for b > 0, defined for every int64 a used here (|a| < 2^40). */
+static inline int64_t dsn_floor_div(int64_t a, int64_t b) {
+    int64_t q = a / b;
+    return (q * b > a) ? q - 1 : q;
+}
+
+/* Window [coordinate, coordinate + length) along one axis. `coordinate` is the int32 lattice
+   coordinate (as a uint32 bit pattern); with a period it is reduced by floor modulo. */
+static inline void dsn_axis_init(dsn_axis *axis, uint32_t coordinate, uint32_t length, uint32_t radius,
+                                 uint32_t shift, uint32_t period) {
+    axis->radius = radius;
+    axis->shift = shift;
+    axis->period = period;
+    axis->length = length;
+    if (period == 0) {
+        axis->start = coordinate;
+        axis->first_copy = 0;
+        axis->span_count = 1;
+    } else {
+        int64_t signed_coordinate = int64_t(dsn_signed_sum(coordinate));
+        int64_t reduced = signed_coordinate - dsn_floor_div(signed_coordinate, period) * int64_t(period);
+        int64_t low = reduced - int64_t(radius), high = reduced + int64_t(length) - 1 + int64_t(radius);
+        axis->start = reduced;
+        axis->first_copy = dsn_floor_div(low, period);
+        axis->span_count = uint32_t(dsn_floor_div(high, period) - axis->first_copy + 1);
+    }
+}
+
+static inline dsn_span dsn_axis_span(const dsn_axis *axis, uint32_t index) {
+    dsn_span span;
+    uint32_t mask = (1u << axis->shift) - 1u;
+    if (axis->period == 0) {
+        uint32_t low = uint32_t(axis->start) - axis->radius;
+        span.first_cell = low >> axis->shift;
+        span.cell_count = (((low & mask) + axis->length - 1u + 2u * axis->radius) >> axis->shift) + 1u;
+        span.base = uint32_t(axis->start) + axis->radius;
+        span.last_position = 0xFFFFFFFFu;
+    } else {
+        int64_t copy_start = (axis->first_copy + int64_t(index)) * int64_t(axis->period);
+        int64_t low = axis->start - int64_t(axis->radius) - copy_start;
+        int64_t high = axis->start + int64_t(axis->length) - 1 + int64_t(axis->radius) - copy_start;
+        uint32_t first = low < 0 ? 0u : uint32_t(low);
+        uint32_t last = high >= int64_t(axis->period) ? axis->period - 1u : uint32_t(high);
+        span.first_cell = first >> axis->shift;
+        span.cell_count = (last >> axis->shift) - span.first_cell + 1u;
+        /* Only differences modulo 2^32 matter (see above); the low 32 bits of the int64 suffice. */
+        span.base = uint32_t(uint64_t(axis->start + int64_t(axis->radius) - copy_start));
+        span.last_position = axis->period - 1u;
+    }
+    return span;
+}
+
+/* Where an impulse at axis position p meets a window of `length` points: window indices
+   first_index .. first_index + count - 1, starting at texton index first_texton. Returns 0 when it
+   does not reach the window. `offset` is span.base - p (uint32); diameter = 2 radius + 1. */
+typedef struct dsn_reach {
+    uint32_t first_index, first_texton, count;
+} dsn_reach;
+
+static inline int dsn_reach_window(uint32_t offset, uint32_t length, uint32_t diameter, dsn_reach *reach) {
+    /* e = offset + length - 1 lies in [0, length - 1 + diameter) exactly when some index reaches. */
+    uint32_t e = offset + length - 1u, last_index;
+    if (e >= length - 1u + diameter) return 0;
+    reach->first_index = e < length - 1u ? length - 1u - e : 0u;
+    reach->first_texton = reach->first_index + e - (length - 1u);
+    last_index =
+        (length - 1u + diameter - 1u - e < length - 1u) ? length - 1u + diameter - 1u - e : length - 1u;
+    reach->count = last_index - reach->first_index + 1u;
+    return 1;
+}
+
+/* Cell index i of a span, wrapped to the torus of cells. */
+static inline uint32_t dsn_span_cell(const dsn_span *span, uint32_t i, uint32_t shift) {
+    return (span->first_cell + i) & (0xFFFFFFFFu >> shift);
+}
+
+#endif /* DSN_NOISE_INTERNAL_H */
