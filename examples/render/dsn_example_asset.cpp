@@ -113,7 +113,7 @@ dsn::AssetFields make_fields(const Options &options) {
     dsn::set_identity_color_transform(fields);
     const int32_t peak = options.bits == 8 ? 127 : 32767;
     const int32_t r = static_cast<int32_t>(options.radius);
-    const int32_t means_q24[3] = {9 << 21, 7 << 21, 5 << 21}; // 0.5625, 0.4375, 0.3125
+    const int32_t means_q24[3] = {9 << 20, 7 << 20, 5 << 20}; // 0.5625, 0.4375, 0.3125
     for (uint32_t c = 0; c < options.channels; c++) fields.mean[c] = means_q24[c];
     double energy[3] = {0, 0, 0};
     for (int32_t dy = -r; dy <= r; dy++)

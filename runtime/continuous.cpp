@@ -1,0 +1,290 @@
+/* runtime/continuous.cpp - the continuous (renderer) mode: the spot noise at real-valued points.
+
+   The impulses are those of the lattice mode read with their full 16-bit in-cell positions (so each
+   lattice impulse is the floor of its continuous twin): a continuous Poisson process of the same
+   intensity, with 16 - cell_shift fractional bits per axis. The texton is read with bilinear
+   interpolation, in integer arithmetic: with the point-minus-impulse offset d (Q32.32) cut to 16
+   fractional bits, t(d) = sum over the 4 surrounding texels of q * wx * wy, wx, wy in Q0.16. The per-
+   channel sums carry 32 fractional bits and go through the lattice mode's normalization. */
+#include "noise_internal.h"
+
+namespace {
+
+const uint64_t one_texel = static_cast<uint64_t>(1) << 32;
+
+/* Two's-complement reinterpretation without implementation-defined conversions. */
+int64_t signed_from_bits(uint64_t bits) {
+    return (bits & 0x8000000000000000u) ? -static_cast<int64_t>(~bits) - 1 : static_cast<int64_t>(bits);
+}
+
+/* sign * mantissa * 2^exponent (an IEEE value) * 2^32, rounded toward minus infinity, modulo 2^64. */
+int64_t coordinate_from_parts(bool negative, uint64_t mantissa, int32_t exponent) {
+    const int32_t shift = exponent + 32;
+    uint64_t magnitude;
+    bool inexact = false;
+    if (shift >= 64) {
+        magnitude = 0; /* a multiple of 2^64: the point 0 of the torus */
+    } else if (shift >= 0) {
+        magnitude = mantissa << shift;
+    } else if (shift > -64) {
+        const uint32_t right = static_cast<uint32_t>(-shift);
+        magnitude = mantissa >> right;
+        inexact = (mantissa & ((static_cast<uint64_t>(1) << right) - 1u)) != 0;
+    } else {
+        magnitude = 0;
+        inexact = mantissa != 0;
+    }
+    /* Toward minus infinity: a negative value with dropped bits moves one unit further down. */
+    return signed_from_bits(negative ? 0u - magnitude - (inexact ? 1u : 0u) : magnitude);
+}
+
+/* The object representation of a value as an unsigned integer of the same size (character copies are
+   the only aliasing-safe way without memcpy; compilers reduce this to a move). */
+template <typename Bits, typename Value>
+Bits bits_of(Value value) {
+    Bits bits = 0;
+    const unsigned char *from = reinterpret_cast<const unsigned char *>(&value);
+    unsigned char *to = reinterpret_cast<unsigned char *>(&bits);
+    for (unsigned i = 0; i < sizeof(Value); i++) to[i] = from[i];
+    return bits;
+}
+
+/* ---- The texton, bilinearly ---- */
+
+/* One axis of a point-minus-impulse offset d (Q32.32): the texton index of the lower of the two texels
+   that bracket d (0xFFFFFFFF for index -1) and the weight of the upper one (Q0.16). False when d is
+   outside (-(radius + 1), radius + 1), where both texels are zero. */
+bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint32_t *upper_weight) {
+    /* Shifted so that the lower index is (shifted >> 32) - 1 and the shift is of a positive value. */
+    const int64_t shifted = offset + static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel);
+    if (shifted <= 0 || shifted >= static_cast<int64_t>(2u * radius + 2u) * static_cast<int64_t>(one_texel))
+        return false;
+    const uint64_t bits = static_cast<uint64_t>(shifted);
+    *lower_index = static_cast<uint32_t>(bits >> 32) - 1u;
+    *upper_weight = static_cast<uint32_t>(bits >> 16) & 0xFFFFu;
+    return true;
+}
+
+/* Quantized value of the texton at (row, column, channel); 0 outside the window (indices are unsigned,
+   so -1 is out of range too). */
+int32_t texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel) {
+    if (row >= asset->height || column >= asset->width) return 0;
+    const uint32_t index = (row * asset->width + column) * asset->channels + channel;
+    return asset->bits == 8 ? dsn_read_i8(asset->texton + index) : dsn_read_i16le(asset->texton + 2u * index);
+}
+
+/* Adds the bilinear texton at the offset (rows, columns brackets) to the channel sums (Q.32). */
+void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uint32_t column,
+                  uint32_t column_weight, uint64_t *sums) {
+    const int64_t weight_left = static_cast<int64_t>(65536u - column_weight);
+    const int64_t weight_right = static_cast<int64_t>(column_weight);
+    const int64_t weight_top = static_cast<int64_t>(65536u - row_weight);
+    const int64_t weight_bottom = static_cast<int64_t>(row_weight);
+    for (uint32_t c = 0; c < asset->channels; c++) {
+        const int64_t top =
+            weight_left * texel(asset, row, column, c) + weight_right * texel(asset, row, column + 1u, c);
+        const int64_t bottom = weight_left * texel(asset, row + 1u, column, c) +
+                               weight_right * texel(asset, row + 1u, column + 1u, c);
+        /* |top|, |bottom| <= 2^31, so each term is below 2^47; the sums wrap (defined) as uint64. */
+        sums[c] += static_cast<uint64_t>(weight_top * top + weight_bottom * bottom);
+    }
+}
+
+/* ---- Walking the impulses around one point ---- */
+
+/* One axis of the point: the lattice mode's candidate cells for the window [X - 1, X + 1] around the
+   point's integer part X (every impulse within radius + 1 of the point has its floor in there), and
+   the point's 32-bit fraction. */
+struct PointAxis {
+    dsn_axis axis;
+    uint32_t fraction;
+};
+
+PointAxis point_axis(uint64_t coordinate, uint32_t radius, uint32_t shift, uint32_t period) {
+    PointAxis point;
+    point.fraction = static_cast<uint32_t>(coordinate);
+    dsn_axis_init(&point.axis, static_cast<uint32_t>(coordinate >> 32) - 1u, 3u, radius, shift, period);
+    return point;
+}
+
+/* Offset (Q32.32) from an impulse to the point along one axis, given the impulse's cell origin and its
+   16-bit in-cell position; false when the impulse lies beyond the period (discarded, as in lattice mode).
+   The point is at window index 1, that is at texton index 1 + base - p for an impulse at lattice p. */
+bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
+                    int64_t *offset) {
+    const uint32_t shift = point.axis.shift;
+    if (cell_origin + (bits16 >> (16u - shift)) > span.last_position) return false;
+    const uint32_t whole = 1u + span.base - point.axis.radius - cell_origin; /* X - cell origin, mod 2^32 */
+    const int64_t in_cell = static_cast<int64_t>(static_cast<uint64_t>(bits16) << (16u + shift));
+    *offset = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
+              static_cast<int64_t>(point.fraction) - in_cell;
+    return true;
+}
+
+/* Sums (Q.32, per channel) of the bilinear texton over every impulse of the cell (cell_x, cell_y). */
+void add_cell(const dsn_noise *noise, const PointAxis &px, const dsn_span &span_x, uint32_t cell_x,
+              const PointAxis &py, const dsn_span &span_y, uint32_t cell_y, uint64_t *sums) {
+    const uint32_t key = dsn_cell_key(noise, cell_x, cell_y);
+    const uint32_t count = dsn_cell_impulse_count(noise, key);
+    const uint32_t origin_x = cell_x << noise->cell_shift, origin_y = cell_y << noise->cell_shift;
+    for (uint32_t k = 0; k < count; k++) {
+        const uint32_t hash = dsn_impulse_hash(noise, key, k);
+        int64_t offset_x, offset_y;
+        uint32_t row, row_weight, column, column_weight;
+        if (!impulse_offset(py, span_y, origin_y, dsn_impulse_bits_y(hash), &offset_y) ||
+            !bracket(offset_y, noise->radius[1], &row, &row_weight))
+            continue;
+        if (!impulse_offset(px, span_x, origin_x, dsn_impulse_bits_x(hash), &offset_x) ||
+            !bracket(offset_x, noise->radius[0], &column, &column_weight))
+            continue;
+        add_bilinear(&noise->asset, row, row_weight, column, column_weight, sums);
+    }
+}
+
+/* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
+   it as in lattice mode, the fractions are added once, rounded down, before the final rounding. */
+void normalize_q32(const dsn_noise *noise, const uint64_t *sums, int32_t *out) {
+    const uint32_t channels = noise->asset.channels;
+    for (uint32_t c = 0; c < channels; c++) {
+        int64_t accumulated = noise->offset[c], fractions = 0;
+        for (uint32_t k = 0; k < channels; k++) {
+            const int64_t whole = dsn_signed_sum(static_cast<uint32_t>(sums[k] >> 32)); /* floor, mod 2^32 */
+            const int64_t fraction = static_cast<int64_t>(sums[k] & 0xFFFFFFFFu);
+            accumulated += noise->gain[c * 3 + k] * whole;
+            fractions += noise->gain[c * 3 + k] * fraction; /* |gain| < 2^29: each term below 2^61 */
+        }
+        accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
+        out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
+    }
+}
+
+void evaluate(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
+    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+    const uint32_t shift = noise->cell_shift;
+    const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
+    const PointAxis py = point_axis(y, noise->radius[1], shift, noise->period[1]);
+    for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&py.axis, sy);
+        for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
+            const dsn_span span_x = dsn_axis_span(&px.axis, sx);
+            for (uint32_t j = 0; j < span_y.cell_count; j++)
+                for (uint32_t i = 0; i < span_x.cell_count; i++)
+                    add_cell(noise, px, span_x, dsn_span_cell(&span_x, i, shift), py, span_y,
+                             dsn_span_cell(&span_y, j, shift), sums);
+        }
+    }
+    normalize_q32(noise, sums, out);
+}
+
+void zero(int32_t *out, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) out[i] = 0;
+}
+
+/* Grid point i of an axis: origin + column * column_step + row * row_step, modulo 2^64. */
+uint64_t grid_coordinate(int64_t origin, int64_t column_step, int64_t row_step, uint32_t column,
+                         uint32_t row) {
+    return static_cast<uint64_t>(origin) + static_cast<uint64_t>(column_step) * column +
+           static_cast<uint64_t>(row_step) * row;
+}
+
+int check_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+               const void *out) {
+    const int err = dsn_continuous_check(noise);
+    if (err != DSN_OK) return err;
+    if (grid == 0 || out == 0) return DSN_ERR_NULL;
+    if (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE)
+        return DSN_ERR_TILE_SIZE;
+    return DSN_OK;
+}
+
+/* Evaluates every grid point in order, handing each pixel's channel values to `store`. */
+template <typename Store>
+int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                  const void *out, Store store) {
+    const int err = check_tile(noise, grid, width, height, out);
+    if (err != DSN_OK) return err;
+    const uint32_t channels = noise->asset.channels;
+    int32_t pixel[DSN_MAX_CHANNELS];
+    size_t index = 0;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            evaluate(noise, grid_coordinate(grid->origin_x, grid->column_step_x, grid->row_step_x, i, j),
+                     grid_coordinate(grid->origin_y, grid->column_step_y, grid->row_step_y, i, j), pixel);
+            for (uint32_t c = 0; c < channels; c++) store(index++, pixel[c]);
+        }
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+int64_t dsn_coordinate_from_double(double value) {
+    const uint64_t bits = bits_of<uint64_t>(value);
+    const uint32_t exponent = static_cast<uint32_t>(bits >> 52) & 0x7FFu;
+    const uint64_t fraction = bits & 0xFFFFFFFFFFFFFu;
+    if (exponent == 0x7FFu) return 0; /* NaN, +-Inf */
+    const uint64_t mantissa = exponent == 0 ? fraction : (fraction | (static_cast<uint64_t>(1) << 52));
+    const int32_t power = (exponent == 0 ? 1 : static_cast<int32_t>(exponent)) - 1075;
+    return coordinate_from_parts((bits >> 63) != 0, mantissa, power);
+}
+
+int64_t dsn_coordinate_from_float(float value) {
+    const uint32_t bits = bits_of<uint32_t>(value);
+    const uint32_t exponent = (bits >> 23) & 0xFFu;
+    const uint32_t fraction = bits & 0x7FFFFFu;
+    if (exponent == 0xFFu) return 0; /* NaN, +-Inf */
+    const uint32_t mantissa = exponent == 0 ? fraction : (fraction | (1u << 23));
+    const int32_t power = (exponent == 0 ? 1 : static_cast<int32_t>(exponent)) - 150;
+    return coordinate_from_parts((bits >> 31) != 0, mantissa, power);
+}
+
+int dsn_continuous_check(const dsn_noise *noise) {
+    if (noise == 0 || noise->asset.texton == 0) return DSN_ERR_NULL;
+    if (noise->asset.interpolation != DSN_INTERPOLATION_BILINEAR &&
+        (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
+        return DSN_ERR_CONTINUOUS_MISMATCH;
+    return DSN_OK;
+}
+
+int dsn_eval_continuous_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out) {
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = dsn_continuous_check(noise);
+    if (err != DSN_OK) {
+        zero(out, noise == 0 ? 1u : noise->asset.channels);
+        return err;
+    }
+    evaluate(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), out);
+    return DSN_OK;
+}
+
+int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float *out) {
+    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
+    if (out == 0) return DSN_ERR_NULL;
+    const int err =
+        dsn_eval_continuous_fixed(noise, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), fixed);
+    const uint32_t channels = noise == 0 ? 1u : noise->asset.channels;
+    for (uint32_t c = 0; c < channels; c++) out[c] = dsn_fixed_to_float(fixed[c]);
+    return err;
+}
+
+size_t dsn_continuous_tile_scratch_size(const dsn_noise *, const dsn_grid *, uint32_t, uint32_t) { return 0; }
+
+int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                              int32_t *out, void *, size_t) {
+    return evaluate_grid(noise, grid, width, height, out, [out](size_t i, int32_t v) { out[i] = v; });
+}
+
+int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                              float *out, void *, size_t) {
+    return evaluate_grid(noise, grid, width, height, out,
+                         [out](size_t i, int32_t v) { out[i] = dsn_fixed_to_float(v); });
+}
+
+int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                           uint8_t *out, void *, size_t) {
+    return evaluate_grid(noise, grid, width, height, out,
+                         [out](size_t i, int32_t v) { out[i] = dsn_fixed_to_u8(v); });
+}
+
+} // extern "C"
