@@ -1,0 +1,119 @@
+// bake_pipeline_test.cpp - bake(): input checks, quantization effect, asset size and fields, reproducibility.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "bake_fixtures.h"
+#include "dsn/bake.h"
+
+using namespace bake_fixtures;
+
+namespace {
+
+std::string bake_error(const dsn::Image &exemplar, const dsn::BakeOptions &options) {
+    try {
+        dsn::check_bake_input(exemplar, options);
+    } catch (const std::exception &error) {
+        return error.what();
+    }
+    return "";
+}
+
+dsn::Image blank(int width, int height) {
+    dsn::Image image;
+    image.width = width, image.height = height, image.channels = 1;
+    image.values.assign(size_t(width) * size_t(height), 0.5);
+    return image;
+}
+
+} // namespace
+
+TEST_CASE("bake refuses options out of range and exemplars smaller than S - S, naming a radius that fits") {
+    dsn::BakeOptions options;
+    CHECK(bake_error(blank(61, 61), options) == "");
+    CHECK(bake_error(blank(61, 60), options) ==
+          "image 61x60 is too small for radius 15 (both sides must be at least 61); radius 14 would fit");
+    CHECK(bake_error(blank(4, 100), options).find("no radius fits") != std::string::npos);
+    for (int radius : {0, -3, 128}) {
+        options.radius = radius;
+        CHECK(bake_error(blank(600, 600), options).find("out of range") != std::string::npos);
+    }
+    options = dsn::BakeOptions();
+    options.bits = 12;
+    CHECK(bake_error(blank(61, 61), options).find("bits") != std::string::npos);
+    options = dsn::BakeOptions();
+    options.iterations = 0;
+    CHECK(bake_error(blank(61, 61), options).find("iterations") != std::string::npos);
+    options = dsn::BakeOptions();
+    CHECK_THROWS_WITH(dsn::bake(blank(61, 61), options), doctest::Contains("constant image"));
+}
+
+TEST_CASE("bake: 8-bit quantization changes the RME by < 0.001, a 31x31 RGB asset is <= 3.2 KB") {
+    std::vector<std::pair<std::string, dsn::Image>> exemplars = {
+        {"synthetic", random_phase_exemplar(64, 64, 3, 41)}};
+    if (textures_available())
+        for (const char *name : {"stone_granite1", "wood_walnut"}) {
+            std::vector<std::string> warnings;
+            exemplars.push_back(
+                {name, dsn::load_exemplar(textures_folder() + "/" + name + ".png", &warnings)});
+        }
+    else
+        MESSAGE("real textures skipped: " << textures_folder() << " is absent");
+    for (const auto &[name, exemplar] : exemplars) {
+        CAPTURE(name);
+        dsn::BakeOptions options;
+        options.iterations = 100;
+        options.periodic = name != "synthetic";
+        const dsn::BakeResult result = dsn::bake(exemplar, options);
+        MESSAGE(name << ": RME " << result.rme << ", quantized " << result.rme_quantized << ", "
+                     << result.asset.size() << " bytes");
+        CHECK(std::fabs(result.rme_quantized - result.rme) < 0.001);
+        CHECK(result.rme == doctest::Approx(result.sot.rme_per_iteration.back()).epsilon(1e-5));
+        CHECK(result.asset.size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
+        CHECK(result.asset.size() <= 3200);
+        CHECK(result.fields.bake_iterations == 100);
+        CHECK(result.fields.exemplar_width == uint32_t(exemplar.width));
+        CHECK(result.fields.bake_rme_q24 == uint32_t(std::lround(result.rme_quantized * (1 << 24))));
+        for (int c = 0; c < exemplar.channels; c++)
+            CHECK(result.fields.mean[c] == int32_t(std::lround(result.model.mean[size_t(c)] * (1 << 24))));
+    }
+}
+
+TEST_CASE("bake is reproducible: same input, options and seed give a byte-identical asset") {
+    const dsn::Image exemplar = random_phase_exemplar(48, 48, 3, 51);
+    dsn::BakeOptions options;
+    options.radius = 10;
+    options.iterations = 60;
+    options.seed = 77;
+    options.shape = DSN_SHAPE_DISK;
+    const std::vector<unsigned char> first = dsn::bake(exemplar, options).asset;
+    CHECK(dsn::bake(exemplar, options).asset == first);
+    options.seed = 78;
+    CHECK(dsn::bake(exemplar, options).asset != first);
+}
+
+TEST_CASE("bake records its options: bits, shape, interpolation, identity transform on request") {
+    const dsn::Image exemplar = random_phase_exemplar(48, 48, 3, 61);
+    dsn::BakeOptions options;
+    options.radius = 8;
+    options.iterations = 30;
+    options.bits = 16;
+    options.interpolation = DSN_INTERPOLATION_BILINEAR;
+    options.use_color_transform = false;
+    const dsn::BakeResult result = dsn::bake(exemplar, options);
+    CHECK(result.asset.size() == 128 + 17 * 17 * 3 * 2 + 4);
+    CHECK(result.asset[DSN_OFFSET_BITS] == 16);
+    CHECK(result.asset[DSN_OFFSET_INTERPOLATION] == DSN_INTERPOLATION_BILINEAR);
+    CHECK(result.asset[DSN_OFFSET_SHAPE] == DSN_SHAPE_RECTANGLE);
+    for (int i = 0; i < 9; i++)
+        CHECK(dsn_read_i32le(&result.asset[DSN_OFFSET_COLOR_TRANSFORM + 4u * unsigned(i)]) ==
+              (i % 4 == 0 ? DSN_Q24_ONE : 0));
+    // The bilinear target carries more high-frequency energy than the model: its texton does too.
+    options.interpolation = DSN_INTERPOLATION_LATTICE;
+    const dsn::BakeResult lattice = dsn::bake(exemplar, options);
+    double bilinear_energy = 0, lattice_energy = 0;
+    for (double value : result.sot.texton.values) bilinear_energy += value * value;
+    for (double value : lattice.sot.texton.values) lattice_energy += value * value;
+    CHECK(bilinear_energy > lattice_energy);
+}
