@@ -60,13 +60,14 @@ int32_t wrapped(int32_t origin, uint32_t step) {
     return sum >= 0x80000000u ? -static_cast<int32_t>(~sum) - 1 : static_cast<int32_t>(sum);
 }
 
-/* Ordinary points, the sign change at 0, both int32 ends and the 32-bit wrap, far cells. */
+/* Ordinary points, the sign change at 0, both int32 ends and the 32-bit wrap, far cells, a larger tile. */
 const Window lattice_windows[] = {
     {0, 0, 6, 5},
     {-3, -2, 5, 4},
     {INT32_MAX - 2, INT32_MAX - 1, 5, 4}, /* wraps to INT32_MIN on both axes */
     {INT32_MIN, INT32_MAX, 4, 3},         /* x at the low end, y wraps */
     {1234567891, -987654321, 4, 4},
+    {-100, 50, 32, 16}, /* a larger tile: many impulses cross its inner cell borders */
 };
 
 /* Tileable windows span more than one period, around 0 and across the wrap. */
@@ -87,12 +88,44 @@ const Setting lattice_settings[] = {
     {0x9E3779B9u, 100u << 16, 0u, 0u, DSN_FLAG_NO_COLOR_TRANSFORM},
 };
 
+/* A power of two, an odd period that is no multiple of any cell size, and the degenerate period 1. */
 const Setting tileable_settings[] = {
     {77u, 0u, 16u, 8u, 0u},
-    {0xFFFFFFFFu, 9u << 16, 12u, 0u, 0u},
+    {0xFFFFFFFFu, 9u << 16, 13u, 0u, 0u},
+    {3u, 0u, 1u, 7u, 0u},
 };
 
-const uint32_t max_window_values = 20u * 6u * DSN_MAX_CHANNELS;
+/* The continuous mode also on the lattice-baked assets, and with a period. */
+const uint32_t lattice_continuous = DSN_FLAG_ALLOW_LATTICE_CONTINUOUS;
+const Setting continuous_settings[] = {
+    {0u, 0u, 0u, 0u, lattice_continuous},
+    {0xFFFFFFFFu, (30u << 16) + (1u << 15), 0u, 0u, lattice_continuous},
+    {0x9E3779B9u, 100u << 16, 0u, 0u, lattice_continuous | DSN_FLAG_NO_COLOR_TRANSFORM},
+    {5u, DSN_IMPACTS_MIN_Q16, 16u, 13u, lattice_continuous},
+};
+
+/* A continuous window: a grid of Q32.32 points (dsn_grid) and its size. */
+struct Grid {
+    dsn_grid grid;
+    uint32_t width, height;
+};
+
+const int64_t q32_one = INT64_C(1) << 32;
+
+/* A zoom, a rotation by 30 degrees across both 32-bit wraps, a minification with shear, a tiny step
+   across 0 (16-bit sub-texel positions) and a larger slightly rotated tile. Steps are Q32.32: 1288490189 is
+   0.3, 3719550787 is cos 30. */
+const Grid continuous_grids[] = {
+    {{-3 * q32_one - q32_one / 4, 7 * q32_one + q32_one / 2, 1288490189, 0, 0, 1288490189}, 6, 5},
+    {{INT64_MAX - q32_one / 2, INT64_MIN + 123, 3719550787, -2147483648, 2147483648, 3719550787}, 5, 4},
+    {{0, -5 * q32_one, 11 * q32_one / 4, -9 * q32_one / 8, q32_one / 3, 2 * q32_one}, 4, 3},
+    {{-2 * 65536, 65536 * 3 + 1, 65536, 0, -65536, 131072}, 4, 4},
+    {{-40 * q32_one / 3, 20 * q32_one, q32_one * 3 / 4, q32_one / 16, -q32_one / 16, q32_one * 3 / 4},
+     24,
+     12},
+};
+
+const uint32_t max_window_values = 32u * 16u * DSN_MAX_CHANNELS; /* the largest window or grid */
 const size_t scratch_capacity = 64u * 1024u;
 
 /* Caller-owned buffers for tile outputs and scratch: static so that nothing large sits on a small
@@ -172,33 +205,152 @@ int point_then_tile(const dsn_noise *noise, const Window &window, Fnv *hash) {
     return err == DSN_OK ? tile_fixed(noise, window, hash) : err;
 }
 
+/* Two's complement without implementation-defined conversions. */
+int64_t signed_from(uint64_t value) {
+    return value >= (UINT64_C(1) << 63) ? -static_cast<int64_t>(~value) - 1 : static_cast<int64_t>(value);
+}
+
+/* Pixel (i, j) of a grid, with the additions modulo 2^64 as documented for dsn_grid. */
+void grid_point(const dsn_grid &grid, uint32_t i, uint32_t j, int64_t *x, int64_t *y) {
+    *x = signed_from(static_cast<uint64_t>(grid.origin_x) + i * static_cast<uint64_t>(grid.column_step_x) +
+                     j * static_cast<uint64_t>(grid.row_step_x));
+    *y = signed_from(static_cast<uint64_t>(grid.origin_y) + i * static_cast<uint64_t>(grid.column_step_y) +
+                     j * static_cast<uint64_t>(grid.row_step_y));
+}
+
+/* The coordinate in texels as a double, exactly: 16 fractional bits of a 48-bit value survive, so the
+   input of the float API is the same number on every platform (no rounding anywhere). */
+double grid_double(int64_t coordinate) {
+    return static_cast<double>(static_cast<int32_t>(static_cast<uint64_t>(coordinate) >> 16)) / 65536.0;
+}
+
+typedef int (*GridEvaluator)(const dsn_noise *noise, const Grid &grid, Fnv *hash);
+
+int continuous_point_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            int32_t values[DSN_MAX_CHANNELS];
+            int64_t x, y;
+            grid_point(grid.grid, i, j, &x, &y);
+            const int err = dsn_eval_continuous_fixed(noise, x, y, values);
+            if (err != DSN_OK) return err;
+            hash_fixed(hash, values, noise->asset.channels);
+        }
+    return DSN_OK;
+}
+
+int continuous_scratch_for(const dsn_noise *noise, const Grid &grid, size_t *size) {
+    *size = dsn_continuous_tile_scratch_size(noise, &grid.grid, grid.width, grid.height);
+    return *size <= scratch_capacity && grid.width * grid.height * DSN_MAX_CHANNELS <= max_window_values
+               ? DSN_OK
+               : DSN_ERR_SCRATCH;
+}
+
+int continuous_tile_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    size_t scratch_size;
+    int err = continuous_scratch_for(noise, grid, &scratch_size);
+    if (err == DSN_OK)
+        err = dsn_continuous_tile_fixed(noise, &grid.grid, grid.width, grid.height, tile_fixed_values,
+                                        tile_scratch, scratch_size);
+    if (err == DSN_OK) hash_fixed(hash, tile_fixed_values, grid.width * grid.height * noise->asset.channels);
+    return err;
+}
+
+/* The float API per point (from double coordinates), then the float and 8-bit grid tiles. */
+int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            float values[DSN_MAX_CHANNELS];
+            int64_t x, y;
+            grid_point(grid.grid, i, j, &x, &y);
+            const int err = dsn_eval_continuous_float(noise, grid_double(x), grid_double(y), values);
+            if (err != DSN_OK) return err;
+            hash_float(hash, values, noise->asset.channels);
+        }
+    size_t scratch_size;
+    const uint32_t count = grid.width * grid.height * noise->asset.channels;
+    int err = continuous_scratch_for(noise, grid, &scratch_size);
+    if (err == DSN_OK)
+        err = dsn_continuous_tile_float(noise, &grid.grid, grid.width, grid.height, tile_float_values,
+                                        tile_scratch, scratch_size);
+    if (err == DSN_OK) hash_float(hash, tile_float_values, count);
+    if (err == DSN_OK)
+        err = dsn_continuous_tile_u8(noise, &grid.grid, grid.width, grid.height, tile_u8_values, tile_scratch,
+                                     scratch_size);
+    if (err == DSN_OK) hash_u8(hash, tile_u8_values, count);
+    return err;
+}
+
+/* IEEE bit patterns for the coordinate conversions: zeros, halves, the int32 ends, beyond 2^63, the
+   smallest subnormal, the largest finite, infinities and NaNs. Built from bits so that no compiler
+   option (-ffast-math) can change them. */
+const uint64_t double_patterns[] = {
+    0x0000000000000000u, 0x8000000000000000u, 0x3FE0000000000000u, 0xBFE0000000000000u, 0x41DFFFFFFFC00000u,
+    0xC1E0000000000000u, 0xC1E0000000100000u, 0x43E0000000000000u, 0x4415AF1D78B58C40u, 0x0000000000000001u,
+    0x7FEFFFFFFFFFFFFFu, 0x7FF0000000000000u, 0xFFF0000000000000u, 0x7FF8000000000000u, 0xFFF0000000000001u,
+    0x400921FB54442D18u, 0xC00921FB54442D18u, 0x3DF0000000000000u, 0x3DEFFFFFFFFFFFFFu, 0xBDF0000000000000u,
+};
+const uint32_t float_patterns[] = {
+    0x00000000u, 0x80000000u, 0x3F000000u, 0xBF000000u, 0x4EFFFFFFu, 0xCF000000u,
+    0x5F000000u, 0x00000001u, 0x7F7FFFFFu, 0x7F800000u, 0xFF800000u, 0x7FC00000u,
+    0x40490FDBu, 0xC0490FDBu, 0x2F800000u, 0xAF800000u, 0x2F7FFFFFu,
+};
+
+uint64_t coordinate_conversions_hash() {
+    Fnv hash = {fnv_offset_basis};
+    for (uint32_t i = 0; i < sizeof double_patterns / sizeof double_patterns[0]; i++) {
+        double value;
+        memcpy(&value, &double_patterns[i], sizeof value);
+        hash_u64(&hash, static_cast<uint64_t>(dsn_coordinate_from_double(value)));
+    }
+    for (uint32_t i = 0; i < sizeof float_patterns / sizeof float_patterns[0]; i++) {
+        float value;
+        memcpy(&value, &float_patterns[i], sizeof value);
+        hash_u64(&hash, static_cast<uint64_t>(dsn_coordinate_from_float(value)));
+    }
+    return hash.state;
+}
+
 #define GOLDEN_COUNT(array) static_cast<uint32_t>(sizeof(array) / sizeof((array)[0]))
 
-/* Which settings and windows a kind of output is evaluated under. */
+/* Which settings and windows (lattice) or grids (continuous) a kind of output is evaluated under. */
 struct Plan {
     const Setting *settings;
     uint32_t setting_count;
     const Window *windows;
     uint32_t window_count;
+    const Grid *grids;
+    uint32_t grid_count;
 };
 
-const Plan lattice_plan = {lattice_settings, GOLDEN_COUNT(lattice_settings), lattice_windows,
-                           GOLDEN_COUNT(lattice_windows)};
-const Plan tileable_plan = {tileable_settings, GOLDEN_COUNT(tileable_settings), tileable_windows,
-                            GOLDEN_COUNT(tileable_windows)};
+const Plan lattice_plan = {
+    lattice_settings, GOLDEN_COUNT(lattice_settings), lattice_windows, GOLDEN_COUNT(lattice_windows), 0, 0};
+const Plan tileable_plan = {tileable_settings,
+                            GOLDEN_COUNT(tileable_settings),
+                            tileable_windows,
+                            GOLDEN_COUNT(tileable_windows),
+                            0,
+                            0};
+const Plan continuous_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
+                              continuous_grids,    GOLDEN_COUNT(continuous_grids)};
 
+/* One kind of output: a lattice evaluator over the plan's windows or a continuous one over its grids. */
 struct Kind {
     const char *name;
     Evaluator evaluate;
+    GridEvaluator evaluate_grid;
     const Plan *plan;
 };
 
 const Kind kinds[] = {
-    {"point", point_fixed, &lattice_plan},
-    {"tile", tile_fixed, &lattice_plan}, /* the same bytes as "point": the two paths must agree */
-    {"float32", float_outputs, &lattice_plan},
-    {"u8", u8_outputs, &lattice_plan},
-    {"tileable", point_then_tile, &tileable_plan},
+    {"point", point_fixed, 0, &lattice_plan},
+    {"tile", tile_fixed, 0, &lattice_plan}, /* the same bytes as "point": the two paths must agree */
+    {"float32", float_outputs, 0, &lattice_plan},
+    {"u8", u8_outputs, 0, &lattice_plan},
+    {"tileable", point_then_tile, 0, &tileable_plan},
+    {"c-point", 0, continuous_point_fixed, &continuous_plan},
+    {"c-tile", 0, continuous_tile_fixed, &continuous_plan}, /* the same bytes as "c-point" */
+    {"c-float", 0, continuous_conversions, &continuous_plan},
 };
 
 void write_line(const char *kind, const char *asset, const char *detail) {
@@ -236,8 +388,10 @@ int hash_asset(const Kind &kind, const dsn_asset *asset, Fnv *hash) {
         config.period_y = setting.period_y;
         config.flags = setting.flags;
         int err = dsn_noise_init(&noise, asset, &config);
-        for (uint32_t w = 0; err == DSN_OK && w < plan.window_count; w++)
+        for (uint32_t w = 0; err == DSN_OK && kind.evaluate && w < plan.window_count; w++)
             err = kind.evaluate(&noise, plan.windows[w], hash);
+        for (uint32_t g = 0; err == DSN_OK && kind.evaluate_grid && g < plan.grid_count; g++)
+            err = kind.evaluate_grid(&noise, plan.grids[g], hash);
         if (err != DSN_OK) return err;
     }
     return DSN_OK;
@@ -265,5 +419,6 @@ int main() {
         }
         write_hash(kinds[k].name, "all", all.state);
     }
+    write_hash("coords", "all", coordinate_conversions_hash());
     return failures == 0 ? 0 : 1;
 }
