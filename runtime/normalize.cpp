@@ -45,7 +45,7 @@ int64_t negate_if(uint64_t magnitude, int negative) {
 /* K_ck scale_k 2^(fraction_bits + 16) / (2^64 sqrt(lambda)): K is Q8.24 and scale Q.40, the output Q16. */
 int64_t gain_value(int32_t transform, uint32_t scale, uint64_t root, uint32_t root_shift,
                    uint32_t fraction_bits) {
-    uint64_t magnitude = transform < 0 ? uint64_t(0) - uint64_t(uint32_t(transform)) : uint64_t(transform);
+    uint64_t magnitude = transform < 0 ? uint64_t(0u - uint32_t(transform)) : uint64_t(transform);
     uint64_t product = magnitude * scale; /* < 2^63 */
     int32_t exponent = int32_t(fraction_bits + root_shift) - 48;
     uint64_t quotient = exponent >= 0 ? dsn_multiply_divide(product, uint64_t(1) << exponent, root)
