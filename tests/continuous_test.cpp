@@ -1,0 +1,282 @@
+// continuous_test.cpp - the continuous mode's exact behaviour: coordinate conversion from IEEE bits,
+// the lattice-asset error, the bilinear sum against a brute-force reference over every nearby cell,
+// grid tiles against per-point calls, and periodicity.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "../runtime/noise_internal.h"
+#include "continuous_fixtures.h"
+
+using namespace continuous_fixtures;
+
+namespace {
+
+const int64_t one = int64_t(1) << 32;
+
+// Brute force: the point's value from every impulse of every cell within a generous box (or, periodic,
+// of every cell of the period, with all the copies that can reach), with exact integer tent weights on
+// the point truncated to 16 fraction bits, then the normalization in long double. Independent of the
+// runtime's cell walk and offset arithmetic; shares only the impulse process (noise_internal.h).
+std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int64_t y) {
+    const uint32_t shift = noise->cell_shift, channels = noise->asset.channels;
+    const int64_t rx = noise->radius[0], ry = noise->radius[1];
+    const uint32_t period[2] = {noise->period[0], noise->period[1]};
+    // Points in Q16 (truncated), on the torus of 2^48, or reduced to [0, P) when periodic.
+    int64_t point[2] = {x >> 16, y >> 16};
+    for (int axis = 0; axis < 2; axis++) {
+        if (period[axis]) {
+            int64_t p16 = int64_t(period[axis]) << 16;
+            int64_t signed_point =
+                int64_t(int32_t(uint32_t(uint64_t(point[axis]) >> 16))) * 65536 + (point[axis] & 0xFFFF);
+            point[axis] = ((signed_point % p16) + p16) % p16;
+        }
+    }
+    std::vector<__int128> sums(channels, 0);
+    auto cells_of = [&](int axis, int64_t radius, std::vector<uint32_t> &cells,
+                        std::vector<int64_t> &shifts) {
+        const int64_t c = int64_t(1) << shift;
+        if (period[axis] == 0) {
+            int64_t whole = point[axis] >> 16;
+            for (int64_t lattice = whole - radius - 2 - c; lattice <= whole + radius + 2 + c; lattice += c) {
+                cells.push_back(uint32_t(uint64_t(lattice)) >> shift);
+                // Impulse positions are taken relative to the point's own wrap of the torus.
+                shifts.push_back((lattice >> shift) - int64_t(uint32_t(uint64_t(lattice)) >> shift));
+            }
+        } else {
+            for (uint32_t cell = 0; (uint64_t(cell) << shift) < period[axis]; cell++) {
+                cells.push_back(cell);
+                shifts.push_back(0);
+            }
+        }
+    };
+    std::vector<uint32_t> cells_x, cells_y;
+    std::vector<int64_t> wraps_x, wraps_y;
+    cells_of(0, rx, cells_x, wraps_x);
+    cells_of(1, ry, cells_y, wraps_y);
+    const int copies_x = period[0] ? int(rx + 2) / int(period[0]) + 2 : 0;
+    const int copies_y = period[1] ? int(ry + 2) / int(period[1]) + 2 : 0;
+    for (size_t j = 0; j < cells_y.size(); j++)
+        for (size_t i = 0; i < cells_x.size(); i++) {
+            uint32_t key = dsn_cell_key(noise, cells_x[i], cells_y[j]);
+            uint32_t count = dsn_cell_impulse_count(noise, key);
+            for (uint32_t k = 0; k < count; k++) {
+                uint32_t hash = dsn_impulse_hash(noise, key, k);
+                // Impulse position in Q16 (16 - shift fraction bits, scaled up).
+                int64_t px = ((int64_t(cells_x[i]) + wraps_x[i]) << (16 + shift)) +
+                             (int64_t(dsn_impulse_bits_x(hash)) << shift);
+                int64_t py = ((int64_t(cells_y[j]) + wraps_y[j]) << (16 + shift)) +
+                             (int64_t(dsn_impulse_bits_y(hash)) << shift);
+                if (period[0] && (px >> 16) >= int64_t(period[0])) continue;
+                if (period[1] && (py >> 16) >= int64_t(period[1])) continue;
+                for (int my = -copies_y; my <= copies_y; my++)
+                    for (int mx = -copies_x; mx <= copies_x; mx++) {
+                        int64_t dx = point[0] - px - int64_t(mx) * (int64_t(period[0]) << 16);
+                        int64_t dy = point[1] - py - int64_t(my) * (int64_t(period[1]) << 16);
+                        if (period[0] == 0) dx = int64_t(uint64_t(dx) << 16) >> 16; // the 2^32 torus, in Q16
+                        if (period[1] == 0) dy = int64_t(uint64_t(dy) << 16) >> 16;
+                        for (int64_t b = -ry; b <= ry; b++) {
+                            int64_t wy = 65536 - std::llabs(dy - b * 65536);
+                            if (wy <= 0) continue;
+                            for (int64_t a = -rx; a <= rx; a++) {
+                                int64_t wx = 65536 - std::llabs(dx - a * 65536);
+                                if (wx <= 0) continue;
+                                for (uint32_t c = 0; c < channels; c++)
+                                    sums[c] += __int128(dsn_asset_texton_value(
+                                                   &noise->asset, uint32_t(b + ry), uint32_t(a + rx), c)) *
+                                               wx * wy;
+                            }
+                        }
+                    }
+            }
+        }
+    std::vector<long double> out(channels);
+    for (uint32_t c = 0; c < channels; c++) {
+        long double value = noise->offset[c];
+        for (uint32_t k = 0; k < channels; k++)
+            value += (long double)noise->gain[c * 3 + k] * (long double)sums[k] / 4294967296.0L;
+        out[c] = value / std::ldexp(1.0L, int(noise->gain_shift));
+    }
+    return out;
+}
+
+int64_t random_coordinate(std::mt19937_64 &random) {
+    switch (random() % 4) {
+    case 0:
+        return int64_t(random()); // anywhere on the torus
+    case 1:
+        return int64_t(uint64_t(INT32_MAX - 40 + int64_t(random() % 80)) << 32) + int64_t(random() >> 32);
+    case 2:
+        return int64_t(uint64_t(random() % 200) << 32) - 100 * one + int64_t(random() >> 32);
+    default:
+        return (int64_t(random() % 100) - 50) * one; // lattice points
+    }
+}
+
+} // namespace
+
+TEST_CASE("continuous: float and double coordinates convert from their bits, rounding down, modulo 2^32") {
+    CHECK(dsn_coordinate_from_double(0.0) == 0);
+    CHECK(dsn_coordinate_from_double(-0.0) == 0);
+    CHECK(dsn_coordinate_from_double(1.5) == one + one / 2);
+    CHECK(dsn_coordinate_from_double(-0.25) == -one / 4);
+    CHECK(dsn_coordinate_from_double(-3.0) == -3 * one);
+    CHECK(dsn_coordinate_from_double(2147483647.0) == int64_t(2147483647) * one);
+    CHECK(dsn_coordinate_from_double(2147483648.0) == INT64_MIN);               // wraps to -2^31
+    CHECK(dsn_coordinate_from_double(4294967296.0 + 7.5) == 7 * one + one / 2); // modulo 2^32 texels
+    CHECK(dsn_coordinate_from_double(1e300) == 0);                              // a multiple of 2^64
+    CHECK(dsn_coordinate_from_double(std::ldexp(1.0, -33)) == 0);               // below one unit: down
+    CHECK(dsn_coordinate_from_double(-std::ldexp(1.0, -33)) == -1);
+    CHECK(dsn_coordinate_from_double(-std::numeric_limits<double>::denorm_min()) == -1);
+    CHECK(dsn_coordinate_from_double(std::numeric_limits<double>::denorm_min()) == 0);
+    CHECK(dsn_coordinate_from_double(std::nan("")) == 0);
+    CHECK(dsn_coordinate_from_double(std::numeric_limits<double>::infinity()) == 0);
+    CHECK(dsn_coordinate_from_double(-std::numeric_limits<double>::infinity()) == 0);
+    CHECK(dsn_coordinate_from_float(std::numeric_limits<float>::quiet_NaN()) == 0);
+    CHECK(dsn_coordinate_from_float(-1.75f) == -one - 3 * one / 4);
+
+    // Against exact long double arithmetic (64-bit mantissa on x86, enough for these magnitudes), and
+    // float against double on random bit patterns.
+    std::mt19937_64 random(11);
+    for (int i = 0; i < 200000; i++) {
+        double value = std::ldexp(double(int64_t(random())) / 9.2233720368547758e18, int(random() % 40) - 8);
+        long double scaled = std::floor((long double)value * 4294967296.0L);
+        int64_t expected = int64_t(scaled); // |value| < 2^31 here
+        REQUIRE(dsn_coordinate_from_double(value) == expected);
+        uint32_t bits = uint32_t(random());
+        float single;
+        std::memcpy(&single, &bits, 4);
+        if (std::isfinite(single))
+            REQUIRE(dsn_coordinate_from_float(single) == dsn_coordinate_from_double(single));
+    }
+}
+
+TEST_CASE("continuous: a lattice-baked asset is refused unless explicitly allowed") {
+    dsn::AssetFields fields = random_texton_asset(3, 3, 8, 1);
+    fields.interpolation = DSN_INTERPOLATION_LATTICE;
+    auto refused = make_noise(fields, 1);
+    int32_t out[3] = {5, 5, 5};
+    float values[3];
+    CHECK(dsn_continuous_check(&refused->noise) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK(dsn_eval_continuous_fixed(&refused->noise, 0, 0, out) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK((out[0] == 0 && out[1] == 0 && out[2] == 0));
+    CHECK(dsn_eval_continuous_float(&refused->noise, 1.5, 2.5, values) == DSN_ERR_CONTINUOUS_MISMATCH);
+    dsn_grid grid = {0, 0, one, 0, 0, one};
+    CHECK(dsn_continuous_tile_fixed(&refused->noise, &grid, 4, 4, out, nullptr, 0) ==
+          DSN_ERR_CONTINUOUS_MISMATCH);
+    auto allowed = make_noise(fields, 1, 0, 0, 0, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS);
+    CHECK(dsn_eval_continuous_fixed(&allowed->noise, one / 3, 5 * one, out) == DSN_OK);
+    CHECK(dsn_continuous_check(nullptr) == DSN_ERR_NULL);
+    CHECK(dsn_eval_continuous_fixed(&allowed->noise, 0, 0, nullptr) == DSN_ERR_NULL);
+    CHECK(dsn_continuous_tile_fixed(&allowed->noise, &grid, 0, 4, out, nullptr, 0) == DSN_ERR_TILE_SIZE);
+    CHECK(dsn_continuous_tile_fixed(&allowed->noise, nullptr, 1, 1, out, nullptr, 0) == DSN_ERR_NULL);
+    // Non-finite float coordinates are the point 0.
+    float at_nan[3], at_zero[3];
+    dsn_eval_continuous_float(&allowed->noise, std::nan(""), -std::numeric_limits<double>::infinity(),
+                              at_nan);
+    dsn_eval_continuous_float(&allowed->noise, 0.0, 0.0, at_zero);
+    CHECK(std::memcmp(at_nan, at_zero, sizeof at_nan) == 0);
+}
+
+TEST_CASE("continuous: the value is the bilinear sum over every impulse (brute-force reference)") {
+    struct Case {
+        uint32_t channels, radius, bits, impacts, period_x, period_y;
+    };
+    const Case cases[] = {{3, 3, 8, 30, 0, 0},   {1, 6, 16, 5, 0, 0}, {3, 2, 16, 200, 0, 0},
+                          {1, 4, 8, 30, 37, 64}, {3, 3, 8, 10, 5, 0}, {1, 0, 16, 30, 0, 0}};
+    std::mt19937_64 random(5);
+    for (const Case &c : cases) {
+        auto noise = make_noise(random_texton_asset(c.channels, c.radius, c.bits, c.radius + c.bits),
+                                uint32_t(random()), c.impacts << 16, c.period_x, c.period_y);
+        CAPTURE(c.channels);
+        CAPTURE(c.radius);
+        CAPTURE(c.period_x);
+        CAPTURE(noise->noise.cell_shift);
+        for (int i = 0; i < 60; i++) {
+            int64_t x = random_coordinate(random), y = random_coordinate(random);
+            int32_t out[3];
+            REQUIRE(dsn_eval_continuous_fixed(&noise->noise, x, y, out) == DSN_OK);
+            std::vector<long double> expected = reference_value(&noise->noise, x, y);
+            for (uint32_t k = 0; k < c.channels; k++) {
+                CAPTURE(x);
+                CAPTURE(y);
+                REQUIRE(std::fabs((long double)out[k] - expected[k]) <= 1.0L); // final rounding only
+            }
+        }
+    }
+}
+
+TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every output type") {
+    std::mt19937_64 random(9);
+    auto rgb = make_noise(random_texton_asset(3, 5, 8, 3), 77);
+    auto grey = make_noise(random_texton_asset(1, 4, 16, 4), 78, 12u << 16, 40, 24);
+    for (auto *noise : {&rgb->noise, &grey->noise}) {
+        const uint32_t channels = noise->asset.channels;
+        for (int trial = 0; trial < 12; trial++) {
+            const double angle = double(random() % 6283) / 1000, zoom = 0.25 + double(random() % 400) / 100;
+            dsn_grid grid;
+            grid.origin_x = random_coordinate(random);
+            grid.origin_y = random_coordinate(random);
+            grid.column_step_x = int64_t(std::llround(std::cos(angle) / zoom * 4294967296.0));
+            grid.column_step_y = int64_t(std::llround(std::sin(angle) / zoom * 4294967296.0));
+            grid.row_step_x = -grid.column_step_y;
+            grid.row_step_y = grid.column_step_x;
+            const uint32_t width = 1 + uint32_t(random() % 40), height = 1 + uint32_t(random() % 30);
+            std::vector<int32_t> tile(width * height * channels);
+            std::vector<float> tile_float(tile.size());
+            std::vector<uint8_t> tile_u8(tile.size());
+            std::vector<unsigned char> scratch(dsn_continuous_tile_scratch_size(noise, &grid, width, height) +
+                                               1);
+            REQUIRE(dsn_continuous_tile_fixed(noise, &grid, width, height, tile.data(), scratch.data(),
+                                              scratch.size()) == DSN_OK);
+            REQUIRE(dsn_continuous_tile_float(noise, &grid, width, height, tile_float.data(), scratch.data(),
+                                              scratch.size()) == DSN_OK);
+            REQUIRE(dsn_continuous_tile_u8(noise, &grid, width, height, tile_u8.data(), scratch.data(),
+                                           scratch.size()) == DSN_OK);
+            for (uint32_t j = 0; j < height; j++)
+                for (uint32_t i = 0; i < width; i++) {
+                    int64_t x = int64_t(uint64_t(grid.origin_x) + uint64_t(grid.column_step_x) * i +
+                                        uint64_t(grid.row_step_x) * j);
+                    int64_t y = int64_t(uint64_t(grid.origin_y) + uint64_t(grid.column_step_y) * i +
+                                        uint64_t(grid.row_step_y) * j);
+                    int32_t point[3];
+                    dsn_eval_continuous_fixed(noise, x, y, point);
+                    for (uint32_t c = 0; c < channels; c++) {
+                        size_t at = (size_t(j) * width + i) * channels + c;
+                        REQUIRE(tile[at] == point[c]);
+                        REQUIRE(tile_float[at] == dsn_fixed_to_float(point[c]));
+                        REQUIRE(tile_u8[at] == dsn_fixed_to_u8(point[c]));
+                    }
+                }
+        }
+    }
+}
+
+TEST_CASE("continuous: periodic mode repeats exactly at real-valued points") {
+    std::mt19937_64 random(21);
+    const uint32_t periods[][2] = {{64, 64}, {37, 11}, {1, 300}, {0, 50}};
+    for (const auto &period : periods) {
+        auto noise = make_noise(random_texton_asset(3, 4, 8, 6), 5, 0, period[0], period[1]);
+        for (int i = 0; i < 300; i++) {
+            // Away from the int32 wrap: a period that does not divide 2^32 cannot repeat across it.
+            int64_t x = random_coordinate(random) / 2, y = random_coordinate(random) / 2;
+            int32_t base[3], moved[3];
+            dsn_eval_continuous_fixed(&noise->noise, x, y, base);
+            if (period[0]) {
+                dsn_eval_continuous_fixed(
+                    &noise->noise, int64_t(uint64_t(x) + uint64_t(period[0]) * uint64_t(one)), y, moved);
+                REQUIRE(std::memcmp(base, moved, sizeof base) == 0);
+            }
+            if (period[1]) {
+                dsn_eval_continuous_fixed(
+                    &noise->noise, x, int64_t(uint64_t(y) - 3 * uint64_t(period[1]) * uint64_t(one)), moved);
+                REQUIRE(std::memcmp(base, moved, sizeof base) == 0);
+            }
+        }
+    }
+}
