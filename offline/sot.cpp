@@ -293,16 +293,20 @@ SotResult run_iterations(Iteration &iteration, const Spectrum &target, const Sup
 
 } // namespace
 
-Spectrum random_phase_start(const Spectrum &target, uint32_t seed) {
+Image white_noise(int width, int height, uint32_t seed) {
     Image noise;
-    noise.width = target.width;
-    noise.height = target.height;
+    noise.width = width;
+    noise.height = height;
     noise.channels = 1;
-    noise.values.resize(target.plane_size());
-    for (size_t i = 0; i < noise.values.size(); i++) // Box-Muller: a Gaussian white noise
+    noise.values.resize(size_t(width) * size_t(height));
+    for (size_t i = 0; i < noise.values.size(); i++) // Box-Muller
         noise.values[i] = std::sqrt(-2 * std::log(uniform(seed, 2 * i))) *
                           std::cos(6.283185307179586 * uniform(seed, 2 * i + 1));
-    const Spectrum noise_spectrum = forward_dft(noise);
+    return noise;
+}
+
+Spectrum random_phase_start(const Spectrum &target, uint32_t seed) {
+    const Spectrum noise_spectrum = forward_dft(white_noise(target.width, target.height, seed));
     Spectrum start = target;
     const size_t plane = target.plane_size();
     for (size_t i = 0; i < plane; i++) {

@@ -132,6 +132,10 @@ Spectrum texton_spectrum(const Texton &texton, int width, int height);
 
 // ---- Synthesis-oriented texton ----
 
+// A standard Gaussian white noise image (one channel) drawn from `seed` by a counter-based generator:
+// the same seed gives the same image, whatever else ran before.
+Image white_noise(int width, int height, uint32_t seed);
+
 // Spectrum with the modulus of `target` and the phase of the DFT of a real white noise drawn from `seed`
 // (so its inverse DFT is real): the random-phase start. Same seed, same start.
 Spectrum random_phase_start(const Spectrum &target, uint32_t seed);

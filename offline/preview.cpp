@@ -1,0 +1,127 @@
+// preview.cpp - the preview sheet: exemplar | Gaussian version (spectral ADSN) | texton | runtime DSN.
+// The only offline file that calls the runtime: the synthesis is what the baked asset really gives.
+#include "dsn/bake.h"
+#include "dsn/dsn.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <stb_image_write.h>
+
+namespace dsn {
+namespace {
+
+const int kGap = 4;
+const unsigned char kBackground = 40;
+
+// An RGB 8-bit canvas.
+struct Sheet {
+    int width, height;
+    std::vector<unsigned char> pixels;
+    void put(int x, int y, const double rgb[3]) {
+        for (int c = 0; c < 3; c++)
+            pixels[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)] =
+                (unsigned char)std::lround(std::clamp(rgb[c], 0.0, 1.0) * 255);
+    }
+};
+
+// Draws a planar image (grey or RGB) at (left, 0).
+void draw(Sheet &sheet, const Image &image, int left) {
+    for (int y = 0; y < image.height; y++)
+        for (int x = 0; x < image.width; x++) {
+            double rgb[3];
+            for (int c = 0; c < 3; c++) rgb[c] = image.at(x, y, image.channels == 3 ? c : 0);
+            sheet.put(left + x, y, rgb);
+        }
+}
+
+// The Gaussian version of the exemplar: mean + t_u convolved with a white noise (spectral ADSN).
+Image gaussian_version(const GaussianModel &model, uint32_t seed) {
+    const Spectrum noise = forward_dft(white_noise(model.width, model.height, seed));
+    Spectrum product = model.spectrum;
+    const size_t plane = product.plane_size();
+    for (int c = 0; c < model.channels; c++)
+        for (size_t i = 0; i < plane; i++) product.values[size_t(c) * plane + i] *= noise.values[i];
+    Image image = inverse_dft(product);
+    for (int c = 0; c < model.channels; c++)
+        for (size_t i = 0; i < plane; i++) image.values[size_t(c) * plane + i] += model.mean[size_t(c)];
+    return image;
+}
+
+// The texton at 0.5 + t / (2 max |t|), enlarged by an integer factor and centred in a width x height panel.
+Image texton_panel(const Texton &texton, int width, int height) {
+    const int side = texton.support.side();
+    const int factor = std::max(1, std::min(width, height) / side);
+    double largest = 0;
+    for (double value : texton.values) largest = std::max(largest, std::fabs(value));
+    Image panel;
+    panel.width = width, panel.height = height, panel.channels = texton.channels;
+    panel.values.assign(size_t(width) * size_t(height) * size_t(texton.channels), kBackground / 255.0);
+    const int left = (width - side * factor) / 2, top = (height - side * factor) / 2;
+    for (int y = 0; y < side * factor; y++)
+        for (int x = 0; x < side * factor; x++)
+            for (int c = 0; c < texton.channels; c++) {
+                if (left + x < 0 || left + x >= width || top + y < 0 || top + y >= height) continue;
+                const double value =
+                    texton.at(x / factor - texton.support.radius, y / factor - texton.support.radius, c);
+                panel.at(left + x, top + y, c) = largest > 0 ? 0.5 + value / (2 * largest) : 0.5;
+            }
+    return panel;
+}
+
+// A DSN synthesis of the asset by the runtime's tile evaluation, exemplar-sized.
+Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width, int height, uint32_t seed) {
+    dsn_asset asset;
+    dsn_noise noise;
+    dsn_config config;
+    int error = dsn_asset_load(&asset, asset_bytes.data(), asset_bytes.size());
+    if (error == DSN_OK) {
+        dsn_config_defaults(&config);
+        config.seed = seed;
+        error = dsn_noise_init(&noise, &asset, &config);
+    }
+    if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
+    const int channels = int(asset.channels);
+    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, uint32_t(width), uint32_t(height)));
+    std::vector<float> values(size_t(width) * size_t(height) * size_t(channels));
+    error = dsn_tile_float(&noise, 0, 0, uint32_t(width), uint32_t(height), values.data(), scratch.data(),
+                           scratch.size());
+    if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
+    Image image;
+    image.width = width, image.height = height, image.channels = channels;
+    image.values.resize(values.size());
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++)
+            for (int c = 0; c < channels; c++)
+                image.at(x, y, c) =
+                    values[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)];
+    return image;
+}
+
+void append_bytes(void *context, void *data, int size) {
+    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
+    const auto *begin = static_cast<const unsigned char *>(data);
+    bytes->insert(bytes->end(), begin, begin + size);
+}
+
+} // namespace
+
+std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &result, uint32_t seed) {
+    const int width = exemplar.width, height = exemplar.height;
+    const Image panels[4] = {exemplar, gaussian_version(result.model, seed),
+                             texton_panel(result.quantized_texton, width, height),
+                             runtime_synthesis(result.asset, width, height, seed)};
+    Sheet sheet;
+    sheet.width = 4 * width + 3 * kGap;
+    sheet.height = height;
+    sheet.pixels.assign(size_t(sheet.width) * size_t(sheet.height) * 3, kBackground);
+    for (int i = 0; i < 4; i++) draw(sheet, panels[i], i * (width + kGap));
+    std::vector<unsigned char> png;
+    if (!stbi_write_png_to_func(append_bytes, &png, sheet.width, sheet.height, 3, sheet.pixels.data(),
+                                sheet.width * 3))
+        throw std::runtime_error("preview: PNG encoding failed");
+    return png;
+}
+
+} // namespace dsn

@@ -1,0 +1,276 @@
+// dsn-bake - command-line front end of the baker: exemplar image -> .dsnt asset (+ JSON report, preview).
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+#include "dsn/bake.h"
+
+namespace {
+
+const char *const kUsage =
+    "usage: dsn-bake IN -o OUT.dsnt [--radius R] [--shape square|disk] [--iterations N] [--seed S]\n"
+    "                [--bits 8|16] [--interpolation lattice|bilinear] [--no-periodic] "
+    "[--no-color-transform]\n"
+    "                [--report R.json] [--preview P.png] [--quiet]\n"
+    "\n"
+    "Bakes an exemplar image (PNG 8/16-bit, JPEG, BMP, ... grey or RGB; alpha is ignored) into a compact\n"
+    ".dsnt asset: a synthesis-oriented texton of radius R, its colour transform and the exemplar mean.\n"
+    "\n"
+    "  -o OUT.dsnt              the asset to write (atomically: never a partial file)\n"
+    "  --radius R               texton radius, 1..127; the texton is (2R+1)x(2R+1) (default 15);\n"
+    "                           the exemplar needs both sides >= 4R+1\n"
+    "  --shape square|disk      support shape (default square)\n"
+    "  --iterations N           alternating-projection iterations, 1..1000000 (default 1000)\n"
+    "  --seed S                 seed of the random-phase start, 0..4294967295 (default 0)\n"
+    "  --bits 8|16              quantization of the texton (default 8)\n"
+    "  --interpolation lattice|bilinear\n"
+    "                           how the runtime reads the texton: bilinear bakes a texton corrected for\n"
+    "                           the continuous mode's interpolation (default lattice)\n"
+    "  --no-periodic            use the exemplar as is, not its periodic component\n"
+    "  --no-color-transform     store the identity colour transform\n"
+    "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...)\n"
+    "  --preview P.png          write a sheet: exemplar | Gaussian version | texton | DSN synthesis\n"
+    "  --quiet                  no progress bar, warnings or summary\n"
+    "  -h, --help               this help\n";
+
+struct Arguments {
+    std::string input, output, report, preview;
+    dsn::BakeOptions options;
+    bool quiet = false;
+};
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// A whole decimal number within [minimum, maximum], or a usage error naming the flag.
+long long parse_integer(const std::string &flag, const char *text, long long minimum, long long maximum) {
+    char *end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(text, &end, 10);
+    if (*text == '\0' || *end != '\0' || errno == ERANGE ||
+        !(text[0] == '-' || (text[0] >= '0' && text[0] <= '9')))
+        throw UsageError(flag + " needs a whole number, not '" + text + "'");
+    if (value < minimum || value > maximum)
+        throw UsageError(flag.substr(2) + " " + text + " out of range " + std::to_string(minimum) + ".." +
+                         std::to_string(maximum));
+    return value;
+}
+
+Arguments parse_arguments(int argc, char **argv) {
+    Arguments arguments;
+    for (int i = 1; i < argc; i++) {
+        const std::string flag = argv[i];
+        auto value = [&]() -> const char * {
+            if (i + 1 >= argc) throw UsageError(flag + " needs a value");
+            return argv[++i];
+        };
+        if (flag == "-h" || flag == "--help") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (flag == "-o") {
+            arguments.output = value();
+        } else if (flag == "--radius") {
+            arguments.options.radius = int(parse_integer(flag, value(), 1, dsn::kMaxRadius));
+        } else if (flag == "--shape") {
+            const std::string shape = value();
+            if (shape != "square" && shape != "disk")
+                throw UsageError("--shape must be square or disk, not '" + shape + "'");
+            arguments.options.shape = shape == "disk" ? DSN_SHAPE_DISK : DSN_SHAPE_RECTANGLE;
+        } else if (flag == "--iterations") {
+            arguments.options.iterations = int(parse_integer(flag, value(), 1, 1000000));
+        } else if (flag == "--seed") {
+            arguments.options.seed = uint32_t(parse_integer(flag, value(), 0, 4294967295ll));
+        } else if (flag == "--bits") {
+            const long long bits = parse_integer(flag, value(), 8, 16);
+            if (bits != 8 && bits != 16) throw UsageError("--bits must be 8 or 16");
+            arguments.options.bits = int(bits);
+        } else if (flag == "--interpolation") {
+            const std::string mode = value();
+            if (mode != "lattice" && mode != "bilinear")
+                throw UsageError("--interpolation must be lattice or bilinear, not '" + mode + "'");
+            arguments.options.interpolation =
+                mode == "bilinear" ? DSN_INTERPOLATION_BILINEAR : DSN_INTERPOLATION_LATTICE;
+        } else if (flag == "--no-periodic") {
+            arguments.options.periodic = false;
+        } else if (flag == "--no-color-transform") {
+            arguments.options.use_color_transform = false;
+        } else if (flag == "--report") {
+            arguments.report = value();
+        } else if (flag == "--preview") {
+            arguments.preview = value();
+        } else if (flag == "--quiet") {
+            arguments.quiet = true;
+        } else if (flag.size() > 1 && flag[0] == '-') {
+            throw UsageError("unknown flag " + flag);
+        } else if (arguments.input.empty()) {
+            arguments.input = flag;
+        } else {
+            throw UsageError("more than one input image ('" + arguments.input + "', '" + flag + "')");
+        }
+    }
+    if (arguments.input.empty()) throw UsageError("no input image given");
+    if (arguments.output.empty()) throw UsageError("no output given (-o OUT.dsnt)");
+    return arguments;
+}
+
+// Redraws one line on a terminal's stderr, about 100 times per run.
+void draw_progress(int done, int total, double rme) {
+    if (done != total && done % std::max(1, total / 100) != 0) return;
+    const int width = 40, filled = int(double(done) / total * width);
+    std::fprintf(stderr, "\r[%s%s] %d/%d  RME %.4f", std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(width - filled), '.').c_str(), done, total, rme);
+    if (done == total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+}
+
+std::string json_string(const std::string &text) {
+    std::string quoted = "\"";
+    for (unsigned char character : text) {
+        if (character == '"' || character == '\\') {
+            quoted += '\\';
+            quoted += char(character);
+        } else if (character < 0x20) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\u%04x", character);
+            quoted += escaped;
+        } else {
+            quoted += char(character);
+        }
+    }
+    return quoted + "\"";
+}
+
+std::string json_number(double value) {
+    if (!std::isfinite(value)) return "null";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return text;
+}
+
+std::string json_array(const std::vector<double> &values) {
+    std::string array = "[";
+    for (size_t i = 0; i < values.size(); i++) array += (i ? ", " : "") + json_number(values[i]);
+    return array + "]";
+}
+
+// The texton interleaved, row-major, top-left first (the layout of dsn-inspect --json).
+std::vector<double> interleaved(const dsn::Texton &texton) {
+    const size_t plane = texton.support.mask.size();
+    std::vector<double> values;
+    for (size_t i = 0; i < plane; i++)
+        for (size_t c = 0; c < size_t(texton.channels); c++) values.push_back(texton.values[c * plane + i]);
+    return values;
+}
+
+std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, const dsn::BakeResult &result,
+                        double seconds) {
+    const dsn::BakeOptions &options = arguments.options;
+    std::vector<double> mean(result.model.mean.begin(), result.model.mean.begin() + exemplar.channels);
+    std::vector<double> transform(result.color_transform.begin(), result.color_transform.end());
+    std::string json = "{\n";
+    auto field = [&json](const char *name, const std::string &value, bool last = false) {
+        json += std::string("  \"") + name + "\": " + value + (last ? "\n" : ",\n");
+    };
+    field("input", json_string(arguments.input));
+    field("output", json_string(arguments.output));
+    field("width", std::to_string(exemplar.width));
+    field("height", std::to_string(exemplar.height));
+    field("channels", std::to_string(exemplar.channels));
+    field("radius", std::to_string(options.radius));
+    field("shape", options.shape == DSN_SHAPE_DISK ? "\"disk\"" : "\"square\"");
+    field("interpolation",
+          options.interpolation == DSN_INTERPOLATION_BILINEAR ? "\"bilinear\"" : "\"lattice\"");
+    field("iterations", std::to_string(result.sot.rme_per_iteration.size()));
+    field("seed", std::to_string(options.seed));
+    field("bits", std::to_string(options.bits));
+    field("periodic", options.periodic ? "true" : "false");
+    field("rme", json_number(result.rme));
+    field("rme_luminance", json_number(result.rme_luminance));
+    field("rme_quantized", json_number(result.rme_quantized));
+    field("excess_kurtosis_30", json_array(result.excess_kurtosis_30));
+    field("excess_kurtosis_30_luminance", json_array(result.excess_kurtosis_30_luminance));
+    field("mean", json_array(mean));
+    field("color_transform", json_array(transform));
+    field("texton", json_array(interleaved(result.sot.texton)));
+    field("rme_per_iteration", json_array(result.sot.rme_per_iteration));
+    field("bytes", std::to_string(result.asset.size()));
+    field("seconds", json_number(seconds), true);
+    return json + "}\n";
+}
+
+std::string channel_list(const std::vector<double> &values, const char *format) {
+    std::string list;
+    for (double value : values) {
+        char text[32];
+        std::snprintf(text, sizeof text, format, value);
+        list += (list.empty() ? "" : " ") + std::string(text);
+    }
+    return list;
+}
+
+void print_summary(const Arguments &arguments, const dsn::Image &exemplar, const dsn::BakeResult &result,
+                   double seconds) {
+    const dsn::BakeOptions &options = arguments.options;
+    const int side = 2 * options.radius + 1;
+    std::printf("dsn-bake: %s (%dx%d %s) -> %s\n", arguments.input.c_str(), exemplar.width, exemplar.height,
+                exemplar.channels == 3 ? "RGB" : "grey", arguments.output.c_str());
+    std::printf("  texton        %dx%d %s, %zu iterations, seed %u, %d-bit, %s\n", side, side,
+                options.shape == DSN_SHAPE_DISK ? "disk" : "square", result.sot.rme_per_iteration.size(),
+                options.seed, options.bits,
+                options.interpolation == DSN_INTERPOLATION_BILINEAR ? "bilinear" : "lattice");
+    std::printf("  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f\n", result.rme,
+                result.rme_luminance, result.rme_quantized);
+    std::printf("  kurtosis @30  SOT %s   luminance texton %s\n",
+                channel_list(result.excess_kurtosis_30, "%.3f").c_str(),
+                channel_list(result.excess_kurtosis_30_luminance, "%.3f").c_str());
+    std::printf("  asset         %zu bytes, %.2f s\n", result.asset.size(), seconds);
+}
+
+std::vector<unsigned char> as_bytes(const std::string &text) {
+    return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+int run(const Arguments &arguments) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::string> warnings;
+    const dsn::Image exemplar = dsn::load_exemplar(arguments.input, &warnings);
+    if (!arguments.quiet)
+        for (const std::string &warning : warnings)
+            std::fprintf(stderr, "dsn-bake: warning: %s\n", warning.c_str());
+    dsn::BakeOptions options = arguments.options;
+    if (!arguments.quiet && isatty(STDERR_FILENO)) options.progress = draw_progress;
+    const dsn::BakeResult result = dsn::bake(exemplar, options);
+    // Everything is computed before anything is written: a failure leaves no output at all.
+    const std::vector<unsigned char> preview = arguments.preview.empty()
+                                                   ? std::vector<unsigned char>()
+                                                   : dsn::preview_png(exemplar, result, options.seed);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    dsn::write_file_atomically(arguments.output, result.asset);
+    if (!arguments.report.empty())
+        dsn::write_file_atomically(arguments.report,
+                                   as_bytes(report_json(arguments, exemplar, result, seconds)));
+    if (!arguments.preview.empty()) dsn::write_file_atomically(arguments.preview, preview);
+    if (!arguments.quiet) print_summary(arguments, exemplar, result, seconds);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        return run(parse_arguments(argc, argv));
+    } catch (const UsageError &error) {
+        std::fprintf(stderr, "dsn-bake: %s (see dsn-bake --help)\n", error.what());
+        return 2;
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "dsn-bake: %s\n", error.what());
+        return 1;
+    }
+}
