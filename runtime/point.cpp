@@ -4,35 +4,47 @@
 
 namespace {
 
-/* Adds texton entry `index` (channels interleaved) of every channel to sums, modulo 2^32. Values are
-   decoded without implementation-defined conversions: (b ^ 0x80) - 128 is the two's-complement byte. */
+/* Adds texton entry `index` (channels interleaved) of every channel, masked by `keep` (all ones or
+   zero), to sums modulo 2^32. Values are decoded without implementation-defined conversions:
+   (b ^ 0x80) - 128 is the two's-complement byte. */
 template <uint32_t Channels, uint32_t Bits>
-inline void add_texton_entry(const unsigned char *texton, uint32_t index, uint32_t *sums) {
+inline void add_texton_entry(const unsigned char *texton, uint32_t index, uint32_t keep, uint32_t *sums) {
     for (uint32_t c = 0; c < Channels; c++) {
+        uint32_t value;
         if (Bits == 8) {
-            sums[c] += uint32_t(texton[index * Channels + c] ^ 0x80u) - 0x80u;
+            value = uint32_t(texton[index * Channels + c] ^ 0x80u) - 0x80u;
         } else {
-            const unsigned char *value = texton + 2 * (index * Channels + c);
-            sums[c] += (uint32_t(value[0] | (value[1] << 8)) ^ 0x8000u) - 0x8000u;
+            const unsigned char *bytes = texton + 2 * (index * Channels + c);
+            value = (uint32_t(bytes[0] | (bytes[1] << 8)) ^ 0x8000u) - 0x8000u;
         }
+        sums[c] += value & keep;
     }
 }
 
-/* Impulses of one cell that reach the point. */
+/* Impulses of one cell that reach the point. About half of the examined impulses miss the window at
+   random, so the test is made branch-free: a miss reads entry 0 and adds it masked to zero. */
 template <uint32_t Channels, uint32_t Bits>
 inline void add_cell(const dsn_noise *noise, uint32_t key, const dsn_span *span_x, uint32_t origin_x,
                      const dsn_span *span_y, uint32_t origin_y, uint32_t *sums) {
+    /* Locals, not loads through the pointers: stores to sums could alias them otherwise. */
     const uint32_t shift = noise->cell_shift, width = noise->asset.width, height = noise->asset.height;
+    const uint32_t base_x = span_x->base, base_y = span_y->base;
+    const uint32_t last_x = span_x->last_position, last_y = span_y->last_position;
+    const unsigned char *texton = noise->asset.texton;
     const uint32_t count = dsn_cell_impulse_count(noise, key);
+    uint32_t cell_sums[Channels];
+    for (uint32_t c = 0; c < Channels; c++) cell_sums[c] = 0;
     for (uint32_t k = 0; k < count; k++) {
         uint32_t hash = dsn_impulse_hash(noise, key, k);
         uint32_t position_x = origin_x + dsn_impulse_offset(dsn_impulse_bits_x(hash), shift);
         uint32_t position_y = origin_y + dsn_impulse_offset(dsn_impulse_bits_y(hash), shift);
-        uint32_t column = span_x->base - position_x, row = span_y->base - position_y;
-        if (column < width && row < height && position_x <= span_x->last_position &&
-            position_y <= span_y->last_position)
-            add_texton_entry<Channels, Bits>(noise->asset.texton, row * width + column, sums);
+        uint32_t column = base_x - position_x, row = base_y - position_y;
+        uint32_t hit = uint32_t(column < width) & uint32_t(row < height) & uint32_t(position_x <= last_x) &
+                       uint32_t(position_y <= last_y);
+        uint32_t keep = 0u - hit;
+        add_texton_entry<Channels, Bits>(texton, (row * width + column) & keep, keep, cell_sums);
     }
+    for (uint32_t c = 0; c < Channels; c++) sums[c] += cell_sums[c];
 }
 
 template <uint32_t Channels, uint32_t Bits>

@@ -4,6 +4,10 @@
    equal the per-point path's. */
 #include "noise_internal.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace {
 
 /* A run of tile indices [offset, offset + length) along one axis whose coordinates are contiguous
@@ -27,14 +31,42 @@ uint32_t split_runs(uint32_t start, uint32_t length, uint32_t period, tile_run *
     return 2;
 }
 
-/* dst[i] += texton value i, for `count` interleaved values, modulo 2^32. */
+/* dst[i] += texton value i, for `count` interleaved values, modulo 2^32. This is the inner loop of the
+   tile path; with SSE2 it runs 16 (8-bit) or 8 (16-bit) values per step (sign extension by unpacking a
+   value with itself and shifting arithmetically, which is exact two's-complement in the hardware). */
 template <uint32_t Bits>
 inline void add_row(uint32_t *dst, const unsigned char *src, uint32_t count) {
+    uint32_t i = 0;
+#if defined(__SSE2__)
     if (Bits == 8) {
-        for (uint32_t i = 0; i < count; i++) dst[i] += uint32_t(src[i] ^ 0x80u) - 0x80u;
+        for (; i + 16 <= count; i += 16) {
+            __m128i bytes = _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + i)));
+            __m128i low16 = _mm_srai_epi16(_mm_unpacklo_epi8(bytes, bytes), 8);
+            __m128i high16 = _mm_srai_epi16(_mm_unpackhi_epi8(bytes, bytes), 8);
+            __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
+            __m128i values[4] = {_mm_srai_epi32(_mm_unpacklo_epi16(low16, low16), 16),
+                                 _mm_srai_epi32(_mm_unpackhi_epi16(low16, low16), 16),
+                                 _mm_srai_epi32(_mm_unpacklo_epi16(high16, high16), 16),
+                                 _mm_srai_epi32(_mm_unpackhi_epi16(high16, high16), 16)};
+            for (int part = 0; part < 4; part++)
+                _mm_storeu_si128(out + part, _mm_add_epi32(_mm_loadu_si128(out + part), values[part]));
+        }
     } else {
-        for (uint32_t i = 0; i < count; i++)
-            dst[i] += (uint32_t(src[2 * i] | (src[2 * i + 1] << 8)) ^ 0x8000u) - 0x8000u;
+        for (; i + 8 <= count; i += 8) {
+            __m128i words =
+                _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + 2 * i)));
+            __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
+            __m128i low = _mm_srai_epi32(_mm_unpacklo_epi16(words, words), 16);
+            __m128i high = _mm_srai_epi32(_mm_unpackhi_epi16(words, words), 16);
+            _mm_storeu_si128(out, _mm_add_epi32(_mm_loadu_si128(out), low));
+            _mm_storeu_si128(out + 1, _mm_add_epi32(_mm_loadu_si128(out + 1), high));
+        }
+    }
+#endif
+    if (Bits == 8) {
+        for (; i < count; i++) dst[i] += uint32_t(src[i] ^ 0x80u) - 0x80u;
+    } else {
+        for (; i < count; i++) dst[i] += (uint32_t(src[2 * i] | (src[2 * i + 1] << 8)) ^ 0x8000u) - 0x8000u;
     }
 }
 
