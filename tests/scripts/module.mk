@@ -1,2 +1,3 @@
 # tests/scripts: shell tests run by `make test`, each counted as one test.
 TEST_SCRIPTS += tests/scripts/install-and-link
+TEST_SCRIPTS += tests/scripts/check-freestanding
