@@ -33,6 +33,20 @@ std::unique_ptr<FILE, FileCloser> open_regular_file(const std::string &path) {
     return file;
 }
 
+// A PNG whose header says 0 x 0: stb_image reports it only as an unknown image type.
+bool is_zero_size_png(FILE *file) {
+    unsigned char header[24];
+    const bool read = std::fread(header, 1, sizeof header, file) == sizeof header;
+    std::rewind(file);
+    const unsigned char signature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (!read || std::memcmp(header, signature, 8) != 0 || std::memcmp(header + 12, "IHDR", 4) != 0)
+        return false;
+    const auto zero = [](const unsigned char *field) {
+        return (field[0] | field[1] | field[2] | field[3]) == 0;
+    };
+    return zero(header + 16) || zero(header + 20);
+}
+
 // Channels kept: grey (+alpha) -> 1, RGB(A) -> 3.
 int kept_channels(int stored_channels) { return stored_channels <= 2 ? 1 : 3; }
 
@@ -57,6 +71,7 @@ Image to_planar(const Sample *pixels, int width, int height, int stored_channels
 Image load_exemplar(const std::string &path, std::vector<std::string> *warnings) {
     auto file = open_regular_file(path);
     int width = 0, height = 0, stored_channels = 0;
+    if (is_zero_size_png(file.get())) fail(path, "image has zero size");
     if (!stbi_info_from_file(file.get(), &width, &height, &stored_channels))
         fail(path, std::string("not a readable image (") + stbi_failure_reason() + ")");
     if (width <= 0 || height <= 0) fail(path, "image has zero size");
