@@ -2,7 +2,10 @@
 // bilinear bake corrects the interpolation's spectral loss.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include <stb_image.h>
 
 #include "bake_fixtures.h"
 #include "dsn/bake.h"
@@ -83,4 +86,34 @@ TEST_CASE("bilinear bake: the texton's spectrum times the B-spline factor is clo
     // The corrected texton reaches the model about as well as the lattice texton reaches it without
     // interpolation.
     CHECK(corrected < lattice.rme + 0.05);
+}
+
+TEST_CASE("preview_png: four exemplar-sized panels, the first one the exemplar itself") {
+    const dsn::Image noise = dsn::white_noise(61, 64, 5);
+    dsn::Image exemplar = noise;
+    for (double &value : exemplar.values)
+        value = std::round(std::clamp(0.5 + 0.15 * value, 0.0, 1.0) * 255) / 255;
+    dsn::BakeOptions options;
+    options.iterations = 20;
+    const dsn::BakeResult result = dsn::bake(exemplar, options);
+    const std::vector<unsigned char> png = dsn::preview_png(exemplar, result, 3);
+    int width = 0, height = 0, channels = 0;
+    unsigned char *pixels = stbi_load_from_memory(png.data(), int(png.size()), &width, &height, &channels, 3);
+    REQUIRE(pixels != nullptr);
+    CHECK(width == 4 * 61 + 3 * 4);
+    CHECK(height == 64);
+    int mismatches = 0;
+    double sum = 0, square_sum = 0;
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 61; x++) {
+            for (int c = 0; c < 3; c++)
+                mismatches += pixels[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)] !=
+                              (unsigned char)std::lround(exemplar.at(x, y, 0) * 255);
+            const double synthesized = pixels[(size_t(y) * size_t(width) + size_t(3 * (61 + 4) + x)) * 3];
+            sum += synthesized, square_sum += synthesized * synthesized;
+        }
+    stbi_image_free(pixels);
+    CHECK(mismatches == 0);
+    const double mean = sum / (61 * 64), variance = square_sum / (61 * 64) - mean * mean;
+    CHECK(variance > 1); // the runtime synthesis is a texture, not a flat panel
 }
