@@ -89,7 +89,9 @@ class ReferenceIteration {
     ReferenceIteration(const Spectrum &target, const Support &support)
         : target_(target), support_(support), texton_(),
           inverse_(make_fft_plan_2d(target.width, target.height, true)),
-          forward_(make_fft_plan_2d(target.width, target.height, false)), buffer_(target.plane_size()) {}
+          forward_(make_fft_plan_2d(target.width, target.height, false)), buffer_(target.plane_size()) {
+        for (const Complex &value : target.values) model_energy_ += std::norm(std::complex<double>(value));
+    }
 
     void start(uint32_t seed) { texton_ = random_phase_start(target_, seed); }
 
@@ -116,12 +118,10 @@ class ReferenceIteration {
                         float(cropped.values[size_t(dy + r) * size_t(side) + size_t(dx + r)]);
             kiss_fftnd(forward_.get(), as_kiss(buffer_.data()), as_kiss(channel));
         }
-        double model_energy = 0;
-        for (const Complex &value : target_.values) model_energy += std::norm(std::complex<double>(value));
         ProjectionSums sums;
         project_modulus(texton_.values.data(), target_.values.data(), plane, plane, target_.channels, 1.0,
                         impose, sums);
-        return rme_from_sums(model_energy, sums);
+        return rme_from_sums(model_energy_, sums);
     }
 
     const std::vector<double> &texton_values() const { return cropped_; }
@@ -133,6 +133,7 @@ class ReferenceIteration {
     FftPlan2d inverse_, forward_;
     std::vector<Complex> buffer_;
     std::vector<double> cropped_;
+    double model_energy_ = 0;
 };
 
 // The pruned iteration on the half spectrum (see the top of the file).

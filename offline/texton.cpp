@@ -58,12 +58,11 @@ Spectrum texton_spectrum(const Texton &texton, int width, int height) {
     torus.height = height;
     torus.channels = texton.channels;
     torus.values.assign(size_t(width) * size_t(height) * size_t(texton.channels), 0.0);
-    const int side = texton.support.side(), r = texton.support.radius;
+    const int r = texton.support.radius;
     for (int c = 0; c < texton.channels; c++)
         for (int dy = -r; dy <= r; dy++)
             for (int dx = -r; dx <= r; dx++)
                 torus.at(int(wrap(dx, width)), int(wrap(dy, height)), c) += texton.at(dx, dy, c);
-    (void)side;
     return forward_dft(torus);
 }
 
