@@ -120,13 +120,19 @@ typedef struct dsn_noise {
 } dsn_noise;
 
 /* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
-   normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS,
-   DSN_ERR_PERIOD or DSN_ERR_ARGUMENT (unknown flag bits). */
+   normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS or
+   DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill). Every period
+   1 .. 2^32 - 1 is valid (DSN_ERR_PERIOD is reserved). On failure `noise` is zeroed, and the evaluation
+   functions then write nothing (per point) or return DSN_ERR_ARGUMENT (tiles).
+   Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen to minimize the expected hashes of a
+   per-point call; a 31 x 31 texton at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
+   The channel sums are integers taken modulo 2^32 (identically by every path); they cannot wrap unless
+   tens of thousands of full-scale impulses hit one point. */
 int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config);
 
 /* ---- Per-point evaluation (lattice) ---- */
 
-/* out[channels]: Q16.16 values at lattice point (x, y). */
+/* out[channels]: Q16.16 values at lattice point (x, y). A null `noise` or `out` writes nothing. */
 void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out);
 /* out[channels]: the same value as float, exactly fixed / 65536 rounded to float. */
 void dsn_eval_float(const dsn_noise *noise, int32_t x, int32_t y, float *out);
@@ -140,8 +146,12 @@ uint8_t dsn_fixed_to_u8(int32_t value);
 /* ---- Tile evaluation (lattice) ----
    Pixel (i, j) of a width x height tile at (x0, y0) is the point ((int32)(x0 + i), (int32)(y0 + j)) with
    the additions done modulo 2^32: exactly what the per-point functions return there. Output is row-major,
-   top row (y0) first, channels interleaved: width * height * channels values. `scratch` must hold at
-   least dsn_tile_scratch_size() bytes (it may be null when that is 0); it needs no alignment. */
+   top row (y0) first, channels interleaved: width * height * channels values. dsn_tile_fixed accumulates
+   in `out` and ignores scratch (pass null, 0). dsn_tile_float and dsn_tile_u8 need a scratch buffer of
+   at least dsn_tile_scratch_size() bytes (an integer accumulator; no alignment needed), else they return
+   DSN_ERR_SCRATCH. dsn_tile_scratch_size returns 0 for an invalid noise or size. Width and height are
+   1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is not addressable); null pointers
+   give DSN_ERR_NULL. */
 size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
 int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                    int32_t *out, void *scratch, size_t scratch_size);
