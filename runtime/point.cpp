@@ -4,11 +4,10 @@
 
 namespace {
 
-/* Adds texton entry `index` (channels interleaved) of every channel, masked by `keep` (all ones or
-   zero), to sums modulo 2^32. Values are decoded without implementation-defined conversions:
-   (b ^ 0x80) - 128 is the two's-complement byte. */
+/* Adds texton entry `index` (channels interleaved) of every channel to sums, modulo 2^32. Values are
+   decoded without implementation-defined conversions: (b ^ 0x80) - 128 is the two's-complement byte. */
 template <uint32_t Channels, uint32_t Bits>
-inline void add_texton_entry(const unsigned char *texton, uint32_t index, uint32_t keep, uint32_t *sums) {
+inline void add_texton_entry(const unsigned char *texton, uint32_t index, uint32_t *sums) {
     for (uint32_t c = 0; c < Channels; c++) {
         uint32_t value;
         if (Bits == 8) {
@@ -17,12 +16,12 @@ inline void add_texton_entry(const unsigned char *texton, uint32_t index, uint32
             const unsigned char *bytes = texton + 2 * (index * Channels + c);
             value = (uint32_t(bytes[0] | (bytes[1] << 8)) ^ 0x8000u) - 0x8000u;
         }
-        sums[c] += value & keep;
+        sums[c] += value;
     }
 }
 
-/* Impulses of one cell that reach the point. About half of the examined impulses miss the window at
-   random, so the test is made branch-free: a miss reads entry 0 and adds it masked to zero. */
+/* Impulses of one cell that reach the point (about half of those examined, for the usual texton).
+   A branch-free variant (masked adds of entry 0 for misses) measured no faster here. */
 template <uint32_t Channels, uint32_t Bits>
 inline void add_cell(const dsn_noise *noise, uint32_t key, const dsn_span *span_x, uint32_t origin_x,
                      const dsn_span *span_y, uint32_t origin_y, uint32_t *sums) {
@@ -41,8 +40,7 @@ inline void add_cell(const dsn_noise *noise, uint32_t key, const dsn_span *span_
         uint32_t column = base_x - position_x, row = base_y - position_y;
         uint32_t hit = uint32_t(column < width) & uint32_t(row < height) & uint32_t(position_x <= last_x) &
                        uint32_t(position_y <= last_y);
-        uint32_t keep = 0u - hit;
-        add_texton_entry<Channels, Bits>(texton, (row * width + column) & keep, keep, cell_sums);
+        if (hit) add_texton_entry<Channels, Bits>(texton, row * width + column, cell_sums);
     }
     for (uint32_t c = 0; c < Channels; c++) sums[c] += cell_sums[c];
 }
