@@ -75,7 +75,7 @@ Vec sample_texture(const Texture &texture, double u, double v, double footprint)
 }
 
 struct Scene {
-    Vec eye{0, 1.6, -4}, sun = normalize(Vec{-0.6, 0.8, -0.3});
+    Vec eye{0, 2.2, -5.5}, sun = normalize(Vec{-0.6, 0.8, -0.3});
     Vec sphere_center{0.3, 1.2, 2.5};
     double sphere_radius = 1.2;
     const Texture *ground, *sphere;
@@ -175,7 +175,7 @@ int run(int argc, char **argv) {
     scene.sphere = &sphere;
 
     // A pinhole camera looking slightly down, 60 degrees of horizontal field of view.
-    const Vec forward = normalize(Vec{0, -0.18, 1}), right{1, 0, 0};
+    const Vec forward = normalize(Vec{0, -0.2, 1}), right{1, 0, 0};
     const Vec up{0, forward.z, -forward.y};
     const double half_width = std::tan(30 * 3.14159265358979 / 180), pixel_angle = 2 * half_width / width;
     std::vector<uint8_t> pixels(size_t(width) * height * 3);

@@ -1,0 +1,228 @@
+// dsn-contact-sheet: one labelled PNG that shows a bake at a glance: the exemplar, its Gaussian
+// reference (a random-phase synthesis of the exemplar's Gaussian model), the runtime synthesis, the
+// texton, and the renderer scene. Labels are drawn with stb_easy_font (quads rasterized here).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb_easy_font.h>
+#pragma GCC diagnostic pop
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include "dsn/bake.h"
+#include "dsn/dsn.h"
+
+namespace {
+
+const char *const usage =
+    "usage: dsn-contact-sheet --exemplar E.png --asset A.dsnt --synthesis S.png --scene R.png -o SHEET.png\n"
+    "                         [--seed S]\n"
+    "       dsn-contact-sheet --print-size IMAGE     (prints \"WIDTH HEIGHT\")\n"
+    "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled.\n";
+
+const int kPanel = 256, kGap = 12, kLabel = 30;
+const int kSheetWidth = 4 * kPanel + 5 * kGap;
+
+// An 8-bit RGB picture.
+struct Picture {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+    unsigned char *at(int x, int y) { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
+};
+
+Picture blank(int width, int height, unsigned char grey) {
+    Picture picture;
+    picture.width = width;
+    picture.height = height;
+    picture.rgb.assign(size_t(width) * size_t(height) * 3, grey);
+    return picture;
+}
+
+Picture load_png(const std::string &path) {
+    int width, height, channels;
+    unsigned char *data = stbi_load(path.c_str(), &width, &height, &channels, 3);
+    if (!data) throw std::runtime_error("cannot read image " + path + ": " + stbi_failure_reason());
+    Picture picture;
+    picture.width = width;
+    picture.height = height;
+    picture.rgb.assign(data, data + size_t(width) * size_t(height) * 3);
+    stbi_image_free(data);
+    return picture;
+}
+
+// A planar dsn::Image in [0, 1] -> picture (grey repeated).
+Picture from_image(const dsn::Image &image) {
+    Picture picture = blank(image.width, image.height, 0);
+    for (int y = 0; y < image.height; y++)
+        for (int x = 0; x < image.width; x++)
+            for (int c = 0; c < 3; c++) {
+                double v = image.at(x, y, image.channels == 3 ? c : 0);
+                picture.at(x, y)[c] = static_cast<unsigned char>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+            }
+    return picture;
+}
+
+// Copies `source` centred into the w x h box at (x0, y0) of `sheet`, cropping what does not fit.
+void paste(Picture &sheet, const Picture &source, int x0, int y0, int w, int h) {
+    const int sx0 = std::max(0, (source.width - w) / 2), sy0 = std::max(0, (source.height - h) / 2);
+    const int dx0 = x0 + std::max(0, (w - source.width) / 2), dy0 = y0 + std::max(0, (h - source.height) / 2);
+    const int cw = std::min(w, source.width), ch = std::min(h, source.height);
+    for (int y = 0; y < ch; y++)
+        for (int x = 0; x < cw; x++) {
+            const unsigned char *from =
+                &source.rgb[(size_t(sy0 + y) * size_t(source.width) + size_t(sx0 + x)) * 3];
+            std::copy(from, from + 3, sheet.at(dx0 + x, dy0 + y));
+        }
+}
+
+// Text at (x, y), `scale` pixels per font unit, in a dark grey.
+void draw_label(Picture &sheet, int x, int y, const std::string &text, int scale) {
+    std::vector<char> buffer(text.begin(), text.end());
+    buffer.push_back('\0');
+    std::vector<float> vertices(text.size() * 300); // ~270 bytes of quads per character, 16 per vertex
+    unsigned char color[4] = {40, 40, 40, 255};
+    const int quads =
+        stb_easy_font_print(0, 0, buffer.data(), color, vertices.data(), int(vertices.size() * 4));
+    for (int q = 0; q < quads; q++) {
+        const float *v = &vertices[size_t(q) * 16]; // 4 vertices of (x, y, z, colour)
+        const int left = x + int(v[0] * float(scale)), top = y + int(v[1] * float(scale));
+        const int right = x + int(v[8] * float(scale)), bottom = y + int(v[9] * float(scale));
+        for (int py = std::max(0, top); py < std::min(sheet.height, bottom); py++)
+            for (int px = std::max(0, left); px < std::min(sheet.width, right); px++)
+                std::fill(sheet.at(px, py), sheet.at(px, py) + 3, 40);
+    }
+}
+
+// A random-phase synthesis of the exemplar's Gaussian model: the reference the DSN approximates.
+Picture gaussian_reference(const dsn::Image &exemplar, uint32_t seed) {
+    const dsn::GaussianModel model = dsn::gaussian_model(exemplar, true);
+    dsn::Image synthesis = dsn::inverse_dft(dsn::random_phase_start(model.spectrum, seed));
+    const double gain = std::sqrt(double(model.width) * model.height); // t_u = (p - m) / sqrt(MN)
+    for (int c = 0; c < synthesis.channels; c++)
+        for (int y = 0; y < synthesis.height; y++)
+            for (int x = 0; x < synthesis.width; x++)
+                synthesis.at(x, y, c) = model.mean[size_t(c)] + gain * synthesis.at(x, y, c);
+    return from_image(synthesis);
+}
+
+// The texton after the colour transform (what one impulse adds), mid-grey = 0, enlarged by an integer
+// factor to fill the panel.
+Picture texton_picture(const std::string &asset_path) {
+    std::ifstream file(asset_path, std::ios::binary);
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
+                                     std::istreambuf_iterator<char>());
+    dsn_asset asset;
+    const int err = dsn_asset_load(&asset, bytes.data(), bytes.size());
+    if (err != DSN_OK) throw std::runtime_error(asset_path + ": " + dsn_error_message(err));
+    const int w = int(asset.width), h = int(asset.height), channels = int(asset.channels);
+    std::vector<double> values(size_t(w * h * 3), 0.0);
+    double peak = 1e-30;
+    for (int row = 0; row < h; row++)
+        for (int column = 0; column < w; column++)
+            for (int c = 0; c < 3; c++) {
+                double sum = 0;
+                for (int k = 0; k < channels; k++)
+                    sum += asset.color_transform[(channels == 3 ? c : 0) * 3 + k] / 16777216.0 *
+                           dsn_asset_texton_value(&asset, uint32_t(row), uint32_t(column), uint32_t(k)) *
+                           std::ldexp(double(asset.scale[k]), -40);
+                values[size_t((row * w + column) * 3 + c)] = sum;
+                peak = std::max(peak, std::fabs(sum));
+            }
+    const int zoom = std::max(1, kPanel / std::max(w, h));
+    Picture picture = blank(w * zoom, h * zoom, 0);
+    for (int y = 0; y < h * zoom; y++)
+        for (int x = 0; x < w * zoom; x++)
+            for (int c = 0; c < 3; c++)
+                picture.at(x, y)[c] = static_cast<unsigned char>(
+                    std::lround(127.5 + 127.5 * values[size_t(((y / zoom) * w + x / zoom) * 3 + c)] / peak));
+    return picture;
+}
+
+void append_bytes(void *context, void *data, int size) {
+    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
+    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
+                  static_cast<unsigned char *>(data) + size);
+}
+
+int run(int argc, char **argv) {
+    std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
+    uint32_t seed = 1;
+    for (int i = 1; i < argc; i++) {
+        const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value (see --help)");
+        const std::string value = argv[++i];
+        if (arg == "--print-size") {
+            int width, height, channels;
+            if (!stbi_info(value.c_str(), &width, &height, &channels))
+                throw std::runtime_error("cannot read image " + value);
+            std::printf("%d %d\n", width, height);
+            return 0;
+        }
+        if (arg == "--exemplar")
+            exemplar_path = value;
+        else if (arg == "--asset")
+            asset_path = value;
+        else if (arg == "--synthesis")
+            synthesis_path = value;
+        else if (arg == "--scene")
+            scene_path = value;
+        else if (arg == "-o")
+            output = value;
+        else if (arg == "--seed")
+            seed = uint32_t(std::stoul(value));
+        else
+            throw std::runtime_error("unknown option " + arg + " (see --help)");
+    }
+    if (exemplar_path.empty() || asset_path.empty() || synthesis_path.empty() || scene_path.empty() ||
+        output.empty())
+        throw std::runtime_error(
+            "--exemplar, --asset, --synthesis, --scene and -o are all needed (see --help)");
+
+    const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
+    const Picture scene = load_png(scene_path);
+    const int scene_height = std::min(scene.height, 480);
+    Picture sheet = blank(kSheetWidth, 2 * kLabel + kPanel + scene_height + 3 * kGap, 235);
+    const Picture panels[4] = {from_image(exemplar), gaussian_reference(exemplar, seed),
+                               load_png(synthesis_path), texton_picture(asset_path)};
+    const char *labels[4] = {"exemplar", "Gaussian reference", "runtime synthesis", "texton (SOT)"};
+    for (int p = 0; p < 4; p++) {
+        const int x = kGap + p * (kPanel + kGap);
+        draw_label(sheet, x, kGap, labels[p], 2);
+        Picture box = blank(kPanel, kPanel, 200);
+        paste(box, panels[p], 0, 0, kPanel, kPanel);
+        paste(sheet, box, x, kGap + kLabel, kPanel, kPanel);
+    }
+    const int scene_top = 2 * kGap + kLabel + kPanel;
+    draw_label(sheet, kGap, scene_top, "renderer scene (continuous mode, dsn-tiny-renderer)", 2);
+    paste(sheet, scene, kGap, scene_top + kLabel, kSheetWidth - 2 * kGap, scene_height);
+
+    std::vector<unsigned char> png;
+    if (!stbi_write_png_to_func(append_bytes, &png, sheet.width, sheet.height, 3, sheet.rgb.data(),
+                                sheet.width * 3))
+        throw std::runtime_error("PNG encoding failed");
+    dsn::write_file_atomically(output, png);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "dsn-contact-sheet: %s\n", error.what());
+        return 1;
+    }
+}

@@ -1,0 +1,134 @@
+// dsn-demo-exemplar: writes the demo's own exemplar, a wood-like material that is exactly a Gaussian
+// texture of known spots, so the demo needs no photo and the right answer is known.
+//
+// The image is an asymptotic discrete spot noise (the Gaussian limit of spot noise) on the torus:
+// mean + sum over components of colour_k * (spot_k convolved with white noise). Component 1 is a long,
+// thin, slightly tilted spot (the grain), component 2 a round blob (slow colour variation), component 3
+// a small dot (fine speckle). The convolutions are circular, so the image tiles seamlessly.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <stb_image_write.h>
+
+#include "dsn/bake.h"
+
+namespace {
+
+const char *const usage =
+    "usage: dsn-demo-exemplar OUT.png [--size N] [--seed S]\n"
+    "Writes an N x N (default 256) RGB wood-like Gaussian texture made from known spots.\n";
+
+struct Component {
+    double length, width, angle_degrees; // Gaussian spot: standard deviations along and across
+    double wave;                         // period of a cosine across the spot (0: none), in pixels
+    double color[3];                     // RGB amplitude
+};
+
+const Component kComponents[] = {
+    {6.0, 1.0, 8.0, 0.0, {0.55, 0.36, 0.20}},   // grain: long streaks
+    {4.5, 3.0, -30.0, 0.0, {0.40, 0.30, 0.22}}, // slower colour variation
+    {1.0, 0.8, 0.0, 0.0, {0.10, 0.09, 0.08}},   // fine speckle
+};
+const double kMean[3] = {0.56, 0.39, 0.24};
+
+// The spot of a component on an odd window, normalized to unit energy.
+std::vector<double> spot(const Component &component, int radius) {
+    const int side = 2 * radius + 1;
+    const double angle = component.angle_degrees * 3.14159265358979 / 180;
+    std::vector<double> values(size_t(side * side));
+    double energy = 0;
+    for (int y = -radius; y <= radius; y++)
+        for (int x = -radius; x <= radius; x++) {
+            const double along = x * std::cos(angle) + y * std::sin(angle);
+            const double across = -x * std::sin(angle) + y * std::cos(angle);
+            double v = std::exp(-0.5 * (along * along / (component.length * component.length) +
+                                        across * across / (component.width * component.width)));
+            values[size_t((y + radius) * side + x + radius)] = v;
+            energy += v * v;
+        }
+    for (double &v : values) v /= std::sqrt(energy);
+    return values;
+}
+
+// Circular convolution of a white Gaussian noise with the spot (through the DFT): a Gaussian field of
+// unit variance.
+std::vector<double> spot_noise(const std::vector<double> &kernel, int radius, int size,
+                               std::mt19937 &random) {
+    std::normal_distribution<double> normal;
+    dsn::Image white, spot_on_torus;
+    white.width = white.height = spot_on_torus.width = spot_on_torus.height = size;
+    white.channels = spot_on_torus.channels = 1;
+    white.values.resize(size_t(size * size));
+    spot_on_torus.values.assign(size_t(size * size), 0.0);
+    for (double &w : white.values) w = normal(random);
+    const int side = 2 * radius + 1;
+    for (int dy = -radius; dy <= radius; dy++)
+        for (int dx = -radius; dx <= radius; dx++)
+            spot_on_torus.at(((dx % size) + size) % size, ((dy % size) + size) % size, 0) +=
+                kernel[size_t((dy + radius) * side + dx + radius)];
+    dsn::Spectrum product = dsn::forward_dft(white);
+    const dsn::Spectrum spot_spectrum = dsn::forward_dft(spot_on_torus);
+    for (size_t i = 0; i < product.values.size(); i++) product.values[i] *= spot_spectrum.values[i];
+    return dsn::inverse_dft(product).values;
+}
+
+void append_bytes(void *context, void *data, int size) {
+    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
+    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
+                  static_cast<unsigned char *>(data) + size);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        std::string output;
+        int size = 256;
+        unsigned long seed = 2024;
+        for (int i = 1; i < argc; i++) {
+            const std::string arg = argv[i];
+            if (arg == "--help" || arg == "-h") {
+                std::fputs(usage, stdout);
+                return 0;
+            }
+            if ((arg == "--size" || arg == "--seed") && i + 1 >= argc)
+                throw std::runtime_error(arg + " needs a value");
+            if (arg == "--size") {
+                size = std::atoi(argv[++i]);
+                if (size < 64 || size > 2048) throw std::runtime_error("--size must be within 64..2048");
+            } else if (arg == "--seed") {
+                seed = std::strtoul(argv[++i], nullptr, 10);
+            } else if (arg[0] == '-') {
+                throw std::runtime_error("unknown option " + arg + " (see --help)");
+            } else {
+                output = arg;
+            }
+        }
+        if (output.empty()) throw std::runtime_error("no output given (see --help)");
+        std::mt19937 random(static_cast<uint32_t>(seed));
+        std::vector<double> image(size_t(size * size) * 3);
+        for (size_t i = 0; i < image.size(); i++) image[i] = kMean[i % 3];
+        for (const Component &component : kComponents) {
+            const int radius = int(std::ceil(3 * component.length));
+            const std::vector<double> field = spot_noise(spot(component, radius), radius, size, random);
+            for (size_t p = 0; p < field.size(); p++)
+                for (int c = 0; c < 3; c++) image[p * 3 + size_t(c)] += 0.18 * component.color[c] * field[p];
+        }
+        std::vector<unsigned char> pixels(image.size());
+        for (size_t i = 0; i < image.size(); i++)
+            pixels[i] = static_cast<unsigned char>(std::lround(std::min(1.0, std::max(0.0, image[i])) * 255));
+        std::vector<unsigned char> png;
+        if (!stbi_write_png_to_func(append_bytes, &png, size, size, 3, pixels.data(), size * 3))
+            throw std::runtime_error("PNG encoding failed");
+        dsn::write_file_atomically(output, png);
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "dsn-demo-exemplar: %s\n", error.what());
+        return 1;
+    }
+    return 0;
+}
