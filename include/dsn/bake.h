@@ -72,6 +72,14 @@ constexpr int kMaxExemplarSide = 2048;
 // is checked with stbi_info before decoding. Throws std::runtime_error naming the problem.
 Image load_exemplar(const std::string &path, std::vector<std::string> *warnings);
 
+// The largest image file accepted (checked before reading it).
+constexpr uint64_t kMaxExemplarFileBytes = uint64_t(256) << 20;
+
+// The same from an image file's bytes in memory; `name` prefixes the error messages. load_exemplar reads
+// the file and calls this, so both refuse the same inputs the same way.
+Image decode_exemplar(const unsigned char *bytes, size_t size, const std::string &name,
+                      std::vector<std::string> *warnings);
+
 // Unnormalized 2-D DFT of every channel and its inverse (divided by width * height, real part kept).
 // Built from kiss_fftnd (complex): kiss_fftndr of this kissfft crashes on 2-D sizes from 64 x 64.
 Spectrum forward_dft(const Image &image);
