@@ -215,9 +215,11 @@ TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every 
     std::mt19937_64 random(9);
     auto rgb = make_noise(random_texton_asset(3, 5, 8, 3), 77);
     auto grey = make_noise(random_texton_asset(1, 4, 16, 4), 78, 12u << 16, 40, 24);
-    for (auto *noise : {&rgb->noise, &grey->noise}) {
+    auto dense = make_noise(random_texton_asset(3, 9, 16, 5), 79, 300u << 16);
+    size_t splatted = 0;
+    for (auto *noise : {&rgb->noise, &grey->noise, &dense->noise}) {
         const uint32_t channels = noise->asset.channels;
-        for (int trial = 0; trial < 12; trial++) {
+        for (int trial = 0; trial < 40; trial++) {
             const double angle = double(random() % 6283) / 1000, zoom = 0.25 + double(random() % 400) / 100;
             dsn_grid grid;
             grid.origin_x = random_coordinate(random);
@@ -226,18 +228,31 @@ TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every 
             grid.column_step_y = int64_t(std::llround(std::sin(angle) / zoom * 4294967296.0));
             grid.row_step_x = -grid.column_step_y;
             grid.row_step_y = grid.column_step_x;
+            if (trial % 2 == 0) { // axis-aligned: the splatting path, from 1/65536 to 8 texels per pixel
+                const int64_t steps[] = {65536, one / 16, one / 3, one, one + 12345, 3 * one, 8 * one};
+                grid.column_step_x = steps[random() % 7];
+                grid.row_step_y = trial % 4 == 0 ? grid.column_step_x : steps[random() % 7];
+                grid.column_step_y = grid.row_step_x = 0;
+            }
             const uint32_t width = 1 + uint32_t(random() % 40), height = 1 + uint32_t(random() % 30);
             std::vector<int32_t> tile(width * height * channels);
             std::vector<float> tile_float(tile.size());
             std::vector<uint8_t> tile_u8(tile.size());
-            std::vector<unsigned char> scratch(dsn_continuous_tile_scratch_size(noise, &grid, width, height) +
-                                               1);
-            REQUIRE(dsn_continuous_tile_fixed(noise, &grid, width, height, tile.data(), scratch.data(),
-                                              scratch.size()) == DSN_OK);
-            REQUIRE(dsn_continuous_tile_float(noise, &grid, width, height, tile_float.data(), scratch.data(),
-                                              scratch.size()) == DSN_OK);
-            REQUIRE(dsn_continuous_tile_u8(noise, &grid, width, height, tile_u8.data(), scratch.data(),
-                                           scratch.size()) == DSN_OK);
+            const size_t scratch_size = dsn_continuous_tile_scratch_size(noise, &grid, width, height);
+            splatted += scratch_size != 0;
+            if (scratch_size != 0) {
+                CHECK(dsn_continuous_tile_fixed(noise, &grid, width, height, tile.data(), nullptr, 0) ==
+                      DSN_ERR_SCRATCH);
+            }
+            // One byte more, used from an odd address: the scratch needs no alignment.
+            std::vector<unsigned char> buffer(scratch_size + 1);
+            unsigned char *scratch_bytes = buffer.data() + 1;
+            REQUIRE(dsn_continuous_tile_fixed(noise, &grid, width, height, tile.data(), scratch_bytes,
+                                              scratch_size) == DSN_OK);
+            REQUIRE(dsn_continuous_tile_float(noise, &grid, width, height, tile_float.data(), scratch_bytes,
+                                              scratch_size) == DSN_OK);
+            REQUIRE(dsn_continuous_tile_u8(noise, &grid, width, height, tile_u8.data(), scratch_bytes,
+                                           scratch_size) == DSN_OK);
             for (uint32_t j = 0; j < height; j++)
                 for (uint32_t i = 0; i < width; i++) {
                     int64_t x = int64_t(uint64_t(grid.origin_x) + uint64_t(grid.column_step_x) * i +
@@ -255,6 +270,7 @@ TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every 
                 }
         }
     }
+    CHECK(splatted >= 30); // the axis-aligned, non-periodic grids took the splatting path
 }
 
 TEST_CASE("continuous: periodic mode repeats exactly at real-valued points") {
