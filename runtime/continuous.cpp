@@ -73,20 +73,51 @@ int32_t texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t ch
     return asset->bits == 8 ? dsn_read_i8(asset->texton + index) : dsn_read_i16le(asset->texton + 2u * index);
 }
 
-/* Adds the bilinear texton at the offset (rows, columns brackets) to the channel sums (Q.32). */
+/* The 2x2 texels of every channel with their top-left at (row, column), all inside the window: read
+   without bounds checks, 8- or 16-bit. */
+template <uint32_t Bytes>
+int32_t stored_value(const unsigned char *at) {
+    return Bytes == 1 ? dsn_read_i8(at) : dsn_read_i16le(at);
+}
+
+template <uint32_t Bytes>
+void add_interior(const dsn_asset *asset, uint32_t row, uint32_t column, const int64_t *weights,
+                  uint64_t *sums) {
+    const uint32_t channels = asset->channels, row_bytes = asset->width * channels * Bytes;
+    const unsigned char *top = asset->texton + (row * asset->width + column) * channels * Bytes;
+    const unsigned char *bottom = top + row_bytes;
+    for (uint32_t c = 0; c < channels; c++) {
+        const uint32_t left = c * Bytes, right = (channels + c) * Bytes;
+        const int64_t upper =
+            weights[0] * stored_value<Bytes>(top + left) + weights[1] * stored_value<Bytes>(top + right);
+        const int64_t lower = weights[0] * stored_value<Bytes>(bottom + left) +
+                              weights[1] * stored_value<Bytes>(bottom + right);
+        /* |upper|, |lower| <= 2^31, so each term is below 2^47; the sums wrap (defined) as uint64. */
+        sums[c] += static_cast<uint64_t>(weights[2] * upper + weights[3] * lower);
+    }
+}
+
+/* Adds the bilinear texton at the offset (rows, columns brackets) to the channel sums (Q.32). The four
+   texels are read directly when all lie in the window (the common case), else one by one with zero
+   outside. */
 void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uint32_t column,
                   uint32_t column_weight, uint64_t *sums) {
-    const int64_t weight_left = static_cast<int64_t>(65536u - column_weight);
-    const int64_t weight_right = static_cast<int64_t>(column_weight);
-    const int64_t weight_top = static_cast<int64_t>(65536u - row_weight);
-    const int64_t weight_bottom = static_cast<int64_t>(row_weight);
+    const int64_t weights[4] = {static_cast<int64_t>(65536u - column_weight),
+                                static_cast<int64_t>(column_weight),
+                                static_cast<int64_t>(65536u - row_weight), static_cast<int64_t>(row_weight)};
+    if (row < asset->height - 1u && column < asset->width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+        if (asset->bits == 8)
+            add_interior<1>(asset, row, column, weights, sums);
+        else
+            add_interior<2>(asset, row, column, weights, sums);
+        return;
+    }
     for (uint32_t c = 0; c < asset->channels; c++) {
-        const int64_t top =
-            weight_left * texel(asset, row, column, c) + weight_right * texel(asset, row, column + 1u, c);
-        const int64_t bottom = weight_left * texel(asset, row + 1u, column, c) +
-                               weight_right * texel(asset, row + 1u, column + 1u, c);
-        /* |top|, |bottom| <= 2^31, so each term is below 2^47; the sums wrap (defined) as uint64. */
-        sums[c] += static_cast<uint64_t>(weight_top * top + weight_bottom * bottom);
+        const int64_t upper =
+            weights[0] * texel(asset, row, column, c) + weights[1] * texel(asset, row, column + 1u, c);
+        const int64_t lower = weights[0] * texel(asset, row + 1u, column, c) +
+                              weights[1] * texel(asset, row + 1u, column + 1u, c);
+        sums[c] += static_cast<uint64_t>(weights[2] * upper + weights[3] * lower);
     }
 }
 
