@@ -54,6 +54,18 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields);
 // one-line message ("cannot write out.dsnt: No space left on device"); the destination is then untouched.
 void write_file_atomically(const std::string &path, const std::vector<unsigned char> &bytes);
 
+// Writes several files as one: every temporary file is written and flushed before the first rename, so a
+// failure (full disk, missing folder, a destination that is not a regular file) leaves none of them.
+struct FileToWrite {
+    std::string path;
+    std::vector<unsigned char> bytes;
+};
+void write_files_atomically(const std::vector<FileToWrite> &files);
+
+// True when both paths name the same file: the same existing file (device and inode), or, for paths
+// that do not exist yet, the same name in the same folder.
+bool same_file(const std::string &a, const std::string &b);
+
 } // namespace dsn
 
 #endif // DSN_ASSET_WRITER_H

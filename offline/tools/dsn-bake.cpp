@@ -118,6 +118,9 @@ Arguments parse_arguments(int argc, char **argv) {
     }
     if (arguments.input.empty()) throw UsageError("no input image given");
     if (arguments.output.empty()) throw UsageError("no output given (-o OUT.dsnt)");
+    for (const std::string *output : {&arguments.output, &arguments.report, &arguments.preview})
+        if (!output->empty() && dsn::same_file(arguments.input, *output))
+            throw UsageError("output " + *output + " is the input image");
     return arguments;
 }
 
@@ -238,6 +241,17 @@ std::vector<unsigned char> as_bytes(const std::string &text) {
     return std::vector<unsigned char>(text.begin(), text.end());
 }
 
+// An RGBA image whose picture lives in its alpha channel bakes as a constant: say why.
+dsn::BakeResult bake_explaining_alpha(const dsn::Image &exemplar, const dsn::BakeOptions &options,
+                                      bool alpha_dropped) {
+    try {
+        return dsn::bake(exemplar, options);
+    } catch (const std::runtime_error &error) {
+        if (!alpha_dropped) throw;
+        throw std::runtime_error(std::string(error.what()) + " (its alpha channel is ignored)");
+    }
+}
+
 int run(const Arguments &arguments) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::string> warnings;
@@ -247,17 +261,17 @@ int run(const Arguments &arguments) {
             std::fprintf(stderr, "dsn-bake: warning: %s\n", warning.c_str());
     dsn::BakeOptions options = arguments.options;
     if (!arguments.quiet && isatty(STDERR_FILENO)) options.progress = draw_progress;
-    const dsn::BakeResult result = dsn::bake(exemplar, options);
+    const dsn::BakeResult result = bake_explaining_alpha(exemplar, options, !warnings.empty());
     // Everything is computed before anything is written: a failure leaves no output at all.
     const std::vector<unsigned char> preview = arguments.preview.empty()
                                                    ? std::vector<unsigned char>()
                                                    : dsn::preview_png(exemplar, result, options.seed);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    dsn::write_file_atomically(arguments.output, result.asset);
+    std::vector<dsn::FileToWrite> outputs = {{arguments.output, result.asset}};
     if (!arguments.report.empty())
-        dsn::write_file_atomically(arguments.report,
-                                   as_bytes(report_json(arguments, exemplar, result, seconds)));
-    if (!arguments.preview.empty()) dsn::write_file_atomically(arguments.preview, preview);
+        outputs.push_back({arguments.report, as_bytes(report_json(arguments, exemplar, result, seconds))});
+    if (!arguments.preview.empty()) outputs.push_back({arguments.preview, preview});
+    dsn::write_files_atomically(outputs);
     if (!arguments.quiet) print_summary(arguments, exemplar, result, seconds);
     return 0;
 }
