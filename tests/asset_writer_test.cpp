@@ -118,3 +118,28 @@ TEST_CASE("write_file_atomically replaces the file whole and leaves it untouched
     CHECK(std::remove(path.c_str()) == 0);
     CHECK(rmdir(folder.c_str()) == 0);
 }
+
+TEST_CASE("write_files_atomically writes every file or none, and same_file sees through path spellings") {
+    char folder_template[] = "/tmp/dsn-writer-XXXXXX";
+    REQUIRE(mkdtemp(folder_template) != nullptr);
+    const std::string folder = folder_template;
+    const std::string a = folder + "/a.dsnt", b = folder + "/b.json";
+    dsn::write_files_atomically({{a, {1}}, {b, {2}}});
+    CHECK(read_file(a) == "\x01");
+    CHECK(read_file(b) == "\x02");
+
+    // The second destination is refused: the first is not replaced either, and no temporary remains.
+    CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {"/dev/full", {9}}}), std::runtime_error);
+    CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {folder + "/missing/c", {9}}}), std::runtime_error);
+    CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {folder + "/./a.dsnt", {9}}}), std::runtime_error);
+    CHECK(read_file(a) == "\x01");
+
+    CHECK(dsn::same_file(a, folder + "/../" + folder.substr(folder.rfind('/') + 1) + "/a.dsnt"));
+    CHECK(dsn::same_file(folder + "/new.png", folder + "/./new.png"));
+    CHECK_FALSE(dsn::same_file(a, b));
+    CHECK_FALSE(dsn::same_file(a, folder + "/new.png"));
+
+    CHECK(std::remove(a.c_str()) == 0);
+    CHECK(std::remove(b.c_str()) == 0);
+    CHECK(rmdir(folder.c_str()) == 0); // fails if a temporary file was left behind
+}
