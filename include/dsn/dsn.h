@@ -163,8 +163,10 @@ int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, 
 /* ==== Continuous mode (renderer mode) ===============================================================
    Evaluates the noise at continuous texture coordinates, for renderers that zoom, rotate and warp.
    The impulses form a continuous Poisson process of the same intensity (exact per-cell Poisson counts
-   from the same table, positions uniform in the cell with 16 fractional bits per axis) and the texton
-   is read with bilinear interpolation (zero beyond its window), in integer arithmetic only. Sampled on
+   from the same table, positions uniform in the cell with 16 - cell_shift >= 8 fractional bits per
+   axis; each lattice impulse is the floor of its continuous twin) and the texton is read with bilinear
+   interpolation (zero beyond its window; weights from the point's top 16 fraction bits), in integer
+   arithmetic only. Sampled on
    the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi xi1)/3)(2/3 + cos(2 pi xi2)/3);
    a texton baked with `dsn-bake --interpolation bilinear` compensates it. The continuous functions
    return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was configured with
