@@ -60,7 +60,9 @@ TEST_CASE("bake: 8-bit quantization changes the RME by < 0.001, a 31x31 RGB asse
         }
     else
         MESSAGE("real textures skipped: " << textures_folder() << " is absent");
-    for (const auto &[name, exemplar] : exemplars) {
+    for (const auto &named : exemplars) {
+        const std::string &name = named.first; // not a structured binding: clang 14 cannot capture those
+        const dsn::Image &exemplar = named.second;
         CAPTURE(name);
         dsn::BakeOptions options;
         options.iterations = 100;

@@ -68,9 +68,9 @@ std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int6
             for (uint32_t k = 0; k < count; k++) {
                 uint32_t hash = dsn_impulse_hash(noise, key, k);
                 // Impulse position in Q16 (16 - shift fraction bits, scaled up).
-                int64_t px = ((int64_t(cells_x[i]) + wraps_x[i]) << (16 + shift)) +
+                int64_t px = (int64_t(cells_x[i]) + wraps_x[i]) * (int64_t(1) << (16 + shift)) +
                              (int64_t(dsn_impulse_bits_x(hash)) << shift);
-                int64_t py = ((int64_t(cells_y[j]) + wraps_y[j]) << (16 + shift)) +
+                int64_t py = (int64_t(cells_y[j]) + wraps_y[j]) * (int64_t(1) << (16 + shift)) +
                              (int64_t(dsn_impulse_bits_y(hash)) << shift);
                 if (period[0] && (px >> 16) >= int64_t(period[0])) continue;
                 if (period[1] && (py >> 16) >= int64_t(period[1])) continue;

@@ -20,7 +20,7 @@ $(BUILD)/obj/examples/c_api/main.o: examples/c_api/main.c $(C_API_GENERATED)/exa
 
 $(C_API_PROGRAM): $(BUILD)/obj/examples/c_api/main.o $(LIBDSN)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $< -o $@ $(LIBDSN)
+	$(CC) $(CFLAGS) $< -o $@ $(LIBDSN) $(LDFLAGS)
 
 PROGRAMS += $(C_API_PROGRAM)
 TEST_SCRIPTS += examples/c_api/smoke-test
