@@ -1,11 +1,13 @@
 // dsn-demo-exemplar: writes the demo's own exemplar, a wood-like material that is exactly a Gaussian
 // texture of known spots, so the demo needs no photo and the right answer is known.
 //
-// The image is an asymptotic discrete spot noise (the Gaussian limit of spot noise) on the torus:
-// mean + sum over components of colour_k * (spot_k convolved with white noise). Component 1 is a long,
+// The image is a random-phase texture on the torus: mean + sum over components of colour_k * (spot_k
+// filtered by one shared random phase), so its spectrum modulus is exactly that of the coloured spots and
+// its Gaussian model is known. Component 1 is a long,
 // thin, slightly tilted spot (the grain), component 2 a round blob (slow colour variation), component 3
 // a small dot (fine speckle). The convolutions are circular, so the image tiles seamlessly.
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -55,25 +57,38 @@ std::vector<double> spot(const Component &component, int radius) {
     return values;
 }
 
-// Circular convolution of a white Gaussian noise with the spot (through the DFT): a Gaussian field of
-// unit variance.
-std::vector<double> spot_noise(const std::vector<double> &kernel, int radius, int size,
-                               std::mt19937 &random) {
+// The phase of a white noise's DFT, scaled to the modulus such a noise has on average (size, the square root
+// of the pixel count). Multiplying a spot's spectrum by it gives a random-phase texture: a Gaussian-looking
+// field whose spectrum modulus is exactly the spot's, so the exemplar's Gaussian model is known exactly.
+dsn::Spectrum random_phase(int size, std::mt19937 &random) {
     std::normal_distribution<double> normal;
-    dsn::Image white, spot_on_torus;
-    white.width = white.height = spot_on_torus.width = spot_on_torus.height = size;
-    white.channels = spot_on_torus.channels = 1;
+    dsn::Image white;
+    white.width = white.height = size;
+    white.channels = 1;
     white.values.resize(size_t(size * size));
-    spot_on_torus.values.assign(size_t(size * size), 0.0);
     for (double &w : white.values) w = normal(random);
+    dsn::Spectrum phase = dsn::forward_dft(white);
+    for (std::complex<float> &value : phase.values) {
+        const float modulus = std::abs(value);
+        value = modulus > 0 ? value * (float(size) / modulus) : std::complex<float>(float(size), 0);
+    }
+    return phase;
+}
+
+// The spot (placed on the torus around the origin) filtered by the shared random phase: unit variance.
+std::vector<double> random_phase_field(const std::vector<double> &kernel, int radius, int size,
+                                       const dsn::Spectrum &phase) {
+    dsn::Image spot_on_torus;
+    spot_on_torus.width = spot_on_torus.height = size;
+    spot_on_torus.channels = 1;
+    spot_on_torus.values.assign(size_t(size * size), 0.0);
     const int side = 2 * radius + 1;
     for (int dy = -radius; dy <= radius; dy++)
         for (int dx = -radius; dx <= radius; dx++)
             spot_on_torus.at(((dx % size) + size) % size, ((dy % size) + size) % size, 0) +=
                 kernel[size_t((dy + radius) * side + dx + radius)];
-    dsn::Spectrum product = dsn::forward_dft(white);
-    const dsn::Spectrum spot_spectrum = dsn::forward_dft(spot_on_torus);
-    for (size_t i = 0; i < product.values.size(); i++) product.values[i] *= spot_spectrum.values[i];
+    dsn::Spectrum product = dsn::forward_dft(spot_on_torus);
+    for (size_t i = 0; i < product.values.size(); i++) product.values[i] *= phase.values[i];
     return dsn::inverse_dft(product).values;
 }
 
@@ -113,9 +128,12 @@ int main(int argc, char **argv) {
         std::mt19937 random(static_cast<uint32_t>(seed));
         std::vector<double> image(size_t(size * size) * 3);
         for (size_t i = 0; i < image.size(); i++) image[i] = kMean[i % 3];
+        // One phase for every component: the colour of each frequency is then a single vector, the rank-one
+        // cross-spectrum the Gaussian model of an image (and the SOT's common phase) describes exactly.
+        const dsn::Spectrum phase = random_phase(size, random);
         for (const Component &component : kComponents) {
             const int radius = int(std::ceil(3 * component.length));
-            const std::vector<double> field = spot_noise(spot(component, radius), radius, size, random);
+            const std::vector<double> field = random_phase_field(spot(component, radius), radius, size, phase);
             for (size_t p = 0; p < field.size(); p++)
                 for (int c = 0; c < 3; c++) image[p * 3 + size_t(c)] += 0.18 * component.color[c] * field[p];
         }
