@@ -4,7 +4,9 @@
    equal the per-point path's. */
 #include "noise_internal.h"
 
-#if defined(__SSE2__)
+#if defined(__AVX2__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
@@ -141,14 +143,20 @@ void splat_region(const dsn_noise *noise, const tile_run *run_x, const tile_run 
 
 /* ---- The blocked 16-bit path (8-bit textons) ----
    The tile is rendered in blocks of block_width x block_height pixels whose accumulators (16-bit,
-   one plane per channel) stay in L1. A block first lists the impulses that reach it; with at most
-   batch_limit of them no value can overflow: |q| <= 128 for any texton byte, and 255 * 128 < 2^15.
-   A block with more falls back to the 32-bit splat into the tile-sized accumulator. */
-const uint32_t lane = 8; /* 16-bit values per SSE2 vector */
+   one plane per channel) stay in L1. A block first lists the impulses that reach it. When no column
+   of the block is reached by more than coverage_limit of them, no pixel is, and no sum can overflow:
+   |q| <= 128 for any texton byte and 255 * 128 < 2^15. Otherwise (or when the list is full) the block
+   falls back to the 32-bit splat into the tile-sized accumulator. */
+#if defined(__AVX2__)
+const uint32_t lane = 16; /* 16-bit values per splat vector */
+#else
+const uint32_t lane = 8;
+#endif
 const uint32_t block_width = 64, block_height = 32;
 const uint32_t block_stride = block_width + lane; /* room for the last vector of a clipped row */
-const uint32_t batch_limit = 255;
-const uint32_t planar_texton_capacity = 4096; /* 16-bit values: a 31 x 31 RGB texton takes 3720 */
+const uint32_t coverage_limit = 255;
+const uint32_t list_capacity = 384;
+const uint32_t planar_texton_capacity = 4608; /* 16-bit values: a 31 x 31 RGB texton takes 4464 */
 
 /* The texton converted to 16 bits, one plane per channel, rows of texton_stride values padded with
    zeros so that a row may be read in whole vectors past its last texel. */
@@ -185,11 +193,17 @@ typedef struct block_impulse {
 } block_impulse;
 
 struct impulse_list {
-    block_impulse impulses[batch_limit];
-    uint32_t count; /* may exceed batch_limit: then only the count is kept */
+    block_impulse impulses[list_capacity];
+    uint32_t count;                         /* may exceed list_capacity: then only the count is kept */
+    int32_t column_change[block_width + 1]; /* impulses starting minus ending at each block column */
+
+    void clear() {
+        count = 0;
+        for (uint32_t i = 0; i <= block_width; i++) column_change[i] = 0;
+    }
 
     void operator()(const dsn_reach &reach_x, const dsn_reach &reach_y) {
-        if (count < batch_limit) {
+        if (count < list_capacity) {
             block_impulse *impulse = &impulses[count];
             impulse->first_index_x = uint16_t(reach_x.first_index);
             impulse->first_texton_x = uint16_t(reach_x.first_texton);
@@ -197,20 +211,49 @@ struct impulse_list {
             impulse->first_index_y = uint16_t(reach_y.first_index);
             impulse->first_texton_y = uint16_t(reach_y.first_texton);
             impulse->count_y = uint16_t(reach_y.count);
+            column_change[reach_x.first_index]++;
+            column_change[reach_x.first_index + reach_x.count]--;
         }
         count++;
     }
+
+    /* Whether every pixel is reached by at most coverage_limit listed impulses (and all are listed). */
+    int sums_fit_16_bits() const {
+        if (count > list_capacity) return 0;
+        int32_t coverage = 0;
+        for (uint32_t i = 0; i < block_width; i++) {
+            coverage += column_change[i];
+            if (coverage > int32_t(coverage_limit)) return 0;
+        }
+        return 1;
+    }
 };
 
-/* dst[i] += src[i] modulo 2^16 for i < count (SSE2: whole vectors, so up to lane - 1 values past count,
-   which land in the block's margin or on zero padding of the texton). */
+#if defined(__AVX2__)
+typedef __m256i splat_vector;
+inline splat_vector load_vector(const uint16_t *src) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src)));
+}
+inline void add_vector(uint16_t *dst, splat_vector value) {
+    __m256i *out = static_cast<__m256i *>(static_cast<void *>(dst));
+    _mm256_storeu_si256(out, _mm256_add_epi16(_mm256_loadu_si256(out), value));
+}
+#elif defined(__SSE2__)
+typedef __m128i splat_vector;
+inline splat_vector load_vector(const uint16_t *src) {
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src)));
+}
+inline void add_vector(uint16_t *dst, splat_vector value) {
+    __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst));
+    _mm_storeu_si128(out, _mm_add_epi16(_mm_loadu_si128(out), value));
+}
+#endif
+
+/* dst[i] += src[i] modulo 2^16 for i < count (with vectors: whole vectors, so up to lane - 1 values past
+   count, which land in the block's margin or on zero padding of the texton). */
 inline void add_row_16(uint16_t *dst, const uint16_t *src, uint32_t count) {
 #if defined(__SSE2__)
-    for (uint32_t i = 0; i < count; i += lane) {
-        __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
-        __m128i value = _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + i)));
-        _mm_storeu_si128(out, _mm_add_epi16(_mm_loadu_si128(out), value));
-    }
+    for (uint32_t i = 0; i < count; i += lane) add_vector(dst + i, load_vector(src + i));
 #else
     for (uint32_t i = 0; i < count; i++) dst[i] = uint16_t(dst[i] + src[i]);
 #endif
@@ -221,20 +264,51 @@ typedef struct block_accumulator {
     uint16_t values[DSN_MAX_CHANNELS * block_height * block_stride];
 } block_accumulator;
 
-void splat_block(const impulse_list *list, const planar_texton *texton, uint32_t channels,
-                 block_accumulator *block) {
+#if defined(__SSE2__)
+/* `rows` texton rows of every channel, `Vectors` whole vectors each: the common short rows get
+   straight-line code, with all channels of a row in one pass. */
+template <uint32_t Channels, uint32_t Vectors>
+inline void add_rows_16(uint16_t *dst, const uint16_t *src, uint32_t rows, const planar_texton *texton) {
     const uint32_t plane = block_height * block_stride;
-    for (uint32_t i = 0; i < channels * plane; i++) block->values[i] = 0;
+    for (; rows != 0; rows--, dst += block_stride, src += texton->stride)
+        for (uint32_t c = 0; c < Channels; c++)
+            for (uint32_t v = 0; v < Vectors; v++)
+                add_vector(dst + c * plane + v * lane, load_vector(src + c * texton->plane + v * lane));
+}
+#endif
+
+template <uint32_t Channels>
+void splat_block(const impulse_list *list, const planar_texton *texton, block_accumulator *block) {
+    const uint32_t plane = block_height * block_stride;
+    for (uint32_t i = 0; i < Channels * plane; i++) block->values[i] = 0;
     for (uint32_t n = 0; n < list->count; n++) {
         const block_impulse *impulse = &list->impulses[n];
-        for (uint32_t c = 0; c < channels; c++) {
-            uint16_t *dst =
-                block->values + c * plane + impulse->first_index_y * block_stride + impulse->first_index_x;
-            const uint16_t *src = texton->values + c * texton->plane +
-                                  impulse->first_texton_y * texton->stride + impulse->first_texton_x;
-            for (uint32_t row = 0; row < impulse->count_y; row++)
-                add_row_16(dst + row * block_stride, src + row * texton->stride, impulse->count_x);
+        uint16_t *dst = block->values + impulse->first_index_y * block_stride + impulse->first_index_x;
+        const uint16_t *src =
+            texton->values + impulse->first_texton_y * texton->stride + impulse->first_texton_x;
+        const uint32_t rows = impulse->count_y;
+#if defined(__SSE2__)
+        switch ((impulse->count_x + lane - 1) / lane) {
+        case 1:
+            add_rows_16<Channels, 1>(dst, src, rows, texton);
+            continue;
+        case 2:
+            add_rows_16<Channels, 2>(dst, src, rows, texton);
+            continue;
+        case 3:
+            add_rows_16<Channels, 3>(dst, src, rows, texton);
+            continue;
+        case 4:
+            add_rows_16<Channels, 4>(dst, src, rows, texton);
+            continue;
+        default:
+            break;
         }
+#endif
+        for (uint32_t c = 0; c < Channels; c++)
+            for (uint32_t row = 0; row < rows; row++)
+                add_row_16(dst + c * plane + row * block_stride,
+                           src + c * texton->plane + row * texton->stride, impulse->count_x);
     }
 }
 
@@ -339,7 +413,7 @@ inline void interleave_3(__m128i r, __m128i g, __m128i b, __m128i *out) {
     __m128 third = _mm_shuffle_ps(blue, rg_high, _MM_SHUFFLE(3, 2, 2, 2)); /* b2 b2 r3 g3 */
     out[0] = _mm_castps_si128(_mm_shuffle_ps(rg_low, first, _MM_SHUFFLE(2, 0, 1, 0)));
     out[1] = _mm_castps_si128(_mm_shuffle_ps(second, rg_high, _MM_SHUFFLE(1, 0, 2, 0)));
-    __m128 last = _mm_shuffle_ps(rg_high, blue, _MM_SHUFFLE(3, 3, 3, 3));  /* g3 g3 b3 b3 */
+    __m128 last = _mm_shuffle_ps(rg_high, blue, _MM_SHUFFLE(3, 3, 3, 3)); /* g3 g3 b3 b3 */
     out[2] = _mm_castps_si128(_mm_shuffle_ps(third, last, _MM_SHUFFLE(2, 0, 2, 0)));
 }
 
@@ -481,15 +555,18 @@ template <typename Value>
 void render_block(const dsn_noise *noise, const block_setup *setup, const tile_run *block_x,
                   const tile_run *block_y, const tile_target<Value> *target) {
     impulse_list list;
-    list.count = 0;
+    list.clear();
     for_each_reaching_impulse(noise, block_x, block_y, list);
-    if (list.count > batch_limit) {
+    if (!list.sums_fit_16_bits()) {
         render_block_32(noise, block_x, block_y, target);
         return;
     }
     const uint32_t channels = noise->asset.channels;
     block_accumulator block;
-    splat_block(&list, &setup->texton, channels, &block);
+    if (channels == 3)
+        splat_block<3>(&list, &setup->texton, &block);
+    else
+        splat_block<1>(&list, &setup->texton, &block);
     for (uint32_t row = 0; row < block_y->length; row++) {
         Value *out =
             target->out + size_t(block_y->offset + row) * target->row_values + block_x->offset * channels;

@@ -1,0 +1,97 @@
+// runtime_tile_block_test.cpp - the blocked tile path (16-bit block sums, split normalization, per-block
+// output conversion) against per-point evaluation, on windows spanning many blocks: every output type,
+// origins at the 32-bit wrap, periods, densities that push blocks onto the 32-bit fallback, and textons
+// at full scale (the largest sums the 16-bit path accepts).
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "support/test_assets.h"
+
+namespace {
+
+using dsn_test::LoadedNoise;
+
+struct Window {
+    int32_t x0, y0;
+    uint32_t width, height;
+};
+
+int32_t coordinate(int32_t origin, uint32_t offset) { return int32_t(uint32_t(origin) + offset); }
+
+// Values of the three tile functions that differ from per-point evaluation (fixed, float bits, u8).
+size_t differences(const dsn_noise &noise, const Window &w) {
+    const uint32_t channels = noise.asset.channels;
+    const size_t values = size_t(w.width) * w.height * channels;
+    std::vector<int32_t> fixed(values);
+    std::vector<float> floats(values);
+    std::vector<uint8_t> bytes(values);
+    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, w.width, w.height));
+    REQUIRE(dsn_tile_fixed(&noise, w.x0, w.y0, w.width, w.height, fixed.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_tile_float(&noise, w.x0, w.y0, w.width, w.height, floats.data(), scratch.data(),
+                           scratch.size()) == DSN_OK);
+    REQUIRE(dsn_tile_u8(&noise, w.x0, w.y0, w.width, w.height, bytes.data(), scratch.data(),
+                        scratch.size()) == DSN_OK);
+    size_t count = 0;
+    for (uint32_t j = 0; j < w.height; j++)
+        for (uint32_t i = 0; i < w.width; i++) {
+            int32_t point[3];
+            float point_float[3];
+            uint8_t point_u8[3];
+            dsn_eval_fixed(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point);
+            dsn_eval_float(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point_float);
+            dsn_eval_u8(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point_u8);
+            for (uint32_t c = 0; c < channels; c++) {
+                size_t index = (size_t(j) * w.width + i) * channels + c;
+                count += fixed[index] != point[c];
+                count += std::memcmp(&floats[index], &point_float[c], sizeof(float)) != 0;
+                count += bytes[index] != point_u8[c];
+            }
+        }
+    return count;
+}
+
+} // namespace
+
+TEST_CASE("blocked tiles == per point for fixed, float and u8 output on windows of many blocks") {
+    dsn_test::TestRandom random(77);
+    const Window windows[] = {{-1000, 5000, 150, 70},
+                              {INT32_MAX - 60, -40, 131, 67},
+                              {INT32_MIN + 3, INT32_MAX - 33, 97, 65},
+                              {-3, -2, 200, 33},
+                              {123456789, -987654321, 65, 100}};
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t side : {31u, 9u, 1u}) {
+            auto fields = dsn_test::synthetic_fields(channels, side, 8, DSN_SHAPE_RECTANGLE, random.next());
+            for (const Window &window : windows) {
+                const uint32_t periods[][2] = {{0, 0}, {100, 0}, {0, 37}, {1, 2}, {2147483648u, 1000}};
+                const uint32_t *period = periods[random.next() % 5];
+                LoadedNoise loaded(fields, dsn_test::make_config(random.next(), 30, period[0], period[1]));
+                CAPTURE(channels);
+                CAPTURE(side);
+                CAPTURE(window.x0);
+                CAPTURE(window.y0);
+                CAPTURE(period[0]);
+                CAPTURE(period[1]);
+                CHECK(differences(loaded.noise, window) == 0);
+            }
+        }
+}
+
+TEST_CASE("blocked tiles == per point at densities around the 16-bit limit and at full-scale texton values") {
+    // Near 120 impacts per pixel a 31 x 31 texton puts some 64 x 32 blocks over 255 impulses per column
+    // (32-bit fallback) and leaves others under it; at 300 every block falls back. The constant texton
+    // (every value +127 or -127) gives the largest sums the 16-bit path meets.
+    dsn_test::TestRandom random(78);
+    auto varied = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 5);
+    auto full_scale = varied;
+    for (size_t i = 0; i < full_scale.texton.size(); i++) full_scale.texton[i] = (i % 3 == 1) ? -127 : 127;
+    for (const auto *fields : {&varied, &full_scale})
+        for (double impacts : {60.0, 120.0, 300.0}) {
+            LoadedNoise loaded(*fields, dsn_test::make_config(random.next(), impacts));
+            Window window = {int32_t(random.next()), int32_t(random.next()), 130, 66};
+            CAPTURE(impacts);
+            CHECK(differences(loaded.noise, window) == 0);
+        }
+}
