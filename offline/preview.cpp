@@ -7,7 +7,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <stb_image_write.h>
 
 namespace dsn {
 namespace {
@@ -99,11 +98,6 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
     return image;
 }
 
-void append_bytes(void *context, void *data, int size) {
-    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
-    const auto *begin = static_cast<const unsigned char *>(data);
-    bytes->insert(bytes->end(), begin, begin + size);
-}
 
 } // namespace
 
@@ -117,11 +111,7 @@ std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &
     sheet.height = height;
     sheet.pixels.assign(size_t(sheet.width) * size_t(sheet.height) * 3, kBackground);
     for (int i = 0; i < 4; i++) draw(sheet, panels[i], i * (width + kGap));
-    std::vector<unsigned char> png;
-    if (!stbi_write_png_to_func(append_bytes, &png, sheet.width, sheet.height, 3, sheet.pixels.data(),
-                                sheet.width * 3))
-        throw std::runtime_error("preview: PNG encoding failed");
-    return png;
+    return encode_png(sheet.width, sheet.height, 3, sheet.pixels.data());
 }
 
 } // namespace dsn

@@ -15,7 +15,6 @@
 #include <stb_easy_font.h>
 #pragma GCC diagnostic pop
 #include <stb_image.h>
-#include <stb_image_write.h>
 
 #include "dsn/bake.h"
 #include "dsn/dsn.h"
@@ -146,11 +145,6 @@ Picture texton_picture(const std::string &asset_path) {
     return picture;
 }
 
-void append_bytes(void *context, void *data, int size) {
-    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
-    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
-                  static_cast<unsigned char *>(data) + size);
-}
 
 int run(int argc, char **argv) {
     std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
@@ -208,11 +202,7 @@ int run(int argc, char **argv) {
     draw_label(sheet, kGap, scene_top, "renderer scene (continuous mode, dsn-tiny-renderer)", 2);
     paste(sheet, scene, kGap, scene_top + kLabel, kSheetWidth - 2 * kGap, scene_height);
 
-    std::vector<unsigned char> png;
-    if (!stbi_write_png_to_func(append_bytes, &png, sheet.width, sheet.height, 3, sheet.rgb.data(),
-                                sheet.width * 3))
-        throw std::runtime_error("PNG encoding failed");
-    dsn::write_file_atomically(output, png);
+    dsn::write_file_atomically(output, dsn::encode_png(sheet.width, sheet.height, 3, sheet.rgb.data()));
     return 0;
 }
 

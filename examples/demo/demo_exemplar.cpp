@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include <stb_image_write.h>
 
 #include "dsn/bake.h"
 
@@ -92,11 +91,6 @@ std::vector<double> random_phase_field(const std::vector<double> &kernel, int ra
     return dsn::inverse_dft(product).values;
 }
 
-void append_bytes(void *context, void *data, int size) {
-    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
-    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
-                  static_cast<unsigned char *>(data) + size);
-}
 
 } // namespace
 
@@ -140,10 +134,7 @@ int main(int argc, char **argv) {
         std::vector<unsigned char> pixels(image.size());
         for (size_t i = 0; i < image.size(); i++)
             pixels[i] = static_cast<unsigned char>(std::lround(std::min(1.0, std::max(0.0, image[i])) * 255));
-        std::vector<unsigned char> png;
-        if (!stbi_write_png_to_func(append_bytes, &png, size, size, 3, pixels.data(), size * 3))
-            throw std::runtime_error("PNG encoding failed");
-        dsn::write_file_atomically(output, png);
+        dsn::write_file_atomically(output, dsn::encode_png(size, size, 3, pixels.data()));
     } catch (const std::exception &error) {
         std::fprintf(stderr, "dsn-demo-exemplar: %s\n", error.what());
         return 1;

@@ -18,9 +18,9 @@
 #include <thread>
 #include <vector>
 
-#include <stb_image_write.h>
 
 #include "dsn/asset_writer.h"
+#include "dsn/bake.h"
 #include "dsn/dsn.h"
 
 namespace {
@@ -296,20 +296,11 @@ void render(const Job &job, unsigned thread_count, bool show_progress, std::vect
     if (!failure.empty()) throw std::runtime_error(failure);
 }
 
-void append_bytes(void *context, void *data, int size) {
-    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
-    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
-                  static_cast<unsigned char *>(data) + size);
-}
 
 std::vector<unsigned char> encode_png(const std::vector<uint8_t> &pixels, uint32_t width, uint32_t height,
                                       uint32_t channels) {
-    std::vector<unsigned char> bytes;
-    int stride = static_cast<int>(width * channels);
-    if (!stbi_write_png_to_func(append_bytes, &bytes, static_cast<int>(width), static_cast<int>(height),
-                                static_cast<int>(channels), pixels.data(), stride))
-        throw std::runtime_error("PNG encoding failed");
-    return bytes;
+    return dsn::encode_png(static_cast<int>(width), static_cast<int>(height), static_cast<int>(channels),
+                           pixels.data());
 }
 
 // Raw little-endian float32, whatever the host's byte order.

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include <stb_image_write.h>
 
 #include "dsn/asset_writer.h"
+#include "dsn/bake.h"
 #include "dsn/dsn.h"
 
 namespace {
@@ -130,11 +130,6 @@ uint8_t to_byte(double value) {
     return uint8_t(std::lround(clamped * 255));
 }
 
-void append_bytes(void *context, void *data, int size) {
-    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
-    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
-                  static_cast<unsigned char *>(data) + size);
-}
 
 int run(int argc, char **argv) {
     std::vector<std::string> assets;
@@ -187,10 +182,7 @@ int run(int argc, char **argv) {
             uint8_t *pixel = &pixels[(size_t(j) * width + i) * 3];
             pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
         }
-    std::vector<unsigned char> png;
-    if (!stbi_write_png_to_func(append_bytes, &png, width, height, 3, pixels.data(), width * 3))
-        throw std::runtime_error("PNG encoding failed");
-    dsn::write_file_atomically(output, png);
+    dsn::write_file_atomically(output, dsn::encode_png(width, height, 3, pixels.data()));
     return 0;
 }
 

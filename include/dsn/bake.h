@@ -72,6 +72,10 @@ constexpr int kMaxExemplarSide = 2048;
 // is checked with stbi_info before decoding. Throws std::runtime_error naming the problem.
 Image load_exemplar(const std::string &path, std::vector<std::string> *warnings);
 
+// The bytes of a PNG file of 8-bit pixels (rows from the top, channels interleaved, 1 to 4 channels).
+// Throws std::invalid_argument for an impossible size, std::runtime_error if encoding fails.
+std::vector<unsigned char> encode_png(int width, int height, int channels, const unsigned char *pixels);
+
 // The largest image file accepted (checked before reading it).
 constexpr uint64_t kMaxExemplarFileBytes = uint64_t(256) << 20;
 

@@ -1,0 +1,29 @@
+// png_output.cpp - encode_png: 8-bit pixels -> the bytes of a PNG file (stb_image_write), for the tools and
+// examples, which then write them with write_file_atomically.
+#include "dsn/bake.h"
+
+#include <stdexcept>
+
+#include <stb_image_write.h>
+
+namespace dsn {
+namespace {
+
+void append_bytes(void *context, void *data, int size) {
+    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
+    const auto *begin = static_cast<const unsigned char *>(data);
+    bytes->insert(bytes->end(), begin, begin + size);
+}
+
+} // namespace
+
+std::vector<unsigned char> encode_png(int width, int height, int channels, const unsigned char *pixels) {
+    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || width > (1 << 24) / channels)
+        throw std::invalid_argument("encode_png: invalid image size");
+    std::vector<unsigned char> png;
+    if (!stbi_write_png_to_func(append_bytes, &png, width, height, channels, pixels, width * channels))
+        throw std::runtime_error("PNG encoding failed");
+    return png;
+}
+
+} // namespace dsn
