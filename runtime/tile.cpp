@@ -269,11 +269,15 @@ typedef struct block_accumulator {
    straight-line code, with all channels of a row in one pass. */
 template <uint32_t Channels, uint32_t Vectors>
 inline void add_rows_16(uint16_t *dst, const uint16_t *src, uint32_t rows, const planar_texton *texton) {
-    const uint32_t plane = block_height * block_stride;
-    for (; rows != 0; rows--, dst += block_stride, src += texton->stride)
+    /* Locals: the vector stores may alias anything, so fields read in the loop would be reloaded. */
+    const uint32_t plane = block_height * block_stride, texton_stride = texton->stride,
+                   texton_plane = texton->plane;
+    for (; rows != 0; rows--, dst += block_stride, src += texton_stride)
+#pragma GCC unroll 3
         for (uint32_t c = 0; c < Channels; c++)
+#pragma GCC unroll 8
             for (uint32_t v = 0; v < Vectors; v++)
-                add_vector(dst + c * plane + v * lane, load_vector(src + c * texton->plane + v * lane));
+                add_vector(dst + c * plane + v * lane, load_vector(src + c * texton_plane + v * lane));
 }
 #endif
 
@@ -420,6 +424,7 @@ inline void interleave_3(__m128i r, __m128i g, __m128i b, __m128i *out) {
 /* Stores `vectors` interleaved output vectors (4 values each) of which the first `values` are wanted. */
 inline void store_vectors(int32_t *out, const __m128i *v, uint32_t vectors, uint32_t values) {
     if (values == 4 * vectors) {
+#pragma GCC unroll 6
         for (uint32_t i = 0; i < vectors; i++)
             _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out + 4 * i)), v[i]);
         return;
@@ -435,6 +440,7 @@ inline void store_vectors(float *out, const __m128i *v, uint32_t vectors, uint32
     const __m128 scale = _mm_set1_ps(1.0f / 65536.0f);
     float buffer[24];
     float *dst = values == 4 * vectors ? out : buffer;
+#pragma GCC unroll 6
     for (uint32_t i = 0; i < vectors; i++)
         _mm_storeu_ps(dst + 4 * i, _mm_mul_ps(_mm_cvtepi32_ps(v[i]), scale));
     if (dst == buffer)
@@ -453,6 +459,7 @@ inline __m128i to_u8_range(__m128i value) {
 
 inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint32_t values) {
     __m128i words[3];
+#pragma GCC unroll 3
     for (uint32_t i = 0; i < vectors; i += 2)
         words[i / 2] = _mm_packs_epi32(to_u8_range(v[i]), to_u8_range(v[i + 1]));
     uint8_t buffer[32];
@@ -465,9 +472,9 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
 }
 
 /* Row `row` of a block, `count` pixels, 8 at a time (the accumulator rows have room past the end). */
-template <typename Value>
-void normalize_row_split(const split_vectors *v, uint32_t channels, const block_accumulator *block,
-                         uint32_t row, uint32_t count, Value *out) {
+template <uint32_t channels, typename Value>
+void normalize_row_split(const split_vectors *v, const block_accumulator *block, uint32_t row, uint32_t count,
+                         Value *out) {
     const uint32_t plane = block_height * block_stride;
     const uint16_t *sums = block->values + row * block_stride;
     const __m128i zero = _mm_setzero_si128();
@@ -572,7 +579,10 @@ void render_block(const dsn_noise *noise, const block_setup *setup, const tile_r
             target->out + size_t(block_y->offset + row) * target->row_values + block_x->offset * channels;
 #if defined(__SSE2__)
         if (setup->split_ok) {
-            normalize_row_split(&setup->split, channels, &block, row, block_x->length, out);
+            if (channels == 3)
+                normalize_row_split<3>(&setup->split, &block, row, block_x->length, out);
+            else
+                normalize_row_split<1>(&setup->split, &block, row, block_x->length, out);
             continue;
         }
 #endif
