@@ -32,7 +32,7 @@ void validate(const AssetFields &fields) {
     require(is_valid_side(fields.width) && is_valid_side(fields.height),
             "texton width and height must be odd, 1..255");
     require(fields.default_impacts_q16 == 0 || (fields.default_impacts_q16 >= DSN_IMPACTS_MIN_Q16 &&
-                                                 fields.default_impacts_q16 <= DSN_IMPACTS_MAX_Q16),
+                                                fields.default_impacts_q16 <= DSN_IMPACTS_MAX_Q16),
             "default impacts per pixel out of range");
     for (uint32_t c = 0; c < 3; c++) {
         bool used = c < fields.channels;
@@ -86,7 +86,8 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields) {
         dsn_write_u32le(p + DSN_OFFSET_SCALE + 4 * c, fields.scale[c]);
         dsn_write_i32le(p + DSN_OFFSET_MEAN + 4 * c, fields.mean[c]);
     }
-    for (int i = 0; i < 9; i++) dsn_write_i32le(p + DSN_OFFSET_COLOR_TRANSFORM + 4 * i, fields.color_transform[i]);
+    for (int i = 0; i < 9; i++)
+        dsn_write_i32le(p + DSN_OFFSET_COLOR_TRANSFORM + 4 * i, fields.color_transform[i]);
     dsn_write_u32le(p + DSN_OFFSET_BAKE_ITERATIONS, fields.bake_iterations);
     dsn_write_u32le(p + DSN_OFFSET_BAKE_SEED, fields.bake_seed);
     dsn_write_u32le(p + DSN_OFFSET_BAKE_RME, fields.bake_rme_q24);
@@ -94,8 +95,10 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_HEIGHT, uint16_t(fields.exemplar_height));
     unsigned char *texton = p + DSN_FORMAT_HEADER_SIZE;
     for (size_t i = 0; i < fields.texton.size(); i++) {
-        if (value_bytes == 1) texton[i] = uint8_t(fields.texton[i] & 0xFF);
-        else dsn_write_u16le(texton + 2 * i, uint16_t(fields.texton[i] & 0xFFFF));
+        if (value_bytes == 1)
+            texton[i] = uint8_t(fields.texton[i] & 0xFF);
+        else
+            dsn_write_u16le(texton + 2 * i, uint16_t(fields.texton[i] & 0xFFFF));
     }
     dsn_write_u32le(p + total - DSN_FORMAT_CRC_SIZE, dsn_crc32(0, p, total - DSN_FORMAT_CRC_SIZE));
     return bytes;

@@ -27,7 +27,8 @@ std::vector<unsigned char> read_regular_file(const std::string &path) {
     if (stat(path.c_str(), &status) != 0) fail(path, std::strerror(errno));
     if (!S_ISREG(status.st_mode)) fail(path, "not a regular file");
     if (uint64_t(status.st_size) > kMaxExemplarFileBytes)
-        fail(path, "file is larger than the limit of " + std::to_string(kMaxExemplarFileBytes >> 20) + " MiB");
+        fail(path,
+             "file is larger than the limit of " + std::to_string(kMaxExemplarFileBytes >> 20) + " MiB");
     FILE *file = std::fopen(path.c_str(), "rb");
     if (!file) fail(path, std::strerror(errno));
     std::vector<unsigned char> bytes(size_t(status.st_size));

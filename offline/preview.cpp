@@ -7,7 +7,6 @@
 #include <cmath>
 #include <stdexcept>
 
-
 namespace dsn {
 namespace {
 
@@ -97,7 +96,6 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
                     values[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)];
     return image;
 }
-
 
 } // namespace
 

@@ -77,7 +77,8 @@ TEST_CASE("continuous coordinates: NaN and Inf are 0, huge values wrap, and the 
     dsn::AssetFields fields = synthetic_fields(3, 9, 8, DSN_SHAPE_DISK, 4);
     fields.interpolation = DSN_INTERPOLATION_BILINEAR;
     LoadedNoise loaded(fields, make_config(11));
-    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN(),
+                 inf = std::numeric_limits<double>::infinity();
     for (double special : {nan, inf, -inf}) {
         CHECK(dsn_coordinate_from_double(special) == 0);
         CHECK(dsn_coordinate_from_float(float(special)) == 0);

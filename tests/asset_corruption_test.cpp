@@ -49,9 +49,17 @@ int expected_code_for_damaged(const std::vector<unsigned char> &damaged, size_t 
 
 bool is_field_check(int code) {
     switch (code) {
-    case DSN_ERR_RESERVED: case DSN_ERR_CHANNELS: case DSN_ERR_BITS: case DSN_ERR_SHAPE:
-    case DSN_ERR_INTERPOLATION: case DSN_ERR_DIMENSIONS: case DSN_ERR_TOTAL_SIZE: case DSN_ERR_SCALE:
-    case DSN_ERR_IMPACTS: case DSN_ERR_COLOR_TRANSFORM: case DSN_ERR_TEXTON:
+    case DSN_ERR_RESERVED:
+    case DSN_ERR_CHANNELS:
+    case DSN_ERR_BITS:
+    case DSN_ERR_SHAPE:
+    case DSN_ERR_INTERPOLATION:
+    case DSN_ERR_DIMENSIONS:
+    case DSN_ERR_TOTAL_SIZE:
+    case DSN_ERR_SCALE:
+    case DSN_ERR_IMPACTS:
+    case DSN_ERR_COLOR_TRANSFORM:
+    case DSN_ERR_TEXTON:
         return true;
     default:
         return false;
@@ -75,7 +83,8 @@ void evaluate_everywhere(const dsn_asset &asset) {
     const uint32_t width = 4, height = 3, channels = asset.channels;
     std::vector<int32_t> tile(width * height * channels);
     std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, width, height));
-    REQUIRE(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), scratch.data(), scratch.size()) == DSN_OK);
+    REQUIRE(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), scratch.data(), scratch.size()) ==
+            DSN_OK);
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             int32_t value[DSN_MAX_CHANNELS];

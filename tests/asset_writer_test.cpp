@@ -76,8 +76,16 @@ TEST_CASE("encode_asset refuses every field the loader would reject") {
         {"bits 12", [](dsn::AssetFields &f) { f.bits = 12; }},
         {"shape 2", [](dsn::AssetFields &f) { f.shape = 2; }},
         {"interpolation 2", [](dsn::AssetFields &f) { f.interpolation = 2; }},
-        {"even width", [](dsn::AssetFields &f) { f.width = 4; f.shape = DSN_SHAPE_RECTANGLE; }},
-        {"width 257", [](dsn::AssetFields &f) { f.width = 257; f.shape = DSN_SHAPE_RECTANGLE; }},
+        {"even width",
+         [](dsn::AssetFields &f) {
+             f.width = 4;
+             f.shape = DSN_SHAPE_RECTANGLE;
+         }},
+        {"width 257",
+         [](dsn::AssetFields &f) {
+             f.width = 257;
+             f.shape = DSN_SHAPE_RECTANGLE;
+         }},
         {"non-square disk", [](dsn::AssetFields &f) { f.height = 3; }},
         {"impacts too small", [](dsn::AssetFields &f) { f.default_impacts_q16 = 1; }},
         {"impacts too large", [](dsn::AssetFields &f) { f.default_impacts_q16 = DSN_IMPACTS_MAX_Q16 + 1; }},
@@ -85,13 +93,24 @@ TEST_CASE("encode_asset refuses every field the loader would reject") {
         {"short texton", [](dsn::AssetFields &f) { f.texton.pop_back(); }},
         {"value -32768", [](dsn::AssetFields &f) { f.texton[0 + 2 * 3] = -32768; }},
         {"outside the disk", [](dsn::AssetFields &f) { f.texton[0] = 1; }},
-        {"unused channel mean", [](dsn::AssetFields &f) { f.channels = 1; f.scale[1] = f.scale[2] = 0;
-                                                          f.texton.resize(25); f.mean[2] = 0; f.mean[1] = 3;
-                                                          dsn::set_identity_color_transform(f); }},
-        {"grey off-diagonal", [](dsn::AssetFields &f) { f.channels = 1; f.scale[1] = f.scale[2] = 0;
-                                                        f.mean[1] = f.mean[2] = 0; f.texton.resize(25);
-                                                        dsn::set_identity_color_transform(f);
-                                                        f.color_transform[4] = 1; }},
+        {"unused channel mean",
+         [](dsn::AssetFields &f) {
+             f.channels = 1;
+             f.scale[1] = f.scale[2] = 0;
+             f.texton.resize(25);
+             f.mean[2] = 0;
+             f.mean[1] = 3;
+             dsn::set_identity_color_transform(f);
+         }},
+        {"grey off-diagonal",
+         [](dsn::AssetFields &f) {
+             f.channels = 1;
+             f.scale[1] = f.scale[2] = 0;
+             f.mean[1] = f.mean[2] = 0;
+             f.texton.resize(25);
+             dsn::set_identity_color_transform(f);
+             f.color_transform[4] = 1;
+         }},
     };
     CHECK_NOTHROW(dsn::encode_asset(rgb_disk_asset()));
     for (const Case &c : cases) {
@@ -130,7 +149,8 @@ TEST_CASE("write_files_atomically writes every file or none, and same_file sees 
 
     // The second destination is refused: the first is not replaced either, and no temporary remains.
     CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {"/dev/full", {9}}}), std::runtime_error);
-    CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {folder + "/missing/c", {9}}}), std::runtime_error);
+    CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {folder + "/missing/c", {9}}}),
+                    std::runtime_error);
     CHECK_THROWS_AS(dsn::write_files_atomically({{a, {9}}, {folder + "/./a.dsnt", {9}}}), std::runtime_error);
     CHECK(read_file(a) == "\x01");
 

@@ -39,5 +39,8 @@ TEST_CASE("support size counts the disk exactly") {
     for (int y = -15; y <= 15; y++)
         for (int x = -15; x <= 15; x++) disk_31 += (x * x + y * y <= 225) ? 1u : 0u;
     CHECK(dsn_support_size(DSN_SHAPE_DISK, 31, 31) == disk_31);
-    CHECK(std::memcmp(DSN_FORMAT_MAGIC, "\x89" "DSN\r\n\x1a\n", DSN_FORMAT_MAGIC_SIZE) == 0);
+    CHECK(std::memcmp(DSN_FORMAT_MAGIC,
+                      "\x89"
+                      "DSN\r\n\x1a\n",
+                      DSN_FORMAT_MAGIC_SIZE) == 0);
 }

@@ -44,8 +44,9 @@ TEST_CASE("tile == per point, bit for bit, on random windows, seeds, sizes and p
                     double impacts = (random.next() % 2) ? 30 : 5 + random.next() % 200;
                     LoadedNoise loaded(fields,
                                        dsn_test::make_config(random.next(), impacts, period_x, period_y));
-                    int32_t x0 = (round % 2) ? int32_t(uint32_t(interesting[random.next() % 8]) - random.next() % 20)
-                                             : int32_t(random.next());
+                    int32_t x0 = (round % 2)
+                                     ? int32_t(uint32_t(interesting[random.next() % 8]) - random.next() % 20)
+                                     : int32_t(random.next());
                     int32_t y0 = (round % 3) ? interesting[random.next() % 8] : int32_t(random.next());
                     uint32_t width = 1 + random.next() % 40, height = 1 + random.next() % 40;
                     CAPTURE(channels);

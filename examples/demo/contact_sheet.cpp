@@ -145,7 +145,6 @@ Picture texton_picture(const std::string &asset_path) {
     return picture;
 }
 
-
 int run(int argc, char **argv) {
     std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
     uint32_t seed = 1;

@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-
 #include "dsn/bake.h"
 
 namespace {
@@ -91,7 +90,6 @@ std::vector<double> random_phase_field(const std::vector<double> &kernel, int ra
     return dsn::inverse_dft(product).values;
 }
 
-
 } // namespace
 
 int main(int argc, char **argv) {
@@ -127,7 +125,8 @@ int main(int argc, char **argv) {
         const dsn::Spectrum phase = random_phase(size, random);
         for (const Component &component : kComponents) {
             const int radius = int(std::ceil(3 * component.length));
-            const std::vector<double> field = random_phase_field(spot(component, radius), radius, size, phase);
+            const std::vector<double> field =
+                random_phase_field(spot(component, radius), radius, size, phase);
             for (size_t p = 0; p < field.size(); p++)
                 for (int c = 0; c < 3; c++) image[p * 3 + size_t(c)] += 0.18 * component.color[c] * field[p];
         }

@@ -18,7 +18,6 @@
 #include <thread>
 #include <vector>
 
-
 #include "dsn/asset_writer.h"
 #include "dsn/bake.h"
 #include "dsn/dsn.h"
@@ -295,7 +294,6 @@ void render(const Job &job, unsigned thread_count, bool show_progress, std::vect
     for (std::thread &thread : threads) thread.join();
     if (!failure.empty()) throw std::runtime_error(failure);
 }
-
 
 std::vector<unsigned char> encode_png(const std::vector<uint8_t> &pixels, uint32_t width, uint32_t height,
                                       uint32_t channels) {

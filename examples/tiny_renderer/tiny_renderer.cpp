@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-
 #include "dsn/asset_writer.h"
 #include "dsn/bake.h"
 #include "dsn/dsn.h"
@@ -129,7 +128,6 @@ uint8_t to_byte(double value) {
     const double clamped = value < 0 ? 0 : value > 1 ? 1 : value;
     return uint8_t(std::lround(clamped * 255));
 }
-
 
 int run(int argc, char **argv) {
     std::vector<std::string> assets;

@@ -56,16 +56,16 @@ extern "C" {
 typedef struct dsn_asset {
     const unsigned char *texton;
     uint32_t version_minor;
-    uint32_t channels;      /* 1 or 3 */
-    uint32_t bits;          /* 8 or 16 */
-    uint32_t shape;         /* DSN_SHAPE_RECTANGLE or DSN_SHAPE_DISK */
-    uint32_t interpolation; /* DSN_INTERPOLATION_LATTICE or DSN_INTERPOLATION_BILINEAR */
-    uint32_t width, height; /* odd, 1..255 */
-    uint32_t support_size;  /* |S|: number of support points */
+    uint32_t channels;            /* 1 or 3 */
+    uint32_t bits;                /* 8 or 16 */
+    uint32_t shape;               /* DSN_SHAPE_RECTANGLE or DSN_SHAPE_DISK */
+    uint32_t interpolation;       /* DSN_INTERPOLATION_LATTICE or DSN_INTERPOLATION_BILINEAR */
+    uint32_t width, height;       /* odd, 1..255 */
+    uint32_t support_size;        /* |S|: number of support points */
     uint32_t default_impacts_q16; /* 0 when the asset gives none */
-    uint32_t scale[3];      /* value = raw / 2^40 */
-    int32_t mean[3];        /* Q8.24 */
-    int32_t color_transform[9]; /* Q8.24, row-major */
+    uint32_t scale[3];            /* value = raw / 2^40 */
+    int32_t mean[3];              /* Q8.24 */
+    int32_t color_transform[9];   /* Q8.24, row-major */
     uint32_t bake_iterations, bake_seed, bake_rme_q24;
     uint32_t exemplar_width, exemplar_height;
 } dsn_asset;
@@ -83,7 +83,7 @@ const char *dsn_error_message(int code);
 
 /* ---- Configuration ---- */
 
-#define DSN_FLAG_NO_COLOR_TRANSFORM 1u /* use the identity instead of the asset's transform */
+#define DSN_FLAG_NO_COLOR_TRANSFORM 1u       /* use the identity instead of the asset's transform */
 #define DSN_FLAG_ALLOW_LATTICE_CONTINUOUS 2u /* continuous mode on a lattice-baked texton */
 #define DSN_FLAGS_ALL (DSN_FLAG_NO_COLOR_TRANSFORM | DSN_FLAG_ALLOW_LATTICE_CONTINUOUS)
 
@@ -107,14 +107,14 @@ typedef struct dsn_noise {
     uint32_t seed_column, seed_row; /* hashes of the seed mixed into the cell keys */
     uint32_t flags;
     uint32_t impacts_q16;
-    uint32_t period[2];      /* 0 = not periodic */
-    uint32_t cell_shift;     /* cells are (1 << cell_shift) lattice points wide */
-    uint32_t radius[2];      /* (width - 1) / 2, (height - 1) / 2 */
-    uint32_t gain_shift;     /* fraction bits of gain and offset */
-    int64_t gain[9];         /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
-    int64_t offset[3];       /* fixed-point mean minus the expected sum */
-    uint32_t poisson_parts;  /* a cell's count is the sum of this many draws from the table */
-    uint32_t poisson_size;   /* entries used in poisson_cdf */
+    uint32_t period[2];        /* 0 = not periodic */
+    uint32_t cell_shift;       /* cells are (1 << cell_shift) lattice points wide */
+    uint32_t radius[2];        /* (width - 1) / 2, (height - 1) / 2 */
+    uint32_t gain_shift;       /* fraction bits of gain and offset */
+    int64_t gain[9];           /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
+    int64_t offset[3];         /* fixed-point mean minus the expected sum */
+    uint32_t poisson_parts;    /* a cell's count is the sum of this many draws from the table */
+    uint32_t poisson_size;     /* entries used in poisson_cdf */
     uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of one draw, 32-bit */
     uint8_t poisson_guide[64]; /* first candidate count per top-6-bit bucket of the uniform */
 } dsn_noise;
@@ -157,8 +157,8 @@ int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t widt
                    int32_t *out, void *scratch, size_t scratch_size);
 int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                    float *out, void *scratch, size_t scratch_size);
-int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                uint8_t *out, void *scratch, size_t scratch_size);
+int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, uint8_t *out,
+                void *scratch, size_t scratch_size);
 
 /* ==== Continuous mode (renderer mode) ===============================================================
    Evaluates the noise at continuous texture coordinates, for renderers that zoom, rotate and warp.
@@ -213,10 +213,10 @@ typedef struct dsn_grid {
    DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
 size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
                                         uint32_t height);
-int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
-                              uint32_t height, int32_t *out, void *scratch, size_t scratch_size);
-int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
-                              uint32_t height, float *out, void *scratch, size_t scratch_size);
+int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                              int32_t *out, void *scratch, size_t scratch_size);
+int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                              float *out, void *scratch, size_t scratch_size);
 int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size);
 /* ==== End of the continuous mode ===================================================================== */

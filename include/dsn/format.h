@@ -99,7 +99,7 @@
 #pragma GCC diagnostic ignored "-Wold-style-cast"
 #endif
 
-#define DSN_FORMAT_MAGIC "\x89" "DSN\r\n\x1a\n"
+#define DSN_FORMAT_MAGIC "\211DSN\r\n\032\n" /* 0x89 'D' 'S' 'N' CR LF SUB LF */
 #define DSN_FORMAT_MAGIC_SIZE 8u
 #define DSN_FORMAT_VERSION_MAJOR 1u
 #define DSN_FORMAT_VERSION_MINOR 0u
@@ -149,29 +149,29 @@
    and negative. dsn_error_message() (dsn.h) gives a static one-line message for each. */
 enum dsn_error {
     DSN_OK = 0,
-    DSN_ERR_NULL = -1,              /* a required pointer argument is null */
-    DSN_ERR_TRUNCATED = -2,         /* the buffer ends before the asset does */
-    DSN_ERR_BAD_MAGIC = -3,         /* not a .dsnt asset */
-    DSN_ERR_TEXT_MODE = -4,         /* magic damaged by a text-mode (CR/LF) transfer */
-    DSN_ERR_VERSION = -5,           /* unsupported major version */
-    DSN_ERR_HEADER_SIZE = -6,       /* header_size out of range */
-    DSN_ERR_TOTAL_SIZE = -7,        /* total_size inconsistent with the header fields */
-    DSN_ERR_CRC = -8,               /* checksum mismatch: the file is damaged */
-    DSN_ERR_RESERVED = -9,          /* a reserved bit, byte or unused-channel field is not 0 */
-    DSN_ERR_CHANNELS = -10,         /* channels is not 1 or 3 */
-    DSN_ERR_BITS = -11,             /* bits is not 8 or 16 */
-    DSN_ERR_SHAPE = -12,            /* unknown support shape, or a disk that is not square */
-    DSN_ERR_INTERPOLATION = -13,    /* unknown interpolation */
-    DSN_ERR_DIMENSIONS = -14,       /* texton width/height zero, even or above 255 */
-    DSN_ERR_SCALE = -15,            /* a used channel has scale 0 */
-    DSN_ERR_IMPACTS = -16,          /* impacts per pixel out of range (asset default or config) */
-    DSN_ERR_COLOR_TRANSFORM = -17,  /* grey asset with non-zero unused transform entries */
-    DSN_ERR_TEXTON = -18,           /* reserved texton value, or non-zero value outside the support */
-    DSN_ERR_PERIOD = -19,           /* period out of range (config) */
+    DSN_ERR_NULL = -1,                 /* a required pointer argument is null */
+    DSN_ERR_TRUNCATED = -2,            /* the buffer ends before the asset does */
+    DSN_ERR_BAD_MAGIC = -3,            /* not a .dsnt asset */
+    DSN_ERR_TEXT_MODE = -4,            /* magic damaged by a text-mode (CR/LF) transfer */
+    DSN_ERR_VERSION = -5,              /* unsupported major version */
+    DSN_ERR_HEADER_SIZE = -6,          /* header_size out of range */
+    DSN_ERR_TOTAL_SIZE = -7,           /* total_size inconsistent with the header fields */
+    DSN_ERR_CRC = -8,                  /* checksum mismatch: the file is damaged */
+    DSN_ERR_RESERVED = -9,             /* a reserved bit, byte or unused-channel field is not 0 */
+    DSN_ERR_CHANNELS = -10,            /* channels is not 1 or 3 */
+    DSN_ERR_BITS = -11,                /* bits is not 8 or 16 */
+    DSN_ERR_SHAPE = -12,               /* unknown support shape, or a disk that is not square */
+    DSN_ERR_INTERPOLATION = -13,       /* unknown interpolation */
+    DSN_ERR_DIMENSIONS = -14,          /* texton width/height zero, even or above 255 */
+    DSN_ERR_SCALE = -15,               /* a used channel has scale 0 */
+    DSN_ERR_IMPACTS = -16,             /* impacts per pixel out of range (asset default or config) */
+    DSN_ERR_COLOR_TRANSFORM = -17,     /* grey asset with non-zero unused transform entries */
+    DSN_ERR_TEXTON = -18,              /* reserved texton value, or non-zero value outside the support */
+    DSN_ERR_PERIOD = -19,              /* period out of range (config) */
     DSN_ERR_CONTINUOUS_MISMATCH = -20, /* continuous mode on a lattice-baked asset not allowed */
-    DSN_ERR_SCRATCH = -21,          /* scratch buffer missing or too small */
-    DSN_ERR_TILE_SIZE = -22,        /* tile width or height is 0 or too large */
-    DSN_ERR_ARGUMENT = -23          /* another argument out of its documented range */
+    DSN_ERR_SCRATCH = -21,             /* scratch buffer missing or too small */
+    DSN_ERR_TILE_SIZE = -22,           /* tile width or height is 0 or too large */
+    DSN_ERR_ARGUMENT = -23             /* another argument out of its documented range */
 };
 
 /* ---- Byte helpers (both halves use these; never cast a struct over the bytes) ---- */
@@ -216,10 +216,10 @@ static inline void dsn_write_i32le(unsigned char *p, int32_t v) { dsn_write_u32l
 /* CRC-32 (zlib/PNG), bitwise with a 16-entry nibble table: small enough for microcontrollers. Pass 0 as
    crc for the first chunk; feed the result back to continue over further chunks. */
 static inline uint32_t dsn_crc32(uint32_t crc, const void *data, size_t size) {
-    static const uint32_t nibble_table[16] = {
-        0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
-        0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
-        0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu};
+    static const uint32_t nibble_table[16] = {0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu,
+                                              0x76DC4190u, 0x6B6B51F4u, 0x4DB26158u, 0x5005713Cu,
+                                              0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
+                                              0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu};
     const unsigned char *bytes = (const unsigned char *)data;
     size_t i;
     crc = ~crc;

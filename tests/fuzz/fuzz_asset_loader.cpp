@@ -25,7 +25,8 @@ void check_points_and_tile(const dsn_noise &noise, uint32_t channels, FuzzInput 
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), value);
-            for (uint32_t c = 0; c < channels; c++) fuzz_require(tile[(j * width + i) * channels + c] == value[c]);
+            for (uint32_t c = 0; c < channels; c++)
+                fuzz_require(tile[(j * width + i) * channels + c] == value[c]);
         }
 }
 
