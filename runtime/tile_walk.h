@@ -1,0 +1,147 @@
+/* runtime/tile_walk.h - the impulses that reach a rectangle of a tile (the walk over the cells of
+   noise_internal.h, the only source of impulses), and the 32-bit splat of their texton into a
+   tile-sized accumulator: the general path, for every texton and density. Internal to tile.cpp. */
+#ifndef DSN_TILE_WALK_H
+#define DSN_TILE_WALK_H
+
+#include "noise_internal.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace {
+
+/* A run of tile indices [offset, offset + length) along one axis whose coordinates are contiguous
+   integers. Without a period the whole axis is one run on the torus. With a period the coordinate is
+   read as int32 and reduced modulo P, so the run is cut where x0 + i passes from INT32_MAX to
+   INT32_MIN (after that cut the reduced coordinates are contiguous again). */
+typedef struct tile_run {
+    uint32_t start, offset, length;
+} tile_run;
+
+uint32_t split_runs(uint32_t start, uint32_t length, uint32_t period, tile_run *runs) {
+    uint32_t until_sign_flip = 0x80000000u - start;
+    runs[0].start = start;
+    runs[0].offset = 0;
+    runs[0].length = length;
+    if (period == 0 || until_sign_flip == 0 || until_sign_flip >= length) return 1;
+    runs[0].length = until_sign_flip;
+    runs[1].start = 0x80000000u;
+    runs[1].offset = until_sign_flip;
+    runs[1].length = length - until_sign_flip;
+    return 2;
+}
+
+/* dst[i] += texton value i, for `count` interleaved values, modulo 2^32. This is the inner loop of the
+   tile path; with SSE2 it runs 16 (8-bit) or 8 (16-bit) values per step (sign extension by unpacking a
+   value with itself and shifting arithmetically, which is exact two's-complement in the hardware). */
+template <uint32_t Bits>
+inline void add_row(uint32_t *dst, const unsigned char *src, uint32_t count) {
+    uint32_t i = 0;
+#if defined(__SSE2__)
+    if (Bits == 8) {
+        for (; i + 16 <= count; i += 16) {
+            __m128i bytes = _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + i)));
+            __m128i low16 = _mm_srai_epi16(_mm_unpacklo_epi8(bytes, bytes), 8);
+            __m128i high16 = _mm_srai_epi16(_mm_unpackhi_epi8(bytes, bytes), 8);
+            __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
+            __m128i values[4] = {_mm_srai_epi32(_mm_unpacklo_epi16(low16, low16), 16),
+                                 _mm_srai_epi32(_mm_unpackhi_epi16(low16, low16), 16),
+                                 _mm_srai_epi32(_mm_unpacklo_epi16(high16, high16), 16),
+                                 _mm_srai_epi32(_mm_unpackhi_epi16(high16, high16), 16)};
+            for (int part = 0; part < 4; part++)
+                _mm_storeu_si128(out + part, _mm_add_epi32(_mm_loadu_si128(out + part), values[part]));
+        }
+    } else {
+        for (; i + 8 <= count; i += 8) {
+            __m128i words =
+                _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + 2 * i)));
+            __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
+            __m128i low = _mm_srai_epi32(_mm_unpacklo_epi16(words, words), 16);
+            __m128i high = _mm_srai_epi32(_mm_unpackhi_epi16(words, words), 16);
+            _mm_storeu_si128(out, _mm_add_epi32(_mm_loadu_si128(out), low));
+            _mm_storeu_si128(out + 1, _mm_add_epi32(_mm_loadu_si128(out + 1), high));
+        }
+    }
+#endif
+    if (Bits == 8) {
+        for (; i < count; i++) dst[i] += uint32_t(src[i] ^ 0x80u) - 0x80u;
+    } else {
+        for (; i < count; i++) dst[i] += (uint32_t(src[2 * i] | (src[2 * i + 1] << 8)) ^ 0x8000u) - 0x8000u;
+    }
+}
+
+/* Calls visit(reach_x, reach_y) for every impulse that reaches the rectangle run_x x run_y (both
+   single runs), in the order of the hash stream. This is the only place the tile path walks cells. */
+template <typename Visit>
+void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
+                               Visit &visit) {
+    const dsn_asset *asset = &noise->asset;
+    const uint32_t shift = noise->cell_shift;
+    dsn_axis axis_x, axis_y;
+    dsn_axis_init(&axis_x, run_x->start, run_x->length, noise->radius[0], shift, noise->period[0]);
+    dsn_axis_init(&axis_y, run_y->start, run_y->length, noise->radius[1], shift, noise->period[1]);
+    for (uint32_t span_index_y = 0; span_index_y < axis_y.span_count; span_index_y++) {
+        dsn_span span_y = dsn_axis_span(&axis_y, span_index_y);
+        for (uint32_t i = 0; i < span_y.cell_count; i++) {
+            uint32_t cell_y = dsn_span_cell(&span_y, i, shift), row_key = dsn_row_key(noise, cell_y);
+            for (uint32_t span_index_x = 0; span_index_x < axis_x.span_count; span_index_x++) {
+                dsn_span span_x = dsn_axis_span(&axis_x, span_index_x);
+                for (uint32_t j = 0; j < span_x.cell_count; j++) {
+                    uint32_t cell_x = dsn_span_cell(&span_x, j, shift);
+                    uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
+                    uint32_t count = dsn_cell_impulse_count(noise, key);
+                    for (uint32_t k = 0; k < count; k++) {
+                        uint32_t hash = dsn_impulse_hash(noise, key, k);
+                        uint32_t x = (cell_x << shift) + dsn_impulse_offset(dsn_impulse_bits_x(hash), shift);
+                        uint32_t y = (cell_y << shift) + dsn_impulse_offset(dsn_impulse_bits_y(hash), shift);
+                        dsn_reach reach_x, reach_y;
+                        if (x > span_x.last_position || y > span_y.last_position ||
+                            !dsn_reach_window(span_x.base - x, run_x->length, asset->width, &reach_x) ||
+                            !dsn_reach_window(span_y.base - y, run_y->length, asset->height, &reach_y))
+                            continue;
+                        visit(reach_x, reach_y);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* Adds each reaching impulse's texton into a 32-bit accumulator (rows of row_stride values; the
+   rectangle starts at run_x->offset, run_y->offset). */
+template <uint32_t Bits>
+struct splat_32 {
+    const dsn_asset *asset;
+    const tile_run *run_x, *run_y;
+    uint32_t *accumulator;
+    uint32_t row_stride;
+
+    void operator()(const dsn_reach &reach_x, const dsn_reach &reach_y) {
+        const uint32_t channels = asset->channels, texton_stride = asset->width * channels * (Bits / 8);
+        uint32_t *dst = accumulator + size_t(run_y->offset + reach_y.first_index) * row_stride +
+                        (run_x->offset + reach_x.first_index) * channels;
+        const unsigned char *src = asset->texton + reach_y.first_texton * texton_stride +
+                                   reach_x.first_texton * channels * (Bits / 8);
+        for (uint32_t row = 0; row < reach_y.count; row++)
+            add_row<Bits>(dst + size_t(row) * row_stride, src + row * texton_stride,
+                          reach_x.count * channels);
+    }
+};
+
+/* One rectangle of the tile where both axes are single runs. */
+void splat_region(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y, uint32_t *accumulator,
+                  uint32_t row_stride) {
+    if (noise->asset.bits == 8) {
+        splat_32<8> splat = {&noise->asset, run_x, run_y, accumulator, row_stride};
+        for_each_reaching_impulse(noise, run_x, run_y, splat);
+    } else {
+        splat_32<16> splat = {&noise->asset, run_x, run_y, accumulator, row_stride};
+        for_each_reaching_impulse(noise, run_x, run_y, splat);
+    }
+}
+
+} // namespace
+
+#endif /* DSN_TILE_WALK_H */
