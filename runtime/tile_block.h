@@ -27,7 +27,8 @@ const uint32_t block_width = 64, block_height = 32;
 const uint32_t block_stride = block_width + lane; /* room for the last vector of a clipped row */
 const uint32_t coverage_limit = 255;
 const uint32_t list_capacity = 384;
-const uint32_t planar_texton_capacity = 4608; /* 16-bit values: a 31 x 31 RGB texton takes 4464 */
+/* 16-bit values: room for a 31 x 31 RGB texton (the usual size; larger ones take the 32-bit path). */
+const uint32_t planar_texton_capacity = 3 * 31 * ((31 + 2 * lane - 1) / lane * lane);
 
 /* The texton converted to 16 bits, one plane per channel, rows of texton_stride values padded with
    zeros so that a row may be read in whole vectors past its last texel. */
