@@ -64,49 +64,55 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
     }
 }
 
+/* A rectangle of the tile, block_width x walk_height at most: its impulses are listed once, then
+   splatted block by block (blocks of block_height rows). */
 template <typename Value>
-void render_block(const dsn_noise *noise, const block_setup *setup, const tile_run *block_x,
-                  const tile_run *block_y, const tile_target<Value> *target) {
+void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_run *walk_x,
+                   const tile_run *walk_y, const tile_target<Value> *target) {
     impulse_list list;
     list.clear();
-    for_each_reaching_impulse(noise, block_x, block_y, list);
+    for_each_reaching_impulse(noise, walk_x, walk_y, list);
     if (!list.sums_fit_16_bits()) {
-        render_block_32(noise, block_x, block_y, target);
+        render_block_32(noise, walk_x, walk_y, target);
         return;
     }
     const uint32_t channels = noise->asset.channels;
     block_accumulator block;
-    if (channels == 3)
-        splat_block<3>(&list, &setup->texton, &block);
-    else
-        splat_block<1>(&list, &setup->texton, &block);
-    for (uint32_t row = 0; row < block_y->length; row++) {
-        Value *out =
-            target->out + size_t(block_y->offset + row) * target->row_values + block_x->offset * channels;
+    for (uint32_t first_row = 0; first_row < walk_y->length; first_row += block_height) {
+        if (channels == 3)
+            splat_block<3>(&list, &setup->texton, first_row, &block);
+        else
+            splat_block<1>(&list, &setup->texton, first_row, &block);
+        const uint32_t rows =
+            walk_y->length - first_row < block_height ? walk_y->length - first_row : block_height;
+        for (uint32_t row = 0; row < rows; row++) {
+            Value *out = target->out + size_t(walk_y->offset + first_row + row) * target->row_values +
+                         walk_x->offset * channels;
 #if defined(__SSE2__)
-        if (setup->split_ok) {
-            if (channels == 3)
-                normalize_row_split<3>(&setup->split, &block, row, block_x->length, out);
-            else
-                normalize_row_split<1>(&setup->split, &block, row, block_x->length, out);
-            continue;
-        }
+            if (setup->split_ok) {
+                if (channels == 3)
+                    normalize_row_split<3>(&setup->split, &block, row, walk_x->length, out);
+                else
+                    normalize_row_split<1>(&setup->split, &block, row, walk_x->length, out);
+                continue;
+            }
 #endif
-        normalize_row_scalar(noise, &block, row, 0, block_x->length, out);
+            normalize_row_scalar(noise, &block, row, 0, walk_x->length, out);
+        }
     }
 }
 
-/* One rectangle of the tile where both axes are single runs, block by block. */
+/* One rectangle of the tile where both axes are single runs, in rectangles of block_width x walk_height. */
 template <typename Value>
 void render_region(const dsn_noise *noise, const block_setup *setup, const tile_run *run_x,
                    const tile_run *run_y, const tile_target<Value> *target) {
-    for (uint32_t y = 0; y < run_y->length; y += block_height) {
-        tile_run block_y = {run_y->start + y, run_y->offset + y,
-                            run_y->length - y < block_height ? run_y->length - y : block_height};
+    for (uint32_t y = 0; y < run_y->length; y += walk_height) {
+        tile_run walk_y = {run_y->start + y, run_y->offset + y,
+                           run_y->length - y < walk_height ? run_y->length - y : walk_height};
         for (uint32_t x = 0; x < run_x->length; x += block_width) {
-            tile_run block_x = {run_x->start + x, run_x->offset + x,
-                                run_x->length - x < block_width ? run_x->length - x : block_width};
-            render_block(noise, setup, &block_x, &block_y, target);
+            tile_run walk_x = {run_x->start + x, run_x->offset + x,
+                               run_x->length - x < block_width ? run_x->length - x : block_width};
+            render_blocks(noise, setup, &walk_x, &walk_y, target);
         }
     }
 }

@@ -24,6 +24,7 @@ const uint32_t lane = 16; /* 16-bit values per splat vector */
 const uint32_t lane = 8;
 #endif
 const uint32_t block_width = 64, block_height = 32;
+const uint32_t walk_height = 2 * block_height;    /* rows walked at once: fewer cells hashed twice */
 const uint32_t block_stride = block_width + lane; /* room for the last vector of a clipped row */
 const uint32_t coverage_limit = 255;
 const uint32_t list_capacity = 384;
@@ -59,7 +60,8 @@ void make_planar_texton(const dsn_asset *asset, planar_texton *texton) {
         }
 }
 
-/* Where one impulse meets a block: texton rows/columns and block rows/columns. */
+/* Where one impulse meets the walked rectangle (block_width x walk_height at most): texton rows/columns
+   and rectangle rows/columns. */
 typedef struct block_impulse {
     uint16_t first_index_x, first_texton_x, count_x, first_index_y, first_texton_y, count_y;
 } block_impulse;
@@ -153,16 +155,23 @@ inline void add_rows_16(uint16_t *dst, const uint16_t *src, uint32_t rows, const
 }
 #endif
 
+/* The listed impulses (rows relative to the walked rectangle) clipped to its rows [first_row,
+   first_row + block_height), into `block`. */
 template <uint32_t Channels>
-void splat_block(const impulse_list *list, const planar_texton *texton, block_accumulator *block) {
+void splat_block(const impulse_list *list, const planar_texton *texton, uint32_t first_row,
+                 block_accumulator *block) {
     const uint32_t plane = block_height * block_stride;
     for (uint32_t i = 0; i < Channels * plane; i++) block->values[i] = 0;
     for (uint32_t n = 0; n < list->count; n++) {
         const block_impulse *impulse = &list->impulses[n];
-        uint16_t *dst = block->values + impulse->first_index_y * block_stride + impulse->first_index_x;
-        const uint16_t *src =
-            texton->values + impulse->first_texton_y * texton->stride + impulse->first_texton_x;
-        const uint32_t rows = impulse->count_y;
+        const uint32_t top = impulse->first_index_y, bottom = top + impulse->count_y;
+        const uint32_t first = top > first_row ? top : first_row;
+        const uint32_t end = bottom < first_row + block_height ? bottom : first_row + block_height;
+        if (first >= end) continue;
+        uint16_t *dst = block->values + (first - first_row) * block_stride + impulse->first_index_x;
+        const uint16_t *src = texton->values + (impulse->first_texton_y + first - top) * texton->stride +
+                              impulse->first_texton_x;
+        const uint32_t rows = end - first;
 #if defined(__SSE2__)
         switch ((impulse->count_x + lane - 1) / lane) {
         case 1:
