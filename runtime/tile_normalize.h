@@ -156,12 +156,20 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
 #pragma GCC unroll 3
     for (uint32_t i = 0; i < vectors; i += 2)
         words[i / 2] = _mm_packs_epi32(to_u8_range(v[i]), to_u8_range(v[i + 1]));
+    __m128i first = _mm_packus_epi16(words[0], vectors > 2 ? words[1] : words[0]);
+    __m128i second = _mm_packus_epi16(vectors > 2 ? words[2] : words[0], vectors > 2 ? words[2] : words[0]);
+    if (values == 4 * vectors) { /* 24 bytes (3 channels) or 8 (1 channel) */
+        if (vectors > 2) {
+            _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)), first);
+            _mm_storel_epi64(static_cast<__m128i *>(static_cast<void *>(out + 16)), second);
+        } else {
+            _mm_storel_epi64(static_cast<__m128i *>(static_cast<void *>(out)), first);
+        }
+        return;
+    }
     uint8_t buffer[32];
-    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer)),
-                     _mm_packus_epi16(words[0], vectors > 2 ? words[1] : words[0]));
-    if (vectors > 2)
-        _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer + 16)),
-                         _mm_packus_epi16(words[2], words[2]));
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer)), first);
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer + 16)), second);
     for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
 
