@@ -8,13 +8,18 @@
    from the key come its impulse count (exact Poisson, possibly the sum of several independent draws, see
    poisson_parts) and then the position of each impulse k, all by stateless hashing:
 
-       key       = cell_key(noise, cx, cy)
-       count     = cell_impulse_count(noise, key)            stream values 0 .. parts-1
-       impulse k = cell_stream(key, parts + k)               low 16 bits: x, high 16 bits: y
+       key        = cell_key(noise, cx, cy)                          32 bits
+       count      = poisson(key) + poisson(cell_stream(key, 1)) + ... (parts draws)
+       pair p     = position_pair(key, p)                            64 bits: packed lattice positions
+       fraction k = cell_stream(key, 2^31 + k)                       continuous mode only
 
-   Each 16-bit half is a position inside the cell in units of 2^-(16 - cell_shift) lattice steps: the
-   lattice position is its top cell_shift bits, and the continuous mode reads the whole half as a
-   fixed-point position, so the lattice impulse is exactly the floor of the continuous one. */
+   The lattice positions are packed so that one hash serves several impulses: with cells of side <= 16
+   an impulse takes one byte of a pair (x in the low nibble, y in the high one), eight impulses per pair;
+   with larger cells it takes 16 bits (x in the low byte, y in the high one), four per pair. Impulse k
+   has field k % per_pair of pair k / per_pair, and its lattice offset in the cell is the top cell_shift
+   bits of each half of the field (each half is uniform, so the offsets are exactly uniform and
+   independent). The continuous mode appends the fraction hash's bits below the field's to make 16-bit
+   positions (dsn_impulse_hash), so the lattice impulse is exactly the floor of its continuous twin. */
 #ifndef DSN_NOISE_INTERNAL_H
 #define DSN_NOISE_INTERNAL_H
 
@@ -57,6 +62,22 @@ static inline uint32_t dsn_cell_stream(uint32_t key, uint32_t index) {
     return dsn_mix32(key + index * 0x9E3779B9u);
 }
 
+/* The SplitMix64 finalizer (S. Vigna, after D. Stafford's Mix13): a bijection of the 64-bit integers. */
+static inline uint64_t dsn_mix64(uint64_t x) {
+    x ^= x >> 30;
+    x *= 0xBF58476D1CE4E5B9u;
+    x ^= x >> 27;
+    x *= 0x94D049BB133111EBu;
+    x ^= x >> 31;
+    return x;
+}
+
+/* Pair `index` of a cell's packed positions. (key, index) -> key 2^32 + index G is injective for
+   index < 2^32 (G odd), so every cell and index gets its own input to the bijection. */
+static inline uint64_t dsn_position_pair(uint32_t key, uint32_t index) {
+    return dsn_mix64((uint64_t(key) << 32) + uint64_t(index) * 0x9E3779B97F4A7C15u);
+}
+
 /* ---- Exact Poisson counts ---- */
 
 /* Inverse CDF: the smallest n with uniform < poisson_cdf[n], or poisson_size when there is none (the
@@ -69,17 +90,48 @@ static inline uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform
 }
 
 /* Impulse count of the cell with this key: the sum of poisson_parts independent draws (a sum of
-   independent Poisson variables is Poisson; splitting keeps the table small for dense cells). */
+   independent Poisson variables is Poisson; splitting keeps the table small for dense cells). The key
+   itself is the first uniform: it is already a full-avalanche hash. */
 static inline uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key) {
-    uint32_t count = 0, part;
-    for (part = 0; part < noise->poisson_parts; part++)
+    uint32_t count = dsn_poisson_draw(noise, key), part;
+    for (part = 1; part < noise->poisson_parts; part++)
         count += dsn_poisson_draw(noise, dsn_cell_stream(key, part));
     return count;
 }
 
-/* The hash of impulse k of a cell (k counts from 0). */
+/* ---- Packed lattice positions ---- */
+
+/* log2 of the bits of one impulse's field: 3 (a byte) for cells of side <= 16, else 4 (16 bits). */
+static inline uint32_t dsn_field_shift(uint32_t cell_shift) { return cell_shift <= 4 ? 3u : 4u; }
+
+/* The field of impulse k (k counts from 0): x in the low half, y in the high half. */
+static inline uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
+    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
+    const uint64_t pair = dsn_position_pair(key, k >> per_pair_shift);
+    const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
+    return uint32_t(pair >> bit) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
+}
+
+/* Lattice offsets of impulse k inside its cell, each in [0, 2^cell_shift). */
+static inline void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uint32_t k, uint32_t *offset_x,
+                                       uint32_t *offset_y) {
+    const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
+    const uint32_t field = dsn_impulse_field(noise, key, k), drop = half_bits - noise->cell_shift;
+    *offset_x = (field & ((1u << half_bits) - 1u)) >> drop;
+    *offset_y = field >> (half_bits + drop);
+}
+
+/* 16-bit in-cell positions of impulse k for the continuous mode (units of 2^-(16 - cell_shift) lattice
+   steps): x in the low 16 bits, y in the high 16. The top bits are the packed field's, the rest come
+   from the impulse's own fraction hash. */
 static inline uint32_t dsn_impulse_hash(const dsn_noise *noise, uint32_t key, uint32_t k) {
-    return dsn_cell_stream(key, noise->poisson_parts + k);
+    const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
+    const uint32_t field = dsn_impulse_field(noise, key, k);
+    const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
+    const uint32_t x =
+        ((field & ((1u << half_bits) - 1u)) << (16u - half_bits)) | ((fraction & 0xFFFFu) >> half_bits);
+    const uint32_t y = ((field >> half_bits) << (16u - half_bits)) | ((fraction >> 16) >> half_bits);
+    return x | (y << 16);
 }
 
 /* 16-bit in-cell positions of an impulse (units of 2^-(16 - cell_shift) lattice steps). */

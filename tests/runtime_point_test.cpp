@@ -1,0 +1,77 @@
+// runtime_point_test.cpp - the per-point path for 16 x 16 cells without a period (its own fast walk on
+// SSE2 hosts: 16 impulses per vector, batched hits) against the tile path, which draws the same impulses
+// through the generic helpers: every channel count and value width, several texton sizes, windows across
+// the 32-bit wrap, and cells with more than 16 impulses (the fast walk's one-by-one rest).
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "../runtime/noise_internal.h"
+#include "support/test_assets.h"
+
+namespace {
+
+using dsn_test::LoadedNoise;
+
+// Differences between per-point values and the tile over the window at (x0, y0).
+int window_differences(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height) {
+    const uint32_t channels = noise.asset.channels;
+    std::vector<int32_t> tile(size_t(width) * height * channels);
+    REQUIRE(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), nullptr, 0) == DSN_OK);
+    int differences = 0;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int32_t point[3];
+            dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
+            differences += std::memcmp(point, &tile[(size_t(j) * width + i) * channels],
+                                       channels * sizeof(int32_t)) != 0;
+        }
+    return differences;
+}
+
+// Cells of side 16 around the window holding more than 16 impulses.
+int crowded_cells(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height) {
+    int crowded = 0;
+    const uint32_t first_x = (uint32_t(x0) - noise.radius[0]) >> 4,
+                   first_y = (uint32_t(y0) - noise.radius[1]) >> 4;
+    const uint32_t columns = ((width + 2 * noise.radius[0]) >> 4) + 2,
+                   rows = ((height + 2 * noise.radius[1]) >> 4) + 2;
+    for (uint32_t j = 0; j < rows; j++)
+        for (uint32_t i = 0; i < columns; i++) {
+            uint32_t key = dsn_cell_key(&noise, (first_x + i) & 0x0FFFFFFFu, (first_y + j) & 0x0FFFFFFFu);
+            crowded += dsn_cell_impulse_count(&noise, key) > 16;
+        }
+    return crowded;
+}
+
+} // namespace
+
+TEST_CASE("per point, 16 x 16 cells, no period: equals the tile on every channel count, width and size") {
+    dsn_test::TestRandom random(77);
+    const int32_t origins[] = {0, -12, INT32_MAX - 10, INT32_MIN, 2000000000, -1999999990};
+    int windows = 0, crowded = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u})
+            for (uint32_t side : {1u, 9u, 31u, 45u}) {
+                auto fields =
+                    dsn_test::synthetic_fields(channels, side, bits, DSN_SHAPE_RECTANGLE, random.next());
+                // The density that makes the init choose 16 x 16 cells: lambda 16^2 between ~4 and 16.
+                const double impacts = 8.0 * double(side * side) / 256.0;
+                if (impacts * 65536.0 < DSN_IMPACTS_MIN_Q16 || impacts > 1024) continue;
+                LoadedNoise loaded(fields, dsn_test::make_config(random.next(), impacts));
+                CAPTURE(channels);
+                CAPTURE(bits);
+                CAPTURE(side);
+                if (loaded.noise.cell_shift != 4) continue;
+                for (int32_t origin : origins) {
+                    const int32_t x0 = int32_t(uint32_t(origin) + random.next() % 16), y0 = origin;
+                    CAPTURE(x0);
+                    CHECK(window_differences(loaded.noise, x0, y0, 40, 24) == 0);
+                    crowded += crowded_cells(loaded.noise, x0, y0, 40, 24);
+                    windows++;
+                }
+            }
+    CHECK(windows >= 36); // side 1 needs fewer than 1/16 impact per pixel: skipped
+    CHECK(crowded > 0);
+}
