@@ -40,14 +40,15 @@ struct tile_target {
     uint32_t row_values;
 };
 
-/* The fallback for a block with too many impulses: 32-bit sums in the tile accumulator. */
+/* The 32-bit path for a rectangle of single runs (a block with too many impulses, or a whole run when
+   the texton does not fit the 16-bit path): 32-bit sums in the tile accumulator, then each pixel. */
 template <typename Value>
 void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile_run *block_y,
                      const tile_target<Value> *target) {
     const uint32_t channels = noise->asset.channels, row_values = target->row_values;
     for (uint32_t row = 0; row < block_y->length; row++) {
         uint32_t *sums =
-            target->accumulator + (block_y->offset + row) * row_values + block_x->offset * channels;
+            target->accumulator + size_t(block_y->offset + row) * row_values + block_x->offset * channels;
         for (uint32_t i = 0; i < block_x->length * channels; i++) sums[i] = 0;
     }
     splat_region(noise, block_x, block_y, target->accumulator, row_values);

@@ -1,10 +1,10 @@
 /* runtime/tile_block.h - the fast path for 8-bit textons: a block of the tile accumulated in 16-bit
    sums, one plane per channel, small enough to stay in L1 (SSE2, or AVX2 when compiled for it; plain C
-   otherwise). The tile is rendered in blocks of block_width x block_height pixels. A block first lists
-   the impulses that reach it. When no column of the block is reached by more than coverage_limit of
-   them, no pixel is, and no sum can overflow: |q| <= 128 for any texton byte and 255 * 128 < 2^15.
-   Otherwise (or when the list is full) the caller falls back to the 32-bit splat of tile_walk.h.
-   Internal to tile.cpp. */
+   otherwise). The impulses that reach a rectangle of block_width x walk_height pixels are listed once
+   (with where they meet it), then splatted block by block (block_height rows each). When no column of
+   the rectangle is reached by more than coverage_limit of them, no pixel is, and no sum can overflow:
+   |q| <= 128 for any texton byte and 255 * 128 < 2^15. Otherwise (or when the list is full) the caller
+   falls back to the 32-bit splat of tile_walk.h. Internal to tile.cpp. */
 #ifndef DSN_TILE_BLOCK_H
 #define DSN_TILE_BLOCK_H
 
@@ -27,6 +27,8 @@ const uint32_t block_width = 64, block_height = 32;
 const uint32_t walk_height = 2 * block_height;    /* rows walked at once: fewer cells hashed twice */
 const uint32_t block_stride = block_width + lane; /* room for the last vector of a clipped row */
 const uint32_t coverage_limit = 255;
+/* A 64 x 64 rectangle meets lambda (64 + 30)^2 = 276 impulses on average at 30 impacts per pixel with
+   a 31 x 31 texton; 384 is 6.5 standard deviations above (a fuller rectangle takes the 32-bit path). */
 const uint32_t list_capacity = 384;
 /* 16-bit values: room for a 31 x 31 RGB texton (the usual size; larger ones take the 32-bit path). */
 const uint32_t planar_texton_capacity = 3 * 31 * ((31 + 2 * lane - 1) / lane * lane);

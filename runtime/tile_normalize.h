@@ -29,8 +29,12 @@ int make_split_normalization(const dsn_noise *noise, split_normalization *split)
     const uint32_t s = noise->gain_shift, channels = noise->asset.channels;
     if (s < 16 || s > 32) return 0;
     for (uint32_t c = 0; c < channels; c++) {
+        const int64_t gain_limit = int64_t(1) << 29, offset_limit = int64_t(1) << 61;
+        if (noise->offset[c] <= -offset_limit || noise->offset[c] >= offset_limit) return 0;
         for (uint32_t k = 0; k < 3; k++) {
             int64_t gain = k < channels ? noise->gain[c * 3 + k] : 0;
+            if (gain <= -gain_limit || gain >= gain_limit)
+                return 0; /* what init guarantees; else per pixel */
             int64_t low = int64_t(uint64_t(gain) & 0x7FFFu);
             if (low >= 0x4000) low -= 0x8000;
             split->low[c * 3 + k] = int16_t(low);

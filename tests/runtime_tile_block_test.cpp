@@ -95,3 +95,15 @@ TEST_CASE("blocked tiles == per point at densities around the 16-bit limit and a
             CHECK(differences(loaded.noise, window) == 0);
         }
 }
+
+TEST_CASE("blocked tiles == per point when the normalization cannot be split into 32-bit lanes") {
+    // A sparse noise (1/4 impact per pixel) and a strong colour transform make the gains so large that
+    // init keeps fewer than 16 fraction bits: the 16-bit sums are then normalized one pixel at a time.
+    auto fields = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 9);
+    for (int i = 0; i < 9; i++) fields.color_transform[i] = (i % 4 == 0 ? 100 : 7) * int32_t(DSN_Q24_ONE);
+    for (uint32_t c = 0; c < 3; c++) fields.scale[c] = 0xFFFFFFFFu;
+    LoadedNoise loaded(fields, dsn_test::make_config(11, 0.25));
+    REQUIRE(loaded.noise.gain_shift < 16);
+    Window window = {-70, 1234567, 140, 70};
+    CHECK(differences(loaded.noise, window) == 0);
+}
