@@ -93,9 +93,9 @@ void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, co
                     uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
                     uint32_t count = dsn_cell_impulse_count(noise, key);
                     for (uint32_t k = 0; k < count; k++) {
-                        uint32_t hash = dsn_impulse_hash(noise, key, k);
-                        uint32_t x = (cell_x << shift) + dsn_impulse_offset(dsn_impulse_bits_x(hash), shift);
-                        uint32_t y = (cell_y << shift) + dsn_impulse_offset(dsn_impulse_bits_y(hash), shift);
+                        uint32_t offset_x, offset_y;
+                        dsn_impulse_offsets(noise, key, k, &offset_x, &offset_y);
+                        uint32_t x = (cell_x << shift) + offset_x, y = (cell_y << shift) + offset_y;
                         dsn_reach reach_x, reach_y;
                         if (x > span_x.last_position || y > span_y.last_position ||
                             !dsn_reach_window(span_x.base - x, run_x->length, asset->width, &reach_x) ||
