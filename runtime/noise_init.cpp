@@ -5,18 +5,27 @@
 
 namespace {
 
-/* Expected cost of one per-point evaluation with cells of side c = 2^shift, in hash evaluations
-   (Q16): a point visits on average (w - 1 + c)(h - 1 + c) / c^2 cells, each costing its key plus one
-   hash per Poisson draw, and examines lambda (w - 1 + c)(h - 1 + c) impulses, one hash each.
-   Small cells waste hashes on empty cells, large cells examine impulses that fall outside the window;
-   for the usual 31 x 31 texton at 30 impacts per pixel the minimum is c = 16 (8.3 cells, 66 impulses,
-   mean count 8 per cell, one draw). The tile path is insensitive to the choice. */
+/* Expected cost of one per-point evaluation with cells of side c = 2^shift, in tenths of a nanosecond
+   (Q16), from per-point timings at several cell sizes on the benchmark machine (x86-64). A point visits
+   (w - 1 + c)(h - 1 + c) / c^2 cells and examines lambda (w - 1 + c)(h - 1 + c) impulses, lambda w h of
+   which reach it.
+   - 16 x 16 cells with one Poisson draw take point.cpp's vector walk: 9 ns per cell, 1.3 ns per
+     impulse examined (hit or not).
+   - Other sizes take the impulse-by-impulse walk: 7.2 ns per cell and 3 ns per further draw, 2.7 ns per
+     impulse examined and 2.7 ns more per impulse that reaches the point.
+   The usual 31 x 31 texton at 30 impacts per pixel gets c = 16 (8.3 cells, 66 impulses: ~160 ns against
+   ~430 ns for c = 8), so do 31 x 31 at 5 impacts (~100 ns against ~115 ns for c = 32) and 63 x 63 at 30
+   (~270 ns against ~340 ns for c = 32); 15 x 15 at 30 needs three draws for c = 16 and gets c = 8. Hosts
+   without SSE2 walk impulse by impulse at every size but make the same choice: the cell size is part of the
+   output. The tile path is insensitive to it. */
 uint64_t point_cost_q16(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift, uint64_t parts) {
-    uint64_t side = uint64_t(1) << shift;
-    uint64_t area = (asset->width - 1 + side) * (asset->height - 1 + side);
-    uint64_t cells_q16 = (area << 16) / (side * side);
-    uint64_t impulses_q16 = area * impacts_q16 / asset->support_size;
-    return cells_q16 * (1 + parts) + impulses_q16;
+    const uint64_t side = uint64_t(1) << shift;
+    const uint64_t area = (asset->width - 1 + side) * (asset->height - 1 + side);
+    const uint64_t cells_q16 = (area << 16) / (side * side);
+    const uint64_t impulses_q16 = area * impacts_q16 / asset->support_size;
+    if (shift == 4 && parts == 1) return cells_q16 * 90 + impulses_q16 * 13;
+    const uint64_t hits_q16 = uint64_t(asset->width) * asset->height * impacts_q16 / asset->support_size;
+    return cells_q16 * (72 + 30 * (parts - 1)) + (impulses_q16 + hits_q16) * 27;
 }
 
 /* Mean impulse count of a cell, lambda c^2, in Q32. */

@@ -149,7 +149,7 @@ inline void add_batch_hits(const unsigned char *texton, hit_batch *batch, uint32
     uint32_t sum0 = 0, sum1 = 0, sum2 = 0, hit_count = 0;
     for (uint64_t hits = batch->hits; hits != 0; hits &= hits - 1) {
         const unsigned char *entry =
-            texton + size_t(batch->entries[__builtin_ctzll(hits)]) * Channels * (Bits / 8);
+            texton + size_t(batch->entries[uint32_t(__builtin_ctzll(hits))]) * Channels * (Bits / 8);
         hit_count++;
         if (Bits == 8) {
             sum0 += entry[0] ^ flip;
@@ -191,8 +191,8 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
         const lane_axis row_axis = lane_axis_of(y + noise->radius[1] - (cell_y << 4), height, width);
         for (uint32_t j = 0; j < columns; j++) {
-            const uint32_t key = dsn_mix32(column_keys[j] + row_key),
-                           count = dsn_cell_impulse_count(noise, key);
+            /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
+            const uint32_t key = dsn_mix32(column_keys[j] + row_key), count = dsn_poisson_draw(noise, key);
             if (batch.cells == 4) add_batch_hits<Channels, Bits>(noise->asset.texton, &batch, sums);
             const uint32_t slot = batch.cells++;
             uint32_t hits = cell_hits(dsn_position_pair(key, 0), dsn_position_pair(key, 1), &column_axes[j],
