@@ -124,8 +124,9 @@ typedef struct dsn_noise {
    DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill). Every period
    1 .. 2^32 - 1 is valid (DSN_ERR_PERIOD is reserved). On failure `noise` is zeroed, and the evaluation
    functions then write nothing (per point) or return DSN_ERR_ARGUMENT (tiles).
-   Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen to minimize the expected hashes of a
-   per-point call; a 31 x 31 texton at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
+   Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen to minimize the expected time of a
+   per-point call (a measured model, runtime/noise_init.cpp; the same choice on every platform); a
+   31 x 31 texton at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
    The channel sums are integers taken modulo 2^32 (identically by every path); they cannot wrap unless
    tens of thousands of full-scale impulses hit one point. */
 int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config);
