@@ -5,12 +5,36 @@
    and normalized one pixel at a time. Either way the sums are the per-point sums (integer addition
    modulo 2^32 is order-free, and the 16-bit sums provably never wrap), so the bits equal the per-point
    path's. */
-#include "tile_block.h"
-#include "tile_normalize.h"
+/* The blocked path keeps about 27 KB on the stack (the 16-bit block, the planar texton, the impulse list)
+   and pays off only with vector instructions; without them, the 32-bit path keeps a tile call's stack
+   under 1 KB, which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 or 1 to
+   choose. */
+#ifndef DSN_TILE_BLOCKS
+#if defined(__SSE2__)
+#define DSN_TILE_BLOCKS 1
+#else
+#define DSN_TILE_BLOCKS 0
+#endif
+#endif
+
 #include "tile_walk.h"
 
 namespace {
+/* Output stores, the per-value conversions of the API edge, for both paths (declared before the blocked
+   path's templates use them). */
+inline void store_value(int32_t *out, int32_t value) { *out = value; }
+inline void store_value(float *out, int32_t value) { *out = dsn_fixed_to_float(value); }
+inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(value); }
+} // namespace
 
+#if DSN_TILE_BLOCKS
+#include "tile_block.h"
+#include "tile_normalize.h"
+#endif
+
+namespace {
+
+#if DSN_TILE_BLOCKS
 /* Everything a tile call prepares once for the blocked path. */
 typedef struct block_setup {
     planar_texton texton;
@@ -30,6 +54,7 @@ void make_block_setup(const dsn_noise *noise, block_setup *setup) {
     setup->split_ok = 0;
 #endif
 }
+#endif /* DSN_TILE_BLOCKS */
 
 /* Where a tile's values go: `out` (width * channels values per row) and the 32-bit accumulator of the
    fallback (`out` itself for fixed output, else the scratch). */
@@ -65,6 +90,7 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
     }
 }
 
+#if DSN_TILE_BLOCKS
 /* A rectangle of the tile, block_width x walk_height at most: its impulses are listed once, then
    splatted block by block (blocks of block_height rows). */
 template <typename Value>
@@ -117,6 +143,7 @@ void render_region(const dsn_noise *noise, const block_setup *setup, const tile_
         }
     }
 }
+#endif /* DSN_TILE_BLOCKS */
 
 /* Largest tile: sides up to DSN_TILE_MAX_SIDE and width * height * channels 32-bit values addressable. */
 int tile_values(const dsn_noise *noise, uint32_t width, uint32_t height, size_t *values) {
@@ -136,17 +163,19 @@ void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t widt
     uint32_t run_count_x = split_runs(x0, width, noise->period[0], runs_x);
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
     tile_target<Value> target = {out, accumulator, width * noise->asset.channels};
-    if (!planar_texton_fits(&noise->asset)) {
+#if DSN_TILE_BLOCKS
+    if (planar_texton_fits(&noise->asset)) {
+        block_setup setup;
+        make_block_setup(noise, &setup);
         for (uint32_t ry = 0; ry < run_count_y; ry++)
             for (uint32_t rx = 0; rx < run_count_x; rx++)
-                render_block_32(noise, &runs_x[rx], &runs_y[ry], &target);
+                render_region(noise, &setup, &runs_x[rx], &runs_y[ry], &target);
         return;
     }
-    block_setup setup;
-    make_block_setup(noise, &setup);
+#endif
     for (uint32_t ry = 0; ry < run_count_y; ry++)
         for (uint32_t rx = 0; rx < run_count_x; rx++)
-            render_region(noise, &setup, &runs_x[rx], &runs_y[ry], &target);
+            render_block_32(noise, &runs_x[rx], &runs_y[ry], &target);
 }
 
 /* The scratch accumulator: the caller's bytes, aligned up to 4. */

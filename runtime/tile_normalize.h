@@ -55,11 +55,6 @@ int make_split_normalization(const dsn_noise *noise, split_normalization *split)
 /* Q_k of a 16-bit accumulator value, as the uint32 bits dsn_normalize reads. */
 inline uint32_t widen_sum(uint16_t value) { return (uint32_t(value) ^ 0x8000u) - 0x8000u; }
 
-/* Output stores: the per-value conversions of the API edge. */
-inline void store_value(int32_t *out, int32_t value) { *out = value; }
-inline void store_value(float *out, int32_t value) { *out = dsn_fixed_to_float(value); }
-inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(value); }
-
 /* Row `row` of a block, pixels [first, first + count), normalized one pixel at a time. */
 template <typename Value>
 void normalize_row_scalar(const dsn_noise *noise, const block_accumulator *block, uint32_t row,

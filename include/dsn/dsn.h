@@ -153,6 +153,10 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    DSN_ERR_SCRATCH. dsn_tile_scratch_size returns 0 for an invalid noise or size. Width and height are
    1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is not addressable); null pointers
    give DSN_ERR_NULL. */
+/* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86-64): its fast path
+   keeps a 16-bit block of sums, a planar copy of the texton and an impulse list on the stack, about 28 KB
+   (34 KB with AVX2). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the small-stack path there too
+   (same bits, slower). A per-point call uses under 300 bytes everywhere. */
 size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
 int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                    int32_t *out, void *scratch, size_t scratch_size);
