@@ -57,6 +57,10 @@ void add_impulses(const dsn_noise *noise, uint32_t key, uint32_t first, uint32_t
     }
 }
 
+/* Kept out of line so that its frame is not on the stack of the vector walk's calls. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 void accumulate_any(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) {
     const uint32_t shift = noise->cell_shift;
     dsn_axis axis_x, axis_y;
@@ -167,22 +171,13 @@ inline void add_batch_hits(const unsigned char *texton, hit_batch *batch, uint32
     batch->cells = 0;
 }
 
-/* Cells along x: at most (15 + 254) / 16 + 1 for the largest texton. */
-const uint32_t max_cells_across = 17;
-
 template <uint32_t Channels, uint32_t Bits>
 void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) {
     const uint32_t width = noise->asset.width, height = noise->asset.height;
     const uint32_t low_x = x - noise->radius[0], low_y = y - noise->radius[1];
     const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
                    rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
-    uint32_t column_keys[max_cells_across];
-    lane_axis column_axes[max_cells_across];
-    for (uint32_t j = 0; j < columns; j++) {
-        const uint32_t cell_x = ((low_x >> 4) + j) & 0x0FFFFFFFu;
-        column_keys[j] = cell_x ^ noise->seed_column;
-        column_axes[j] = lane_axis_of(x + noise->radius[0] - (cell_x << 4), width, 1u);
-    }
+    const uint32_t first_column = low_x >> 4, reach_x = x + noise->radius[0] - (first_column << 4);
     const __m128i widths = _mm_set1_epi16(static_cast<short>(width));
     hit_batch batch;
     batch.hits = 0;
@@ -192,16 +187,19 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
         const lane_axis row_axis = lane_axis_of(y + noise->radius[1] - (cell_y << 4), height, width);
         for (uint32_t j = 0; j < columns; j++) {
             /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
-            const uint32_t key = dsn_mix32(column_keys[j] + row_key), count = dsn_poisson_draw(noise, key);
+            const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
+            const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key),
+                           count = dsn_poisson_draw(noise, key);
+            const lane_axis column_axis = lane_axis_of(reach_x - 16 * j, width, 1u);
             if (batch.cells == 4) add_batch_hits<Channels, Bits>(noise->asset.texton, &batch, sums);
             const uint32_t slot = batch.cells++;
-            uint32_t hits = cell_hits(dsn_position_pair(key, 0), dsn_position_pair(key, 1), &column_axes[j],
+            uint32_t hits = cell_hits(dsn_position_pair(key, 0), dsn_position_pair(key, 1), &column_axis,
                                       &row_axis, widths, batch.entries + 16 * slot);
             hits &= count < 16 ? (1u << count) - 1u : 0xFFFFu;
             batch.hits |= uint64_t(hits) << (16 * slot);
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
-                const axis_cell in_x = {x + noise->radius[0] - (((low_x >> 4) + j) << 4), 15u};
+                const axis_cell in_x = {reach_x - 16 * j, 15u};
                 const axis_cell in_y = {y + noise->radius[1] - (cell_y << 4), 15u};
                 add_impulses(noise, key, 16, count, &in_x, &in_y, sums);
             }

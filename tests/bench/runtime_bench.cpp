@@ -200,10 +200,12 @@ int main() {
                 adsn_times[0] * 1e3, median(adsn_times) * 1e3, adsn_times[0] / tile_times[0],
                 median(adsn_times) / median(tile_times));
 
-    // Per point vs stb_perlin_noise3 over a 512 x 512 grid.
+    // Per point vs stb_perlin_noise3 over a 512 x 512 grid, the two timed in turn seven times (the
+    // machine is shared): the ratio of the best times, and the median of the seven ratios.
     const int grid = 512;
     volatile int32_t sink = 0;
-    double point_time = best_time(3, [&] {
+    volatile float perlin_sink = 0;
+    auto point_pass = [&] {
         int32_t out[3], total = 0;
         for (int y = 0; y < grid; y++)
             for (int x = 0; x < grid; x++) {
@@ -211,24 +213,33 @@ int main() {
                 total += out[0] ^ out[1] ^ out[2];
             }
         sink = total;
-    });
-    volatile float perlin_sink = 0;
-    double perlin_time = best_time(3, [&] {
+    };
+    auto perlin_pass = [&] {
         float total = 0;
         for (int y = 0; y < grid; y++)
             for (int x = 0; x < grid; x++)
                 total += stb_perlin_noise3(float(x) * 0.173f, float(y) * 0.173f, 0.5f, 0, 0, 0);
         perlin_sink = total;
-    });
+    };
+    double point_time = 1e30, perlin_time = 1e30;
+    std::vector<double> ratios;
+    for (int run = 0; run < 7; run++) {
+        double point_run = best_time(1, point_pass), perlin_run = best_time(1, perlin_pass);
+        point_time = std::min(point_time, point_run);
+        perlin_time = std::min(perlin_time, perlin_run);
+        ratios.push_back(point_run / perlin_run);
+    }
+    std::sort(ratios.begin(), ratios.end());
     double samples = double(grid) * grid;
     uint64_t cells = 0, impulses = 0;
     for (int y = 0; y < grid; y++)
         for (int x = 0; x < grid; x++) count_work(noise, uint32_t(x), uint32_t(y), &cells, &impulses);
     std::printf(
-        "per point: %.1f ns per RGB sample; stb_perlin_noise3 %.1f ns per call; ratio %.2fx (target <= 8x); "
-        "%.1f cells and %.1f impulses examined per sample\n",
-        point_time / samples * 1e9, perlin_time / samples * 1e9, point_time / perlin_time,
-        double(cells) / samples, double(impulses) / samples);
+        "per point: %.1f ns per RGB sample; stb_perlin_noise3 %.1f ns per call; ratio %.2fx best, %.2fx "
+        "median of 7 (target <= 8x); %.1f cells and %.1f impulses examined per sample (%.1f reach it)\n",
+        point_time / samples * 1e9, perlin_time / samples * 1e9, point_time / perlin_time, ratios[3],
+        double(cells) / samples, double(impulses) / samples,
+        30.0 * loaded.asset.width * loaded.asset.height / loaded.asset.support_size);
     std::printf(
         "sizeof(dsn_noise) = %zu bytes, sizeof(dsn_asset) = %zu bytes; stack of one per-point call: %zu "
         "bytes (painted)\n",
