@@ -11,7 +11,9 @@
 // the quartic integral computed exactly by 3-point Gauss-Legendre per unit square (u_c^4 has degree 4
 // per axis there).
 // Samples: sites 24 texels apart (farther than the spot's reach 2r + 2 plus the largest lag) at random
-// real positions, so sites are independent; tolerances are 4 standard errors estimated from 20 batches.
+// real positions, so sites are independent. Mean and kurtosis are estimated from all samples pooled, with
+// standard errors from the sample (the kurtosis' by the delta method); covariances from 20 batches.
+// Tolerances are 4 standard errors.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "continuous_fixtures.h"
+#include "support/noise_theory.h"
 
 using namespace continuous_fixtures;
 
@@ -105,7 +108,7 @@ void check_against_theory(const dsn::AssetFields &fields, uint32_t impacts, int 
     auto noise = make_noise(fields, 1000 + impacts, impacts << 16);
     const uint32_t channels = fields.channels;
     const Theory expected = theory(fields, double(impacts) / double(kSide * kSide));
-    std::vector<double> means[3], kurtoses[3], covariances[kLagCount][3][3];
+    std::vector<double> samples[3], covariances[kLagCount][3][3];
     std::mt19937_64 random(impacts);
     const int64_t one = int64_t(1) << 32;
     for (int batch = 0; batch < kBatches; batch++) {
@@ -124,18 +127,8 @@ void check_against_theory(const dsn::AssetFields &fields, uint32_t impacts, int 
             }
         }
         const double n = sites_per_batch;
-        for (uint32_t c = 0; c < channels; c++) {
-            double mean = 0, m2 = 0, m4 = 0;
-            for (const auto &v : values[0]) mean += v[c];
-            mean /= n;
-            for (const auto &v : values[0]) {
-                const double d = v[c] - mean;
-                m2 += d * d;
-                m4 += d * d * d * d;
-            }
-            means[c].push_back(mean);
-            kurtoses[c].push_back((m4 / n) / ((m2 / n) * (m2 / n)) - 3);
-        }
+        for (uint32_t c = 0; c < channels; c++)
+            for (const auto &v : values[0]) samples[c].push_back(v[c]);
         for (int h = 0; h < kLagCount; h++)
             for (uint32_t c = 0; c < channels; c++)
                 for (uint32_t d = 0; d < channels; d++) {
@@ -151,13 +144,15 @@ void check_against_theory(const dsn::AssetFields &fields, uint32_t impacts, int 
                 }
     }
     for (uint32_t c = 0; c < channels; c++) {
-        const Estimate mean = batch_estimate(means[c]), kurtosis = batch_estimate(kurtoses[c]);
+        double mean, mean_error, kurtosis, kurtosis_error;
+        dsn_test::mean_with_error(samples[c], &mean, &mean_error);
+        dsn_test::kurtosis_with_error(samples[c], &kurtosis, &kurtosis_error);
         CAPTURE(impacts);
         CAPTURE(c);
-        CHECK(std::fabs(mean.value - expected.mean[c]) <= 4 * mean.standard_error);
-        CHECK(std::fabs(kurtosis.value - expected.kurtosis[c]) <= 4 * kurtosis.standard_error);
-        MESSAGE("impacts " << impacts << " channel " << c << ": excess kurtosis " << kurtosis.value << " +- "
-                           << kurtosis.standard_error << " (theory " << expected.kurtosis[c] << ")");
+        CHECK(std::fabs(mean - expected.mean[c]) <= 4 * mean_error);
+        CHECK(std::fabs(kurtosis - expected.kurtosis[c]) <= 4 * kurtosis_error);
+        MESSAGE("impacts " << impacts << " channel " << c << ": excess kurtosis " << kurtosis << " +- "
+                           << kurtosis_error << " (theory " << expected.kurtosis[c] << ")");
     }
     for (int h = 0; h < kLagCount; h++)
         for (uint32_t c = 0; c < channels; c++)
@@ -180,11 +175,13 @@ void check_against_theory(const dsn::AssetFields &fields, uint32_t impacts, int 
 } // namespace
 
 TEST_CASE("continuous statistics: mean, covariance at real lags and kurtosis match the bilinear theory") {
-    // RGB with a non-trivial colour transform, 8 bits; and grey 16 bits. 20 batches of sites.
+    // RGB with a non-trivial colour transform, 8 bits; and grey 16 bits. 20 batches of sites each.
     const dsn::AssetFields rgb = random_texton_asset(3, kRadius, 8, 42);
     const dsn::AssetFields grey = random_texton_asset(1, kRadius, 16, 43);
+    // At 5 impacts the marginal is further from Gaussian (excess kurtosis ~2), so the covariance estimates
+    // vary more (Var s^2 ~ (2 + kurtosis) sigma^4 / n): twice the samples keep their error within 3%.
     check_against_theory(rgb, 30, 5000);
-    check_against_theory(rgb, 5, 5000);
+    check_against_theory(rgb, 5, 10000);
     check_against_theory(grey, 30, 5000);
-    check_against_theory(grey, 5, 5000);
+    check_against_theory(grey, 5, 10000);
 }

@@ -118,32 +118,6 @@ Samples draw_samples(const dsn_noise &noise, int grid, int32_t origin) {
     return samples;
 }
 
-// Sample excess kurtosis and its standard error by the delta method: the influence function of
-// m4 / m2^2 - 3 (mean estimated too) is IF = (d^4 - m4 - 4 m3 d) / m2^2 - 2 m4 (d^2 - m2) / m2^3, and
-// the estimator's variance is Var(IF) / n.
-void kurtosis_with_error(const std::vector<double> &x, double *kurtosis, double *standard_error) {
-    const double n = double(x.size());
-    double mean = 0;
-    for (double v : x) mean += v;
-    mean /= n;
-    double m2 = 0, m3 = 0, m4 = 0;
-    for (double v : x) {
-        double d = v - mean;
-        m2 += d * d, m3 += d * d * d, m4 += d * d * d * d;
-    }
-    m2 /= n, m3 /= n, m4 /= n;
-    double if_mean = 0, if_square = 0;
-    for (double v : x) {
-        double d = v - mean;
-        double influence =
-            (d * d * d * d - m4 - 4 * m3 * d) / (m2 * m2) - 2 * m4 * (d * d - m2) / (m2 * m2 * m2);
-        if_mean += influence, if_square += influence * influence;
-    }
-    if_mean /= n;
-    *kurtosis = m4 / (m2 * m2) - 3;
-    *standard_error = std::sqrt((if_square / n - if_mean * if_mean) / n);
-}
-
 void check_moments(const dsn::AssetFields &fields, double impacts, uint32_t seed) {
     LoadedNoise loaded(fields, dsn_test::make_config(seed, impacts));
     NoiseTheory theory(loaded.noise);
@@ -173,7 +147,7 @@ void check_moments(const dsn::AssetFields &fields, double impacts, uint32_t seed
                 CHECK(std::abs(sum / n - expected) < 0.03 * scale); // 3% of the covariance's scale
             }
         double kurtosis, standard_error;
-        kurtosis_with_error(x, &kurtosis, &standard_error);
+        dsn_test::kurtosis_with_error(x, &kurtosis, &standard_error);
         CAPTURE(kurtosis);
         CAPTURE(standard_error);
         CHECK(std::abs(kurtosis - theory.excess_kurtosis(c)) < 4 * standard_error);

@@ -90,6 +90,42 @@ struct NoiseTheory {
     }
 };
 
+// Sample excess kurtosis and its standard error by the delta method: the influence function of
+// m4 / m2^2 - 3 (mean estimated too) is IF = (d^4 - m4 - 4 m3 d) / m2^2 - 2 m4 (d^2 - m2) / m2^3, and
+// the estimator's variance is Var(IF) / n.
+inline void kurtosis_with_error(const std::vector<double> &x, double *kurtosis, double *standard_error) {
+    const double n = double(x.size());
+    double mean = 0;
+    for (double v : x) mean += v;
+    mean /= n;
+    double m2 = 0, m3 = 0, m4 = 0;
+    for (double v : x) {
+        double d = v - mean;
+        m2 += d * d, m3 += d * d * d, m4 += d * d * d * d;
+    }
+    m2 /= n, m3 /= n, m4 /= n;
+    double if_mean = 0, if_square = 0;
+    for (double v : x) {
+        double d = v - mean;
+        double influence =
+            (d * d * d * d - m4 - 4 * m3 * d) / (m2 * m2) - 2 * m4 * (d * d - m2) / (m2 * m2 * m2);
+        if_mean += influence, if_square += influence * influence;
+    }
+    if_mean /= n;
+    *kurtosis = m4 / (m2 * m2) - 3;
+    *standard_error = std::sqrt((if_square / n - if_mean * if_mean) / n);
+}
+
+// Sample mean and its standard error.
+inline void mean_with_error(const std::vector<double> &x, double *mean, double *standard_error) {
+    const double n = double(x.size());
+    double sum = 0, square = 0;
+    for (double v : x) sum += v;
+    *mean = sum / n;
+    for (double v : x) square += (v - *mean) * (v - *mean);
+    *standard_error = std::sqrt(square / (n - 1) / n);
+}
+
 } // namespace dsn_test
 
 #endif
