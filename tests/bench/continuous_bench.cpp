@@ -6,23 +6,12 @@
 #include <vector>
 
 #include "../continuous_fixtures.h"
+#include "bench_timing.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using bench::best_time;
 const uint32_t kSide = 512;
-
-// Best of `repeats` timings (the machine is shared: the minimum is the least disturbed run).
-template <typename Work>
-double best_time(int repeats, Work work) {
-    double best = 1e30;
-    for (int i = 0; i < repeats; i++) {
-        auto start = Clock::now();
-        work();
-        best = std::min(best, std::chrono::duration<double>(Clock::now() - start).count());
-    }
-    return best;
-}
 
 int64_t checksum = 0; // keeps the evaluations observable
 

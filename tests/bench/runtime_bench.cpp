@@ -18,26 +18,11 @@
 
 #include "../../runtime/noise_internal.h"
 #include "../support/test_assets.h"
+#include "bench_timing.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Best of `repeats` timings of `work` (the machine is shared: the minimum is the least disturbed).
-template <typename Work>
-double best_time(int repeats, Work work) {
-    double best = 1e30;
-    for (int i = 0; i < repeats; i++) {
-        auto start = Clock::now();
-        work();
-        best = std::min(best, seconds_since(start));
-    }
-    return best;
-}
+using bench::best_time;
 
 // CPU time of this thread: on a machine shared with other jobs it counts only the time the work ran.
 double thread_seconds() {
