@@ -5,7 +5,8 @@
    intensity, with 16 - cell_shift fractional bits per axis. The texton is read with bilinear
    interpolation, in integer arithmetic: with the point-minus-impulse offset d (Q32.32) cut to 16
    fractional bits, t(d) = sum over the 4 surrounding texels of q * wx * wy, wx, wy in Q0.16. The per-
-   channel sums carry 32 fractional bits and go through the lattice mode's normalization. */
+   channel sums carry 32 fractional bits and go through the lattice mode's normalization. With
+   DSN_SMALL_CODE (dsn.h) the texton is read by one generic reader and grid tiles go point by point. */
 #include "noise_internal.h"
 
 namespace {
@@ -65,14 +66,7 @@ bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint32_t *u
     return true;
 }
 
-/* Quantized value of the texton at (row, column, channel); 0 outside the window (indices are unsigned,
-   so -1 is out of range too). */
-int32_t texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel) {
-    if (row >= asset->height || column >= asset->width) return 0;
-    const uint32_t index = (row * asset->width + column) * asset->channels + channel;
-    return asset->bits == 8 ? dsn_read_i8(asset->texton + index) : dsn_read_i16le(asset->texton + 2u * index);
-}
-
+#if !DSN_SMALL_CODE
 /* The 2x2 texels of every channel with their top-left at (row, column), all inside the window: read
    without bounds checks, 8- or 16-bit. */
 template <uint32_t Bytes>
@@ -96,15 +90,17 @@ void add_interior(const dsn_asset *asset, uint32_t row, uint32_t column, const i
         sums[c] += static_cast<uint64_t>(weights[2] * upper + weights[3] * lower);
     }
 }
+#endif
 
 /* Adds the bilinear texton at the offset (rows, columns brackets) to the channel sums (Q.32). The four
-   texels are read directly when all lie in the window (the common case), else one by one with zero
-   outside. */
+   texels are read one by one, zero outside the window (dsn_asset_texton_value: indices are unsigned, so
+   -1 is outside too); the fast build reads them directly when all lie inside (the common case). */
 void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uint32_t column,
                   uint32_t column_weight, uint64_t *sums) {
     const int64_t weights[4] = {static_cast<int64_t>(65536u - column_weight),
                                 static_cast<int64_t>(column_weight),
                                 static_cast<int64_t>(65536u - row_weight), static_cast<int64_t>(row_weight)};
+#if !DSN_SMALL_CODE
     if (row < asset->height - 1u && column < asset->width - 1u) { /* -1 (0xFFFFFFFF) fails too */
         if (asset->bits == 8)
             add_interior<1>(asset, row, column, weights, sums);
@@ -112,12 +108,14 @@ void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uin
             add_interior<2>(asset, row, column, weights, sums);
         return;
     }
+#endif
     for (uint32_t c = 0; c < asset->channels; c++) {
-        const int64_t upper =
-            weights[0] * texel(asset, row, column, c) + weights[1] * texel(asset, row, column + 1u, c);
-        const int64_t lower = weights[0] * texel(asset, row + 1u, column, c) +
-                              weights[1] * texel(asset, row + 1u, column + 1u, c);
-        sums[c] += static_cast<uint64_t>(weights[2] * upper + weights[3] * lower);
+        int64_t rows[2];
+        for (uint32_t r = 0; r < 2; r++)
+            rows[r] = weights[0] * dsn_asset_texton_value(asset, row + r, column, c) +
+                      weights[1] * dsn_asset_texton_value(asset, row + r, column + 1u, c);
+        /* |rows| <= 2^31, so each term is below 2^47; the sums wrap (defined) as uint64. */
+        sums[c] += static_cast<uint64_t>(weights[2] * rows[0] + weights[3] * rows[1]);
     }
 }
 
@@ -228,6 +226,7 @@ int check_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uin
     return DSN_OK;
 }
 
+#if !DSN_SMALL_CODE
 /* ---- Fast path: splatting the impulses of an axis-aligned grid ----
    For a grid with steps (a, 0) and (0, b), a, b > 0, and no period, each impulse of the cells around
    the grid adds its bilinear texton to the pixels it reaches, into per-pixel sums held in the scratch
@@ -349,15 +348,32 @@ void splat_grid(const dsn_noise *noise, const SplatAxis &x, const SplatAxis &y, 
         }
 }
 
-/* Evaluates every grid point in order, handing each pixel's channel values to `store`: by splatting
-   when the grid qualifies, else point by point. */
-template <typename Store>
-int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
-                  const void *out, void *scratch, size_t scratch_size, Store store) {
+#endif /* !DSN_SMALL_CODE */
+
+/* The API edge's output types, chosen by a switch per pixel rather than by one copy of the grid code per
+   type (the conversion is nothing next to the evaluation of a point). */
+typedef enum output_kind { output_fixed, output_float, output_u8 } output_kind;
+
+void store_pixel(void *out, output_kind kind, size_t first, const int32_t *pixel, uint32_t channels) {
+    for (uint32_t c = 0; c < channels; c++) {
+        if (kind == output_float)
+            static_cast<float *>(out)[first + c] = dsn_fixed_to_float(pixel[c]);
+        else if (kind == output_u8)
+            static_cast<uint8_t *>(out)[first + c] = dsn_fixed_to_u8(pixel[c]);
+        else
+            static_cast<int32_t *>(out)[first + c] = pixel[c];
+    }
+}
+
+/* Evaluates every grid point in order into `out`: by splatting when the grid qualifies (not in the
+   small build), else point by point. */
+int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, void *out,
+                  output_kind kind, void *scratch, size_t scratch_size) {
     const int err = check_tile(noise, grid, width, height, out);
     if (err != DSN_OK) return err;
     const uint32_t channels = noise->asset.channels;
     int32_t pixel[DSN_MAX_CHANNELS];
+#if !DSN_SMALL_CODE
     SplatAxis x, y;
     const size_t needed =
         splat_axes(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
@@ -369,16 +385,20 @@ int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, 
         splat_grid(noise, x, y, sums);
         for (size_t p = 0; p < values; p += channels) {
             normalize_q32(noise, sums + p, pixel);
-            for (uint32_t c = 0; c < channels; c++) store(p + c, pixel[c]);
+            store_pixel(out, kind, p, pixel, channels);
         }
         return DSN_OK;
     }
+#else
+    (void)scratch;
+    (void)scratch_size;
+#endif
     size_t index = 0;
     for (uint32_t j = 0; j < height; j++)
-        for (uint32_t i = 0; i < width; i++) {
+        for (uint32_t i = 0; i < width; i++, index += channels) {
             evaluate(noise, grid_coordinate(grid->origin_x, grid->column_step_x, grid->row_step_x, i, j),
                      grid_coordinate(grid->origin_y, grid->column_step_y, grid->row_step_y, i, j), pixel);
-            for (uint32_t c = 0; c < channels; c++) store(index++, pixel[c]);
+            store_pixel(out, kind, index, pixel, channels);
         }
     return DSN_OK;
 }
@@ -438,27 +458,29 @@ int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float 
 
 size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
                                         uint32_t height) {
+#if DSN_SMALL_CODE
+    (void)noise, (void)grid, (void)width, (void)height;
+    return 0; /* point by point: no scratch */
+#else
     SplatAxis x, y;
     if (check_tile(noise, grid, width, height, grid) != DSN_OK) return 0;
     return splat_axes(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
+#endif
 }
 
 int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                               int32_t *out, void *scratch, size_t scratch_size) {
-    return evaluate_grid(noise, grid, width, height, out, scratch, scratch_size,
-                         [out](size_t i, int32_t v) { out[i] = v; });
+    return evaluate_grid(noise, grid, width, height, out, output_fixed, scratch, scratch_size);
 }
 
 int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                               float *out, void *scratch, size_t scratch_size) {
-    return evaluate_grid(noise, grid, width, height, out, scratch, scratch_size,
-                         [out](size_t i, int32_t v) { out[i] = dsn_fixed_to_float(v); });
+    return evaluate_grid(noise, grid, width, height, out, output_float, scratch, scratch_size);
 }
 
 int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size) {
-    return evaluate_grid(noise, grid, width, height, out, scratch, scratch_size,
-                         [out](size_t i, int32_t v) { out[i] = dsn_fixed_to_u8(v); });
+    return evaluate_grid(noise, grid, width, height, out, output_u8, scratch, scratch_size);
 }
 
 } // extern "C"

@@ -2,6 +2,7 @@
    cell size, then builds the Poisson table and the normalization (their own files). */
 #include "init_internal.h"
 #include "noise_internal.h"
+#include "wide_arithmetic.h"
 
 namespace {
 
@@ -21,17 +22,18 @@ namespace {
 uint64_t point_cost_q16(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift, uint64_t parts) {
     const uint64_t side = uint64_t(1) << shift;
     const uint64_t area = (asset->width - 1 + side) * (asset->height - 1 + side);
-    const uint64_t cells_q16 = (area << 16) / (side * side);
-    const uint64_t impulses_q16 = area * impacts_q16 / asset->support_size;
+    const uint64_t cells_q16 = (area << 16) >> (2 * shift);
+    const uint64_t impulses_q16 = dsn_divide(area * impacts_q16, asset->support_size);
     if (shift == 4 && parts == 1) return cells_q16 * 90 + impulses_q16 * 13;
-    const uint64_t hits_q16 = uint64_t(asset->width) * asset->height * impacts_q16 / asset->support_size;
+    const uint64_t hits_q16 =
+        dsn_divide(uint64_t(asset->width) * asset->height * impacts_q16, asset->support_size);
     return cells_q16 * (72 + 30 * (parts - 1)) + (impulses_q16 + hits_q16) * 27;
 }
 
 /* Mean impulse count of a cell, lambda c^2, in Q32. */
 uint64_t cell_mean_q32(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift) {
     uint64_t numerator = (uint64_t(impacts_q16) << (2 * shift)) << 16; /* < 2^58 */
-    return (numerator + asset->support_size / 2) / asset->support_size;
+    return dsn_divide(numerator + asset->support_size / 2, asset->support_size);
 }
 
 uint64_t poisson_parts(uint64_t mean_q32) {

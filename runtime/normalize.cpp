@@ -32,7 +32,7 @@ void sqrt_lambda(uint32_t impacts_q16, uint32_t support_size, uint64_t *root, ui
     uint32_t e = 0;
     while ((uint64_t(impacts_q16) << (e + 2)) < (uint64_t(1) << 62)) e += 2;
     /* lambda 2^(e+16) = (impacts_q16 << e) / |S|, so the root is sqrt(lambda) 2^((e + 16) / 2). */
-    *root = integer_sqrt((uint64_t(impacts_q16) << e) / support_size);
+    *root = integer_sqrt(dsn_divide(uint64_t(impacts_q16) << e, support_size));
     *root_shift = (e + 16) / 2;
 }
 

@@ -16,7 +16,7 @@ uint64_t exp_negative_q62(uint64_t mean_q32) {
     uint64_t y = (mean_q32 & 0xFFFFFFFFu) << 26; /* f / 16 in Q62 */
     uint64_t term = one_q62, positive = one_q62, negative = 0;
     for (uint64_t k = 1; k <= 16; k++) {
-        term = multiply_q62(term, y) / k;
+        term = dsn_divide(multiply_q62(term, y), k);
         if (k % 2)
             negative += term;
         else
@@ -33,7 +33,7 @@ uint64_t exp_negative_q62(uint64_t mean_q32) {
 void dsn_internal_build_poisson_table(dsn_noise *noise, uint64_t cell_mean_q32) {
     const uint64_t part_max_q32 = uint64_t(DSN_POISSON_MEAN_MAX) << 32;
     uint64_t parts = (cell_mean_q32 + part_max_q32 - 1) / part_max_q32;
-    uint64_t mean_q32 = (cell_mean_q32 + parts / 2) / parts;
+    uint64_t mean_q32 = dsn_divide(cell_mean_q32 + parts / 2, parts);
     noise->poisson_parts = uint32_t(parts);
 
     /* cdf[n] = round(2^32 P(count <= n)); stop at the first that rounds to 2^32 (the tail beyond it has

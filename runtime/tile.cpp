@@ -19,20 +19,35 @@
 
 #include "tile_walk.h"
 
+#if DSN_TILE_BLOCKS
 namespace {
-/* Output stores, the per-value conversions of the API edge, for both paths (declared before the blocked
-   path's templates use them). */
+/* Output stores of the blocked path, typed (declared before its templates use them). */
 inline void store_value(int32_t *out, int32_t value) { *out = value; }
 inline void store_value(float *out, int32_t value) { *out = dsn_fixed_to_float(value); }
 inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(value); }
 } // namespace
 
-#if DSN_TILE_BLOCKS
 #include "tile_block.h"
 #include "tile_normalize.h"
 #endif
 
 namespace {
+
+/* The API edge's output types. The 32-bit path converts pixel by pixel through a switch (nothing next to
+   a pixel's normalization) rather than with one copy of the tile code per type; the blocked path picks
+   its typed row code once per row. */
+typedef enum output_kind { output_fixed, output_float, output_u8 } output_kind;
+
+void store_pixel(void *out, output_kind kind, size_t first, const int32_t *pixel, uint32_t channels) {
+    for (uint32_t c = 0; c < channels; c++) {
+        if (kind == output_float)
+            static_cast<float *>(out)[first + c] = dsn_fixed_to_float(pixel[c]);
+        else if (kind == output_u8)
+            static_cast<uint8_t *>(out)[first + c] = dsn_fixed_to_u8(pixel[c]);
+        else
+            static_cast<int32_t *>(out)[first + c] = pixel[c];
+    }
+}
 
 #if DSN_TILE_BLOCKS
 /* Everything a tile call prepares once for the blocked path. */
@@ -56,20 +71,19 @@ void make_block_setup(const dsn_noise *noise, block_setup *setup) {
 }
 #endif /* DSN_TILE_BLOCKS */
 
-/* Where a tile's values go: `out` (width * channels values per row) and the 32-bit accumulator of the
-   fallback (`out` itself for fixed output, else the scratch). */
-template <typename Value>
-struct tile_target {
-    Value *out;
+/* Where a tile's values go: `out` (width * channels values of type `kind` per row) and the 32-bit
+   accumulator of the fallback (`out` itself for fixed output, else the scratch). */
+typedef struct tile_target {
+    void *out;
+    output_kind kind;
     uint32_t *accumulator;
     uint32_t row_values;
-};
+} tile_target;
 
 /* The 32-bit path for a rectangle of single runs (a block with too many impulses, or a whole run when
    the texton does not fit the 16-bit path): 32-bit sums in the tile accumulator, then each pixel. */
-template <typename Value>
 void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile_run *block_y,
-                     const tile_target<Value> *target) {
+                     const tile_target *target) {
     const uint32_t channels = noise->asset.channels, row_values = target->row_values;
     for (uint32_t row = 0; row < block_y->length; row++) {
         uint32_t *sums =
@@ -84,18 +98,34 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
             uint32_t sums[3] = {pixel[0], channels == 3 ? pixel[1] : 0u, channels == 3 ? pixel[2] : 0u};
             int32_t fixed[3];
             dsn_normalize(noise, sums, fixed); /* sums are copied first: fixed output may overwrite them */
-            for (uint32_t c = 0; c < channels; c++)
-                store_value(target->out + first + i * channels + c, fixed[c]);
+            store_pixel(target->out, target->kind, first + i * channels, fixed, channels);
         }
     }
 }
 
 #if DSN_TILE_BLOCKS
+/* Row `row` of a block, `count` pixels, normalized into `out`. */
+template <typename Value>
+void normalize_block_row(const dsn_noise *noise, const block_setup *setup, const block_accumulator *block,
+                         uint32_t row, uint32_t count, Value *out) {
+#if defined(__SSE2__)
+    if (setup->split_ok) {
+        if (noise->asset.channels == 3)
+            normalize_row_split<3>(&setup->split, block, row, count, out);
+        else
+            normalize_row_split<1>(&setup->split, block, row, count, out);
+        return;
+    }
+#else
+    (void)setup;
+#endif
+    normalize_row_scalar(noise, block, row, 0, count, out);
+}
+
 /* A rectangle of the tile, block_width x walk_height at most: its impulses are listed once, then
    splatted block by block (blocks of block_height rows). */
-template <typename Value>
 void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_run *walk_x,
-                   const tile_run *walk_y, const tile_target<Value> *target) {
+                   const tile_run *walk_y, const tile_target *target) {
     impulse_list list;
     list.clear();
     for_each_reaching_impulse(noise, walk_x, walk_y, list);
@@ -113,26 +143,24 @@ void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_
         const uint32_t rows =
             walk_y->length - first_row < block_height ? walk_y->length - first_row : block_height;
         for (uint32_t row = 0; row < rows; row++) {
-            Value *out = target->out + size_t(walk_y->offset + first_row + row) * target->row_values +
-                         walk_x->offset * channels;
-#if defined(__SSE2__)
-            if (setup->split_ok) {
-                if (channels == 3)
-                    normalize_row_split<3>(&setup->split, &block, row, walk_x->length, out);
-                else
-                    normalize_row_split<1>(&setup->split, &block, row, walk_x->length, out);
-                continue;
-            }
-#endif
-            normalize_row_scalar(noise, &block, row, 0, walk_x->length, out);
+            const size_t first =
+                size_t(walk_y->offset + first_row + row) * target->row_values + walk_x->offset * channels;
+            if (target->kind == output_float)
+                normalize_block_row(noise, setup, &block, row, walk_x->length,
+                                    static_cast<float *>(target->out) + first);
+            else if (target->kind == output_u8)
+                normalize_block_row(noise, setup, &block, row, walk_x->length,
+                                    static_cast<uint8_t *>(target->out) + first);
+            else
+                normalize_block_row(noise, setup, &block, row, walk_x->length,
+                                    static_cast<int32_t *>(target->out) + first);
         }
     }
 }
 
 /* One rectangle of the tile where both axes are single runs, in rectangles of block_width x walk_height. */
-template <typename Value>
 void render_region(const dsn_noise *noise, const block_setup *setup, const tile_run *run_x,
-                   const tile_run *run_y, const tile_target<Value> *target) {
+                   const tile_run *run_y, const tile_target *target) {
     for (uint32_t y = 0; y < run_y->length; y += walk_height) {
         tile_run walk_y = {run_y->start + y, run_y->offset + y,
                            run_y->length - y < walk_height ? run_y->length - y : walk_height};
@@ -156,13 +184,12 @@ int tile_values(const dsn_noise *noise, uint32_t width, uint32_t height, size_t 
 }
 
 /* The whole tile: blocks of 16-bit sums when the texton allows, else 32-bit sums run by run. */
-template <typename Value>
-void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
-                 Value *out, uint32_t *accumulator) {
+void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, void *out,
+                 output_kind kind, uint32_t *accumulator) {
     tile_run runs_x[2], runs_y[2];
     uint32_t run_count_x = split_runs(x0, width, noise->period[0], runs_x);
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
-    tile_target<Value> target = {out, accumulator, width * noise->asset.channels};
+    tile_target target = {out, kind, accumulator, width * noise->asset.channels};
 #if DSN_TILE_BLOCKS
     if (planar_texton_fits(&noise->asset)) {
         block_setup setup;
@@ -192,17 +219,18 @@ int check_noise(const dsn_noise *noise, const void *out) {
     return noise->asset.texton != 0 ? DSN_OK : DSN_ERR_ARGUMENT;
 }
 
-/* A tile of converted values; the scratch holds the 32-bit sums of the fallback. */
-template <typename Value>
-int tile_converted(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                   Value *out, void *scratch, size_t scratch_size) {
+/* A tile of `kind` values. The 32-bit sums of the fallback go to the scratch, or to the output itself for
+   fixed output (uint32 may alias int32), which needs no scratch. */
+int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, void *out,
+                   output_kind kind, void *scratch, size_t scratch_size) {
     size_t values = 0;
     int err = check_noise(noise, out);
     if (err == DSN_OK) err = tile_values(noise, width, height, &values);
     if (err != DSN_OK) return err;
-    uint32_t *accumulator = scratch_accumulator(scratch, scratch_size, values);
+    uint32_t *accumulator = kind == output_fixed ? static_cast<uint32_t *>(out)
+                                                 : scratch_accumulator(scratch, scratch_size, values);
     if (accumulator == 0) return DSN_ERR_SCRATCH;
-    render_tile(noise, uint32_t(x0), uint32_t(y0), width, height, out, accumulator);
+    render_tile(noise, uint32_t(x0), uint32_t(y0), width, height, out, kind, accumulator);
     return DSN_OK;
 }
 
@@ -216,24 +244,15 @@ extern "C" size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, 
 
 extern "C" int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                               int32_t *out, void *scratch, size_t scratch_size) {
-    (void)scratch;
-    (void)scratch_size;
-    size_t values = 0;
-    int err = check_noise(noise, out);
-    if (err == DSN_OK) err = tile_values(noise, width, height, &values);
-    if (err != DSN_OK) return err;
-    /* The output itself is the 32-bit accumulator of the fallback (uint32 may alias int32). */
-    render_tile(noise, uint32_t(x0), uint32_t(y0), width, height, out,
-                static_cast<uint32_t *>(static_cast<void *>(out)));
-    return DSN_OK;
+    return render_checked(noise, x0, y0, width, height, out, output_fixed, scratch, scratch_size);
 }
 
 extern "C" int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                               float *out, void *scratch, size_t scratch_size) {
-    return tile_converted(noise, x0, y0, width, height, out, scratch, scratch_size);
+    return render_checked(noise, x0, y0, width, height, out, output_float, scratch, scratch_size);
 }
 
 extern "C" int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size) {
-    return tile_converted(noise, x0, y0, width, height, out, scratch, scratch_size);
+    return render_checked(noise, x0, y0, width, height, out, output_u8, scratch, scratch_size);
 }

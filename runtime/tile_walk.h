@@ -72,6 +72,20 @@ inline void add_row(uint32_t *dst, const unsigned char *src, uint32_t count) {
     }
 }
 
+/* add_row for the asset's value width. The small build has one generic loop instead of a copy per
+   width; the fast build picks the specialized copy (once per texton row, a predictable branch). */
+inline void add_row_of_width(uint32_t *dst, const unsigned char *src, uint32_t count, uint32_t bits) {
+#if DSN_SMALL_CODE
+    for (uint32_t i = 0; i < count; i++)
+        dst[i] += uint32_t(bits == 8 ? dsn_read_i8(src + i) : dsn_read_i16le(src + 2 * i));
+#else
+    if (bits == 8)
+        add_row<8>(dst, src, count);
+    else
+        add_row<16>(dst, src, count);
+#endif
+}
+
 /* Calls visit(reach_x, reach_y) for every impulse that reaches the rectangle run_x x run_y (both
    single runs), in the order of the hash stream. This is the only place the tile path walks cells. */
 template <typename Visit>
@@ -111,7 +125,6 @@ void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, co
 
 /* Adds each reaching impulse's texton into a 32-bit accumulator (rows of row_stride values; the
    rectangle starts at run_x->offset, run_y->offset). */
-template <uint32_t Bits>
 struct splat_32 {
     const dsn_asset *asset;
     const tile_run *run_x, *run_y;
@@ -119,27 +132,23 @@ struct splat_32 {
     uint32_t row_stride;
 
     void operator()(const dsn_reach &reach_x, const dsn_reach &reach_y) {
-        const uint32_t channels = asset->channels, texton_stride = asset->width * channels * (Bits / 8);
+        const uint32_t channels = asset->channels, bytes = asset->bits / 8;
+        const uint32_t texton_stride = asset->width * channels * bytes;
         uint32_t *dst = accumulator + size_t(run_y->offset + reach_y.first_index) * row_stride +
                         (run_x->offset + reach_x.first_index) * channels;
-        const unsigned char *src = asset->texton + reach_y.first_texton * texton_stride +
-                                   reach_x.first_texton * channels * (Bits / 8);
+        const unsigned char *src =
+            asset->texton + reach_y.first_texton * texton_stride + reach_x.first_texton * channels * bytes;
         for (uint32_t row = 0; row < reach_y.count; row++)
-            add_row<Bits>(dst + size_t(row) * row_stride, src + row * texton_stride,
-                          reach_x.count * channels);
+            add_row_of_width(dst + size_t(row) * row_stride, src + row * texton_stride,
+                             reach_x.count * channels, asset->bits);
     }
 };
 
 /* One rectangle of the tile where both axes are single runs. */
 void splat_region(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y, uint32_t *accumulator,
                   uint32_t row_stride) {
-    if (noise->asset.bits == 8) {
-        splat_32<8> splat = {&noise->asset, run_x, run_y, accumulator, row_stride};
-        for_each_reaching_impulse(noise, run_x, run_y, splat);
-    } else {
-        splat_32<16> splat = {&noise->asset, run_x, run_y, accumulator, row_stride};
-        for_each_reaching_impulse(noise, run_x, run_y, splat);
-    }
+    splat_32 splat = {&noise->asset, run_x, run_y, accumulator, row_stride};
+    for_each_reaching_impulse(noise, run_x, run_y, splat);
 }
 
 } // namespace

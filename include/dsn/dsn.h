@@ -157,6 +157,18 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    keeps a 16-bit block of sums, a planar copy of the texton and an impulse list on the stack, about 28 KB
    (34 KB with AVX2). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the small-stack path there too
    (same bits, slower). A per-point call uses under 300 bytes everywhere. */
+/* Code size: built for size (-Os, which defines __OPTIMIZE_SIZE__), the runtime compiles generic, compact
+   code paths instead of the speed-tuned ones (one bilinear texton reader for 8 and 16 bits, continuous
+   grid tiles evaluated point by point, no code copied per output type): about 8 KB of Cortex-M code in
+   all, same bits. Define DSN_SMALL_CODE to 1 or 0 when building the runtime to choose either way. With
+   DSN_SMALL_CODE, dsn_continuous_tile_scratch_size returns 0: continuous tiles need no scratch. */
+#ifndef DSN_SMALL_CODE
+#if defined(__OPTIMIZE_SIZE__)
+#define DSN_SMALL_CODE 1
+#else
+#define DSN_SMALL_CODE 0
+#endif
+#endif
 size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
 int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                    int32_t *out, void *scratch, size_t scratch_size);
