@@ -270,7 +270,11 @@ TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every 
                 }
         }
     }
+#if DSN_SMALL_CODE
+    CHECK(splatted == 0); // the small build (dsn.h) evaluates every grid point by point, without scratch
+#else
     CHECK(splatted >= 30); // the axis-aligned, non-periodic grids took the splatting path
+#endif
 }
 
 TEST_CASE("continuous: periodic mode repeats exactly at real-valued points") {
