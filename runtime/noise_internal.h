@@ -28,11 +28,21 @@
 
 #include "dsn/dsn.h"
 
+/* The larger helpers below are inlined for speed; the small build (DSN_SMALL_CODE, dsn.h) keeps one
+   out-of-line copy of each instead (C++ inline functions: every link keeps a single copy). */
+#if DSN_SMALL_CODE && defined(__clang__)
+#define DSN_SHARED inline __attribute__((noinline))
+#elif DSN_SMALL_CODE && defined(__GNUC__)
+#define DSN_SHARED inline __attribute__((noinline, noclone))
+#else
+#define DSN_SHARED static inline
+#endif
+
 /* ---- Hashing ---- */
 
 /* lowbias32 (C. Wellons' hash prospector): a bijection of the 32-bit integers with a near-ideal
    avalanche. Being a bijection is what makes x -> cell_key(x, y) free of any period. */
-static inline uint32_t dsn_mix32(uint32_t x) {
+DSN_SHARED uint32_t dsn_mix32(uint32_t x) {
     x ^= x >> 16;
     x *= 0x7FEB352Du;
     x ^= x >> 15;
@@ -63,7 +73,7 @@ static inline uint32_t dsn_cell_stream(uint32_t key, uint32_t index) {
 }
 
 /* The SplitMix64 finalizer (S. Vigna, after D. Stafford's Mix13): a bijection of the 64-bit integers. */
-static inline uint64_t dsn_mix64(uint64_t x) {
+DSN_SHARED uint64_t dsn_mix64(uint64_t x) {
     x ^= x >> 30;
     x *= 0xBF58476D1CE4E5B9u;
     x ^= x >> 27;
@@ -83,7 +93,7 @@ static inline uint64_t dsn_position_pair(uint32_t key, uint32_t index) {
 /* Inverse CDF: the smallest n with uniform < poisson_cdf[n], or poisson_size when there is none (the
    tail beyond the table has probability below 2^-32). The guide gives the first candidate for the top
    6 bits of the uniform, so the search is one or two comparisons on average. */
-static inline uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform) {
+DSN_SHARED uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform) {
     uint32_t n = noise->poisson_guide[uniform >> 26];
     while (n < noise->poisson_size && uniform >= noise->poisson_cdf[n]) n++;
     return n;
@@ -92,7 +102,7 @@ static inline uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform
 /* Impulse count of the cell with this key: the sum of poisson_parts independent draws (a sum of
    independent Poisson variables is Poisson; splitting keeps the table small for dense cells). The key
    itself is the first uniform: it is already a full-avalanche hash. */
-static inline uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key) {
+DSN_SHARED uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key) {
     uint32_t count = dsn_poisson_draw(noise, key), part;
     for (part = 1; part < noise->poisson_parts; part++)
         count += dsn_poisson_draw(noise, dsn_cell_stream(key, part));
@@ -105,7 +115,7 @@ static inline uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t k
 static inline uint32_t dsn_field_shift(uint32_t cell_shift) { return cell_shift <= 4 ? 3u : 4u; }
 
 /* The field of impulse k (k counts from 0): x in the low half, y in the high half. */
-static inline uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
+DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
     const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
     const uint64_t pair = dsn_position_pair(key, k >> per_pair_shift);
     const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
@@ -113,7 +123,7 @@ static inline uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, u
 }
 
 /* Lattice offsets of impulse k inside its cell, each in [0, 2^cell_shift). */
-static inline void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uint32_t k, uint32_t *offset_x,
+DSN_SHARED void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uint32_t k, uint32_t *offset_x,
                                        uint32_t *offset_y) {
     const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
     const uint32_t field = dsn_impulse_field(noise, key, k), drop = half_bits - noise->cell_shift;
@@ -124,7 +134,7 @@ static inline void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uin
 /* 16-bit in-cell positions of impulse k for the continuous mode (units of 2^-(16 - cell_shift) lattice
    steps): x in the low 16 bits, y in the high 16. The top bits are the packed field's, the rest come
    from the impulse's own fraction hash. */
-static inline uint32_t dsn_impulse_hash(const dsn_noise *noise, uint32_t key, uint32_t k) {
+DSN_SHARED uint32_t dsn_impulse_hash(const dsn_noise *noise, uint32_t key, uint32_t k) {
     const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
     const uint32_t field = dsn_impulse_field(noise, key, k);
     const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
@@ -148,7 +158,7 @@ static inline uint32_t dsn_impulse_offset(uint32_t bits16, uint32_t cell_shift) 
    integer sum of the quantized texton values of channel k (taken modulo 2^32 and read as int32, which
    both evaluators do identically; it cannot wrap unless ~65000 full-scale impulses hit one point).
    Init guarantees |gain| < 2^29 and |offset| < 2^61, so |sum| < 3 2^60 + 2^61 < 2^63 - 2^32. */
-static inline int32_t dsn_round_saturate(int64_t accumulated, uint32_t shift) {
+DSN_SHARED int32_t dsn_round_saturate(int64_t accumulated, uint32_t shift) {
     /* Shifting a negative number is implementation-defined: move to uint64 with a 2^63 bias first
        (the conversion is modulo 2^64, and the rounding half cannot overflow given the bound above). */
     const uint64_t bias = uint64_t(1) << 63;
@@ -164,7 +174,7 @@ static inline int32_t dsn_signed_sum(uint32_t sum) {
 }
 
 /* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */
-static inline void dsn_normalize(const dsn_noise *noise, const uint32_t *sums, int32_t *out) {
+DSN_SHARED void dsn_normalize(const dsn_noise *noise, const uint32_t *sums, int32_t *out) {
     uint32_t c, k, channels = noise->asset.channels;
     for (c = 0; c < channels; c++) {
         int64_t accumulated = noise->offset[c];
@@ -199,14 +209,14 @@ typedef struct dsn_axis {
 } dsn_axis;
 
 /* floor(a / b) for b > 0, defined for every int64 a used here (|a| < 2^40). */
-static inline int64_t dsn_floor_div(int64_t a, int64_t b) {
+DSN_SHARED int64_t dsn_floor_div(int64_t a, int64_t b) {
     int64_t q = a / b;
     return (q * b > a) ? q - 1 : q;
 }
 
 /* Window [coordinate, coordinate + length) along one axis. `coordinate` is the int32 lattice
    coordinate (as a uint32 bit pattern); with a period it is reduced by floor modulo. */
-static inline void dsn_axis_init(dsn_axis *axis, uint32_t coordinate, uint32_t length, uint32_t radius,
+DSN_SHARED void dsn_axis_init(dsn_axis *axis, uint32_t coordinate, uint32_t length, uint32_t radius,
                                  uint32_t shift, uint32_t period) {
     axis->radius = radius;
     axis->shift = shift;
@@ -226,7 +236,7 @@ static inline void dsn_axis_init(dsn_axis *axis, uint32_t coordinate, uint32_t l
     }
 }
 
-static inline dsn_span dsn_axis_span(const dsn_axis *axis, uint32_t index) {
+DSN_SHARED dsn_span dsn_axis_span(const dsn_axis *axis, uint32_t index) {
     dsn_span span;
     uint32_t mask = (1u << axis->shift) - 1u;
     if (axis->period == 0) {
@@ -257,7 +267,7 @@ typedef struct dsn_reach {
     uint32_t first_index, first_texton, count;
 } dsn_reach;
 
-static inline int dsn_reach_window(uint32_t offset, uint32_t length, uint32_t diameter, dsn_reach *reach) {
+DSN_SHARED int dsn_reach_window(uint32_t offset, uint32_t length, uint32_t diameter, dsn_reach *reach) {
     /* e = offset + length - 1 lies in [0, length - 1 + diameter) exactly when some index reaches. */
     uint32_t e = offset + length - 1u, last_index;
     if (e >= length - 1u + diameter) return 0;
