@@ -11,12 +11,11 @@ void clear_asset(dsn_asset *asset) {
 
 int check_magic(const unsigned char *bytes) {
     const unsigned char *magic = reinterpret_cast<const unsigned char *>(DSN_FORMAT_MAGIC);
-    int head_differs = 0, tail_differs = 0;
-    for (uint32_t i = 0; i < 4; i++) head_differs |= bytes[i] != magic[i];
-    for (uint32_t i = 4; i < DSN_FORMAT_MAGIC_SIZE; i++) tail_differs |= bytes[i] != magic[i];
-    if (head_differs) return DSN_ERR_BAD_MAGIC;
+    uint32_t differs = 0; /* bit 0: the first 4 bytes, bit 1: the last 4 */
+    for (uint32_t i = 0; i < DSN_FORMAT_MAGIC_SIZE; i++) differs |= uint32_t(bytes[i] != magic[i]) << (i / 4);
+    if (differs & 1u) return DSN_ERR_BAD_MAGIC;
     /* Only the CR, LF and SUB bytes differ: the signature of a text-mode transfer. */
-    return tail_differs ? DSN_ERR_TEXT_MODE : DSN_OK;
+    return differs ? DSN_ERR_TEXT_MODE : DSN_OK;
 }
 
 /* Steps 3 to 7: sizes, version and checksum. */
@@ -59,10 +58,12 @@ int read_geometry(dsn_asset *asset, const unsigned char *bytes) {
     if (asset->width % 2 == 0 || asset->width > DSN_FORMAT_MAX_SIDE || asset->height % 2 == 0 ||
         asset->height > DSN_FORMAT_MAX_SIDE)
         return DSN_ERR_DIMENSIONS;
-    /* At most 255 * 255 * 3 * 2 bytes; the sum is done in 64 bits since header_size is any uint32. */
-    uint64_t texton_bytes = uint64_t(asset->width) * asset->height * asset->channels * (asset->bits / 8);
-    uint64_t expected = uint64_t(dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE)) + texton_bytes + 4u;
-    if (expected != dsn_read_u32le(bytes + DSN_OFFSET_TOTAL_SIZE)) return DSN_ERR_TOTAL_SIZE;
+    /* At most 255 * 255 * 3 * 2 bytes; check_envelope has made header_size <= total_size - 4, so the
+       difference below cannot wrap. */
+    uint32_t texton_bytes = asset->width * asset->height * asset->channels * (asset->bits / 8);
+    uint32_t room = dsn_read_u32le(bytes + DSN_OFFSET_TOTAL_SIZE) - DSN_FORMAT_CRC_SIZE -
+                    dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE);
+    if (room != texton_bytes) return DSN_ERR_TOTAL_SIZE;
     asset->support_size = dsn_support_size(asset->shape, asset->width, asset->height);
     return DSN_OK;
 }

@@ -21,19 +21,15 @@ int64_t signed_from_bits(uint64_t bits) {
 /* sign * mantissa * 2^exponent (an IEEE value) * 2^32, rounded toward minus infinity, modulo 2^64. */
 int64_t coordinate_from_parts(bool negative, uint64_t mantissa, int32_t exponent) {
     const int32_t shift = exponent + 32;
-    uint64_t magnitude;
+    uint64_t magnitude = 0; /* shift >= 64: a multiple of 2^64, the point 0 of the torus */
     bool inexact = false;
-    if (shift >= 64) {
-        magnitude = 0; /* a multiple of 2^64: the point 0 of the torus */
-    } else if (shift >= 0) {
+    if (shift >= 0 && shift < 64) {
         magnitude = mantissa << shift;
-    } else if (shift > -64) {
-        const uint32_t right = static_cast<uint32_t>(-shift);
+    } else if (shift < 0) {
+        /* mantissa < 2^53: a right shift by 63 drops every bit, as any larger one would. */
+        const uint32_t right = shift > -63 ? static_cast<uint32_t>(-shift) : 63u;
         magnitude = mantissa >> right;
         inexact = (mantissa & ((static_cast<uint64_t>(1) << right) - 1u)) != 0;
-    } else {
-        magnitude = 0;
-        inexact = mantissa != 0;
     }
     /* Toward minus infinity: a negative value with dropped bits moves one unit further down. */
     return signed_from_bits(negative ? 0u - magnitude - (inexact ? 1u : 0u) : magnitude);
@@ -150,6 +146,15 @@ bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_t cell_
     return true;
 }
 
+/* Both steps along one axis: the texels that bracket the impulse (see bracket), or false when it lies
+   beyond the period or out of reach. */
+bool impulse_bracket(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
+                     uint32_t *lower_index, uint32_t *upper_weight) {
+    int64_t offset;
+    return impulse_offset(point, span, cell_origin, bits16, &offset) &&
+           bracket(offset, point.axis.radius, lower_index, upper_weight);
+}
+
 /* Sums (Q.32, per channel) of the bilinear texton over every impulse of the cell (cell_x, cell_y). */
 void add_cell(const dsn_noise *noise, const PointAxis &px, const dsn_span &span_x, uint32_t cell_x,
               const PointAxis &py, const dsn_span &span_y, uint32_t cell_y, uint64_t *sums) {
@@ -158,15 +163,10 @@ void add_cell(const dsn_noise *noise, const PointAxis &px, const dsn_span &span_
     const uint32_t origin_x = cell_x << noise->cell_shift, origin_y = cell_y << noise->cell_shift;
     for (uint32_t k = 0; k < count; k++) {
         const uint32_t hash = dsn_impulse_hash(noise, key, k);
-        int64_t offset_x, offset_y;
         uint32_t row, row_weight, column, column_weight;
-        if (!impulse_offset(py, span_y, origin_y, dsn_impulse_bits_y(hash), &offset_y) ||
-            !bracket(offset_y, noise->radius[1], &row, &row_weight))
-            continue;
-        if (!impulse_offset(px, span_x, origin_x, dsn_impulse_bits_x(hash), &offset_x) ||
-            !bracket(offset_x, noise->radius[0], &column, &column_weight))
-            continue;
-        add_bilinear(&noise->asset, row, row_weight, column, column_weight, sums);
+        if (impulse_bracket(py, span_y, origin_y, dsn_impulse_bits_y(hash), &row, &row_weight) &&
+            impulse_bracket(px, span_x, origin_x, dsn_impulse_bits_x(hash), &column, &column_weight))
+            add_bilinear(&noise->asset, row, row_weight, column, column_weight, sums);
     }
 }
 
@@ -207,13 +207,6 @@ void evaluate(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
 
 void zero(int32_t *out, uint32_t count) {
     for (uint32_t i = 0; i < count; i++) out[i] = 0;
-}
-
-/* Grid point i of an axis: origin + column * column_step + row * row_step, modulo 2^64. */
-uint64_t grid_coordinate(int64_t origin, int64_t column_step, int64_t row_step, uint32_t column,
-                         uint32_t row) {
-    return static_cast<uint64_t>(origin) + static_cast<uint64_t>(column_step) * column +
-           static_cast<uint64_t>(row_step) * row;
 }
 
 int check_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
@@ -393,13 +386,20 @@ int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, 
     (void)scratch;
     (void)scratch_size;
 #endif
+    /* Pixel (i, j) is origin + i column_step + j row_step modulo 2^64: stepping adds the same values. */
+    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
     size_t index = 0;
-    for (uint32_t j = 0; j < height; j++)
+    for (uint32_t j = 0; j < height; j++) {
+        uint64_t point_x = row_x, point_y = row_y;
         for (uint32_t i = 0; i < width; i++, index += channels) {
-            evaluate(noise, grid_coordinate(grid->origin_x, grid->column_step_x, grid->row_step_x, i, j),
-                     grid_coordinate(grid->origin_y, grid->column_step_y, grid->row_step_y, i, j), pixel);
+            evaluate(noise, point_x, point_y, pixel);
             store_pixel(out, kind, index, pixel, channels);
+            point_x += static_cast<uint64_t>(grid->column_step_x);
+            point_y += static_cast<uint64_t>(grid->column_step_y);
         }
+        row_x += static_cast<uint64_t>(grid->row_step_x);
+        row_y += static_cast<uint64_t>(grid->row_step_y);
+    }
     return DSN_OK;
 }
 
@@ -451,8 +451,7 @@ int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float 
     if (out == 0) return DSN_ERR_NULL;
     const int err =
         dsn_eval_continuous_fixed(noise, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), fixed);
-    const uint32_t channels = noise == 0 ? 1u : noise->asset.channels;
-    for (uint32_t c = 0; c < channels; c++) out[c] = dsn_fixed_to_float(fixed[c]);
+    store_pixel(out, output_float, 0, fixed, noise == 0 ? 1u : noise->asset.channels);
     return err;
 }
 

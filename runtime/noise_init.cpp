@@ -19,14 +19,13 @@ namespace {
    (~270 ns against ~340 ns for c = 32); 15 x 15 at 30 needs three draws for c = 16 and gets c = 8. Hosts
    without SSE2 walk impulse by impulse at every size but make the same choice: the cell size is part of the
    output. The tile path is insensitive to it. */
-uint64_t point_cost_q16(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift, uint64_t parts) {
-    const uint64_t side = uint64_t(1) << shift;
-    const uint64_t area = (asset->width - 1 + side) * (asset->height - 1 + side);
-    const uint64_t cells_q16 = (area << 16) >> (2 * shift);
-    const uint64_t impulses_q16 = dsn_divide(area * impacts_q16, asset->support_size);
+uint64_t point_cost_q16(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift, uint64_t parts,
+                        uint64_t hits_q16) {
+    const uint32_t side = 1u << shift; /* <= 256: the area is below 2^19 and 2 shift <= 16 */
+    const uint32_t area = (asset->width - 1 + side) * (asset->height - 1 + side);
+    const uint64_t cells_q16 = uint64_t(area) << (16 - 2 * shift);
+    const uint64_t impulses_q16 = dsn_divide(uint64_t(area) * impacts_q16, asset->support_size);
     if (shift == 4 && parts == 1) return cells_q16 * 90 + impulses_q16 * 13;
-    const uint64_t hits_q16 =
-        dsn_divide(uint64_t(asset->width) * asset->height * impacts_q16, asset->support_size);
     return cells_q16 * (72 + 30 * (parts - 1)) + (impulses_q16 + hits_q16) * 27;
 }
 
@@ -43,11 +42,13 @@ uint64_t poisson_parts(uint64_t mean_q32) {
 
 uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16) {
     /* At most 2^8: the continuous mode needs >= 8 fractional position bits of the 16 per axis. */
+    const uint64_t hits_q16 =
+        dsn_divide(uint64_t(asset->width) * asset->height * impacts_q16, asset->support_size);
     uint32_t best_shift = 0;
     uint64_t best_cost = UINT64_MAX;
     for (uint32_t shift = 0; shift <= 8; shift++) {
         uint64_t cost = point_cost_q16(asset, impacts_q16, shift,
-                                       poisson_parts(cell_mean_q32(asset, impacts_q16, shift)));
+                                       poisson_parts(cell_mean_q32(asset, impacts_q16, shift)), hits_q16);
         if (cost <= best_cost) {
             best_cost = cost;
             best_shift = shift;
