@@ -124,7 +124,7 @@ DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint
 
 /* Lattice offsets of impulse k inside its cell, each in [0, 2^cell_shift). */
 DSN_SHARED void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uint32_t k, uint32_t *offset_x,
-                                       uint32_t *offset_y) {
+                                    uint32_t *offset_y) {
     const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
     const uint32_t field = dsn_impulse_field(noise, key, k), drop = half_bits - noise->cell_shift;
     *offset_x = (field & ((1u << half_bits) - 1u)) >> drop;
@@ -210,14 +210,30 @@ typedef struct dsn_axis {
 
 /* floor(a / b) for b > 0, defined for every int64 a used here (|a| < 2^40). */
 DSN_SHARED int64_t dsn_floor_div(int64_t a, int64_t b) {
+#if DSN_SMALL_CODE
+    /* Restoring division over the 41 bits of |a|, without the 64-bit division helper of 32-bit targets
+       (__aeabi_ldivmod and the long division behind it). For a < 0, floor(a / b) = -1 - floor(~a / b). */
+    uint64_t dividend = a < 0 ? ~uint64_t(a) : uint64_t(a), quotient = 0, rest = 0;
+    int bit;
+    for (bit = 40; bit >= 0; bit--) {
+        rest = (rest << 1) | ((dividend >> bit) & 1u);
+        quotient <<= 1;
+        if (rest >= uint64_t(b)) {
+            rest -= uint64_t(b);
+            quotient |= 1u;
+        }
+    }
+    return a < 0 ? -1 - int64_t(quotient) : int64_t(quotient);
+#else
     int64_t q = a / b;
     return (q * b > a) ? q - 1 : q;
+#endif
 }
 
 /* Window [coordinate, coordinate + length) along one axis. `coordinate` is the int32 lattice
    coordinate (as a uint32 bit pattern); with a period it is reduced by floor modulo. */
 DSN_SHARED void dsn_axis_init(dsn_axis *axis, uint32_t coordinate, uint32_t length, uint32_t radius,
-                                 uint32_t shift, uint32_t period) {
+                              uint32_t shift, uint32_t period) {
     axis->radius = radius;
     axis->shift = shift;
     axis->period = period;
