@@ -106,12 +106,15 @@ void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uin
     }
 #endif
     for (uint32_t c = 0; c < asset->channels; c++) {
-        int64_t rows[2];
-        for (uint32_t r = 0; r < 2; r++)
-            rows[r] = weights[0] * dsn_asset_texton_value(asset, row + r, column, c) +
-                      weights[1] * dsn_asset_texton_value(asset, row + r, column + 1u, c);
-        /* |rows| <= 2^31, so each term is below 2^47; the sums wrap (defined) as uint64. */
-        sums[c] += static_cast<uint64_t>(weights[2] * rows[0] + weights[3] * rows[1]);
+        /* The same integer as add_interior's row-by-row form: each term is below 2^47, so nothing wraps
+           before the uint64 sums (which wrap as defined). */
+        int64_t sum = 0;
+        for (uint32_t corner = 0; corner < 4; corner++) {
+            const uint32_t down = corner >> 1, right = corner & 1u;
+            sum += weights[2 + down] * weights[right] *
+                   dsn_asset_texton_value(asset, row + down, column + right, c);
+        }
+        sums[c] += static_cast<uint64_t>(sum);
     }
 }
 

@@ -173,8 +173,11 @@ void render_region(const dsn_noise *noise, const block_setup *setup, const tile_
 }
 #endif /* DSN_TILE_BLOCKS */
 
-/* Largest tile: sides up to DSN_TILE_MAX_SIDE and width * height * channels 32-bit values addressable. */
-int tile_values(const dsn_noise *noise, uint32_t width, uint32_t height, size_t *values) {
+/* Checks the arguments every tile call shares and counts the tile's values. Largest tile: sides up to
+   DSN_TILE_MAX_SIDE and width * height * channels 32-bit values addressable. */
+int tile_values(const dsn_noise *noise, const void *out, uint32_t width, uint32_t height, size_t *values) {
+    if (noise == 0 || out == 0) return DSN_ERR_NULL;
+    if (noise->asset.texton == 0) return DSN_ERR_ARGUMENT;
     if (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE)
         return DSN_ERR_TILE_SIZE;
     uint64_t count = uint64_t(width) * height * noise->asset.channels; /* < 2^34 */
@@ -214,18 +217,12 @@ uint32_t *scratch_accumulator(void *scratch, size_t scratch_size, size_t values)
     return static_cast<uint32_t *>(static_cast<void *>(static_cast<unsigned char *>(scratch) + skip));
 }
 
-int check_noise(const dsn_noise *noise, const void *out) {
-    if (noise == 0 || out == 0) return DSN_ERR_NULL;
-    return noise->asset.texton != 0 ? DSN_OK : DSN_ERR_ARGUMENT;
-}
-
 /* A tile of `kind` values. The 32-bit sums of the fallback go to the scratch, or to the output itself for
    fixed output (uint32 may alias int32), which needs no scratch. */
 int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, void *out,
                    output_kind kind, void *scratch, size_t scratch_size) {
     size_t values = 0;
-    int err = check_noise(noise, out);
-    if (err == DSN_OK) err = tile_values(noise, width, height, &values);
+    const int err = tile_values(noise, out, width, height, &values);
     if (err != DSN_OK) return err;
     uint32_t *accumulator = kind == output_fixed ? static_cast<uint32_t *>(out)
                                                  : scratch_accumulator(scratch, scratch_size, values);
@@ -238,7 +235,7 @@ int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t widt
 
 extern "C" size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height) {
     size_t values = 0;
-    if (check_noise(noise, noise) != DSN_OK || tile_values(noise, width, height, &values) != DSN_OK) return 0;
+    if (tile_values(noise, noise, width, height, &values) != DSN_OK) return 0;
     return values * sizeof(uint32_t) + sizeof(uint32_t) - 1;
 }
 
