@@ -62,6 +62,18 @@ bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint32_t *u
     return true;
 }
 
+/* Quantized value of the texton at (row, column, channel); 0 outside the window (indices are unsigned,
+   so -1 is out of range too). The small build calls the loader's reader; the fast one reads inline. */
+inline int32_t texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel) {
+#if DSN_SMALL_CODE
+    return dsn_asset_texton_value(asset, row, column, channel);
+#else
+    if (row >= asset->height || column >= asset->width) return 0;
+    const uint32_t index = (row * asset->width + column) * asset->channels + channel;
+    return asset->bits == 8 ? dsn_read_i8(asset->texton + index) : dsn_read_i16le(asset->texton + 2u * index);
+#endif
+}
+
 #if !DSN_SMALL_CODE
 /* The 2x2 texels of every channel with their top-left at (row, column), all inside the window: read
    without bounds checks, 8- or 16-bit. */
@@ -89,8 +101,8 @@ void add_interior(const dsn_asset *asset, uint32_t row, uint32_t column, const i
 #endif
 
 /* Adds the bilinear texton at the offset (rows, columns brackets) to the channel sums (Q.32). The four
-   texels are read one by one, zero outside the window (dsn_asset_texton_value: indices are unsigned, so
-   -1 is outside too); the fast build reads them directly when all lie inside (the common case). */
+   texels are read one by one, zero outside the window; the fast build reads them directly when all lie
+   inside (the common case). */
 void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uint32_t column,
                   uint32_t column_weight, uint64_t *sums) {
     const int64_t weights[4] = {static_cast<int64_t>(65536u - column_weight),
@@ -106,15 +118,22 @@ void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uin
     }
 #endif
     for (uint32_t c = 0; c < asset->channels; c++) {
-        /* The same integer as add_interior's row-by-row form: each term is below 2^47, so nothing wraps
-           before the uint64 sums (which wrap as defined). */
+#if DSN_SMALL_CODE
+        /* One loop over the 4 corners (shorter code): the same integer as the row form below, each term
+           being below 2^47, so nothing wraps before the uint64 sums (which wrap as defined). */
         int64_t sum = 0;
         for (uint32_t corner = 0; corner < 4; corner++) {
             const uint32_t down = corner >> 1, right = corner & 1u;
-            sum += weights[2 + down] * weights[right] *
-                   dsn_asset_texton_value(asset, row + down, column + right, c);
+            sum += weights[2 + down] * weights[right] * texel(asset, row + down, column + right, c);
         }
         sums[c] += static_cast<uint64_t>(sum);
+#else
+        const int64_t upper =
+            weights[0] * texel(asset, row, column, c) + weights[1] * texel(asset, row, column + 1u, c);
+        const int64_t lower = weights[0] * texel(asset, row + 1u, column, c) +
+                              weights[1] * texel(asset, row + 1u, column + 1u, c);
+        sums[c] += static_cast<uint64_t>(weights[2] * upper + weights[3] * lower);
+#endif
     }
 }
 

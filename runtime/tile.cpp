@@ -34,8 +34,8 @@ inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(va
 namespace {
 
 /* The API edge's output types. The 32-bit path converts pixel by pixel through a switch (nothing next to
-   a pixel's normalization) rather than with one copy of the tile code per type; the blocked path picks
-   its typed row code once per row. */
+   a pixel's normalization) rather than with one copy of the tile code per type; the blocked path (SSE2),
+   whose inner loop is the row normalization, keeps one copy per type, chosen once per tile. */
 typedef enum output_kind { output_fixed, output_float, output_u8 } output_kind;
 
 void store_pixel(void *out, output_kind kind, size_t first, const int32_t *pixel, uint32_t channels) {
@@ -104,26 +104,10 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
 }
 
 #if DSN_TILE_BLOCKS
-/* Row `row` of a block, `count` pixels, normalized into `out`. */
-template <typename Value>
-void normalize_block_row(const dsn_noise *noise, const block_setup *setup, const block_accumulator *block,
-                         uint32_t row, uint32_t count, Value *out) {
-#if defined(__SSE2__)
-    if (setup->split_ok) {
-        if (noise->asset.channels == 3)
-            normalize_row_split<3>(&setup->split, block, row, count, out);
-        else
-            normalize_row_split<1>(&setup->split, block, row, count, out);
-        return;
-    }
-#else
-    (void)setup;
-#endif
-    normalize_row_scalar(noise, block, row, 0, count, out);
-}
-
 /* A rectangle of the tile, block_width x walk_height at most: its impulses are listed once, then
-   splatted block by block (blocks of block_height rows). */
+   splatted block by block (blocks of block_height rows). One copy per output type (`target->kind`):
+   the row normalization is the blocked path's inner loop. */
+template <typename Value>
 void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_run *walk_x,
                    const tile_run *walk_y, const tile_target *target) {
     impulse_list list;
@@ -143,22 +127,25 @@ void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_
         const uint32_t rows =
             walk_y->length - first_row < block_height ? walk_y->length - first_row : block_height;
         for (uint32_t row = 0; row < rows; row++) {
-            const size_t first =
-                size_t(walk_y->offset + first_row + row) * target->row_values + walk_x->offset * channels;
-            if (target->kind == output_float)
-                normalize_block_row(noise, setup, &block, row, walk_x->length,
-                                    static_cast<float *>(target->out) + first);
-            else if (target->kind == output_u8)
-                normalize_block_row(noise, setup, &block, row, walk_x->length,
-                                    static_cast<uint8_t *>(target->out) + first);
-            else
-                normalize_block_row(noise, setup, &block, row, walk_x->length,
-                                    static_cast<int32_t *>(target->out) + first);
+            Value *out = static_cast<Value *>(target->out) +
+                         size_t(walk_y->offset + first_row + row) * target->row_values +
+                         walk_x->offset * channels;
+#if defined(__SSE2__)
+            if (setup->split_ok) {
+                if (channels == 3)
+                    normalize_row_split<3>(&setup->split, &block, row, walk_x->length, out);
+                else
+                    normalize_row_split<1>(&setup->split, &block, row, walk_x->length, out);
+                continue;
+            }
+#endif
+            normalize_row_scalar(noise, &block, row, 0, walk_x->length, out);
         }
     }
 }
 
 /* One rectangle of the tile where both axes are single runs, in rectangles of block_width x walk_height. */
+template <typename Value>
 void render_region(const dsn_noise *noise, const block_setup *setup, const tile_run *run_x,
                    const tile_run *run_y, const tile_target *target) {
     for (uint32_t y = 0; y < run_y->length; y += walk_height) {
@@ -167,9 +154,20 @@ void render_region(const dsn_noise *noise, const block_setup *setup, const tile_
         for (uint32_t x = 0; x < run_x->length; x += block_width) {
             tile_run walk_x = {run_x->start + x, run_x->offset + x,
                                run_x->length - x < block_width ? run_x->length - x : block_width};
-            render_blocks(noise, setup, &walk_x, &walk_y, target);
+            render_blocks<Value>(noise, setup, &walk_x, &walk_y, target);
         }
     }
+}
+
+/* The whole tile in blocks, with the output type's copy of the blocked path. */
+template <typename Value>
+void render_blocked_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t run_count_x,
+                         const tile_run *runs_y, uint32_t run_count_y, const tile_target *target) {
+    block_setup setup;
+    make_block_setup(noise, &setup);
+    for (uint32_t ry = 0; ry < run_count_y; ry++)
+        for (uint32_t rx = 0; rx < run_count_x; rx++)
+            render_region<Value>(noise, &setup, &runs_x[rx], &runs_y[ry], target);
 }
 #endif /* DSN_TILE_BLOCKS */
 
@@ -195,11 +193,12 @@ void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t widt
     tile_target target = {out, kind, accumulator, width * noise->asset.channels};
 #if DSN_TILE_BLOCKS
     if (planar_texton_fits(&noise->asset)) {
-        block_setup setup;
-        make_block_setup(noise, &setup);
-        for (uint32_t ry = 0; ry < run_count_y; ry++)
-            for (uint32_t rx = 0; rx < run_count_x; rx++)
-                render_region(noise, &setup, &runs_x[rx], &runs_y[ry], &target);
+        if (kind == output_float)
+            render_blocked_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+        else if (kind == output_u8)
+            render_blocked_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+        else
+            render_blocked_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
         return;
     }
 #endif
