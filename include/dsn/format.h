@@ -167,7 +167,7 @@ enum dsn_error {
     DSN_ERR_IMPACTS = -16,             /* impacts per pixel out of range (asset default or config) */
     DSN_ERR_COLOR_TRANSFORM = -17,     /* grey asset with non-zero unused transform entries */
     DSN_ERR_TEXTON = -18,              /* reserved texton value, or non-zero value outside the support */
-    DSN_ERR_PERIOD = -19,              /* period out of range (config) */
+    DSN_ERR_PERIOD = -19,              /* reserved: every period 1 .. 2^32 - 1 is valid */
     DSN_ERR_CONTINUOUS_MISMATCH = -20, /* continuous mode on a lattice-baked asset not allowed */
     DSN_ERR_SCRATCH = -21,             /* scratch buffer missing or too small */
     DSN_ERR_TILE_SIZE = -22,           /* tile width or height is 0 or too large */
