@@ -365,25 +365,10 @@ void splat_grid(const dsn_noise *noise, const SplatAxis &x, const SplatAxis &y, 
 
 #endif /* !DSN_SMALL_CODE */
 
-/* The API edge's output types, chosen by a switch per pixel rather than by one copy of the grid code per
-   type (the conversion is nothing next to the evaluation of a point). */
-typedef enum output_kind { output_fixed, output_float, output_u8 } output_kind;
-
-void store_pixel(void *out, output_kind kind, size_t first, const int32_t *pixel, uint32_t channels) {
-    for (uint32_t c = 0; c < channels; c++) {
-        if (kind == output_float)
-            static_cast<float *>(out)[first + c] = dsn_fixed_to_float(pixel[c]);
-        else if (kind == output_u8)
-            static_cast<uint8_t *>(out)[first + c] = dsn_fixed_to_u8(pixel[c]);
-        else
-            static_cast<int32_t *>(out)[first + c] = pixel[c];
-    }
-}
-
 /* Evaluates every grid point in order into `out`: by splatting when the grid qualifies (not in the
    small build), else point by point. */
 int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, void *out,
-                  output_kind kind, void *scratch, size_t scratch_size) {
+                  dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const int err = check_tile(noise, grid, width, height, out);
     if (err != DSN_OK) return err;
     const uint32_t channels = noise->asset.channels;
@@ -400,7 +385,7 @@ int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, 
         splat_grid(noise, x, y, sums);
         for (size_t p = 0; p < values; p += channels) {
             normalize_q32(noise, sums + p, pixel);
-            store_pixel(out, kind, p, pixel, channels);
+            dsn_store_pixel(out, kind, p, pixel, channels);
         }
         return DSN_OK;
     }
@@ -415,7 +400,7 @@ int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, 
         uint64_t point_x = row_x, point_y = row_y;
         for (uint32_t i = 0; i < width; i++, index += channels) {
             evaluate(noise, point_x, point_y, pixel);
-            store_pixel(out, kind, index, pixel, channels);
+            dsn_store_pixel(out, kind, index, pixel, channels);
             point_x += static_cast<uint64_t>(grid->column_step_x);
             point_y += static_cast<uint64_t>(grid->column_step_y);
         }
@@ -473,7 +458,7 @@ int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float 
     if (out == 0) return DSN_ERR_NULL;
     const int err =
         dsn_eval_continuous_fixed(noise, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), fixed);
-    store_pixel(out, output_float, 0, fixed, noise == 0 ? 1u : noise->asset.channels);
+    dsn_store_pixel(out, dsn_output_float, 0, fixed, noise == 0 ? 1u : noise->asset.channels);
     return err;
 }
 
@@ -491,17 +476,17 @@ size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *
 
 int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                               int32_t *out, void *scratch, size_t scratch_size) {
-    return evaluate_grid(noise, grid, width, height, out, output_fixed, scratch, scratch_size);
+    return evaluate_grid(noise, grid, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                               float *out, void *scratch, size_t scratch_size) {
-    return evaluate_grid(noise, grid, width, height, out, output_float, scratch, scratch_size);
+    return evaluate_grid(noise, grid, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
 int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size) {
-    return evaluate_grid(noise, grid, width, height, out, output_u8, scratch, scratch_size);
+    return evaluate_grid(noise, grid, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
 
 } // extern "C"

@@ -183,6 +183,22 @@ DSN_SHARED void dsn_normalize(const dsn_noise *noise, const uint32_t *sums, int3
     }
 }
 
+/* The API edge's output types, for the paths that convert pixel by pixel through a switch rather than
+   with one copy of their code per type (the conversion is nothing next to evaluating a pixel). */
+typedef enum dsn_output_kind { dsn_output_fixed, dsn_output_float, dsn_output_u8 } dsn_output_kind;
+
+DSN_SHARED void dsn_store_pixel(void *out, dsn_output_kind kind, size_t first, const int32_t *pixel,
+                                uint32_t channels) {
+    for (uint32_t c = 0; c < channels; c++) {
+        if (kind == dsn_output_float)
+            static_cast<float *>(out)[first + c] = dsn_fixed_to_float(pixel[c]);
+        else if (kind == dsn_output_u8)
+            static_cast<uint8_t *>(out)[first + c] = dsn_fixed_to_u8(pixel[c]);
+        else
+            static_cast<int32_t *>(out)[first + c] = pixel[c];
+    }
+}
+
 /* ---- Walking the cells that can reach a window, along one axis ----
    A window is the run of lattice coordinates [start, start + length) of one axis (a single point has
    length 1). An impulse at axis position p reaches window index j when the texton index

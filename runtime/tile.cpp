@@ -33,21 +33,9 @@ inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(va
 
 namespace {
 
-/* The API edge's output types. The 32-bit path converts pixel by pixel through a switch (nothing next to
-   a pixel's normalization) rather than with one copy of the tile code per type; the blocked path (SSE2),
-   whose inner loop is the row normalization, keeps one copy per type, chosen once per tile. */
-typedef enum output_kind { output_fixed, output_float, output_u8 } output_kind;
-
-void store_pixel(void *out, output_kind kind, size_t first, const int32_t *pixel, uint32_t channels) {
-    for (uint32_t c = 0; c < channels; c++) {
-        if (kind == output_float)
-            static_cast<float *>(out)[first + c] = dsn_fixed_to_float(pixel[c]);
-        else if (kind == output_u8)
-            static_cast<uint8_t *>(out)[first + c] = dsn_fixed_to_u8(pixel[c]);
-        else
-            static_cast<int32_t *>(out)[first + c] = pixel[c];
-    }
-}
+/* The 32-bit path converts pixel by pixel (dsn_store_pixel) rather than with one copy of the tile code
+   per output type; the blocked path (SSE2), whose inner loop is the row normalization, keeps one copy per
+   type, chosen once per tile. */
 
 #if DSN_TILE_BLOCKS
 /* Everything a tile call prepares once for the blocked path. */
@@ -75,7 +63,7 @@ void make_block_setup(const dsn_noise *noise, block_setup *setup) {
    accumulator of the fallback (`out` itself for fixed output, else the scratch). */
 typedef struct tile_target {
     void *out;
-    output_kind kind;
+    dsn_output_kind kind;
     uint32_t *accumulator;
     uint32_t row_values;
 } tile_target;
@@ -98,7 +86,7 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
             uint32_t sums[3] = {pixel[0], channels == 3 ? pixel[1] : 0u, channels == 3 ? pixel[2] : 0u};
             int32_t fixed[3];
             dsn_normalize(noise, sums, fixed); /* sums are copied first: fixed output may overwrite them */
-            store_pixel(target->out, target->kind, first + i * channels, fixed, channels);
+            dsn_store_pixel(target->out, target->kind, first + i * channels, fixed, channels);
         }
     }
 }
@@ -186,16 +174,16 @@ int tile_values(const dsn_noise *noise, const void *out, uint32_t width, uint32_
 
 /* The whole tile: blocks of 16-bit sums when the texton allows, else 32-bit sums run by run. */
 void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, void *out,
-                 output_kind kind, uint32_t *accumulator) {
+                 dsn_output_kind kind, uint32_t *accumulator) {
     tile_run runs_x[2], runs_y[2];
     uint32_t run_count_x = split_runs(x0, width, noise->period[0], runs_x);
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
     tile_target target = {out, kind, accumulator, width * noise->asset.channels};
 #if DSN_TILE_BLOCKS
     if (planar_texton_fits(&noise->asset)) {
-        if (kind == output_float)
+        if (kind == dsn_output_float)
             render_blocked_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
-        else if (kind == output_u8)
+        else if (kind == dsn_output_u8)
             render_blocked_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
         else
             render_blocked_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
@@ -219,12 +207,12 @@ uint32_t *scratch_accumulator(void *scratch, size_t scratch_size, size_t values)
 /* A tile of `kind` values. The 32-bit sums of the fallback go to the scratch, or to the output itself for
    fixed output (uint32 may alias int32), which needs no scratch. */
 int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, void *out,
-                   output_kind kind, void *scratch, size_t scratch_size) {
+                   dsn_output_kind kind, void *scratch, size_t scratch_size) {
     size_t values = 0;
     const int err = tile_values(noise, out, width, height, &values);
     if (err != DSN_OK) return err;
-    uint32_t *accumulator = kind == output_fixed ? static_cast<uint32_t *>(out)
-                                                 : scratch_accumulator(scratch, scratch_size, values);
+    uint32_t *accumulator = kind == dsn_output_fixed ? static_cast<uint32_t *>(out)
+                                                     : scratch_accumulator(scratch, scratch_size, values);
     if (accumulator == 0) return DSN_ERR_SCRATCH;
     render_tile(noise, uint32_t(x0), uint32_t(y0), width, height, out, kind, accumulator);
     return DSN_OK;
@@ -240,15 +228,15 @@ extern "C" size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, 
 
 extern "C" int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                               int32_t *out, void *scratch, size_t scratch_size) {
-    return render_checked(noise, x0, y0, width, height, out, output_fixed, scratch, scratch_size);
+    return render_checked(noise, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 extern "C" int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                               float *out, void *scratch, size_t scratch_size) {
-    return render_checked(noise, x0, y0, width, height, out, output_float, scratch, scratch_size);
+    return render_checked(noise, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
 extern "C" int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size) {
-    return render_checked(noise, x0, y0, width, height, out, output_u8, scratch, scratch_size);
+    return render_checked(noise, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
