@@ -4,7 +4,6 @@
 // the 32-bit wrap, and cells with more than 16 impulses (the fast walk's one-by-one rest).
 #include <doctest/doctest.h>
 
-#include <cstring>
 #include <vector>
 
 #include "../runtime/noise_internal.h"
@@ -13,22 +12,6 @@
 namespace {
 
 using dsn_test::LoadedNoise;
-
-// Differences between per-point values and the tile over the window at (x0, y0).
-int window_differences(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height) {
-    const uint32_t channels = noise.asset.channels;
-    std::vector<int32_t> tile(size_t(width) * height * channels);
-    REQUIRE(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), nullptr, 0) == DSN_OK);
-    int differences = 0;
-    for (uint32_t j = 0; j < height; j++)
-        for (uint32_t i = 0; i < width; i++) {
-            int32_t point[3];
-            dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
-            differences += std::memcmp(point, &tile[(size_t(j) * width + i) * channels],
-                                       channels * sizeof(int32_t)) != 0;
-        }
-    return differences;
-}
 
 // Cells of side 16 around the window holding more than 16 impulses.
 int crowded_cells(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height) {
@@ -68,7 +51,7 @@ TEST_CASE("per point, 16 x 16 cells, no period: equals the tile on every channel
                 for (int32_t origin : origins) {
                     const int32_t x0 = int32_t(uint32_t(origin) + random.next() % 16), y0 = origin;
                     CAPTURE(x0);
-                    CHECK(window_differences(loaded.noise, x0, y0, 40, 24) == 0);
+                    CHECK(dsn_test::tile_point_differences(loaded.noise, x0, y0, 40, 24) == 0);
                     crowded += crowded_cells(loaded.noise, x0, y0, 40, 24);
                     windows++;
                 }

@@ -10,23 +10,6 @@ namespace {
 
 using dsn_test::LoadedNoise;
 
-// Compares a tile to per-point evaluation at every pixel; returns the number of differing values.
-size_t tile_point_differences(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width,
-                              uint32_t height) {
-    const uint32_t channels = noise.asset.channels;
-    std::vector<int32_t> tile(size_t(width) * height * channels);
-    REQUIRE(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), nullptr, 0) == DSN_OK);
-    size_t differences = 0;
-    for (uint32_t j = 0; j < height; j++)
-        for (uint32_t i = 0; i < width; i++) {
-            int32_t point[3];
-            dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
-            for (uint32_t c = 0; c < channels; c++)
-                differences += point[c] != tile[(size_t(j) * width + i) * channels + c];
-        }
-    return differences;
-}
-
 } // namespace
 
 TEST_CASE("tile == per point, bit for bit, on random windows, seeds, sizes and periods") {
@@ -56,7 +39,7 @@ TEST_CASE("tile == per point, bit for bit, on random windows, seeds, sizes and p
                     CAPTURE(period_y);
                     CAPTURE(x0);
                     CAPTURE(y0);
-                    CHECK(tile_point_differences(loaded.noise, x0, y0, width, height) == 0);
+                    CHECK(dsn_test::tile_point_differences(loaded.noise, x0, y0, width, height) == 0);
                     trials++;
                 }
             }

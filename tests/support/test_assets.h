@@ -88,6 +88,24 @@ inline dsn_config make_config(uint32_t seed, double impacts = 30, uint32_t perio
     return config;
 }
 
+// The number of values where a tile at (x0, y0) differs from the per-point function (the tile's pixel
+// (i, j) is the point (x0 + i, y0 + j) modulo 2^32); SIZE_MAX when the tile call itself fails.
+inline size_t tile_point_differences(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width,
+                                     uint32_t height) {
+    const uint32_t channels = noise.asset.channels;
+    std::vector<int32_t> tile(size_t(width) * height * channels);
+    if (dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), nullptr, 0) != DSN_OK) return SIZE_MAX;
+    size_t differences = 0;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int32_t point[3];
+            dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
+            for (uint32_t c = 0; c < channels; c++)
+                differences += point[c] != tile[(size_t(j) * width + i) * channels + c];
+        }
+    return differences;
+}
+
 } // namespace dsn_test
 
 #endif
