@@ -172,6 +172,7 @@ struct SotResult {
 
 // Alternating projections between the textons supported on `support` and the textons whose spectrum
 // modulus is |target| (one common phase per frequency for all channels), from random_phase_start.
+// The zero frequency is left free: the texton's sum is not constrained (the runtime subtracts the mean).
 // Returns the texton after the last iteration and the RME of every iteration.
 SotResult sot_alternating_projections(const Spectrum &target, const Support &support,
                                       const SotOptions &options);
@@ -182,7 +183,8 @@ Texton luminance_texton(const Spectrum &model, const Support &support);
 
 // ---- Measures ----
 
-// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels.
+// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels, over the
+// frequencies xi != 0 (the texton's sum only moves the noise's mean, which the runtime subtracts).
 double relative_model_error(const Spectrum &model, const Spectrum &texton);
 double relative_model_error(const Spectrum &model, const Texton &texton);
 
