@@ -59,11 +59,9 @@ uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16) {
 
 /* A dsn_asset that dsn_asset_load did not fill (or that was altered) must not reach the evaluators. */
 int asset_is_usable(const dsn_asset *asset) {
-    return asset->texton != 0 && (asset->channels == 1 || asset->channels == 3) &&
-           (asset->bits == 8 || asset->bits == 16) && asset->width % 2 == 1 &&
-           asset->width <= DSN_FORMAT_MAX_SIDE && asset->height % 2 == 1 &&
-           asset->height <= DSN_FORMAT_MAX_SIDE &&
-           asset->support_size == dsn_support_size(asset->shape, asset->width, asset->height);
+    uint32_t support_size;
+    return asset->texton != 0 && dsn_internal_check_geometry(asset, &support_size) == DSN_OK &&
+           asset->support_size == support_size;
 }
 
 void clear_noise(dsn_noise *noise) {

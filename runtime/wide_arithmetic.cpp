@@ -25,7 +25,8 @@ u128 multiply_wide(uint64_t a, uint64_t b) {
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-uint64_t divide_wide(const u128 *numerator, uint64_t divisor, uint64_t *remainder) {
+uint64_t
+divide_wide(const u128 *numerator, uint64_t divisor, uint64_t *remainder) {
     uint64_t rest = numerator->high, quotient = 0, low = numerator->low;
     for (int bit = 0; bit < 64; bit++) {
         const uint64_t carry = rest >> 63;
