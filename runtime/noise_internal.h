@@ -114,21 +114,22 @@ DSN_SHARED uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key)
 /* log2 of the bits of one impulse's field: 3 (a byte) for cells of side <= 16, else 4 (16 bits). */
 static inline uint32_t dsn_field_shift(uint32_t cell_shift) { return cell_shift <= 4 ? 3u : 4u; }
 
-/* The field of impulse k (k counts from 0): x in the low half, y in the high half. */
-DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
-    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
-    const uint64_t pair = dsn_position_pair(key, k >> per_pair_shift);
-    const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
-    return uint32_t(pair >> bit) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
+/* The pair that holds impulse k's field (k counts from 0). */
+static inline uint64_t dsn_impulse_pair(const dsn_noise *noise, uint32_t key, uint32_t k) {
+    return dsn_position_pair(key, k >> (6u - dsn_field_shift(noise->cell_shift)));
 }
 
-/* Lattice offsets of impulse k inside its cell, each in [0, 2^cell_shift). */
-DSN_SHARED void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uint32_t k, uint32_t *offset_x,
-                                    uint32_t *offset_y) {
-    const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
-    const uint32_t field = dsn_impulse_field(noise, key, k), drop = half_bits - noise->cell_shift;
-    *offset_x = (field & ((1u << half_bits) - 1u)) >> drop;
-    *offset_y = field >> (half_bits + drop);
+/* The low 32 bits of pair >> bit (bit < 64), choosing the half first: 32-bit targets then shift one
+   word, not a pair of them. */
+static inline uint32_t dsn_pair_bits(uint64_t pair, uint32_t bit) {
+    return (bit >= 32u ? uint32_t(pair >> 32) : uint32_t(pair)) >> (bit & 31u);
+}
+
+/* The field of impulse k: x in the low half, y in the high half. */
+DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
+    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
+    const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
+    return dsn_pair_bits(dsn_impulse_pair(noise, key, k), bit) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
 }
 
 /* 16-bit in-cell positions of impulse k for the continuous mode (units of 2^-(16 - cell_shift) lattice
@@ -279,23 +280,21 @@ DSN_SHARED dsn_span dsn_axis_span(const dsn_axis *axis, uint32_t index) {
     return span;
 }
 
-/* Where an impulse at axis position p meets a window of `length` points: window indices
-   first_index .. first_index + count - 1, starting at texton index first_texton. Returns 0 when it
-   does not reach the window. `offset` is span.base - p (uint32); diameter = 2 radius + 1. */
+/* Where an impulse at axis position p meets a window of `length` points. With the impulse's end
+   e = base - p + length - 1 (uint32, base the span's), some window index reaches it exactly when
+   e < length - 1 + diameter (diameter = 2 radius + 1); it then reaches window indices first_index ..
+   first_index + count - 1, starting at texton index first_texton. */
 typedef struct dsn_reach {
     uint32_t first_index, first_texton, count;
 } dsn_reach;
 
-DSN_SHARED int dsn_reach_window(uint32_t offset, uint32_t length, uint32_t diameter, dsn_reach *reach) {
-    /* e = offset + length - 1 lies in [0, length - 1 + diameter) exactly when some index reaches. */
-    uint32_t e = offset + length - 1u, last_index;
-    if (e >= length - 1u + diameter) return 0;
+/* The reach of an impulse with end e < length - 1 + diameter. */
+DSN_SHARED void dsn_reach_at(uint32_t e, uint32_t length, uint32_t diameter, dsn_reach *reach) {
+    const uint32_t last_index =
+        (length - 1u + diameter - 1u - e < length - 1u) ? length - 1u + diameter - 1u - e : length - 1u;
     reach->first_index = e < length - 1u ? length - 1u - e : 0u;
     reach->first_texton = reach->first_index + e - (length - 1u);
-    last_index =
-        (length - 1u + diameter - 1u - e < length - 1u) ? length - 1u + diameter - 1u - e : length - 1u;
     reach->count = last_index - reach->first_index + 1u;
-    return 1;
 }
 
 /* Cell index i of a span, wrapped to the torus of cells. */
