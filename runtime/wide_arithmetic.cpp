@@ -20,14 +20,9 @@ u128 multiply_wide(uint64_t a, uint64_t b) {
 }
 
 /* floor(numerator / divisor) and the remainder, for numerator.high < divisor (the quotient fits 64
-   bits). A divisor of 0 gives UINT64_MAX. One copy for both callers (configuration time: size over
-   speed). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-uint64_t
-divide_wide(const u128 *numerator, uint64_t divisor, uint64_t *remainder) {
-    uint64_t rest = numerator->high, quotient = 0, low = numerator->low;
+   bits). A divisor of 0 gives UINT64_MAX. */
+uint64_t divide_wide(u128 numerator, uint64_t divisor, uint64_t *remainder) {
+    uint64_t rest = numerator.high, quotient = 0, low = numerator.low;
     for (int bit = 0; bit < 64; bit++) {
         const uint64_t carry = rest >> 63;
         rest = (rest << 1) | (low >> 63);
@@ -47,14 +42,14 @@ divide_wide(const u128 *numerator, uint64_t divisor, uint64_t *remainder) {
 uint64_t dsn_divide(uint64_t numerator, uint64_t divisor) {
     const u128 wide = {0, numerator};
     uint64_t remainder;
-    return divide_wide(&wide, divisor, &remainder);
+    return divide_wide(wide, divisor, &remainder);
 }
 
 uint64_t dsn_multiply_divide(uint64_t a, uint64_t b, uint64_t divisor) {
     const u128 product = multiply_wide(a, b);
     uint64_t remainder;
     if (divisor == 0 || product.high >= divisor) return UINT64_MAX;
-    const uint64_t quotient = divide_wide(&product, divisor, &remainder);
+    const uint64_t quotient = divide_wide(product, divisor, &remainder);
     if (remainder < divisor - remainder) return quotient;
     return quotient == UINT64_MAX ? UINT64_MAX : quotient + 1u;
 }
