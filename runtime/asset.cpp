@@ -1,6 +1,6 @@
 /* runtime/asset.cpp - validates a .dsnt asset in place (format.h, in its documented order) and reads
    texton values; also the static error messages. */
-#include "dsn/dsn.h"
+#include "init_internal.h"
 
 namespace {
 
@@ -50,21 +50,16 @@ int read_geometry(dsn_asset *asset, const unsigned char *bytes) {
     asset->interpolation = bytes[DSN_OFFSET_INTERPOLATION];
     asset->width = dsn_read_u16le(bytes + DSN_OFFSET_WIDTH);
     asset->height = dsn_read_u16le(bytes + DSN_OFFSET_HEIGHT);
-    if (asset->channels != 1 && asset->channels != 3) return DSN_ERR_CHANNELS;
-    if (asset->bits != 8 && asset->bits != 16) return DSN_ERR_BITS;
-    if (asset->shape > DSN_SHAPE_DISK || (asset->shape == DSN_SHAPE_DISK && asset->width != asset->height))
-        return DSN_ERR_SHAPE;
-    if (asset->interpolation > DSN_INTERPOLATION_BILINEAR) return DSN_ERR_INTERPOLATION;
-    if (asset->width % 2 == 0 || asset->width > DSN_FORMAT_MAX_SIDE || asset->height % 2 == 0 ||
-        asset->height > DSN_FORMAT_MAX_SIDE)
-        return DSN_ERR_DIMENSIONS;
+    uint32_t support_size;
+    const int err = dsn_internal_check_geometry(asset, &support_size);
+    if (err != DSN_OK) return err;
     /* At most 255 * 255 * 3 * 2 bytes; check_envelope has made header_size <= total_size - 4, so the
        difference below cannot wrap. */
     uint32_t texton_bytes = asset->width * asset->height * asset->channels * (asset->bits / 8);
     uint32_t room = dsn_read_u32le(bytes + DSN_OFFSET_TOTAL_SIZE) - DSN_FORMAT_CRC_SIZE -
                     dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE);
     if (room != texton_bytes) return DSN_ERR_TOTAL_SIZE;
-    asset->support_size = dsn_support_size(asset->shape, asset->width, asset->height);
+    asset->support_size = support_size;
     return DSN_OK;
 }
 
@@ -125,6 +120,19 @@ int load(dsn_asset *asset, const unsigned char *bytes, size_t size) {
 }
 
 } // namespace
+
+int dsn_internal_check_geometry(const dsn_asset *asset, uint32_t *support_size) {
+    if (asset->channels != 1 && asset->channels != 3) return DSN_ERR_CHANNELS;
+    if (asset->bits != 8 && asset->bits != 16) return DSN_ERR_BITS;
+    if (asset->shape > DSN_SHAPE_DISK || (asset->shape == DSN_SHAPE_DISK && asset->width != asset->height))
+        return DSN_ERR_SHAPE;
+    if (asset->interpolation > DSN_INTERPOLATION_BILINEAR) return DSN_ERR_INTERPOLATION;
+    if (asset->width % 2 == 0 || asset->width > DSN_FORMAT_MAX_SIDE || asset->height % 2 == 0 ||
+        asset->height > DSN_FORMAT_MAX_SIDE)
+        return DSN_ERR_DIMENSIONS;
+    *support_size = dsn_support_size(asset->shape, asset->width, asset->height);
+    return DSN_OK;
+}
 
 extern "C" int dsn_asset_load(dsn_asset *asset, const void *bytes, size_t size) {
     if (asset == 0) return DSN_ERR_NULL;

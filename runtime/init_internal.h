@@ -1,4 +1,5 @@
-/* runtime/init_internal.h - the steps of dsn_noise_init that live in their own files. Internal. */
+/* runtime/init_internal.h - the steps of dsn_noise_init that live in their own files, and the asset
+   geometry check it shares with the loader. Internal. */
 #ifndef DSN_INIT_INTERNAL_H
 #define DSN_INIT_INTERNAL_H
 
@@ -14,5 +15,10 @@ void dsn_internal_build_poisson_table(dsn_noise *noise, uint64_t cell_mean_q32);
 
 /* Fills gain_shift, gain and offset from the asset, impacts_q16 and flags. */
 void dsn_internal_compute_normalization(dsn_noise *noise);
+
+/* The loader's checks of channels, bits, shape, interpolation and width/height (format.h step 9, in
+   that order): the first failure, or DSN_OK and the number of support points. dsn_noise_init runs them
+   again on an asset it did not see loaded. */
+int dsn_internal_check_geometry(const dsn_asset *asset, uint32_t *support_size);
 
 #endif /* DSN_INIT_INTERNAL_H */

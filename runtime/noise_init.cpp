@@ -40,18 +40,20 @@ uint64_t poisson_parts(uint64_t mean_q32) {
     return (mean_q32 + part_max_q32 - 1) / part_max_q32;
 }
 
-uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16) {
+/* The cell size, and the mean impulse count of its cells (Q32). */
+uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16, uint64_t *best_mean_q32) {
     /* At most 2^8: the continuous mode needs >= 8 fractional position bits of the 16 per axis. */
     const uint64_t hits_q16 =
         dsn_divide(uint64_t(asset->width) * asset->height * impacts_q16, asset->support_size);
     uint32_t best_shift = 0;
     uint64_t best_cost = UINT64_MAX;
     for (uint32_t shift = 0; shift <= 8; shift++) {
-        uint64_t cost = point_cost_q16(asset, impacts_q16, shift,
-                                       poisson_parts(cell_mean_q32(asset, impacts_q16, shift)), hits_q16);
+        const uint64_t mean_q32 = cell_mean_q32(asset, impacts_q16, shift);
+        const uint64_t cost = point_cost_q16(asset, impacts_q16, shift, poisson_parts(mean_q32), hits_q16);
         if (cost <= best_cost) {
             best_cost = cost;
             best_shift = shift;
+            *best_mean_q32 = mean_q32;
         }
     }
     return best_shift;
@@ -59,11 +61,9 @@ uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16) {
 
 /* A dsn_asset that dsn_asset_load did not fill (or that was altered) must not reach the evaluators. */
 int asset_is_usable(const dsn_asset *asset) {
-    return asset->texton != 0 && (asset->channels == 1 || asset->channels == 3) &&
-           (asset->bits == 8 || asset->bits == 16) && asset->width % 2 == 1 &&
-           asset->width <= DSN_FORMAT_MAX_SIDE && asset->height % 2 == 1 &&
-           asset->height <= DSN_FORMAT_MAX_SIDE &&
-           asset->support_size == dsn_support_size(asset->shape, asset->width, asset->height);
+    uint32_t support_size;
+    return asset->texton != 0 && dsn_internal_check_geometry(asset, &support_size) == DSN_OK &&
+           asset->support_size == support_size;
 }
 
 void clear_noise(dsn_noise *noise) {
@@ -102,8 +102,9 @@ extern "C" int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const ds
     noise->period[1] = config->period_y;
     noise->radius[0] = (asset->width - 1) / 2;
     noise->radius[1] = (asset->height - 1) / 2;
-    noise->cell_shift = choose_cell_shift(asset, impacts);
-    dsn_internal_build_poisson_table(noise, cell_mean_q32(asset, impacts, noise->cell_shift));
+    uint64_t mean_q32 = 0;
+    noise->cell_shift = choose_cell_shift(asset, impacts, &mean_q32);
+    dsn_internal_build_poisson_table(noise, mean_q32);
     dsn_internal_compute_normalization(noise);
     return DSN_OK;
 }

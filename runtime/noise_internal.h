@@ -114,21 +114,22 @@ DSN_SHARED uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key)
 /* log2 of the bits of one impulse's field: 3 (a byte) for cells of side <= 16, else 4 (16 bits). */
 static inline uint32_t dsn_field_shift(uint32_t cell_shift) { return cell_shift <= 4 ? 3u : 4u; }
 
-/* The field of impulse k (k counts from 0): x in the low half, y in the high half. */
-DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
-    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
-    const uint64_t pair = dsn_position_pair(key, k >> per_pair_shift);
-    const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
-    return uint32_t(pair >> bit) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
+/* The pair that holds impulse k's field (k counts from 0). */
+static inline uint64_t dsn_impulse_pair(const dsn_noise *noise, uint32_t key, uint32_t k) {
+    return dsn_position_pair(key, k >> (6u - dsn_field_shift(noise->cell_shift)));
 }
 
-/* Lattice offsets of impulse k inside its cell, each in [0, 2^cell_shift). */
-DSN_SHARED void dsn_impulse_offsets(const dsn_noise *noise, uint32_t key, uint32_t k, uint32_t *offset_x,
-                                    uint32_t *offset_y) {
-    const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
-    const uint32_t field = dsn_impulse_field(noise, key, k), drop = half_bits - noise->cell_shift;
-    *offset_x = (field & ((1u << half_bits) - 1u)) >> drop;
-    *offset_y = field >> (half_bits + drop);
+/* The low 32 bits of pair >> bit (bit < 64), choosing the half first: 32-bit targets then shift one
+   word, not a pair of them. */
+static inline uint32_t dsn_pair_bits(uint64_t pair, uint32_t bit) {
+    return (bit >= 32u ? uint32_t(pair >> 32) : uint32_t(pair)) >> (bit & 31u);
+}
+
+/* The field of impulse k: x in the low half, y in the high half. */
+DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
+    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
+    const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
+    return dsn_pair_bits(dsn_impulse_pair(noise, key, k), bit) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
 }
 
 /* 16-bit in-cell positions of impulse k for the continuous mode (units of 2^-(16 - cell_shift) lattice
@@ -219,96 +220,81 @@ typedef struct dsn_span {
 typedef struct dsn_axis {
     uint32_t radius, shift, period; /* period 0: not periodic */
     uint32_t length;                /* window length */
-    int64_t start;                  /* periodic: window start reduced to [0, P); else the uint32 start */
-    int64_t first_copy;             /* periodic: index m of the first copy met */
+    uint32_t start;                 /* periodic: window start reduced to [0, P); else the start */
+    uint32_t copies_before;         /* periodic: the first copy met is m = -copies_before */
     uint32_t span_count;
 } dsn_axis;
 
-/* floor(a / b) for b > 0, defined for every int64 a used here (|a| < 2^40). */
-DSN_SHARED int64_t dsn_floor_div(int64_t a, int64_t b) {
-#if DSN_SMALL_CODE
-    /* Restoring division over the 41 bits of |a|, without the 64-bit division helper of 32-bit targets
-       (__aeabi_ldivmod and the long division behind it). For a < 0, floor(a / b) = -1 - floor(~a / b). */
-    uint64_t dividend = a < 0 ? ~uint64_t(a) : uint64_t(a), quotient = 0, rest = 0;
-    int bit;
-    for (bit = 40; bit >= 0; bit--) {
-        rest = (rest << 1) | ((dividend >> bit) & 1u);
-        quotient <<= 1;
-        if (rest >= uint64_t(b)) {
-            rest -= uint64_t(b);
-            quotient |= 1u;
-        }
-    }
-    return a < 0 ? -1 - int64_t(quotient) : int64_t(quotient);
-#else
-    int64_t q = a / b;
-    return (q * b > a) ? q - 1 : q;
-#endif
-}
-
 /* Window [coordinate, coordinate + length) along one axis. `coordinate` is the int32 lattice
-   coordinate (as a uint32 bit pattern); with a period it is reduced by floor modulo. */
+   coordinate (as a uint32 bit pattern); with a period it is reduced by floor modulo. All in 32-bit
+   arithmetic (no 64-bit division, which 32-bit targets would call): the copies met are
+   m = floor((start - radius) / P) .. floor((start + length - 1 + radius) / P), the first one -1 or
+   below only when start < radius. */
 DSN_SHARED void dsn_axis_init(dsn_axis *axis, uint32_t coordinate, uint32_t length, uint32_t radius,
                               uint32_t shift, uint32_t period) {
     axis->radius = radius;
     axis->shift = shift;
     axis->period = period;
     axis->length = length;
-    if (period == 0) {
-        axis->start = coordinate;
-        axis->first_copy = 0;
-        axis->span_count = 1;
-    } else {
-        int64_t signed_coordinate = int64_t(dsn_signed_sum(coordinate));
-        int64_t reduced = signed_coordinate - dsn_floor_div(signed_coordinate, period) * int64_t(period);
-        int64_t low = reduced - int64_t(radius), high = reduced + int64_t(length) - 1 + int64_t(radius);
-        axis->start = reduced;
-        axis->first_copy = dsn_floor_div(low, period);
-        axis->span_count = uint32_t(dsn_floor_div(high, period) - axis->first_copy + 1);
+    axis->start = coordinate;
+    axis->copies_before = 0;
+    axis->span_count = 1;
+    if (period != 0) {
+        /* Floor modulo of the int32 coordinate: for c < 0, c mod P = P - 1 - ((-c - 1) mod P), and
+           -c - 1 = ~c lies in [0, 2^31). */
+        const uint32_t start =
+            (coordinate & 0x80000000u) ? period - 1u - ~coordinate % period : coordinate % period;
+        /* start + extent may pass 2^32: floor((start + extent) / P) is extent / P, plus 1 when the
+           remainders add up to P or more. */
+        const uint32_t extent = length - 1u + radius, rest = extent % period;
+        axis->start = start;
+        axis->copies_before = start >= radius ? 0u : 1u + (radius - 1u - start) / period;
+        axis->span_count = axis->copies_before + extent / period + (rest >= period - start ? 1u : 0u) + 1u;
     }
 }
 
+/* Span `index` meets copy m = index - copies_before, which starts at m P. Seen from that copy the
+   window runs from start - radius - m P to start + length - 1 + radius - m P: the first copy met is the
+   only one where the low end is >= 0 and the last the only one where the high end is < P, and there
+   both ends lie in [0, P), so arithmetic modulo 2^32 gives them exactly. */
 DSN_SHARED dsn_span dsn_axis_span(const dsn_axis *axis, uint32_t index) {
     dsn_span span;
-    uint32_t mask = (1u << axis->shift) - 1u;
+    const uint32_t mask = (1u << axis->shift) - 1u, low = axis->start - axis->radius;
     if (axis->period == 0) {
-        uint32_t low = uint32_t(axis->start) - axis->radius;
         span.first_cell = low >> axis->shift;
         span.cell_count = (((low & mask) + axis->length - 1u + 2u * axis->radius) >> axis->shift) + 1u;
-        span.base = uint32_t(axis->start) + axis->radius;
+        span.base = axis->start + axis->radius;
         span.last_position = 0xFFFFFFFFu;
     } else {
-        int64_t copy_start = (axis->first_copy + int64_t(index)) * int64_t(axis->period);
-        int64_t low = axis->start - int64_t(axis->radius) - copy_start;
-        int64_t high = axis->start + int64_t(axis->length) - 1 + int64_t(axis->radius) - copy_start;
-        uint32_t first = low < 0 ? 0u : uint32_t(low);
-        uint32_t last = high >= int64_t(axis->period) ? axis->period - 1u : uint32_t(high);
+        const uint32_t copy_start = (index - axis->copies_before) * axis->period; /* m P modulo 2^32 */
+        const uint32_t first = index == 0 ? low - copy_start : 0u;
+        const uint32_t last = index == axis->span_count - 1u
+                                  ? axis->start + axis->length - 1u + axis->radius - copy_start
+                                  : axis->period - 1u;
         span.first_cell = first >> axis->shift;
         span.cell_count = (last >> axis->shift) - span.first_cell + 1u;
-        /* Only differences modulo 2^32 matter (see above); the low 32 bits of the int64 suffice. */
-        span.base = uint32_t(uint64_t(axis->start + int64_t(axis->radius) - copy_start));
+        /* Only differences modulo 2^32 matter (see above). */
+        span.base = axis->start + axis->radius - copy_start;
         span.last_position = axis->period - 1u;
     }
     return span;
 }
 
-/* Where an impulse at axis position p meets a window of `length` points: window indices
-   first_index .. first_index + count - 1, starting at texton index first_texton. Returns 0 when it
-   does not reach the window. `offset` is span.base - p (uint32); diameter = 2 radius + 1. */
+/* Where an impulse at axis position p meets a window of `length` points. With the impulse's end
+   e = base - p + length - 1 (uint32, base the span's), some window index reaches it exactly when
+   e < length - 1 + diameter (diameter = 2 radius + 1); it then reaches window indices first_index ..
+   first_index + count - 1, starting at texton index first_texton. */
 typedef struct dsn_reach {
     uint32_t first_index, first_texton, count;
 } dsn_reach;
 
-DSN_SHARED int dsn_reach_window(uint32_t offset, uint32_t length, uint32_t diameter, dsn_reach *reach) {
-    /* e = offset + length - 1 lies in [0, length - 1 + diameter) exactly when some index reaches. */
-    uint32_t e = offset + length - 1u, last_index;
-    if (e >= length - 1u + diameter) return 0;
+/* The reach of an impulse with end e < length - 1 + diameter. */
+DSN_SHARED void dsn_reach_at(uint32_t e, uint32_t length, uint32_t diameter, dsn_reach *reach) {
+    const uint32_t last_index =
+        (length - 1u + diameter - 1u - e < length - 1u) ? length - 1u + diameter - 1u - e : length - 1u;
     reach->first_index = e < length - 1u ? length - 1u - e : 0u;
     reach->first_texton = reach->first_index + e - (length - 1u);
-    last_index =
-        (length - 1u + diameter - 1u - e < length - 1u) ? length - 1u + diameter - 1u - e : length - 1u;
     reach->count = last_index - reach->first_index + 1u;
-    return 1;
 }
 
 /* Cell index i of a span, wrapped to the torus of cells. */

@@ -8,6 +8,8 @@
 
 namespace {
 
+#if !DSN_SMALL_CODE
+
 /* Texton value `index` (channels interleaved), sign-extended in uint32 arithmetic without
    implementation-defined conversions: (b ^ 0x80) - 128 is the two's-complement byte. */
 template <uint32_t Bits>
@@ -227,6 +229,8 @@ void accumulate(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) 
     accumulate_any(noise, x, y, sums);
 }
 
+#endif /* !DSN_SMALL_CODE */
+
 /* A noise that dsn_noise_init did not fill (zeroed on failure) has no texton and evaluates nothing. */
 int usable(const dsn_noise *noise, const void *out) {
     return noise != 0 && out != 0 && noise->asset.texton != 0;
@@ -234,12 +238,19 @@ int usable(const dsn_noise *noise, const void *out) {
 
 } // namespace
 
+#if DSN_SMALL_CODE
+/* The small build evaluates a point as a 1 x 1 tile: one walk over the cells for both (same bits). */
+extern "C" void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
+    (void)dsn_tile_fixed(noise, x, y, 1, 1, out, 0, 0);
+}
+#else
 extern "C" void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
     if (!usable(noise, out)) return;
     uint32_t sums[3];
     accumulate(noise, uint32_t(x), uint32_t(y), sums);
     dsn_normalize(noise, sums, out);
 }
+#endif
 
 extern "C" float dsn_fixed_to_float(int32_t value) {
     /* One rounding (int32 -> float), then an exact power-of-two scaling: the same on every FPU. */

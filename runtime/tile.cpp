@@ -180,7 +180,9 @@ void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t widt
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
     tile_target target = {out, kind, accumulator, width * noise->asset.channels};
 #if DSN_TILE_BLOCKS
-    if (planar_texton_fits(&noise->asset)) {
+    /* A single point (how the small build evaluates per point) takes the 32-bit path: no planar copy of
+       the texton and no block on the stack for one pixel. */
+    if ((width > 1 || height > 1) && planar_texton_fits(&noise->asset)) {
         if (kind == dsn_output_float)
             render_blocked_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
         else if (kind == dsn_output_u8)

@@ -86,35 +86,58 @@ inline void add_row_of_width(uint32_t *dst, const unsigned char *src, uint32_t c
 #endif
 }
 
+/* One candidate cell along one axis: the end e (dsn_reach_at) of an impulse at in-cell offset 0 (one
+   at offset t has e = end - t), and the last in-cell offset before the period's cut (the impulses past it
+   are discarded). */
+typedef struct walk_cell {
+    uint32_t end, last_offset;
+} walk_cell;
+
+inline walk_cell walk_cell_of(const dsn_span *span, uint32_t cell, uint32_t shift, uint32_t length) {
+    const uint32_t origin = cell << shift;
+    const walk_cell result = {span->base - origin + length - 1u, span->last_position - origin};
+    return result;
+}
+
 /* Calls visit(reach_x, reach_y) for every impulse that reaches the rectangle run_x x run_y (both
-   single runs), in the order of the hash stream. This is the only place the tile path walks cells. */
+   single runs), in the order of the hash stream. This is the only place the tile path walks cells. The
+   impulses' packed offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
 template <typename Visit>
 void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
                                Visit &visit) {
     const dsn_asset *asset = &noise->asset;
-    const uint32_t shift = noise->cell_shift;
+    const uint32_t shift = noise->cell_shift, field_shift = dsn_field_shift(shift);
+    const uint32_t per_pair_mask = (1u << (6u - field_shift)) - 1u, half_bits = 1u << (field_shift - 1u);
+    const uint32_t half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    const uint32_t limit_x = run_x->length - 1u + asset->width, limit_y = run_y->length - 1u + asset->height;
     dsn_axis axis_x, axis_y;
     dsn_axis_init(&axis_x, run_x->start, run_x->length, noise->radius[0], shift, noise->period[0]);
     dsn_axis_init(&axis_y, run_y->start, run_y->length, noise->radius[1], shift, noise->period[1]);
     for (uint32_t span_index_y = 0; span_index_y < axis_y.span_count; span_index_y++) {
-        dsn_span span_y = dsn_axis_span(&axis_y, span_index_y);
+        const dsn_span span_y = dsn_axis_span(&axis_y, span_index_y);
         for (uint32_t i = 0; i < span_y.cell_count; i++) {
-            uint32_t cell_y = dsn_span_cell(&span_y, i, shift), row_key = dsn_row_key(noise, cell_y);
+            const uint32_t cell_y = dsn_span_cell(&span_y, i, shift), row_key = dsn_row_key(noise, cell_y);
+            const walk_cell in_y = walk_cell_of(&span_y, cell_y, shift, run_y->length);
             for (uint32_t span_index_x = 0; span_index_x < axis_x.span_count; span_index_x++) {
-                dsn_span span_x = dsn_axis_span(&axis_x, span_index_x);
+                const dsn_span span_x = dsn_axis_span(&axis_x, span_index_x);
                 for (uint32_t j = 0; j < span_x.cell_count; j++) {
-                    uint32_t cell_x = dsn_span_cell(&span_x, j, shift);
-                    uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
-                    uint32_t count = dsn_cell_impulse_count(noise, key);
+                    const uint32_t cell_x = dsn_span_cell(&span_x, j, shift);
+                    const walk_cell in_x = walk_cell_of(&span_x, cell_x, shift, run_x->length);
+                    const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
+                    const uint32_t count = dsn_cell_impulse_count(noise, key);
+                    uint64_t pair = 0;
                     for (uint32_t k = 0; k < count; k++) {
-                        uint32_t offset_x, offset_y;
-                        dsn_impulse_offsets(noise, key, k, &offset_x, &offset_y);
-                        uint32_t x = (cell_x << shift) + offset_x, y = (cell_y << shift) + offset_y;
-                        dsn_reach reach_x, reach_y;
-                        if (x > span_x.last_position || y > span_y.last_position ||
-                            !dsn_reach_window(span_x.base - x, run_x->length, asset->width, &reach_x) ||
-                            !dsn_reach_window(span_y.base - y, run_y->length, asset->height, &reach_y))
+                        if ((k & per_pair_mask) == 0) pair = dsn_impulse_pair(noise, key, k);
+                        const uint32_t field = dsn_pair_bits(pair, (k & per_pair_mask) << field_shift);
+                        const uint32_t offset_x = (field & half_mask) >> drop,
+                                       offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        const uint32_t end_x = in_x.end - offset_x, end_y = in_y.end - offset_y;
+                        if (offset_x > in_x.last_offset || offset_y > in_y.last_offset || end_x >= limit_x ||
+                            end_y >= limit_y)
                             continue;
+                        dsn_reach reach_x, reach_y;
+                        dsn_reach_at(end_x, run_x->length, asset->width, &reach_x);
+                        dsn_reach_at(end_y, run_y->length, asset->height, &reach_y);
                         visit(reach_x, reach_y);
                     }
                 }
@@ -123,31 +146,35 @@ void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, co
     }
 }
 
-/* Adds each reaching impulse's texton into a 32-bit accumulator (rows of row_stride values; the
-   rectangle starts at run_x->offset, run_y->offset). */
+/* Adds each reaching impulse's texton into a 32-bit accumulator: `corner` is the rectangle's first
+   value, rows are row_stride values apart. What does not change between impulses is set once. */
 struct splat_32 {
-    const dsn_asset *asset;
-    const tile_run *run_x, *run_y;
-    uint32_t *accumulator;
-    uint32_t row_stride;
+    const unsigned char *texton;
+    uint32_t *corner;
+    uint32_t row_stride, channels, bits, texel_bytes, texton_stride;
 
     void operator()(const dsn_reach &reach_x, const dsn_reach &reach_y) {
-        const uint32_t channels = asset->channels, bytes = asset->bits / 8;
-        const uint32_t texton_stride = asset->width * channels * bytes;
-        uint32_t *dst = accumulator + size_t(run_y->offset + reach_y.first_index) * row_stride +
-                        (run_x->offset + reach_x.first_index) * channels;
+        uint32_t *dst = corner + size_t(reach_y.first_index) * row_stride + reach_x.first_index * channels;
         const unsigned char *src =
-            asset->texton + reach_y.first_texton * texton_stride + reach_x.first_texton * channels * bytes;
+            texton + reach_y.first_texton * texton_stride + reach_x.first_texton * texel_bytes;
         for (uint32_t row = 0; row < reach_y.count; row++)
             add_row_of_width(dst + size_t(row) * row_stride, src + row * texton_stride,
-                             reach_x.count * channels, asset->bits);
+                             reach_x.count * channels, bits);
     }
 };
 
 /* One rectangle of the tile where both axes are single runs. */
 void splat_region(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y, uint32_t *accumulator,
                   uint32_t row_stride) {
-    splat_32 splat = {&noise->asset, run_x, run_y, accumulator, row_stride};
+    const dsn_asset *asset = &noise->asset;
+    const uint32_t texel_bytes = asset->channels * (asset->bits / 8);
+    splat_32 splat = {asset->texton,
+                      accumulator + size_t(run_y->offset) * row_stride + run_x->offset * asset->channels,
+                      row_stride,
+                      asset->channels,
+                      asset->bits,
+                      texel_bytes,
+                      asset->width * texel_bytes};
     for_each_reaching_impulse(noise, run_x, run_y, splat);
 }
 

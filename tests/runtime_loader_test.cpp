@@ -175,6 +175,16 @@ TEST_CASE("configuration and evaluation arguments are checked") {
     CHECK(dsn_noise_init(&noise, nullptr, &config) == DSN_ERR_NULL);
     CHECK(dsn_noise_init(&noise, &asset, nullptr) == DSN_ERR_NULL);
     CHECK(dsn_noise_init(&noise, &empty, &config) == DSN_ERR_ARGUMENT);
+    // An asset altered after loading: init runs the loader's geometry checks again.
+    dsn_asset altered = asset;
+    altered.shape = DSN_SHAPE_DISK + 1;
+    CHECK(dsn_noise_init(&noise, &altered, &config) == DSN_ERR_ARGUMENT);
+    altered = asset;
+    altered.support_size += 1;
+    CHECK(dsn_noise_init(&noise, &altered, &config) == DSN_ERR_ARGUMENT);
+    altered = asset;
+    altered.width += 1;
+    CHECK(dsn_noise_init(&noise, &altered, &config) == DSN_ERR_ARGUMENT);
     config.flags = 4;
     CHECK(dsn_noise_init(&noise, &asset, &config) == DSN_ERR_ARGUMENT);
     config.flags = 0;
