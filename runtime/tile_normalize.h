@@ -151,7 +151,8 @@ inline __m128i to_u8_range(__m128i value) {
 }
 
 inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint32_t values) {
-    __m128i words[3];
+    /* Zeroed because gcc -Os cannot see that vectors is 2 or 6 (the stores below are free at -O2). */
+    __m128i words[3] = {_mm_setzero_si128(), _mm_setzero_si128(), _mm_setzero_si128()};
 #pragma GCC unroll 3
     for (uint32_t i = 0; i < vectors; i += 2)
         words[i / 2] = _mm_packs_epi32(to_u8_range(v[i]), to_u8_range(v[i + 1]));
