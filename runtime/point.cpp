@@ -145,59 +145,31 @@ typedef struct hit_batch {
     uint16_t entries[64];
 } hit_batch;
 
-/* Little-endian bytes entry[0 ..] as one unaligned load (this path is x86 only). */
-inline uint32_t load32(const unsigned char *entry) {
-    uint32_t value;
+/* Texton value at `entry` as the sign-extended uint32 that texton_value gives, in one sign-extending load
+   (x86 only: a little-endian two's-complement host, where these bytes read as signed char or int16 are
+   the stored values; the conversions to uint32 are modulo 2^32). */
+template <uint32_t Bits>
+inline uint32_t stored_value(const unsigned char *entry) {
+    if (Bits == 8) return uint32_t(*static_cast<const signed char *>(static_cast<const void *>(entry)));
+    int16_t value;
     __builtin_memcpy(&value, entry, sizeof value);
-    return value;
+    return uint32_t(value);
 }
 
-inline uint64_t load64(const unsigned char *entry) {
-    uint64_t value;
-    __builtin_memcpy(&value, entry, sizeof value);
-    return value;
-}
-
-/* Adds the batch's hits to sums, then empties the batch. Values are summed with their sign bit flipped
-   (v + 2^(bits - 1), one xor: unsigned, so they add without borrows) and the offsets taken back once
-   per batch. An RGB entry is read with one load and its channels summed side by side in two
-   accumulators, two lanes in one and the middle channel in the other, lanes twice as wide as a value:
-   a batch has at most 64 hits, so a lane's sum stays below 64 2^bits and never reaches the next lane.
-   The wide load reads past the entry (1 byte for 8 bits, 2 for 16): at most into the asset's CRC, which
-   the loader guarantees is in the buffer right after the texton (format.h: total_size). */
+/* Adds the batch's hits to sums, then empties the batch. The channel sums are named locals, not an
+   array, so that they stay in registers. */
 template <uint32_t Channels, uint32_t Bits>
 inline void add_batch_hits(const unsigned char *texton, hit_batch *batch, uint32_t *sums) {
-    const uint32_t flip = Bits == 8 ? 0x80u : 0x8000u;
-    uint64_t outer = 0, middle = 0;
-    uint32_t hit_count = 0;
+    uint32_t sum0 = 0, sum1 = 0, sum2 = 0;
     for (uint64_t hits = batch->hits; hits != 0; hits &= hits - 1) {
         const unsigned char *entry =
-            texton + size_t(batch->entries[uint32_t(__builtin_ctzll(hits))]) * Channels * (Bits / 8);
-        hit_count++;
-        if (Channels == 1) {
-            outer += Bits == 8 ? entry[0] ^ flip : uint32_t(entry[0] | (entry[1] << 8)) ^ flip;
-        } else if (Bits == 8) {
-            const uint32_t value = load32(entry) ^ 0x00808080u; /* bytes R, G, B (and one beyond) */
-            outer += value & 0x00FF00FFu;
-            middle += value & 0x0000FF00u;
-        } else {
-            const uint64_t value = load64(entry) ^ 0x0000800080008000u; /* 16-bit R, G, B (and one beyond) */
-            outer += value & 0x0000FFFF0000FFFFu;
-            middle += value & 0x00000000FFFF0000u;
-        }
+            texton + size_t(batch->entries[__builtin_ctzll(hits)]) * Channels * (Bits / 8);
+        sum0 += stored_value<Bits>(entry);
+        if (Channels == 3)
+            sum1 += stored_value<Bits>(entry + Bits / 8), sum2 += stored_value<Bits>(entry + 2 * Bits / 8);
     }
-    const uint32_t offsets = hit_count * flip;
-    if (Channels == 1) {
-        sums[0] += uint32_t(outer) - offsets;
-    } else if (Bits == 8) {
-        sums[0] += uint32_t(outer & 0xFFFFu) - offsets;
-        sums[1] += uint32_t(middle >> 8) - offsets;
-        sums[2] += uint32_t(outer >> 16) - offsets;
-    } else {
-        sums[0] += uint32_t(outer & 0xFFFFFFFFu) - offsets;
-        sums[1] += uint32_t(middle >> 16) - offsets;
-        sums[2] += uint32_t(outer >> 32) - offsets;
-    }
+    sums[0] += sum0;
+    if (Channels == 3) sums[1] += sum1, sums[2] += sum2;
     batch->hits = 0;
     batch->cells = 0;
 }
