@@ -91,42 +91,38 @@ void accumulate_any(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *su
    together, so that the hard-to-predict loop exit comes once per batch, not once per cell. Impulses
    beyond 16 (0.4% of cells at the usual mean of 8) go one by one. */
 
-/* One axis of a cell, as 32-bit patterns that broadcast to the vector constants: the accepted
-   in-cell offsets are low .. low + span (bytes), and reach (16-bit) is the texton index at offset 0. */
-typedef struct lane_axis {
-    uint32_t low_bytes, span_bytes, reach_words;
-} lane_axis;
-
-/* Offsets t with 0 <= reach - t < size, within the cell (never empty: the walk visits only cells that
-   reach the point). reach lies in [0, size + 14] for a point window; reach * scale is kept modulo 2^16
-   like the lanes it goes to. */
-inline lane_axis lane_axis_of(uint32_t reach, uint32_t size, uint32_t scale) {
-    const uint32_t low = reach >= size ? reach - size + 1u : 0u, high = reach < 15u ? reach : 15u;
-    lane_axis axis = {low * 0x01010101u, (high - low) * 0x01010101u,
-                      ((reach * scale) & 0xFFFFu) * 0x00010001u};
-    return axis;
-}
-
 inline __m128i broadcast(uint32_t pattern) {
     /* The bits go in unchanged (int conversion is modulo 2^32 on every x86 compiler). */
     return _mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(pattern)), 0);
 }
 
+/* The in-cell offsets t of one axis that reach the point, 0 <= reach - t < size, as bytes for every lane:
+   low .. low + span. reach is the texton index of offset 0; it lies in [0, size + 14] for a cell that
+   reaches the point, so the range is never empty. */
+typedef struct lane_range {
+    __m128i low, span;
+} lane_range;
+
+inline lane_range lane_range_of(uint32_t reach, uint32_t size) {
+    const uint32_t low = reach >= size ? reach - size + 1u : 0u, high = reach < 15u ? reach : 15u;
+    lane_range range = {broadcast(low * 0x01010101u), broadcast((high - low) * 0x01010101u)};
+    return range;
+}
+
 /* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
    (garbage for lanes that miss, never read). Unsigned byte range test: min(v - low, span) == v - low. */
-inline uint32_t cell_hits(uint64_t pair0, uint64_t pair1, const lane_axis *x, const lane_axis *y,
-                          __m128i widths, uint16_t *entries) {
+inline uint32_t cell_hits(uint64_t pair0, uint64_t pair1, const lane_range *x, const lane_range *y,
+                          __m128i corner, __m128i widths, uint16_t *entries) {
     const __m128i fields =
         _mm_set_epi64x(static_cast<long long>(pair1), static_cast<long long>(pair0)); /* low lanes: pair0 */
     const __m128i nibbles = _mm_set1_epi8(0x0F), zero = _mm_setzero_si128();
     const __m128i offset_x = _mm_and_si128(fields, nibbles);
     const __m128i offset_y = _mm_and_si128(_mm_srli_epi16(fields, 4), nibbles);
-    const __m128i dx = _mm_sub_epi8(offset_x, broadcast(x->low_bytes));
-    const __m128i dy = _mm_sub_epi8(offset_y, broadcast(y->low_bytes));
-    const __m128i in_x = _mm_cmpeq_epi8(_mm_min_epu8(dx, broadcast(x->span_bytes)), dx);
-    const __m128i in_y = _mm_cmpeq_epi8(_mm_min_epu8(dy, broadcast(y->span_bytes)), dy);
-    /* entry = reach_y width + reach_x - (offset_y width + offset_x), exact in 16 bits for hits. */
-    const __m128i corner = _mm_add_epi16(broadcast(x->reach_words), broadcast(y->reach_words));
+    const __m128i dx = _mm_sub_epi8(offset_x, x->low), dy = _mm_sub_epi8(offset_y, y->low);
+    const __m128i in_x = _mm_cmpeq_epi8(_mm_min_epu8(dx, x->span), dx);
+    const __m128i in_y = _mm_cmpeq_epi8(_mm_min_epu8(dy, y->span), dy);
+    /* entry = corner - (offset_y width + offset_x), corner = reach_y width + reach_x: exact in 16 bits
+       for hits. */
     __m128i *out = static_cast<__m128i *>(static_cast<void *>(entries));
     _mm_storeu_si128(
         out, _mm_sub_epi16(corner, _mm_add_epi16(_mm_mullo_epi16(_mm_unpacklo_epi8(offset_y, zero), widths),
@@ -181,29 +177,42 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
     const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
                    rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
     const uint32_t first_column = low_x >> 4, reach_x = x + noise->radius[0] - (first_column << 4);
-    const __m128i widths = _mm_set1_epi16(static_cast<short>(width));
+    const __m128i widths = _mm_set1_epi16(static_cast<short>(width)), sixteen = _mm_set1_epi16(16);
+    /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
+       reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
+       j + 1 is reached, so its reach is at least 16. */
+    const lane_range first_range = lane_range_of(reach_x, width),
+                     last_range = lane_range_of(reach_x - 16 * (columns - 1), width),
+                     whole_range = {_mm_setzero_si128(), _mm_set1_epi8(15)};
     hit_batch batch;
     batch.hits = 0;
     batch.cells = 0;
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
-        const lane_axis row_axis = lane_axis_of(y + noise->radius[1] - (cell_y << 4), height, width);
+        const uint32_t reach_y = y + noise->radius[1] - (cell_y << 4);
+        const lane_range row_range = lane_range_of(reach_y, height);
+        /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
+           conversion is modulo 2^16 on every x86 compiler). */
+        __m128i corner = _mm_set1_epi16(static_cast<short>((reach_y * width + reach_x) & 0xFFFFu));
         for (uint32_t j = 0; j < columns; j++) {
             /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
             const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
             const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key),
                            count = dsn_poisson_draw(noise, key);
-            const lane_axis column_axis = lane_axis_of(reach_x - 16 * j, width, 1u);
+            const lane_range *column_range = j == 0             ? &first_range
+                                             : j + 1 == columns ? &last_range
+                                                                : &whole_range;
             if (batch.cells == 4) add_batch_hits<Channels, Bits>(noise->asset.texton, &batch, sums);
             const uint32_t slot = batch.cells++;
-            uint32_t hits = cell_hits(dsn_position_pair(key, 0), dsn_position_pair(key, 1), &column_axis,
-                                      &row_axis, widths, batch.entries + 16 * slot);
+            uint32_t hits = cell_hits(dsn_position_pair(key, 0), dsn_position_pair(key, 1), column_range,
+                                      &row_range, corner, widths, batch.entries + 16 * slot);
+            corner = _mm_sub_epi16(corner, sixteen);
+            /* A branch, not a mask: hits then does not wait for the count's search. */
             hits &= count < 16 ? (1u << count) - 1u : 0xFFFFu;
             batch.hits |= uint64_t(hits) << (16 * slot);
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
-                const axis_cell in_x = {reach_x - 16 * j, 15u};
-                const axis_cell in_y = {y + noise->radius[1] - (cell_y << 4), 15u};
+                const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
                 add_impulses(noise, key, 16, count, &in_x, &in_y, sums);
             }
         }
