@@ -109,12 +109,34 @@ inline lane_range lane_range_of(uint32_t reach, uint32_t size) {
     return range;
 }
 
+/* x * multiplier modulo 2^64 in both 64-bit lanes (SSE2 multiplies 32 x 32 -> 64 bits only):
+   x_lo m_lo + 2^32 (x_hi m_lo + x_lo m_hi). `multiplier` holds m_lo in the low half of each lane,
+   `multiplier_high` m_hi. */
+inline __m128i multiply64(__m128i x, __m128i multiplier, __m128i multiplier_high) {
+    const __m128i cross = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), multiplier),
+                                        _mm_mul_epu32(x, multiplier_high));
+    return _mm_add_epi64(_mm_mul_epu32(x, multiplier), _mm_slli_epi64(cross, 32));
+}
+
+/* dsn_position_pair(key, 0) and (key, 1), low and high lanes: dsn_mix64 on vectors, the same bits. */
+inline __m128i position_pairs(uint32_t key) {
+    const __m128i m1 = _mm_set1_epi64x(static_cast<long long>(0xBF58476D1CE4E5B9u)),
+                  m1_high = _mm_set1_epi64x(0xBF58476Du), m2 = _mm_set1_epi64x(static_cast<long long>(0x94D049BB133111EBu)),
+                  m2_high = _mm_set1_epi64x(0x94D049BBu);
+    /* key 2^32 + index G, index 0 and 1 */
+    __m128i x = _mm_add_epi64(_mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(key)), 0x11),
+                              _mm_set_epi64x(static_cast<long long>(0x9E3779B97F4A7C15u), 0));
+    x = _mm_xor_si128(x, _mm_srli_epi64(x, 30));
+    x = multiply64(x, m1, m1_high);
+    x = _mm_xor_si128(x, _mm_srli_epi64(x, 27));
+    x = multiply64(x, m2, m2_high);
+    return _mm_xor_si128(x, _mm_srli_epi64(x, 31));
+}
+
 /* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
    (garbage for lanes that miss, never read). Unsigned byte range test: min(v - low, span) == v - low. */
-inline uint32_t cell_hits(uint64_t pair0, uint64_t pair1, const lane_range *x, const lane_range *y,
+inline uint32_t cell_hits(__m128i fields, const lane_range *x, const lane_range *y,
                           __m128i corner, __m128i widths, uint16_t *entries) {
-    const __m128i fields =
-        _mm_set_epi64x(static_cast<long long>(pair1), static_cast<long long>(pair0)); /* low lanes: pair0 */
     const __m128i nibbles = _mm_set1_epi8(0x0F), zero = _mm_setzero_si128();
     const __m128i offset_x = _mm_and_si128(fields, nibbles);
     const __m128i offset_y = _mm_and_si128(_mm_srli_epi16(fields, 4), nibbles);
@@ -183,7 +205,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
        ~139 ns per point, every 9 ~130). Locals, not an array: they stay in registers. */
     uint16_t entries[9 * 16];
     uint64_t hits0 = 0, hits1 = 0, hits2 = 0;
-    uint32_t slot = 0;
+    uint32_t slot = 0, shift = 0;
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
         const uint32_t reach_y = y + noise->radius[1] - (cell_y << 4);
@@ -204,14 +226,14 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 add_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, sums);
                 add_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, sums);
                 hits0 = hits1 = hits2 = 0;
-                slot = 0;
+                slot = shift = 0;
             }
-            uint32_t hits = cell_hits(dsn_position_pair(key, 0), dsn_position_pair(key, 1), column_range,
+            uint32_t hits = cell_hits(position_pairs(key), column_range,
                                       &row_range, corner, widths, entries + 16 * slot);
             corner = _mm_sub_epi16(corner, sixteen);
             /* A branch, not a mask: hits then does not wait for the count's search. */
             hits &= count < 16 ? (1u << count) - 1u : 0xFFFFu;
-            const uint64_t placed = uint64_t(hits) << (16 * (slot & 3));
+            const uint64_t placed = uint64_t(hits) << shift;
             if (slot < 4)
                 hits0 |= placed;
             else if (slot < 8)
@@ -219,6 +241,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
             else
                 hits2 |= placed;
             slot++;
+            shift = (shift + 16) & 63;
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
                 const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
