@@ -113,15 +113,16 @@ inline lane_range lane_range_of(uint32_t reach, uint32_t size) {
    x_lo m_lo + 2^32 (x_hi m_lo + x_lo m_hi). `multiplier` holds m_lo in the low half of each lane,
    `multiplier_high` m_hi. */
 inline __m128i multiply64(__m128i x, __m128i multiplier, __m128i multiplier_high) {
-    const __m128i cross = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), multiplier),
-                                        _mm_mul_epu32(x, multiplier_high));
+    const __m128i cross =
+        _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), multiplier), _mm_mul_epu32(x, multiplier_high));
     return _mm_add_epi64(_mm_mul_epu32(x, multiplier), _mm_slli_epi64(cross, 32));
 }
 
 /* dsn_position_pair(key, 0) and (key, 1), low and high lanes: dsn_mix64 on vectors, the same bits. */
 inline __m128i position_pairs(uint32_t key) {
     const __m128i m1 = _mm_set1_epi64x(static_cast<long long>(0xBF58476D1CE4E5B9u)),
-                  m1_high = _mm_set1_epi64x(0xBF58476Du), m2 = _mm_set1_epi64x(static_cast<long long>(0x94D049BB133111EBu)),
+                  m1_high = _mm_set1_epi64x(0xBF58476Du),
+                  m2 = _mm_set1_epi64x(static_cast<long long>(0x94D049BB133111EBu)),
                   m2_high = _mm_set1_epi64x(0x94D049BBu);
     /* key 2^32 + index G, index 0 and 1 */
     __m128i x = _mm_add_epi64(_mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(key)), 0x11),
@@ -133,9 +134,40 @@ inline __m128i position_pairs(uint32_t key) {
     return _mm_xor_si128(x, _mm_srli_epi64(x, 31));
 }
 
+/* The cell's count as bytes, lanes k = 0 .. 15: all ones when impulse k does not exist, that is when the
+   count is at most k. The count is the least n with uniform < cdf[n] (dsn_poisson_draw, one draw on this
+   path) and cdf rises with n, so count <= k exactly when uniform < cdf[k]: 16 comparisons on vectors
+   rather than a search on the busy scalar ALUs. The comparisons are unsigned: both sides get their top
+   bit flipped, the cdf's once per point. Lanes k at or beyond the table size (cdf[k] = 2^32 - 1, which a
+   uniform of 2^32 - 1 does not undercut) are absent by beyond_table. */
+typedef struct count_lanes {
+    __m128i cdf[4];       /* cdf[0 .. 15], top bits flipped */
+    __m128i beyond_table; /* bytes k >= poisson_size: all ones */
+} count_lanes;
+
+inline count_lanes count_lanes_of(const dsn_noise *noise) {
+    count_lanes lanes;
+    const __m128i flip = _mm_set1_epi32(INT32_MIN);
+    const __m128i *cdf = static_cast<const __m128i *>(static_cast<const void *>(noise->poisson_cdf));
+    for (int q = 0; q < 4; q++) lanes.cdf[q] = _mm_xor_si128(_mm_loadu_si128(cdf + q), flip);
+    const __m128i lane_index = _mm_set_epi8(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    const uint32_t size = noise->poisson_size < 16 ? noise->poisson_size : 16u;
+    lanes.beyond_table = _mm_cmpgt_epi8(lane_index, broadcast(size * 0x01010101u - 0x01010101u));
+    return lanes;
+}
+
+inline __m128i absent_impulses(uint32_t uniform, const count_lanes *lanes) {
+    const __m128i value = broadcast(uniform ^ 0x80000000u);
+    const __m128i low =
+        _mm_packs_epi32(_mm_cmpgt_epi32(lanes->cdf[0], value), _mm_cmpgt_epi32(lanes->cdf[1], value));
+    const __m128i high =
+        _mm_packs_epi32(_mm_cmpgt_epi32(lanes->cdf[2], value), _mm_cmpgt_epi32(lanes->cdf[3], value));
+    return _mm_or_si128(_mm_packs_epi16(low, high), lanes->beyond_table); /* saturation keeps 0 and -1 */
+}
+
 /* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
    (garbage for lanes that miss, never read). Unsigned byte range test: min(v - low, span) == v - low. */
-inline uint32_t cell_hits(__m128i fields, const lane_range *x, const lane_range *y,
+inline uint32_t cell_hits(__m128i fields, __m128i absent, const lane_range *x, const lane_range *y,
                           __m128i corner, __m128i widths, uint16_t *entries) {
     const __m128i nibbles = _mm_set1_epi8(0x0F), zero = _mm_setzero_si128();
     const __m128i offset_x = _mm_and_si128(fields, nibbles);
@@ -153,7 +185,7 @@ inline uint32_t cell_hits(__m128i fields, const lane_range *x, const lane_range 
         out + 1,
         _mm_sub_epi16(corner, _mm_add_epi16(_mm_mullo_epi16(_mm_unpackhi_epi8(offset_y, zero), widths),
                                             _mm_unpackhi_epi8(offset_x, zero))));
-    return uint32_t(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+    return uint32_t(_mm_movemask_epi8(_mm_andnot_si128(absent, _mm_and_si128(in_x, in_y))));
 }
 
 /* Texton value at `entry` as the sign-extended uint32 that texton_value gives, in one sign-extending load
@@ -191,6 +223,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                    rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
     const uint32_t first_column = low_x >> 4, reach_x = x + noise->radius[0] - (first_column << 4);
     const __m128i widths = _mm_set1_epi16(static_cast<short>(width)), sixteen = _mm_set1_epi16(16);
+    const count_lanes counts = count_lanes_of(noise);
     /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
        reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
        j + 1 is reached, so its reach is at least 16. */
@@ -216,8 +249,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
         for (uint32_t j = 0; j < columns; j++) {
             /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
             const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
-            const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key),
-                           count = dsn_poisson_draw(noise, key);
+            const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
             const lane_range *column_range = j == 0             ? &first_range
                                              : j + 1 == columns ? &last_range
                                                                 : &whole_range;
@@ -228,11 +260,9 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 hits0 = hits1 = hits2 = 0;
                 slot = shift = 0;
             }
-            uint32_t hits = cell_hits(position_pairs(key), column_range,
-                                      &row_range, corner, widths, entries + 16 * slot);
+            const uint32_t hits = cell_hits(position_pairs(key), absent_impulses(key, &counts), column_range,
+                                            &row_range, corner, widths, entries + 16 * slot);
             corner = _mm_sub_epi16(corner, sixteen);
-            /* A branch, not a mask: hits then does not wait for the count's search. */
-            hits &= count < 16 ? (1u << count) - 1u : 0xFFFFu;
             const uint64_t placed = uint64_t(hits) << shift;
             if (slot < 4)
                 hits0 |= placed;
@@ -242,10 +272,11 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 hits2 |= placed;
             slot++;
             shift = (shift + 16) & 63;
-            if (count > 16) {
-                /* The rare rest, through the generic cell walk's per-impulse test. */
+            if (key >= noise->poisson_cdf[16]) {
+                /* The count is above 16 (or the key is 2^32 - 1 and the count the table size, at most 16):
+                   the rare rest, through the generic cell walk's per-impulse test. */
                 const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
-                add_impulses(noise, key, 16, count, &in_x, &in_y, sums);
+                add_impulses(noise, key, 16, dsn_poisson_draw(noise, key), &in_x, &in_y, sums);
             }
         }
     }
