@@ -188,31 +188,71 @@ inline uint32_t cell_hits(__m128i fields, __m128i absent, const lane_range *x, c
     return uint32_t(_mm_movemask_epi8(_mm_andnot_si128(absent, _mm_and_si128(in_x, in_y))));
 }
 
-/* Texton value at `entry` as the sign-extended uint32 that texton_value gives, in one sign-extending load
-   (x86 only: a little-endian two's-complement host, where these bytes read as signed char or int16 are
-   the stored values; the conversions to uint32 are modulo 2^32). */
+/* The hits' texton values are summed while visiting them, then added to the channel sums (flush_hit_sums).
+   Grey values go to a scalar sum through one sign-extending load each (x86 only: a little-endian
+   two's-complement host, where the stored bytes read as signed char or int16 are the values; the
+   conversions to uint32 are modulo 2^32). RGB values go to the low lanes of a vector, the scalar ALUs
+   being the busier units on this path: one unaligned load of 4 bytes (8-bit values) or 8 (16-bit)
+   reads 1 or 2 bytes past the entry, at most into the asset's 4-byte CRC, which the loader guarantees
+   is in the buffer right after the texton (format.h: total_size). 8-bit values are summed in 16-bit
+   lanes, which cannot overflow between two flushes (at most 9 x 16 hits, 144 x 127 < 2^15); 16-bit
+   values in 32-bit lanes. */
+typedef struct hit_sums {
+    uint32_t grey;
+    __m128i rgb;
+} hit_sums;
+
 template <uint32_t Bits>
-inline uint32_t stored_value(const unsigned char *entry) {
+inline uint32_t grey_value(const unsigned char *entry) {
     if (Bits == 8) return uint32_t(*static_cast<const signed char *>(static_cast<const void *>(entry)));
     int16_t value;
     __builtin_memcpy(&value, entry, sizeof value);
     return uint32_t(value);
 }
 
-/* Adds to sums the texton values of the hits of (at most) four cells: bit 16 c + k of hits is impulse k
-   of cell c, whose entries are entries[16 c ..]. The channel sums are named locals, not an array, so
-   that they stay in registers. */
+template <uint32_t Bits>
+inline __m128i rgb_values(const unsigned char *entry) {
+    if (Bits == 8) {
+        uint32_t bytes;
+        __builtin_memcpy(&bytes, entry, sizeof bytes);
+        const __m128i values = _mm_cvtsi32_si128(static_cast<int>(bytes)); /* the bits unchanged */
+        return _mm_srai_epi16(_mm_unpacklo_epi8(values, values), 8);
+    }
+    const __m128i values = _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(entry)));
+    return _mm_srai_epi32(_mm_unpacklo_epi16(values, values), 16);
+}
+
+/* Sums the texton values of the hits of (at most) four cells: bit 16 c + k of hits is impulse k of cell
+   c, whose entries are entries[16 c ..]. */
 template <uint32_t Channels, uint32_t Bits>
-inline void add_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, uint32_t *sums) {
-    uint32_t sum0 = 0, sum1 = 0, sum2 = 0;
+inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, hit_sums *sums) {
     for (; hits != 0; hits &= hits - 1) {
         const unsigned char *entry = texton + size_t(entries[__builtin_ctzll(hits)]) * Channels * (Bits / 8);
-        sum0 += stored_value<Bits>(entry);
-        if (Channels == 3)
-            sum1 += stored_value<Bits>(entry + Bits / 8), sum2 += stored_value<Bits>(entry + 2 * Bits / 8);
+        if (Channels == 1)
+            sums->grey += grey_value<Bits>(entry);
+        else
+            sums->rgb = Bits == 8 ? _mm_add_epi16(sums->rgb, rgb_values<Bits>(entry))
+                                  : _mm_add_epi32(sums->rgb, rgb_values<Bits>(entry));
     }
-    sums[0] += sum0;
-    if (Channels == 3) sums[1] += sum1, sums[2] += sum2;
+}
+
+/* Adds the hit sums to the channel sums (sign-extended, modulo 2^32) and clears them. */
+template <uint32_t Channels, uint32_t Bits>
+inline void flush_hit_sums(hit_sums *hit, uint32_t *sums) {
+    if (Channels == 1) {
+        sums[0] += hit->grey;
+    } else if (Bits == 8) {
+        /* The lanes come out zero-extended: (v ^ 2^15) - 2^15 sign-extends them. */
+        sums[0] += (uint32_t(_mm_extract_epi16(hit->rgb, 0)) ^ 0x8000u) - 0x8000u;
+        sums[1] += (uint32_t(_mm_extract_epi16(hit->rgb, 1)) ^ 0x8000u) - 0x8000u;
+        sums[2] += (uint32_t(_mm_extract_epi16(hit->rgb, 2)) ^ 0x8000u) - 0x8000u;
+    } else {
+        sums[0] += uint32_t(_mm_cvtsi128_si32(hit->rgb));
+        sums[1] += uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(hit->rgb, 1)));
+        sums[2] += uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(hit->rgb, 2)));
+    }
+    hit->grey = 0;
+    hit->rgb = _mm_setzero_si128();
 }
 
 template <uint32_t Channels, uint32_t Bits>
@@ -239,6 +279,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
     uint16_t entries[9 * 16];
     uint64_t hits0 = 0, hits1 = 0, hits2 = 0;
     uint32_t slot = 0, shift = 0;
+    hit_sums hit = {0, _mm_setzero_si128()};
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
         const uint32_t reach_y = y + noise->radius[1] - (cell_y << 4);
@@ -254,9 +295,10 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                                              : j + 1 == columns ? &last_range
                                                                 : &whole_range;
             if (slot == 9) {
-                add_hits<Channels, Bits>(noise->asset.texton, hits0, entries, sums);
-                add_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, sums);
-                add_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, sums);
+                sum_hits<Channels, Bits>(noise->asset.texton, hits0, entries, &hit);
+                sum_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, &hit);
+                sum_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, &hit);
+                flush_hit_sums<Channels, Bits>(&hit, sums);
                 hits0 = hits1 = hits2 = 0;
                 slot = shift = 0;
             }
@@ -280,9 +322,10 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
             }
         }
     }
-    add_hits<Channels, Bits>(noise->asset.texton, hits0, entries, sums);
-    add_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, sums);
-    add_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, sums);
+    sum_hits<Channels, Bits>(noise->asset.texton, hits0, entries, &hit);
+    sum_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, &hit);
+    sum_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, &hit);
+    flush_hit_sums<Channels, Bits>(&hit, sums);
 }
 #endif
 
