@@ -118,14 +118,15 @@ inline __m128i multiply64(__m128i x, __m128i multiplier, __m128i multiplier_high
     return _mm_add_epi64(_mm_mul_epu32(x, multiplier), _mm_slli_epi64(cross, 32));
 }
 
-/* dsn_position_pair(key, 0) and (key, 1), low and high lanes: dsn_mix64 on vectors, the same bits. */
-inline __m128i position_pairs(uint32_t key) {
+/* dsn_position_pair(key, 0) and (key, 1), low and high lanes, for the key in the low 32 bits of `key`:
+   dsn_mix64 on vectors, the same bits. */
+inline __m128i position_pairs(__m128i key) {
     const __m128i m1 = _mm_set1_epi64x(static_cast<long long>(0xBF58476D1CE4E5B9u)),
                   m1_high = _mm_set1_epi64x(0xBF58476Du),
                   m2 = _mm_set1_epi64x(static_cast<long long>(0x94D049BB133111EBu)),
                   m2_high = _mm_set1_epi64x(0x94D049BBu);
     /* key 2^32 + index G, index 0 and 1 */
-    __m128i x = _mm_add_epi64(_mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(key)), 0x11),
+    __m128i x = _mm_add_epi64(_mm_shuffle_epi32(key, 0x11),
                               _mm_set_epi64x(static_cast<long long>(0x9E3779B97F4A7C15u), 0));
     x = _mm_xor_si128(x, _mm_srli_epi64(x, 30));
     x = multiply64(x, m1, m1_high);
@@ -156,8 +157,9 @@ inline count_lanes count_lanes_of(const dsn_noise *noise) {
     return lanes;
 }
 
-inline __m128i absent_impulses(uint32_t uniform, const count_lanes *lanes) {
-    const __m128i value = broadcast(uniform ^ 0x80000000u);
+/* For the uniform in the low 32 bits of `uniform`. */
+inline __m128i absent_impulses(__m128i uniform, const count_lanes *lanes) {
+    const __m128i value = _mm_shuffle_epi32(_mm_xor_si128(uniform, _mm_cvtsi32_si128(INT32_MIN)), 0);
     const __m128i low =
         _mm_packs_epi32(_mm_cmpgt_epi32(lanes->cdf[0], value), _mm_cmpgt_epi32(lanes->cdf[1], value));
     const __m128i high =
@@ -291,6 +293,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
             /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
             const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
             const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
+            const __m128i key_vector = _mm_cvtsi32_si128(static_cast<int>(key)); /* the bits unchanged */
             const lane_range *column_range = j == 0             ? &first_range
                                              : j + 1 == columns ? &last_range
                                                                 : &whole_range;
@@ -302,8 +305,8 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 hits0 = hits1 = hits2 = 0;
                 slot = shift = 0;
             }
-            const uint32_t hits = cell_hits(position_pairs(key), absent_impulses(key, &counts), column_range,
-                                            &row_range, corner, widths, entries + 16 * slot);
+            const uint32_t hits = cell_hits(position_pairs(key_vector), absent_impulses(key_vector, &counts),
+                                            column_range, &row_range, corner, widths, entries + 16 * slot);
             corner = _mm_sub_epi16(corner, sixteen);
             const uint64_t placed = uint64_t(hits) << shift;
             if (slot < 4)
