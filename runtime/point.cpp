@@ -224,11 +224,21 @@ inline __m128i rgb_values(const unsigned char *entry) {
     return _mm_srai_epi32(_mm_unpacklo_epi16(values, values), 16);
 }
 
+/* Number of set bits (SWAR: the popcnt instruction is not in the SSE2 baseline). */
+inline uint32_t popcount64(uint64_t bits) {
+    bits -= (bits >> 1) & 0x5555555555555555u;
+    bits = (bits & 0x3333333333333333u) + ((bits >> 2) & 0x3333333333333333u);
+    bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0Fu;
+    return uint32_t((bits * 0x0101010101010101u) >> 56);
+}
+
 /* Sums the texton values of the hits of (at most) four cells: bit 16 c + k of hits is impulse k of cell
-   c, whose entries are entries[16 c ..]. */
+   c, whose entries are entries[16 c ..]. The loop counts the hits down rather than testing the mask for
+   zero: its exit, hard to predict, then resolves once the count is known and one cycle per hit later,
+   not at the end of the mask's chain of two dependent instructions per hit (117.5 against 118.5 ns). */
 template <uint32_t Channels, uint32_t Bits>
 inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, hit_sums *sums) {
-    for (; hits != 0; hits &= hits - 1) {
+    for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
         const unsigned char *entry = texton + size_t(entries[__builtin_ctzll(hits)]) * Channels * (Bits / 8);
         if (Channels == 1)
             sums->grey += grey_value<Bits>(entry);
