@@ -96,18 +96,24 @@ inline __m128i broadcast(uint32_t pattern) {
     return _mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(pattern)), 0);
 }
 
-/* The in-cell offsets t of one axis that reach the point, 0 <= reach - t < size, as bytes for every lane:
-   low .. low + span. reach is the texton index of offset 0; it lies in [0, size + 14] for a cell that
-   reaches the point, so the range is never empty. */
+/* The in-cell offsets t of one axis that reach the point, 0 <= reach - t < size, tested on every lane's
+   byte v as an unsigned range: low <= v <= low + span exactly when min(v - low, span) == v - low. reach is
+   the texton index of offset 0; it lies in [0, size + 14] for a cell that reaches the point, so the range
+   is never empty. The x test takes the x offsets (low nibbles), the y test whole fields, 16 y + x: y lies
+   in [low, high] exactly when the field lies in [16 low, 16 high + 15] (at most 255: no wrap). */
 typedef struct lane_range {
     __m128i low, span;
 } lane_range;
 
-inline lane_range lane_range_of(uint32_t reach, uint32_t size) {
+inline lane_range lane_range_of(uint32_t reach, uint32_t size, uint32_t unit, uint32_t below_unit) {
     const uint32_t low = reach >= size ? reach - size + 1u : 0u, high = reach < 15u ? reach : 15u;
-    lane_range range = {broadcast(low * 0x01010101u), broadcast((high - low) * 0x01010101u)};
+    lane_range range = {broadcast(unit * low * 0x01010101u),
+                        broadcast((unit * (high - low) + below_unit) * 0x01010101u)};
     return range;
 }
+
+inline lane_range x_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 1u, 0u); }
+inline lane_range y_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 16u, 15u); }
 
 /* x * multiplier modulo 2^64 in both 64-bit lanes (SSE2 multiplies 32 x 32 -> 64 bits only):
    x_lo m_lo + 2^32 (x_hi m_lo + x_lo m_hi). `multiplier` holds m_lo in the low half of each lane,
@@ -167,26 +173,26 @@ inline __m128i absent_impulses(__m128i uniform, const count_lanes *lanes) {
     return _mm_or_si128(_mm_packs_epi16(low, high), lanes->beyond_table); /* saturation keeps 0 and -1 */
 }
 
+/* Texton entries of 8 lanes whose fields (16 offset_y + offset_x) are in 16-bit lanes: corner -
+   (offset_y width + offset_x) = corner - field - offset_y (width - 16), corner = reach_y width + reach_x.
+   Exact in 16 bits for hits. */
+inline __m128i lane_entries(__m128i fields, __m128i corner, __m128i widths_less_16) {
+    return _mm_sub_epi16(corner,
+                         _mm_add_epi16(fields, _mm_mullo_epi16(_mm_srli_epi16(fields, 4), widths_less_16)));
+}
+
 /* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
-   (garbage for lanes that miss, never read). Unsigned byte range test: min(v - low, span) == v - low. */
+   (garbage for lanes that miss, never read). */
 inline uint32_t cell_hits(__m128i fields, __m128i absent, const lane_range *x, const lane_range *y,
-                          __m128i corner, __m128i widths, uint16_t *entries) {
-    const __m128i nibbles = _mm_set1_epi8(0x0F), zero = _mm_setzero_si128();
-    const __m128i offset_x = _mm_and_si128(fields, nibbles);
-    const __m128i offset_y = _mm_and_si128(_mm_srli_epi16(fields, 4), nibbles);
-    const __m128i dx = _mm_sub_epi8(offset_x, x->low), dy = _mm_sub_epi8(offset_y, y->low);
+                          __m128i corner, __m128i widths_less_16, uint16_t *entries) {
+    const __m128i offset_x = _mm_and_si128(fields, _mm_set1_epi8(0x0F));
+    const __m128i dx = _mm_sub_epi8(offset_x, x->low), dy = _mm_sub_epi8(fields, y->low);
     const __m128i in_x = _mm_cmpeq_epi8(_mm_min_epu8(dx, x->span), dx);
     const __m128i in_y = _mm_cmpeq_epi8(_mm_min_epu8(dy, y->span), dy);
-    /* entry = corner - (offset_y width + offset_x), corner = reach_y width + reach_x: exact in 16 bits
-       for hits. */
+    const __m128i zero = _mm_setzero_si128();
     __m128i *out = static_cast<__m128i *>(static_cast<void *>(entries));
-    _mm_storeu_si128(
-        out, _mm_sub_epi16(corner, _mm_add_epi16(_mm_mullo_epi16(_mm_unpacklo_epi8(offset_y, zero), widths),
-                                                 _mm_unpacklo_epi8(offset_x, zero))));
-    _mm_storeu_si128(
-        out + 1,
-        _mm_sub_epi16(corner, _mm_add_epi16(_mm_mullo_epi16(_mm_unpackhi_epi8(offset_y, zero), widths),
-                                            _mm_unpackhi_epi8(offset_x, zero))));
+    _mm_storeu_si128(out, lane_entries(_mm_unpacklo_epi8(fields, zero), corner, widths_less_16));
+    _mm_storeu_si128(out + 1, lane_entries(_mm_unpackhi_epi8(fields, zero), corner, widths_less_16));
     return uint32_t(_mm_movemask_epi8(_mm_andnot_si128(absent, _mm_and_si128(in_x, in_y))));
 }
 
@@ -274,13 +280,16 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
     const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
                    rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
     const uint32_t first_column = low_x >> 4, reach_x = x + noise->radius[0] - (first_column << 4);
-    const __m128i widths = _mm_set1_epi16(static_cast<short>(width)), sixteen = _mm_set1_epi16(16);
+    /* width - 16 in 16-bit lanes (modulo 2^16, like the entries: the short conversion is modulo 2^16 on
+       every x86 compiler) */
+    const __m128i widths_less_16 = _mm_set1_epi16(static_cast<short>((width - 16) & 0xFFFFu)),
+                  sixteen = _mm_set1_epi16(16);
     const count_lanes counts = count_lanes_of(noise);
     /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
        reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
        j + 1 is reached, so its reach is at least 16. */
-    const lane_range first_range = lane_range_of(reach_x, width),
-                     last_range = lane_range_of(reach_x - 16 * (columns - 1), width),
+    const lane_range first_range = x_range_of(reach_x, width),
+                     last_range = x_range_of(reach_x - 16 * (columns - 1), width),
                      whole_range = {_mm_setzero_si128(), _mm_set1_epi8(15)};
     /* The hits of up to 9 cells wait until all are tested (the 3 x 3 cells of the usual 31 x 31 texton:
        one wait per point): cells 0-3 in hits0, 4-7 in hits1, 8 in hits2, 16 bits each. Visiting hits
@@ -295,7 +304,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
         const uint32_t reach_y = y + noise->radius[1] - (cell_y << 4);
-        const lane_range row_range = lane_range_of(reach_y, height);
+        const lane_range row_range = y_range_of(reach_y, height);
         /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
            conversion is modulo 2^16 on every x86 compiler). */
         __m128i corner = _mm_set1_epi16(static_cast<short>((reach_y * width + reach_x) & 0xFFFFu));
@@ -315,8 +324,9 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 hits0 = hits1 = hits2 = 0;
                 slot = shift = 0;
             }
-            const uint32_t hits = cell_hits(position_pairs(key_vector), absent_impulses(key_vector, &counts),
-                                            column_range, &row_range, corner, widths, entries + 16 * slot);
+            const uint32_t hits =
+                cell_hits(position_pairs(key_vector), absent_impulses(key_vector, &counts), column_range,
+                          &row_range, corner, widths_less_16, entries + 16 * slot);
             corner = _mm_sub_epi16(corner, sixteen);
             const uint64_t placed = uint64_t(hits) << shift;
             if (slot < 4)
