@@ -141,36 +141,32 @@ inline __m128i position_pairs(__m128i key) {
     return _mm_xor_si128(x, _mm_srli_epi64(x, 31));
 }
 
-/* The cell's count as bytes, lanes k = 0 .. 15: all ones when impulse k does not exist, that is when the
-   count is at most k. The count is the least n with uniform < cdf[n] (dsn_poisson_draw, one draw on this
-   path) and cdf rises with n, so count <= k exactly when uniform < cdf[k]: 16 comparisons on vectors
-   rather than a search on the busy scalar ALUs. The comparisons are unsigned: both sides get their top
-   bit flipped, the cdf's once per point. Lanes k at or beyond the table size (cdf[k] = 2^32 - 1, which a
-   uniform of 2^32 - 1 does not undercut) are absent by beyond_table. */
-typedef struct count_lanes {
-    __m128i cdf[4];       /* cdf[0 .. 15], top bits flipped */
-    __m128i beyond_table; /* bytes k >= poisson_size: all ones */
-} count_lanes;
-
-inline count_lanes count_lanes_of(const dsn_noise *noise) {
-    count_lanes lanes;
-    const __m128i flip = _mm_set1_epi32(INT32_MIN);
-    const __m128i *cdf = static_cast<const __m128i *>(static_cast<const void *>(noise->poisson_cdf));
-    for (int q = 0; q < 4; q++) lanes.cdf[q] = _mm_xor_si128(_mm_loadu_si128(cdf + q), flip);
-    const __m128i lane_index = _mm_set_epi8(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
-    const uint32_t size = noise->poisson_size < 16 ? noise->poisson_size : 16u;
-    lanes.beyond_table = _mm_cmpgt_epi8(lane_index, broadcast(size * 0x01010101u - 0x01010101u));
-    return lanes;
+/* dsn_poisson_draw (one draw on this path) with its first two steps of search taken without a branch:
+   from the guide, 90% of the counts need no step, 8% one and 1.3% two at the usual mean of 8, so a
+   branch on them would often be mispredicted (~5 ns per point). A step from n adds uniform >= cdf[n]:
+   exact below the table size; at or past it (cdf = 2^32 - 1, undercut by no uniform but 2^32 - 1) it
+   may overshoot, which the rare exact search behind catches, as it does counts that need more steps.
+   The reads go at most to cdf[size + 1] (accumulate checks that it is in the table). */
+inline uint32_t poisson_count(const dsn_noise *noise, uint32_t uniform) {
+    uint32_t n = noise->poisson_guide[uniform >> 26];
+    n += uint32_t(uniform >= noise->poisson_cdf[n]);
+    n += uint32_t(uniform >= noise->poisson_cdf[n]);
+    if (n > noise->poisson_size || (n < noise->poisson_size && uniform >= noise->poisson_cdf[n]))
+        n = dsn_poisson_draw(noise, uniform);
+    return n;
 }
 
-/* For the uniform in the low 32 bits of `uniform`. */
-inline __m128i absent_impulses(__m128i uniform, const count_lanes *lanes) {
-    const __m128i value = _mm_shuffle_epi32(_mm_xor_si128(uniform, _mm_cvtsi32_si128(INT32_MIN)), 0);
-    const __m128i low =
-        _mm_packs_epi32(_mm_cmpgt_epi32(lanes->cdf[0], value), _mm_cmpgt_epi32(lanes->cdf[1], value));
-    const __m128i high =
-        _mm_packs_epi32(_mm_cmpgt_epi32(lanes->cdf[2], value), _mm_cmpgt_epi32(lanes->cdf[3], value));
-    return _mm_or_si128(_mm_packs_epi16(low, high), lanes->beyond_table); /* saturation keeps 0 and -1 */
+/* Lanes k >= count as all-ones bytes (the impulses that do not exist): 16 bytes of absent_window from
+   16 - min(count, 16). */
+/* clang-format off */
+const unsigned char absent_window[32] = {
+    0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,
+    255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255};
+/* clang-format on */
+
+inline __m128i absent_impulses(uint32_t count) {
+    const unsigned char *window = absent_window + 16 - (count < 16 ? count : 16u);
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(window)));
 }
 
 /* Texton entries of 8 lanes whose fields (16 offset_y + offset_x) are in 16-bit lanes: corner -
@@ -284,7 +280,6 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
        every x86 compiler) */
     const __m128i widths_less_16 = _mm_set1_epi16(static_cast<short>((width - 16) & 0xFFFFu)),
                   sixteen = _mm_set1_epi16(16);
-    const count_lanes counts = count_lanes_of(noise);
     /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
        reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
        j + 1 is reached, so its reach is at least 16. */
@@ -324,9 +319,9 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 hits0 = hits1 = hits2 = 0;
                 slot = shift = 0;
             }
-            const uint32_t hits =
-                cell_hits(position_pairs(key_vector), absent_impulses(key_vector, &counts), column_range,
-                          &row_range, corner, widths_less_16, entries + 16 * slot);
+            const uint32_t count = poisson_count(noise, key);
+            const uint32_t hits = cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
+                                            &row_range, corner, widths_less_16, entries + 16 * slot);
             corner = _mm_sub_epi16(corner, sixteen);
             const uint64_t placed = uint64_t(hits) << shift;
             if (slot < 4)
@@ -337,11 +332,10 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                 hits2 |= placed;
             slot++;
             shift = (shift + 16) & 63;
-            if (key >= noise->poisson_cdf[16]) {
-                /* The count is above 16 (or the key is 2^32 - 1 and the count the table size, at most 16):
-                   the rare rest, through the generic cell walk's per-impulse test. */
+            if (count > 16) {
+                /* The rare rest, through the generic cell walk's per-impulse test. */
                 const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
-                add_impulses(noise, key, 16, dsn_poisson_draw(noise, key), &in_x, &in_y, sums);
+                add_impulses(noise, key, 16, count, &in_x, &in_y, sums);
             }
         }
     }
@@ -357,7 +351,8 @@ void accumulate(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) 
 #if defined(__SSE2__)
     const dsn_asset *asset = &noise->asset;
     if (noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
-        noise->period[1] == 0) {
+        noise->period[1] == 0 &&
+        noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0]) {
         if (asset->channels == 3)
             asset->bits == 8 ? accumulate_cells16<3, 8>(noise, x, y, sums)
                              : accumulate_cells16<3, 16>(noise, x, y, sums);
