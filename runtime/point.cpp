@@ -269,6 +269,21 @@ inline void flush_hit_sums(hit_sums *hit, uint32_t *sums) {
     hit->rgb = _mm_setzero_si128();
 }
 
+/* Sums the hits of `cells` (up to 9) cells, cell s's mask at masks[s] and its entries at entries[16 s]:
+   4 masks read at once as a 64-bit word (x86: little-endian), those past the cells cleared first. */
+template <uint32_t Channels, uint32_t Bits>
+inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint32_t cells,
+                              const uint16_t *entries, hit_sums *sums) {
+    for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
+    uint64_t hits0, hits1, hits2;
+    __builtin_memcpy(&hits0, masks, sizeof hits0);
+    __builtin_memcpy(&hits1, masks + 4, sizeof hits1);
+    __builtin_memcpy(&hits2, masks + 8, sizeof hits2);
+    sum_hits<Channels, Bits>(texton, hits0, entries, sums);
+    sum_hits<Channels, Bits>(texton, hits1, entries + 64, sums);
+    sum_hits<Channels, Bits>(texton, hits2, entries + 128, sums);
+}
+
 template <uint32_t Channels, uint32_t Bits>
 void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) {
     const uint32_t width = noise->asset.width, height = noise->asset.height;
@@ -287,14 +302,14 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                      last_range = x_range_of(reach_x - 16 * (columns - 1), width),
                      whole_range = {_mm_setzero_si128(), _mm_set1_epi8(15)};
     /* The hits of up to 9 cells wait until all are tested (the 3 x 3 cells of the usual 31 x 31 texton:
-       one wait per point): cells 0-3 in hits0, 4-7 in hits1, 8 in hits2, 16 bits each. Visiting hits
-       ends with a loop exit that depends on the last cell's mask, hard to predict. When the masks were
-       made long before, a misprediction resolves at once; right after its cells, it waits for their
-       whole hash-and-test chain, and the work of the next cells with it (visiting every 4 cells took
-       ~139 ns per point, every 9 ~130). Locals, not an array: they stay in registers. */
-    uint16_t entries[9 * 16];
-    uint64_t hits0 = 0, hits1 = 0, hits2 = 0;
-    uint32_t slot = 0, shift = 0;
+       one wait per point): cell s's mask in masks[s], its entries at entries[16 s]. Visiting hits ends
+       with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
+       long before, a misprediction resolves at once; right after its cells, it waits for their whole
+       hash-and-test chain, and the work of the next cells with it (visiting every 4 cells took ~139 ns
+       per point, every 9 ~130). The masks are stored one by one rather than shifted into words: fewer
+       instructions (116 -> 114 ns). */
+    uint16_t entries[9 * 16], masks[12];
+    uint32_t slot = 0;
     hit_sums hit = {0, _mm_setzero_si128()};
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
@@ -312,26 +327,15 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
                                              : j + 1 == columns ? &last_range
                                                                 : &whole_range;
             if (slot == 9) {
-                sum_hits<Channels, Bits>(noise->asset.texton, hits0, entries, &hit);
-                sum_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, &hit);
-                sum_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, &hit);
+                sum_buffered_hits<Channels, Bits>(noise->asset.texton, masks, 9, entries, &hit);
                 flush_hit_sums<Channels, Bits>(&hit, sums);
-                hits0 = hits1 = hits2 = 0;
-                slot = shift = 0;
+                slot = 0;
             }
             const uint32_t count = poisson_count(noise, key);
-            const uint32_t hits = cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
-                                            &row_range, corner, widths_less_16, entries + 16 * slot);
-            corner = _mm_sub_epi16(corner, sixteen);
-            const uint64_t placed = uint64_t(hits) << shift;
-            if (slot < 4)
-                hits0 |= placed;
-            else if (slot < 8)
-                hits1 |= placed;
-            else
-                hits2 |= placed;
+            masks[slot] = uint16_t(cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
+                                             &row_range, corner, widths_less_16, entries + 16 * slot));
             slot++;
-            shift = (shift + 16) & 63;
+            corner = _mm_sub_epi16(corner, sixteen);
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
                 const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
@@ -339,9 +343,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
             }
         }
     }
-    sum_hits<Channels, Bits>(noise->asset.texton, hits0, entries, &hit);
-    sum_hits<Channels, Bits>(noise->asset.texton, hits1, entries + 64, &hit);
-    sum_hits<Channels, Bits>(noise->asset.texton, hits2, entries + 128, &hit);
+    sum_buffered_hits<Channels, Bits>(noise->asset.texton, masks, slot, entries, &hit);
     flush_hit_sums<Channels, Bits>(&hit, sums);
 }
 #endif
