@@ -352,6 +352,7 @@ void accumulate(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) 
     sums[0] = sums[1] = sums[2] = 0;
 #if defined(__SSE2__)
     const dsn_asset *asset = &noise->asset;
+    /* poisson_count reads up to cdf[size + 1]: always in the table for one draw (mean <= 16), checked */
     if (noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
         noise->period[1] == 0 &&
         noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0]) {
