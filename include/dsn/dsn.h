@@ -156,8 +156,9 @@ uint8_t dsn_fixed_to_u8(int32_t value);
 /* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86-64): its fast path
    keeps a 16-bit block of sums, a planar copy of the texton and an impulse list on the stack, about 28 KB
    (34 KB with AVX2). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the small-stack path there too
-   (same bits, slower). A per-point call uses about 400 bytes (380 measured on x86-64), about 530 in the
-   small build below (a 1 x 1 tile: 528 measured on Cortex-M0, 500 on Cortex-M4). */
+   (same bits, slower). A per-point call uses about 650 bytes on x86-64 (628 measured: its fast path keeps
+   the masks and texton entries of 9 cells on the stack), about 530 in the small build below (a 1 x 1
+   tile: 528 measured on Cortex-M0, 500 on Cortex-M4). */
 /* Code size: built for size (-Os, which defines __OPTIMIZE_SIZE__), the runtime compiles generic, compact
    code paths instead of the speed-tuned ones (one bilinear texton reader for 8 and 16 bits, continuous
    grid tiles evaluated point by point, a lattice point evaluated as a 1 x 1 tile, no code copied per
