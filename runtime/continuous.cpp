@@ -6,7 +6,9 @@
    interpolation, in integer arithmetic: with the point-minus-impulse offset d (Q32.32) cut to 16
    fractional bits, t(d) = sum over the 4 surrounding texels of q * wx * wy, wx, wy in Q0.16. The per-
    channel sums carry 32 fractional bits and go through the lattice mode's normalization. With
-   DSN_SMALL_CODE (dsn.h) the texton is read by one generic reader and grid tiles go point by point. */
+   DSN_SMALL_CODE (dsn.h) a point walks its impulses one by one, the texton is read by one generic
+   reader and grid tiles go point by point; the fast build sifts the impulses on their packed lattice
+   fields first (evaluate_fast) and splats axis-aligned grids. */
 #include "noise_internal.h"
 
 namespace {
