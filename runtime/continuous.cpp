@@ -233,11 +233,10 @@ void evaluate(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
 
 #else
 /* ---- Fast per point: the impulses sifted by their packed lattice fields ----
-   The same impulses, offsets and weights as the walk above (so the same bits; integer sums do not
-   depend on the order), found with less work: each position pair is hashed once for all the impulses
-   it holds, all of them are tested against the point at once on their lattice fields (which bound the
-   16-bit positions to within one texel), and only the candidates get their fraction hash and the exact
-   test. */
+   The same impulses, offsets and weights as the small build's walk above (so the same bits; integer sums do
+   not depend on the order), found with less work: each position pair is hashed once for all the impulses it
+   holds, all of them are tested against the point at once on their lattice fields (which bound the 16-bit
+   positions to within one texel), and only the candidates get their fraction hash and the exact test. */
 
 /* Floor of value / 2^shift (1 <= shift <= 63) for a value far from the int64 limits, without shifting
    a negative number (implementation-defined): through a 2^63 bias, as dsn_round_saturate does. */
