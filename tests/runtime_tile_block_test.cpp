@@ -1,12 +1,14 @@
 // runtime_tile_block_test.cpp - the blocked tile path (16-bit block sums, split normalization, per-block
 // output conversion) against per-point evaluation, on windows spanning many blocks: every output type,
 // origins at the 32-bit wrap, periods, densities that push blocks onto the 32-bit fallback, and textons
-// at full scale (the largest sums the 16-bit path accepts).
+// at full scale (the largest sums the 16-bit path accepts). Every check runs each copy of the tile code
+// this CPU can run (on x86-64: the SSE2 copy and, with AVX2, the AVX2 copy; runtime/tile_dispatch.h).
 #include <doctest/doctest.h>
 
 #include <cstring>
 #include <vector>
 
+#include "../runtime/tile_dispatch.h"
 #include "support/test_assets.h"
 
 namespace {
@@ -20,8 +22,9 @@ struct Window {
 
 int32_t coordinate(int32_t origin, uint32_t offset) { return int32_t(uint32_t(origin) + offset); }
 
-// Values of the three tile functions that differ from per-point evaluation (fixed, float bits, u8).
-size_t differences(const dsn_noise &noise, const Window &w) {
+// Values of the three tile functions that differ from per-point evaluation (fixed, float bits, u8), with
+// the tile code `noise.tile_kernel` names.
+size_t kernel_differences(const dsn_noise &noise, const Window &w) {
     const uint32_t channels = noise.asset.channels;
     const size_t values = size_t(w.width) * w.height * channels;
     std::vector<int32_t> fixed(values);
@@ -52,7 +55,33 @@ size_t differences(const dsn_noise &noise, const Window &w) {
     return count;
 }
 
+// kernel_differences summed over every copy of the tile code this CPU runs.
+size_t differences(const dsn_noise &noise, const Window &w) {
+    size_t count = 0;
+    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= noise.tile_kernel; kernel++) {
+        dsn_noise copy = noise;
+        copy.tile_kernel = kernel;
+        CAPTURE(kernel);
+        count += kernel_differences(copy, w);
+    }
+    return count;
+}
+
 } // namespace
+
+TEST_CASE("init records the copy of the tile code this CPU runs") {
+    auto fields = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 3);
+    LoadedNoise loaded(fields, dsn_test::make_config(1));
+    CHECK(loaded.noise.tile_kernel == dsn_internal_tile_kernel());
+#if defined(__x86_64__) && !defined(__AVX2__)
+    // The Makefile builds the AVX2 copy on every x86-64 host (unless everything is built for AVX2): it
+    // must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs AVX2.
+    __builtin_cpu_init();
+    const uint32_t expected = __builtin_cpu_supports("avx2") ? DSN_TILE_KERNEL_AVX2 : DSN_TILE_KERNEL_DEFAULT;
+    CHECK(loaded.noise.tile_kernel == expected);
+    if (expected == DSN_TILE_KERNEL_DEFAULT) MESSAGE("this CPU has no AVX2: only the SSE2 tile code is tested");
+#endif
+}
 
 TEST_CASE("blocked tiles == per point for fixed, float and u8 output on windows of many blocks") {
     dsn_test::TestRandom random(77);

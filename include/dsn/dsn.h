@@ -100,12 +100,14 @@ typedef struct dsn_config {
 void dsn_config_defaults(dsn_config *config);
 
 /* The configured noise: caller-owned, a few hundred bytes, no pointers but the asset's texton. Fields
-   are private to the runtime and may change between versions. */
+   are private to the runtime and may change between versions. Init records which copy of the tile code
+   the CPU runs (x86-64: AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
 typedef struct dsn_noise {
     dsn_asset asset;
     uint32_t seed;
     uint32_t seed_column, seed_row; /* hashes of the seed mixed into the cell keys */
     uint32_t flags;
+    uint32_t tile_kernel; /* the copy of the tile code this CPU runs (set by init; the bits are the same) */
     uint32_t impacts_q16;
     uint32_t period[2];        /* 0 = not periodic */
     uint32_t cell_shift;       /* cells are (1 << cell_shift) lattice points wide */
@@ -153,9 +155,12 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    DSN_ERR_SCRATCH. dsn_tile_scratch_size returns 0 for an invalid noise or size. Width and height are
    1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is not addressable); null pointers
    give DSN_ERR_NULL. */
+/* Speed: on x86-64 the Makefile also builds the tile code for AVX2 (16 values per vector instead of 8)
+   and init picks it when CPUID and the OS allow (runtime/tile_dispatch.h); other build systems get one
+   copy, built with their own flags. Same bits either way. */
 /* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86-64): its fast path
    keeps a 16-bit block of sums, a planar copy of the texton and an impulse list on the stack, about 28 KB
-   (34 KB with AVX2). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the small-stack path there too
+   (34 KB for the AVX2 copy). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the small-stack path there too
    (same bits, slower). A per-point call uses about 650 bytes on x86-64 (628 measured: its fast path keeps
    the masks and texton entries of 9 cells on the stack), about 530 in the small build below (a 1 x 1
    tile: 528 measured on Cortex-M0, 500 on Cortex-M4). A continuous per-point call uses about 1.3 KB on

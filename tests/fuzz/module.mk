@@ -15,7 +15,8 @@ FUZZ_LIBRARY_OBJECTS := $(FUZZ_LIBRARY_SOURCES:%.cpp=$(BUILD)/fuzz/obj/%.o)
 
 $(BUILD)/fuzz/obj/%.o: %.cpp
 	@mkdir -p $(@D)
-	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
+	$(FUZZ_CXX) $(FUZZ_FLAGS) $(RUNTIME_DISPATCH_FLAGS) -fsanitize=fuzzer-no-link $(RUNTIME_FILE_FLAGS) -c $< -o $@
+$(BUILD)/fuzz/obj/runtime/tile_avx2.o: RUNTIME_FILE_FLAGS = $(TILE_AVX2_FLAGS)
 
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.cpp $(FUZZ_LIBRARY_OBJECTS)
 	@mkdir -p $(@D)
