@@ -79,7 +79,8 @@ TEST_CASE("init records the copy of the tile code this CPU runs") {
     __builtin_cpu_init();
     const uint32_t expected = __builtin_cpu_supports("avx2") ? DSN_TILE_KERNEL_AVX2 : DSN_TILE_KERNEL_DEFAULT;
     CHECK(loaded.noise.tile_kernel == expected);
-    if (expected == DSN_TILE_KERNEL_DEFAULT) MESSAGE("this CPU has no AVX2: only the SSE2 tile code is tested");
+    if (expected == DSN_TILE_KERNEL_DEFAULT)
+        MESSAGE("this CPU has no AVX2: only the SSE2 tile code is tested");
 #endif
 }
 
