@@ -94,6 +94,4 @@ uint32_t dsn_internal_tile_kernel(void) {
     __cpuid_count(7, 0, eax, ebx, ecx, edx);
     return (ebx & (1u << 5)) != 0 ? DSN_TILE_KERNEL_AVX2 : DSN_TILE_KERNEL_DEFAULT;
 }
-#else
-uint32_t dsn_internal_tile_kernel(void) { return DSN_TILE_KERNEL_DEFAULT; }
 #endif

@@ -26,7 +26,11 @@
 
 /* The kernel init records: DSN_TILE_KERNEL_AVX2 when dispatch is built and CPUID says AVX2 with YMM
    state saved by the OS, else DSN_TILE_KERNEL_DEFAULT. */
+#if DSN_TILE_AVX2_DISPATCH
 uint32_t dsn_internal_tile_kernel(void);
+#else
+static inline uint32_t dsn_internal_tile_kernel(void) { return DSN_TILE_KERNEL_DEFAULT; }
+#endif
 
 #if DSN_TILE_AVX2_BUILT
 /* tile_render.h's render_tile, built for AVX2 (tile_avx2.cpp). */

@@ -1,6 +1,7 @@
 /* runtime/tile_normalize.h - the normalization of a block's 16-bit sums into the output (fixed, float
    or 8-bit), bit for bit dsn_normalize and the API-edge conversions: exactly split into 32-bit SIMD
-   lanes when the noise allows it (SSE2), one pixel at a time otherwise. Internal to tile.cpp. */
+   lanes when the noise allows it (SSE2: 8 pixels per step; AVX2: 16), one pixel at a time otherwise.
+   Internal to tile_render.h. */
 #ifndef DSN_TILE_NORMALIZE_H
 #define DSN_TILE_NORMALIZE_H
 
@@ -173,6 +174,92 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
     for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
 
+#if defined(__AVX2__)
+/* normalize_4 on both 128-bit halves at once (the constants repeated in each half). */
+inline __m256i normalize_8(const __m256i *constants, __m256i shift, __m256i pair, __m256i third) {
+    __m256i a =
+        _mm256_add_epi32(_mm256_madd_epi16(pair, constants[0]), _mm256_madd_epi16(third, constants[1]));
+    __m256i b =
+        _mm256_add_epi32(_mm256_madd_epi16(pair, constants[2]), _mm256_madd_epi16(third, constants[3]));
+    __m256i x = _mm256_add_epi32(_mm256_add_epi32(constants[5], a), _mm256_srai_epi32(b, 15));
+    return _mm256_add_epi32(_mm256_sra_epi32(x, _mm256_castsi256_si128(shift)), constants[4]);
+}
+
+/* interleave_3 on both halves. */
+inline void interleave_3x2(__m256i r, __m256i g, __m256i b, __m256i *out) {
+    __m256 blue = _mm256_castsi256_ps(b);
+    __m256 rg_low = _mm256_castsi256_ps(_mm256_unpacklo_epi32(r, g)),
+           rg_high = _mm256_castsi256_ps(_mm256_unpackhi_epi32(r, g));
+    __m256 first = _mm256_shuffle_ps(blue, rg_low, _MM_SHUFFLE(3, 2, 0, 0));
+    __m256 second = _mm256_shuffle_ps(rg_low, blue, _MM_SHUFFLE(1, 1, 3, 3));
+    __m256 third = _mm256_shuffle_ps(blue, rg_high, _MM_SHUFFLE(3, 2, 2, 2));
+    out[0] = _mm256_castps_si256(_mm256_shuffle_ps(rg_low, first, _MM_SHUFFLE(2, 0, 1, 0)));
+    out[1] = _mm256_castps_si256(_mm256_shuffle_ps(second, rg_high, _MM_SHUFFLE(1, 0, 2, 0)));
+    __m256 last = _mm256_shuffle_ps(rg_high, blue, _MM_SHUFFLE(3, 3, 3, 3));
+    out[2] = _mm256_castps_si256(_mm256_shuffle_ps(third, last, _MM_SHUFFLE(2, 0, 2, 0)));
+}
+
+/* Row `row` of a block, `count` pixels, 16 at a time: 128-bit unpacking works within each half, so the
+   low halves hold pixels 0-7 and the high halves pixels 8-15, each stored as the SSE2 code does. */
+template <uint32_t channels, typename Value>
+void normalize_row_split_avx2(const split_vectors *v, const block_accumulator *block, uint32_t row,
+                              uint32_t count, Value *out) {
+    const uint32_t plane = block_height * block_stride;
+    const uint16_t *sums = block->values + row * block_stride;
+    __m256i constants[3][6];
+    for (uint32_t c = 0; c < channels; c++) {
+        constants[c][0] = _mm256_broadcastsi128_si256(v->high_pair[c]);
+        constants[c][1] = _mm256_broadcastsi128_si256(v->high_third[c]);
+        constants[c][2] = _mm256_broadcastsi128_si256(v->low_pair[c]);
+        constants[c][3] = _mm256_broadcastsi128_si256(v->low_third[c]);
+        constants[c][4] = _mm256_broadcastsi128_si256(v->p_q[c]);
+        constants[c][5] = _mm256_broadcastsi128_si256(v->p_m[c]);
+    }
+    const __m256i shift = _mm256_castsi128_si256(v->shift), zero = _mm256_setzero_si256(),
+                  ones = _mm256_set1_epi16(1);
+    for (uint32_t i = 0; i < count; i += 16) {
+        const uint32_t pixels = count - i < 16 ? count - i : 16;
+        __m256i q0 = _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(sums + i)));
+        __m256i q1 = zero, q2 = zero;
+        if (channels == 3) {
+            q1 =
+                _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(sums + plane + i)));
+            q2 = _mm256_loadu_si256(
+                static_cast<const __m256i *>(static_cast<const void *>(sums + 2 * plane + i)));
+        }
+        __m256i pair_low = _mm256_unpacklo_epi16(q0, q1), pair_high = _mm256_unpackhi_epi16(q0, q1);
+        __m256i third_low = _mm256_unpacklo_epi16(q2, ones), third_high = _mm256_unpackhi_epi16(q2, ones);
+        __m128i halves[2][6];
+        if (channels == 3) {
+            __m256i low[3], high[3];
+            interleave_3x2(normalize_8(constants[0], shift, pair_low, third_low),
+                           normalize_8(constants[1], shift, pair_low, third_low),
+                           normalize_8(constants[2], shift, pair_low, third_low), low);
+            interleave_3x2(normalize_8(constants[0], shift, pair_high, third_high),
+                           normalize_8(constants[1], shift, pair_high, third_high),
+                           normalize_8(constants[2], shift, pair_high, third_high), high);
+            for (uint32_t k = 0; k < 3; k++) {
+                halves[0][k] = _mm256_castsi256_si128(low[k]);
+                halves[0][k + 3] = _mm256_castsi256_si128(high[k]);
+                halves[1][k] = _mm256_extracti128_si256(low[k], 1);
+                halves[1][k + 3] = _mm256_extracti128_si256(high[k], 1);
+            }
+            store_vectors(out + i * 3, halves[0], 6, (pixels < 8 ? pixels : 8) * 3);
+            if (pixels > 8) store_vectors(out + (i + 8) * 3, halves[1], 6, (pixels - 8) * 3);
+        } else {
+            __m256i low = normalize_8(constants[0], shift, pair_low, third_low),
+                    high = normalize_8(constants[0], shift, pair_high, third_high);
+            halves[0][0] = _mm256_castsi256_si128(low);
+            halves[0][1] = _mm256_castsi256_si128(high);
+            halves[1][0] = _mm256_extracti128_si256(low, 1);
+            halves[1][1] = _mm256_extracti128_si256(high, 1);
+            store_vectors(out + i, halves[0], 2, pixels < 8 ? pixels : 8);
+            if (pixels > 8) store_vectors(out + i + 8, halves[1], 2, pixels - 8);
+        }
+    }
+}
+#endif
+
 /* Row `row` of a block, `count` pixels, 8 at a time (the accumulator rows have room past the end). */
 template <uint32_t channels, typename Value>
 void normalize_row_split(const split_vectors *v, const block_accumulator *block, uint32_t row, uint32_t count,
@@ -205,6 +292,17 @@ void normalize_row_split(const split_vectors *v, const block_accumulator *block,
             store_vectors(out + i, values, 2, pixels);
         }
     }
+}
+
+/* The row normalization of this build: 16 pixels per step with AVX2, else 8. */
+template <uint32_t channels, typename Value>
+inline void normalize_row_vectors(const split_vectors *v, const block_accumulator *block, uint32_t row,
+                                  uint32_t count, Value *out) {
+#if defined(__AVX2__)
+    normalize_row_split_avx2<channels>(v, block, row, count, out);
+#else
+    normalize_row_split<channels>(v, block, row, count, out);
+#endif
 }
 #endif
 

@@ -125,9 +125,9 @@ void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_
 #if defined(__SSE2__)
             if (setup->split_ok) {
                 if (channels == 3)
-                    normalize_row_split<3>(&setup->split, &block, row, walk_x->length, out);
+                    normalize_row_vectors<3>(&setup->split, &block, row, walk_x->length, out);
                 else
-                    normalize_row_split<1>(&setup->split, &block, row, walk_x->length, out);
+                    normalize_row_vectors<1>(&setup->split, &block, row, walk_x->length, out);
                 continue;
             }
 #endif
