@@ -1,11 +1,11 @@
-/* runtime/tile_normalize.h - the normalization of a block's 16-bit sums into the output (fixed, float
-   or 8-bit), bit for bit dsn_normalize and the API-edge conversions: exactly split into 32-bit SIMD
-   lanes when the noise allows it (SSE2: 8 pixels per step; AVX2: 16), one pixel at a time otherwise.
-   Internal to tile_render.h. */
+/* runtime/tile_normalize.h - the normalization of a strip row's 16-bit sums (tile_strips.h) into the
+   output (fixed, float or 8-bit), bit for bit dsn_normalize and the API-edge conversions: exactly split
+   into 32-bit SIMD lanes when the noise allows it (a whole strip, 8 pixels with SSE2 or 16 with AVX2, at
+   once), one pixel at a time otherwise. Internal to tile_render.h. */
 #ifndef DSN_TILE_NORMALIZE_H
 #define DSN_TILE_NORMALIZE_H
 
-#include "tile_block.h"
+#include "tile_strips.h"
 
 namespace {
 
@@ -53,66 +53,114 @@ int make_split_normalization(const dsn_noise *noise, split_normalization *split)
     return 1;
 }
 
-/* Q_k of a 16-bit accumulator value, as the uint32 bits dsn_normalize reads. */
+/* Q_k of a 16-bit sum, as the uint32 bits dsn_normalize reads. */
 inline uint32_t widen_sum(uint16_t value) { return (uint32_t(value) ^ 0x8000u) - 0x8000u; }
 
-/* Row `row` of a block, pixels [first, first + count), normalized one pixel at a time. */
+/* The vector operations of the split normalization, on the strip's vector width. 128-bit lanes
+   compute independently in AVX2 (unpacking and shuffles too), so the AVX2 code is the SSE2 code run on
+   two groups of 8 pixels at once: pixels 0-3 and 8-11 in `low`, 4-7 and 12-15 in `high`. */
+#if defined(__AVX2__)
+typedef __m256 strip_floats;
+inline strip_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
+inline strip_vector madd_16(strip_vector a, strip_vector b) { return _mm256_madd_epi16(a, b); }
+inline strip_vector add_32(strip_vector a, strip_vector b) { return _mm256_add_epi32(a, b); }
+inline strip_vector shift_right_15(strip_vector a) { return _mm256_srai_epi32(a, 15); }
+inline strip_vector shift_right(strip_vector a, __m128i count) { return _mm256_sra_epi32(a, count); }
+inline strip_vector unpack_low_16(strip_vector a, strip_vector b) { return _mm256_unpacklo_epi16(a, b); }
+inline strip_vector unpack_high_16(strip_vector a, strip_vector b) { return _mm256_unpackhi_epi16(a, b); }
+inline strip_vector unpack_low_32(strip_vector a, strip_vector b) { return _mm256_unpacklo_epi32(a, b); }
+inline strip_vector unpack_high_32(strip_vector a, strip_vector b) { return _mm256_unpackhi_epi32(a, b); }
+inline strip_vector set_16(int16_t value) { return _mm256_set1_epi16(value); }
+inline strip_floats as_floats(strip_vector a) { return _mm256_castsi256_ps(a); }
+inline strip_vector as_integers(strip_floats a) { return _mm256_castps_si256(a); }
+template <int Order>
+inline strip_floats shuffle(strip_floats a, strip_floats b) {
+    return _mm256_shuffle_ps(a, b, Order);
+}
+inline void store_sums(uint16_t *dst, strip_vector value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(dst)), value);
+}
+#else
+typedef __m128 strip_floats;
+inline strip_vector broadcast_lanes(__m128i value) { return value; }
+inline strip_vector madd_16(strip_vector a, strip_vector b) { return _mm_madd_epi16(a, b); }
+inline strip_vector add_32(strip_vector a, strip_vector b) { return _mm_add_epi32(a, b); }
+inline strip_vector shift_right_15(strip_vector a) { return _mm_srai_epi32(a, 15); }
+inline strip_vector shift_right(strip_vector a, __m128i count) { return _mm_sra_epi32(a, count); }
+inline strip_vector unpack_low_16(strip_vector a, strip_vector b) { return _mm_unpacklo_epi16(a, b); }
+inline strip_vector unpack_high_16(strip_vector a, strip_vector b) { return _mm_unpackhi_epi16(a, b); }
+inline strip_vector unpack_low_32(strip_vector a, strip_vector b) { return _mm_unpacklo_epi32(a, b); }
+inline strip_vector unpack_high_32(strip_vector a, strip_vector b) { return _mm_unpackhi_epi32(a, b); }
+inline strip_vector set_16(int16_t value) { return _mm_set1_epi16(value); }
+inline strip_floats as_floats(strip_vector a) { return _mm_castsi128_ps(a); }
+inline strip_vector as_integers(strip_floats a) { return _mm_castps_si128(a); }
+template <int Order>
+inline strip_floats shuffle(strip_floats a, strip_floats b) {
+    return _mm_shuffle_ps(a, b, Order);
+}
+inline void store_sums(uint16_t *dst, strip_vector value) {
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(dst)), value);
+}
+#endif
+
+/* The first `pixels` pixels of a strip row, one at a time. */
 template <typename Value>
-void normalize_row_scalar(const dsn_noise *noise, const block_accumulator *block, uint32_t row,
-                          uint32_t first, uint32_t count, Value *out) {
-    const uint32_t channels = noise->asset.channels, plane = block_height * block_stride;
-    for (uint32_t i = first; i < first + count; i++) {
-        uint32_t sums[3] = {0, 0, 0};
+void normalize_strip_scalar(const dsn_noise *noise, const strip_vector *sums, uint32_t pixels, Value *out) {
+    const uint32_t channels = noise->asset.channels;
+    uint16_t values[3][lane];
+    for (uint32_t c = 0; c < 3; c++) store_sums(values[c], sums[c]);
+    for (uint32_t i = 0; i < pixels; i++) {
+        uint32_t q[3] = {0, 0, 0};
         int32_t fixed[3];
-        for (uint32_t k = 0; k < channels; k++)
-            sums[k] = widen_sum(block->values[k * plane + row * block_stride + i]);
-        dsn_normalize(noise, sums, fixed);
+        for (uint32_t k = 0; k < channels; k++) q[k] = widen_sum(values[k][i]);
+        dsn_normalize(noise, q, fixed);
         for (uint32_t c = 0; c < channels; c++) store_value(out + i * channels + c, fixed[c]);
     }
 }
 
-#if defined(__SSE2__)
-/* The split normalization as vectors, for 8 pixels at a time. */
+/* The split normalization's constants, repeated in every 128-bit lane. */
 typedef struct split_vectors {
-    __m128i high_pair[3], high_third[3], low_pair[3], low_third[3], p_q[3], p_m[3], shift;
+    strip_vector high_pair[3], high_third[3], low_pair[3], low_third[3], p_q[3], p_m[3];
+    __m128i shift;
 } split_vectors;
 
 void make_split_vectors(const split_normalization *split, uint32_t channels, split_vectors *v) {
     for (uint32_t c = 0; c < channels; c++) {
         const int16_t *high = split->high + 3 * c, *low = split->low + 3 * c;
-        v->high_pair[c] =
-            _mm_setr_epi16(high[0], high[1], high[0], high[1], high[0], high[1], high[0], high[1]);
-        v->high_third[c] = _mm_setr_epi16(high[2], 0, high[2], 0, high[2], 0, high[2], 0);
-        v->low_pair[c] = _mm_setr_epi16(low[0], low[1], low[0], low[1], low[0], low[1], low[0], low[1]);
         const int16_t p_l = int16_t(split->p_l[c]);
-        v->low_third[c] = _mm_setr_epi16(low[2], p_l, low[2], p_l, low[2], p_l, low[2], p_l);
-        v->p_q[c] = _mm_set1_epi32(split->p_q[c]);
-        v->p_m[c] = _mm_set1_epi32(split->p_m[c]);
+        v->high_pair[c] = broadcast_lanes(
+            _mm_setr_epi16(high[0], high[1], high[0], high[1], high[0], high[1], high[0], high[1]));
+        v->high_third[c] = broadcast_lanes(_mm_setr_epi16(high[2], 0, high[2], 0, high[2], 0, high[2], 0));
+        v->low_pair[c] =
+            broadcast_lanes(_mm_setr_epi16(low[0], low[1], low[0], low[1], low[0], low[1], low[0], low[1]));
+        v->low_third[c] = broadcast_lanes(_mm_setr_epi16(low[2], p_l, low[2], p_l, low[2], p_l, low[2], p_l));
+        v->p_q[c] = broadcast_lanes(_mm_set1_epi32(split->p_q[c]));
+        v->p_m[c] = broadcast_lanes(_mm_set1_epi32(split->p_m[c]));
     }
     v->shift = _mm_cvtsi32_si128(int32_t(split->shift));
 }
 
-/* Four pixels of output channel c: `pair` holds (Q_0, Q_1) and `third` (Q_2, 1) per pixel. */
-inline __m128i normalize_4(const split_vectors *v, uint32_t c, __m128i pair, __m128i third) {
-    __m128i a = _mm_add_epi32(_mm_madd_epi16(pair, v->high_pair[c]), _mm_madd_epi16(third, v->high_third[c]));
-    __m128i b = _mm_add_epi32(_mm_madd_epi16(pair, v->low_pair[c]), _mm_madd_epi16(third, v->low_third[c]));
-    __m128i x = _mm_add_epi32(_mm_add_epi32(v->p_m[c], a), _mm_srai_epi32(b, 15));
-    return _mm_add_epi32(_mm_sra_epi32(x, v->shift), v->p_q[c]);
+/* Output channel c of 4 pixels per 128-bit lane: `pair` holds (Q_0, Q_1) and `third` (Q_2, 1) per pixel. */
+inline strip_vector normalize_lanes(const split_vectors *v, uint32_t c, strip_vector pair,
+                                    strip_vector third) {
+    strip_vector a = add_32(madd_16(pair, v->high_pair[c]), madd_16(third, v->high_third[c]));
+    strip_vector b = add_32(madd_16(pair, v->low_pair[c]), madd_16(third, v->low_third[c]));
+    strip_vector x = add_32(add_32(v->p_m[c], a), shift_right_15(b));
+    return add_32(shift_right(x, v->shift), v->p_q[c]);
 }
 
-/* (r0 r1 r2 r3), (g0 ..), (b0 ..) -> r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3. shufps only moves bits
-   between lanes (no arithmetic), so reading the integers as floats here is exact. */
-inline void interleave_3(__m128i r, __m128i g, __m128i b, __m128i *out) {
-    __m128 blue = _mm_castsi128_ps(b);
-    __m128 rg_low = _mm_castsi128_ps(_mm_unpacklo_epi32(r, g)),
-           rg_high = _mm_castsi128_ps(_mm_unpackhi_epi32(r, g));
-    __m128 first = _mm_shuffle_ps(blue, rg_low, _MM_SHUFFLE(3, 2, 0, 0));  /* b0 b0 r1 g1 */
-    __m128 second = _mm_shuffle_ps(rg_low, blue, _MM_SHUFFLE(1, 1, 3, 3)); /* g1 g1 b1 b1 */
-    __m128 third = _mm_shuffle_ps(blue, rg_high, _MM_SHUFFLE(3, 2, 2, 2)); /* b2 b2 r3 g3 */
-    out[0] = _mm_castps_si128(_mm_shuffle_ps(rg_low, first, _MM_SHUFFLE(2, 0, 1, 0)));
-    out[1] = _mm_castps_si128(_mm_shuffle_ps(second, rg_high, _MM_SHUFFLE(1, 0, 2, 0)));
-    __m128 last = _mm_shuffle_ps(rg_high, blue, _MM_SHUFFLE(3, 3, 3, 3)); /* g3 g3 b3 b3 */
-    out[2] = _mm_castps_si128(_mm_shuffle_ps(third, last, _MM_SHUFFLE(2, 0, 2, 0)));
+/* Per 128-bit lane: (r0 r1 r2 r3), (g0 ..), (b0 ..) -> r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3. shufps
+   only moves bits between lanes (no arithmetic), so reading the integers as floats here is exact. */
+inline void interleave_3(strip_vector r, strip_vector g, strip_vector b, strip_vector *out) {
+    strip_floats blue = as_floats(b);
+    strip_floats rg_low = as_floats(unpack_low_32(r, g)), rg_high = as_floats(unpack_high_32(r, g));
+    strip_floats first = shuffle<_MM_SHUFFLE(3, 2, 0, 0)>(blue, rg_low);  /* b0 b0 r1 g1 */
+    strip_floats second = shuffle<_MM_SHUFFLE(1, 1, 3, 3)>(rg_low, blue); /* g1 g1 b1 b1 */
+    strip_floats third = shuffle<_MM_SHUFFLE(3, 2, 2, 2)>(blue, rg_high); /* b2 b2 r3 g3 */
+    out[0] = as_integers(shuffle<_MM_SHUFFLE(2, 0, 1, 0)>(rg_low, first));
+    out[1] = as_integers(shuffle<_MM_SHUFFLE(1, 0, 2, 0)>(second, rg_high));
+    strip_floats last = shuffle<_MM_SHUFFLE(3, 3, 3, 3)>(rg_high, blue); /* g3 g3 b3 b3 */
+    out[2] = as_integers(shuffle<_MM_SHUFFLE(2, 0, 2, 0)>(third, last));
 }
 
 /* Stores `vectors` interleaved output vectors (4 values each) of which the first `values` are wanted. */
@@ -174,137 +222,44 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
     for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
 
+/* Stores the normalized strip: `values` holds, per 128-bit lane, 4 pixels' interleaved values (in the
+   order low pair, high pair: 3 vectors each with 3 channels, 1 with 1), of which `pixels` pixels are
+   wanted. With AVX2 the low 128-bit lanes are pixels 0-7, the high ones 8-15. */
+template <uint32_t Channels, typename Value>
+inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out) {
+    const uint32_t vectors = 2 * Channels;
 #if defined(__AVX2__)
-/* normalize_4 on both 128-bit halves at once (the constants repeated in each half). */
-inline __m256i normalize_8(const __m256i *constants, __m256i shift, __m256i pair, __m256i third) {
-    __m256i a =
-        _mm256_add_epi32(_mm256_madd_epi16(pair, constants[0]), _mm256_madd_epi16(third, constants[1]));
-    __m256i b =
-        _mm256_add_epi32(_mm256_madd_epi16(pair, constants[2]), _mm256_madd_epi16(third, constants[3]));
-    __m256i x = _mm256_add_epi32(_mm256_add_epi32(constants[5], a), _mm256_srai_epi32(b, 15));
-    return _mm256_add_epi32(_mm256_sra_epi32(x, _mm256_castsi256_si128(shift)), constants[4]);
-}
-
-/* interleave_3 on both halves. */
-inline void interleave_3x2(__m256i r, __m256i g, __m256i b, __m256i *out) {
-    __m256 blue = _mm256_castsi256_ps(b);
-    __m256 rg_low = _mm256_castsi256_ps(_mm256_unpacklo_epi32(r, g)),
-           rg_high = _mm256_castsi256_ps(_mm256_unpackhi_epi32(r, g));
-    __m256 first = _mm256_shuffle_ps(blue, rg_low, _MM_SHUFFLE(3, 2, 0, 0));
-    __m256 second = _mm256_shuffle_ps(rg_low, blue, _MM_SHUFFLE(1, 1, 3, 3));
-    __m256 third = _mm256_shuffle_ps(blue, rg_high, _MM_SHUFFLE(3, 2, 2, 2));
-    out[0] = _mm256_castps_si256(_mm256_shuffle_ps(rg_low, first, _MM_SHUFFLE(2, 0, 1, 0)));
-    out[1] = _mm256_castps_si256(_mm256_shuffle_ps(second, rg_high, _MM_SHUFFLE(1, 0, 2, 0)));
-    __m256 last = _mm256_shuffle_ps(rg_high, blue, _MM_SHUFFLE(3, 3, 3, 3));
-    out[2] = _mm256_castps_si256(_mm256_shuffle_ps(third, last, _MM_SHUFFLE(2, 0, 2, 0)));
-}
-
-/* Row `row` of a block, `count` pixels, 16 at a time: 128-bit unpacking works within each half, so the
-   low halves hold pixels 0-7 and the high halves pixels 8-15, each stored as the SSE2 code does. */
-template <uint32_t channels, typename Value>
-void normalize_row_split_avx2(const split_vectors *v, const block_accumulator *block, uint32_t row,
-                              uint32_t count, Value *out) {
-    const uint32_t plane = block_height * block_stride;
-    const uint16_t *sums = block->values + row * block_stride;
-    __m256i constants[3][6];
-    for (uint32_t c = 0; c < channels; c++) {
-        constants[c][0] = _mm256_broadcastsi128_si256(v->high_pair[c]);
-        constants[c][1] = _mm256_broadcastsi128_si256(v->high_third[c]);
-        constants[c][2] = _mm256_broadcastsi128_si256(v->low_pair[c]);
-        constants[c][3] = _mm256_broadcastsi128_si256(v->low_third[c]);
-        constants[c][4] = _mm256_broadcastsi128_si256(v->p_q[c]);
-        constants[c][5] = _mm256_broadcastsi128_si256(v->p_m[c]);
+    __m128i low[6], high[6];
+    for (uint32_t i = 0; i < vectors; i++) {
+        low[i] = _mm256_castsi256_si128(values[i]);
+        high[i] = _mm256_extracti128_si256(values[i], 1);
     }
-    const __m256i shift = _mm256_castsi128_si256(v->shift), zero = _mm256_setzero_si256(),
-                  ones = _mm256_set1_epi16(1);
-    for (uint32_t i = 0; i < count; i += 16) {
-        const uint32_t pixels = count - i < 16 ? count - i : 16;
-        __m256i q0 = _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(sums + i)));
-        __m256i q1 = zero, q2 = zero;
-        if (channels == 3) {
-            q1 =
-                _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(sums + plane + i)));
-            q2 = _mm256_loadu_si256(
-                static_cast<const __m256i *>(static_cast<const void *>(sums + 2 * plane + i)));
-        }
-        __m256i pair_low = _mm256_unpacklo_epi16(q0, q1), pair_high = _mm256_unpackhi_epi16(q0, q1);
-        __m256i third_low = _mm256_unpacklo_epi16(q2, ones), third_high = _mm256_unpackhi_epi16(q2, ones);
-        __m128i halves[2][6];
-        if (channels == 3) {
-            __m256i low[3], high[3];
-            interleave_3x2(normalize_8(constants[0], shift, pair_low, third_low),
-                           normalize_8(constants[1], shift, pair_low, third_low),
-                           normalize_8(constants[2], shift, pair_low, third_low), low);
-            interleave_3x2(normalize_8(constants[0], shift, pair_high, third_high),
-                           normalize_8(constants[1], shift, pair_high, third_high),
-                           normalize_8(constants[2], shift, pair_high, third_high), high);
-            for (uint32_t k = 0; k < 3; k++) {
-                halves[0][k] = _mm256_castsi256_si128(low[k]);
-                halves[0][k + 3] = _mm256_castsi256_si128(high[k]);
-                halves[1][k] = _mm256_extracti128_si256(low[k], 1);
-                halves[1][k + 3] = _mm256_extracti128_si256(high[k], 1);
-            }
-            store_vectors(out + i * 3, halves[0], 6, (pixels < 8 ? pixels : 8) * 3);
-            if (pixels > 8) store_vectors(out + (i + 8) * 3, halves[1], 6, (pixels - 8) * 3);
-        } else {
-            __m256i low = normalize_8(constants[0], shift, pair_low, third_low),
-                    high = normalize_8(constants[0], shift, pair_high, third_high);
-            halves[0][0] = _mm256_castsi256_si128(low);
-            halves[0][1] = _mm256_castsi256_si128(high);
-            halves[1][0] = _mm256_extracti128_si256(low, 1);
-            halves[1][1] = _mm256_extracti128_si256(high, 1);
-            store_vectors(out + i, halves[0], 2, pixels < 8 ? pixels : 8);
-            if (pixels > 8) store_vectors(out + i + 8, halves[1], 2, pixels - 8);
-        }
-    }
-}
-#endif
-
-/* Row `row` of a block, `count` pixels, 8 at a time (the accumulator rows have room past the end). */
-template <uint32_t channels, typename Value>
-void normalize_row_split(const split_vectors *v, const block_accumulator *block, uint32_t row, uint32_t count,
-                         Value *out) {
-    const uint32_t plane = block_height * block_stride;
-    const uint16_t *sums = block->values + row * block_stride;
-    const __m128i zero = _mm_setzero_si128();
-    for (uint32_t i = 0; i < count; i += 8) {
-        const uint32_t pixels = count - i < 8 ? count - i : 8;
-        __m128i q0 = _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(sums + i)));
-        __m128i q1 = zero, q2 = zero;
-        if (channels == 3) {
-            q1 = _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(sums + plane + i)));
-            q2 = _mm_loadu_si128(
-                static_cast<const __m128i *>(static_cast<const void *>(sums + 2 * plane + i)));
-        }
-        __m128i pair_low = _mm_unpacklo_epi16(q0, q1), pair_high = _mm_unpackhi_epi16(q0, q1);
-        const __m128i ones = _mm_set1_epi16(1);
-        __m128i third_low = _mm_unpacklo_epi16(q2, ones), third_high = _mm_unpackhi_epi16(q2, ones);
-        __m128i values[6];
-        if (channels == 3) {
-            interleave_3(normalize_4(v, 0, pair_low, third_low), normalize_4(v, 1, pair_low, third_low),
-                         normalize_4(v, 2, pair_low, third_low), values);
-            interleave_3(normalize_4(v, 0, pair_high, third_high), normalize_4(v, 1, pair_high, third_high),
-                         normalize_4(v, 2, pair_high, third_high), values + 3);
-            store_vectors(out + i * 3, values, 6, pixels * 3);
-        } else {
-            values[0] = normalize_4(v, 0, pair_low, third_low);
-            values[1] = normalize_4(v, 0, pair_high, third_high);
-            store_vectors(out + i, values, 2, pixels);
-        }
-    }
-}
-
-/* The row normalization of this build: 16 pixels per step with AVX2, else 8. */
-template <uint32_t channels, typename Value>
-inline void normalize_row_vectors(const split_vectors *v, const block_accumulator *block, uint32_t row,
-                                  uint32_t count, Value *out) {
-#if defined(__AVX2__)
-    normalize_row_split_avx2<channels>(v, block, row, count, out);
+    store_vectors(out, low, vectors, (pixels < 8 ? pixels : 8) * Channels);
+    if (pixels > 8) store_vectors(out + 8 * Channels, high, vectors, (pixels - 8) * Channels);
 #else
-    normalize_row_split<channels>(v, block, row, count, out);
+    store_vectors(out, values, vectors, pixels * Channels);
 #endif
 }
-#endif
+
+/* The first `pixels` pixels of a strip row from its sums (one vector per channel). */
+template <uint32_t Channels, typename Value>
+inline void normalize_strip(const split_vectors *v, const strip_vector *sums, uint32_t pixels, Value *out) {
+    const strip_vector ones = set_16(1);
+    strip_vector pair_low = unpack_low_16(sums[0], sums[1]), pair_high = unpack_high_16(sums[0], sums[1]);
+    strip_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);
+    strip_vector values[6];
+    if (Channels == 3) {
+        interleave_3(normalize_lanes(v, 0, pair_low, third_low), normalize_lanes(v, 1, pair_low, third_low),
+                     normalize_lanes(v, 2, pair_low, third_low), values);
+        interleave_3(normalize_lanes(v, 0, pair_high, third_high),
+                     normalize_lanes(v, 1, pair_high, third_high),
+                     normalize_lanes(v, 2, pair_high, third_high), values + 3);
+    } else {
+        values[0] = normalize_lanes(v, 0, pair_low, third_low);
+        values[1] = normalize_lanes(v, 0, pair_high, third_high);
+    }
+    store_strip<Channels>(values, pixels, out);
+}
 
 } // namespace
 

@@ -1,65 +1,57 @@
 /* runtime/tile_render.h - a whole tile on the lattice, computed in this translation unit: the tile is
-   cut into runs of contiguous coordinates (tile_walk.h), each run into blocks; a block's impulses are
-   splatted into 16-bit sums that stay in L1 (tile_block.h) and normalized straight into the output
-   (tile_normalize.h), or, when 16 bits cannot hold the sums (16-bit textons, large textons, extreme
-   densities), splatted into a 32-bit accumulator and normalized one pixel at a time. Either way the sums
-   are the per-point sums (integer addition modulo 2^32 is order-free, and the 16-bit sums provably never
+   cut into runs of contiguous coordinates (tile_walk.h), each run into rectangles; a rectangle's
+   impulses are summed strip by strip in 16-bit registers (tile_strips.h) and normalized straight into
+   the output (tile_normalize.h), or, when 16 bits cannot hold the sums (16-bit textons, large textons,
+   extreme densities), splatted into a 32-bit accumulator and normalized one pixel at a time. Either way the
+   sums are the per-point sums (integer addition modulo 2^32 is order-free, and the 16-bit sums provably never
    wrap), so the bits equal the per-point path's. Included by tile.cpp and, built for AVX2, by
    tile_avx2.cpp (everything here has internal linkage, so the two copies never mix). */
 #ifndef DSN_TILE_RENDER_H
 #define DSN_TILE_RENDER_H
 
-/* The blocked path keeps about 27 KB on the stack (the 16-bit block, the planar texton, the impulse list)
-   and pays off only with vector instructions; without them, the 32-bit path keeps a tile call's stack
-   under 1 KB, which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 or 1 to
-   choose. */
-#ifndef DSN_TILE_BLOCKS
-#if defined(__SSE2__)
-#define DSN_TILE_BLOCKS 1
-#else
+/* The strip path (x86 SSE2 or AVX2) keeps about 24 KB on the stack (the padded texton, the impulse list
+   and the strip entries); elsewhere the 32-bit path keeps a tile call's stack under 1 KB, which
+   microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to take the 32-bit path
+   on x86 too. */
+#if !defined(__SSE2__)
+#undef DSN_TILE_BLOCKS
 #define DSN_TILE_BLOCKS 0
-#endif
+#elif !defined(DSN_TILE_BLOCKS)
+#define DSN_TILE_BLOCKS 1
 #endif
 
 #include "tile_walk.h"
 
 #if DSN_TILE_BLOCKS
 namespace {
-/* Output stores of the blocked path, typed (declared before its templates use them). */
+/* Output stores of the strip path, typed (declared before its templates use them). */
 inline void store_value(int32_t *out, int32_t value) { *out = value; }
 inline void store_value(float *out, int32_t value) { *out = dsn_fixed_to_float(value); }
 inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(value); }
 } // namespace
 
-#include "tile_block.h"
 #include "tile_normalize.h"
 #endif
 
 namespace {
 
 /* The 32-bit path converts pixel by pixel (dsn_store_pixel) rather than with one copy of the tile code
-   per output type; the blocked path (SSE2), whose inner loop is the row normalization, keeps one copy per
-   type, chosen once per tile. */
+   per output type; the strip path, whose inner loops are the sums and their normalization, keeps one copy
+   per type and channel count, chosen once per tile. */
 
 #if DSN_TILE_BLOCKS
-/* Everything a tile call prepares once for the blocked path. */
-typedef struct block_setup {
-    planar_texton texton;
+/* Everything a tile call prepares once for the strip path. */
+typedef struct strip_setup {
+    strip_texton texton;
     int split_ok;
-#if defined(__SSE2__)
     split_vectors split;
-#endif
-} block_setup;
+} strip_setup;
 
-void make_block_setup(const dsn_noise *noise, block_setup *setup) {
-    make_planar_texton(&noise->asset, &setup->texton);
+void make_strip_setup(const dsn_noise *noise, strip_setup *setup) {
+    make_strip_texton(&noise->asset, &setup->texton);
     split_normalization split;
     setup->split_ok = make_split_normalization(noise, &split);
-#if defined(__SSE2__)
     if (setup->split_ok) make_split_vectors(&split, noise->asset.channels, &setup->split);
-#else
-    setup->split_ok = 0;
-#endif
 }
 #endif /* DSN_TILE_BLOCKS */
 
@@ -96,12 +88,11 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
 }
 
 #if DSN_TILE_BLOCKS
-/* A rectangle of the tile, block_width x walk_height at most: its impulses are listed once, then
-   splatted block by block (blocks of block_height rows). One copy per output type (`target->kind`):
-   the row normalization is the blocked path's inner loop. */
-template <typename Value>
-void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_run *walk_x,
-                   const tile_run *walk_y, const tile_target *target) {
+/* A rectangle of the tile, rectangle_width x rectangle_height at most: its impulses are listed and filed
+   under the strips once, then each row is summed and normalized strip by strip. */
+template <uint32_t Channels, typename Value>
+void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const tile_run *walk_x,
+                      const tile_run *walk_y, const tile_target *target) {
     impulse_list list;
     list.clear();
     for_each_reaching_impulse(noise, walk_x, walk_y, list);
@@ -109,61 +100,62 @@ void render_blocks(const dsn_noise *noise, const block_setup *setup, const tile_
         render_block_32(noise, walk_x, walk_y, target);
         return;
     }
-    const uint32_t channels = noise->asset.channels;
-    block_accumulator block;
-    for (uint32_t first_row = 0; first_row < walk_y->length; first_row += block_height) {
-        if (channels == 3)
-            splat_block<3>(&list, &setup->texton, first_row, &block);
-        else
-            splat_block<1>(&list, &setup->texton, first_row, &block);
-        const uint32_t rows =
-            walk_y->length - first_row < block_height ? walk_y->length - first_row : block_height;
-        for (uint32_t row = 0; row < rows; row++) {
-            Value *out = static_cast<Value *>(target->out) +
-                         size_t(walk_y->offset + first_row + row) * target->row_values +
-                         walk_x->offset * channels;
-#if defined(__SSE2__)
-            if (setup->split_ok) {
-                if (channels == 3)
-                    normalize_row_vectors<3>(&setup->split, &block, row, walk_x->length, out);
-                else
-                    normalize_row_vectors<1>(&setup->split, &block, row, walk_x->length, out);
-                continue;
-            }
-#endif
-            normalize_row_scalar(noise, &block, row, 0, walk_x->length, out);
+    strip_entries entries;
+    file_strip_entries(&list, &setup->texton, &entries);
+    const strip_texton *texton = &setup->texton;
+    const uint32_t strips = (walk_x->length + lane - 1) / lane;
+    for (uint32_t y = 0; y < walk_y->length; y++) {
+        Value *out = static_cast<Value *>(target->out) + size_t(walk_y->offset + y) * target->row_values +
+                     walk_x->offset * Channels;
+        strip_vector sums[strip_count][3];
+        for (uint32_t s = 0; s < strips; s++) {
+            const uint32_t first = entries.key_start[s][y], end = entries.key_start[s][y + texton->height];
+            add_strip_row<Channels>(texton->values + y * texton->stride, entries.base + first, end - first,
+                                    texton->plane, sums[s]);
+        }
+        for (uint32_t s = 0; s < strips; s++) {
+            const uint32_t pixels = walk_x->length - s * lane < lane ? walk_x->length - s * lane : lane;
+            if (setup->split_ok)
+                normalize_strip<Channels>(&setup->split, sums[s], pixels, out + s * lane * Channels);
+            else
+                normalize_strip_scalar(noise, sums[s], pixels, out + s * lane * Channels);
         }
     }
 }
 
-/* One rectangle of the tile where both axes are single runs, in rectangles of block_width x walk_height. */
-template <typename Value>
-void render_region(const dsn_noise *noise, const block_setup *setup, const tile_run *run_x,
+/* One rectangle of the tile where both axes are single runs, in rectangles of at most
+   rectangle_width x rectangle_height. */
+template <uint32_t Channels, typename Value>
+void render_region(const dsn_noise *noise, const strip_setup *setup, const tile_run *run_x,
                    const tile_run *run_y, const tile_target *target) {
-    for (uint32_t y = 0; y < run_y->length; y += walk_height) {
+    for (uint32_t y = 0; y < run_y->length; y += rectangle_height) {
         tile_run walk_y = {run_y->start + y, run_y->offset + y,
-                           run_y->length - y < walk_height ? run_y->length - y : walk_height};
-        for (uint32_t x = 0; x < run_x->length; x += block_width) {
+                           run_y->length - y < rectangle_height ? run_y->length - y : rectangle_height};
+        for (uint32_t x = 0; x < run_x->length; x += rectangle_width) {
             tile_run walk_x = {run_x->start + x, run_x->offset + x,
-                               run_x->length - x < block_width ? run_x->length - x : block_width};
-            render_blocks<Value>(noise, setup, &walk_x, &walk_y, target);
+                               run_x->length - x < rectangle_width ? run_x->length - x : rectangle_width};
+            render_rectangle<Channels, Value>(noise, setup, &walk_x, &walk_y, target);
         }
     }
 }
 
-/* The whole tile in blocks, with the output type's copy of the blocked path. */
+/* The whole tile in rectangles, with the copy of the strip path for the output type and channels. */
 template <typename Value>
-void render_blocked_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t run_count_x,
-                         const tile_run *runs_y, uint32_t run_count_y, const tile_target *target) {
-    block_setup setup;
-    make_block_setup(noise, &setup);
+void render_strip_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t run_count_x,
+                       const tile_run *runs_y, uint32_t run_count_y, const tile_target *target) {
+    strip_setup setup;
+    make_strip_setup(noise, &setup);
     for (uint32_t ry = 0; ry < run_count_y; ry++)
-        for (uint32_t rx = 0; rx < run_count_x; rx++)
-            render_region<Value>(noise, &setup, &runs_x[rx], &runs_y[ry], target);
+        for (uint32_t rx = 0; rx < run_count_x; rx++) {
+            if (noise->asset.channels == 3)
+                render_region<3, Value>(noise, &setup, &runs_x[rx], &runs_y[ry], target);
+            else
+                render_region<1, Value>(noise, &setup, &runs_x[rx], &runs_y[ry], target);
+        }
 }
 #endif /* DSN_TILE_BLOCKS */
 
-/* The whole tile: blocks of 16-bit sums when the texton allows, else 32-bit sums run by run. */
+/* The whole tile: strips of 16-bit sums when the texton allows, else 32-bit sums run by run. */
 void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, void *out,
                  dsn_output_kind kind, uint32_t *accumulator) {
     tile_run runs_x[2], runs_y[2];
@@ -171,15 +163,14 @@ void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t widt
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
     tile_target target = {out, kind, accumulator, width * noise->asset.channels};
 #if DSN_TILE_BLOCKS
-    /* A single point (how the small build evaluates per point) takes the 32-bit path: no planar copy of
-       the texton and no block on the stack for one pixel. */
-    if ((width > 1 || height > 1) && planar_texton_fits(&noise->asset)) {
+    /* A single point takes the 32-bit path: no padded copy of the texton for one pixel. */
+    if ((width > 1 || height > 1) && strip_texton_fits(&noise->asset)) {
         if (kind == dsn_output_float)
-            render_blocked_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+            render_strip_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
         else if (kind == dsn_output_u8)
-            render_blocked_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+            render_strip_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
         else
-            render_blocked_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+            render_strip_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
         return;
     }
 #endif

@@ -123,14 +123,14 @@ void count_work(const dsn_noise &noise, uint32_t x, uint32_t y, uint64_t *cells,
         }
 }
 
-// Stack depth of one per-point call by painting: fill the 64 KB below this frame (still inside the
-// thread's stack), make the call, and find the deepest byte it changed.
-__attribute__((noinline)) size_t stack_of_point_call(const dsn_noise *noise) {
+// Stack depth of `call` by painting: fill the 64 KB below this frame (still inside the thread's stack),
+// make the call, and find the deepest byte it changed.
+template <typename Call>
+__attribute__((noinline)) size_t painted_stack(Call call) {
     const size_t region_size = 1 << 16, guard = 128; // guard: this frame's own locals and spills
     volatile unsigned char *top = static_cast<unsigned char *>(__builtin_frame_address(0)) - guard;
     for (size_t i = 1; i <= region_size; i++) top[-std::ptrdiff_t(i)] = 0xA5;
-    int32_t out[3];
-    dsn_eval_fixed(noise, 12345, -678, out);
+    call();
     size_t deepest = region_size;
     while (deepest > 0 && top[-std::ptrdiff_t(deepest)] == 0xA5) deepest--;
     return deepest + guard; // an upper bound: includes the guard above the region
@@ -239,10 +239,20 @@ int main() {
         point_time / samples * 1e9, perlin_time / samples * 1e9, point_time / perlin_time, ratios[3],
         double(cells) / samples, double(impulses) / samples,
         30.0 * loaded.asset.width * loaded.asset.height / loaded.asset.support_size);
+    int32_t point_out[3];
+    std::vector<int32_t> tile_out(64 * 64 * 3);
+    dsn_noise sse2_noise = noise;
+    sse2_noise.tile_kernel = 0;
+    const size_t point_stack = painted_stack([&] { dsn_eval_fixed(&noise, 12345, -678, point_out); });
+    const size_t tile_stack =
+        painted_stack([&] { dsn_tile_fixed(&noise, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
+    const size_t sse2_tile_stack =
+        painted_stack([&] { dsn_tile_fixed(&sse2_noise, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
     std::printf(
-        "sizeof(dsn_noise) = %zu bytes, sizeof(dsn_asset) = %zu bytes; stack of one per-point call: %zu "
-        "bytes (painted)\n",
-        sizeof(dsn_noise), sizeof(dsn_asset), stack_of_point_call(&noise));
+        "sizeof(dsn_noise) = %zu bytes, sizeof(dsn_asset) = %zu bytes; stack (painted) of one per-point "
+        "call: %zu bytes, of a tile call: %zu bytes (%s tile code), %zu bytes (default tile code)\n",
+        sizeof(dsn_noise), sizeof(dsn_asset), point_stack, tile_stack, two_copies ? "AVX2" : "default",
+        sse2_tile_stack);
     (void)sink;
     (void)perlin_sink;
     return 0;

@@ -1,7 +1,8 @@
-// runtime_tile_block_test.cpp - the blocked tile path (16-bit block sums, split normalization, per-block
-// output conversion) against per-point evaluation, on windows spanning many blocks: every output type,
-// origins at the 32-bit wrap, periods, densities that push blocks onto the 32-bit fallback, and textons
-// at full scale (the largest sums the 16-bit path accepts). Every check runs each copy of the tile code
+// runtime_tile_strips_test.cpp - the strip path of tiles (16-bit sums in registers, split normalization,
+// per-strip output conversion; runtime/tile_strips.h) against per-point evaluation, on windows spanning
+// many rectangles: every output type, origins at the 32-bit wrap, periods, densities and texton sizes
+// that push rectangles onto the 32-bit fallback, and textons at full scale (the largest sums the 16-bit
+// path accepts). Every check runs each copy of the tile code
 // this CPU can run (on x86-64: the SSE2 copy and, with AVX2, the AVX2 copy; runtime/tile_dispatch.h).
 #include <doctest/doctest.h>
 
@@ -85,15 +86,17 @@ TEST_CASE("init records the copy of the tile code this CPU runs") {
     CHECK(loaded.noise.tile_kernel == expected);
 }
 
-TEST_CASE("blocked tiles == per point for fixed, float and u8 output on windows of many blocks") {
+TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of many rectangles") {
     dsn_test::TestRandom random(77);
     const Window windows[] = {{-1000, 5000, 150, 70},
                               {INT32_MAX - 60, -40, 131, 67},
                               {INT32_MIN + 3, INT32_MAX - 33, 97, 65},
                               {-3, -2, 200, 33},
                               {123456789, -987654321, 65, 100}};
+    // Side 45: a 1-channel texton takes the strip path with AVX2 (16-pixel strips) and the 32-bit path
+    // with SSE2 (where it could reach 6 strips of 8); an RGB one takes the 32-bit path (no room for it).
     for (uint32_t channels : {1u, 3u})
-        for (uint32_t side : {31u, 9u, 1u}) {
+        for (uint32_t side : {31u, 9u, 1u, 45u}) {
             auto fields = dsn_test::synthetic_fields(channels, side, 8, DSN_SHAPE_RECTANGLE, random.next());
             for (const Window &window : windows) {
                 const uint32_t periods[][2] = {{0, 0}, {100, 0}, {0, 37}, {1, 2}, {2147483648u, 1000}};
@@ -110,10 +113,11 @@ TEST_CASE("blocked tiles == per point for fixed, float and u8 output on windows 
         }
 }
 
-TEST_CASE("blocked tiles == per point at densities around the 16-bit limit and at full-scale texton values") {
-    // Near 120 impacts per pixel a 31 x 31 texton puts some 64 x 32 blocks over 255 impulses per column
-    // (32-bit fallback) and leaves others under it; at 300 every block falls back. The constant texton
-    // (every value +127 or -127) gives the largest sums the 16-bit path meets.
+TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at full-scale texton values") {
+    // Near 120 impacts per pixel a 31 x 31 texton puts some 64 x 64 rectangles over 255 impulses per
+    // column or over the list's capacity (32-bit fallback) and leaves others under it; at 300 every
+    // rectangle falls back. The constant texton (every value +127 or -127) gives the largest sums the
+    // 16-bit path meets.
     dsn_test::TestRandom random(78);
     auto varied = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 5);
     auto full_scale = varied;
@@ -127,9 +131,9 @@ TEST_CASE("blocked tiles == per point at densities around the 16-bit limit and a
         }
 }
 
-TEST_CASE("blocked tiles == per point when the normalization cannot be split into 32-bit lanes") {
+TEST_CASE("strip tiles == per point when the normalization cannot be split into 32-bit lanes") {
     // A sparse noise (1/4 impact per pixel) and a strong colour transform make the gains so large that
-    // init keeps fewer than 16 fraction bits: the 16-bit sums are then normalized one pixel at a time.
+    // init keeps fewer than 16 fraction bits: the strips' sums are then normalized one pixel at a time.
     auto fields = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 9);
     for (int i = 0; i < 9; i++) fields.color_transform[i] = (i % 4 == 0 ? 100 : 7) * int32_t(DSN_Q24_ONE);
     for (uint32_t c = 0; c < 3; c++) fields.scale[c] = 0xFFFFFFFFu;

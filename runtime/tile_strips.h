@@ -1,0 +1,208 @@
+/* runtime/tile_strips.h - the fast path for 8-bit textons (SSE2, or AVX2 when compiled for it): a
+   rectangle of the tile is cut into vertical strips one vector wide (8 pixels with SSE2, 16 with AVX2).
+   The impulses that reach the rectangle are listed once (with where they meet it), sorted by the first
+   row they reach, and filed under every strip they reach. Then, row by row, each strip adds in registers
+   one texton row per impulse active on that row (a sliding window over its sorted entries), in 16-bit
+   lanes, read from a copy of the texton padded with a vector of zeros on each side so that every read is
+   one whole vector. A sum is normalized straight from its register: nothing is stored and read back, so
+   the cost is loads, not stores.
+   When no column of the rectangle is reached by more than coverage_limit impulses, no pixel is, and no
+   sum can overflow: |q| <= 128 for any texton byte and 255 * 128 < 2^15. Otherwise (or when the list
+   is full) the caller falls back to the 32-bit splat of tile_walk.h. Internal to tile_render.h. */
+#ifndef DSN_TILE_STRIPS_H
+#define DSN_TILE_STRIPS_H
+
+#include "noise_internal.h"
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#else
+#include <emmintrin.h>
+#endif
+
+namespace {
+
+#if defined(__AVX2__)
+typedef __m256i strip_vector;
+const uint32_t lane = 16; /* pixels per strip: 16-bit sums per vector */
+#else
+typedef __m128i strip_vector;
+const uint32_t lane = 8;
+#endif
+const uint32_t rectangle_width = 64, rectangle_height = 64;
+const uint32_t strip_count = rectangle_width / lane;
+const uint32_t coverage_limit = 255;
+/* A 64 x 64 rectangle meets lambda (64 + 30)^2 = 276 impulses on average at 30 impacts per pixel with
+   a 31 x 31 texton; 384 is 6.5 standard deviations above (a fuller rectangle takes the 32-bit path). */
+const uint32_t list_capacity = 384;
+/* Largest texton side of this path, and most strips one impulse may reach (a texton w wide reaches at
+   most (w + lane - 2) / lane + 1: 5 of 8 pixels for w <= 33, and of 16 for w <= 63). */
+const uint32_t strip_texton_side = 63, strips_per_impulse_limit = 5;
+const uint32_t strip_entry_capacity = list_capacity * strips_per_impulse_limit;
+/* Sort keys: the rectangle row where an impulse's texton row 0 lies, plus height - 1 (so >= 0). */
+const uint32_t key_limit = rectangle_height + strip_texton_side;
+
+/* Values per padded texton row: lane zeros, the row, then zeros up to whole vectors, at least lane - 1. */
+uint32_t strip_stride(uint32_t width) { return (width + 3 * lane - 2) / lane * lane; }
+/* 16-bit values: room for a 31 x 31 RGB texton (the usual size); a larger one must fit as well. */
+const uint32_t strip_texton_capacity = 3 * 31 * ((31 + 3 * lane - 2) / lane * lane);
+
+/* The texton in 16 bits, one plane per channel, each row padded with zeros (strip_stride). */
+typedef struct strip_texton {
+    uint16_t values[strip_texton_capacity];
+    uint32_t stride, plane, height; /* values per row, values per channel plane, rows */
+} strip_texton;
+
+int strip_texton_fits(const dsn_asset *asset) {
+    return asset->bits == 8 && asset->width <= strip_texton_side && asset->height <= strip_texton_side &&
+           (asset->width + lane - 2) / lane + 1 <= strips_per_impulse_limit &&
+           asset->channels * asset->height * strip_stride(asset->width) <= strip_texton_capacity;
+}
+
+void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
+    const uint32_t channels = asset->channels;
+    texton->stride = strip_stride(asset->width);
+    texton->plane = asset->height * texton->stride;
+    texton->height = asset->height;
+    for (uint32_t i = 0; i < channels * texton->plane; i++) texton->values[i] = 0;
+    for (uint32_t c = 0; c < channels; c++)
+        for (uint32_t row = 0; row < asset->height; row++) {
+            uint16_t *dst = texton->values + c * texton->plane + row * texton->stride + lane;
+            const unsigned char *src = asset->texton + row * asset->width * channels + c;
+            for (uint32_t column = 0; column < asset->width; column++)
+                dst[column] = uint16_t((uint32_t(src[column * channels]) ^ 0x80u) - 0x80u);
+        }
+}
+
+/* Where one impulse meets the rectangle: rectangle columns [first_index_x, + count_x) and rows
+   [first_index_y, + count_y), starting at texton column first_texton_x and row first_texton_y. */
+typedef struct listed_impulse {
+    uint16_t first_index_x, first_texton_x, count_x, first_index_y, first_texton_y, count_y;
+} listed_impulse;
+
+/* The impulses that reach a rectangle, as for_each_reaching_impulse visits them. */
+struct impulse_list {
+    listed_impulse impulses[list_capacity];
+    uint32_t count;                              /* may exceed list_capacity: then only the count is kept */
+    int32_t column_change[rectangle_width + 1]; /* impulses starting minus ending at each column */
+
+    void clear() {
+        count = 0;
+        for (uint32_t i = 0; i <= rectangle_width; i++) column_change[i] = 0;
+    }
+
+    void operator()(const dsn_reach &reach_x, const dsn_reach &reach_y) {
+        if (count < list_capacity) {
+            listed_impulse *impulse = &impulses[count];
+            impulse->first_index_x = uint16_t(reach_x.first_index);
+            impulse->first_texton_x = uint16_t(reach_x.first_texton);
+            impulse->count_x = uint16_t(reach_x.count);
+            impulse->first_index_y = uint16_t(reach_y.first_index);
+            impulse->first_texton_y = uint16_t(reach_y.first_texton);
+            impulse->count_y = uint16_t(reach_y.count);
+            column_change[reach_x.first_index]++;
+            column_change[reach_x.first_index + reach_x.count]--;
+        }
+        count++;
+    }
+
+    /* Whether every pixel is reached by at most coverage_limit listed impulses (and all are listed). */
+    int sums_fit_16_bits() const {
+        if (count > list_capacity) return 0;
+        int32_t coverage = 0;
+        for (uint32_t i = 0; i < rectangle_width; i++) {
+            coverage += column_change[i];
+            if (coverage > int32_t(coverage_limit)) return 0;
+        }
+        return 1;
+    }
+};
+
+/* The listed impulses filed under the strips they reach, each strip's entries in key order. An entry
+   is where the impulse's texton window for the strip starts in strip_texton.values, less row * stride
+   (adding row * stride for a rectangle row then gives the texton row on that row). An impulse puts a
+   texton row on rectangle row y when y <= key <= y + height - 1, so the entries of strip s active on
+   row y are [key_start[s][y], key_start[s][y + height]). */
+typedef struct strip_entries {
+    uint16_t key_start[strip_count][key_limit + 1]; /* first entry of strip s with key >= k */
+    int32_t base[strip_entry_capacity];
+} strip_entries;
+
+/* An impulse's key: the (possibly negative) rectangle row of its texton row 0, plus height - 1. */
+inline uint32_t impulse_key(const listed_impulse *impulse, uint32_t height) {
+    return impulse->first_index_y + height - 1u - impulse->first_texton_y;
+}
+
+/* Files the list (at most list_capacity impulses) under the strips, sorted by key: one counting sort
+   over (strip, key). Each impulse files at most strips_per_impulse_limit entries, so they fit. */
+void file_strip_entries(const impulse_list *list, const strip_texton *texton, strip_entries *entries) {
+    uint16_t(*start)[key_limit + 1] = entries->key_start;
+    for (uint32_t s = 0; s < strip_count; s++)
+        for (uint32_t k = 0; k <= key_limit; k++) start[s][k] = 0;
+    for (uint32_t n = 0; n < list->count; n++) {
+        const listed_impulse *impulse = &list->impulses[n];
+        const uint32_t key = impulse_key(impulse, texton->height);
+        const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
+        for (uint32_t s = impulse->first_index_x / lane; s <= last; s++) start[s][key]++;
+    }
+    uint32_t total = 0; /* counts become first positions */
+    for (uint32_t s = 0; s < strip_count; s++)
+        for (uint32_t k = 0; k <= key_limit; k++) {
+            const uint32_t count = start[s][k];
+            start[s][k] = uint16_t(total);
+            total += count;
+        }
+    /* Filling moves each bucket's start to the next bucket's start; key_start is that table shifted. */
+    for (uint32_t n = 0; n < list->count; n++) {
+        const listed_impulse *impulse = &list->impulses[n];
+        const uint32_t key = impulse_key(impulse, texton->height);
+        /* Texton column of rectangle column 0 (after the padding) and texton row of rectangle row 0. */
+        const int32_t column = int32_t(lane) + int32_t(impulse->first_texton_x) - int32_t(impulse->first_index_x);
+        const int32_t row = int32_t(impulse->first_texton_y) - int32_t(impulse->first_index_y);
+        const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
+        for (uint32_t s = impulse->first_index_x / lane; s <= last; s++)
+            entries->base[start[s][key]++] = row * int32_t(texton->stride) + column + int32_t(s * lane);
+    }
+    for (uint32_t s = strip_count; s-- > 0;) {
+        for (uint32_t k = key_limit; k > 0; k--) start[s][k] = start[s][k - 1];
+        start[s][0] = uint16_t(s == 0 ? 0u : start[s - 1][key_limit]);
+    }
+}
+
+#if defined(__AVX2__)
+inline strip_vector load_strip(const uint16_t *src) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src)));
+}
+inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm256_add_epi16(a, b); }
+inline strip_vector zero_strip() { return _mm256_setzero_si256(); }
+#else
+inline strip_vector load_strip(const uint16_t *src) {
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src)));
+}
+inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm_add_epi16(a, b); }
+inline strip_vector zero_strip() { return _mm_setzero_si128(); }
+#endif
+
+/* One row of one strip: sums[c] = the sum over `count` entries of the texton row the entry puts on
+   this row, channel c, read from `row` (the padded texton offset by the rectangle row). Out of line:
+   inlined into the row loop, the compiler runs out of registers and reloads in the inner loop. */
+template <uint32_t Channels>
+__attribute__((noinline)) void add_strip_row(const uint16_t *row, const int32_t *base, uint32_t count,
+                                             uint32_t plane, strip_vector *sums) {
+    strip_vector sum0 = zero_strip(), sum1 = zero_strip(), sum2 = zero_strip();
+    for (uint32_t i = 0; i < count; i++) {
+        const uint16_t *texels = row + base[i];
+        sum0 = add_16(sum0, load_strip(texels));
+        if (Channels == 3) {
+            sum1 = add_16(sum1, load_strip(texels + plane));
+            sum2 = add_16(sum2, load_strip(texels + 2 * plane));
+        }
+    }
+    sums[0] = sum0;
+    sums[1] = sum1;
+    sums[2] = sum2;
+}
+
+} // namespace
+
+#endif /* DSN_TILE_STRIPS_H */
