@@ -88,8 +88,22 @@ void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile
 }
 
 #if DSN_TILE_BLOCKS
+/* One row of a rectangle from its strips' sums (3 vectors per strip) into `out`, the row's first pixel. */
+template <uint32_t Channels, typename Value>
+void normalize_row(const dsn_noise *noise, const strip_setup *setup, strip_vector (*sums)[3 * strip_rows],
+                   uint32_t row, uint32_t width, Value *out) {
+    for (uint32_t s = 0; s * lane < width; s++) {
+        const uint32_t pixels = width - s * lane < lane ? width - s * lane : lane;
+        const strip_vector *strip = sums[s] + 3 * row;
+        if (setup->split_ok)
+            normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels);
+        else
+            normalize_strip_scalar(noise, strip, pixels, out + s * lane * Channels);
+    }
+}
+
 /* A rectangle of the tile, rectangle_width x rectangle_height at most: its impulses are listed and filed
-   under the strips once, then each row is summed and normalized strip by strip. */
+   under the strips once, then strip_rows rows at a time are summed strip by strip and normalized. */
 template <uint32_t Channels, typename Value>
 void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const tile_run *walk_x,
                       const tile_run *walk_y, const tile_target *target) {
@@ -103,22 +117,20 @@ void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const ti
     strip_entries entries;
     file_strip_entries(&list, &setup->texton, &entries);
     const strip_texton *texton = &setup->texton;
-    const uint32_t strips = (walk_x->length + lane - 1) / lane;
-    for (uint32_t y = 0; y < walk_y->length; y++) {
-        Value *out = static_cast<Value *>(target->out) + size_t(walk_y->offset + y) * target->row_values +
-                     walk_x->offset * Channels;
-        strip_vector sums[strip_count][3];
-        for (uint32_t s = 0; s < strips; s++) {
-            const uint32_t first = entries.key_start[s][y], end = entries.key_start[s][y + texton->height];
-            add_strip_row<Channels>(texton->values + y * texton->stride, entries.base + first, end - first,
-                                    texton->plane, sums[s]);
+    const uint16_t *row_zero = texton->values + (strip_rows - 1) * texton->stride; /* after the padding */
+    for (uint32_t y = 0; y < walk_y->length; y += strip_rows) {
+        /* Entries active on rows y .. y + strip_rows - 1: keys y .. y + strip_rows - 2 + height. */
+        const uint32_t last_key_end = y + strip_rows - 1 + texton->height;
+        strip_vector sums[strip_count][3 * strip_rows];
+        for (uint32_t s = 0; s * lane < walk_x->length; s++) {
+            const uint32_t first = entries.key_start[s][y], end = entries.key_start[s][last_key_end];
+            add_strip_rows<Channels>(row_zero + y * texton->stride, entries.base + first, end - first,
+                                     texton->plane, texton->stride, sums[s]);
         }
-        for (uint32_t s = 0; s < strips; s++) {
-            const uint32_t pixels = walk_x->length - s * lane < lane ? walk_x->length - s * lane : lane;
-            if (setup->split_ok)
-                normalize_strip<Channels>(&setup->split, sums[s], pixels, out + s * lane * Channels);
-            else
-                normalize_strip_scalar(noise, sums[s], pixels, out + s * lane * Channels);
+        for (uint32_t r = 0; r < strip_rows && y + r < walk_y->length; r++) {
+            Value *out = static_cast<Value *>(target->out) +
+                         size_t(walk_y->offset + y + r) * target->row_values + walk_x->offset * Channels;
+            normalize_row<Channels>(noise, setup, sums, r, walk_x->length, out);
         }
     }
 }

@@ -4,8 +4,8 @@
    row they reach, and filed under every strip they reach. Then, row by row, each strip adds in registers
    one texton row per impulse active on that row (a sliding window over its sorted entries), in 16-bit
    lanes, read from a copy of the texton padded with a vector of zeros on each side so that every read is
-   one whole vector. A sum is normalized straight from its register: nothing is stored and read back, so
-   the cost is loads, not stores.
+   one whole vector (two rows at a time, sharing the loop). A sum is normalized straight from its
+   register: nothing is accumulated in memory, so the cost is loads, not read-modify-write stores.
    When no column of the rectangle is reached by more than coverage_limit impulses, no pixel is, and no
    sum can overflow: |q| <= 128 for any texton byte and 255 * 128 < 2^15. Otherwise (or when the list
    is full) the caller falls back to the 32-bit splat of tile_walk.h. Internal to tile_render.h. */
@@ -44,10 +44,14 @@ const uint32_t key_limit = rectangle_height + strip_texton_side;
 
 /* Values per padded texton row: lane zeros, the row, then zeros up to whole vectors, at least lane - 1. */
 uint32_t strip_stride(uint32_t width) { return (width + 3 * lane - 2) / lane * lane; }
+/* Rows summed at once (sharing the loop over entries); strip_rows - 1 rows of zeros pad the texton
+   above and below, for the entries active on only some of them. */
+const uint32_t strip_rows = 2;
 /* 16-bit values: room for a 31 x 31 RGB texton (the usual size); a larger one must fit as well. */
-const uint32_t strip_texton_capacity = 3 * 31 * ((31 + 3 * lane - 2) / lane * lane);
+const uint32_t strip_texton_capacity = 3 * (31 + 2 * (strip_rows - 1)) * ((31 + 3 * lane - 2) / lane * lane);
 
-/* The texton in 16 bits, one plane per channel, each row padded with zeros (strip_stride). */
+/* The texton in 16 bits, one plane per channel, each row padded with zeros (strip_stride), each plane
+   with strip_rows - 1 rows of zeros above and below. */
 typedef struct strip_texton {
     uint16_t values[strip_texton_capacity];
     uint32_t stride, plane, height; /* values per row, values per channel plane, rows */
@@ -56,18 +60,20 @@ typedef struct strip_texton {
 int strip_texton_fits(const dsn_asset *asset) {
     return asset->bits == 8 && asset->width <= strip_texton_side && asset->height <= strip_texton_side &&
            (asset->width + lane - 2) / lane + 1 <= strips_per_impulse_limit &&
-           asset->channels * asset->height * strip_stride(asset->width) <= strip_texton_capacity;
+           asset->channels * (asset->height + 2 * (strip_rows - 1)) * strip_stride(asset->width) <=
+               strip_texton_capacity;
 }
 
 void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
     const uint32_t channels = asset->channels;
     texton->stride = strip_stride(asset->width);
-    texton->plane = asset->height * texton->stride;
+    texton->plane = (asset->height + 2 * (strip_rows - 1)) * texton->stride;
     texton->height = asset->height;
     for (uint32_t i = 0; i < channels * texton->plane; i++) texton->values[i] = 0;
     for (uint32_t c = 0; c < channels; c++)
         for (uint32_t row = 0; row < asset->height; row++) {
-            uint16_t *dst = texton->values + c * texton->plane + row * texton->stride + lane;
+            uint16_t *dst =
+                texton->values + c * texton->plane + (row + strip_rows - 1) * texton->stride + lane;
             const unsigned char *src = asset->texton + row * asset->width * channels + c;
             for (uint32_t column = 0; column < asset->width; column++)
                 dst[column] = uint16_t((uint32_t(src[column * channels]) ^ 0x80u) - 0x80u);
@@ -83,7 +89,7 @@ typedef struct listed_impulse {
 /* The impulses that reach a rectangle, as for_each_reaching_impulse visits them. */
 struct impulse_list {
     listed_impulse impulses[list_capacity];
-    uint32_t count;                              /* may exceed list_capacity: then only the count is kept */
+    uint32_t count;                             /* may exceed list_capacity: then only the count is kept */
     int32_t column_change[rectangle_width + 1]; /* impulses starting minus ending at each column */
 
     void clear() {
@@ -145,27 +151,23 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, st
         const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
         for (uint32_t s = impulse->first_index_x / lane; s <= last; s++) start[s][key]++;
     }
-    uint32_t total = 0; /* counts become first positions */
+    /* Counts become each bucket's end; filling backwards leaves each at the bucket's start. */
+    uint32_t total = 0;
     for (uint32_t s = 0; s < strip_count; s++)
         for (uint32_t k = 0; k <= key_limit; k++) {
-            const uint32_t count = start[s][k];
+            total += start[s][k];
             start[s][k] = uint16_t(total);
-            total += count;
         }
-    /* Filling moves each bucket's start to the next bucket's start; key_start is that table shifted. */
     for (uint32_t n = 0; n < list->count; n++) {
         const listed_impulse *impulse = &list->impulses[n];
         const uint32_t key = impulse_key(impulse, texton->height);
         /* Texton column of rectangle column 0 (after the padding) and texton row of rectangle row 0. */
-        const int32_t column = int32_t(lane) + int32_t(impulse->first_texton_x) - int32_t(impulse->first_index_x);
+        const int32_t column =
+            int32_t(lane) + int32_t(impulse->first_texton_x) - int32_t(impulse->first_index_x);
         const int32_t row = int32_t(impulse->first_texton_y) - int32_t(impulse->first_index_y);
         const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
         for (uint32_t s = impulse->first_index_x / lane; s <= last; s++)
-            entries->base[start[s][key]++] = row * int32_t(texton->stride) + column + int32_t(s * lane);
-    }
-    for (uint32_t s = strip_count; s-- > 0;) {
-        for (uint32_t k = key_limit; k > 0; k--) start[s][k] = start[s][k - 1];
-        start[s][0] = uint16_t(s == 0 ? 0u : start[s - 1][key_limit]);
+            entries->base[--start[s][key]] = row * int32_t(texton->stride) + column + int32_t(s * lane);
     }
 }
 
@@ -183,24 +185,30 @@ inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm_add_epi1
 inline strip_vector zero_strip() { return _mm_setzero_si128(); }
 #endif
 
-/* One row of one strip: sums[c] = the sum over `count` entries of the texton row the entry puts on
-   this row, channel c, read from `row` (the padded texton offset by the rectangle row). Out of line:
-   inlined into the row loop, the compiler runs out of registers and reloads in the inner loop. */
+/* strip_rows rows of one strip: sums[3 r + c] = the sum over `count` entries of the texton row each
+   puts on row r, channel c, read from `row` (texton row 0 offset by the first rectangle row). An entry
+   active on only some of the rows reads zero padding rows on the others. Out of line: inlined into the
+   row loop, the compiler runs out of registers and reloads in the inner loop. */
 template <uint32_t Channels>
-__attribute__((noinline)) void add_strip_row(const uint16_t *row, const int32_t *base, uint32_t count,
-                                             uint32_t plane, strip_vector *sums) {
-    strip_vector sum0 = zero_strip(), sum1 = zero_strip(), sum2 = zero_strip();
+__attribute__((noinline)) void add_strip_rows(const uint16_t *row, const int32_t *base, uint32_t count,
+                                              uint32_t plane, uint32_t stride, strip_vector *sums) {
+    strip_vector sum[strip_rows][3];
+#pragma GCC unroll 4
+    for (uint32_t r = 0; r < strip_rows; r++) sum[r][0] = sum[r][1] = sum[r][2] = zero_strip();
     for (uint32_t i = 0; i < count; i++) {
         const uint16_t *texels = row + base[i];
-        sum0 = add_16(sum0, load_strip(texels));
-        if (Channels == 3) {
-            sum1 = add_16(sum1, load_strip(texels + plane));
-            sum2 = add_16(sum2, load_strip(texels + 2 * plane));
+#pragma GCC unroll 4
+        for (uint32_t r = 0; r < strip_rows; r++) {
+            sum[r][0] = add_16(sum[r][0], load_strip(texels + r * stride));
+            if (Channels == 3) {
+                sum[r][1] = add_16(sum[r][1], load_strip(texels + r * stride + plane));
+                sum[r][2] = add_16(sum[r][2], load_strip(texels + r * stride + 2 * plane));
+            }
         }
     }
-    sums[0] = sum0;
-    sums[1] = sum1;
-    sums[2] = sum2;
+#pragma GCC unroll 4
+    for (uint32_t r = 0; r < strip_rows; r++)
+        for (uint32_t c = 0; c < 3; c++) sums[3 * r + c] = sum[r][c];
 }
 
 } // namespace
