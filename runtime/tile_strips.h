@@ -42,26 +42,31 @@ const uint32_t strip_entry_capacity = list_capacity * strips_per_impulse_limit;
 /* Sort keys: the rectangle row where an impulse's texton row 0 lies, plus height - 1 (so >= 0). */
 const uint32_t key_limit = rectangle_height + strip_texton_side;
 
-/* Values per padded texton row: lane zeros, the row, then zeros up to whole vectors, at least lane - 1. */
-uint32_t strip_stride(uint32_t width) { return (width + 3 * lane - 2) / lane * lane; }
 /* Rows summed at once (sharing the loop over entries); strip_rows - 1 rows of zeros pad the texton
    above and below, for the entries active on only some of them. */
 const uint32_t strip_rows = 2;
-/* 16-bit values: room for a 31 x 31 RGB texton (the usual size); a larger one must fit as well. */
-const uint32_t strip_texton_capacity = 3 * (31 + 2 * (strip_rows - 1)) * ((31 + 3 * lane - 2) / lane * lane);
 
-/* The texton in 16 bits, one plane per channel, each row padded with zeros (strip_stride), each plane
-   with strip_rows - 1 rows of zeros above and below. */
+/* The texton in 16 bits, twice. Each copy has one plane per channel, strip_rows - 1 rows of zeros above
+   and below each plane, and rows of `stride` values: zeros, the texton row from value lane (copy 0) or
+   2 lane (copy 1, `shifted` values further), zeros. The sums are bound by their loads, and a vector load
+   that crosses a 64-byte cache line costs two: rows are whole cache lines, so whether a window's load
+   crosses one depends only on its column, and the other copy then holds the same window at a column
+   where it does not (file_strip_entries picks it). Every window read is inside the copies or the
+   `stride` zeros after them (a copy 1 window may run up to lane - 1 values into the next row's zeros). */
 typedef struct strip_texton {
-    uint16_t values[strip_texton_capacity];
-    uint32_t stride, plane, height; /* values per row, values per channel plane, rows */
+    alignas(64) uint16_t values[2 * 3 * (31 + 2 * (strip_rows - 1)) * 64 + 64]; /* 31 x 31 RGB fits */
+    uint32_t stride, plane, height, shifted; /* values per row and per plane, texton rows, copy 1 offset */
 } strip_texton;
 
+/* Values per texton row in strip_texton: room for lane zeros on the left of copy 0's windows, 2 lane in
+   copy 1, a whole number of cache lines. */
+uint32_t strip_stride(uint32_t width) { return (width + 2 * lane + 31) / 32 * 32; }
+
 int strip_texton_fits(const dsn_asset *asset) {
+    const uint32_t rows = 2 * asset->channels * (asset->height + 2 * (strip_rows - 1)) + 1;
     return asset->bits == 8 && asset->width <= strip_texton_side && asset->height <= strip_texton_side &&
            (asset->width + lane - 2) / lane + 1 <= strips_per_impulse_limit &&
-           asset->channels * (asset->height + 2 * (strip_rows - 1)) * strip_stride(asset->width) <=
-               strip_texton_capacity;
+           rows * strip_stride(asset->width) <= sizeof(strip_texton().values) / sizeof(uint16_t);
 }
 
 void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
@@ -69,14 +74,18 @@ void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
     texton->stride = strip_stride(asset->width);
     texton->plane = (asset->height + 2 * (strip_rows - 1)) * texton->stride;
     texton->height = asset->height;
-    for (uint32_t i = 0; i < channels * texton->plane; i++) texton->values[i] = 0;
+    texton->shifted = channels * texton->plane;
+    for (uint32_t i = 0; i < 2 * texton->shifted + texton->stride; i++) texton->values[i] = 0;
     for (uint32_t c = 0; c < channels; c++)
         for (uint32_t row = 0; row < asset->height; row++) {
             uint16_t *dst =
                 texton->values + c * texton->plane + (row + strip_rows - 1) * texton->stride + lane;
             const unsigned char *src = asset->texton + row * asset->width * channels + c;
-            for (uint32_t column = 0; column < asset->width; column++)
-                dst[column] = uint16_t((uint32_t(src[column * channels]) ^ 0x80u) - 0x80u);
+            for (uint32_t column = 0; column < asset->width; column++) {
+                const uint16_t value = uint16_t((uint32_t(src[column * channels]) ^ 0x80u) - 0x80u);
+                dst[column] = value;
+                dst[texton->shifted + lane + column] = value;
+            }
         }
 }
 
@@ -134,6 +143,14 @@ typedef struct strip_entries {
     int32_t base[strip_entry_capacity];
 } strip_entries;
 
+/* Where the window of strip s starts in a texton row, given `column`, the padded column of rectangle
+   column 0: in copy 0, or in copy 1 when copy 0's vector load would cross a cache line (its byte offset
+   in the line, 2 column mod 64, past 64 - 2 lane; copy 1 holds it lane values later, where it does not). */
+inline int32_t window_column(const strip_texton *texton, int32_t column, uint32_t s) {
+    const uint32_t in_copy_0 = uint32_t(column) + s * lane;
+    return int32_t(in_copy_0 % 32u > 32u - lane ? in_copy_0 + texton->shifted + lane : in_copy_0);
+}
+
 /* An impulse's key: the (possibly negative) rectangle row of its texton row 0, plus height - 1. */
 inline uint32_t impulse_key(const listed_impulse *impulse, uint32_t height) {
     return impulse->first_index_y + height - 1u - impulse->first_texton_y;
@@ -167,7 +184,7 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, st
         const int32_t row = int32_t(impulse->first_texton_y) - int32_t(impulse->first_index_y);
         const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
         for (uint32_t s = impulse->first_index_x / lane; s <= last; s++)
-            entries->base[--start[s][key]] = row * int32_t(texton->stride) + column + int32_t(s * lane);
+            entries->base[--start[s][key]] = row * int32_t(texton->stride) + window_column(texton, column, s);
     }
 }
 

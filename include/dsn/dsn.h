@@ -159,13 +159,13 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    and init picks it when CPUID and the OS allow (runtime/tile_dispatch.h); other build systems get one
    copy, built with their own flags. Same bits either way. */
 /* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86): its fast path
-   keeps a padded copy of the texton, an impulse list and their filing under vertical strips on the stack,
-   about 25 KB (28 KB for the AVX2 copy; 25,272 and 27,896 bytes measured by make bench). Build the runtime
-   with -DDSN_TILE_BLOCKS=0 to keep the small-stack path there too (same bits, slower). A per-point call
-   uses about 650 bytes on x86-64 (612-628 measured: its fast path keeps
-   the masks and texton entries of 9 cells on the stack), about 530 in the small build below (a 1 x 1
-   tile: 528 measured on Cortex-M0, 500 on Cortex-M4). A continuous per-point call uses about 1.3 KB on
-   x86-64 (its fast path buffers the candidates of 16 position pairs). */
+   keeps two padded copies of the texton, an impulse list and their filing under vertical strips on the
+   stack, about 42 KB (make bench measures it). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the
+   small-stack path there too (same bits, slower). A per-point call uses about 650 bytes on x86-64
+   (612-628 measured: its fast path keeps the masks and texton entries of 9 cells on the stack), about
+   530 in the small build below (a 1 x 1 tile: 528 measured on Cortex-M0, 500 on Cortex-M4). A
+   continuous per-point call uses about 1.3 KB on x86-64 (its fast path buffers the candidates of 16
+   position pairs). */
 /* Code size: built for size (-Os, which defines __OPTIMIZE_SIZE__), the runtime compiles generic, compact
    code paths instead of the speed-tuned ones (one bilinear texton reader for 8 and 16 bits, continuous
    grid tiles evaluated point by point, a lattice point evaluated as a 1 x 1 tile, no code copied per
