@@ -55,7 +55,7 @@ const uint32_t strip_rows = 2;
    `stride` zeros after them (a copy 1 window may run up to lane - 1 values into the next row's zeros). */
 typedef struct strip_texton {
     alignas(64) uint16_t values[2 * 3 * (31 + 2 * (strip_rows - 1)) * 64 + 64]; /* 31 x 31 RGB fits */
-    uint32_t stride, plane, height, shifted; /* values per row and per plane, texton rows, copy 1 offset */
+    uint32_t stride, plane, width, height, shifted; /* values per row and plane, texton size, copy 1 offset */
 } strip_texton;
 
 /* Values per texton row in strip_texton: room for lane zeros on the left of copy 0's windows, 2 lane in
@@ -73,6 +73,7 @@ void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
     const uint32_t channels = asset->channels;
     texton->stride = strip_stride(asset->width);
     texton->plane = (asset->height + 2 * (strip_rows - 1)) * texton->stride;
+    texton->width = asset->width;
     texton->height = asset->height;
     texton->shifted = channels * texton->plane;
     for (uint32_t i = 0; i < 2 * texton->shifted + texton->stride; i++) texton->values[i] = 0;
@@ -139,8 +140,10 @@ struct impulse_list {
    texton row on rectangle row y when y <= key <= y + height - 1, so the entries of strip s active on
    row y are [key_start[s][y], key_start[s][y + height]). */
 typedef struct strip_entries {
-    uint16_t key_start[strip_count][key_limit + 1]; /* first entry of strip s with key >= k */
-    int32_t base[strip_entry_capacity];
+    /* First entry of strip s with key >= k; the rows past strip_count let every impulse update
+       strips_per_impulse_limit rows (unconditionally: the branch would be unpredictable). */
+    uint16_t key_start[strip_count + strips_per_impulse_limit - 1][key_limit + 1];
+    int32_t base[strip_entry_capacity + 1]; /* the last one takes the writes of those rows */
 } strip_entries;
 
 /* Where the window of strip s starts in a texton row, given `column`, the padded column of rectangle
@@ -160,13 +163,15 @@ inline uint32_t impulse_key(const listed_impulse *impulse, uint32_t height) {
    over (strip, key). Each impulse files at most strips_per_impulse_limit entries, so they fit. */
 void file_strip_entries(const impulse_list *list, const strip_texton *texton, strip_entries *entries) {
     uint16_t(*start)[key_limit + 1] = entries->key_start;
-    for (uint32_t s = 0; s < strip_count; s++)
+    const uint32_t spans = (texton->width + lane - 2) / lane + 1; /* most strips an impulse reaches */
+    for (uint32_t s = 0; s < strip_count + strips_per_impulse_limit - 1; s++)
         for (uint32_t k = 0; k <= key_limit; k++) start[s][k] = 0;
     for (uint32_t n = 0; n < list->count; n++) {
         const listed_impulse *impulse = &list->impulses[n];
-        const uint32_t key = impulse_key(impulse, texton->height);
-        const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
-        for (uint32_t s = impulse->first_index_x / lane; s <= last; s++) start[s][key]++;
+        const uint32_t key = impulse_key(impulse, texton->height), first = impulse->first_index_x / lane;
+        const uint32_t reached = (impulse->first_index_x + impulse->count_x - 1u) / lane - first + 1u;
+        for (uint32_t j = 0; j < spans; j++)
+            start[first + j][key] = uint16_t(start[first + j][key] + (j < reached));
     }
     /* Counts become each bucket's end; filling backwards leaves each at the bucket's start. */
     uint32_t total = 0;
@@ -177,14 +182,18 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, st
         }
     for (uint32_t n = 0; n < list->count; n++) {
         const listed_impulse *impulse = &list->impulses[n];
-        const uint32_t key = impulse_key(impulse, texton->height);
+        const uint32_t key = impulse_key(impulse, texton->height), first = impulse->first_index_x / lane;
+        const uint32_t reached = (impulse->first_index_x + impulse->count_x - 1u) / lane - first + 1u;
         /* Texton column of rectangle column 0 (after the padding) and texton row of rectangle row 0. */
         const int32_t column =
             int32_t(lane) + int32_t(impulse->first_texton_x) - int32_t(impulse->first_index_x);
         const int32_t row = int32_t(impulse->first_texton_y) - int32_t(impulse->first_index_y);
-        const uint32_t last = (impulse->first_index_x + impulse->count_x - 1u) / lane;
-        for (uint32_t s = impulse->first_index_x / lane; s <= last; s++)
-            entries->base[--start[s][key]] = row * int32_t(texton->stride) + window_column(texton, column, s);
+        for (uint32_t j = 0; j < spans; j++) {
+            const uint32_t valid = j < reached, position = start[first + j][key] - valid;
+            start[first + j][key] = uint16_t(position);
+            entries->base[valid ? position : strip_entry_capacity] =
+                row * int32_t(texton->stride) + window_column(texton, column, first + j);
+        }
     }
 }
 
