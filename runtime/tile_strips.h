@@ -1,8 +1,8 @@
 /* runtime/tile_strips.h - the fast path for 8-bit textons (SSE2, or AVX2 when compiled for it): a
    rectangle of the tile is cut into vertical strips one vector wide (8 pixels with SSE2, 16 with AVX2).
-   The impulses that reach the rectangle are listed once (with where they meet it), sorted by the first
-   row they reach, and filed under every strip they reach. Then, row by row, each strip adds in registers
-   one texton row per impulse active on that row (a sliding window over its sorted entries), in 16-bit
+   The impulses that reach the rectangle are listed once (with where they meet it), sorted by the row
+   of their texton's first row, and filed under every strip they reach. Then, row by row, each strip adds
+   in registers one texton row per impulse active on that row (a range of its sorted entries), in 16-bit
    lanes, read from a copy of the texton padded with a vector of zeros on each side so that every read is
    one whole vector (two rows at a time, sharing the loop). A sum is normalized straight from its
    register: nothing is accumulated in memory, so the cost is loads, not read-modify-write stores.
@@ -90,10 +90,11 @@ void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
         }
 }
 
-/* Where one impulse meets the rectangle: rectangle columns [first_index_x, + count_x) and rows
-   [first_index_y, + count_y), starting at texton column first_texton_x and row first_texton_y. */
+/* Where one impulse meets the rectangle: rectangle columns [first_index_x, + count_x) from texton
+   column first_texton_x, and rows from first_index_y, texton row first_texton_y (the row count follows
+   from the key, impulse_key). */
 typedef struct listed_impulse {
-    uint16_t first_index_x, first_texton_x, count_x, first_index_y, first_texton_y, count_y;
+    uint16_t first_index_x, first_texton_x, count_x, first_index_y, first_texton_y;
 } listed_impulse;
 
 /* The impulses that reach a rectangle, as for_each_reaching_impulse visits them. */
@@ -115,7 +116,6 @@ struct impulse_list {
             impulse->count_x = uint16_t(reach_x.count);
             impulse->first_index_y = uint16_t(reach_y.first_index);
             impulse->first_texton_y = uint16_t(reach_y.first_texton);
-            impulse->count_y = uint16_t(reach_y.count);
             column_change[reach_x.first_index]++;
             column_change[reach_x.first_index + reach_x.count]--;
         }
