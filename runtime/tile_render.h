@@ -9,9 +9,9 @@
 #ifndef DSN_TILE_RENDER_H
 #define DSN_TILE_RENDER_H
 
-/* The strip path (x86 SSE2 or AVX2) keeps about 24 KB on the stack (the padded texton, the impulse list
-   and the strip entries); elsewhere the 32-bit path keeps a tile call's stack under 1 KB, which
-   microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to take the 32-bit path
+/* The strip path (x86 SSE2 or AVX2) keeps about 42 KB on the stack (two padded copies of the texton,
+   the impulse list and the strip entries); elsewhere the 32-bit path keeps a tile call's stack under 1 KB,
+   which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to take the 32-bit path
    on x86 too. */
 #if !defined(__SSE2__)
 #undef DSN_TILE_BLOCKS
@@ -47,8 +47,8 @@ typedef struct strip_setup {
     split_vectors split;
 } strip_setup;
 
-void make_strip_setup(const dsn_noise *noise, strip_setup *setup) {
-    make_strip_texton(&noise->asset, &setup->texton);
+void make_strip_setup(const dsn_noise *noise, uint64_t pixels, strip_setup *setup) {
+    make_strip_texton(&noise->asset, pixels >= rectangle_width * rectangle_height ? 2u : 1u, &setup->texton);
     split_normalization split;
     setup->split_ok = make_split_normalization(noise, &split);
     if (setup->split_ok) make_split_vectors(&split, noise->asset.channels, &setup->split);
@@ -64,20 +64,20 @@ typedef struct tile_target {
     uint32_t row_values;
 } tile_target;
 
-/* The 32-bit path for a rectangle of single runs (a block with too many impulses, or a whole run when
-   the texton does not fit the 16-bit path): 32-bit sums in the tile accumulator, then each pixel. */
-void render_block_32(const dsn_noise *noise, const tile_run *block_x, const tile_run *block_y,
-                     const tile_target *target) {
+/* The 32-bit path for a rectangle of single runs (a rectangle with too many impulses, or a whole run
+   when the texton does not fit the strip path): 32-bit sums in the tile accumulator, then each pixel. */
+void render_rectangle_32(const dsn_noise *noise, const tile_run *rectangle_x, const tile_run *rectangle_y,
+                         const tile_target *target) {
     const uint32_t channels = noise->asset.channels, row_values = target->row_values;
-    for (uint32_t row = 0; row < block_y->length; row++) {
-        uint32_t *sums =
-            target->accumulator + size_t(block_y->offset + row) * row_values + block_x->offset * channels;
-        for (uint32_t i = 0; i < block_x->length * channels; i++) sums[i] = 0;
+    for (uint32_t row = 0; row < rectangle_y->length; row++) {
+        uint32_t *sums = target->accumulator + size_t(rectangle_y->offset + row) * row_values +
+                         rectangle_x->offset * channels;
+        for (uint32_t i = 0; i < rectangle_x->length * channels; i++) sums[i] = 0;
     }
-    splat_region(noise, block_x, block_y, target->accumulator, row_values);
-    for (uint32_t row = 0; row < block_y->length; row++) {
-        size_t first = size_t(block_y->offset + row) * row_values + block_x->offset * channels;
-        for (uint32_t i = 0; i < block_x->length; i++) {
+    splat_region(noise, rectangle_x, rectangle_y, target->accumulator, row_values);
+    for (uint32_t row = 0; row < rectangle_y->length; row++) {
+        size_t first = size_t(rectangle_y->offset + row) * row_values + rectangle_x->offset * channels;
+        for (uint32_t i = 0; i < rectangle_x->length; i++) {
             const uint32_t *pixel = target->accumulator + first + i * channels;
             uint32_t sums[3] = {pixel[0], channels == 3 ? pixel[1] : 0u, channels == 3 ? pixel[2] : 0u};
             int32_t fixed[3];
@@ -111,11 +111,11 @@ void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const ti
     list.clear();
     for_each_reaching_impulse(noise, walk_x, walk_y, list);
     if (!list.sums_fit_16_bits()) {
-        render_block_32(noise, walk_x, walk_y, target);
+        render_rectangle_32(noise, walk_x, walk_y, target);
         return;
     }
     strip_entries entries;
-    file_strip_entries(&list, &setup->texton, &entries);
+    file_strip_entries(&list, &setup->texton, walk_x->length, walk_y->length, &entries);
     const strip_texton *texton = &setup->texton;
     const uint16_t *row_zero = texton->values + (strip_rows - 1) * texton->stride; /* after the padding */
     for (uint32_t y = 0; y < walk_y->length; y += strip_rows) {
@@ -154,9 +154,10 @@ void render_region(const dsn_noise *noise, const strip_setup *setup, const tile_
 /* The whole tile in rectangles, with the copy of the strip path for the output type and channels. */
 template <typename Value>
 void render_strip_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t run_count_x,
-                       const tile_run *runs_y, uint32_t run_count_y, const tile_target *target) {
+                       const tile_run *runs_y, uint32_t run_count_y, uint64_t pixels,
+                       const tile_target *target) {
     strip_setup setup;
-    make_strip_setup(noise, &setup);
+    make_strip_setup(noise, pixels, &setup);
     for (uint32_t ry = 0; ry < run_count_y; ry++)
         for (uint32_t rx = 0; rx < run_count_x; rx++) {
             if (noise->asset.channels == 3)
@@ -176,19 +177,20 @@ void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t widt
     tile_target target = {out, kind, accumulator, width * noise->asset.channels};
 #if DSN_TILE_BLOCKS
     /* A single point takes the 32-bit path: no padded copy of the texton for one pixel. */
-    if ((width > 1 || height > 1) && strip_texton_fits(&noise->asset)) {
+    const uint64_t pixels = uint64_t(width) * height;
+    if (pixels > 1 && strip_texton_fits(&noise->asset)) {
         if (kind == dsn_output_float)
-            render_strip_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+            render_strip_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
         else if (kind == dsn_output_u8)
-            render_strip_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+            render_strip_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
         else
-            render_strip_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, &target);
+            render_strip_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
         return;
     }
 #endif
     for (uint32_t ry = 0; ry < run_count_y; ry++)
         for (uint32_t rx = 0; rx < run_count_x; rx++)
-            render_block_32(noise, &runs_x[rx], &runs_y[ry], &target);
+            render_rectangle_32(noise, &runs_x[rx], &runs_y[ry], &target);
 }
 
 } // namespace

@@ -56,6 +56,7 @@ const uint32_t strip_rows = 2;
 typedef struct strip_texton {
     alignas(64) uint16_t values[2 * 3 * (31 + 2 * (strip_rows - 1)) * 64 + 64]; /* 31 x 31 RGB fits */
     uint32_t stride, plane, width, height, shifted; /* values per row and plane, texton size, copy 1 offset */
+    uint32_t copies; /* 1 or 2: copy 1 pays off only over thousands of pixels */
 } strip_texton;
 
 /* Values per texton row in strip_texton: room for lane zeros on the left of copy 0's windows, 2 lane in
@@ -69,14 +70,15 @@ int strip_texton_fits(const dsn_asset *asset) {
            rows * strip_stride(asset->width) <= sizeof(strip_texton().values) / sizeof(uint16_t);
 }
 
-void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
+void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *texton) {
     const uint32_t channels = asset->channels;
+    texton->copies = copies;
     texton->stride = strip_stride(asset->width);
     texton->plane = (asset->height + 2 * (strip_rows - 1)) * texton->stride;
     texton->width = asset->width;
     texton->height = asset->height;
     texton->shifted = channels * texton->plane;
-    for (uint32_t i = 0; i < 2 * texton->shifted + texton->stride; i++) texton->values[i] = 0;
+    for (uint32_t i = 0; i < copies * texton->shifted + texton->stride; i++) texton->values[i] = 0;
     for (uint32_t c = 0; c < channels; c++)
         for (uint32_t row = 0; row < asset->height; row++) {
             uint16_t *dst =
@@ -85,7 +87,7 @@ void make_strip_texton(const dsn_asset *asset, strip_texton *texton) {
             for (uint32_t column = 0; column < asset->width; column++) {
                 const uint16_t value = uint16_t((uint32_t(src[column * channels]) ^ 0x80u) - 0x80u);
                 dst[column] = value;
-                dst[texton->shifted + lane + column] = value;
+                if (copies == 2) dst[texton->shifted + lane + column] = value;
             }
         }
 }
@@ -151,7 +153,8 @@ typedef struct strip_entries {
    in the line, 2 column mod 64, past 64 - 2 lane; copy 1 holds it lane values later, where it does not). */
 inline int32_t window_column(const strip_texton *texton, int32_t column, uint32_t s) {
     const uint32_t in_copy_0 = uint32_t(column) + s * lane;
-    return int32_t(in_copy_0 % 32u > 32u - lane ? in_copy_0 + texton->shifted + lane : in_copy_0);
+    return int32_t(texton->copies == 2 && in_copy_0 % 32u > 32u - lane ? in_copy_0 + texton->shifted + lane
+                                                                       : in_copy_0);
 }
 
 /* An impulse's key: the (possibly negative) rectangle row of its texton row 0, plus height - 1. */
@@ -159,13 +162,20 @@ inline uint32_t impulse_key(const listed_impulse *impulse, uint32_t height) {
     return impulse->first_index_y + height - 1u - impulse->first_texton_y;
 }
 
-/* Files the list (at most list_capacity impulses) under the strips, sorted by key: one counting sort
-   over (strip, key). Each impulse files at most strips_per_impulse_limit entries, so they fit. */
-void file_strip_entries(const impulse_list *list, const strip_texton *texton, strip_entries *entries) {
+/* Files the list (at most list_capacity impulses) of a rectangle `columns` x `rows` under its strips,
+   sorted by key: one counting sort over (strip, key). Each impulse files at most
+   strips_per_impulse_limit entries, so they fit. */
+void file_strip_entries(const impulse_list *list, const strip_texton *texton, uint32_t columns, uint32_t rows,
+                        strip_entries *entries) {
     uint16_t(*start)[key_limit + 1] = entries->key_start;
     const uint32_t spans = (texton->width + lane - 2) / lane + 1; /* most strips an impulse reaches */
-    for (uint32_t s = 0; s < strip_count + strips_per_impulse_limit - 1; s++)
-        for (uint32_t k = 0; k <= key_limit; k++) start[s][k] = 0;
+    const uint32_t strips = (columns + lane - 1) / lane;
+    /* Keys the rows look up (render_rectangle): up to rows - 1 + strip_rows - 1 + height. */
+    const uint32_t keys = rows + strip_rows + texton->height - 1 < key_limit + 1
+                              ? rows + strip_rows + texton->height - 1
+                              : key_limit + 1;
+    for (uint32_t s = 0; s < strips + spans - 1; s++)
+        for (uint32_t k = 0; k < keys; k++) start[s][k] = 0;
     for (uint32_t n = 0; n < list->count; n++) {
         const listed_impulse *impulse = &list->impulses[n];
         const uint32_t key = impulse_key(impulse, texton->height), first = impulse->first_index_x / lane;
@@ -175,8 +185,8 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, st
     }
     /* Counts become each bucket's end; filling backwards leaves each at the bucket's start. */
     uint32_t total = 0;
-    for (uint32_t s = 0; s < strip_count; s++)
-        for (uint32_t k = 0; k <= key_limit; k++) {
+    for (uint32_t s = 0; s < strips; s++)
+        for (uint32_t k = 0; k < keys; k++) {
             total += start[s][k];
             start[s][k] = uint16_t(total);
         }
