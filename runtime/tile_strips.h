@@ -29,12 +29,13 @@ const uint32_t lane = 16; /* pixels per strip: 16-bit sums per vector */
 typedef __m128i strip_vector;
 const uint32_t lane = 8;
 #endif
-const uint32_t rectangle_width = 64, rectangle_height = 64;
+const uint32_t rectangle_width = 64, rectangle_height = 64; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
-/* A 64 x 64 rectangle meets lambda (64 + 30)^2 = 276 impulses on average at 30 impacts per pixel with
-   a 31 x 31 texton; 384 is 6.5 standard deviations above (a fuller rectangle takes the 32-bit path). */
-const uint32_t list_capacity = 384;
+/* Rectangles are chosen to meet at most rectangle_impulses impulses on average (a 64 x 64 one meets
+   lambda (64 + 30)^2 = 276 at 30 impacts per pixel with a 31 x 31 texton); the list holds 384, 6.5
+   standard deviations more (a fuller rectangle takes the 32-bit path). */
+const uint32_t rectangle_impulses = 280, list_capacity = 384;
 /* Largest texton side of this path, and most strips one impulse may reach (a texton w wide reaches at
    most (w + lane - 2) / lane + 1: 5 of 8 pixels for w <= 33, and of 16 for w <= 63). */
 const uint32_t strip_texton_side = 63, strips_per_impulse_limit = 5;
@@ -63,11 +64,49 @@ typedef struct strip_texton {
    copy 1, a whole number of cache lines. */
 uint32_t strip_stride(uint32_t width) { return (width + 2 * lane + 31) / 32 * 32; }
 
-int strip_texton_fits(const dsn_asset *asset) {
-    const uint32_t rows = 2 * asset->channels * (asset->height + 2 * (strip_rows - 1)) + 1;
-    return asset->bits == 8 && asset->width <= strip_texton_side && asset->height <= strip_texton_side &&
-           (asset->width + lane - 2) / lane + 1 <= strips_per_impulse_limit &&
-           rows * strip_stride(asset->width) <= sizeof(strip_texton().values) / sizeof(uint16_t);
+/* How many copies of the texton strip_texton can hold (2, 1, or 0 when the strip path cannot take it). */
+uint32_t strip_texton_copies(const dsn_asset *asset) {
+    if (asset->bits != 8 || asset->width > strip_texton_side || asset->height > strip_texton_side ||
+        (asset->width + lane - 2) / lane + 1 > strips_per_impulse_limit)
+        return 0;
+    const uint32_t copy =
+        asset->channels * (asset->height + 2 * (strip_rows - 1)) * strip_stride(asset->width);
+    const uint32_t room = sizeof(strip_texton().values) / sizeof(uint16_t) - strip_stride(asset->width);
+    return 2 * copy <= room ? 2 : copy <= room ? 1 : 0;
+}
+
+/* The size of the rectangles a tile is cut into. Below 4 rows, walking the cells per rectangle costs
+   more than the strips save: such dense noises take the 32-bit path. */
+const uint32_t minimum_rectangle_height = 4;
+typedef struct rectangle_size {
+    uint32_t width, height;
+} rectangle_size;
+
+/* The rectangle (width a multiple of lane, both sides at most 64) with the most pixels per impulse
+   met, among those meeting at most rectangle_impulses on average: lambda (W + w - 1)(H + h - 1), with
+   lambda = impacts / |S| per pixel, compared in integers (impacts_q16 is impacts 2^16). Dense noises
+   (small textons, many impacts) get smaller rectangles instead of overflowing the list; {0, 0} when
+   none has minimum_rectangle_height rows. */
+rectangle_size choose_rectangle(const dsn_noise *noise) {
+    const uint32_t margin_x = noise->asset.width - 1, margin_y = noise->asset.height - 1;
+    const uint64_t budget = (uint64_t(rectangle_impulses) << 16) * noise->asset.support_size;
+    rectangle_size best = {0, 0};
+    uint64_t best_pixels = 0, best_reach = 1; /* pixels / (pixels and margins) of the best so far */
+    for (uint32_t width = lane; width <= rectangle_width; width += lane) {
+        const uint64_t rows = budget / (uint64_t(noise->impacts_q16) * (width + margin_x)); /* H + h - 1 */
+        if (rows < margin_y + minimum_rectangle_height) continue;
+        const uint32_t height =
+            rows - margin_y < rectangle_height ? uint32_t(rows - margin_y) : rectangle_height;
+        const uint64_t pixels = uint64_t(width) * height,
+                       reach = uint64_t(width + margin_x) * (height + margin_y);
+        if (pixels * best_reach > best_pixels * reach) {
+            best.width = width;
+            best.height = height;
+            best_pixels = pixels;
+            best_reach = reach;
+        }
+    }
+    return best;
 }
 
 void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *texton) {

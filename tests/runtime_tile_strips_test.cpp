@@ -114,10 +114,10 @@ TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of
 }
 
 TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at full-scale texton values") {
-    // Near 120 impacts per pixel a 31 x 31 texton puts some 64 x 64 rectangles over 255 impulses per
-    // column or over the list's capacity (32-bit fallback) and leaves others under it; at 300 every
-    // rectangle falls back. The constant texton (every value +127 or -127) gives the largest sums the
-    // 16-bit path meets.
+    // Denser noises get smaller rectangles (choose_rectangle in runtime/tile_strips.h): a 31 x 31 texton
+    // at 60 and 120 impacts per pixel, and at 300, where no rectangle of 4+ rows meets few enough
+    // impulses and the whole tile takes the 32-bit path. The constant texton (every value +127 or -127)
+    // gives the largest sums the 16-bit path meets.
     dsn_test::TestRandom random(78);
     auto varied = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 5);
     auto full_scale = varied;
@@ -129,6 +129,18 @@ TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at 
             CAPTURE(impacts);
             CHECK(differences(loaded.noise, window) == 0);
         }
+}
+
+TEST_CASE("strip tiles == per point where some rectangles exceed the 16-bit limit") {
+    // A 63-wide 1-channel texton at 180 impacts per pixel gets 16 x 17 rectangles (AVX2 strips; SSE2
+    // takes the 32-bit path, as a 63-wide texton reaches too many 8-pixel strips) in which a column
+    // meets 226 impulses on average: a few of these 128 rectangles go over 255 and take the 32-bit path
+    // one by one, their neighbours not. The constant texton makes those sums as large as they can be.
+    auto fields = dsn_test::synthetic_fields(1, 63, 8, DSN_SHAPE_RECTANGLE, 13);
+    for (size_t i = 0; i < fields.texton.size(); i++) fields.texton[i] = (i % 2) ? -127 : 127;
+    LoadedNoise loaded(fields, dsn_test::make_config(21, 180));
+    Window window = {-777, 4242, 256, 136};
+    CHECK(differences(loaded.noise, window) == 0);
 }
 
 TEST_CASE("strip tiles == per point when the normalization cannot be split into 32-bit lanes") {

@@ -1,8 +1,8 @@
 // runtime_bench.cpp - speed of the runtime against baselines measured in the same run: tile evaluation
 // vs spectral ADSN synthesis with KissFFT (2048 x 2048 RGB, 31 x 31 texton, 30 impacts per pixel; with
 // each copy of the tile code the CPU runs), per-point evaluation vs stb_perlin_noise3 (512 x 512 grid),
-// small tiles vs per point. Also the impulses examined per sample, sizeof(dsn_noise), the stack of a
-// per-point and of a tile call, and the chosen cell size.
+// small tiles vs per point, other texton sizes and densities. Also the impulses examined per sample,
+// sizeof(dsn_noise), the stack of a per-point and of a tile call, and the chosen cell size.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -256,6 +256,26 @@ int main() {
         const double per_pixel = small_time / (double(calls) * small * small);
         std::printf(" %ux%u %.1f (%.0fx)", small, small, per_pixel * 1e9, point_time / samples / per_pixel);
     }
+    std::printf("\n");
+    // Other texton sizes and densities (denser noises get smaller rectangles, the densest the 32-bit
+    // path): 512 x 512 RGB tiles, ns per pixel, and as a multiple of this run's 31 x 31, 30 impacts tile.
+    std::printf("512x512 tiles by texton side and impacts, ns per pixel (x the 31x31/30 tile):");
+    std::vector<int32_t> sweep_tile(512 * 512 * 3);
+    const double reference = tile_times[0] / (double(side) * side);
+    for (uint32_t texton_side : {9u, 21u, 31u, 41u})
+        for (double impacts : {10.0, 60.0}) {
+            dsn_test::LoadedNoise other(dsn_test::synthetic_fields(3, texton_side, 8, DSN_SHAPE_RECTANGLE, 7),
+                                        dsn_test::make_config(1, impacts));
+            double sweep_time = 1e30;
+            for (int run = 0; run < 3; run++)
+                sweep_time = std::min(sweep_time, best_time(1, [&] {
+                                          dsn_tile_fixed(&other.noise, 77, -88, 512, 512, sweep_tile.data(),
+                                                         nullptr, 0);
+                                      }));
+            const double per_pixel = sweep_time / (512.0 * 512.0);
+            std::printf(" %u/%.0f %.1f (%.1fx)", texton_side, impacts, per_pixel * 1e9,
+                        per_pixel / reference);
+        }
     std::printf("\n");
     int32_t point_out[3];
     std::vector<int32_t> tile_out(64 * 64 * 3);
