@@ -113,9 +113,9 @@ template <uint32_t Channels, typename Value>
 void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const tile_run *walk_x,
                       const tile_run *walk_y, const tile_target *target) {
     impulse_list list;
-    list.clear();
-    for_each_reaching_impulse(noise, walk_x, walk_y, list);
-    if (!list.sums_fit_16_bits()) {
+    list.clear(walk_x->length, walk_y->length);
+    for_each_nearby_impulse(noise, walk_x, walk_y, list);
+    if (!list.prepare(setup->texton.width, setup->texton.height)) {
         render_rectangle_32(noise, walk_x, walk_y, target);
         return;
     }

@@ -131,43 +131,56 @@ void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *te
         }
 }
 
-/* Where one impulse meets the rectangle: rectangle columns [first_index_x, + count_x) from texton
-   column first_texton_x, and rows from first_index_y, texton row first_texton_y (the row count follows
-   from the key, impulse_key). */
+/* An impulse that reaches the rectangle: the rectangle column and row of its texton's first texel
+   (from -(side - 1), so stored as 16-bit two's complement; origin() reads them back), then, once the list
+   is complete (impulse_list::prepare), its key and the strips it reaches. */
 typedef struct listed_impulse {
-    uint16_t first_index_x, first_texton_x, count_x, first_index_y, first_texton_y;
+    uint16_t origin_x, origin_y;
+    uint8_t key, first_strip, strips;
 } listed_impulse;
 
-/* The impulses that reach a rectangle, as for_each_reaching_impulse visits them. */
+inline int32_t origin(uint16_t stored) { return int32_t(uint32_t(stored) ^ 0x8000u) - 0x8000; }
+
+/* The impulses that reach a rectangle of length_x x length_y, from for_each_nearby_impulse. Every
+   impulse is stored, only those that reach are counted: no branch on a coin flip. */
 struct impulse_list {
-    listed_impulse impulses[list_capacity];
+    listed_impulse impulses[list_capacity + 1]; /* the last takes the stores past the capacity */
     uint32_t count;                             /* may exceed list_capacity: then only the count is kept */
-    int32_t column_change[rectangle_width + 1]; /* impulses starting minus ending at each column */
+    uint32_t length_x, length_y;
 
-    void clear() {
+    void clear(uint32_t rectangle_length_x, uint32_t rectangle_length_y) {
         count = 0;
-        for (uint32_t i = 0; i <= rectangle_width; i++) column_change[i] = 0;
+        length_x = rectangle_length_x;
+        length_y = rectangle_length_y;
     }
 
-    void operator()(const dsn_reach &reach_x, const dsn_reach &reach_y) {
-        if (count < list_capacity) {
-            listed_impulse *impulse = &impulses[count];
-            impulse->first_index_x = uint16_t(reach_x.first_index);
-            impulse->first_texton_x = uint16_t(reach_x.first_texton);
-            impulse->count_x = uint16_t(reach_x.count);
-            impulse->first_index_y = uint16_t(reach_y.first_index);
-            impulse->first_texton_y = uint16_t(reach_y.first_texton);
-            column_change[reach_x.first_index]++;
-            column_change[reach_x.first_index + reach_x.count]--;
-        }
-        count++;
+    void operator()(uint32_t end_x, uint32_t end_y, uint32_t reaches) {
+        listed_impulse *impulse = &impulses[count < list_capacity ? count : list_capacity];
+        impulse->origin_x = uint16_t(length_x - 1u - end_x);
+        impulse->origin_y = uint16_t(length_y - 1u - end_y);
+        count += reaches;
     }
 
-    /* Whether every pixel is reached by at most coverage_limit listed impulses (and all are listed). */
-    int sums_fit_16_bits() const {
+    /* Fills in each impulse's key (its origin row plus height - 1, >= 0 as it reaches the rectangle) and
+       strips, and returns whether every pixel is reached by at most coverage_limit listed impulses (and
+       all are listed): no column is reached by more. */
+    int prepare(uint32_t texton_width, uint32_t texton_height) {
         if (count > list_capacity) return 0;
+        int32_t column_change[rectangle_width + 1]; /* impulses starting minus ending at each column */
+        for (uint32_t i = 0; i <= length_x; i++) column_change[i] = 0;
+        for (uint32_t n = 0; n < count; n++) {
+            listed_impulse *impulse = &impulses[n];
+            const int32_t first = origin(impulse->origin_x), end = first + int32_t(texton_width);
+            const uint32_t first_column = first > 0 ? uint32_t(first) : 0u;
+            const uint32_t end_column = end < int32_t(length_x) ? uint32_t(end) : length_x;
+            column_change[first_column]++;
+            column_change[end_column]--;
+            impulse->key = uint8_t(origin(impulse->origin_y) + int32_t(texton_height) - 1);
+            impulse->first_strip = uint8_t(first_column / lane);
+            impulse->strips = uint8_t((end_column - 1u) / lane - first_column / lane + 1u);
+        }
         int32_t coverage = 0;
-        for (uint32_t i = 0; i < rectangle_width; i++) {
+        for (uint32_t i = 0; i < length_x; i++) {
             coverage += column_change[i];
             if (coverage > int32_t(coverage_limit)) return 0;
         }
@@ -196,13 +209,8 @@ inline int32_t window_column(const strip_texton *texton, int32_t column, uint32_
                                                                        : in_copy_0);
 }
 
-/* An impulse's key: the (possibly negative) rectangle row of its texton row 0, plus height - 1. */
-inline uint32_t impulse_key(const listed_impulse *impulse, uint32_t height) {
-    return impulse->first_index_y + height - 1u - impulse->first_texton_y;
-}
-
-/* Files the list (at most list_capacity impulses) of a rectangle `columns` x `rows` under its strips,
-   sorted by key: one counting sort over (strip, key). Each impulse files at most
+/* Files the prepared list (at most list_capacity impulses) of a rectangle `columns` x `rows` under its
+   strips, sorted by key: one counting sort over (strip, key). Each impulse files at most
    strips_per_impulse_limit entries, so they fit. */
 void file_strip_entries(const impulse_list *list, const strip_texton *texton, uint32_t columns, uint32_t rows,
                         strip_entries *entries) {
@@ -217,8 +225,7 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, ui
         for (uint32_t k = 0; k < keys; k++) start[s][k] = 0;
     for (uint32_t n = 0; n < list->count; n++) {
         const listed_impulse *impulse = &list->impulses[n];
-        const uint32_t key = impulse_key(impulse, texton->height), first = impulse->first_index_x / lane;
-        const uint32_t reached = (impulse->first_index_x + impulse->count_x - 1u) / lane - first + 1u;
+        const uint32_t key = impulse->key, first = impulse->first_strip, reached = impulse->strips;
         for (uint32_t j = 0; j < spans; j++)
             start[first + j][key] = uint16_t(start[first + j][key] + (j < reached));
     }
@@ -231,12 +238,9 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, ui
         }
     for (uint32_t n = 0; n < list->count; n++) {
         const listed_impulse *impulse = &list->impulses[n];
-        const uint32_t key = impulse_key(impulse, texton->height), first = impulse->first_index_x / lane;
-        const uint32_t reached = (impulse->first_index_x + impulse->count_x - 1u) / lane - first + 1u;
-        /* Texton column of rectangle column 0 (after the padding) and texton row of rectangle row 0. */
-        const int32_t column =
-            int32_t(lane) + int32_t(impulse->first_texton_x) - int32_t(impulse->first_index_x);
-        const int32_t row = int32_t(impulse->first_texton_y) - int32_t(impulse->first_index_y);
+        const uint32_t key = impulse->key, first = impulse->first_strip, reached = impulse->strips;
+        /* The padded texton column of rectangle column 0, and the texton row of rectangle row 0. */
+        const int32_t column = int32_t(lane) - origin(impulse->origin_x), row = -origin(impulse->origin_y);
         for (uint32_t j = 0; j < spans; j++) {
             const uint32_t valid = j < reached, position = start[first + j][key] - valid;
             start[first + j][key] = uint16_t(position);

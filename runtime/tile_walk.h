@@ -99,12 +99,14 @@ inline walk_cell walk_cell_of(const dsn_span *span, uint32_t cell, uint32_t shif
     return result;
 }
 
-/* Calls visit(reach_x, reach_y) for every impulse that reaches the rectangle run_x x run_y (both
-   single runs), in the order of the hash stream. This is the only place the tile path walks cells. The
-   impulses' packed offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
+/* Calls visit(end_x, end_y, reaches) for every impulse of the cells near the rectangle run_x x run_y
+   (both single runs), in the order of the hash stream: its ends (dsn_reach_at) on both axes, and 1 when
+   it reaches the rectangle, else 0 (computed without a branch: the caller may store every impulse and
+   count only those that reach). This is the only place the tile path walks cells. The impulses' packed
+   offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
 template <typename Visit>
-void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
-                               Visit &visit) {
+void for_each_nearby_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
+                             Visit &visit) {
     const dsn_asset *asset = &noise->asset;
     const uint32_t shift = noise->cell_shift, field_shift = dsn_field_shift(shift);
     const uint32_t per_pair_mask = (1u << (6u - field_shift)) - 1u, half_bits = 1u << (field_shift - 1u);
@@ -132,18 +134,39 @@ void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, co
                         const uint32_t offset_x = (field & half_mask) >> drop,
                                        offset_y = ((field >> half_bits) & half_mask) >> drop;
                         const uint32_t end_x = in_x.end - offset_x, end_y = in_y.end - offset_y;
-                        if (offset_x > in_x.last_offset || offset_y > in_y.last_offset || end_x >= limit_x ||
-                            end_y >= limit_y)
-                            continue;
-                        dsn_reach reach_x, reach_y;
-                        dsn_reach_at(end_x, run_x->length, asset->width, &reach_x);
-                        dsn_reach_at(end_y, run_y->length, asset->height, &reach_y);
-                        visit(reach_x, reach_y);
+                        visit(end_x, end_y,
+                              uint32_t(offset_x <= in_x.last_offset) &
+                                  uint32_t(offset_y <= in_y.last_offset) & uint32_t(end_x < limit_x) &
+                                  uint32_t(end_y < limit_y));
                     }
                 }
             }
         }
     }
+}
+
+/* Calls visit(reach_x, reach_y) for every impulse that reaches the rectangle run_x x run_y (both single
+   runs), in the order of the hash stream. */
+template <typename Visit>
+struct reaching_filter {
+    Visit &visit;
+    uint32_t length_x, length_y, width, height;
+
+    void operator()(uint32_t end_x, uint32_t end_y, uint32_t reaches) {
+        if (!reaches) return;
+        dsn_reach reach_x, reach_y;
+        dsn_reach_at(end_x, length_x, width, &reach_x);
+        dsn_reach_at(end_y, length_y, height, &reach_y);
+        visit(reach_x, reach_y);
+    }
+};
+
+template <typename Visit>
+void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
+                               Visit &visit) {
+    reaching_filter<Visit> filter = {visit, run_x->length, run_y->length, noise->asset.width,
+                                     noise->asset.height};
+    for_each_nearby_impulse(noise, run_x, run_y, filter);
 }
 
 /* Adds each reaching impulse's texton into a 32-bit accumulator: `corner` is the rectangle's first
