@@ -225,10 +225,37 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
 /* Stores the normalized strip: `values` holds, per 128-bit lane, 4 pixels' interleaved values (in the
    order low pair, high pair: 3 vectors each with 3 channels, 1 with 1), of which `pixels` pixels are
    wanted. With AVX2 the low 128-bit lanes are pixels 0-7, the high ones 8-15. */
+#if defined(__AVX2__)
+/* 8 output values in order: fixed as they are, float as dsn_fixed_to_float (one rounding). */
+inline void store_8(int32_t *out, __m256i values) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
+}
+inline void store_8(float *out, __m256i values) {
+    _mm256_storeu_ps(out, _mm256_mul_ps(_mm256_cvtepi32_ps(values), _mm256_set1_ps(1.0f / 65536.0f)));
+}
+
+/* A whole strip (16 pixels) in 256-bit stores, its 128-bit lanes brought in output order; 8-bit output
+   takes the 128-bit path (returns 0). */
+template <uint32_t Channels, typename Value>
+inline int store_whole_strip(const strip_vector *values, Value *out) {
+    for (uint32_t i = 0; i < Channels; i++) {
+        /* Pixels 0-7 are the low lanes of values 0 .. 2 Channels - 1, pixels 8-15 the high lanes. */
+        store_8(out + 8 * i, _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x20));
+        store_8(out + 8 * (Channels + i), _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x31));
+    }
+    return 1;
+}
+template <uint32_t Channels>
+inline int store_whole_strip(const strip_vector *, uint8_t *) {
+    return 0;
+}
+#endif
+
 template <uint32_t Channels, typename Value>
 inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out) {
     const uint32_t vectors = 2 * Channels;
 #if defined(__AVX2__)
+    if (pixels == lane && store_whole_strip<Channels>(values, out)) return;
     __m128i low[6], high[6];
     for (uint32_t i = 0; i < vectors; i++) {
         low[i] = _mm256_castsi256_si128(values[i]);
