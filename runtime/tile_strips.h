@@ -29,13 +29,17 @@ const uint32_t lane = 16; /* pixels per strip: 16-bit sums per vector */
 typedef __m128i strip_vector;
 const uint32_t lane = 8;
 #endif
-const uint32_t rectangle_width = 64, rectangle_height = 64; /* the largest rectangle */
+const uint32_t rectangle_width = 96, rectangle_height = 96; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
-/* Rectangles are chosen to meet at most rectangle_impulses impulses on average (a 64 x 64 one meets
-   lambda (64 + 30)^2 = 276 at 30 impacts per pixel with a 31 x 31 texton); the list holds 384, 6.5
-   standard deviations more (a fuller rectangle takes the 32-bit path). */
-const uint32_t rectangle_impulses = 280, list_capacity = 384;
+/* Rectangles are chosen to meet at most rectangle_impulses impulses on average (at 30 impacts per pixel
+   a 31 x 31 texton gets 96 x 92 rectangles, meeting lambda (96 + 30)(92 + 30) = 480); the list holds
+   640, 7 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
+   fewer cells twice; past these sizes the lists crowd the texton out of the L1 cache. */
+const uint32_t rectangle_impulses = 480, list_capacity = 640;
+/* And at most column_impulses on average in a column: the count is Poisson, so a column goes over
+   coverage_limit about once in 10^4 (3.9 standard deviations; that rectangle takes the 32-bit path). */
+const uint32_t column_impulses = 200;
 /* Largest texton side of this path, and most strips one impulse may reach (a texton w wide reaches at
    most (w + lane - 2) / lane + 1: 5 of 8 pixels for w <= 33, and of 16 for w <= 63). */
 const uint32_t strip_texton_side = 63, strips_per_impulse_limit = 5;
@@ -82,18 +86,22 @@ typedef struct rectangle_size {
     uint32_t width, height;
 } rectangle_size;
 
-/* The rectangle (width a multiple of lane, both sides at most 64) with the most pixels per impulse
-   met, among those meeting at most rectangle_impulses on average: lambda (W + w - 1)(H + h - 1), with
-   lambda = impacts / |S| per pixel, compared in integers (impacts_q16 is impacts 2^16). Dense noises
-   (small textons, many impacts) get smaller rectangles instead of overflowing the list; {0, 0} when
-   none has minimum_rectangle_height rows. */
+/* The rectangle (width a multiple of lane, sides at most rectangle_width and rectangle_height) with the
+   most pixels per impulse met, among those where on average at most rectangle_impulses impulses reach
+   the rectangle, lambda (W + w - 1)(H + h - 1), and at most column_impulses reach a column,
+   lambda w (H + h - 1), with lambda = impacts / |S| per pixel (compared in integers: impacts_q16 is
+   impacts 2^16). Dense noises (small textons, many impacts) get smaller rectangles instead of
+   overflowing the list or the 16-bit sums; {0, 0} when none has minimum_rectangle_height rows. */
 rectangle_size choose_rectangle(const dsn_noise *noise) {
     const uint32_t margin_x = noise->asset.width - 1, margin_y = noise->asset.height - 1;
     const uint64_t budget = (uint64_t(rectangle_impulses) << 16) * noise->asset.support_size;
+    const uint64_t column_rows = ((uint64_t(column_impulses) << 16) * noise->asset.support_size) /
+                                 (uint64_t(noise->impacts_q16) * noise->asset.width); /* H + h - 1 */
     rectangle_size best = {0, 0};
     uint64_t best_pixels = 0, best_reach = 1; /* pixels / (pixels and margins) of the best so far */
     for (uint32_t width = lane; width <= rectangle_width; width += lane) {
-        const uint64_t rows = budget / (uint64_t(noise->impacts_q16) * (width + margin_x)); /* H + h - 1 */
+        uint64_t rows = budget / (uint64_t(noise->impacts_q16) * (width + margin_x)); /* H + h - 1 */
+        if (rows > column_rows) rows = column_rows;
         if (rows < margin_y + minimum_rectangle_height) continue;
         const uint32_t height =
             rows - margin_y < rectangle_height ? uint32_t(rows - margin_y) : rectangle_height;

@@ -1,9 +1,9 @@
 // runtime_tile_strips_test.cpp - the strip path of tiles (16-bit sums in registers, split normalization,
 // per-strip output conversion; runtime/tile_strips.h) against per-point evaluation, on windows spanning
 // many rectangles: every output type, origins at the 32-bit wrap, periods, densities and texton sizes
-// that push rectangles onto the 32-bit fallback, and textons at full scale (the largest sums the 16-bit
-// path accepts). Every check runs each copy of the tile code
-// this CPU can run (on x86-64: the SSE2 copy and, with AVX2, the AVX2 copy; runtime/tile_dispatch.h).
+// (down to those that take the 32-bit path), and textons at full scale (the largest sums the 16-bit path
+// accepts). Every check runs each copy of the tile code this CPU can run (on x86-64: the SSE2 copy and,
+// with AVX2, the AVX2 copy; runtime/tile_dispatch.h).
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -116,7 +116,8 @@ TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of
 TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at full-scale texton values") {
     // Denser noises get smaller rectangles (choose_rectangle in runtime/tile_strips.h): a 31 x 31 texton
     // at 60 and 120 impacts per pixel, and at 300, where no rectangle of 4+ rows meets few enough
-    // impulses and the whole tile takes the 32-bit path. The constant texton (every value +127 or -127)
+    // impulses and the whole tile takes the 32-bit path (runtime_tile_fallback_test.cpp makes single
+    // rectangles fall back). The constant texton (every value +127 or -127)
     // gives the largest sums the 16-bit path meets.
     dsn_test::TestRandom random(78);
     auto varied = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 5);
@@ -129,18 +130,6 @@ TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at 
             CAPTURE(impacts);
             CHECK(differences(loaded.noise, window) == 0);
         }
-}
-
-TEST_CASE("strip tiles == per point where some rectangles exceed the 16-bit limit") {
-    // A 63-wide 1-channel texton at 180 impacts per pixel gets 16 x 17 rectangles (AVX2 strips; SSE2
-    // takes the 32-bit path, as a 63-wide texton reaches too many 8-pixel strips) in which a column
-    // meets 226 impulses on average: a few of these 128 rectangles go over 255 and take the 32-bit path
-    // one by one, their neighbours not. The constant texton makes those sums as large as they can be.
-    auto fields = dsn_test::synthetic_fields(1, 63, 8, DSN_SHAPE_RECTANGLE, 13);
-    for (size_t i = 0; i < fields.texton.size(); i++) fields.texton[i] = (i % 2) ? -127 : 127;
-    LoadedNoise loaded(fields, dsn_test::make_config(21, 180));
-    Window window = {-777, 4242, 256, 136};
-    CHECK(differences(loaded.noise, window) == 0);
 }
 
 TEST_CASE("strip tiles == per point when the normalization cannot be split into 32-bit lanes") {
