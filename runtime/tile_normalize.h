@@ -163,12 +163,27 @@ inline void interleave_3(strip_vector r, strip_vector g, strip_vector b, strip_v
     out[2] = as_integers(shuffle<_MM_SHUFFLE(2, 0, 2, 0)>(third, last));
 }
 
+/* 4 output values. `stream` (for outputs far larger than the caches): past the caches, with
+   non-temporal stores, where out is 16-byte aligned (the tile call ends with a store fence). */
+inline void put_4(int32_t *out, __m128i values, int stream) {
+    __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0)
+        _mm_stream_si128(destination, values);
+    else
+        _mm_storeu_si128(destination, values);
+}
+inline void put_4(float *out, __m128 values, int stream) {
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0)
+        _mm_stream_ps(out, values);
+    else
+        _mm_storeu_ps(out, values);
+}
+
 /* Stores `vectors` interleaved output vectors (4 values each) of which the first `values` are wanted. */
-inline void store_vectors(int32_t *out, const __m128i *v, uint32_t vectors, uint32_t values) {
+inline void store_vectors(int32_t *out, const __m128i *v, uint32_t vectors, uint32_t values, int stream) {
     if (values == 4 * vectors) {
 #pragma GCC unroll 6
-        for (uint32_t i = 0; i < vectors; i++)
-            _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out + 4 * i)), v[i]);
+        for (uint32_t i = 0; i < vectors; i++) put_4(out + 4 * i, v[i], stream);
         return;
     }
     int32_t buffer[24];
@@ -178,13 +193,13 @@ inline void store_vectors(int32_t *out, const __m128i *v, uint32_t vectors, uint
 }
 
 /* float(value) * 2^-16: the conversion rounds once to nearest, like dsn_fixed_to_float. */
-inline void store_vectors(float *out, const __m128i *v, uint32_t vectors, uint32_t values) {
+inline void store_vectors(float *out, const __m128i *v, uint32_t vectors, uint32_t values, int stream) {
     const __m128 scale = _mm_set1_ps(1.0f / 65536.0f);
     float buffer[24];
     float *dst = values == 4 * vectors ? out : buffer;
 #pragma GCC unroll 6
     for (uint32_t i = 0; i < vectors; i++)
-        _mm_storeu_ps(dst + 4 * i, _mm_mul_ps(_mm_cvtepi32_ps(v[i]), scale));
+        put_4(dst + 4 * i, _mm_mul_ps(_mm_cvtepi32_ps(v[i]), scale), stream);
     if (dst == buffer)
         for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
@@ -199,7 +214,7 @@ inline __m128i to_u8_range(__m128i value) {
         _mm_add_epi32(_mm_sub_epi32(_mm_slli_epi32(value, 8), value), _mm_set1_epi32(32768)), 16);
 }
 
-inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint32_t values) {
+inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint32_t values, int) {
     /* Zeroed because gcc -Os cannot see that vectors is 2 or 6 (the stores below are free at -O2). */
     __m128i words[3] = {_mm_setzero_si128(), _mm_setzero_si128(), _mm_setzero_si128()};
 #pragma GCC unroll 3
@@ -227,50 +242,63 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
    wanted. With AVX2 the low 128-bit lanes are pixels 0-7, the high ones 8-15. */
 #if defined(__AVX2__)
 /* 8 output values in order: fixed as they are, float as dsn_fixed_to_float (one rounding). */
-inline void store_8(int32_t *out, __m256i values) {
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
+inline void store_8(int32_t *out, __m256i values, int stream) {
+    if (stream) {
+        put_4(out, _mm256_castsi256_si128(values), stream);
+        put_4(out + 4, _mm256_extracti128_si256(values, 1), stream);
+    } else {
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
+    }
 }
-inline void store_8(float *out, __m256i values) {
-    _mm256_storeu_ps(out, _mm256_mul_ps(_mm256_cvtepi32_ps(values), _mm256_set1_ps(1.0f / 65536.0f)));
+inline void store_8(float *out, __m256i values, int stream) {
+    const __m256 converted = _mm256_mul_ps(_mm256_cvtepi32_ps(values), _mm256_set1_ps(1.0f / 65536.0f));
+    if (stream) {
+        put_4(out, _mm256_castps256_ps128(converted), stream);
+        put_4(out + 4, _mm256_extractf128_ps(converted, 1), stream);
+    } else {
+        _mm256_storeu_ps(out, converted);
+    }
 }
 
 /* A whole strip (16 pixels) in 256-bit stores, its 128-bit lanes brought in output order; 8-bit output
    takes the 128-bit path (returns 0). */
 template <uint32_t Channels, typename Value>
-inline int store_whole_strip(const strip_vector *values, Value *out) {
+inline int store_whole_strip(const strip_vector *values, Value *out, int stream) {
     for (uint32_t i = 0; i < Channels; i++) {
         /* Pixels 0-7 are the low lanes of values 0 .. 2 Channels - 1, pixels 8-15 the high lanes. */
-        store_8(out + 8 * i, _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x20));
-        store_8(out + 8 * (Channels + i), _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x31));
+        store_8(out + 8 * i, _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x20), stream);
+        store_8(out + 8 * (Channels + i), _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x31),
+                stream);
     }
     return 1;
 }
 template <uint32_t Channels>
-inline int store_whole_strip(const strip_vector *, uint8_t *) {
+inline int store_whole_strip(const strip_vector *, uint8_t *, int) {
     return 0;
 }
 #endif
 
 template <uint32_t Channels, typename Value>
-inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out) {
+inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out, int stream) {
     const uint32_t vectors = 2 * Channels;
 #if defined(__AVX2__)
-    if (pixels == lane && store_whole_strip<Channels>(values, out)) return;
+    if (pixels == lane && store_whole_strip<Channels>(values, out, stream)) return;
     __m128i low[6], high[6];
     for (uint32_t i = 0; i < vectors; i++) {
         low[i] = _mm256_castsi256_si128(values[i]);
         high[i] = _mm256_extracti128_si256(values[i], 1);
     }
-    store_vectors(out, low, vectors, (pixels < 8 ? pixels : 8) * Channels);
-    if (pixels > 8) store_vectors(out + 8 * Channels, high, vectors, (pixels - 8) * Channels);
+    store_vectors(out, low, vectors, (pixels < 8 ? pixels : 8) * Channels, stream);
+    if (pixels > 8) store_vectors(out + 8 * Channels, high, vectors, (pixels - 8) * Channels, stream);
 #else
-    store_vectors(out, values, vectors, pixels * Channels);
+    store_vectors(out, values, vectors, pixels * Channels, stream);
 #endif
 }
 
-/* The first `pixels` pixels of a strip row from its sums (one vector per channel). */
+/* The first `pixels` pixels of a strip row from its sums (one vector per channel); `stream`: put_4. */
 template <uint32_t Channels, typename Value>
-inline void normalize_strip(const split_vectors *v, const strip_vector *sums, uint32_t pixels, Value *out) {
+inline void normalize_strip(const split_vectors *v, const strip_vector *sums, uint32_t pixels, Value *out,
+                            int stream) {
     const strip_vector ones = set_16(1);
     strip_vector pair_low = unpack_low_16(sums[0], sums[1]), pair_high = unpack_high_16(sums[0], sums[1]);
     strip_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);
@@ -285,7 +313,7 @@ inline void normalize_strip(const split_vectors *v, const strip_vector *sums, ui
         values[0] = normalize_lanes(v, 0, pair_low, third_low);
         values[1] = normalize_lanes(v, 0, pair_high, third_high);
     }
-    store_strip<Channels>(values, pixels, out);
+    store_strip<Channels>(values, pixels, out, stream);
 }
 
 } // namespace

@@ -40,11 +40,16 @@ namespace {
    per type and channel count, chosen once per tile. */
 
 #if DSN_TILE_BLOCKS
+/* Outputs of this many bytes or more are written past the caches: a 16 MB tile would only evict what
+   the caller has cached, and writing past them saves reading each line before it is written. */
+const uint64_t stream_bytes = uint64_t(16) << 20;
+
 /* Everything a tile call prepares once for the strip path. */
 typedef struct strip_setup {
     strip_texton texton;
     rectangle_size rectangle;
     int split_ok;
+    int stream; /* output far larger than the caches: written past them (put_4) */
     split_vectors split;
 } strip_setup;
 
@@ -54,6 +59,7 @@ void make_strip_setup(const dsn_noise *noise, uint64_t pixels, strip_setup *setu
     const uint32_t copies = strip_texton_copies(&noise->asset) == 2 && pixels >= 4096 ? 2u : 1u;
     make_strip_texton(&noise->asset, copies, &setup->texton);
     setup->rectangle = choose_rectangle(noise);
+    setup->stream = 0;
     split_normalization split;
     setup->split_ok = make_split_normalization(noise, &split);
     if (setup->split_ok) make_split_vectors(&split, noise->asset.channels, &setup->split);
@@ -101,7 +107,7 @@ void normalize_row(const dsn_noise *noise, const strip_setup *setup, strip_vecto
         const uint32_t pixels = width - s * lane < lane ? width - s * lane : lane;
         const strip_vector *strip = sums[s] + 3 * row;
         if (setup->split_ok)
-            normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels);
+            normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels, setup->stream);
         else
             normalize_strip_scalar(noise, strip, pixels, out + s * lane * Channels);
     }
@@ -163,6 +169,7 @@ void render_strip_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t 
                        const tile_target *target) {
     strip_setup setup;
     make_strip_setup(noise, pixels, &setup);
+    setup.stream = pixels * noise->asset.channels * sizeof(Value) >= stream_bytes;
     for (uint32_t ry = 0; ry < run_count_y; ry++)
         for (uint32_t rx = 0; rx < run_count_x; rx++) {
             if (noise->asset.channels == 3)
@@ -170,6 +177,7 @@ void render_strip_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t 
             else
                 render_region<1, Value>(noise, &setup, &runs_x[rx], &runs_y[ry], target);
         }
+    if (setup.stream) _mm_sfence(); /* the streamed stores are ordered before whatever follows */
 }
 #endif /* DSN_TILE_BLOCKS */
 

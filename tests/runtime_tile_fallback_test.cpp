@@ -45,8 +45,9 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
     const int32_t x0 = -300, y0 = 1000;
     const uint32_t width = 200, height = 200;
     for (const FallbackCase &c : cases) {
-        dsn_test::LoadedNoise loaded(dsn_test::synthetic_fields(c.channels, c.side, 8, DSN_SHAPE_RECTANGLE, 4),
-                                     dsn_test::make_config(9, c.impacts));
+        dsn_test::LoadedNoise loaded(
+            dsn_test::synthetic_fields(c.channels, c.side, 8, DSN_SHAPE_RECTANGLE, 4),
+            dsn_test::make_config(9, c.impacts));
         const dsn_noise &noise = loaded.noise;
         strip_setup setup;
         make_strip_setup(&noise, uint64_t(width) * height, &setup);
@@ -59,7 +60,8 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
 
         std::vector<int32_t> tile(size_t(width) * height * c.channels);
         const tile_run run_x = {uint32_t(x0), 0, width}, run_y = {uint32_t(y0), 0, height};
-        const tile_target target = {tile.data(), dsn_output_fixed, static_cast<uint32_t *>(static_cast<void *>(tile.data())),
+        const tile_target target = {tile.data(), dsn_output_fixed,
+                                    static_cast<uint32_t *>(static_cast<void *>(tile.data())),
                                     width * c.channels};
         if (c.channels == 3)
             render_region<3, int32_t>(&noise, &setup, &run_x, &run_y, &target);
