@@ -9,7 +9,7 @@
 #ifndef DSN_TILE_RENDER_H
 #define DSN_TILE_RENDER_H
 
-/* The strip path (x86 SSE2 or AVX2) keeps about 50 KB on the stack (two padded copies of the texton,
+/* The strip path (x86 SSE2 or AVX2) keeps about 64 KB on the stack (two padded copies of the texton,
    the impulse list and the strip entries); elsewhere the 32-bit path keeps a tile call's stack under 1 KB,
    which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to take the 32-bit path
    on x86 too. */

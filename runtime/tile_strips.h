@@ -29,14 +29,14 @@ const uint32_t lane = 16; /* pixels per strip: 16-bit sums per vector */
 typedef __m128i strip_vector;
 const uint32_t lane = 8;
 #endif
-const uint32_t rectangle_width = 96, rectangle_height = 96; /* the largest rectangle */
+const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
 /* Rectangles are chosen to meet at most rectangle_impulses impulses on average (at 30 impacts per pixel
-   a 31 x 31 texton gets 96 x 92 rectangles, meeting lambda (96 + 30)(92 + 30) = 480); the list holds
-   640, 7 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
-   fewer cells twice; past these sizes the lists crowd the texton out of the L1 cache. */
-const uint32_t rectangle_impulses = 480, list_capacity = 640;
+   a 31 x 31 texton gets 128 x 123 rectangles, meeting lambda (128 + 30)(123 + 30) = 784); the list holds
+   1024, 8 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
+   fewer cells twice and file fewer impulses per pixel; the lists then take more of the L1 cache. */
+const uint32_t rectangle_impulses = 800, list_capacity = 1024;
 /* And at most column_impulses on average in a column: the count is Poisson, so a column goes over
    coverage_limit about once in 10^4 (3.9 standard deviations; that rectangle takes the 32-bit path). */
 const uint32_t column_impulses = 200;

@@ -160,7 +160,7 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    copy, built with their own flags. Same bits either way. */
 /* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86): its fast path
    keeps two padded copies of the texton, an impulse list and their filing under vertical strips on the
-   stack, about 50 KB (make bench measures it). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the
+   stack, about 64 KB (make bench measures it). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the
    small-stack path there too (same bits, slower). A per-point call uses about 650 bytes on x86-64
    (612-628 measured: its fast path keeps the masks and texton entries of 9 cells on the stack), about
    530 in the small build below (a 1 x 1 tile: 528 measured on Cortex-M0, 500 on Cortex-M4). A
