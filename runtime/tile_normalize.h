@@ -241,34 +241,54 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
    order low pair, high pair: 3 vectors each with 3 channels, 1 with 1), of which `pixels` pixels are
    wanted. With AVX2 the low 128-bit lanes are pixels 0-7, the high ones 8-15. */
 #if defined(__AVX2__)
-/* 8 output values in order: fixed as they are, float as dsn_fixed_to_float (one rounding). */
-inline void store_8(int32_t *out, __m256i values, int stream) {
-    if (stream) {
-        put_4(out, _mm256_castsi256_si128(values), stream);
-        put_4(out + 4, _mm256_extracti128_si256(values, 1), stream);
-    } else {
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
-    }
+/* A whole strip (16 pixels) of fixed or float output; 8-bit output takes the 128-bit path (returns 0).
+   Pixels 0-7 are the low 128-bit lanes of values 0 .. 2 Channels - 1, pixels 8-15 the high lanes. When
+   streaming (16-byte stores), each lane is stored where it goes; else pairs of lanes are brought together
+   for 32-byte stores. */
+template <typename Value>
+struct output_vectors; /* the 256-bit vector of 8 output values */
+template <>
+struct output_vectors<int32_t> {
+    typedef __m256i type;
+};
+template <>
+struct output_vectors<float> {
+    typedef __m256 type;
+};
+inline __m256i output_vector(__m256i fixed, int32_t *) { return fixed; }
+inline __m256 output_vector(__m256i fixed, float *) {
+    return _mm256_mul_ps(_mm256_cvtepi32_ps(fixed), _mm256_set1_ps(1.0f / 65536.0f));
 }
-inline void store_8(float *out, __m256i values, int stream) {
-    const __m256 converted = _mm256_mul_ps(_mm256_cvtepi32_ps(values), _mm256_set1_ps(1.0f / 65536.0f));
-    if (stream) {
-        put_4(out, _mm256_castps256_ps128(converted), stream);
-        put_4(out + 4, _mm256_extractf128_ps(converted, 1), stream);
-    } else {
-        _mm256_storeu_ps(out, converted);
-    }
+inline __m128i low_lane(__m256i v) { return _mm256_castsi256_si128(v); }
+inline __m128 low_lane(__m256 v) { return _mm256_castps256_ps128(v); }
+inline __m128i high_lane(__m256i v) { return _mm256_extracti128_si256(v, 1); }
+inline __m128 high_lane(__m256 v) { return _mm256_extractf128_ps(v, 1); }
+inline void put_8(int32_t *out, __m256i v) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), v);
+}
+inline void put_8(float *out, __m256 v) { _mm256_storeu_ps(out, v); }
+inline __m256i join_lanes(__m256i a, __m256i b, int high) {
+    return high ? _mm256_permute2x128_si256(a, b, 0x31) : _mm256_permute2x128_si256(a, b, 0x20);
+}
+inline __m256 join_lanes(__m256 a, __m256 b, int high) {
+    return high ? _mm256_permute2f128_ps(a, b, 0x31) : _mm256_permute2f128_ps(a, b, 0x20);
 }
 
-/* A whole strip (16 pixels) in 256-bit stores, its 128-bit lanes brought in output order; 8-bit output
-   takes the 128-bit path (returns 0). */
 template <uint32_t Channels, typename Value>
 inline int store_whole_strip(const strip_vector *values, Value *out, int stream) {
+    if (stream) {
+        for (uint32_t i = 0; i < 2 * Channels; i++) {
+            const typename output_vectors<Value>::type converted = output_vector(values[i], out);
+            put_4(out + 4 * i, low_lane(converted), 1);
+            put_4(out + 8 * Channels + 4 * i, high_lane(converted), 1);
+        }
+        return 1;
+    }
     for (uint32_t i = 0; i < Channels; i++) {
-        /* Pixels 0-7 are the low lanes of values 0 .. 2 Channels - 1, pixels 8-15 the high lanes. */
-        store_8(out + 8 * i, _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x20), stream);
-        store_8(out + 8 * (Channels + i), _mm256_permute2x128_si256(values[2 * i], values[2 * i + 1], 0x31),
-                stream);
+        const typename output_vectors<Value>::type first = output_vector(values[2 * i], out),
+                                                   second = output_vector(values[2 * i + 1], out);
+        put_8(out + 8 * i, join_lanes(first, second, 0));
+        put_8(out + 8 * (Channels + i), join_lanes(first, second, 1));
     }
     return 1;
 }
