@@ -33,8 +33,8 @@ const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rec
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
 /* Rectangles are chosen to meet at most rectangle_impulses impulses on average (at 30 impacts per pixel
-   a 31 x 31 texton gets 128 x 123 rectangles, meeting lambda (128 + 30)(123 + 30) = 784); the list holds
-   1024, 8 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
+   a 31 x 31 texton gets 128 x 128 rectangles, meeting lambda (128 + 30)^2 = 779); the list holds 1024,
+   almost 9 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
    fewer cells twice and file fewer impulses per pixel; the lists then take more of the L1 cache. */
 const uint32_t rectangle_impulses = 800, list_capacity = 1024;
 /* And at most column_impulses on average in a column: the count is Poisson, so a column goes over
