@@ -55,7 +55,7 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
             dsn_test::make_config(9, c.impacts));
         const dsn_noise &noise = loaded.noise;
         strip_setup setup;
-        make_strip_setup(&noise, uint64_t(width) * height, &setup);
+        make_strip_setup(&noise, uint64_t(width) * height, sizeof(int32_t), &setup);
         setup.rectangle = c.rectangle;
         uint32_t fallbacks = 0, strips = 0;
         count_fallbacks(noise, setup, x0, y0, width, height, &fallbacks, &strips);
