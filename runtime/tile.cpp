@@ -1,6 +1,7 @@
 /* runtime/tile.cpp - the tile API: argument checks, the caller's scratch, and the choice of the tile
-   code (tile_render.h) this CPU runs: on x86-64 the AVX2 copy (tile_avx2.cpp) when init found AVX2,
-   else the copy built here. Both give the same bits as the per-point path. */
+   code (tile_render.h) this CPU runs: on x86-64 the AVX-512 copy (tile_avx512.cpp) or the AVX2 copy
+   (tile_avx2.cpp) when init found them, else the copy built here. All give the same bits as the
+   per-point path. */
 #include "tile_dispatch.h"
 #include "tile_render.h"
 
@@ -23,6 +24,10 @@ int tile_values(const dsn_noise *noise, const void *out, uint32_t width, uint32_
 void render_dispatched(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
                        void *out, dsn_output_kind kind, uint32_t *accumulator) {
 #if DSN_TILE_AVX2_DISPATCH
+    if (noise->tile_kernel == DSN_TILE_KERNEL_AVX512) {
+        dsn_internal_render_tile_avx512(noise, x0, y0, width, height, out, kind, accumulator);
+        return;
+    }
     if (noise->tile_kernel == DSN_TILE_KERNEL_AVX2) {
         dsn_internal_render_tile_avx2(noise, x0, y0, width, height, out, kind, accumulator);
         return;
@@ -81,7 +86,8 @@ extern "C" int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint3
 #include <cpuid.h>
 
 /* AVX2 needs the CPU's feature bit (CPUID leaf 7, EBX bit 5) and an OS that saves the YMM registers
-   (CPUID leaf 1: AVX and OSXSAVE; XCR0 bits 1 and 2). This file is built without -mavx2, so the check
+   (CPUID leaf 1: AVX and OSXSAVE; XCR0 bits 1 and 2). AVX-512 F and BW need EBX bits 16 and 30 and the
+   opmask and ZMM registers saved too (XCR0 bits 5 to 7). This file is built without -mavx2, so the check
    itself uses no AVX instruction. */
 uint32_t dsn_internal_tile_kernel(void) {
     unsigned int eax = 0, ebx = 0, ecx = 0, edx = 0;
@@ -92,6 +98,9 @@ uint32_t dsn_internal_tile_kernel(void) {
     __asm__("xgetbv" : "=a"(xcr0), "=d"(xcr0_high) : "c"(0));
     if ((xcr0 & 6u) != 6u) return DSN_TILE_KERNEL_DEFAULT;
     __cpuid_count(7, 0, eax, ebx, ecx, edx);
-    return (ebx & (1u << 5)) != 0 ? DSN_TILE_KERNEL_AVX2 : DSN_TILE_KERNEL_DEFAULT;
+    if ((ebx & (1u << 5)) == 0) return DSN_TILE_KERNEL_DEFAULT;
+    const unsigned int avx512_f_and_bw = (1u << 16) | (1u << 30);
+    return (ebx & avx512_f_and_bw) == avx512_f_and_bw && (xcr0 & 0xE6u) == 0xE6u ? DSN_TILE_KERNEL_AVX512
+                                                                                 : DSN_TILE_KERNEL_AVX2;
 }
 #endif

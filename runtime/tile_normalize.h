@@ -57,9 +57,29 @@ int make_split_normalization(const dsn_noise *noise, split_normalization *split)
 inline uint32_t widen_sum(uint16_t value) { return (uint32_t(value) ^ 0x8000u) - 0x8000u; }
 
 /* The vector operations of the split normalization, on the strip's vector width. 128-bit lanes
-   compute independently in AVX2 (unpacking and shuffles too), so the AVX2 code is the SSE2 code run on
-   two groups of 8 pixels at once: pixels 0-3 and 8-11 in `low`, 4-7 and 12-15 in `high`. */
-#if defined(__AVX2__)
+   compute independently in AVX2 and AVX-512 (unpacking and shuffles too), so their code is the SSE2 code
+   run on two or four groups of 8 pixels at once: with AVX2 pixels 0-3 and 8-11 in `low`, 4-7 and 12-15 in
+   `high`; with AVX-512 also 16-19 and 24-27 in `low`, 20-23 and 28-31 in `high`. */
+#if defined(__AVX512BW__)
+typedef __m512 strip_floats;
+inline strip_vector broadcast_lanes(__m128i value) { return _mm512_broadcast_i32x4(value); }
+inline strip_vector madd_16(strip_vector a, strip_vector b) { return _mm512_madd_epi16(a, b); }
+inline strip_vector add_32(strip_vector a, strip_vector b) { return _mm512_add_epi32(a, b); }
+inline strip_vector shift_right_15(strip_vector a) { return _mm512_srai_epi32(a, 15); }
+inline strip_vector shift_right(strip_vector a, __m128i count) { return _mm512_sra_epi32(a, count); }
+inline strip_vector unpack_low_16(strip_vector a, strip_vector b) { return _mm512_unpacklo_epi16(a, b); }
+inline strip_vector unpack_high_16(strip_vector a, strip_vector b) { return _mm512_unpackhi_epi16(a, b); }
+inline strip_vector unpack_low_32(strip_vector a, strip_vector b) { return _mm512_unpacklo_epi32(a, b); }
+inline strip_vector unpack_high_32(strip_vector a, strip_vector b) { return _mm512_unpackhi_epi32(a, b); }
+inline strip_vector set_16(int16_t value) { return _mm512_set1_epi16(value); }
+inline strip_floats as_floats(strip_vector a) { return _mm512_castsi512_ps(a); }
+inline strip_vector as_integers(strip_floats a) { return _mm512_castps_si512(a); }
+template <int Order>
+inline strip_floats shuffle(strip_floats a, strip_floats b) {
+    return _mm512_shuffle_ps(a, b, Order);
+}
+inline void store_sums(uint16_t *dst, strip_vector value) { _mm512_storeu_si512(dst, value); }
+#elif defined(__AVX2__)
 typedef __m256 strip_floats;
 inline strip_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
 inline strip_vector madd_16(strip_vector a, strip_vector b) { return _mm256_madd_epi16(a, b); }
@@ -240,6 +260,97 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
 /* Stores the normalized strip: `values` holds, per 128-bit lane, 4 pixels' interleaved values (in the
    order low pair, high pair: 3 vectors each with 3 channels, 1 with 1), of which `pixels` pixels are
    wanted. With AVX2 the low 128-bit lanes are pixels 0-7, the high ones 8-15. */
+#if defined(__AVX512BW__)
+/* 128-bit lane `part` of a vector (pixels 8 part .. 8 part + 7 of the strip). */
+inline __m128i lane_128(__m512i v, uint32_t part) {
+    switch (part) {
+    case 0:
+        return _mm512_castsi512_si128(v);
+    case 1:
+        return _mm512_extracti32x4_epi32(v, 1);
+    case 2:
+        return _mm512_extracti32x4_epi32(v, 2);
+    default:
+        return _mm512_extracti32x4_epi32(v, 3);
+    }
+}
+
+/* The output vectors of a whole strip (32 pixels: 16 output values each, in output order) from its
+   normalized vectors, whose 128-bit lane j holds pixels 8 j .. 8 j + 7 (4 values per vector, in the
+   order of store_vectors). */
+template <uint32_t Channels>
+inline void output_order(const __m512i *values, __m512i *out) {
+    if (Channels == 3) {
+        /* Lanes 0 and 2, and 1 and 3, of each pair of vectors: then lane j of all six is in two. */
+        __m512i even[3], odd[3];
+        for (uint32_t i = 0; i < 3; i++) {
+            even[i] = _mm512_shuffle_i32x4(values[2 * i], values[2 * i + 1], _MM_SHUFFLE(2, 0, 2, 0));
+            odd[i] = _mm512_shuffle_i32x4(values[2 * i], values[2 * i + 1], _MM_SHUFFLE(3, 1, 3, 1));
+        }
+        out[0] = _mm512_shuffle_i32x4(even[0], even[1], _MM_SHUFFLE(2, 0, 2, 0)); /* lane 0 of v0 .. v3 */
+        out[1] = _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(2, 0, 2, 0));  /* 0 of v4 v5, 1 of v0 v1 */
+        out[2] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(2, 0, 2, 0));   /* lane 1 of v2 .. v5 */
+        out[3] = _mm512_shuffle_i32x4(even[0], even[1], _MM_SHUFFLE(3, 1, 3, 1)); /* lane 2 of v0 .. v3 */
+        out[4] = _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(3, 1, 3, 1));  /* 2 of v4 v5, 3 of v0 v1 */
+        out[5] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(3, 1, 3, 1));   /* lane 3 of v2 .. v5 */
+    } else {
+        const __m512i first = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
+        const __m512i second = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+        out[0] = _mm512_permutex2var_epi64(values[0], first, values[1]);
+        out[1] = _mm512_permutex2var_epi64(values[0], second, values[1]);
+    }
+}
+
+inline __m512i output_vector(__m512i fixed, int32_t *) { return fixed; }
+inline __m512 output_vector(__m512i fixed, float *) {
+    return _mm512_mul_ps(_mm512_cvtepi32_ps(fixed), _mm512_set1_ps(1.0f / 65536.0f));
+}
+
+/* 16 output values. `stream`: past the caches (put_4), in one store where out is 64-byte aligned, in four
+   where it is 16-byte aligned. */
+inline void put_16(int32_t *out, __m512i values, int stream) {
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 63u) == 0) {
+        _mm512_stream_si512(static_cast<__m512i *>(static_cast<void *>(out)), values);
+    } else if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0) {
+        __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
+        _mm_stream_si128(destination, _mm512_castsi512_si128(values));
+        _mm_stream_si128(destination + 1, _mm512_extracti32x4_epi32(values, 1));
+        _mm_stream_si128(destination + 2, _mm512_extracti32x4_epi32(values, 2));
+        _mm_stream_si128(destination + 3, _mm512_extracti32x4_epi32(values, 3));
+    } else {
+        _mm512_storeu_si512(out, values);
+    }
+}
+inline void put_16(float *out, __m512 values, int stream) {
+    put_16(static_cast<int32_t *>(static_cast<void *>(out)), _mm512_castps_si512(values), stream);
+}
+
+/* A whole strip (32 pixels) of fixed or float output in 64-byte stores; 8-bit output takes the 128-bit
+   path (returns 0). */
+template <uint32_t Channels, typename Value>
+inline int store_whole_strip(const strip_vector *values, Value *out, int stream) {
+    __m512i ordered[6];
+    output_order<Channels>(values, ordered);
+    for (uint32_t m = 0; m < 2 * Channels; m++) put_16(out + 16 * m, output_vector(ordered[m], out), stream);
+    return 1;
+}
+template <uint32_t Channels>
+inline int store_whole_strip(const strip_vector *, uint8_t *, int) {
+    return 0;
+}
+
+template <uint32_t Channels, typename Value>
+inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out, int stream) {
+    const uint32_t vectors = 2 * Channels;
+    if (pixels == lane && store_whole_strip<Channels>(values, out, stream)) return;
+    for (uint32_t part = 0; part * 8 < pixels; part++) {
+        __m128i group[6];
+        for (uint32_t i = 0; i < vectors; i++) group[i] = lane_128(values[i], part);
+        const uint32_t rest = pixels - 8 * part;
+        store_vectors(out + 8 * Channels * part, group, vectors, (rest < 8 ? rest : 8) * Channels, stream);
+    }
+}
+#else
 #if defined(__AVX2__)
 /* A whole strip (16 pixels) of fixed or float output; 8-bit output takes the 128-bit path (returns 0).
    Pixels 0-7 are the low 128-bit lanes of values 0 .. 2 Channels - 1, pixels 8-15 the high lanes. When
@@ -314,6 +425,7 @@ inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out,
     store_vectors(out, values, vectors, pixels * Channels, stream);
 #endif
 }
+#endif /* __AVX512BW__ */
 
 /* The first `pixels` pixels of a strip row from its sums (one vector per channel); `stream`: put_4. */
 template <uint32_t Channels, typename Value>

@@ -128,7 +128,7 @@ void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const ti
     strip_entries entries;
     file_strip_entries(&list, &setup->texton, walk_x->length, walk_y->length, &entries);
     const strip_texton *texton = &setup->texton;
-    const uint16_t *row_zero = texton->values + (strip_rows - 1) * texton->stride; /* after the padding */
+    const strip_texel *row_zero = texton->values + (strip_rows - 1) * texton->stride; /* after the padding */
     for (uint32_t y = 0; y < walk_y->length; y += strip_rows) {
         /* Entries active on rows y .. y + strip_rows - 1: keys y .. y + strip_rows - 2 + height. */
         const uint32_t last_key_end = y + strip_rows - 1 + texton->height;

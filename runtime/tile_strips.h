@@ -1,11 +1,12 @@
-/* runtime/tile_strips.h - the fast path for 8-bit textons (SSE2, or AVX2 when compiled for it): a
-   rectangle of the tile is cut into vertical strips one vector wide (8 pixels with SSE2, 16 with AVX2).
-   The impulses that reach the rectangle are listed once (with where they meet it), sorted by the row
-   of their texton's first row, and filed under every strip they reach. Then, row by row, each strip adds
-   in registers one texton row per impulse active on that row (a range of its sorted entries), in 16-bit
-   lanes, read from a copy of the texton padded with a vector of zeros on each side so that every read is
-   one whole vector (two rows at a time, sharing the loop). A sum is normalized straight from its
-   register: nothing is accumulated in memory, so the cost is loads, not read-modify-write stores.
+/* runtime/tile_strips.h - the fast path for 8-bit textons (SSE2, AVX2 or AVX-512BW, as compiled): a
+   rectangle of the tile is cut into vertical strips one vector wide (8 pixels with SSE2, 16 with AVX2,
+   32 with AVX-512). The impulses that reach the rectangle are listed once (with where they meet it),
+   sorted by the row of their texton's first row, and filed under every strip they reach. Then, row by
+   row, each strip adds in registers one texton row per impulse active on that row (a range of its sorted
+   entries), in 16-bit lanes, read from a copy of the texton padded with a vector of zeros on each side so
+   that every read is one whole vector (with SSE2 and AVX2 two rows at a time, sharing the loop). A sum is
+   normalized straight from its register: nothing is accumulated in memory, so the cost is loads, not
+   read-modify-write stores.
    When no column of the rectangle is reached by more than coverage_limit impulses, no pixel is, and no
    sum can overflow: |q| <= 128 for any texton byte and 255 * 128 < 2^15. Otherwise (or when the list
    is full) the caller falls back to the 32-bit splat of tile_walk.h. Internal to tile_render.h. */
@@ -14,7 +15,14 @@
 
 #include "noise_internal.h"
 
-#if defined(__AVX2__)
+#if defined(__AVX512BW__) && defined(__GNUC__) && !defined(__clang__)
+/* GCC 12's AVX-512 intrinsics start some results from a deliberately undefined vector and then warn
+   -Wmaybe-uninitialized on their own lines (GCC bug 105593, fixed in GCC 13). */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#elif defined(__AVX2__) || defined(__AVX512BW__)
 #include <immintrin.h>
 #else
 #include <emmintrin.h>
@@ -22,13 +30,26 @@
 
 namespace {
 
-#if defined(__AVX2__)
+/* Pixels per strip (16-bit sums per vector); the texton's values as the strips read them; rows summed at
+   once (sharing the loop over entries; strip_rows - 1 rows of zeros pad the texton above and below, for
+   the entries active on only some of them). AVX-512 reads the texton's bytes as they are and widens them
+   as it loads (32 bytes, half a cache line, give a whole vector of sums), and sums one row at a time
+   (entries then read no padding rows). SSE2 and AVX2 keep the texton in 16 bits, two rows at a time. */
+#if defined(__AVX512BW__)
+typedef __m512i strip_vector;
+typedef uint8_t strip_texel;
+const uint32_t lane = 32, strip_rows = 1;
+#elif defined(__AVX2__)
 typedef __m256i strip_vector;
-const uint32_t lane = 16; /* pixels per strip: 16-bit sums per vector */
+typedef uint16_t strip_texel;
+const uint32_t lane = 16, strip_rows = 2;
 #else
 typedef __m128i strip_vector;
-const uint32_t lane = 8;
+typedef uint16_t strip_texel;
+const uint32_t lane = 8, strip_rows = 2;
 #endif
+/* Texels per 64-byte cache line. */
+const uint32_t line_texels = 64 / sizeof(strip_texel);
 const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
@@ -47,26 +68,31 @@ const uint32_t strip_entry_capacity = list_capacity * strips_per_impulse_limit;
 /* Sort keys: the rectangle row where an impulse's texton row 0 lies, plus height - 1 (so >= 0). */
 const uint32_t key_limit = rectangle_height + strip_texton_side;
 
-/* Rows summed at once (sharing the loop over entries); strip_rows - 1 rows of zeros pad the texton
-   above and below, for the entries active on only some of them. */
-const uint32_t strip_rows = 2;
+/* Texels per texton row in strip_texton: room for lane zeros on the left of copy 0's windows, 2 lane in
+   copy 1, a whole number of cache lines. */
+constexpr uint32_t strip_stride(uint32_t width) {
+    return (width + 2 * lane + line_texels - 1) / line_texels * line_texels;
+}
 
-/* The texton in 16 bits, twice. Each copy has one plane per channel, strip_rows - 1 rows of zeros above
-   and below each plane, and rows of `stride` values: zeros, the texton row from value lane (copy 0) or
-   2 lane (copy 1, `shifted` values further), zeros. The sums are bound by their loads, and a vector load
-   that crosses a 64-byte cache line costs two: rows are whole cache lines, so whether a window's load
-   crosses one depends only on its column, and the other copy then holds the same window at a column
-   where it does not (file_strip_entries picks it). Every window read is inside the copies or the
-   `stride` zeros after them (a copy 1 window may run up to lane - 1 values into the next row's zeros). */
+/* The texton as strip_texel values, twice. Each copy has one plane per channel, strip_rows - 1 rows of
+   zeros above and below each plane, and rows of `stride` values: zeros, the texton row from value lane
+   (copy 0) or 2 lane (copy 1, `shifted` values further), zeros. The sums are bound by their loads, and
+   a vector load that crosses a 64-byte cache line costs two: rows are whole cache lines, so whether a
+   window's load crosses one depends only on its column, and the other copy then holds the same window
+   at a column where it does not (file_strip_entries picks it). Every window read is inside the copies
+   or the `stride` zeros after them (a copy 1 window may run up to lane - 1 values into the next row's
+   zeros). */
 typedef struct strip_texton {
-    alignas(64) uint16_t values[2 * 3 * (31 + 2 * (strip_rows - 1)) * 64 + 64]; /* 31 x 31 RGB fits */
+    alignas(64) strip_texel values[2 * 3 * (31 + 2 * (strip_rows - 1)) * strip_stride(31) +
+                                   strip_stride(31)]; /* 31 x 31 RGB fits */
     uint32_t stride, plane, width, height, shifted; /* values per row and plane, texton size, copy 1 offset */
     uint32_t copies; /* 1 or 2: copy 1 pays off only over thousands of pixels */
 } strip_texton;
 
-/* Values per texton row in strip_texton: room for lane zeros on the left of copy 0's windows, 2 lane in
-   copy 1, a whole number of cache lines. */
-uint32_t strip_stride(uint32_t width) { return (width + 2 * lane + 31) / 32 * 32; }
+/* A texton byte (two's complement) as a strip_texel: as it is in 8 bits, sign-extended in 16. */
+inline strip_texel make_texel(unsigned char byte) {
+    return strip_texel(sizeof(strip_texel) == 1 ? uint32_t(byte) : (uint32_t(byte) ^ 0x80u) - 0x80u);
+}
 
 /* How many copies of the texton strip_texton can hold (2, 1, or 0 when the strip path cannot take it). */
 uint32_t strip_texton_copies(const dsn_asset *asset) {
@@ -75,7 +101,7 @@ uint32_t strip_texton_copies(const dsn_asset *asset) {
         return 0;
     const uint32_t copy =
         asset->channels * (asset->height + 2 * (strip_rows - 1)) * strip_stride(asset->width);
-    const uint32_t room = sizeof(strip_texton().values) / sizeof(uint16_t) - strip_stride(asset->width);
+    const uint32_t room = sizeof(strip_texton().values) / sizeof(strip_texel) - strip_stride(asset->width);
     return 2 * copy <= room ? 2 : copy <= room ? 1 : 0;
 }
 
@@ -128,11 +154,11 @@ void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *te
     for (uint32_t i = 0; i < copies * texton->shifted + texton->stride; i++) texton->values[i] = 0;
     for (uint32_t c = 0; c < channels; c++)
         for (uint32_t row = 0; row < asset->height; row++) {
-            uint16_t *dst =
+            strip_texel *dst =
                 texton->values + c * texton->plane + (row + strip_rows - 1) * texton->stride + lane;
             const unsigned char *src = asset->texton + row * asset->width * channels + c;
             for (uint32_t column = 0; column < asset->width; column++) {
-                const uint16_t value = uint16_t((uint32_t(src[column * channels]) ^ 0x80u) - 0x80u);
+                const strip_texel value = make_texel(src[column * channels]);
                 dst[column] = value;
                 if (copies == 2) dst[texton->shifted + lane + column] = value;
             }
@@ -209,12 +235,14 @@ typedef struct strip_entries {
 } strip_entries;
 
 /* Where the window of strip s starts in a texton row, given `column`, the padded column of rectangle
-   column 0: in copy 0, or in copy 1 when copy 0's vector load would cross a cache line (its byte offset
-   in the line, 2 column mod 64, past 64 - 2 lane; copy 1 holds it lane values later, where it does not). */
+   column 0: in copy 0, or in copy 1 when copy 0's vector load would cross a cache line (its texel in the
+   line, column mod line_texels, past line_texels - lane; copy 1 holds it lane texels later, where it does
+   not). */
 inline int32_t window_column(const strip_texton *texton, int32_t column, uint32_t s) {
     const uint32_t in_copy_0 = uint32_t(column) + s * lane;
-    return int32_t(texton->copies == 2 && in_copy_0 % 32u > 32u - lane ? in_copy_0 + texton->shifted + lane
-                                                                       : in_copy_0);
+    return int32_t(texton->copies == 2 && in_copy_0 % line_texels > line_texels - lane
+                       ? in_copy_0 + texton->shifted + lane
+                       : in_copy_0);
 }
 
 /* Files the prepared list (at most list_capacity impulses) of a rectangle `columns` x `rows` under its
@@ -258,7 +286,14 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, ui
     }
 }
 
-#if defined(__AVX2__)
+#if defined(__AVX512BW__)
+inline strip_vector load_strip(const uint8_t *src) {
+    return _mm512_cvtepi8_epi16(
+        _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src))));
+}
+inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm512_add_epi16(a, b); }
+inline strip_vector zero_strip() { return _mm512_setzero_si512(); }
+#elif defined(__AVX2__)
 inline strip_vector load_strip(const uint16_t *src) {
     return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src)));
 }
@@ -277,13 +312,13 @@ inline strip_vector zero_strip() { return _mm_setzero_si128(); }
    active on only some of the rows reads zero padding rows on the others. Out of line: inlined into the
    row loop, the compiler runs out of registers and reloads in the inner loop. */
 template <uint32_t Channels>
-__attribute__((noinline)) void add_strip_rows(const uint16_t *row, const int32_t *base, uint32_t count,
+__attribute__((noinline)) void add_strip_rows(const strip_texel *row, const int32_t *base, uint32_t count,
                                               uint32_t plane, uint32_t stride, strip_vector *sums) {
     strip_vector sum[strip_rows][3];
 #pragma GCC unroll 4
     for (uint32_t r = 0; r < strip_rows; r++) sum[r][0] = sum[r][1] = sum[r][2] = zero_strip();
     for (uint32_t i = 0; i < count; i++) {
-        const uint16_t *texels = row + base[i];
+        const strip_texel *texels = row + base[i];
 #pragma GCC unroll 4
         for (uint32_t r = 0; r < strip_rows; r++) {
             sum[r][0] = add_16(sum[r][0], load_strip(texels + r * stride));

@@ -2,8 +2,8 @@
 // per-strip output conversion; runtime/tile_strips.h) against per-point evaluation, on windows spanning
 // many rectangles: every output type, origins at the 32-bit wrap, periods, densities and texton sizes
 // (down to those that take the 32-bit path), and textons at full scale (the largest sums the 16-bit path
-// accepts). Every check runs each copy of the tile code this CPU can run (on x86-64: the SSE2 copy and,
-// with AVX2, the AVX2 copy; runtime/tile_dispatch.h).
+// accepts). Every check runs each copy of the tile code this CPU can run (on x86-64: the SSE2 copy, with
+// AVX2 the AVX2 copy, and with AVX-512 the AVX-512 copy; runtime/tile_dispatch.h).
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -75,13 +75,16 @@ TEST_CASE("init records the copy of the tile code this CPU runs") {
     LoadedNoise loaded(fields, dsn_test::make_config(1));
     uint32_t expected = DSN_TILE_KERNEL_DEFAULT;
 #if defined(__x86_64__) && !defined(__AVX2__)
-    // The Makefile builds the AVX2 copy on every x86-64 host (unless everything is built for AVX2): it
-    // must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs AVX2.
+    // The Makefile builds the AVX2 and AVX-512 copies on every x86-64 host (unless everything is built
+    // for AVX2): the widest must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs it.
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2"))
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw"))
+        expected = DSN_TILE_KERNEL_AVX512;
+    else if (__builtin_cpu_supports("avx2"))
         expected = DSN_TILE_KERNEL_AVX2;
-    else
-        MESSAGE("this CPU has no AVX2: only the SSE2 tile code is tested");
+    if (expected != DSN_TILE_KERNEL_AVX512)
+        MESSAGE("this CPU has no AVX-512 (F and BW)" << (expected == DSN_TILE_KERNEL_AVX2 ? "" : " nor AVX2")
+                                                     << ": the tile code for it is not tested");
 #endif
     CHECK(loaded.noise.tile_kernel == expected);
 }
@@ -93,8 +96,9 @@ TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of
                               {INT32_MIN + 3, INT32_MAX - 33, 97, 65},
                               {-3, -2, 200, 33},
                               {123456789, -987654321, 65, 100}};
-    // Side 45: a 1-channel texton takes the strip path with AVX2 (16-pixel strips) and the 32-bit path
-    // with SSE2 (where it could reach 6 strips of 8); an RGB one takes the 32-bit path (no room for it).
+    // Side 45: a 1-channel texton takes the strip path with AVX2 (16-pixel strips) and AVX-512 and the
+    // 32-bit path with SSE2 (where it could reach 6 strips of 8); an RGB one takes the strip path with
+    // AVX-512 (one copy of its 8-bit texton fits) and the 32-bit path otherwise (no room for it).
     for (uint32_t channels : {1u, 3u})
         for (uint32_t side : {31u, 9u, 1u, 45u}) {
             auto fields = dsn_test::synthetic_fields(channels, side, 8, DSN_SHAPE_RECTANGLE, random.next());

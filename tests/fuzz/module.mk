@@ -17,6 +17,7 @@ $(BUILD)/fuzz/obj/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_FLAGS) $(RUNTIME_DISPATCH_FLAGS) -fsanitize=fuzzer-no-link $(RUNTIME_FILE_FLAGS) -c $< -o $@
 $(BUILD)/fuzz/obj/runtime/tile_avx2.o: RUNTIME_FILE_FLAGS = $(TILE_AVX2_FLAGS)
+$(BUILD)/fuzz/obj/runtime/tile_avx512.o: RUNTIME_FILE_FLAGS = $(TILE_AVX512_FLAGS)
 
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.cpp $(FUZZ_LIBRARY_OBJECTS)
 	@mkdir -p $(@D)
