@@ -38,7 +38,7 @@ namespace {
 #if defined(__AVX512BW__)
 typedef __m512i strip_vector;
 typedef uint8_t strip_texel;
-const uint32_t lane = 32, strip_rows = 1;
+const uint32_t lane = 32, strip_rows = 2;
 #elif defined(__AVX2__)
 typedef __m256i strip_vector;
 typedef uint16_t strip_texel;
