@@ -325,8 +325,7 @@ inline void put_16(float *out, __m512 values, int stream) {
     put_16(static_cast<int32_t *>(static_cast<void *>(out)), _mm512_castps_si512(values), stream);
 }
 
-/* A whole strip (32 pixels) of fixed or float output in 64-byte stores; 8-bit output takes the 128-bit
-   path (returns 0). */
+/* A whole strip (32 pixels) in 64-byte stores (and one of 32 bytes for 8-bit RGB). */
 template <uint32_t Channels, typename Value>
 inline int store_whole_strip(const strip_vector *values, Value *out, int stream) {
     __m512i ordered[6];
@@ -334,9 +333,36 @@ inline int store_whole_strip(const strip_vector *values, Value *out, int stream)
     for (uint32_t m = 0; m < 2 * Channels; m++) put_16(out + 16 * m, output_vector(ordered[m], out), stream);
     return 1;
 }
+/* to_u8_range on 16 values. */
+inline __m512i to_u8_range(__m512i value) {
+    value = _mm512_min_epi32(_mm512_max_epi32(value, _mm512_setzero_si512()), _mm512_set1_epi32(DSN_ONE));
+    return _mm512_srli_epi32(
+        _mm512_add_epi32(_mm512_sub_epi32(_mm512_slli_epi32(value, 8), value), _mm512_set1_epi32(32768)), 16);
+}
+
+/* 8-bit output packs like store_vectors, per 128-bit lane: 16 + 8 bytes (RGB) or 8 bytes (grey) of each
+   lane, brought together by one or two dword permutes. */
 template <uint32_t Channels>
-inline int store_whole_strip(const strip_vector *, uint8_t *, int) {
-    return 0;
+inline int store_whole_strip(const strip_vector *values, uint8_t *out, int) {
+    if (Channels == 3) {
+        const __m512i first =
+            _mm512_packus_epi16(_mm512_packs_epi32(to_u8_range(values[0]), to_u8_range(values[1])),
+                                _mm512_packs_epi32(to_u8_range(values[2]), to_u8_range(values[3])));
+        const __m512i words = _mm512_packs_epi32(to_u8_range(values[4]), to_u8_range(values[5]));
+        const __m512i second = _mm512_packus_epi16(words, words);
+        const __m512i low = _mm512_setr_epi32(0, 1, 2, 3, 16, 17, 4, 5, 6, 7, 20, 21, 8, 9, 10, 11);
+        const __m512i high = _mm512_setr_epi32(24, 25, 12, 13, 14, 15, 28, 29, 0, 0, 0, 0, 0, 0, 0, 0);
+        _mm512_storeu_si512(out, _mm512_permutex2var_epi32(first, low, second));
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out + 64)),
+                            _mm512_castsi512_si256(_mm512_permutex2var_epi32(first, high, second)));
+    } else {
+        const __m512i words = _mm512_packs_epi32(to_u8_range(values[0]), to_u8_range(values[1]));
+        const __m512i bytes = _mm512_packus_epi16(words, words);
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)),
+                            _mm512_castsi512_si256(
+                                _mm512_permutexvar_epi64(_mm512_setr_epi64(0, 2, 4, 6, 0, 0, 0, 0), bytes)));
+    }
+    return 1;
 }
 
 template <uint32_t Channels, typename Value>

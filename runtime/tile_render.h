@@ -4,12 +4,12 @@
    the output (tile_normalize.h), or, when 16 bits cannot hold the sums (16-bit textons, large textons,
    extreme densities), splatted into a 32-bit accumulator and normalized one pixel at a time. Either way the
    sums are the per-point sums (integer addition modulo 2^32 is order-free, and the 16-bit sums provably never
-   wrap), so the bits equal the per-point path's. Included by tile.cpp and, built for AVX2, by
-   tile_avx2.cpp (everything here has internal linkage, so the two copies never mix). */
+   wrap), so the bits equal the per-point path's. Included by tile.cpp and, built for AVX2 and AVX-512, by
+   tile_avx2.cpp and tile_avx512.cpp (everything here has internal linkage, so the copies never mix). */
 #ifndef DSN_TILE_RENDER_H
 #define DSN_TILE_RENDER_H
 
-/* The strip path (x86 SSE2 or AVX2) keeps about 64 KB on the stack (two padded copies of the texton,
+/* The strip path (x86 SSE2, AVX2 or AVX-512) keeps about 64 KB on the stack (two padded copies of the texton,
    the impulse list and the strip entries); elsewhere the 32-bit path keeps a tile call's stack under 1 KB,
    which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to take the 32-bit path
    on x86 too. */

@@ -101,7 +101,7 @@ void dsn_config_defaults(dsn_config *config);
 
 /* The configured noise: caller-owned, a few hundred bytes, no pointers but the asset's texton. Fields
    are private to the runtime and may change between versions. Init records which copy of the tile code
-   the CPU runs (x86-64: AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
+   the CPU runs (x86-64: AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
 typedef struct dsn_noise {
     dsn_asset asset;
     uint32_t seed;
@@ -156,10 +156,11 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is not addressable); null pointers
    give DSN_ERR_NULL. */
 /* Speed: on x86-64 the Makefile also builds the tile code for AVX2 (16 values per vector instead of 8)
-   and init picks it when CPUID and the OS allow (runtime/tile_dispatch.h); other build systems get one
-   copy, built with their own flags. Same bits either way. On x86, fixed and float tiles of 16 MB of
-   output or more are written with non-temporal stores (they would not stay in the caches anyway), so
-   reading them right after the call comes from memory. */
+   and for AVX-512 F and BW (32), and init picks the widest that CPUID and the OS allow
+   (runtime/tile_dispatch.h); other build systems get one copy, built with their own flags. Same bits
+   either way. On x86, fixed and float tiles of 16 MB of output or more are written with non-temporal
+   stores (they would not stay in the caches anyway), so reading them right after the call comes from
+   memory. */
 /* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86): its fast path
    keeps two padded copies of the texton, an impulse list and their filing under vertical strips on the
    stack, about 64 KB (make bench measures it). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the
