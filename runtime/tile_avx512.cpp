@@ -1,7 +1,7 @@
 /* runtime/tile_avx512.cpp - the tile code of tile_render.h built for AVX-512 F and BW (the Makefile
-   compiles this file with -mavx512f -mavx512bw on x86-64): strips of 32 pixels, the texton's bytes
-   widened as they are loaded, one row per pass. tile.cpp calls it only when init found AVX-512
-   (tile_dispatch.h); the bits are those of every other path. */
+   compiles this file with -mavx512f -mavx512bw on x86-64): strips of 32 pixels, summed from the texton's
+   bytes widened as they are loaded. tile.cpp calls it only when init found AVX-512 (tile_dispatch.h); the
+   bits are those of every other path. */
 #include "tile_dispatch.h"
 
 #if DSN_TILE_AVX2_BUILT

@@ -4,8 +4,8 @@
    sorted by the row of their texton's first row, and filed under every strip they reach. Then, row by
    row, each strip adds in registers one texton row per impulse active on that row (a range of its sorted
    entries), in 16-bit lanes, read from a copy of the texton padded with a vector of zeros on each side so
-   that every read is one whole vector (with SSE2 and AVX2 two rows at a time, sharing the loop). A sum is
-   normalized straight from its register: nothing is accumulated in memory, so the cost is loads, not
+   that every read is one whole vector (two rows at a time, sharing the loop). A sum is normalized
+   straight from its register: nothing is accumulated in memory, so the cost is loads, not
    read-modify-write stores.
    When no column of the rectangle is reached by more than coverage_limit impulses, no pixel is, and no
    sum can overflow: |q| <= 128 for any texton byte and 255 * 128 < 2^15. Otherwise (or when the list
@@ -33,8 +33,8 @@ namespace {
 /* Pixels per strip (16-bit sums per vector); the texton's values as the strips read them; rows summed at
    once (sharing the loop over entries; strip_rows - 1 rows of zeros pad the texton above and below, for
    the entries active on only some of them). AVX-512 reads the texton's bytes as they are and widens them
-   as it loads (32 bytes, half a cache line, give a whole vector of sums), and sums one row at a time
-   (entries then read no padding rows). SSE2 and AVX2 keep the texton in 16 bits, two rows at a time. */
+   as it loads (32 bytes, half a cache line, give a whole vector of sums: a 64-byte load of 16-bit values
+   would cross a cache line almost always); SSE2 and AVX2 keep the texton in 16 bits. */
 #if defined(__AVX512BW__)
 typedef __m512i strip_vector;
 typedef uint8_t strip_texel;
