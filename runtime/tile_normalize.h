@@ -396,6 +396,10 @@ inline __m256i output_vector(__m256i fixed, int32_t *) { return fixed; }
 inline __m256 output_vector(__m256i fixed, float *) {
     return _mm256_mul_ps(_mm256_cvtepi32_ps(fixed), _mm256_set1_ps(1.0f / 65536.0f));
 }
+inline void stream_4(int32_t *out, __m128i values) {
+    _mm_stream_si128(static_cast<__m128i *>(static_cast<void *>(out)), values);
+}
+inline void stream_4(float *out, __m128 values) { _mm_stream_ps(out, values); }
 inline __m128i low_lane(__m256i v) { return _mm256_castsi256_si128(v); }
 inline __m128 low_lane(__m256 v) { return _mm256_castps256_ps128(v); }
 inline __m128i high_lane(__m256i v) { return _mm256_extracti128_si256(v, 1); }
@@ -413,11 +417,11 @@ inline __m256 join_lanes(__m256 a, __m256 b, int high) {
 
 template <uint32_t Channels, typename Value>
 inline int store_whole_strip(const strip_vector *values, Value *out, int stream) {
-    if (stream) {
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0) {
         for (uint32_t i = 0; i < 2 * Channels; i++) {
             const typename output_vectors<Value>::type converted = output_vector(values[i], out);
-            put_4(out + 4 * i, low_lane(converted), 1);
-            put_4(out + 8 * Channels + 4 * i, high_lane(converted), 1);
+            stream_4(out + 4 * i, low_lane(converted));
+            stream_4(out + 8 * Channels + 4 * i, high_lane(converted));
         }
         return 1;
     }
