@@ -79,6 +79,19 @@ inline strip_floats shuffle(strip_floats a, strip_floats b) {
     return _mm512_shuffle_ps(a, b, Order);
 }
 inline void store_sums(uint16_t *dst, strip_vector value) { _mm512_storeu_si512(dst, value); }
+/* 128-bit lane `part` of a vector: pixels 8 part .. 8 part + 7 of a normalized strip. */
+inline __m128i lane_128(strip_vector v, uint32_t part) {
+    switch (part) {
+    case 0:
+        return _mm512_castsi512_si128(v);
+    case 1:
+        return _mm512_extracti32x4_epi32(v, 1);
+    case 2:
+        return _mm512_extracti32x4_epi32(v, 2);
+    default:
+        return _mm512_extracti32x4_epi32(v, 3);
+    }
+}
 #elif defined(__AVX2__)
 typedef __m256 strip_floats;
 inline strip_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
@@ -99,6 +112,9 @@ inline strip_floats shuffle(strip_floats a, strip_floats b) {
 }
 inline void store_sums(uint16_t *dst, strip_vector value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(dst)), value);
+}
+inline __m128i lane_128(strip_vector v, uint32_t part) {
+    return part == 0 ? _mm256_castsi256_si128(v) : _mm256_extracti128_si256(v, 1);
 }
 #else
 typedef __m128 strip_floats;
@@ -121,6 +137,7 @@ inline strip_floats shuffle(strip_floats a, strip_floats b) {
 inline void store_sums(uint16_t *dst, strip_vector value) {
     _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(dst)), value);
 }
+inline __m128i lane_128(strip_vector v, uint32_t) { return v; }
 #endif
 
 /* The first `pixels` pixels of a strip row, one at a time. */
@@ -259,22 +276,8 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
 
 /* Stores the normalized strip: `values` holds, per 128-bit lane, 4 pixels' interleaved values (in the
    order low pair, high pair: 3 vectors each with 3 channels, 1 with 1), of which `pixels` pixels are
-   wanted. With AVX2 the low 128-bit lanes are pixels 0-7, the high ones 8-15. */
+   wanted. 128-bit lane j holds pixels 8 j .. 8 j + 7 (lane_128). */
 #if defined(__AVX512BW__)
-/* 128-bit lane `part` of a vector (pixels 8 part .. 8 part + 7 of the strip). */
-inline __m128i lane_128(__m512i v, uint32_t part) {
-    switch (part) {
-    case 0:
-        return _mm512_castsi512_si128(v);
-    case 1:
-        return _mm512_extracti32x4_epi32(v, 1);
-    case 2:
-        return _mm512_extracti32x4_epi32(v, 2);
-    default:
-        return _mm512_extracti32x4_epi32(v, 3);
-    }
-}
-
 /* The output vectors of a whole strip (32 pixels: 16 output values each, in output order) from its
    normalized vectors, whose 128-bit lane j holds pixels 8 j .. 8 j + 7 (4 values per vector, in the
    order of store_vectors). */
@@ -365,19 +368,7 @@ inline int store_whole_strip(const strip_vector *values, uint8_t *out, int) {
     return 1;
 }
 
-template <uint32_t Channels, typename Value>
-inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out, int stream) {
-    const uint32_t vectors = 2 * Channels;
-    if (pixels == lane && store_whole_strip<Channels>(values, out, stream)) return;
-    for (uint32_t part = 0; part * 8 < pixels; part++) {
-        __m128i group[6];
-        for (uint32_t i = 0; i < vectors; i++) group[i] = lane_128(values[i], part);
-        const uint32_t rest = pixels - 8 * part;
-        store_vectors(out + 8 * Channels * part, group, vectors, (rest < 8 ? rest : 8) * Channels, stream);
-    }
-}
-#else
-#if defined(__AVX2__)
+#elif defined(__AVX2__)
 /* A whole strip (16 pixels) of fixed or float output; 8-bit output takes the 128-bit path (returns 0).
    Pixels 0-7 are the low 128-bit lanes of values 0 .. 2 Channels - 1, pixels 8-15 the high lanes. When
    streaming (16-byte stores), each lane is stored where it goes; else pairs of lanes are brought together
@@ -437,25 +428,27 @@ template <uint32_t Channels>
 inline int store_whole_strip(const strip_vector *, uint8_t *, int) {
     return 0;
 }
+#else
+/* SSE2: a strip is one 128-bit lane. */
+template <uint32_t Channels, typename Value>
+inline int store_whole_strip(const strip_vector *values, Value *out, int stream) {
+    store_vectors(out, values, 2 * Channels, lane * Channels, stream);
+    return 1;
+}
 #endif
 
+/* Whole strips as store_whole_strip can; else 8 pixels (a 128-bit lane of each vector) at a time. */
 template <uint32_t Channels, typename Value>
 inline void store_strip(const strip_vector *values, uint32_t pixels, Value *out, int stream) {
     const uint32_t vectors = 2 * Channels;
-#if defined(__AVX2__)
     if (pixels == lane && store_whole_strip<Channels>(values, out, stream)) return;
-    __m128i low[6], high[6];
-    for (uint32_t i = 0; i < vectors; i++) {
-        low[i] = _mm256_castsi256_si128(values[i]);
-        high[i] = _mm256_extracti128_si256(values[i], 1);
+    for (uint32_t part = 0; part * 8 < pixels; part++) {
+        __m128i group[6];
+        for (uint32_t i = 0; i < vectors; i++) group[i] = lane_128(values[i], part);
+        const uint32_t rest = pixels - 8 * part;
+        store_vectors(out + 8 * Channels * part, group, vectors, (rest < 8 ? rest : 8) * Channels, stream);
     }
-    store_vectors(out, low, vectors, (pixels < 8 ? pixels : 8) * Channels, stream);
-    if (pixels > 8) store_vectors(out + 8 * Channels, high, vectors, (pixels - 8) * Channels, stream);
-#else
-    store_vectors(out, values, vectors, pixels * Channels, stream);
-#endif
 }
-#endif /* __AVX512BW__ */
 
 /* The first `pixels` pixels of a strip row from its sums (one vector per channel); `stream`: put_4. */
 template <uint32_t Channels, typename Value>
