@@ -81,10 +81,11 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
     }
     if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
     const int channels = int(asset.channels);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, uint32_t(width), uint32_t(height)));
+    std::vector<unsigned char> scratch(
+        dsn_lattice_tile_scratch_size(&noise, uint32_t(width), uint32_t(height)));
     std::vector<float> values(size_t(width) * size_t(height) * size_t(channels));
-    error = dsn_tile_float(&noise, 0, 0, uint32_t(width), uint32_t(height), values.data(), scratch.data(),
-                           scratch.size());
+    error = dsn_lattice_tile_float(&noise, 0, 0, uint32_t(width), uint32_t(height), values.data(),
+                                   scratch.data(), scratch.size());
     if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
     Image image;
     image.width = width, image.height = height, image.channels = channels;

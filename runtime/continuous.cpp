@@ -700,7 +700,7 @@ int dsn_continuous_check(const dsn_noise *noise) {
     return DSN_OK;
 }
 
-int dsn_eval_continuous_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out) {
+int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out) {
     if (out == 0) return DSN_ERR_NULL;
     const int err = dsn_continuous_check(noise);
     if (err != DSN_OK) {
@@ -711,11 +711,11 @@ int dsn_eval_continuous_fixed(const dsn_noise *noise, int64_t x, int64_t y, int3
     return DSN_OK;
 }
 
-int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float *out) {
+int dsn_continuous_point_float(const dsn_noise *noise, double x, double y, float *out) {
     int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
     if (out == 0) return DSN_ERR_NULL;
-    const int err =
-        dsn_eval_continuous_fixed(noise, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), fixed);
+    const int err = dsn_continuous_point_fixed(noise, dsn_coordinate_from_double(x),
+                                               dsn_coordinate_from_double(y), fixed);
     dsn_store_pixel(out, dsn_output_float, 0, fixed, noise == 0 ? 1u : noise->asset.channels);
     return err;
 }

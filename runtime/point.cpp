@@ -381,11 +381,11 @@ int usable(const dsn_noise *noise, const void *out) {
 
 #if DSN_SMALL_CODE
 /* The small build evaluates a point as a 1 x 1 tile: one walk over the cells for both (same bits). */
-extern "C" void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
-    (void)dsn_tile_fixed(noise, x, y, 1, 1, out, 0, 0);
+extern "C" void dsn_lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
+    (void)dsn_lattice_tile_fixed(noise, x, y, 1, 1, out, 0, 0);
 }
 #else
-extern "C" void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
+extern "C" void dsn_lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
     if (!usable(noise, out)) return;
     uint32_t sums[3];
     accumulate(noise, uint32_t(x), uint32_t(y), sums);
@@ -404,16 +404,16 @@ extern "C" uint8_t dsn_fixed_to_u8(int32_t value) {
     return uint8_t((uint32_t(value) * 255u + 32768u) >> 16);
 }
 
-extern "C" void dsn_eval_float(const dsn_noise *noise, int32_t x, int32_t y, float *out) {
+extern "C" void dsn_lattice_point_float(const dsn_noise *noise, int32_t x, int32_t y, float *out) {
     int32_t fixed[3];
     if (!usable(noise, out)) return;
-    dsn_eval_fixed(noise, x, y, fixed);
+    dsn_lattice_point_fixed(noise, x, y, fixed);
     for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_float(fixed[c]);
 }
 
-extern "C" void dsn_eval_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out) {
+extern "C" void dsn_lattice_point_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out) {
     int32_t fixed[3];
     if (!usable(noise, out)) return;
-    dsn_eval_fixed(noise, x, y, fixed);
+    dsn_lattice_point_fixed(noise, x, y, fixed);
     for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_u8(fixed[c]);
 }

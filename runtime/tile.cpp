@@ -61,24 +61,24 @@ int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t widt
 
 } // namespace
 
-extern "C" size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height) {
+extern "C" size_t dsn_lattice_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height) {
     size_t values = 0;
     if (tile_values(noise, noise, width, height, &values) != DSN_OK) return 0;
     return values * sizeof(uint32_t) + sizeof(uint32_t) - 1;
 }
 
-extern "C" int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                              int32_t *out, void *scratch, size_t scratch_size) {
+extern "C" int dsn_lattice_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                      uint32_t height, int32_t *out, void *scratch, size_t scratch_size) {
     return render_checked(noise, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
-extern "C" int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                              float *out, void *scratch, size_t scratch_size) {
+extern "C" int dsn_lattice_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                      uint32_t height, float *out, void *scratch, size_t scratch_size) {
     return render_checked(noise, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
-extern "C" int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                           uint8_t *out, void *scratch, size_t scratch_size) {
+extern "C" int dsn_lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                   uint32_t height, uint8_t *out, void *scratch, size_t scratch_size) {
     return render_checked(noise, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
 

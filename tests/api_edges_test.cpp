@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "dsn/dsn.h"
-#include "support/test_assets.h"
+#include "fixtures/test_assets.h"
 
 using dsn_test::LoadedNoise;
 using dsn_test::make_config;
@@ -19,12 +19,12 @@ TEST_CASE("per-point functions with a null noise or output write nothing and do 
     int32_t fixed[3] = {7, 7, 7};
     float real[3] = {7, 7, 7};
     uint8_t bytes[3] = {7, 7, 7};
-    dsn_eval_fixed(nullptr, 0, 0, fixed);
-    dsn_eval_float(nullptr, 0, 0, real);
-    dsn_eval_u8(nullptr, 0, 0, bytes);
-    dsn_eval_fixed(&loaded.noise, 0, 0, nullptr);
-    dsn_eval_float(&loaded.noise, 0, 0, nullptr);
-    dsn_eval_u8(&loaded.noise, 0, 0, nullptr);
+    dsn_lattice_point_fixed(nullptr, 0, 0, fixed);
+    dsn_lattice_point_float(nullptr, 0, 0, real);
+    dsn_lattice_point_u8(nullptr, 0, 0, bytes);
+    dsn_lattice_point_fixed(&loaded.noise, 0, 0, nullptr);
+    dsn_lattice_point_float(&loaded.noise, 0, 0, nullptr);
+    dsn_lattice_point_u8(&loaded.noise, 0, 0, nullptr);
     CHECK(fixed[0] == 7);
     CHECK(real[2] == 7.0f);
     CHECK(bytes[1] == 7);
@@ -42,11 +42,11 @@ TEST_CASE("a noise whose init failed evaluates to nothing and refuses tiles") {
     config.impacts_q16 = uint32_t(-5); // a "negative" density
     REQUIRE(dsn_noise_init(&failed, &loaded.asset, &config) == DSN_ERR_IMPACTS);
     int32_t value = 1234;
-    dsn_eval_fixed(&failed, 3, 4, &value);
+    dsn_lattice_point_fixed(&failed, 3, 4, &value);
     CHECK(value == 1234);
     int32_t tile[4];
-    CHECK(dsn_tile_fixed(&failed, 0, 0, 2, 2, tile, nullptr, 0) == DSN_ERR_ARGUMENT);
-    CHECK(dsn_tile_scratch_size(&failed, 2, 2) == 0);
+    CHECK(dsn_lattice_tile_fixed(&failed, 0, 0, 2, 2, tile, nullptr, 0) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_lattice_tile_scratch_size(&failed, 2, 2) == 0);
     for (uint32_t impacts : {1u, DSN_IMPACTS_MIN_Q16 - 1, DSN_IMPACTS_MAX_Q16 + 1, 0xFFFFFFFFu}) {
         config.impacts_q16 = impacts;
         CHECK(dsn_noise_init(&failed, &loaded.asset, &config) == DSN_ERR_IMPACTS);
@@ -59,16 +59,16 @@ TEST_CASE("periods 1 and 2^31 are exact: constant rows, and INT32_MIN is 0") {
     LoadedNoise half(fields, make_config(9, 30, 0x80000000u, 0x80000000u));
     int32_t a[3], b[3];
     for (int32_t y : {-5, 0, 17, INT32_MAX}) {
-        dsn_eval_fixed(&one.noise, INT32_MIN, y, a);
+        dsn_lattice_point_fixed(&one.noise, INT32_MIN, y, a);
         for (int32_t x : {-1, 0, 1, 12345, INT32_MAX}) {
-            dsn_eval_fixed(&one.noise, x, y, b);
+            dsn_lattice_point_fixed(&one.noise, x, y, b);
             CHECK(std::memcmp(a, b, sizeof a) == 0);
         }
-        dsn_eval_fixed(&half.noise, INT32_MIN, y, a);
-        dsn_eval_fixed(&half.noise, 0, y, b);
+        dsn_lattice_point_fixed(&half.noise, INT32_MIN, y, a);
+        dsn_lattice_point_fixed(&half.noise, 0, y, b);
         CHECK(std::memcmp(a, b, sizeof a) == 0);
-        dsn_eval_fixed(&half.noise, 5, INT32_MIN, a);
-        dsn_eval_fixed(&half.noise, 5, 0, b);
+        dsn_lattice_point_fixed(&half.noise, 5, INT32_MIN, a);
+        dsn_lattice_point_fixed(&half.noise, 5, 0, b);
         CHECK(std::memcmp(a, b, sizeof a) == 0);
     }
 }
@@ -84,17 +84,17 @@ TEST_CASE("continuous coordinates: NaN and Inf are 0, huge values wrap, and the 
         CHECK(dsn_coordinate_from_float(float(special)) == 0);
     }
     float at_nan[3], at_zero[3];
-    REQUIRE(dsn_eval_continuous_float(&loaded.noise, nan, -inf, at_nan) == DSN_OK);
-    REQUIRE(dsn_eval_continuous_float(&loaded.noise, 0.0, 0.0, at_zero) == DSN_OK);
+    REQUIRE(dsn_continuous_point_float(&loaded.noise, nan, -inf, at_nan) == DSN_OK);
+    REQUIRE(dsn_continuous_point_float(&loaded.noise, 0.0, 0.0, at_zero) == DSN_OK);
     CHECK(std::memcmp(at_nan, at_zero, sizeof at_nan) == 0);
     // 2^32 + 0.5 texels is 0.5 texels on the torus; 1e300 is some defined point.
     float wrapped[3], half[3], huge[3];
-    REQUIRE(dsn_eval_continuous_float(&loaded.noise, 4294967296.5, 3.25, wrapped) == DSN_OK);
-    REQUIRE(dsn_eval_continuous_float(&loaded.noise, 0.5, 3.25, half) == DSN_OK);
+    REQUIRE(dsn_continuous_point_float(&loaded.noise, 4294967296.5, 3.25, wrapped) == DSN_OK);
+    REQUIRE(dsn_continuous_point_float(&loaded.noise, 0.5, 3.25, half) == DSN_OK);
     CHECK(std::memcmp(wrapped, half, sizeof half) == 0);
-    REQUIRE(dsn_eval_continuous_float(&loaded.noise, 1e300, -1e300, huge) == DSN_OK);
+    REQUIRE(dsn_continuous_point_float(&loaded.noise, 1e300, -1e300, huge) == DSN_OK);
     for (float value : huge) CHECK(std::isfinite(value));
     int32_t out[3] = {1, 1, 1};
-    CHECK(dsn_eval_continuous_fixed(nullptr, 0, 0, out) == DSN_ERR_NULL);
-    CHECK(dsn_eval_continuous_fixed(&loaded.noise, 0, 0, nullptr) == DSN_ERR_NULL);
+    CHECK(dsn_continuous_point_fixed(nullptr, 0, 0, out) == DSN_ERR_NULL);
+    CHECK(dsn_continuous_point_fixed(&loaded.noise, 0, 0, nullptr) == DSN_ERR_NULL);
 }

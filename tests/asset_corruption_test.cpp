@@ -82,13 +82,13 @@ void evaluate_everywhere(const dsn_asset &asset) {
     const int32_t x0 = 2147483646, y0 = -2147483647 - 1;
     const uint32_t width = 4, height = 3, channels = asset.channels;
     std::vector<int32_t> tile(width * height * channels);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, width, height));
-    REQUIRE(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), scratch.data(), scratch.size()) ==
-            DSN_OK);
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&noise, width, height));
+    REQUIRE(dsn_lattice_tile_fixed(&noise, x0, y0, width, height, tile.data(), scratch.data(),
+                                   scratch.size()) == DSN_OK);
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             int32_t value[DSN_MAX_CHANNELS];
-            dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), value);
+            dsn_lattice_point_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), value);
             for (uint32_t c = 0; c < channels; c++) REQUIRE(value[c] == tile[(j * width + i) * channels + c]);
         }
 }

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "bake_fixtures.h"
 #include "dsn/bake.h"
+#include "fixtures/bake_fixtures.h"
 
 using namespace bake_fixtures;
 

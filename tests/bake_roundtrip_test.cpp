@@ -7,9 +7,9 @@
 
 #include <stb_image.h>
 
-#include "bake_fixtures.h"
 #include "dsn/bake.h"
 #include "dsn/dsn.h"
+#include "fixtures/bake_fixtures.h"
 
 using namespace bake_fixtures;
 

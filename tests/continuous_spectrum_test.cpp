@@ -14,8 +14,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "continuous_fixtures.h"
 #include "dsn/bake.h"
+#include "fixtures/continuous_fixtures.h"
 
 using namespace continuous_fixtures;
 
@@ -109,9 +109,9 @@ std::vector<double> mean_periodogram(const dsn::AssetFields &fields, int side, i
         dsn_grid grid = {int64_t(seed % 5) << 32, 0, step, 0, 0, step};
         if (lattice) {
             std::vector<unsigned char> scratch(
-                dsn_tile_scratch_size(&noise->noise, uint32_t(side), uint32_t(side)));
-            REQUIRE(dsn_tile_float(&noise->noise, seed % 5, 0, uint32_t(side), uint32_t(side), values.data(),
-                                   scratch.data(), scratch.size()) == DSN_OK);
+                dsn_lattice_tile_scratch_size(&noise->noise, uint32_t(side), uint32_t(side)));
+            REQUIRE(dsn_lattice_tile_float(&noise->noise, seed % 5, 0, uint32_t(side), uint32_t(side),
+                                           values.data(), scratch.data(), scratch.size()) == DSN_OK);
         } else {
             REQUIRE(dsn_continuous_tile_float(&noise->noise, &grid, uint32_t(side), uint32_t(side),
                                               values.data(), nullptr, 0) == DSN_OK);

@@ -22,8 +22,8 @@
 #include <random>
 #include <vector>
 
-#include "continuous_fixtures.h"
-#include "support/noise_theory.h"
+#include "fixtures/continuous_fixtures.h"
+#include "fixtures/noise_theory.h"
 
 using namespace continuous_fixtures;
 
@@ -119,8 +119,8 @@ void check_against_theory(const dsn::AssetFields &fields, uint32_t impacts, int 
             const int64_t y = (site / 2000) * 24 * one + int64_t(random() >> 32);
             for (int h = 0; h < kLagCount; h++) {
                 int32_t out[3];
-                dsn_eval_continuous_fixed(&noise->noise, x + int64_t(kLags[h][0] * double(one)),
-                                          y + int64_t(kLags[h][1] * double(one)), out);
+                dsn_continuous_point_fixed(&noise->noise, x + int64_t(kLags[h][0] * double(one)),
+                                           y + int64_t(kLags[h][1] * double(one)), out);
                 std::array<double, 3> v{};
                 for (uint32_t c = 0; c < channels; c++) v[c] = out[c] / 65536.0;
                 values[h].push_back(v);

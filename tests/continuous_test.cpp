@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "../runtime/noise_internal.h"
-#include "continuous_fixtures.h"
+#include "fixtures/continuous_fixtures.h"
 
 using namespace continuous_fixtures;
 
@@ -163,23 +163,23 @@ TEST_CASE("continuous: a lattice-baked asset is refused unless explicitly allowe
     int32_t out[3] = {5, 5, 5};
     float values[3];
     CHECK(dsn_continuous_check(&refused->noise) == DSN_ERR_CONTINUOUS_MISMATCH);
-    CHECK(dsn_eval_continuous_fixed(&refused->noise, 0, 0, out) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK(dsn_continuous_point_fixed(&refused->noise, 0, 0, out) == DSN_ERR_CONTINUOUS_MISMATCH);
     CHECK((out[0] == 0 && out[1] == 0 && out[2] == 0));
-    CHECK(dsn_eval_continuous_float(&refused->noise, 1.5, 2.5, values) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK(dsn_continuous_point_float(&refused->noise, 1.5, 2.5, values) == DSN_ERR_CONTINUOUS_MISMATCH);
     dsn_grid grid = {0, 0, one, 0, 0, one};
     CHECK(dsn_continuous_tile_fixed(&refused->noise, &grid, 4, 4, out, nullptr, 0) ==
           DSN_ERR_CONTINUOUS_MISMATCH);
     auto allowed = make_noise(fields, 1, 0, 0, 0, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS);
-    CHECK(dsn_eval_continuous_fixed(&allowed->noise, one / 3, 5 * one, out) == DSN_OK);
+    CHECK(dsn_continuous_point_fixed(&allowed->noise, one / 3, 5 * one, out) == DSN_OK);
     CHECK(dsn_continuous_check(nullptr) == DSN_ERR_NULL);
-    CHECK(dsn_eval_continuous_fixed(&allowed->noise, 0, 0, nullptr) == DSN_ERR_NULL);
+    CHECK(dsn_continuous_point_fixed(&allowed->noise, 0, 0, nullptr) == DSN_ERR_NULL);
     CHECK(dsn_continuous_tile_fixed(&allowed->noise, &grid, 0, 4, out, nullptr, 0) == DSN_ERR_TILE_SIZE);
     CHECK(dsn_continuous_tile_fixed(&allowed->noise, nullptr, 1, 1, out, nullptr, 0) == DSN_ERR_NULL);
     // Non-finite float coordinates are the point 0.
     float at_nan[3], at_zero[3];
-    dsn_eval_continuous_float(&allowed->noise, std::nan(""), -std::numeric_limits<double>::infinity(),
-                              at_nan);
-    dsn_eval_continuous_float(&allowed->noise, 0.0, 0.0, at_zero);
+    dsn_continuous_point_float(&allowed->noise, std::nan(""), -std::numeric_limits<double>::infinity(),
+                               at_nan);
+    dsn_continuous_point_float(&allowed->noise, 0.0, 0.0, at_zero);
     CHECK(std::memcmp(at_nan, at_zero, sizeof at_nan) == 0);
 }
 
@@ -200,7 +200,7 @@ TEST_CASE("continuous: the value is the bilinear sum over every impulse (brute-f
         for (int i = 0; i < 60; i++) {
             int64_t x = random_coordinate(random), y = random_coordinate(random);
             int32_t out[3];
-            REQUIRE(dsn_eval_continuous_fixed(&noise->noise, x, y, out) == DSN_OK);
+            REQUIRE(dsn_continuous_point_fixed(&noise->noise, x, y, out) == DSN_OK);
             std::vector<long double> expected = reference_value(&noise->noise, x, y);
             for (uint32_t k = 0; k < c.channels; k++) {
                 CAPTURE(x);
@@ -260,7 +260,7 @@ TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every 
                     int64_t y = int64_t(uint64_t(grid.origin_y) + uint64_t(grid.column_step_y) * i +
                                         uint64_t(grid.row_step_y) * j);
                     int32_t point[3];
-                    dsn_eval_continuous_fixed(noise, x, y, point);
+                    dsn_continuous_point_fixed(noise, x, y, point);
                     for (uint32_t c = 0; c < channels; c++) {
                         size_t at = (size_t(j) * width + i) * channels + c;
                         REQUIRE(tile[at] == point[c]);
@@ -286,14 +286,14 @@ TEST_CASE("continuous: periodic mode repeats exactly at real-valued points") {
             // Away from the int32 wrap: a period that does not divide 2^32 cannot repeat across it.
             int64_t x = random_coordinate(random) / 2, y = random_coordinate(random) / 2;
             int32_t base[3], moved[3];
-            dsn_eval_continuous_fixed(&noise->noise, x, y, base);
+            dsn_continuous_point_fixed(&noise->noise, x, y, base);
             if (period[0]) {
-                dsn_eval_continuous_fixed(
+                dsn_continuous_point_fixed(
                     &noise->noise, int64_t(uint64_t(x) + uint64_t(period[0]) * uint64_t(one)), y, moved);
                 REQUIRE(std::memcmp(base, moved, sizeof base) == 0);
             }
             if (period[1]) {
-                dsn_eval_continuous_fixed(
+                dsn_continuous_point_fixed(
                     &noise->noise, x, int64_t(uint64_t(y) - 3 * uint64_t(period[1]) * uint64_t(one)), moved);
                 REQUIRE(std::memcmp(base, moved, sizeof base) == 0);
             }

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "support/test_assets.h"
+#include "fixtures/test_assets.h"
 
 namespace {
 
@@ -201,20 +201,22 @@ TEST_CASE("configuration and evaluation arguments are checked") {
         REQUIRE(dsn_noise_init(&noise, &asset, &config) == DSN_OK);
         CHECK(noise.poisson_size > 0);
         int32_t point[3], tile[3];
-        dsn_eval_fixed(&noise, INT32_MIN, INT32_MAX, point);
-        REQUIRE(dsn_tile_fixed(&noise, INT32_MIN, INT32_MAX, 1, 1, tile, nullptr, 0) == DSN_OK);
+        dsn_lattice_point_fixed(&noise, INT32_MIN, INT32_MAX, point);
+        REQUIRE(dsn_lattice_tile_fixed(&noise, INT32_MIN, INT32_MAX, 1, 1, tile, nullptr, 0) == DSN_OK);
         CHECK(std::memcmp(point, tile, sizeof point) == 0);
     }
     int32_t out[3];
-    CHECK(dsn_tile_fixed(&noise, 0, 0, 0, 4, out, nullptr, 0) == DSN_ERR_TILE_SIZE);
-    CHECK(dsn_tile_fixed(&noise, 0, 0, DSN_TILE_MAX_SIDE + 1, 1, out, nullptr, 0) == DSN_ERR_TILE_SIZE);
-    CHECK(dsn_tile_fixed(nullptr, 0, 0, 1, 1, out, nullptr, 0) == DSN_ERR_NULL);
-    CHECK(dsn_tile_fixed(&noise, 0, 0, 1, 1, nullptr, nullptr, 0) == DSN_ERR_NULL);
+    CHECK(dsn_lattice_tile_fixed(&noise, 0, 0, 0, 4, out, nullptr, 0) == DSN_ERR_TILE_SIZE);
+    CHECK(dsn_lattice_tile_fixed(&noise, 0, 0, DSN_TILE_MAX_SIDE + 1, 1, out, nullptr, 0) ==
+          DSN_ERR_TILE_SIZE);
+    CHECK(dsn_lattice_tile_fixed(nullptr, 0, 0, 1, 1, out, nullptr, 0) == DSN_ERR_NULL);
+    CHECK(dsn_lattice_tile_fixed(&noise, 0, 0, 1, 1, nullptr, nullptr, 0) == DSN_ERR_NULL);
     float values[3];
-    CHECK(dsn_tile_float(&noise, 0, 0, 1, 1, values, nullptr, 0) == DSN_ERR_SCRATCH);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, 1, 1));
-    CHECK(dsn_tile_float(&noise, 0, 0, 1, 1, values, scratch.data(), scratch.size() - 4) == DSN_ERR_SCRATCH);
-    CHECK(dsn_tile_float(&noise, 0, 0, 1, 1, values, scratch.data(), scratch.size()) == DSN_OK);
-    CHECK(dsn_tile_scratch_size(&noise, 0, 1) == 0);
-    CHECK(dsn_tile_scratch_size(nullptr, 1, 1) == 0);
+    CHECK(dsn_lattice_tile_float(&noise, 0, 0, 1, 1, values, nullptr, 0) == DSN_ERR_SCRATCH);
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&noise, 1, 1));
+    CHECK(dsn_lattice_tile_float(&noise, 0, 0, 1, 1, values, scratch.data(), scratch.size() - 4) ==
+          DSN_ERR_SCRATCH);
+    CHECK(dsn_lattice_tile_float(&noise, 0, 0, 1, 1, values, scratch.data(), scratch.size()) == DSN_OK);
+    CHECK(dsn_lattice_tile_scratch_size(&noise, 0, 1) == 0);
+    CHECK(dsn_lattice_tile_scratch_size(nullptr, 1, 1) == 0);
 }

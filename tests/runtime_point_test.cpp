@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "../runtime/noise_internal.h"
-#include "support/test_assets.h"
+#include "fixtures/test_assets.h"
 
 namespace {
 

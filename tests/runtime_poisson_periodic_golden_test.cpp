@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "../runtime/noise_internal.h"
-#include "support/fnv1a.h"
-#include "support/test_assets.h"
+#include "fixtures/fnv1a.h"
+#include "fixtures/test_assets.h"
 
 namespace {
 
@@ -117,13 +117,14 @@ TEST_CASE("periodic mode: value(x + Px, y) == value(x, y) == value(x, y + Py), a
             int32_t x = int32_t(random.next() % 2000000000u) - 1000000000,
                     y = int32_t(random.next() % 2000000u) - 1000000;
             int32_t here[3], there[3];
-            dsn_eval_fixed(&loaded.noise, x, y, here);
+            dsn_lattice_point_fixed(&loaded.noise, x, y, here);
             if (period[0] != 0) {
-                dsn_eval_fixed(&loaded.noise, x + int32_t(period[0]) * int32_t(1 + trial % 3), y, there);
+                dsn_lattice_point_fixed(&loaded.noise, x + int32_t(period[0]) * int32_t(1 + trial % 3), y,
+                                        there);
                 differences += std::memcmp(here, there, sizeof here) != 0;
             }
             if (period[1] != 0) {
-                dsn_eval_fixed(&loaded.noise, x, y - int32_t(period[1]), there);
+                dsn_lattice_point_fixed(&loaded.noise, x, y - int32_t(period[1]), there);
                 differences += std::memcmp(here, there, sizeof here) != 0;
             }
         }
@@ -135,7 +136,8 @@ TEST_CASE("periodic mode: value(x + Px, y) == value(x, y) == value(x, y + Py), a
     LoadedNoise rows(fields, dsn_test::make_config(3, 200, 1, 0));
     const int side = 64;
     std::vector<int32_t> tile(size_t(side * side * 3));
-    REQUIRE(dsn_tile_fixed(&rows.noise, INT32_MAX - 20, -4, side, side, tile.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_lattice_tile_fixed(&rows.noise, INT32_MAX - 20, -4, side, side, tile.data(), nullptr, 0) ==
+            DSN_OK);
     int constant_rows = 0, rows_unlike_the_first = 0;
     for (int j = 0; j < side; j++) {
         const int32_t *row = &tile[size_t(j * side * 3)];
@@ -157,9 +159,9 @@ TEST_CASE("defined output at the int32 extremes, and the float / u8 conversions"
             int32_t fixed[3];
             float values[3];
             uint8_t bytes[3];
-            dsn_eval_fixed(&loaded.noise, x, y, fixed);
-            dsn_eval_float(&loaded.noise, x, y, values);
-            dsn_eval_u8(&loaded.noise, x, y, bytes);
+            dsn_lattice_point_fixed(&loaded.noise, x, y, fixed);
+            dsn_lattice_point_float(&loaded.noise, x, y, values);
+            dsn_lattice_point_u8(&loaded.noise, x, y, bytes);
             for (int c = 0; c < 3; c++) {
                 CHECK(values[c] == float(fixed[c]) / 65536.0f);
                 CHECK(bytes[c] == dsn_fixed_to_u8(fixed[c]));
@@ -176,22 +178,22 @@ TEST_CASE("defined output at the int32 extremes, and the float / u8 conversions"
     CHECK(dsn_fixed_to_float(1) == 1.0f / 65536.0f);
     // Tiles in float and u8 agree with the per-point conversions.
     const uint32_t width = 37, height = 5;
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&loaded.noise, width, height) + 1);
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&loaded.noise, width, height) + 1);
     std::vector<float> tile_float(width * height * 3);
     std::vector<uint8_t> tile_u8(width * height * 3);
-    REQUIRE(dsn_tile_float(&loaded.noise, INT32_MAX - 10, INT32_MIN, width, height, tile_float.data(),
-                           scratch.data() + 1, scratch.size() - 1) == DSN_OK);
-    REQUIRE(dsn_tile_u8(&loaded.noise, INT32_MAX - 10, INT32_MIN, width, height, tile_u8.data(),
-                        scratch.data(), scratch.size()) == DSN_OK);
+    REQUIRE(dsn_lattice_tile_float(&loaded.noise, INT32_MAX - 10, INT32_MIN, width, height, tile_float.data(),
+                                   scratch.data() + 1, scratch.size() - 1) == DSN_OK);
+    REQUIRE(dsn_lattice_tile_u8(&loaded.noise, INT32_MAX - 10, INT32_MIN, width, height, tile_u8.data(),
+                                scratch.data(), scratch.size()) == DSN_OK);
     int differences = 0;
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             float values[3];
             uint8_t bytes[3];
-            dsn_eval_float(&loaded.noise, int32_t(uint32_t(INT32_MAX - 10) + i),
-                           int32_t(uint32_t(INT32_MIN) + j), values);
-            dsn_eval_u8(&loaded.noise, int32_t(uint32_t(INT32_MAX - 10) + i),
-                        int32_t(uint32_t(INT32_MIN) + j), bytes);
+            dsn_lattice_point_float(&loaded.noise, int32_t(uint32_t(INT32_MAX - 10) + i),
+                                    int32_t(uint32_t(INT32_MIN) + j), values);
+            dsn_lattice_point_u8(&loaded.noise, int32_t(uint32_t(INT32_MAX - 10) + i),
+                                 int32_t(uint32_t(INT32_MIN) + j), bytes);
             for (uint32_t c = 0; c < 3; c++) {
                 differences += tile_float[(j * width + i) * 3 + c] != values[c];
                 differences += tile_u8[(j * width + i) * 3 + c] != bytes[c];
@@ -217,10 +219,12 @@ TEST_CASE("golden: a fixed asset and seed give a committed FNV-1a-64 of the outp
     for (int i = 0; i < 9; i++) fields.color_transform[i] = transform[i];
     LoadedNoise loaded(fields, dsn_test::make_config(20240601, 12.5, 0, 0));
     std::vector<int32_t> tile(64 * 48 * 3);
-    REQUIRE(dsn_tile_fixed(&loaded.noise, -32, INT32_MAX - 23, 64, 48, tile.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_lattice_tile_fixed(&loaded.noise, -32, INT32_MAX - 23, 64, 48, tile.data(), nullptr, 0) ==
+            DSN_OK);
     uint64_t hash = dsn_test::fnv1a64_int32(tile.data(), tile.size());
     LoadedNoise periodic(fields, dsn_test::make_config(7, 30, 48, 17));
-    REQUIRE(dsn_tile_fixed(&periodic.noise, INT32_MIN, -5, 64, 48, tile.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_lattice_tile_fixed(&periodic.noise, INT32_MIN, -5, 64, 48, tile.data(), nullptr, 0) ==
+            DSN_OK);
     uint64_t periodic_hash = dsn_test::fnv1a64_int32(tile.data(), tile.size());
     CHECK(hash == 0x1C06CBF837B80642u);
     CHECK(periodic_hash == 0x53A5A0AC1FB490EDu);

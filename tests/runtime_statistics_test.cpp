@@ -1,4 +1,4 @@
-// runtime_statistics_test.cpp - the runtime's output against theory (support/noise_theory.h) on a
+// runtime_statistics_test.cpp - the runtime's output against theory (fixtures/noise_theory.h) on a
 // synthetic texton and a baked-like one (the cropped luminance texton of a random exemplar, made here
 // with a direct DFT), at 30 and 5 impacts per pixel: mean, covariances at lags, excess kurtosis,
 // radially averaged power spectrum in periodic mode, and the independence of seeds.
@@ -10,8 +10,8 @@
 #include <complex>
 #include <vector>
 
-#include "support/noise_theory.h"
-#include "support/test_assets.h"
+#include "fixtures/noise_theory.h"
+#include "fixtures/test_assets.h"
 
 namespace {
 
@@ -108,8 +108,8 @@ Samples draw_samples(const dsn_noise &noise, int grid, int32_t origin) {
     int32_t block[4 * 3 * 3];
     for (int j = 0; j < grid; j++)
         for (int i = 0; i < grid; i++) {
-            REQUIRE(dsn_tile_fixed(&noise, origin + 64 * i, origin + 64 * j, 4, 3, block, nullptr, 0) ==
-                    DSN_OK);
+            REQUIRE(dsn_lattice_tile_fixed(&noise, origin + 64 * i, origin + 64 * j, 4, 3, block, nullptr,
+                                           0) == DSN_OK);
             for (int lag = 0; lag < 4; lag++)
                 for (int c = 0; c < samples.channels; c++)
                     samples.values[lag][c].push_back(
@@ -170,8 +170,8 @@ void check_spectrum(const dsn::AssetFields &fields, double impacts) {
     std::vector<kiss_fft_cpx> in(size), out(size);
     for (int seed = 0; seed < seeds; seed++) {
         LoadedNoise loaded(fields, dsn_test::make_config(uint32_t(1000 + seed), impacts, period, period));
-        REQUIRE(dsn_tile_fixed(&loaded.noise, -period * 3 + seed, 12345, period, period, tile.data(), nullptr,
-                               0) == DSN_OK);
+        REQUIRE(dsn_lattice_tile_fixed(&loaded.noise, -period * 3 + seed, 12345, period, period, tile.data(),
+                                       nullptr, 0) == DSN_OK);
         for (uint32_t c = 0; c < fields.channels; c++) {
             double mean = fields.mean[c] / double(DSN_Q24_ONE);
             for (size_t i = 0; i < size; i++) {

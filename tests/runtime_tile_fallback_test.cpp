@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "../runtime/tile_render.h"
-#include "support/test_assets.h"
+#include "fixtures/test_assets.h"
 
 #if DSN_TILE_BLOCKS
 namespace {
@@ -80,7 +80,7 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
         for (uint32_t j = 0; j < height; j++)
             for (uint32_t i = 0; i < width; i++) {
                 int32_t point[3];
-                dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
+                dsn_lattice_point_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
                 for (uint32_t k = 0; k < c.channels; k++) {
                     differences += point[k] != tile[(size_t(j) * width + i) * c.channels + k];
                     chosen_differences += point[k] != chosen[(size_t(j) * width + i) * c.channels + k];

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "../runtime/tile_dispatch.h"
-#include "support/test_assets.h"
+#include "fixtures/test_assets.h"
 
 namespace {
 
@@ -31,21 +31,22 @@ size_t kernel_differences(const dsn_noise &noise, const Window &w) {
     std::vector<int32_t> fixed(values);
     std::vector<float> floats(values);
     std::vector<uint8_t> bytes(values);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, w.width, w.height));
-    REQUIRE(dsn_tile_fixed(&noise, w.x0, w.y0, w.width, w.height, fixed.data(), nullptr, 0) == DSN_OK);
-    REQUIRE(dsn_tile_float(&noise, w.x0, w.y0, w.width, w.height, floats.data(), scratch.data(),
-                           scratch.size()) == DSN_OK);
-    REQUIRE(dsn_tile_u8(&noise, w.x0, w.y0, w.width, w.height, bytes.data(), scratch.data(),
-                        scratch.size()) == DSN_OK);
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&noise, w.width, w.height));
+    REQUIRE(dsn_lattice_tile_fixed(&noise, w.x0, w.y0, w.width, w.height, fixed.data(), nullptr, 0) ==
+            DSN_OK);
+    REQUIRE(dsn_lattice_tile_float(&noise, w.x0, w.y0, w.width, w.height, floats.data(), scratch.data(),
+                                   scratch.size()) == DSN_OK);
+    REQUIRE(dsn_lattice_tile_u8(&noise, w.x0, w.y0, w.width, w.height, bytes.data(), scratch.data(),
+                                scratch.size()) == DSN_OK);
     size_t count = 0;
     for (uint32_t j = 0; j < w.height; j++)
         for (uint32_t i = 0; i < w.width; i++) {
             int32_t point[3];
             float point_float[3];
             uint8_t point_u8[3];
-            dsn_eval_fixed(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point);
-            dsn_eval_float(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point_float);
-            dsn_eval_u8(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point_u8);
+            dsn_lattice_point_fixed(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point);
+            dsn_lattice_point_float(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point_float);
+            dsn_lattice_point_u8(&noise, coordinate(w.x0, i), coordinate(w.y0, j), point_u8);
             for (uint32_t c = 0; c < channels; c++) {
                 size_t index = (size_t(j) * w.width + i) * channels + c;
                 count += fixed[index] != point[c];
@@ -145,20 +146,20 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
     const uint32_t side = 1200, band = 150;
     std::vector<int32_t> whole(size_t(side) * side * 3), bands(whole.size());
     std::vector<float> whole_float(whole.size()), bands_float(whole.size());
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&loaded.noise, side, side));
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&loaded.noise, side, side));
     for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= loaded.noise.tile_kernel; kernel++) {
         dsn_noise noise = loaded.noise;
         noise.tile_kernel = kernel;
         CAPTURE(kernel);
-        REQUIRE(dsn_tile_fixed(&noise, -7, 3, side, side, whole.data(), nullptr, 0) == DSN_OK);
-        REQUIRE(dsn_tile_float(&noise, -7, 3, side, side, whole_float.data(), scratch.data(),
-                               scratch.size()) == DSN_OK);
+        REQUIRE(dsn_lattice_tile_fixed(&noise, -7, 3, side, side, whole.data(), nullptr, 0) == DSN_OK);
+        REQUIRE(dsn_lattice_tile_float(&noise, -7, 3, side, side, whole_float.data(), scratch.data(),
+                                       scratch.size()) == DSN_OK);
         for (uint32_t y = 0; y < side; y += band) {
             const size_t first = size_t(y) * side * 3;
-            REQUIRE(dsn_tile_fixed(&noise, -7, int32_t(3 + y), side, band, bands.data() + first, nullptr,
-                                   0) == DSN_OK);
-            REQUIRE(dsn_tile_float(&noise, -7, int32_t(3 + y), side, band, bands_float.data() + first,
-                                   scratch.data(), scratch.size()) == DSN_OK);
+            REQUIRE(dsn_lattice_tile_fixed(&noise, -7, int32_t(3 + y), side, band, bands.data() + first,
+                                           nullptr, 0) == DSN_OK);
+            REQUIRE(dsn_lattice_tile_float(&noise, -7, int32_t(3 + y), side, band, bands_float.data() + first,
+                                           scratch.data(), scratch.size()) == DSN_OK);
         }
         CHECK(std::memcmp(whole.data(), bands.data(), whole.size() * sizeof(int32_t)) == 0);
         CHECK(std::memcmp(whole_float.data(), bands_float.data(), whole.size() * sizeof(float)) == 0);

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "support/test_assets.h"
+#include "fixtures/test_assets.h"
 
 namespace {
 

@@ -22,17 +22,18 @@ static unsigned char tile_scratch[1 << 16];
 static int tile_matches_points(const dsn_noise *noise, int32_t x0, int32_t y0) {
     int32_t tile[TILE_SIDE * TILE_SIDE * DSN_MAX_CHANNELS], point[DSN_MAX_CHANNELS];
     uint32_t channels = noise->asset.channels, i, j, c;
-    size_t need = dsn_tile_scratch_size(noise, TILE_SIDE, TILE_SIDE);
+    size_t need = dsn_lattice_tile_scratch_size(noise, TILE_SIDE, TILE_SIDE);
     if (need > sizeof tile_scratch) {
         fprintf(stderr, "c_api: the tile needs %lu bytes of scratch\n", (unsigned long)need);
         return 0;
     }
-    if (!check(dsn_tile_fixed(noise, x0, y0, TILE_SIDE, TILE_SIDE, tile, tile_scratch, sizeof tile_scratch),
+    if (!check(dsn_lattice_tile_fixed(noise, x0, y0, TILE_SIDE, TILE_SIDE, tile, tile_scratch,
+                                      sizeof tile_scratch),
                "tile"))
         return 0;
     for (j = 0; j < TILE_SIDE; j++)
         for (i = 0; i < TILE_SIDE; i++) {
-            dsn_eval_fixed(noise, (int32_t)((uint32_t)x0 + i), (int32_t)((uint32_t)y0 + j), point);
+            dsn_lattice_point_fixed(noise, (int32_t)((uint32_t)x0 + i), (int32_t)((uint32_t)y0 + j), point);
             for (c = 0; c < channels; c++)
                 if (point[c] != tile[(j * TILE_SIDE + i) * channels + c]) {
                     fprintf(stderr, "c_api: tile and point differ at (%lu, %lu)\n", (unsigned long)i,
@@ -60,13 +61,13 @@ int main(void) {
            (unsigned long)asset.channels, (unsigned long)asset.width, (unsigned long)asset.height);
 
     for (p = 0; p < sizeof points / sizeof points[0]; p++) {
-        dsn_eval_float(&noise, points[p][0], points[p][1], value);
-        dsn_eval_u8(&noise, points[p][0], points[p][1], rgb);
+        dsn_lattice_point_float(&noise, points[p][0], points[p][1], value);
+        dsn_lattice_point_u8(&noise, points[p][0], points[p][1], rgb);
         printf("lattice (%ld, %ld): %.6f (u8 %u)\n", (long)points[p][0], (long)points[p][1], value[0],
                (unsigned)rgb[0]);
     }
     /* Continuous points in texels, e.g. texture coordinates times a texture size. */
-    if (!check(dsn_eval_continuous_float(&noise, 10.25, -3.5, value), "continuous")) return 1;
+    if (!check(dsn_continuous_point_float(&noise, 10.25, -3.5, value), "continuous")) return 1;
     printf("continuous (10.25, -3.5): %.6f\n", value[0]);
 
     if (!tile_matches_points(&noise, -4, -4) || !tile_matches_points(&noise, 2147483644, 2147483644))

@@ -226,14 +226,15 @@ void render_block(const Job &job, uint32_t bx, uint32_t by, uint32_t bw, uint32_
     if (job.mode == Mode::tile) {
         int32_t x0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_x0) + bx);
         int32_t y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + by);
-        scratch.resize(dsn_tile_scratch_size(job.noise, bw, bh));
-        err = dsn_tile_fixed(job.noise, x0, y0, bw, bh, values.data(), scratch.data(), scratch.size());
+        scratch.resize(dsn_lattice_tile_scratch_size(job.noise, bw, bh));
+        err =
+            dsn_lattice_tile_fixed(job.noise, x0, y0, bw, bh, values.data(), scratch.data(), scratch.size());
     } else if (job.mode == Mode::point) {
         for (uint32_t j = 0; j < bh; j++)
             for (uint32_t i = 0; i < bw; i++) {
                 int32_t x = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_x0) + bx + i);
                 int32_t y = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + by + j);
-                dsn_eval_fixed(job.noise, x, y, &values[(j * bw + i) * job.channels]);
+                dsn_lattice_point_fixed(job.noise, x, y, &values[(j * bw + i) * job.channels]);
             }
     } else {
         // The block's own grid: the whole grid's origin moved by (bx, by) steps, in modulo-2^64 arithmetic.

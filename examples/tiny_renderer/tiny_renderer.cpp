@@ -2,7 +2,7 @@
 // are textured by the continuous-mode spot noise of one or two .dsnt assets, written to a PNG.
 //
 // What to copy into your own renderer is `sample_texture`: turn the surface point into texture
-// coordinates in texels, hand them to dsn_eval_continuous_float, and fade toward the texture's mean
+// coordinates in texels, hand them to dsn_continuous_point_float, and fade toward the texture's mean
 // colour when one pixel covers many texels (the noise has no mip-maps, but its mean is known exactly).
 #include <cmath>
 #include <cstdio>
@@ -59,8 +59,8 @@ void load_texture(Texture &texture, const std::string &path, uint32_t seed, doub
 // `footprint` scene units there.
 Vec sample_texture(const Texture &texture, double u, double v, double footprint) {
     float value[3];
-    dsn_eval_continuous_float(&texture.noise, u * texture.texels_per_unit, v * texture.texels_per_unit,
-                              value);
+    dsn_continuous_point_float(&texture.noise, u * texture.texels_per_unit, v * texture.texels_per_unit,
+                               value);
     Vec noise =
         texture.asset.channels == 3 ? Vec{value[0], value[1], value[2]} : Vec{value[0], value[0], value[0]};
     const double m0 = texture.asset.mean[0] / 16777216.0;

@@ -272,7 +272,7 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options);
 
 // One PNG (encoded in memory) a person reads at a glance: exemplar, its Gaussian version (spectral ADSN
 // of t_u, same size), the texton scaled for display and a DSN synthesis of the baked asset by the
-// runtime (dsn_tile_float), side by side. Throws std::runtime_error if the asset does not load.
+// runtime (dsn_lattice_tile_float), side by side. Throws std::runtime_error if the asset does not load.
 std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &result, uint32_t seed);
 
 } // namespace dsn

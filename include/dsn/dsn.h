@@ -30,7 +30,7 @@
        config.seed = 1234;
        err = dsn_noise_init(&noise, &asset, &config);
        if (err != DSN_OK) { puts(dsn_error_message(err)); return; }
-       dsn_eval_fixed(&noise, x, y, rgb);                       // Q16.16: 65536 is intensity 1.0
+       dsn_lattice_point_fixed(&noise, x, y, rgb);                       // Q16.16: 65536 is intensity 1.0
 
    Fixed-point output: channel values are int32 Q16.16 (DSN_ONE = 1.0, the exemplar's white), saturated
    to the int32 range. Grey assets fill one value, RGB assets three.
@@ -136,11 +136,11 @@ int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *c
 /* ---- Per-point evaluation (lattice) ---- */
 
 /* out[channels]: Q16.16 values at lattice point (x, y). A null `noise` or `out` writes nothing. */
-void dsn_eval_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out);
+void dsn_lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out);
 /* out[channels]: the same value as float, exactly fixed / 65536 rounded to float. */
-void dsn_eval_float(const dsn_noise *noise, int32_t x, int32_t y, float *out);
+void dsn_lattice_point_float(const dsn_noise *noise, int32_t x, int32_t y, float *out);
 /* out[channels]: the same value clamped to [0, 1] and rounded to 0..255 (half up). */
-void dsn_eval_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out);
+void dsn_lattice_point_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out);
 
 /* Conversions used by the functions above, for callers that keep fixed-point values. */
 float dsn_fixed_to_float(int32_t value);
@@ -149,12 +149,12 @@ uint8_t dsn_fixed_to_u8(int32_t value);
 /* ---- Tile evaluation (lattice) ----
    Pixel (i, j) of a width x height tile at (x0, y0) is the point ((int32)(x0 + i), (int32)(y0 + j)) with
    the additions done modulo 2^32: exactly what the per-point functions return there. Output is row-major,
-   top row (y0) first, channels interleaved: width * height * channels values. dsn_tile_fixed accumulates
-   in `out` and ignores scratch (pass null, 0). dsn_tile_float and dsn_tile_u8 need a scratch buffer of
-   at least dsn_tile_scratch_size() bytes (an integer accumulator; no alignment needed), else they return
-   DSN_ERR_SCRATCH. dsn_tile_scratch_size returns 0 for an invalid noise or size. Width and height are
-   1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is not addressable); null pointers
-   give DSN_ERR_NULL. */
+   top row (y0) first, channels interleaved: width * height * channels values. dsn_lattice_tile_fixed
+   accumulates in `out` and ignores scratch (pass null, 0). dsn_lattice_tile_float and dsn_lattice_tile_u8
+   need a scratch buffer of at least dsn_lattice_tile_scratch_size() bytes (an integer accumulator; no
+   alignment needed), else they return DSN_ERR_SCRATCH. dsn_lattice_tile_scratch_size returns 0 for an invalid
+   noise or size. Width and height are 1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is
+   not addressable); null pointers give DSN_ERR_NULL. */
 /* Speed: on x86-64 the Makefile also builds the tile code for AVX2 (16 values per vector instead of 8)
    and for AVX-512 F and BW (32), and init picks the widest that CPUID and the OS allow
    (runtime/tile_dispatch.h); other build systems get one copy, built with their own flags. Same bits
@@ -182,13 +182,13 @@ uint8_t dsn_fixed_to_u8(int32_t value);
 #define DSN_SMALL_CODE 0
 #endif
 #endif
-size_t dsn_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
-int dsn_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                   int32_t *out, void *scratch, size_t scratch_size);
-int dsn_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
-                   float *out, void *scratch, size_t scratch_size);
-int dsn_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, uint8_t *out,
-                void *scratch, size_t scratch_size);
+size_t dsn_lattice_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
+int dsn_lattice_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                           int32_t *out, void *scratch, size_t scratch_size);
+int dsn_lattice_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                           float *out, void *scratch, size_t scratch_size);
+int dsn_lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                        uint8_t *out, void *scratch, size_t scratch_size);
 
 /* ==== Continuous mode (renderer mode) ===============================================================
    Evaluates the noise at continuous texture coordinates, for renderers that zoom, rotate and warp.
@@ -222,10 +222,10 @@ int dsn_continuous_check(const dsn_noise *noise);
 
 /* out[channels]: Q16.16 values at the continuous point (x, y) (Q32.32). On an error every channel of
    `out` is set to 0 and the error is returned. */
-int dsn_eval_continuous_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out);
+int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out);
 /* The same from float64 coordinates (converted by dsn_coordinate_from_double), output as float
    (exactly fixed / 65536 rounded to float). */
-int dsn_eval_continuous_float(const dsn_noise *noise, double x, double y, float *out);
+int dsn_continuous_point_float(const dsn_noise *noise, double x, double y, float *out);
 
 /* A regular grid of continuous points: pixel (i, j) is the point
    (origin_x + i * column_step_x + j * row_step_x, origin_y + i * column_step_y + j * row_step_y),

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "../continuous_fixtures.h"
+#include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
 
 namespace {
@@ -28,7 +28,7 @@ int main() {
         int32_t out[3];
         for (uint32_t y = 0; y < kSide; y++)
             for (uint32_t x = 0; x < kSide; x++) {
-                dsn_eval_fixed(n, int32_t(x * 3), int32_t(y * 3), out);
+                dsn_lattice_point_fixed(n, int32_t(x * 3), int32_t(y * 3), out);
                 checksum += out[0];
             }
     });
@@ -38,15 +38,15 @@ int main() {
         int32_t out[3];
         for (uint32_t y = 0; y < kSide; y++)
             for (uint32_t x = 0; x < kSide; x++) {
-                dsn_eval_continuous_fixed(n, int64_t(x) * step_x - int64_t(y) * step_y + one / 3,
-                                          int64_t(x) * step_y + int64_t(y) * step_x + one / 7, out);
+                dsn_continuous_point_fixed(n, int64_t(x) * step_x - int64_t(y) * step_y + one / 3,
+                                           int64_t(x) * step_y + int64_t(y) * step_x + one / 7, out);
                 checksum += out[0];
             }
     });
     std::vector<int32_t> tile(size_t(samples) * 3);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(n, kSide, kSide));
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(n, kSide, kSide));
     const double lattice_tile = best_time(3, [&] {
-        dsn_tile_fixed(n, 0, 0, kSide, kSide, tile.data(), scratch.data(), scratch.size());
+        dsn_lattice_tile_fixed(n, 0, 0, kSide, kSide, tile.data(), scratch.data(), scratch.size());
         checksum += tile[7];
     });
     // A rotated grid (evaluated point by point) and an axis-aligned zoom (splatted into the scratch).

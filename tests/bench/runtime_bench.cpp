@@ -19,7 +19,7 @@
 #include <stb_perlin.h>
 
 #include "../../runtime/noise_internal.h"
-#include "../support/test_assets.h"
+#include "../fixtures/test_assets.h"
 #include "bench_timing.h"
 
 namespace {
@@ -156,7 +156,7 @@ int main() {
     std::vector<int32_t> tile(values);
     std::vector<uint8_t> tile_u8(values);
     std::vector<float> tile_float(values);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, side, side));
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&noise, side, side));
     SpectralAdsn adsn(loaded.asset, int(side));
     uint32_t seed = 0;
     // The same tile with the other copies of the tile code this CPU runs (x86-64: SSE2, and AVX2 when
@@ -168,21 +168,23 @@ int main() {
         auto more = [](std::vector<double> &all, const std::vector<double> &times) {
             all.insert(all.end(), times.begin(), times.end());
         };
-        more(tile_times,
-             cpu_times(3, [&] { dsn_tile_fixed(&noise, -1000, 5000, side, side, tile.data(), nullptr, 0); }));
+        more(tile_times, cpu_times(3, [&] {
+                 dsn_lattice_tile_fixed(&noise, -1000, 5000, side, side, tile.data(), nullptr, 0);
+             }));
         more(u8_times, cpu_times(1, [&] {
-                 dsn_tile_u8(&noise, -1000, 5000, side, side, tile_u8.data(), scratch.data(), scratch.size());
+                 dsn_lattice_tile_u8(&noise, -1000, 5000, side, side, tile_u8.data(), scratch.data(),
+                                     scratch.size());
              }));
         more(float_times, cpu_times(1, [&] {
-                 dsn_tile_float(&noise, -1000, 5000, side, side, tile_float.data(), scratch.data(),
-                                scratch.size());
+                 dsn_lattice_tile_float(&noise, -1000, 5000, side, side, tile_float.data(), scratch.data(),
+                                        scratch.size());
              }));
         more(adsn_times, cpu_times(1, [&] { adsn.synthesize(++seed); }));
         for (uint32_t kernel = 0; kernel < other_copies; kernel++) {
             dsn_noise copy = noise;
             copy.tile_kernel = kernel;
             more(copy_times[kernel], cpu_times(1, [&] {
-                     dsn_tile_fixed(&copy, -1000, 5000, side, side, tile.data(), nullptr, 0);
+                     dsn_lattice_tile_fixed(&copy, -1000, 5000, side, side, tile.data(), nullptr, 0);
                  }));
         }
     }
@@ -213,7 +215,7 @@ int main() {
         int32_t out[3], total = 0;
         for (int y = 0; y < grid; y++)
             for (int x = 0; x < grid; x++) {
-                dsn_eval_fixed(&noise, x, y, out);
+                dsn_lattice_point_fixed(&noise, x, y, out);
                 total += out[0] ^ out[1] ^ out[2];
             }
         sink = total;
@@ -254,8 +256,8 @@ int main() {
         for (int run = 0; run < 5; run++)
             small_time = std::min(small_time, best_time(1, [&] {
                                       for (long i = 0; i < calls; i++)
-                                          dsn_tile_fixed(&noise, int32_t(i * 977), int32_t(i * 131), small,
-                                                         small, small_tile.data(), nullptr, 0);
+                                          dsn_lattice_tile_fixed(&noise, int32_t(i * 977), int32_t(i * 131),
+                                                                 small, small, small_tile.data(), nullptr, 0);
                                   }));
         const double per_pixel = small_time / (double(calls) * small * small);
         std::printf(" %ux%u %.1f (%.0fx)", small, small, per_pixel * 1e9, point_time / samples / per_pixel);
@@ -273,8 +275,8 @@ int main() {
             double sweep_time = 1e30;
             for (int run = 0; run < 3; run++)
                 sweep_time = std::min(sweep_time, best_time(1, [&] {
-                                          dsn_tile_fixed(&other.noise, 77, -88, 512, 512, sweep_tile.data(),
-                                                         nullptr, 0);
+                                          dsn_lattice_tile_fixed(&other.noise, 77, -88, 512, 512,
+                                                                 sweep_tile.data(), nullptr, 0);
                                       }));
             const double per_pixel = sweep_time / (512.0 * 512.0);
             std::printf(" %u/%.0f %.1f (%.1fx)", texton_side, impacts, per_pixel * 1e9,
@@ -283,7 +285,8 @@ int main() {
     std::printf("\n");
     int32_t point_out[3];
     std::vector<int32_t> tile_out(64 * 64 * 3);
-    const size_t point_stack = painted_stack([&] { dsn_eval_fixed(&noise, 12345, -678, point_out); });
+    const size_t point_stack =
+        painted_stack([&] { dsn_lattice_point_fixed(&noise, 12345, -678, point_out); });
     std::printf("sizeof(dsn_noise) = %zu bytes, sizeof(dsn_asset) = %zu bytes; stack (painted) of one "
                 "per-point call: %zu bytes, of a tile call:",
                 sizeof(dsn_noise), sizeof(dsn_asset), point_stack);
@@ -291,7 +294,7 @@ int main() {
         dsn_noise copy = noise;
         copy.tile_kernel = kernel;
         const size_t tile_stack =
-            painted_stack([&] { dsn_tile_fixed(&copy, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
+            painted_stack([&] { dsn_lattice_tile_fixed(&copy, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
         std::printf(" %zu bytes (%s tile code)", tile_stack,
                     other_copies != 0 ? copy_names[kernel] : "default");
     }

@@ -139,7 +139,7 @@ unsigned char tile_scratch[scratch_capacity];
 typedef int (*Evaluator)(const dsn_noise *noise, const Window &window, Fnv *hash);
 
 int scratch_for(const dsn_noise *noise, const Window &window, size_t *size) {
-    *size = dsn_tile_scratch_size(noise, window.width, window.height);
+    *size = dsn_lattice_tile_scratch_size(noise, window.width, window.height);
     return *size <= scratch_capacity && window.width * window.height * DSN_MAX_CHANNELS <= max_window_values
                ? DSN_OK
                : DSN_ERR_SCRATCH;
@@ -149,7 +149,7 @@ int point_fixed(const dsn_noise *noise, const Window &window, Fnv *hash) {
     for (uint32_t j = 0; j < window.height; j++)
         for (uint32_t i = 0; i < window.width; i++) {
             int32_t values[DSN_MAX_CHANNELS];
-            dsn_eval_fixed(noise, wrapped(window.x, i), wrapped(window.y, j), values);
+            dsn_lattice_point_fixed(noise, wrapped(window.x, i), wrapped(window.y, j), values);
             hash_fixed(hash, values, noise->asset.channels);
         }
     return DSN_OK;
@@ -159,8 +159,8 @@ int tile_fixed(const dsn_noise *noise, const Window &window, Fnv *hash) {
     size_t scratch_size;
     int err = scratch_for(noise, window, &scratch_size);
     if (err == DSN_OK)
-        err = dsn_tile_fixed(noise, window.x, window.y, window.width, window.height, tile_fixed_values,
-                             tile_scratch, scratch_size);
+        err = dsn_lattice_tile_fixed(noise, window.x, window.y, window.width, window.height,
+                                     tile_fixed_values, tile_scratch, scratch_size);
     if (err == DSN_OK)
         hash_fixed(hash, tile_fixed_values, window.width * window.height * noise->asset.channels);
     return err;
@@ -172,13 +172,13 @@ int float_outputs(const dsn_noise *noise, const Window &window, Fnv *hash) {
     for (uint32_t j = 0; j < window.height; j++)
         for (uint32_t i = 0; i < window.width; i++) {
             float values[DSN_MAX_CHANNELS];
-            dsn_eval_float(noise, wrapped(window.x, i), wrapped(window.y, j), values);
+            dsn_lattice_point_float(noise, wrapped(window.x, i), wrapped(window.y, j), values);
             hash_float(hash, values, noise->asset.channels);
         }
     int err = scratch_for(noise, window, &scratch_size);
     if (err == DSN_OK)
-        err = dsn_tile_float(noise, window.x, window.y, window.width, window.height, tile_float_values,
-                             tile_scratch, scratch_size);
+        err = dsn_lattice_tile_float(noise, window.x, window.y, window.width, window.height,
+                                     tile_float_values, tile_scratch, scratch_size);
     if (err == DSN_OK)
         hash_float(hash, tile_float_values, window.width * window.height * noise->asset.channels);
     return err;
@@ -189,13 +189,13 @@ int u8_outputs(const dsn_noise *noise, const Window &window, Fnv *hash) {
     for (uint32_t j = 0; j < window.height; j++)
         for (uint32_t i = 0; i < window.width; i++) {
             uint8_t values[DSN_MAX_CHANNELS];
-            dsn_eval_u8(noise, wrapped(window.x, i), wrapped(window.y, j), values);
+            dsn_lattice_point_u8(noise, wrapped(window.x, i), wrapped(window.y, j), values);
             hash_u8(hash, values, noise->asset.channels);
         }
     int err = scratch_for(noise, window, &scratch_size);
     if (err == DSN_OK)
-        err = dsn_tile_u8(noise, window.x, window.y, window.width, window.height, tile_u8_values,
-                          tile_scratch, scratch_size);
+        err = dsn_lattice_tile_u8(noise, window.x, window.y, window.width, window.height, tile_u8_values,
+                                  tile_scratch, scratch_size);
     if (err == DSN_OK) hash_u8(hash, tile_u8_values, window.width * window.height * noise->asset.channels);
     return err;
 }
@@ -232,7 +232,7 @@ int continuous_point_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
             int32_t values[DSN_MAX_CHANNELS];
             int64_t x, y;
             grid_point(grid.grid, i, j, &x, &y);
-            const int err = dsn_eval_continuous_fixed(noise, x, y, values);
+            const int err = dsn_continuous_point_fixed(noise, x, y, values);
             if (err != DSN_OK) return err;
             hash_fixed(hash, values, noise->asset.channels);
         }
@@ -263,7 +263,7 @@ int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
             float values[DSN_MAX_CHANNELS];
             int64_t x, y;
             grid_point(grid.grid, i, j, &x, &y);
-            const int err = dsn_eval_continuous_float(noise, grid_double(x), grid_double(y), values);
+            const int err = dsn_continuous_point_float(noise, grid_double(x), grid_double(y), values);
             if (err != DSN_OK) return err;
             hash_float(hash, values, noise->asset.channels);
         }

@@ -13,18 +13,18 @@ const int32_t kCoordinates[] = {0, 1, -1, 2147483647, -2147483647 - 1, 65535, -6
 void check_points_and_tile(const dsn_noise &noise, uint32_t channels, FuzzInput &input) {
     int32_t value[DSN_MAX_CHANNELS];
     for (int32_t x : kCoordinates)
-        for (int32_t y : kCoordinates) dsn_eval_fixed(&noise, x, y, value);
+        for (int32_t y : kCoordinates) dsn_lattice_point_fixed(&noise, x, y, value);
 
     // A 5x4 tile at an origin from the input (often straddling the 32-bit wrap) equals its points.
     const uint32_t width = 5, height = 4;
     const int32_t x0 = int32_t(2147483645u + (input.byte() & 7u)), y0 = input.i32();
     std::vector<int32_t> tile(width * height * channels);
-    std::vector<unsigned char> scratch(dsn_tile_scratch_size(&noise, width, height) + 1);
-    fuzz_require(dsn_tile_fixed(&noise, x0, y0, width, height, tile.data(), scratch.data(), scratch.size()) ==
-                 DSN_OK);
+    std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&noise, width, height) + 1);
+    fuzz_require(dsn_lattice_tile_fixed(&noise, x0, y0, width, height, tile.data(), scratch.data(),
+                                        scratch.size()) == DSN_OK);
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
-            dsn_eval_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), value);
+            dsn_lattice_point_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), value);
             for (uint32_t c = 0; c < channels; c++)
                 fuzz_require(tile[(j * width + i) * channels + c] == value[c]);
         }
