@@ -11,7 +11,7 @@ PKG_CONFIG ?= pkg-config
 CXXFLAGS ?= -O2 -g
 CFLAGS ?= -O2 -g
 LDFLAGS ?=
-VERSION := 1.0.0
+VERSION := $(shell sed -n 's/^#define DSN_VERSION_STRING "\(.*\)"/\1/p' include/dsn/dsn.h)
 
 DEPS_PACKAGES := libkissfft-dev libstb-dev doctest-dev pkg-config
 

@@ -158,7 +158,7 @@ PointAxis point_axis(uint64_t coordinate, uint32_t radius, uint32_t shift, uint3
 
 /* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
    it as in lattice mode, the fractions are added once, rounded down, before the final rounding. */
-void normalize_q32(const dsn_noise *noise, const uint64_t *sums, int32_t *out) {
+void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
     const uint32_t channels = noise->asset.channels;
     for (uint32_t c = 0; c < channels; c++) {
         int64_t accumulated = noise->offset[c], fractions = 0;
@@ -198,7 +198,7 @@ bool impulse_bracket(const PointAxis &point, const dsn_span &span, uint32_t cell
 }
 
 /* Sums (Q.32, per channel) of the bilinear texton over every impulse of the cell (cell_x, cell_y). */
-void add_cell(const dsn_noise *noise, const PointAxis &px, const dsn_span &span_x, uint32_t cell_x,
+void add_cell(const dsn_noise_state *noise, const PointAxis &px, const dsn_span &span_x, uint32_t cell_x,
               const PointAxis &py, const dsn_span &span_y, uint32_t cell_y, uint64_t *sums) {
     const uint32_t key = dsn_cell_key(noise, cell_x, cell_y);
     const uint32_t count = dsn_cell_impulse_count(noise, key);
@@ -213,7 +213,7 @@ void add_cell(const dsn_noise *noise, const PointAxis &px, const dsn_span &span_
 }
 
 /* The small build: impulse by impulse, each through dsn_impulse_hash. */
-void evaluate(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
+void evaluate(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
     const uint32_t shift = noise->cell_shift;
     const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
@@ -367,7 +367,7 @@ inline uint32_t gather_lanes(uint64_t candidates, const FieldLanes &lanes) {
 
 /* Visits every buffered candidate: those in reach add their bilinear texton. Empties the buffer. */
 template <uint32_t Channels, uint32_t Bytes>
-void add_candidates(const dsn_noise *noise, const FieldLanes &lanes, CandidateBuffer *buffer,
+void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, CandidateBuffer *buffer,
                     uint64_t *sums) {
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
     const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
@@ -424,7 +424,7 @@ void add_candidates(const dsn_noise *noise, const FieldLanes &lanes, CandidateBu
 
 /* Buffers the candidates of every pair of the cell with this key (visiting the buffer when full). */
 template <uint32_t Channels, uint32_t Bytes>
-void add_cell_fast(const dsn_noise *noise, uint32_t key, const FieldLanes &lanes, const CellAxis &x,
+void add_cell_fast(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const CellAxis &x,
                    const CellAxis &y, CandidateBuffer *buffer, uint64_t *sums) {
     const uint32_t count = dsn_cell_impulse_count(noise, key);
     for (uint32_t first = 0; first < count; first += lanes.per_pair) {
@@ -443,7 +443,7 @@ void add_cell_fast(const dsn_noise *noise, uint32_t key, const FieldLanes &lanes
 }
 
 template <uint32_t Channels, uint32_t Bytes>
-void evaluate_fast(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
+void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
     const uint32_t shift = noise->cell_shift;
     const FieldLanes lanes = field_lanes(shift);
@@ -476,7 +476,7 @@ void evaluate_fast(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out)
 }
 
 /* The fast build evaluates through the sifting walk, one copy per channel count and value size. */
-void evaluate(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
+void evaluate(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3)
         asset->bits == 8 ? evaluate_fast<3, 1>(noise, x, y, out) : evaluate_fast<3, 2>(noise, x, y, out);
@@ -485,13 +485,21 @@ void evaluate(const dsn_noise *noise, uint64_t x, uint64_t y, int32_t *out) {
 }
 #endif /* DSN_SMALL_CODE */
 
+int continuous_check(const dsn_noise_state *noise) {
+    if (noise == 0 || noise->asset.texton == 0) return DSN_ERR_NULL;
+    if (noise->asset.interpolation != DSN_INTERPOLATION_BILINEAR &&
+        (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
+        return DSN_ERR_CONTINUOUS_MISMATCH;
+    return DSN_OK;
+}
+
 void zero(int32_t *out, uint32_t count) {
     for (uint32_t i = 0; i < count; i++) out[i] = 0;
 }
 
-int check_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+int check_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                const void *out) {
-    const int err = dsn_continuous_check(noise);
+    const int err = continuous_check(noise);
     if (err != DSN_OK) return err;
     if (grid == 0 || out == 0) return DSN_ERR_NULL;
     if (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE)
@@ -555,8 +563,8 @@ int64_t splat_offset(const SplatAxis &axis, uint32_t index, uint64_t position) {
 }
 
 /* Both axes, or false when the grid does not qualify (rotation, period, too sparse, too large). */
-bool splat_axes(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, SplatAxis *x,
-                SplatAxis *y) {
+bool splat_axes(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                SplatAxis *x, SplatAxis *y) {
     const uint32_t shift = noise->cell_shift;
     if (grid->column_step_y != 0 || grid->row_step_x != 0 || noise->period[0] != 0 || noise->period[1] != 0)
         return false;
@@ -569,7 +577,7 @@ bool splat_axes(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, ui
     return (x->step >> 16) * (y->step >> 16) <= (visited_x * visited_y) << 32;
 }
 
-size_t splat_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height) {
+size_t splat_scratch_size(const dsn_noise_state *noise, uint32_t width, uint32_t height) {
     const uint64_t bytes = static_cast<uint64_t>(width) * height * noise->asset.channels * sizeof(uint64_t);
     const uint64_t alignment_slack = sizeof(uint64_t) - 1u;
     if (bytes + alignment_slack > static_cast<size_t>(-1)) return 0; /* too large here: per point */
@@ -584,7 +592,7 @@ uint64_t *aligned_sums(void *scratch) {
         static_cast<void *>(bytes + (misalignment ? sizeof(uint64_t) - misalignment : 0u)));
 }
 
-void splat_impulse(const dsn_noise *noise, const SplatAxis &x, const SplatAxis &y, uint64_t position_x,
+void splat_impulse(const dsn_noise_state *noise, const SplatAxis &x, const SplatAxis &y, uint64_t position_x,
                    uint64_t position_y, uint64_t *sums) {
     uint32_t first_i, last_i, first_j, last_j;
     if (!splat_range(x, position_x, &first_i, &last_i) || !splat_range(y, position_y, &first_j, &last_j))
@@ -602,7 +610,7 @@ void splat_impulse(const dsn_noise *noise, const SplatAxis &x, const SplatAxis &
     }
 }
 
-void splat_grid(const dsn_noise *noise, const SplatAxis &x, const SplatAxis &y, uint64_t *sums) {
+void splat_grid(const dsn_noise_state *noise, const SplatAxis &x, const SplatAxis &y, uint64_t *sums) {
     const uint32_t shift = noise->cell_shift, cell_mask = 0xFFFFFFFFu >> shift;
     for (uint32_t cy = 0; cy < y.cell_count; cy++)
         for (uint32_t cx = 0; cx < x.cell_count; cx++) {
@@ -625,8 +633,8 @@ void splat_grid(const dsn_noise *noise, const SplatAxis &x, const SplatAxis &y, 
 
 /* Evaluates every grid point in order into `out`: by splatting when the grid qualifies (not in the
    small build), else point by point. */
-int evaluate_grid(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, void *out,
-                  dsn_output_kind kind, void *scratch, size_t scratch_size) {
+int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                  void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const int err = check_tile(noise, grid, width, height, out);
     if (err != DSN_OK) return err;
     const uint32_t channels = noise->asset.channels;
@@ -692,17 +700,12 @@ int64_t dsn_coordinate_from_float(float value) {
     return coordinate_from_parts((bits >> 31) != 0, mantissa, power);
 }
 
-int dsn_continuous_check(const dsn_noise *noise) {
-    if (noise == 0 || noise->asset.texton == 0) return DSN_ERR_NULL;
-    if (noise->asset.interpolation != DSN_INTERPOLATION_BILINEAR &&
-        (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
-        return DSN_ERR_CONTINUOUS_MISMATCH;
-    return DSN_OK;
-}
+int dsn_continuous_check(const dsn_noise *handle) { return continuous_check(dsn_state(handle)); }
 
-int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out) {
+int dsn_continuous_point_fixed(const dsn_noise *handle, int64_t x, int64_t y, int32_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
     if (out == 0) return DSN_ERR_NULL;
-    const int err = dsn_continuous_check(noise);
+    const int err = continuous_check(noise);
     if (err != DSN_OK) {
         zero(out, noise == 0 ? 1u : noise->asset.channels);
         return err;
@@ -711,17 +714,19 @@ int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int
     return DSN_OK;
 }
 
-int dsn_continuous_point_float(const dsn_noise *noise, double x, double y, float *out) {
+int dsn_continuous_point_float(const dsn_noise *handle, double x, double y, float *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
     int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
     if (out == 0) return DSN_ERR_NULL;
-    const int err = dsn_continuous_point_fixed(noise, dsn_coordinate_from_double(x),
+    const int err = dsn_continuous_point_fixed(handle, dsn_coordinate_from_double(x),
                                                dsn_coordinate_from_double(y), fixed);
     dsn_store_pixel(out, dsn_output_float, 0, fixed, noise == 0 ? 1u : noise->asset.channels);
     return err;
 }
 
-size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+size_t dsn_continuous_tile_scratch_size(const dsn_noise *handle, const dsn_grid *grid, uint32_t width,
                                         uint32_t height) {
+    const dsn_noise_state *noise = dsn_state(handle);
 #if DSN_SMALL_CODE
     (void)noise, (void)grid, (void)width, (void)height;
     return 0; /* point by point: no scratch */
@@ -732,18 +737,21 @@ size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *
 #endif
 }
 
-int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+int dsn_continuous_tile_fixed(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height,
                               int32_t *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
     return evaluate_grid(noise, grid, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
-int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+int dsn_continuous_tile_float(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height,
                               float *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
     return evaluate_grid(noise, grid, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
-int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+int dsn_continuous_tile_u8(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
     return evaluate_grid(noise, grid, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
 

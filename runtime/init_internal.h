@@ -3,7 +3,7 @@
 #ifndef DSN_INIT_INTERNAL_H
 #define DSN_INIT_INTERNAL_H
 
-#include "dsn/dsn.h"
+#include "noise_state.h"
 
 /* Largest mean of one Poisson draw: keeps the table short (<= ~50 entries) and exp(-mean) far above
    the 2^-62 resolution of the fixed-point computation. Denser cells sum several draws. */
@@ -11,10 +11,10 @@
 
 /* Fills poisson_parts, poisson_size, poisson_cdf and poisson_guide for cells whose mean count is
    cell_mean_q32 / 2^32 (> 0). */
-void dsn_internal_build_poisson_table(dsn_noise *noise, uint64_t cell_mean_q32);
+void dsn_internal_build_poisson_table(dsn_noise_state *noise, uint64_t cell_mean_q32);
 
 /* Fills gain_shift, gain and offset from the asset, impacts_q16 and flags. */
-void dsn_internal_compute_normalization(dsn_noise *noise);
+void dsn_internal_compute_normalization(dsn_noise_state *noise);
 
 /* The loader's checks of channels, bits, shape, interpolation and width/height (format.h step 9, in
    that order): the first failure, or DSN_OK and the number of support points. dsn_noise_init runs them

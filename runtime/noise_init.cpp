@@ -68,12 +68,18 @@ int asset_is_usable(const dsn_asset *asset) {
            asset->support_size == support_size;
 }
 
-void clear_noise(dsn_noise *noise) {
+void clear_noise(dsn_noise_state *noise) {
     unsigned char *bytes = static_cast<unsigned char *>(static_cast<void *>(noise));
     for (size_t i = 0; i < sizeof *noise; i++) bytes[i] = 0;
 }
 
 } // namespace
+
+extern "C" const char *dsn_version(void) { return DSN_VERSION_STRING; }
+
+extern "C" uint32_t dsn_noise_channels(const dsn_noise *handle) {
+    return handle == 0 ? 0u : dsn_state(handle)->asset.channels;
+}
 
 extern "C" void dsn_config_defaults(dsn_config *config) {
     if (config == 0) return;
@@ -84,7 +90,8 @@ extern "C" void dsn_config_defaults(dsn_config *config) {
     config->flags = 0;
 }
 
-extern "C" int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config) {
+extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const dsn_config *config) {
+    dsn_noise_state *noise = dsn_state(handle);
     if (noise == 0 || asset == 0 || config == 0) return DSN_ERR_NULL;
     clear_noise(noise);
     if (!asset_is_usable(asset) || (config->flags & ~DSN_FLAGS_ALL) != 0) return DSN_ERR_ARGUMENT;

@@ -26,7 +26,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "dsn/dsn.h"
+#include "noise_state.h"
 
 /* The larger helpers below are inlined for speed; the small build (DSN_SMALL_CODE, dsn.h) keeps one
    out-of-line copy of each instead (C++ inline functions: every link keeps a single copy). */
@@ -55,15 +55,15 @@ DSN_SHARED uint32_t dsn_mix32(uint32_t x) {
    two cells of a row share a key. The seed enters twice (seed_column, seed_row, precomputed at init) so
    that two seeds are not simply shifted copies of each other. The row part is split out so that loops
    over a row of cells compute it once. */
-static inline uint32_t dsn_row_key(const dsn_noise *noise, uint32_t cell_y) {
+static inline uint32_t dsn_row_key(const dsn_noise_state *noise, uint32_t cell_y) {
     return dsn_mix32(cell_y + noise->seed_row);
 }
 
-static inline uint32_t dsn_cell_key_in_row(const dsn_noise *noise, uint32_t cell_x, uint32_t row_key) {
+static inline uint32_t dsn_cell_key_in_row(const dsn_noise_state *noise, uint32_t cell_x, uint32_t row_key) {
     return dsn_mix32((cell_x ^ noise->seed_column) + row_key);
 }
 
-static inline uint32_t dsn_cell_key(const dsn_noise *noise, uint32_t cell_x, uint32_t cell_y) {
+static inline uint32_t dsn_cell_key(const dsn_noise_state *noise, uint32_t cell_x, uint32_t cell_y) {
     return dsn_cell_key_in_row(noise, cell_x, dsn_row_key(noise, cell_y));
 }
 
@@ -93,7 +93,7 @@ static inline uint64_t dsn_position_pair(uint32_t key, uint32_t index) {
 /* Inverse CDF: the smallest n with uniform < poisson_cdf[n], or poisson_size when there is none (the
    tail beyond the table has probability below 2^-32). The guide gives the first candidate for the top
    6 bits of the uniform, so the search is one or two comparisons on average. */
-DSN_SHARED uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform) {
+DSN_SHARED uint32_t dsn_poisson_draw(const dsn_noise_state *noise, uint32_t uniform) {
     uint32_t n = noise->poisson_guide[uniform >> 26];
     while (n < noise->poisson_size && uniform >= noise->poisson_cdf[n]) n++;
     return n;
@@ -102,7 +102,7 @@ DSN_SHARED uint32_t dsn_poisson_draw(const dsn_noise *noise, uint32_t uniform) {
 /* Impulse count of the cell with this key: the sum of poisson_parts independent draws (a sum of
    independent Poisson variables is Poisson; splitting keeps the table small for dense cells). The key
    itself is the first uniform: it is already a full-avalanche hash. */
-DSN_SHARED uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key) {
+DSN_SHARED uint32_t dsn_cell_impulse_count(const dsn_noise_state *noise, uint32_t key) {
     uint32_t count = dsn_poisson_draw(noise, key), part;
     for (part = 1; part < noise->poisson_parts; part++)
         count += dsn_poisson_draw(noise, dsn_cell_stream(key, part));
@@ -115,7 +115,7 @@ DSN_SHARED uint32_t dsn_cell_impulse_count(const dsn_noise *noise, uint32_t key)
 static inline uint32_t dsn_field_shift(uint32_t cell_shift) { return cell_shift <= 4 ? 3u : 4u; }
 
 /* The pair that holds impulse k's field (k counts from 0). */
-static inline uint64_t dsn_impulse_pair(const dsn_noise *noise, uint32_t key, uint32_t k) {
+static inline uint64_t dsn_impulse_pair(const dsn_noise_state *noise, uint32_t key, uint32_t k) {
     return dsn_position_pair(key, k >> (6u - dsn_field_shift(noise->cell_shift)));
 }
 
@@ -126,7 +126,7 @@ static inline uint32_t dsn_pair_bits(uint64_t pair, uint32_t bit) {
 }
 
 /* The field of impulse k: x in the low half, y in the high half. */
-DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint32_t k) {
+DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise_state *noise, uint32_t key, uint32_t k) {
     const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair_shift = 6u - field_shift;
     const uint32_t bit = (k & ((1u << per_pair_shift) - 1u)) << field_shift;
     return dsn_pair_bits(dsn_impulse_pair(noise, key, k), bit) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
@@ -135,7 +135,7 @@ DSN_SHARED uint32_t dsn_impulse_field(const dsn_noise *noise, uint32_t key, uint
 /* 16-bit in-cell positions of impulse k for the continuous mode (units of 2^-(16 - cell_shift) lattice
    steps): x in the low 16 bits, y in the high 16. The top bits are the packed field's, the rest come
    from the impulse's own fraction hash. */
-DSN_SHARED uint32_t dsn_impulse_hash(const dsn_noise *noise, uint32_t key, uint32_t k) {
+DSN_SHARED uint32_t dsn_impulse_hash(const dsn_noise_state *noise, uint32_t key, uint32_t k) {
     const uint32_t half_bits = 1u << (dsn_field_shift(noise->cell_shift) - 1u);
     const uint32_t field = dsn_impulse_field(noise, key, k);
     const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
@@ -175,7 +175,7 @@ static inline int32_t dsn_signed_sum(uint32_t sum) {
 }
 
 /* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */
-DSN_SHARED void dsn_normalize(const dsn_noise *noise, const uint32_t *sums, int32_t *out) {
+DSN_SHARED void dsn_normalize(const dsn_noise_state *noise, const uint32_t *sums, int32_t *out) {
     uint32_t c, k, channels = noise->asset.channels;
     for (c = 0; c < channels; c++) {
         int64_t accumulated = noise->offset[c];

@@ -53,7 +53,7 @@ int64_t gain_value(int32_t transform, uint32_t scale, uint64_t root, uint32_t ro
     return negate_if(quotient, transform < 0);
 }
 
-int32_t transform_entry(const dsn_noise *noise, uint32_t index) {
+int32_t transform_entry(const dsn_noise_state *noise, uint32_t index) {
     if (noise->flags & DSN_FLAG_NO_COLOR_TRANSFORM) return (index % 4 == 0) ? int32_t(DSN_Q24_ONE) : 0;
     return noise->asset.color_transform[index];
 }
@@ -78,7 +78,7 @@ int64_t expected_sum(int64_t gain, int64_t sum, uint32_t impacts_q16, uint32_t s
 
 } // namespace
 
-void dsn_internal_compute_normalization(dsn_noise *noise) {
+void dsn_internal_compute_normalization(dsn_noise_state *noise) {
     const dsn_asset *asset = &noise->asset;
     const uint32_t channels = asset->channels;
     const int64_t gain_limit = int64_t(1) << gain_limit_bits;

@@ -41,8 +41,8 @@ inline axis_cell cell_on_axis(const dsn_span *span, uint32_t cell, uint32_t shif
 }
 
 /* Impulses first .. count - 1 of a cell: each one that reaches the point adds its texton entry. */
-void add_impulses(const dsn_noise *noise, uint32_t key, uint32_t first, uint32_t count, const axis_cell *x,
-                  const axis_cell *y, uint32_t *sums) {
+void add_impulses(const dsn_noise_state *noise, uint32_t key, uint32_t first, uint32_t count,
+                  const axis_cell *x, const axis_cell *y, uint32_t *sums) {
     const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair = 64u >> field_shift;
     const uint32_t half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u;
     const uint32_t drop = half_bits - noise->cell_shift, width = noise->asset.width,
@@ -63,7 +63,7 @@ void add_impulses(const dsn_noise *noise, uint32_t key, uint32_t first, uint32_t
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-void accumulate_any(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+void accumulate_any(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
     const uint32_t shift = noise->cell_shift;
     dsn_axis axis_x, axis_y;
     dsn_axis_init(&axis_x, x, 1, noise->radius[0], shift, noise->period[0]);
@@ -149,7 +149,7 @@ inline __m128i position_pairs(__m128i key) {
    exact below the table size; at or past it (cdf = 2^32 - 1, undercut by no uniform but 2^32 - 1) it
    may overshoot, which the rare exact search behind catches, as it does counts that need more steps.
    The reads go at most to cdf[size + 1] (accumulate checks that it is in the table). */
-inline uint32_t poisson_count(const dsn_noise *noise, uint32_t uniform) {
+inline uint32_t poisson_count(const dsn_noise_state *noise, uint32_t uniform) {
     uint32_t n = noise->poisson_guide[uniform >> 26];
     n += uint32_t(uniform >= noise->poisson_cdf[n]);
     n += uint32_t(uniform >= noise->poisson_cdf[n]);
@@ -287,7 +287,7 @@ inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint
 }
 
 template <uint32_t Channels, uint32_t Bits>
-void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
     const uint32_t width = noise->asset.width, height = noise->asset.height;
     const uint32_t low_x = x - noise->radius[0], low_y = y - noise->radius[1];
     const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
@@ -350,7 +350,7 @@ void accumulate_cells16(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t
 }
 #endif
 
-void accumulate(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+void accumulate(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
     sums[0] = sums[1] = sums[2] = 0;
 #if defined(__SSE2__)
     const dsn_asset *asset = &noise->asset;
@@ -373,7 +373,7 @@ void accumulate(const dsn_noise *noise, uint32_t x, uint32_t y, uint32_t *sums) 
 #endif /* !DSN_SMALL_CODE */
 
 /* A noise that dsn_noise_init did not fill (zeroed on failure) has no texton and evaluates nothing. */
-int usable(const dsn_noise *noise, const void *out) {
+int usable(const dsn_noise_state *noise, const void *out) {
     return noise != 0 && out != 0 && noise->asset.texton != 0;
 }
 
@@ -381,11 +381,12 @@ int usable(const dsn_noise *noise, const void *out) {
 
 #if DSN_SMALL_CODE
 /* The small build evaluates a point as a 1 x 1 tile: one walk over the cells for both (same bits). */
-extern "C" void dsn_lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
-    (void)dsn_lattice_tile_fixed(noise, x, y, 1, 1, out, 0, 0);
+extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
+    (void)dsn_lattice_tile_fixed(handle, x, y, 1, 1, out, 0, 0);
 }
 #else
-extern "C" void dsn_lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
+extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
     if (!usable(noise, out)) return;
     uint32_t sums[3];
     accumulate(noise, uint32_t(x), uint32_t(y), sums);
@@ -404,16 +405,18 @@ extern "C" uint8_t dsn_fixed_to_u8(int32_t value) {
     return uint8_t((uint32_t(value) * 255u + 32768u) >> 16);
 }
 
-extern "C" void dsn_lattice_point_float(const dsn_noise *noise, int32_t x, int32_t y, float *out) {
+extern "C" void dsn_lattice_point_float(const dsn_noise *handle, int32_t x, int32_t y, float *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
     int32_t fixed[3];
     if (!usable(noise, out)) return;
-    dsn_lattice_point_fixed(noise, x, y, fixed);
+    dsn_lattice_point_fixed(handle, x, y, fixed);
     for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_float(fixed[c]);
 }
 
-extern "C" void dsn_lattice_point_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out) {
+extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t y, uint8_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
     int32_t fixed[3];
     if (!usable(noise, out)) return;
-    dsn_lattice_point_fixed(noise, x, y, fixed);
+    dsn_lattice_point_fixed(handle, x, y, fixed);
     for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_u8(fixed[c]);
 }

@@ -30,7 +30,7 @@ uint64_t exp_negative_q62(uint64_t mean_q32) {
 
 } // namespace
 
-void dsn_internal_build_poisson_table(dsn_noise *noise, uint64_t cell_mean_q32) {
+void dsn_internal_build_poisson_table(dsn_noise_state *noise, uint64_t cell_mean_q32) {
     const uint64_t part_max_q32 = uint64_t(DSN_POISSON_MEAN_MAX) << 32;
     uint64_t parts = (cell_mean_q32 + part_max_q32 - 1) / part_max_q32;
     uint64_t mean_q32 = dsn_divide(cell_mean_q32 + parts / 2, parts);

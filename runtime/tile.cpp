@@ -9,7 +9,8 @@ namespace {
 
 /* Checks the arguments every tile call shares and counts the tile's values. Largest tile: sides up to
    DSN_TILE_MAX_SIDE and width * height * channels 32-bit values addressable. */
-int tile_values(const dsn_noise *noise, const void *out, uint32_t width, uint32_t height, size_t *values) {
+int tile_values(const dsn_noise_state *noise, const void *out, uint32_t width, uint32_t height,
+                size_t *values) {
     if (noise == 0 || out == 0) return DSN_ERR_NULL;
     if (noise->asset.texton == 0) return DSN_ERR_ARGUMENT;
     if (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE)
@@ -21,8 +22,8 @@ int tile_values(const dsn_noise *noise, const void *out, uint32_t width, uint32_
 }
 
 /* The tile, by the copy of the tile code that init chose for this CPU. */
-void render_dispatched(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
-                       void *out, dsn_output_kind kind, uint32_t *accumulator) {
+void render_dispatched(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
+                       uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator) {
 #if DSN_TILE_AVX2_DISPATCH
     if (noise->tile_kernel == DSN_TILE_KERNEL_AVX512) {
         dsn_internal_render_tile_avx512(noise, x0, y0, width, height, out, kind, accumulator);
@@ -47,8 +48,8 @@ uint32_t *scratch_accumulator(void *scratch, size_t scratch_size, size_t values)
 
 /* A tile of `kind` values. The 32-bit sums of the fallback go to the scratch, or to the output itself for
    fixed output (uint32 may alias int32), which needs no scratch. */
-int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, void *out,
-                   dsn_output_kind kind, void *scratch, size_t scratch_size) {
+int render_checked(const dsn_noise_state *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                   void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     size_t values = 0;
     const int err = tile_values(noise, out, width, height, &values);
     if (err != DSN_OK) return err;
@@ -61,24 +62,28 @@ int render_checked(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t widt
 
 } // namespace
 
-extern "C" size_t dsn_lattice_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height) {
+extern "C" size_t dsn_lattice_tile_scratch_size(const dsn_noise *handle, uint32_t width, uint32_t height) {
+    const dsn_noise_state *noise = dsn_state(handle);
     size_t values = 0;
     if (tile_values(noise, noise, width, height, &values) != DSN_OK) return 0;
     return values * sizeof(uint32_t) + sizeof(uint32_t) - 1;
 }
 
-extern "C" int dsn_lattice_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+extern "C" int dsn_lattice_tile_fixed(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width,
                                       uint32_t height, int32_t *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
     return render_checked(noise, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
-extern "C" int dsn_lattice_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+extern "C" int dsn_lattice_tile_float(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width,
                                       uint32_t height, float *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
     return render_checked(noise, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
-extern "C" int dsn_lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+extern "C" int dsn_lattice_tile_u8(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width,
                                    uint32_t height, uint8_t *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
     return render_checked(noise, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
 

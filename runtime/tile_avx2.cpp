@@ -10,7 +10,7 @@
 
 #include "tile_render.h"
 
-void dsn_internal_render_tile_avx2(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width,
+void dsn_internal_render_tile_avx2(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator) {
     render_tile(noise, x0, y0, width, height, out, kind, accumulator);
 }

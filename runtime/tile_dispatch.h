@@ -38,10 +38,10 @@ static inline uint32_t dsn_internal_tile_kernel(void) { return DSN_TILE_KERNEL_D
 
 #if DSN_TILE_AVX2_BUILT
 /* tile_render.h's render_tile, built for AVX2 (tile_avx2.cpp). */
-void dsn_internal_render_tile_avx2(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width,
+void dsn_internal_render_tile_avx2(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
 /* The same, built for AVX-512 (tile_avx512.cpp). */
-void dsn_internal_render_tile_avx512(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width,
+void dsn_internal_render_tile_avx512(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                      uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
 #endif
 

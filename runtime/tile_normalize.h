@@ -26,7 +26,7 @@ typedef struct split_normalization {
     uint32_t shift; /* s - 15 */
 } split_normalization;
 
-int make_split_normalization(const dsn_noise *noise, split_normalization *split) {
+int make_split_normalization(const dsn_noise_state *noise, split_normalization *split) {
     const uint32_t s = noise->gain_shift, channels = noise->asset.channels;
     if (s < 16 || s > 32) return 0;
     for (uint32_t c = 0; c < channels; c++) {
@@ -142,7 +142,8 @@ inline __m128i lane_128(strip_vector v, uint32_t) { return v; }
 
 /* The first `pixels` pixels of a strip row, one at a time. */
 template <typename Value>
-void normalize_strip_scalar(const dsn_noise *noise, const strip_vector *sums, uint32_t pixels, Value *out) {
+void normalize_strip_scalar(const dsn_noise_state *noise, const strip_vector *sums, uint32_t pixels,
+                            Value *out) {
     const uint32_t channels = noise->asset.channels;
     uint16_t values[3][lane];
     for (uint32_t c = 0; c < 3; c++) store_sums(values[c], sums[c]);

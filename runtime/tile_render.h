@@ -55,7 +55,8 @@ typedef struct strip_setup {
 
 /* The second copy of the texton is built only when it fits and the tile is large enough to pay for it
    (it saves about 0.25 ns per pixel and costs a microsecond). */
-void make_strip_setup(const dsn_noise *noise, uint64_t pixels, uint32_t value_bytes, strip_setup *setup) {
+void make_strip_setup(const dsn_noise_state *noise, uint64_t pixels, uint32_t value_bytes,
+                      strip_setup *setup) {
     const uint32_t copies = strip_texton_copies(&noise->asset) == 2 && pixels >= 4096 ? 2u : 1u;
     make_strip_texton(&noise->asset, copies, &setup->texton);
     setup->rectangle = choose_rectangle(noise);
@@ -77,8 +78,8 @@ typedef struct tile_target {
 
 /* The 32-bit path for a rectangle of single runs (a rectangle with too many impulses, or a whole run
    when the texton does not fit the strip path): 32-bit sums in the tile accumulator, then each pixel. */
-void render_rectangle_32(const dsn_noise *noise, const tile_run *rectangle_x, const tile_run *rectangle_y,
-                         const tile_target *target) {
+void render_rectangle_32(const dsn_noise_state *noise, const tile_run *rectangle_x,
+                         const tile_run *rectangle_y, const tile_target *target) {
     const uint32_t channels = noise->asset.channels, row_values = target->row_values;
     for (uint32_t row = 0; row < rectangle_y->length; row++) {
         uint32_t *sums = target->accumulator + size_t(rectangle_y->offset + row) * row_values +
@@ -101,8 +102,8 @@ void render_rectangle_32(const dsn_noise *noise, const tile_run *rectangle_x, co
 #if DSN_TILE_BLOCKS
 /* One row of a rectangle from its strips' sums (3 vectors per strip) into `out`, the row's first pixel. */
 template <uint32_t Channels, typename Value>
-void normalize_row(const dsn_noise *noise, const strip_setup *setup, strip_vector (*sums)[3 * strip_rows],
-                   uint32_t row, uint32_t width, Value *out) {
+void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
+                   strip_vector (*sums)[3 * strip_rows], uint32_t row, uint32_t width, Value *out) {
     for (uint32_t s = 0; s * lane < width; s++) {
         const uint32_t pixels = width - s * lane < lane ? width - s * lane : lane;
         const strip_vector *strip = sums[s] + 3 * row;
@@ -116,7 +117,7 @@ void normalize_row(const dsn_noise *noise, const strip_setup *setup, strip_vecto
 /* A rectangle of the tile, setup->rectangle at most: its impulses are listed and filed
    under the strips once, then strip_rows rows at a time are summed strip by strip and normalized. */
 template <uint32_t Channels, typename Value>
-void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const tile_run *walk_x,
+void render_rectangle(const dsn_noise_state *noise, const strip_setup *setup, const tile_run *walk_x,
                       const tile_run *walk_y, const tile_target *target) {
     impulse_list list;
     list.clear(walk_x->length, walk_y->length);
@@ -148,7 +149,7 @@ void render_rectangle(const dsn_noise *noise, const strip_setup *setup, const ti
 
 /* One rectangle of the tile where both axes are single runs, in rectangles of setup->rectangle. */
 template <uint32_t Channels, typename Value>
-void render_region(const dsn_noise *noise, const strip_setup *setup, const tile_run *run_x,
+void render_region(const dsn_noise_state *noise, const strip_setup *setup, const tile_run *run_x,
                    const tile_run *run_y, const tile_target *target) {
     const uint32_t width = setup->rectangle.width, height = setup->rectangle.height;
     for (uint32_t y = 0; y < run_y->length; y += height) {
@@ -164,7 +165,7 @@ void render_region(const dsn_noise *noise, const strip_setup *setup, const tile_
 
 /* The whole tile in rectangles, with the copy of the strip path for the output type and channels. */
 template <typename Value>
-void render_strip_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t run_count_x,
+void render_strip_tile(const dsn_noise_state *noise, const tile_run *runs_x, uint32_t run_count_x,
                        const tile_run *runs_y, uint32_t run_count_y, uint64_t pixels,
                        const tile_target *target) {
     strip_setup setup;
@@ -181,8 +182,8 @@ void render_strip_tile(const dsn_noise *noise, const tile_run *runs_x, uint32_t 
 #endif /* DSN_TILE_BLOCKS */
 
 /* The whole tile: strips of 16-bit sums when the texton allows, else 32-bit sums run by run. */
-void render_tile(const dsn_noise *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, void *out,
-                 dsn_output_kind kind, uint32_t *accumulator) {
+void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
+                 void *out, dsn_output_kind kind, uint32_t *accumulator) {
     tile_run runs_x[2], runs_y[2];
     uint32_t run_count_x = split_runs(x0, width, noise->period[0], runs_x);
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);

@@ -118,7 +118,7 @@ typedef struct rectangle_size {
    lambda w (H + h - 1), with lambda = impacts / |S| per pixel (compared in integers: impacts_q16 is
    impacts 2^16). Dense noises (small textons, many impacts) get smaller rectangles instead of
    overflowing the list or the 16-bit sums; {0, 0} when none has minimum_rectangle_height rows. */
-rectangle_size choose_rectangle(const dsn_noise *noise) {
+rectangle_size choose_rectangle(const dsn_noise_state *noise) {
     const uint32_t margin_x = noise->asset.width - 1, margin_y = noise->asset.height - 1;
     const uint64_t budget = (uint64_t(rectangle_impulses) << 16) * noise->asset.support_size;
     const uint64_t column_rows = ((uint64_t(column_impulses) << 16) * noise->asset.support_size) /

@@ -105,7 +105,7 @@ inline walk_cell walk_cell_of(const dsn_span *span, uint32_t cell, uint32_t shif
    count only those that reach). This is the only place the tile path walks cells. The impulses' packed
    offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
 template <typename Visit>
-void for_each_nearby_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
+void for_each_nearby_impulse(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
                              Visit &visit) {
     const dsn_asset *asset = &noise->asset;
     const uint32_t shift = noise->cell_shift, field_shift = dsn_field_shift(shift);
@@ -162,7 +162,7 @@ struct reaching_filter {
 };
 
 template <typename Visit>
-void for_each_reaching_impulse(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y,
+void for_each_reaching_impulse(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
                                Visit &visit) {
     reaching_filter<Visit> filter = {visit, run_x->length, run_y->length, noise->asset.width,
                                      noise->asset.height};
@@ -187,8 +187,8 @@ struct splat_32 {
 };
 
 /* One rectangle of the tile where both axes are single runs. */
-void splat_region(const dsn_noise *noise, const tile_run *run_x, const tile_run *run_y, uint32_t *accumulator,
-                  uint32_t row_stride) {
+void splat_region(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
+                  uint32_t *accumulator, uint32_t row_stride) {
     const dsn_asset *asset = &noise->asset;
     const uint32_t texel_bytes = asset->channels * (asset->bits / 8);
     splat_32 splat = {asset->texton,

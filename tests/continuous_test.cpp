@@ -24,9 +24,9 @@ const int64_t one = int64_t(1) << 32;
 // the point truncated to 16 fraction bits, then the normalization in long double. Independent of the
 // runtime's cell walk and offset arithmetic; shares only the impulse process (noise_internal.h).
 std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int64_t y) {
-    const uint32_t shift = noise->cell_shift, channels = noise->asset.channels;
-    const int64_t rx = noise->radius[0], ry = noise->radius[1];
-    const uint32_t period[2] = {noise->period[0], noise->period[1]};
+    const uint32_t shift = dsn_state(noise)->cell_shift, channels = dsn_noise_channels(noise);
+    const int64_t rx = dsn_state(noise)->radius[0], ry = dsn_state(noise)->radius[1];
+    const uint32_t period[2] = {dsn_state(noise)->period[0], dsn_state(noise)->period[1]};
     // Points in Q16 (truncated), on the torus of 2^48, or reduced to [0, P) when periodic.
     int64_t point[2] = {x >> 16, y >> 16};
     for (int axis = 0; axis < 2; axis++) {
@@ -63,10 +63,10 @@ std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int6
     const int copies_y = period[1] ? int(ry + 2) / int(period[1]) + 2 : 0;
     for (size_t j = 0; j < cells_y.size(); j++)
         for (size_t i = 0; i < cells_x.size(); i++) {
-            uint32_t key = dsn_cell_key(noise, cells_x[i], cells_y[j]);
-            uint32_t count = dsn_cell_impulse_count(noise, key);
+            uint32_t key = dsn_cell_key(dsn_state(noise), cells_x[i], cells_y[j]);
+            uint32_t count = dsn_cell_impulse_count(dsn_state(noise), key);
             for (uint32_t k = 0; k < count; k++) {
-                uint32_t hash = dsn_impulse_hash(noise, key, k);
+                uint32_t hash = dsn_impulse_hash(dsn_state(noise), key, k);
                 // Impulse position in Q16 (16 - shift fraction bits, scaled up).
                 int64_t px = (int64_t(cells_x[i]) + wraps_x[i]) * (int64_t(1) << (16 + shift)) +
                              (int64_t(dsn_impulse_bits_x(hash)) << shift);
@@ -87,8 +87,9 @@ std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int6
                                 int64_t wx = 65536 - std::llabs(dx - a * 65536);
                                 if (wx <= 0) continue;
                                 for (uint32_t c = 0; c < channels; c++)
-                                    sums[c] += __int128(dsn_asset_texton_value(
-                                                   &noise->asset, uint32_t(b + ry), uint32_t(a + rx), c)) *
+                                    sums[c] += __int128(dsn_asset_texton_value(&dsn_state(noise)->asset,
+                                                                               uint32_t(b + ry),
+                                                                               uint32_t(a + rx), c)) *
                                                wx * wy;
                             }
                         }
@@ -97,10 +98,10 @@ std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int6
         }
     std::vector<long double> out(channels);
     for (uint32_t c = 0; c < channels; c++) {
-        long double value = noise->offset[c];
+        long double value = dsn_state(noise)->offset[c];
         for (uint32_t k = 0; k < channels; k++)
-            value += (long double)noise->gain[c * 3 + k] * (long double)sums[k] / 4294967296.0L;
-        out[c] = value / std::ldexp(1.0L, int(noise->gain_shift));
+            value += (long double)dsn_state(noise)->gain[c * 3 + k] * (long double)sums[k] / 4294967296.0L;
+        out[c] = value / std::ldexp(1.0L, int(dsn_state(noise)->gain_shift));
     }
     return out;
 }
@@ -196,7 +197,7 @@ TEST_CASE("continuous: the value is the bilinear sum over every impulse (brute-f
         CAPTURE(c.channels);
         CAPTURE(c.radius);
         CAPTURE(c.period_x);
-        CAPTURE(noise->noise.cell_shift);
+        CAPTURE(dsn_state(&noise->noise)->cell_shift);
         for (int i = 0; i < 60; i++) {
             int64_t x = random_coordinate(random), y = random_coordinate(random);
             int32_t out[3];
@@ -218,7 +219,7 @@ TEST_CASE("continuous: a grid tile gives exactly the per-point values, in every 
     auto dense = make_noise(random_texton_asset(3, 9, 16, 5), 79, 300u << 16);
     size_t splatted = 0;
     for (auto *noise : {&rgb->noise, &grey->noise, &dense->noise}) {
-        const uint32_t channels = noise->asset.channels;
+        const uint32_t channels = dsn_noise_channels(noise);
         for (int trial = 0; trial < 40; trial++) {
             const double angle = double(random() % 6283) / 1000, zoom = 0.25 + double(random() % 400) / 100;
             dsn_grid grid;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "../runtime/noise_state.h"
 #include "fixtures/test_assets.h"
 
 namespace {
@@ -194,12 +195,12 @@ TEST_CASE("configuration and evaluation arguments are checked") {
     CHECK(dsn_noise_init(&noise, &asset, &config) == DSN_ERR_IMPACTS);
     config.impacts_q16 = 0; // the asset's default, 30 when it has none
     REQUIRE(dsn_noise_init(&noise, &asset, &config) == DSN_OK);
-    CHECK(noise.impacts_q16 == DSN_IMPACTS_DEFAULT_Q16);
+    CHECK(dsn_state(&noise)->impacts_q16 == DSN_IMPACTS_DEFAULT_Q16);
     // Extremes of the density still give a valid table and normalization.
     for (uint32_t impacts : {DSN_IMPACTS_MIN_Q16, DSN_IMPACTS_MAX_Q16}) {
         config.impacts_q16 = impacts;
         REQUIRE(dsn_noise_init(&noise, &asset, &config) == DSN_OK);
-        CHECK(noise.poisson_size > 0);
+        CHECK(dsn_state(&noise)->poisson_size > 0);
         int32_t point[3], tile[3];
         dsn_lattice_point_fixed(&noise, INT32_MIN, INT32_MAX, point);
         REQUIRE(dsn_lattice_tile_fixed(&noise, INT32_MIN, INT32_MAX, 1, 1, tile, nullptr, 0) == DSN_OK);

@@ -16,14 +16,15 @@ using dsn_test::LoadedNoise;
 // Cells of side 16 around the window holding more than 16 impulses.
 int crowded_cells(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height) {
     int crowded = 0;
-    const uint32_t first_x = (uint32_t(x0) - noise.radius[0]) >> 4,
-                   first_y = (uint32_t(y0) - noise.radius[1]) >> 4;
-    const uint32_t columns = ((width + 2 * noise.radius[0]) >> 4) + 2,
-                   rows = ((height + 2 * noise.radius[1]) >> 4) + 2;
+    const uint32_t first_x = (uint32_t(x0) - dsn_state(&noise)->radius[0]) >> 4,
+                   first_y = (uint32_t(y0) - dsn_state(&noise)->radius[1]) >> 4;
+    const uint32_t columns = ((width + 2 * dsn_state(&noise)->radius[0]) >> 4) + 2,
+                   rows = ((height + 2 * dsn_state(&noise)->radius[1]) >> 4) + 2;
     for (uint32_t j = 0; j < rows; j++)
         for (uint32_t i = 0; i < columns; i++) {
-            uint32_t key = dsn_cell_key(&noise, (first_x + i) & 0x0FFFFFFFu, (first_y + j) & 0x0FFFFFFFu);
-            crowded += dsn_cell_impulse_count(&noise, key) > 16;
+            uint32_t key =
+                dsn_cell_key(dsn_state(&noise), (first_x + i) & 0x0FFFFFFFu, (first_y + j) & 0x0FFFFFFFu);
+            crowded += dsn_cell_impulse_count(dsn_state(&noise), key) > 16;
         }
     return crowded;
 }
@@ -47,7 +48,7 @@ TEST_CASE("per point, 16 x 16 cells, no period: equals the tile on every channel
                 CAPTURE(channels);
                 CAPTURE(bits);
                 CAPTURE(side);
-                if (loaded.noise.cell_shift != 4) continue;
+                if (dsn_state(&loaded.noise)->cell_shift != 4) continue;
                 for (int32_t origin : origins) {
                     const int32_t x0 = int32_t(uint32_t(origin) + random.next() % 16), y0 = origin;
                     CAPTURE(x0);

@@ -21,8 +21,8 @@ using dsn_test::LoadedNoise;
 double poisson_pmf(double mean, int n) { return std::exp(-mean + n * std::log(mean) - std::lgamma(n + 1.0)); }
 
 double cell_mean(const dsn_noise &noise) {
-    double lambda = noise.impacts_q16 / 65536.0 / noise.asset.support_size;
-    return lambda * std::ldexp(1.0, int(2 * noise.cell_shift));
+    double lambda = dsn_state(&noise)->impacts_q16 / 65536.0 / dsn_state(&noise)->asset.support_size;
+    return lambda * std::ldexp(1.0, int(2 * dsn_state(&noise)->cell_shift));
 }
 
 } // namespace
@@ -34,26 +34,27 @@ TEST_CASE("the Poisson table is the rounded CDF of the per-draw mean, to the 2^-
             auto fields = dsn_test::synthetic_fields(1, side, 8, DSN_SHAPE_RECTANGLE, 1);
             LoadedNoise loaded(fields, dsn_test::make_config(0, n_impacts));
             const dsn_noise &noise = loaded.noise;
-            double mean = cell_mean(noise) / noise.poisson_parts;
+            double mean = cell_mean(noise) / dsn_state(&noise)->poisson_parts;
             CAPTURE(side);
             CAPTURE(n_impacts);
             CAPTURE(mean);
             CHECK(mean <= 16.0 + 1e-9);
-            REQUIRE(noise.poisson_size >= 1);
-            REQUIRE(noise.poisson_size <= 96);
+            REQUIRE(dsn_state(&noise)->poisson_size >= 1);
+            REQUIRE(dsn_state(&noise)->poisson_size <= 96);
             double cdf = 0;
-            for (uint32_t n = 0; n < noise.poisson_size; n++) {
+            for (uint32_t n = 0; n < dsn_state(&noise)->poisson_size; n++) {
                 cdf += poisson_pmf(mean, int(n));
-                CHECK(std::abs(double(noise.poisson_cdf[n]) - std::ldexp(cdf, 32)) <= 1.0);
+                CHECK(std::abs(double(dsn_state(&noise)->poisson_cdf[n]) - std::ldexp(cdf, 32)) <= 1.0);
             }
             // The table ends where the CDF rounds to 2^32: the mass beyond poisson_size, which is drawn as
             // poisson_size, is at most 2^-33.
             CHECK(std::ldexp(1.0 - cdf, 32) > 0.5 - 1e-3);
-            CHECK(std::ldexp(1.0 - cdf - poisson_pmf(mean, int(noise.poisson_size)), 32) < 0.5 + 1e-3);
+            CHECK(std::ldexp(1.0 - cdf - poisson_pmf(mean, int(dsn_state(&noise)->poisson_size)), 32) <
+                  0.5 + 1e-3);
             // The guide never skips the answer.
             for (uint32_t bucket = 0; bucket < 64; bucket++) {
-                uint32_t guide = noise.poisson_guide[bucket];
-                CHECK((guide == 0 || noise.poisson_cdf[guide - 1] <= (bucket << 26)));
+                uint32_t guide = dsn_state(&noise)->poisson_guide[bucket];
+                CHECK((guide == 0 || dsn_state(&noise)->poisson_cdf[guide - 1] <= (bucket << 26)));
             }
         }
 }
@@ -71,8 +72,8 @@ TEST_CASE("per-cell counts follow the Poisson law (chi-square over 10^6 cells)")
         std::vector<double> observed(2000);
         for (uint32_t y = 0; y < cells; y++)
             for (uint32_t x = 0; x < cells; x++) {
-                uint32_t count =
-                    dsn_cell_impulse_count(&noise, dsn_cell_key(&noise, x * 7919u, y * 104729u - 5000u));
+                uint32_t count = dsn_cell_impulse_count(
+                    dsn_state(&noise), dsn_cell_key(dsn_state(&noise), x * 7919u, y * 104729u - 5000u));
                 observed[std::min<uint32_t>(count, 1999)] += 1;
             }
         // Bins with expected counts >= 20 (tails merged), chi-square against the exact pmf. Threshold:

@@ -104,7 +104,7 @@ const int lags[4][2] = {{0, 0}, {1, 0}, {0, 1}, {3, 2}};
 
 Samples draw_samples(const dsn_noise &noise, int grid, int32_t origin) {
     Samples samples;
-    samples.channels = int(noise.asset.channels);
+    samples.channels = int(dsn_noise_channels(&noise));
     int32_t block[4 * 3 * 3];
     for (int j = 0; j < grid; j++)
         for (int i = 0; i < grid; i++) {

@@ -20,8 +20,8 @@ struct FallbackCase {
 };
 
 // How many of the rectangles of the window (x0, y0, width x height) would fall back, and how many not.
-void count_fallbacks(const dsn_noise &noise, const strip_setup &setup, int32_t x0, int32_t y0, uint32_t width,
-                     uint32_t height, uint32_t *fallbacks, uint32_t *strips) {
+void count_fallbacks(const dsn_noise_state &noise, const strip_setup &setup, int32_t x0, int32_t y0,
+                     uint32_t width, uint32_t height, uint32_t *fallbacks, uint32_t *strips) {
     *fallbacks = *strips = 0;
     for (uint32_t y = 0; y < height; y += setup.rectangle.height)
         for (uint32_t x = 0; x < width; x += setup.rectangle.width) {
@@ -53,7 +53,7 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
         dsn_test::LoadedNoise loaded(
             dsn_test::synthetic_fields(c.channels, c.side, 8, DSN_SHAPE_RECTANGLE, 4),
             dsn_test::make_config(9, c.impacts));
-        const dsn_noise &noise = loaded.noise;
+        const dsn_noise_state &noise = *dsn_state(&loaded.noise);
         strip_setup setup;
         make_strip_setup(&noise, uint64_t(width) * height, sizeof(int32_t), &setup);
         setup.rectangle = c.rectangle;
@@ -80,7 +80,8 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
         for (uint32_t j = 0; j < height; j++)
             for (uint32_t i = 0; i < width; i++) {
                 int32_t point[3];
-                dsn_lattice_point_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j), point);
+                dsn_lattice_point_fixed(&loaded.noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j),
+                                        point);
                 for (uint32_t k = 0; k < c.channels; k++) {
                     differences += point[k] != tile[(size_t(j) * width + i) * c.channels + k];
                     chosen_differences += point[k] != chosen[(size_t(j) * width + i) * c.channels + k];

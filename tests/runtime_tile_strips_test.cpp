@@ -24,9 +24,9 @@ struct Window {
 int32_t coordinate(int32_t origin, uint32_t offset) { return int32_t(uint32_t(origin) + offset); }
 
 // Values of the three tile functions that differ from per-point evaluation (fixed, float bits, u8), with
-// the tile code `noise.tile_kernel` names.
+// the tile code the noise's tile_kernel names.
 size_t kernel_differences(const dsn_noise &noise, const Window &w) {
-    const uint32_t channels = noise.asset.channels;
+    const uint32_t channels = dsn_noise_channels(&noise);
     const size_t values = size_t(w.width) * w.height * channels;
     std::vector<int32_t> fixed(values);
     std::vector<float> floats(values);
@@ -60,9 +60,9 @@ size_t kernel_differences(const dsn_noise &noise, const Window &w) {
 // kernel_differences summed over every copy of the tile code this CPU runs.
 size_t differences(const dsn_noise &noise, const Window &w) {
     size_t count = 0;
-    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= noise.tile_kernel; kernel++) {
+    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= dsn_state(&noise)->tile_kernel; kernel++) {
         dsn_noise copy = noise;
-        copy.tile_kernel = kernel;
+        dsn_state(&copy)->tile_kernel = kernel;
         CAPTURE(kernel);
         count += kernel_differences(copy, w);
     }
@@ -87,7 +87,7 @@ TEST_CASE("init records the copy of the tile code this CPU runs") {
         MESSAGE("this CPU has no AVX-512 (F and BW)" << (expected == DSN_TILE_KERNEL_AVX2 ? "" : " nor AVX2")
                                                      << ": the tile code for it is not tested");
 #endif
-    CHECK(loaded.noise.tile_kernel == expected);
+    CHECK(dsn_state(&loaded.noise)->tile_kernel == expected);
 }
 
 TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of many rectangles") {
@@ -147,9 +147,10 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
     std::vector<int32_t> whole(size_t(side) * side * 3), bands(whole.size());
     std::vector<float> whole_float(whole.size()), bands_float(whole.size());
     std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&loaded.noise, side, side));
-    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= loaded.noise.tile_kernel; kernel++) {
+    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= dsn_state(&loaded.noise)->tile_kernel;
+         kernel++) {
         dsn_noise noise = loaded.noise;
-        noise.tile_kernel = kernel;
+        dsn_state(&noise)->tile_kernel = kernel;
         CAPTURE(kernel);
         REQUIRE(dsn_lattice_tile_fixed(&noise, -7, 3, side, side, whole.data(), nullptr, 0) == DSN_OK);
         REQUIRE(dsn_lattice_tile_float(&noise, -7, 3, side, side, whole_float.data(), scratch.data(),
@@ -173,7 +174,7 @@ TEST_CASE("strip tiles == per point when the normalization cannot be split into 
     for (int i = 0; i < 9; i++) fields.color_transform[i] = (i % 4 == 0 ? 100 : 7) * int32_t(DSN_Q24_ONE);
     for (uint32_t c = 0; c < 3; c++) fields.scale[c] = 0xFFFFFFFFu;
     LoadedNoise loaded(fields, dsn_test::make_config(11, 0.25));
-    REQUIRE(loaded.noise.gain_shift < 16);
+    REQUIRE(dsn_state(&loaded.noise)->gain_shift < 16);
     Window window = {-70, 1234567, 140, 70};
     CHECK(differences(loaded.noise, window) == 0);
 }

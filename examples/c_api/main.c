@@ -21,7 +21,7 @@ static unsigned char tile_scratch[1 << 16];
 
 static int tile_matches_points(const dsn_noise *noise, int32_t x0, int32_t y0) {
     int32_t tile[TILE_SIDE * TILE_SIDE * DSN_MAX_CHANNELS], point[DSN_MAX_CHANNELS];
-    uint32_t channels = noise->asset.channels, i, j, c;
+    uint32_t channels = dsn_noise_channels(noise), i, j, c;
     size_t need = dsn_lattice_tile_scratch_size(noise, TILE_SIDE, TILE_SIDE);
     if (need > sizeof tile_scratch) {
         fprintf(stderr, "c_api: the tile needs %lu bytes of scratch\n", (unsigned long)need);

@@ -47,6 +47,14 @@
 extern "C" {
 #endif
 
+#define DSN_VERSION_MAJOR 1
+#define DSN_VERSION_MINOR 1
+#define DSN_VERSION_PATCH 0
+#define DSN_VERSION_STRING "1.1.0"
+
+/* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
+const char *dsn_version(void);
+
 #define DSN_ONE 65536 /* 1.0 in the Q16.16 output */
 #define DSN_MAX_CHANNELS 3
 #define DSN_TILE_MAX_SIDE 65536u /* tile width and height are at most this */
@@ -99,27 +107,21 @@ typedef struct dsn_config {
 /* seed 0, impacts 0 (asset default), no period, no flags. */
 void dsn_config_defaults(dsn_config *config);
 
-/* The configured noise: caller-owned, a few hundred bytes, no pointers but the asset's texton. Fields
-   are private to the runtime and may change between versions. Init records which copy of the tile code
-   the CPU runs (x86-64: AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
-typedef struct dsn_noise {
-    dsn_asset asset;
-    uint32_t seed;
-    uint32_t seed_column, seed_row; /* hashes of the seed mixed into the cell keys */
-    uint32_t flags;
-    uint32_t tile_kernel; /* the copy of the tile code this CPU runs (set by init; the bits are the same) */
-    uint32_t impacts_q16;
-    uint32_t period[2];        /* 0 = not periodic */
-    uint32_t cell_shift;       /* cells are (1 << cell_shift) lattice points wide */
-    uint32_t radius[2];        /* (width - 1) / 2, (height - 1) / 2 */
-    uint32_t gain_shift;       /* fraction bits of gain and offset */
-    int64_t gain[9];           /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
-    int64_t offset[3];         /* fixed-point mean minus the expected sum */
-    uint32_t poisson_parts;    /* a cell's count is the sum of this many draws from the table */
-    uint32_t poisson_size;     /* entries used in poisson_cdf */
-    uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of one draw, 32-bit */
-    uint8_t poisson_guide[64]; /* first candidate count per top-6-bit bucket of the uniform */
+/* The configured noise: caller-owned storage of a fixed size (DSN_NOISE_BYTES on every platform), filled by
+   dsn_noise_init and read by every evaluator. Its contents are private to the runtime and change between
+   versions: copy it with memcpy if needed, never read or write its words. It keeps a pointer to the
+   asset's texton (the caller's buffer), and init records which copy of the tile code the CPU runs (x86-64:
+   AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
+#define DSN_NOISE_WORDS 128 /* 64-bit words: DSN_NOISE_BYTES = 1024 */
+#define DSN_NOISE_BYTES (DSN_NOISE_WORDS * 8)
+typedef union dsn_noise {
+    uint64_t words[DSN_NOISE_WORDS];
+    void *align_pointer; /* aligned for every field the runtime keeps */
 } dsn_noise;
+
+/* The number of channel values each evaluation writes per point: 1 (grey) or 3 (RGB); 0 for a null or
+   unconfigured noise. */
+uint32_t dsn_noise_channels(const dsn_noise *noise);
 
 /* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
    normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS or

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../../runtime/noise_state.h"
 #include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
 
@@ -65,7 +66,7 @@ int main() {
     });
 
     std::printf("continuous mode, RGB 31x31 texton, 30 impacts per pixel, cell side %u, one thread:\n",
-                1u << n->cell_shift);
+                1u << dsn_state(n)->cell_shift);
     std::printf("  per point: lattice %.0f ns/sample, continuous %.0f ns/sample: ratio %.2f\n",
                 lattice_point / samples * 1e9, continuous_point / samples * 1e9,
                 continuous_point / lattice_point);

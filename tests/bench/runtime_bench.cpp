@@ -113,15 +113,18 @@ struct SpectralAdsn {
 // Cells visited and impulses examined by the per-point path at (x, y): the same walk, counted.
 void count_work(const dsn_noise &noise, uint32_t x, uint32_t y, uint64_t *cells, uint64_t *impulses) {
     dsn_axis axis_x, axis_y;
-    dsn_axis_init(&axis_x, x, 1, noise.radius[0], noise.cell_shift, noise.period[0]);
-    dsn_axis_init(&axis_y, y, 1, noise.radius[1], noise.cell_shift, noise.period[1]);
+    dsn_axis_init(&axis_x, x, 1, dsn_state(&noise)->radius[0], dsn_state(&noise)->cell_shift,
+                  dsn_state(&noise)->period[0]);
+    dsn_axis_init(&axis_y, y, 1, dsn_state(&noise)->radius[1], dsn_state(&noise)->cell_shift,
+                  dsn_state(&noise)->period[1]);
     dsn_span span_x = dsn_axis_span(&axis_x, 0), span_y = dsn_axis_span(&axis_y, 0);
     for (uint32_t i = 0; i < span_y.cell_count; i++)
         for (uint32_t j = 0; j < span_x.cell_count; j++) {
-            uint32_t key = dsn_cell_key(&noise, dsn_span_cell(&span_x, j, noise.cell_shift),
-                                        dsn_span_cell(&span_y, i, noise.cell_shift));
+            uint32_t key =
+                dsn_cell_key(dsn_state(&noise), dsn_span_cell(&span_x, j, dsn_state(&noise)->cell_shift),
+                             dsn_span_cell(&span_y, i, dsn_state(&noise)->cell_shift));
             *cells += 1;
-            *impulses += dsn_cell_impulse_count(&noise, key);
+            *impulses += dsn_cell_impulse_count(dsn_state(&noise), key);
         }
 }
 
@@ -146,8 +149,9 @@ int main() {
     const dsn_noise &noise = loaded.noise;
     std::printf("asset: RGB 31x31 8-bit texton, 30 impacts per pixel; cell size %u (mean %.2f impulses per "
                 "cell, %u Poisson draw(s), table of %u entries)\n",
-                1u << noise.cell_shift, 30.0 / 961 * double(1u << (2 * noise.cell_shift)),
-                noise.poisson_parts, noise.poisson_size);
+                1u << dsn_state(&noise)->cell_shift,
+                30.0 / 961 * double(1u << (2 * dsn_state(&noise)->cell_shift)),
+                dsn_state(&noise)->poisson_parts, dsn_state(&noise)->poisson_size);
 
     // Tile vs spectral ADSN: thread CPU times, minimum and median of several runs of each, interleaved
     // so that both see the same machine load.
@@ -161,7 +165,7 @@ int main() {
     uint32_t seed = 0;
     // The same tile with the other copies of the tile code this CPU runs (x86-64: SSE2, and AVX2 when
     // init chose AVX-512), timed in the same rounds.
-    const uint32_t other_copies = noise.tile_kernel;
+    const uint32_t other_copies = dsn_state(&noise)->tile_kernel;
     const char *copy_names[] = {"SSE2", "AVX2", "AVX-512"};
     std::vector<double> tile_times, u8_times, float_times, adsn_times, copy_times[2];
     for (int round = 0; round < 3; round++) {
@@ -182,7 +186,7 @@ int main() {
         more(adsn_times, cpu_times(1, [&] { adsn.synthesize(++seed); }));
         for (uint32_t kernel = 0; kernel < other_copies; kernel++) {
             dsn_noise copy = noise;
-            copy.tile_kernel = kernel;
+            dsn_state(&copy)->tile_kernel = kernel;
             more(copy_times[kernel], cpu_times(1, [&] {
                      dsn_lattice_tile_fixed(&copy, -1000, 5000, side, side, tile.data(), nullptr, 0);
                  }));
@@ -193,7 +197,7 @@ int main() {
     double megapixels = double(side) * side / 1e6;
     std::printf("tile 2048x2048 RGB, %s tile code (thread CPU time, min / median of %zu runs): fixed %.1f / "
                 "%.1f ms (%.0f Mpixel/s), u8 %.1f / %.1f ms, float %.1f / %.1f ms\n",
-                other_copies != 0 ? copy_names[noise.tile_kernel] : "default", tile_times.size(),
+                other_copies != 0 ? copy_names[dsn_state(&noise)->tile_kernel] : "default", tile_times.size(),
                 tile_times[0] * 1e3, median(tile_times) * 1e3, megapixels / tile_times[0], u8_times[0] * 1e3,
                 median(u8_times) * 1e3, float_times[0] * 1e3, median(float_times) * 1e3);
     std::printf("spectral ADSN (KissFFT) %.1f / %.1f ms; tile speed-up min/min %.1fx, median/median %.1fx "
@@ -292,7 +296,7 @@ int main() {
                 sizeof(dsn_noise), sizeof(dsn_asset), point_stack);
     for (uint32_t kernel = 0; kernel <= other_copies; kernel++) {
         dsn_noise copy = noise;
-        copy.tile_kernel = kernel;
+        dsn_state(&copy)->tile_kernel = kernel;
         const size_t tile_stack =
             painted_stack([&] { dsn_lattice_tile_fixed(&copy, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
         std::printf(" %zu bytes (%s tile code)", tile_stack,

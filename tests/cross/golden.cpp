@@ -150,7 +150,7 @@ int point_fixed(const dsn_noise *noise, const Window &window, Fnv *hash) {
         for (uint32_t i = 0; i < window.width; i++) {
             int32_t values[DSN_MAX_CHANNELS];
             dsn_lattice_point_fixed(noise, wrapped(window.x, i), wrapped(window.y, j), values);
-            hash_fixed(hash, values, noise->asset.channels);
+            hash_fixed(hash, values, dsn_noise_channels(noise));
         }
     return DSN_OK;
 }
@@ -162,7 +162,7 @@ int tile_fixed(const dsn_noise *noise, const Window &window, Fnv *hash) {
         err = dsn_lattice_tile_fixed(noise, window.x, window.y, window.width, window.height,
                                      tile_fixed_values, tile_scratch, scratch_size);
     if (err == DSN_OK)
-        hash_fixed(hash, tile_fixed_values, window.width * window.height * noise->asset.channels);
+        hash_fixed(hash, tile_fixed_values, window.width * window.height * dsn_noise_channels(noise));
     return err;
 }
 
@@ -173,14 +173,14 @@ int float_outputs(const dsn_noise *noise, const Window &window, Fnv *hash) {
         for (uint32_t i = 0; i < window.width; i++) {
             float values[DSN_MAX_CHANNELS];
             dsn_lattice_point_float(noise, wrapped(window.x, i), wrapped(window.y, j), values);
-            hash_float(hash, values, noise->asset.channels);
+            hash_float(hash, values, dsn_noise_channels(noise));
         }
     int err = scratch_for(noise, window, &scratch_size);
     if (err == DSN_OK)
         err = dsn_lattice_tile_float(noise, window.x, window.y, window.width, window.height,
                                      tile_float_values, tile_scratch, scratch_size);
     if (err == DSN_OK)
-        hash_float(hash, tile_float_values, window.width * window.height * noise->asset.channels);
+        hash_float(hash, tile_float_values, window.width * window.height * dsn_noise_channels(noise));
     return err;
 }
 
@@ -190,13 +190,14 @@ int u8_outputs(const dsn_noise *noise, const Window &window, Fnv *hash) {
         for (uint32_t i = 0; i < window.width; i++) {
             uint8_t values[DSN_MAX_CHANNELS];
             dsn_lattice_point_u8(noise, wrapped(window.x, i), wrapped(window.y, j), values);
-            hash_u8(hash, values, noise->asset.channels);
+            hash_u8(hash, values, dsn_noise_channels(noise));
         }
     int err = scratch_for(noise, window, &scratch_size);
     if (err == DSN_OK)
         err = dsn_lattice_tile_u8(noise, window.x, window.y, window.width, window.height, tile_u8_values,
                                   tile_scratch, scratch_size);
-    if (err == DSN_OK) hash_u8(hash, tile_u8_values, window.width * window.height * noise->asset.channels);
+    if (err == DSN_OK)
+        hash_u8(hash, tile_u8_values, window.width * window.height * dsn_noise_channels(noise));
     return err;
 }
 
@@ -234,7 +235,7 @@ int continuous_point_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
             grid_point(grid.grid, i, j, &x, &y);
             const int err = dsn_continuous_point_fixed(noise, x, y, values);
             if (err != DSN_OK) return err;
-            hash_fixed(hash, values, noise->asset.channels);
+            hash_fixed(hash, values, dsn_noise_channels(noise));
         }
     return DSN_OK;
 }
@@ -252,7 +253,8 @@ int continuous_tile_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
     if (err == DSN_OK)
         err = dsn_continuous_tile_fixed(noise, &grid.grid, grid.width, grid.height, tile_fixed_values,
                                         tile_scratch, scratch_size);
-    if (err == DSN_OK) hash_fixed(hash, tile_fixed_values, grid.width * grid.height * noise->asset.channels);
+    if (err == DSN_OK)
+        hash_fixed(hash, tile_fixed_values, grid.width * grid.height * dsn_noise_channels(noise));
     return err;
 }
 
@@ -265,10 +267,10 @@ int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
             grid_point(grid.grid, i, j, &x, &y);
             const int err = dsn_continuous_point_float(noise, grid_double(x), grid_double(y), values);
             if (err != DSN_OK) return err;
-            hash_float(hash, values, noise->asset.channels);
+            hash_float(hash, values, dsn_noise_channels(noise));
         }
     size_t scratch_size;
-    const uint32_t count = grid.width * grid.height * noise->asset.channels;
+    const uint32_t count = grid.width * grid.height * dsn_noise_channels(noise);
     int err = continuous_scratch_for(noise, grid, &scratch_size);
     if (err == DSN_OK)
         err = dsn_continuous_tile_float(noise, &grid.grid, grid.width, grid.height, tile_float_values,

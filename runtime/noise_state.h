@@ -1,0 +1,42 @@
+/* runtime/noise_state.h - what dsn_noise_init stores in the caller's dsn_noise: the configured noise as the
+   runtime reads it. Public code sees only DSN_NOISE_WORDS opaque words (dsn.h); this is their layout.
+   Internal to libdsn (and to white-box tests); not installed. */
+#ifndef DSN_NOISE_STATE_H
+#define DSN_NOISE_STATE_H
+
+#include <stdint.h>
+
+#include "dsn/dsn.h"
+
+struct dsn_noise_state {
+    dsn_asset asset;
+    uint32_t seed;
+    uint32_t seed_column, seed_row; /* hashes of the seed mixed into the cell keys */
+    uint32_t flags;
+    uint32_t tile_kernel; /* the copy of the tile code this CPU runs (set by init; the bits are the same) */
+    uint32_t impacts_q16;
+    uint32_t period[2];        /* 0 = not periodic */
+    uint32_t cell_shift;       /* cells are (1 << cell_shift) lattice points wide */
+    uint32_t radius[2];        /* (width - 1) / 2, (height - 1) / 2 */
+    uint32_t gain_shift;       /* fraction bits of gain and offset */
+    int64_t gain[9];           /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
+    int64_t offset[3];         /* fixed-point mean minus the expected sum */
+    uint32_t poisson_parts;    /* a cell's count is the sum of this many draws from the table */
+    uint32_t poisson_size;     /* entries used in poisson_cdf */
+    uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of one draw, 32-bit */
+    uint8_t poisson_guide[64]; /* first candidate count per top-6-bit bucket of the uniform */
+};
+
+static_assert(sizeof(dsn_noise_state) <= sizeof(dsn_noise), "dsn_noise must hold dsn_noise_state");
+static_assert(alignof(dsn_noise_state) <= alignof(dsn_noise), "dsn_noise must be aligned for dsn_noise_state");
+
+/* The state inside a caller's dsn_noise (null stays null). The caller's words are only ever written and
+   read as this struct, by the runtime. */
+inline const dsn_noise_state *dsn_state(const dsn_noise *noise) {
+    return static_cast<const dsn_noise_state *>(static_cast<const void *>(noise));
+}
+inline dsn_noise_state *dsn_state(dsn_noise *noise) {
+    return static_cast<dsn_noise_state *>(static_cast<void *>(noise));
+}
+
+#endif /* DSN_NOISE_STATE_H */
