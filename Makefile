@@ -26,13 +26,13 @@ PACKAGE_LIBS = $(shell $(PKG_CONFIG) --libs kissfft-float stb 2>/dev/null)
 OFFLINE_FLAGS = -std=c++17 $(WARNINGS) $(COMMON_FLAGS) $(PACKAGE_CFLAGS)
 TEST_FLAGS = $(OFFLINE_FLAGS) -Itests
 
-# On x86-64 the tile code is built three times, the other copies (runtime/tile_avx2.cpp and
-# runtime/tile_avx512.cpp) for AVX2 and AVX-512; init picks one by CPUID (runtime/tile_dispatch.h). Built
-# without these flags the runtime has one copy.
+# On x86-64 the kernels (runtime/kernels.h) are built three times: the default one with the runtime's
+# flags, runtime/kernel_avx2.cpp for AVX2 and runtime/kernel_avx512.cpp for AVX-512; init picks one by
+# CPUID (runtime/kernel_table.cpp). Built without these flags the runtime has the default kernel alone.
 ifneq ($(filter x86_64%,$(shell $(CXX) -dumpmachine 2>/dev/null)),)
-RUNTIME_DISPATCH_FLAGS := -DDSN_TILE_AVX2=1
-TILE_AVX2_FLAGS := -mavx2
-TILE_AVX512_FLAGS := -mavx512f -mavx512bw
+RUNTIME_DISPATCH_FLAGS := -DDSN_X86_DISPATCH=1
+KERNEL_AVX2_FLAGS := -mavx2
+KERNEL_AVX512_FLAGS := -mavx512f -mavx512bw
 endif
 RUNTIME_SOURCES := $(wildcard runtime/*.cpp)
 RUNTIME_OBJECTS := $(RUNTIME_SOURCES:%.cpp=$(BUILD)/obj/%.o)
@@ -65,8 +65,8 @@ all: $(PROGRAMS)
 $(BUILD)/obj/runtime/%.o: runtime/%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(RUNTIME_FLAGS) $(RUNTIME_DISPATCH_FLAGS) $(CXXFLAGS) $(RUNTIME_FILE_FLAGS) -c $< -o $@
-$(BUILD)/obj/runtime/tile_avx2.o: RUNTIME_FILE_FLAGS = $(TILE_AVX2_FLAGS)
-$(BUILD)/obj/runtime/tile_avx512.o: RUNTIME_FILE_FLAGS = $(TILE_AVX512_FLAGS)
+$(BUILD)/obj/runtime/kernel_avx2.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX2_FLAGS)
+$(BUILD)/obj/runtime/kernel_avx512.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX512_FLAGS)
 
 $(BUILD)/obj/offline/%.o: offline/%.cpp
 	@mkdir -p $(@D)

@@ -9,7 +9,10 @@
    DSN_SMALL_CODE (dsn.h) a point walks its impulses one by one, the texton is read by one generic
    reader and grid tiles go point by point; the fast build sifts the impulses on their packed lattice
    fields first (evaluate_fast) and splats axis-aligned grids. */
-#include "noise_internal.h"
+#include "cell_walk.h"
+#include "impulse_position.h"
+#include "normalize_fixed.h"
+#include "poisson_count.h"
 
 namespace {
 

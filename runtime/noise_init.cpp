@@ -1,8 +1,8 @@
 /* runtime/noise_init.cpp - dsn_config_defaults and dsn_noise_init: checks the configuration, chooses the
    cell size, then builds the Poisson table and the normalization (their own files). */
 #include "init_internal.h"
-#include "noise_internal.h"
-#include "tile_dispatch.h"
+#include "cell_hash.h"
+#include "kernels.h"
 #include "wide_arithmetic.h"
 
 namespace {
@@ -106,7 +106,7 @@ extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const d
     noise->seed_column = dsn_mix32(config->seed ^ 0x68E31DA4u);
     noise->seed_row = dsn_mix32(config->seed + 0xB5297A4Du);
     noise->flags = config->flags;
-    noise->tile_kernel = dsn_internal_tile_kernel();
+    noise->tile_kernel = dsn_internal_choose_kernel();
     noise->impacts_q16 = impacts;
     noise->period[0] = config->period_x;
     noise->period[1] = config->period_y;

@@ -1,6 +1,9 @@
 /* runtime/point.cpp - per-point evaluation on the lattice: sums the texton values of every impulse
    whose window holds the point, then normalizes; plus the float and 8-bit conversions. */
-#include "noise_internal.h"
+#include "cell_walk.h"
+#include "impulse_position.h"
+#include "normalize_fixed.h"
+#include "poisson_count.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -145,7 +148,7 @@ inline __m128i position_pairs(__m128i key) {
 
 /* dsn_poisson_draw (one draw on this path) with its first two steps of search taken without a branch:
    from the guide, 90% of the counts need no step, 8% one and 1.3% two at the usual mean of 8, so a
-   branch on them would often be mispredicted (~5 ns per point). A step from n adds uniform >= cdf[n]:
+   branch on them would often be mispredicted. A step from n adds uniform >= cdf[n]:
    exact below the table size; at or past it (cdf = 2^32 - 1, undercut by no uniform but 2^32 - 1) it
    may overshoot, which the rare exact search behind catches, as it does counts that need more steps.
    The reads go at most to cdf[size + 1] (accumulate checks that it is in the table). */
@@ -239,7 +242,7 @@ inline uint32_t popcount64(uint64_t bits) {
 /* Sums the texton values of the hits of (at most) four cells: bit 16 c + k of hits is impulse k of cell
    c, whose entries are entries[16 c ..]. The loop counts the hits down rather than testing the mask for
    zero: its exit, hard to predict, then resolves once the count is known and one cycle per hit later,
-   not at the end of the mask's chain of two dependent instructions per hit (117.5 against 118.5 ns). */
+   not at the end of the mask's chain of two dependent instructions per hit. */
 template <uint32_t Channels, uint32_t Bits>
 inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, hit_sums *sums) {
     for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
@@ -307,9 +310,8 @@ void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, ui
        one wait per point): cell s's mask in masks[s], its entries at entries[16 s]. Visiting hits ends
        with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
        long before, a misprediction resolves at once; right after its cells, it waits for their whole
-       hash-and-test chain, and the work of the next cells with it (visiting every 4 cells took ~139 ns
-       per point, every 9 ~130). The masks are stored one by one rather than shifted into words: fewer
-       instructions (116 -> 114 ns). */
+       hash-and-test chain, and the work of the next cells with it, so the fewer visits per point the
+       better. The masks are stored one by one rather than shifted into words: fewer instructions. */
     uint16_t entries[9 * 16], masks[12];
     uint32_t slot = 0;
     hit_sums hit = {0, _mm_setzero_si128()};

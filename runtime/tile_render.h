@@ -4,32 +4,27 @@
    the output (tile_normalize.h), or, when 16 bits cannot hold the sums (16-bit textons, large textons,
    extreme densities), splatted into a 32-bit accumulator and normalized one pixel at a time. Either way the
    sums are the per-point sums (integer addition modulo 2^32 is order-free, and the 16-bit sums provably never
-   wrap), so the bits equal the per-point path's. Included by tile.cpp and, built for AVX2 and AVX-512, by
-   tile_avx2.cpp and tile_avx512.cpp (everything here has internal linkage, so the copies never mix). */
+   wrap), so the bits equal the per-point path's. Included by every kernel file (kernel_default.cpp, and
+   on x86-64 kernel_avx2.cpp and kernel_avx512.cpp), each building it for its instruction set
+   (everything here has internal linkage, so the copies never mix). */
 #ifndef DSN_TILE_RENDER_H
 #define DSN_TILE_RENDER_H
 
-/* The strip path (x86 SSE2, AVX2 or AVX-512) keeps about 64 KB on the stack (two padded copies of the texton,
-   the impulse list and the strip entries); elsewhere the 32-bit path keeps a tile call's stack under 1 KB,
-   which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to take the 32-bit path
-   on x86 too. */
-#if !defined(__SSE2__)
+/* The strip path (x86: SSE2, AVX2 or AVX-512, simd.h) keeps tens of kilobytes on the stack (two padded
+   copies of the texton, the impulse list and the strip entries); elsewhere the 32-bit path keeps a tile
+   call's stack small, which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to
+   take the 32-bit path on x86 too. */
+#include "simd.h"
+#if !DSN_SIMD
 #undef DSN_TILE_BLOCKS
 #define DSN_TILE_BLOCKS 0
 #elif !defined(DSN_TILE_BLOCKS)
 #define DSN_TILE_BLOCKS 1
 #endif
 
+#include "normalize_fixed.h"
 #include "tile_walk.h"
-
 #if DSN_TILE_BLOCKS
-namespace {
-/* Output stores of the strip path, typed (declared before its templates use them). */
-inline void store_value(int32_t *out, int32_t value) { *out = value; }
-inline void store_value(float *out, int32_t value) { *out = dsn_fixed_to_float(value); }
-inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(value); }
-} // namespace
-
 #include "tile_normalize.h"
 #endif
 
@@ -54,7 +49,7 @@ typedef struct strip_setup {
 } strip_setup;
 
 /* The second copy of the texton is built only when it fits and the tile is large enough to pay for it
-   (it saves about 0.25 ns per pixel and costs a microsecond). */
+   (it saves a little on every pixel and costs a fixed amount per tile). */
 void make_strip_setup(const dsn_noise_state *noise, uint64_t pixels, uint32_t value_bytes,
                       strip_setup *setup) {
     const uint32_t copies = strip_texton_copies(&noise->asset) == 2 && pixels >= 4096 ? 2u : 1u;
@@ -103,10 +98,10 @@ void render_rectangle_32(const dsn_noise_state *noise, const tile_run *rectangle
 /* One row of a rectangle from its strips' sums (3 vectors per strip) into `out`, the row's first pixel. */
 template <uint32_t Channels, typename Value>
 void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
-                   strip_vector (*sums)[3 * strip_rows], uint32_t row, uint32_t width, Value *out) {
+                   simd_vector (*sums)[3 * strip_rows], uint32_t row, uint32_t width, Value *out) {
     for (uint32_t s = 0; s * lane < width; s++) {
         const uint32_t pixels = width - s * lane < lane ? width - s * lane : lane;
-        const strip_vector *strip = sums[s] + 3 * row;
+        const simd_vector *strip = sums[s] + 3 * row;
         if (setup->split_ok)
             normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels, setup->stream);
         else
@@ -133,7 +128,7 @@ void render_rectangle(const dsn_noise_state *noise, const strip_setup *setup, co
     for (uint32_t y = 0; y < walk_y->length; y += strip_rows) {
         /* Entries active on rows y .. y + strip_rows - 1: keys y .. y + strip_rows - 2 + height. */
         const uint32_t last_key_end = y + strip_rows - 1 + texton->height;
-        strip_vector sums[strip_count][3 * strip_rows];
+        simd_vector sums[strip_count][3 * strip_rows];
         for (uint32_t s = 0; s * lane < walk_x->length; s++) {
             const uint32_t first = entries.key_start[s][y], end = entries.key_start[s][last_key_end];
             add_strip_rows<Channels>(row_zero + y * texton->stride, entries.base + first, end - first,

@@ -13,41 +13,17 @@
 #ifndef DSN_TILE_STRIPS_H
 #define DSN_TILE_STRIPS_H
 
-#include "noise_internal.h"
-
-#if defined(__AVX512BW__) && defined(__GNUC__) && !defined(__clang__)
-/* GCC 12's AVX-512 intrinsics start some results from a deliberately undefined vector and then warn
-   -Wmaybe-uninitialized on their own lines (GCC bug 105593, fixed in GCC 13). */
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <immintrin.h>
-#pragma GCC diagnostic pop
-#elif defined(__AVX2__) || defined(__AVX512BW__)
-#include <immintrin.h>
-#else
-#include <emmintrin.h>
-#endif
+#include "noise_state.h"
+#include "simd.h"
 
 namespace {
 
-/* Pixels per strip (16-bit sums per vector); the texton's values as the strips read them; rows summed at
+/* Pixels per strip (16-bit sums per vector); the texton's values as the strips read them (simd_texel:
+   the AVX-512 copy reads the texton's bytes as they are, the others keep it in 16 bits); rows summed at
    once (sharing the loop over entries; strip_rows - 1 rows of zeros pad the texton above and below, for
-   the entries active on only some of them). AVX-512 reads the texton's bytes as they are and widens them
-   as it loads (32 bytes, half a cache line, give a whole vector of sums: a 64-byte load of 16-bit values
-   would cross a cache line almost always); SSE2 and AVX2 keep the texton in 16 bits. */
-#if defined(__AVX512BW__)
-typedef __m512i strip_vector;
-typedef uint8_t strip_texel;
-const uint32_t lane = 32, strip_rows = 2;
-#elif defined(__AVX2__)
-typedef __m256i strip_vector;
-typedef uint16_t strip_texel;
-const uint32_t lane = 16, strip_rows = 2;
-#else
-typedef __m128i strip_vector;
-typedef uint16_t strip_texel;
-const uint32_t lane = 8, strip_rows = 2;
-#endif
+   the entries active on only some of them). */
+typedef simd_texel strip_texel;
+const uint32_t lane = simd_int16_count, strip_rows = 2;
 /* Texels per 64-byte cache line. */
 const uint32_t line_texels = 64 / sizeof(strip_texel);
 const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
@@ -286,45 +262,24 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, ui
     }
 }
 
-#if defined(__AVX512BW__)
-inline strip_vector load_strip(const uint8_t *src) {
-    return _mm512_cvtepi8_epi16(
-        _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src))));
-}
-inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm512_add_epi16(a, b); }
-inline strip_vector zero_strip() { return _mm512_setzero_si512(); }
-#elif defined(__AVX2__)
-inline strip_vector load_strip(const uint16_t *src) {
-    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src)));
-}
-inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm256_add_epi16(a, b); }
-inline strip_vector zero_strip() { return _mm256_setzero_si256(); }
-#else
-inline strip_vector load_strip(const uint16_t *src) {
-    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src)));
-}
-inline strip_vector add_16(strip_vector a, strip_vector b) { return _mm_add_epi16(a, b); }
-inline strip_vector zero_strip() { return _mm_setzero_si128(); }
-#endif
-
 /* strip_rows rows of one strip: sums[3 r + c] = the sum over `count` entries of the texton row each
    puts on row r, channel c, read from `row` (texton row 0 offset by the first rectangle row). An entry
    active on only some of the rows reads zero padding rows on the others. Out of line: inlined into the
    row loop, the compiler runs out of registers and reloads in the inner loop. */
 template <uint32_t Channels>
 __attribute__((noinline)) void add_strip_rows(const strip_texel *row, const int32_t *base, uint32_t count,
-                                              uint32_t plane, uint32_t stride, strip_vector *sums) {
-    strip_vector sum[strip_rows][3];
+                                              uint32_t plane, uint32_t stride, simd_vector *sums) {
+    simd_vector sum[strip_rows][3];
 #pragma GCC unroll 4
-    for (uint32_t r = 0; r < strip_rows; r++) sum[r][0] = sum[r][1] = sum[r][2] = zero_strip();
+    for (uint32_t r = 0; r < strip_rows; r++) sum[r][0] = sum[r][1] = sum[r][2] = zero_vector();
     for (uint32_t i = 0; i < count; i++) {
         const strip_texel *texels = row + base[i];
 #pragma GCC unroll 4
         for (uint32_t r = 0; r < strip_rows; r++) {
-            sum[r][0] = add_16(sum[r][0], load_strip(texels + r * stride));
+            sum[r][0] = add_16(sum[r][0], load_texels(texels + r * stride));
             if (Channels == 3) {
-                sum[r][1] = add_16(sum[r][1], load_strip(texels + r * stride + plane));
-                sum[r][2] = add_16(sum[r][2], load_strip(texels + r * stride + 2 * plane));
+                sum[r][1] = add_16(sum[r][1], load_texels(texels + r * stride + plane));
+                sum[r][2] = add_16(sum[r][2], load_texels(texels + r * stride + 2 * plane));
             }
         }
     }

@@ -1,10 +1,12 @@
 /* runtime/tile_walk.h - the impulses that reach a rectangle of a tile (the walk over the cells of
-   noise_internal.h, the only source of impulses), and the 32-bit splat of their texton into a
-   tile-sized accumulator: the general path, for every texton and density. Internal to tile.cpp. */
+   cell_walk.h, the only source of impulses), and the 32-bit splat of their texton into a
+   tile-sized accumulator: the general path, for every texton and density. Internal to tile_render.h. */
 #ifndef DSN_TILE_WALK_H
 #define DSN_TILE_WALK_H
 
-#include "noise_internal.h"
+#include "cell_walk.h"
+#include "impulse_position.h"
+#include "poisson_count.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>

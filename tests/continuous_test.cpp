@@ -10,7 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "../runtime/noise_internal.h"
+#include "../runtime/impulse_position.h"
+#include "../runtime/poisson_count.h"
 #include "fixtures/continuous_fixtures.h"
 
 using namespace continuous_fixtures;

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "../runtime/noise_internal.h"
+#include "../runtime/poisson_count.h"
 #include "fixtures/test_assets.h"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "../runtime/noise_internal.h"
+#include "../runtime/poisson_count.h"
 #include "fixtures/fnv1a.h"
 #include "fixtures/test_assets.h"
 

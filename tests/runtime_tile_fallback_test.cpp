@@ -1,5 +1,5 @@
 // runtime_tile_fallback_test.cpp - the strip path's safety net, white box: runtime/tile_render.h is
-// compiled into this test (its SSE2 copy) and given rectangles larger than choose_rectangle would pick,
+// compiled into this test with the test's flags (the default kernel's instruction set: SSE2 on x86) and given rectangles larger than choose_rectangle would pick,
 // so that rectangles overflow the impulse list or put more than 255 impulses on a column (where 16-bit
 // sums could wrap). Those must take the 32-bit path, their neighbours not, and the tile must still
 // equal per-point evaluation bit for bit.
@@ -90,5 +90,10 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
         CHECK(differences == 0);
         CHECK(chosen_differences == 0);
     }
+}
+#else
+TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take the 32-bit path, same bits") {
+    MESSAGE("this target has no SSE2: tiles take the 32-bit path only, there is no strip path to fall back "
+            "from (runtime/simd.h)");
 }
 #endif

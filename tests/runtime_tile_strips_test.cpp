@@ -2,14 +2,14 @@
 // per-strip output conversion; runtime/tile_strips.h) against per-point evaluation, on windows spanning
 // many rectangles: every output type, origins at the 32-bit wrap, periods, densities and texton sizes
 // (down to those that take the 32-bit path), and textons at full scale (the largest sums the 16-bit path
-// accepts). Every check runs each copy of the tile code this CPU can run (on x86-64: the SSE2 copy, with
-// AVX2 the AVX2 copy, and with AVX-512 the AVX-512 copy; runtime/tile_dispatch.h).
+// accepts). Every check runs each kernel this CPU can run (on x86-64: the default SSE2 kernel, with AVX2
+// the AVX2 kernel, and with AVX-512 the AVX-512 kernel; runtime/kernels.h).
 #include <doctest/doctest.h>
 
 #include <cstring>
 #include <vector>
 
-#include "../runtime/tile_dispatch.h"
+#include "../runtime/kernels.h"
 #include "fixtures/test_assets.h"
 
 namespace {
@@ -24,7 +24,7 @@ struct Window {
 int32_t coordinate(int32_t origin, uint32_t offset) { return int32_t(uint32_t(origin) + offset); }
 
 // Values of the three tile functions that differ from per-point evaluation (fixed, float bits, u8), with
-// the tile code the noise's tile_kernel names.
+// the kernel the noise's tile_kernel names.
 size_t kernel_differences(const dsn_noise &noise, const Window &w) {
     const uint32_t channels = dsn_noise_channels(&noise);
     const size_t values = size_t(w.width) * w.height * channels;
@@ -57,10 +57,10 @@ size_t kernel_differences(const dsn_noise &noise, const Window &w) {
     return count;
 }
 
-// kernel_differences summed over every copy of the tile code this CPU runs.
+// kernel_differences summed over every kernel this CPU runs.
 size_t differences(const dsn_noise &noise, const Window &w) {
     size_t count = 0;
-    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= dsn_state(&noise)->tile_kernel; kernel++) {
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&noise)->tile_kernel; kernel++) {
         dsn_noise copy = noise;
         dsn_state(&copy)->tile_kernel = kernel;
         CAPTURE(kernel);
@@ -71,21 +71,45 @@ size_t differences(const dsn_noise &noise, const Window &w) {
 
 } // namespace
 
-TEST_CASE("init records the copy of the tile code this CPU runs") {
+TEST_CASE("the kernel table: row i is kernel i, with its entry points; every row but the default has a CPU "
+          "check") {
+    REQUIRE(dsn_internal_kernel_count >= 1);
+    for (uint32_t i = 0; i < dsn_internal_kernel_count; i++) {
+        const dsn_kernel &kernel = dsn_internal_kernels[i];
+        CAPTURE(i);
+        CHECK(uint32_t(kernel.id) == i);
+        CHECK(kernel.name != nullptr);
+        REQUIRE(kernel.entries != nullptr);
+        const bool has_lattice_tile = kernel.entries->lattice_tile != nullptr;
+        CHECK(has_lattice_tile);
+        const bool has_cpu_check = kernel.cpu_runs != nullptr;
+        CHECK(has_cpu_check == (i != 0));
+    }
+    // An id outside the table (a dsn_noise not set by init) falls back to the default kernel.
+    CHECK(dsn_kernel_entries_of(dsn_internal_kernel_count) == dsn_internal_kernels[0].entries);
+}
+
+TEST_CASE("init records the widest kernel this CPU runs") {
     auto fields = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 3);
     LoadedNoise loaded(fields, dsn_test::make_config(1));
-    uint32_t expected = DSN_TILE_KERNEL_DEFAULT;
-#if defined(__x86_64__) && !defined(__AVX2__)
-    // The Makefile builds the AVX2 and AVX-512 copies on every x86-64 host (unless everything is built
-    // for AVX2): the widest must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs it.
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw"))
-        expected = DSN_TILE_KERNEL_AVX512;
-    else if (__builtin_cpu_supports("avx2"))
-        expected = DSN_TILE_KERNEL_AVX2;
-    if (expected != DSN_TILE_KERNEL_AVX512)
-        MESSAGE("this CPU has no AVX-512 (F and BW)" << (expected == DSN_TILE_KERNEL_AVX2 ? "" : " nor AVX2")
-                                                     << ": the tile code for it is not tested");
+    uint32_t expected = DSN_KERNEL_DEFAULT;
+#if defined(__x86_64__)
+    if (dsn_internal_kernel_count > 1) {
+        // The Makefile builds the AVX2 and AVX-512 kernels on every x86-64 host (DSN_X86_DISPATCH): the
+        // widest must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs it.
+        REQUIRE(dsn_internal_kernel_count == 3);
+        __builtin_cpu_init();
+        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw"))
+            expected = DSN_KERNEL_AVX512;
+        else if (__builtin_cpu_supports("avx2"))
+            expected = DSN_KERNEL_AVX2;
+        if (expected != DSN_KERNEL_AVX512)
+            MESSAGE("this CPU has no AVX-512 (F and BW)"
+                    << (expected == DSN_KERNEL_AVX2 ? "" : " nor AVX2") << ": the kernel for it is not tested");
+    } else {
+        MESSAGE("the runtime is built without the x86 kernels (DSN_X86_DISPATCH): only the default one is "
+                "tested");
+    }
 #endif
     CHECK(dsn_state(&loaded.noise)->tile_kernel == expected);
 }
@@ -147,7 +171,7 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
     std::vector<int32_t> whole(size_t(side) * side * 3), bands(whole.size());
     std::vector<float> whole_float(whole.size()), bands_float(whole.size());
     std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&loaded.noise, side, side));
-    for (uint32_t kernel = DSN_TILE_KERNEL_DEFAULT; kernel <= dsn_state(&loaded.noise)->tile_kernel;
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&loaded.noise)->tile_kernel;
          kernel++) {
         dsn_noise noise = loaded.noise;
         dsn_state(&noise)->tile_kernel = kernel;

@@ -18,7 +18,8 @@
 #include <kiss_fftnd.h>
 #include <stb_perlin.h>
 
-#include "../../runtime/noise_internal.h"
+#include "../../runtime/cell_walk.h"
+#include "../../runtime/poisson_count.h"
 #include "../fixtures/test_assets.h"
 #include "bench_timing.h"
 

@@ -16,8 +16,8 @@ FUZZ_LIBRARY_OBJECTS := $(FUZZ_LIBRARY_SOURCES:%.cpp=$(BUILD)/fuzz/obj/%.o)
 $(BUILD)/fuzz/obj/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_FLAGS) $(RUNTIME_DISPATCH_FLAGS) -fsanitize=fuzzer-no-link $(RUNTIME_FILE_FLAGS) -c $< -o $@
-$(BUILD)/fuzz/obj/runtime/tile_avx2.o: RUNTIME_FILE_FLAGS = $(TILE_AVX2_FLAGS)
-$(BUILD)/fuzz/obj/runtime/tile_avx512.o: RUNTIME_FILE_FLAGS = $(TILE_AVX512_FLAGS)
+$(BUILD)/fuzz/obj/runtime/kernel_avx2.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX2_FLAGS)
+$(BUILD)/fuzz/obj/runtime/kernel_avx512.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX512_FLAGS)
 
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.cpp $(FUZZ_LIBRARY_OBJECTS)
 	@mkdir -p $(@D)

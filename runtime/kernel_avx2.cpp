@@ -1,0 +1,14 @@
+/* runtime/kernel_avx2.cpp - the AVX2 kernel: the evaluation code built for AVX2 (the Makefile compiles
+   this file with -mavx2 on x86-64), 16 pixels per strip. Runs only where init found AVX2
+   (kernel_table.cpp); its bits are those of every other kernel. Empty unless DSN_KERNEL_X86_COPIES. */
+#include "kernels.h"
+
+#if DSN_KERNEL_X86_COPIES
+#if !defined(__AVX2__)
+#error "runtime/kernel_avx2.cpp must be compiled with -mavx2 when DSN_X86_DISPATCH is set"
+#endif
+
+#include "tile_render.h"
+
+extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile};
+#endif

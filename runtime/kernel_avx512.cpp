@@ -1,0 +1,15 @@
+/* runtime/kernel_avx512.cpp - the AVX-512 kernel: the evaluation code built for AVX-512 F and BW (the
+   Makefile compiles this file with -mavx512f -mavx512bw on x86-64), 32 pixels per strip, summed from the
+   texton's bytes widened as they are loaded. Runs only where init found AVX-512 (kernel_table.cpp); its
+   bits are those of every other kernel. Empty unless DSN_KERNEL_X86_COPIES. */
+#include "kernels.h"
+
+#if DSN_KERNEL_X86_COPIES
+#if !defined(__AVX512BW__) || !defined(__AVX512F__)
+#error "runtime/kernel_avx512.cpp must be compiled with -mavx512f -mavx512bw when DSN_X86_DISPATCH is set"
+#endif
+
+#include "tile_render.h"
+
+extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile};
+#endif

@@ -1,0 +1,6 @@
+/* runtime/kernel_default.cpp - the default kernel: the evaluation code built with the runtime's own
+   flags (on x86 the widest vectors those flags allow, simd.h), the one every build has. */
+#include "kernels.h"
+#include "tile_render.h"
+
+extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile};

@@ -1,0 +1,64 @@
+/* runtime/kernel_table.cpp - the table of kernels (kernels.h) and the choice init makes from it: the
+   widest kernel whose CPU check passes. The checks read CPUID, so this file is built with the runtime's
+   own flags: nothing here may need the instruction sets it looks for. */
+#include "kernels.h"
+
+/* Each kernel file defines its entries. */
+extern const dsn_kernel_entries dsn_internal_entries_default;
+#if DSN_KERNEL_X86_COPIES
+extern const dsn_kernel_entries dsn_internal_entries_avx2;
+extern const dsn_kernel_entries dsn_internal_entries_avx512;
+
+#include <cpuid.h>
+
+namespace {
+
+/* The x86 CPU checks. A vector register file is usable only when the CPU has the instructions and the
+   OS saves the registers on a context switch: CPUID leaf 1 says AVX and OSXSAVE (ECX bits 28 and 27),
+   then XCR0 says which register states the OS saves. */
+int os_saves(uint32_t xcr0_bits) {
+    unsigned int eax = 0, ebx = 0, ecx = 0, edx = 0;
+    const unsigned int osxsave_and_avx = (1u << 27) | (1u << 28);
+    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx) || (ecx & osxsave_and_avx) != osxsave_and_avx) return 0;
+    uint32_t xcr0 = 0, xcr0_high = 0;
+    __asm__("xgetbv" : "=a"(xcr0), "=d"(xcr0_high) : "c"(0));
+    return (xcr0 & xcr0_bits) == xcr0_bits;
+}
+
+/* CPUID leaf 7 (subleaf 0) EBX has all of `bits`. */
+int leaf_7_has(uint32_t bits) {
+    unsigned int eax = 0, ebx = 0, ecx = 0, edx = 0;
+    if (__get_cpuid_max(0, 0) < 7) return 0;
+    __cpuid_count(7, 0, eax, ebx, ecx, edx);
+    return (ebx & bits) == bits;
+}
+
+/* AVX2: EBX bit 5, with the XMM and YMM state saved (XCR0 bits 1 and 2). */
+int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && os_saves(0x6u); }
+
+/* AVX-512 F and BW: EBX bits 16 and 30, with the opmask and ZMM state saved too (XCR0 bits 5 to 7). AVX2
+   as well, which every such CPU has: the table's rows run those before them. */
+int cpu_runs_avx512(void) {
+    return leaf_7_has((1u << 5) | (1u << 16) | (1u << 30)) && os_saves(0xE6u);
+}
+
+} // namespace
+#endif
+
+/* Row i has id i, from the narrowest instruction set to the widest. */
+extern const dsn_kernel dsn_internal_kernels[] = {
+    {DSN_KERNEL_DEFAULT, "default", 0, &dsn_internal_entries_default},
+#if DSN_KERNEL_X86_COPIES
+    {DSN_KERNEL_AVX2, "AVX2", cpu_runs_avx2, &dsn_internal_entries_avx2},
+    {DSN_KERNEL_AVX512, "AVX-512", cpu_runs_avx512, &dsn_internal_entries_avx512},
+#endif
+};
+extern const uint32_t dsn_internal_kernel_count = sizeof dsn_internal_kernels / sizeof dsn_internal_kernels[0];
+
+uint32_t dsn_internal_choose_kernel(void) {
+    for (uint32_t id = dsn_internal_kernel_count - 1u; id > 0; id--) {
+        const dsn_kernel *kernel = &dsn_internal_kernels[id];
+        if (kernel->cpu_runs == 0 || kernel->cpu_runs()) return id;
+    }
+    return DSN_KERNEL_DEFAULT;
+}

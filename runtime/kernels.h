@@ -1,0 +1,64 @@
+/* runtime/kernels.h - the kernels: the copies of the evaluation code built for different instruction
+   sets, each a struct of entry points, and the table init chooses one from (kernel_table.cpp). The bits
+   are the same whichever runs. Internal to libdsn; not installed.
+
+   Every build has the default kernel (kernel_default.cpp), built with the runtime's own flags. On
+   x86-64 the Makefile also builds kernel_avx2.cpp with -mavx2 and kernel_avx512.cpp with -mavx512f
+   -mavx512bw and defines DSN_X86_DISPATCH=1 for the whole runtime: init then records the widest kernel
+   this CPU (and its OS) runs. Built any other way (other CPUs, other build systems, the small build)
+   there is the default kernel alone and no CPU check. Adding a kernel is one file defining its entries
+   (dsn_internal_entries_NAME) and one row of the table; adding a kind of kernel is one member of dsn_kernel_entries. */
+#ifndef DSN_KERNELS_H
+#define DSN_KERNELS_H
+
+#include <stdint.h>
+
+#include "normalize_fixed.h"
+#include "noise_state.h"
+
+/* DSN_KERNEL_X86_COPIES: kernel_avx2.cpp and kernel_avx512.cpp hold their kernels and the table
+   offers them. */
+#if defined(DSN_X86_DISPATCH) && DSN_X86_DISPATCH && defined(__x86_64__) && !DSN_SMALL_CODE
+#define DSN_KERNEL_X86_COPIES 1
+#else
+#define DSN_KERNEL_X86_COPIES 0
+#endif
+
+/* A whole lattice tile (tile_render.h's render_tile): `width` x `height` values of `kind` from (x0, y0)
+   into out, with the 32-bit accumulator of its fallback path (out itself for fixed output). */
+typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
+                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
+
+/* What one kernel computes: one member per kind of kernel. */
+typedef struct dsn_kernel_entries {
+    dsn_lattice_tile_entry *lattice_tile;
+} dsn_kernel_entries;
+
+/* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the
+   narrowest to the widest instruction set, each CPU that runs a row running those before it too. */
+typedef enum dsn_kernel_id {
+    DSN_KERNEL_DEFAULT, /* the copy built with the runtime's own flags */
+    DSN_KERNEL_AVX2,
+    DSN_KERNEL_AVX512 /* AVX-512 F and BW */
+} dsn_kernel_id;
+
+typedef struct dsn_kernel {
+    dsn_kernel_id id;
+    const char *name;
+    int (*cpu_runs)(void); /* whether this CPU and its OS run the kernel; 0: every CPU the build targets */
+    const dsn_kernel_entries *entries;
+} dsn_kernel;
+
+/* The table: dsn_internal_kernel_count rows (1 without the x86 copies). */
+extern const dsn_kernel dsn_internal_kernels[];
+extern const uint32_t dsn_internal_kernel_count;
+
+/* The id of the widest kernel this CPU runs (init records it in tile_kernel). */
+uint32_t dsn_internal_choose_kernel(void);
+
+/* The entries of kernel `id` (the default kernel's for an id outside the table). */
+static inline const dsn_kernel_entries *dsn_kernel_entries_of(uint32_t id) {
+    return dsn_internal_kernels[id < dsn_internal_kernel_count ? id : 0u].entries;
+}
+
+#endif /* DSN_KERNELS_H */

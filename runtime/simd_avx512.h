@@ -1,0 +1,150 @@
+/* runtime/simd_avx512.h - the vector operations of the strip path for AVX-512 F and BW (512-bit vectors:
+   32 pixels per strip). The same names as simd_sse2.h and simd_avx2.h; simd.h picks one. */
+#ifndef DSN_SIMD_AVX512_H
+#define DSN_SIMD_AVX512_H
+
+#if defined(__GNUC__) && !defined(__clang__)
+/* GCC 12's AVX-512 intrinsics start some results from a deliberately undefined vector and then warn
+   -Wmaybe-uninitialized on their own lines (GCC bug 105593, fixed in GCC 13). */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#else
+#include <immintrin.h>
+#endif
+
+#include "simd_128.h"
+
+namespace {
+
+typedef __m512i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
+typedef __m512 simd_floats;
+/* The texton as the sums read it: its bytes as they are, widened as they are loaded (32 bytes, half a
+   cache line, give a whole vector of sums: a 64-byte load of 16-bit values would cross a cache line
+   almost always). */
+typedef uint8_t simd_texel;
+const uint32_t simd_int16_count = 32;
+
+/* ---- Sums ---- */
+inline simd_vector load_texels(const simd_texel *src) {
+    return _mm512_cvtepi8_epi16(_mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src))));
+}
+inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm512_add_epi16(a, b); }
+inline simd_vector zero_vector() { return _mm512_setzero_si512(); }
+inline void store_16(uint16_t *dst, simd_vector value) { _mm512_storeu_si512(dst, value); }
+
+/* ---- Normalization, per 128-bit lane (AVX-512 unpacks and shuffles each lane on its own) ---- */
+inline simd_vector broadcast_lanes(__m128i value) { return _mm512_broadcast_i32x4(value); }
+inline simd_vector madd_16(simd_vector a, simd_vector b) { return _mm512_madd_epi16(a, b); }
+inline simd_vector add_32(simd_vector a, simd_vector b) { return _mm512_add_epi32(a, b); }
+inline simd_vector shift_right_15(simd_vector a) { return _mm512_srai_epi32(a, 15); }
+inline simd_vector shift_right(simd_vector a, __m128i count) { return _mm512_sra_epi32(a, count); }
+inline simd_vector unpack_low_16(simd_vector a, simd_vector b) { return _mm512_unpacklo_epi16(a, b); }
+inline simd_vector unpack_high_16(simd_vector a, simd_vector b) { return _mm512_unpackhi_epi16(a, b); }
+inline simd_vector unpack_low_32(simd_vector a, simd_vector b) { return _mm512_unpacklo_epi32(a, b); }
+inline simd_vector unpack_high_32(simd_vector a, simd_vector b) { return _mm512_unpackhi_epi32(a, b); }
+inline simd_vector set_16(int16_t value) { return _mm512_set1_epi16(value); }
+inline simd_floats as_floats(simd_vector a) { return _mm512_castsi512_ps(a); }
+inline simd_vector as_integers(simd_floats a) { return _mm512_castps_si512(a); }
+template <int Order>
+inline simd_floats shuffle(simd_floats a, simd_floats b) {
+    return _mm512_shuffle_ps(a, b, Order);
+}
+
+/* ---- Output ---- */
+/* 128-bit lane `part` of a vector: pixels 8 part .. 8 part + 7 of a normalized strip. */
+inline __m128i lane_128(simd_vector v, uint32_t part) {
+    switch (part) {
+    case 0:
+        return _mm512_castsi512_si128(v);
+    case 1:
+        return _mm512_extracti32x4_epi32(v, 1);
+    case 2:
+        return _mm512_extracti32x4_epi32(v, 2);
+    default:
+        return _mm512_extracti32x4_epi32(v, 3);
+    }
+}
+
+/* A whole strip's normalized vectors (4 values per 128-bit lane, lane j holding pixels 8 j .. 8 j + 7,
+   see tile_store.h) in output order: 16 values per vector. */
+template <uint32_t Channels>
+inline void output_order(const simd_vector *values, simd_vector *ordered) {
+    if (Channels == 3) {
+        /* Lanes 0 and 2, and 1 and 3, of each pair of vectors: then lane j of all six is in two. */
+        __m512i even[3], odd[3];
+        for (uint32_t i = 0; i < 3; i++) {
+            even[i] = _mm512_shuffle_i32x4(values[2 * i], values[2 * i + 1], _MM_SHUFFLE(2, 0, 2, 0));
+            odd[i] = _mm512_shuffle_i32x4(values[2 * i], values[2 * i + 1], _MM_SHUFFLE(3, 1, 3, 1));
+        }
+        ordered[0] = _mm512_shuffle_i32x4(even[0], even[1], _MM_SHUFFLE(2, 0, 2, 0)); /* lane 0 of v0 .. v3 */
+        ordered[1] = _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(2, 0, 2, 0));  /* 0 of v4 v5, 1 of v0 v1 */
+        ordered[2] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(2, 0, 2, 0));   /* lane 1 of v2 .. v5 */
+        ordered[3] = _mm512_shuffle_i32x4(even[0], even[1], _MM_SHUFFLE(3, 1, 3, 1)); /* lane 2 of v0 .. v3 */
+        ordered[4] = _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(3, 1, 3, 1));  /* 2 of v4 v5, 3 of v0 v1 */
+        ordered[5] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(3, 1, 3, 1));   /* lane 3 of v2 .. v5 */
+    } else {
+        const __m512i first = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
+        const __m512i second = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+        ordered[0] = _mm512_permutex2var_epi64(values[0], first, values[1]);
+        ordered[1] = _mm512_permutex2var_epi64(values[0], second, values[1]);
+    }
+}
+inline simd_floats to_output_floats(simd_vector fixed) {
+    return _mm512_mul_ps(_mm512_cvtepi32_ps(fixed), _mm512_set1_ps(1.0f / 65536.0f));
+}
+/* 16 output values. `stream_aligned` (out is then 16-byte aligned): past the caches (put_4), in one
+   store where out is 64-byte aligned, else in four. */
+inline void put_vector(int32_t *out, simd_vector values, int stream_aligned) {
+    if (stream_aligned && (reinterpret_cast<uintptr_t>(out) & 63u) == 0) {
+        _mm512_stream_si512(static_cast<__m512i *>(static_cast<void *>(out)), values);
+    } else if (stream_aligned) {
+        __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
+        _mm_stream_si128(destination, _mm512_castsi512_si128(values));
+        _mm_stream_si128(destination + 1, _mm512_extracti32x4_epi32(values, 1));
+        _mm_stream_si128(destination + 2, _mm512_extracti32x4_epi32(values, 2));
+        _mm_stream_si128(destination + 3, _mm512_extracti32x4_epi32(values, 3));
+    } else {
+        _mm512_storeu_si512(out, values);
+    }
+}
+inline void put_vector(float *out, simd_floats values, int stream_aligned) {
+    put_vector(static_cast<int32_t *>(static_cast<void *>(out)), _mm512_castps_si512(values), stream_aligned);
+}
+
+/* to_u8_range (simd_128.h) on 16 values. */
+inline __m512i to_u8_range(__m512i value) {
+    value = _mm512_min_epi32(_mm512_max_epi32(value, _mm512_setzero_si512()), _mm512_set1_epi32(DSN_ONE));
+    return _mm512_srli_epi32(
+        _mm512_add_epi32(_mm512_sub_epi32(_mm512_slli_epi32(value, 8), value), _mm512_set1_epi32(32768)), 16);
+}
+
+/* 8-bit output of a whole strip (32 pixels), packed like the 128-bit path per lane: 16 + 8 bytes (RGB)
+   or 8 bytes (grey) of each lane, brought together by one or two dword permutes. Returns 1. */
+template <uint32_t Channels>
+inline int store_whole_strip_u8(const simd_vector *values, uint8_t *out) {
+    if (Channels == 3) {
+        const __m512i first =
+            _mm512_packus_epi16(_mm512_packs_epi32(to_u8_range(values[0]), to_u8_range(values[1])),
+                                _mm512_packs_epi32(to_u8_range(values[2]), to_u8_range(values[3])));
+        const __m512i words = _mm512_packs_epi32(to_u8_range(values[4]), to_u8_range(values[5]));
+        const __m512i second = _mm512_packus_epi16(words, words);
+        const __m512i low = _mm512_setr_epi32(0, 1, 2, 3, 16, 17, 4, 5, 6, 7, 20, 21, 8, 9, 10, 11);
+        const __m512i high = _mm512_setr_epi32(24, 25, 12, 13, 14, 15, 28, 29, 0, 0, 0, 0, 0, 0, 0, 0);
+        _mm512_storeu_si512(out, _mm512_permutex2var_epi32(first, low, second));
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out + 64)),
+                            _mm512_castsi512_si256(_mm512_permutex2var_epi32(first, high, second)));
+    } else {
+        const __m512i words = _mm512_packs_epi32(to_u8_range(values[0]), to_u8_range(values[1]));
+        const __m512i bytes = _mm512_packus_epi16(words, words);
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)),
+                            _mm512_castsi512_si256(
+                                _mm512_permutexvar_epi64(_mm512_setr_epi64(0, 2, 4, 6, 0, 0, 0, 0), bytes)));
+    }
+    return 1;
+}
+
+} // namespace
+
+#endif /* DSN_SIMD_AVX512_H */
