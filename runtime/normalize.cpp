@@ -9,7 +9,7 @@
 
 namespace {
 
-const uint32_t gain_limit_bits = 29; /* |gain| < 2^29 keeps the per-pixel sum below 2^63 (normalize_fixed.h) */
+const uint32_t gain_limit_bits = 29; /* |gain| < 2^29 keeps a pixel's sum below 2^63 (normalize_fixed.h) */
 
 uint64_t integer_sqrt(uint64_t value) {
     uint64_t root = 0, bit = uint64_t(1) << 62;

@@ -3,6 +3,8 @@
 #ifndef DSN_SHARED_INLINE_H
 #define DSN_SHARED_INLINE_H
 
+#include "dsn/dsn.h" /* DSN_SMALL_CODE */
+
 /* The larger helpers are inlined for speed; the small build (DSN_SMALL_CODE, dsn.h) keeps one
    out-of-line copy of each instead (C++ inline functions: every link keeps a single copy). */
 #if DSN_SMALL_CODE && defined(__clang__)
