@@ -38,9 +38,7 @@ int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && os_saves(0x6u); }
 
 /* AVX-512 F and BW: EBX bits 16 and 30, with the opmask and ZMM state saved too (XCR0 bits 5 to 7). AVX2
    as well, which every such CPU has: the table's rows run those before them. */
-int cpu_runs_avx512(void) {
-    return leaf_7_has((1u << 5) | (1u << 16) | (1u << 30)) && os_saves(0xE6u);
-}
+int cpu_runs_avx512(void) { return leaf_7_has((1u << 5) | (1u << 16) | (1u << 30)) && os_saves(0xE6u); }
 
 } // namespace
 #endif
@@ -53,7 +51,8 @@ extern const dsn_kernel dsn_internal_kernels[] = {
     {DSN_KERNEL_AVX512, "AVX-512", cpu_runs_avx512, &dsn_internal_entries_avx512},
 #endif
 };
-extern const uint32_t dsn_internal_kernel_count = sizeof dsn_internal_kernels / sizeof dsn_internal_kernels[0];
+extern const uint32_t dsn_internal_kernel_count =
+    sizeof dsn_internal_kernels / sizeof dsn_internal_kernels[0];
 
 uint32_t dsn_internal_choose_kernel(void) {
     for (uint32_t id = dsn_internal_kernel_count - 1u; id > 0; id--) {

@@ -7,14 +7,15 @@
    -mavx512bw and defines DSN_X86_DISPATCH=1 for the whole runtime: init then records the widest kernel
    this CPU (and its OS) runs. Built any other way (other CPUs, other build systems, the small build)
    there is the default kernel alone and no CPU check. Adding a kernel is one file defining its entries
-   (dsn_internal_entries_NAME) and one row of the table; adding a kind of kernel is one member of dsn_kernel_entries. */
+   (dsn_internal_entries_NAME, built with its flags by the Makefile) and one row of the table (with its
+   id below); adding a kind of kernel is one member of dsn_kernel_entries, filled by every kernel file. */
 #ifndef DSN_KERNELS_H
 #define DSN_KERNELS_H
 
 #include <stdint.h>
 
-#include "normalize_fixed.h"
 #include "noise_state.h"
+#include "normalize_fixed.h"
 
 /* DSN_KERNEL_X86_COPIES: kernel_avx2.cpp and kernel_avx512.cpp hold their kernels and the table
    offers them. */

@@ -1,7 +1,7 @@
 /* runtime/noise_init.cpp - dsn_config_defaults and dsn_noise_init: checks the configuration, chooses the
    cell size, then builds the Poisson table and the normalization (their own files). */
-#include "init_internal.h"
 #include "cell_hash.h"
+#include "init_internal.h"
 #include "kernels.h"
 #include "wide_arithmetic.h"
 

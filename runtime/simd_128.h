@@ -28,7 +28,9 @@ inline void put_4(float *out, __m128 values, int stream) {
 }
 
 /* float(value) * 2^-16: the conversion rounds once to nearest, like dsn_fixed_to_float. */
-inline __m128 to_float_4(__m128i fixed) { return _mm_mul_ps(_mm_cvtepi32_ps(fixed), _mm_set1_ps(1.0f / 65536.0f)); }
+inline __m128 to_float_4(__m128i fixed) {
+    return _mm_mul_ps(_mm_cvtepi32_ps(fixed), _mm_set1_ps(1.0f / 65536.0f));
+}
 
 /* dsn_fixed_to_u8 before packing: clamp to [0, 2^16], then (255 v + 2^15) >> 16. */
 inline __m128i to_u8_range(__m128i value) {

@@ -28,7 +28,8 @@ const uint32_t simd_int16_count = 32;
 
 /* ---- Sums ---- */
 inline simd_vector load_texels(const simd_texel *src) {
-    return _mm512_cvtepi8_epi16(_mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src))));
+    return _mm512_cvtepi8_epi16(
+        _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src))));
 }
 inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm512_add_epi16(a, b); }
 inline simd_vector zero_vector() { return _mm512_setzero_si512(); }
@@ -79,11 +80,13 @@ inline void output_order(const simd_vector *values, simd_vector *ordered) {
             odd[i] = _mm512_shuffle_i32x4(values[2 * i], values[2 * i + 1], _MM_SHUFFLE(3, 1, 3, 1));
         }
         ordered[0] = _mm512_shuffle_i32x4(even[0], even[1], _MM_SHUFFLE(2, 0, 2, 0)); /* lane 0 of v0 .. v3 */
-        ordered[1] = _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(2, 0, 2, 0));  /* 0 of v4 v5, 1 of v0 v1 */
+        ordered[1] =
+            _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(2, 0, 2, 0)); /* 0 of v4 v5, 1 of v0 v1 */
         ordered[2] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(2, 0, 2, 0));   /* lane 1 of v2 .. v5 */
         ordered[3] = _mm512_shuffle_i32x4(even[0], even[1], _MM_SHUFFLE(3, 1, 3, 1)); /* lane 2 of v0 .. v3 */
-        ordered[4] = _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(3, 1, 3, 1));  /* 2 of v4 v5, 3 of v0 v1 */
-        ordered[5] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(3, 1, 3, 1));   /* lane 3 of v2 .. v5 */
+        ordered[4] =
+            _mm512_shuffle_i32x4(even[2], odd[0], _MM_SHUFFLE(3, 1, 3, 1)); /* 2 of v4 v5, 3 of v0 v1 */
+        ordered[5] = _mm512_shuffle_i32x4(odd[1], odd[2], _MM_SHUFFLE(3, 1, 3, 1)); /* lane 3 of v2 .. v5 */
     } else {
         const __m512i first = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
         const __m512i second = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);

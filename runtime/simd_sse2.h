@@ -55,7 +55,9 @@ inline simd_floats to_output_floats(simd_vector fixed) { return to_float_4(fixed
 inline void put_vector(int32_t *out, simd_vector values, int stream_aligned) {
     put_4(out, values, stream_aligned);
 }
-inline void put_vector(float *out, simd_floats values, int stream_aligned) { put_4(out, values, stream_aligned); }
+inline void put_vector(float *out, simd_floats values, int stream_aligned) {
+    put_4(out, values, stream_aligned);
+}
 /* 8-bit output of a whole strip in one go: none wider than the 128-bit path (returns 0). */
 template <uint32_t Channels>
 inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {

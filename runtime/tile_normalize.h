@@ -101,8 +101,7 @@ void make_split_vectors(const split_normalization *split, uint32_t channels, spl
 }
 
 /* Output channel c of 4 pixels per 128-bit lane: `pair` holds (Q_0, Q_1) and `third` (Q_2, 1) per pixel. */
-inline simd_vector normalize_lanes(const split_vectors *v, uint32_t c, simd_vector pair,
-                                    simd_vector third) {
+inline simd_vector normalize_lanes(const split_vectors *v, uint32_t c, simd_vector pair, simd_vector third) {
     simd_vector a = add_32(madd_16(pair, v->high_pair[c]), madd_16(third, v->high_third[c]));
     simd_vector b = add_32(madd_16(pair, v->low_pair[c]), madd_16(third, v->low_third[c]));
     simd_vector x = add_32(add_32(v->p_m[c], a), shift_right_15(b));

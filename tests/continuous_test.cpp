@@ -23,7 +23,8 @@ const int64_t one = int64_t(1) << 32;
 // Brute force: the point's value from every impulse of every cell within a generous box (or, periodic,
 // of every cell of the period, with all the copies that can reach), with exact integer tent weights on
 // the point truncated to 16 fraction bits, then the normalization in long double. Independent of the
-// runtime's cell walk and offset arithmetic; shares only the impulse process (cell_hash.h, impulse_position.h).
+// runtime's cell walk and offset arithmetic; shares only the impulse process (cell_hash.h,
+// impulse_position.h).
 std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int64_t y) {
     const uint32_t shift = dsn_state(noise)->cell_shift, channels = dsn_noise_channels(noise);
     const int64_t rx = dsn_state(noise)->radius[0], ry = dsn_state(noise)->radius[1];

@@ -1,8 +1,8 @@
 // runtime_tile_fallback_test.cpp - the strip path's safety net, white box: runtime/tile_render.h is
-// compiled into this test with the test's flags (the default kernel's instruction set: SSE2 on x86) and given rectangles larger than choose_rectangle would pick,
-// so that rectangles overflow the impulse list or put more than 255 impulses on a column (where 16-bit
-// sums could wrap). Those must take the 32-bit path, their neighbours not, and the tile must still
-// equal per-point evaluation bit for bit.
+// compiled into this test with the test's flags (the default kernel's instruction set: SSE2 on x86) and given
+// rectangles larger than choose_rectangle would pick, so that rectangles overflow the impulse list or put
+// more than 255 impulses on a column (where 16-bit sums could wrap). Those must take the 32-bit path, their
+// neighbours not, and the tile must still equal per-point evaluation bit for bit.
 #include <doctest/doctest.h>
 
 #include <vector>

@@ -104,8 +104,8 @@ TEST_CASE("init records the widest kernel this CPU runs") {
         else if (__builtin_cpu_supports("avx2"))
             expected = DSN_KERNEL_AVX2;
         if (expected != DSN_KERNEL_AVX512)
-            MESSAGE("this CPU has no AVX-512 (F and BW)"
-                    << (expected == DSN_KERNEL_AVX2 ? "" : " nor AVX2") << ": the kernel for it is not tested");
+            MESSAGE("this CPU has no AVX-512 (F and BW)" << (expected == DSN_KERNEL_AVX2 ? "" : " nor AVX2")
+                                                         << ": the kernel for it is not tested");
     } else {
         MESSAGE("the runtime is built without the x86 kernels (DSN_X86_DISPATCH): only the default one is "
                 "tested");
@@ -171,8 +171,7 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
     std::vector<int32_t> whole(size_t(side) * side * 3), bands(whole.size());
     std::vector<float> whole_float(whole.size()), bands_float(whole.size());
     std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&loaded.noise, side, side));
-    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&loaded.noise)->tile_kernel;
-         kernel++) {
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&loaded.noise)->tile_kernel; kernel++) {
         dsn_noise noise = loaded.noise;
         dsn_state(&noise)->tile_kernel = kernel;
         CAPTURE(kernel);
