@@ -1,5 +1,5 @@
 // gaussian_model.cpp - periodic component, mean and t_u of an exemplar; the interpolation target.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 
 #include <cmath>
 #include <stdexcept>

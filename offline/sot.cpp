@@ -13,7 +13,7 @@
 // support rows, then row FFTs of those rows only, two real rows packed in one complex transform.
 // Forward: the same in reverse. Per iteration that is about C (M + 2r + 1) transforms of one side instead
 // of 2 C (M + N).
-#include "dsn/bake.h"
+#include "bake_internal.h"
 #include "kiss_plan.h"
 
 #include <cmath>

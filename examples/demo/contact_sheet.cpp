@@ -16,7 +16,9 @@
 #pragma GCC diagnostic pop
 #include <stb_image.h>
 
-#include "dsn/bake.h"
+#include "../../offline/bake_internal.h"
+#include "../../offline/tools/file_output.h"
+#include "../../offline/tools/png_output.h"
 #include "dsn/dsn.h"
 
 namespace {

@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "dsn/bake.h"
+#include "../../offline/bake_internal.h"
+#include "../../offline/tools/file_output.h"
+#include "../../offline/tools/png_output.h"
 
 namespace {
 
