@@ -107,12 +107,12 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
     }
     if (arguments.input.empty()) throw dsn::UsageError("no input image given");
     if (arguments.output.empty()) throw dsn::UsageError("no output given (-o OUT.dsnt)");
-    // An asset written as out.png is a mistake that shows only when the file is opened: refuse it.
-    if (!ends_with(arguments.output, ".dsnt"))
-        throw dsn::UsageError("the output " + arguments.output + " must end in .dsnt (the preview is --preview)");
     for (const std::string *output : {&arguments.output, &arguments.report, &arguments.preview})
         if (!output->empty() && dsn::same_file(arguments.input, *output))
             throw dsn::UsageError("output " + *output + " is the input image");
+    // An asset written as out.png is a mistake that shows only when the file is opened: refuse it.
+    if (!ends_with(arguments.output, ".dsnt"))
+        throw dsn::UsageError("the output " + arguments.output + " must end in .dsnt (the preview is --preview)");
     return arguments;
 }
 
