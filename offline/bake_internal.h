@@ -25,7 +25,8 @@ Image inverse_dft(const Spectrum &spectrum);
 
 // ---- Gaussian model ----
 
-// The periodic component p of u (Moisan): Lap p = Lap_int u, mean(p) = mean(u), solved in Fourier.
+// The periodic component p of u (Moisan's periodic plus smooth decomposition, as Galerne, Gousseau and
+// Morel use it): Lap p = Lap_int u, mean(p) = mean(u), solved in Fourier.
 Image periodic_component(const Image &u);
 
 // Mean and t_u of `u` (of its periodic component when `periodic`). Throws std::runtime_error for a

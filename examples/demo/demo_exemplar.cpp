@@ -118,8 +118,7 @@ int run(dsn::CommandLine &command_line) {
     const dsn::Spectrum phase = random_phase(size, random);
     for (const Component &component : kComponents) {
         const int radius = int(std::ceil(3 * component.length));
-        const std::vector<double> field =
-            random_phase_field(spot(component, radius), radius, size, phase);
+        const std::vector<double> field = random_phase_field(spot(component, radius), radius, size, phase);
         for (size_t p = 0; p < field.size(); p++)
             for (int c = 0; c < 3; c++) image[p * 3 + size_t(c)] += 0.18 * component.color[c] * field[p];
     }

@@ -186,8 +186,8 @@ int run(int argc, char **argv) {
             output = value;
         } else if (flag == "--size") {
             char rest = 0;
-            if (std::sscanf(value.c_str(), "%dx%d%c", &width, &height, &rest) != 2 || width < 1 || height < 1 ||
-                width > 8192 || height > 8192)
+            if (std::sscanf(value.c_str(), "%dx%d%c", &width, &height, &rest) != 2 || width < 1 ||
+                height < 1 || width > 8192 || height > 8192)
                 throw UsageError("--size needs WxH within 1..8192, not '" + value + "'");
         } else if (flag == "--seed") {
             seed = parse_seed(value);

@@ -65,11 +65,13 @@ void CommandLine::unknown() const {
     throw UsageError("unknown flag " + name_);
 }
 
-long long parse_integer(const std::string &flag, const std::string &text, long long minimum, long long maximum) {
+long long parse_integer(const std::string &flag, const std::string &text, long long minimum,
+                        long long maximum) {
     char *end = nullptr;
     errno = 0;
     const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno == ERANGE || !(text[0] == '-' || (text[0] >= '0' && text[0] <= '9')))
+    if (text.empty() || *end != '\0' || errno == ERANGE ||
+        !(text[0] == '-' || (text[0] >= '0' && text[0] <= '9')))
         throw UsageError(flag + " needs a whole number, not '" + text + "'");
     if (value < minimum || value > maximum)
         throw UsageError(flag.substr(flag.find_first_not_of('-')) + " " + text + " out of range " +

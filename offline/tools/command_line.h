@@ -66,7 +66,8 @@ class CommandLine {
 // A whole decimal number within [minimum, maximum] from the current flag's value; UsageError naming the
 // flag otherwise.
 long long parse_integer(CommandLine &arguments, long long minimum, long long maximum);
-long long parse_integer(const std::string &flag, const std::string &text, long long minimum, long long maximum);
+long long parse_integer(const std::string &flag, const std::string &text, long long minimum,
+                        long long maximum);
 // A finite real number; UsageError otherwise.
 double parse_real(const std::string &flag, const std::string &text);
 

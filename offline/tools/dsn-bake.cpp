@@ -54,7 +54,8 @@ struct Arguments {
 };
 
 bool ends_with(const std::string &text, const std::string &suffix) {
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return text.size() >= suffix.size() &&
+           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 Arguments parse_arguments(dsn::CommandLine &command_line) {
@@ -112,7 +113,8 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
             throw dsn::UsageError("output " + *output + " is the input image");
     // An asset written as out.png is a mistake that shows only when the file is opened: refuse it.
     if (!ends_with(arguments.output, ".dsnt"))
-        throw dsn::UsageError("the output " + arguments.output + " must end in .dsnt (the preview is --preview)");
+        throw dsn::UsageError("the output " + arguments.output +
+                              " must end in .dsnt (the preview is --preview)");
     return arguments;
 }
 

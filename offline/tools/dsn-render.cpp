@@ -77,7 +77,8 @@ std::pair<std::string, std::string> split_pair(const std::string &flag, const st
                                                char separator) {
     size_t at = text.find(separator);
     if (at == std::string::npos || at == 0 || at + 1 == text.size())
-        throw dsn::UsageError(flag + " needs two values separated by '" + separator + "', not '" + text + "'");
+        throw dsn::UsageError(flag + " needs two values separated by '" + separator + "', not '" + text +
+                              "'");
     return {text.substr(0, at), text.substr(at + 1)};
 }
 
@@ -114,8 +115,10 @@ Options parse_options(dsn::CommandLine &command_line) {
             options.output_path = command_line.value();
         } else if (command_line.is("--size")) {
             auto sides = split_pair(flag, command_line.value(), 'x');
-            options.width = static_cast<uint32_t>(dsn::parse_integer(flag, sides.first, 1, DSN_TILE_MAX_SIDE));
-            options.height = static_cast<uint32_t>(dsn::parse_integer(flag, sides.second, 1, DSN_TILE_MAX_SIDE));
+            options.width =
+                static_cast<uint32_t>(dsn::parse_integer(flag, sides.first, 1, DSN_TILE_MAX_SIDE));
+            options.height =
+                static_cast<uint32_t>(dsn::parse_integer(flag, sides.second, 1, DSN_TILE_MAX_SIDE));
             size_given = true;
         } else if (command_line.is("--origin")) {
             auto origin = split_pair(flag, command_line.value(), ',');
@@ -131,7 +134,8 @@ Options parse_options(dsn::CommandLine &command_line) {
         } else if (command_line.is("--period")) {
             auto period = split_pair(flag, command_line.value(), 'x');
             options.period_x = static_cast<uint32_t>(dsn::parse_integer(flag, period.first, 0, 0xFFFFFFFFll));
-            options.period_y = static_cast<uint32_t>(dsn::parse_integer(flag, period.second, 0, 0xFFFFFFFFll));
+            options.period_y =
+                static_cast<uint32_t>(dsn::parse_integer(flag, period.second, 0, 0xFFFFFFFFll));
         } else if (command_line.is("--mode")) {
             const std::string mode = command_line.value();
             if (mode == "tile")
@@ -343,9 +347,9 @@ void run(const Options &options) {
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     // Only a large render takes long enough to need progress.
     const bool large = static_cast<uint64_t>(options.width) * options.height >= (1u << 22);
-    const Progress progress = options.quiet || !large         ? Progress::none
+    const Progress progress = options.quiet || !large      ? Progress::none
                               : isatty(STDERR_FILENO) != 0 ? Progress::redrawn
-                                                             : Progress::lines;
+                                                           : Progress::lines;
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&start]() {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
