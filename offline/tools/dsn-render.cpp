@@ -30,7 +30,7 @@ const char *const kUsage =
     "usage: dsn-render A.dsnt -o OUT.png|OUT.f32 --size WxH [options]\n"
     "Renders the spot noise of asset A.dsnt over a window of W x H pixels.\n"
     "  -o, --output OUT     the image to write (atomically): OUT.png or OUT.f32\n"
-    "  --size WxH           the window, 1..16384 pixels per side\n"
+    "  --size WxH           the window, 1..65536 pixels per side\n"
     "  --origin X,Y         top-left point in texels (default 0,0); integers in tile/point mode,\n"
     "                       any real number in continuous mode; values wrap modulo 2^32\n"
     "  --seed S             32-bit seed (default 0)\n"
