@@ -1,5 +1,6 @@
 # Makefile - builds the runtime (libdsn.a), the offline baker (libdsn_bake.a), the tools and their small
-# library (libdsn_tools.a), the tests and the examples into $(BUILD). Parts of the tree add their own targets through a module.mk beside them.
+# library (libdsn_tools.a), the tests and the examples into $(BUILD). Parts of the tree add their own
+# targets through a module.mk beside them.
 #
 #   make            libraries and tools          make test      everything, then every test
 #   make demo       the demo pictures            make bench     benchmarks (ratios to baselines)
@@ -107,6 +108,8 @@ $(BUILD)/bin/dsn-bake: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-bake: TOOL_LINK = $(OFFLINE_LINK)
 $(BUILD)/bin/dsn-example-asset: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-example-asset: TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS)
+# The tools' objects are kept (not deleted as intermediate files), so a second make relinks nothing.
+.SECONDARY: $(TOOL_PROGRAM_SOURCES:%.cpp=$(BUILD)/obj/%.o)
 
 $(TEST_RUNNER): $(TEST_OBJECTS) $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN)
 	@mkdir -p $(@D)
