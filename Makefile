@@ -1,5 +1,6 @@
-# Makefile - builds the runtime (libdsn.a), the offline baker (libdsn_bake.a), the tools, the tests and
-# the examples into $(BUILD). Parts of the tree add their own targets through a module.mk beside them.
+# Makefile - builds the runtime (libdsn.a), the offline baker (libdsn_bake.a), the tools and their small
+# library (libdsn_tools.a), the tests and the examples into $(BUILD). Parts of the tree add their own
+# targets through a module.mk beside them.
 #
 #   make            libraries and tools          make test      everything, then every test
 #   make demo       the demo pictures            make bench     benchmarks (ratios to baselines)
@@ -22,7 +23,8 @@ RUNTIME_FLAGS := -std=c++11 $(WARNINGS) -Wconversion -Wsign-conversion -Wcast-al
     -fno-exceptions -fno-rtti -fno-threadsafe-statics -fno-asynchronous-unwind-tables $(COMMON_FLAGS)
 # Package flags are looked up when used (recursive =), so `make deps` can install them first.
 PACKAGE_CFLAGS = $(shell $(PKG_CONFIG) --cflags kissfft-float stb 2>/dev/null)
-PACKAGE_LIBS = $(shell $(PKG_CONFIG) --libs kissfft-float stb 2>/dev/null)
+STB_LIBS = $(shell $(PKG_CONFIG) --libs stb 2>/dev/null)
+PACKAGE_LIBS = $(shell $(PKG_CONFIG) --libs kissfft-float 2>/dev/null) $(STB_LIBS)
 OFFLINE_FLAGS = -std=c++17 $(WARNINGS) $(COMMON_FLAGS) $(PACKAGE_CFLAGS)
 TEST_FLAGS = $(OFFLINE_FLAGS) -Itests
 
@@ -38,15 +40,23 @@ RUNTIME_SOURCES := $(wildcard runtime/*.cpp)
 RUNTIME_OBJECTS := $(RUNTIME_SOURCES:%.cpp=$(BUILD)/obj/%.o)
 OFFLINE_SOURCES := $(wildcard offline/*.cpp)
 OFFLINE_OBJECTS := $(OFFLINE_SOURCES:%.cpp=$(BUILD)/obj/%.o)
-TOOL_SOURCES := $(wildcard offline/tools/*.cpp)
-TOOLS := $(patsubst offline/tools/%.cpp,$(BUILD)/bin/%,$(TOOL_SOURCES))
+# offline/tools: one program per dsn-NAME.cpp, and the library they share (libdsn_tools.a: command line,
+# atomic file output, PNG output), which needs stb but neither the baker nor KissFFT.
+TOOL_PROGRAM_SOURCES := $(wildcard offline/tools/dsn-*.cpp)
+TOOLS_LIBRARY_SOURCES := $(filter-out $(TOOL_PROGRAM_SOURCES),$(wildcard offline/tools/*.cpp))
+TOOLS_LIBRARY_OBJECTS := $(TOOLS_LIBRARY_SOURCES:%.cpp=$(BUILD)/obj/%.o)
+# The installed tools; dsn-example-asset (a synthetic asset for the tests and examples) is built, not
+# installed.
+TOOLS := $(BUILD)/bin/dsn-bake $(BUILD)/bin/dsn-inspect $(BUILD)/bin/dsn-render
+TOOL_HELPERS := $(BUILD)/bin/dsn-example-asset
 TEST_SOURCES := $(wildcard tests/*.cpp)
 TEST_OBJECTS := $(TEST_SOURCES:%.cpp=$(BUILD)/obj/%.o)
 
 LIBDSN := $(BUILD)/lib/libdsn.a
 LIBDSN_BAKE := $(BUILD)/lib/libdsn_bake.a
+LIBDSN_TOOLS := $(BUILD)/lib/libdsn_tools.a
 TEST_RUNNER := $(BUILD)/bin/dsn-tests
-OFFLINE_LINK = $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS) $(PACKAGE_LIBS) -lpthread
+OFFLINE_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS) $(PACKAGE_LIBS) -lpthread
 
 # Modules append to these.
 PROGRAMS :=          # built by `make all`
@@ -56,7 +66,7 @@ BENCH_PROGRAMS :=    # built and run by `make bench`
 INSTALL_PROGRAMS :=  # copied to $(PREFIX)/bin by `make install`
 
 .PHONY: all deps test demo bench install clean format format-check sanitize
-all: $(LIBDSN) $(LIBDSN_BAKE) $(TOOLS)
+all: $(LIBDSN) $(LIBDSN_BAKE) $(LIBDSN_TOOLS) $(TOOLS) $(TOOL_HELPERS)
 
 include $(sort $(wildcard examples/*/module.mk tests/*/module.mk))
 
@@ -84,11 +94,24 @@ $(LIBDSN_BAKE): $(OFFLINE_OBJECTS)
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^
 
-$(BUILD)/bin/%: $(BUILD)/obj/offline/tools/%.o $(LIBDSN_BAKE) $(LIBDSN)
+$(LIBDSN_TOOLS): $(TOOLS_LIBRARY_OBJECTS)
 	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) $< -o $@ $(OFFLINE_LINK)
+	rm -f $@ && $(AR) rcs $@ $^
 
-$(TEST_RUNNER): $(TEST_OBJECTS) $(LIBDSN_BAKE) $(LIBDSN)
+# Each tool links what it uses: only dsn-bake has the baker (and KissFFT); dsn-example-asset has the
+# asset writer of libdsn_bake.a (the linker takes no other object of it).
+TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN) $(LDFLAGS) $(STB_LIBS) -lpthread
+$(BUILD)/bin/dsn-%: $(BUILD)/obj/offline/tools/dsn-%.o $(LIBDSN_TOOLS) $(LIBDSN)
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $< -o $@ $(TOOL_LINK)
+$(BUILD)/bin/dsn-bake: $(LIBDSN_BAKE)
+$(BUILD)/bin/dsn-bake: TOOL_LINK = $(OFFLINE_LINK)
+$(BUILD)/bin/dsn-example-asset: $(LIBDSN_BAKE)
+$(BUILD)/bin/dsn-example-asset: TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS)
+# The tools' objects are kept (not deleted as intermediate files), so a second make relinks nothing.
+.SECONDARY: $(TOOL_PROGRAM_SOURCES:%.cpp=$(BUILD)/obj/%.o)
+
+$(TEST_RUNNER): $(TEST_OBJECTS) $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(TEST_OBJECTS) -o $@ $(OFFLINE_LINK)
 

@@ -1,5 +1,5 @@
 // bake.cpp - the whole pipeline: input checks, model, SOT, baseline, measures, colour, quantization, asset.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,8 +92,8 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
 
     result.luminance = luminance_texton(result.target, support);
     result.rme_luminance = relative_model_error(result.target, result.luminance);
-    result.excess_kurtosis_30 = dsn_excess_kurtosis(result.sot.texton, kKurtosisImpacts);
-    result.excess_kurtosis_30_luminance = dsn_excess_kurtosis(result.luminance, kKurtosisImpacts);
+    result.excess_kurtosis_30 = excess_kurtosis(result.sot.texton, kKurtosisImpacts);
+    result.excess_kurtosis_30_luminance = excess_kurtosis(result.luminance, kKurtosisImpacts);
 
     if (options.use_color_transform)
         result.color_transform = color_transform(texton_covariance(result.sot.texton, options.interpolation),

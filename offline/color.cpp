@@ -1,5 +1,5 @@
 // color.cpp - colour covariances, symmetric 3x3 eigen-decomposition and K = B^(1/2) A^(-1/2).
-#include "dsn/bake.h"
+#include "bake_internal.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // dft.cpp - full-size 2-D DFTs of images, built on kiss_fftnd (complex): the reference transforms.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 #include "kiss_plan.h"
 
 namespace dsn {

@@ -1,5 +1,6 @@
-// gaussian_model.cpp - periodic component, mean and t_u of an exemplar; the interpolation target.
-#include "dsn/bake.h"
+// gaussian_model.cpp - periodic component, mean and t_u of an exemplar; the interpolation target. The
+// model is that of Galerne, Gousseau and Morel, "Random phase textures: theory and synthesis" (2011).
+#include "bake_internal.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 // measures.cpp - relative model error (OT distance between Gaussian models) and DSN excess kurtosis.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -30,7 +30,7 @@ double relative_model_error(const Spectrum &model, const Texton &texton) {
     return relative_model_error(model, texton_spectrum(texton, model.width, model.height));
 }
 
-std::vector<double> dsn_excess_kurtosis(const Texton &texton, double impacts_per_pixel) {
+std::vector<double> excess_kurtosis(const Texton &texton, double impacts_per_pixel) {
     if (!(impacts_per_pixel > 0)) throw std::invalid_argument("impacts per pixel must be positive");
     const double lambda = impacts_per_pixel / texton.support.size();
     const size_t plane = texton.support.mask.size();

@@ -1,17 +1,25 @@
 // preview.cpp - the preview sheet: exemplar | Gaussian version (spectral ADSN) | texton | runtime DSN.
 // The only offline file that calls the runtime: the synthesis is what the baked asset really gives.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 #include "dsn/dsn.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include <stb_image_write.h>
+
 namespace dsn {
 namespace {
 
 const int kGap = 4;
 const unsigned char kBackground = 40;
+
+void append_bytes(void *context, void *data, int size) {
+    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
+    const auto *begin = static_cast<const unsigned char *>(data);
+    bytes->insert(bytes->end(), begin, begin + size);
+}
 
 // An RGB 8-bit canvas.
 struct Sheet {
@@ -110,7 +118,11 @@ std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &
     sheet.height = height;
     sheet.pixels.assign(size_t(sheet.width) * size_t(sheet.height) * 3, kBackground);
     for (int i = 0; i < 4; i++) draw(sheet, panels[i], i * (width + kGap));
-    return encode_png(sheet.width, sheet.height, 3, sheet.pixels.data());
+    std::vector<unsigned char> png;
+    if (!stbi_write_png_to_func(append_bytes, &png, sheet.width, sheet.height, 3, sheet.pixels.data(),
+                                sheet.width * 3))
+        throw std::runtime_error("preview: PNG encoding failed");
+    return png;
 }
 
 } // namespace dsn

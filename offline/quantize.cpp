@@ -1,5 +1,5 @@
 // quantize.cpp - per-channel quantization of a texton to 8 or 16 bits, and back.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // texton.cpp - the support mask, textons on the torus (crop, spectrum) and the luminance-texton baseline.
-#include "dsn/bake.h"
+#include "bake_internal.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -8,6 +8,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "../offline/tools/file_output.h"
 #include "dsn/asset_writer.h"
 
 namespace {

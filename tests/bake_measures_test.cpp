@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dsn/bake.h"
+#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
 
 using namespace bake_fixtures;
@@ -59,15 +59,15 @@ TEST_CASE("relative_model_error: 0 for the model and any phase of it, 1 for noth
           0.01);
 }
 
-TEST_CASE("dsn_excess_kurtosis is sum t^4 / (lambda (sum t^2)^2), lambda = impacts / |S|") {
+TEST_CASE("excess_kurtosis is sum t^4 / (lambda (sum t^2)^2), lambda = impacts / |S|") {
     // One non-zero value: |S| / impacts. A constant texton: 1 / impacts.
-    CHECK(dsn::dsn_excess_kurtosis(texton_of(2, 1, {0.3}), 30)[0] == doctest::Approx(25.0 / 30));
+    CHECK(dsn::excess_kurtosis(texton_of(2, 1, {0.3}), 30)[0] == doctest::Approx(25.0 / 30));
     dsn::Texton constant = texton_of(2, 1, {});
     for (double &value : constant.values) value = -0.1;
-    CHECK(dsn::dsn_excess_kurtosis(constant, 30)[0] == doctest::Approx(1.0 / 30));
-    CHECK(dsn::dsn_excess_kurtosis(constant, 10)[0] == doctest::Approx(1.0 / 10));
-    CHECK(dsn::dsn_excess_kurtosis(texton_of(2, 3, {}), 30) == std::vector<double>{0, 0, 0});
-    CHECK_THROWS_AS(dsn::dsn_excess_kurtosis(constant, 0), std::invalid_argument);
+    CHECK(dsn::excess_kurtosis(constant, 30)[0] == doctest::Approx(1.0 / 30));
+    CHECK(dsn::excess_kurtosis(constant, 10)[0] == doctest::Approx(1.0 / 10));
+    CHECK(dsn::excess_kurtosis(texton_of(2, 3, {}), 30) == std::vector<double>{0, 0, 0});
+    CHECK_THROWS_AS(dsn::excess_kurtosis(constant, 0), std::invalid_argument);
 }
 
 TEST_CASE("symmetric_eigen reconstructs the matrix with orthonormal eigenvectors") {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dsn/bake.h"
+#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
 
 namespace {

@@ -7,7 +7,7 @@
 
 #include <stb_image.h>
 
-#include "dsn/bake.h"
+#include "../offline/bake_internal.h"
 #include "dsn/dsn.h"
 #include "fixtures/bake_fixtures.h"
 
@@ -64,6 +64,7 @@ TEST_CASE("bilinear bake: the texton's spectrum times the B-spline factor is clo
     dsn::BakeOptions options;
     options.iterations = 200;
     options.periodic = false;
+    options.interpolation = DSN_INTERPOLATION_LATTICE;
     const dsn::BakeResult lattice = dsn::bake(exemplar, options);
     options.interpolation = DSN_INTERPOLATION_BILINEAR;
     const dsn::BakeResult bilinear = dsn::bake(exemplar, options);

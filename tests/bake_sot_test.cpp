@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dsn/bake.h"
+#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
 
 using namespace bake_fixtures;
@@ -178,8 +178,8 @@ TEST_CASE(
         const dsn::Texton luminance = dsn::luminance_texton(model.spectrum, support);
         const double rme = sot.rme_per_iteration.back();
         const double rme_luminance = dsn::relative_model_error(model.spectrum, luminance);
-        const std::vector<double> kurtosis = dsn::dsn_excess_kurtosis(sot.texton, 30);
-        const std::vector<double> kurtosis_luminance = dsn::dsn_excess_kurtosis(luminance, 30);
+        const std::vector<double> kurtosis = dsn::excess_kurtosis(sot.texton, 30);
+        const std::vector<double> kurtosis_luminance = dsn::excess_kurtosis(luminance, 30);
         double mean_kurtosis = 0, mean_kurtosis_luminance = 0;
         for (size_t c = 0; c < kurtosis.size(); c++) {
             CHECK(kurtosis[c] <= 0.2);

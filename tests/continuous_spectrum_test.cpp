@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "dsn/bake.h"
+#include "../offline/bake_internal.h"
 #include "fixtures/continuous_fixtures.h"
 
 using namespace continuous_fixtures;

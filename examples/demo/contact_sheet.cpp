@@ -16,7 +16,10 @@
 #pragma GCC diagnostic pop
 #include <stb_image.h>
 
-#include "dsn/bake.h"
+#include "../../offline/bake_internal.h"
+#include "../../offline/tools/command_line.h"
+#include "../../offline/tools/file_output.h"
+#include "../../offline/tools/png_output.h"
 #include "dsn/dsn.h"
 
 namespace {
@@ -25,7 +28,9 @@ const char *const usage =
     "usage: dsn-contact-sheet --exemplar E.png --asset A.dsnt --synthesis S.png --scene R.png -o SHEET.png\n"
     "                         [--seed S]\n"
     "       dsn-contact-sheet --print-size IMAGE     (prints \"WIDTH HEIGHT\")\n"
-    "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled.\n";
+    "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled.\n"
+    "Flags take --flag value or --flag=value; -h, --help, --version. Errors: one line on stderr, exit 2\n"
+    "for a usage mistake (ending \"(see --help)\"), exit 1 when an input cannot be read or written.\n";
 
 const int kPanel = 256, kGap = 12, kLabel = 30;
 const int kSheetWidth = 4 * kPanel + 5 * kGap;
@@ -145,43 +150,36 @@ Picture texton_picture(const std::string &asset_path) {
     return picture;
 }
 
-int run(int argc, char **argv) {
+int run(dsn::CommandLine &command_line) {
     std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
     uint32_t seed = 1;
-    for (int i = 1; i < argc; i++) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(usage, stdout);
-            return 0;
-        }
-        if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value (see --help)");
-        const std::string value = argv[++i];
-        if (arg == "--print-size") {
+    while (command_line.next()) {
+        if (command_line.is("--print-size")) {
+            const std::string image = command_line.value();
             int width, height, channels;
-            if (!stbi_info(value.c_str(), &width, &height, &channels))
-                throw std::runtime_error("cannot read image " + value);
+            if (!stbi_info(image.c_str(), &width, &height, &channels))
+                throw std::runtime_error("cannot read image " + image);
             std::printf("%d %d\n", width, height);
             return 0;
+        } else if (command_line.is("--exemplar")) {
+            exemplar_path = command_line.value();
+        } else if (command_line.is("--asset")) {
+            asset_path = command_line.value();
+        } else if (command_line.is("--synthesis")) {
+            synthesis_path = command_line.value();
+        } else if (command_line.is("--scene")) {
+            scene_path = command_line.value();
+        } else if (command_line.is("-o") || command_line.is("--output")) {
+            output = command_line.value();
+        } else if (command_line.is("--seed")) {
+            seed = uint32_t(dsn::parse_integer(command_line, 0, 4294967295ll));
+        } else {
+            command_line.unknown();
         }
-        if (arg == "--exemplar")
-            exemplar_path = value;
-        else if (arg == "--asset")
-            asset_path = value;
-        else if (arg == "--synthesis")
-            synthesis_path = value;
-        else if (arg == "--scene")
-            scene_path = value;
-        else if (arg == "-o")
-            output = value;
-        else if (arg == "--seed")
-            seed = uint32_t(std::stoul(value));
-        else
-            throw std::runtime_error("unknown option " + arg + " (see --help)");
     }
     if (exemplar_path.empty() || asset_path.empty() || synthesis_path.empty() || scene_path.empty() ||
         output.empty())
-        throw std::runtime_error(
-            "--exemplar, --asset, --synthesis, --scene and -o are all needed (see --help)");
+        throw dsn::UsageError("--exemplar, --asset, --synthesis, --scene and -o are all needed");
 
     const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
     const Picture scene = load_png(scene_path);
@@ -207,11 +205,4 @@ int run(int argc, char **argv) {
 
 } // namespace
 
-int main(int argc, char **argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception &error) {
-        std::fprintf(stderr, "dsn-contact-sheet: %s\n", error.what());
-        return 1;
-    }
-}
+int main(int argc, char **argv) { return dsn::run_tool("dsn-contact-sheet", usage, argc, argv, run); }

@@ -9,19 +9,23 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <cstdlib>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "dsn/bake.h"
+#include "../../offline/bake_internal.h"
+#include "../../offline/tools/command_line.h"
+#include "../../offline/tools/file_output.h"
+#include "../../offline/tools/png_output.h"
 
 namespace {
 
 const char *const usage =
     "usage: dsn-demo-exemplar OUT.png [--size N] [--seed S]\n"
-    "Writes an N x N (default 256) RGB wood-like Gaussian texture made from known spots.\n";
+    "Writes an N x N (default 256, 64..2048) RGB wood-like Gaussian texture made from known spots.\n"
+    "Flags take --flag value or --flag=value; -h, --help, --version. Errors: one line on stderr, exit 2\n"
+    "for a usage mistake (ending \"(see --help)\"), exit 1 when the file cannot be written.\n";
 
 struct Component {
     double length, width, angle_degrees; // Gaussian spot: standard deviations along and across
@@ -90,53 +94,41 @@ std::vector<double> random_phase_field(const std::vector<double> &kernel, int ra
     return dsn::inverse_dft(product).values;
 }
 
-} // namespace
-
-int main(int argc, char **argv) {
-    try {
-        std::string output;
-        int size = 256;
-        unsigned long seed = 2024;
-        for (int i = 1; i < argc; i++) {
-            const std::string arg = argv[i];
-            if (arg == "--help" || arg == "-h") {
-                std::fputs(usage, stdout);
-                return 0;
-            }
-            if ((arg == "--size" || arg == "--seed") && i + 1 >= argc)
-                throw std::runtime_error(arg + " needs a value");
-            if (arg == "--size") {
-                size = std::atoi(argv[++i]);
-                if (size < 64 || size > 2048) throw std::runtime_error("--size must be within 64..2048");
-            } else if (arg == "--seed") {
-                seed = std::strtoul(argv[++i], nullptr, 10);
-            } else if (arg[0] == '-') {
-                throw std::runtime_error("unknown option " + arg + " (see --help)");
-            } else {
-                output = arg;
-            }
+int run(dsn::CommandLine &command_line) {
+    std::string output;
+    int size = 256;
+    uint32_t seed = 2024;
+    while (command_line.next()) {
+        if (command_line.is("--size")) {
+            size = int(dsn::parse_integer(command_line, 64, 2048));
+        } else if (command_line.is("--seed")) {
+            seed = uint32_t(dsn::parse_integer(command_line, 0, 4294967295ll));
+        } else if (command_line.is_positional() && output.empty()) {
+            output = command_line.current();
+        } else {
+            command_line.unknown();
         }
-        if (output.empty()) throw std::runtime_error("no output given (see --help)");
-        std::mt19937 random(static_cast<uint32_t>(seed));
-        std::vector<double> image(size_t(size * size) * 3);
-        for (size_t i = 0; i < image.size(); i++) image[i] = kMean[i % 3];
-        // One phase for every component: the colour of each frequency is then a single vector, the rank-one
-        // cross-spectrum the Gaussian model of an image (and the SOT's common phase) describes exactly.
-        const dsn::Spectrum phase = random_phase(size, random);
-        for (const Component &component : kComponents) {
-            const int radius = int(std::ceil(3 * component.length));
-            const std::vector<double> field =
-                random_phase_field(spot(component, radius), radius, size, phase);
-            for (size_t p = 0; p < field.size(); p++)
-                for (int c = 0; c < 3; c++) image[p * 3 + size_t(c)] += 0.18 * component.color[c] * field[p];
-        }
-        std::vector<unsigned char> pixels(image.size());
-        for (size_t i = 0; i < image.size(); i++)
-            pixels[i] = static_cast<unsigned char>(std::lround(std::min(1.0, std::max(0.0, image[i])) * 255));
-        dsn::write_file_atomically(output, dsn::encode_png(size, size, 3, pixels.data()));
-    } catch (const std::exception &error) {
-        std::fprintf(stderr, "dsn-demo-exemplar: %s\n", error.what());
-        return 1;
     }
+    if (output.empty()) throw dsn::UsageError("no output given");
+    std::mt19937 random(seed);
+    std::vector<double> image(size_t(size * size) * 3);
+    for (size_t i = 0; i < image.size(); i++) image[i] = kMean[i % 3];
+    // One phase for every component: the colour of each frequency is then a single vector, the rank-one
+    // cross-spectrum the Gaussian model of an image (and the SOT's common phase) describes exactly.
+    const dsn::Spectrum phase = random_phase(size, random);
+    for (const Component &component : kComponents) {
+        const int radius = int(std::ceil(3 * component.length));
+        const std::vector<double> field = random_phase_field(spot(component, radius), radius, size, phase);
+        for (size_t p = 0; p < field.size(); p++)
+            for (int c = 0; c < 3; c++) image[p * 3 + size_t(c)] += 0.18 * component.color[c] * field[p];
+    }
+    std::vector<unsigned char> pixels(image.size());
+    for (size_t i = 0; i < image.size(); i++)
+        pixels[i] = static_cast<unsigned char>(std::lround(std::min(1.0, std::max(0.0, image[i])) * 255));
+    dsn::write_file_atomically(output, dsn::encode_png(size, size, 3, pixels.data()));
     return 0;
 }
+
+} // namespace
+
+int main(int argc, char **argv) { return dsn::run_tool("dsn-demo-exemplar", usage, argc, argv, run); }

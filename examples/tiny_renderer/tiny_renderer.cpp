@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "dsn/asset_writer.h"
-#include "dsn/bake.h"
+#include <stb_image_write.h>
+
 #include "dsn/dsn.h"
 
 namespace {
@@ -22,7 +22,19 @@ namespace {
 const char *const usage =
     "usage: dsn-tiny-renderer GROUND.dsnt [SPHERE.dsnt] -o OUT.png [--size WxH] [--seed S]\n"
     "Ray-casts a ground plane and a sphere textured with the continuous-mode noise of the\n"
-    "assets (the ground's asset is used for both when only one is given).\n";
+    "assets (the ground's asset is used for both when only one is given).\n"
+    "  -o, --output OUT.png   the picture to write\n"
+    "  --size WxH             its size, 1..8192 per side (default 800x500)\n"
+    "  --seed S               the noise's seed (default 1)\n"
+    "  -h, --help, --version  this help, the version\n"
+    "Flags take their value as --flag value or --flag=value. Errors are one line on stderr: exit 2 for\n"
+    "a usage mistake (the line ends with \"(see --help)\"), exit 1 when an asset cannot be used or the\n"
+    "picture cannot be written.\n";
+
+// A mistake in the command line: exit 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 struct Vec {
     double x, y, z;
@@ -129,36 +141,65 @@ uint8_t to_byte(double value) {
     return uint8_t(std::lround(clamped * 255));
 }
 
+// Writes the picture next to its destination, then renames it over it: never a partial PNG.
+void write_png(const std::string &path, int width, int height, const std::vector<uint8_t> &pixels) {
+    const std::string temporary = path + ".tmp";
+    if (!stbi_write_png(temporary.c_str(), width, height, 3, pixels.data(), width * 3) ||
+        std::rename(temporary.c_str(), path.c_str()) != 0) {
+        std::remove(temporary.c_str());
+        throw std::runtime_error("cannot write " + path);
+    }
+}
+
+uint32_t parse_seed(const std::string &text) {
+    char *end = nullptr;
+    const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || text[0] == '-' || *end != '\0' || value > 0xFFFFFFFFull)
+        throw UsageError("--seed needs a whole number 0..4294967295, not '" + text + "'");
+    return uint32_t(value);
+}
+
 int run(int argc, char **argv) {
     std::vector<std::string> assets;
     std::string output;
     int width = 800, height = 500;
     uint32_t seed = 1;
     for (int i = 1; i < argc; i++) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
+        std::string flag = argv[i], value;
+        const size_t equals = flag.find('=');
+        const bool inline_value = flag.compare(0, 2, "--") == 0 && equals != std::string::npos;
+        if (inline_value) value = flag.substr(equals + 1), flag = flag.substr(0, equals);
+        if (flag == "--help" || flag == "-h") {
             std::fputs(usage, stdout);
             return 0;
         }
-        if ((arg == "-o" || arg == "--size" || arg == "--seed") && i + 1 >= argc)
-            throw std::runtime_error(arg + " needs a value");
-        if (arg == "-o") {
-            output = argv[++i];
-        } else if (arg == "--size") {
-            if (std::sscanf(argv[++i], "%dx%d", &width, &height) != 2 || width < 1 || height < 1 ||
-                width > 8192 || height > 8192)
-                throw std::runtime_error("--size needs WxH within 1..8192");
-        } else if (arg == "--seed") {
-            seed = uint32_t(std::strtoul(argv[++i], nullptr, 10));
-        } else if (arg.size() > 1 && arg[0] == '-') {
-            throw std::runtime_error("unknown option " + arg + " (see --help)");
+        if (flag == "--version") {
+            std::printf("dsn-tiny-renderer %s\n", dsn_version());
+            return 0;
+        }
+        const bool takes_value = flag == "-o" || flag == "--output" || flag == "--size" || flag == "--seed";
+        if (takes_value && !inline_value) {
+            if (i + 1 >= argc) throw UsageError(flag + " needs a value");
+            value = argv[++i];
+        }
+        if (flag == "-o" || flag == "--output") {
+            output = value;
+        } else if (flag == "--size") {
+            char rest = 0;
+            if (std::sscanf(value.c_str(), "%dx%d%c", &width, &height, &rest) != 2 || width < 1 ||
+                height < 1 || width > 8192 || height > 8192)
+                throw UsageError("--size needs WxH within 1..8192, not '" + value + "'");
+        } else if (flag == "--seed") {
+            seed = parse_seed(value);
+        } else if (flag.size() > 1 && flag[0] == '-') {
+            throw UsageError("unknown flag " + flag);
         } else {
-            assets.push_back(arg);
+            assets.push_back(flag);
         }
     }
-    if (assets.empty() || assets.size() > 2) throw std::runtime_error("give one or two assets (see --help)");
+    if (assets.empty() || assets.size() > 2) throw UsageError("give one or two assets");
     if (output.size() < 5 || output.compare(output.size() - 4, 4, ".png") != 0)
-        throw std::runtime_error("the output must be a .png: -o OUT.png");
+        throw UsageError("the output must be a .png: -o OUT.png");
 
     Texture ground, sphere;
     load_texture(ground, assets[0], seed, 40);
@@ -180,7 +221,7 @@ int run(int argc, char **argv) {
             uint8_t *pixel = &pixels[(size_t(j) * width + i) * 3];
             pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
         }
-    dsn::write_file_atomically(output, dsn::encode_png(width, height, 3, pixels.data()));
+    write_png(output, width, height, pixels);
     return 0;
 }
 
@@ -189,6 +230,9 @@ int run(int argc, char **argv) {
 int main(int argc, char **argv) {
     try {
         return run(argc, argv);
+    } catch (const UsageError &error) {
+        std::fprintf(stderr, "dsn-tiny-renderer: %s (see --help)\n", error.what());
+        return 2;
     } catch (const std::exception &error) {
         std::fprintf(stderr, "dsn-tiny-renderer: %s\n", error.what());
         return 1;

@@ -1,44 +1,51 @@
 // dsn-bake - command-line front end of the baker: exemplar image -> .dsnt asset (+ JSON report, preview).
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <unistd.h>
 
+#include "command_line.h"
 #include "dsn/bake.h"
+#include "file_output.h"
 
 namespace {
 
 const char *const kUsage =
     "usage: dsn-bake IN -o OUT.dsnt [--radius R] [--shape square|disk] [--iterations N] [--seed S]\n"
-    "                [--bits 8|16] [--interpolation lattice|bilinear] [--no-periodic] "
+    "                [--bits 8|16] [--interpolation bilinear|lattice] [--no-periodic] "
     "[--no-color-transform]\n"
     "                [--report R.json] [--preview P.png] [--quiet]\n"
     "\n"
     "Bakes an exemplar image (PNG 8/16-bit, JPEG, BMP, PNM, ... grey or RGB; alpha is ignored; at most\n"
     "2048 pixels per side) into a compact .dsnt asset: a synthesis-oriented texton of radius R, its colour\n"
-    "transform and the exemplar mean. Errors are one line on stderr with a non-zero exit, and no output.\n"
+    "transform and the exemplar mean.\n"
     "\n"
-    "  -o OUT.dsnt              the asset to write (atomically: never a partial file)\n"
+    "  -o, --output OUT.dsnt    the asset to write (atomically: never a partial file); must end in .dsnt\n"
     "  --radius R               texton radius, 1..127; the texton is (2R+1)x(2R+1) (default 15);\n"
     "                           the exemplar needs both sides >= 4R+1\n"
     "  --shape square|disk      support shape (default square)\n"
     "  --iterations N           alternating-projection iterations, 1..1000000 (default 1000)\n"
     "  --seed S                 seed of the random-phase start, 0..4294967295 (default 0)\n"
     "  --bits 8|16              quantization of the texton (default 8)\n"
-    "  --interpolation lattice|bilinear\n"
-    "                           how the runtime reads the texton: bilinear bakes a texton corrected for\n"
-    "                           the continuous mode's interpolation (default lattice)\n"
+    "  --interpolation bilinear|lattice\n"
+    "                           how the runtime reads the texton (default bilinear): bilinear bakes a\n"
+    "                           texton corrected for the interpolation of the continuous mode (dsn-render\n"
+    "                           --mode continuous, what renderers use); lattice suits only the integer\n"
+    "                           lattice (--mode tile or point)\n"
     "  --no-periodic            use the exemplar as is, not its periodic component\n"
     "  --no-color-transform     store the identity colour transform\n"
     "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...)\n"
     "  --preview P.png          write a sheet: exemplar | Gaussian version | texton | DSN synthesis\n"
     "  --quiet                  no progress bar, warnings or summary\n"
-    "  -h, --help               this help\n";
+    "  -h, --help               this help\n"
+    "  --version                the version\n"
+    "\n"
+    "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
+    "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when the bake\n"
+    "fails (unreadable or unusable image, cannot write).\n";
 
 struct Arguments {
     std::string input, output, report, preview;
@@ -46,81 +53,68 @@ struct Arguments {
     bool quiet = false;
 };
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-// A whole decimal number within [minimum, maximum], or a usage error naming the flag.
-long long parse_integer(const std::string &flag, const char *text, long long minimum, long long maximum) {
-    char *end = nullptr;
-    errno = 0;
-    const long long value = std::strtoll(text, &end, 10);
-    if (*text == '\0' || *end != '\0' || errno == ERANGE ||
-        !(text[0] == '-' || (text[0] >= '0' && text[0] <= '9')))
-        throw UsageError(flag + " needs a whole number, not '" + text + "'");
-    if (value < minimum || value > maximum)
-        throw UsageError(flag.substr(2) + " " + text + " out of range " + std::to_string(minimum) + ".." +
-                         std::to_string(maximum));
-    return value;
+bool ends_with(const std::string &text, const std::string &suffix) {
+    return text.size() >= suffix.size() &&
+           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-Arguments parse_arguments(int argc, char **argv) {
+Arguments parse_arguments(dsn::CommandLine &command_line) {
     Arguments arguments;
-    for (int i = 1; i < argc; i++) {
-        const std::string flag = argv[i];
-        auto value = [&]() -> const char * {
-            if (i + 1 >= argc) throw UsageError(flag + " needs a value");
-            return argv[++i];
-        };
-        if (flag == "-h" || flag == "--help") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        } else if (flag == "-o") {
-            arguments.output = value();
-        } else if (flag == "--radius") {
-            arguments.options.radius = int(parse_integer(flag, value(), 1, dsn::kMaxRadius));
-        } else if (flag == "--shape") {
-            const std::string shape = value();
+    while (command_line.next()) {
+        if (command_line.is("-o") || command_line.is("--output")) {
+            arguments.output = command_line.value();
+        } else if (command_line.is("--radius")) {
+            arguments.options.radius = int(dsn::parse_integer(command_line, 1, dsn::kMaxRadius));
+        } else if (command_line.is("--shape")) {
+            const std::string shape = command_line.value();
             if (shape != "square" && shape != "disk")
-                throw UsageError("--shape must be square or disk, not '" + shape + "'");
+                throw dsn::UsageError("--shape must be square or disk, not '" + shape + "'");
             arguments.options.shape = shape == "disk" ? DSN_SHAPE_DISK : DSN_SHAPE_RECTANGLE;
-        } else if (flag == "--iterations") {
-            arguments.options.iterations = int(parse_integer(flag, value(), 1, 1000000));
-        } else if (flag == "--seed") {
-            arguments.options.seed = uint32_t(parse_integer(flag, value(), 0, 4294967295ll));
-        } else if (flag == "--bits") {
-            const long long bits = parse_integer(flag, value(), 8, 16);
-            if (bits != 8 && bits != 16) throw UsageError("--bits must be 8 or 16");
+        } else if (command_line.is("--iterations")) {
+            arguments.options.iterations = int(dsn::parse_integer(command_line, 1, 1000000));
+        } else if (command_line.is("--seed")) {
+            arguments.options.seed = uint32_t(dsn::parse_integer(command_line, 0, 4294967295ll));
+        } else if (command_line.is("--bits")) {
+            const long long bits = dsn::parse_integer(command_line, 8, 16);
+            if (bits != 8 && bits != 16) throw dsn::UsageError("--bits must be 8 or 16");
             arguments.options.bits = int(bits);
-        } else if (flag == "--interpolation") {
-            const std::string mode = value();
+        } else if (command_line.is("--interpolation")) {
+            const std::string mode = command_line.value();
             if (mode != "lattice" && mode != "bilinear")
-                throw UsageError("--interpolation must be lattice or bilinear, not '" + mode + "'");
+                throw dsn::UsageError("--interpolation must be bilinear or lattice, not '" + mode + "'");
             arguments.options.interpolation =
                 mode == "bilinear" ? DSN_INTERPOLATION_BILINEAR : DSN_INTERPOLATION_LATTICE;
-        } else if (flag == "--no-periodic") {
+        } else if (command_line.is("--no-periodic")) {
+            command_line.no_value();
             arguments.options.periodic = false;
-        } else if (flag == "--no-color-transform") {
+        } else if (command_line.is("--no-color-transform")) {
+            command_line.no_value();
             arguments.options.use_color_transform = false;
-        } else if (flag == "--report") {
-            arguments.report = value();
-        } else if (flag == "--preview") {
-            arguments.preview = value();
-        } else if (flag == "--quiet") {
+        } else if (command_line.is("--report")) {
+            arguments.report = command_line.value();
+        } else if (command_line.is("--preview")) {
+            arguments.preview = command_line.value();
+        } else if (command_line.is("--quiet")) {
+            command_line.no_value();
             arguments.quiet = true;
-        } else if (flag.size() > 1 && flag[0] == '-') {
-            throw UsageError("unknown flag " + flag);
-        } else if (arguments.input.empty()) {
-            arguments.input = flag;
+        } else if (command_line.is_positional() && arguments.input.empty()) {
+            arguments.input = command_line.current();
+        } else if (command_line.is_positional()) {
+            throw dsn::UsageError("more than one input image ('" + arguments.input + "', '" +
+                                  command_line.current() + "')");
         } else {
-            throw UsageError("more than one input image ('" + arguments.input + "', '" + flag + "')");
+            command_line.unknown();
         }
     }
-    if (arguments.input.empty()) throw UsageError("no input image given");
-    if (arguments.output.empty()) throw UsageError("no output given (-o OUT.dsnt)");
+    if (arguments.input.empty()) throw dsn::UsageError("no input image given");
+    if (arguments.output.empty()) throw dsn::UsageError("no output given (-o OUT.dsnt)");
     for (const std::string *output : {&arguments.output, &arguments.report, &arguments.preview})
         if (!output->empty() && dsn::same_file(arguments.input, *output))
-            throw UsageError("output " + *output + " is the input image");
+            throw dsn::UsageError("output " + *output + " is the input image");
+    // An asset written as out.png is a mistake that shows only when the file is opened: refuse it.
+    if (!ends_with(arguments.output, ".dsnt"))
+        throw dsn::UsageError("the output " + arguments.output +
+                              " must end in .dsnt (the preview is --preview)");
     return arguments;
 }
 
@@ -279,13 +273,6 @@ int run(const Arguments &arguments) {
 } // namespace
 
 int main(int argc, char **argv) {
-    try {
-        return run(parse_arguments(argc, argv));
-    } catch (const UsageError &error) {
-        std::fprintf(stderr, "dsn-bake: %s (see dsn-bake --help)\n", error.what());
-        return 2;
-    } catch (const std::exception &error) {
-        std::fprintf(stderr, "dsn-bake: %s\n", error.what());
-        return 1;
-    }
+    return dsn::run_tool("dsn-bake", kUsage, argc, argv,
+                         [](dsn::CommandLine &command_line) { return run(parse_arguments(command_line)); });
 }

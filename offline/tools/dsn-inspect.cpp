@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "dsn/dsn.h"
 
 namespace {
@@ -15,8 +17,14 @@ const char *const kUsage =
     "\n"
     "Validates a .dsnt asset with the runtime loader and prints its header. With --json, prints\n"
     "the header, mean, color_transform, support and texton (dequantized values, row-major,\n"
-    "channels interleaved, top-left first) as one JSON object. Exits 1 with the loader's\n"
-    "message for an invalid file.\n";
+    "channels interleaved, top-left first) as one JSON object.\n"
+    "\n"
+    "  --json                   print JSON instead of text\n"
+    "  -h, --help               this help\n"
+    "  --version                the version\n"
+    "\n"
+    "Errors are one line on stderr: exit 2 for a usage mistake (the line ends with \"(see --help)\"),\n"
+    "exit 1 for a file that cannot be read or is not a valid asset (the loader's message).\n";
 
 // Assets are at most 128 + 255 * 255 * 3 * 2 + 4 bytes; anything much larger is not one.
 const long kMaxFileSize = 1 << 20;
@@ -136,46 +144,35 @@ void print_json(const char *path, size_t size, const dsn_asset &asset) {
     std::printf("\n}\n");
 }
 
-} // namespace
-
-int main(int argc, char **argv) {
-    const char *path = nullptr;
+int inspect(dsn::CommandLine &command_line) {
+    std::string path;
     bool json = false;
-    for (int i = 1; i < argc; i++) {
-        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (!std::strcmp(argv[i], "--json")) {
+    while (command_line.next()) {
+        if (command_line.is("--json")) {
+            command_line.no_value();
             json = true;
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            std::fprintf(stderr, "dsn-inspect: unknown flag %s (see dsn-inspect --help)\n", argv[i]);
-            return 2;
-        } else if (path) {
-            std::fprintf(stderr, "dsn-inspect: more than one file given (see dsn-inspect --help)\n");
-            return 2;
+        } else if (command_line.is_positional() && path.empty()) {
+            path = command_line.current();
+        } else if (command_line.is_positional()) {
+            throw dsn::UsageError("more than one file given");
         } else {
-            path = argv[i];
+            command_line.unknown();
         }
     }
-    if (!path) {
-        std::fprintf(stderr, "dsn-inspect: no asset given (see dsn-inspect --help)\n");
-        return 2;
-    }
+    if (path.empty()) throw dsn::UsageError("no asset given");
     std::vector<unsigned char> bytes;
     std::string problem;
-    if (!read_file(path, bytes, problem)) {
-        std::fprintf(stderr, "dsn-inspect: %s: %s\n", path, problem.c_str());
-        return 1;
-    }
+    if (!read_file(path.c_str(), bytes, problem)) throw std::runtime_error(path + ": " + problem);
     dsn_asset asset;
     const int error = dsn_asset_load(&asset, bytes.data(), bytes.size());
-    if (error != DSN_OK) {
-        std::fprintf(stderr, "dsn-inspect: %s: %s\n", path, dsn_error_message(error));
-        return 1;
-    }
+    if (error != DSN_OK) throw std::runtime_error(path + ": " + dsn_error_message(error));
     if (json)
-        print_json(path, bytes.size(), asset);
+        print_json(path.c_str(), bytes.size(), asset);
     else
-        print_text(path, bytes.size(), asset);
+        print_text(path.c_str(), bytes.size(), asset);
     return 0;
 }
+
+} // namespace
+
+int main(int argc, char **argv) { return dsn::run_tool("dsn-inspect", kUsage, argc, argv, inspect); }

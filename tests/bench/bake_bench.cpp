@@ -9,7 +9,7 @@
 
 #include <kiss_fft.h>
 
-#include "dsn/bake.h"
+#include "../../offline/bake_internal.h"
 
 namespace {
 

@@ -20,7 +20,7 @@ cross-test: deps-cross
 	 $(CROSS_ENV) tests/cross/run-cross $(if $(CROSS_UPDATE),--update) || status=1; \
 	 exit $$status
 
-$(CROSS_ASSET_GENERATOR): $(BUILD)/obj/tests/cross/make-assets.o $(LIBDSN_BAKE) $(LIBDSN)
+$(CROSS_ASSET_GENERATOR): $(BUILD)/obj/tests/cross/make-assets.o $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $< -o $@ $(OFFLINE_LINK)
 

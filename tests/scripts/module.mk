@@ -1,4 +1,4 @@
 # tests/scripts: shell tests run by `make test`, each counted as one test.
 TEST_SCRIPTS += tests/scripts/install-and-link
 TEST_SCRIPTS += tests/scripts/check-freestanding
-TEST_SCRIPTS += tests/scripts/bake-errors tests/scripts/bake-roundtrip
+TEST_SCRIPTS += tests/scripts/bake-errors tests/scripts/bake-roundtrip tests/scripts/render-smoke tests/scripts/cli-conventions

@@ -1,6 +1,5 @@
-// png_output.cpp - encode_png: 8-bit pixels -> the bytes of a PNG file (stb_image_write), for the tools and
-// examples, which then write them with write_file_atomically.
-#include "dsn/bake.h"
+// png_output.cpp - encode_png: 8-bit pixels -> the bytes of a PNG file (stb_image_write).
+#include "png_output.h"
 
 #include <stdexcept>
 

@@ -5,20 +5,23 @@
 // integer arithmetic, so the same command writes the same bytes on every machine.
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
+#include "command_line.h"
 #include "dsn/asset_writer.h"
+#include "file_output.h"
 
 namespace {
 
-const char *const usage =
+const char *const kUsage =
     "usage: dsn-example-asset OUT.dsnt [--channels 1|3] [--radius R] [--bits 8|16]\n"
-    "                         [--shape square|disk] [--interpolation lattice|bilinear] [--impacts N]\n"
+    "                         [--shape square|disk] [--interpolation bilinear|lattice] [--impacts N]\n"
     "Writes a synthetic anisotropic-spot asset (no exemplar, no FFT): for tests and examples.\n"
-    "Defaults: 3 channels, radius 7, 8 bits, square, bilinear, 30 impacts per pixel.\n";
+    "Defaults: 3 channels, radius 7, 8 bits, square, bilinear, 30 impacts per pixel.\n"
+    "  -h, --help, --version   this help, the version\n"
+    "Flags take their value as --flag value or --flag=value. Errors are one line on stderr: exit 2 for a\n"
+    "usage mistake (the line ends with \"(see --help)\"), exit 1 when the file cannot be written.\n";
 
 struct Options {
     std::string output;
@@ -30,59 +33,43 @@ struct Options {
     uint32_t impacts = 30;
 };
 
-uint32_t parse_unsigned(const std::string &flag, const char *text, uint32_t low, uint32_t high) {
-    char *end = nullptr;
-    unsigned long value = std::strtoul(text, &end, 10);
-    if (*text == '\0' || *end != '\0' || value < low || value > high)
-        throw std::runtime_error(flag + " needs an integer in [" + std::to_string(low) + ", " +
-                                 std::to_string(high) + "], got '" + text + "'");
-    return static_cast<uint32_t>(value);
-}
-
-Options parse_options(int argc, char **argv) {
+Options parse_options(dsn::CommandLine &command_line) {
     Options options;
-    for (int i = 1; i < argc; i++) {
-        std::string flag = argv[i];
-        if (flag == "--help" || flag == "-h") {
-            std::fputs(usage, stdout);
-            std::exit(0);
-        }
-        if (flag.rfind("--", 0) != 0) {
-            if (!options.output.empty()) throw std::runtime_error("more than one output file given");
-            options.output = flag;
-            continue;
-        }
-        if (i + 1 >= argc) throw std::runtime_error(flag + " needs a value");
-        const char *value = argv[++i];
-        if (flag == "--channels") {
-            options.channels = parse_unsigned(flag, value, 1, 3);
-            if (options.channels == 2) throw std::runtime_error("--channels must be 1 or 3");
-        } else if (flag == "--radius") {
-            options.radius = parse_unsigned(flag, value, 0, 127);
-        } else if (flag == "--bits") {
-            options.bits = parse_unsigned(flag, value, 8, 16);
-            if (options.bits != 8 && options.bits != 16) throw std::runtime_error("--bits must be 8 or 16");
-        } else if (flag == "--impacts") {
-            options.impacts = parse_unsigned(flag, value, 1, 1024);
-        } else if (flag == "--shape") {
-            if (std::strcmp(value, "square") == 0)
+    while (command_line.next()) {
+        if (command_line.is_positional()) {
+            if (!options.output.empty()) throw dsn::UsageError("more than one output file given");
+            options.output = command_line.current();
+        } else if (command_line.is("--channels")) {
+            options.channels = uint32_t(dsn::parse_integer(command_line, 1, 3));
+            if (options.channels == 2) throw dsn::UsageError("--channels must be 1 or 3");
+        } else if (command_line.is("--radius")) {
+            options.radius = uint32_t(dsn::parse_integer(command_line, 0, 127));
+        } else if (command_line.is("--bits")) {
+            options.bits = uint32_t(dsn::parse_integer(command_line, 8, 16));
+            if (options.bits != 8 && options.bits != 16) throw dsn::UsageError("--bits must be 8 or 16");
+        } else if (command_line.is("--impacts")) {
+            options.impacts = uint32_t(dsn::parse_integer(command_line, 1, 1024));
+        } else if (command_line.is("--shape")) {
+            const std::string value = command_line.value();
+            if (value == "square")
                 options.shape = DSN_SHAPE_RECTANGLE;
-            else if (std::strcmp(value, "disk") == 0)
+            else if (value == "disk")
                 options.shape = DSN_SHAPE_DISK;
             else
-                throw std::runtime_error("--shape must be square or disk");
-        } else if (flag == "--interpolation") {
-            if (std::strcmp(value, "lattice") == 0)
+                throw dsn::UsageError("--shape must be square or disk");
+        } else if (command_line.is("--interpolation")) {
+            const std::string value = command_line.value();
+            if (value == "lattice")
                 options.interpolation = DSN_INTERPOLATION_LATTICE;
-            else if (std::strcmp(value, "bilinear") == 0)
+            else if (value == "bilinear")
                 options.interpolation = DSN_INTERPOLATION_BILINEAR;
             else
-                throw std::runtime_error("--interpolation must be lattice or bilinear");
+                throw dsn::UsageError("--interpolation must be bilinear or lattice");
         } else {
-            throw std::runtime_error("unknown option " + flag + " (see --help)");
+            command_line.unknown();
         }
     }
-    if (options.output.empty()) throw std::runtime_error("no output file given (see --help)");
+    if (options.output.empty()) throw dsn::UsageError("no output file given");
     return options;
 }
 
@@ -137,12 +124,9 @@ dsn::AssetFields make_fields(const Options &options) {
 } // namespace
 
 int main(int argc, char **argv) {
-    try {
-        Options options = parse_options(argc, argv);
+    return dsn::run_tool("dsn-example-asset", kUsage, argc, argv, [](dsn::CommandLine &command_line) {
+        const Options options = parse_options(command_line);
         dsn::write_file_atomically(options.output, dsn::encode_asset(make_fields(options)));
-    } catch (const std::exception &error) {
-        std::fprintf(stderr, "dsn-example-asset: %s\n", error.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

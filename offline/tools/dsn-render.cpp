@@ -16,17 +16,21 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
-#include "dsn/asset_writer.h"
-#include "dsn/bake.h"
+#include "command_line.h"
 #include "dsn/dsn.h"
+#include "file_output.h"
+#include "png_output.h"
 
 namespace {
 
-const char *const usage =
+const char *const kUsage =
     "usage: dsn-render A.dsnt -o OUT.png|OUT.f32 --size WxH [options]\n"
     "Renders the spot noise of asset A.dsnt over a window of W x H pixels.\n"
+    "  -o, --output OUT     the image to write (atomically): OUT.png or OUT.f32\n"
+    "  --size WxH           the window, 1..65536 pixels per side\n"
     "  --origin X,Y         top-left point in texels (default 0,0); integers in tile/point mode,\n"
     "                       any real number in continuous mode; values wrap modulo 2^32\n"
     "  --seed S             32-bit seed (default 0)\n"
@@ -35,12 +39,20 @@ const char *const usage =
     "  --mode M             tile (default), point (per-point lattice, same bits as tile) or continuous\n"
     "  --scale F            continuous mode: magnification, one pixel steps 1/F texels (default 1)\n"
     "  --rotate DEG         continuous mode: rotation of the texture, counterclockwise (default 0)\n"
-    "  --allow-lattice      continuous mode on a lattice-baked asset (its spectrum is then smoothed)\n"
+    "  --allow-lattice      continuous mode on a lattice-baked asset (its spectrum is then smoothed;\n"
+    "                       the fix is to bake with dsn-bake --interpolation bilinear, the default)\n"
     "  --no-color-transform use the identity colour transform\n"
-    "  --threads N          worker threads (default: the number of cores)\n"
+    "  --threads N          worker threads, 1..256 (default: the number of cores)\n"
     "  --quiet              no progress or timing line on stderr\n"
+    "  -h, --help           this help\n"
+    "  --version            the version\n"
     "OUT.png is 8-bit grey or RGB; OUT.f32 is raw little-endian float32, channels interleaved,\n"
-    "row-major, top row first (values in exemplar units, 1.0 = white, not clamped).\n";
+    "row-major, top row first (values in exemplar units, 1.0 = white, not clamped).\n"
+    "Progress of a large render is redrawn on a terminal; on a file or pipe it is at most one line per\n"
+    "10%; then one timing line.\n"
+    "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
+    "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when rendering\n"
+    "fails (unreadable or invalid asset, cannot write).\n";
 
 enum class Mode { tile, point, continuous };
 
@@ -60,115 +72,106 @@ bool ends_with(const std::string &text, const std::string &suffix) {
            text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-uint64_t parse_u64(const std::string &flag, const std::string &text, uint64_t high) {
-    char *end = nullptr;
-    errno = 0;
-    unsigned long long value = std::strtoull(text.c_str(), &end, 10);
-    if (text.empty() || text[0] == '-' || *end != '\0' || errno != 0 || value > high)
-        throw std::runtime_error(flag + ": '" + text + "' is not an integer in [0, " + std::to_string(high) +
-                                 "]");
-    return value;
-}
-
-double parse_real(const std::string &flag, const std::string &text) {
-    char *end = nullptr;
-    double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(value))
-        throw std::runtime_error(flag + ": '" + text + "' is not a finite number");
-    return value;
-}
-
 // "AxB" or "A,B" -> the two halves.
 std::pair<std::string, std::string> split_pair(const std::string &flag, const std::string &text,
                                                char separator) {
     size_t at = text.find(separator);
     if (at == std::string::npos || at == 0 || at + 1 == text.size())
-        throw std::runtime_error(flag + ": expected two values separated by '" + separator + "', got '" +
-                                 text + "'");
+        throw dsn::UsageError(flag + " needs two values separated by '" + separator + "', not '" + text +
+                              "'");
     return {text.substr(0, at), text.substr(at + 1)};
 }
 
-Options parse_options(int argc, char **argv) {
+// A lattice origin: an integer, taken modulo 2^32 (so -1 and 4294967295 are the same point).
+int32_t lattice_coordinate(const std::string &text) {
+    char *end = nullptr;
+    errno = 0;
+    long long value = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0 || value < -4294967296LL || value > 4294967295LL)
+        throw dsn::UsageError("--origin: '" + text + "' is not an integer (use --mode continuous for reals)");
+    uint32_t wrapped = static_cast<uint32_t>(static_cast<unsigned long long>(value));
+    return wrapped >= 0x80000000u ? static_cast<int32_t>(wrapped - 0x80000000u) + INT32_MIN
+                                  : static_cast<int32_t>(wrapped);
+}
+
+Options parse_options(dsn::CommandLine &command_line) {
     Options options;
     bool size_given = false;
-    for (int i = 1; i < argc; i++) {
-        std::string flag = argv[i];
-        if (flag == "--help" || flag == "-h") {
-            std::fputs(usage, stdout);
-            std::exit(0);
-        }
-        if (flag == "--quiet") {
+    while (command_line.next()) {
+        const std::string flag = command_line.current();
+        if (command_line.is("--quiet")) {
+            command_line.no_value();
             options.quiet = true;
-            continue;
-        }
-        if (flag == "--allow-lattice") {
+        } else if (command_line.is("--allow-lattice")) {
+            command_line.no_value();
             options.flags |= DSN_FLAG_ALLOW_LATTICE_CONTINUOUS;
-            continue;
-        }
-        if (flag == "--no-color-transform") {
+        } else if (command_line.is("--no-color-transform")) {
+            command_line.no_value();
             options.flags |= DSN_FLAG_NO_COLOR_TRANSFORM;
-            continue;
-        }
-        if (flag.size() < 2 || flag[0] != '-') {
-            if (!options.asset_path.empty()) throw std::runtime_error("more than one asset given: " + flag);
+        } else if (command_line.is_positional()) {
+            if (!options.asset_path.empty()) throw dsn::UsageError("more than one asset given: " + flag);
             options.asset_path = flag;
-            continue;
-        }
-        if (i + 1 >= argc) throw std::runtime_error(flag + " needs a value (see --help)");
-        std::string value = argv[++i];
-        if (flag == "-o" || flag == "--output") {
-            options.output_path = value;
-        } else if (flag == "--size") {
-            auto sides = split_pair(flag, value, 'x');
-            options.width = static_cast<uint32_t>(parse_u64(flag, sides.first, DSN_TILE_MAX_SIDE));
-            options.height = static_cast<uint32_t>(parse_u64(flag, sides.second, DSN_TILE_MAX_SIDE));
-            if (options.width == 0 || options.height == 0)
-                throw std::runtime_error("--size: sides must be >= 1");
+        } else if (command_line.is("-o") || command_line.is("--output")) {
+            options.output_path = command_line.value();
+        } else if (command_line.is("--size")) {
+            auto sides = split_pair(flag, command_line.value(), 'x');
+            options.width =
+                static_cast<uint32_t>(dsn::parse_integer(flag, sides.first, 1, DSN_TILE_MAX_SIDE));
+            options.height =
+                static_cast<uint32_t>(dsn::parse_integer(flag, sides.second, 1, DSN_TILE_MAX_SIDE));
             size_given = true;
-        } else if (flag == "--origin") {
-            auto origin = split_pair(flag, value, ',');
+        } else if (command_line.is("--origin")) {
+            auto origin = split_pair(flag, command_line.value(), ',');
             options.origin_x = origin.first;
             options.origin_y = origin.second;
-        } else if (flag == "--seed") {
-            options.seed = static_cast<uint32_t>(parse_u64(flag, value, 0xFFFFFFFFu));
-        } else if (flag == "--impacts") {
-            double impacts = parse_real(flag, value);
+        } else if (command_line.is("--seed")) {
+            options.seed = static_cast<uint32_t>(dsn::parse_integer(command_line, 0, 0xFFFFFFFFll));
+        } else if (command_line.is("--impacts")) {
+            const double impacts = dsn::parse_real(flag, command_line.value());
             if (impacts * 65536.0 < DSN_IMPACTS_MIN_Q16 || impacts * 65536.0 > DSN_IMPACTS_MAX_Q16)
-                throw std::runtime_error("--impacts must be within [1/16, 1024]");
+                throw dsn::UsageError("--impacts must be within [1/16, 1024]");
             options.impacts_q16 = static_cast<uint32_t>(std::lround(impacts * 65536.0));
-        } else if (flag == "--period") {
-            auto period = split_pair(flag, value, 'x');
-            options.period_x = static_cast<uint32_t>(parse_u64(flag, period.first, 0xFFFFFFFFu));
-            options.period_y = static_cast<uint32_t>(parse_u64(flag, period.second, 0xFFFFFFFFu));
-        } else if (flag == "--mode") {
-            if (value == "tile")
+        } else if (command_line.is("--period")) {
+            auto period = split_pair(flag, command_line.value(), 'x');
+            options.period_x = static_cast<uint32_t>(dsn::parse_integer(flag, period.first, 0, 0xFFFFFFFFll));
+            options.period_y =
+                static_cast<uint32_t>(dsn::parse_integer(flag, period.second, 0, 0xFFFFFFFFll));
+        } else if (command_line.is("--mode")) {
+            const std::string mode = command_line.value();
+            if (mode == "tile")
                 options.mode = Mode::tile;
-            else if (value == "point")
+            else if (mode == "point")
                 options.mode = Mode::point;
-            else if (value == "continuous")
+            else if (mode == "continuous")
                 options.mode = Mode::continuous;
             else
-                throw std::runtime_error("--mode must be tile, point or continuous");
-        } else if (flag == "--scale") {
-            options.scale = parse_real(flag, value);
+                throw dsn::UsageError("--mode must be tile, point or continuous, not '" + mode + "'");
+        } else if (command_line.is("--scale")) {
+            options.scale = dsn::parse_real(flag, command_line.value());
             if (!(options.scale >= 1.0 / 65536 && options.scale <= 65536))
-                throw std::runtime_error("--scale must be within [1/65536, 65536]");
-        } else if (flag == "--rotate") {
-            options.rotate_degrees = parse_real(flag, value);
-        } else if (flag == "--threads") {
-            options.threads = static_cast<unsigned>(parse_u64(flag, value, 256));
-            if (options.threads == 0) throw std::runtime_error("--threads must be >= 1");
+                throw dsn::UsageError("--scale must be within [1/65536, 65536]");
+        } else if (command_line.is("--rotate")) {
+            options.rotate_degrees = dsn::parse_real(flag, command_line.value());
+        } else if (command_line.is("--threads")) {
+            options.threads = static_cast<unsigned>(dsn::parse_integer(command_line, 1, 256));
         } else {
-            throw std::runtime_error("unknown option " + flag + " (see --help)");
+            command_line.unknown();
         }
     }
-    if (options.asset_path.empty()) throw std::runtime_error("no asset given (see --help)");
-    if (options.output_path.empty()) throw std::runtime_error("no output given: -o OUT.png|OUT.f32");
+    if (options.asset_path.empty()) throw dsn::UsageError("no asset given");
+    if (options.output_path.empty()) throw dsn::UsageError("no output given (-o OUT.png|OUT.f32)");
     if (!ends_with(options.output_path, ".png") && !ends_with(options.output_path, ".f32"))
-        throw std::runtime_error("the output must end in .png or .f32: " + options.output_path);
-    if (!size_given) throw std::runtime_error("no size given: --size WxH");
+        throw dsn::UsageError("the output must end in .png or .f32: " + options.output_path);
+    if (!size_given) throw dsn::UsageError("no size given (--size WxH)");
     if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
-        throw std::runtime_error("--scale and --rotate need --mode continuous");
+        throw dsn::UsageError("--scale and --rotate need --mode continuous");
+    if (options.mode == Mode::continuous) {
+        dsn::parse_real("--origin", options.origin_x);
+        dsn::parse_real("--origin", options.origin_y);
+    } else {
+        lattice_coordinate(options.origin_x);
+        lattice_coordinate(options.origin_y);
+    }
     return options;
 }
 
@@ -181,19 +184,6 @@ std::vector<unsigned char> read_file(const std::string &path) {
     return bytes;
 }
 
-// A lattice origin: an integer, taken modulo 2^32 (so -1 and 4294967295 are the same point).
-int32_t lattice_coordinate(const std::string &text) {
-    char *end = nullptr;
-    errno = 0;
-    long long value = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || value < -4294967296LL || value > 4294967295LL)
-        throw std::runtime_error("--origin: '" + text +
-                                 "' is not an integer (use --mode continuous for reals)");
-    uint32_t wrapped = static_cast<uint32_t>(static_cast<unsigned long long>(value));
-    return wrapped >= 0x80000000u ? static_cast<int32_t>(wrapped - 0x80000000u) + INT32_MIN
-                                  : static_cast<int32_t>(wrapped);
-}
-
 int64_t q32_step(double texels) { return static_cast<int64_t>(std::llround(texels * 4294967296.0)); }
 
 // Pixel (i, j) samples origin + (i cos a - j sin a, i sin a + j cos a) / scale (a = the rotation).
@@ -201,8 +191,8 @@ dsn_grid continuous_grid(const Options &options) {
     const double radians = options.rotate_degrees * 3.14159265358979323846 / 180.0;
     const double cosine = std::cos(radians) / options.scale, sine = std::sin(radians) / options.scale;
     dsn_grid grid;
-    grid.origin_x = dsn_coordinate_from_double(parse_real("--origin", options.origin_x));
-    grid.origin_y = dsn_coordinate_from_double(parse_real("--origin", options.origin_y));
+    grid.origin_x = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_x));
+    grid.origin_y = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_y));
     grid.column_step_x = q32_step(cosine);
     grid.column_step_y = q32_step(sine);
     grid.row_step_x = q32_step(-sine);
@@ -251,9 +241,13 @@ void render_block(const Job &job, uint32_t bx, uint32_t by, uint32_t bw, uint32_
     if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
 }
 
-// Renders the whole window into `pixels` (one of u8 or float, per `to_u8`) with `thread_count` workers.
+// How progress is shown: none, one line redrawn per percent (a terminal), or at most one line per 10%
+// (a log file or pipe, where redrawn lines would pile up).
+enum class Progress { none, redrawn, lines };
+
+// Renders the whole window into `pixels` (u8 or float, made by `convert`) with `thread_count` workers.
 template <typename Pixel>
-void render(const Job &job, unsigned thread_count, bool show_progress, std::vector<Pixel> &pixels,
+void render(const Job &job, unsigned thread_count, Progress progress, std::vector<Pixel> &pixels,
             Pixel (*convert)(int32_t)) {
     const uint32_t blocks_x = (job.width + job.block - 1) / job.block;
     const uint32_t blocks_y = (job.height + job.block - 1) / job.block;
@@ -261,6 +255,8 @@ void render(const Job &job, unsigned thread_count, bool show_progress, std::vect
     std::atomic<uint32_t> next_block(0), done_blocks(0);
     std::mutex report_lock;
     std::string failure;
+    const uint32_t percent_step = progress == Progress::lines ? 10 : 1;
+    uint32_t percent_shown = 0; // guarded by report_lock
     auto worker = [&]() {
         std::vector<int32_t> values(static_cast<size_t>(job.block) * job.block * job.channels);
         std::vector<unsigned char> scratch;
@@ -282,10 +278,17 @@ void render(const Job &job, unsigned thread_count, bool show_progress, std::vect
                 for (uint32_t k = 0; k < bw * job.channels; k++) row[k] = convert(source[k]);
             }
             uint32_t done = ++done_blocks;
-            if (show_progress && done * 100 / block_count != (done - 1) * 100 / block_count) {
+            const uint32_t percent = static_cast<uint32_t>(uint64_t(done) * 100 / block_count);
+            if (progress != Progress::none) {
                 std::lock_guard<std::mutex> guard(report_lock);
-                std::fprintf(stderr, "\rdsn-render: %3u%%", done * 100 / block_count);
-                if (done == block_count) std::fputc('\n', stderr);
+                if (percent / percent_step > percent_shown / percent_step) {
+                    percent_shown = percent;
+                    if (progress == Progress::redrawn)
+                        std::fprintf(stderr, "\rdsn-render: %3u%%%s", percent, percent == 100 ? "\n" : "");
+                    else
+                        std::fprintf(stderr, "dsn-render: %u%%\n", percent / percent_step * percent_step);
+                    std::fflush(stderr);
+                }
             }
         }
     };
@@ -330,7 +333,8 @@ void run(const Options &options) {
     if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
     if (options.mode == Mode::continuous && (err = dsn_continuous_check(&noise)) != DSN_OK)
         throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err) +
-                                 " (see --allow-lattice)");
+                                 " (bake it with dsn-bake --interpolation bilinear, or render it anyway "
+                                 "with --allow-lattice)");
 
     Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 128};
     if (options.mode == Mode::continuous)
@@ -341,8 +345,11 @@ void run(const Options &options) {
 
     const size_t value_count = static_cast<size_t>(options.width) * options.height * asset.channels;
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-    bool show_progress =
-        !options.quiet && static_cast<uint64_t>(options.width) * options.height >= (1u << 22);
+    // Only a large render takes long enough to need progress.
+    const bool large = static_cast<uint64_t>(options.width) * options.height >= (1u << 22);
+    const Progress progress = options.quiet || !large      ? Progress::none
+                              : isatty(STDERR_FILENO) != 0 ? Progress::redrawn
+                                                           : Progress::lines;
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&start]() {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -351,12 +358,12 @@ void run(const Options &options) {
     std::vector<unsigned char> file_bytes;
     if (ends_with(options.output_path, ".png")) {
         std::vector<uint8_t> pixels(value_count);
-        render<uint8_t>(job, threads, show_progress, pixels, dsn_fixed_to_u8);
+        render<uint8_t>(job, threads, progress, pixels, dsn_fixed_to_u8);
         seconds = elapsed();
         file_bytes = encode_png(pixels, options.width, options.height, asset.channels);
     } else {
         std::vector<float> pixels(value_count);
-        render<float>(job, threads, show_progress, pixels, dsn_fixed_to_float);
+        render<float>(job, threads, progress, pixels, dsn_fixed_to_float);
         seconds = elapsed();
         file_bytes = encode_f32(pixels);
     }
@@ -371,14 +378,8 @@ void run(const Options &options) {
 } // namespace
 
 int main(int argc, char **argv) {
-    try {
-        run(parse_options(argc, argv));
-    } catch (const std::bad_alloc &) {
-        std::fprintf(stderr, "dsn-render: out of memory (try a smaller --size)\n");
-        return 1;
-    } catch (const std::exception &error) {
-        std::fprintf(stderr, "dsn-render: %s\n", error.what());
-        return 1;
-    }
-    return 0;
+    return dsn::run_tool("dsn-render", kUsage, argc, argv, [](dsn::CommandLine &command_line) {
+        run(parse_options(command_line));
+        return 0;
+    });
 }

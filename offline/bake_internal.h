@@ -1,0 +1,136 @@
+// bake_internal.h - the steps of the baker's pipeline, one function each (internal to libdsn_bake.a;
+// the tests, benchmarks and demo programs call them one by one). The public API is dsn/bake.h.
+//
+//   gaussian_model (periodic_component, mean, t_u) -> interpolation_target -> support_mask ->
+//   sot_alternating_projections (RME of every iteration) -> luminance_texton (the baseline) ->
+//   relative_model_error, excess_kurtosis -> color_transform -> quantize -> assemble_asset.
+//
+// The Gaussian model, the periodic component and the spectral ADSN are those of Galerne, Gousseau and
+// Morel, "Random phase textures: theory and synthesis" (IEEE TIP 2011); the alternating projections and
+// the relative model error those of Galerne, Leclaire and Moisan, "A texton for fast and flexible Gaussian
+// texture synthesis" (EUSIPCO 2014).
+#ifndef DSN_OFFLINE_BAKE_INTERNAL_H
+#define DSN_OFFLINE_BAKE_INTERNAL_H
+
+#include "dsn/bake.h"
+
+namespace dsn {
+
+// ---- Spectra ----
+
+// Unnormalized 2-D DFT of every channel and its inverse (divided by width * height, real part kept).
+// Built from kiss_fftnd (complex): kiss_fftndr of this kissfft crashes on 2-D sizes from 64 x 64.
+Spectrum forward_dft(const Image &image);
+Image inverse_dft(const Spectrum &spectrum);
+
+// ---- Gaussian model ----
+
+// The periodic component p of u (Moisan's periodic plus smooth decomposition, as Galerne, Gousseau and
+// Morel use it): Lap p = Lap_int u, mean(p) = mean(u), solved in Fourier.
+Image periodic_component(const Image &u);
+
+// Mean and t_u of `u` (of its periodic component when `periodic`). Throws std::runtime_error for a
+// constant image (no variance: every pixel equal in every channel).
+GaussianModel gaussian_model(const Image &u, bool periodic);
+
+// The spectrum a texton read with `interpolation` must have so that the noise sampled on the lattice has
+// the spectrum of `model`: the model itself for lattice, |T_u| / sqrt(b) for bilinear, where
+// b = (2/3 + cos(2 pi xi1 / M) / 3)(2/3 + cos(2 pi xi2 / N) / 3) is the sampled cubic B-spline.
+Spectrum interpolation_target(const Spectrum &model, uint32_t interpolation);
+
+// ---- Support and textons ----
+
+// Throws std::invalid_argument unless 1 <= radius <= kMaxRadius and the shape is known.
+Support support_mask(int radius, uint32_t shape);
+
+// The values of a torus image at the support points around the origin (zero elsewhere).
+Texton crop_to_support(const Image &torus_image, const Support &support);
+
+// The texton's DFT on the width x height torus (the texton wraps around the origin).
+Spectrum texton_spectrum(const Texton &texton, int width, int height);
+
+// ---- Synthesis-oriented texton ----
+
+// A standard Gaussian white noise image (one channel) drawn from `seed` by a counter-based generator:
+// the same seed gives the same image, whatever else ran before.
+Image white_noise(int width, int height, uint32_t seed);
+
+// Spectrum with the modulus of `target` and the phase of the DFT of a real white noise drawn from `seed`
+// (so its inverse DFT is real): the random-phase start. Same seed, same start.
+Spectrum random_phase_start(const Spectrum &target, uint32_t seed);
+
+struct SotOptions {
+    int iterations = 1000;
+    uint32_t seed = 0;
+    // Early stop: after at least `stop_window` iterations, stop when the RME improved by less than
+    // `stop_tolerance` over the last `stop_window` iterations. 0 runs every iteration.
+    double stop_tolerance = 0;
+    int stop_window = 50;
+    // Uses full-size 2-D FFTs per iteration instead of the pruned transforms: the slow reference.
+    bool reference = false;
+    BakeProgress progress; // may be empty
+};
+
+// Alternating projections between the textons supported on `support` and the textons whose spectrum
+// modulus is |target| (one common phase per frequency for all channels), from random_phase_start.
+// The zero frequency is left free: the texton's sum is not constrained (the runtime subtracts the mean).
+// Returns the texton after the last iteration and the RME of every iteration.
+SotResult sot_alternating_projections(const Spectrum &target, const Support &support,
+                                      const SotOptions &options);
+
+// The baseline: T_u,c conj(L)/|L| with L = T_u,R/3 + T_u,G/2 + T_u,B/6 (L = T_u for grey), inverse DFT,
+// cropped to the support.
+Texton luminance_texton(const Spectrum &model, const Support &support);
+
+// ---- Measures ----
+
+// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels, over the
+// frequencies xi != 0 (the texton's sum only moves the noise's mean, which the runtime subtracts).
+double relative_model_error(const Spectrum &model, const Spectrum &texton);
+double relative_model_error(const Spectrum &model, const Texton &texton);
+
+// Per channel: excess kurtosis of the spot-noise marginal with `impacts_per_pixel` impacts per pixel,
+// sum t^4 / (lambda (sum t^2)^2), lambda = impacts / |S|. 0 for a channel that is all zero.
+std::vector<double> excess_kurtosis(const Texton &texton, double impacts_per_pixel);
+
+// ---- Colour ----
+
+// Colour covariance sum_x t(x) t(x)^T of the noise made from the texton, as it is sampled on the
+// lattice: for bilinear, the autocorrelation is weighted by the sampled cubic B-spline. Grey: [0] only.
+Matrix3 texton_covariance(const Texton &texton, uint32_t interpolation);
+// Colour covariance of the Gaussian model: sum_x t_u(x) t_u(x)^T.
+Matrix3 model_covariance(const GaussianModel &model);
+
+// Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations: matrix = V diag(values) V^T,
+// eigenvectors in the columns of V.
+void symmetric_eigen(const Matrix3 &matrix, std::array<double, 3> &values, Matrix3 &vectors);
+
+// K = B^(1/2) A^(-1/2) (symmetric square roots), so that K A K^T = B. Identity for grey and when A is 0.
+// Guard: eigenvalues of B below 0 are taken as 0, eigenvalues of A below kColorEigenFloor * max eig(A)
+// are raised to that floor, so a (near-)singular A gives a bounded K and never NaN; entries are then
+// clamped to +-kColorTransformLimit (what Q8.24 stores).
+constexpr double kColorEigenFloor = 1e-4;
+constexpr double kColorTransformLimit = 127.0;
+Matrix3 color_transform(const Matrix3 &a, const Matrix3 &b, int channels);
+
+// ---- Quantization and the asset ----
+
+struct QuantizedTexton {
+    int bits = 8;
+    std::array<uint32_t, 3> scale_raw = {0, 0, 0}; // value = q * scale_raw / 2^40
+    std::vector<int32_t> values;                   // interleaved, row-major, top row first (format.h)
+};
+
+// Per channel, the scale puts max |t| at 127 (8 bits) or 32767 (16 bits); the raw scale is
+// round(scale * 2^40), clamped to [1, 2^32 - 1], and values are rounded with that stored scale.
+QuantizedTexton quantize(const Texton &texton, int bits);
+// The texton the runtime sees: q * scale_raw / 2^40.
+Texton dequantize(const QuantizedTexton &quantized, const Support &support, int channels);
+
+// The asset fields of a bake (quantized texton, scales, mean and K in Q8.24, metadata).
+AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options, int exemplar_width,
+                           int exemplar_height);
+
+} // namespace dsn
+
+#endif // DSN_OFFLINE_BAKE_INTERNAL_H

@@ -1,0 +1,114 @@
+// command_line.cpp - the shared argument parsing and exit conventions of the tools (command_line.h).
+#include "command_line.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+
+#include "dsn/dsn.h"
+
+namespace dsn {
+namespace {
+
+// Thrown by --help and --version once they have printed: the tool ends with status 0.
+struct FinishedEarly {};
+
+} // namespace
+
+bool CommandLine::next() {
+    if (++index_ >= argc_) return false;
+    const std::string argument = argv_[index_];
+    has_inline_value_ = false;
+    inline_value_.clear();
+    positional_ = flags_ended_ || argument.size() < 2 || argument[0] != '-';
+    name_ = argument;
+    if (positional_) return true;
+    if (argument == "--") {
+        flags_ended_ = true;
+        return next();
+    }
+    const size_t equals = argument.find('=');
+    if (argument.compare(0, 2, "--") == 0 && equals != std::string::npos) {
+        name_ = argument.substr(0, equals);
+        inline_value_ = argument.substr(equals + 1);
+        has_inline_value_ = true;
+    }
+    if (name_ == "-h" || name_ == "--help") {
+        no_value();
+        std::fputs(usage_, stdout);
+        throw FinishedEarly();
+    }
+    if (name_ == "--version") {
+        no_value();
+        std::printf("%s %s\n", tool_, dsn_version());
+        throw FinishedEarly();
+    }
+    return true;
+}
+
+bool CommandLine::is(const char *flag) const { return !positional_ && name_ == flag; }
+
+std::string CommandLine::value() {
+    if (has_inline_value_) return inline_value_;
+    if (index_ + 1 >= argc_) throw UsageError(name_ + " needs a value");
+    return argv_[++index_];
+}
+
+void CommandLine::no_value() const {
+    if (has_inline_value_) throw UsageError(name_ + " takes no value");
+}
+
+void CommandLine::unknown() const {
+    if (positional_) throw UsageError("unexpected argument '" + name_ + "'");
+    throw UsageError("unknown flag " + name_);
+}
+
+long long parse_integer(const std::string &flag, const std::string &text, long long minimum,
+                        long long maximum) {
+    char *end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE ||
+        !(text[0] == '-' || (text[0] >= '0' && text[0] <= '9')))
+        throw UsageError(flag + " needs a whole number, not '" + text + "'");
+    if (value < minimum || value > maximum)
+        throw UsageError(flag.substr(flag.find_first_not_of('-')) + " " + text + " out of range " +
+                         std::to_string(minimum) + ".." + std::to_string(maximum));
+    return value;
+}
+
+long long parse_integer(CommandLine &arguments, long long minimum, long long maximum) {
+    const std::string flag = arguments.current();
+    return parse_integer(flag, arguments.value(), minimum, maximum);
+}
+
+double parse_real(const std::string &flag, const std::string &text) {
+    char *end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value))
+        throw UsageError(flag + " needs a finite number, not '" + text + "'");
+    return value;
+}
+
+int run_tool(const char *tool, const char *usage, int argc, char **argv,
+             const std::function<int(CommandLine &)> &body) {
+    CommandLine arguments(tool, usage, argc, argv);
+    try {
+        return body(arguments);
+    } catch (const FinishedEarly &) {
+        return 0;
+    } catch (const UsageError &error) {
+        std::fprintf(stderr, "%s: %s (see --help)\n", tool, error.what());
+        return 2;
+    } catch (const std::bad_alloc &) {
+        std::fprintf(stderr, "%s: out of memory\n", tool);
+        return 1;
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "%s: %s\n", tool, error.what());
+        return 1;
+    }
+}
+
+} // namespace dsn
