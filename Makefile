@@ -136,8 +136,10 @@ INSTALLED_FILES = $(addprefix $(INSTALL_ROOT)/include/dsn/,$(notdir $(wildcard i
     $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfig.cmake $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfigVersion.cmake
 # The folders only dsn puts files in; the shared ones (bin, lib, lib/pkgconfig...) stay.
 INSTALLED_FOLDERS = $(INSTALL_ROOT)/include/dsn $(INSTALL_ROOT)/lib/cmake/dsn
+# The CMake package refuses a consumer of another pointer size (a 32-bit build against 64-bit libraries).
+INSTALL_POINTER_SIZE = $(shell $(CXX) -dM -E -x c++ /dev/null | sed -n 's/^\#define __SIZEOF_POINTER__ //p')
 INSTALL_SUBSTITUTIONS = -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
-    -e 's|@SIZEOF_POINTER@|$(shell $(CXX) -dM -E -x c++ /dev/null | sed -n 's/^\#define __SIZEOF_POINTER__ //p')|'
+    -e 's|@SIZEOF_POINTER@|$(INSTALL_POINTER_SIZE)|'
 
 install: all
 	install -d $(INSTALL_ROOT)/include/dsn $(INSTALL_ROOT)/lib/pkgconfig $(INSTALL_ROOT)/lib/cmake/dsn \
