@@ -5,6 +5,7 @@
 #   make            libraries and tools          make test      everything, then every test
 #   make demo       the demo pictures            make bench     benchmarks (ratios to baselines)
 #   make install    PREFIX=/usr/local DESTDIR=   make deps      Debian packages the build needs
+#   make uninstall  the same PREFIX and DESTDIR: removes what install put there
 
 BUILD ?= build
 PREFIX ?= /usr/local
@@ -14,7 +15,8 @@ CFLAGS ?= -O2 -g
 LDFLAGS ?=
 VERSION := $(shell sed -n 's/^#define DSN_VERSION_STRING "\(.*\)"/\1/p' include/dsn/dsn.h)
 
-DEPS_PACKAGES := libkissfft-dev libstb-dev doctest-dev pkg-config
+# cmake: the install test builds a consumer with find_package(dsn).
+DEPS_PACKAGES := libkissfft-dev libstb-dev doctest-dev pkg-config cmake
 
 WARNINGS := -Wall -Wextra -Werror -Wshadow
 COMMON_FLAGS := -ffp-contract=off -Iinclude -MMD -MP
@@ -65,7 +67,7 @@ TEST_SCRIPTS :=      # run by `make test` after the doctest runner, each counted
 BENCH_PROGRAMS :=    # built and run by `make bench`
 INSTALL_PROGRAMS :=  # copied to $(PREFIX)/bin by `make install`
 
-.PHONY: all deps test demo bench install clean format format-check sanitize
+.PHONY: all deps test demo bench install uninstall clean format format-check sanitize
 all: $(LIBDSN) $(LIBDSN_BAKE) $(LIBDSN_TOOLS) $(TOOLS) $(TOOL_HELPERS)
 
 include $(sort $(wildcard examples/*/module.mk tests/*/module.mk))
@@ -141,15 +143,39 @@ bench: deps
 	@$(MAKE) --no-print-directory all $(BENCH_PROGRAMS)
 	@for program in $(BENCH_PROGRAMS); do echo "== $$program"; $$program || exit 1; done
 
+# What `make install` puts under $(DESTDIR)$(PREFIX), and `make uninstall` removes: the headers, the two
+# static libraries, the tools, the pkg-config files and the CMake package (lib/cmake/dsn: find_package(dsn)
+# gives dsn::dsn and dsn::bake).
+INSTALL_ROOT = $(DESTDIR)$(PREFIX)
+INSTALLED_TOOLS = $(sort $(notdir $(TOOLS) $(INSTALL_PROGRAMS)))
+INSTALLED_FILES = $(addprefix $(INSTALL_ROOT)/include/dsn/,$(notdir $(wildcard include/dsn/*.h))) \
+    $(INSTALL_ROOT)/lib/libdsn.a $(INSTALL_ROOT)/lib/libdsn_bake.a \
+    $(addprefix $(INSTALL_ROOT)/bin/,$(INSTALLED_TOOLS)) \
+    $(INSTALL_ROOT)/lib/pkgconfig/dsn.pc $(INSTALL_ROOT)/lib/pkgconfig/dsn-bake.pc \
+    $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfig.cmake $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfigVersion.cmake
+# The folders only dsn puts files in; the shared ones (bin, lib, lib/pkgconfig...) stay.
+INSTALLED_FOLDERS = $(INSTALL_ROOT)/include/dsn $(INSTALL_ROOT)/lib/cmake/dsn
+# The CMake package refuses a consumer of another pointer size (a 32-bit build against 64-bit libraries).
+INSTALL_POINTER_SIZE = $(shell $(CXX) -dM -E -x c++ /dev/null | sed -n 's/^\#define __SIZEOF_POINTER__ //p')
+INSTALL_SUBSTITUTIONS = -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
+    -e 's|@SIZEOF_POINTER@|$(INSTALL_POINTER_SIZE)|'
+
 install: all
-	install -d $(DESTDIR)$(PREFIX)/include/dsn $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/dsn/*.h $(DESTDIR)$(PREFIX)/include/dsn/
-	install -m 644 $(LIBDSN) $(LIBDSN_BAKE) $(DESTDIR)$(PREFIX)/lib/
-	$(if $(strip $(TOOLS) $(INSTALL_PROGRAMS)),install -m 755 $(TOOLS) $(INSTALL_PROGRAMS) $(DESTDIR)$(PREFIX)/bin/)
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' .ci/dsn.pc.in \
-	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/dsn.pc
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' .ci/dsn-bake.pc.in \
-	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/dsn-bake.pc
+	install -d $(INSTALL_ROOT)/include/dsn $(INSTALL_ROOT)/lib/pkgconfig $(INSTALL_ROOT)/lib/cmake/dsn \
+	    $(INSTALL_ROOT)/bin
+	install -m 644 include/dsn/*.h $(INSTALL_ROOT)/include/dsn/
+	install -m 644 $(LIBDSN) $(LIBDSN_BAKE) $(INSTALL_ROOT)/lib/
+	$(if $(INSTALLED_TOOLS),install -m 755 $(sort $(TOOLS) $(INSTALL_PROGRAMS)) $(INSTALL_ROOT)/bin/)
+	sed $(INSTALL_SUBSTITUTIONS) .ci/dsn.pc.in > $(INSTALL_ROOT)/lib/pkgconfig/dsn.pc
+	sed $(INSTALL_SUBSTITUTIONS) .ci/dsn-bake.pc.in > $(INSTALL_ROOT)/lib/pkgconfig/dsn-bake.pc
+	sed $(INSTALL_SUBSTITUTIONS) .ci/dsnConfig.cmake.in > $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfig.cmake
+	sed $(INSTALL_SUBSTITUTIONS) .ci/dsnConfigVersion.cmake.in \
+	    > $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfigVersion.cmake
+
+uninstall:
+	rm -f $(INSTALLED_FILES)
+	@for folder in $(INSTALLED_FOLDERS); do [ ! -d "$$folder" ] || rmdir "$$folder" 2>/dev/null || \
+	    echo "uninstall: kept $$folder: it holds files that make install did not put there"; done
 
 FORMAT_SOURCES = $(shell git ls-files '*.cpp' '*.h' '*.c' 2>/dev/null)
 format:
