@@ -1,6 +1,7 @@
 // asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h and writes files
 // atomically (temporary file in the destination folder, fsync, rename).
 #include "dsn/asset_writer.h"
+#include "../runtime/format_bytes.h"
 
 #include <cerrno>
 #include <cstdio>

@@ -8,6 +8,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 
 namespace {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "../runtime/format_bytes.h"
 #include "dsn/bake.h"
 #include "fixtures/bake_fixtures.h"
 

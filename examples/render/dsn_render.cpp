@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 #include "dsn/bake.h"
 #include "dsn/dsn.h"

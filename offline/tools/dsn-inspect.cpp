@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../../runtime/format_bytes.h"
 #include "dsn/dsn.h"
 
 namespace {

@@ -4,6 +4,7 @@
 // The committed arrays, not this program, are the source of truth: every target of the cross test reads
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
 // tests/cross/golden.txt in the same commit.
+#include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 
 #include <cstdio>

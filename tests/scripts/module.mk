@@ -2,3 +2,4 @@
 TEST_SCRIPTS += tests/scripts/install-and-link
 TEST_SCRIPTS += tests/scripts/check-freestanding
 TEST_SCRIPTS += tests/scripts/bake-errors tests/scripts/bake-roundtrip
+TEST_SCRIPTS += tests/scripts/check-public-header
