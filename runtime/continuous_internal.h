@@ -49,4 +49,8 @@ int dsn_internal_continuous_check(const dsn_noise_state *noise);
    (continuous_point.cpp). */
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
 
+/* dsn_continuous_point_float at Q32.32 coordinates: the errors and the zeroed output of
+   dsn_continuous_point_fixed, the values as float (continuous_point.cpp; dsn_sample calls it too). */
+int dsn_internal_continuous_point_float(const dsn_noise *noise, int64_t x, int64_t y, float *out);
+
 #endif /* DSN_CONTINUOUS_INTERNAL_H */

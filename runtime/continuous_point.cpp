@@ -64,8 +64,10 @@ void add_cell(const dsn_noise_state *noise, const PointAxis &px, const dsn_span 
     }
 }
 
+} // namespace
+
 /* The small build: impulse by impulse, each through dsn_impulse_hash. */
-void evaluate(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
     const uint32_t shift = noise->cell_shift;
     const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
@@ -82,6 +84,8 @@ void evaluate(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out
     }
     normalize_q32(noise, sums, out);
 }
+
+namespace {
 
 #else
 /* ---- Fast per point: the impulses sifted by their packed lattice fields ----
@@ -327,18 +331,24 @@ void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t
     normalize_q32(noise, sums, out);
 }
 
+} // namespace
+
 /* The fast build evaluates through the sifting walk, one copy per channel count and value size. */
-void evaluate(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3)
         asset->bits == 8 ? evaluate_fast<3, 1>(noise, x, y, out) : evaluate_fast<3, 2>(noise, x, y, out);
     else
         asset->bits == 8 ? evaluate_fast<1, 1>(noise, x, y, out) : evaluate_fast<1, 2>(noise, x, y, out);
 }
+
+namespace {
 #endif /* DSN_SMALL_CODE */
 
-void zero(int32_t *out, uint32_t count) {
-    for (uint32_t i = 0; i < count; i++) out[i] = 0;
+/* The number of values a call writes: the noise's channels, or, for a noise with none (null, never
+   configured, failed), the one value that every caller's array has, zeroed. */
+uint32_t values_written(const dsn_noise_state *noise) {
+    return noise == 0 || noise->asset.channels == 0 ? 1u : noise->asset.channels;
 }
 
 } // namespace
@@ -351,8 +361,12 @@ int dsn_internal_continuous_check(const dsn_noise_state *noise) {
     return DSN_OK;
 }
 
-void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
-    evaluate(noise, x, y, out);
+int dsn_internal_continuous_point_float(const dsn_noise *handle, int64_t x, int64_t y, float *out) {
+    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = dsn_continuous_point_fixed(handle, x, y, fixed);
+    dsn_store_pixel(out, dsn_output_float, 0, fixed, values_written(dsn_state(handle)));
+    return err;
 }
 
 extern "C" {
@@ -364,21 +378,16 @@ int dsn_continuous_point_fixed(const dsn_noise *handle, int64_t x, int64_t y, in
     if (out == 0) return DSN_ERR_NULL;
     const int err = dsn_internal_continuous_check(noise);
     if (err != DSN_OK) {
-        zero(out, noise == 0 ? 1u : noise->asset.channels);
+        for (uint32_t c = 0; c < values_written(noise); c++) out[c] = 0;
         return err;
     }
-    evaluate(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), out);
+    dsn_internal_continuous_point(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), out);
     return DSN_OK;
 }
 
 int dsn_continuous_point_float(const dsn_noise *handle, double x, double y, float *out) {
-    const dsn_noise_state *noise = dsn_state(handle);
-    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
-    if (out == 0) return DSN_ERR_NULL;
-    const int err = dsn_continuous_point_fixed(handle, dsn_coordinate_from_double(x),
-                                               dsn_coordinate_from_double(y), fixed);
-    dsn_store_pixel(out, dsn_output_float, 0, fixed, noise == 0 ? 1u : noise->asset.channels);
-    return err;
+    return dsn_internal_continuous_point_float(handle, dsn_coordinate_from_double(x),
+                                               dsn_coordinate_from_double(y), out);
 }
 
 } // extern "C"

@@ -177,7 +177,7 @@ uint32_t dsn_noise_channels(const dsn_noise *noise);
    must stay alive and unchanged for as long as `noise` is used: the noise reads its texton there.
    A lattice-baked asset (the usual dsn-bake output) gets DSN_FLAG_ALLOW_LATTICE_CONTINUOUS, so that
    dsn_sample works on every valid asset: read bilinearly, its texton gives a slightly smoother noise than
-   the exemplar (its spectrum times the bilinear filter's, dsn_continuous_check); an asset baked with
+   the exemplar (its spectrum times the bilinear filter's: see the continuous mode below); an asset baked with
    `dsn-bake --interpolation bilinear` is compensated for that and matches the exemplar. The lattice
    functions are unaffected by the flag. Returns DSN_OK, DSN_ERR_NULL (noise or bytes null), any error of
    dsn_asset_load (DSN_ERR_TRUNCATED, DSN_ERR_BAD_MAGIC, DSN_ERR_CRC, ...; format.h's validation order)
@@ -252,11 +252,10 @@ int dsn_lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t
    from the same table, positions uniform in the cell with 16 - cell_shift >= 8 fractional bits per
    axis; each lattice impulse is the floor of its continuous twin) and the texton is read with bilinear
    interpolation (zero beyond its window; weights from the point's top 16 fraction bits), in integer
-   arithmetic only. Sampled on
-   the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi xi1)/3)(2/3 + cos(2 pi xi2)/3);
-   a texton baked with `dsn-bake --interpolation bilinear` compensates it. The continuous functions
-   return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was configured with
-   DSN_FLAG_ALLOW_LATTICE_CONTINUOUS.
+   arithmetic only. Sampled on the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi
+   xi1)/3)(2/3 + cos(2 pi xi2)/3); a texton baked with `dsn-bake --interpolation bilinear` compensates it. The
+   continuous functions return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was
+   configured with DSN_FLAG_ALLOW_LATTICE_CONTINUOUS.
 
    Coordinates are Q32.32 fixed point in texel units, in an int64_t: value / 2^32 texels. The integer
    part wraps modulo 2^32 like the lattice coordinates, so every int64_t is a point of the same
@@ -276,11 +275,12 @@ int64_t dsn_coordinate_from_float(float value);
    DSN_ERR_CONTINUOUS_MISMATCH. */
 int dsn_continuous_check(const dsn_noise *noise);
 
-/* out[channels]: Q16.16 values at the continuous point (x, y) (Q32.32). On an error every channel of
-   `out` is set to 0 and the error is returned. */
+/* out[channels]: Q16.16 values at the continuous point (x, y) (Q32.32). Returns DSN_OK, or
+   DSN_ERR_NULL (null `noise` or `out`, or a noise not configured) or DSN_ERR_CONTINUOUS_MISMATCH; on an
+   error out[0] (and every channel of a configured noise) is set to 0. */
 int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out);
 /* The same from float64 coordinates (converted by dsn_coordinate_from_double), output as float
-   (exactly fixed / 65536 rounded to float). */
+   (exactly fixed / 65536 rounded to float); the same errors. */
 int dsn_continuous_point_float(const dsn_noise *noise, double x, double y, float *out);
 
 /* A regular grid of continuous points: pixel (i, j) is the point
