@@ -235,7 +235,7 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    need a scratch buffer of at least dsn_lattice_tile_scratch_size() bytes (an integer accumulator; no
    alignment needed), else they return DSN_ERR_SCRATCH. dsn_lattice_tile_scratch_size returns 0 for an invalid
    noise or size. Width and height are 1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is
-   not addressable); null pointers give DSN_ERR_NULL. */
+   not addressable); null pointers give DSN_ERR_NULL, a noise that is not configured DSN_ERR_ARGUMENT. */
 /* On x86, fixed and float tiles of 16 MB of output or more are written with non-temporal stores (they
    would not stay in the caches anyway), so reading them right after the call comes from memory. */
 size_t dsn_lattice_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
