@@ -1,5 +1,6 @@
 // asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h.
 #include "dsn/asset_writer.h"
+#include "../runtime/format_bytes.h"
 
 #include <cstring>
 #include <stdexcept>

@@ -1,4 +1,5 @@
 // texton.cpp - the support mask, textons on the torus (crop, spectrum) and the luminance-texton baseline.
+#include "../runtime/format_bytes.h"
 #include "bake_internal.h"
 
 #include <cmath>

@@ -1,5 +1,6 @@
 /* runtime/asset.cpp - validates a .dsnt asset in place (format.h, in its documented order) and reads
-   texton values; also the static error messages. */
+   texton values; also the static error messages (format.h's error table). */
+#include "format_bytes.h"
 #include "init_internal.h"
 
 namespace {
@@ -154,54 +155,11 @@ extern "C" int32_t dsn_asset_texton_value(const dsn_asset *asset, uint32_t row, 
 
 extern "C" const char *dsn_error_message(int code) {
     switch (code) {
-    case DSN_OK:
-        return "success";
-    case DSN_ERR_NULL:
-        return "a required pointer argument is null";
-    case DSN_ERR_TRUNCATED:
-        return "the buffer ends before the asset does (truncated file)";
-    case DSN_ERR_BAD_MAGIC:
-        return "not a .dsnt asset (bad magic)";
-    case DSN_ERR_TEXT_MODE:
-        return "the asset's magic was damaged by a text-mode (CR/LF) transfer";
-    case DSN_ERR_VERSION:
-        return "unsupported .dsnt major version";
-    case DSN_ERR_HEADER_SIZE:
-        return "header size out of range";
-    case DSN_ERR_TOTAL_SIZE:
-        return "total size inconsistent with the header fields";
-    case DSN_ERR_CRC:
-        return "checksum mismatch: the asset is damaged";
-    case DSN_ERR_RESERVED:
-        return "a reserved bit, byte or unused-channel field is not 0";
-    case DSN_ERR_CHANNELS:
-        return "channel count is not 1 or 3";
-    case DSN_ERR_BITS:
-        return "quantization bits is not 8 or 16";
-    case DSN_ERR_SHAPE:
-        return "unknown support shape, or a disk that is not square";
-    case DSN_ERR_INTERPOLATION:
-        return "unknown interpolation";
-    case DSN_ERR_DIMENSIONS:
-        return "texton width/height is zero, even or above 255";
-    case DSN_ERR_SCALE:
-        return "a used channel has scale 0";
-    case DSN_ERR_IMPACTS:
-        return "impacts per pixel out of range";
-    case DSN_ERR_COLOR_TRANSFORM:
-        return "grey asset with non-zero unused colour transform entries";
-    case DSN_ERR_TEXTON:
-        return "reserved texton value, or non-zero value outside the support";
-    case DSN_ERR_PERIOD:
-        return "period out of range";
-    case DSN_ERR_CONTINUOUS_MISMATCH:
-        return "continuous mode on a lattice-baked asset is not allowed";
-    case DSN_ERR_SCRATCH:
-        return "scratch buffer missing or too small";
-    case DSN_ERR_TILE_SIZE:
-        return "tile width or height is 0 or too large";
-    case DSN_ERR_ARGUMENT:
-        return "an argument is out of its documented range";
+#define DSN_ERROR_MESSAGE_CASE(name, value, message)                                                         \
+    case name:                                                                                               \
+        return message;
+        DSN_LIST_ERRORS(DSN_ERROR_MESSAGE_CASE)
+#undef DSN_ERROR_MESSAGE_CASE
     default:
         return "unknown error code";
     }

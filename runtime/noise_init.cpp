@@ -7,20 +7,18 @@
 
 namespace {
 
-/* Expected cost of one per-point evaluation with cells of side c = 2^shift, in tenths of a nanosecond
-   (Q16), from per-point timings at several cell sizes on the benchmark machine (x86-64). A point visits
-   (w - 1 + c)(h - 1 + c) / c^2 cells and examines lambda (w - 1 + c)(h - 1 + c) impulses, lambda w h of
-   which reach it.
-   - 16 x 16 cells with one Poisson draw take point.cpp's vector walk: 9 ns per cell, 1.3 ns per
-     impulse examined (hit or not).
-   - Other sizes take the impulse-by-impulse walk: 7.2 ns per cell and 3 ns per further draw, 2.7 ns per
-     impulse examined and 2.7 ns more per impulse that reaches the point.
-   The usual 31 x 31 texton at 30 impacts per pixel gets c = 16 (8.3 cells, 66 impulses: ~160 ns against
-   ~430 ns for c = 8), so do 31 x 31 at 5 impacts (~100 ns against ~115 ns for c = 32) and 63 x 63 at 30
-   (~270 ns against ~340 ns for c = 32); 15 x 15 at 30 needs three draws for c = 16 and gets c = 8. Hosts
-   without SSE2 walk impulse by impulse at every size but make the same choice: the cell size is part of the
-   output, so these constants stay as measured (the vector walk has since come down to ~114 ns for the
-   usual texton, which only widens its lead). The tile path is insensitive to it. */
+/* Expected cost of one per-point evaluation with cells of side c = 2^shift, a linear model in fixed units
+   (Q16). A point visits (w - 1 + c)(h - 1 + c) / c^2 cells and examines lambda (w - 1 + c)(h - 1 + c)
+   impulses, lambda w h of which reach it.
+   - 16 x 16 cells with one Poisson draw take point.cpp's vector walk: 90 units per cell, 13 per impulse
+     examined (hit or not).
+   - Other sizes take the impulse-by-impulse walk: 72 units per cell and 30 per further draw, 27 per
+     impulse examined and 27 more per impulse that reaches the point.
+   The constants were fitted to per-point timings on x86-64 (make bench times the evaluators) and are now
+   fixed: the cell size is part of the output, so every platform, with or without SSE2, must make the same
+   choice from the same model. The usual 31 x 31 texton at 30 impacts per pixel gets c = 16 (8.3 cells,
+   66 impulses), as do 31 x 31 at 5 impacts and 63 x 63 at 30; 15 x 15 at 30 would need three draws for
+   c = 16 and gets c = 8. The tile path is insensitive to the choice. */
 uint64_t point_cost_q16(const dsn_asset *asset, uint32_t impacts_q16, uint32_t shift, uint64_t parts,
                         uint64_t hits_q16) {
     const uint32_t side = 1u << shift; /* <= 256: the area is below 2^19 and 2 shift <= 16 */
@@ -99,7 +97,7 @@ extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const d
                        : asset->default_impacts_q16 != 0 ? asset->default_impacts_q16
                                                          : DSN_IMPACTS_DEFAULT_Q16;
     if (impacts < DSN_IMPACTS_MIN_Q16 || impacts > DSN_IMPACTS_MAX_Q16) return DSN_ERR_IMPACTS;
-    /* Every period 1 .. 2^32 - 1 is valid (0 = none); DSN_ERR_PERIOD is kept for future limits. */
+    /* Every period 1 .. 2^32 - 1 is valid (0 = none): nothing to check. */
 
     noise->asset = *asset;
     noise->seed = config->seed;

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "dsn/dsn.h"
+#include "format_bytes.h" /* the evaluators read texton values with these */
 
 struct dsn_noise_state {
     dsn_asset asset;
@@ -28,7 +29,8 @@ struct dsn_noise_state {
 };
 
 static_assert(sizeof(dsn_noise_state) <= sizeof(dsn_noise), "dsn_noise must hold dsn_noise_state");
-static_assert(alignof(dsn_noise_state) <= alignof(dsn_noise), "dsn_noise must be aligned for dsn_noise_state");
+static_assert(alignof(dsn_noise_state) <= alignof(dsn_noise),
+              "dsn_noise must be aligned for dsn_noise_state");
 
 /* The state inside a caller's dsn_noise (null stays null). The caller's words are only ever written and
    read as this struct, by the runtime. */

@@ -1,4 +1,4 @@
-// api_edges_test.cpp - the runtime API at its edges (issue 6): null pointers, a noise whose init failed,
+// api_edges_test.cpp - the runtime API at its edges: null pointers, a noise whose init failed,
 // densities out of range, periods 1 and 2^31, NaN / Inf / huge continuous coordinates. Each must give the
 // documented error or a defined value (and, under `make sanitize`, no undefined behaviour).
 #include <doctest/doctest.h>
@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
+#include <string>
 
 #include "dsn/dsn.h"
 #include "fixtures/test_assets.h"
@@ -97,4 +99,28 @@ TEST_CASE("continuous coordinates: NaN and Inf are 0, huge values wrap, and the 
     int32_t out[3] = {1, 1, 1};
     CHECK(dsn_continuous_point_fixed(nullptr, 0, 0, out) == DSN_ERR_NULL);
     CHECK(dsn_continuous_point_fixed(&loaded.noise, 0, 0, nullptr) == DSN_ERR_NULL);
+}
+
+TEST_CASE("every error code has its own message; -19 and codes outside the table are unknown") {
+    const std::string unknown = dsn_error_message(1);
+    CHECK(unknown == "unknown error code");
+    CHECK(dsn_error_message(DSN_ERR_LOWEST - 1) == unknown);
+    CHECK(dsn_error_message(-19) == unknown); // retired: no error has it
+    CHECK(std::string(dsn_error_message(DSN_OK)) == "success");
+    std::set<std::string> messages;
+    int named = 0;
+#define DSN_TEST_ERROR_ENTRY(name, value, message)                                                           \
+    CHECK(int(name) == value);                                                                               \
+    CHECK(std::string(dsn_error_message(name)) == message);                                                  \
+    messages.insert(message);                                                                                \
+    named++;
+    DSN_LIST_ERRORS(DSN_TEST_ERROR_ENTRY)
+#undef DSN_TEST_ERROR_ENTRY
+    CHECK(messages.size() == size_t(named));
+    CHECK(messages.count(unknown) == 0);
+    // The table names every code from 0 down to DSN_ERR_LOWEST but the retired -19.
+    int known = 0;
+    for (int code = 0; code >= DSN_ERR_LOWEST; code--) known += dsn_error_message(code) != unknown;
+    CHECK(known == named);
+    CHECK(named == -DSN_ERR_LOWEST);
 }

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <vector>
 
+#include "../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
 

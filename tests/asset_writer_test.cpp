@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "../offline/tools/file_output.h"
+#include "../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 
 namespace {

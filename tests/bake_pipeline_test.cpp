@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../runtime/format_bytes.h"
 #include "dsn/bake.h"
 #include "fixtures/bake_fixtures.h"
 

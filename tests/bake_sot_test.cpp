@@ -7,6 +7,7 @@
 #include <string>
 
 #include "../offline/bake_internal.h"
+#include "../runtime/format_bytes.h"
 #include "fixtures/bake_fixtures.h"
 
 using namespace bake_fixtures;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "../runtime/format_bytes.h"
 #include "../runtime/noise_state.h"
 #include "fixtures/test_assets.h"
 

@@ -1,10 +1,12 @@
 /* dsn/dsn.h - discrete spot noise runtime: load a .dsnt asset, evaluate the noise per point or per tile.
 
    What it does
-     Evaluates, at any integer lattice point, a Gaussian-looking texture defined by a small texton (spot)
+     Evaluates, at any point of the plane, a Gaussian-looking texture defined by a small texton (spot)
      baked offline by dsn-bake: F(x) = sum_i t(x - x_i) over a Poisson point process, normalized and
      colour-transformed (the formula is in dsn/format.h). The impulses are not stored anywhere: they are
-     recomputed on demand from a stateless hash of (cell, seed, impulse index).
+     recomputed on demand from a stateless hash of (cell, seed, impulse index). Two modes: the lattice
+     mode at integer points (the texton as baked, for textures drawn pixel for texel) and the continuous
+     mode at real-valued points (the texton read bilinearly, for renderers that zoom, rotate and warp).
 
    What it guarantees
      - Same asset bytes + same configuration + same point = same output bits, on every compiler, CPU,
@@ -14,26 +16,62 @@
      - No heap, no libm, no exceptions, no global mutable state: every function is reentrant, and a
        configured dsn_noise may be shared read-only between threads.
      - Every input has a defined result: every int32 coordinate (the lattice is the 2^32 x 2^32 torus,
-       so a window may straddle the 32-bit wrap), every seed, every period; invalid arguments return a
-       negative dsn_error code (dsn/format.h), never undefined behaviour.
+       so a window may straddle the 32-bit wrap), every float coordinate (NaN and infinities included),
+       every seed, every period; invalid arguments return a negative dsn_error code (dsn/format.h lists
+       them all), never undefined behaviour.
      - The loader validates the asset in place and keeps pointers into the caller's buffer: the buffer
        must outlive the dsn_asset and every dsn_noise made from it.
 
    How to call it
+     The float path: one call to load, one per sample (x, y in texels, any float; colour in float, about
+     0 .. 1 for a texture baked from an 8-bit image).
+       dsn_noise noise;
+       float rgb[DSN_MAX_CHANNELS];
+       int err = dsn_noise_load(&noise, bytes, size, 1234);     (bytes: the .dsnt file, kept alive)
+       if (err != DSN_OK) { puts(dsn_error_message(err)); return; }
+       dsn_sample(&noise, x, y, rgb);                           (dsn_noise_channels(&noise) values)
+
+     The fixed-point lattice path, with every option: load the asset, configure, evaluate.
        dsn_asset asset;
        dsn_noise noise;
        dsn_config config;
-       int32_t rgb[3];
-       int err = dsn_asset_load(&asset, bytes, size);           // bytes: the .dsnt file contents
+       int32_t rgb[DSN_MAX_CHANNELS];
+       int err = dsn_asset_load(&asset, bytes, size);
        if (err != DSN_OK) { puts(dsn_error_message(err)); return; }
-       dsn_config_defaults(&config);                            // seed 0, asset density, no period
+       dsn_config_defaults(&config);                            (seed 0, asset density, no period)
        config.seed = 1234;
        err = dsn_noise_init(&noise, &asset, &config);
        if (err != DSN_OK) { puts(dsn_error_message(err)); return; }
-       dsn_lattice_point_fixed(&noise, x, y, rgb);                       // Q16.16: 65536 is intensity 1.0
+       dsn_lattice_point_fixed(&noise, x, y, rgb);              (Q16.16: 65536 is intensity 1.0)
 
    Fixed-point output: channel values are int32 Q16.16 (DSN_ONE = 1.0, the exemplar's white), saturated
    to the int32 range. Grey assets fill one value, RGB assets three.
+
+   Configuration: macros read when the runtime itself is compiled (defining them in a program that only
+   includes this header changes nothing). Every choice gives the same bits; they trade speed for code
+   size, stack or portability.
+
+     DSN_SMALL_CODE     default: 1 when built for size (-Os, which defines __OPTIMIZE_SIZE__), else 0.
+                        1 compiles generic, compact code paths instead of the speed-tuned ones: one
+                        bilinear texton reader for 8 and 16 bits, continuous grid tiles evaluated point by
+                        point, a lattice point evaluated as a 1 x 1 tile, no code copied per output type.
+                        The whole runtime then takes under 8 KB of Cortex-M0 or M4 code
+                        (tests/cross/footprint checks it), and dsn_continuous_tile_scratch_size returns 0:
+                        continuous tiles need no scratch.
+     DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
+                        1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
+                        copies of the texton and the impulse list on the stack: tens of KB. 0 takes the
+                        32-bit accumulator path, under 1 KB of stack per tile call, slower.
+     DSN_X86_DISPATCH   default: undefined (0); the Makefile defines it to 1 on x86-64. 1 builds the tile
+                        kernels twice more, runtime/kernel_avx2.cpp with -mavx2 and
+                        runtime/kernel_avx512.cpp with -mavx512f -mavx512bw (the build must pass those
+                        flags to those two files), and dsn_noise_init picks from the table of kernels
+                        (runtime/kernel_table.cpp) the widest copy that the CPU and the OS run.
+                        Left at 0 there is one copy, built with the runtime's own flags.
+
+   Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the
+   stack), a continuous per-point call under 2 KB, a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
+   (see above).
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H
@@ -42,6 +80,14 @@
 #include <stdint.h>
 
 #include "dsn/format.h"
+
+#ifndef DSN_SMALL_CODE
+#if defined(__OPTIMIZE_SIZE__)
+#define DSN_SMALL_CODE 1
+#else
+#define DSN_SMALL_CODE 0
+#endif
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -123,14 +169,48 @@ typedef union dsn_noise {
    unconfigured noise. */
 uint32_t dsn_noise_channels(const dsn_noise *noise);
 
+/* ---- The float path: load once, then sample ----
+   Three calls over the full API below, for the common case: a seed, the asset's own density, no period,
+   float coordinates in texels and float colours. */
+
+/* Loads and validates the asset (dsn_asset_load) and configures `noise` with the defaults of
+   dsn_config_defaults and this seed (dsn_noise_init), in one call. `bytes` (the .dsnt file's contents)
+   must stay alive and unchanged for as long as `noise` is used: the noise reads its texton there.
+   A lattice-baked asset (the usual dsn-bake output) gets DSN_FLAG_ALLOW_LATTICE_CONTINUOUS, so that
+   dsn_sample works on every valid asset: read bilinearly, its texton gives a slightly smoother noise than
+   the exemplar (its spectrum times the bilinear filter's: see the continuous mode below); an asset baked with
+   `dsn-bake --interpolation bilinear` is compensated for that and matches the exemplar. The lattice
+   functions are unaffected by the flag. Returns DSN_OK, DSN_ERR_NULL (noise or bytes null), any error of
+   dsn_asset_load (DSN_ERR_TRUNCATED, DSN_ERR_BAD_MAGIC, DSN_ERR_CRC, ...; format.h's validation order)
+   or DSN_ERR_IMPACTS (never for an asset that loads: its default density is checked there). On failure
+   `noise` is zeroed and every function refuses it. */
+int dsn_noise_load(dsn_noise *noise, const void *bytes, size_t size, uint32_t seed);
+
+/* out[channels]: the noise at the point (x, y), in texels (the texture's pixels: texture coordinates
+   times the texture size), as float. Any float is a point: coordinates wrap modulo 2^32 texels, NaN and
+   infinities are the point 0. Exactly dsn_continuous_point_float(noise, x, y, out) (the float converts to
+   double exactly), so the same bits on every platform. Returns DSN_OK, or DSN_ERR_NULL (null `noise` or
+   `out`, or a noise that was never configured or whose load failed) or DSN_ERR_CONTINUOUS_MISMATCH (a
+   lattice-baked asset configured by dsn_noise_init without DSN_FLAG_ALLOW_LATTICE_CONTINUOUS); on an
+   error out[0] (and every channel of a configured noise) is set to 0. */
+int dsn_sample(const dsn_noise *noise, float x, float y, float *out);
+
+/* out[channels]: the noise's mean colour as float, the value its samples average to over any large area
+   (the asset's mean, which the normalization keeps exact up to the output's 1/65536 resolution; the
+   colour transform and the density change the contrast around it, not the mean). What a renderer fades
+   to where the texture is too fine to show (far away, minified). Returns DSN_OK, or DSN_ERR_NULL (null
+   `noise` or `out`, or a noise never configured); on an error out[0] (and every channel of a configured
+   noise) is set to 0. Any configured noise, lattice or continuous. */
+int dsn_noise_mean_float(const dsn_noise *noise, float *out);
+
 /* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
    normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS or
    DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill). Every period
-   1 .. 2^32 - 1 is valid (DSN_ERR_PERIOD is reserved). On failure `noise` is zeroed, and the evaluation
-   functions then write nothing (per point) or return DSN_ERR_ARGUMENT (tiles).
-   Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen to minimize the expected time of a
-   per-point call (a measured model, runtime/noise_init.cpp; the same choice on every platform); a
-   31 x 31 texton at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
+   1 .. 2^32 - 1 is valid. On failure `noise` is zeroed, and the evaluation functions then write nothing
+   (lattice per point) or return an error (the others).
+   Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen by a fixed cost model of the per-point
+   call (the same choice on every platform, since the cell size is part of the output); a 31 x 31 texton
+   at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
    The channel sums are integers taken modulo 2^32 (identically by every path); they cannot wrap unless
    tens of thousands of full-scale impulses hit one point. */
 int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config);
@@ -156,34 +236,9 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    need a scratch buffer of at least dsn_lattice_tile_scratch_size() bytes (an integer accumulator; no
    alignment needed), else they return DSN_ERR_SCRATCH. dsn_lattice_tile_scratch_size returns 0 for an invalid
    noise or size. Width and height are 1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is
-   not addressable); null pointers give DSN_ERR_NULL. */
-/* Speed: on x86-64 the Makefile also builds the tile code for AVX2 (16 values per vector instead of 8)
-   and for AVX-512 F and BW (32), and init picks the widest that CPUID and the OS allow
-   (runtime/tile_dispatch.h); other build systems get one copy, built with their own flags. Same bits
-   either way. On x86, fixed and float tiles of 16 MB of output or more are written with non-temporal
-   stores (they would not stay in the caches anyway), so reading them right after the call comes from
-   memory. */
-/* Stack: a tile call uses under 1 KB, except where the runtime is built for SSE2 (x86): its fast path
-   keeps two padded copies of the texton, an impulse list and their filing under vertical strips on the
-   stack, about 64 KB (make bench measures it). Build the runtime with -DDSN_TILE_BLOCKS=0 to keep the
-   small-stack path there too (same bits, slower). A per-point call uses about 650 bytes on x86-64
-   (612-628 measured: its fast path keeps the masks and texton entries of 9 cells on the stack), about
-   530 in the small build below (a 1 x 1 tile: 528 measured on Cortex-M0, 500 on Cortex-M4). A
-   continuous per-point call uses about 1.3 KB on x86-64 (its fast path buffers the candidates of 16
-   position pairs). */
-/* Code size: built for size (-Os, which defines __OPTIMIZE_SIZE__), the runtime compiles generic, compact
-   code paths instead of the speed-tuned ones (one bilinear texton reader for 8 and 16 bits, continuous
-   grid tiles evaluated point by point, a lattice point evaluated as a 1 x 1 tile, no code copied per
-   output type): under 8 KB of Cortex-M0 or M4 code in all (tests/cross/footprint), same bits. Define
-   DSN_SMALL_CODE to 1 or 0 when building the runtime to choose either way. With DSN_SMALL_CODE,
-   dsn_continuous_tile_scratch_size returns 0: continuous tiles need no scratch. */
-#ifndef DSN_SMALL_CODE
-#if defined(__OPTIMIZE_SIZE__)
-#define DSN_SMALL_CODE 1
-#else
-#define DSN_SMALL_CODE 0
-#endif
-#endif
+   not addressable); null pointers give DSN_ERR_NULL, a noise that is not configured DSN_ERR_ARGUMENT. */
+/* On x86, fixed and float tiles of 16 MB of output or more are written with non-temporal stores (they
+   would not stay in the caches anyway), so reading them right after the call comes from memory. */
 size_t dsn_lattice_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
 int dsn_lattice_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
                            int32_t *out, void *scratch, size_t scratch_size);
@@ -198,11 +253,10 @@ int dsn_lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t
    from the same table, positions uniform in the cell with 16 - cell_shift >= 8 fractional bits per
    axis; each lattice impulse is the floor of its continuous twin) and the texton is read with bilinear
    interpolation (zero beyond its window; weights from the point's top 16 fraction bits), in integer
-   arithmetic only. Sampled on
-   the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi xi1)/3)(2/3 + cos(2 pi xi2)/3);
-   a texton baked with `dsn-bake --interpolation bilinear` compensates it. The continuous functions
-   return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was configured with
-   DSN_FLAG_ALLOW_LATTICE_CONTINUOUS.
+   arithmetic only. Sampled on the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi
+   xi1)/3)(2/3 + cos(2 pi xi2)/3); a texton baked with `dsn-bake --interpolation bilinear` compensates it. The
+   continuous functions return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was
+   configured with DSN_FLAG_ALLOW_LATTICE_CONTINUOUS.
 
    Coordinates are Q32.32 fixed point in texel units, in an int64_t: value / 2^32 texels. The integer
    part wraps modulo 2^32 like the lattice coordinates, so every int64_t is a point of the same
@@ -222,11 +276,12 @@ int64_t dsn_coordinate_from_float(float value);
    DSN_ERR_CONTINUOUS_MISMATCH. */
 int dsn_continuous_check(const dsn_noise *noise);
 
-/* out[channels]: Q16.16 values at the continuous point (x, y) (Q32.32). On an error every channel of
-   `out` is set to 0 and the error is returned. */
+/* out[channels]: Q16.16 values at the continuous point (x, y) (Q32.32). Returns DSN_OK, or
+   DSN_ERR_NULL (null `noise` or `out`, or a noise not configured) or DSN_ERR_CONTINUOUS_MISMATCH; on an
+   error out[0] (and every channel of a configured noise) is set to 0. */
 int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out);
 /* The same from float64 coordinates (converted by dsn_coordinate_from_double), output as float
-   (exactly fixed / 65536 rounded to float). */
+   (exactly fixed / 65536 rounded to float); the same errors. */
 int dsn_continuous_point_float(const dsn_noise *noise, double x, double y, float *out);
 
 /* A regular grid of continuous points: pixel (i, j) is the point

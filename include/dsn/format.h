@@ -1,7 +1,8 @@
-/* dsn/format.h - the .dsnt asset format: specification, constants and byte helpers.
+/* dsn/format.h - the .dsnt asset format: its specification, its constants and the error codes.
 
    This comment block is the format's specification. The writer (offline/asset_writer.cpp) and the
-   reader (runtime/asset.cpp) both include this file; neither casts a struct over the bytes.
+   reader (runtime/asset.cpp) both follow it and read or write every field byte by byte (their shared
+   helpers are internal, runtime/format_bytes.h); neither casts a struct over the bytes.
 
    ==================================================================================================
    .dsnt version 1.0
@@ -93,12 +94,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* The inline helpers below are C; C++ code built with -Wold-style-cast (the runtime) includes them too. */
-#if defined(__cplusplus) && defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wold-style-cast"
-#endif
-
 #define DSN_FORMAT_MAGIC "\211DSN\r\n\032\n" /* 0x89 'D' 'S' 'N' CR LF SUB LF */
 #define DSN_FORMAT_MAGIC_SIZE 8u
 #define DSN_FORMAT_VERSION_MAJOR 1u
@@ -145,113 +140,43 @@
 #define DSN_IMPACTS_MIN_Q16 (1u << 12)    /* 1/16 impact per pixel */
 #define DSN_IMPACTS_MAX_Q16 (1024u << 16) /* 1024 impacts per pixel */
 
-/* Error codes shared by the loader, the runtime and the tools. 0 is success; every failure is distinct
-   and negative. dsn_error_message() (dsn.h) gives a static one-line message for each. */
+/* Error codes shared by the loader, the runtime and the tools: 0 is success, every failure is distinct
+   and negative, and a code keeps its value in every version. One table, X(name, value, message), makes
+   both the enum below and the messages of dsn_error_message() (dsn.h); include it with your own X to
+   build, say, a table of names. -19 belongs to no error (it is retired, never
+   returned) so that every other code keeps its value. */
+#define DSN_LIST_ERRORS(X)                                                                                   \
+    X(DSN_OK, 0, "success")                                                                                  \
+    X(DSN_ERR_NULL, -1, "a required pointer argument is null")                                               \
+    X(DSN_ERR_TRUNCATED, -2, "the buffer ends before the asset does (truncated file)")                       \
+    X(DSN_ERR_BAD_MAGIC, -3, "not a .dsnt asset (bad magic)")                                                \
+    X(DSN_ERR_TEXT_MODE, -4, "the asset's magic was damaged by a text-mode (CR/LF) transfer")                \
+    X(DSN_ERR_VERSION, -5, "unsupported .dsnt major version")                                                \
+    X(DSN_ERR_HEADER_SIZE, -6, "header size out of range")                                                   \
+    X(DSN_ERR_TOTAL_SIZE, -7, "total size inconsistent with the header fields")                              \
+    X(DSN_ERR_CRC, -8, "checksum mismatch: the asset is damaged")                                            \
+    X(DSN_ERR_RESERVED, -9, "a reserved bit, byte or unused-channel field is not 0")                         \
+    X(DSN_ERR_CHANNELS, -10, "channel count is not 1 or 3")                                                  \
+    X(DSN_ERR_BITS, -11, "quantization bits is not 8 or 16")                                                 \
+    X(DSN_ERR_SHAPE, -12, "unknown support shape, or a disk that is not square")                             \
+    X(DSN_ERR_INTERPOLATION, -13, "unknown interpolation")                                                   \
+    X(DSN_ERR_DIMENSIONS, -14, "texton width/height is zero, even or above 255")                             \
+    X(DSN_ERR_SCALE, -15, "a used channel has scale 0")                                                      \
+    X(DSN_ERR_IMPACTS, -16, "impacts per pixel out of range")                                                \
+    X(DSN_ERR_COLOR_TRANSFORM, -17, "grey asset with non-zero unused colour transform entries")              \
+    X(DSN_ERR_TEXTON, -18, "reserved texton value, or non-zero value outside the support")                   \
+    X(DSN_ERR_CONTINUOUS_MISMATCH, -20, "continuous mode on a lattice-baked asset is not allowed")           \
+    X(DSN_ERR_SCRATCH, -21, "scratch buffer missing or too small")                                           \
+    X(DSN_ERR_TILE_SIZE, -22, "tile width or height is 0 or too large")                                      \
+    X(DSN_ERR_ARGUMENT, -23, "an argument is out of its documented range")
+
+/* clang-format off */
+#define DSN_ERROR_ENUM_ENTRY(name, value, message) name = value,
 enum dsn_error {
-    DSN_OK = 0,
-    DSN_ERR_NULL = -1,                 /* a required pointer argument is null */
-    DSN_ERR_TRUNCATED = -2,            /* the buffer ends before the asset does */
-    DSN_ERR_BAD_MAGIC = -3,            /* not a .dsnt asset */
-    DSN_ERR_TEXT_MODE = -4,            /* magic damaged by a text-mode (CR/LF) transfer */
-    DSN_ERR_VERSION = -5,              /* unsupported major version */
-    DSN_ERR_HEADER_SIZE = -6,          /* header_size out of range */
-    DSN_ERR_TOTAL_SIZE = -7,           /* total_size inconsistent with the header fields */
-    DSN_ERR_CRC = -8,                  /* checksum mismatch: the file is damaged */
-    DSN_ERR_RESERVED = -9,             /* a reserved bit, byte or unused-channel field is not 0 */
-    DSN_ERR_CHANNELS = -10,            /* channels is not 1 or 3 */
-    DSN_ERR_BITS = -11,                /* bits is not 8 or 16 */
-    DSN_ERR_SHAPE = -12,               /* unknown support shape, or a disk that is not square */
-    DSN_ERR_INTERPOLATION = -13,       /* unknown interpolation */
-    DSN_ERR_DIMENSIONS = -14,          /* texton width/height zero, even or above 255 */
-    DSN_ERR_SCALE = -15,               /* a used channel has scale 0 */
-    DSN_ERR_IMPACTS = -16,             /* impacts per pixel out of range (asset default or config) */
-    DSN_ERR_COLOR_TRANSFORM = -17,     /* grey asset with non-zero unused transform entries */
-    DSN_ERR_TEXTON = -18,              /* reserved texton value, or non-zero value outside the support */
-    DSN_ERR_PERIOD = -19,              /* reserved: every period 1 .. 2^32 - 1 is valid */
-    DSN_ERR_CONTINUOUS_MISMATCH = -20, /* continuous mode on a lattice-baked asset not allowed */
-    DSN_ERR_SCRATCH = -21,             /* scratch buffer missing or too small */
-    DSN_ERR_TILE_SIZE = -22,           /* tile width or height is 0 or too large */
-    DSN_ERR_ARGUMENT = -23             /* another argument out of its documented range */
+    DSN_LIST_ERRORS(DSN_ERROR_ENUM_ENTRY)
+    DSN_ERR_LOWEST = DSN_ERR_ARGUMENT /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
 };
-
-/* ---- Byte helpers (both halves use these; never cast a struct over the bytes) ---- */
-
-static inline uint16_t dsn_read_u16le(const unsigned char *p) {
-    return (uint16_t)((unsigned)p[0] | ((unsigned)p[1] << 8));
-}
-
-static inline uint32_t dsn_read_u32le(const unsigned char *p) {
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
-}
-
-/* Two's-complement decode without implementation-defined conversions. */
-static inline int32_t dsn_read_i32le(const unsigned char *p) {
-    uint32_t u = dsn_read_u32le(p);
-    return (u & 0x80000000u) ? (int32_t)(-(int32_t)(~u) - 1) : (int32_t)u;
-}
-
-static inline int32_t dsn_read_i16le(const unsigned char *p) {
-    uint32_t u = dsn_read_u16le(p);
-    return (u & 0x8000u) ? (int32_t)u - 65536 : (int32_t)u;
-}
-
-static inline int32_t dsn_read_i8(const unsigned char *p) {
-    return (p[0] & 0x80u) ? (int32_t)p[0] - 256 : (int32_t)p[0];
-}
-
-static inline void dsn_write_u16le(unsigned char *p, uint16_t v) {
-    p[0] = (unsigned char)(v & 0xFFu);
-    p[1] = (unsigned char)(v >> 8);
-}
-
-static inline void dsn_write_u32le(unsigned char *p, uint32_t v) {
-    p[0] = (unsigned char)(v & 0xFFu);
-    p[1] = (unsigned char)((v >> 8) & 0xFFu);
-    p[2] = (unsigned char)((v >> 16) & 0xFFu);
-    p[3] = (unsigned char)(v >> 24);
-}
-
-static inline void dsn_write_i32le(unsigned char *p, int32_t v) { dsn_write_u32le(p, (uint32_t)v); }
-
-/* CRC-32 (zlib/PNG), bitwise with a 16-entry nibble table: small enough for microcontrollers. Pass 0 as
-   crc for the first chunk; feed the result back to continue over further chunks. */
-static inline uint32_t dsn_crc32(uint32_t crc, const void *data, size_t size) {
-    static const uint32_t nibble_table[16] = {0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu,
-                                              0x76DC4190u, 0x6B6B51F4u, 0x4DB26158u, 0x5005713Cu,
-                                              0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
-                                              0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu};
-    const unsigned char *bytes = (const unsigned char *)data;
-    size_t i;
-    crc = ~crc;
-    for (i = 0; i < size; i++) {
-        crc ^= bytes[i];
-        crc = (crc >> 4) ^ nibble_table[crc & 15u];
-        crc = (crc >> 4) ^ nibble_table[crc & 15u];
-    }
-    return ~crc;
-}
-
-/* Number of points of the support: the whole window, or the disk dx^2 + dy^2 <= r^2. */
-static inline uint32_t dsn_support_size(uint32_t shape, uint32_t width, uint32_t height) {
-    uint32_t r, count = 0, dy, dx;
-    if (shape != DSN_SHAPE_DISK) return width * height;
-    r = (width - 1u) / 2u;
-    for (dy = 0; dy < width; dy++)
-        for (dx = 0; dx < width; dx++) {
-            uint32_t ax = dx > r ? dx - r : r - dx, ay = dy > r ? dy - r : r - dy;
-            count += (ax * ax + ay * ay <= r * r) ? 1u : 0u;
-        }
-    return count;
-}
-
-static inline int dsn_in_support(uint32_t shape, uint32_t width, uint32_t row, uint32_t column) {
-    uint32_t r = (width - 1u) / 2u;
-    uint32_t ax = column > r ? column - r : r - column, ay = row > r ? row - r : r - row;
-    return shape != DSN_SHAPE_DISK || ax * ax + ay * ay <= r * r;
-}
-
-#if defined(__cplusplus) && defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+/* clang-format on */
+#undef DSN_ERROR_ENUM_ENTRY
 
 #endif /* DSN_FORMAT_H */

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../../runtime/format_bytes.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
 

@@ -19,6 +19,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "../../runtime/format_bytes.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
 #include "file_output.h"

@@ -5,6 +5,7 @@
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
 // tests/cross/golden.txt in the same commit.
 #include "../../offline/tools/file_output.h"
+#include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 
 #include <cstdio>

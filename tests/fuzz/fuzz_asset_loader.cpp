@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "../../runtime/format_bytes.h"
 #include "dsn/dsn.h"
 #include "fuzz_input.h"
 

@@ -1,0 +1,59 @@
+/* runtime/continuous_internal.h - what the files of the continuous (renderer) mode share: the Q32.32
+   texel, the normalization of sums that carry 32 fraction bits, the mode check and the per-point
+   evaluator that grid tiles fall back to. Internal to libdsn; not installed.
+
+   The mode: the impulses are those of the lattice mode read with their full 16-bit in-cell positions (so
+   each lattice impulse is the floor of its continuous twin): a continuous Poisson process of the same
+   intensity, with 16 - cell_shift fractional bits per axis. The texton is read with bilinear
+   interpolation in integer arithmetic (bilinear_texton.h). The per-channel sums carry 32 fractional bits
+   and go through the lattice mode's normalization. coordinate.cpp turns float coordinates into Q32.32,
+   continuous_point.cpp evaluates one point, continuous_tile.cpp a grid of points. */
+#ifndef DSN_CONTINUOUS_INTERNAL_H
+#define DSN_CONTINUOUS_INTERNAL_H
+
+#include "cell_walk.h"
+#include "impulse_position.h"
+#include "normalize_fixed.h"
+#include "poisson_count.h"
+
+namespace {
+
+const uint64_t one_texel = static_cast<uint64_t>(1) << 32;
+
+/* Two's-complement reinterpretation without implementation-defined conversions. */
+inline int64_t signed_from_bits(uint64_t bits) {
+    return (bits & 0x8000000000000000u) ? -static_cast<int64_t>(~bits) - 1 : static_cast<int64_t>(bits);
+}
+
+/* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
+   it as in lattice mode, the fractions are added once, rounded down, before the final rounding. */
+inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+    const uint32_t channels = noise->asset.channels;
+    for (uint32_t c = 0; c < channels; c++) {
+        int64_t accumulated = noise->offset[c], fractions = 0;
+        for (uint32_t k = 0; k < channels; k++) {
+            const int64_t whole = dsn_signed_sum(static_cast<uint32_t>(sums[k] >> 32)); /* floor, mod 2^32 */
+            const int64_t fraction = static_cast<int64_t>(sums[k] & 0xFFFFFFFFu);
+            accumulated += noise->gain[c * 3 + k] * whole;
+            fractions += noise->gain[c * 3 + k] * fraction; /* |gain| < 2^29: each term below 2^61 */
+        }
+        accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
+        out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
+    }
+}
+
+} // namespace
+
+/* DSN_OK when the continuous functions may evaluate `noise`, else DSN_ERR_NULL (null or not configured)
+   or DSN_ERR_CONTINUOUS_MISMATCH (continuous_point.cpp). */
+int dsn_internal_continuous_check(const dsn_noise_state *noise);
+
+/* The Q16.16 values of the point (x, y), Q32.32 coordinates, on a noise that passed the check
+   (continuous_point.cpp). */
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
+
+/* dsn_continuous_point_float at Q32.32 coordinates: the errors and the zeroed output of
+   dsn_continuous_point_fixed, the values as float (continuous_point.cpp; dsn_sample calls it too). */
+int dsn_internal_continuous_point_float(const dsn_noise *noise, int64_t x, int64_t y, float *out);
+
+#endif /* DSN_CONTINUOUS_INTERNAL_H */

@@ -1,0 +1,396 @@
+/* runtime/continuous_point.cpp - the continuous mode at one point: the impulses of the cells around it,
+   each adding its bilinear texton (bilinear_texton.h) to the channel sums. With DSN_SMALL_CODE (dsn.h) a
+   point walks its impulses one by one; the fast build sifts them on their packed lattice fields first
+   (evaluate_fast). Also the API's mode check and per-point functions. */
+#include "bilinear_texton.h"
+#include "cell_walk.h"
+#include "continuous_internal.h"
+#include "impulse_position.h"
+#include "normalize_fixed.h"
+#include "poisson_count.h"
+
+namespace {
+
+/* ---- Walking the impulses around one point ---- */
+
+/* One axis of the point: the lattice mode's candidate cells for the window [X - 1, X + 1] around the
+   point's integer part X (every impulse within radius + 1 of the point has its floor in there), and
+   the point's 32-bit fraction. */
+struct PointAxis {
+    dsn_axis axis;
+    uint32_t fraction;
+};
+
+PointAxis point_axis(uint64_t coordinate, uint32_t radius, uint32_t shift, uint32_t period) {
+    PointAxis point;
+    point.fraction = static_cast<uint32_t>(coordinate);
+    dsn_axis_init(&point.axis, static_cast<uint32_t>(coordinate >> 32) - 1u, 3u, radius, shift, period);
+    return point;
+}
+
+#if DSN_SMALL_CODE
+/* Offset (Q32.32) from an impulse to the point along one axis, given the impulse's cell origin and its
+   16-bit in-cell position; false when the impulse lies beyond the period (discarded, as in lattice mode).
+   The point is at window index 1, that is at texton index 1 + base - p for an impulse at lattice p. */
+bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
+                    int64_t *offset) {
+    const uint32_t shift = point.axis.shift;
+    if (cell_origin + (bits16 >> (16u - shift)) > span.last_position) return false;
+    const uint32_t whole = 1u + span.base - point.axis.radius - cell_origin; /* X - cell origin, mod 2^32 */
+    const int64_t in_cell = static_cast<int64_t>(static_cast<uint64_t>(bits16) << (16u + shift));
+    *offset = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
+              static_cast<int64_t>(point.fraction) - in_cell;
+    return true;
+}
+
+/* Both steps along one axis: the texels that bracket the impulse (see bracket), or false when it lies
+   beyond the period or out of reach. */
+bool impulse_bracket(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
+                     uint32_t *lower_index, uint32_t *upper_weight) {
+    int64_t offset;
+    return impulse_offset(point, span, cell_origin, bits16, &offset) &&
+           bracket(offset, point.axis.radius, lower_index, upper_weight);
+}
+
+/* Sums (Q.32, per channel) of the bilinear texton over every impulse of the cell (cell_x, cell_y). */
+void add_cell(const dsn_noise_state *noise, const PointAxis &px, const dsn_span &span_x, uint32_t cell_x,
+              const PointAxis &py, const dsn_span &span_y, uint32_t cell_y, uint64_t *sums) {
+    const uint32_t key = dsn_cell_key(noise, cell_x, cell_y);
+    const uint32_t count = dsn_cell_impulse_count(noise, key);
+    const uint32_t origin_x = cell_x << noise->cell_shift, origin_y = cell_y << noise->cell_shift;
+    for (uint32_t k = 0; k < count; k++) {
+        const uint32_t hash = dsn_impulse_hash(noise, key, k);
+        uint32_t row, row_weight, column, column_weight;
+        if (impulse_bracket(py, span_y, origin_y, dsn_impulse_bits_y(hash), &row, &row_weight) &&
+            impulse_bracket(px, span_x, origin_x, dsn_impulse_bits_x(hash), &column, &column_weight))
+            add_bilinear(&noise->asset, row, row_weight, column, column_weight, sums);
+    }
+}
+
+} // namespace
+
+/* The small build: impulse by impulse, each through dsn_impulse_hash. */
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+    const uint32_t shift = noise->cell_shift;
+    const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
+    const PointAxis py = point_axis(y, noise->radius[1], shift, noise->period[1]);
+    for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&py.axis, sy);
+        for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
+            const dsn_span span_x = dsn_axis_span(&px.axis, sx);
+            for (uint32_t j = 0; j < span_y.cell_count; j++)
+                for (uint32_t i = 0; i < span_x.cell_count; i++)
+                    add_cell(noise, px, span_x, dsn_span_cell(&span_x, i, shift), py, span_y,
+                             dsn_span_cell(&span_y, j, shift), sums);
+        }
+    }
+    normalize_q32(noise, sums, out);
+}
+
+namespace {
+
+#else
+/* ---- Fast per point: the impulses sifted by their packed lattice fields ----
+   The same impulses, offsets and weights as the small build's walk above (so the same bits; integer sums do
+   not depend on the order), found with less work: each position pair is hashed once for all the impulses it
+   holds, all of them are tested against the point at once on their lattice fields (which bound the 16-bit
+   positions to within one texel), and only the candidates get their fraction hash and the exact test. */
+
+/* Floor of value / 2^shift (1 <= shift <= 63) for a value far from the int64 limits, without shifting
+   a negative number (implementation-defined): through a 2^63 bias, as dsn_round_saturate does. */
+int64_t floor_shift(int64_t value, uint32_t shift) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    return static_cast<int64_t>((static_cast<uint64_t>(value) + bias) >> shift) -
+           static_cast<int64_t>(bias >> shift);
+}
+
+/* The packed fields of one pair as SWAR lanes: 8 lanes of 8 bits (halves of 4 bits) or 4 of 16 (halves
+   of 8 bits). A lane's top bit is above both halves' values, so a lane-wise subtraction of values below
+   it never borrows from the next lane. */
+struct FieldLanes {
+    uint32_t field_shift, half_bits, per_pair;
+    uint64_t ones, halves, tops; /* 1, the low half's mask, the top bit, in every lane */
+};
+
+FieldLanes field_lanes(uint32_t cell_shift) {
+    FieldLanes lanes;
+    lanes.field_shift = dsn_field_shift(cell_shift);
+    lanes.half_bits = 1u << (lanes.field_shift - 1u);
+    lanes.per_pair = 64u >> lanes.field_shift;
+    lanes.ones = ~static_cast<uint64_t>(0) / ((static_cast<uint64_t>(1) << (1u << lanes.field_shift)) - 1u);
+    lanes.halves = lanes.ones * ((1u << lanes.half_bits) - 1u);
+    lanes.tops = lanes.ones << ((1u << lanes.field_shift) - 1u);
+    return lanes;
+}
+
+/* One axis of one cell as seen from the point. An impulse at 16-bit in-cell position b has
+   shifted = shifted_base - b 2^(16 + shift), the offset plus radius + 1 texels (bracket's `shifted`):
+   it is in reach when 0 < shifted < reach_limit. Its field half h (the top half_bits bits of b) bounds
+   b to [h, h + 1) 2^(16 - half_bits), that is the offset to within one texel: the halves in
+   [low, high] (in every lane of low_lanes, and of high_lanes with the top bits set) are those that may
+   be in reach and lie before the period's end. */
+struct CellAxis {
+    int64_t shifted_base;
+    uint64_t low_lanes, high_lanes;
+};
+
+/* False when no impulse of the cell can reach the point along this axis. */
+bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cell, const FieldLanes &lanes,
+               CellAxis *out) {
+    const uint32_t shift = point.axis.shift, origin = cell << shift;
+    const uint32_t whole = 1u + span.base - point.axis.radius - origin; /* as in impulse_offset */
+    const int64_t reach_limit =
+        static_cast<int64_t>(2u * point.axis.radius + 2u) * static_cast<int64_t>(one_texel);
+    out->shifted_base = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
+                        static_cast<int64_t>(point.fraction) +
+                        static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel);
+    /* With step = 2^(32 + shift - half_bits) (the offset's change per unit of h, at most one texel) and
+       the rest of b taking less than a step: h is in reach only when h step < shifted_base and
+       h step + step > shifted_base - reach_limit - step. */
+    const uint32_t step_shift = 32u + shift - lanes.half_bits;
+    const int64_t low = floor_shift(out->shifted_base - reach_limit, step_shift);
+    int64_t high = floor_shift(out->shifted_base - 1, step_shift);
+    /* The period: the lattice offset h >> (half_bits - shift) may not pass last_position - origin. */
+    const uint32_t room = span.last_position - origin, below = lanes.half_bits - shift;
+    const uint32_t last =
+        room < (1u << shift) - 1u ? (room << below) | ((1u << below) - 1u) : (1u << lanes.half_bits) - 1u;
+    if (high > static_cast<int64_t>(last)) high = static_cast<int64_t>(last);
+    const uint32_t first = low < 0 ? 0u : static_cast<uint32_t>(low);
+    if (high < static_cast<int64_t>(first)) return false;
+    out->low_lanes = lanes.ones * first;
+    out->high_lanes = (lanes.ones * static_cast<uint64_t>(high)) | lanes.tops;
+    return true;
+}
+
+/* The lanes of a pair whose halves (x low, y high) may reach the point: their top bits. */
+uint64_t candidate_lanes(uint64_t pair, const FieldLanes &lanes, const CellAxis &x, const CellAxis &y) {
+    const uint64_t halves_x = pair & lanes.halves, halves_y = (pair >> lanes.half_bits) & lanes.halves;
+    return ((halves_x | lanes.tops) - x.low_lanes) & (x.high_lanes - halves_x) &
+           ((halves_y | lanes.tops) - y.low_lanes) & (y.high_lanes - halves_y) & lanes.tops;
+}
+
+/* Index of the lowest set bit of a non-zero word. */
+inline uint32_t lowest_bit(uint64_t bits) {
+#if defined(__GNUC__)
+    return static_cast<uint32_t>(__builtin_ctzll(bits));
+#else
+    uint32_t index = 0;
+    while ((bits & 1u) == 0) bits >>= 1, index++;
+    return index;
+#endif
+}
+
+/* Stored value (8- or 16-bit) plus 2^(8 Bytes - 1), as an unsigned number: flipping the sign bit of a
+   two's-complement value (one operation; sign-extending it takes more). */
+template <uint32_t Bytes>
+inline int64_t biased_value(const unsigned char *at) {
+    if (Bytes == 1) return static_cast<int64_t>(at[0] ^ 0x80u);
+    return static_cast<int64_t>((at[0] | (static_cast<uint32_t>(at[1]) << 8)) ^ 0x8000u);
+}
+
+/* One channel of the bilinear texton (as add_bilinear) of the biased values, with its top-left texel at
+   `top`, the texel right of it Stride bytes further, the row below at `bottom`: the weights add up to
+   2^32, so it is the texton's plus 2^(32 + 8 Bytes - 1) exactly (the caller takes that off). The
+   interpolation is rewritten with one product per step, (65536 - w) a + w b = 65536 a + w (b - a): the
+   same integers. */
+template <uint32_t Bytes, uint32_t Stride>
+inline uint64_t bilinear_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
+                                 int64_t down) {
+    const int64_t top_left = biased_value<Bytes>(top), bottom_left = biased_value<Bytes>(bottom);
+    const int64_t upper = top_left * 65536 + across * (biased_value<Bytes>(top + Stride) - top_left);
+    const int64_t lower = bottom_left * 65536 + across * (biased_value<Bytes>(bottom + Stride) - bottom_left);
+    return static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+}
+
+/* The candidates of up to 16 pairs (the usual point has 9 cells of 1 or 2 pairs) wait in a buffer and
+   are visited all together: the loop over them then ends once per buffer rather than once per pair, and
+   its end, hard to predict, is known long before (the reason of point.cpp's lattice walk too). Slot s
+   holds a pair, its first impulse's fraction hash input (dsn_cell_stream's), its cell's axes, and its
+   candidate lanes in bits 8 (s % 8) + lane of lanes[s / 8]. */
+struct CandidateBuffer {
+    uint64_t pairs[16];
+    int64_t shifted_x[16], shifted_y[16];
+    uint32_t streams[16];
+    uint64_t lanes[2];
+    uint32_t count;
+};
+
+/* The candidate lanes of a pair (top bits of the lanes) as one bit per lane, lane order: the multiplier
+   moves lane i's top bit (at 2^field_shift (i + 1) - 1, shifted down to 2^field_shift i) to bit
+   64 - per_pair + i, and no two of the products meet there. */
+inline uint32_t gather_lanes(uint64_t candidates, const FieldLanes &lanes) {
+    if (lanes.field_shift == 3) return static_cast<uint32_t>(((candidates >> 7) * 0x0102040810204080u) >> 56);
+    return static_cast<uint32_t>(((candidates >> 15) * 0x1000200040008000u) >> 60);
+}
+
+/* Visits every buffered candidate: those in reach add their bilinear texton. Empties the buffer. */
+template <uint32_t Channels, uint32_t Bytes>
+void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, CandidateBuffer *buffer,
+                    uint64_t *sums) {
+    const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
+    const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
+    const uint64_t limit_x = static_cast<uint64_t>(2u * noise->radius[0] + 2u) * one_texel - 1u;
+    const uint64_t limit_y = static_cast<uint64_t>(2u * noise->radius[1] + 2u) * one_texel - 1u;
+    const uint32_t width = noise->asset.width, height = noise->asset.height;
+    const unsigned char *texton = noise->asset.texton;
+    /* Interior texels go to local sums (kept in registers), those at the edge through add_bilinear. */
+    uint64_t interior[DSN_MAX_CHANNELS] = {0, 0, 0}, border[DSN_MAX_CHANNELS] = {0, 0, 0};
+    uint64_t interior_count = 0;
+    for (uint32_t word = 0; word < 2; word++) {
+        for (uint64_t bits = buffer->lanes[word]; bits != 0; bits &= bits - 1u) {
+            const uint32_t bit = lowest_bit(bits), slot = 8u * word + (bit >> 3), lane = bit & 7u;
+            const uint32_t field = dsn_pair_bits(buffer->pairs[slot], lane << lanes.field_shift);
+            const uint32_t fraction = dsn_mix32(buffer->streams[slot] + lane * 0x9E3779B9u);
+            /* dsn_impulse_hash's 16-bit positions */
+            const uint32_t bits_x =
+                ((field & half_mask) << high_shift) | ((fraction & 0xFFFFu) >> fraction_shift);
+            const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
+                                    ((fraction >> 16) >> fraction_shift);
+            /* bracket's shifted values, in reach when in (0, 2 radius + 2 texels): one unsigned test each */
+            const uint64_t shifted_x = static_cast<uint64_t>(buffer->shifted_x[slot]) -
+                                       (static_cast<uint64_t>(bits_x) << position_shift);
+            const uint64_t shifted_y = static_cast<uint64_t>(buffer->shifted_y[slot]) -
+                                       (static_cast<uint64_t>(bits_y) << position_shift);
+            if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue;
+            const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
+                           column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+            const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu),
+                          across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+            if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+                const unsigned char *top = texton + (row * width + column) * Channels * Bytes;
+                const unsigned char *bottom = top + width * Channels * Bytes;
+                interior_count++;
+                interior[0] += bilinear_channel<Bytes, Channels * Bytes>(top, bottom, across, down);
+                if (Channels == 3) {
+                    interior[1] +=
+                        bilinear_channel<Bytes, Channels * Bytes>(top + Bytes, bottom + Bytes, across, down);
+                    interior[2] += bilinear_channel<Bytes, Channels * Bytes>(
+                        top + 2 * Bytes, bottom + 2 * Bytes, across, down);
+                }
+            } else {
+                add_bilinear(&noise->asset, row, static_cast<uint32_t>(down), column,
+                             static_cast<uint32_t>(across), border);
+            }
+        }
+        buffer->lanes[word] = 0;
+    }
+    buffer->count = 0;
+    /* The interior sums were of biased values: each bilinear texton 2^(32 + 8 Bytes - 1) too high. */
+    for (uint32_t c = 0; c < Channels; c++)
+        sums[c] += interior[c] - (interior_count << (31u + 8u * Bytes)) + border[c];
+}
+
+/* Buffers the candidates of every pair of the cell with this key (visiting the buffer when full). */
+template <uint32_t Channels, uint32_t Bytes>
+void add_cell_fast(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const CellAxis &x,
+                   const CellAxis &y, CandidateBuffer *buffer, uint64_t *sums) {
+    const uint32_t count = dsn_cell_impulse_count(noise, key);
+    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
+        if (buffer->count == 16) add_candidates<Channels, Bytes>(noise, lanes, buffer, sums);
+        const uint32_t slot = buffer->count++;
+        const uint64_t pair = dsn_position_pair(key, first >> (6u - lanes.field_shift));
+        uint32_t candidates = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes);
+        const uint32_t present = count - first;
+        if (present < lanes.per_pair) candidates &= (1u << present) - 1u; /* impulses that do not exist */
+        buffer->pairs[slot] = pair;
+        buffer->shifted_x[slot] = x.shifted_base;
+        buffer->shifted_y[slot] = y.shifted_base;
+        buffer->streams[slot] = key + (0x80000000u + first) * 0x9E3779B9u;
+        buffer->lanes[slot >> 3] |= static_cast<uint64_t>(candidates) << (8u * (slot & 7u));
+    }
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+    const uint32_t shift = noise->cell_shift;
+    const FieldLanes lanes = field_lanes(shift);
+    const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
+    const PointAxis py = point_axis(y, noise->radius[1], shift, noise->period[1]);
+    CandidateBuffer buffer;
+    buffer.lanes[0] = buffer.lanes[1] = 0;
+    buffer.count = 0;
+    for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&py.axis, sy);
+        for (uint32_t j = 0; j < span_y.cell_count; j++) {
+            const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
+            CellAxis in_y;
+            if (!cell_axis(py, span_y, cell_y, lanes, &in_y)) continue;
+            const uint32_t row_key = dsn_row_key(noise, cell_y);
+            for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
+                const dsn_span span_x = dsn_axis_span(&px.axis, sx);
+                for (uint32_t i = 0; i < span_x.cell_count; i++) {
+                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
+                    CellAxis in_x;
+                    if (cell_axis(px, span_x, cell_x, lanes, &in_x))
+                        add_cell_fast<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key),
+                                                       lanes, in_x, in_y, &buffer, sums);
+                }
+            }
+        }
+    }
+    add_candidates<Channels, Bytes>(noise, lanes, &buffer, sums);
+    normalize_q32(noise, sums, out);
+}
+
+} // namespace
+
+/* The fast build evaluates through the sifting walk, one copy per channel count and value size. */
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    const dsn_asset *asset = &noise->asset;
+    if (asset->channels == 3)
+        asset->bits == 8 ? evaluate_fast<3, 1>(noise, x, y, out) : evaluate_fast<3, 2>(noise, x, y, out);
+    else
+        asset->bits == 8 ? evaluate_fast<1, 1>(noise, x, y, out) : evaluate_fast<1, 2>(noise, x, y, out);
+}
+
+namespace {
+#endif /* DSN_SMALL_CODE */
+
+/* The number of values a call writes: the noise's channels, or, for a noise with none (null, never
+   configured, failed), the one value that every caller's array has, zeroed. */
+uint32_t values_written(const dsn_noise_state *noise) {
+    return noise == 0 || noise->asset.channels == 0 ? 1u : noise->asset.channels;
+}
+
+} // namespace
+
+int dsn_internal_continuous_check(const dsn_noise_state *noise) {
+    if (noise == 0 || noise->asset.texton == 0) return DSN_ERR_NULL;
+    if (noise->asset.interpolation != DSN_INTERPOLATION_BILINEAR &&
+        (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
+        return DSN_ERR_CONTINUOUS_MISMATCH;
+    return DSN_OK;
+}
+
+int dsn_internal_continuous_point_float(const dsn_noise *handle, int64_t x, int64_t y, float *out) {
+    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = dsn_continuous_point_fixed(handle, x, y, fixed);
+    dsn_store_pixel(out, dsn_output_float, 0, fixed, values_written(dsn_state(handle)));
+    return err;
+}
+
+extern "C" {
+
+int dsn_continuous_check(const dsn_noise *handle) { return dsn_internal_continuous_check(dsn_state(handle)); }
+
+int dsn_continuous_point_fixed(const dsn_noise *handle, int64_t x, int64_t y, int32_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = dsn_internal_continuous_check(noise);
+    if (err != DSN_OK) {
+        for (uint32_t c = 0; c < values_written(noise); c++) out[c] = 0;
+        return err;
+    }
+    dsn_internal_continuous_point(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), out);
+    return DSN_OK;
+}
+
+int dsn_continuous_point_float(const dsn_noise *handle, double x, double y, float *out) {
+    return dsn_internal_continuous_point_float(handle, dsn_coordinate_from_double(x),
+                                               dsn_coordinate_from_double(y), out);
+}
+
+} // extern "C"
