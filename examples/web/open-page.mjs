@@ -1,0 +1,113 @@
+// open-page.mjs - opens a page in headless Chromium, waits until it sets <html data-state> (the demo page
+// does in test mode: 'ready' or 'error'), and prints one JSON line: the state, the texts of #status and
+// #canvas-hash, and every uncaught exception the page or its workers threw. Optionally saves a
+// screenshot. Chromium is driven over --remote-debugging-pipe (the DevTools protocol on file descriptors
+// 3 and 4), so nothing beyond Node and Chromium is needed. --virtual-time-budget cannot be used instead:
+// virtual time does not wait for Web Workers.
+//
+// Usage: node open-page.mjs URL [--screenshot FILE.png] [--size WxH] [--timeout SECONDS]
+//   CHROMIUM names the browser (default chromium); as root it runs with --no-sandbox.
+import {spawn} from 'node:child_process';
+import {writeFileSync} from 'node:fs';
+
+const args = process.argv.slice(2);
+const option = (name, fallback) => {
+    const at = args.indexOf(name);
+    return at >= 0 ? args.splice(at, 2)[1] : fallback;
+};
+const screenshot = option('--screenshot', null);
+const [width, height] = option('--size', '1024x768').split('x').map(Number);
+const timeoutSeconds = Number(option('--timeout', '60'));
+const url = args[0];
+if (!url || args.length !== 1 || !(width > 0 && height > 0)) {
+    console.error('usage: node open-page.mjs URL [--screenshot FILE.png] [--size WxH] [--timeout SECONDS]');
+    process.exit(2);
+}
+
+const flags = [
+    '--headless', '--remote-debugging-pipe', '--disable-gpu', '--no-first-run', '--mute-audio',
+    '--disable-extensions', `--window-size=${width},${height}`, 'about:blank'
+];
+if (process.getuid && process.getuid() === 0) flags.unshift('--no-sandbox');
+const browser =
+    spawn(process.env.CHROMIUM || 'chromium', flags, { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
+let browserLog = '';
+browser.stderr.on('data', (chunk) => (browserLog = (browserLog + chunk).slice(-4000)));
+
+const fail = (message) => {
+    console.error(`open-page: ${message}`);
+    if (browserLog) console.error(`open-page: the browser's last words:\n${browserLog}`);
+    browser.kill('SIGKILL');
+    process.exit(1);
+};
+const deadline = setTimeout(() => fail(`no result within ${timeoutSeconds} s`), timeoutSeconds * 1000);
+browser.on('error', (error) => fail(`cannot start the browser: ${error.message}`));
+browser.on('exit', (code, signal) => {
+    if (!finished) fail(`the browser exited (${signal || code})`);
+});
+
+// The protocol: JSON messages, each ended by a NUL byte.
+const toBrowser = browser.stdio[3], fromBrowser = browser.stdio[4];
+let nextId = 1, buffered = '', finished = false;
+const waiting = new Map();
+const exceptions = [];
+fromBrowser.on('data', (chunk) => {
+    buffered += chunk.toString('utf8');
+    let end;
+    while ((end = buffered.indexOf('\0')) >= 0) {
+        const message = JSON.parse(buffered.slice(0, end));
+        buffered = buffered.slice(end + 1);
+        if (message.id && waiting.has(message.id)) {
+            const { resolve, reject } = waiting.get(message.id);
+            waiting.delete(message.id);
+            if (message.error)
+                reject(new Error(`${message.error.message} (${message.error.code})`));
+            else
+                resolve(message.result);
+        } else if (message.method === 'Runtime.exceptionThrown') {
+            const details = message.params.exceptionDetails;
+            exceptions.push(details.exception?.description || details.text);
+        } else if (message.method === 'Target.attachedToTarget' && message.params.waitingForDebugger) {
+            // A worker, paused until told to run: listen to its exceptions too.
+            const worker = message.params.sessionId;
+            send('Runtime.enable', {}, worker)
+                .then(() => send('Runtime.runIfWaitingForDebugger', {}, worker));
+        }
+    }
+});
+function send(method, params = {}, sessionId = undefined) {
+    const id = nextId++;
+    toBrowser.write(JSON.stringify({ id, method, params, sessionId }) + '\0');
+    return new Promise((resolve, reject) => waiting.set(id, { resolve, reject }));
+}
+
+const { targetId } = await send('Target.createTarget', { url: 'about:blank' });
+const { sessionId } = await send('Target.attachToTarget', { targetId, flatten: true });
+const page = (method, params) => send(method, params, sessionId);
+await page('Runtime.enable');
+await page('Page.enable');
+await page('Target.setAutoAttach', { autoAttach: true, waitForDebuggerOnStart: true, flatten: true });
+await page('Emulation.setDeviceMetricsOverride', { width, height, deviceScaleFactor: 1, mobile: false });
+await page('Page.navigate', { url });
+
+const read = async (expression) =>
+    (await page('Runtime.evaluate', { expression, returnByValue: true })).result.value;
+let state = '';
+while (!(state = await read("document.documentElement.dataset.state || ''"))) {
+    await new Promise((resolve) => setTimeout(resolve, 100));
+}
+const result = {
+    state,
+    status: await read("document.getElementById('status')?.textContent || ''"),
+    hash: await read("document.getElementById('canvas-hash')?.textContent || ''"),
+    exceptions,
+};
+if (screenshot) {
+    const { data } = await page('Page.captureScreenshot', { format: 'png' });
+    writeFileSync(screenshot, Buffer.from(data, 'base64'));
+}
+finished = true;
+clearTimeout(deadline);
+console.log(JSON.stringify(result));
+await send('Browser.close').catch(() => {});
+setTimeout(() => browser.kill('SIGKILL'), 2000).unref();
