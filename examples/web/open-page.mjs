@@ -1,14 +1,19 @@
 // open-page.mjs - opens a page in headless Chromium, waits until it sets <html data-state> (the demo page
 // does in test mode: 'ready' or 'error'), and prints one JSON line: the state, the texts of #status and
 // #canvas-hash, and every uncaught exception the page or its workers threw. Optionally saves a
-// screenshot. Chromium is driven over --remote-debugging-pipe (the DevTools protocol on file descriptors
-// 3 and 4), so nothing beyond Node and Chromium is needed. --virtual-time-budget cannot be used instead:
-// virtual time does not wait for Web Workers.
+// screenshot (taken last). Chromium is driven over --remote-debugging-pipe (the DevTools protocol on file
+// descriptors 3 and 4), so nothing beyond Node and Chromium is needed. --virtual-time-budget cannot be used
+// instead: virtual time does not wait for Web Workers.
 //
-// Usage: node open-page.mjs URL [--screenshot FILE.png] [--size WxH] [--timeout SECONDS]
+// Usage: node open-page.mjs URL [--screenshot FILE.png] [--size WxH] [--timeout SECONDS] [--interact]
+//                            [--upload FILE]
+//   --interact  then drags the canvas and zooms with the wheel, and waits for the page again
+//               (afterInteraction in the JSON);
+//   --upload    then gives FILE to the page's file picker and waits again (afterUpload).
 //   CHROMIUM names the browser (default chromium); as root it runs with --no-sandbox.
 import {spawn} from 'node:child_process';
 import {writeFileSync} from 'node:fs';
+import {resolve} from 'node:path';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => {
@@ -16,11 +21,14 @@ const option = (name, fallback) => {
     return at >= 0 ? args.splice(at, 2)[1] : fallback;
 };
 const screenshot = option('--screenshot', null);
+const upload = option('--upload', null);
+const interact = args.includes('--interact') && Boolean(args.splice(args.indexOf('--interact'), 1));
 const [width, height] = option('--size', '1024x768').split('x').map(Number);
 const timeoutSeconds = Number(option('--timeout', '60'));
 const url = args[0];
 if (!url || args.length !== 1 || !(width > 0 && height > 0)) {
-    console.error('usage: node open-page.mjs URL [--screenshot FILE.png] [--size WxH] [--timeout SECONDS]');
+    console.error('usage: node open-page.mjs URL [--screenshot FILE.png] [--size WxH] [--timeout SECONDS] ' +
+                  '[--interact] [--upload FILE]');
     process.exit(2);
 }
 
@@ -41,6 +49,7 @@ const fail = (message) => {
     process.exit(1);
 };
 const deadline = setTimeout(() => fail(`no result within ${timeoutSeconds} s`), timeoutSeconds * 1000);
+process.on('unhandledRejection', (error) => fail(error.message));
 browser.on('error', (error) => fail(`cannot start the browser: ${error.message}`));
 browser.on('exit', (code, signal) => {
     if (!finished) fail(`the browser exited (${signal || code})`);
@@ -92,16 +101,43 @@ await page('Page.navigate', { url });
 
 const read = async (expression) =>
     (await page('Runtime.evaluate', { expression, returnByValue: true })).result.value;
-let state = '';
-while (!(state = await read("document.documentElement.dataset.state || ''"))) {
-    await new Promise((resolve) => setTimeout(resolve, 100));
-}
-const result = {
-    state,
-    status: await read("document.getElementById('status')?.textContent || ''"),
-    hash: await read("document.getElementById('canvas-hash')?.textContent || ''"),
-    exceptions,
+const readPage = async () => {
+    let state = '';
+    while (!(state = await read("document.documentElement.dataset.state || ''"))) {
+        await new Promise((resolve) => setTimeout(resolve, 100));
+    }
+    return {
+        state,
+        status: await read("document.getElementById('status')?.textContent || ''"),
+        hash: await read("document.getElementById('canvas-hash')?.textContent || ''"),
+    };
 };
+const result = await readPage();
+const clearState = () => read('delete document.documentElement.dataset.state');
+if (interact) {
+    // A drag of the canvas, then a zoom by the wheel past the next level; the page reports again once
+    // every tile of the new view is drawn.
+    await clearState();
+    const mouse = (type, x, y, extra = {}) =>
+        page('Input.dispatchMouseEvent', { type, x, y, button: 'left', pointerType: 'mouse', ...extra });
+    await mouse('mousePressed', 300, 300, { buttons: 1, clickCount: 1 });
+    for (let step = 1; step <= 10; step++)
+        await mouse('mouseMoved', 300 - 8 * step, 300 - 5 * step, { buttons: 1 });
+    await mouse('mouseReleased', 220, 250, { clickCount: 1 });
+    for (let step = 0; step < 6; step++)
+        await page('Input.dispatchMouseEvent',
+                   { type: 'mouseWheel', x: 250, y: 250, deltaX: 0, deltaY: -100 });
+    result.afterInteraction = await readPage();
+}
+if (upload) {
+    // The file picker, as a person would use it (the file chooser's answer set through the protocol).
+    await clearState();
+    const { root } = await page('DOM.getDocument', {});
+    const { nodeId } = await page('DOM.querySelector', { nodeId: root.nodeId, selector: 'input[type=file]' });
+    await page('DOM.setFileInputFiles', { nodeId, files: [resolve(upload)] });
+    result.afterUpload = await readPage();
+}
+result.exceptions = exceptions;
 if (screenshot) {
     const { data } = await page('Page.captureScreenshot', { format: 'png' });
     writeFileSync(screenshot, Buffer.from(data, 'base64'));
