@@ -151,6 +151,7 @@ export class Texture {
         the runtime's Q16.16 fixed point / 65536 (1.0 = the exemplar's white).
      */
     point(x, y) {
+        this.checkConfigured();
         this.exports.dsn_lattice_point_fixed(this.noiseAt, x | 0, y | 0, this.valuesAt);
         return fromFixed(new Int32Array(this.exports.memory.buffer, this.valuesAt, this.channels));
     }
@@ -160,6 +161,7 @@ export class Texture {
         with dsn_coordinate_from_double): Float64Array as for point().
      */
     continuousPoint(x, y) {
+        this.checkConfigured();
         const e = this.exports;
         check(e, e.dsn_continuous_point_fixed(this.noiseAt, e.dsn_coordinate_from_double(x),
                                               e.dsn_coordinate_from_double(y), this.valuesAt));
@@ -173,6 +175,7 @@ export class Texture {
         texels, rotated by `rotate` degrees counterclockwise (as dsn-render --mode continuous).
      */
     tile(x, y, width, height, view = null) {
+        this.checkConfigured();
         const e = this.exports;
         if (!(Number.isInteger(width) && Number.isInteger(height) && width >= 1 && height >= 1 &&
               width * height <= 1 << 26))
@@ -209,6 +212,11 @@ export class Texture {
         grid[3] = step(sine);
         grid[4] = step(-sine);
         grid[5] = step(cosine);
+    }
+
+    // After a failed dsn_noise_init the noise is zeroed and per-point calls would write nothing.
+    checkConfigured() {
+        if (this.settings === null) throw new Error('dsn: the texture has no valid settings (configure failed)');
     }
 
     ensure(end) {
