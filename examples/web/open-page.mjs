@@ -117,6 +117,8 @@ const clearState = () => read('delete document.documentElement.dataset.state');
 if (interact) {
     // A drag of the canvas, then a zoom by the wheel past the next level; the page reports again once
     // every tile of the new view is drawn.
+    const zoomText = "document.getElementById('zoom-value')?.textContent || ''";
+    const zoomBefore = await read(zoomText);
     await clearState();
     const mouse = (type, x, y, extra = {}) =>
         page('Input.dispatchMouseEvent', { type, x, y, button: 'left', pointerType: 'mouse', ...extra });
@@ -127,6 +129,8 @@ if (interact) {
     for (let step = 0; step < 6; step++)
         await page('Input.dispatchMouseEvent',
                    { type: 'mouseWheel', x: 250, y: 250, deltaX: 0, deltaY: -100 });
+    // Wheel events may reach the page after the protocol has answered: wait for the zoom to show.
+    while ((await read(zoomText)) === zoomBefore) await new Promise((resolve) => setTimeout(resolve, 50));
     result.afterInteraction = await readPage();
 }
 if (upload) {

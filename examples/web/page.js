@@ -43,6 +43,14 @@ function setStatus(text, isError = false) {
     elements.status.classList.toggle('error', isError);
 }
 
+// The view or the texture changed: the page reports again once the new view is drawn, and until then
+// says nothing (a test reading <html data-state> must not take the previous view's answer).
+// Without a texture there is no view to report: an error then stays the page's answer.
+function viewChanged() {
+    state.reported = false;
+    if (state.asset) delete document.documentElement.dataset.state;
+}
+
 // ---- Workers ----
 
 function startWorkers(module) {
@@ -231,6 +239,7 @@ async function hashCanvas() {
         rgb[q + 2] = pixels[p + 2];
     }
     const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', rgb));
+    if (!state.reported) return; // the view changed meanwhile
     elements['canvas-hash'].textContent = [...digest].map((b) => b.toString(16).padStart(2, '0')).join('');
     document.documentElement.dataset.state = 'ready';
 }
@@ -239,7 +248,7 @@ async function hashCanvas() {
 
 function changed() {
     state.generation++;
-    state.reported = false;
+    viewChanged();
     for (const tile of state.cache.values()) tile.bitmap.close();
     state.cache.clear();
     state.pending.clear();
@@ -292,7 +301,7 @@ function zoomAt(factor, screenX, screenY) {
     view.x += screenX / view.zoom - screenX / zoom;
     view.y += screenY / view.zoom - screenY / zoom;
     view.zoom = zoom;
-    state.reported = false;
+    viewChanged();
     requestDraw();
 }
 
@@ -308,7 +317,7 @@ function installInput() {
         state.view.x -= (event.clientX - drag.x) / state.view.zoom;
         state.view.y -= (event.clientY - drag.y) / state.view.zoom;
         drag = { x: event.clientX, y: event.clientY };
-        state.reported = false;
+        viewChanged();
         requestDraw();
     });
     const stop = () => {
@@ -350,7 +359,7 @@ function installInput() {
     });
     elements['reset-view'].addEventListener('click', () => {
         state.view = { x: 0, y: 0, zoom: 1 };
-        state.reported = false;
+        viewChanged();
         requestDraw();
     });
     if (!fixedSize) new ResizeObserver(resize).observe(canvas);
@@ -360,9 +369,12 @@ let fixedSize = false;
 function resize() {
     const box = canvas.getBoundingClientRect();
     state.pixelRatio = window.devicePixelRatio || 1;
-    canvas.width = Math.max(1, Math.round(box.width * state.pixelRatio));
-    canvas.height = Math.max(1, Math.round(box.height * state.pixelRatio));
-    state.reported = false;
+    const width = Math.max(1, Math.round(box.width * state.pixelRatio));
+    const height = Math.max(1, Math.round(box.height * state.pixelRatio));
+    if (width === canvas.width && height === canvas.height) return;
+    canvas.width = width;
+    canvas.height = height;
+    viewChanged();
     requestDraw();
 }
 
