@@ -1,15 +1,17 @@
 // module-test.mjs - checks of the JavaScript module (dsn.mjs) under Node against the native runtime, as
 // dsn-render writes it: lattice and continuous tiles (with a rotation, a period, a density and the largest
 // seed), lattice and continuous points, and the loader's errors. Run by examples/web/web-test.
-// Usage: node module-test.mjs dsn.wasm ASSET.dsnt DSN-RENDER OUT-FOLDER
+// With the baker (dsn-bake.wasm and an exemplar image), also bake.mjs: a bake that loads, refusals.
+// Usage: node module-test.mjs dsn.wasm ASSET.dsnt DSN-RENDER OUT-FOLDER [dsn-bake.wasm EXEMPLAR]
 import {execFileSync} from 'node:child_process';
 import {createHash} from 'node:crypto';
 import {readFileSync} from 'node:fs';
 import {join} from 'node:path';
 
+import {BakeError, loadBaker} from './bake.mjs';
 import {DsnError, loadRuntime} from './dsn.mjs';
 
-const [wasmPath, assetPath, renderPath, outFolder] = process.argv.slice(2);
+const [wasmPath, assetPath, renderPath, outFolder, bakerPath, exemplarPath] = process.argv.slice(2);
 if (!outFolder) {
     console.error('usage: node module-test.mjs dsn.wasm ASSET.dsnt DSN-RENDER OUT-FOLDER');
     process.exit(2);
@@ -160,6 +162,42 @@ try {
     rangeError = error;
 }
 check('density out of range refused', rangeError instanceof RangeError);
+
+if (bakerPath) {
+    // The baker in wasm: its asset loads and has the bake's shape (3 channels for the demo's colour
+    // exemplar, a 31 x 31 texton, bilinear); what it refuses comes back as BakeError with its message.
+    const baker = await loadBaker(readFileSync(bakerPath));
+    const start = performance.now();
+    const baked = baker.bake(readFileSync(exemplarPath));
+    const seconds = ((performance.now() - start) / 1000).toFixed(1);
+    let loaded = null;
+    try {
+        loaded = runtime.load(baked);
+    } catch (error) {
+        check('baked asset loads', false, error.message);
+    }
+    check(`bake of ${exemplarPath} in wasm (${seconds} s, ${baked.length} bytes)`,
+          loaded !== null && loaded.channels === 3 && loaded.textonWidth === 31 &&
+              loaded.interpolation === 'bilinear',
+          loaded ? JSON.stringify(loaded) : '');
+    const bakeRefused = (data) => {
+        try {
+            baker.bake(data);
+            return null;
+        } catch (error) {
+            return error;
+        }
+    };
+    const notImage = bakeRefused(new TextEncoder().encode('not an image'));
+    check('baker: not an image -> BakeError',
+          notImage instanceof BakeError && /not a readable image/.test(notImage.message), String(notImage));
+    // A 4 x 4 PNG: readable, but too small for any texton (both sides must be at least 4r + 1).
+    const tiny = readFileSync(render('tiny.png', ['--size', '4x4']));
+    const tooSmall = bakeRefused(tiny);
+    check('baker: image too small -> BakeError', tooSmall instanceof BakeError && tooSmall.message.length > 0,
+          String(tooSmall));
+    console.log(`module-test: the baker said: ${tooSmall && tooSmall.message}`);
+}
 
 console.log(`module-test: ${failures} failed`);
 process.exit(failures === 0 ? 0 : 1);

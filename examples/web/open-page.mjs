@@ -9,11 +9,11 @@
 //                            [--upload FILE]
 //   --interact  then drags the canvas and zooms with the wheel, and waits for the page again
 //               (afterInteraction in the JSON);
-//   --upload    then gives FILE to the page's file picker and waits again (afterUpload).
+//   --upload    then gives FILE to the page's file picker and waits again (afterUpload[i]; repeatable).
 //   CHROMIUM names the browser (default chromium); as root it runs with --no-sandbox.
 import {spawn} from 'node:child_process';
 import {writeFileSync} from 'node:fs';
-import {resolve} from 'node:path';
+import {basename, resolve} from 'node:path';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => {
@@ -21,7 +21,8 @@ const option = (name, fallback) => {
     return at >= 0 ? args.splice(at, 2)[1] : fallback;
 };
 const screenshot = option('--screenshot', null);
-const upload = option('--upload', null);
+const uploads = [];
+for (let file; (file = option('--upload', null));) uploads.push(file);
 const interact = args.includes('--interact') && Boolean(args.splice(args.indexOf('--interact'), 1));
 const [width, height] = option('--size', '1024x768').split('x').map(Number);
 const timeoutSeconds = Number(option('--timeout', '60'));
@@ -49,7 +50,9 @@ const fail = (message) => {
     process.exit(1);
 };
 const deadline = setTimeout(() => fail(`no result within ${timeoutSeconds} s`), timeoutSeconds * 1000);
-process.on('unhandledRejection', (error) => fail(error.message));
+process.on('unhandledRejection', (error) => {
+    if (!finished) fail(error.message); // after the answer, a worker closing with the browser is no failure
+});
 browser.on('error', (error) => fail(`cannot start the browser: ${error.message}`));
 browser.on('exit', (code, signal) => {
     if (!finished) fail(`the browser exited (${signal || code})`);
@@ -113,7 +116,8 @@ const readPage = async () => {
     };
 };
 const result = await readPage();
-const clearState = () => read('delete document.documentElement.dataset.state');
+const clearState = () =>
+    read('delete document.documentElement.dataset.state; delete document.documentElement.dataset.opened');
 if (interact) {
     // A drag of the canvas, then a zoom by the wheel past the next level; the page reports again once
     // every tile of the new view is drawn.
@@ -133,13 +137,17 @@ if (interact) {
     while ((await read(zoomText)) === zoomBefore) await new Promise((resolve) => setTimeout(resolve, 50));
     result.afterInteraction = await readPage();
 }
-if (upload) {
+result.afterUpload = [];
+for (const file of uploads) {
     // The file picker, as a person would use it (the file chooser's answer set through the protocol).
     await clearState();
     const { root } = await page('DOM.getDocument', {});
     const { nodeId } = await page('DOM.querySelector', { nodeId: root.nodeId, selector: 'input[type=file]' });
-    await page('DOM.setFileInputFiles', { nodeId, files: [resolve(upload)] });
-    result.afterUpload = await readPage();
+    await page('DOM.setFileInputFiles', { nodeId, files: [resolve(file)] });
+    // The page names the file it works on (data-opened) before it answers for it.
+    const opened = `document.documentElement.dataset.opened === ${JSON.stringify(basename(file))}`;
+    while (!(await read(opened))) await new Promise((resolve) => setTimeout(resolve, 50));
+    result.afterUpload.push(await readPage());
 }
 result.exceptions = exceptions;
 if (screenshot) {

@@ -1,7 +1,8 @@
 // page.js - the demo page: an endless, pannable and zoomable canvas of a dsn texture. The plane is cut
 // into 256 x 256 pixel tiles per zoom level (level L: one tile pixel is 2^-L texels, evaluated in the
 // runtime's continuous mode), rendered by a few Web Workers (tile_worker.js) and cached; between levels
-// the cached tiles are drawn scaled, so panning and zooming stay smooth while sharp tiles arrive.
+// the cached tiles are drawn scaled, so panning and zooming stay smooth while sharp tiles arrive. A .dsnt
+// given to the file picker (or dropped) replaces the texture; a photo is baked first (bake_worker.js).
 //
 // URL parameters (all optional): asset=FILE.dsnt (default demo.dsnt), seed=S, density=D, and for a fixed
 // view x=X&y=Y (top-left texel), zoom=Z (screen pixels per texel), width=W&height=H (canvas pixels).
@@ -227,7 +228,7 @@ function reportView() {
               (times.length
                    ? `${mean.toFixed(0)} ms per ${TILE}x${TILE} tile (${state.workers.length} workers)`
                    : ''));
-    if (testMode) hashCanvas();
+    if (testMode && !state.opening) hashCanvas();
 }
 
 async function hashCanvas() {
@@ -239,7 +240,7 @@ async function hashCanvas() {
         rgb[q + 2] = pixels[p + 2];
     }
     const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', rgb));
-    if (!state.reported) return; // the view changed meanwhile
+    if (!state.reported || state.opening) return; // the view or the texture changed meanwhile
     elements['canvas-hash'].textContent = [...digest].map((b) => b.toString(16).padStart(2, '0')).join('');
     document.documentElement.dataset.state = 'ready';
 }
@@ -290,6 +291,74 @@ function applySettings() {
     }
     changed();
     sendAsset();
+}
+
+// ---- Your own texture: a .dsnt, or a photo baked here ----
+
+// A .dsnt file is loaded as it is; anything else is taken for an exemplar image and baked (bake_worker.js).
+async function openFile(file) {
+    // Until this file is loaded or refused, the page reports nothing in test mode (data-opened names it).
+    state.opening = file.name;
+    if (testMode) {
+        document.documentElement.dataset.opened = file.name;
+        delete document.documentElement.dataset.state;
+    }
+    const done = () => (state.opening = null);
+    const refuse = (message) => {
+        done();
+        setStatus(message, true);
+        if (testMode) document.documentElement.dataset.state = 'error';
+    };
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    if (file.name.toLowerCase().endsWith('.dsnt') || !file.type.startsWith('image/')) {
+        done();
+        useAsset(bytes, file.name);
+        return;
+    }
+    setStatus(`${file.name}: baking (a few seconds)…`);
+    let image;
+    try {
+        image = await exemplarOf(file);
+    } catch (error) {
+        refuse(`${file.name}: ${error.message}`);
+        return;
+    }
+    if (!state.bakeWorker) {
+        state.bakeWorker = new Worker(new URL('bake_worker.js', import.meta.url), { type: 'module' });
+        state.bakeWorker.onmessage = ({ data }) => {
+            if (data.error)
+                refuse(`${data.name}: ${data.error}`);
+            else {
+                done();
+                useAsset(data.asset, `${data.name} (baked in ${(data.ms / 1000).toFixed(1)} s)`);
+            }
+        };
+        state.bakeWorker.onerror = (event) => refuse(`the baker failed: ${event.message}`);
+    }
+    state.bakeWorker.postMessage({ image, name: file.name }, [image.buffer]);
+}
+
+// The exemplar the baker gets: the photo scaled down until its shorter side is at most 512 pixels, then
+// its centre, at most 256 x 256 (bakes stay a few seconds and texture features stay a few pixels wide), as
+// PNG bytes. Images the browser cannot decode are passed as they are: the baker names the problem.
+async function exemplarOf(file) {
+    let bitmap;
+    try {
+        bitmap = await createImageBitmap(file);
+    } catch {
+        return new Uint8Array(await file.arrayBuffer());
+    }
+    const scale = Math.min(1, 512 / Math.min(bitmap.width, bitmap.height));
+    const width = Math.min(256, Math.round(bitmap.width * scale));
+    const height = Math.min(256, Math.round(bitmap.height * scale));
+    const sourceWidth = width / scale, sourceHeight = height / scale;
+    const scaled = new OffscreenCanvas(width, height);
+    scaled.getContext('2d').drawImage(bitmap, (bitmap.width - sourceWidth) / 2,
+                                      (bitmap.height - sourceHeight) / 2, sourceWidth, sourceHeight, 0, 0,
+                                      width, height);
+    bitmap.close();
+    const blob = await scaled.convertToBlob({ type: 'image/png' });
+    return new Uint8Array(await blob.arrayBuffer());
 }
 
 // ---- Input ----
@@ -347,15 +416,13 @@ function installInput() {
         state.settings.density = Number(elements.density.value);
         applySettings();
     });
-    elements.file.addEventListener('change', async () => {
-        const file = elements.file.files[0];
-        if (file) useAsset(new Uint8Array(await file.arrayBuffer()), file.name);
+    elements.file.addEventListener('change', () => {
+        if (elements.file.files[0]) openFile(elements.file.files[0]);
     });
     canvas.addEventListener('dragover', (event) => event.preventDefault());
-    canvas.addEventListener('drop', async (event) => {
+    canvas.addEventListener('drop', (event) => {
         event.preventDefault();
-        const file = event.dataTransfer.files[0];
-        if (file) useAsset(new Uint8Array(await file.arrayBuffer()), file.name);
+        if (event.dataTransfer.files[0]) openFile(event.dataTransfer.files[0]);
     });
     elements['reset-view'].addEventListener('click', () => {
         state.view = { x: 0, y: 0, zoom: 1 };
