@@ -1,0 +1,266 @@
+// dsn.mjs - the dsn runtime in JavaScript: loads dsn.wasm (the C runtime compiled for freestanding wasm32)
+// and a .dsnt asset, and evaluates the noise with the runtime's bits: RGBA tiles for a canvas, lattice
+// and continuous points. A plain ES module with no dependencies, for browsers, workers and Node.
+//
+//   import { loadRuntime } from './dsn.mjs';
+//   const runtime = await loadRuntime(new URL('dsn.wasm', import.meta.url));
+//   const texture = runtime.load(new Uint8Array(await (await fetch('demo.dsnt')).arrayBuffer()));
+//   texture.configure({ seed: 7, density: 30 });             // throws DsnError on a bad setting
+//   const rgba = texture.tile(0, 0, 256, 256);                // lattice tile, Uint8ClampedArray RGBA
+//   const zoomed = texture.tile(10.5, -3, 256, 256, { scale: 4 }); // continuous grid, 4x magnified
+//   canvas.getContext('2d').putImageData(new ImageData(rgba, 256, 256), 0, 0);
+//   texture.point(12, 34);                                    // Float64Array, 1.0 = the exemplar's white
+//
+// Each texture owns a WebAssembly instance (its own memory), so textures are independent and a texture
+// can be dropped by dropping the object. Errors from the runtime become DsnError exceptions carrying the
+// runtime's code and message (dsn_error_message).
+
+const IMPACTS_MIN_Q16 = 1 << 12; // dsn/format.h: DSN_IMPACTS_MIN_Q16 and DSN_IMPACTS_MAX_Q16
+const IMPACTS_MAX_Q16 = 1024 * 65536;
+const FLAG_NO_COLOR_TRANSFORM = 1;
+const FLAG_ALLOW_LATTICE_CONTINUOUS = 2;
+const INTERPOLATION_BILINEAR = 1; // dsn/format.h: DSN_INTERPOLATION_BILINEAR
+const NOISE_BYTES = 1024;         // DSN_NOISE_BYTES
+const CONFIG_BYTES = 20;          // five uint32 (wasm/web_exports.cpp checks the layouts used here)
+const GRID_BYTES = 48;            // six int64
+const ASSET_FIELDS = {
+    channels: 8,
+    bits: 12,
+    interpolation: 20,
+    width: 24,
+    height: 28,
+    defaultImpacts: 36
+};
+const PAGE = 65536;
+const Q32_ONE = 4294967296;
+
+/** An error reported by the runtime: `code` is its dsn_error code, `message` its dsn_error_message. */
+export class DsnError extends Error {
+    constructor(code, message) {
+        super(message);
+        this.name = 'DsnError';
+        this.code = code;
+    }
+}
+
+/**
+   Compiles dsn.wasm once. `source`: a URL (or string) to fetch, the file's bytes, or a
+    WebAssembly.Module (one can be sent to a worker with postMessage).
+ */
+export async function loadRuntime(source) {
+    let module;
+    if (source instanceof WebAssembly.Module)
+        module = source;
+    else if (source instanceof ArrayBuffer || ArrayBuffer.isView(source))
+        module = await WebAssembly.compile(source);
+    else {
+        const response = await fetch(source);
+        if (!response.ok) throw new Error(`dsn: cannot fetch ${source}: HTTP ${response.status}`);
+        module = await WebAssembly.compile(await response.arrayBuffer());
+    }
+    return new Runtime(module);
+}
+
+export class Runtime {
+    constructor(module) {
+        this.module = module;
+        const probe = new WebAssembly.Instance(module, {}).exports;
+        this.version = readString(probe.memory, probe.dsn_version());
+    }
+
+    /**
+       Validates `bytes` (Uint8Array or ArrayBuffer: a .dsnt file) and returns a Texture configured with
+        the defaults (seed 0, the asset's density). Throws DsnError with the loader's message.
+     */
+    load(bytes, settings = {}) {
+        const texture = new Texture(new WebAssembly.Instance(this.module, {}).exports, toBytes(bytes));
+        texture.configure(settings);
+        return texture;
+    }
+}
+
+export class Texture {
+    constructor(exports, bytes) {
+        this.exports = exports;
+        const memory = exports.memory;
+        // Fixed blocks at the heap's start, then the asset's bytes (the asset keeps pointers into them),
+        // then one work area (scratch, output) that grows as needed.
+        let at = align(exports.__heap_base.value >>> 0, 16);
+        const reserve = (size) => {
+            const start = at;
+            at = align(at + size, 16);
+            return start;
+        };
+        this.assetAt = reserve(exports.dsn_web_asset_bytes() >>> 0);
+        this.noiseAt = reserve(NOISE_BYTES);
+        this.configAt = reserve(CONFIG_BYTES);
+        this.gridAt = reserve(GRID_BYTES);
+        this.valuesAt = reserve(16);
+        this.bytesAt = reserve(bytes.length);
+        this.workAt = at;
+        this.ensure(at);
+        new Uint8Array(memory.buffer, this.bytesAt, bytes.length).set(bytes);
+        check(exports, exports.dsn_asset_load(this.assetAt, this.bytesAt, bytes.length));
+        const field = (offset) => new DataView(memory.buffer).getUint32(this.assetAt + offset, true);
+        /** 1 (grey) or 3 (RGB). */
+        this.channels = field(ASSET_FIELDS.channels);
+        this.bits = field(ASSET_FIELDS.bits);
+        /** 'lattice' or 'bilinear': how the texton was baked (bilinear suits the continuous mode). */
+        this.interpolation =
+            field(ASSET_FIELDS.interpolation) === INTERPOLATION_BILINEAR ? 'bilinear' : 'lattice';
+        this.textonWidth = field(ASSET_FIELDS.width);
+        this.textonHeight = field(ASSET_FIELDS.height);
+        /** Impacts per pixel the asset asks for (30 when it names none). */
+        this.defaultDensity = (field(ASSET_FIELDS.defaultImpacts) || 30 * 65536) / 65536;
+        this.settings = null;
+    }
+
+    /**
+       Sets seed (uint32), density (impacts per pixel, 1/16 .. 1024; 0 or absent: the asset's), period
+        ([px, py], 0 = not periodic on that axis) and colorTransform (false: the identity). The continuous
+        mode is allowed on lattice-baked assets too. Throws DsnError when the runtime refuses.
+     */
+    configure({ seed = 0, density = 0, period = [0, 0], colorTransform = true } = {}) {
+        const impacts = density ? Math.round(density * 65536) : 0;
+        if (impacts !== 0 && !(impacts >= IMPACTS_MIN_Q16 && impacts <= IMPACTS_MAX_Q16))
+            throw new RangeError(`dsn: density ${density} is outside [1/16, 1024] impacts per pixel`);
+        const words = new Uint32Array(this.exports.memory.buffer, this.configAt, CONFIG_BYTES / 4);
+        words[0] = seed >>> 0;
+        words[1] = impacts;
+        words[2] = period[0] >>> 0;
+        words[3] = period[1] >>> 0;
+        words[4] = FLAG_ALLOW_LATTICE_CONTINUOUS | (colorTransform ? 0 : FLAG_NO_COLOR_TRANSFORM);
+        const err = this.exports.dsn_noise_init(this.noiseAt, this.assetAt, this.configAt);
+        if (err !== 0) this.settings = null;
+        check(this.exports, err);
+        this.settings = {
+            seed: seed >>> 0,
+            density: impacts ? impacts / 65536 : this.defaultDensity,
+            period: [period[0] >>> 0, period[1] >>> 0],
+            colorTransform
+        };
+        return this;
+    }
+
+    get seed() { return this.settings.seed; }
+    get density() { return this.settings.density; }
+    get period() { return this.settings.period; }
+
+    /**
+       The values at lattice point (x, y) (int32, wrapping): Float64Array of `channels` values, exactly
+        the runtime's Q16.16 fixed point / 65536 (1.0 = the exemplar's white).
+     */
+    point(x, y) {
+        this.checkConfigured();
+        this.exports.dsn_lattice_point_fixed(this.noiseAt, x | 0, y | 0, this.valuesAt);
+        return fromFixed(new Int32Array(this.exports.memory.buffer, this.valuesAt, this.channels));
+    }
+
+    /**
+       The values at the continuous point (x, y) in texels (any real number; the runtime converts it
+        with dsn_coordinate_from_double): Float64Array as for point().
+     */
+    continuousPoint(x, y) {
+        this.checkConfigured();
+        const e = this.exports;
+        check(e, e.dsn_continuous_point_fixed(this.noiseAt, e.dsn_coordinate_from_double(x),
+                                              e.dsn_coordinate_from_double(y), this.valuesAt));
+        return fromFixed(new Int32Array(e.memory.buffer, this.valuesAt, this.channels));
+    }
+
+    /**
+       A width x height tile as RGBA bytes (alpha 255, grey repeated in R, G, B), ready for ImageData.
+        Without `view`: the lattice tile whose top-left pixel is the point (x, y) (integers). With
+        view = { scale, rotate }: the continuous grid from (x, y) in texels where one pixel steps 1/scale
+        texels, rotated by `rotate` degrees counterclockwise (as dsn-render --mode continuous).
+     */
+    tile(x, y, width, height, view = null) {
+        this.checkConfigured();
+        const e = this.exports;
+        if (!(Number.isInteger(width) && Number.isInteger(height) && width >= 1 && height >= 1 &&
+              width * height <= 1 << 26))
+            throw new RangeError(`dsn: tile size ${width}x${height} out of range`);
+        const count = width * height * this.channels;
+        let scratchSize, call;
+        if (view === null) {
+            scratchSize = e.dsn_lattice_tile_scratch_size(this.noiseAt, width, height) >>> 0;
+            call = (out, scratch) =>
+                e.dsn_lattice_tile_u8(this.noiseAt, x | 0, y | 0, width, height, out, scratch, scratchSize);
+        } else {
+            this.writeGrid(x, y, view);
+            scratchSize = e.dsn_continuous_tile_scratch_size(this.noiseAt, this.gridAt, width, height) >>> 0;
+            call = (out, scratch) =>
+                e.dsn_continuous_tile_u8(this.noiseAt, this.gridAt, width, height, out, scratch, scratchSize);
+        }
+        const out = this.workAt, scratch = align(out + count, 16);
+        this.ensure(scratch + scratchSize);
+        check(e, call(out, scratch));
+        return toRGBA(new Uint8Array(e.memory.buffer, out, count), this.channels, width * height);
+    }
+
+    // The grid of tile(): Q32.32 coordinates computed as dsn-render computes them (origin by the
+    // runtime's conversion, steps rounded to the nearest 2^-32 texel).
+    writeGrid(x, y, { scale = 1, rotate = 0 }) {
+        const e = this.exports;
+        const radians = rotate * Math.PI / 180;
+        const cosine = Math.cos(radians) / scale, sine = Math.sin(radians) / scale;
+        const step = (texels) => BigInt(Math.round(texels * Q32_ONE));
+        const grid = new BigInt64Array(e.memory.buffer, this.gridAt, GRID_BYTES / 8);
+        grid[0] = e.dsn_coordinate_from_double(x);
+        grid[1] = e.dsn_coordinate_from_double(y);
+        grid[2] = step(cosine);
+        grid[3] = step(sine);
+        grid[4] = step(-sine);
+        grid[5] = step(cosine);
+    }
+
+    // After a failed dsn_noise_init the noise is zeroed and per-point calls would write nothing.
+    checkConfigured() {
+        if (this.settings === null) throw new Error('dsn: the texture has no valid settings (configure failed)');
+    }
+
+    ensure(end) {
+        const memory = this.exports.memory;
+        if (end > memory.buffer.byteLength) memory.grow(Math.ceil((end - memory.buffer.byteLength) / PAGE));
+    }
+}
+
+function check(exports, code) {
+    if (code !== 0) throw new DsnError(code, readString(exports.memory, exports.dsn_error_message(code)));
+}
+
+function readString(memory, pointer) {
+    const bytes = new Uint8Array(memory.buffer, pointer >>> 0); // wasm32 pointers arrive signed
+    return new TextDecoder().decode(bytes.subarray(0, bytes.indexOf(0)));
+}
+
+function toBytes(bytes) {
+    if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
+    if (ArrayBuffer.isView(bytes)) return new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    throw new TypeError('dsn: an asset is a Uint8Array or an ArrayBuffer');
+}
+
+function fromFixed(values) { return Float64Array.from(values, (value) => value / 65536); }
+
+function toRGBA(values, channels, pixels) {
+    const rgba = new Uint8ClampedArray(pixels * 4);
+    if (channels === 3) {
+        for (let p = 0, q = 0; p < pixels; p++, q += 3) {
+            rgba[4 * p] = values[q];
+            rgba[4 * p + 1] = values[q + 1];
+            rgba[4 * p + 2] = values[q + 2];
+            rgba[4 * p + 3] = 255;
+        }
+    } else {
+        for (let p = 0; p < pixels; p++) {
+            const v = values[p];
+            rgba[4 * p] = v;
+            rgba[4 * p + 1] = v;
+            rgba[4 * p + 2] = v;
+            rgba[4 * p + 3] = 255;
+        }
+    }
+    return rgba;
+}
+
+function align(value, to) { return Math.ceil(value / to) * to; }
