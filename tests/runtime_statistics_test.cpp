@@ -18,8 +18,9 @@ namespace {
 using dsn_test::LoadedNoise;
 using dsn_test::NoiseTheory;
 
-// The cropped luminance texton (DESIGN.md 2.5) of a 64 x 64 RGB random exemplar: white noise filtered
-// by a different anisotropic blur per channel, mixed across channels. Quantized to 8 bits, 31 x 31.
+// The cropped luminance texton (see "How it works" in the README) of a 64 x 64 RGB random exemplar: white
+// noise filtered by a different anisotropic blur per channel, mixed across channels. Quantized to 8 bits, 31
+// x 31.
 dsn::AssetFields baked_like_fields() {
     const int n = 64, side = 31, r = 15;
     const double tau = 2 * std::acos(-1.0);

@@ -1,4 +1,4 @@
-# tests/cross: same bits everywhere (issue 5). `make cross-test` measures the runtime's embedded footprint
+# tests/cross: same bits everywhere. `make cross-test` measures the runtime's embedded footprint
 # (tests/cross/footprint), then builds the golden program for every compiler, CPU and the emulated
 # Cortex-M3 and compares their hashes with tests/cross/golden.txt (tests/cross/run-cross).
 #   make cross-test CROSS_UPDATE=1   rewrites golden.txt from the reference target first (on purpose only)
