@@ -120,7 +120,7 @@ bench: deps
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/dsn $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/dsn/*.h $(DESTDIR)$(PREFIX)/include/dsn/
+	install -m 644 include/dsn/*.h include/dsn/*.glsl $(DESTDIR)$(PREFIX)/include/dsn/
 	install -m 644 $(LIBDSN) $(LIBDSN_BAKE) $(DESTDIR)$(PREFIX)/lib/
 	$(if $(strip $(TOOLS) $(INSTALL_PROGRAMS)),install -m 755 $(TOOLS) $(INSTALL_PROGRAMS) $(DESTDIR)$(PREFIX)/bin/)
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' .ci/dsn.pc.in \

@@ -39,6 +39,8 @@ const char *const usage =
     "  --mode M           tile (default: the lattice) or continuous\n"
     "  --scale F          continuous mode: magnification (default 1)\n"
     "  --rotate DEG       continuous mode: rotation of the texture, counterclockwise (default 0)\n"
+    "  --api A            gles30 (default): OpenGL ES 3.0 and GLSL ES 3.00, as in WebGL2; gl45: OpenGL 4.5\n"
+    "                     core and GLSL 4.30 (the same shader with umulExtended instead of 16-bit limbs)\n"
     "  --compare-cpu      also render with the C runtime (tiles, one thread), check that the pixels are\n"
     "                     identical and print both speeds\n"
     "  --dump-shaders DIR write the shaders to DIR (for glslangValidator) and exit\n"
@@ -53,6 +55,7 @@ struct Options {
     Mode mode = Mode::tile;
     double scale = 1.0, rotate_degrees = 0.0;
     bool compare_cpu = false, quiet = false;
+    headless_gl::Api api = headless_gl::Api::gles30;
 };
 
 uint64_t parse_u64(const std::string &flag, const std::string &text, uint64_t high) {
@@ -104,6 +107,10 @@ Options parse_options(int argc, char **argv) {
         const std::string value = argv[++i];
         if (flag == "-o" || flag == "--output") {
             options.output_path = value;
+        } else if (flag == "--api") {
+            if (value != "gles30" && value != "gl45")
+                throw std::runtime_error("--api must be gles30 or gl45");
+            options.api = value == "gl45" ? headless_gl::Api::gl45 : headless_gl::Api::gles30;
         } else if (flag == "--dump-shaders") {
             options.dump_directory = value;
         } else if (flag == "--size") {
@@ -199,11 +206,13 @@ void main() {
 }
 )glsl";
 
-const char *const vertex_shader = "#version 300 es\n"
-                                  "void main() {\n"
-                                  "    gl_Position = vec4(float((gl_VertexID & 1) << 2) - 1.0,\n"
-                                  "                       float((gl_VertexID & 2) << 1) - 1.0, 0.0, 1.0);\n"
-                                  "}\n";
+std::string vertex_shader(const headless_gl::Context &context) {
+    return context.shader_preamble() +
+           "void main() {\n"
+           "    gl_Position = vec4(float((gl_VertexID & 1) << 2) - 1.0,\n"
+           "                       float((gl_VertexID & 2) << 1) - 1.0, 0.0, 1.0);\n"
+           "}\n";
+}
 
 std::string fragment_shader(const headless_gl::Context &context) {
     return context.shader_preamble() + dsn_glsl + fragment_main;
@@ -234,7 +243,7 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
     const int err = dsn_gpu_pack(&noise, words.data(), words.size());
     if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_pack: ") + dsn_error_message(err));
 
-    GLuint program = context.render_program(vertex_shader, fragment_shader(context));
+    GLuint program = context.render_program(vertex_shader(context), fragment_shader(context));
     gl.glUseProgram(program);
     GLuint texture = context.word_texture(words, 1), target = 0, framebuffer = 0, vertex_array = 0;
     gl.glActiveTexture(GL_TEXTURE0);
@@ -336,9 +345,12 @@ std::vector<uint8_t> render_cpu(const Options &options, const dsn_noise &noise, 
 
 void run(const Options &options) {
     if (!options.dump_directory.empty()) {
-        headless_gl::Context context(headless_gl::Api::gles30);
-        write_file(options.dump_directory + "/gpu-render.frag", fragment_shader(context));
-        write_file(options.dump_directory + "/gpu-render.vert", vertex_shader);
+        for (headless_gl::Api api : {headless_gl::Api::gles30, headless_gl::Api::gl45}) {
+            headless_gl::Context context(api);
+            const std::string name = options.dump_directory + "/gpu-render-" + headless_gl::api_name(api);
+            write_file(name + ".frag", fragment_shader(context));
+            write_file(name + ".vert", vertex_shader(context));
+        }
         return;
     }
     const std::vector<unsigned char> bytes = read_file(options.asset_path);
@@ -353,7 +365,7 @@ void run(const Options &options) {
     if (err == DSN_OK && options.mode == Mode::continuous) err = dsn_continuous_check(&noise);
     if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
 
-    headless_gl::Context context(headless_gl::Api::gles30);
+    headless_gl::Context context(options.api);
     double gpu_seconds = 0;
     const std::vector<uint8_t> pixels = render_gpu(context, options, noise, asset.channels, &gpu_seconds);
     const double megapixels = options.width * static_cast<double>(options.height) / 1e6;

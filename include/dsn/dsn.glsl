@@ -191,14 +191,19 @@ uint dsn_field_in_pair(uvec2 pair, uint k, uint field_shift) {
     return ((bit >= 32u ? pair.y : pair.x) >> (bit & 31u)) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
 }
 
-/* 16-bit in-cell positions of impulse k for the continuous mode: x low, y high. */
-uint dsn_impulse_hash(uint key, uint k, uint cell_shift) {
-    uint field_shift = dsn_field_shift(cell_shift), half_bits = 1u << (field_shift - 1u);
-    uint field = dsn_field_in_pair(dsn_position_pair(key, k >> (6u - field_shift)), k, field_shift);
-    uint fraction = dsn_cell_stream(key, 0x80000000u + k);
+/* 16-bit in-cell positions of an impulse for the continuous mode, x low and y high: the top half_bits
+   bits of each from the packed field, the rest from the impulse's fraction hash. */
+uint dsn_impulse_position(uint field, uint fraction, uint half_bits) {
     uint x = ((field & ((1u << half_bits) - 1u)) << (16u - half_bits)) | ((fraction & 0xFFFFu) >> half_bits);
     uint y = ((field >> half_bits) << (16u - half_bits)) | ((fraction >> 16u) >> half_bits);
     return x | (y << 16u);
+}
+
+/* The same for impulse k of the cell with this key. */
+uint dsn_impulse_hash(uint key, uint k, uint cell_shift) {
+    uint field_shift = dsn_field_shift(cell_shift);
+    uint field = dsn_field_in_pair(dsn_position_pair(key, k >> (6u - field_shift)), k, field_shift);
+    return dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), 1u << (field_shift - 1u));
 }
 
 /* ---- The cells that can reach a window, along one axis (periodic or not) ---- */
@@ -384,6 +389,9 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
     uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
     dsn_axis px = dsn_axis_init(x.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
     dsn_axis py = dsn_axis_init(y.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    uint diameter_x = 2u * px.radius + 2u, diameter_y = 2u * py.radius + 2u;
     uvec2 sums[3];
     sums[0] = uvec2(0u);
     sums[1] = uvec2(0u);
@@ -394,11 +402,22 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
             dsn_span span_x = dsn_axis_span(px, sx);
             for (uint j = 0u; j < span_y.cell_count; j++) {
                 uint cell_y = dsn_span_cell(span_y, j, shift), row_key = dsn_row_key(cell_y);
+                /* reach - lattice offset is the impulse's distance in whole texels from radius + 1 texels
+                   before the point: beyond [0, 2 radius + 2] it cannot reach the point (the fraction moves
+                   it by less than a texel), so the fraction hash and exact test are left out. */
+                uint reach_y = 1u + span_y.base - (cell_y << shift) + 1u;
                 for (uint i = 0u; i < span_x.cell_count; i++) {
-                    uint cell_x = dsn_span_cell(span_x, i, shift);
+                    uint cell_x = dsn_span_cell(span_x, i, shift), reach_x = 1u + span_x.base - (cell_x << shift) + 1u;
                     uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
                     for (uint k = 0u; k < count; k++) {
-                        uint hash = dsn_impulse_hash(key, k, shift), row, row_weight, column, column_weight;
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u) pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        if (reach_x - ((field & half_mask) >> drop) > diameter_x ||
+                            reach_y - (((field >> half_bits) & half_mask) >> drop) > diameter_y)
+                            continue;
+                        uint hash = dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
+                        uint row, row_weight, column, column_weight;
                         if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, row, row_weight))
                             continue;
                         if (!dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, column,
