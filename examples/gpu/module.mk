@@ -10,7 +10,7 @@ $(BUILD)/obj/examples/gpu/%.o: examples/gpu/%.cpp
 	$(CXX) $(OFFLINE_FLAGS) -Itests/gpu -I$(BUILD)/gen $(CXXFLAGS) -c $< -o $@
 $(BUILD)/obj/examples/gpu/dsn_gpu_render.o: $(BUILD)/gen/include/dsn/dsn.glsl.inc
 
-$(GPU_RENDER): $(BUILD)/obj/examples/gpu/dsn_gpu_render.o $(BUILD)/obj/tests/gpu/headless_gl.o $(LIBDSN_BAKE) \
-    $(LIBDSN)
+$(GPU_RENDER): $(BUILD)/obj/examples/gpu/dsn_gpu_render.o $(BUILD)/obj/tests/gpu/headless_gl.o \
+    $(LIBDSN_BAKE) $(LIBDSN)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $^ -o $@ $(OFFLINE_LINK) -lEGL

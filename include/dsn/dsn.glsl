@@ -129,7 +129,9 @@ uvec2 dsn_shift_right64(uvec2 x, uint n) {
 }
 
 /* x ^ (x >> n), 0 < n < 32 */
-uvec2 dsn_xor_shift64(uvec2 x, uint n) { return uvec2(x.x ^ ((x.x >> n) | (x.y << (32u - n))), x.y ^ (x.y >> n)); }
+uvec2 dsn_xor_shift64(uvec2 x, uint n) {
+    return uvec2(x.x ^ ((x.x >> n) | (x.y << (32u - n))), x.y ^ (x.y >> n));
+}
 
 /* ---- Hashing (the runtime's lowbias32, SplitMix64 finalizer and cell keys) ---- */
 
@@ -219,7 +221,8 @@ struct dsn_span {
 dsn_axis dsn_axis_init(uint coordinate, uint window_length, uint radius, uint shift, uint period) {
     dsn_axis axis = dsn_axis(radius, shift, period, window_length, coordinate, 0u, 1u);
     if (period != 0u) {
-        uint start = (coordinate & 0x80000000u) != 0u ? period - 1u - (~coordinate) % period : coordinate % period;
+        uint start =
+            (coordinate & 0x80000000u) != 0u ? period - 1u - (~coordinate) % period : coordinate % period;
         uint extent = window_length - 1u + radius, rest = extent % period;
         axis.start = start;
         axis.copies_before = start >= radius ? 0u : 1u + (radius - 1u - start) / period;
@@ -239,8 +242,9 @@ dsn_span dsn_axis_span(dsn_axis axis, uint index) {
     } else {
         uint copy_start = (index - axis.copies_before) * axis.period;
         uint first = index == 0u ? low - copy_start : 0u;
-        uint last = index == axis.span_count - 1u ? axis.start + axis.window_length - 1u + axis.radius - copy_start
-                                                  : axis.period - 1u;
+        uint last = index == axis.span_count - 1u
+                        ? axis.start + axis.window_length - 1u + axis.radius - copy_start
+                        : axis.period - 1u;
         span.first_cell = first >> axis.shift;
         span.cell_count = (last >> axis.shift) - span.first_cell + 1u;
         span.base = axis.start + axis.radius - copy_start;
@@ -249,7 +253,9 @@ dsn_span dsn_axis_span(dsn_axis axis, uint index) {
     return span;
 }
 
-uint dsn_span_cell(dsn_span span, uint i, uint shift) { return (span.first_cell + i) & (0xFFFFFFFFu >> shift); }
+uint dsn_span_cell(dsn_span span, uint i, uint shift) {
+    return (span.first_cell + i) & (0xFFFFFFFFu >> shift);
+}
 
 /* ---- Normalization: Q_k sums -> Q16.16 ---- */
 
@@ -272,7 +278,9 @@ int dsn_round_saturate(uvec2 accumulated, uint shift) {
 /* |gain| < 2^29: its low word, read as int, is the whole value. */
 int dsn_gain(uint c, uint k) { return int(dsn_word(DSN_WORD_GAIN + 2u * (3u * c + k))); }
 
-uvec2 dsn_offset(uint c) { return uvec2(dsn_word(DSN_WORD_OFFSET + 2u * c), dsn_word(DSN_WORD_OFFSET + 2u * c + 1u)); }
+uvec2 dsn_offset(uint c) {
+    return uvec2(dsn_word(DSN_WORD_OFFSET + 2u * c), dsn_word(DSN_WORD_OFFSET + 2u * c + 1u));
+}
 
 int dsn_normalize_channel(uint c, uint channels, uvec3 sums) {
     uvec2 accumulated = dsn_offset(c);
@@ -314,7 +322,8 @@ uvec3 dsn_lattice_sums(uint x, uint y) {
     uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
     uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
     dsn_axis axis_x = dsn_axis_init(x, 1u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
-    dsn_axis axis_y = dsn_axis_init(y, 1u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    dsn_axis axis_y =
+        dsn_axis_init(y, 1u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
     uvec3 sums = uvec3(0u);
     for (uint span_index_y = 0u; span_index_y < axis_y.span_count; span_index_y++) {
         dsn_span span_y = dsn_axis_span(axis_y, span_index_y);
@@ -329,9 +338,11 @@ uvec3 dsn_lattice_sums(uint x, uint y) {
                     uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
                     uvec2 pair = uvec2(0u);
                     for (uint k = 0u; k < count; k++) {
-                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u) pair = dsn_position_pair(key, k >> per_pair_shift);
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
                         uint field = dsn_field_in_pair(pair, k, field_shift);
-                        uint offset_x = (field & half_mask) >> drop, offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        uint offset_x = (field & half_mask) >> drop,
+                             offset_y = ((field >> half_bits) & half_mask) >> drop;
                         uint column = in_x.x - offset_x, row = in_y.x - offset_y;
                         if (column < width && row < height && offset_x <= in_x.y && offset_y <= in_y.y)
                             sums += dsn_texton_entry(row * width + column, channels);
@@ -356,7 +367,8 @@ int dsn_texel(uint row, uint column, uint channel, uint width, uint height, uint
 
 /* weights (1 - column_weight, column_weight, 1 - row_weight, row_weight) in Q0.16. Each row's
    weighted pair is within int32 (at most 2^16 * 2^15), each term below 2^47. */
-uvec2 dsn_bilinear(uint row, uint column, uint channel, ivec4 weights, uint width, uint height, uint channels) {
+uvec2 dsn_bilinear(uint row, uint column, uint channel, ivec4 weights, uint width, uint height,
+                   uint channels) {
     int upper = weights.x * dsn_texel(row, column, channel, width, height, channels) +
                 weights.y * dsn_texel(row, column + 1u, channel, width, height, channels);
     int lower = weights.x * dsn_texel(row + 1u, column, channel, width, height, channels) +
@@ -367,8 +379,8 @@ uvec2 dsn_bilinear(uint row, uint column, uint channel, ivec4 weights, uint widt
 /* One axis of an impulse seen from the point: false when it lies beyond the period or out of reach;
    else the texton index of the lower bracketing texel (0xFFFFFFFF for -1) and the upper one's weight.
    fraction: the low word of the point's coordinate. */
-bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_origin, uint bits16, out uint lower_index,
-                         out uint upper_weight) {
+bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_origin, uint bits16,
+                         out uint lower_index, out uint upper_weight) {
     lower_index = 0u;
     upper_weight = 0u;
     if (cell_origin + (bits16 >> (16u - axis.shift)) > span.last_position) return false;
@@ -388,7 +400,8 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
     uint shift = dsn_word(DSN_WORD_CELL_SHIFT), channels = dsn_word(DSN_WORD_CHANNELS);
     uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
     dsn_axis px = dsn_axis_init(x.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
-    dsn_axis py = dsn_axis_init(y.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    dsn_axis py =
+        dsn_axis_init(y.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
     uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
     uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
     uint diameter_x = 2u * px.radius + 2u, diameter_y = 2u * py.radius + 2u;
@@ -407,26 +420,31 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
                    it by less than a texel), so the fraction hash and exact test are left out. */
                 uint reach_y = 1u + span_y.base - (cell_y << shift) + 1u;
                 for (uint i = 0u; i < span_x.cell_count; i++) {
-                    uint cell_x = dsn_span_cell(span_x, i, shift), reach_x = 1u + span_x.base - (cell_x << shift) + 1u;
+                    uint cell_x = dsn_span_cell(span_x, i, shift),
+                         reach_x = 1u + span_x.base - (cell_x << shift) + 1u;
                     uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
                     uvec2 pair = uvec2(0u);
                     for (uint k = 0u; k < count; k++) {
-                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u) pair = dsn_position_pair(key, k >> per_pair_shift);
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
                         uint field = dsn_field_in_pair(pair, k, field_shift);
                         if (reach_x - ((field & half_mask) >> drop) > diameter_x ||
                             reach_y - (((field >> half_bits) & half_mask) >> drop) > diameter_y)
                             continue;
-                        uint hash = dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
+                        uint hash =
+                            dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
                         uint row, row_weight, column, column_weight;
-                        if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, row, row_weight))
+                        if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, row,
+                                                 row_weight))
                             continue;
                         if (!dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, column,
                                                  column_weight))
                             continue;
-                        ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight), int(65536u - row_weight),
-                                              int(row_weight));
+                        ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight),
+                                              int(65536u - row_weight), int(row_weight));
                         for (uint c = 0u; c < channels; c++)
-                            sums[c] = dsn_add64(sums[c], dsn_bilinear(row, column, c, weights, width, height, channels));
+                            sums[c] = dsn_add64(
+                                sums[c], dsn_bilinear(row, column, c, weights, width, height, channels));
                     }
                 }
             }
@@ -445,9 +463,12 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
         int carried = int(fractions.y);
         accumulated = dsn_add64(accumulated, uvec2(uint(carried), carried < 0 ? 0xFFFFFFFFu : 0u));
         int value = dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
-        if (c == 0u) result.x = value;
-        else if (c == 1u) result.y = value;
-        else result.z = value;
+        if (c == 0u)
+            result.x = value;
+        else if (c == 1u)
+            result.y = value;
+        else
+            result.z = value;
     }
     return result;
 }
@@ -497,7 +518,9 @@ uvec2 dsn_coordinate_from_float_bits(uint bits) {
 }
 
 /* The same from a float value (a GPU may flush subnormal inputs to zero: pass the bits to keep them). */
-uvec2 dsn_coordinate_from_float(float value) { return dsn_coordinate_from_float_bits(floatBitsToUint(value)); }
+uvec2 dsn_coordinate_from_float(float value) {
+    return dsn_coordinate_from_float_bits(floatBitsToUint(value));
+}
 
 /* ---- Output conversions (the C API edge), in integer arithmetic ---- */
 
@@ -537,7 +560,8 @@ uint dsn_fixed_to_u8(int value) {
    attachment: what dsn_lattice_point_u8 gives, divided by 255. */
 vec3 dsn_color(ivec3 fixed_value) {
     uint channels = dsn_word(DSN_WORD_CHANNELS);
-    uvec3 u8 = uvec3(dsn_fixed_to_u8(fixed_value.x), dsn_fixed_to_u8(fixed_value.y), dsn_fixed_to_u8(fixed_value.z));
+    uvec3 u8 =
+        uvec3(dsn_fixed_to_u8(fixed_value.x), dsn_fixed_to_u8(fixed_value.y), dsn_fixed_to_u8(fixed_value.z));
     if (channels != 3u) u8 = u8.xxx;
     return vec3(u8) / 255.0;
 }

@@ -4,9 +4,9 @@
    golden_query() (where the queries are) and calls golden_evaluate(index). */
 
 /* The task of this draw or dispatch. */
-uniform uint task_kind;   /* 0: listed queries, 1: a lattice tile, 2: a continuous grid */
-uniform uint task_output; /* tiles: 0 fixed Q16.16, 1 float32 bits, 2 u8 */
-uniform uint task_width;  /* tiles: pixels per row */
+uniform uint task_kind;         /* 0: listed queries, 1: a lattice tile, 2: a continuous grid */
+uniform uint task_output;       /* tiles: 0 fixed Q16.16, 1 float32 bits, 2 u8 */
+uniform uint task_width;        /* tiles: pixels per row */
 uniform uvec4 task_origin;      /* lattice: (x, -, y, -); grid: (x low, x high, y low, y high) */
 uniform uvec4 task_column_step; /* grid: the step to the next pixel of a row, Q32.32 x then y */
 uniform uvec4 task_row_step;    /* grid: the step to the next row */
@@ -45,9 +45,9 @@ uvec4 golden_evaluate(uint index) {
     if (point == 0u) return golden_convert(dsn_lattice_point_fixed(ivec2(int(x.x), int(y.x))), conversion);
     if (point == 1u) return golden_convert(dsn_continuous_point_fixed(x, y), conversion);
     if (point == 2u)
-        return golden_convert(
-            dsn_continuous_point_fixed(dsn_coordinate_from_double_bits(x), dsn_coordinate_from_double_bits(y)),
-            conversion);
+        return golden_convert(dsn_continuous_point_fixed(dsn_coordinate_from_double_bits(x),
+                                                         dsn_coordinate_from_double_bits(y)),
+                              conversion);
     if (point == 3u) return uvec4(dsn_coordinate_from_double_bits(x), 0u, 0u);
     return uvec4(dsn_coordinate_from_float_bits(x.x), 0u, 0u);
 }

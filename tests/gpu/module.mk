@@ -11,9 +11,9 @@ GPU_LIBS := -lEGL
 deps-gpu: deps
 	@.ci/install-packages $(GPU_PACKAGES)
 
-# Built in a second make, after deps-gpu has installed the headers.
+# Built in a second make, after deps-gpu has installed the headers (all: the smoke test uses dsn-render).
 gpu-test: deps-gpu
-	@$(MAKE) --no-print-directory $(GPU_GOLDEN) $(GPU_PROGRAMS)
+	@$(MAKE) --no-print-directory all $(GPU_GOLDEN) $(GPU_PROGRAMS)
 	@BUILD="$(BUILD)" GPU_SHADER_PROGRAMS="$(GPU_PROGRAMS)" tests/gpu/run-gpu
 	@for test in $(GPU_SMOKE_TESTS); do BUILD="$(BUILD)" $$test || exit 1; done
 
