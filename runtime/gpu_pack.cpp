@@ -1,5 +1,7 @@
 /* runtime/gpu_pack.cpp - dsn_gpu_pack: a configured noise as the 32-bit words that dsn/dsn.glsl reads
    (the layout is documented in dsn/gpu.h). */
+#include <stddef.h>
+
 #include "dsn/gpu.h"
 #include "noise_state.h"
 
@@ -14,12 +16,22 @@ static_assert(sizeof(dsn_noise_state::poisson_guide) == guide_words,
               "the layout holds the whole Poisson guide");
 static_assert(guide_first + guide_words == DSN_GPU_HEADER_WORDS, "the texton follows the guide");
 
-/* The low and high words of an int64, two's complement, without implementation-defined conversions. */
-void put_int64(uint32_t *words, uint32_t index, int64_t value) {
-    const uint64_t bits = static_cast<uint64_t>(value);
-    words[index] = static_cast<uint32_t>(bits);
-    words[index + 1] = static_cast<uint32_t>(bits >> 32);
-}
+/* Words 3 .. 16 of the layout: where each is in the configured noise (every one a uint32_t field), in
+   words from its start. A table and one loop rather than fourteen assignments: the runtime's whole code
+   must stay small on microcontrollers (the cross test's footprint counts this file too). */
+#define DSN_ASSET_FIELD(name) (offsetof(dsn_noise_state, asset) + offsetof(dsn_asset, name)) / 4
+#define DSN_STATE_FIELD(name) offsetof(dsn_noise_state, name) / 4
+const unsigned char header_fields[14] = {
+    DSN_ASSET_FIELD(channels),      DSN_ASSET_FIELD(bits),        DSN_ASSET_FIELD(width),
+    DSN_ASSET_FIELD(height),        DSN_STATE_FIELD(radius[0]),   DSN_STATE_FIELD(radius[1]),
+    DSN_STATE_FIELD(cell_shift),    DSN_STATE_FIELD(period[0]),   DSN_STATE_FIELD(period[1]),
+    DSN_STATE_FIELD(seed_column),   DSN_STATE_FIELD(seed_row),    DSN_STATE_FIELD(gain_shift),
+    DSN_STATE_FIELD(poisson_parts), DSN_STATE_FIELD(poisson_size)};
+#undef DSN_ASSET_FIELD
+#undef DSN_STATE_FIELD
+static_assert(sizeof(dsn_noise_state) / 4 <= 255, "header_fields holds word indexes in bytes");
+static_assert(offsetof(dsn_noise_state, poisson_size) % 4 == 0 && offsetof(dsn_asset, height) % 4 == 0,
+              "the header fields are whole words");
 
 /* A configured noise has a texton; dsn_noise_init zeroes the noise when it fails. */
 const dsn_noise_state *configured(const dsn_noise *handle) {
@@ -35,42 +47,44 @@ extern "C" size_t dsn_gpu_word_count(const dsn_noise *handle) {
     return DSN_GPU_HEADER_WORDS + size_t(noise->asset.width) * noise->asset.height * noise->asset.channels;
 }
 
+namespace {
+
+/* int64 values as pairs of words, low first (the conversion to uint64 is modulo 2^64). */
+void put_pairs(uint32_t *words, const int64_t *values, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) {
+        const uint64_t bits = static_cast<uint64_t>(values[i]);
+        words[2 * i] = static_cast<uint32_t>(bits);
+        words[2 * i + 1] = static_cast<uint32_t>(bits >> 32);
+    }
+}
+
+} // namespace
+
 extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t capacity) {
     if (handle == 0 || words == 0) return DSN_ERR_NULL;
-    const dsn_noise_state *noise = configured(handle);
     const size_t count = dsn_gpu_word_count(handle);
-    if (noise == 0 || capacity < count) return DSN_ERR_ARGUMENT;
+    if (count == 0 || capacity < count) return DSN_ERR_ARGUMENT;
+    const dsn_noise_state *noise = dsn_state(handle);
     const dsn_asset *asset = &noise->asset;
-
-    for (uint32_t i = 0; i < DSN_GPU_HEADER_WORDS; i++) words[i] = 0;
+    const unsigned char *state = static_cast<const unsigned char *>(static_cast<const void *>(noise));
+    uint32_t i;
     words[0] = DSN_GPU_MAGIC;
     words[1] = DSN_GPU_LAYOUT_VERSION;
     words[2] = static_cast<uint32_t>(count);
-    words[3] = asset->channels;
-    words[4] = asset->bits;
-    words[5] = asset->width;
-    words[6] = asset->height;
-    words[7] = noise->radius[0];
-    words[8] = noise->radius[1];
-    words[9] = noise->cell_shift;
-    words[10] = noise->period[0];
-    words[11] = noise->period[1];
-    words[12] = noise->seed_column;
-    words[13] = noise->seed_row;
-    words[14] = noise->gain_shift;
-    words[15] = noise->poisson_parts;
-    words[16] = noise->poisson_size;
+    for (i = 0; i < 14; i++)
+        words[3 + i] =
+            *static_cast<const uint32_t *>(static_cast<const void *>(state + 4u * header_fields[i]));
     words[17] = dsn_continuous_check(handle) == DSN_OK ? 1u : 0u;
-    for (uint32_t i = 0; i < 9; i++) put_int64(words, 18 + 2 * i, noise->gain[i]);
-    for (uint32_t i = 0; i < 3; i++) put_int64(words, 36 + 2 * i, noise->offset[i]);
-    for (uint32_t i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
-    for (uint32_t i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
-
-    /* The texton through the loader's reader: whole values, whatever the asset's byte layout. */
-    uint32_t *texton = words + DSN_GPU_HEADER_WORDS;
-    for (uint32_t row = 0; row < asset->height; row++)
-        for (uint32_t column = 0; column < asset->width; column++)
-            for (uint32_t c = 0; c < asset->channels; c++)
-                *texton++ = static_cast<uint32_t>(dsn_asset_texton_value(asset, row, column, c));
+    put_pairs(words + 18, noise->gain, 9);
+    put_pairs(words + 36, noise->offset, 3);
+    for (i = 42; i < cdf_first; i++) words[i] = 0;
+    for (i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
+    for (i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
+    /* The asset stores the texton in the same order (format.h): row-major, channels interleaved, 8-bit or
+       16-bit little-endian two's complement, sign-extended here in uint32 arithmetic. */
+    const uint32_t bytes = asset->bits / 8, sign = bytes == 1 ? 0x80u : 0x8000u;
+    const unsigned char *texton = asset->texton;
+    for (size_t v = DSN_GPU_HEADER_WORDS; v < count; v++, texton += bytes)
+        words[v] = ((texton[0] | (bytes == 2 ? uint32_t(texton[1]) << 8 : 0u)) ^ sign) - sign;
     return DSN_OK;
 }

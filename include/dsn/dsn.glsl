@@ -24,8 +24,11 @@
          ivec3 value = dsn_lattice_point_fixed(ivec2(x, y));   // Q16.16, 65536 is 1.0
      Grey noises fill .x only (the other channels are 0). Coordinates wrap as in the C API: lattice points
      are int32, continuous points are Q32.32 texel coordinates as uvec2(low, high) per axis (see
-     dsn_coordinate_from_float and dsn_coordinate_from_double_bits for conversions).
-     GLSL ES needs `precision highp int;` (declared below when GL_ES is defined). */
+     dsn_coordinate_from_float and dsn_coordinate_from_double_bits for conversions). A point costs
+     tens of hashes and a few hundred word reads (the README gives counts): meant for shaders that
+     need the exact bits (previews matching an offline reference, data), not as the cheapest noise.
+     GLSL ES: this file declares `precision highp int;`; code before it (dsn_word, say) needs its own
+     highp declarations (integer samplers too). Layout 1 of dsn/gpu.h. */
 
 #ifndef DSN_GLSL_LIMBS
 #if defined(GL_ES) && __VERSION__ < 310
