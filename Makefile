@@ -148,7 +148,7 @@ bench: deps
 # gives dsn::dsn and dsn::bake).
 INSTALL_ROOT = $(DESTDIR)$(PREFIX)
 INSTALLED_TOOLS = $(sort $(notdir $(TOOLS) $(INSTALL_PROGRAMS)))
-INSTALLED_FILES = $(addprefix $(INSTALL_ROOT)/include/dsn/,$(notdir $(wildcard include/dsn/*.h))) \
+INSTALLED_FILES = $(addprefix $(INSTALL_ROOT)/include/dsn/,$(notdir $(wildcard include/dsn/*.h include/dsn/*.glsl))) \
     $(INSTALL_ROOT)/lib/libdsn.a $(INSTALL_ROOT)/lib/libdsn_bake.a \
     $(addprefix $(INSTALL_ROOT)/bin/,$(INSTALLED_TOOLS)) \
     $(INSTALL_ROOT)/lib/pkgconfig/dsn.pc $(INSTALL_ROOT)/lib/pkgconfig/dsn-bake.pc \
@@ -163,7 +163,7 @@ INSTALL_SUBSTITUTIONS = -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' 
 install: all
 	install -d $(INSTALL_ROOT)/include/dsn $(INSTALL_ROOT)/lib/pkgconfig $(INSTALL_ROOT)/lib/cmake/dsn \
 	    $(INSTALL_ROOT)/bin
-	install -m 644 include/dsn/*.h $(INSTALL_ROOT)/include/dsn/
+	install -m 644 include/dsn/*.h include/dsn/*.glsl $(INSTALL_ROOT)/include/dsn/
 	install -m 644 $(LIBDSN) $(LIBDSN_BAKE) $(INSTALL_ROOT)/lib/
 	$(if $(INSTALLED_TOOLS),install -m 755 $(sort $(TOOLS) $(INSTALL_PROGRAMS)) $(INSTALL_ROOT)/bin/)
 	sed $(INSTALL_SUBSTITUTIONS) .ci/dsn.pc.in > $(INSTALL_ROOT)/lib/pkgconfig/dsn.pc

@@ -1,0 +1,401 @@
+// dsn-gpu-render: renders a window of the spot noise on the GPU with include/dsn/dsn.glsl and writes the
+// PNG that dsn-render writes for the same asset, seed and window, byte for byte.
+//
+// Headless: EGL on Mesa's surfaceless platform, an OpenGL ES 3.0 context and a GLSL ES 3.00 fragment
+// shader (the language of WebGL2), as a renderer would use it: the packed noise (dsn_gpu_pack) in an R32UI
+// texture, one fragment per pixel writing dsn_color() to an ordinary RGBA8 colour target. With no GPU (or
+// LIBGL_ALWAYS_SOFTWARE=1) Mesa runs it on llvmpipe, a software GPU.
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dsn/bake.h"
+#include "dsn/dsn.h"
+#include "dsn/gpu.h"
+#include "headless_gl.h"
+
+namespace {
+
+const char *const dsn_glsl =
+#include "include/dsn/dsn.glsl.inc"
+    ;
+
+const char *const usage =
+    "usage: dsn-gpu-render A.dsnt -o OUT.png --size WxH [options]\n"
+    "Renders the spot noise of asset A.dsnt over a window of W x H pixels in a GLSL ES 3.00 fragment\n"
+    "shader (EGL surfaceless; Mesa's llvmpipe, a software GPU, when there is no GPU). The PNG is the one\n"
+    "dsn-render writes with the same options.\n"
+    "  --origin X,Y       top-left point in texels (default 0,0): integers in tile mode, reals in\n"
+    "                     continuous mode; values wrap modulo 2^32\n"
+    "  --seed S           32-bit seed (default 0)\n"
+    "  --mode M           tile (default: the lattice) or continuous\n"
+    "  --scale F          continuous mode: magnification (default 1)\n"
+    "  --rotate DEG       continuous mode: rotation of the texture, counterclockwise (default 0)\n"
+    "  --api A            gles30 (default): OpenGL ES 3.0 and GLSL ES 3.00, as in WebGL2; gl45: OpenGL 4.5\n"
+    "                     core and GLSL 4.30 (the same shader with umulExtended instead of 16-bit limbs)\n"
+    "  --compare-cpu      also render with the C runtime (tiles, one thread), check that the pixels are\n"
+    "                     identical and print both speeds\n"
+    "  --dump-shaders DIR write the shaders to DIR (for glslangValidator) and exit\n"
+    "  --quiet            no timing line on stderr\n";
+
+enum class Mode { tile, continuous };
+
+struct Options {
+    std::string asset_path, output_path, dump_directory;
+    uint32_t width = 0, height = 0, seed = 0;
+    std::string origin_x = "0", origin_y = "0";
+    Mode mode = Mode::tile;
+    double scale = 1.0, rotate_degrees = 0.0;
+    bool compare_cpu = false, quiet = false;
+    headless_gl::Api api = headless_gl::Api::gles30;
+};
+
+uint64_t parse_u64(const std::string &flag, const std::string &text, uint64_t high) {
+    char *end = nullptr;
+    errno = 0;
+    const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || text[0] == '-' || *end != '\0' || errno != 0 || value > high)
+        throw std::runtime_error(flag + ": '" + text + "' is not an integer in [0, " + std::to_string(high) +
+                                 "]");
+    return value;
+}
+
+double parse_real(const std::string &flag, const std::string &text) {
+    char *end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value))
+        throw std::runtime_error(flag + ": '" + text + "' is not a finite number");
+    return value;
+}
+
+std::pair<std::string, std::string> split_pair(const std::string &flag, const std::string &text,
+                                               char separator) {
+    const size_t at = text.find(separator);
+    if (at == std::string::npos)
+        throw std::runtime_error(flag + ": expected two values separated by '" + std::string(1, separator) +
+                                 "'");
+    return {text.substr(0, at), text.substr(at + 1)};
+}
+
+Options parse_options(int argc, char **argv) {
+    Options options;
+    bool size_given = false;
+    for (int i = 1; i < argc; i++) {
+        const std::string flag = argv[i];
+        if (flag == "--help" || flag == "-h") {
+            std::fputs(usage, stdout);
+            std::exit(0);
+        }
+        if (flag == "--quiet" || flag == "--compare-cpu") {
+            (flag == "--quiet" ? options.quiet : options.compare_cpu) = true;
+            continue;
+        }
+        if (flag.size() < 2 || flag[0] != '-') {
+            if (!options.asset_path.empty()) throw std::runtime_error("more than one asset given: " + flag);
+            options.asset_path = flag;
+            continue;
+        }
+        if (i + 1 >= argc) throw std::runtime_error(flag + " needs a value (see --help)");
+        const std::string value = argv[++i];
+        if (flag == "-o" || flag == "--output") {
+            options.output_path = value;
+        } else if (flag == "--api") {
+            if (value != "gles30" && value != "gl45")
+                throw std::runtime_error("--api must be gles30 or gl45");
+            options.api = value == "gl45" ? headless_gl::Api::gl45 : headless_gl::Api::gles30;
+        } else if (flag == "--dump-shaders") {
+            options.dump_directory = value;
+        } else if (flag == "--size") {
+            const auto sides = split_pair(flag, value, 'x');
+            options.width = static_cast<uint32_t>(parse_u64(flag, sides.first, 16384));
+            options.height = static_cast<uint32_t>(parse_u64(flag, sides.second, 16384));
+            if (options.width == 0 || options.height == 0)
+                throw std::runtime_error("--size: sides must be >= 1");
+            size_given = true;
+        } else if (flag == "--origin") {
+            const auto origin = split_pair(flag, value, ',');
+            options.origin_x = origin.first;
+            options.origin_y = origin.second;
+        } else if (flag == "--seed") {
+            options.seed = static_cast<uint32_t>(parse_u64(flag, value, 0xFFFFFFFFu));
+        } else if (flag == "--mode") {
+            if (value != "tile" && value != "continuous")
+                throw std::runtime_error("--mode must be tile or continuous");
+            options.mode = value == "tile" ? Mode::tile : Mode::continuous;
+        } else if (flag == "--scale") {
+            options.scale = parse_real(flag, value);
+            if (!(options.scale >= 1.0 / 65536 && options.scale <= 65536))
+                throw std::runtime_error("--scale must be within [1/65536, 65536]");
+        } else if (flag == "--rotate") {
+            options.rotate_degrees = parse_real(flag, value);
+        } else {
+            throw std::runtime_error("unknown option " + flag + " (see --help)");
+        }
+    }
+    if (!options.dump_directory.empty()) return options;
+    if (options.asset_path.empty()) throw std::runtime_error("no asset given (see --help)");
+    if (options.output_path.empty()) throw std::runtime_error("no output given: -o OUT.png");
+    if (options.output_path.size() < 4 ||
+        options.output_path.compare(options.output_path.size() - 4, 4, ".png"))
+        throw std::runtime_error("the output must end in .png: " + options.output_path);
+    if (!size_given) throw std::runtime_error("no size given: --size WxH");
+    if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
+        throw std::runtime_error("--scale and --rotate need --mode continuous");
+    return options;
+}
+
+// The lattice origin as dsn-render reads it: an integer modulo 2^32.
+uint32_t lattice_coordinate(const std::string &text) {
+    char *end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0 || value < -4294967296LL || value > 4294967295LL)
+        throw std::runtime_error("--origin: '" + text +
+                                 "' is not an integer (use --mode continuous for reals)");
+    return static_cast<uint32_t>(static_cast<unsigned long long>(value));
+}
+
+int64_t q32_step(double texels) { return static_cast<int64_t>(std::llround(texels * 4294967296.0)); }
+
+// dsn-render's grid: pixel (i, j) samples origin + (i cos a - j sin a, i sin a + j cos a) / scale.
+dsn_grid continuous_grid(const Options &options) {
+    const double radians = options.rotate_degrees * 3.14159265358979323846 / 180.0;
+    const double cosine = std::cos(radians) / options.scale, sine = std::sin(radians) / options.scale;
+    dsn_grid grid;
+    grid.origin_x = dsn_coordinate_from_double(parse_real("--origin", options.origin_x));
+    grid.origin_y = dsn_coordinate_from_double(parse_real("--origin", options.origin_y));
+    grid.column_step_x = q32_step(cosine);
+    grid.column_step_y = q32_step(sine);
+    grid.row_step_x = q32_step(-sine);
+    grid.row_step_y = q32_step(cosine);
+    return grid;
+}
+
+// The fragment shader: what a renderer writes, with the window's mapping as uniforms.
+const char *const fragment_main = R"glsl(
+uniform highp usampler2D noise_words;
+uniform uint continuous_mode;
+uniform uvec4 origin;      // lattice: (x, -, y, -); continuous: Q32.32 (x low, x high, y low, y high)
+uniform uvec4 column_step; // continuous: pixel (i, j) -> (i + 1, j), Q32.32 x then y
+uniform uvec4 row_step;    // continuous: pixel (i, j) -> (i, j + 1)
+layout(location = 0) out vec4 color;
+
+uint dsn_word(uint index) { return texelFetch(noise_words, ivec2(int(index & 1023u), int(index >> 10u)), 0).x; }
+
+void main() {
+    uvec2 pixel = uvec2(gl_FragCoord.xy); // row 0 is the image's top row: glReadPixels returns it first
+    ivec3 value;
+    if (continuous_mode == 0u) {
+        value = dsn_lattice_point_fixed(ivec2(int(origin.x + pixel.x), int(origin.z + pixel.y)));
+    } else {
+        uvec2 x = dsn_add64(origin.xy, dsn_add64(dsn_multiply64(uvec2(pixel.x, 0u), column_step.xy),
+                                                 dsn_multiply64(uvec2(pixel.y, 0u), row_step.xy)));
+        uvec2 y = dsn_add64(origin.zw, dsn_add64(dsn_multiply64(uvec2(pixel.x, 0u), column_step.zw),
+                                                 dsn_multiply64(uvec2(pixel.y, 0u), row_step.zw)));
+        value = dsn_continuous_point_fixed(x, y);
+    }
+    color = vec4(dsn_color(value), 1.0);
+}
+)glsl";
+
+std::string vertex_shader(const headless_gl::Context &context) {
+    return context.shader_preamble() +
+           "void main() {\n"
+           "    gl_Position = vec4(float((gl_VertexID & 1) << 2) - 1.0,\n"
+           "                       float((gl_VertexID & 2) << 1) - 1.0, 0.0, 1.0);\n"
+           "}\n";
+}
+
+std::string fragment_shader(const headless_gl::Context &context) {
+    return context.shader_preamble() + dsn_glsl + fragment_main;
+}
+
+std::vector<unsigned char> read_file(const std::string &path) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+    return std::vector<unsigned char>((std::istreambuf_iterator<char>(file)),
+                                      std::istreambuf_iterator<char>());
+}
+
+void write_file(const std::string &path, const std::string &text) {
+    FILE *file = std::fopen(path.c_str(), "wb");
+    if (!file || std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fclose(file) != 0)
+        throw std::runtime_error("cannot write " + path);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Renders the window on the GPU; returns the pixels (channels per pixel) and the seconds of the draw.
+std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &options, const dsn_noise &noise,
+                                uint32_t channels, double *seconds) {
+    const headless_gl::Functions &gl = context.gl;
+    std::vector<uint32_t> words(dsn_gpu_word_count(&noise));
+    const int err = dsn_gpu_pack(&noise, words.data(), words.size());
+    if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_pack: ") + dsn_error_message(err));
+
+    GLuint program = context.render_program(vertex_shader(context), fragment_shader(context));
+    gl.glUseProgram(program);
+    GLuint texture = context.word_texture(words, 1), target = 0, framebuffer = 0, vertex_array = 0;
+    gl.glActiveTexture(GL_TEXTURE0);
+    gl.glBindTexture(GL_TEXTURE_2D, texture);
+    gl.glUniform1i(gl.glGetUniformLocation(program, "noise_words"), 0);
+    uint32_t origin[4] = {0, 0, 0, 0}, column[4] = {0, 0, 0, 0}, row[4] = {0, 0, 0, 0};
+    if (options.mode == Mode::continuous) {
+        const dsn_grid grid = continuous_grid(options);
+        const int64_t values[12] = {grid.origin_x,
+                                    grid.origin_y,
+                                    grid.column_step_x,
+                                    grid.column_step_y,
+                                    grid.row_step_x,
+                                    grid.row_step_y,
+                                    0,
+                                    0,
+                                    0,
+                                    0,
+                                    0,
+                                    0};
+        uint32_t *pairs[3] = {origin, column, row};
+        for (int v = 0; v < 6; v++) {
+            const uint64_t bits = static_cast<uint64_t>(values[v]);
+            pairs[v / 2][2 * (v % 2)] = static_cast<uint32_t>(bits);
+            pairs[v / 2][2 * (v % 2) + 1] = static_cast<uint32_t>(bits >> 32);
+        }
+    } else {
+        origin[0] = lattice_coordinate(options.origin_x);
+        origin[2] = lattice_coordinate(options.origin_y);
+    }
+    gl.glUniform1ui(gl.glGetUniformLocation(program, "continuous_mode"), options.mode == Mode::continuous);
+    gl.glUniform4ui(gl.glGetUniformLocation(program, "origin"), origin[0], origin[1], origin[2], origin[3]);
+    gl.glUniform4ui(gl.glGetUniformLocation(program, "column_step"), column[0], column[1], column[2],
+                    column[3]);
+    gl.glUniform4ui(gl.glGetUniformLocation(program, "row_step"), row[0], row[1], row[2], row[3]);
+
+    gl.glGenTextures(1, &target);
+    gl.glBindTexture(GL_TEXTURE_2D, target);
+    gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, static_cast<GLsizei>(options.width),
+                    static_cast<GLsizei>(options.height), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    gl.glBindTexture(GL_TEXTURE_2D, texture);
+    gl.glGenFramebuffers(1, &framebuffer);
+    gl.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+    if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("the RGBA8 render target is incomplete");
+    gl.glGenVertexArrays(1, &vertex_array);
+    gl.glBindVertexArray(vertex_array);
+
+    // A one-pixel draw first, so that the timing leaves out the shader's compilation.
+    gl.glViewport(0, 0, 1, 1);
+    gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl.glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    gl.glViewport(0, 0, static_cast<GLsizei>(options.width), static_cast<GLsizei>(options.height));
+    gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl.glFinish();
+    *seconds = seconds_since(start);
+
+    std::vector<uint8_t> rgba(static_cast<size_t>(options.width) * options.height * 4);
+    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.glReadPixels(0, 0, static_cast<GLsizei>(options.width), static_cast<GLsizei>(options.height), GL_RGBA,
+                    GL_UNSIGNED_BYTE, rgba.data());
+    context.check("render");
+    gl.glDeleteVertexArrays(1, &vertex_array);
+    gl.glDeleteFramebuffers(1, &framebuffer);
+    gl.glDeleteTextures(1, &target);
+    gl.glDeleteTextures(1, &texture);
+    gl.glDeleteProgram(program);
+
+    std::vector<uint8_t> pixels(static_cast<size_t>(options.width) * options.height * channels);
+    for (size_t p = 0; p < static_cast<size_t>(options.width) * options.height; p++)
+        for (uint32_t c = 0; c < channels; c++) pixels[p * channels + c] = rgba[p * 4 + c];
+    return pixels;
+}
+
+// The same window with the C runtime's tiles (one thread), for --compare-cpu.
+std::vector<uint8_t> render_cpu(const Options &options, const dsn_noise &noise, uint32_t channels,
+                                double *seconds) {
+    std::vector<uint8_t> pixels(static_cast<size_t>(options.width) * options.height * channels);
+    std::vector<unsigned char> scratch;
+    const auto start = std::chrono::steady_clock::now();
+    int err;
+    if (options.mode == Mode::continuous) {
+        const dsn_grid grid = continuous_grid(options);
+        scratch.resize(dsn_continuous_tile_scratch_size(&noise, &grid, options.width, options.height));
+        err = dsn_continuous_tile_u8(&noise, &grid, options.width, options.height, pixels.data(),
+                                     scratch.data(), scratch.size());
+    } else {
+        scratch.resize(dsn_lattice_tile_scratch_size(&noise, options.width, options.height));
+        err = dsn_lattice_tile_u8(&noise, static_cast<int32_t>(lattice_coordinate(options.origin_x)),
+                                  static_cast<int32_t>(lattice_coordinate(options.origin_y)), options.width,
+                                  options.height, pixels.data(), scratch.data(), scratch.size());
+    }
+    *seconds = seconds_since(start);
+    if (err != DSN_OK) throw std::runtime_error(std::string("CPU tile: ") + dsn_error_message(err));
+    return pixels;
+}
+
+void run(const Options &options) {
+    if (!options.dump_directory.empty()) {
+        for (headless_gl::Api api : {headless_gl::Api::gles30, headless_gl::Api::gl45}) {
+            headless_gl::Context context(api);
+            const std::string name = options.dump_directory + "/gpu-render-" + headless_gl::api_name(api);
+            write_file(name + ".frag", fragment_shader(context));
+            write_file(name + ".vert", vertex_shader(context));
+        }
+        return;
+    }
+    const std::vector<unsigned char> bytes = read_file(options.asset_path);
+    dsn_asset asset;
+    int err = dsn_asset_load(&asset, bytes.data(), bytes.size());
+    if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
+    dsn_config config;
+    dsn_config_defaults(&config);
+    config.seed = options.seed;
+    dsn_noise noise;
+    err = dsn_noise_init(&noise, &asset, &config);
+    if (err == DSN_OK && options.mode == Mode::continuous) err = dsn_continuous_check(&noise);
+    if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
+
+    headless_gl::Context context(options.api);
+    double gpu_seconds = 0;
+    const std::vector<uint8_t> pixels = render_gpu(context, options, noise, asset.channels, &gpu_seconds);
+    const double megapixels = options.width * static_cast<double>(options.height) / 1e6;
+    if (options.compare_cpu) {
+        double cpu_seconds = 0;
+        const std::vector<uint8_t> cpu = render_cpu(options, noise, asset.channels, &cpu_seconds);
+        if (cpu != pixels) throw std::runtime_error("the GPU's pixels differ from the C runtime's");
+        std::fprintf(
+            stderr,
+            "dsn-gpu-render: identical to the C runtime; CPU tile (1 thread): %.3f s, %.2f Mpixel/s\n",
+            cpu_seconds, megapixels / cpu_seconds);
+    }
+    const std::vector<unsigned char> png =
+        dsn::encode_png(static_cast<int>(options.width), static_cast<int>(options.height),
+                        static_cast<int>(asset.channels), pixels.data());
+    dsn::write_file_atomically(options.output_path, png);
+    if (!options.quiet)
+        std::fprintf(stderr, "dsn-gpu-render: %ux%u on %s: %.3f s, %.2f Mpixel/s -> %s\n", options.width,
+                     options.height, context.description().c_str(), gpu_seconds, megapixels / gpu_seconds,
+                     options.output_path.c_str());
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        run(parse_options(argc, argv));
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "dsn-gpu-render: %s\n", error.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,570 @@
+/* dsn/dsn.glsl - the discrete spot noise evaluated in a shader, with exactly the bits of the C runtime.
+
+   What it does
+     dsn_lattice_point_fixed and dsn_continuous_point_fixed return what the C functions of the same names
+     (dsn/dsn.h) write, bit for bit: the same impulses from the same hashes, the same exact Poisson counts,
+     the same fixed-point normalization. Everything is unsigned 32-bit arithmetic (64-bit values are
+     uvec2(low, high)): no float on the evaluation path, so every GPU and driver gives the same bits.
+     The float and 8-bit conversions of the API edge are integer too.
+
+   Versions
+     GLSL 4.30 core and GLSL ES 3.10 (compute and fragment shaders) multiply 32 x 32 -> 64 bits with
+     umulExtended / imulExtended. GLSL ES 3.00 (WebGL2) has neither: there the wide products are built
+     from 16-bit limbs (the same bits). The choice is automatic; #define DSN_GLSL_LIMBS 1 before this file
+     forces the limbs anywhere, 0 forbids them.
+
+   How to use it
+     Pack a configured noise on the CPU with dsn_gpu_pack (dsn/gpu.h: the layout of the words), put the
+     words in a shader storage buffer, a uniform buffer or an R32UI texture, and define how to read word
+     `index` of it, before or after this file (GLSL has no #include: paste the sources in one string):
+         #version 430
+         layout(std430, binding = 0) readonly buffer Noise { uint noise_words[]; };
+         uint dsn_word(uint index) { return noise_words[index]; }
+         ... this file ...
+         ivec3 value = dsn_lattice_point_fixed(ivec2(x, y));   // Q16.16, 65536 is 1.0
+     Grey noises fill .x only (the other channels are 0). Coordinates wrap as in the C API: lattice points
+     are int32, continuous points are Q32.32 texel coordinates as uvec2(low, high) per axis (see
+     dsn_coordinate_from_float and dsn_coordinate_from_double_bits for conversions). A point costs
+     tens of hashes and a few hundred word reads (the README gives counts): meant for shaders that
+     need the exact bits (previews matching an offline reference, data), not as the cheapest noise.
+     GLSL ES: this file declares `precision highp int;`; code before it (dsn_word, say) needs its own
+     highp declarations (integer samplers too). Layout 1 of dsn/gpu.h. */
+
+#ifndef DSN_GLSL_LIMBS
+#if defined(GL_ES) && __VERSION__ < 310
+#define DSN_GLSL_LIMBS 1
+#else
+#define DSN_GLSL_LIMBS 0
+#endif
+#endif
+
+#ifdef GL_ES
+precision highp int;
+precision highp float;
+#endif
+
+/* Word `index` of the packed noise: defined by the shader that includes this file. */
+uint dsn_word(uint index);
+
+/* ---- The layout (dsn/gpu.h) ---- */
+const uint DSN_WORD_CHANNELS = 3u;
+const uint DSN_WORD_WIDTH = 5u;
+const uint DSN_WORD_HEIGHT = 6u;
+const uint DSN_WORD_RADIUS = 7u; /* x, then y */
+const uint DSN_WORD_CELL_SHIFT = 9u;
+const uint DSN_WORD_PERIOD = 10u; /* x, then y */
+const uint DSN_WORD_SEED_COLUMN = 12u;
+const uint DSN_WORD_SEED_ROW = 13u;
+const uint DSN_WORD_GAIN_SHIFT = 14u;
+const uint DSN_WORD_POISSON_PARTS = 15u;
+const uint DSN_WORD_POISSON_SIZE = 16u;
+const uint DSN_WORD_CONTINUOUS = 17u;
+const uint DSN_WORD_GAIN = 18u;
+const uint DSN_WORD_OFFSET = 36u;
+const uint DSN_WORD_POISSON_CDF = 48u;
+const uint DSN_WORD_POISSON_GUIDE = 144u;
+const uint DSN_WORD_TEXTON = 208u;
+
+/* ---- 64-bit arithmetic on uvec2(low, high), modulo 2^64 ---- */
+
+uvec2 dsn_add64(uvec2 a, uvec2 b) {
+    uint low = a.x + b.x;
+    return uvec2(low, a.y + b.y + (low < a.x ? 1u : 0u));
+}
+
+uvec2 dsn_sub64(uvec2 a, uvec2 b) { return uvec2(a.x - b.x, a.y - b.y - (a.x < b.x ? 1u : 0u)); }
+
+/* a * b as 64 bits. Without umulExtended: four 16 x 16 -> 32-bit products, as the C runtime's
+   configuration code builds its 128-bit products from 32-bit halves. */
+uvec2 dsn_multiply_wide(uint a, uint b) {
+#if DSN_GLSL_LIMBS
+    uint a0 = a & 0xFFFFu, a1 = a >> 16u, b0 = b & 0xFFFFu, b1 = b >> 16u;
+    uint low_low = a0 * b0, low_high = a0 * b1, high_low = a1 * b0;
+    uint middle = (low_low >> 16u) + (low_high & 0xFFFFu) + (high_low & 0xFFFFu);
+    return uvec2((middle << 16u) | (low_low & 0xFFFFu),
+                 a1 * b1 + (low_high >> 16u) + (high_low >> 16u) + (middle >> 16u));
+#else
+    uint high, low;
+    umulExtended(a, b, high, low);
+    return uvec2(low, high);
+#endif
+}
+
+/* Signed a * b as a 64-bit two's-complement value: the unsigned product less 2^32 b when a < 0 and
+   2^32 a when b < 0 (modulo 2^64). */
+uvec2 dsn_multiply_signed_wide(int a, int b) {
+#if DSN_GLSL_LIMBS
+    uvec2 product = dsn_multiply_wide(uint(a), uint(b));
+    if (a < 0) product.y -= uint(b);
+    if (b < 0) product.y -= uint(a);
+    return product;
+#else
+    int high, low;
+    imulExtended(a, b, high, low);
+    return uvec2(uint(low), uint(high));
+#endif
+}
+
+/* Signed a times unsigned b. */
+uvec2 dsn_multiply_mixed_wide(int a, uint b) {
+    uvec2 product = dsn_multiply_wide(uint(a), b);
+    if (a < 0) product.y -= b;
+    return product;
+}
+
+uvec2 dsn_multiply64(uvec2 a, uvec2 b) {
+    uvec2 product = dsn_multiply_wide(a.x, b.x);
+    product.y += a.x * b.y + a.y * b.x;
+    return product;
+}
+
+/* Shifts by 0 .. 63 (GLSL leaves 32-bit shifts by 32 or more undefined: each case is split). */
+uvec2 dsn_shift_left64(uvec2 x, uint n) {
+    if (n == 0u) return x;
+    if (n >= 32u) return uvec2(0u, x.x << (n - 32u));
+    return uvec2(x.x << n, (x.y << n) | (x.x >> (32u - n)));
+}
+
+uvec2 dsn_shift_right64(uvec2 x, uint n) {
+    if (n == 0u) return x;
+    if (n >= 32u) return uvec2(x.y >> (n - 32u), 0u);
+    return uvec2((x.x >> n) | (x.y << (32u - n)), x.y >> n);
+}
+
+/* x ^ (x >> n), 0 < n < 32 */
+uvec2 dsn_xor_shift64(uvec2 x, uint n) {
+    return uvec2(x.x ^ ((x.x >> n) | (x.y << (32u - n))), x.y ^ (x.y >> n));
+}
+
+/* ---- Hashing (the runtime's lowbias32, SplitMix64 finalizer and cell keys) ---- */
+
+uint dsn_mix32(uint x) {
+    x ^= x >> 16u;
+    x *= 0x7FEB352Du;
+    x ^= x >> 15u;
+    x *= 0x846CA68Bu;
+    x ^= x >> 16u;
+    return x;
+}
+
+uvec2 dsn_mix64(uvec2 x) {
+    x = dsn_xor_shift64(x, 30u);
+    x = dsn_multiply64(x, uvec2(0x1CE4E5B9u, 0xBF58476Du));
+    x = dsn_xor_shift64(x, 27u);
+    x = dsn_multiply64(x, uvec2(0x133111EBu, 0x94D049BBu));
+    return dsn_xor_shift64(x, 31u);
+}
+
+uint dsn_row_key(uint cell_y) { return dsn_mix32(cell_y + dsn_word(DSN_WORD_SEED_ROW)); }
+
+uint dsn_cell_key_in_row(uint cell_x, uint row_key) {
+    return dsn_mix32((cell_x ^ dsn_word(DSN_WORD_SEED_COLUMN)) + row_key);
+}
+
+uint dsn_cell_stream(uint key, uint index) { return dsn_mix32(key + index * 0x9E3779B9u); }
+
+/* Pair `index` of a cell's packed positions: mix64(key 2^32 + index 0x9E3779B97F4A7C15). */
+uvec2 dsn_position_pair(uint key, uint index) {
+    uvec2 x = dsn_multiply_wide(index, 0x7F4A7C15u);
+    x.y += index * 0x9E3779B9u + key;
+    return dsn_mix64(x);
+}
+
+/* ---- Exact Poisson counts ---- */
+
+uint dsn_poisson_draw(uint uniform_value) {
+    uint size = dsn_word(DSN_WORD_POISSON_SIZE);
+    uint n = dsn_word(DSN_WORD_POISSON_GUIDE + (uniform_value >> 26u));
+    while (n < size && uniform_value >= dsn_word(DSN_WORD_POISSON_CDF + n)) n++;
+    return n;
+}
+
+uint dsn_cell_impulse_count(uint key) {
+    uint count = dsn_poisson_draw(key), parts = dsn_word(DSN_WORD_POISSON_PARTS);
+    for (uint part = 1u; part < parts; part++) count += dsn_poisson_draw(dsn_cell_stream(key, part));
+    return count;
+}
+
+/* ---- Packed positions ---- */
+
+/* log2 of the bits of one impulse's field: 3 (a byte) for cells of side <= 16, else 4 (16 bits). */
+uint dsn_field_shift(uint cell_shift) { return cell_shift <= 4u ? 3u : 4u; }
+
+/* The field of impulse k from the pair that holds it: x in the low half, y in the high half. */
+uint dsn_field_in_pair(uvec2 pair, uint k, uint field_shift) {
+    uint bit = (k & ((1u << (6u - field_shift)) - 1u)) << field_shift;
+    return ((bit >= 32u ? pair.y : pair.x) >> (bit & 31u)) & (0xFFFFFFFFu >> (32u - (1u << field_shift)));
+}
+
+/* 16-bit in-cell positions of an impulse for the continuous mode, x low and y high: the top half_bits
+   bits of each from the packed field, the rest from the impulse's fraction hash. */
+uint dsn_impulse_position(uint field, uint fraction, uint half_bits) {
+    uint x = ((field & ((1u << half_bits) - 1u)) << (16u - half_bits)) | ((fraction & 0xFFFFu) >> half_bits);
+    uint y = ((field >> half_bits) << (16u - half_bits)) | ((fraction >> 16u) >> half_bits);
+    return x | (y << 16u);
+}
+
+/* The same for impulse k of the cell with this key. */
+uint dsn_impulse_hash(uint key, uint k, uint cell_shift) {
+    uint field_shift = dsn_field_shift(cell_shift);
+    uint field = dsn_field_in_pair(dsn_position_pair(key, k >> (6u - field_shift)), k, field_shift);
+    return dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), 1u << (field_shift - 1u));
+}
+
+/* ---- The cells that can reach a window, along one axis (periodic or not) ---- */
+
+struct dsn_axis {
+    uint radius, shift, period, window_length, start, copies_before, span_count;
+};
+
+struct dsn_span {
+    uint first_cell, cell_count, base, last_position;
+};
+
+dsn_axis dsn_axis_init(uint coordinate, uint window_length, uint radius, uint shift, uint period) {
+    dsn_axis axis = dsn_axis(radius, shift, period, window_length, coordinate, 0u, 1u);
+    if (period != 0u) {
+        uint start =
+            (coordinate & 0x80000000u) != 0u ? period - 1u - (~coordinate) % period : coordinate % period;
+        uint extent = window_length - 1u + radius, rest = extent % period;
+        axis.start = start;
+        axis.copies_before = start >= radius ? 0u : 1u + (radius - 1u - start) / period;
+        axis.span_count = axis.copies_before + extent / period + (rest >= period - start ? 1u : 0u) + 1u;
+    }
+    return axis;
+}
+
+dsn_span dsn_axis_span(dsn_axis axis, uint index) {
+    dsn_span span;
+    uint mask = (1u << axis.shift) - 1u, low = axis.start - axis.radius;
+    if (axis.period == 0u) {
+        span.first_cell = low >> axis.shift;
+        span.cell_count = (((low & mask) + axis.window_length - 1u + 2u * axis.radius) >> axis.shift) + 1u;
+        span.base = axis.start + axis.radius;
+        span.last_position = 0xFFFFFFFFu;
+    } else {
+        uint copy_start = (index - axis.copies_before) * axis.period;
+        uint first = index == 0u ? low - copy_start : 0u;
+        uint last = index == axis.span_count - 1u
+                        ? axis.start + axis.window_length - 1u + axis.radius - copy_start
+                        : axis.period - 1u;
+        span.first_cell = first >> axis.shift;
+        span.cell_count = (last >> axis.shift) - span.first_cell + 1u;
+        span.base = axis.start + axis.radius - copy_start;
+        span.last_position = axis.period - 1u;
+    }
+    return span;
+}
+
+uint dsn_span_cell(dsn_span span, uint i, uint shift) {
+    return (span.first_cell + i) & (0xFFFFFFFFu >> shift);
+}
+
+/* ---- Normalization: Q_k sums -> Q16.16 ---- */
+
+/* round(accumulated / 2^shift) saturated to int32, shift 1 .. 32 (init keeps it in 8 .. 32). */
+int dsn_round_saturate(uvec2 accumulated, uint shift) {
+    uvec2 t = dsn_add64(accumulated, uvec2(1u << (shift - 1u), 0u));
+    uint low;
+    int high;
+    if (shift >= 32u) {
+        low = t.y;
+        high = int(t.y) < 0 ? -1 : 0;
+    } else {
+        low = (t.x >> shift) | (t.y << (32u - shift));
+        high = int(t.y) >> shift; /* arithmetic: GLSL extends the sign */
+    }
+    if (high == (int(low) < 0 ? -1 : 0)) return int(low);
+    return high < 0 ? int(0x80000000u) : 0x7FFFFFFF;
+}
+
+/* |gain| < 2^29: its low word, read as int, is the whole value. */
+int dsn_gain(uint c, uint k) { return int(dsn_word(DSN_WORD_GAIN + 2u * (3u * c + k))); }
+
+uvec2 dsn_offset(uint c) {
+    return uvec2(dsn_word(DSN_WORD_OFFSET + 2u * c), dsn_word(DSN_WORD_OFFSET + 2u * c + 1u));
+}
+
+int dsn_normalize_channel(uint c, uint channels, uvec3 sums) {
+    uvec2 accumulated = dsn_offset(c);
+    accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(dsn_gain(c, 0u), int(sums.x)));
+    if (channels == 3u) {
+        accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(dsn_gain(c, 1u), int(sums.y)));
+        accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(dsn_gain(c, 2u), int(sums.z)));
+    }
+    return dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
+}
+
+ivec3 dsn_normalize(uvec3 sums) {
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    if (channels != 3u) return ivec3(dsn_normalize_channel(0u, 1u, sums), 0, 0);
+    return ivec3(dsn_normalize_channel(0u, 3u, sums), dsn_normalize_channel(1u, 3u, sums),
+                 dsn_normalize_channel(2u, 3u, sums));
+}
+
+/* ---- Lattice per point ---- */
+
+uvec3 dsn_texton_entry(uint entry, uint channels) {
+    uint at = DSN_WORD_TEXTON + entry * channels;
+    if (channels != 3u) return uvec3(dsn_word(at), 0u, 0u);
+    return uvec3(dsn_word(at), dsn_word(at + 1u), dsn_word(at + 2u));
+}
+
+/* The texton index of an impulse at in-cell offset 0 along one axis (span base - cell origin) and the
+   last acceptable in-cell offset (a period cuts the last cell). */
+uvec2 dsn_lattice_cell_on_axis(dsn_span span, uint cell, uint shift) {
+    uint origin = cell << shift, room = span.last_position - origin, side = (1u << shift) - 1u;
+    return uvec2(span.base - origin, room < side ? room : side);
+}
+
+/* The channel sums Q_k (modulo 2^32) at lattice point (x, y): every impulse whose texton window holds
+   the point adds its texton entry. */
+uvec3 dsn_lattice_sums(uint x, uint y) {
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT), channels = dsn_word(DSN_WORD_CHANNELS);
+    uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    dsn_axis axis_x = dsn_axis_init(x, 1u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
+    dsn_axis axis_y =
+        dsn_axis_init(y, 1u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    uvec3 sums = uvec3(0u);
+    for (uint span_index_y = 0u; span_index_y < axis_y.span_count; span_index_y++) {
+        dsn_span span_y = dsn_axis_span(axis_y, span_index_y);
+        for (uint i = 0u; i < span_y.cell_count; i++) {
+            uint cell_y = dsn_span_cell(span_y, i, shift), row_key = dsn_row_key(cell_y);
+            uvec2 in_y = dsn_lattice_cell_on_axis(span_y, cell_y, shift);
+            for (uint span_index_x = 0u; span_index_x < axis_x.span_count; span_index_x++) {
+                dsn_span span_x = dsn_axis_span(axis_x, span_index_x);
+                for (uint j = 0u; j < span_x.cell_count; j++) {
+                    uint cell_x = dsn_span_cell(span_x, j, shift);
+                    uvec2 in_x = dsn_lattice_cell_on_axis(span_x, cell_x, shift);
+                    uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
+                    for (uint k = 0u; k < count; k++) {
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        uint offset_x = (field & half_mask) >> drop,
+                             offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        uint column = in_x.x - offset_x, row = in_y.x - offset_y;
+                        if (column < width && row < height && offset_x <= in_x.y && offset_y <= in_y.y)
+                            sums += dsn_texton_entry(row * width + column, channels);
+                    }
+                }
+            }
+        }
+    }
+    return sums;
+}
+
+/* Q16.16 values at lattice point p (int32 coordinates, wrapping like the C API's). */
+ivec3 dsn_lattice_point_fixed(ivec2 p) { return dsn_normalize(dsn_lattice_sums(uint(p.x), uint(p.y))); }
+
+/* ---- Continuous per point ---- */
+
+/* Texton value (row, column, channel), 0 outside the window (indices are unsigned: -1 is outside). */
+int dsn_texel(uint row, uint column, uint channel, uint width, uint height, uint channels) {
+    if (row >= height || column >= width) return 0;
+    return int(dsn_word(DSN_WORD_TEXTON + (row * width + column) * channels + channel));
+}
+
+/* weights (1 - column_weight, column_weight, 1 - row_weight, row_weight) in Q0.16. Each row's
+   weighted pair is within int32 (at most 2^16 * 2^15), each term below 2^47. */
+uvec2 dsn_bilinear(uint row, uint column, uint channel, ivec4 weights, uint width, uint height,
+                   uint channels) {
+    int upper = weights.x * dsn_texel(row, column, channel, width, height, channels) +
+                weights.y * dsn_texel(row, column + 1u, channel, width, height, channels);
+    int lower = weights.x * dsn_texel(row + 1u, column, channel, width, height, channels) +
+                weights.y * dsn_texel(row + 1u, column + 1u, channel, width, height, channels);
+    return dsn_add64(dsn_multiply_signed_wide(weights.z, upper), dsn_multiply_signed_wide(weights.w, lower));
+}
+
+/* One axis of an impulse seen from the point: false when it lies beyond the period or out of reach;
+   else the texton index of the lower bracketing texel (0xFFFFFFFF for -1) and the upper one's weight.
+   fraction: the low word of the point's coordinate. */
+bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_origin, uint bits16,
+                         out uint lower_index, out uint upper_weight) {
+    lower_index = 0u;
+    upper_weight = 0u;
+    if (cell_origin + (bits16 >> (16u - axis.shift)) > span.last_position) return false;
+    uint whole = 1u + span.base - axis.radius - cell_origin;
+    uvec2 in_cell = dsn_shift_left64(uvec2(bits16, 0u), 16u + axis.shift);
+    /* offset + (radius + 1) texels; the high word is a small signed number for any impulse in reach */
+    uvec2 shifted = dsn_sub64(uvec2(fraction, whole + axis.radius + 1u), in_cell);
+    int high = int(shifted.y);
+    if (high < 0 || (high == 0 && shifted.x == 0u) || high >= int(2u * axis.radius + 2u)) return false;
+    lower_index = shifted.y - 1u;
+    upper_weight = (shifted.x >> 16u) & 0xFFFFu;
+    return true;
+}
+
+/* Sums (Q.32 per channel) of every impulse of the window around (x, y), then normalized. */
+ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT), channels = dsn_word(DSN_WORD_CHANNELS);
+    uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
+    dsn_axis px = dsn_axis_init(x.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
+    dsn_axis py =
+        dsn_axis_init(y.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    uint diameter_x = 2u * px.radius + 2u, diameter_y = 2u * py.radius + 2u;
+    uvec2 sums[3];
+    sums[0] = uvec2(0u);
+    sums[1] = uvec2(0u);
+    sums[2] = uvec2(0u);
+    for (uint sy = 0u; sy < py.span_count; sy++) {
+        dsn_span span_y = dsn_axis_span(py, sy);
+        for (uint sx = 0u; sx < px.span_count; sx++) {
+            dsn_span span_x = dsn_axis_span(px, sx);
+            for (uint j = 0u; j < span_y.cell_count; j++) {
+                uint cell_y = dsn_span_cell(span_y, j, shift), row_key = dsn_row_key(cell_y);
+                /* reach - lattice offset is the impulse's distance in whole texels from radius + 1 texels
+                   before the point: beyond [0, 2 radius + 2] it cannot reach the point (the fraction moves
+                   it by less than a texel), so the fraction hash and exact test are left out. */
+                uint reach_y = 1u + span_y.base - (cell_y << shift) + 1u;
+                for (uint i = 0u; i < span_x.cell_count; i++) {
+                    uint cell_x = dsn_span_cell(span_x, i, shift),
+                         reach_x = 1u + span_x.base - (cell_x << shift) + 1u;
+                    uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
+                    for (uint k = 0u; k < count; k++) {
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        if (reach_x - ((field & half_mask) >> drop) > diameter_x ||
+                            reach_y - (((field >> half_bits) & half_mask) >> drop) > diameter_y)
+                            continue;
+                        uint hash =
+                            dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
+                        uint row, row_weight, column, column_weight;
+                        if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, row,
+                                                 row_weight))
+                            continue;
+                        if (!dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, column,
+                                                 column_weight))
+                            continue;
+                        ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight),
+                                              int(65536u - row_weight), int(row_weight));
+                        for (uint c = 0u; c < channels; c++)
+                            sums[c] = dsn_add64(
+                                sums[c], dsn_bilinear(row, column, c, weights, width, height, channels));
+                    }
+                }
+            }
+        }
+    }
+    /* The lattice normalization of sums with 32 more fraction bits: the whole parts as in lattice mode,
+       the fractions added once, rounded down, before the final rounding. */
+    ivec3 result = ivec3(0);
+    for (uint c = 0u; c < channels; c++) {
+        uvec2 accumulated = dsn_offset(c), fractions = uvec2(0u);
+        for (uint k = 0u; k < channels; k++) {
+            int gain = dsn_gain(c, k);
+            accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(gain, int(sums[k].y)));
+            fractions = dsn_add64(fractions, dsn_multiply_mixed_wide(gain, sums[k].x));
+        }
+        int carried = int(fractions.y);
+        accumulated = dsn_add64(accumulated, uvec2(uint(carried), carried < 0 ? 0xFFFFFFFFu : 0u));
+        int value = dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
+        if (c == 0u)
+            result.x = value;
+        else if (c == 1u)
+            result.y = value;
+        else
+            result.z = value;
+    }
+    return result;
+}
+
+/* Q16.16 values at the continuous point (x, y), each a Q32.32 coordinate as uvec2(low, high); all 0
+   when the noise may not be used in continuous mode (dsn_continuous_check). */
+ivec3 dsn_continuous_point_fixed(uvec2 x, uvec2 y) {
+    if (dsn_word(DSN_WORD_CONTINUOUS) == 0u) return ivec3(0);
+    return dsn_continuous_evaluate(x, y);
+}
+
+/* ---- Coordinates (the C API's conversions, from the IEEE bits) ---- */
+
+/* sign * mantissa * 2^exponent * 2^32 rounded toward minus infinity, modulo 2^64. */
+uvec2 dsn_coordinate_from_parts(bool negative, uvec2 mantissa, int exponent) {
+    int shift = exponent + 32;
+    uvec2 magnitude = uvec2(0u);
+    bool inexact = false;
+    if (shift >= 0 && shift < 64) {
+        magnitude = dsn_shift_left64(mantissa, uint(shift));
+    } else if (shift < 0) {
+        uint right = shift > -63 ? uint(-shift) : 63u;
+        magnitude = dsn_shift_right64(mantissa, right);
+        inexact = dsn_shift_left64(magnitude, right) != mantissa;
+    }
+    if (!negative) return magnitude;
+    return dsn_sub64(dsn_sub64(uvec2(0u), magnitude), uvec2(inexact ? 1u : 0u, 0u));
+}
+
+/* A double, given as its IEEE-754 bits uvec2(low word, high word), as a Q32.32 coordinate: exactly
+   dsn_coordinate_from_double. */
+uvec2 dsn_coordinate_from_double_bits(uvec2 bits) {
+    uint exponent = (bits.y >> 20u) & 0x7FFu;
+    if (exponent == 0x7FFu) return uvec2(0u);
+    uvec2 mantissa = uvec2(bits.x, (bits.y & 0xFFFFFu) | (exponent == 0u ? 0u : 0x100000u));
+    int power = (exponent == 0u ? 1 : int(exponent)) - 1075;
+    return dsn_coordinate_from_parts((bits.y >> 31u) != 0u, mantissa, power);
+}
+
+/* A float, given as its IEEE-754 bits, as a Q32.32 coordinate: exactly dsn_coordinate_from_float. */
+uvec2 dsn_coordinate_from_float_bits(uint bits) {
+    uint exponent = (bits >> 23u) & 0xFFu;
+    if (exponent == 0xFFu) return uvec2(0u);
+    uvec2 mantissa = uvec2((bits & 0x7FFFFFu) | (exponent == 0u ? 0u : 0x800000u), 0u);
+    int power = (exponent == 0u ? 1 : int(exponent)) - 150;
+    return dsn_coordinate_from_parts((bits >> 31u) != 0u, mantissa, power);
+}
+
+/* The same from a float value (a GPU may flush subnormal inputs to zero: pass the bits to keep them). */
+uvec2 dsn_coordinate_from_float(float value) {
+    return dsn_coordinate_from_float_bits(floatBitsToUint(value));
+}
+
+/* ---- Output conversions (the C API edge), in integer arithmetic ---- */
+
+/* The IEEE-754 bits of value / 65536 rounded to float (to nearest, ties to even): dsn_fixed_to_float. */
+uint dsn_fixed_to_float_bits(int value) {
+    if (value == 0) return 0u;
+    uint sign_bit = value < 0 ? 0x80000000u : 0u;
+    uint magnitude = value < 0 ? 0u - uint(value) : uint(value);
+    uint top = 31u; /* the highest set bit (findMSB is not in GLSL ES 3.00) */
+    while ((magnitude >> top) == 0u) top--;
+    uint mantissa;
+    if (top > 23u) {
+        uint drop = top - 23u, rest = magnitude & ((1u << drop) - 1u), half_unit = 1u << (drop - 1u);
+        mantissa = magnitude >> drop;
+        if (rest > half_unit || (rest == half_unit && (mantissa & 1u) != 0u)) mantissa++;
+        if (mantissa == 0x1000000u) {
+            mantissa >>= 1u;
+            top++;
+        }
+    } else {
+        mantissa = magnitude << (23u - top);
+    }
+    /* value / 2^16 = mantissa 2^(top - 23 - 16): biased exponent top - 16 + 127 */
+    return sign_bit | ((top + 111u) << 23u) | (mantissa & 0x7FFFFFu);
+}
+
+float dsn_fixed_to_float(int value) { return uintBitsToFloat(dsn_fixed_to_float_bits(value)); }
+
+/* Clamped to [0, 1] and rounded to 0 .. 255 (half up): dsn_fixed_to_u8. */
+uint dsn_fixed_to_u8(int value) {
+    if (value <= 0) return 0u;
+    if (value >= 65536) return 255u;
+    return (uint(value) * 255u + 32768u) >> 16u;
+}
+
+/* The three channels as floats in [0, 1] (grey: the same value in all three), ready for a colour
+   attachment: what dsn_lattice_point_u8 gives, divided by 255. */
+vec3 dsn_color(ivec3 fixed_value) {
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    uvec3 u8 =
+        uvec3(dsn_fixed_to_u8(fixed_value.x), dsn_fixed_to_u8(fixed_value.y), dsn_fixed_to_u8(fixed_value.z));
+    if (channels != 3u) u8 = u8.xxx;
+    return vec3(u8) / 255.0;
+}

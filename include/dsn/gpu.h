@@ -1,0 +1,75 @@
+/* dsn/gpu.h - the configured noise as a buffer of 32-bit words, for the GLSL evaluator dsn/dsn.glsl.
+
+   What it does
+     dsn_gpu_pack copies everything the evaluation reads (the configuration dsn_noise_init computed and
+     the asset's texton) into an array of uint32_t that a shader reads through a function it defines,
+     `uint dsn_word(uint index)`: from a shader storage buffer, a uniform buffer or an R32UI texture.
+     dsn/dsn.glsl then evaluates the lattice and the continuous mode per point with exactly the bits of
+     dsn_lattice_point_fixed and dsn_continuous_point_fixed (integer arithmetic only, in 32-bit words).
+
+   How to call it
+       uint32_t words[...];                                  // dsn_gpu_word_count(&noise) of them
+       size_t count = dsn_gpu_word_count(&noise);            // 0: not a configured noise
+       int err = dsn_gpu_pack(&noise, words, count);         // DSN_OK, DSN_ERR_NULL or DSN_ERR_ARGUMENT
+       glBufferData(GL_SHADER_STORAGE_BUFFER, count * 4, words, GL_STATIC_DRAW);   // for example
+   Upload the words as they are: the values are host integers (a GL buffer holds them in the host's byte
+   order, which is what the shader reads).
+
+   Layout, version 1 (DSN_GPU_LAYOUT_VERSION). Word i of the buffer:
+       0            DSN_GPU_MAGIC ("DSNG" as a little-endian word)
+       1            DSN_GPU_LAYOUT_VERSION
+       2            total number of words (dsn_gpu_word_count)
+       3            channels (1 or 3)
+       4            bits of the asset's texton values (8 or 16; informative: the values below are whole)
+       5, 6         texton width, height (odd)
+       7, 8         radius along x, y: (width - 1) / 2, (height - 1) / 2
+       9            cell_shift: cells are 2^cell_shift lattice points wide
+       10, 11       period along x, y (0: not periodic)
+       12, 13       the seed's column and row hashes (mixed into every cell key)
+       14           gain_shift: fraction bits of gain and offset
+       15           poisson_parts: a cell's count is the sum of this many draws
+       16           poisson_size: entries used in the Poisson table
+       17           1 when the continuous mode may be used with this noise (dsn_continuous_check), else 0
+       18 .. 35     gain[9], row-major (output channel c, input channel k at 3 c + k): int64 as two words,
+                    low word first (two's complement)
+       36 .. 41     offset[3]: int64 as two words, low word first
+       42 .. 47     0 (reserved)
+       48 .. 143    the Poisson table: 96 inverse-CDF thresholds (entries from poisson_size on are
+                    0xFFFFFFFF)
+       144 .. 207   the Poisson guide: the first candidate count for each top-6-bit bucket of a uniform
+       208 ..       the texton: width * height * channels values, row-major from the top row, channels
+                    interleaved, each sign-extended to a whole word (two's complement int32)
+   A later layout changes DSN_GPU_LAYOUT_VERSION, and dsn.glsl checks nothing at run time: use the
+   dsn.glsl installed with this header. The words are a copy: repack after dsn_noise_init. */
+#ifndef DSN_GPU_H
+#define DSN_GPU_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dsn/dsn.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define DSN_GPU_MAGIC 0x474E5344u /* 'D' 'S' 'N' 'G' in the low to high bytes */
+#define DSN_GPU_LAYOUT_VERSION 1u
+#define DSN_GPU_HEADER_WORDS 208u /* the texton starts at this word */
+#define DSN_GPU_MAX_WORDS (DSN_GPU_HEADER_WORDS + 255u * 255u * 3u)
+
+/* The number of words dsn_gpu_pack writes for `noise`: DSN_GPU_HEADER_WORDS + width * height * channels,
+   at most DSN_GPU_MAX_WORDS; 0 for a null noise or one that dsn_noise_init did not fill. */
+size_t dsn_gpu_word_count(const dsn_noise *noise);
+
+/* Writes the dsn_gpu_word_count(noise) words of the layout above to `words`. Returns DSN_OK;
+   DSN_ERR_NULL for a null `noise` or `words`; DSN_ERR_ARGUMENT for a noise that dsn_noise_init did not
+   fill, or a `capacity` (in words) below the count. On an error nothing is written. Freestanding like the
+   rest of the runtime: no allocation, integer arithmetic only. */
+int dsn_gpu_pack(const dsn_noise *noise, uint32_t *words, size_t capacity);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DSN_GPU_H */

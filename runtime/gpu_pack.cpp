@@ -1,0 +1,90 @@
+/* runtime/gpu_pack.cpp - dsn_gpu_pack: a configured noise as the 32-bit words that dsn/dsn.glsl reads
+   (the layout is documented in dsn/gpu.h). */
+#include <stddef.h>
+
+#include "dsn/gpu.h"
+#include "noise_state.h"
+
+namespace {
+
+const uint32_t cdf_words = 96, guide_words = 64;
+const uint32_t cdf_first = 48, guide_first = cdf_first + cdf_words;
+
+static_assert(sizeof(dsn_noise_state::poisson_cdf) == cdf_words * sizeof(uint32_t),
+              "the layout holds the whole Poisson table");
+static_assert(sizeof(dsn_noise_state::poisson_guide) == guide_words,
+              "the layout holds the whole Poisson guide");
+static_assert(guide_first + guide_words == DSN_GPU_HEADER_WORDS, "the texton follows the guide");
+
+/* Words 3 .. 16 of the layout: where each is in the configured noise (every one a uint32_t field), in
+   words from its start. A table and one loop rather than fourteen assignments: the runtime's whole code
+   must stay small on microcontrollers (the cross test's footprint counts this file too). */
+#define DSN_ASSET_FIELD(name) (offsetof(dsn_noise_state, asset) + offsetof(dsn_asset, name)) / 4
+#define DSN_STATE_FIELD(name) offsetof(dsn_noise_state, name) / 4
+const unsigned char header_fields[14] = {
+    DSN_ASSET_FIELD(channels),      DSN_ASSET_FIELD(bits),        DSN_ASSET_FIELD(width),
+    DSN_ASSET_FIELD(height),        DSN_STATE_FIELD(radius[0]),   DSN_STATE_FIELD(radius[1]),
+    DSN_STATE_FIELD(cell_shift),    DSN_STATE_FIELD(period[0]),   DSN_STATE_FIELD(period[1]),
+    DSN_STATE_FIELD(seed_column),   DSN_STATE_FIELD(seed_row),    DSN_STATE_FIELD(gain_shift),
+    DSN_STATE_FIELD(poisson_parts), DSN_STATE_FIELD(poisson_size)};
+#undef DSN_ASSET_FIELD
+#undef DSN_STATE_FIELD
+static_assert(sizeof(dsn_noise_state) / 4 <= 255, "header_fields holds word indexes in bytes");
+static_assert(offsetof(dsn_noise_state, poisson_size) % 4 == 0 && offsetof(dsn_asset, height) % 4 == 0,
+              "the header fields are whole words");
+
+/* A configured noise has a texton; dsn_noise_init zeroes the noise when it fails. */
+const dsn_noise_state *configured(const dsn_noise *handle) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    return noise != 0 && noise->asset.texton != 0 ? noise : 0;
+}
+
+} // namespace
+
+extern "C" size_t dsn_gpu_word_count(const dsn_noise *handle) {
+    const dsn_noise_state *noise = configured(handle);
+    if (noise == 0) return 0;
+    return DSN_GPU_HEADER_WORDS + size_t(noise->asset.width) * noise->asset.height * noise->asset.channels;
+}
+
+namespace {
+
+/* int64 values as pairs of words, low first (the conversion to uint64 is modulo 2^64). */
+void put_pairs(uint32_t *words, const int64_t *values, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) {
+        const uint64_t bits = static_cast<uint64_t>(values[i]);
+        words[2 * i] = static_cast<uint32_t>(bits);
+        words[2 * i + 1] = static_cast<uint32_t>(bits >> 32);
+    }
+}
+
+} // namespace
+
+extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t capacity) {
+    if (handle == 0 || words == 0) return DSN_ERR_NULL;
+    const size_t count = dsn_gpu_word_count(handle);
+    if (count == 0 || capacity < count) return DSN_ERR_ARGUMENT;
+    const dsn_noise_state *noise = dsn_state(handle);
+    const dsn_asset *asset = &noise->asset;
+    const unsigned char *state = static_cast<const unsigned char *>(static_cast<const void *>(noise));
+    uint32_t i;
+    words[0] = DSN_GPU_MAGIC;
+    words[1] = DSN_GPU_LAYOUT_VERSION;
+    words[2] = static_cast<uint32_t>(count);
+    for (i = 0; i < 14; i++)
+        words[3 + i] =
+            *static_cast<const uint32_t *>(static_cast<const void *>(state + 4u * header_fields[i]));
+    words[17] = dsn_continuous_check(handle) == DSN_OK ? 1u : 0u;
+    put_pairs(words + 18, noise->gain, 9);
+    put_pairs(words + 36, noise->offset, 3);
+    for (i = 42; i < cdf_first; i++) words[i] = 0;
+    for (i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
+    for (i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
+    /* The asset stores the texton in the same order (format.h): row-major, channels interleaved, 8-bit or
+       16-bit little-endian two's complement, sign-extended here in uint32 arithmetic. */
+    const uint32_t bytes = asset->bits / 8, sign = bytes == 1 ? 0x80u : 0x8000u;
+    const unsigned char *texton = asset->texton;
+    for (size_t v = DSN_GPU_HEADER_WORDS; v < count; v++, texton += bytes)
+        words[v] = ((texton[0] | (bytes == 2 ? uint32_t(texton[1]) << 8 : 0u)) ^ sign) - sign;
+    return DSN_OK;
+}

@@ -1,0 +1,53 @@
+/* golden_kernel.glsl - what one shader invocation of the GPU golden program computes: one point of a
+   lattice tile, one point of a continuous grid, or one listed query (a point of any mode, a coordinate
+   conversion), with the output converted as the C API converts it. The including shader defines
+   golden_query() (where the queries are) and calls golden_evaluate(index). */
+
+/* The task of this draw or dispatch. */
+uniform uint task_kind;         /* 0: listed queries, 1: a lattice tile, 2: a continuous grid */
+uniform uint task_output;       /* tiles: 0 fixed Q16.16, 1 float32 bits, 2 u8 */
+uniform uint task_width;        /* tiles: pixels per row */
+uniform uvec4 task_origin;      /* lattice: (x, -, y, -); grid: (x low, x high, y low, y high) */
+uniform uvec4 task_column_step; /* grid: the step to the next pixel of a row, Q32.32 x then y */
+uniform uvec4 task_row_step;    /* grid: the step to the next row */
+
+/* Query `index` as two uvec4: (mode, x low, x high, y low) and (y high, -, -, -). Modes: bits 0-7 the
+   point (0 lattice (x, y) int32, 1 continuous (x, y) Q32.32, 2 continuous from the IEEE bits of two
+   doubles, 3 coordinate from a double's bits (x), 4 coordinate from a float's bits (x low)), bits 8-15
+   the output conversion as task_output. */
+uvec4 golden_query(uint index, uint part);
+
+uvec4 golden_convert(ivec3 value, uint conversion) {
+    if (conversion == 1u)
+        return uvec4(dsn_fixed_to_float_bits(value.x), dsn_fixed_to_float_bits(value.y),
+                     dsn_fixed_to_float_bits(value.z), 0u);
+    if (conversion == 2u)
+        return uvec4(dsn_fixed_to_u8(value.x), dsn_fixed_to_u8(value.y), dsn_fixed_to_u8(value.z), 0u);
+    return uvec4(uvec3(value), 0u);
+}
+
+uvec4 golden_evaluate(uint index) {
+    uint i = index % task_width, j = index / task_width;
+    if (task_kind == 1u)
+        return golden_convert(dsn_lattice_point_fixed(ivec2(int(task_origin.x + i), int(task_origin.z + j))),
+                              task_output);
+    if (task_kind == 2u) {
+        /* origin + i column_step + j row_step, modulo 2^64 */
+        uvec2 x = dsn_add64(task_origin.xy, dsn_add64(dsn_multiply64(uvec2(i, 0u), task_column_step.xy),
+                                                      dsn_multiply64(uvec2(j, 0u), task_row_step.xy)));
+        uvec2 y = dsn_add64(task_origin.zw, dsn_add64(dsn_multiply64(uvec2(i, 0u), task_column_step.zw),
+                                                      dsn_multiply64(uvec2(j, 0u), task_row_step.zw)));
+        return golden_convert(dsn_continuous_point_fixed(x, y), task_output);
+    }
+    uvec4 first = golden_query(index, 0u), second = golden_query(index, 1u);
+    uint point = first.x & 0xFFu, conversion = (first.x >> 8u) & 0xFFu;
+    uvec2 x = first.yz, y = uvec2(first.w, second.x);
+    if (point == 0u) return golden_convert(dsn_lattice_point_fixed(ivec2(int(x.x), int(y.x))), conversion);
+    if (point == 1u) return golden_convert(dsn_continuous_point_fixed(x, y), conversion);
+    if (point == 2u)
+        return golden_convert(dsn_continuous_point_fixed(dsn_coordinate_from_double_bits(x),
+                                                         dsn_coordinate_from_double_bits(y)),
+                              conversion);
+    if (point == 3u) return uvec4(dsn_coordinate_from_double_bits(x), 0u, 0u);
+    return uvec4(dsn_coordinate_from_float_bits(x.x), 0u, 0u);
+}

@@ -1,0 +1,614 @@
+// gpu_golden.cpp - the cross test's golden program evaluated on a GPU: tests/cross/golden.cpp compiled as
+// it is, with every evaluation it makes (lattice and continuous points, tiles, grids, float and 8-bit
+// conversions, coordinate conversions) done by include/dsn/dsn.glsl in a shader instead of the C runtime.
+// It must print exactly tests/cross/golden.txt.
+//
+// The golden program asks for one value at a time and hashes it at once; a GPU wants batches. So it runs
+// twice: the first run records every request (answering zeros, printing nothing; nothing it does depends
+// on the values), the requests then go to the GPU in one batch per configured noise (tiles and grids as
+// their own dispatch or draw, each invocation computing its point from the tile's origin and steps), and
+// the second run replays them in the same order with the GPU's answers, checking that each request is
+// the one recorded. The configuration (dsn_asset_load, dsn_noise_init) stays on the CPU: dsn_gpu_pack
+// copies the configured noise into the words the shader reads.
+//
+//   dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--dump-shaders DIR]
+//     gl45    OpenGL 4.5 core, GLSL 4.30 compute shader (shader storage buffers)
+//     gles31  OpenGL ES 3.1, GLSL ES 3.10 compute shader
+//     gles30  OpenGL ES 3.0, GLSL ES 3.00 fragment shader (WebGL2's language: no umulExtended, no SSBO):
+//             noise and queries in integer textures, results rendered into an RGBA32UI target
+//     --limbs         16-bit limb multiplications (the GLSL ES 3.00 code) whatever the API
+//     --dump-shaders  write the shaders of every API to DIR (for glslangValidator) and exit
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dsn/dsn.h"
+#include "dsn/gpu.h"
+#include "headless_gl.h"
+
+namespace gpu_golden {
+
+void lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out);
+void lattice_point_float(const dsn_noise *noise, int32_t x, int32_t y, float *out);
+void lattice_point_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out);
+int lattice_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                       int32_t *out, void *scratch, size_t scratch_size);
+int lattice_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                       float *out, void *scratch, size_t scratch_size);
+int lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                    uint8_t *out, void *scratch, size_t scratch_size);
+int continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out);
+int continuous_point_float(const dsn_noise *noise, double x, double y, float *out);
+int continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                          int32_t *out, void *scratch, size_t scratch_size);
+int continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                          float *out, void *scratch, size_t scratch_size);
+int continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                       uint8_t *out, void *scratch, size_t scratch_size);
+int64_t coordinate_from_double(double value);
+int64_t coordinate_from_float(float value);
+
+} // namespace gpu_golden
+
+// The golden program, its evaluators replaced by the GPU's (its header declarations are already seen).
+#define dsn_lattice_point_fixed gpu_golden::lattice_point_fixed
+#define dsn_lattice_point_float gpu_golden::lattice_point_float
+#define dsn_lattice_point_u8 gpu_golden::lattice_point_u8
+#define dsn_lattice_tile_fixed gpu_golden::lattice_tile_fixed
+#define dsn_lattice_tile_float gpu_golden::lattice_tile_float
+#define dsn_lattice_tile_u8 gpu_golden::lattice_tile_u8
+#define dsn_continuous_point_fixed gpu_golden::continuous_point_fixed
+#define dsn_continuous_point_float gpu_golden::continuous_point_float
+#define dsn_continuous_tile_fixed gpu_golden::continuous_tile_fixed
+#define dsn_continuous_tile_float gpu_golden::continuous_tile_float
+#define dsn_continuous_tile_u8 gpu_golden::continuous_tile_u8
+#define dsn_coordinate_from_double gpu_golden::coordinate_from_double
+#define dsn_coordinate_from_float gpu_golden::coordinate_from_float
+#define main golden_main
+#include "cross/golden.cpp"
+#undef main
+
+namespace gpu_golden {
+
+using headless_gl::Api;
+
+const char *const dsn_glsl =
+#include "include/dsn/dsn.glsl.inc"
+    ;
+const char *const kernel_glsl =
+#include "tests/gpu/golden_kernel.glsl.inc"
+    ;
+
+/* ---- Requests ---- */
+
+enum TaskKind : uint32_t { task_queries = 0, task_lattice_tile = 1, task_grid = 2 };
+enum Conversion : uint32_t { as_fixed = 0, as_float = 1, as_u8 = 2 };
+enum Point : uint32_t {
+    point_lattice = 0,
+    point_continuous = 1,
+    point_continuous_doubles = 2,
+    point_coordinate_double = 3,
+    point_coordinate_float = 4
+};
+
+/* One thing the golden program asked for: a query (one value) or a tile (width x height values). */
+struct Request {
+    size_t noise = 0; /* index into Recorder::noises */
+    uint32_t kind = task_queries;
+    uint32_t query[5] = {0, 0, 0, 0, 0}; /* mode (point | conversion << 8), x low, x high, y low, y high */
+    uint32_t conversion = as_fixed, width = 1, height = 1;
+    uint32_t origin[4] = {0, 0, 0, 0}, column_step[4] = {0, 0, 0, 0}, row_step[4] = {0, 0, 0, 0};
+    std::vector<uint32_t> result; /* 4 words per value */
+
+    bool same_as(const Request &other) const {
+        return noise == other.noise && kind == other.kind && !memcmp(query, other.query, sizeof query) &&
+               conversion == other.conversion && width == other.width && height == other.height &&
+               !memcmp(origin, other.origin, sizeof origin) &&
+               !memcmp(column_step, other.column_step, sizeof column_step) &&
+               !memcmp(row_step, other.row_step, sizeof row_step);
+    }
+};
+
+struct Recorder {
+    bool replaying = false, printing = false;
+    std::vector<Request> requests;
+    size_t cursor = 0;
+    std::vector<std::vector<uint32_t>> noises;    /* packed words */
+    std::map<std::string, size_t> noise_by_words; /* packed words (as bytes) -> index */
+};
+
+Recorder recorder;
+
+/* The same configuration packs to the same words (a dsn_noise's own bytes may differ: init leaves the
+   words it does not use as they were). */
+size_t noise_index(const dsn_noise *noise) {
+    std::vector<uint32_t> words(dsn_gpu_word_count(noise));
+    const int err = dsn_gpu_pack(noise, words.data(), words.size());
+    if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_pack: ") + dsn_error_message(err));
+    const std::string bytes(reinterpret_cast<const char *>(words.data()), words.size() * sizeof words[0]);
+    auto found = recorder.noise_by_words.find(bytes);
+    if (found != recorder.noise_by_words.end()) return found->second;
+    recorder.noises.push_back(words);
+    recorder.noise_by_words[bytes] = recorder.noises.size() - 1;
+    return recorder.noises.size() - 1;
+}
+
+/* Records the request (answering zeros) or returns the GPU's answer to it. */
+const std::vector<uint32_t> &answer(const Request &request) {
+    static const std::vector<uint32_t> zeros(4u * 65536u * 4u, 0u);
+    if (!recorder.replaying) {
+        recorder.requests.push_back(request);
+        return zeros;
+    }
+    if (recorder.cursor >= recorder.requests.size() || !recorder.requests[recorder.cursor].same_as(request))
+        throw std::runtime_error("the replay differs from the recording at request " +
+                                 std::to_string(recorder.cursor));
+    return recorder.requests[recorder.cursor++].result;
+}
+
+Request query(const dsn_noise *noise, uint32_t point, uint32_t conversion, uint64_t x, uint64_t y) {
+    Request request;
+    request.noise = noise ? noise_index(noise) : 0;
+    request.query[0] = point | conversion << 8;
+    request.query[1] = static_cast<uint32_t>(x);
+    request.query[2] = static_cast<uint32_t>(x >> 32);
+    request.query[3] = static_cast<uint32_t>(y);
+    request.query[4] = static_cast<uint32_t>(y >> 32);
+    return request;
+}
+
+template <typename Value>
+void store(const std::vector<uint32_t> &result, uint32_t values, uint32_t channels, Value *out) {
+    for (uint32_t v = 0; v < values; v++)
+        for (uint32_t c = 0; c < channels; c++) {
+            const uint32_t word = result[4 * v + c];
+            if (sizeof(Value) == 1) {
+                out[v * channels + c] = static_cast<Value>(word);
+            } else {
+                memcpy(&out[v * channels + c], &word, sizeof word);
+            }
+        }
+}
+
+/* ---- The replacements of the runtime's evaluators ---- */
+
+void lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
+    const Request request =
+        query(noise, point_lattice, as_fixed, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+    store(answer(request), 1, dsn_noise_channels(noise), out);
+}
+
+void lattice_point_float(const dsn_noise *noise, int32_t x, int32_t y, float *out) {
+    const Request request =
+        query(noise, point_lattice, as_float, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+    store(answer(request), 1, dsn_noise_channels(noise), out);
+}
+
+void lattice_point_u8(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out) {
+    const Request request =
+        query(noise, point_lattice, as_u8, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+    store(answer(request), 1, dsn_noise_channels(noise), out);
+}
+
+template <typename Value>
+int lattice_tile(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, Value *out,
+                 uint32_t conversion) {
+    if (noise == nullptr || out == nullptr) return DSN_ERR_NULL;
+    if (dsn_gpu_word_count(noise) == 0) return DSN_ERR_ARGUMENT;
+    if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
+        return DSN_ERR_TILE_SIZE;
+    Request request;
+    request.noise = noise_index(noise);
+    request.kind = task_lattice_tile;
+    request.conversion = conversion;
+    request.width = width;
+    request.height = height;
+    request.origin[0] = static_cast<uint32_t>(x0);
+    request.origin[2] = static_cast<uint32_t>(y0);
+    store(answer(request), width * height, dsn_noise_channels(noise), out);
+    return DSN_OK;
+}
+
+int lattice_tile_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                       int32_t *out, void *, size_t) {
+    return lattice_tile(noise, x0, y0, width, height, out, as_fixed);
+}
+
+int lattice_tile_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                       float *out, void *, size_t) {
+    return lattice_tile(noise, x0, y0, width, height, out, as_float);
+}
+
+int lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                    uint8_t *out, void *, size_t) {
+    return lattice_tile(noise, x0, y0, width, height, out, as_u8);
+}
+
+/* The continuous mode's argument check is the C API's (a property of the configuration). */
+int continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out) {
+    const int err = dsn_continuous_check(noise);
+    if (out == nullptr) return DSN_ERR_NULL;
+    const Request request =
+        query(noise, point_continuous, as_fixed, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
+    store(answer(request), 1, dsn_noise_channels(noise), out);
+    return err;
+}
+
+int continuous_point_float(const dsn_noise *noise, double x, double y, float *out) {
+    const int err = dsn_continuous_check(noise);
+    if (out == nullptr) return DSN_ERR_NULL;
+    uint64_t x_bits, y_bits;
+    memcpy(&x_bits, &x, sizeof x_bits);
+    memcpy(&y_bits, &y, sizeof y_bits);
+    const Request request = query(noise, point_continuous_doubles, as_float, x_bits, y_bits);
+    store(answer(request), 1, dsn_noise_channels(noise), out);
+    return err;
+}
+
+void put_pair(uint32_t *words, int64_t value) {
+    words[0] = static_cast<uint32_t>(static_cast<uint64_t>(value));
+    words[1] = static_cast<uint32_t>(static_cast<uint64_t>(value) >> 32);
+}
+
+template <typename Value>
+int continuous_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, Value *out,
+                    uint32_t conversion) {
+    const int err = dsn_continuous_check(noise);
+    if (err != DSN_OK) return err;
+    if (grid == nullptr || out == nullptr) return DSN_ERR_NULL;
+    if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
+        return DSN_ERR_TILE_SIZE;
+    Request request;
+    request.noise = noise_index(noise);
+    request.kind = task_grid;
+    request.conversion = conversion;
+    request.width = width;
+    request.height = height;
+    put_pair(request.origin, grid->origin_x);
+    put_pair(request.origin + 2, grid->origin_y);
+    put_pair(request.column_step, grid->column_step_x);
+    put_pair(request.column_step + 2, grid->column_step_y);
+    put_pair(request.row_step, grid->row_step_x);
+    put_pair(request.row_step + 2, grid->row_step_y);
+    store(answer(request), width * height, dsn_noise_channels(noise), out);
+    return DSN_OK;
+}
+
+int continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                          int32_t *out, void *, size_t) {
+    return continuous_tile(noise, grid, width, height, out, as_fixed);
+}
+
+int continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                          float *out, void *, size_t) {
+    return continuous_tile(noise, grid, width, height, out, as_float);
+}
+
+int continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                       uint8_t *out, void *, size_t) {
+    return continuous_tile(noise, grid, width, height, out, as_u8);
+}
+
+/* Coordinate conversions need no noise: they go with the first noise's batch (or alone). */
+int64_t coordinate(uint32_t point, uint64_t bits) {
+    Request request = query(nullptr, point, as_fixed, bits, 0);
+    const std::vector<uint32_t> &result = answer(request);
+    return static_cast<int64_t>(static_cast<uint64_t>(result[0]) | static_cast<uint64_t>(result[1]) << 32);
+}
+
+int64_t coordinate_from_double(double value) {
+    uint64_t bits;
+    memcpy(&bits, &value, sizeof bits);
+    return coordinate(point_coordinate_double, bits);
+}
+
+int64_t coordinate_from_float(float value) {
+    uint32_t bits;
+    memcpy(&bits, &value, sizeof bits);
+    return coordinate(point_coordinate_float, bits);
+}
+
+/* ---- Running the requests on the GPU ---- */
+
+struct Task {
+    uint32_t kind = task_queries, conversion = as_fixed, width = 1, count = 0;
+    const uint32_t *origin = nullptr, *column_step = nullptr, *row_step = nullptr;
+};
+
+const uint32_t no_words[4] = {0, 0, 0, 0};
+
+/* Compute shaders (GL 4.5, GLES 3.1): noise, queries and results in shader storage buffers. */
+std::string compute_shader(const headless_gl::Context &context, bool limbs) {
+    return context.shader_preamble() + (limbs ? "#define DSN_GLSL_LIMBS 1\n" : "") +
+           "layout(local_size_x = 64) in;\n"
+           "layout(std430, binding = 0) readonly buffer NoiseWords { uint noise_words[]; };\n"
+           "layout(std430, binding = 1) readonly buffer Queries { uvec4 queries[]; };\n"
+           "layout(std430, binding = 2) writeonly buffer Results { uvec4 results[]; };\n"
+           "uniform uint task_count;\n"
+           "uint dsn_word(uint index) { return noise_words[index]; }\n"
+           "uvec4 golden_query(uint index, uint part) { return queries[2u * index + part]; }\n" +
+           dsn_glsl + kernel_glsl +
+           "void main() {\n"
+           "    uint index = gl_GlobalInvocationID.x;\n"
+           "    if (index < task_count) results[index] = golden_evaluate(index);\n"
+           "}\n";
+}
+
+/* GLSL ES 3.00 (fragment): noise and queries in integer textures, one fragment per value. */
+const char *const fullscreen_vertex_shader = "#version 300 es\n"
+                                             "void main() {\n"
+                                             "    gl_Position = vec4(float((gl_VertexID & 1) << 2) - 1.0, "
+                                             "float((gl_VertexID & 2) << 1) - 1.0, 0.0, 1.0);\n"
+                                             "}\n";
+
+std::string fragment_shader(const headless_gl::Context &context, bool limbs) {
+    return context.shader_preamble() + (limbs ? "#define DSN_GLSL_LIMBS 1\n" : "") +
+           "uniform highp usampler2D noise_texture;\n"
+           "uniform highp usampler2D query_texture;\n"
+           "uniform uint target_width;\n"
+           "layout(location = 0) out uvec4 result;\n"
+           "uint dsn_word(uint index) {\n"
+           "    return texelFetch(noise_texture, ivec2(int(index & 1023u), int(index >> 10u)), 0).x;\n"
+           "}\n"
+           "uvec4 golden_query(uint index, uint part) {\n"
+           "    uint texel = 2u * index + part;\n"
+           "    return texelFetch(query_texture, ivec2(int(texel & 1023u), int(texel >> 10u)), 0);\n"
+           "}\n" +
+           dsn_glsl + kernel_glsl +
+           "void main() {\n"
+           "    uvec2 pixel = uvec2(gl_FragCoord.xy);\n"
+           "    result = golden_evaluate(pixel.y * target_width + pixel.x);\n"
+           "}\n";
+}
+
+class Runner {
+  public:
+    Runner(headless_gl::Context &context, bool limbs) : context_(context), gl_(context.gl) {
+        if (context.api() == Api::gles30) {
+            program_ = context.render_program(fullscreen_vertex_shader, fragment_shader(context, limbs));
+            gl_.glGenVertexArrays(1, &vertex_array_);
+        } else {
+            program_ = context.compute_program(compute_shader(context, limbs));
+        }
+        gl_.glUseProgram(program_);
+        context.check("program");
+    }
+    ~Runner() {
+        release_noise();
+        if (vertex_array_) gl_.glDeleteVertexArrays(1, &vertex_array_);
+        gl_.glDeleteProgram(program_);
+    }
+
+    void set_noise(const std::vector<uint32_t> &words) {
+        release_noise();
+        if (context_.api() == Api::gles30)
+            noise_ = context_.word_texture(words, 1);
+        else
+            noise_ = context_.storage_buffer(words.data(), words.size() * 4);
+    }
+
+    /* 4 words per value. */
+    std::vector<uint32_t> run(const Task &task, const std::vector<uint32_t> &queries) {
+        gl_.glUseProgram(program_);
+        gl_.glUniform1ui(location("task_kind"), task.kind);
+        gl_.glUniform1ui(location("task_output"), task.conversion);
+        gl_.glUniform1ui(location("task_width"), task.width);
+        const uint32_t *origin = task.origin ? task.origin : no_words;
+        const uint32_t *column = task.column_step ? task.column_step : no_words;
+        const uint32_t *row = task.row_step ? task.row_step : no_words;
+        gl_.glUniform4ui(location("task_origin"), origin[0], origin[1], origin[2], origin[3]);
+        gl_.glUniform4ui(location("task_column_step"), column[0], column[1], column[2], column[3]);
+        gl_.glUniform4ui(location("task_row_step"), row[0], row[1], row[2], row[3]);
+        std::vector<uint32_t> result(4u * task.count);
+        if (context_.api() == Api::gles30)
+            render(task, queries, result);
+        else
+            dispatch(task, queries, result);
+        return result;
+    }
+
+  private:
+    GLint location(const char *name) { return gl_.glGetUniformLocation(program_, name); }
+
+    void release_noise() {
+        if (!noise_) return;
+        if (context_.api() == Api::gles30)
+            gl_.glDeleteTextures(1, &noise_);
+        else
+            gl_.glDeleteBuffers(1, &noise_);
+        noise_ = 0;
+    }
+
+    void dispatch(const Task &task, const std::vector<uint32_t> &queries, std::vector<uint32_t> &result) {
+        GLuint query_buffer = context_.storage_buffer(queries.empty() ? no_words : queries.data(),
+                                                      queries.empty() ? sizeof no_words : queries.size() * 4);
+        GLuint result_buffer = context_.storage_buffer(nullptr, result.size() * 4);
+        gl_.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, noise_);
+        gl_.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, query_buffer);
+        gl_.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, result_buffer);
+        gl_.glUniform1ui(location("task_count"), task.count);
+        gl_.glDispatchCompute((task.count + 63) / 64, 1, 1);
+        gl_.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        context_.check("dispatch");
+        context_.read_buffer(result_buffer, result.data(), result.size() * 4);
+        gl_.glDeleteBuffers(1, &query_buffer);
+        gl_.glDeleteBuffers(1, &result_buffer);
+    }
+
+    void render(const Task &task, const std::vector<uint32_t> &queries, std::vector<uint32_t> &result) {
+        const uint32_t width = task.count < 256 ? task.count : 256, height = (task.count + width - 1) / width;
+        GLuint query_texture =
+            context_.word_texture(queries.empty() ? std::vector<uint32_t>(8, 0u) : queries, 4);
+        GLuint target = 0, framebuffer = 0;
+        gl_.glGenTextures(1, &target);
+        gl_.glBindTexture(GL_TEXTURE_2D, target);
+        gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, static_cast<GLsizei>(width),
+                         static_cast<GLsizei>(height), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, nullptr);
+        gl_.glGenFramebuffers(1, &framebuffer);
+        gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+        if (gl_.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw std::runtime_error("the RGBA32UI render target is incomplete");
+        gl_.glActiveTexture(GL_TEXTURE0);
+        gl_.glBindTexture(GL_TEXTURE_2D, noise_);
+        gl_.glActiveTexture(GL_TEXTURE1);
+        gl_.glBindTexture(GL_TEXTURE_2D, query_texture);
+        gl_.glActiveTexture(GL_TEXTURE0);
+        gl_.glUniform1i(location("noise_texture"), 0);
+        gl_.glUniform1i(location("query_texture"), 1);
+        gl_.glUniform1ui(location("target_width"), width);
+        gl_.glViewport(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height));
+        gl_.glBindVertexArray(vertex_array_);
+        gl_.glDrawArrays(GL_TRIANGLES, 0, 3);
+        std::vector<uint32_t> pixels(4u * width * height);
+        gl_.glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl_.glReadPixels(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height), GL_RGBA_INTEGER,
+                         GL_UNSIGNED_INT, pixels.data());
+        context_.check("render");
+        std::copy(pixels.begin(), pixels.begin() + static_cast<std::ptrdiff_t>(result.size()),
+                  result.begin());
+        gl_.glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl_.glDeleteFramebuffers(1, &framebuffer);
+        gl_.glDeleteTextures(1, &target);
+        gl_.glDeleteTextures(1, &query_texture);
+    }
+
+    headless_gl::Context &context_;
+    const headless_gl::Functions &gl_;
+    GLuint program_ = 0, vertex_array_ = 0, noise_ = 0;
+};
+
+/* Every request of each noise: its queries in one batch, each tile or grid on its own. */
+void run_requests(Runner &runner) {
+    if (recorder.noises.empty()) recorder.noises.push_back(std::vector<uint32_t>(no_words, no_words + 4));
+    for (size_t noise = 0; noise < recorder.noises.size(); noise++) {
+        runner.set_noise(recorder.noises[noise]);
+        std::vector<size_t> batch;
+        std::vector<uint32_t> queries;
+        for (size_t r = 0; r < recorder.requests.size(); r++) {
+            Request &request = recorder.requests[r];
+            if (request.noise != noise) continue;
+            if (request.kind == task_queries) {
+                batch.push_back(r);
+                queries.insert(queries.end(), request.query, request.query + 5);
+                queries.insert(queries.end(), 3, 0u);
+                continue;
+            }
+            Task task;
+            task.kind = request.kind;
+            task.conversion = request.conversion;
+            task.width = request.width;
+            task.count = request.width * request.height;
+            task.origin = request.origin;
+            task.column_step = request.column_step;
+            task.row_step = request.row_step;
+            request.result = runner.run(task, {});
+        }
+        if (batch.empty()) continue;
+        Task task;
+        task.count = static_cast<uint32_t>(batch.size());
+        task.width = task.count;
+        const std::vector<uint32_t> results = runner.run(task, queries);
+        for (size_t b = 0; b < batch.size(); b++)
+            recorder.requests[batch[b]].result.assign(results.begin() + static_cast<std::ptrdiff_t>(4 * b),
+                                                      results.begin() +
+                                                          static_cast<std::ptrdiff_t>(4 * b + 4));
+    }
+}
+
+} // namespace gpu_golden
+
+extern "C" void golden_write(const char *text) {
+    if (gpu_golden::recorder.printing) fputs(text, stdout);
+}
+
+namespace {
+
+const char *const usage =
+    "usage: dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--dump-shaders DIR] [--quiet]\n"
+    "Runs the cross test's golden program with every evaluation done by include/dsn/dsn.glsl on the GPU\n"
+    "(EGL surfaceless: llvmpipe when there is no GPU) and prints its lines (tests/cross/golden.txt).\n"
+    "  --api gl45     OpenGL 4.5 core, GLSL 4.30 compute shader (default)\n"
+    "  --api gles31   OpenGL ES 3.1, GLSL ES 3.10 compute shader\n"
+    "  --api gles30   OpenGL ES 3.0, GLSL ES 3.00 fragment shader into an RGBA32UI target\n"
+    "  --limbs        16-bit limb multiplications (the GLSL ES 3.00 code) on any API\n"
+    "  --dump-shaders DIR  write every API's shaders to DIR (golden-API.comp/.frag) and exit\n"
+    "  --quiet        no renderer line on stderr\n";
+
+void write_file(const std::string &path, const std::string &text) {
+    FILE *file = fopen(path.c_str(), "wb");
+    if (!file || fwrite(text.data(), 1, text.size(), file) != text.size() || fclose(file) != 0)
+        throw std::runtime_error("cannot write " + path);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    using namespace gpu_golden;
+    Api api = Api::gl45;
+    bool limbs = false, quiet = false;
+    std::string dump_directory;
+    try {
+        for (int i = 1; i < argc; i++) {
+            const std::string argument = argv[i];
+            if (argument == "--help" || argument == "-h") {
+                fputs(usage, stdout);
+                return 0;
+            } else if (argument == "--api" && i + 1 < argc) {
+                const std::string name = argv[++i];
+                if (name == "gl45")
+                    api = Api::gl45;
+                else if (name == "gles31")
+                    api = Api::gles31;
+                else if (name == "gles30")
+                    api = Api::gles30;
+                else
+                    throw std::runtime_error("--api: unknown API '" + name + "'");
+            } else if (argument == "--limbs") {
+                limbs = true;
+            } else if (argument == "--quiet") {
+                quiet = true;
+            } else if (argument == "--dump-shaders" && i + 1 < argc) {
+                dump_directory = argv[++i];
+            } else {
+                throw std::runtime_error("unknown argument '" + argument + "' (see --help)");
+            }
+        }
+        if (!dump_directory.empty()) {
+            for (Api each : {Api::gl45, Api::gles31, Api::gles30}) {
+                headless_gl::Context context(each);
+                const std::string name = dump_directory + "/golden-" + headless_gl::api_name(each);
+                if (each == Api::gles30) {
+                    write_file(name + ".frag", fragment_shader(context, false));
+                    write_file(name + ".vert", fullscreen_vertex_shader);
+                } else {
+                    write_file(name + ".comp", compute_shader(context, false));
+                    write_file(name + "-limbs.comp", compute_shader(context, true));
+                }
+            }
+            return 0;
+        }
+        headless_gl::Context context(api);
+        if (!quiet)
+            fprintf(stderr, "dsn-gpu-golden: %s%s on %s\n", headless_gl::api_name(api),
+                    limbs ? " (limbs)" : "", context.description().c_str());
+        Runner runner(context, limbs);
+        golden_main(); /* records */
+        run_requests(runner);
+        recorder.replaying = true;
+        recorder.printing = true;
+        const int status = golden_main();
+        if (recorder.cursor != recorder.requests.size())
+            throw std::runtime_error("the replay made fewer requests than the recording");
+        return status;
+    } catch (const std::exception &error) {
+        fflush(stdout);
+        fprintf(stderr, "dsn-gpu-golden: %s\n", error.what());
+        return 1;
+    }
+}
