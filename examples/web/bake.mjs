@@ -8,6 +8,8 @@
 //   const asset = baker.bake(pngBytes, { radius: 0, iterations: 0, seed: 0 }); // Uint8Array; throws
 //   BakeError
 
+import { compileModule } from './dsn.mjs';
+
 /** A refusal or failure of the baker: `message` is its own (what() of the exception it threw). */
 export class BakeError extends Error {
     constructor(message) {
@@ -18,17 +20,7 @@ export class BakeError extends Error {
 
 /** Compiles dsn-bake.wasm once: `source` as for loadRuntime (a URL, the bytes, or a WebAssembly.Module). */
 export async function loadBaker(source) {
-    let module;
-    if (source instanceof WebAssembly.Module)
-        module = source;
-    else if (source instanceof ArrayBuffer || ArrayBuffer.isView(source))
-        module = await WebAssembly.compile(source);
-    else {
-        const response = await fetch(source);
-        if (!response.ok) throw new Error(`dsn: cannot fetch ${source}: HTTP ${response.status}`);
-        module = await WebAssembly.compile(await response.arrayBuffer());
-    }
-    return new Baker(module);
+    return new Baker(await compileModule(source));
 }
 
 const WASI_ERRNO_BADF = 8;

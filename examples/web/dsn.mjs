@@ -48,17 +48,16 @@ export class DsnError extends Error {
     WebAssembly.Module (one can be sent to a worker with postMessage).
  */
 export async function loadRuntime(source) {
-    let module;
-    if (source instanceof WebAssembly.Module)
-        module = source;
-    else if (source instanceof ArrayBuffer || ArrayBuffer.isView(source))
-        module = await WebAssembly.compile(source);
-    else {
-        const response = await fetch(source);
-        if (!response.ok) throw new Error(`dsn: cannot fetch ${source}: HTTP ${response.status}`);
-        module = await WebAssembly.compile(await response.arrayBuffer());
-    }
-    return new Runtime(module);
+    return new Runtime(await compileModule(source));
+}
+
+/** A WebAssembly.Module from a URL (or string) to fetch, the file's bytes, or a module as it is. */
+export async function compileModule(source) {
+    if (source instanceof WebAssembly.Module) return source;
+    if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) return WebAssembly.compile(source);
+    const response = await fetch(source);
+    if (!response.ok) throw new Error(`dsn: cannot fetch ${source}: HTTP ${response.status}`);
+    return WebAssembly.compile(await response.arrayBuffer());
 }
 
 export class Runtime {
