@@ -55,7 +55,7 @@
                         1 compiles generic, compact code paths instead of the speed-tuned ones: one
                         bilinear texton reader for 8 and 16 bits, continuous grid tiles evaluated point by
                         point, a lattice point evaluated as a 1 x 1 tile, no code copied per output type.
-                        The whole runtime then takes under 8 KB of Cortex-M0 or M4 code
+                        The runtime of this header then takes under 8 KB of Cortex-M0 or M4 code
                         (tests/cross/footprint checks it), and dsn_continuous_tile_scratch_size returns 0:
                         continuous tiles need no scratch.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
