@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "dsn/bake.h"
+#include "../../offline/tools/command_line.h"
+#include "../../offline/tools/file_output.h"
+#include "../../offline/tools/png_output.h"
 #include "dsn/dsn.h"
 #include "dsn/gpu.h"
 #include "headless_gl.h"
@@ -44,7 +46,10 @@ const char *const usage =
     "  --compare-cpu      also render with the C runtime (tiles, one thread), check that the pixels are\n"
     "                     identical and print both speeds\n"
     "  --dump-shaders DIR write the shaders to DIR (for glslangValidator) and exit\n"
-    "  --quiet            no timing line on stderr\n";
+    "  --quiet            no timing line on stderr\n"
+    "Flags take --flag value or --flag=value; --version prints the version. A usage mistake exits 2 (see\n"
+    "--help), a failure while running (bad asset, no OpenGL context, cannot write) exits 1; no partial\n"
+    "output is left.\n";
 
 enum class Mode { tile, continuous };
 
@@ -58,97 +63,70 @@ struct Options {
     headless_gl::Api api = headless_gl::Api::gles30;
 };
 
-uint64_t parse_u64(const std::string &flag, const std::string &text, uint64_t high) {
-    char *end = nullptr;
-    errno = 0;
-    const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
-    if (text.empty() || text[0] == '-' || *end != '\0' || errno != 0 || value > high)
-        throw std::runtime_error(flag + ": '" + text + "' is not an integer in [0, " + std::to_string(high) +
-                                 "]");
-    return value;
-}
-
-double parse_real(const std::string &flag, const std::string &text) {
-    char *end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(value))
-        throw std::runtime_error(flag + ": '" + text + "' is not a finite number");
-    return value;
-}
-
 std::pair<std::string, std::string> split_pair(const std::string &flag, const std::string &text,
                                                char separator) {
     const size_t at = text.find(separator);
     if (at == std::string::npos)
-        throw std::runtime_error(flag + ": expected two values separated by '" + std::string(1, separator) +
-                                 "'");
+        throw dsn::UsageError(flag + ": expected two values separated by '" + std::string(1, separator) +
+                              "'");
     return {text.substr(0, at), text.substr(at + 1)};
 }
 
-Options parse_options(int argc, char **argv) {
+Options parse_options(dsn::CommandLine &arguments) {
     Options options;
     bool size_given = false;
-    for (int i = 1; i < argc; i++) {
-        const std::string flag = argv[i];
-        if (flag == "--help" || flag == "-h") {
-            std::fputs(usage, stdout);
-            std::exit(0);
-        }
-        if (flag == "--quiet" || flag == "--compare-cpu") {
-            (flag == "--quiet" ? options.quiet : options.compare_cpu) = true;
-            continue;
-        }
-        if (flag.size() < 2 || flag[0] != '-') {
-            if (!options.asset_path.empty()) throw std::runtime_error("more than one asset given: " + flag);
+    while (arguments.next()) {
+        const std::string flag = arguments.current();
+        if (arguments.is("--quiet")) {
+            arguments.no_value(), options.quiet = true;
+        } else if (arguments.is("--compare-cpu")) {
+            arguments.no_value(), options.compare_cpu = true;
+        } else if (arguments.is_positional()) {
+            if (!options.asset_path.empty()) arguments.unknown();
             options.asset_path = flag;
-            continue;
-        }
-        if (i + 1 >= argc) throw std::runtime_error(flag + " needs a value (see --help)");
-        const std::string value = argv[++i];
-        if (flag == "-o" || flag == "--output") {
-            options.output_path = value;
-        } else if (flag == "--api") {
-            if (value != "gles30" && value != "gl45")
-                throw std::runtime_error("--api must be gles30 or gl45");
+        } else if (arguments.is("-o") || arguments.is("--output")) {
+            options.output_path = arguments.value();
+        } else if (arguments.is("--api")) {
+            const std::string value = arguments.value();
+            if (value != "gles30" && value != "gl45") throw dsn::UsageError("--api must be gles30 or gl45");
             options.api = value == "gl45" ? headless_gl::Api::gl45 : headless_gl::Api::gles30;
-        } else if (flag == "--dump-shaders") {
-            options.dump_directory = value;
-        } else if (flag == "--size") {
-            const auto sides = split_pair(flag, value, 'x');
-            options.width = static_cast<uint32_t>(parse_u64(flag, sides.first, 16384));
-            options.height = static_cast<uint32_t>(parse_u64(flag, sides.second, 16384));
-            if (options.width == 0 || options.height == 0)
-                throw std::runtime_error("--size: sides must be >= 1");
+        } else if (arguments.is("--dump-shaders")) {
+            options.dump_directory = arguments.value();
+        } else if (arguments.is("--size")) {
+            const auto sides = split_pair(flag, arguments.value(), 'x');
+            options.width = static_cast<uint32_t>(dsn::parse_integer(flag, sides.first, 1, 16384));
+            options.height = static_cast<uint32_t>(dsn::parse_integer(flag, sides.second, 1, 16384));
             size_given = true;
-        } else if (flag == "--origin") {
-            const auto origin = split_pair(flag, value, ',');
+        } else if (arguments.is("--origin")) {
+            const auto origin = split_pair(flag, arguments.value(), ',');
             options.origin_x = origin.first;
             options.origin_y = origin.second;
-        } else if (flag == "--seed") {
-            options.seed = static_cast<uint32_t>(parse_u64(flag, value, 0xFFFFFFFFu));
-        } else if (flag == "--mode") {
+        } else if (arguments.is("--seed")) {
+            options.seed = static_cast<uint32_t>(dsn::parse_integer(arguments, 0, 0xFFFFFFFFll));
+        } else if (arguments.is("--mode")) {
+            const std::string value = arguments.value();
             if (value != "tile" && value != "continuous")
-                throw std::runtime_error("--mode must be tile or continuous");
+                throw dsn::UsageError("--mode must be tile or continuous");
             options.mode = value == "tile" ? Mode::tile : Mode::continuous;
-        } else if (flag == "--scale") {
-            options.scale = parse_real(flag, value);
+        } else if (arguments.is("--scale")) {
+            options.scale = dsn::parse_real(flag, arguments.value());
             if (!(options.scale >= 1.0 / 65536 && options.scale <= 65536))
-                throw std::runtime_error("--scale must be within [1/65536, 65536]");
-        } else if (flag == "--rotate") {
-            options.rotate_degrees = parse_real(flag, value);
+                throw dsn::UsageError("--scale must be within [1/65536, 65536]");
+        } else if (arguments.is("--rotate")) {
+            options.rotate_degrees = dsn::parse_real(flag, arguments.value());
         } else {
-            throw std::runtime_error("unknown option " + flag + " (see --help)");
+            arguments.unknown();
         }
     }
     if (!options.dump_directory.empty()) return options;
-    if (options.asset_path.empty()) throw std::runtime_error("no asset given (see --help)");
-    if (options.output_path.empty()) throw std::runtime_error("no output given: -o OUT.png");
+    if (options.asset_path.empty()) throw dsn::UsageError("no asset given");
+    if (options.output_path.empty()) throw dsn::UsageError("no output given: -o OUT.png");
     if (options.output_path.size() < 4 ||
         options.output_path.compare(options.output_path.size() - 4, 4, ".png"))
-        throw std::runtime_error("the output must end in .png: " + options.output_path);
-    if (!size_given) throw std::runtime_error("no size given: --size WxH");
+        throw dsn::UsageError("the output must end in .png: " + options.output_path);
+    if (!size_given) throw dsn::UsageError("no size given: --size WxH");
     if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
-        throw std::runtime_error("--scale and --rotate need --mode continuous");
+        throw dsn::UsageError("--scale and --rotate need --mode continuous");
     return options;
 }
 
@@ -158,8 +136,7 @@ uint32_t lattice_coordinate(const std::string &text) {
     errno = 0;
     const long long value = std::strtoll(text.c_str(), &end, 10);
     if (text.empty() || *end != '\0' || errno != 0 || value < -4294967296LL || value > 4294967295LL)
-        throw std::runtime_error("--origin: '" + text +
-                                 "' is not an integer (use --mode continuous for reals)");
+        throw dsn::UsageError("--origin: '" + text + "' is not an integer (use --mode continuous for reals)");
     return static_cast<uint32_t>(static_cast<unsigned long long>(value));
 }
 
@@ -170,8 +147,8 @@ dsn_grid continuous_grid(const Options &options) {
     const double radians = options.rotate_degrees * 3.14159265358979323846 / 180.0;
     const double cosine = std::cos(radians) / options.scale, sine = std::sin(radians) / options.scale;
     dsn_grid grid;
-    grid.origin_x = dsn_coordinate_from_double(parse_real("--origin", options.origin_x));
-    grid.origin_y = dsn_coordinate_from_double(parse_real("--origin", options.origin_y));
+    grid.origin_x = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_x));
+    grid.origin_y = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_y));
     grid.column_step_x = q32_step(cosine);
     grid.column_step_y = q32_step(sine);
     grid.row_step_x = q32_step(-sine);
@@ -391,11 +368,8 @@ void run(const Options &options) {
 } // namespace
 
 int main(int argc, char **argv) {
-    try {
-        run(parse_options(argc, argv));
-    } catch (const std::exception &error) {
-        std::fprintf(stderr, "dsn-gpu-render: %s\n", error.what());
-        return 1;
-    }
-    return 0;
+    return dsn::run_tool("dsn-gpu-render", usage, argc, argv, [](dsn::CommandLine &arguments) {
+        run(parse_options(arguments));
+        return 0;
+    });
 }

@@ -11,6 +11,6 @@ $(BUILD)/obj/examples/gpu/%.o: examples/gpu/%.cpp
 $(BUILD)/obj/examples/gpu/dsn_gpu_render.o: $(BUILD)/gen/include/dsn/dsn.glsl.inc
 
 $(GPU_RENDER): $(BUILD)/obj/examples/gpu/dsn_gpu_render.o $(BUILD)/obj/tests/gpu/headless_gl.o \
-    $(LIBDSN_BAKE) $(LIBDSN)
+    $(LIBDSN_TOOLS) $(LIBDSN)
 	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) $^ -o $@ $(OFFLINE_LINK) -lEGL
+	$(CXX) $(CXXFLAGS) $^ -o $@ $(LDFLAGS) $(STB_LIBS) -lEGL
