@@ -84,9 +84,9 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
             if (at == std::string::npos || at == 0 || at + 1 == text.size())
                 throw dsn::UsageError("--size needs WxH, not '" + text + "'");
             arguments.options.width =
-                int(dsn::parse_integer("--width", text.substr(0, at), 1, dsn::kMaxSynthesisSide));
+                int(dsn::parse_integer("--size width", text.substr(0, at), 1, dsn::kMaxSynthesisSide));
             arguments.options.height =
-                int(dsn::parse_integer("--height", text.substr(at + 1), 1, dsn::kMaxSynthesisSide));
+                int(dsn::parse_integer("--size height", text.substr(at + 1), 1, dsn::kMaxSynthesisSide));
             size_given = true;
         } else if (command_line.is("--method")) {
             const std::string method = command_line.value();
