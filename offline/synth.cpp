@@ -3,9 +3,13 @@
 #include "synth.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bake_internal.h"
@@ -129,39 +133,62 @@ int dft_2d_block_count(int width, int height) {
 void dft_2d_in_place(std::complex<float> *values, int width, int height, bool inverse,
                      const std::function<void(int blocks_done)> &step) {
     const size_t row_length = size_t(width);
-    int blocks_done = 0;
-    {
-        FftPlan plan = make_fft_plan(width, inverse);
-        std::vector<std::complex<float>> transformed(row_length);
-        for (int y0 = 0; y0 < height; y0 += kBlock) {
-            for (int y = y0; y < std::min(height, y0 + kBlock); y++) {
-                std::complex<float> *row = values + size_t(y) * row_length;
-                kiss_fft(plan.get(), as_kiss(row), as_kiss(transformed.data()));
-                std::copy(transformed.begin(), transformed.end(), row);
+    const int row_blocks = (height + kBlock - 1) / kBlock, column_blocks = (width + kBlock - 1) / kBlock;
+    // Every block is transformed alone, so the result does not depend on the number of threads.
+    const FftPlan row_plan = make_fft_plan(width, inverse), column_plan = make_fft_plan(height, inverse);
+    std::atomic<int> next_block(0);
+    std::mutex step_lock;
+    int blocks_done = 0; // guarded by step_lock
+    std::exception_ptr failure;
+    auto pass = [&](bool rows) {
+        const int count = rows ? row_blocks : column_blocks;
+        auto worker = [&]() {
+            try {
+                std::vector<std::complex<float>> transformed(size_t(std::max(width, height)));
+                std::vector<std::complex<float>> columns(size_t(kBlock) * size_t(height));
+                for (int block; (block = next_block++) < count;) {
+                    if (rows) {
+                        for (int y = block * kBlock; y < std::min(height, (block + 1) * kBlock); y++) {
+                            std::complex<float> *row = values + size_t(y) * row_length;
+                            kiss_fft(row_plan.get(), as_kiss(row), as_kiss(transformed.data()));
+                            std::copy(transformed.begin(), transformed.begin() + width, row);
+                        }
+                    } else {
+                        const int x0 = block * kBlock, columns_here = std::min(kBlock, width - x0);
+                        for (int y = 0; y < height; y++)
+                            for (int k = 0; k < columns_here; k++)
+                                columns[size_t(k) * size_t(height) + size_t(y)] =
+                                    values[size_t(y) * row_length + size_t(x0 + k)];
+                        for (int k = 0; k < columns_here; k++) {
+                            std::complex<float> *column = &columns[size_t(k) * size_t(height)];
+                            kiss_fft(column_plan.get(), as_kiss(column), as_kiss(transformed.data()));
+                            std::copy(transformed.begin(), transformed.begin() + height, column);
+                        }
+                        for (int y = 0; y < height; y++)
+                            for (int k = 0; k < columns_here; k++)
+                                values[size_t(y) * row_length + size_t(x0 + k)] =
+                                    columns[size_t(k) * size_t(height) + size_t(y)];
+                    }
+                    std::lock_guard<std::mutex> guard(step_lock);
+                    ++blocks_done;
+                    if (step) step(blocks_done);
+                }
+            } catch (...) {
+                std::lock_guard<std::mutex> guard(step_lock);
+                if (!failure) failure = std::current_exception();
+                next_block = count;
             }
-            if (step) step(++blocks_done);
-        }
-    }
-    FftPlan plan = make_fft_plan(height, inverse);
-    std::vector<std::complex<float>> columns(size_t(kBlock) * size_t(height));
-    std::vector<std::complex<float>> transformed = std::vector<std::complex<float>>(size_t(height));
-    for (int x0 = 0; x0 < width; x0 += kBlock) {
-        const int count = std::min(kBlock, width - x0);
-        for (int y = 0; y < height; y++)
-            for (int k = 0; k < count; k++)
-                columns[size_t(k) * size_t(height) + size_t(y)] =
-                    values[size_t(y) * row_length + size_t(x0 + k)];
-        for (int k = 0; k < count; k++) {
-            std::complex<float> *column = &columns[size_t(k) * size_t(height)];
-            kiss_fft(plan.get(), as_kiss(column), as_kiss(transformed.data()));
-            std::copy(transformed.begin(), transformed.end(), column);
-        }
-        for (int y = 0; y < height; y++)
-            for (int k = 0; k < count; k++)
-                values[size_t(y) * row_length + size_t(x0 + k)] =
-                    columns[size_t(k) * size_t(height) + size_t(y)];
-        if (step) step(++blocks_done);
-    }
+        };
+        next_block = 0;
+        const unsigned threads = std::min(std::max(1u, std::thread::hardware_concurrency()), unsigned(count));
+        std::vector<std::thread> helpers;
+        for (unsigned t = 1; t < threads; t++) helpers.emplace_back(worker);
+        worker();
+        for (std::thread &helper : helpers) helper.join();
+        if (failure) std::rethrow_exception(failure);
+    };
+    pass(true);
+    pass(false);
 }
 
 void check_synthesis_input(const Image &exemplar, const SynthesisOptions &options) {

@@ -88,7 +88,8 @@ Image synthesize(const Image &exemplar, const SynthesisOptions &options);
 // In-place unnormalized 2-D DFT (inverse: conjugate exponent, not divided) of a row-major height x width
 // array, by 1-D KissFFT transforms of the rows then of blocks of columns (KissFFT's own 2-D real
 // transform crashes from 64 x 64 in the packaged version; its complex one allocates a whole plane more).
-// `step` (may be empty) is called after each block of rows or columns, dft_2d_block_count in all.
+// The blocks are shared among as many threads as the machine has cores; `step` (may be empty) is called
+// after each block of rows or columns, one call at a time, dft_2d_block_count calls in all.
 void dft_2d_in_place(std::complex<float> *values, int width, int height, bool inverse,
                      const std::function<void(int blocks_done)> &step);
 int dft_2d_block_count(int width, int height);
