@@ -49,7 +49,7 @@ TOOLS_LIBRARY_SOURCES := $(filter-out $(TOOL_PROGRAM_SOURCES),$(wildcard offline
 TOOLS_LIBRARY_OBJECTS := $(TOOLS_LIBRARY_SOURCES:%.cpp=$(BUILD)/obj/%.o)
 # The installed tools; dsn-example-asset (a synthetic asset for the tests and examples) is built, not
 # installed.
-TOOLS := $(BUILD)/bin/dsn-bake $(BUILD)/bin/dsn-inspect $(BUILD)/bin/dsn-render
+TOOLS := $(BUILD)/bin/dsn-bake $(BUILD)/bin/dsn-inspect $(BUILD)/bin/dsn-render $(BUILD)/bin/dsn-synth
 TOOL_HELPERS := $(BUILD)/bin/dsn-example-asset
 TEST_SOURCES := $(wildcard tests/*.cpp)
 TEST_OBJECTS := $(TEST_SOURCES:%.cpp=$(BUILD)/obj/%.o)
@@ -100,7 +100,7 @@ $(LIBDSN_TOOLS): $(TOOLS_LIBRARY_OBJECTS)
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^
 
-# Each tool links what it uses: only dsn-bake has the baker (and KissFFT); dsn-example-asset has the
+# Each tool links what it uses: only dsn-bake and dsn-synth have the baker (and KissFFT); dsn-example-asset has the
 # asset writer of libdsn_bake.a (the linker takes no other object of it).
 TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN) $(LDFLAGS) $(STB_LIBS) -lpthread
 $(BUILD)/bin/dsn-%: $(BUILD)/obj/offline/tools/dsn-%.o $(LIBDSN_TOOLS) $(LIBDSN)
@@ -108,6 +108,8 @@ $(BUILD)/bin/dsn-%: $(BUILD)/obj/offline/tools/dsn-%.o $(LIBDSN_TOOLS) $(LIBDSN)
 	$(CXX) $(CXXFLAGS) $< -o $@ $(TOOL_LINK)
 $(BUILD)/bin/dsn-bake: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-bake: TOOL_LINK = $(OFFLINE_LINK)
+$(BUILD)/bin/dsn-synth: $(LIBDSN_BAKE)
+$(BUILD)/bin/dsn-synth: TOOL_LINK = $(OFFLINE_LINK)
 $(BUILD)/bin/dsn-example-asset: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-example-asset: TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS)
 # The tools' objects are kept (not deleted as intermediate files), so a second make relinks nothing.
