@@ -47,9 +47,9 @@ const char *const usage =
     "                     identical and print both speeds\n"
     "  --dump-shaders DIR write the shaders to DIR (for glslangValidator) and exit\n"
     "  --quiet            no timing line on stderr\n"
-    "Flags take --flag value or --flag=value; --version prints the version. A usage mistake exits 2 (see\n"
-    "--help), a failure while running (bad asset, no OpenGL context, cannot write) exits 1; no partial\n"
-    "output is left.\n";
+    "Flags take --flag value or --flag=value; --version prints the version.\n"
+    "Exit status: 0 on success; exit 2 for a usage mistake (the message ends with \"(see --help)\");\n"
+    "exit 1 for a failure while running (bad asset, no OpenGL context, cannot write); no partial output.\n";
 
 enum class Mode { tile, continuous };
 
