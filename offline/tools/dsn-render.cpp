@@ -1,8 +1,9 @@
 // dsn-render: renders a window of the spot noise of a .dsnt asset to a PNG or raw float32 file.
 //
-// The image is cut into blocks rendered by a pool of threads, each block by one call of the runtime
-// (lattice tile, lattice per-point loop, or continuous grid tile), so the result does not depend on the
-// block size or the thread count: windows rendered separately stitch exactly into the whole.
+// The image is cut into strips of whole rows rendered by a pool of threads, each strip by one call of the
+// runtime (lattice tile, lattice per-point loop, or continuous grid tile) straight into the image, so the
+// result does not depend on the strip size or the thread count: windows rendered separately stitch
+// exactly into the whole.
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -12,9 +13,11 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <sys/mman.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -201,85 +204,144 @@ dsn_grid continuous_grid(const Options &options) {
     return grid;
 }
 
-// What every worker shares: the configured noise and where each block goes.
+// What every worker shares: the configured noise, where the image lies, and its cut into strips.
 struct Job {
     const dsn_noise *noise;
     Mode mode;
     int32_t lattice_x0, lattice_y0;
     dsn_grid grid;
-    uint32_t width, height, channels, block;
+    uint32_t width, height, channels, strip_rows;
 };
 
-// The fixed-point values of the block at pixel (bx, by), bw x bh, into `values`.
-void render_block(const Job &job, uint32_t bx, uint32_t by, uint32_t bw, uint32_t bh,
-                  std::vector<int32_t> &values, std::vector<unsigned char> &scratch) {
+// Memory mapped but not touched: it is not zeroed first, and each worker faults in the pages it writes;
+// on Linux with transparent huge pages, in 2 MB pages (faults of 4 KB pages cost here about as much as
+// computing the noise in them). For the output image and the workers' scratch.
+class MappedMemory {
+  public:
+    explicit MappedMemory(size_t bytes) : bytes_(std::max<size_t>(bytes, 1)) {
+        void *mapped = mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (mapped == MAP_FAILED) throw std::runtime_error("out of memory");
+#ifdef MADV_HUGEPAGE
+        madvise(mapped, bytes_, MADV_HUGEPAGE); // advice only: failing it changes nothing
+#endif
+        memory_ = mapped;
+    }
+    ~MappedMemory() { munmap(memory_, bytes_); }
+    MappedMemory(const MappedMemory &) = delete;
+    MappedMemory &operator=(const MappedMemory &) = delete;
+    void *data() const { return memory_; }
+    size_t size() const { return bytes_; }
+
+  private:
+    size_t bytes_;
+    void *memory_ = nullptr;
+};
+
+// A worker's scratch: mapped once at the size the first strip needs, remapped only to grow.
+class Scratch {
+  public:
+    void *reserve(size_t bytes) {
+        if (!memory_ || memory_->size() < bytes) memory_.reset(new MappedMemory(bytes));
+        return memory_->data();
+    }
+
+  private:
+    std::unique_ptr<MappedMemory> memory_;
+};
+
+// The runtime's calls for each output type: the values come converted from the runtime (the same
+// values as dsn_fixed_to_u8 / dsn_fixed_to_float of the fixed ones), written straight into the image.
+int lattice_tile(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                 uint8_t *out, void *scratch, size_t scratch_size) {
+    return dsn_lattice_tile_u8(noise, x0, y0, width, height, out, scratch, scratch_size);
+}
+int lattice_tile(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height, float *out,
+                 void *scratch, size_t scratch_size) {
+    return dsn_lattice_tile_float(noise, x0, y0, width, height, out, scratch, scratch_size);
+}
+void lattice_point(const dsn_noise *noise, int32_t x, int32_t y, uint8_t *out) {
+    dsn_lattice_point_u8(noise, x, y, out);
+}
+void lattice_point(const dsn_noise *noise, int32_t x, int32_t y, float *out) {
+    dsn_lattice_point_float(noise, x, y, out);
+}
+int continuous_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                    uint8_t *out, void *scratch, size_t scratch_size) {
+    return dsn_continuous_tile_u8(noise, grid, width, height, out, scratch, scratch_size);
+}
+int continuous_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, float *out,
+                    void *scratch, size_t scratch_size) {
+    return dsn_continuous_tile_float(noise, grid, width, height, out, scratch, scratch_size);
+}
+
+// Rows first_row .. first_row + rows - 1 of the image, whole rows, into `out` (their place in the image:
+// a strip of whole rows is contiguous there, so the runtime writes the final pixels with no copy).
+template <typename Pixel>
+void render_strip(const Job &job, uint32_t first_row, uint32_t rows, Pixel *out, Scratch &scratch) {
     int err = DSN_OK;
     if (job.mode == Mode::tile) {
-        int32_t x0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_x0) + bx);
-        int32_t y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + by);
-        scratch.resize(dsn_lattice_tile_scratch_size(job.noise, bw, bh));
-        err =
-            dsn_lattice_tile_fixed(job.noise, x0, y0, bw, bh, values.data(), scratch.data(), scratch.size());
+        int32_t y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + first_row);
+        const size_t size = dsn_lattice_tile_scratch_size(job.noise, job.width, rows);
+        err = lattice_tile(job.noise, job.lattice_x0, y0, job.width, rows, out, scratch.reserve(size), size);
     } else if (job.mode == Mode::point) {
-        for (uint32_t j = 0; j < bh; j++)
-            for (uint32_t i = 0; i < bw; i++) {
-                int32_t x = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_x0) + bx + i);
-                int32_t y = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + by + j);
-                dsn_lattice_point_fixed(job.noise, x, y, &values[(j * bw + i) * job.channels]);
+        for (uint32_t j = 0; j < rows; j++)
+            for (uint32_t i = 0; i < job.width; i++) {
+                int32_t x = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_x0) + i);
+                int32_t y = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + first_row + j);
+                lattice_point(job.noise, x, y, out + (static_cast<size_t>(j) * job.width + i) * job.channels);
             }
     } else {
-        // The block's own grid: the whole grid's origin moved by (bx, by) steps, in modulo-2^64 arithmetic.
+        // The strip's own grid: the whole grid's origin moved by first_row rows, modulo 2^64.
         dsn_grid grid = job.grid;
-        auto advance = [](int64_t origin, int64_t step, uint32_t count) {
-            return static_cast<int64_t>(static_cast<uint64_t>(origin) + static_cast<uint64_t>(step) * count);
-        };
-        grid.origin_x = advance(advance(grid.origin_x, grid.column_step_x, bx), grid.row_step_x, by);
-        grid.origin_y = advance(advance(grid.origin_y, grid.column_step_y, bx), grid.row_step_y, by);
-        scratch.resize(dsn_continuous_tile_scratch_size(job.noise, &grid, bw, bh));
-        err = dsn_continuous_tile_fixed(job.noise, &grid, bw, bh, values.data(), scratch.data(),
-                                        scratch.size());
+        grid.origin_x = static_cast<int64_t>(static_cast<uint64_t>(grid.origin_x) +
+                                             static_cast<uint64_t>(grid.row_step_x) * first_row);
+        grid.origin_y = static_cast<int64_t>(static_cast<uint64_t>(grid.origin_y) +
+                                             static_cast<uint64_t>(grid.row_step_y) * first_row);
+        const size_t size = dsn_continuous_tile_scratch_size(job.noise, &grid, job.width, rows);
+        err = continuous_tile(job.noise, &grid, job.width, rows, out, scratch.reserve(size), size);
     }
     if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
+}
+
+// Rows per strip: about 2^18 pixels (the runtime's tiles cut themselves into 128 x 128 rectangles, so
+// 128 rows of a 2048-pixel image are whole rectangles), fewer when that leaves under 8 strips per thread
+// (the strips are shared out as the threads finish, and progress counts them).
+uint32_t strip_rows_for(uint32_t width, uint32_t height, unsigned thread_count) {
+    uint32_t rows = std::max(1u, std::min(128u, (1u << 18) / width));
+    while (rows > 16 && (height + rows - 1) / rows < 8u * thread_count) rows /= 2;
+    return std::min(rows, height);
 }
 
 // How progress is shown: none, one line redrawn per percent (a terminal), or at most one line per 10%
 // (a log file or pipe, where redrawn lines would pile up).
 enum class Progress { none, redrawn, lines };
 
-// Renders the whole window into `pixels` (u8 or float, made by `convert`) with `thread_count` workers.
+// Renders the whole image into `pixels` (u8 or float) with `thread_count` workers, every mode alike:
+// the workers take the strips in turn, each strip one runtime call (or one loop of per-point calls).
 template <typename Pixel>
-void render(const Job &job, unsigned thread_count, Progress progress, std::vector<Pixel> &pixels,
-            Pixel (*convert)(int32_t)) {
-    const uint32_t blocks_x = (job.width + job.block - 1) / job.block;
-    const uint32_t blocks_y = (job.height + job.block - 1) / job.block;
-    const uint32_t block_count = blocks_x * blocks_y;
-    std::atomic<uint32_t> next_block(0), done_blocks(0);
+void render(const Job &job, unsigned thread_count, Progress progress, Pixel *pixels) {
+    const uint32_t strip_count = (job.height + job.strip_rows - 1) / job.strip_rows;
+    std::atomic<uint32_t> next_strip(0), done_strips(0);
     std::mutex report_lock;
     std::string failure;
     const uint32_t percent_step = progress == Progress::lines ? 10 : 1;
     uint32_t percent_shown = 0; // guarded by report_lock
     auto worker = [&]() {
-        std::vector<int32_t> values(static_cast<size_t>(job.block) * job.block * job.channels);
-        std::vector<unsigned char> scratch;
-        for (uint32_t index; (index = next_block++) < block_count;) {
-            const uint32_t bx = index % blocks_x * job.block, by = index / blocks_x * job.block;
-            const uint32_t bw = std::min(job.block, job.width - bx),
-                           bh = std::min(job.block, job.height - by);
+        Scratch scratch;
+        for (uint32_t index; (index = next_strip++) < strip_count;) {
+            const uint32_t first_row = index * job.strip_rows;
+            const uint32_t rows = std::min(job.strip_rows, job.height - first_row);
             try {
-                render_block(job, bx, by, bw, bh, values, scratch);
+                render_strip(job, first_row, rows,
+                             pixels + static_cast<size_t>(first_row) * job.width * job.channels, scratch);
             } catch (const std::exception &error) {
                 std::lock_guard<std::mutex> guard(report_lock);
                 failure = error.what();
-                next_block = block_count;
+                next_strip = strip_count;
                 return;
             }
-            for (uint32_t j = 0; j < bh; j++) {
-                Pixel *row = &pixels[((static_cast<size_t>(by) + j) * job.width + bx) * job.channels];
-                const int32_t *source = &values[static_cast<size_t>(j) * bw * job.channels];
-                for (uint32_t k = 0; k < bw * job.channels; k++) row[k] = convert(source[k]);
-            }
-            uint32_t done = ++done_blocks;
-            const uint32_t percent = static_cast<uint32_t>(uint64_t(done) * 100 / block_count);
+            uint32_t done = ++done_strips;
+            const uint32_t percent = static_cast<uint32_t>(uint64_t(done) * 100 / strip_count);
             if (progress != Progress::none) {
                 std::lock_guard<std::mutex> guard(report_lock);
                 if (percent / percent_step > percent_shown / percent_step) {
@@ -300,16 +362,16 @@ void render(const Job &job, unsigned thread_count, Progress progress, std::vecto
     if (!failure.empty()) throw std::runtime_error(failure);
 }
 
-std::vector<unsigned char> encode_png(const std::vector<uint8_t> &pixels, uint32_t width, uint32_t height,
+std::vector<unsigned char> encode_png(const uint8_t *pixels, uint32_t width, uint32_t height,
                                       uint32_t channels) {
     return dsn::encode_png(static_cast<int>(width), static_cast<int>(height), static_cast<int>(channels),
-                           pixels.data());
+                           pixels);
 }
 
 // Raw little-endian float32, whatever the host's byte order.
-std::vector<unsigned char> encode_f32(const std::vector<float> &values) {
-    std::vector<unsigned char> bytes(values.size() * 4);
-    for (size_t i = 0; i < values.size(); i++) {
+std::vector<unsigned char> encode_f32(const float *values, size_t count) {
+    std::vector<unsigned char> bytes(count * 4);
+    for (size_t i = 0; i < count; i++) {
         uint32_t bits;
         std::memcpy(&bits, &values[i], 4);
         dsn_write_u32le(&bytes[i * 4], bits);
@@ -337,7 +399,7 @@ void run(const Options &options) {
                                  " (bake it with dsn-bake --interpolation bilinear, or render it anyway "
                                  "with --allow-lattice)");
 
-    Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 128};
+    Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 0};
     if (options.mode == Mode::continuous)
         job.grid = continuous_grid(options);
     else
@@ -346,6 +408,7 @@ void run(const Options &options) {
 
     const size_t value_count = static_cast<size_t>(options.width) * options.height * asset.channels;
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    job.strip_rows = strip_rows_for(options.width, options.height, threads);
     // Only a large render takes long enough to need progress.
     const bool large = static_cast<uint64_t>(options.width) * options.height >= (1u << 22);
     const Progress progress = options.quiet || !large      ? Progress::none
@@ -358,15 +421,16 @@ void run(const Options &options) {
     double seconds = 0;
     std::vector<unsigned char> file_bytes;
     if (ends_with(options.output_path, ".png")) {
-        std::vector<uint8_t> pixels(value_count);
-        render<uint8_t>(job, threads, progress, pixels, dsn_fixed_to_u8);
+        MappedMemory pixels(value_count);
+        render(job, threads, progress, static_cast<uint8_t *>(pixels.data()));
         seconds = elapsed();
-        file_bytes = encode_png(pixels, options.width, options.height, asset.channels);
+        file_bytes = encode_png(static_cast<const uint8_t *>(pixels.data()), options.width, options.height,
+                                asset.channels);
     } else {
-        std::vector<float> pixels(value_count);
-        render<float>(job, threads, progress, pixels, dsn_fixed_to_float);
+        MappedMemory pixels(value_count * sizeof(float));
+        render(job, threads, progress, static_cast<float *>(pixels.data()));
         seconds = elapsed();
-        file_bytes = encode_f32(pixels);
+        file_bytes = encode_f32(static_cast<const float *>(pixels.data()), value_count);
     }
     dsn::write_file_atomically(options.output_path, file_bytes);
     if (!options.quiet)
