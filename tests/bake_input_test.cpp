@@ -85,3 +85,154 @@ TEST_CASE("load_exemplar refuses bad files with a message naming the problem") {
     CHECK(truncated.find('\n') == std::string::npos);
     std::filesystem::remove_all(folder);
 }
+
+namespace {
+
+std::string decode_error(const std::vector<unsigned char> &bytes, std::vector<std::string> *warnings = nullptr) {
+    try {
+        dsn::decode_exemplar(bytes.data(), bytes.size(), "input", warnings);
+    } catch (const std::runtime_error &error) {
+        return error.what();
+    }
+    return "";
+}
+
+std::vector<unsigned char> bytes_of(const std::string &text) {
+    return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+// A binary PGM/PPM: header, then the samples (1 byte each up to maxval 255, else 2 bytes big-endian).
+std::vector<unsigned char> pnm(char kind, int width, int height, unsigned maximum,
+                               const std::vector<unsigned> &samples) {
+    std::vector<unsigned char> bytes = bytes_of(std::string("P") + kind + "\n# made by the test\n" +
+                                                std::to_string(width) + " " + std::to_string(height) + "\n" +
+                                                std::to_string(maximum) + "\n");
+    for (unsigned sample : samples) {
+        if (maximum > 255) bytes.push_back((unsigned char)(sample >> 8));
+        bytes.push_back((unsigned char)(sample & 0xFFu));
+    }
+    return bytes;
+}
+
+// A PNG chunk (CRC left 0: stb_image does not check it).
+void append_chunk(std::vector<unsigned char> &png, const char *type, const std::vector<unsigned char> &data) {
+    for (int shift = 24; shift >= 0; shift -= 8) png.push_back((unsigned char)(data.size() >> shift));
+    png.insert(png.end(), type, type + 4);
+    png.insert(png.end(), data.begin(), data.end());
+    png.insert(png.end(), 4, 0);
+}
+
+// A 64x64 grey PNG whose zlib stream inflates to about `expanded` bytes: one literal 0, then matches of
+// length 258 at distance 1 (a fixed-Huffman block: 13 bits per 258 bytes).
+std::vector<unsigned char> deflate_bomb_png(size_t expanded) {
+    std::vector<unsigned char> stream = {0x78, 0x01};
+    uint32_t bits = 0;
+    int count = 0;
+    auto put = [&](uint32_t value, int length) { // LSB first
+        bits |= value << count;
+        count += length;
+        while (count >= 8) {
+            stream.push_back((unsigned char)(bits & 0xFF));
+            bits >>= 8;
+            count -= 8;
+        }
+    };
+    auto put_code = [&](uint32_t code, int length) { // Huffman codes go MSB first
+        for (int i = length - 1; i >= 0; i--) put((code >> i) & 1u, 1);
+    };
+    put(1, 1); // final block
+    put(1, 2); // fixed Huffman
+    put_code(0x30, 8); // literal 0
+    size_t done = 1;
+    for (; done + 258 <= expanded; done += 258) {
+        put_code(0xC5, 8); // length code 285: 258
+        put_code(0, 5);    // distance code 0: 1
+    }
+    for (; done < expanded; done++) put_code(0x30, 8);
+    put_code(0, 7); // end of block
+    put(0, 7);
+    std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    append_chunk(png, "IHDR", {0, 0, 0, 64, 0, 0, 0, 64, 8, 0, 0, 0, 0});
+    append_chunk(png, "IDAT", stream);
+    append_chunk(png, "IEND", {});
+    return png;
+}
+
+} // namespace
+
+TEST_CASE("decode_exemplar reads binary PGM and PPM by their own maxval and refuses truncated ones") {
+    for (unsigned maximum : {1u, 15u, 255u, 4095u, 65535u}) {
+        CAPTURE(maximum);
+        std::vector<unsigned> samples;
+        for (unsigned i = 0; i < 6 * 4 * 3; i++) samples.push_back(i * 7919u % (maximum + 1));
+        const dsn::Image grey = dsn::decode_exemplar(pnm('5', 6, 4, maximum, {samples.begin(), samples.begin() + 24}).data(),
+                                                     pnm('5', 6, 4, maximum, {samples.begin(), samples.begin() + 24}).size(),
+                                                     "grey", nullptr);
+        REQUIRE(grey.channels == 1);
+        for (int y = 0; y < 4; y++)
+            for (int x = 0; x < 6; x++) CHECK(grey.at(x, y, 0) == double(samples[size_t(y * 6 + x)]) / maximum);
+        const std::vector<unsigned char> ppm = pnm('6', 6, 4, maximum, samples);
+        const dsn::Image rgb = dsn::decode_exemplar(ppm.data(), ppm.size(), "rgb", nullptr);
+        REQUIRE(rgb.channels == 3);
+        for (int y = 0; y < 4; y++)
+            for (int x = 0; x < 6; x++)
+                for (int c = 0; c < 3; c++)
+                    CHECK(rgb.at(x, y, c) == double(samples[size_t((y * 6 + x) * 3 + c)]) / maximum);
+        // Every length short of the whole is refused, never read past its end.
+        for (size_t cut = 3; cut < ppm.size(); cut += 7) {
+            CAPTURE(cut);
+            const std::string error = decode_error(std::vector<unsigned char>(ppm.begin(), ppm.begin() + long(cut)));
+            CHECK(error.find("truncated") != std::string::npos);
+        }
+    }
+    // 64x64 RGB with 6000 of its 12288 bytes: refused, naming how much is there.
+    std::vector<unsigned char> short_ppm = pnm('6', 64, 64, 255, std::vector<unsigned>(64 * 64 * 3, 9));
+    short_ppm.resize(short_ppm.size() - (12288 - 6000));
+    CHECK(decode_error(short_ppm).find("truncated PPM: 6000 of the 12288 bytes") != std::string::npos);
+    CHECK(decode_error(pnm('5', 2, 2, 15, {1, 2, 16, 3})).find("sample 16 is above the maxval 15") !=
+          std::string::npos);
+    CHECK(decode_error(pnm('5', 2, 2, 0, {0, 0, 0, 0})).find("maxval 0") != std::string::npos);
+    CHECK(decode_error(pnm('5', 2, 2, 70000, {0, 0, 0, 0})).find("maxval 70000") != std::string::npos);
+}
+
+TEST_CASE("decode_exemplar refuses the formats it does not read by name, before decoding anything") {
+    const std::string hdr = std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 64\n") + "\002\002\000\100";
+    CHECK(decode_error(bytes_of(hdr)).find("Radiance HDR images are not accepted") != std::string::npos);
+    CHECK(decode_error(bytes_of("BM\066\0\0\0\0\0\0\0\066\0\0\0")).find("BMP images are not accepted") !=
+          std::string::npos);
+    CHECK(decode_error(bytes_of("GIF89a\4\0\4\0")).find("GIF images are not accepted") != std::string::npos);
+    CHECK(decode_error(bytes_of("8BPS\0\1")).find("PSD images are not accepted") != std::string::npos);
+    CHECK(decode_error(bytes_of("P2\n2 2\n255\n1 2 3 4\n")).find("P1-P4") != std::string::npos);
+    // A TGA has no signature: it is not a readable image, and the message lists what is.
+    const std::vector<unsigned char> tga = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 4, 0, 24, 0, 1, 2, 3};
+    CHECK(decode_error(tga).find("not PNG, JPEG or binary PGM/PPM") != std::string::npos);
+}
+
+TEST_CASE("decode_exemplar bounds a PNG's decompression by its declared size") {
+    // 64x64 grey needs 4160 bytes; this stream inflates to 64 MiB.
+    const std::vector<unsigned char> bomb = deflate_bomb_png(size_t(64) << 20);
+    CHECK(bomb.size() < 500000);
+    CHECK(decode_error(bomb).find("expands beyond what a 64x64 image needs") != std::string::npos);
+    // The same construction, expanding to exactly the rows it needs, decodes.
+    const dsn::Image image = dsn::decode_exemplar(deflate_bomb_png(64 * 65).data(), deflate_bomb_png(64 * 65).size(), "fits", nullptr);
+    CHECK(image.width == 64);
+}
+
+TEST_CASE("decode_exemplar's messages name the real problem") {
+    std::vector<unsigned> samples(30 * 30 * 4, 255);
+    for (size_t i = 0; i < samples.size(); i += 4) samples[i] = unsigned(i * 31 % 256);
+    std::vector<std::string> warnings;
+    // An opaque alpha channel loses nothing when dropped: no warning.
+    dsn::decode_exemplar(encode_png(30, 30, 8, 6, samples).data(), encode_png(30, 30, 8, 6, samples).size(), "opaque",
+                         &warnings);
+    CHECK(warnings.empty());
+    // A PNG declaring 30000 x 30000 is refused as too large (not as an unknown type).
+    std::vector<unsigned char> huge = encode_png(1, 1, 8, 0, {0});
+    huge[16 + 2] = 0x75, huge[16 + 3] = 0x30, huge[20 + 2] = 0x75, huge[20 + 3] = 0x30;
+    CHECK(decode_error(huge).find("30000x30000, larger than the limit of 2048") != std::string::npos);
+    // A truncated JPEG is called a JPEG.
+    const unsigned char jpeg_start[] = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x10, 'J', 'F', 'I', 'F', 0, 1, 1, 0, 0, 1, 0, 1, 0, 0};
+    const std::string jpeg_error = decode_error(std::vector<unsigned char>(std::begin(jpeg_start), std::end(jpeg_start)));
+    CHECK(jpeg_error.find("JPEG") != std::string::npos);
+    CHECK(jpeg_error.find("png") == std::string::npos);
+}
