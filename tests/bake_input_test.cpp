@@ -7,6 +7,8 @@
 #include "dsn/bake.h"
 #include "fixtures/bake_fixtures.h"
 
+#include <stb_image_write.h>
+
 using namespace bake_fixtures;
 
 namespace {
@@ -235,4 +237,55 @@ TEST_CASE("decode_exemplar's messages name the real problem") {
     const std::string jpeg_error = decode_error(std::vector<unsigned char>(std::begin(jpeg_start), std::end(jpeg_start)));
     CHECK(jpeg_error.find("JPEG") != std::string::npos);
     CHECK(jpeg_error.find("png") == std::string::npos);
+}
+
+namespace {
+
+void append_bytes(void *context, void *data, int size) {
+    auto *bytes = static_cast<std::vector<unsigned char> *>(context);
+    bytes->insert(bytes->end(), static_cast<unsigned char *>(data), static_cast<unsigned char *>(data) + size);
+}
+
+} // namespace
+
+// Run under valgrind by tests/scripts/image-input-valgrind: every prefix of a file of each accepted format
+// is either refused or decoded from initialised bytes only (the sum below branches on every value).
+TEST_CASE("decode_exemplar on every truncation of a PNG, JPEG, PGM and PPM") {
+    const int width = 24, height = 20;
+    std::vector<unsigned> grey, rgb;
+    std::vector<unsigned char> rgb_bytes;
+    for (int i = 0; i < width * height; i++) grey.push_back(unsigned(i * 37 % 256));
+    for (int i = 0; i < width * height * 3; i++) {
+        rgb.push_back(unsigned(i * 53 % 4096));
+        rgb_bytes.push_back((unsigned char)(i * 53 % 256));
+    }
+    std::vector<unsigned char> jpeg;
+    REQUIRE(stbi_write_jpg_to_func(append_bytes, &jpeg, width, height, 3, rgb_bytes.data(), 90) != 0);
+    const std::vector<std::pair<const char *, std::vector<unsigned char>>> files = {
+        {"png", encode_png(width, height, 8, 0, grey)},
+        {"png16", encode_png(width, height, 16, 2, rgb)},
+        {"jpeg", jpeg},
+        {"pgm", pnm('5', width, height, 255, grey)},
+        {"ppm16", pnm('6', width, height, 4095, rgb)},
+    };
+    const auto sum_of = [](const dsn::Image &image) { // branches on every value: valgrind sees each
+        double sum = 0;
+        for (double value : image.values) sum += value > 0.5 ? value : -value;
+        return sum;
+    };
+    for (const auto &file : files) {
+        CAPTURE(file.first);
+        for (size_t cut = 0; cut < file.second.size(); cut += cut < 64 ? 1 : 5) {
+            const std::vector<unsigned char> prefix(file.second.begin(), file.second.begin() + long(cut));
+            double sum = 0;
+            try {
+                sum = sum_of(dsn::decode_exemplar(prefix.data(), prefix.size(), "cut", nullptr));
+            } catch (const std::runtime_error &) {
+            }
+            CHECK(sum > -1e9);
+        }
+        const dsn::Image whole = dsn::decode_exemplar(file.second.data(), file.second.size(), "whole", nullptr);
+        CHECK(whole.width == width);
+        CHECK(sum_of(whole) > -1e9);
+    }
 }
