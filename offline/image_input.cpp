@@ -112,12 +112,16 @@ Format detect_format(const unsigned char *bytes, size_t size, const std::string 
     if (starts_with(bytes, size, "\xff\xd8\xff", 3)) return Format::jpeg;
     if (starts_with(bytes, size, "P5", 2) || starts_with(bytes, size, "P6", 2)) return Format::pnm;
     const char *refused = nullptr;
-    if (starts_with(bytes, size, "BM", 2)) refused = "BMP";
-    else if (starts_with(bytes, size, "GIF8", 4)) refused = "GIF";
-    else if (starts_with(bytes, size, "8BPS", 4)) refused = "PSD";
+    if (starts_with(bytes, size, "BM", 2))
+        refused = "BMP";
+    else if (starts_with(bytes, size, "GIF8", 4))
+        refused = "GIF";
+    else if (starts_with(bytes, size, "8BPS", 4))
+        refused = "PSD";
     else if (starts_with(bytes, size, "#?RADIANCE", 10) || starts_with(bytes, size, "#?RGBE", 6))
         refused = "Radiance HDR";
-    else if (starts_with(bytes, size, "\x53\x80\xf6\x34", 4)) refused = "Softimage PIC";
+    else if (starts_with(bytes, size, "\x53\x80\xf6\x34", 4))
+        refused = "Softimage PIC";
     else if (size >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '4')
         refused = "plain-text or 1-bit PNM (P1-P4)";
     else if (starts_with(bytes, size, "RIFF", 4) && size >= 12 && std::memcmp(bytes + 8, "WEBP", 4) == 0)
@@ -190,15 +194,15 @@ Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, co
     allocation_limit = size_t(1) << 20;
     allocation_refused = false;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &stored_channels))
-        fail(name, std::string("truncated or corrupt ") + format_name + " header (" + stbi_failure_reason() +
-                       ")");
+        fail(name,
+             std::string("truncated or corrupt ") + format_name + " header (" + stbi_failure_reason() + ")");
     check_size(name, uint64_t(width), uint64_t(height));
     allocation_limit = allocation_bound(uint64_t(width), uint64_t(height), size);
     allocation_refused = false;
     const bool sixteen_bits = stbi_is_16_bit_from_memory(bytes, length) != 0;
     std::unique_ptr<void, StbFree> pixels(
-        sixteen_bits ? static_cast<void *>(stbi_load_16_from_memory(bytes, length, &width, &height,
-                                                                    &stored_channels, 0))
+        sixteen_bits ? static_cast<void *>(
+                           stbi_load_16_from_memory(bytes, length, &width, &height, &stored_channels, 0))
                      : static_cast<void *>(
                            stbi_load_from_memory(bytes, length, &width, &height, &stored_channels, 0)));
     const bool refused = allocation_refused;
@@ -251,7 +255,8 @@ Image decode_pnm(const unsigned char *bytes, size_t size, const std::string &nam
     at++; // the single whitespace byte before the samples
     check_size(name, width, height);
     if (maximum < 1 || maximum > 65535)
-        fail(name, std::string(format_name) + " maxval " + std::to_string(maximum) + " is not within 1..65535");
+        fail(name,
+             std::string(format_name) + " maxval " + std::to_string(maximum) + " is not within 1..65535");
     const size_t sample_bytes = maximum > 255 ? 2 : 1;
     const size_t count = size_t(width * height) * size_t(stored_channels);
     const size_t needed = count * sample_bytes;

@@ -90,7 +90,8 @@ TEST_CASE("load_exemplar refuses bad files with a message naming the problem") {
 
 namespace {
 
-std::string decode_error(const std::vector<unsigned char> &bytes, std::vector<std::string> *warnings = nullptr) {
+std::string decode_error(const std::vector<unsigned char> &bytes,
+                         std::vector<std::string> *warnings = nullptr) {
     try {
         dsn::decode_exemplar(bytes.data(), bytes.size(), "input", warnings);
     } catch (const std::runtime_error &error) {
@@ -106,9 +107,9 @@ std::vector<unsigned char> bytes_of(const std::string &text) {
 // A binary PGM/PPM: header, then the samples (1 byte each up to maxval 255, else 2 bytes big-endian).
 std::vector<unsigned char> pnm(char kind, int width, int height, unsigned maximum,
                                const std::vector<unsigned> &samples) {
-    std::vector<unsigned char> bytes = bytes_of(std::string("P") + kind + "\n# made by the test\n" +
-                                                std::to_string(width) + " " + std::to_string(height) + "\n" +
-                                                std::to_string(maximum) + "\n");
+    std::vector<unsigned char> bytes =
+        bytes_of(std::string("P") + kind + "\n# made by the test\n" + std::to_string(width) + " " +
+                 std::to_string(height) + "\n" + std::to_string(maximum) + "\n");
     for (unsigned sample : samples) {
         if (maximum > 255) bytes.push_back((unsigned char)(sample >> 8));
         bytes.push_back((unsigned char)(sample & 0xFFu));
@@ -142,8 +143,8 @@ std::vector<unsigned char> deflate_bomb_png(size_t expanded) {
     auto put_code = [&](uint32_t code, int length) { // Huffman codes go MSB first
         for (int i = length - 1; i >= 0; i--) put((code >> i) & 1u, 1);
     };
-    put(1, 1); // final block
-    put(1, 2); // fixed Huffman
+    put(1, 1);         // final block
+    put(1, 2);         // fixed Huffman
     put_code(0x30, 8); // literal 0
     size_t done = 1;
     for (; done + 258 <= expanded; done += 258) {
@@ -167,12 +168,13 @@ TEST_CASE("decode_exemplar reads binary PGM and PPM by their own maxval and refu
         CAPTURE(maximum);
         std::vector<unsigned> samples;
         for (unsigned i = 0; i < 6 * 4 * 3; i++) samples.push_back(i * 7919u % (maximum + 1));
-        const dsn::Image grey = dsn::decode_exemplar(pnm('5', 6, 4, maximum, {samples.begin(), samples.begin() + 24}).data(),
-                                                     pnm('5', 6, 4, maximum, {samples.begin(), samples.begin() + 24}).size(),
-                                                     "grey", nullptr);
+        const dsn::Image grey = dsn::decode_exemplar(
+            pnm('5', 6, 4, maximum, {samples.begin(), samples.begin() + 24}).data(),
+            pnm('5', 6, 4, maximum, {samples.begin(), samples.begin() + 24}).size(), "grey", nullptr);
         REQUIRE(grey.channels == 1);
         for (int y = 0; y < 4; y++)
-            for (int x = 0; x < 6; x++) CHECK(grey.at(x, y, 0) == double(samples[size_t(y * 6 + x)]) / maximum);
+            for (int x = 0; x < 6; x++)
+                CHECK(grey.at(x, y, 0) == double(samples[size_t(y * 6 + x)]) / maximum);
         const std::vector<unsigned char> ppm = pnm('6', 6, 4, maximum, samples);
         const dsn::Image rgb = dsn::decode_exemplar(ppm.data(), ppm.size(), "rgb", nullptr);
         REQUIRE(rgb.channels == 3);
@@ -183,7 +185,8 @@ TEST_CASE("decode_exemplar reads binary PGM and PPM by their own maxval and refu
         // Every length short of the whole is refused, never read past its end.
         for (size_t cut = 3; cut < ppm.size(); cut += 7) {
             CAPTURE(cut);
-            const std::string error = decode_error(std::vector<unsigned char>(ppm.begin(), ppm.begin() + long(cut)));
+            const std::string error =
+                decode_error(std::vector<unsigned char>(ppm.begin(), ppm.begin() + long(cut)));
             CHECK(error.find("truncated") != std::string::npos);
         }
     }
@@ -198,7 +201,8 @@ TEST_CASE("decode_exemplar reads binary PGM and PPM by their own maxval and refu
 }
 
 TEST_CASE("decode_exemplar refuses the formats it does not read by name, before decoding anything") {
-    const std::string hdr = std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 64\n") + "\002\002\000\100";
+    const std::string hdr =
+        std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 64\n") + "\002\002\000\100";
     CHECK(decode_error(bytes_of(hdr)).find("Radiance HDR images are not accepted") != std::string::npos);
     CHECK(decode_error(bytes_of("BM\066\0\0\0\0\0\0\0\066\0\0\0")).find("BMP images are not accepted") !=
           std::string::npos);
@@ -216,7 +220,8 @@ TEST_CASE("decode_exemplar bounds a PNG's decompression by its declared size") {
     CHECK(bomb.size() < 500000);
     CHECK(decode_error(bomb).find("expands beyond what a 64x64 image needs") != std::string::npos);
     // The same construction, expanding to exactly the rows it needs, decodes.
-    const dsn::Image image = dsn::decode_exemplar(deflate_bomb_png(64 * 65).data(), deflate_bomb_png(64 * 65).size(), "fits", nullptr);
+    const dsn::Image image = dsn::decode_exemplar(deflate_bomb_png(64 * 65).data(),
+                                                  deflate_bomb_png(64 * 65).size(), "fits", nullptr);
     CHECK(image.width == 64);
 }
 
@@ -225,16 +230,18 @@ TEST_CASE("decode_exemplar's messages name the real problem") {
     for (size_t i = 0; i < samples.size(); i += 4) samples[i] = unsigned(i * 31 % 256);
     std::vector<std::string> warnings;
     // An opaque alpha channel loses nothing when dropped: no warning.
-    dsn::decode_exemplar(encode_png(30, 30, 8, 6, samples).data(), encode_png(30, 30, 8, 6, samples).size(), "opaque",
-                         &warnings);
+    dsn::decode_exemplar(encode_png(30, 30, 8, 6, samples).data(), encode_png(30, 30, 8, 6, samples).size(),
+                         "opaque", &warnings);
     CHECK(warnings.empty());
     // A PNG declaring 30000 x 30000 is refused as too large (not as an unknown type).
     std::vector<unsigned char> huge = encode_png(1, 1, 8, 0, {0});
     huge[16 + 2] = 0x75, huge[16 + 3] = 0x30, huge[20 + 2] = 0x75, huge[20 + 3] = 0x30;
     CHECK(decode_error(huge).find("30000x30000, larger than the limit of 2048") != std::string::npos);
     // A truncated JPEG is called a JPEG.
-    const unsigned char jpeg_start[] = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x10, 'J', 'F', 'I', 'F', 0, 1, 1, 0, 0, 1, 0, 1, 0, 0};
-    const std::string jpeg_error = decode_error(std::vector<unsigned char>(std::begin(jpeg_start), std::end(jpeg_start)));
+    const unsigned char jpeg_start[] = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x10, 'J', 'F', 'I', 'F',
+                                        0,    1,    1,    0,    0,    1,    0,   1,   0,   0};
+    const std::string jpeg_error =
+        decode_error(std::vector<unsigned char>(std::begin(jpeg_start), std::end(jpeg_start)));
     CHECK(jpeg_error.find("JPEG") != std::string::npos);
     CHECK(jpeg_error.find("png") == std::string::npos);
 }
@@ -243,7 +250,8 @@ namespace {
 
 void append_bytes(void *context, void *data, int size) {
     auto *bytes = static_cast<std::vector<unsigned char> *>(context);
-    bytes->insert(bytes->end(), static_cast<unsigned char *>(data), static_cast<unsigned char *>(data) + size);
+    bytes->insert(bytes->end(), static_cast<unsigned char *>(data),
+                  static_cast<unsigned char *>(data) + size);
 }
 
 } // namespace
@@ -284,7 +292,8 @@ TEST_CASE("decode_exemplar on every truncation of a PNG, JPEG, PGM and PPM") {
             }
             CHECK(sum > -1e9);
         }
-        const dsn::Image whole = dsn::decode_exemplar(file.second.data(), file.second.size(), "whole", nullptr);
+        const dsn::Image whole =
+            dsn::decode_exemplar(file.second.data(), file.second.size(), "whole", nullptr);
         CHECK(whole.width == width);
         CHECK(sum_of(whole) > -1e9);
     }

@@ -144,15 +144,16 @@ size_t utf8_sequence_length(const std::string &text, size_t at) {
     const auto byte = [&text](size_t i) { return i < text.size() ? (unsigned char)text[i] : 0u; };
     const unsigned lead = byte(at);
     if (lead < 0x80) return 1;
-    const size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
-                          : lead >= 0xF0 && lead <= 0xF4                                 ? 4
-                                                                                         : 0;
+    const size_t length = lead >= 0xC2 && lead <= 0xDF   ? 2
+                          : lead >= 0xE0 && lead <= 0xEF ? 3
+                          : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                         : 0;
     if (length == 0) return 0;
     for (size_t i = 1; i < length; i++)
         if ((byte(at + i) & 0xC0u) != 0x80u) return 0;
     const unsigned second = byte(at + 1);
-    if ((lead == 0xE0 && second < 0xA0) || (lead == 0xED && second > 0x9F) || (lead == 0xF0 && second < 0x90) ||
-        (lead == 0xF4 && second > 0x8F))
+    if ((lead == 0xE0 && second < 0xA0) || (lead == 0xED && second > 0x9F) ||
+        (lead == 0xF0 && second < 0x90) || (lead == 0xF4 && second > 0x8F))
         return 0;
     return length;
 }
@@ -246,9 +247,10 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     char crc[16];
     const size_t size = result.asset.size();
     std::snprintf(crc, sizeof crc, "\"%08x\"",
-                  size < 4 ? 0u
-                           : unsigned(result.asset[size - 4]) | unsigned(result.asset[size - 3]) << 8 |
-                                 unsigned(result.asset[size - 2]) << 16 | unsigned(result.asset[size - 1]) << 24);
+                  size < 4
+                      ? 0u
+                      : unsigned(result.asset[size - 4]) | unsigned(result.asset[size - 3]) << 8 |
+                            unsigned(result.asset[size - 2]) << 16 | unsigned(result.asset[size - 1]) << 24);
     field("asset_crc32", crc);
     field("seconds", json_number(seconds), true);
     return json + "}\n";

@@ -177,8 +177,9 @@ Options parse_options(dsn::CommandLine &command_line) {
         throw dsn::UsageError("the output must end in .png or .f32: " + options.output_path);
     if (!size_given) throw dsn::UsageError("no size given (--size WxH)");
     if (uint64_t(options.width) * options.height > kMaxRenderPixels)
-        throw dsn::UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
-                              " is more than the limit of " + std::to_string(kMaxRenderPixels) +
+        throw dsn::UsageError("--size " + std::to_string(options.width) + "x" +
+                              std::to_string(options.height) + " is more than the limit of " +
+                              std::to_string(kMaxRenderPixels) +
                               " pixels (8192x8192); render it as windows with --origin");
     if (dsn::same_file(options.asset_path, options.output_path))
         throw dsn::UsageError("output " + options.output_path + " is the input asset");

@@ -2,10 +2,10 @@
 #include "file_output.h"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <csignal>
 #include <memory>
 #include <stdexcept>
 #include <sys/stat.h>
