@@ -179,6 +179,45 @@ size_t allocation_bound(uint64_t width, uint64_t height, size_t file_size) {
     return size_t((pixels > file_size ? pixels : file_size) + (uint64_t(1) << 20));
 }
 
+// stb_image 2.27 builds a JPEG Huffman table from the 16 code counts of a DHT segment without checking
+// that they total at most 256: larger totals write past its tables. Every DHT segment is checked here
+// first, found as stb finds them: segments skipped by their length, entropy-coded data (after SOS) scanned
+// for the next marker, a byte past the end read as 0.
+bool jpeg_huffman_tables_fit(const unsigned char *bytes, size_t size) {
+    const auto byte = [bytes, size](size_t at) { return at < size ? unsigned(bytes[at]) : 0u; };
+    size_t at = 2; // after SOI
+    while (at + 1 < size) {
+        if (bytes[at] != 0xFF) {
+            at++;
+            continue;
+        }
+        const unsigned marker = bytes[at + 1];
+        if (marker == 0xFF) {
+            at++;
+            continue;
+        }
+        if (marker == 0x00 || (marker >= 0xD0 && marker <= 0xD8) || marker == 0x01) {
+            at += 2; // stuffed 0xFF, restart marker or a stray SOI: no segment follows
+            continue;
+        }
+        if (marker == 0xD9) return true; // EOI
+        const size_t length = byte(at + 2) << 8 | byte(at + 3);
+        if (marker == 0xC4) {
+            long remaining = long(length) - 2;
+            size_t table = at + 4;
+            while (remaining > 0) {
+                unsigned codes = 0;
+                for (size_t i = 0; i < 16; i++) codes += byte(table + 1 + i);
+                if (codes > 256) return false;
+                table += 17 + codes;
+                remaining -= long(17 + codes);
+            }
+        }
+        at += 2 + length;
+    }
+    return true;
+}
+
 Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, const std::string &name,
                       std::vector<std::string> *warnings) {
     const char *format_name = format == Format::png ? "PNG" : "JPEG";
@@ -191,6 +230,8 @@ Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, co
             fail(name, "truncated or corrupt PNG (no IHDR header)");
         check_size(name, big_endian_u32(bytes + 16), big_endian_u32(bytes + 20));
     }
+    if (format == Format::jpeg && !jpeg_huffman_tables_fit(bytes, size))
+        fail(name, "corrupt JPEG (a Huffman table with more than 256 codes)");
     allocation_limit = size_t(1) << 20;
     allocation_refused = false;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &stored_channels))

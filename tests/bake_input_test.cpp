@@ -298,3 +298,19 @@ TEST_CASE("decode_exemplar on every truncation of a PNG, JPEG, PGM and PPM") {
         CHECK(sum_of(whole) > -1e9);
     }
 }
+
+TEST_CASE("decode_exemplar refuses a JPEG Huffman table of more than 256 codes before stb_image builds it") {
+    std::vector<unsigned char> pixels(16 * 16 * 3);
+    for (size_t i = 0; i < pixels.size(); i++) pixels[i] = (unsigned char)(i * 29);
+    std::vector<unsigned char> jpeg;
+    REQUIRE(stbi_write_jpg_to_func(append_bytes, &jpeg, 16, 16, 3, pixels.data(), 90) != 0);
+    const dsn::Image image = dsn::decode_exemplar(jpeg.data(), jpeg.size(), "good", nullptr);
+    CHECK(image.channels == 3);
+    size_t table = 0;
+    for (size_t i = 2; i + 1 < jpeg.size() && table == 0; i++)
+        if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xC4) table = i + 5; // the first table's 16 counts
+    REQUIRE(table != 0);
+    // Counts totalling 16 x 255 codes: stb_image 2.27 would write them past its 257-entry tables.
+    for (size_t i = 0; i < 16; i++) jpeg[table + i] = 0xFF;
+    CHECK(decode_error(jpeg).find("Huffman table with more than 256 codes") != std::string::npos);
+}
