@@ -218,8 +218,39 @@ bool jpeg_huffman_tables_fit(const unsigned char *bytes, size_t size) {
     return true;
 }
 
+// stb_image 2.27 copies a PNG chunk of length 0 from a buffer it has not allocated yet (memcpy from
+// null, undefined even for 0 bytes) when that chunk is the first IDAT. Empty IDAT chunks carry nothing:
+// the copy returned, made only when there is one, leaves them out.
+std::vector<unsigned char> without_empty_idat_chunks(const unsigned char *bytes, size_t size) {
+    std::vector<unsigned char> kept;
+    size_t at = 8, copied = 0;
+    while (at + 12 <= size) {
+        const uint64_t length = big_endian_u32(bytes + at);
+        if (length == 0 && std::memcmp(bytes + at + 4, "IDAT", 4) == 0) {
+            kept.insert(kept.end(), bytes + copied, bytes + at);
+            copied = at + 12;
+        }
+        if (length > size - at - 12) break;
+        at += 12 + size_t(length);
+    }
+    if (copied == 0) return kept;
+    kept.insert(kept.end(), bytes + copied, bytes + size);
+    return kept;
+}
+
+// stb_image's reason for the last failure, as " (reason)", or nothing when it gave none.
+std::string reason() {
+    const char *text = stbi_failure_reason();
+    return text && *text ? std::string(" (") + text + ")" : std::string();
+}
+
 Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, const std::string &name,
                       std::vector<std::string> *warnings) {
+    std::vector<unsigned char> cleaned;
+    if (format == Format::png && !(cleaned = without_empty_idat_chunks(bytes, size)).empty()) {
+        bytes = cleaned.data();
+        size = cleaned.size();
+    }
     const char *format_name = format == Format::png ? "PNG" : "JPEG";
     const int length = int(size);
     int width = 0, height = 0, stored_channels = 0;
@@ -235,8 +266,7 @@ Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, co
     allocation_limit = size_t(1) << 20;
     allocation_refused = false;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &stored_channels))
-        fail(name,
-             std::string("truncated or corrupt ") + format_name + " header (" + stbi_failure_reason() + ")");
+        fail(name, std::string("truncated or corrupt ") + format_name + " header" + reason());
     check_size(name, uint64_t(width), uint64_t(height));
     allocation_limit = allocation_bound(uint64_t(width), uint64_t(height), size);
     allocation_refused = false;
@@ -253,8 +283,7 @@ Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, co
                        ": its compressed data expands beyond what a " + std::to_string(width) + "x" +
                        std::to_string(height) + " image needs");
     if (!pixels)
-        fail(name, std::string("cannot decode ") + format_name + ", truncated or corrupt (" +
-                       stbi_failure_reason() + ")");
+        fail(name, std::string("cannot decode ") + format_name + ", truncated or corrupt" + reason());
     if (sixteen_bits)
         return to_planar(static_cast<const stbi_us *>(pixels.get()), width, height, stored_channels, 65535.0,
                          name, warnings);

@@ -314,3 +314,16 @@ TEST_CASE("decode_exemplar refuses a JPEG Huffman table of more than 256 codes b
     for (size_t i = 0; i < 16; i++) jpeg[table + i] = 0xFF;
     CHECK(decode_error(jpeg).find("Huffman table with more than 256 codes") != std::string::npos);
 }
+
+TEST_CASE("decode_exemplar reads a PNG with an empty IDAT chunk first (stb_image copied it from null)") {
+    std::vector<unsigned> samples;
+    for (unsigned i = 0; i < 9 * 7; i++) samples.push_back(i * 13 % 256);
+    const std::vector<unsigned char> png = encode_png(9, 7, 8, 0, samples);
+    std::vector<unsigned char> with_empty(png.begin(), png.begin() + 33); // signature + IHDR
+    append_chunk(with_empty, "IDAT", {});
+    with_empty.insert(with_empty.end(), png.begin() + 33, png.end());
+    const dsn::Image plain = dsn::decode_exemplar(png.data(), png.size(), "plain", nullptr);
+    const dsn::Image image =
+        dsn::decode_exemplar(with_empty.data(), with_empty.size(), "empty IDAT", nullptr);
+    CHECK(image.values == plain.values);
+}
