@@ -15,8 +15,9 @@ CFLAGS ?= -O2 -g
 LDFLAGS ?=
 VERSION := $(shell sed -n 's/^#define DSN_VERSION_STRING "\(.*\)"/\1/p' include/dsn/dsn.h)
 
-# cmake: the install test builds a consumer with find_package(dsn).
-DEPS_PACKAGES := libkissfft-dev libstb-dev doctest-dev pkg-config cmake
+# cmake: the install test builds a consumer with find_package(dsn); time and valgrind: the peak memory
+# and uninitialised-read checks of the tools' tests.
+DEPS_PACKAGES := libkissfft-dev libstb-dev doctest-dev pkg-config cmake time valgrind
 
 WARNINGS := -Wall -Wextra -Werror -Wshadow
 COMMON_FLAGS := -ffp-contract=off -Iinclude -MMD -MP

@@ -72,9 +72,11 @@ constexpr int kMaxExemplarSide = 2048;
 // The largest image file accepted (checked before reading it).
 constexpr uint64_t kMaxExemplarFileBytes = uint64_t(256) << 20;
 
-// Reads any image stb_image reads (8- and 16-bit PNG, JPEG, BMP, ...): grey stays one channel, grey+alpha
-// becomes grey, RGB(A) becomes RGB; dropping alpha appends a warning to `warnings` (may be null). The size
-// is checked with stbi_info before decoding. Throws std::runtime_error naming the problem.
+// Reads 8- and 16-bit PNG, JPEG and binary PGM/PPM (any maxval); other formats are refused by name. Grey
+// stays one channel, grey+alpha becomes grey, RGB(A) becomes RGB; dropping an alpha channel that is not
+// opaque appends a warning to `warnings` (may be null). The size is checked from the header before
+// decoding, and decoding never allocates more than that size needs. Throws std::runtime_error naming the
+// problem (truncated file, corrupt data, size beyond the limit).
 Image load_exemplar(const std::string &path, std::vector<std::string> *warnings);
 
 // The same from an image file's bytes in memory; `name` prefixes the error messages. load_exemplar reads

@@ -84,10 +84,28 @@ long long parse_integer(CommandLine &arguments, long long minimum, long long max
     return parse_integer(flag, arguments.value(), minimum, maximum);
 }
 
+// Decimal only, like parse_integer: strtod alone would also take "0x10" (16), "inf" and "nan".
+bool is_decimal_real(const std::string &text) {
+    size_t at = 0, digits = 0;
+    if (at < text.size() && (text[at] == '-' || text[at] == '+')) at++;
+    for (; at < text.size() && text[at] >= '0' && text[at] <= '9'; at++) digits++;
+    if (at < text.size() && text[at] == '.')
+        for (at++; at < text.size() && text[at] >= '0' && text[at] <= '9'; at++) digits++;
+    if (digits == 0) return false;
+    if (at < text.size() && (text[at] == 'e' || text[at] == 'E')) {
+        at++;
+        if (at < text.size() && (text[at] == '-' || text[at] == '+')) at++;
+        size_t exponent_digits = 0;
+        for (; at < text.size() && text[at] >= '0' && text[at] <= '9'; at++) exponent_digits++;
+        if (exponent_digits == 0) return false;
+    }
+    return at == text.size();
+}
+
 double parse_real(const std::string &flag, const std::string &text) {
     char *end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(value))
+    if (!is_decimal_real(text) || *end != '\0' || !std::isfinite(value))
         throw UsageError(flag + " needs a finite number, not '" + text + "'");
     return value;
 }

@@ -68,7 +68,7 @@ class CommandLine {
 long long parse_integer(CommandLine &arguments, long long minimum, long long maximum);
 long long parse_integer(const std::string &flag, const std::string &text, long long minimum,
                         long long maximum);
-// A finite real number; UsageError otherwise.
+// A finite decimal real number ("-1.5", "2e3"; not hexadecimal, inf or nan); UsageError otherwise.
 double parse_real(const std::string &flag, const std::string &text);
 
 // Runs `body` with the tool's arguments and applies the conventions above to what it throws:

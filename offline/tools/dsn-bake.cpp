@@ -10,6 +10,7 @@
 #include "command_line.h"
 #include "dsn/bake.h"
 #include "file_output.h"
+#include "json_output.h"
 
 namespace {
 
@@ -19,9 +20,17 @@ const char *const kUsage =
     "[--no-color-transform]\n"
     "                [--report R.json] [--preview P.png] [--quiet]\n"
     "\n"
-    "Bakes an exemplar image (PNG 8/16-bit, JPEG, BMP, PNM, ... grey or RGB; alpha is ignored; at most\n"
-    "2048 pixels per side) into a compact .dsnt asset: a synthesis-oriented texton of radius R, its colour\n"
-    "transform and the exemplar mean.\n"
+    "Bakes an exemplar image into a compact .dsnt asset: a synthesis-oriented texton of radius R, its\n"
+    "colour transform and the exemplar mean.\n"
+    "\n"
+    "Images read: PNG (8 or 16 bits), JPEG (baseline and progressive) and binary PGM/PPM (P5/P6, any\n"
+    "maxval), grey or RGB; alpha is ignored (with a warning unless it is opaque). BMP, GIF, PSD, TGA,\n"
+    "Radiance HDR, PIC, TIFF, WebP and plain-text PNM are refused: convert them to PNG. Limits: at most\n"
+    "2048 pixels per side and 256 MiB of file; a truncated file or one whose data expands beyond its\n"
+    "declared size is refused.\n"
+    "Cost: memory grows with the exemplar's pixels, time with pixels x iterations: about 1 GB and\n"
+    "2.5 minutes for 2048x2048 at the default 1000 iterations (one core of a current x86-64; 40 ns\n"
+    "per pixel and iteration). A run estimated at more than 10 minutes prints a warning first.\n"
     "\n"
     "  -o, --output OUT.dsnt    the asset to write (atomically: never a partial file); must end in .dsnt\n"
     "  --radius R               texton radius, 1..127; the texton is (2R+1)x(2R+1) (default 15);\n"
@@ -37,7 +46,8 @@ const char *const kUsage =
     "                           lattice (--mode tile or point)\n"
     "  --no-periodic            use the exemplar as is, not its periodic component\n"
     "  --no-color-transform     store the identity colour transform\n"
-    "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...)\n"
+    "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...; its\n"
+    "                           asset_crc32 is the CRC stored at the end of the asset it describes)\n"
     "  --preview P.png          write a sheet: exemplar | Gaussian version | texton | DSN synthesis\n"
     "  --quiet                  no progress bar, warnings or summary\n"
     "  -h, --help               this help\n"
@@ -45,7 +55,8 @@ const char *const kUsage =
     "\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when the bake\n"
-    "fails (unreadable or unusable image, cannot write).\n";
+    "fails (unreadable or unusable image, cannot write). The asset, report and preview are written\n"
+    "together: all of them or none. Numbers are decimal.\n";
 
 struct Arguments {
     std::string input, output, report, preview;
@@ -128,23 +139,6 @@ void draw_progress(int done, int total, double rme) {
     std::fflush(stderr);
 }
 
-std::string json_string(const std::string &text) {
-    std::string quoted = "\"";
-    for (unsigned char character : text) {
-        if (character == '"' || character == '\\') {
-            quoted += '\\';
-            quoted += char(character);
-        } else if (character < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\u%04x", character);
-            quoted += escaped;
-        } else {
-            quoted += char(character);
-        }
-    }
-    return quoted + "\"";
-}
-
 std::string json_number(double value) {
     if (!std::isfinite(value)) return "null";
     char text[32];
@@ -176,8 +170,8 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     auto field = [&json](const char *name, const std::string &value, bool last = false) {
         json += std::string("  \"") + name + "\": " + value + (last ? "\n" : ",\n");
     };
-    field("input", json_string(arguments.input));
-    field("output", json_string(arguments.output));
+    field("input", dsn::json_string(arguments.input));
+    field("output", dsn::json_string(arguments.output));
     field("width", std::to_string(exemplar.width));
     field("height", std::to_string(exemplar.height));
     field("channels", std::to_string(exemplar.channels));
@@ -199,6 +193,15 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     field("texton", json_array(interleaved(result.sot.texton)));
     field("rme_per_iteration", json_array(result.sot.rme_per_iteration));
     field("bytes", std::to_string(result.asset.size()));
+    // The CRC the asset ends with: it tells which asset this report describes.
+    char crc[16];
+    const size_t size = result.asset.size();
+    std::snprintf(crc, sizeof crc, "\"%08x\"",
+                  size < 4
+                      ? 0u
+                      : unsigned(result.asset[size - 4]) | unsigned(result.asset[size - 3]) << 8 |
+                            unsigned(result.asset[size - 2]) << 16 | unsigned(result.asset[size - 1]) << 24);
+    field("asset_crc32", crc);
     field("seconds", json_number(seconds), true);
     return json + "}\n";
 }
@@ -246,6 +249,20 @@ dsn::BakeResult bake_explaining_alpha(const dsn::Image &exemplar, const dsn::Bak
     }
 }
 
+// About 40 ns per pixel and iteration on one core of a current x86-64 (2048x2048 x 1000 iterations:
+// 2.5 minutes): a run that would take far longer than expected says so before it starts.
+void warn_if_long(const Arguments &arguments, const dsn::Image &exemplar) {
+    const double seconds =
+        40e-9 * double(exemplar.width) * double(exemplar.height) * double(arguments.options.iterations);
+    if (arguments.quiet || seconds < 600) return;
+    const bool hours = seconds >= 5400;
+    std::fprintf(stderr,
+                 "dsn-bake: warning: %dx%d at %d iterations takes roughly %.0f %s (about 40 ns per pixel and "
+                 "iteration); fewer --iterations shorten it\n",
+                 exemplar.width, exemplar.height, arguments.options.iterations,
+                 hours ? seconds / 3600 : seconds / 60, hours ? "hours" : "minutes");
+}
+
 int run(const Arguments &arguments) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::string> warnings;
@@ -254,6 +271,7 @@ int run(const Arguments &arguments) {
         for (const std::string &warning : warnings)
             std::fprintf(stderr, "dsn-bake: warning: %s\n", warning.c_str());
     dsn::BakeOptions options = arguments.options;
+    warn_if_long(arguments, exemplar);
     if (!arguments.quiet && isatty(STDERR_FILENO)) options.progress = draw_progress;
     const dsn::BakeResult result = bake_explaining_alpha(exemplar, options, !warnings.empty());
     // Everything is computed before anything is written: a failure leaves no output at all.

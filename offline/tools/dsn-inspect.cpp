@@ -10,6 +10,7 @@
 #include "../../runtime/format_bytes.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
+#include "json_output.h"
 
 namespace {
 
@@ -99,17 +100,8 @@ void print_numbers(const std::vector<double> &values) {
 }
 
 void print_json(const char *path, size_t size, const dsn_asset &asset) {
-    std::printf("{\n  \"file\": \"");
-    for (const char *p = path; *p; p++) {
-        const unsigned char character = (unsigned char)*p;
-        if (character == '"' || character == '\\')
-            std::printf("\\%c", character);
-        else if (character < 0x20)
-            std::printf("\\u%04x", character);
-        else
-            std::putchar(character);
-    }
-    std::printf("\",\n  \"bytes\": %zu,\n  \"version\": \"1.%u\",\n", size, asset.version_minor);
+    std::printf("{\n  \"file\": %s", dsn::json_string(path).c_str());
+    std::printf(",\n  \"bytes\": %zu,\n  \"version\": \"1.%u\",\n", size, asset.version_minor);
     std::printf("  \"channels\": %u,\n  \"bits\": %u,\n  \"shape\": \"%s\",\n  \"interpolation\": \"%s\",\n",
                 asset.channels, asset.bits, shape_name(asset.shape), interpolation_name(asset.interpolation));
     std::printf("  \"width\": %u,\n  \"height\": %u,\n  \"default_impacts\": %.17g,\n", asset.width,

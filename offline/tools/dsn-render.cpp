@@ -34,7 +34,9 @@ const char *const kUsage =
     "usage: dsn-render A.dsnt -o OUT.png|OUT.f32 --size WxH [options]\n"
     "Renders the spot noise of asset A.dsnt over a window of W x H pixels.\n"
     "  -o, --output OUT     the image to write (atomically): OUT.png or OUT.f32\n"
-    "  --size WxH           the window, 1..65536 pixels per side\n"
+    "  --size WxH           the window, 1..65536 pixels per side and at most 67108864 pixels in all\n"
+    "                       (8192x8192); render larger images as windows (--origin), which stitch\n"
+    "                       exactly\n"
     "  --origin X,Y         top-left point in texels (default 0,0); integers in tile/point mode,\n"
     "                       any real number in continuous mode; values wrap modulo 2^32\n"
     "  --seed S             32-bit seed (default 0)\n"
@@ -42,7 +44,8 @@ const char *const kUsage =
     "  --period PXxPY       make the output periodic with that period (0 = not periodic on that axis)\n"
     "  --mode M             tile (default), point (per-point lattice, same bits as tile) or continuous\n"
     "  --scale F            continuous mode: magnification, one pixel steps 1/F texels (default 1)\n"
-    "  --rotate DEG         continuous mode: rotation of the texture, counterclockwise (default 0)\n"
+    "  --rotate DEG         continuous mode: rotation of the texture, counterclockwise (default 0);\n"
+    "                       taken modulo 360 exactly, so any finite angle means what it says\n"
     "  --allow-lattice      continuous mode on a lattice-baked asset (its spectrum is then smoothed;\n"
     "                       the fix is to bake with dsn-bake --interpolation bilinear, the default)\n"
     "  --no-color-transform use the identity colour transform\n"
@@ -52,6 +55,10 @@ const char *const kUsage =
     "  --version            the version\n"
     "OUT.png is 8-bit grey or RGB; OUT.f32 is raw little-endian float32, channels interleaved,\n"
     "row-major, top row first (values in exemplar units, 1.0 = white, not clamped).\n"
+    "Numbers are decimal (no hexadecimal, no inf or nan).\n"
+    "Limits: the asset is read up to 1 MiB (a .dsnt is at most 390 KiB); the output may not be the\n"
+    "asset. Memory: about 4 bytes per pixel and channel for .f32, about 3 for .png (8192x8192 RGB:\n"
+    "768 MiB for .f32, about 600 MiB for .png).\n"
     "Progress of a large render is redrawn on a terminal; on a file or pipe it is at most one line per\n"
     "10%; then one timing line.\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
@@ -59,6 +66,13 @@ const char *const kUsage =
     "fails (unreadable or invalid asset, cannot write).\n";
 
 enum class Mode { tile, point, continuous };
+
+// The largest window rendered in one run: its pixels are held in memory, and stb's PNG writer counts
+// bytes in an int.
+const uint64_t kMaxRenderPixels = uint64_t(1) << 26;
+// The largest asset file read: far above the format's own maximum (128 + 255 * 255 * 3 * 2 + 4 bytes),
+// so a later minor version with a longer header still fits, but a device or huge file is not read whole.
+const size_t kMaxAssetBytes = size_t(1) << 20;
 
 struct Options {
     std::string asset_path, output_path;
@@ -167,6 +181,13 @@ Options parse_options(dsn::CommandLine &command_line) {
     if (!ends_with(options.output_path, ".png") && !ends_with(options.output_path, ".f32"))
         throw dsn::UsageError("the output must end in .png or .f32: " + options.output_path);
     if (!size_given) throw dsn::UsageError("no size given (--size WxH)");
+    if (uint64_t(options.width) * options.height > kMaxRenderPixels)
+        throw dsn::UsageError("--size " + std::to_string(options.width) + "x" +
+                              std::to_string(options.height) + " is more than the limit of " +
+                              std::to_string(kMaxRenderPixels) +
+                              " pixels (8192x8192); render it as windows with --origin");
+    if (dsn::same_file(options.asset_path, options.output_path))
+        throw dsn::UsageError("output " + options.output_path + " is the input asset");
     if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
         throw dsn::UsageError("--scale and --rotate need --mode continuous");
     if (options.mode == Mode::continuous) {
@@ -179,12 +200,19 @@ Options parse_options(dsn::CommandLine &command_line) {
     return options;
 }
 
+// Reads at most kMaxAssetBytes + 1 bytes: one more than any asset is enough to refuse the file.
 std::vector<unsigned char> read_file(const std::string &path) {
-    std::ifstream file(path, std::ios::binary);
+    FILE *file = std::fopen(path.c_str(), "rb");
     if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                     std::istreambuf_iterator<char>());
-    if (file.bad()) throw std::runtime_error("cannot read " + path);
+    std::vector<unsigned char> bytes(kMaxAssetBytes + 1);
+    const size_t read = std::fread(bytes.data(), 1, bytes.size(), file);
+    const bool failed = std::ferror(file) != 0;
+    std::fclose(file);
+    if (failed) throw std::runtime_error("cannot read " + path + " (is it a folder?)");
+    if (read > kMaxAssetBytes)
+        throw std::runtime_error(path + ": larger than " + std::to_string(kMaxAssetBytes >> 20) +
+                                 " MiB, not a .dsnt asset");
+    bytes.resize(read);
     return bytes;
 }
 
@@ -192,7 +220,8 @@ int64_t q32_step(double texels) { return static_cast<int64_t>(std::llround(texel
 
 // Pixel (i, j) samples origin + (i cos a - j sin a, i sin a + j cos a) / scale (a = the rotation).
 dsn_grid continuous_grid(const Options &options) {
-    const double radians = options.rotate_degrees * 3.14159265358979323846 / 180.0;
+    // fmod is exact: a huge angle keeps its meaning instead of losing every bit to the multiplication.
+    const double radians = std::fmod(options.rotate_degrees, 360.0) * 3.14159265358979323846 / 180.0;
     const double cosine = std::cos(radians) / options.scale, sine = std::sin(radians) / options.scale;
     dsn_grid grid;
     grid.origin_x = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_x));
@@ -368,15 +397,15 @@ std::vector<unsigned char> encode_png(const uint8_t *pixels, uint32_t width, uin
                            pixels);
 }
 
-// Raw little-endian float32, whatever the host's byte order.
-std::vector<unsigned char> encode_f32(const float *values, size_t count) {
-    std::vector<unsigned char> bytes(count * 4);
+// The rendered floats as the bytes of a .f32 file (raw little-endian float32, whatever the host's byte
+// order), rewritten in place so that the image is held once.
+void float32_to_little_endian(float *values, size_t count) {
+    unsigned char *bytes = static_cast<unsigned char *>(static_cast<void *>(values));
     for (size_t i = 0; i < count; i++) {
         uint32_t bits;
         std::memcpy(&bits, &values[i], 4);
         dsn_write_u32le(&bytes[i * 4], bits);
     }
-    return bytes;
 }
 
 void run(const Options &options) {
@@ -419,20 +448,22 @@ void run(const Options &options) {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     double seconds = 0;
-    std::vector<unsigned char> file_bytes;
     if (ends_with(options.output_path, ".png")) {
         MappedMemory pixels(value_count);
         render(job, threads, progress, static_cast<uint8_t *>(pixels.data()));
         seconds = elapsed();
-        file_bytes = encode_png(static_cast<const uint8_t *>(pixels.data()), options.width, options.height,
-                                asset.channels);
+        dsn::write_file_atomically(options.output_path,
+                                   encode_png(static_cast<const uint8_t *>(pixels.data()), options.width,
+                                              options.height, asset.channels));
     } else {
         MappedMemory pixels(value_count * sizeof(float));
-        render(job, threads, progress, static_cast<float *>(pixels.data()));
+        float *values = static_cast<float *>(pixels.data());
+        render(job, threads, progress, values);
         seconds = elapsed();
-        file_bytes = encode_f32(static_cast<const float *>(pixels.data()), value_count);
+        float32_to_little_endian(values, value_count);
+        dsn::write_file_atomically(options.output_path, static_cast<const unsigned char *>(pixels.data()),
+                                   value_count * sizeof(float));
     }
-    dsn::write_file_atomically(options.output_path, file_bytes);
     if (!options.quiet)
         std::fprintf(stderr, "dsn-render: %ux%u, %u channel(s), %u thread(s): %.3f s, %.1f Mpixel/s -> %s\n",
                      options.width, options.height, asset.channels, threads, seconds,

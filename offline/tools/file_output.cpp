@@ -2,6 +2,7 @@
 #include "file_output.h"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -41,7 +42,10 @@ namespace {
 // A written and flushed temporary file beside its destination, renamed into place by commit().
 class PendingFile {
   public:
-    PendingFile(const std::string &path, const std::vector<unsigned char> &bytes) : path_(path) {
+    PendingFile(const std::string &path, const unsigned char *bytes, size_t size) : path_(path) {
+        // Past a file size limit (ulimit -f) the default action of SIGXFSZ kills the process before
+        // the temporary file can be removed; ignored, write() fails with EFBIG and the file goes.
+        std::signal(SIGXFSZ, SIG_IGN);
         // Renaming over a device, pipe or folder would replace it (or fail late): only regular files.
         struct stat existing;
         if (::stat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
@@ -53,7 +57,7 @@ class PendingFile {
         temporary_.push_back('\0');
         int fd = ::mkstemp(temporary_.data());
         if (fd < 0) fail_write(path, errno);
-        bool written = write_all(fd, bytes.data(), bytes.size()) && ::fsync(fd) == 0;
+        bool written = write_all(fd, bytes, size) && ::fsync(fd) == 0;
         int error = errno;
         if (::close(fd) != 0 && written) {
             written = false;
@@ -75,14 +79,45 @@ class PendingFile {
     PendingFile &operator=(const PendingFile &) = delete;
     ~PendingFile() {
         if (!committed_) ::unlink(temporary_.data());
+        if (!backup_.empty()) ::unlink(backup_.c_str());
+    }
+    // Keeps the destination's current file under a second name (a hard link), so that undo() can put it
+    // back after the rename. Throws when that is impossible: then nothing has been renamed yet.
+    void keep_previous() {
+        struct stat existing;
+        if (::lstat(path_.c_str(), &existing) != 0) return; // no previous file: undo() removes the new one
+        for (int attempt = 0; attempt < 100; attempt++) {
+            std::string pattern = folder_of(path_) + "/.dsn-keep-XXXXXX";
+            std::vector<char> name(pattern.begin(), pattern.end());
+            name.push_back('\0');
+            int fd = ::mkstemp(name.data());
+            if (fd < 0) fail_write(path_, errno);
+            ::close(fd);
+            ::unlink(name.data());
+            if (::link(path_.c_str(), name.data()) == 0) {
+                backup_ = name.data();
+                return;
+            }
+            if (errno != EEXIST) fail_write(path_, errno);
+        }
+        fail_write(path_, EEXIST);
     }
     void commit() {
         if (::rename(temporary_.data(), path_.c_str()) != 0) fail_write(path_, errno);
         committed_ = true;
     }
+    // Puts back what the destination held before commit().
+    void undo() {
+        if (!committed_) return;
+        if (backup_.empty()) {
+            ::unlink(path_.c_str());
+        } else if (::rename(backup_.c_str(), path_.c_str()) == 0) {
+            backup_.clear();
+        }
+    }
 
   private:
-    std::string path_;
+    std::string path_, backup_;
     std::vector<char> temporary_;
     bool committed_ = false;
 };
@@ -95,12 +130,28 @@ void write_files_atomically(const std::vector<FileToWrite> &files) {
             if (same_file(files[i].path, files[j].path))
                 throw std::runtime_error("cannot write " + files[i].path + " twice in one run");
     std::vector<std::unique_ptr<PendingFile>> pending;
-    for (const FileToWrite &file : files) pending.emplace_back(new PendingFile(file.path, file.bytes));
-    for (auto &file : pending) file->commit();
+    for (const FileToWrite &file : files)
+        pending.emplace_back(new PendingFile(file.path, file.bytes.data(), file.bytes.size()));
+    // All or none: when one rename fails, the files already renamed are put back as they were.
+    if (pending.size() > 1)
+        for (auto &file : pending) file->keep_previous();
+    for (size_t i = 0; i < pending.size(); i++) {
+        try {
+            pending[i]->commit();
+        } catch (...) {
+            for (size_t j = 0; j < i; j++) pending[j]->undo();
+            throw;
+        }
+    }
 }
 
 void write_file_atomically(const std::string &path, const std::vector<unsigned char> &bytes) {
-    write_files_atomically({{path, bytes}});
+    write_file_atomically(path, bytes.data(), bytes.size());
+}
+
+void write_file_atomically(const std::string &path, const unsigned char *bytes, size_t size) {
+    PendingFile file(path, bytes, size);
+    file.commit();
 }
 
 bool same_file(const std::string &a, const std::string &b) {

@@ -8,6 +8,7 @@
 #ifndef DSN_TOOLS_FILE_OUTPUT_H
 #define DSN_TOOLS_FILE_OUTPUT_H
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,12 @@ namespace dsn {
 // Writes `bytes` to `path` through a temporary file and a rename. Throws std::runtime_error with a
 // one-line message ("cannot write out.dsnt: No space left on device"); the destination is then untouched.
 void write_file_atomically(const std::string &path, const std::vector<unsigned char> &bytes);
+void write_file_atomically(const std::string &path, const unsigned char *bytes, size_t size);
 
 // Writes several files as one: every temporary file is written and flushed before the first rename, so a
-// failure (full disk, missing folder, a destination that is not a regular file) leaves none of them.
+// failure (full disk, missing folder, a destination that is not a regular file) leaves none of them; and
+// when a rename fails, the files already renamed are put back as they were (the previous files are kept
+// as hard links until all renames are done), so a run commits all its outputs or none.
 struct FileToWrite {
     std::string path;
     std::vector<unsigned char> bytes;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <climits>
+#include <cstdint>
 #include <stdexcept>
 
 #include <stb_image_write.h>
@@ -96,8 +98,10 @@ std::vector<unsigned char> encode_png_16(int width, int height, int channels, co
 }
 
 std::vector<unsigned char> encode_png(int width, int height, int channels, const unsigned char *pixels) {
-    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || width > (1 << 24) / channels)
-        throw std::invalid_argument("encode_png: invalid image size");
+    // stb_image_write holds the filtered rows, (width * channels + 1) * height bytes, in an int.
+    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || width > (1 << 24) / channels ||
+        (uint64_t(width) * uint64_t(channels) + 1) * uint64_t(height) > uint64_t(INT_MAX))
+        throw std::invalid_argument("encode_png: image too large for a PNG of stb_image_write");
     std::vector<unsigned char> png;
     if (!stbi_write_png_to_func(append_bytes, &png, width, height, channels, pixels, width * channels))
         throw std::runtime_error("PNG encoding failed");

@@ -4,3 +4,4 @@ TEST_SCRIPTS += tests/scripts/check-freestanding
 TEST_SCRIPTS += tests/scripts/bake-errors tests/scripts/bake-roundtrip tests/scripts/render-smoke tests/scripts/cli-conventions
 TEST_SCRIPTS += tests/scripts/check-public-header
 TEST_SCRIPTS += tests/scripts/synth-errors
+TEST_SCRIPTS += tests/scripts/image-input-valgrind
