@@ -10,7 +10,8 @@ FUZZ_SECONDS ?= 60
 FUZZ_TIMEOUT ?= 10
 FUZZ_RSS_LIMIT_MB ?= 2048
 FUZZ_CXX ?= clang++
-FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all \
+    -fsanitize-ignorelist=tests/fuzz/stb_ignorelist.txt
 FUZZ_FLAGS = -std=c++17 -O1 -g $(FUZZ_SANITIZERS) -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION \
     -ffp-contract=off -Iinclude $(PACKAGE_CFLAGS)
 FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.cpp,%,$(wildcard tests/fuzz/fuzz_*.cpp))
