@@ -239,10 +239,51 @@ void block_extent(const FrameAxis &axis, const Block &block, int64_t *low, int64
     *high = corner + (across > 0 ? across : 0) + (down > 0 ? down : 0);
 }
 
+/* One channel of the bilinear texton at (row, column) with the upper weights (down, across), texels
+   inside the window: add_bilinear's integer, with one product per step ((65536 - w) a + w b =
+   65536 a + w (b - a), the same integers). */
+template <uint32_t Bytes, uint32_t Stride>
+inline int64_t interior_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
+                                int64_t down) {
+    const int64_t top_left = stored_value<Bytes>(top), bottom_left = stored_value<Bytes>(bottom);
+    const int64_t upper = top_left * 65536 + across * (stored_value<Bytes>(top + Stride) - top_left);
+    const int64_t lower = bottom_left * 65536 + across * (stored_value<Bytes>(bottom + Stride) - bottom_left);
+    return upper * 65536 + down * (lower - upper);
+}
+
+/* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
+   reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
+   values lie in (0, 2 reach), so its lower index and weight are read off directly. */
+template <uint32_t Channels, uint32_t Bytes>
+void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x, int64_t step_y,
+               int64_t reach_x, int64_t reach_y, int64_t count, uint64_t *pixel) {
+    const uint32_t width = asset->width, height = asset->height, row_bytes = width * Channels * Bytes;
+    uint64_t shifted_x = static_cast<uint64_t>(offset_x + reach_x);
+    uint64_t shifted_y = static_cast<uint64_t>(offset_y + reach_y);
+    for (int64_t i = 0; i < count; i++, pixel += Channels) {
+        const uint32_t column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+        const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u;
+        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
+        if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+            const unsigned char *top = asset->texton + (row * width + column) * Channels * Bytes;
+            const unsigned char *bottom = top + row_bytes;
+            for (uint32_t c = 0; c < Channels; c++)
+                pixel[c] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
+                    top + c * Bytes, bottom + c * Bytes, across, down));
+        } else {
+            add_bilinear(asset, row, static_cast<uint32_t>(down), column, static_cast<uint32_t>(across),
+                         pixel);
+        }
+        shifted_x += static_cast<uint64_t>(step_x);
+        shifted_y += static_cast<uint64_t>(step_y);
+    }
+}
+
 /* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window. */
+template <uint32_t Channels, uint32_t Bytes>
 void splat_impulse(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
                    uint32_t width, int64_t position_x, int64_t position_y, uint64_t *sums) {
-    const uint32_t channels = noise->asset.channels;
     /* Offsets (pixel - impulse) of the block's first pixel. */
     const int64_t row_x = x.base + x.column * static_cast<int64_t>(block.first_column) +
                           x.row * static_cast<int64_t>(block.first_row) - position_x;
@@ -256,27 +297,18 @@ void splat_impulse(const dsn_noise_state *noise, const FrameAxis &x, const Frame
         int64_t first = 0, last = columns - 1;
         column_bounds_apply(bounds_x, &first, &last);
         column_bounds_apply(bounds_y, &first, &last);
-        if (first <= last) {
-            int64_t offset_x = bounds_x.offset + x.column * first,
-                    offset_y = bounds_y.offset + y.column * first;
-            uint64_t *pixel =
-                sums +
-                (static_cast<size_t>(j) * width + block.first_column + static_cast<size_t>(first)) * channels;
-            for (int64_t i = first; i <= last; i++, pixel += channels) {
-                uint32_t row, row_weight, column, column_weight;
-                /* In reach by construction: bracket only splits the offsets. */
-                if (bracket(offset_x, x.radius, &column, &column_weight) &&
-                    bracket(offset_y, y.radius, &row, &row_weight))
-                    add_bilinear(&noise->asset, row, row_weight, column, column_weight, pixel);
-                offset_x += x.column;
-                offset_y += y.column;
-            }
-        }
+        if (first <= last)
+            splat_row<Channels, Bytes>(
+                &noise->asset, bounds_x.offset + x.column * first, bounds_y.offset + y.column * first,
+                x.column, y.column, x.reach, y.reach, last - first + 1,
+                sums + (static_cast<size_t>(j) * width + block.first_column + static_cast<size_t>(first)) *
+                           Channels);
         column_bounds_next(&bounds_x);
         column_bounds_next(&bounds_y);
     }
 }
 
+template <uint32_t Channels, uint32_t Bytes>
 void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
                  uint32_t width, uint64_t *sums) {
     const uint32_t shift = noise->cell_shift, cell_mask = 0xFFFFFFFFu >> shift;
@@ -316,7 +348,8 @@ void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAx
                         if (position_x <= low_x - x.reach || position_x >= high_x + x.reach ||
                             position_y <= low_y - y.reach || position_y >= high_y + y.reach)
                             continue;
-                        splat_impulse(noise, x, y, block, width, position_x, position_y, sums);
+                        splat_impulse<Channels, Bytes>(noise, x, y, block, width, position_x, position_y,
+                                                       sums);
                     }
                 }
             }
@@ -363,8 +396,9 @@ uint64_t *aligned_sums(void *scratch) {
         static_cast<void *>(bytes + (misalignment ? sizeof(uint64_t) - misalignment : 0u)));
 }
 
-void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
-                uint32_t height, uint64_t *sums) {
+template <uint32_t Channels, uint32_t Bytes>
+void splat_blocks(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
+                  uint32_t height, uint64_t *sums) {
     for (uint32_t top = 0; top < height; top += block_side)
         for (uint32_t left = 0; left < width; left += block_side) {
             Block block;
@@ -372,8 +406,20 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
             block.end_column = width - left < block_side ? width : left + block_side;
             block.first_row = top;
             block.end_row = height - top < block_side ? height : top + block_side;
-            splat_block(noise, x, y, block, width, sums);
+            splat_block<Channels, Bytes>(noise, x, y, block, width, sums);
         }
+}
+
+/* One copy of the splat per channel count and value size. */
+void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
+                uint32_t height, uint64_t *sums) {
+    const dsn_asset *asset = &noise->asset;
+    if (asset->channels == 3)
+        asset->bits == 8 ? splat_blocks<3, 1>(noise, x, y, width, height, sums)
+                         : splat_blocks<3, 2>(noise, x, y, width, height, sums);
+    else
+        asset->bits == 8 ? splat_blocks<1, 1>(noise, x, y, width, height, sums)
+                         : splat_blocks<1, 2>(noise, x, y, width, height, sums);
 }
 
 #endif /* !DSN_SMALL_CODE */
@@ -384,8 +430,6 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
                   void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const int err = check_tile(noise, grid, width, height, out);
     if (err != DSN_OK) return err;
-    const uint32_t channels = noise->asset.channels;
-    int32_t pixel[DSN_MAX_CHANNELS];
 #if !DSN_SMALL_CODE
     FrameAxis x, y;
     const size_t needed =
@@ -393,6 +437,8 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
     if (needed != 0) {
         if (scratch == 0 || scratch_size < needed) return DSN_ERR_SCRATCH;
         uint64_t *sums = aligned_sums(scratch);
+        const uint32_t channels = noise->asset.channels;
+        int32_t pixel[DSN_MAX_CHANNELS];
         const size_t values = static_cast<size_t>(width) * height * channels;
         for (size_t i = 0; i < values; i++) sums[i] = 0;
         splat_grid(noise, x, y, width, height, sums);
@@ -407,6 +453,8 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
     (void)scratch_size;
 #endif
     /* Pixel (i, j) is origin + i column_step + j row_step modulo 2^64: stepping adds the same values. */
+    const uint32_t channels = noise->asset.channels;
+    int32_t pixel[DSN_MAX_CHANNELS];
     uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
     size_t index = 0;
     for (uint32_t j = 0; j < height; j++) {
