@@ -89,7 +89,7 @@ bool frame_axis(FrameAxis *axis, int64_t origin, int64_t column, int64_t row, ui
         axis->base = static_cast<int64_t>(point & 0xFFFFFFFFu);
         return true;
     }
-    if (period > max_splat_period) return false;
+    if (period >= max_splat_period) return false;
     /* Per point, the coordinate u = int32(X - 1) 2^32 + fraction (X the integer part) is reduced modulo
        the period; across the tile u is affine only when no pixel leaves the int64 range. */
     const int64_t u = signed_from_bits(point - one_texel);
@@ -251,6 +251,13 @@ inline int64_t interior_channel(const unsigned char *top, const unsigned char *b
     return upper * 65536 + down * (lower - upper);
 }
 
+/* A texel of channel c at (row, column), 0 outside the window (indices are unsigned: -1 is outside). */
+template <uint32_t Channels, uint32_t Bytes>
+inline int64_t edge_texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
+    if (row >= asset->height || column >= asset->width) return 0;
+    return stored_value<Bytes>(asset->texton + ((row * asset->width + column) * Channels + c) * Bytes);
+}
+
 /* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
    reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
    values lie in (0, 2 reach), so its lower index and weight are read off directly. */
@@ -271,9 +278,18 @@ void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64
             for (uint32_t c = 0; c < Channels; c++)
                 pixel[c] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
                     top + c * Bytes, bottom + c * Bytes, across, down));
-        } else {
-            add_bilinear(asset, row, static_cast<uint32_t>(down), column, static_cast<uint32_t>(across),
-                         pixel);
+        } else { /* at the window's edge: the same integers, texels outside read as 0 */
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int64_t top_left = edge_texel<Channels, Bytes>(asset, row, column, c);
+                const int64_t bottom_left = edge_texel<Channels, Bytes>(asset, row + 1u, column, c);
+                const int64_t upper =
+                    top_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(asset, row, column + 1u, c) - top_left);
+                const int64_t lower =
+                    bottom_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(asset, row + 1u, column + 1u, c) - bottom_left);
+                pixel[c] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+            }
         }
         shifted_x += static_cast<uint64_t>(step_x);
         shifted_y += static_cast<uint64_t>(step_y);
