@@ -1,7 +1,8 @@
-/* runtime/continuous_tile.cpp - the continuous mode on a regular grid (dsn_grid): an axis-aligned grid
-   without a period is splatted, each impulse adding its bilinear texton to the pixels it reaches, into
-   sums kept in the caller's scratch; any other grid, and every grid in the small build (DSN_SMALL_CODE,
-   dsn.h), is evaluated point by point. Both give the per-point bits. */
+/* runtime/continuous_tile.cpp - the continuous mode on a regular grid (dsn_grid): a grid under any affine
+   map (zoom, rotation, shear, mirror; periodic or not) is splatted, each impulse adding its bilinear
+   texton to the pixels it reaches, into sums kept in the caller's scratch; grids too sparse or too large
+   for that, and every grid in the small build (DSN_SMALL_CODE, dsn.h), are evaluated point by point. Both
+   give the per-point bits. */
 #include "bilinear_texton.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
@@ -22,73 +23,378 @@ int check_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t widt
 }
 
 #if !DSN_SMALL_CODE
-/* ---- Fast path: splatting the impulses of an axis-aligned grid ----
-   For a grid with steps (a, 0) and (0, b), a, b > 0, and no period, each impulse of the cells around
-   the grid adds its bilinear texton to the pixels it reaches, into per-pixel sums held in the scratch
-   buffer. Pixel by pixel these are the per-point sums exactly: the same impulses (every impulse that
-   reaches a pixel lies in those cells, each cell is visited once), the same offset d (x - p modulo 2^64,
-   which is what the per-point path computes for any impulse within reach), the same weights, and
-   integer sums do not depend on the order. Used when it is cheaper than per point: when one pixel
-   covers less area than the cells a point visits. */
+/* ---- Fast path: splatting the impulses onto the tile, under any affine grid ----
+   Pixel (i, j) is the point origin + i column_step + j row_step. Each axis gets a frame: an int64
+   coordinate in which the pixels are base + i a + j b exactly (no wrap) and each impulse that may reach
+   the tile has one position per image (one without a period; one per copy of the period otherwise).
+   The tile is cut into square blocks; for each block the cells that can reach its parallelogram are
+   walked once, and each of their impulses adds its bilinear texton to the pixels of the block inside its
+   window, found row by row as an exact interval of columns. Pixel by pixel these are the per-point sums
+   exactly: the same impulses (every impulse within reach of a pixel lies in the block's cells, each
+   image visited once), the same offset (the frame difference is the per-point offset for every impulse
+   within reach), the same weights, and integer sums do not depend on the order. */
 
-struct SplatAxis {
-    uint64_t origin, step;  /* Q32.32 */
-    uint32_t count, radius; /* pixels along the axis, texton radius */
-    uint32_t first_cell, cell_count;
-};
+const uint32_t block_side = 32u; /* pixels per side of a block */
+/* Frame coordinates stay below 2^62 in magnitude: the tile's extent below 2^61, the reach and the
+   frame base below 2^60. */
+const uint64_t max_extent = static_cast<uint64_t>(1) << 61;
+const uint32_t max_splat_period = 1u << 27;
+
+/* Floor of value / 2^shift (shift < 63) without shifting a negative number. */
+int64_t floor_shift(int64_t value, uint32_t shift) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    return static_cast<int64_t>((static_cast<uint64_t>(value) + bias) >> shift) -
+           static_cast<int64_t>(bias >> shift);
+}
 
 int64_t floor_divide(int64_t numerator, int64_t denominator) { /* denominator > 0 */
     const int64_t quotient = numerator / denominator;
     return (quotient * denominator > numerator) ? quotient - 1 : quotient;
 }
 
-/* The grid spans < 2^30 texels along the axis (so every offset below fits an int64 with room to spare). */
-bool splat_axis(SplatAxis *axis, int64_t origin, int64_t step, uint32_t count, uint32_t radius,
-                uint32_t shift) {
-    if (step <= 0 || static_cast<uint64_t>(step) > (static_cast<uint64_t>(1) << 62) / count) return false;
-    axis->origin = static_cast<uint64_t>(origin);
-    axis->step = static_cast<uint64_t>(step);
-    axis->count = count;
+uint64_t magnitude(int64_t value) {
+    return value < 0 ? ~static_cast<uint64_t>(value) + 1u : static_cast<uint64_t>(value);
+}
+
+/* One axis of the grid in its frame. */
+struct FrameAxis {
+    int64_t base;           /* frame coordinate of pixel (0, 0) */
+    int64_t column, row;    /* steps per column and per row */
+    uint32_t lattice_base;  /* without a period: the lattice coordinate of frame 0 */
+    uint32_t period, shift; /* period 0: none */
+    uint32_t radius;
+    int64_t reach; /* (radius + 1) texels: an impulse reaches the offsets in (-reach, reach) */
+};
+
+/* The frame of one axis, or false when the grid does not fit one (too large, or a periodic axis whose
+   points cross the int32 wrap of the lattice coordinate, where the period breaks). */
+bool frame_axis(FrameAxis *axis, int64_t origin, int64_t column, int64_t row, uint32_t width, uint32_t height,
+                uint32_t radius, uint32_t shift, uint32_t period) {
+    if (magnitude(column) > max_extent / width || magnitude(row) > max_extent / height) return false;
+    /* Offsets of the tile's pixels from pixel (0, 0): in [low, high], |.| < 2^62. */
+    const int64_t across = column * static_cast<int64_t>(width - 1u),
+                  down = row * static_cast<int64_t>(height - 1u);
+    const int64_t low = (across < 0 ? across : 0) + (down < 0 ? down : 0);
+    const int64_t high = (across > 0 ? across : 0) + (down > 0 ? down : 0);
+    axis->column = column;
+    axis->row = row;
+    axis->period = period;
+    axis->shift = shift;
     axis->radius = radius;
-    const uint64_t last_point = axis->origin + axis->step * (count - 1u);
-    const uint32_t low = static_cast<uint32_t>(axis->origin >> 32) - radius - 1u;
-    const uint32_t high = static_cast<uint32_t>(last_point >> 32) + radius + 1u;
-    axis->first_cell = low >> shift;
-    axis->cell_count = ((high - low + (low & ((1u << shift) - 1u))) >> shift) + 1u;
+    axis->reach = static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel);
+    const uint64_t point = static_cast<uint64_t>(origin);
+    if (period == 0) {
+        /* The lattice is a torus of 2^32 texels: frame = point - (lattice_base << 32). */
+        axis->lattice_base = static_cast<uint32_t>(point >> 32);
+        axis->base = static_cast<int64_t>(point & 0xFFFFFFFFu);
+        return true;
+    }
+    if (period >= max_splat_period) return false;
+    /* Per point, the coordinate u = int32(X - 1) 2^32 + fraction (X the integer part) is reduced modulo
+       the period; across the tile u is affine only when no pixel leaves the int64 range. */
+    const int64_t u = signed_from_bits(point - one_texel);
+    if ((u < 0 && low < INT64_MIN - u) || (u > 0 && high > INT64_MAX - u)) return false;
+    const uint32_t whole = static_cast<uint32_t>(point >> 32) - 1u; /* int32 bits of X - 1 */
+    const uint32_t start = (whole & 0x80000000u) ? period - 1u - ~whole % period : whole % period;
+    /* The reduced point plus one texel, as per point: impulses then sit at their own positions. */
+    axis->lattice_base = 0;
+    axis->base = static_cast<int64_t>(start + 1u) * static_cast<int64_t>(one_texel) +
+                 static_cast<int64_t>(point & 0xFFFFFFFFu);
     return true;
 }
 
-/* The pixels [*first, *last] whose points may lie within radius + 1 of the impulse at p (a superset:
-   bracket() decides exactly); false when there are none. */
-bool splat_range(const SplatAxis &axis, uint64_t position, uint32_t *first, uint32_t *last) {
-    const int64_t relative = signed_from_bits(position - axis.origin);
-    const int64_t reach = static_cast<int64_t>(axis.radius + 1u) * static_cast<int64_t>(one_texel);
-    const int64_t step = static_cast<int64_t>(axis.step);
-    const int64_t low = floor_divide(relative - reach, step), high = floor_divide(relative + reach, step) + 1;
-    if (high < 0 || low >= static_cast<int64_t>(axis.count)) return false;
-    *first = low < 0 ? 0u : static_cast<uint32_t>(low);
-    *last = high >= static_cast<int64_t>(axis.count) ? axis.count - 1u : static_cast<uint32_t>(high);
-    return true;
+/* The cells of one axis that may reach the frame interval [low, high] (already widened by the reach),
+   as spans: one without a period, one per copy of the period met otherwise. */
+struct FrameSpans {
+    int64_t first_lattice, last_lattice; /* the lattice window, frame units */
+    int64_t first_copy;
+    uint32_t span_count;
+};
+
+struct FrameSpan {
+    uint32_t first_cell, cell_count; /* cell indices (wrapped) */
+    uint32_t last_position;          /* impulses at lattice positions beyond are discarded */
+    int64_t first_origin;            /* frame coordinate of the first cell's origin */
+};
+
+void frame_spans(const FrameAxis &axis, int64_t low, int64_t high, FrameSpans *spans) {
+    spans->first_lattice = floor_shift(low, 32);
+    spans->last_lattice = floor_shift(high, 32);
+    spans->first_copy = 0;
+    spans->span_count = 1;
+    if (axis.period != 0) {
+        const int64_t period = static_cast<int64_t>(axis.period);
+        spans->first_copy = floor_divide(spans->first_lattice, period);
+        spans->span_count =
+            static_cast<uint32_t>(floor_divide(spans->last_lattice, period) - spans->first_copy + 1);
+    }
 }
 
-/* Offset (Q32.32) from the impulse at `position` to pixel `index` of the axis. */
-int64_t splat_offset(const SplatAxis &axis, uint32_t index, uint64_t position) {
-    return signed_from_bits(axis.origin + axis.step * index - position);
+FrameSpan frame_span(const FrameAxis &axis, const FrameSpans &spans, uint32_t index) {
+    FrameSpan span;
+    const uint32_t mask = (1u << axis.shift) - 1u;
+    if (axis.period == 0) {
+        const uint32_t low = axis.lattice_base + static_cast<uint32_t>(spans.first_lattice);
+        span.first_cell = low >> axis.shift;
+        span.cell_count =
+            (((low & mask) + static_cast<uint32_t>(spans.last_lattice - spans.first_lattice)) >> axis.shift) +
+            1u;
+        span.last_position = 0xFFFFFFFFu;
+        span.first_origin =
+            (spans.first_lattice - static_cast<int64_t>(low & mask)) * static_cast<int64_t>(one_texel);
+        return span;
+    }
+    const int64_t period = static_cast<int64_t>(axis.period);
+    const int64_t copy_start = (spans.first_copy + static_cast<int64_t>(index)) * period;
+    int64_t first = spans.first_lattice - copy_start, last = spans.last_lattice - copy_start;
+    if (first < 0) first = 0;
+    if (last > period - 1) last = period - 1;
+    span.first_cell = static_cast<uint32_t>(first) >> axis.shift;
+    span.cell_count = (static_cast<uint32_t>(last) >> axis.shift) - span.first_cell + 1u;
+    span.last_position = axis.period - 1u;
+    span.first_origin =
+        (copy_start + static_cast<int64_t>(span.first_cell << axis.shift)) * static_cast<int64_t>(one_texel);
+    return span;
 }
 
-/* Both axes, or false when the grid does not qualify (rotation, period, too sparse, too large). */
-bool splat_axes(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
-                SplatAxis *x, SplatAxis *y) {
+/* floor(numerator / denominator) as numerator steps by a constant, denominator > 0: a quotient and a
+   remainder in [0, denominator), moved without dividing. */
+struct FloorStep {
+    int64_t quotient, remainder, denominator, step_quotient, step_remainder;
+};
+
+void floor_step_init(FloorStep *s, int64_t numerator, int64_t denominator, int64_t step) {
+    s->denominator = denominator;
+    s->quotient = floor_divide(numerator, denominator);
+    s->remainder = numerator - s->quotient * denominator;
+    s->step_quotient = floor_divide(step, denominator);
+    s->step_remainder = step - s->step_quotient * denominator;
+}
+
+inline void floor_step_next(FloorStep *s) {
+    s->quotient += s->step_quotient;
+    s->remainder += s->step_remainder;
+    if (s->remainder >= s->denominator) {
+        s->remainder -= s->denominator;
+        s->quotient++;
+    }
+}
+
+/* The columns i with -reach < offset + i column < reach along one axis (offset the row's, moving by
+   `row` per row): i >= first, i <= last, as floors that step per row. With column 0 the condition does
+   not depend on i and is tested per row. */
+struct ColumnBounds {
+    FloorStep low, high; /* first = low + 1, last = high */
+    int64_t offset, row;
+    int64_t reach;
+    bool constant;
+};
+
+void column_bounds_init(ColumnBounds *b, int64_t offset, int64_t column, int64_t row, int64_t reach) {
+    b->offset = offset;
+    b->row = row;
+    b->reach = reach;
+    b->constant = column == 0;
+    if (b->constant) return;
+    /* i column in (-reach - offset, reach - offset); for column < 0, i (-column) in (offset - reach,
+       offset + reach). */
+    if (column > 0) {
+        floor_step_init(&b->low, -reach - offset, column, -row);
+        floor_step_init(&b->high, reach - offset - 1, column, -row);
+    } else {
+        floor_step_init(&b->low, offset - reach, -column, row);
+        floor_step_init(&b->high, offset + reach - 1, -column, row);
+    }
+}
+
+/* Narrows [*first, *last] to this axis' columns in the current row. */
+inline void column_bounds_apply(const ColumnBounds &b, int64_t *first, int64_t *last) {
+    if (b.constant) {
+        if (b.offset <= -b.reach || b.offset >= b.reach) *last = *first - 1;
+        return;
+    }
+    if (b.low.quotient + 1 > *first) *first = b.low.quotient + 1;
+    if (b.high.quotient < *last) *last = b.high.quotient;
+}
+
+inline void column_bounds_next(ColumnBounds *b) {
+    b->offset += b->row;
+    if (b->constant) return;
+    floor_step_next(&b->low);
+    floor_step_next(&b->high);
+}
+
+/* A block of the tile: columns [first_column, end_column), rows [first_row, end_row). */
+struct Block {
+    uint32_t first_column, end_column, first_row, end_row;
+};
+
+/* The frame interval of the block's pixels along one axis. */
+void block_extent(const FrameAxis &axis, const Block &block, int64_t *low, int64_t *high) {
+    const int64_t corner = axis.base + axis.column * static_cast<int64_t>(block.first_column) +
+                           axis.row * static_cast<int64_t>(block.first_row);
+    const int64_t across = axis.column * static_cast<int64_t>(block.end_column - 1u - block.first_column);
+    const int64_t down = axis.row * static_cast<int64_t>(block.end_row - 1u - block.first_row);
+    *low = corner + (across < 0 ? across : 0) + (down < 0 ? down : 0);
+    *high = corner + (across > 0 ? across : 0) + (down > 0 ? down : 0);
+}
+
+/* One channel of the bilinear texton at (row, column) with the upper weights (down, across), texels
+   inside the window: add_bilinear's integer, with one product per step ((65536 - w) a + w b =
+   65536 a + w (b - a), the same integers). */
+template <uint32_t Bytes, uint32_t Stride>
+inline int64_t interior_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
+                                int64_t down) {
+    const int64_t top_left = stored_value<Bytes>(top), bottom_left = stored_value<Bytes>(bottom);
+    const int64_t upper = top_left * 65536 + across * (stored_value<Bytes>(top + Stride) - top_left);
+    const int64_t lower = bottom_left * 65536 + across * (stored_value<Bytes>(bottom + Stride) - bottom_left);
+    return upper * 65536 + down * (lower - upper);
+}
+
+/* A texel of channel c at (row, column), 0 outside the window (indices are unsigned: -1 is outside). */
+template <uint32_t Channels, uint32_t Bytes>
+inline int64_t edge_texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
+    if (row >= asset->height || column >= asset->width) return 0;
+    return stored_value<Bytes>(asset->texton + ((row * asset->width + column) * Channels + c) * Bytes);
+}
+
+/* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
+   reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
+   values lie in (0, 2 reach), so its lower index and weight are read off directly. */
+template <uint32_t Channels, uint32_t Bytes>
+void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x, int64_t step_y,
+               int64_t reach_x, int64_t reach_y, int64_t count, uint64_t *pixel) {
+    const uint32_t width = asset->width, height = asset->height, row_bytes = width * Channels * Bytes;
+    uint64_t shifted_x = static_cast<uint64_t>(offset_x + reach_x);
+    uint64_t shifted_y = static_cast<uint64_t>(offset_y + reach_y);
+    for (int64_t i = 0; i < count; i++, pixel += Channels) {
+        const uint32_t column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+        const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u;
+        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
+        if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+            const unsigned char *top = asset->texton + (row * width + column) * Channels * Bytes;
+            const unsigned char *bottom = top + row_bytes;
+            for (uint32_t c = 0; c < Channels; c++)
+                pixel[c] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
+                    top + c * Bytes, bottom + c * Bytes, across, down));
+        } else { /* at the window's edge: the same integers, texels outside read as 0 */
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int64_t top_left = edge_texel<Channels, Bytes>(asset, row, column, c);
+                const int64_t bottom_left = edge_texel<Channels, Bytes>(asset, row + 1u, column, c);
+                const int64_t upper =
+                    top_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(asset, row, column + 1u, c) - top_left);
+                const int64_t lower =
+                    bottom_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(asset, row + 1u, column + 1u, c) - bottom_left);
+                pixel[c] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+            }
+        }
+        shifted_x += static_cast<uint64_t>(step_x);
+        shifted_y += static_cast<uint64_t>(step_y);
+    }
+}
+
+/* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window. */
+template <uint32_t Channels, uint32_t Bytes>
+void splat_impulse(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
+                   uint32_t width, int64_t position_x, int64_t position_y, uint64_t *sums) {
+    /* Offsets (pixel - impulse) of the block's first pixel. */
+    const int64_t row_x = x.base + x.column * static_cast<int64_t>(block.first_column) +
+                          x.row * static_cast<int64_t>(block.first_row) - position_x;
+    const int64_t row_y = y.base + y.column * static_cast<int64_t>(block.first_column) +
+                          y.row * static_cast<int64_t>(block.first_row) - position_y;
+    ColumnBounds bounds_x, bounds_y;
+    column_bounds_init(&bounds_x, row_x, x.column, x.row, x.reach);
+    column_bounds_init(&bounds_y, row_y, y.column, y.row, y.reach);
+    const int64_t columns = static_cast<int64_t>(block.end_column - block.first_column);
+    for (uint32_t j = block.first_row; j < block.end_row; j++) {
+        int64_t first = 0, last = columns - 1;
+        column_bounds_apply(bounds_x, &first, &last);
+        column_bounds_apply(bounds_y, &first, &last);
+        if (first <= last)
+            splat_row<Channels, Bytes>(
+                &noise->asset, bounds_x.offset + x.column * first, bounds_y.offset + y.column * first,
+                x.column, y.column, x.reach, y.reach, last - first + 1,
+                sums + (static_cast<size_t>(j) * width + block.first_column + static_cast<size_t>(first)) *
+                           Channels);
+        column_bounds_next(&bounds_x);
+        column_bounds_next(&bounds_y);
+    }
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
+                 uint32_t width, uint64_t *sums) {
+    const uint32_t shift = noise->cell_shift, cell_mask = 0xFFFFFFFFu >> shift;
+    const uint32_t position_shift = 16u + shift, lattice_shift = 16u - shift;
+    int64_t low_x, high_x, low_y, high_y;
+    block_extent(x, block, &low_x, &high_x);
+    block_extent(y, block, &low_y, &high_y);
+    /* Impulses at p reach pixels at offsets in (-reach, reach): p in (low - reach, high + reach). */
+    FrameSpans spans_x, spans_y;
+    frame_spans(x, low_x - x.reach, high_x + x.reach, &spans_x);
+    frame_spans(y, low_y - y.reach, high_y + y.reach, &spans_y);
+    const int64_t cell_step = static_cast<int64_t>(one_texel) << shift;
+    for (uint32_t sy = 0; sy < spans_y.span_count; sy++) {
+        const FrameSpan span_y = frame_span(y, spans_y, sy);
+        for (uint32_t sx = 0; sx < spans_x.span_count; sx++) {
+            const FrameSpan span_x = frame_span(x, spans_x, sx);
+            for (uint32_t cy = 0; cy < span_y.cell_count; cy++) {
+                const uint32_t cell_y = (span_y.first_cell + cy) & cell_mask;
+                const int64_t origin_y = span_y.first_origin + static_cast<int64_t>(cy) * cell_step;
+                const uint32_t row_key = dsn_row_key(noise, cell_y);
+                for (uint32_t cx = 0; cx < span_x.cell_count; cx++) {
+                    const uint32_t cell_x = (span_x.first_cell + cx) & cell_mask;
+                    const int64_t origin_x = span_x.first_origin + static_cast<int64_t>(cx) * cell_step;
+                    const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
+                    const uint32_t count = dsn_cell_impulse_count(noise, key);
+                    for (uint32_t k = 0; k < count; k++) {
+                        const uint32_t hash = dsn_impulse_hash(noise, key, k);
+                        const uint32_t bits_x = dsn_impulse_bits_x(hash), bits_y = dsn_impulse_bits_y(hash);
+                        /* The period: impulses past its end are discarded, as per point. */
+                        if ((cell_x << shift) + (bits_x >> lattice_shift) > span_x.last_position ||
+                            (cell_y << shift) + (bits_y >> lattice_shift) > span_y.last_position)
+                            continue;
+                        const int64_t position_x =
+                            origin_x + static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift);
+                        const int64_t position_y =
+                            origin_y + static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift);
+                        if (position_x <= low_x - x.reach || position_x >= high_x + x.reach ||
+                            position_y <= low_y - y.reach || position_y >= high_y + y.reach)
+                            continue;
+                        splat_impulse<Channels, Bytes>(noise, x, y, block, width, position_x, position_y,
+                                                       sums);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* Both frames, or false when the grid is evaluated point by point: it does not fit a frame, or it is so
+   sparse that per point is cheaper (one pixel covering more area than the cells a point visits). */
+bool splat_frames(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                  FrameAxis *x, FrameAxis *y) {
     const uint32_t shift = noise->cell_shift;
-    if (grid->column_step_y != 0 || grid->row_step_x != 0 || noise->period[0] != 0 || noise->period[1] != 0)
+    if (!frame_axis(x, grid->origin_x, grid->column_step_x, grid->row_step_x, width, height, noise->radius[0],
+                    shift, noise->period[0]) ||
+        !frame_axis(y, grid->origin_y, grid->column_step_y, grid->row_step_y, width, height, noise->radius[1],
+                    shift, noise->period[1]))
         return false;
-    if (!splat_axis(x, grid->origin_x, grid->column_step_x, width, noise->radius[0], shift) ||
-        !splat_axis(y, grid->origin_y, grid->row_step_y, height, noise->radius[1], shift))
-        return false;
-    /* Per point, a point visits about (2r + 2 + cell)^2 texels of impulses; a pixel here a * b. */
+    /* Steps of 2^14 texels or more make a sparse grid anyway (and keep every offset below 2^53). */
+    const uint64_t cx = magnitude(grid->column_step_x) >> 16, cy = magnitude(grid->column_step_y) >> 16;
+    const uint64_t rx = magnitude(grid->row_step_x) >> 16, ry = magnitude(grid->row_step_y) >> 16;
+    const uint64_t limit = static_cast<uint64_t>(1) << 30;
+    if (cx >= limit || cy >= limit || rx >= limit || ry >= limit) return false;
+    /* Per point, a point visits about (2r + 2 + cell)^2 texels of impulses; a pixel covers |det| of the
+       steps, between max(cx ry, cy rx) and twice that (texels^2, 16 fraction bits here). */
     const uint64_t visited_x = 2u * noise->radius[0] + 2u + (1u << shift);
     const uint64_t visited_y = 2u * noise->radius[1] + 2u + (1u << shift);
-    return (x->step >> 16) * (y->step >> 16) <= (visited_x * visited_y) << 32;
+    const uint64_t straight = (cx >> 8) * (ry >> 8), crossed = (cy >> 8) * (rx >> 8);
+    const uint64_t larger = straight > crossed ? straight : crossed;
+    return larger <= (visited_x * visited_y) << 16;
 }
 
 size_t splat_scratch_size(const dsn_noise_state *noise, uint32_t width, uint32_t height) {
@@ -106,41 +412,30 @@ uint64_t *aligned_sums(void *scratch) {
         static_cast<void *>(bytes + (misalignment ? sizeof(uint64_t) - misalignment : 0u)));
 }
 
-void splat_impulse(const dsn_noise_state *noise, const SplatAxis &x, const SplatAxis &y, uint64_t position_x,
-                   uint64_t position_y, uint64_t *sums) {
-    uint32_t first_i, last_i, first_j, last_j;
-    if (!splat_range(x, position_x, &first_i, &last_i) || !splat_range(y, position_y, &first_j, &last_j))
-        return;
-    const uint32_t channels = noise->asset.channels;
-    for (uint32_t j = first_j; j <= last_j; j++) {
-        uint32_t row, row_weight;
-        if (!bracket(splat_offset(y, j, position_y), noise->radius[1], &row, &row_weight)) continue;
-        for (uint32_t i = first_i; i <= last_i; i++) {
-            uint32_t column, column_weight;
-            if (!bracket(splat_offset(x, i, position_x), noise->radius[0], &column, &column_weight)) continue;
-            add_bilinear(&noise->asset, row, row_weight, column, column_weight,
-                         sums + (static_cast<size_t>(j) * x.count + i) * channels);
+template <uint32_t Channels, uint32_t Bytes>
+void splat_blocks(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
+                  uint32_t height, uint64_t *sums) {
+    for (uint32_t top = 0; top < height; top += block_side)
+        for (uint32_t left = 0; left < width; left += block_side) {
+            Block block;
+            block.first_column = left;
+            block.end_column = width - left < block_side ? width : left + block_side;
+            block.first_row = top;
+            block.end_row = height - top < block_side ? height : top + block_side;
+            splat_block<Channels, Bytes>(noise, x, y, block, width, sums);
         }
-    }
 }
 
-void splat_grid(const dsn_noise_state *noise, const SplatAxis &x, const SplatAxis &y, uint64_t *sums) {
-    const uint32_t shift = noise->cell_shift, cell_mask = 0xFFFFFFFFu >> shift;
-    for (uint32_t cy = 0; cy < y.cell_count; cy++)
-        for (uint32_t cx = 0; cx < x.cell_count; cx++) {
-            const uint32_t cell_x = (x.first_cell + cx) & cell_mask, cell_y = (y.first_cell + cy) & cell_mask;
-            const uint32_t key = dsn_cell_key(noise, cell_x, cell_y);
-            const uint32_t count = dsn_cell_impulse_count(noise, key);
-            const uint64_t origin_x = static_cast<uint64_t>(cell_x << shift) << 32;
-            const uint64_t origin_y = static_cast<uint64_t>(cell_y << shift) << 32;
-            for (uint32_t k = 0; k < count; k++) {
-                const uint32_t hash = dsn_impulse_hash(noise, key, k);
-                splat_impulse(noise, x, y,
-                              origin_x + (static_cast<uint64_t>(dsn_impulse_bits_x(hash)) << (16u + shift)),
-                              origin_y + (static_cast<uint64_t>(dsn_impulse_bits_y(hash)) << (16u + shift)),
-                              sums);
-            }
-        }
+/* One copy of the splat per channel count and value size. */
+void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
+                uint32_t height, uint64_t *sums) {
+    const dsn_asset *asset = &noise->asset;
+    if (asset->channels == 3)
+        asset->bits == 8 ? splat_blocks<3, 1>(noise, x, y, width, height, sums)
+                         : splat_blocks<3, 2>(noise, x, y, width, height, sums);
+    else
+        asset->bits == 8 ? splat_blocks<1, 1>(noise, x, y, width, height, sums)
+                         : splat_blocks<1, 2>(noise, x, y, width, height, sums);
 }
 
 #endif /* !DSN_SMALL_CODE */
@@ -151,18 +446,18 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
                   void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const int err = check_tile(noise, grid, width, height, out);
     if (err != DSN_OK) return err;
-    const uint32_t channels = noise->asset.channels;
-    int32_t pixel[DSN_MAX_CHANNELS];
 #if !DSN_SMALL_CODE
-    SplatAxis x, y;
+    FrameAxis x, y;
     const size_t needed =
-        splat_axes(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
+        splat_frames(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
     if (needed != 0) {
         if (scratch == 0 || scratch_size < needed) return DSN_ERR_SCRATCH;
         uint64_t *sums = aligned_sums(scratch);
+        const uint32_t channels = noise->asset.channels;
+        int32_t pixel[DSN_MAX_CHANNELS];
         const size_t values = static_cast<size_t>(width) * height * channels;
         for (size_t i = 0; i < values; i++) sums[i] = 0;
-        splat_grid(noise, x, y, sums);
+        splat_grid(noise, x, y, width, height, sums);
         for (size_t p = 0; p < values; p += channels) {
             normalize_q32(noise, sums + p, pixel);
             dsn_store_pixel(out, kind, p, pixel, channels);
@@ -174,6 +469,8 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
     (void)scratch_size;
 #endif
     /* Pixel (i, j) is origin + i column_step + j row_step modulo 2^64: stepping adds the same values. */
+    const uint32_t channels = noise->asset.channels;
+    int32_t pixel[DSN_MAX_CHANNELS];
     uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
     size_t index = 0;
     for (uint32_t j = 0; j < height; j++) {
@@ -201,9 +498,9 @@ size_t dsn_continuous_tile_scratch_size(const dsn_noise *handle, const dsn_grid 
     (void)noise, (void)grid, (void)width, (void)height;
     return 0; /* point by point: no scratch */
 #else
-    SplatAxis x, y;
+    FrameAxis x, y;
     if (check_tile(noise, grid, width, height, grid) != DSN_OK) return 0;
-    return splat_axes(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
+    return splat_frames(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
 #endif
 }
 

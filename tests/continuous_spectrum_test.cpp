@@ -113,8 +113,10 @@ std::vector<double> mean_periodogram(const dsn::AssetFields &fields, int side, i
             REQUIRE(dsn_lattice_tile_float(&noise->noise, seed % 5, 0, uint32_t(side), uint32_t(side),
                                            values.data(), scratch.data(), scratch.size()) == DSN_OK);
         } else {
+            std::vector<unsigned char> scratch(
+                dsn_continuous_tile_scratch_size(&noise->noise, &grid, uint32_t(side), uint32_t(side)));
             REQUIRE(dsn_continuous_tile_float(&noise->noise, &grid, uint32_t(side), uint32_t(side),
-                                              values.data(), nullptr, 0) == DSN_OK);
+                                              values.data(), scratch.data(), scratch.size()) == DSN_OK);
         }
         for (size_t i = 0; i < values.size(); i++) image.values[i] = values[i] - 0.5;
         std::vector<double> p = power(dsn::forward_dft(image), double(side) * side);

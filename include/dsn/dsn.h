@@ -297,7 +297,15 @@ typedef struct dsn_grid {
 /* Tile evaluation on a grid: width x height pixels, row-major, top row (j = 0) first, channels
    interleaved, exactly the per-point values. `scratch` as in lattice tile evaluation (at least
    dsn_continuous_tile_scratch_size() bytes, no alignment needed). Returns DSN_OK, DSN_ERR_NULL,
-   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
+   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH.
+   Any grid (zoom in or out, rotation, shear, mirror, periodic noises) is evaluated by splatting: each
+   impulse near the tile adds its texton to the pixels it reaches, so the cost follows the tile's area in
+   texels rather than its pixel count; the scratch then holds one 64-bit sum per pixel and channel
+   (width * height * channels * 8 bytes, plus 7). Grids where that does not pay or cannot be done exactly
+   (a pixel covering more texels than a point visits, steps of 2^14 texels or more, a periodic axis whose
+   points cross the int32 wrap of the coordinate or a period of 2^27 or more) are evaluated point by point
+   and dsn_continuous_tile_scratch_size() returns 0 for them; so does every grid in the small build
+   (DSN_SMALL_CODE), which evaluates point by point. Either way the bits are the per-point ones. */
 size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
                                         uint32_t height);
 int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
@@ -306,6 +314,7 @@ int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint
                               float *out, void *scratch, size_t scratch_size);
 int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size);
+
 /* ==== End of the continuous mode ===================================================================== */
 
 #ifdef __cplusplus

@@ -3,8 +3,8 @@
 #include "png_output.h"
 
 #include <algorithm>
-#include <cstddef>
 #include <climits>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 

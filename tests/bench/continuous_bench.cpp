@@ -1,8 +1,10 @@
 // continuous_bench.cpp - cost of the continuous (renderer) mode as ratios to the lattice mode measured in
-// the same run: per point over a 512 x 512 grid, and as a tile, RGB, 31 x 31 texton, 30 impacts per
-// pixel, one thread.
+// the same run: per point over a 512 x 512 grid, tiles under rotations and zooms, and random
+// points, RGB, 31 x 31 texton, 30 impacts per pixel, one thread.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
 #include "../../runtime/noise_state.h"
@@ -50,19 +52,44 @@ int main() {
         dsn_lattice_tile_fixed(n, 0, 0, kSide, kSide, tile.data(), scratch.data(), scratch.size());
         checksum += tile[7];
     });
-    // A rotated grid (evaluated point by point) and an axis-aligned zoom (splatted into the scratch).
-    const dsn_grid rotated = {one / 3, one / 7, step_x, step_y, -step_y, step_x};
-    const double rotated_tile = best_time(3, [&] {
-        dsn_continuous_tile_fixed(n, &rotated, kSide, kSide, tile.data(), nullptr, 0);
-        checksum += tile[7];
+    // Grids a renderer asks for, all splatted into the scratch: rotated by 30 degrees at 0.7 and 1.7 texels
+    // per pixel, and axis-aligned at 1.7.
+    auto grid_tile = [&](double degrees, double step) {
+        const double angle = degrees * 3.14159265358979323846 / 180.0;
+        const int64_t c = int64_t(std::cos(angle) * step * double(one));
+        const int64_t s = int64_t(std::sin(angle) * step * double(one));
+        const dsn_grid grid = {one / 3, one / 7, c, s, -s, c};
+        std::vector<unsigned char> grid_scratch(dsn_continuous_tile_scratch_size(n, &grid, kSide, kSide));
+        return best_time(3, [&] {
+            dsn_continuous_tile_fixed(n, &grid, kSide, kSide, tile.data(), grid_scratch.data(),
+                                      grid_scratch.size());
+            checksum += tile[7];
+        });
+    };
+    const double rotated_07 = grid_tile(30, 0.7), rotated_17 = grid_tile(30, 1.7),
+                 aligned_17 = grid_tile(0, 1.7);
+    // 4096 random points (a renderer's ray hits) one by one, against as many lattice points.
+    const size_t batch = 4096;
+    std::vector<int64_t> batch_x(batch), batch_y(batch);
+    std::vector<int32_t> lattice_x(batch), lattice_y(batch), batch_out(batch * 3);
+    std::mt19937_64 random(42);
+    for (size_t k = 0; k < batch; k++) {
+        batch_x[k] = int64_t(random() >> 20) - (int64_t(1) << 43);
+        batch_y[k] = int64_t(random() >> 20) - (int64_t(1) << 43);
+        lattice_x[k] = int32_t(batch_x[k] >> 32);
+        lattice_y[k] = int32_t(batch_y[k] >> 32);
+    }
+    const double batch_time = best_time(5, [&] {
+        for (size_t k = 0; k < batch; k++)
+            dsn_continuous_point_fixed(n, batch_x[k], batch_y[k], &batch_out[k * 3]);
+        checksum += batch_out[5];
     });
-    const int64_t zoom_step = int64_t(0.7 * double(one));
-    const dsn_grid zoomed = {one / 3, one / 7, zoom_step, 0, 0, zoom_step};
-    std::vector<unsigned char> grid_scratch(dsn_continuous_tile_scratch_size(n, &zoomed, kSide, kSide));
-    const double zoomed_tile = best_time(3, [&] {
-        dsn_continuous_tile_fixed(n, &zoomed, kSide, kSide, tile.data(), grid_scratch.data(),
-                                  grid_scratch.size());
-        checksum += tile[7];
+    const double lattice_random = best_time(5, [&] {
+        int32_t out[3];
+        for (size_t k = 0; k < batch; k++) {
+            dsn_lattice_point_fixed(n, lattice_x[k], lattice_y[k], out);
+            checksum += out[0];
+        }
     });
 
     std::printf("continuous mode, RGB 31x31 texton, 30 impacts per pixel, cell side %u, one thread:\n",
@@ -70,10 +97,21 @@ int main() {
     std::printf("  per point: lattice %.0f ns/sample, continuous %.0f ns/sample: ratio %.2f\n",
                 lattice_point / samples * 1e9, continuous_point / samples * 1e9,
                 continuous_point / lattice_point);
-    std::printf("  tile 512x512: lattice %.1f Mpixel/s; continuous axis-aligned zoom 1/0.7 %.1f Mpixel/s "
-                "(ratio %.2f), rotated %.1f Mpixel/s (ratio %.2f)\n",
-                samples / lattice_tile / 1e6, samples / zoomed_tile / 1e6, zoomed_tile / lattice_tile,
-                samples / rotated_tile / 1e6, rotated_tile / lattice_tile);
+    const double lattice_rate = samples / lattice_tile / 1e6;
+    std::printf("  tile 512x512: lattice %.1f Mpixel/s\n", lattice_rate);
+    const struct {
+        const char *name;
+        double time;
+    } tiles[] = {{"rotated 30 degrees, 0.7 texel/pixel", rotated_07},
+                 {"rotated 30 degrees, 1.7 texel/pixel", rotated_17},
+                 {"axis-aligned, 1.7 texel/pixel", aligned_17}};
+    for (const auto &t : tiles)
+        std::printf("  continuous tile %s: %.1f Mpixel/s, %.3f of the lattice tile (1/%.1f)\n", t.name,
+                    samples / t.time / 1e6, lattice_tile / t.time, t.time / lattice_tile);
+    std::printf("  %zu random points: continuous %.0f ns/point, lattice per point %.0f ns/point: "
+                "ratio %.2f\n",
+                batch, batch_time / double(batch) * 1e9, lattice_random / double(batch) * 1e9,
+                batch_time / lattice_random);
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }

@@ -125,6 +125,31 @@ const Grid continuous_grids[] = {
      12},
 };
 
+/* Affine grids for the splatting path: rotations by 30 degrees at zooms 0.7 and 1.7 (across the int32 and
+   2^64 wraps), an axis-aligned zoom 1.7, a minification by 4 rotated by 200 degrees, a magnification by 4
+   rotated by -75 degrees, a shear and a mirror. Steps are Q32.32 integers (no libm on the targets). */
+const Grid affine_grids[] = {
+    {{INT64_MAX - 9 * q32_one, -5 * q32_one / 3, 2603685551, 1503238554, -1503238554, 2603685551}, 20, 14},
+    {{-11 * q32_one / 7, (INT64_C(0x7FFFFFF0) << 32) + 77, 6323236337, 3650722202, -3650722202, 6323236337},
+     16,
+     12},
+    {{q32_one / 3, q32_one / 7, 7301444403, 0, 0, 7301444403}, 12, 10},
+    {{40 * q32_one, -3 * q32_one, -1008987269, -367241333, 367241333, -1008987269}, 24, 16},
+    {{INT64_MIN + q32_one / 5, 3 * q32_one, 4446477337, -16594479337, 16594479337, 4446477337}, 9, 7},
+    {{-2 * q32_one, 12345, 4563481818, 1222781268, 667004343, 4563481818}, 14, 11},
+    {{q32_one / 2, -q32_one / 9, 1932735283, 3347595708, -3347595708, -1932735283}, 13, 9},
+};
+
+/* The affine grids under the continuous settings and two more periods (one that every grid crosses
+   the int32 wrap of, per point then, and one small enough to repeat within a tile). */
+const Setting affine_settings[] = {
+    {0u, 0u, 0u, 0u, lattice_continuous},
+    {0x9E3779B9u, 100u << 16, 0u, 0u, lattice_continuous | DSN_FLAG_NO_COLOR_TRANSFORM},
+    {5u, DSN_IMPACTS_MIN_Q16, 16u, 13u, lattice_continuous},
+    {77u, 20u << 16, 37u, 0u, lattice_continuous},
+    {78u, 0u, 5u, 7u, lattice_continuous},
+};
+
 const uint32_t max_window_values = 32u * 16u * DSN_MAX_CHANNELS; /* the largest window or grid */
 const size_t scratch_capacity = 64u * 1024u;
 
@@ -336,6 +361,9 @@ const Plan tileable_plan = {tileable_settings,
 const Plan continuous_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
                               continuous_grids,    GOLDEN_COUNT(continuous_grids)};
 
+const Plan affine_plan = {affine_settings, GOLDEN_COUNT(affine_settings), 0, 0,
+                          affine_grids,    GOLDEN_COUNT(affine_grids)};
+
 /* One kind of output: a lattice evaluator over the plan's windows or a continuous one over its grids. */
 struct Kind {
     const char *name;
@@ -353,6 +381,9 @@ const Kind kinds[] = {
     {"c-point", 0, continuous_point_fixed, &continuous_plan},
     {"c-tile", 0, continuous_tile_fixed, &continuous_plan}, /* the same bytes as "c-point" */
     {"c-float", 0, continuous_conversions, &continuous_plan},
+    {"a-point", 0, continuous_point_fixed, &affine_plan},
+    {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
+    {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
 };
 
 void write_line(const char *kind, const char *asset, const char *detail) {

@@ -1,0 +1,197 @@
+// continuous_affine_test.cpp - continuous tiles under any affine grid (rotations, zooms in and out, shear,
+// mirror, periodic noises) give exactly the per-point values, bit for
+// bit, including across the 32-bit wraps and on grids that fall back to per point.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "fixtures/continuous_fixtures.h"
+
+using namespace continuous_fixtures;
+
+namespace {
+
+const int64_t one = int64_t(1) << 32;
+
+int64_t q32(double value) { return int64_t(std::llround(value * 4294967296.0)); }
+
+// The grid of a rotation by `degrees`, then a scale of `zoom` texels per pixel, sheared by `shear`
+// (added to the row step's x) and mirrored in x when asked.
+dsn_grid affine_grid(int64_t origin_x, int64_t origin_y, double degrees, double zoom, double shear,
+                     bool mirror) {
+    const double angle = degrees * 3.14159265358979323846 / 180.0;
+    const double c = std::cos(angle) * zoom, s = std::sin(angle) * zoom;
+    dsn_grid grid;
+    grid.origin_x = origin_x;
+    grid.origin_y = origin_y;
+    grid.column_step_x = q32(mirror ? -c : c);
+    grid.column_step_y = q32(s);
+    grid.row_step_x = q32(-s + shear * zoom);
+    grid.row_step_y = q32(c);
+    return grid;
+}
+
+// Evaluates the grid as a tile in every output type and checks each pixel against the per-point call.
+// Returns whether the tile was splatted (asked for scratch).
+bool tile_matches_points(const dsn_noise *noise, const dsn_grid &grid, uint32_t width, uint32_t height) {
+    const uint32_t channels = dsn_noise_channels(noise);
+    const size_t scratch_size = dsn_continuous_tile_scratch_size(noise, &grid, width, height);
+    std::vector<unsigned char> buffer(scratch_size + 3);
+    unsigned char *scratch = buffer.data() + 3; // no alignment needed
+    std::vector<int32_t> tile(size_t(width) * height * channels);
+    std::vector<float> tile_float(tile.size());
+    std::vector<uint8_t> tile_u8(tile.size());
+    if (scratch_size != 0) {
+        CHECK(dsn_continuous_tile_fixed(noise, &grid, width, height, tile.data(), scratch,
+                                        scratch_size - 1) == DSN_ERR_SCRATCH);
+    }
+    REQUIRE(dsn_continuous_tile_fixed(noise, &grid, width, height, tile.data(), scratch, scratch_size) ==
+            DSN_OK);
+    REQUIRE(dsn_continuous_tile_float(noise, &grid, width, height, tile_float.data(), scratch,
+                                      scratch_size) == DSN_OK);
+    REQUIRE(dsn_continuous_tile_u8(noise, &grid, width, height, tile_u8.data(), scratch, scratch_size) ==
+            DSN_OK);
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            const int64_t x = int64_t(uint64_t(grid.origin_x) + uint64_t(grid.column_step_x) * i +
+                                      uint64_t(grid.row_step_x) * j);
+            const int64_t y = int64_t(uint64_t(grid.origin_y) + uint64_t(grid.column_step_y) * i +
+                                      uint64_t(grid.row_step_y) * j);
+            int32_t point[3];
+            REQUIRE(dsn_continuous_point_fixed(noise, x, y, point) == DSN_OK);
+            for (uint32_t c = 0; c < channels; c++) {
+                const size_t at = (size_t(j) * width + i) * channels + c;
+                CAPTURE(i);
+                CAPTURE(j);
+                REQUIRE(tile[at] == point[c]);
+                REQUIRE(tile_float[at] == dsn_fixed_to_float(point[c]));
+                REQUIRE(tile_u8[at] == dsn_fixed_to_u8(point[c]));
+            }
+        }
+    return scratch_size != 0;
+}
+
+// Origins: anywhere, just before both 32-bit wraps (int32 lattice and the 2^64 torus), around 0.
+int64_t origin_near_wraps(std::mt19937_64 &random, int which) {
+    switch (which % 4) {
+    case 0:
+        return int64_t(random());
+    case 1:
+        return int64_t(uint64_t(INT32_MAX - 20) << 32) + int64_t(random() >> 32); // int32 wrap ahead
+    case 2:
+        return INT64_MAX - 25 * one + int64_t(random() >> 33); // the 2^64 wrap ahead
+    default:
+        return -30 * one + int64_t(random() >> 32);
+    }
+}
+
+} // namespace
+
+TEST_CASE("continuous affine: rotated, zoomed, sheared and mirrored tiles equal per point") {
+    std::mt19937_64 random(15);
+    auto rgb8 = make_noise(random_texton_asset(3, 5, 8, 3), 77);
+    auto grey16 = make_noise(random_texton_asset(1, 4, 16, 4), 78, 12u << 16);
+    auto rgb16 = make_noise(random_texton_asset(3, 6, 16, 5), 79, 60u << 16);
+    auto grey8 = make_noise(random_texton_asset(1, 7, 8, 6), 80, 300u << 16); // dense, larger cells
+    const double angles[] = {30, 0, 90, 45, 180, 217.5, -12, 333};
+    const double zooms[] = {0.7, 1.7, 0.25, 4, 1, 0.05};
+    size_t splatted = 0, total = 0;
+    int which = 0;
+    for (auto *noise : {&rgb8->noise, &grey16->noise, &rgb16->noise, &grey8->noise}) {
+        for (double angle : angles)
+            for (double zoom : zooms) {
+                const double shear = (which % 3 == 0) ? 0.35 : 0.0;
+                const bool mirror = which % 5 == 1;
+                const dsn_grid grid =
+                    affine_grid(origin_near_wraps(random, which), origin_near_wraps(random, which + 1), angle,
+                                zoom, shear, mirror);
+                const uint32_t width = 1 + uint32_t(random() % 45), height = 1 + uint32_t(random() % 40);
+                CAPTURE(angle);
+                CAPTURE(zoom);
+                CAPTURE(shear);
+                CAPTURE(mirror);
+                CAPTURE(grid.origin_x);
+                CAPTURE(grid.origin_y);
+                splatted += tile_matches_points(noise, grid, width, height);
+                total++;
+                which++;
+            }
+    }
+#if DSN_SMALL_CODE
+    CHECK(splatted == 0);
+#else
+    CHECK(splatted * 10 >= total * 8); // nearly every one of these grids is splatted
+#endif
+}
+
+TEST_CASE("continuous affine: periodic noises, also where the grid crosses the int32 wrap") {
+    std::mt19937_64 random(16);
+    const uint32_t periods[][2] = {{64, 64}, {37, 11}, {1, 300}, {0, 50}, {23, 0}, {3, 5}};
+    size_t splatted = 0, fallbacks = 0;
+    int which = 0;
+    for (const auto &period : periods) {
+        auto noise = make_noise(random_texton_asset(3, 4, 8, 6), 5, 0, period[0], period[1]);
+        auto noise16 = make_noise(random_texton_asset(1, 3, 16, 7), 6, 20u << 16, period[0], period[1]);
+        for (auto *n : {&noise->noise, &noise16->noise})
+            for (double angle : {30.0, 0.0, 71.0, 200.0})
+                for (double zoom : {0.7, 1.7, 0.25, 4.0}) {
+                    const dsn_grid grid =
+                        affine_grid(origin_near_wraps(random, which), origin_near_wraps(random, which + 2),
+                                    angle, zoom, which % 2 ? 0.2 : 0.0, which % 3 == 0);
+                    CAPTURE(period[0]);
+                    CAPTURE(period[1]);
+                    CAPTURE(angle);
+                    CAPTURE(zoom);
+                    const bool splat = tile_matches_points(n, grid, 1 + uint32_t(random() % 40),
+                                                           1 + uint32_t(random() % 40));
+                    splatted += splat;
+                    fallbacks += !splat;
+                    which++;
+                }
+    }
+#if DSN_SMALL_CODE
+    CHECK(splatted == 0);
+#else
+    CHECK(splatted >= 100);
+    CHECK(fallbacks >= 5); // the grids across the int32 wrap of a periodic axis, and the sparse ones
+#endif
+}
+
+TEST_CASE("continuous affine: degenerate, sparse and huge-step grids fall back or splat, always exact") {
+    std::mt19937_64 random(17);
+    auto noise = make_noise(random_texton_asset(3, 5, 8, 8), 81, 40u << 16);
+    const dsn_noise *n = &noise->noise;
+    const dsn_grid grids[] = {
+        {one / 3, -one / 5, 0, 0, 0, 0},                          // every pixel the same point
+        {one / 3, -one / 5, one / 2, one / 4, one, one / 2},      // collinear steps (zero area)
+        {-7 * one, 5 * one, 0, one / 3, one / 5, 0},              // swapped axes
+        {INT64_MIN + 3, INT64_MAX - 7, 40 * one, 0, 0, 40 * one}, // sparse: per point
+        {5, 9, int64_t(1) << 50, 3, -7, int64_t(1) << 49},        // huge steps: per point
+        {-one, one, 65536, -3, 7, 65536},                         // tiny steps, much zoomed in
+        {one / 2, one / 2, -one / 3, 0, 0, -one / 2},             // mirrored in both axes
+    };
+    for (const dsn_grid &grid : grids) {
+        CAPTURE(grid.column_step_x);
+        tile_matches_points(n, grid, 1 + uint32_t(random() % 70), 1 + uint32_t(random() % 70));
+    }
+#if !DSN_SMALL_CODE
+    CHECK(dsn_continuous_tile_scratch_size(n, &grids[3], 10, 10) == 0);
+    CHECK(dsn_continuous_tile_scratch_size(n, &grids[4], 10, 10) == 0);
+    CHECK(dsn_continuous_tile_scratch_size(n, &grids[1], 10, 10) == 10 * 10 * 3 * 8 + 7);
+#endif
+}
+
+TEST_CASE("continuous affine: larger tiles across several blocks") {
+    std::mt19937_64 random(18);
+    auto noise = make_noise(random_texton_asset(3, 15, 8, 9), 1, 30u << 16);
+    for (double zoom : {0.7, 1.7}) {
+        const dsn_grid rotated = affine_grid(-one / 3, INT64_MAX - 40 * one, 30, zoom, 0, false);
+        tile_matches_points(&noise->noise, rotated, 100, 70);
+    }
+    const dsn_grid aligned = affine_grid(one / 7, one / 9, 0, 1.7, 0, false);
+    tile_matches_points(&noise->noise, aligned, 90, 65);
+}
