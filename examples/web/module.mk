@@ -43,7 +43,10 @@ $(WEB_WASM): $(WASM_SOURCES) $(wildcard runtime/*.h include/dsn/*.h examples/web
 WASI_CXX ?= clang++
 WASI_FLAGS = --target=wasm32-wasi --sysroot=/usr -std=c++17 -O2 -ffp-contract=off -Iinclude $(PACKAGE_CFLAGS) \
     -include examples/web/bake/posix_missing.h
-WASI_SOURCES = $(OFFLINE_SOURCES) $(RUNTIME_SOURCES) $(wildcard examples/web/bake/*.cpp)
+# The baker's sources only: dsn-synth's spectral synthesis (offline/synth.cpp) runs its FFTs on threads,
+# which wasi has not, and the page does not use it.
+WASI_SOURCES = $(filter-out offline/synth.cpp,$(OFFLINE_SOURCES)) $(RUNTIME_SOURCES) \
+    $(wildcard examples/web/bake/*.cpp)
 WASI_OBJECTS = $(WASI_SOURCES:%.cpp=$(BUILD)/wasi/%.o)
 $(BUILD)/wasi/%.o: %.cpp $(wildcard include/dsn/*.h runtime/*.h offline/*.h examples/web/bake/*.h)
 	@mkdir -p $(@D)
