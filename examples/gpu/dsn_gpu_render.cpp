@@ -20,6 +20,7 @@
 #include "../../offline/tools/command_line.h"
 #include "../../offline/tools/file_output.h"
 #include "../../offline/tools/png_output.h"
+#include "../../offline/tools/render_window.h"
 #include "dsn/dsn.h"
 #include "dsn/gpu.h"
 #include "headless_gl.h"
@@ -130,32 +131,6 @@ Options parse_options(dsn::CommandLine &arguments) {
     return options;
 }
 
-// The lattice origin as dsn-render reads it: an integer modulo 2^32.
-uint32_t lattice_coordinate(const std::string &text) {
-    char *end = nullptr;
-    errno = 0;
-    const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || value < -4294967296LL || value > 4294967295LL)
-        throw dsn::UsageError("--origin: '" + text + "' is not an integer (use --mode continuous for reals)");
-    return static_cast<uint32_t>(static_cast<unsigned long long>(value));
-}
-
-int64_t q32_step(double texels) { return static_cast<int64_t>(std::llround(texels * 4294967296.0)); }
-
-// dsn-render's grid: pixel (i, j) samples origin + (i cos a - j sin a, i sin a + j cos a) / scale.
-dsn_grid continuous_grid(const Options &options) {
-    const double radians = options.rotate_degrees * 3.14159265358979323846 / 180.0;
-    const double cosine = std::cos(radians) / options.scale, sine = std::sin(radians) / options.scale;
-    dsn_grid grid;
-    grid.origin_x = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_x));
-    grid.origin_y = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_y));
-    grid.column_step_x = q32_step(cosine);
-    grid.column_step_y = q32_step(sine);
-    grid.row_step_x = q32_step(-sine);
-    grid.row_step_y = q32_step(cosine);
-    return grid;
-}
-
 // The fragment shader: what a renderer writes, with the window's mapping as uniforms.
 const char *const fragment_main = R"glsl(
 uniform highp usampler2D noise_words;
@@ -228,7 +203,8 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
     gl.glUniform1i(gl.glGetUniformLocation(program, "noise_words"), 0);
     uint32_t origin[4] = {0, 0, 0, 0}, column[4] = {0, 0, 0, 0}, row[4] = {0, 0, 0, 0};
     if (options.mode == Mode::continuous) {
-        const dsn_grid grid = continuous_grid(options);
+        const dsn_grid grid =
+            dsn::rotated_grid(options.origin_x, options.origin_y, options.scale, options.rotate_degrees);
         const int64_t values[12] = {grid.origin_x,
                                     grid.origin_y,
                                     grid.column_step_x,
@@ -248,8 +224,8 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
             pairs[v / 2][2 * (v % 2) + 1] = static_cast<uint32_t>(bits >> 32);
         }
     } else {
-        origin[0] = lattice_coordinate(options.origin_x);
-        origin[2] = lattice_coordinate(options.origin_y);
+        origin[0] = static_cast<uint32_t>(dsn::lattice_origin(options.origin_x));
+        origin[2] = static_cast<uint32_t>(dsn::lattice_origin(options.origin_y));
     }
     gl.glUniform1ui(gl.glGetUniformLocation(program, "continuous_mode"), options.mode == Mode::continuous);
     gl.glUniform4ui(gl.glGetUniformLocation(program, "origin"), origin[0], origin[1], origin[2], origin[3]);
@@ -305,15 +281,16 @@ std::vector<uint8_t> render_cpu(const Options &options, const dsn_noise &noise, 
     const auto start = std::chrono::steady_clock::now();
     int err;
     if (options.mode == Mode::continuous) {
-        const dsn_grid grid = continuous_grid(options);
+        const dsn_grid grid =
+            dsn::rotated_grid(options.origin_x, options.origin_y, options.scale, options.rotate_degrees);
         scratch.resize(dsn_continuous_tile_scratch_size(&noise, &grid, options.width, options.height));
         err = dsn_continuous_tile_u8(&noise, &grid, options.width, options.height, pixels.data(),
                                      scratch.data(), scratch.size());
     } else {
         scratch.resize(dsn_lattice_tile_scratch_size(&noise, options.width, options.height));
-        err = dsn_lattice_tile_u8(&noise, static_cast<int32_t>(lattice_coordinate(options.origin_x)),
-                                  static_cast<int32_t>(lattice_coordinate(options.origin_y)), options.width,
-                                  options.height, pixels.data(), scratch.data(), scratch.size());
+        err = dsn_lattice_tile_u8(&noise, dsn::lattice_origin(options.origin_x),
+                                  dsn::lattice_origin(options.origin_y), options.width, options.height,
+                                  pixels.data(), scratch.data(), scratch.size());
     }
     *seconds = seconds_since(start);
     if (err != DSN_OK) throw std::runtime_error(std::string("CPU tile: ") + dsn_error_message(err));

@@ -129,4 +129,9 @@ int run_tool(const char *tool, const char *usage, int argc, char **argv,
     }
 }
 
+bool ends_with(const std::string &text, const std::string &suffix) {
+    return text.size() >= suffix.size() &&
+           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 } // namespace dsn

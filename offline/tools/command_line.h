@@ -71,6 +71,9 @@ long long parse_integer(const std::string &flag, const std::string &text, long l
 // A finite decimal real number ("-1.5", "2e3"; not hexadecimal, inf or nan); UsageError otherwise.
 double parse_real(const std::string &flag, const std::string &text);
 
+// Whether `text` (a file name) ends with `suffix` (its extension, ".png").
+bool ends_with(const std::string &text, const std::string &suffix);
+
 // Runs `body` with the tool's arguments and applies the conventions above to what it throws:
 // UsageError -> exit 2, any other exception -> exit 1, each as one line on stderr prefixed by `tool`.
 int run_tool(const char *tool, const char *usage, int argc, char **argv,

@@ -64,11 +64,6 @@ struct Arguments {
     bool quiet = false;
 };
 
-bool ends_with(const std::string &text, const std::string &suffix) {
-    return text.size() >= suffix.size() &&
-           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 Arguments parse_arguments(dsn::CommandLine &command_line) {
     Arguments arguments;
     while (command_line.next()) {
@@ -123,7 +118,7 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
         if (!output->empty() && dsn::same_file(arguments.input, *output))
             throw dsn::UsageError("output " + *output + " is the input image");
     // An asset written as out.png is a mistake that shows only when the file is opened: refuse it.
-    if (!ends_with(arguments.output, ".dsnt"))
+    if (!dsn::ends_with(arguments.output, ".dsnt"))
         throw dsn::UsageError("the output " + arguments.output +
                               " must end in .dsnt (the preview is --preview)");
     return arguments;

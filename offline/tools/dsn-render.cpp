@@ -27,6 +27,7 @@
 #include "dsn/dsn.h"
 #include "file_output.h"
 #include "png_output.h"
+#include "render_window.h"
 
 namespace {
 
@@ -85,11 +86,6 @@ struct Options {
     bool quiet = false;
 };
 
-bool ends_with(const std::string &text, const std::string &suffix) {
-    return text.size() >= suffix.size() &&
-           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // "AxB" or "A,B" -> the two halves.
 std::pair<std::string, std::string> split_pair(const std::string &flag, const std::string &text,
                                                char separator) {
@@ -98,18 +94,6 @@ std::pair<std::string, std::string> split_pair(const std::string &flag, const st
         throw dsn::UsageError(flag + " needs two values separated by '" + separator + "', not '" + text +
                               "'");
     return {text.substr(0, at), text.substr(at + 1)};
-}
-
-// A lattice origin: an integer, taken modulo 2^32 (so -1 and 4294967295 are the same point).
-int32_t lattice_coordinate(const std::string &text) {
-    char *end = nullptr;
-    errno = 0;
-    long long value = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || value < -4294967296LL || value > 4294967295LL)
-        throw dsn::UsageError("--origin: '" + text + "' is not an integer (use --mode continuous for reals)");
-    uint32_t wrapped = static_cast<uint32_t>(static_cast<unsigned long long>(value));
-    return wrapped >= 0x80000000u ? static_cast<int32_t>(wrapped - 0x80000000u) + INT32_MIN
-                                  : static_cast<int32_t>(wrapped);
 }
 
 Options parse_options(dsn::CommandLine &command_line) {
@@ -178,7 +162,7 @@ Options parse_options(dsn::CommandLine &command_line) {
     }
     if (options.asset_path.empty()) throw dsn::UsageError("no asset given");
     if (options.output_path.empty()) throw dsn::UsageError("no output given (-o OUT.png|OUT.f32)");
-    if (!ends_with(options.output_path, ".png") && !ends_with(options.output_path, ".f32"))
+    if (!dsn::ends_with(options.output_path, ".png") && !dsn::ends_with(options.output_path, ".f32"))
         throw dsn::UsageError("the output must end in .png or .f32: " + options.output_path);
     if (!size_given) throw dsn::UsageError("no size given (--size WxH)");
     if (uint64_t(options.width) * options.height > kMaxRenderPixels)
@@ -194,8 +178,8 @@ Options parse_options(dsn::CommandLine &command_line) {
         dsn::parse_real("--origin", options.origin_x);
         dsn::parse_real("--origin", options.origin_y);
     } else {
-        lattice_coordinate(options.origin_x);
-        lattice_coordinate(options.origin_y);
+        dsn::lattice_origin(options.origin_x);
+        dsn::lattice_origin(options.origin_y);
     }
     return options;
 }
@@ -214,23 +198,6 @@ std::vector<unsigned char> read_file(const std::string &path) {
                                  " MiB, not a .dsnt asset");
     bytes.resize(read);
     return bytes;
-}
-
-int64_t q32_step(double texels) { return static_cast<int64_t>(std::llround(texels * 4294967296.0)); }
-
-// Pixel (i, j) samples origin + (i cos a - j sin a, i sin a + j cos a) / scale (a = the rotation).
-dsn_grid continuous_grid(const Options &options) {
-    // fmod is exact: a huge angle keeps its meaning instead of losing every bit to the multiplication.
-    const double radians = std::fmod(options.rotate_degrees, 360.0) * 3.14159265358979323846 / 180.0;
-    const double cosine = std::cos(radians) / options.scale, sine = std::sin(radians) / options.scale;
-    dsn_grid grid;
-    grid.origin_x = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_x));
-    grid.origin_y = dsn_coordinate_from_double(dsn::parse_real("--origin", options.origin_y));
-    grid.column_step_x = q32_step(cosine);
-    grid.column_step_y = q32_step(sine);
-    grid.row_step_x = q32_step(-sine);
-    grid.row_step_y = q32_step(cosine);
-    return grid;
 }
 
 // What every worker shares: the configured noise, where the image lies, and its cut into strips.
@@ -430,10 +397,11 @@ void run(const Options &options) {
 
     Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 0};
     if (options.mode == Mode::continuous)
-        job.grid = continuous_grid(options);
+        job.grid =
+            dsn::rotated_grid(options.origin_x, options.origin_y, options.scale, options.rotate_degrees);
     else
-        job.lattice_x0 = lattice_coordinate(options.origin_x),
-        job.lattice_y0 = lattice_coordinate(options.origin_y);
+        job.lattice_x0 = dsn::lattice_origin(options.origin_x),
+        job.lattice_y0 = dsn::lattice_origin(options.origin_y);
 
     const size_t value_count = static_cast<size_t>(options.width) * options.height * asset.channels;
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -448,7 +416,7 @@ void run(const Options &options) {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     double seconds = 0;
-    if (ends_with(options.output_path, ".png")) {
+    if (dsn::ends_with(options.output_path, ".png")) {
         MappedMemory pixels(value_count);
         render(job, threads, progress, static_cast<uint8_t *>(pixels.data()));
         seconds = elapsed();

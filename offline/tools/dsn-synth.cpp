@@ -60,11 +60,6 @@ struct Arguments {
     bool quiet = false;
 };
 
-bool ends_with(const std::string &text, const std::string &suffix) {
-    return text.size() >= suffix.size() &&
-           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 Arguments parse_arguments(dsn::CommandLine &command_line) {
     Arguments arguments;
     bool size_given = false;
@@ -113,9 +108,9 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
     }
     if (arguments.input.empty()) throw dsn::UsageError("no input image given");
     if (arguments.output.empty()) throw dsn::UsageError("no output given (-o OUT.png|OUT.f32)");
-    if (!ends_with(arguments.output, ".png") && !ends_with(arguments.output, ".f32"))
+    if (!dsn::ends_with(arguments.output, ".png") && !dsn::ends_with(arguments.output, ".f32"))
         throw dsn::UsageError("the output must end in .png or .f32: " + arguments.output);
-    if (arguments.bits == 16 && !ends_with(arguments.output, ".png"))
+    if (arguments.bits == 16 && !dsn::ends_with(arguments.output, ".png"))
         throw dsn::UsageError("--bits is for a .png output");
     if (!size_given) throw dsn::UsageError("no size given (--size WxH)");
     if (dsn::same_file(arguments.input, arguments.output))
@@ -136,7 +131,7 @@ std::vector<Sample> interleave(const dsn::Image &image, Convert convert) {
 double clamp_unit(double value) { return std::min(1.0, std::max(0.0, value)); }
 
 std::vector<unsigned char> encode(const dsn::Image &image, const std::string &path, int bits) {
-    if (ends_with(path, ".f32")) {
+    if (dsn::ends_with(path, ".f32")) {
         const std::vector<uint32_t> words = interleave<uint32_t>(image, [](double value) {
             const float narrow = float(value);
             uint32_t word;
