@@ -8,6 +8,7 @@
 // error and samples are divided by the file's own maxval.
 #include "dsn/bake.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include <memory>
 #include <stdexcept>
 #include <sys/stat.h>
+#include <vector>
 
 namespace dsn {
 namespace {
@@ -24,12 +26,22 @@ namespace {
 thread_local size_t allocation_limit = 0;
 thread_local bool allocation_refused = false;
 
+// What stb_image holds while it decodes, so that a decode abandoned by a failed check (below) frees it.
+thread_local std::vector<void *> live_allocations;
+
+void forget(void *pointer) {
+    auto at = std::find(live_allocations.begin(), live_allocations.end(), pointer);
+    if (at != live_allocations.end()) live_allocations.erase(at);
+}
+
 void *limited_malloc(size_t size) {
     if (size > allocation_limit) {
         allocation_refused = true;
         return nullptr;
     }
-    return std::malloc(size);
+    void *pointer = std::malloc(size);
+    if (pointer) live_allocations.push_back(pointer);
+    return pointer;
 }
 
 void *limited_realloc(void *pointer, size_t size) {
@@ -37,8 +49,23 @@ void *limited_realloc(void *pointer, size_t size) {
         allocation_refused = true;
         return nullptr;
     }
-    return std::realloc(pointer, size);
+    forget(pointer);
+    void *moved = std::realloc(pointer, size);
+    if (moved) live_allocations.push_back(moved);
+    else if (pointer) live_allocations.push_back(pointer); // still stb's: a failed realloc keeps it
+    return moved;
 }
+
+void limited_free(void *pointer) {
+    forget(pointer);
+    std::free(pointer);
+}
+
+// stb_image 2.27 checks its JPEG Huffman decoding with an assert that corrupt data can fail (after the
+// fuzzer found it): aborting the tool is no answer to a bad file, so a failed check abandons the decode
+// (DecoderCheckFailed) and every allocation of it is freed.
+struct DecoderCheckFailed {};
+[[noreturn]] void decoder_check_failed() { throw DecoderCheckFailed(); }
 
 } // namespace
 } // namespace dsn
@@ -53,7 +80,8 @@ void *limited_realloc(void *pointer, size_t size) {
 #define STBI_MAX_DIMENSIONS 65535
 #define STBI_MALLOC(size) dsn::limited_malloc(size)
 #define STBI_REALLOC(pointer, size) dsn::limited_realloc(pointer, size)
-#define STBI_FREE(pointer) std::free(pointer)
+#define STBI_FREE(pointer) dsn::limited_free(pointer)
+#define STBI_ASSERT(condition) ((condition) ? (void)0 : dsn::decoder_check_failed())
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wshadow"
@@ -75,7 +103,7 @@ namespace dsn {
 namespace {
 
 struct StbFree {
-    void operator()(void *pixels) const { std::free(pixels); }
+    void operator()(void *pixels) const { limited_free(pixels); }
 };
 
 [[noreturn]] void fail(const std::string &name, const std::string &problem) {
@@ -271,11 +299,19 @@ Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, co
     allocation_limit = allocation_bound(uint64_t(width), uint64_t(height), size);
     allocation_refused = false;
     const bool sixteen_bits = stbi_is_16_bit_from_memory(bytes, length) != 0;
-    std::unique_ptr<void, StbFree> pixels(
-        sixteen_bits ? static_cast<void *>(
-                           stbi_load_16_from_memory(bytes, length, &width, &height, &stored_channels, 0))
-                     : static_cast<void *>(
-                           stbi_load_from_memory(bytes, length, &width, &height, &stored_channels, 0)));
+    std::unique_ptr<void, StbFree> pixels;
+    live_allocations.clear();
+    try {
+        pixels.reset(sixteen_bits ? static_cast<void *>(stbi_load_16_from_memory(
+                                        bytes, length, &width, &height, &stored_channels, 0))
+                                  : static_cast<void *>(stbi_load_from_memory(bytes, length, &width, &height,
+                                                                              &stored_channels, 0)));
+    } catch (const DecoderCheckFailed &) {
+        for (void *pointer : live_allocations) std::free(pointer);
+        live_allocations.clear();
+        allocation_limit = 0;
+        fail(name, std::string("cannot decode ") + format_name + ": corrupt compressed data");
+    }
     const bool refused = allocation_refused;
     allocation_limit = 0;
     if (refused)
