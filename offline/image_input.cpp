@@ -51,8 +51,10 @@ void *limited_realloc(void *pointer, size_t size) {
     }
     forget(pointer);
     void *moved = std::realloc(pointer, size);
-    if (moved) live_allocations.push_back(moved);
-    else if (pointer) live_allocations.push_back(pointer); // still stb's: a failed realloc keeps it
+    if (moved)
+        live_allocations.push_back(moved);
+    else if (pointer)
+        live_allocations.push_back(pointer); // still stb's: a failed realloc keeps it
     return moved;
 }
 
@@ -252,13 +254,14 @@ bool jpeg_huffman_tables_fit(const unsigned char *bytes, size_t size) {
 std::vector<unsigned char> without_empty_idat_chunks(const unsigned char *bytes, size_t size) {
     std::vector<unsigned char> kept;
     size_t at = 8, copied = 0;
-    while (at + 12 <= size) {
+    // A chunk's header (length and type) is enough to drop it: a truncated file may end before the CRC.
+    while (at + 8 <= size) {
         const uint64_t length = big_endian_u32(bytes + at);
         if (length == 0 && std::memcmp(bytes + at + 4, "IDAT", 4) == 0) {
             kept.insert(kept.end(), bytes + copied, bytes + at);
-            copied = at + 12;
+            copied = std::min(at + 12, size);
         }
-        if (length > size - at - 12) break;
+        if (at + 12 > size || length > size - at - 12) break;
         at += 12 + size_t(length);
     }
     if (copied == 0) return kept;
