@@ -27,34 +27,41 @@ thread_local size_t allocation_limit = 0;
 thread_local bool allocation_refused = false;
 
 // What stb_image holds while it decodes, so that a decode abandoned by a failed check (below) frees it.
-thread_local std::vector<void *> live_allocations;
+// A fixed table (a decode holds a few blocks; more is refused like an oversized one), which keeps the
+// thread_local trivially destructible (the wasm32-wasi build has no thread-exit destructors).
+constexpr size_t kMaxLiveAllocations = 64;
+thread_local void *live_allocations[kMaxLiveAllocations];
+thread_local size_t live_count = 0;
 
 void forget(void *pointer) {
-    auto at = std::find(live_allocations.begin(), live_allocations.end(), pointer);
-    if (at != live_allocations.end()) live_allocations.erase(at);
+    for (size_t i = 0; i < live_count; i++)
+        if (live_allocations[i] == pointer) {
+            live_allocations[i] = live_allocations[--live_count];
+            return;
+        }
 }
 
 void *limited_malloc(size_t size) {
-    if (size > allocation_limit) {
+    if (size > allocation_limit || live_count == kMaxLiveAllocations) {
         allocation_refused = true;
         return nullptr;
     }
     void *pointer = std::malloc(size);
-    if (pointer) live_allocations.push_back(pointer);
+    if (pointer) live_allocations[live_count++] = pointer;
     return pointer;
 }
 
 void *limited_realloc(void *pointer, size_t size) {
-    if (size > allocation_limit) {
+    if (size > allocation_limit || (pointer == nullptr && live_count == kMaxLiveAllocations)) {
         allocation_refused = true;
         return nullptr;
     }
     forget(pointer);
     void *moved = std::realloc(pointer, size);
     if (moved)
-        live_allocations.push_back(moved);
+        live_allocations[live_count++] = moved;
     else if (pointer)
-        live_allocations.push_back(pointer); // still stb's: a failed realloc keeps it
+        live_allocations[live_count++] = pointer; // still stb's: a failed realloc keeps it
     return moved;
 }
 
@@ -303,15 +310,15 @@ Image decode_with_stb(const unsigned char *bytes, size_t size, Format format, co
     allocation_refused = false;
     const bool sixteen_bits = stbi_is_16_bit_from_memory(bytes, length) != 0;
     std::unique_ptr<void, StbFree> pixels;
-    live_allocations.clear();
+    live_count = 0;
     try {
         pixels.reset(sixteen_bits ? static_cast<void *>(stbi_load_16_from_memory(
                                         bytes, length, &width, &height, &stored_channels, 0))
                                   : static_cast<void *>(stbi_load_from_memory(bytes, length, &width, &height,
                                                                               &stored_channels, 0)));
     } catch (const DecoderCheckFailed &) {
-        for (void *pointer : live_allocations) std::free(pointer);
-        live_allocations.clear();
+        for (size_t i = 0; i < live_count; i++) std::free(live_allocations[i]);
+        live_count = 0;
         allocation_limit = 0;
         fail(name, std::string("cannot decode ") + format_name + ": corrupt compressed data");
     }
