@@ -93,7 +93,8 @@ TEST_CASE("sphere: the ray-differential Jacobian is the derivative of the traced
     const double radius = 1.2, h = 1e-3;
     auto coordinates = [&](double px, double py, double &u, double &v) {
         const Vec d = camera.direction(px, py);
-        const Vec normal = normalize(camera.eye + d * sphere_distance(camera.eye, d, center, radius) - center);
+        const Vec normal =
+            normalize(camera.eye + d * sphere_distance(camera.eye, d, center, radius) - center);
         sphere_coordinates(normal, radius, kScale, u, v);
     };
     int checked = 0;

@@ -1,6 +1,8 @@
 // dsn-contact-sheet: one labelled PNG that shows a bake at a glance: the exemplar, its Gaussian
 // reference (a random-phase synthesis of the exemplar's Gaussian model), the runtime synthesis, the
-// texton, and the renderer scene. Labels are drawn with stb_easy_font (quads rasterized here).
+// texton, the renderer scene, and (when given) the scene's ground toward the horizon read three ways:
+// unfiltered, filtered and supersampled, enlarged so the pixels show. Labels are drawn with
+// stb_easy_font (quads rasterized here).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,14 +28,18 @@ namespace {
 
 const char *const usage =
     "usage: dsn-contact-sheet --exemplar E.png --asset A.dsnt --synthesis S.png --scene R.png -o SHEET.png\n"
-    "                         [--seed S]\n"
+    "                         [--seed S] [--horizon-unfiltered U.png --horizon-filtered F.png\n"
+    "                          --horizon-supersampled S.png [--horizon-note TEXT]]\n"
     "       dsn-contact-sheet --print-size IMAGE     (prints \"WIDTH HEIGHT\")\n"
-    "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled.\n"
+    "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled;\n"
+    "then, given all three --horizon images (the same crop of the scene rendered unfiltered, filtered\n"
+    "and supersampled), those side by side, enlarged by a whole factor, under TEXT.\n"
     "Flags take --flag value or --flag=value; -h, --help, --version. Errors: one line on stderr, exit 2\n"
     "for a usage mistake (ending \"(see --help)\"), exit 1 when an input cannot be read or written.\n";
 
 const int kPanel = 256, kGap = 12, kLabel = 30;
 const int kSheetWidth = 4 * kPanel + 5 * kGap;
+const int kHorizonPanel = (kSheetWidth - 4 * kGap) / 3, kHorizonHeight = 240;
 
 // An 8-bit RGB picture.
 struct Picture {
@@ -85,6 +91,19 @@ void paste(Picture &sheet, const Picture &source, int x0, int y0, int w, int h) 
                 &source.rgb[(size_t(sy0 + y) * size_t(source.width) + size_t(sx0 + x)) * 3];
             std::copy(from, from + 3, sheet.at(dx0 + x, dy0 + y));
         }
+}
+
+// `source` enlarged by the largest whole factor that fits a w x h box (pixels repeated, so they show).
+Picture enlarged(const Picture &source, int w, int h) {
+    const int factor = std::max(1, std::min(w / source.width, h / source.height));
+    Picture picture = blank(source.width * factor, source.height * factor, 0);
+    for (int y = 0; y < picture.height; y++)
+        for (int x = 0; x < picture.width; x++) {
+            const unsigned char *from =
+                &source.rgb[(size_t(y / factor) * size_t(source.width) + size_t(x / factor)) * 3];
+            std::copy(from, from + 3, picture.at(x, y));
+        }
+    return picture;
 }
 
 // Text at (x, y), `scale` pixels per font unit, in a dark grey.
@@ -152,6 +171,7 @@ Picture texton_picture(const std::string &asset_path) {
 
 int run(dsn::CommandLine &command_line) {
     std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
+    std::string horizon_paths[3], horizon_note = "the ground toward the horizon";
     uint32_t seed = 1;
     while (command_line.next()) {
         if (command_line.is("--print-size")) {
@@ -169,6 +189,14 @@ int run(dsn::CommandLine &command_line) {
             synthesis_path = command_line.value();
         } else if (command_line.is("--scene")) {
             scene_path = command_line.value();
+        } else if (command_line.is("--horizon-unfiltered")) {
+            horizon_paths[0] = command_line.value();
+        } else if (command_line.is("--horizon-filtered")) {
+            horizon_paths[1] = command_line.value();
+        } else if (command_line.is("--horizon-supersampled")) {
+            horizon_paths[2] = command_line.value();
+        } else if (command_line.is("--horizon-note")) {
+            horizon_note = command_line.value();
         } else if (command_line.is("-o") || command_line.is("--output")) {
             output = command_line.value();
         } else if (command_line.is("--seed")) {
@@ -180,11 +208,17 @@ int run(dsn::CommandLine &command_line) {
     if (exemplar_path.empty() || asset_path.empty() || synthesis_path.empty() || scene_path.empty() ||
         output.empty())
         throw dsn::UsageError("--exemplar, --asset, --synthesis, --scene and -o are all needed");
+    const int horizon_given =
+        int(!horizon_paths[0].empty()) + int(!horizon_paths[1].empty()) + int(!horizon_paths[2].empty());
+    if (horizon_given != 0 && horizon_given != 3)
+        throw dsn::UsageError(
+            "--horizon-unfiltered, --horizon-filtered and --horizon-supersampled go together");
 
     const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
     const Picture scene = load_png(scene_path);
     const int scene_height = std::min(scene.height, 480);
-    Picture sheet = blank(kSheetWidth, 2 * kLabel + kPanel + scene_height + 3 * kGap, 235);
+    const int horizon_height = horizon_given ? 2 * kLabel + kHorizonHeight + kGap : 0;
+    Picture sheet = blank(kSheetWidth, 2 * kLabel + kPanel + scene_height + 3 * kGap + horizon_height, 235);
     const Picture panels[4] = {from_image(exemplar), gaussian_reference(exemplar, seed),
                                load_png(synthesis_path), texton_picture(asset_path)};
     const char *labels[4] = {"exemplar", "Gaussian reference", "runtime synthesis", "texton (SOT)"};
@@ -196,8 +230,26 @@ int run(dsn::CommandLine &command_line) {
         paste(sheet, box, x, kGap + kLabel, kPanel, kPanel);
     }
     const int scene_top = 2 * kGap + kLabel + kPanel;
-    draw_label(sheet, kGap, scene_top, "renderer scene (continuous mode, dsn-tiny-renderer)", 2);
+    draw_label(sheet, kGap, scene_top, "renderer scene (continuous mode, filtered, dsn-tiny-renderer)", 2);
     paste(sheet, scene, kGap, scene_top + kLabel, kSheetWidth - 2 * kGap, scene_height);
+    if (horizon_given) {
+        const int top = scene_top + kLabel + scene_height + kGap;
+        Picture crops[3];
+        for (int p = 0; p < 3; p++) crops[p] = load_png(horizon_paths[p]);
+        const int factor =
+            std::max(1, std::min(kHorizonPanel / crops[0].width, kHorizonHeight / crops[0].height));
+        draw_label(sheet, kGap, top, horizon_note + ", enlarged " + std::to_string(factor) + "x", 2);
+        const char *horizon_labels[3] = {"unfiltered (1 sample)", "filtered (anisotropic)",
+                                         "supersampled (reference)"};
+        for (int p = 0; p < 3; p++) {
+            const int x = kGap + p * (kHorizonPanel + kGap);
+            draw_label(sheet, x, top + kLabel, horizon_labels[p], 2);
+            Picture box = blank(kHorizonPanel, kHorizonHeight, 200);
+            paste(box, enlarged(crops[p], kHorizonPanel, kHorizonHeight), 0, 0, kHorizonPanel,
+                  kHorizonHeight);
+            paste(sheet, box, x, top + 2 * kLabel, kHorizonPanel, kHorizonHeight);
+        }
+    }
 
     dsn::write_file_atomically(output, dsn::encode_png(sheet.width, sheet.height, 3, sheet.rgb.data()));
     return 0;

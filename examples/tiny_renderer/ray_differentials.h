@@ -47,7 +47,9 @@ struct Camera {
     double screen_y(double py) const { return (1 - py / height * 2) * half_width * height / width; }
     double screen_step() const { return 2 * half_width / width; } // the same on both axes: square pixels
     // The unnormalized direction d through (px, py), and the unit one.
-    Vec unnormalized(double px, double py) const { return forward + right * screen_x(px) + up * screen_y(py); }
+    Vec unnormalized(double px, double py) const {
+        return forward + right * screen_x(px) + up * screen_y(py);
+    }
     Vec direction(double px, double py) const { return normalize(unnormalized(px, py)); }
 };
 

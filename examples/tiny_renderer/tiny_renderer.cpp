@@ -2,8 +2,10 @@
 // are textured by the continuous-mode spot noise of one or two .dsnt assets, written to a PNG.
 //
 // What to copy into your own renderer is `sample_texture`: turn the surface point into texture
-// coordinates in texels, hand them to dsn_continuous_point_float, and fade toward the texture's mean
-// colour when one pixel covers many texels (the noise has no mip-maps, but its mean is known exactly).
+// coordinates in texels and the pixel's footprint into the Jacobian of those coordinates per pixel (here
+// from ray differentials: ray_differentials.h), and hand both to dsn_filtered_point_float. A pixel that
+// covers many texels then shows the texture filtered over its footprint, down to the exact mean colour
+// far away, instead of aliased noise.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,16 +18,25 @@
 #include <stb_image_write.h>
 
 #include "dsn/dsn.h"
+#include "ray_differentials.h"
 
 namespace {
 
 const char *const usage =
     "usage: dsn-tiny-renderer GROUND.dsnt [SPHERE.dsnt] -o OUT.png [--size WxH] [--seed S]\n"
+    "                         [--filter none|iso|aniso] [--supersample N] [--crop X,Y,WxH]\n"
     "Ray-casts a ground plane and a sphere textured with the continuous-mode noise of the\n"
     "assets (the ground's asset is used for both when only one is given).\n"
     "  -o, --output OUT.png   the picture to write\n"
     "  --size WxH             its size, 1..8192 per side (default 800x500)\n"
     "  --seed S               the noise's seed (default 1)\n"
+    "  --filter F             how a pixel reads the texture: aniso (default: filtered over the pixel's\n"
+    "                         footprint from ray differentials, up to 16 taps along its long axis),\n"
+    "                         iso (one tap, blurrier on slanted surfaces) or none (one unfiltered\n"
+    "                         sample: aliases where a pixel covers many texels)\n"
+    "  --supersample N        N x N unfiltered samples per pixel, averaged (a reference for the\n"
+    "                         filters, N*N times slower; 1..16, needs --filter none)\n"
+    "  --crop X,Y,WxH         render only the W x H pixels at (X, Y) of the --size picture\n"
     "  -h, --help, --version  this help, the version\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr: exit 2 for\n"
     "a usage mistake (the line ends with \"(see --help)\"), exit 1 when an asset cannot be used or the\n"
@@ -36,14 +47,9 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-struct Vec {
-    double x, y, z;
-};
-Vec operator+(Vec a, Vec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-Vec operator-(Vec a, Vec b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec operator*(Vec a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(Vec a, Vec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-Vec normalize(Vec a) { return a * (1 / std::sqrt(dot(a, a))); }
+using tiny::Vec;
+
+enum class Filter { none, iso, aniso };
 
 // A loaded asset and its configured noise (the noise points into `bytes`).
 struct Texture {
@@ -67,26 +73,24 @@ void load_texture(Texture &texture, const std::string &path, uint32_t seed, doub
     texture.texels_per_unit = texels_per_unit;
 }
 
-// RGB colour of the texture at surface coordinates (u, v) in scene units, for a pixel that covers
-// `footprint` scene units there.
-Vec sample_texture(const Texture &texture, double u, double v, double footprint) {
+// RGB colour of the texture at texture coordinates (u, v) in texels, for a pixel whose footprint there
+// is `jacobian` (texels per pixel along the screen's x and y).
+Vec sample_texture(const Texture &texture, double u, double v, const tiny::TextureJacobian &jacobian,
+                   Filter filter) {
     float value[3];
-    dsn_continuous_point_float(&texture.noise, u * texture.texels_per_unit, v * texture.texels_per_unit,
-                               value);
-    Vec noise =
-        texture.asset.channels == 3 ? Vec{value[0], value[1], value[2]} : Vec{value[0], value[0], value[0]};
-    const double m0 = texture.asset.mean[0] / 16777216.0;
-    Vec mean = texture.asset.channels == 3
-                   ? Vec{m0, texture.asset.mean[1] / 16777216.0, texture.asset.mean[2] / 16777216.0}
-                   : Vec{m0, m0, m0};
-    // Beyond ~2 texels per pixel the samples alias: fade to the mean over the next 6 texels.
-    const double texels = footprint * texture.texels_per_unit;
-    const double fade = texels < 2 ? 0 : texels > 8 ? 1 : (texels - 2) / 6;
-    return noise * (1 - fade) + mean * fade;
+    dsn_footprint footprint;
+    if (filter == Filter::none ||
+        dsn_footprint_from_float(&footprint, jacobian.du_dx, jacobian.dv_dx, jacobian.du_dy, jacobian.dv_dy,
+                                 filter == Filter::aniso ? 16 : 1) != DSN_OK)
+        dsn_continuous_point_float(&texture.noise, u, v, value);
+    else
+        dsn_filtered_point_float(&texture.noise, u, v, &footprint, value);
+    return texture.asset.channels == 3 ? Vec{value[0], value[1], value[2]}
+                                       : Vec{value[0], value[0], value[0]};
 }
 
 struct Scene {
-    Vec eye{0, 2.2, -5.5}, sun = normalize(Vec{-0.6, 0.8, -0.3});
+    Vec sun = normalize(Vec{-0.6, 0.8, -0.3});
     Vec sphere_center{0.3, 1.2, 2.5};
     double sphere_radius = 1.2;
     const Texture *ground, *sphere;
@@ -107,26 +111,30 @@ Vec sky(Vec direction) {
     return Vec{0.75, 0.82, 0.92} * (1 - up) + Vec{0.35, 0.52, 0.85} * up;
 }
 
-// Colour seen along one camera ray; `pixel_angle` is the angle one pixel spans (for the footprint).
-Vec trace(const Scene &scene, Vec direction, double pixel_angle) {
-    const double t_sphere = hit_sphere(scene, scene.eye, direction);
-    const double t_ground = direction.y < 0 ? -scene.eye.y / direction.y : -1;
+// Colour seen through the continuous pixel position (px, py); `filter` says how the texture is read.
+Vec trace(const Scene &scene, const tiny::Camera &camera, double px, double py, Filter filter) {
+    const tiny::RayDifferential ray = tiny::ray_differential(camera, px, py);
+    const Vec direction = ray.direction;
+    const double t_sphere = hit_sphere(scene, camera.eye, direction);
+    const double t_ground = direction.y < 0 ? -camera.eye.y / direction.y : -1;
     if (t_sphere > 0 && (t_ground < 0 || t_sphere < t_ground)) {
-        const Vec point = scene.eye + direction * t_sphere;
+        const Vec point = camera.eye + direction * t_sphere;
         const Vec normal = normalize(point - scene.sphere_center);
-        // Longitude and latitude as texture coordinates, in scene units along the surface.
-        const double u = std::atan2(normal.z, normal.x) * scene.sphere_radius;
-        const double v = std::acos(normal.y) * scene.sphere_radius;
-        const double facing = std::fabs(dot(normal, direction));
-        const Vec albedo =
-            sample_texture(*scene.sphere, u, v, t_sphere * pixel_angle / (facing > 0.2 ? facing : 0.2));
+        // Longitude and latitude as texture coordinates, in texels along the surface.
+        double u, v;
+        tiny::sphere_coordinates(normal, scene.sphere_radius, scene.sphere->texels_per_unit, u, v);
+        const tiny::TextureJacobian jacobian = tiny::sphere_jacobian(tiny::transfer(ray, t_sphere, normal),
+                                                                     normal, scene.sphere->texels_per_unit);
+        const Vec albedo = sample_texture(*scene.sphere, u, v, jacobian, filter);
         const double light = dot(normal, scene.sun);
         return albedo * (0.25 + 0.85 * (light > 0 ? light : 0));
     }
     if (t_ground > 0) {
-        const Vec point = scene.eye + direction * t_ground;
-        const double grazing = -direction.y;
-        const Vec albedo = sample_texture(*scene.ground, point.x, point.z, t_ground * pixel_angle / grazing);
+        const Vec point = camera.eye + direction * t_ground;
+        const double scale = scene.ground->texels_per_unit;
+        const tiny::TextureJacobian jacobian =
+            tiny::plane_jacobian(tiny::transfer(ray, t_ground, Vec{0, 1, 0}), scale);
+        const Vec albedo = sample_texture(*scene.ground, point.x * scale, point.z * scale, jacobian, filter);
         const bool shadowed = hit_sphere(scene, point, scene.sun) > 0;
         Vec color = albedo * (0.3 + (shadowed ? 0 : 0.75 * scene.sun.y));
         // Aerial perspective: far ground melts into the sky colour at the horizon.
@@ -164,6 +172,9 @@ int run(int argc, char **argv) {
     std::string output;
     int width = 800, height = 500;
     uint32_t seed = 1;
+    Filter filter = Filter::aniso;
+    int supersample = 1, crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
+    bool filter_given = false, crop_given = false;
     for (int i = 1; i < argc; i++) {
         std::string flag = argv[i], value;
         const size_t equals = flag.find('=');
@@ -177,7 +188,8 @@ int run(int argc, char **argv) {
             std::printf("dsn-tiny-renderer %s\n", dsn_version());
             return 0;
         }
-        const bool takes_value = flag == "-o" || flag == "--output" || flag == "--size" || flag == "--seed";
+        const bool takes_value = flag == "-o" || flag == "--output" || flag == "--size" || flag == "--seed" ||
+                                 flag == "--filter" || flag == "--supersample" || flag == "--crop";
         if (takes_value && !inline_value) {
             if (i + 1 >= argc) throw UsageError(flag + " needs a value");
             value = argv[++i];
@@ -191,6 +203,29 @@ int run(int argc, char **argv) {
                 throw UsageError("--size needs WxH within 1..8192, not '" + value + "'");
         } else if (flag == "--seed") {
             seed = parse_seed(value);
+        } else if (flag == "--filter") {
+            filter_given = true;
+            if (value == "none")
+                filter = Filter::none;
+            else if (value == "iso")
+                filter = Filter::iso;
+            else if (value == "aniso")
+                filter = Filter::aniso;
+            else
+                throw UsageError("--filter must be none, iso or aniso, not '" + value + "'");
+        } else if (flag == "--supersample") {
+            char rest = 0;
+            if (std::sscanf(value.c_str(), "%d%c", &supersample, &rest) != 1 || supersample < 1 ||
+                supersample > 16)
+                throw UsageError("--supersample needs a whole number 1..16, not '" + value + "'");
+        } else if (flag == "--crop") {
+            char rest = 0;
+            if (std::sscanf(value.c_str(), "%d,%d,%dx%d%c", &crop_x, &crop_y, &crop_width, &crop_height,
+                            &rest) != 4 ||
+                crop_x < 0 || crop_y < 0 || crop_width < 1 || crop_height < 1)
+                throw UsageError("--crop needs X,Y,WxH (whole numbers, W and H at least 1), not '" + value +
+                                 "'");
+            crop_given = true;
         } else if (flag.size() > 1 && flag[0] == '-') {
             throw UsageError("unknown flag " + flag);
         } else {
@@ -200,6 +235,13 @@ int run(int argc, char **argv) {
     if (assets.empty() || assets.size() > 2) throw UsageError("give one or two assets");
     if (output.size() < 5 || output.compare(output.size() - 4, 4, ".png") != 0)
         throw UsageError("the output must be a .png: -o OUT.png");
+    if (supersample > 1 && filter_given && filter != Filter::none)
+        throw UsageError("--supersample averages unfiltered samples: it takes --filter none or no --filter");
+    if (supersample > 1) filter = Filter::none;
+    if (!crop_given) crop_width = width, crop_height = height;
+    if (crop_x > width - crop_width || crop_y > height - crop_height)
+        throw UsageError("--crop reaches outside the " + std::to_string(width) + "x" +
+                         std::to_string(height) + " picture");
 
     Texture ground, sphere;
     load_texture(ground, assets[0], seed, 40);
@@ -209,19 +251,21 @@ int run(int argc, char **argv) {
     scene.sphere = &sphere;
 
     // A pinhole camera looking slightly down, 60 degrees of horizontal field of view.
-    const Vec forward = normalize(Vec{0, -0.2, 1}), right{1, 0, 0};
-    const Vec up{0, forward.z, -forward.y};
-    const double half_width = std::tan(30 * 3.14159265358979 / 180), pixel_angle = 2 * half_width / width;
-    std::vector<uint8_t> pixels(size_t(width) * height * 3);
-    for (int j = 0; j < height; j++)
-        for (int i = 0; i < width; i++) {
-            const double sx = ((i + 0.5) / width * 2 - 1) * half_width;
-            const double sy = (1 - (j + 0.5) / height * 2) * half_width * height / width;
-            const Vec color = trace(scene, normalize(forward + right * sx + up * sy), pixel_angle);
-            uint8_t *pixel = &pixels[(size_t(j) * width + i) * 3];
+    const tiny::Camera camera(Vec{0, 2.2, -5.5}, Vec{0, -0.2, 1}, 60, width, height);
+    std::vector<uint8_t> pixels(size_t(crop_width) * crop_height * 3);
+    for (int j = 0; j < crop_height; j++)
+        for (int i = 0; i < crop_width; i++) {
+            // Supersampled: the average of samples at the centres of an N x N grid of sub-pixels.
+            Vec color{0, 0, 0};
+            for (int b = 0; b < supersample; b++)
+                for (int a = 0; a < supersample; a++)
+                    color = color + trace(scene, camera, crop_x + i + (a + 0.5) / supersample,
+                                          crop_y + j + (b + 0.5) / supersample, filter);
+            color = color * (1.0 / (supersample * supersample));
+            uint8_t *pixel = &pixels[(size_t(j) * crop_width + i) * 3];
             pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
         }
-    write_png(output, width, height, pixels);
+    write_png(output, crop_width, crop_height, pixels);
     return 0;
 }
 

@@ -86,8 +86,8 @@ const cases = [
         window: [1000, -1000, 64, 64],
         view: { scale: 0.25 },
         args: [
-            '--seed', '5', '--no-color-transform', '--mode', 'continuous', '--scale', '0.25', '--origin',
-            '1000,-1000', '--size', '64x64'
+            '--seed', '5', '--no-color-transform', '--mode', 'continuous', '--filter', 'none', '--scale',
+            '0.25', '--origin', '1000,-1000', '--size', '64x64'
         ]
     },
 ];

@@ -455,7 +455,7 @@ async function main() {
     elements.seed.value = String(state.settings.seed);
     if (parameters.has('width') && parameters.has('height')) {
         // A fixed canvas, one canvas pixel per CSS pixel whatever the display: the view is exactly the
-        // window of dsn-render --size WxH --scale ZOOM --origin X,Y.
+        // window of dsn-render --size WxH --scale ZOOM --origin X,Y --filter none.
         fixedSize = true;
         document.body.classList.add('fixed');
         canvas.width = number('width', 256);

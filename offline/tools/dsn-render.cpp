@@ -1,7 +1,8 @@
 // dsn-render: renders a window of the spot noise of a .dsnt asset to a PNG or raw float32 file.
 //
 // The image is cut into strips of whole rows rendered by a pool of threads, each strip by one call of the
-// runtime (lattice tile, lattice per-point loop, or continuous grid tile) straight into the image, so the
+// runtime (lattice tile, lattice per-point loop, continuous grid tile, or filtered grid tile) straight into
+// the image, so the
 // result does not depend on the strip size or the thread count: windows rendered separately stitch
 // exactly into the whole.
 #include <atomic>
@@ -44,9 +45,19 @@ const char *const kUsage =
     "  --impacts N          impacts per pixel (default: the asset's, 30 if none)\n"
     "  --period PXxPY       make the output periodic with that period (0 = not periodic on that axis)\n"
     "  --mode M             tile (default), point (per-point lattice, same bits as tile) or continuous\n"
-    "  --scale F            continuous mode: magnification, one pixel steps 1/F texels (default 1)\n"
+    "  --scale F|FX,FY      continuous mode: magnification, one pixel steps 1/F texels (default 1);\n"
+    "                       FX,FY: 1/FX texels along the window's x, 1/FY along its y (before\n"
+    "                       --rotate): a slanted view, whose footprint --filter aniso follows\n"
     "  --rotate DEG         continuous mode: rotation of the texture, counterclockwise (default 0);\n"
     "                       taken modulo 360 exactly, so any finite angle means what it says\n"
+    "  --filter F           continuous mode: how each pixel reads the noise. aniso (default): filtered\n"
+    "                       over the pixel's footprint (its grid steps), up to --max-taps taps along\n"
+    "                       the longer step; iso: one tap, sized by the longer step; none: one\n"
+    "                       unfiltered sample, which aliases when --scale is below 1. Filtered pixels\n"
+    "                       fade to the exact mean colour as the scale falls; at --scale 1 and above\n"
+    "                       they are the unfiltered bits\n"
+    "  --max-taps N         --filter aniso: at most N taps, 1..16 (default 16; rounded down to a\n"
+    "                       power of two)\n"
     "  --allow-lattice      continuous mode on a lattice-baked asset (its spectrum is then smoothed;\n"
     "                       the fix is to bake with dsn-bake --interpolation bilinear, the default)\n"
     "  --no-color-transform use the identity colour transform\n"
@@ -67,6 +78,7 @@ const char *const kUsage =
     "fails (unreadable or invalid asset, cannot write).\n";
 
 enum class Mode { tile, point, continuous };
+enum class Filter { none, iso, aniso };
 
 // The largest window rendered in one run: its pixels are held in memory, and stb's PNG writer counts
 // bytes in an int.
@@ -81,7 +93,10 @@ struct Options {
     std::string origin_x = "0", origin_y = "0";
     uint32_t seed = 0, impacts_q16 = 0, period_x = 0, period_y = 0, flags = 0;
     Mode mode = Mode::tile;
-    double scale = 1.0, rotate_degrees = 0.0;
+    Filter filter = Filter::aniso; // continuous mode only
+    uint32_t max_taps = 16;
+    bool filter_given = false, max_taps_given = false;
+    double scale_x = 1.0, scale_y = 1.0, rotate_degrees = 0.0;
     unsigned threads = 0;
     bool quiet = false;
 };
@@ -149,9 +164,31 @@ Options parse_options(dsn::CommandLine &command_line) {
             else
                 throw dsn::UsageError("--mode must be tile, point or continuous, not '" + mode + "'");
         } else if (command_line.is("--scale")) {
-            options.scale = dsn::parse_real(flag, command_line.value());
-            if (!(options.scale >= 1.0 / 65536 && options.scale <= 65536))
-                throw dsn::UsageError("--scale must be within [1/65536, 65536]");
+            const std::string scale = command_line.value();
+            if (scale.find(',') == std::string::npos) {
+                options.scale_x = options.scale_y = dsn::parse_real(flag, scale);
+            } else {
+                auto scales = split_pair(flag, scale, ',');
+                options.scale_x = dsn::parse_real(flag, scales.first);
+                options.scale_y = dsn::parse_real(flag, scales.second);
+            }
+            for (double one_scale : {options.scale_x, options.scale_y})
+                if (!(one_scale >= 1.0 / 65536 && one_scale <= 65536))
+                    throw dsn::UsageError("--scale must be within [1/65536, 65536]");
+        } else if (command_line.is("--filter")) {
+            const std::string filter = command_line.value();
+            if (filter == "none")
+                options.filter = Filter::none;
+            else if (filter == "iso")
+                options.filter = Filter::iso;
+            else if (filter == "aniso")
+                options.filter = Filter::aniso;
+            else
+                throw dsn::UsageError("--filter must be none, iso or aniso, not '" + filter + "'");
+            options.filter_given = true;
+        } else if (command_line.is("--max-taps")) {
+            options.max_taps = static_cast<uint32_t>(dsn::parse_integer(command_line, 1, 16));
+            options.max_taps_given = true;
         } else if (command_line.is("--rotate")) {
             options.rotate_degrees = dsn::parse_real(flag, command_line.value());
         } else if (command_line.is("--threads")) {
@@ -172,8 +209,13 @@ Options parse_options(dsn::CommandLine &command_line) {
                               " pixels (8192x8192); render it as windows with --origin");
     if (dsn::same_file(options.asset_path, options.output_path))
         throw dsn::UsageError("output " + options.output_path + " is the input asset");
-    if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
+    if (options.mode != Mode::continuous &&
+        (options.scale_x != 1.0 || options.scale_y != 1.0 || options.rotate_degrees != 0.0))
         throw dsn::UsageError("--scale and --rotate need --mode continuous");
+    if (options.mode != Mode::continuous && (options.filter_given || options.max_taps_given))
+        throw dsn::UsageError("--filter and --max-taps need --mode continuous (the lattice is not filtered)");
+    if (options.max_taps_given && options.filter != Filter::aniso)
+        throw dsn::UsageError("--max-taps needs --filter aniso");
     if (options.mode == Mode::continuous) {
         dsn::parse_real("--origin", options.origin_x);
         dsn::parse_real("--origin", options.origin_y);
@@ -207,6 +249,7 @@ struct Job {
     int32_t lattice_x0, lattice_y0;
     dsn_grid grid;
     uint32_t width, height, channels, strip_rows;
+    uint32_t max_taps; // continuous mode: 0 unfiltered, else filtered with at most that many taps
 };
 
 // Memory mapped but not touched: it is not zeroed first, and each worker faults in the pages it writes;
@@ -269,6 +312,14 @@ int continuous_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width
                     void *scratch, size_t scratch_size) {
     return dsn_continuous_tile_float(noise, grid, width, height, out, scratch, scratch_size);
 }
+int filtered_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
+                  uint32_t height, uint8_t *out, void *scratch, size_t scratch_size) {
+    return dsn_filtered_tile_u8(noise, grid, max_taps, width, height, out, scratch, scratch_size);
+}
+int filtered_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
+                  uint32_t height, float *out, void *scratch, size_t scratch_size) {
+    return dsn_filtered_tile_float(noise, grid, max_taps, width, height, out, scratch, scratch_size);
+}
 
 // Rows first_row .. first_row + rows - 1 of the image, whole rows, into `out` (their place in the image:
 // a strip of whole rows is contiguous there, so the runtime writes the final pixels with no copy).
@@ -293,8 +344,16 @@ void render_strip(const Job &job, uint32_t first_row, uint32_t rows, Pixel *out,
                                              static_cast<uint64_t>(grid.row_step_x) * first_row);
         grid.origin_y = static_cast<int64_t>(static_cast<uint64_t>(grid.origin_y) +
                                              static_cast<uint64_t>(grid.row_step_y) * first_row);
-        const size_t size = dsn_continuous_tile_scratch_size(job.noise, &grid, job.width, rows);
-        err = continuous_tile(job.noise, &grid, job.width, rows, out, scratch.reserve(size), size);
+        if (job.max_taps == 0) {
+            const size_t size = dsn_continuous_tile_scratch_size(job.noise, &grid, job.width, rows);
+            err = continuous_tile(job.noise, &grid, job.width, rows, out, scratch.reserve(size), size);
+        } else {
+            // The footprint of a pixel is the grid's steps: the same in every strip.
+            const size_t size =
+                dsn_filtered_tile_scratch_size(job.noise, &grid, job.max_taps, job.width, rows);
+            err = filtered_tile(job.noise, &grid, job.max_taps, job.width, rows, out, scratch.reserve(size),
+                                size);
+        }
     }
     if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
 }
@@ -395,10 +454,13 @@ void run(const Options &options) {
                                  " (bake it with dsn-bake --interpolation bilinear, or render it anyway "
                                  "with --allow-lattice)");
 
-    Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 0};
+    const uint32_t max_taps = options.mode != Mode::continuous || options.filter == Filter::none ? 0
+                              : options.filter == Filter::iso                                    ? 1
+                                                              : options.max_taps;
+    Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 0, max_taps};
     if (options.mode == Mode::continuous)
-        job.grid =
-            dsn::rotated_grid(options.origin_x, options.origin_y, options.scale, options.rotate_degrees);
+        job.grid = dsn::rotated_grid(options.origin_x, options.origin_y, options.scale_x, options.scale_y,
+                                     options.rotate_degrees);
     else
         job.lattice_x0 = dsn::lattice_origin(options.origin_x),
         job.lattice_y0 = dsn::lattice_origin(options.origin_y);

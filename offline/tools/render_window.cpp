@@ -28,15 +28,20 @@ int32_t lattice_origin(const std::string &text) {
 
 dsn_grid rotated_grid(const std::string &origin_x, const std::string &origin_y, double scale,
                       double rotate_degrees) {
+    return rotated_grid(origin_x, origin_y, scale, scale, rotate_degrees);
+}
+
+dsn_grid rotated_grid(const std::string &origin_x, const std::string &origin_y, double scale_x,
+                      double scale_y, double rotate_degrees) {
     const double radians = std::fmod(rotate_degrees, 360.0) * 3.14159265358979323846 / 180.0;
-    const double cosine = std::cos(radians) / scale, sine = std::sin(radians) / scale;
+    const double cosine = std::cos(radians), sine = std::sin(radians);
     dsn_grid grid;
     grid.origin_x = dsn_coordinate_from_double(parse_real("--origin", origin_x));
     grid.origin_y = dsn_coordinate_from_double(parse_real("--origin", origin_y));
-    grid.column_step_x = q32_step(cosine);
-    grid.column_step_y = q32_step(sine);
-    grid.row_step_x = q32_step(-sine);
-    grid.row_step_y = q32_step(cosine);
+    grid.column_step_x = q32_step(cosine / scale_x);
+    grid.column_step_y = q32_step(sine / scale_x);
+    grid.row_step_x = q32_step(-sine / scale_y);
+    grid.row_step_y = q32_step(cosine / scale_y);
     return grid;
 }
 

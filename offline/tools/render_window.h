@@ -22,6 +22,11 @@ int32_t lattice_origin(const std::string &text);
 // reals (UsageError naming --origin otherwise).
 dsn_grid rotated_grid(const std::string &origin_x, const std::string &origin_y, double scale,
                       double rotate_degrees);
+// The same with a scale of its own along the window's x and y (before the rotation): pixel (i, j)
+// samples origin + (i cos a / scale_x - j sin a / scale_y, i sin a / scale_x + j cos a / scale_y).
+// Equal scales give rotated_grid's steps bit for bit.
+dsn_grid rotated_grid(const std::string &origin_x, const std::string &origin_y, double scale_x,
+                      double scale_y, double rotate_degrees);
 
 } // namespace dsn
 
