@@ -370,8 +370,9 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
      the fraction of LOD. Two levels that share the impulses blend linearly with no variance
      correction: the blend is itself a linear filter of the same draw. So the filter a pixel gets is
      sum_taps (1/N) [(1 - f) G_floor(LOD) + f G_floor(LOD)+1] (G_0 = no filter), centred on each tap.
-   - Exactness: a footprint of at most one texel (LOD <= 0) with one tap gives exactly the bits of
-     dsn_continuous_point_fixed. LOD >= L + 1 gives exactly the mean colour without walking impulses.
+   - Exactness: a footprint whose longer step is at most one texel is not filtered (LOD 0, one tap,
+     whatever its shape) and gives exactly the bits of dsn_continuous_point_fixed, as does any footprint
+     with LOD <= 0 and one tap. LOD >= L + 1 gives exactly the mean colour without walking impulses.
      In between, each level's value is normalized with 8 more fraction bits than the output, the two
      levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
      up) to Q16.16 and saturated.
@@ -427,8 +428,10 @@ int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const d
 /* A grid tile (dsn_grid, as dsn_continuous_tile_fixed) filtered by the grid's own footprint: its column
    and row steps, with max_taps as in dsn_footprint. Exactly the per-point values of
    dsn_filtered_point_fixed with that footprint at each grid point (the level of detail and taps are
-   computed once per tile). `scratch` holds at least dsn_filtered_tile_scratch_size() bytes (0 today:
-   the tile is evaluated point by point; pass null, 0). Returns DSN_OK, DSN_ERR_NULL,
+   computed once per tile). A grid whose footprint is unfiltered (level of detail 0, one tap) is
+   dsn_continuous_tile_fixed's tile, splat included, and needs its scratch; any other is evaluated point
+   by point without scratch. `scratch` holds at least dsn_filtered_tile_scratch_size() bytes (no
+   alignment needed; 0 for an invalid call or a grid evaluated point by point). Returns DSN_OK, DSN_ERR_NULL,
    DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
 size_t dsn_filtered_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
                                       uint32_t width, uint32_t height);
