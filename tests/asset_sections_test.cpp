@@ -83,7 +83,9 @@ Bytes pyramid_payload(const std::vector<int> &records) {
 // The padding a payload of `size` bytes needs.
 size_t padding_for(size_t size) { return (4 - size % 4) % 4; }
 
-Bytes pyramid_section(const Bytes &payload) { return section(DSN_SECTION_PYRAMID, payload, padding_for(payload.size())); }
+Bytes pyramid_section(const Bytes &payload) {
+    return section(DSN_SECTION_PYRAMID, payload, padding_for(payload.size()));
+}
 
 int load(const Bytes &bytes) {
     dsn_asset asset;
@@ -134,8 +136,8 @@ TEST_CASE("a 1.1 asset loads with its pyramid, level by level, for every channel
                 CHECK(level.height == expected.height);
                 CHECK(level.exponent == expected.exponent);
                 for (size_t i = 0; i < expected.values.size(); i++) {
-                    const int32_t value = bits == 8 ? dsn_read_i8(level.values + i)
-                                                    : dsn_read_i16le(level.values + 2 * i);
+                    const int32_t value =
+                        bits == 8 ? dsn_read_i8(level.values + i) : dsn_read_i16le(level.values + 2 * i);
                     REQUIRE(value == expected.values[i]);
                 }
             }
@@ -238,7 +240,8 @@ TEST_CASE("section framing errors are DSN_ERR_SECTION") {
     CHECK(load(with_sections(section(DSN_SECTION_PYRAMID, payload, 3, 1), 1, 1, 8)) == DSN_ERR_SECTION);
     CHECK(load(with_sections(section(5, Bytes{1}, 3, 0x80), 1, 1, 8)) == DSN_ERR_SECTION);
     // A known kind twice.
-    CHECK(load(with_sections(pyramid_section(payload) + pyramid_section(payload), 1, 1, 8)) == DSN_ERR_SECTION);
+    CHECK(load(with_sections(pyramid_section(payload) + pyramid_section(payload), 1, 1, 8)) ==
+          DSN_ERR_SECTION);
     // Framing is checked for every section before any pyramid content (step 14 before step 15).
     Bytes bad_levels = payload;
     bad_levels[0] = 0;
@@ -260,7 +263,7 @@ TEST_CASE("pyramid content errors are DSN_ERR_PYRAMID") {
     CHECK(load_grey_pyramid([](Bytes &p) { p[10] = uint8_t(-25 & 0xFF); }) == DSN_ERR_PYRAMID);
     CHECK(load_grey_pyramid([](Bytes &p) { p[6] = 24; }) == DSN_OK);
     CHECK(load_grey_pyramid([](Bytes &p) { p[10] = uint8_t(-24 & 0xFF); }) == DSN_OK);
-    CHECK(load_grey_pyramid([](Bytes &p) { p[4] = 1; }) == DSN_ERR_PYRAMID);  // 6 values fewer than stored
+    CHECK(load_grey_pyramid([](Bytes &p) { p[4] = 1; }) == DSN_ERR_PYRAMID); // 6 values fewer than stored
     CHECK(load_grey_pyramid([](Bytes &p) { p.pop_back(); }) == DSN_ERR_PYRAMID);
     CHECK(load_grey_pyramid([](Bytes &p) { p.push_back(1); }) == DSN_ERR_PYRAMID);
     CHECK(load_grey_pyramid([](Bytes &p) { p.resize(4); }) == DSN_ERR_PYRAMID); // no room for the records
