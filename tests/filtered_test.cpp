@@ -4,11 +4,11 @@
 // the variance along a sweep of levels of detail, the accuracy against a supersampled reference of the
 // same noise and the temporal stability of a minified render.
 //
-// The asset: a synthetic 31 x 31 texton (bilinear), its pyramid computed by the test
-// (fixtures/pyramid_fixture.h). Theory of a level: with t_l = sum s_l hat(x / 2^l - i) and
-// s_l = q_l scale 2^e_l / 2^40, the output (identity colour transform) has variance
-// integral t_l^2 / integral-free lambda factor = (scale 2^e_l / 2^40)^2 4^l q_l^T (M (x) M) q_l, M the
-// tridiagonal [1/6 2/3 1/6] (the tents' Gram matrix): lambda cancels against the 1/sqrt(lambda) gain.
+// The asset: a synthetic 31 x 31 texton (bilinear) with the baker's pyramid, itself checked against the
+// pyramid the test computes from the definition (fixtures/pyramid_fixture.h). Theory of a level: with t_l =
+// sum s_l hat(x / 2^l - i) and s_l = q_l scale 2^e_l / 2^40, the output (identity colour transform) has
+// variance integral t_l^2 / integral-free lambda factor = (scale 2^e_l / 2^40)^2 4^l q_l^T (M (x) M) q_l, M
+// the tridiagonal [1/6 2/3 1/6] (the tents' Gram matrix): lambda cancels against the 1/sqrt(lambda) gain.
 // Samples are 160 texels apart (beyond twice the coarsest level's reach), so independent; tolerances are
 // 4 standard errors estimated from the samples.
 #include <doctest/doctest.h>
@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../offline/bake_internal.h"
 #include "fixtures/pyramid_fixture.h"
 #include "fixtures/test_assets.h"
 
@@ -29,10 +30,11 @@ const double kQ32 = 4294967296.0;
 
 int64_t q32(double texels) { return int64_t(std::floor(texels * kQ32)); }
 
+// A synthetic 31 x 31 texton with the baker's pyramid.
 dsn::AssetFields filtered_fields(uint32_t channels, uint32_t bits, uint64_t seed) {
     dsn::AssetFields fields = synthetic_fields(channels, 31, bits, DSN_SHAPE_RECTANGLE, seed);
     fields.interpolation = DSN_INTERPOLATION_BILINEAR;
-    add_test_pyramid(fields);
+    fields.pyramid = dsn::texton_pyramid(fields);
     return fields;
 }
 
@@ -139,6 +141,25 @@ TEST_CASE("filtered: level of detail and taps of footprints, bad ones included")
     CHECK(dsn_filter_level(&noise, nullptr, &lod, &taps) == DSN_ERR_NULL);
 }
 
+TEST_CASE("filtered: the baker's pyramid is the one the test computes from the definition") {
+    for (uint32_t bits : {8u, 16u}) {
+        dsn::AssetFields fields = synthetic_fields(3, 31, bits, DSN_SHAPE_RECTANGLE, 5);
+        const std::vector<dsn::PyramidLevel> baked = dsn::texton_pyramid(fields);
+        add_test_pyramid(fields);
+        REQUIRE(baked.size() == fields.pyramid.size());
+        for (size_t l = 0; l < baked.size(); l++) {
+            CHECK(baked[l].width == fields.pyramid[l].width);
+            CHECK(baked[l].height == fields.pyramid[l].height);
+            CHECK(baked[l].exponent == fields.pyramid[l].exponent);
+            int32_t largest = 0;
+            for (size_t i = 0;
+                 i < baked[l].values.size() && baked[l].values.size() == fields.pyramid[l].values.size(); i++)
+                largest = std::max(largest, std::abs(baked[l].values[i] - fields.pyramid[l].values[i]));
+            CHECK(largest <= 1); // two numerical integrations of the same kernel: rounding ties only
+        }
+    }
+}
+
 TEST_CASE("filtered: footprints from float derivatives") {
     dsn_footprint f;
     CHECK(dsn_footprint_from_float(&f, 0.5, -0.25, 3.0, 1e-12, 8) == DSN_OK);
@@ -233,7 +254,7 @@ TEST_CASE("filtered: a tile is its points, the fade ends on the exact mean, erro
     }
     // A lattice-baked asset needs the flag, as in the continuous mode.
     dsn::AssetFields lattice = synthetic_fields(1, 9, 8, DSN_SHAPE_RECTANGLE, 4);
-    add_test_pyramid(lattice);
+    lattice.pyramid = dsn::texton_pyramid(lattice);
     LoadedNoise strict(lattice, make_config(1));
     const dsn_footprint f = footprint_of(3, 0, 0, 3, 1);
     int32_t out[1] = {5};
