@@ -132,6 +132,12 @@ typedef struct dsn_asset {
     int32_t color_transform[9];   /* Q8.24, row-major */
     uint32_t bake_iterations, bake_seed, bake_rme_q24;
     uint32_t exemplar_width, exemplar_height;
+    /* The texton pyramid of a 1.1 asset (format.h): the prefiltered levels 1 .. pyramid_levels that the
+       filtered evaluation reads. `pyramid` points at the first level record in the caller's buffer;
+       read the levels with dsn_asset_level. Null and 0 for an asset without one, and always in a
+       runtime built with DSN_FILTERING 0 (its loader does not read sections). */
+    const unsigned char *pyramid;
+    uint32_t pyramid_levels; /* 0 .. DSN_PYRAMID_MAX_LEVELS */
 } dsn_asset;
 
 /* Validates `size` bytes at `bytes` as a .dsnt asset and fills `asset`. Returns DSN_OK or the first
@@ -141,6 +147,21 @@ int dsn_asset_load(dsn_asset *asset, const void *bytes, size_t size);
 /* The quantized texton value of `channel` at texton row `row` (0 = top) and column `column`
    (0 = left); 0 for any index out of range. */
 int32_t dsn_asset_texton_value(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel);
+
+/* One level of the texton pyramid (format.h, version 1.1): width * height * channels quantized values
+   (i8 or i16 little-endian as the asset's `bits`, row-major, channels interleaved) at spacing 2^level
+   texels, centred on the impulse; value q of channel c stands for q * scale[c] * 2^exponent / 2^40. */
+typedef struct dsn_level {
+    const unsigned char *values; /* in the caller's buffer */
+    uint32_t width, height;      /* odd, 1..255 */
+    int32_t exponent;            /* -24..24; 0 for level 0 */
+} dsn_level;
+
+/* Fills `out` with level `level` of the asset: 0 is the texton itself (exponent 0), 1 ..
+   asset->pyramid_levels the pyramid's levels. Returns DSN_OK, DSN_ERR_NULL (null `asset` or `out`, or
+   an asset without a texton) or DSN_ERR_ARGUMENT (level above pyramid_levels); on an error *out is
+   zeroed. Not compiled when DSN_FILTERING is 0 (a program calling it then fails to link). */
+int dsn_asset_level(const dsn_asset *asset, uint32_t level, dsn_level *out);
 
 /* A static, one-line, human-readable message for any code (unknown codes included). */
 const char *dsn_error_message(int code);
@@ -370,8 +391,9 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
      the fraction of LOD. Two levels that share the impulses blend linearly with no variance
      correction: the blend is itself a linear filter of the same draw. So the filter a pixel gets is
      sum_taps (1/N) [(1 - f) G_floor(LOD) + f G_floor(LOD)+1] (G_0 = no filter), centred on each tap.
-   - Exactness: a footprint of at most one texel (LOD <= 0) with one tap gives exactly the bits of
-     dsn_continuous_point_fixed. LOD >= L + 1 gives exactly the mean colour without walking impulses.
+   - Exactness: a footprint whose longer step is at most one texel is not filtered (LOD 0, one tap,
+     whatever its shape) and gives exactly the bits of dsn_continuous_point_fixed, as does any footprint
+     with LOD <= 0 and one tap. LOD >= L + 1 gives exactly the mean colour without walking impulses.
      In between, each level's value is normalized with 8 more fraction bits than the output, the two
      levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
      up) to Q16.16 and saturated.
@@ -427,8 +449,10 @@ int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const d
 /* A grid tile (dsn_grid, as dsn_continuous_tile_fixed) filtered by the grid's own footprint: its column
    and row steps, with max_taps as in dsn_footprint. Exactly the per-point values of
    dsn_filtered_point_fixed with that footprint at each grid point (the level of detail and taps are
-   computed once per tile). `scratch` holds at least dsn_filtered_tile_scratch_size() bytes (0 today:
-   the tile is evaluated point by point; pass null, 0). Returns DSN_OK, DSN_ERR_NULL,
+   computed once per tile). A grid whose footprint is unfiltered (level of detail 0, one tap) is
+   dsn_continuous_tile_fixed's tile, splat included, and needs its scratch; any other is evaluated point
+   by point without scratch. `scratch` holds at least dsn_filtered_tile_scratch_size() bytes (no
+   alignment needed; 0 for an invalid call or a grid evaluated point by point). Returns DSN_OK, DSN_ERR_NULL,
    DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
 size_t dsn_filtered_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
                                       uint32_t width, uint32_t height);
