@@ -69,7 +69,8 @@ inline Bank make_bank(int width, int height) {
     Bank bank;
     bank.width = width;
     bank.height = height;
-    const int highest = int(std::floor(std::log2(std::sqrt(double(width) * width + double(height) * height))));
+    const int highest =
+        int(std::floor(std::log2(std::sqrt(double(width) * width + double(height) * height))));
     const int extreme_x = (width - 1) / 2, extreme_y = (height - 1) / 2;
     for (int q = 2; q <= highest; q++) {
         Level level;
@@ -155,7 +156,8 @@ inline void apply_bank(const Bank &bank, const std::vector<double> &weights, std
 }
 
 // out = B^T r.
-inline void apply_bank_transposed(const Bank &bank, const std::vector<double> &residual, std::vector<double> &out) {
+inline void apply_bank_transposed(const Bank &bank, const std::vector<double> &residual,
+                                  std::vector<double> &out) {
     const Plane plane{bank.width, bank.height};
     out.assign(bank.atom_count(), 0.0);
     std::vector<double> rows;
@@ -233,32 +235,33 @@ inline Fit fit_weights(const Bank &bank, const std::vector<double> &power) {
     }();
     for (fit.iterations = 0; fit.iterations < 2000; fit.iterations++) {
         if (fit.iterations % 5 == 0) {
-        // The relative duality gap of w (Kim, Koh, Lustig, Boyd and Gorinevsky's bound for l1-regularized
-        // least squares): the dual point is 2 (B w - P), scaled to be feasible.
-        apply_bank(bank, w, residual);
-        double primal = 0, penalty = 0;
-        for (size_t i = 0; i < residual.size(); i++) primal += (residual[i] -= power[i]) * residual[i];
-        for (double value : w) penalty += value;
-        primal += lambda * penalty;
-        apply_bank_transposed(bank, residual, gradient);
-        double rho = 0;
-        for (double value : gradient) rho = std::max(rho, -2 * value);
-        const double scale = rho > lambda ? lambda / rho : 1.0;
-        double dual = 0;
-        for (size_t i = 0; i < residual.size(); i++) {
-            const double nu = 2 * residual[i] * scale;
-            dual += -0.25 * nu * nu - nu * power[i];
-        }
-        best_dual = std::max(best_dual, dual);
-        fit.relative_gap = best_dual > 0 ? (primal - best_dual) / best_dual : 1;
-        if (fit.relative_gap <= 0.02 || !(power_norm > 0)) break;
+            // The relative duality gap of w (Kim, Koh, Lustig, Boyd and Gorinevsky's bound for l1-regularized
+            // least squares): the dual point is 2 (B w - P), scaled to be feasible.
+            apply_bank(bank, w, residual);
+            double primal = 0, penalty = 0;
+            for (size_t i = 0; i < residual.size(); i++) primal += (residual[i] -= power[i]) * residual[i];
+            for (double value : w) penalty += value;
+            primal += lambda * penalty;
+            apply_bank_transposed(bank, residual, gradient);
+            double rho = 0;
+            for (double value : gradient) rho = std::max(rho, -2 * value);
+            const double scale = rho > lambda ? lambda / rho : 1.0;
+            double dual = 0;
+            for (size_t i = 0; i < residual.size(); i++) {
+                const double nu = 2 * residual[i] * scale;
+                dual += -0.25 * nu * nu - nu * power[i];
+            }
+            best_dual = std::max(best_dual, dual);
+            fit.relative_gap = best_dual > 0 ? (primal - best_dual) / best_dual : 1;
+            if (fit.relative_gap <= 0.02 || !(power_norm > 0)) break;
         }
         // One FISTA step from y.
         apply_bank(bank, y, residual);
         for (size_t i = 0; i < residual.size(); i++) residual[i] -= power[i];
         apply_bank_transposed(bank, residual, gradient);
         previous = w;
-        for (size_t k = 0; k < atoms; k++) w[k] = std::max(0.0, y[k] - (2 * gradient[k] + lambda) / lipschitz);
+        for (size_t k = 0; k < atoms; k++)
+            w[k] = std::max(0.0, y[k] - (2 * gradient[k] + lambda) / lipschitz);
         const double next_t = (1 + std::sqrt(1 + 4 * t * t)) / 2;
         for (size_t k = 0; k < atoms; k++) y[k] = w[k] + (t - 1) / next_t * (w[k] - previous[k]);
         t = next_t;
@@ -300,10 +303,10 @@ struct AliasTable { // Walker/Vose: O(1) draws from a discrete distribution
 };
 
 struct LevelNoise {
-    float a = 0, cell = 0;        // Gaussian width; cell side = truncation radius = 1 / a
+    float a = 0, cell = 0; // Gaussian width; cell side = truncation radius = 1 / a
     float impulses_per_cell = 0, amplitude = 0;
-    float poisson_limit = 0;      // exp(-impulses_per_cell), for Knuth's draw
-    std::vector<float> fx, fy;    // cycles per pixel
+    float poisson_limit = 0;   // exp(-impulses_per_cell), for Knuth's draw
+    std::vector<float> fx, fy; // cycles per pixel
     AliasTable pick;
 };
 
@@ -317,8 +320,8 @@ struct GreyNoise {
 // the continuous power spectrum itself at the DFT's frequencies. A sparse convolution of density lambda
 // has the spectrum lambda amplitude^2 E|FT kernel|^2, so for level q with weights w_k summing to W_q (on
 // Gaussians of unit norm: G_q / |G_q|), amplitude^2 = 4 a^4 W_q / (lambda |G_q|).
-inline GreyNoise make_grey_noise(const Bank &bank, const std::vector<double> &weights, double impacts_per_kernel,
-                                 uint32_t seed) {
+inline GreyNoise make_grey_noise(const Bank &bank, const std::vector<double> &weights,
+                                 double impacts_per_kernel, uint32_t seed) {
     GreyNoise noise;
     noise.seed = seed;
     size_t first = 0;
@@ -373,10 +376,12 @@ inline float grey_point(const GreyNoise &noise, double x, double y) {
         float level_sum = 0;
         for (int j = -1; j <= 1; j++)
             for (int i = -1; i <= 1; i++) {
-                CellRandom random{hash(uint32_t(int32_t(cx) + i) * 73856093u ^ uint32_t(int32_t(cy) + j) * 19349663u ^
+                CellRandom random{hash(uint32_t(int32_t(cx) + i) * 73856093u ^
+                                       uint32_t(int32_t(cy) + j) * 19349663u ^
                                        (noise.seed + uint32_t(l) * 83492791u))};
                 int impulses = 0; // Knuth: the mean is about 10
-                for (float product = random.uniform(); product > level.poisson_limit; product *= random.uniform())
+                for (float product = random.uniform(); product > level.poisson_limit;
+                     product *= random.uniform())
                     impulses++;
                 for (int n = 0; n < impulses; n++) {
                     const float dx = px - (float(i) + random.uniform()) * level.cell;
@@ -384,8 +389,9 @@ inline float grey_point(const GreyNoise &noise, double x, double y) {
                     const float pick = random.uniform() * float(level.pick.threshold.size());
                     const float phase = random.uniform();
                     const size_t column = std::min(size_t(pick), level.pick.threshold.size() - 1);
-                    const size_t k = pick - float(column) < level.pick.threshold[column] ? column
-                                                                                         : level.pick.alias[column];
+                    const size_t k = pick - float(column) < level.pick.threshold[column]
+                                         ? column
+                                         : level.pick.alias[column];
                     const float r2 = dx * dx + dy * dy;
                     if (r2 >= limit) continue; // truncated at the radius 1/a
                     level_sum += std::exp(-float(kPi) * a2 * r2) *
@@ -421,7 +427,8 @@ inline std::vector<double> sampled_spectrum(const Bank &bank, const std::vector<
                     return sum;
                 };
                 for (int x = 0; x < width; x++) px[size_t(x)] = periodized(double(x) / width - fx);
-                for (int y = 0; y < height; y++) py[size_t(y)] = periodized(double(y) / height - fy) * w * norm;
+                for (int y = 0; y < height; y++)
+                    py[size_t(y)] = periodized(double(y) / height - fy) * w * norm;
                 for (int y = 0; y < height; y++)
                     for (int x = 0; x < width; x++)
                         out[size_t(y) * size_t(width) + size_t(x)] += py[size_t(y)] * px[size_t(x)];
@@ -441,7 +448,8 @@ struct Cumulants {
 inline Cumulants cumulants(const GreyNoise &noise) {
     Cumulants out;
     for (const LevelNoise &level : noise.levels) {
-        const double a2 = double(level.a) * level.a, lambda = level.impulses_per_cell / (double(level.cell) * level.cell);
+        const double a2 = double(level.a) * level.a,
+                     lambda = level.impulses_per_cell / (double(level.cell) * level.cell);
         const double amplitude2 = double(level.amplitude) * level.amplitude;
         out.variance += lambda * amplitude2 * 0.5 * (1 - std::exp(-2 * kPi)) / (2 * a2);
         out.fourth += lambda * amplitude2 * amplitude2 * 0.375 * (1 - std::exp(-4 * kPi)) / (4 * a2);
@@ -484,8 +492,10 @@ inline void decorrelate(const dsn::GaussianModel &model, ColourNoise &noise) {
         for (int j = 0; j < 3; j++)
             for (int k = 0; k < 3; k++) {
                 const double value = std::max(values[size_t(k)], 1e-6 * largest);
-                whiten[size_t(i * 3 + j)] += vectors[size_t(i * 3 + k)] * vectors[size_t(j * 3 + k)] / std::sqrt(value);
-                colour[size_t(i * 3 + j)] += vectors[size_t(i * 3 + k)] * vectors[size_t(j * 3 + k)] * std::sqrt(value);
+                whiten[size_t(i * 3 + j)] +=
+                    vectors[size_t(i * 3 + k)] * vectors[size_t(j * 3 + k)] / std::sqrt(value);
+                colour[size_t(i * 3 + j)] +=
+                    vectors[size_t(i * 3 + k)] * vectors[size_t(j * 3 + k)] * std::sqrt(value);
             }
     const size_t plane = model.spectrum.plane_size();
     std::vector<std::array<double, 6>> matrices(plane); // 00 11 22 01 02 12
@@ -494,7 +504,8 @@ inline void decorrelate(const dsn::GaussianModel &model, ColourNoise &noise) {
         for (int r = 0; r < 3; r++) {
             z[r] = 0;
             for (int c = 0; c < 3; c++)
-                z[r] += whiten[size_t(r * 3 + c)] * std::complex<double>(model.spectrum.values[size_t(c) * plane + i]);
+                z[r] += whiten[size_t(r * 3 + c)] *
+                        std::complex<double>(model.spectrum.values[size_t(c) * plane + i]);
         }
         auto re = [&](int p, int q) { return (z[p] * std::conj(z[q])).real(); };
         matrices[i] = {re(0, 0), re(1, 1), re(2, 2), re(0, 1), re(0, 2), re(1, 2)};
@@ -514,8 +525,8 @@ inline void decorrelate(const dsn::GaussianModel &model, ColourNoise &noise) {
         bool moved = false;
         for (int p = 0; p < 2; p++)
             for (int q = p + 1; q < 3; q++) {
-                // (cos 2 theta, sin 2 theta): the leading eigenvector of sum h h^T, h = (m_pp - m_qq, 2 m_pq),
-                // minimizes the sum of the squared new m_pq.
+                // (cos 2 theta, sin 2 theta): the leading eigenvector of sum h h^T, h = (m_pp - m_qq, 2
+                // m_pq), minimizes the sum of the squared new m_pq.
                 double g11 = 0, g12 = 0, g22 = 0;
                 for (auto &m : matrices) {
                     const double h1 = entry(m, p, p) - entry(m, q, q), h2 = 2 * entry(m, p, q);
@@ -562,12 +573,13 @@ inline void decorrelate(const dsn::GaussianModel &model, ColourNoise &noise) {
 // bandwidth and channel (the spectrum does not depend on it, the Gaussianity and the cost do).
 inline void set_density(ColourNoise &noise, double impacts_per_kernel, uint32_t seed) {
     for (int k = 0; k < noise.channels; k++)
-        noise.noises[size_t(k)] = make_grey_noise(noise.bank, noise.fits[size_t(k)].weights, impacts_per_kernel,
-                                                  seed + 7919u * uint32_t(k));
+        noise.noises[size_t(k)] = make_grey_noise(noise.bank, noise.fits[size_t(k)].weights,
+                                                  impacts_per_kernel, seed + 7919u * uint32_t(k));
 }
 
 // Gabor noise by example of `model` (the baker's Gaussian model of the exemplar, periodic component).
-inline ColourNoise fit_colour_noise(const dsn::GaussianModel &model, double impacts_per_kernel, uint32_t seed) {
+inline ColourNoise fit_colour_noise(const dsn::GaussianModel &model, double impacts_per_kernel,
+                                    uint32_t seed) {
     ColourNoise noise;
     noise.channels = model.channels;
     for (int c = 0; c < model.channels; c++) noise.mean[size_t(c)] = model.mean[size_t(c)];
@@ -582,12 +594,16 @@ inline ColourNoise fit_colour_noise(const dsn::GaussianModel &model, double impa
         std::vector<double> power(size, 0.0);
         for (int y = 0; y < height; y++)
             for (int x = 0; x < width; x++) {
-                const int i = x < width - width / 2 ? x : x - width, j = y < height - height / 2 ? y : y - height;
-                if ((width % 2 == 0 && i == -(width / 2)) || (height % 2 == 0 && j == -(height / 2))) continue;
+                const int i = x < width - width / 2 ? x : x - width,
+                          j = y < height - height / 2 ? y : y - height;
+                if ((width % 2 == 0 && i == -(width / 2)) || (height % 2 == 0 && j == -(height / 2)))
+                    continue;
                 std::complex<double> value = 0;
                 for (int c = 0; c < model.channels; c++)
-                    value += noise.unmixing[size_t(k * 3 + c)] *
-                             std::complex<double>(model.spectrum.values[size_t(c) * size + size_t(y) * size_t(width) + size_t(x)]);
+                    value +=
+                        noise.unmixing[size_t(k * 3 + c)] *
+                        std::complex<double>(
+                            model.spectrum.values[size_t(c) * size + size_t(y) * size_t(width) + size_t(x)]);
                 power[plane.at(i, j)] = std::norm(value);
             }
         power[plane.at(0, 0)] = 0;
