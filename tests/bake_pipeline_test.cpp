@@ -80,15 +80,6 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
     const double bound = std::sqrt(rounding * result.target.plane_size() / model_energy);
     CHECK(std::fabs(result.rme_quantized - result.rme) <= bound * (1 + 1e-9));
     if (small_change) CHECK(std::fabs(result.rme_quantized - result.rme) < 0.001);
-<<<<<<< HEAD
-    CHECK(result.rme == doctest::Approx(result.sot.rme_per_iteration.back()).epsilon(1e-5));
-    dsn::AssetFields plain = result.fields; // the 1.0 asset (dsn-bake --no-pyramid)
-    plain.pyramid.clear();
-    CHECK(dsn::encode_asset(plain).size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
-    CHECK(dsn::encode_asset(plain).size() <= 3200);
-    CHECK(result.fields.pyramid.size() == 4);
-    CHECK(result.asset.size() <= 6 * 1024);
-=======
     // rme (every frequency) is rme_without_zero_frequency (the per-iteration figure) plus the zero
     // frequency's |T(0)|^2 = (sum of the texton)^2 per channel.
     CHECK(result.rme_without_zero_frequency ==
@@ -104,9 +95,12 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
           doctest::Approx(result.rme_without_zero_frequency * result.rme_without_zero_frequency +
                           zero_frequency / model_energy)
               .epsilon(1e-6));
-    CHECK(result.asset.size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
-    CHECK(result.asset.size() <= 3200);
->>>>>>> main
+    dsn::AssetFields plain = result.fields; // the 1.0 asset (dsn-bake --no-pyramid)
+    plain.pyramid.clear();
+    CHECK(dsn::encode_asset(plain).size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
+    CHECK(dsn::encode_asset(plain).size() <= 3200);
+    CHECK(result.fields.pyramid.size() == 4);
+    CHECK(result.asset.size() <= 6 * 1024);
     CHECK(result.fields.bake_iterations == 100);
     CHECK(result.fields.exemplar_width == uint32_t(exemplar.width));
     CHECK(result.fields.bake_rme_q24 == uint32_t(std::lround(result.rme_quantized * (1 << 24))));

@@ -63,21 +63,24 @@ Sampled sample(const dsn::AssetFields &fields, const dsn::PrefilteredLevel &leve
     // f = sum_j t[j] a(x - jx) a(y - jy): along x per texton row, then along y.
     std::vector<double> a_x(size_t(fields.width) * size_t(s.count));
     for (int j = 0; j < int(fields.width); j++)
-        for (int i = 0; i < s.count; i++) a_x[size_t(j) * size_t(s.count) + size_t(i)] = blurred_tent(s.position(i) - (j - radius), sigma);
+        for (int i = 0; i < s.count; i++)
+            a_x[size_t(j) * size_t(s.count) + size_t(i)] = blurred_tent(s.position(i) - (j - radius), sigma);
     std::vector<double> rows(size_t(fields.height) * size_t(s.count), 0);
     for (int row = 0; row < int(fields.height); row++)
         for (int column = 0; column < int(fields.width); column++) {
             const double t = texton_value(fields, row, column, channel);
             if (t == 0) continue;
             for (int i = 0; i < s.count; i++)
-                rows[size_t(row) * size_t(s.count) + size_t(i)] += t * a_x[size_t(column) * size_t(s.count) + size_t(i)];
+                rows[size_t(row) * size_t(s.count) + size_t(i)] +=
+                    t * a_x[size_t(column) * size_t(s.count) + size_t(i)];
         }
     s.reference.assign(size_t(s.count) * size_t(s.count), 0);
     for (int row = 0; row < int(fields.height); row++)
         for (int iy = 0; iy < s.count; iy++) {
             const double weight = a_x[size_t(row) * size_t(s.count) + size_t(iy)];
             for (int ix = 0; ix < s.count; ix++)
-                s.reference[size_t(iy) * size_t(s.count) + size_t(ix)] += weight * rows[size_t(row) * size_t(s.count) + size_t(ix)];
+                s.reference[size_t(iy) * size_t(s.count) + size_t(ix)] +=
+                    weight * rows[size_t(row) * size_t(s.count) + size_t(ix)];
         }
     // t_l(x) = sum s[i, j] hat(x / D - (i - r_l)) hat(y / D - (j - r_l)), and the same through f's values
     // at the nodes (interpolation instead of projection).
@@ -91,14 +94,17 @@ Sampled sample(const dsn::AssetFields &fields, const dsn::PrefilteredLevel &leve
     const int channels = int(fields.channels);
     for (int iy = 0; iy < s.count; iy++)
         for (int ix = 0; ix < s.count; ix++) {
-            const double x = s.position(ix) / spacing + level_radius, y = s.position(iy) / spacing + level_radius;
+            const double x = s.position(ix) / spacing + level_radius,
+                         y = s.position(iy) / spacing + level_radius;
             const int i0 = int(std::floor(x)), j0 = int(std::floor(y));
             double value = 0, through_samples = 0;
             for (int j = j0; j <= j0 + 1; j++)
                 for (int i = i0; i <= i0 + 1; i++) {
                     if (i < 0 || j < 0 || i >= level.width || j >= level.height) continue;
                     const double weight = tent(x - i) * tent(y - j);
-                    value += weight * level.values[(size_t(j) * size_t(level.width) + size_t(i)) * size_t(channels) + size_t(channel)];
+                    value += weight *
+                             level.values[(size_t(j) * size_t(level.width) + size_t(i)) * size_t(channels) +
+                                          size_t(channel)];
                     through_samples += weight * node_value(i, j);
                 }
             s.level[size_t(iy) * size_t(s.count) + size_t(ix)] = value;
@@ -124,7 +130,8 @@ dsn::AssetFields test_texton(uint32_t channels = 1, uint32_t side = 31) {
         for (int column = 0; column < int(side); column++)
             for (uint32_t c = 0; c < channels; c++) {
                 int32_t &value = fields.texton[(size_t(row) * side + size_t(column)) * channels + c];
-                const double bump = 40 * std::exp(-double((row - r) * (row - r) + (column - r) * (column - r)) / 30);
+                const double bump =
+                    40 * std::exp(-double((row - r) * (row - r) + (column - r) * (column - r)) / 30);
                 value = std::max(-127, std::min(127, value + int32_t(std::lround(bump))));
             }
     return fields;
@@ -151,7 +158,8 @@ TEST_CASE("pyramid level counts and sizes follow the format's rule") {
         }
 }
 
-TEST_CASE("kappa is the blurred texel tent against a level tent: symmetric, integral 2^l, matching quadrature") {
+TEST_CASE(
+    "kappa is the blurred texel tent against a level tent: symmetric, integral 2^l, matching quadrature") {
     for (int l = 1; l <= 8; l++) {
         const int spacing = 1 << l;
         double integral = 0;
@@ -169,7 +177,8 @@ TEST_CASE("kappa is the blurred texel tent against a level tent: symmetric, inte
     }
 }
 
-TEST_CASE("each level is the L2 projection of t0 * G_l: orthogonal residual, better than sampling, its error stated") {
+TEST_CASE("each level is the L2 projection of t0 * G_l: orthogonal residual, better than sampling, its error "
+          "stated") {
     const dsn::AssetFields fields = test_texton();
     double texton_sum = 0, texton_magnitude = 0;
     for (int row = 0; row < 31; row++)
@@ -198,7 +207,8 @@ TEST_CASE("each level is the L2 projection of t0 * G_l: orthogonal residual, bet
                 const int y0 = int(std::lround((cy - spacing + s.extent) / step));
                 for (int iy = std::max(0, y0); iy <= std::min(s.count - 1, y0 + 2 * spacing * 8); iy++)
                     for (int ix = std::max(0, x0); ix <= std::min(s.count - 1, x0 + 2 * spacing * 8); ix++) {
-                        const double weight = tent((s.position(ix) - cx) / spacing) * tent((s.position(iy) - cy) / spacing);
+                        const double weight =
+                            tent((s.position(ix) - cx) / spacing) * tent((s.position(iy) - cy) / spacing);
                         with_reference += weight * s.at(s.reference, ix, iy) * area;
                         with_residual += weight * (s.at(s.reference, ix, iy) - s.at(s.level, ix, iy)) * area;
                     }
@@ -214,8 +224,8 @@ TEST_CASE("each level is the L2 projection of t0 * G_l: orthogonal residual, bet
         // for levels 1-4 (sampling: 0.17, 0.35, 0.19, 0.21).
         const double projection_error = relative_error(s.level, s.reference);
         const double sampling_error = relative_error(s.sampled_level, s.reference);
-        MESSAGE("level " << l << ": relative L2 error " << projection_error << " (tents through the samples: "
-                         << sampling_error << ")");
+        MESSAGE("level " << l << ": relative L2 error " << projection_error
+                         << " (tents through the samples: " << sampling_error << ")");
         CHECK(projection_error < sampling_error);
 
         // Truncation: the energy of t0 * G_l outside the level's nodes' window [-2^l r_l, 2^l r_l]^2.
@@ -233,7 +243,8 @@ TEST_CASE("each level is the L2 projection of t0 * G_l: orthogonal residual, bet
         // The integral: integral t_l = 4^l sum s_l ~ integral t0 * G_l = integral t0 = sum t.
         double level_sum = 0;
         for (double value : level.values) level_sum += value;
-        MESSAGE("level " << l << ": 4^l sum s_l = " << std::ldexp(level_sum, 2 * l) << ", sum t = " << texton_sum);
+        MESSAGE("level " << l << ": 4^l sum s_l = " << std::ldexp(level_sum, 2 * l)
+                         << ", sum t = " << texton_sum);
         CHECK(std::abs(std::ldexp(level_sum, 2 * l) - texton_sum) < 1e-3 * texton_magnitude);
     }
 }
@@ -247,14 +258,17 @@ TEST_CASE("a delta texton gives Gaussian-like levels of variance sigma_l^2 + 1/6
         CAPTURE(l);
         const dsn::PrefilteredLevel level = dsn::prefiltered_level(fields, l);
         const int r = (level.width - 1) / 2, spacing = 1 << l;
-        const auto at = [&](int i, int j) { return level.values[size_t(j + r) * size_t(level.width) + size_t(i + r)]; };
+        const auto at = [&](int i, int j) {
+            return level.values[size_t(j + r) * size_t(level.width) + size_t(i + r)];
+        };
         double sum = 0, second_moment = 0, largest = 0;
         for (int j = -r; j <= r; j++)
             for (int i = -r; i <= r; i++) {
                 // Symmetric under every reflection and the diagonal swap, separable, peaked at the centre.
                 CHECK(at(i, j) == doctest::Approx(at(-i, j)).epsilon(1e-9).scale(total));
                 CHECK(at(i, j) == doctest::Approx(at(j, i)).epsilon(1e-9).scale(total));
-                CHECK(at(i, j) * at(0, 0) == doctest::Approx(at(i, 0) * at(0, j)).epsilon(1e-9).scale(total * total));
+                CHECK(at(i, j) * at(0, 0) ==
+                      doctest::Approx(at(i, 0) * at(0, j)).epsilon(1e-9).scale(total * total));
                 CHECK(at(i, j) <= at(0, 0));
                 sum += at(i, j);
                 second_moment += at(i, j) * double(spacing * i) * double(spacing * i);
@@ -314,7 +328,8 @@ TEST_CASE("an RGB pyramid is the pyramid of each channel") {
         grey.texton.clear();
         for (size_t i = c; i < rgb.texton.size(); i += 3) grey.texton.push_back(rgb.texton[i]);
         for (int l = 1; l <= 3; l++) {
-            const dsn::PrefilteredLevel both = dsn::prefiltered_level(rgb, l), one = dsn::prefiltered_level(grey, l);
+            const dsn::PrefilteredLevel both = dsn::prefiltered_level(rgb, l),
+                                        one = dsn::prefiltered_level(grey, l);
             for (size_t i = 0; i < one.values.size(); i++)
                 CHECK(both.values[i * 3 + c] == doctest::Approx(one.values[i]).epsilon(1e-12));
         }

@@ -17,18 +17,12 @@ namespace {
 const char *const kUsage =
     "usage: dsn-inspect A.dsnt [--json]\n"
     "\n"
-<<<<<<< HEAD
     "Validates a .dsnt asset with the runtime loader and prints its header, the levels of its texton\n"
     "pyramid (format 1.1: side, spacing, exponent and bytes of each) and its size with and without the\n"
     "pyramid. With --json, prints the header, mean, color_transform, support, texton and pyramid levels\n"
-    "(dequantized values, row-major, channels interleaved, top-left first) as one JSON object.\n"
-=======
-    "Validates a .dsnt asset with the runtime loader and prints its header. With --json, prints\n"
-    "the header, mean, color_transform, support and texton (dequantized values, row-major,\n"
-    "channels interleaved, top-left first) as one JSON object. bake_rme (RME in the text) is the\n"
-    "relative model error of the stored texton that the baker recorded, summed over every frequency as\n"
-    "Galerne, Leclaire and Moisan define it (dsn-bake --help says more).\n"
->>>>>>> main
+    "(dequantized values, row-major, channels interleaved, top-left first) as one JSON object. bake_rme\n"
+    "(RME in the text) is the relative model error of the stored texton that the baker recorded, summed\n"
+    "over every frequency as Galerne, Leclaire and Moisan define it (dsn-bake --help says more).\n"
     "\n"
     "  --json                   print JSON instead of text\n"
     "  -h, --help               this help\n"
