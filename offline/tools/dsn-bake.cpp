@@ -47,7 +47,7 @@ const char *const kUsage =
     "                           lattice (--mode tile or point)\n"
     "  --no-periodic            use the exemplar as is, not its periodic component\n"
     "  --no-color-transform     store the identity colour transform\n"
-    "  --no-pyramid             leave out the texton pyramid: a format 1.0 asset, about 45% smaller\n"
+    "  --no-pyramid             leave out the texton pyramid: a format 1.0 asset, 43% smaller\n"
     "                           for a 31x31 texton, that the filtered evaluation fades to the mean\n"
     "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...; its\n"
     "                           asset_crc32 is the CRC stored at the end of the asset it describes)\n"
