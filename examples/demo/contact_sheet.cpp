@@ -240,7 +240,7 @@ int run(dsn::CommandLine &command_line) {
             std::max(1, std::min(kHorizonPanel / crops[0].width, kHorizonHeight / crops[0].height));
         draw_label(sheet, kGap, top, horizon_note + ", enlarged " + std::to_string(factor) + "x", 2);
         const char *horizon_labels[3] = {"unfiltered (1 sample)", "filtered (anisotropic)",
-                                         "supersampled (reference)"};
+                                         "supersampled (8x8 samples)"};
         for (int p = 0; p < 3; p++) {
             const int x = kGap + p * (kHorizonPanel + kGap);
             draw_label(sheet, x, top + kLabel, horizon_labels[p], 2);
