@@ -1,9 +1,11 @@
 // make-assets.cpp - writes tests/cross/golden_assets.cpp: the four fixed assets the golden program hashes,
-// encoded once by the asset writer from fixed integers and committed as byte arrays.
+// encoded once by the asset writer from fixed integers, with the baker's texton pyramid (format 1.1), and
+// committed as byte arrays.
 //
 // The committed arrays, not this program, are the source of truth: every target of the cross test reads
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
 // tests/cross/golden.txt in the same commit.
+#include "../../offline/bake_internal.h"
 #include "../../offline/tools/file_output.h"
 #include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
@@ -136,7 +138,12 @@ std::string source_file(const std::vector<NamedAsset> &assets) {
     std::string text = "// golden_assets.cpp - the fixed assets of the cross test, as bytes. Written by "
                        "make-assets.cpp;\n// these arrays are the source of truth (see golden.txt).\n"
                        "// clang-format off\n#include \"golden_assets.h\"\n\n";
-    for (const NamedAsset &asset : assets) text += byte_array(asset.name, dsn::encode_asset(asset.fields));
+    // Every asset carries the baker's pyramid of its texton (format 1.1), which the filtered kinds read;
+    // the other kinds ignore it, so their hashes are those of the 1.0 assets.
+    for (NamedAsset asset : assets) {
+        asset.fields.pyramid = dsn::texton_pyramid(asset.fields);
+        text += byte_array(asset.name, dsn::encode_asset(asset.fields));
+    }
     text += "\nextern const cross_asset cross_assets[] = {\n";
     for (const NamedAsset &asset : assets)
         text += "    {\"" + std::string(asset.name) + "\", cross_asset_" + asset.name +
