@@ -16,7 +16,8 @@
 namespace dsn {
 namespace {
 
-constexpr int kSimpsonIntervals = 64; // per half of the texton's tent: m is smooth, so this is exact to ~1e-12
+constexpr int kSimpsonIntervals =
+    64; // per half of the texton's tent: m is smooth, so this is exact to ~1e-12
 constexpr double kPi = 3.14159265358979323846;
 
 // Second antiderivative of the Gaussian density: integral of (s - z)_+ g_sigma(z) dz.
@@ -28,13 +29,15 @@ double gaussian_ramp(double s, double sigma) {
 
 // (g_sigma * hat_spacing)(x): hat_w(y) = (1/w) [(y + w)_+ - 2 y_+ + (y - w)_+].
 double gaussian_tent(double x, double sigma, double spacing) {
-    return (gaussian_ramp(x + spacing, sigma) - 2 * gaussian_ramp(x, sigma) + gaussian_ramp(x - spacing, sigma)) /
+    return (gaussian_ramp(x + spacing, sigma) - 2 * gaussian_ramp(x, sigma) +
+            gaussian_ramp(x - spacing, sigma)) /
            spacing;
 }
 
 // Solves M x = right (in place), M = tridiagonal [1/6 2/3 1/6] of size n, by the Thomas algorithm (M is
 // strictly diagonally dominant: no pivoting needed).
-void solve_tent_gram(std::vector<double> &right, size_t first, size_t stride, int n, std::vector<double> &work) {
+void solve_tent_gram(std::vector<double> &right, size_t first, size_t stride, int n,
+                     std::vector<double> &work) {
     const double off = 1.0 / 6, diagonal = 2.0 / 3;
     work.assign(size_t(n), 0);
     double denominator = diagonal;
@@ -88,7 +91,8 @@ double pyramid_kappa(int level, double u) {
 }
 
 PrefilteredLevel prefiltered_level(const AssetFields &fields, int level) {
-    if (level < 1 || level > int(DSN_PYRAMID_MAX_LEVELS)) throw std::invalid_argument("pyramid level out of range");
+    if (level < 1 || level > int(DSN_PYRAMID_MAX_LEVELS))
+        throw std::invalid_argument("pyramid level out of range");
     const int channels = int(fields.channels);
     const int radius_x = int(fields.width - 1) / 2, radius_y = int(fields.height - 1) / 2;
     const int spacing = 1 << level;
@@ -116,8 +120,10 @@ PrefilteredLevel prefiltered_level(const AssetFields &fields, int level) {
             for (int column = 0; column < width; column++) {
                 const double weight = kappa_at(spacing * (k - level_radius_x) - (column - radius_x));
                 for (int c = 0; c < channels; c++)
-                    along_x[(size_t(row) * size_t(result.width) + size_t(k)) * size_t(channels) + size_t(c)] +=
-                        weight * texton[(size_t(row) * size_t(width) + size_t(column)) * size_t(channels) + size_t(c)];
+                    along_x[(size_t(row) * size_t(result.width) + size_t(k)) * size_t(channels) +
+                            size_t(c)] +=
+                        weight *
+                        texton[(size_t(row) * size_t(width) + size_t(column)) * size_t(channels) + size_t(c)];
             }
     result.values.assign(size_t(result.height) * size_t(result.width) * size_t(channels), 0);
     for (int k = 0; k < result.height; k++)
@@ -133,9 +139,11 @@ PrefilteredLevel prefiltered_level(const AssetFields &fields, int level) {
     const size_t row_stride = size_t(result.width) * size_t(channels);
     for (int c = 0; c < channels; c++) {
         for (int k = 0; k < result.height; k++)
-            solve_tent_gram(result.values, size_t(k) * row_stride + size_t(c), size_t(channels), result.width, work);
+            solve_tent_gram(result.values, size_t(k) * row_stride + size_t(c), size_t(channels), result.width,
+                            work);
         for (int k = 0; k < result.width; k++)
-            solve_tent_gram(result.values, size_t(k) * size_t(channels) + size_t(c), row_stride, result.height, work);
+            solve_tent_gram(result.values, size_t(k) * size_t(channels) + size_t(c), row_stride,
+                            result.height, work);
     }
     const double area = std::ldexp(1.0, 2 * level);
     for (double &value : result.values) value /= area;
@@ -148,7 +156,8 @@ PyramidLevel quantize_level(const PrefilteredLevel &level, const AssetFields &fi
     // q = s 2^40 / (scale[c] 2^e): the smallest e that keeps every |q| within the range.
     double largest = 0; // max |s| 2^40 / scale[c]
     for (size_t i = 0; i < level.values.size(); i++)
-        largest = std::max(largest, std::abs(std::ldexp(level.values[i], 40) / double(fields.scale[i % channels])));
+        largest =
+            std::max(largest, std::abs(std::ldexp(level.values[i], 40) / double(fields.scale[i % channels])));
     int exponent = DSN_PYRAMID_EXPONENT_MIN;
     while (exponent < DSN_PYRAMID_EXPONENT_MAX && largest > std::ldexp(limit, exponent)) exponent++;
     PyramidLevel quantized;
@@ -166,7 +175,8 @@ PyramidLevel quantize_level(const PrefilteredLevel &level, const AssetFields &fi
 std::vector<PyramidLevel> texton_pyramid(const AssetFields &fields) {
     std::vector<PyramidLevel> levels;
     const int count = pyramid_level_count(int(fields.width - 1) / 2, int(fields.height - 1) / 2);
-    for (int level = 1; level <= count; level++) levels.push_back(quantize_level(prefiltered_level(fields, level), fields));
+    for (int level = 1; level <= count; level++)
+        levels.push_back(quantize_level(prefiltered_level(fields, level), fields));
     return levels;
 }
 

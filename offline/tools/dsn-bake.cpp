@@ -47,7 +47,7 @@ const char *const kUsage =
     "                           lattice (--mode tile or point)\n"
     "  --no-periodic            use the exemplar as is, not its periodic component\n"
     "  --no-color-transform     store the identity colour transform\n"
-    "  --no-pyramid             leave out the texton pyramid: a format 1.0 asset, about 45% smaller\n"
+    "  --no-pyramid             leave out the texton pyramid: a format 1.0 asset, 43% smaller\n"
     "                           for a 31x31 texton, that the filtered evaluation fades to the mean\n"
     "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...; its\n"
     "                           asset_crc32 is the CRC stored at the end of the asset it describes)\n"
@@ -59,7 +59,15 @@ const char *const kUsage =
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when the bake\n"
     "fails (unreadable or unusable image, cannot write). The asset, report and preview are written\n"
-    "together: all of them or none. Numbers are decimal.\n";
+    "together: all of them or none. Numbers are decimal.\n"
+    "\n"
+    "RME, the relative model error (0 is perfect): the optimal-transport distance between the Gaussian\n"
+    "model of the noise made from the texton and the exemplar's, relative to the exemplar's, summed over\n"
+    "every frequency as Galerne, Leclaire and Moisan define it: a texton whose values do not sum to zero\n"
+    "adds power at the zero frequency (slow variation over scales beyond the exemplar). It is the summary's\n"
+    "RME, the report's rme, rme_luminance and rme_quantized, and the asset's bake_rme (of the quantized\n"
+    "texton). The same sum without the zero frequency, which the iterations minimize, is the report's\n"
+    "rme_without_zero_frequency and rme_per_iteration, and the progress bar's RME(xi!=0).\n";
 
 struct Arguments {
     std::string input, output, report, preview;
@@ -134,7 +142,7 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
 void draw_progress(int done, int total, double rme) {
     if (done != total && done % std::max(1, total / 100) != 0) return;
     const int width = 40, filled = int(double(done) / total * width);
-    std::fprintf(stderr, "\r[%s%s] %d/%d  RME %.4f", std::string(size_t(filled), '#').c_str(),
+    std::fprintf(stderr, "\r[%s%s] %d/%d  RME(xi!=0) %.4f", std::string(size_t(filled), '#').c_str(),
                  std::string(size_t(width - filled), '.').c_str(), done, total, rme);
     if (done == total) std::fputc('\n', stderr);
     std::fflush(stderr);
@@ -187,6 +195,7 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     field("rme", json_number(result.rme));
     field("rme_luminance", json_number(result.rme_luminance));
     field("rme_quantized", json_number(result.rme_quantized));
+    field("rme_without_zero_frequency", json_number(result.rme_without_zero_frequency));
     field("excess_kurtosis_30", json_array(result.excess_kurtosis_30));
     field("excess_kurtosis_30_luminance", json_array(result.excess_kurtosis_30_luminance));
     field("mean", json_array(mean));
@@ -228,8 +237,10 @@ void print_summary(const Arguments &arguments, const dsn::Image &exemplar, const
                 options.shape == DSN_SHAPE_DISK ? "disk" : "square", result.sot.rme_per_iteration.size(),
                 options.seed, options.bits,
                 options.interpolation == DSN_INTERPOLATION_BILINEAR ? "bilinear" : "lattice");
-    std::printf("  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f\n", result.rme,
-                result.rme_luminance, result.rme_quantized);
+    std::printf(
+        "  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f   (SOT without the zero "
+        "frequency %.4f)\n",
+        result.rme, result.rme_luminance, result.rme_quantized, result.rme_without_zero_frequency);
     std::printf("  kurtosis @30  SOT %s   luminance texton %s\n",
                 channel_list(result.excess_kurtosis_30, "%.3f").c_str(),
                 channel_list(result.excess_kurtosis_30_luminance, "%.3f").c_str());

@@ -1,6 +1,6 @@
 // make-assets.cpp - writes tests/cross/golden_assets.cpp: the four fixed assets the golden program hashes,
-// encoded once by the asset writer from fixed integers, with the baker's texton pyramid (format 1.1), and
-// committed as byte arrays.
+// encoded once by the asset writer from fixed integers, each with the texton pyramid the baker makes of it
+// (format 1.1: every target's loader, the small build's included, reads them), committed as byte arrays.
 //
 // The committed arrays, not this program, are the source of truth: every target of the cross test reads
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
@@ -138,12 +138,7 @@ std::string source_file(const std::vector<NamedAsset> &assets) {
     std::string text = "// golden_assets.cpp - the fixed assets of the cross test, as bytes. Written by "
                        "make-assets.cpp;\n// these arrays are the source of truth (see golden.txt).\n"
                        "// clang-format off\n#include \"golden_assets.h\"\n\n";
-    // Every asset carries the baker's pyramid of its texton (format 1.1), which the filtered kinds read;
-    // the other kinds ignore it, so their hashes are those of the 1.0 assets.
-    for (NamedAsset asset : assets) {
-        asset.fields.pyramid = dsn::texton_pyramid(asset.fields);
-        text += byte_array(asset.name, dsn::encode_asset(asset.fields));
-    }
+    for (const NamedAsset &asset : assets) text += byte_array(asset.name, dsn::encode_asset(asset.fields));
     text += "\nextern const cross_asset cross_assets[] = {\n";
     for (const NamedAsset &asset : assets)
         text += "    {\"" + std::string(asset.name) + "\", cross_asset_" + asset.name +
@@ -161,7 +156,8 @@ int main(int argc, char **argv) {
         return argc == 2 ? 0 : 2;
     }
     try {
-        const std::vector<NamedAsset> assets = {grey8(), rgb8(), grey16(), rgb16()};
+        std::vector<NamedAsset> assets = {grey8(), rgb8(), grey16(), rgb16()};
+        for (NamedAsset &asset : assets) asset.fields.pyramid = dsn::texton_pyramid(asset.fields);
         const std::string text = source_file(assets);
         dsn::write_file_atomically(argv[1], std::vector<unsigned char>(text.begin(), text.end()));
     } catch (const std::exception &error) {
