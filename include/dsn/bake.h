@@ -145,6 +145,9 @@ struct BakeOptions {
     // Early stop: after at least 50 iterations, stop when the relative model error improved by less than
     // this over the last 50 iterations. 0 runs every iteration.
     double stop_tolerance = 0;
+    // Writes the texton pyramid (a format 1.1 asset) that the filtered evaluation reads; false writes a
+    // 1.0 asset, byte for byte what bakes without a pyramid always wrote.
+    bool pyramid = true;
     BakeProgress progress; // may be empty
 };
 
