@@ -1,0 +1,27 @@
+// parallel.h - runs the independent parts of one loop of the baker on the machine's cores (the FFT
+// passes of the transforms and of the texton's iterations). Internal to libdsn_bake.a.
+//
+// The callers make every part compute the same numbers whatever thread runs it, and combine per-part
+// results in a fixed order, so a bake gives the same bits on one thread or many. The wasm32-wasi baker
+// (no threads in wasi) runs the parts one after the other.
+#ifndef DSN_OFFLINE_PARALLEL_H
+#define DSN_OFFLINE_PARALLEL_H
+
+#include <cstddef>
+#include <functional>
+
+namespace dsn {
+
+// Threads a parallel loop uses, the caller's included: the hardware's, at most kMaxBakeThreads.
+constexpr unsigned kMaxBakeThreads = 8;
+unsigned bake_thread_count();
+
+// Calls body(begin, end) on contiguous ranges that cover [0, count) exactly once, at most one range per
+// thread, the first on the calling thread; returns when all are done. An exception thrown by a body is
+// rethrown here (the first one) after every thread has finished. Loops shorter than `minimum_per_thread`
+// items per thread use fewer threads: a thread costs tens of microseconds to start.
+void parallel_ranges(size_t count, size_t minimum_per_thread, const std::function<void(size_t, size_t)> &body);
+
+} // namespace dsn
+
+#endif // DSN_OFFLINE_PARALLEL_H
