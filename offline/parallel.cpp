@@ -3,6 +3,7 @@
 #include "parallel.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <exception>
 #include <system_error>
 #include <vector>
@@ -17,7 +18,13 @@ unsigned bake_thread_count() {
 #if defined(__wasi__)
     return 1;
 #else
-    return std::min(kMaxBakeThreads, std::max(1u, std::thread::hardware_concurrency()));
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    if (const char *chosen = std::getenv("DSN_BAKE_THREADS")) {
+        char *end = nullptr;
+        const unsigned long value = std::strtoul(chosen, &end, 10);
+        if (end != chosen && *end == '\0' && value >= 1) threads = unsigned(std::min<unsigned long>(value, kMaxBakeThreads));
+    }
+    return std::min(kMaxBakeThreads, threads);
 #endif
 }
 

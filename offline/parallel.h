@@ -12,7 +12,9 @@
 
 namespace dsn {
 
-// Threads a parallel loop uses, the caller's included: the hardware's, at most kMaxBakeThreads.
+// Threads a parallel loop uses, the caller's included: the environment variable DSN_BAKE_THREADS when it
+// holds a positive number (1 on a machine shared with other work), else the hardware's; at most
+// kMaxBakeThreads.
 constexpr unsigned kMaxBakeThreads = 8;
 unsigned bake_thread_count();
 

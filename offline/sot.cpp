@@ -17,6 +17,7 @@
 #include "kiss_plan.h"
 #include "parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -86,7 +87,7 @@ double rme_from_sums(double model_energy, const ProjectionSums &sums) {
 bool should_stop(const std::vector<double> &rme, const SotOptions &options) {
     if (!(options.stop_tolerance > 0) || options.stop_window < 1) return false;
     const size_t window = size_t(options.stop_window);
-    if (rme.size() <= window) return false;
+    if (rme.size() <= window || rme.size() < size_t(std::max(0, options.minimum_iterations))) return false;
     return rme[rme.size() - 1 - window] - rme.back() < options.stop_tolerance;
 }
 
@@ -311,7 +312,10 @@ SotResult run_iterations(Iteration &iteration, const Spectrum &target, const Sup
         const bool last = done + 1 == options.iterations;
         result.rme_per_iteration.push_back(iteration.step(!last));
         if (options.progress) options.progress(done + 1, options.iterations, result.rme_per_iteration.back());
-        if (should_stop(result.rme_per_iteration, options)) break;
+        if (!last && should_stop(result.rme_per_iteration, options)) {
+            result.stop = SotStop::Converged;
+            break;
+        }
     }
     result.texton.support = support;
     result.texton.channels = target.channels;
@@ -347,6 +351,11 @@ Spectrum random_phase_start(const Spectrum &target, uint32_t seed) {
         }
     }
     return start;
+}
+
+int early_stop_minimum_iterations(int width, int height) {
+    const double pixels = std::max(1.0, double(width) * double(height));
+    return int(std::min(1e6, std::ceil(kEarlyStopMinimumWork / pixels)));
 }
 
 SotResult sot_alternating_projections(const Spectrum &target, const Support &support,
