@@ -15,9 +15,6 @@ namespace {
 
 using Complex = std::complex<float>;
 
-// Columns per parallel part: a column transform is a few microseconds.
-const size_t kColumnsPerThread = 16;
-
 // Forward DFT of one real plane (row-major, width x height) into the full spectrum plane `output`.
 // Row pairs that are zero (a texton on a torus is zero on most rows) are not transformed.
 void forward_plane(const double *input, int width, int height, const FftPlan &row_plan,
@@ -25,7 +22,7 @@ void forward_plane(const double *input, int width, int height, const FftPlan &ro
     const size_t half = size_t(width) / 2 + 1, w = size_t(width), h = size_t(height);
     const size_t pairs = (h + 1) / 2;
     // Rows, written column-major: columns[k * height + y] is frequency k of row y.
-    parallel_ranges(pairs, kColumnsPerThread, [&](size_t first, size_t last) {
+    parallel_ranges(pairs, items_per_thread(w), [&](size_t first, size_t last) {
         std::vector<Complex> row_in(w), row_out(w);
         for (size_t pair = first; pair < last; pair++) {
             const size_t a = 2 * pair, b = a + 1;
@@ -53,7 +50,7 @@ void forward_plane(const double *input, int width, int height, const FftPlan &ro
             }
         }
     });
-    parallel_ranges(half, kColumnsPerThread, [&](size_t first, size_t last) {
+    parallel_ranges(half, items_per_thread(h), [&](size_t first, size_t last) {
         std::vector<Complex> column_out(h);
         for (size_t k = first; k < last; k++) {
             kiss_fft(column_plan.get(), as_kiss(&columns[k * h]), as_kiss(column_out.data()));
@@ -61,7 +58,7 @@ void forward_plane(const double *input, int width, int height, const FftPlan &ro
         }
     });
     // The full plane: the half read back, the other half its mirror X(-xi) = conj X(xi).
-    parallel_ranges(h, kColumnsPerThread, [&](size_t first, size_t last) {
+    parallel_ranges(h, items_per_thread(w), [&](size_t first, size_t last) {
         for (size_t xi2 = first; xi2 < last; xi2++) {
             Complex *row = output + xi2 * w;
             const size_t mirror_row = (h - xi2) % h;
@@ -76,7 +73,7 @@ void forward_plane(const double *input, int width, int height, const FftPlan &ro
 void inverse_plane(const Complex *input, int width, int height, const FftPlan &row_plan,
                    const FftPlan &column_plan, std::vector<Complex> &columns, double scale, double *output) {
     const size_t half = size_t(width) / 2 + 1, w = size_t(width), h = size_t(height);
-    parallel_ranges(half, kColumnsPerThread, [&](size_t first, size_t last) {
+    parallel_ranges(half, items_per_thread(h), [&](size_t first, size_t last) {
         std::vector<Complex> column_in(h);
         for (size_t k = first; k < last; k++) {
             const size_t mirror_column = (w - k) % w;
@@ -87,7 +84,7 @@ void inverse_plane(const Complex *input, int width, int height, const FftPlan &r
         }
     });
     const size_t pairs = (h + 1) / 2;
-    parallel_ranges(pairs, kColumnsPerThread, [&](size_t first, size_t last) {
+    parallel_ranges(pairs, items_per_thread(w), [&](size_t first, size_t last) {
         std::vector<Complex> row_in(w), row_out(w);
         for (size_t pair = first; pair < last; pair++) {
             const size_t a = 2 * pair, b = a + 1;
@@ -126,7 +123,8 @@ Spectrum forward_dft(const Image &image) {
     spectrum.channels = image.channels;
     const size_t plane = spectrum.plane_size();
     spectrum.values.resize(plane * size_t(image.channels));
-    const FftPlan row_plan = make_fft_plan(image.width, false), column_plan = make_fft_plan(image.height, false);
+    const FftPlan row_plan = make_fft_plan(image.width, false),
+                  column_plan = make_fft_plan(image.height, false);
     std::vector<Complex> columns((size_t(image.width) / 2 + 1) * size_t(image.height));
     for (int c = 0; c < image.channels; c++)
         forward_plane(&image.values[size_t(c) * plane], image.width, image.height, row_plan, column_plan,

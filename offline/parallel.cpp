@@ -22,7 +22,8 @@ unsigned bake_thread_count() {
     if (const char *chosen = std::getenv("DSN_BAKE_THREADS")) {
         char *end = nullptr;
         const unsigned long value = std::strtoul(chosen, &end, 10);
-        if (end != chosen && *end == '\0' && value >= 1) threads = unsigned(std::min<unsigned long>(value, kMaxBakeThreads));
+        if (end != chosen && *end == '\0' && value >= 1)
+            threads = unsigned(std::min<unsigned long>(value, kMaxBakeThreads));
     }
     return std::min(kMaxBakeThreads, threads);
 #endif

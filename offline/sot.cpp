@@ -173,7 +173,7 @@ class PrunedIteration {
 
     void start(const Spectrum &start) {
         spectrum_ = half_of(start);
-        parallel_ranges(size_t(half_), kColumnsPerThread, [&](size_t first, size_t last) {
+        parallel_ranges(size_t(half_), column_items_per_thread(), [&](size_t first, size_t last) {
             std::vector<Complex> column_out(static_cast<size_t>(height_));
             for (size_t k = first; k < last; k++) inverse_columns(k, column_out);
         });
@@ -181,12 +181,12 @@ class PrunedIteration {
 
     double step(bool impose) {
         const size_t pairs = (row_count() + 1) / 2;
-        parallel_ranges(pairs, 2, [&](size_t first, size_t last) {
+        parallel_ranges(pairs, items_per_thread(size_t(width_)), [&](size_t first, size_t last) {
             std::vector<Complex> row_in(static_cast<size_t>(width_)), row_out(row_in.size());
             for (size_t pair = first; pair < last; pair++) row_pair(2 * pair, row_in, row_out);
         });
         const size_t stride = size_t(half_) * size_t(height_);
-        parallel_ranges(size_t(half_), kColumnsPerThread, [&](size_t first, size_t last) {
+        parallel_ranges(size_t(half_), column_items_per_thread(), [&](size_t first, size_t last) {
             std::vector<Complex> column_in(static_cast<size_t>(height_)), column_out(column_in.size());
             for (size_t k = first; k < last; k++) {
                 forward_columns(k, column_in);
@@ -207,8 +207,10 @@ class PrunedIteration {
     const std::vector<double> &texton_values() const { return texton_; }
 
   private:
-    // Columns per parallel part: a column transform is a few microseconds.
-    static constexpr size_t kColumnsPerThread = 16;
+    // A column of every channel per item, transformed both ways.
+    size_t column_items_per_thread() const {
+        return items_per_thread(2 * size_t(channels_) * size_t(height_));
+    }
 
     size_t column(int c, size_t k) const { return (size_t(c) * size_t(half_) + k) * size_t(height_); }
     size_t row_count() const { return size_t(channels_) * size_t(side_); }
@@ -231,7 +233,8 @@ class PrunedIteration {
         for (int c = 0; c < channels_; c++) {
             kiss_fft(column_inverse_.get(), as_kiss(&spectrum_[column(c, k)]), as_kiss(column_out.data()));
             for (int dy = 0; dy < side_; dy++)
-                row_entry(size_t(c) * size_t(side_) + size_t(dy), k) = column_out[wrap(dy - radius_, height_)];
+                row_entry(size_t(c) * size_t(side_) + size_t(dy), k) =
+                    column_out[wrap(dy - radius_, height_)];
         }
     }
 
@@ -278,7 +281,8 @@ class PrunedIteration {
     }
 
     // row_in = A + i B over the full row, A and B Hermitian spectra given by their halves.
-    void pack_hermitian_rows(const Complex *first, const Complex *second, std::vector<Complex> &row_in) const {
+    void pack_hermitian_rows(const Complex *first, const Complex *second,
+                             std::vector<Complex> &row_in) const {
         for (size_t k = 0; k < size_t(width_); k++) {
             const bool upper = k >= size_t(half_);
             const size_t source = upper ? size_t(width_) - k : k;

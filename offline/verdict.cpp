@@ -62,7 +62,8 @@ Decorrelation decorrelate(const Image &exemplar) {
     Matrix3 vectors;
     symmetric_eigen(covariance, values, vectors);
     std::array<int, 3> order = {0, 1, 2};
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return values[size_t(a)] > values[size_t(b)]; });
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return values[size_t(a)] > values[size_t(b)]; });
     for (int k = 0; k < 3; k++) {
         result.variances[size_t(k)] = std::max(0.0, values[size_t(order[size_t(k)])]);
         for (int c = 0; c < 3; c++)
@@ -155,9 +156,11 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
         verdict.channels.push_back(marginal);
         for (int y = 0; y < height; y++)
             for (int x = 0; x < width; x++) {
-                const int distance = lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape);
-                if (distance <= reach) inside_energy += a[size_t(y) * size_t(width) + size_t(x)] *
-                                                        a[size_t(y) * size_t(width) + size_t(x)];
+                const int distance =
+                    lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape);
+                if (distance <= reach)
+                    inside_energy +=
+                        a[size_t(y) * size_t(width) + size_t(x)] * a[size_t(y) * size_t(width) + size_t(x)];
             }
         // Bartlett: a sample autocorrelation's variance at any lag is about (1/N) sum_y A(y)^2; the energy
         // within reach stands for that sum.
@@ -168,7 +171,8 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
             double sum = 0;
             for (int k = 0; k < basis.channels; k++)
                 sum += autocorrelation.values[size_t(k) * plane + size_t(y) * size_t(width) + size_t(x)];
-            const int distance = lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape);
+            const int distance =
+                lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape);
             const size_t ring = size_t(std::min(distance, largest_distance));
             ring_energy[ring] += sum * sum;
             ring_count[ring]++;
@@ -216,8 +220,9 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
     // The runtime sums about `impacts per pixel` textons at every pixel whatever their size, so a larger
     // radius costs asset bytes (and texture memory), not time per pixel.
     auto radius_cost = [&](int radius) {
-        return "asset " + std::to_string(asset_bytes_at(result, radius, options.bits)) + " bytes instead of " +
-               std::to_string(result.asset.size()) + ", about the same runtime cost per pixel";
+        return "asset " + std::to_string(asset_bytes_at(result, radius, options.bits)) +
+               " bytes instead of " + std::to_string(result.asset.size()) +
+               ", about the same runtime cost per pixel";
     };
     if (structure && verdict.suggested_radius > 0) {
         verdict.findings.push_back(VerdictFinding::StructureBeyondRadius);
@@ -236,7 +241,8 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
                            std::to_string(width) + "x" + std::to_string(height) + " exemplar (" +
                            std::to_string(fitting) + ") can reach)";
         if (fitting > options.radius)
-            text += "; --radius " + std::to_string(fitting) + " holds part of it (" + radius_cost(fitting) + ")";
+            text +=
+                "; --radius " + std::to_string(fitting) + " holds part of it (" + radius_cost(fitting) + ")";
         verdict.suggestions.push_back(text);
     }
     if (non_gaussian) {
@@ -245,7 +251,7 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
         for (const ChannelMarginal &marginal : verdict.channels)
             if (marginal.variance >= kVisibleVariance * verdict.channels[0].variance)
                 moments += (moments.empty() ? "" : ", ") + format("skewness %.2f", marginal.skewness) +
-                       format(" kurtosis %.2f", marginal.excess_kurtosis);
+                           format(" kurtosis %.2f", marginal.excess_kurtosis);
         verdict.suggestions.push_back(
             "the exemplar's tones are far from Gaussian (" + moments +
             " per decorrelated channel): the output keeps its colours' mean and covariance but not its "
@@ -257,7 +263,8 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
         verdict.findings.push_back(VerdictFinding::HighModelError);
         verdict.suggestions.push_back(
             format("the texton's spectrum is far from the exemplar's (RME %.2f", verdict.rme) +
-            (verdict.rme > kVerdictModelError ? format(", above %.2f", kVerdictModelError) : std::string()) + ")" +
+            (verdict.rme > kVerdictModelError ? format(", above %.2f", kVerdictModelError) : std::string()) +
+            ")" +
             (verdict.rme > verdict.rme_luminance
                  ? format(", and no closer than the cropped luminance texton's (%.2f)", verdict.rme_luminance)
                  : std::string()) +
@@ -276,10 +283,14 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
 
 const char *verdict_finding_name(VerdictFinding finding) {
     switch (finding) {
-    case VerdictFinding::StructureBeyondRadius: return "structure_beyond_radius";
-    case VerdictFinding::StructureBeyondGaussian: return "structure_beyond_gaussian";
-    case VerdictFinding::NonGaussianMarginal: return "non_gaussian_marginal";
-    case VerdictFinding::HighModelError: return "high_model_error";
+    case VerdictFinding::StructureBeyondRadius:
+        return "structure_beyond_radius";
+    case VerdictFinding::StructureBeyondGaussian:
+        return "structure_beyond_gaussian";
+    case VerdictFinding::NonGaussianMarginal:
+        return "non_gaussian_marginal";
+    case VerdictFinding::HighModelError:
+        return "high_model_error";
     }
     return "unknown";
 }

@@ -191,7 +191,7 @@ constexpr double kVerdictCorrelation = 0.2;
 constexpr double kVerdictModelError = 0.6;
 
 struct BakeVerdict {
-    std::string summary;                 // one line: "good: ...", "fair: ...", "limited: ..."
+    std::string summary;                  // one line: "good: ...", "fair: ...", "limited: ..."
     std::vector<VerdictFinding> findings; // empty: good
     std::vector<std::string> suggestions; // one per finding, each with what to do
     // The signals.
@@ -232,9 +232,9 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options);
 
 // ---- Preview ----
 
-// One PNG (encoded in memory) a person reads at a glance: exemplar, its Gaussian version (spectral ADSN
-// of t_u, same size), the texton scaled for display and a DSN synthesis of the baked asset by the
-// runtime (dsn_lattice_tile_float), side by side. Throws std::runtime_error if the asset does not load.
+// One PNG (encoded in memory) a person reads at a glance, labelled: exemplar, its Gaussian reference
+// (spectral ADSN of t_u, same size), the texton scaled for display and a DSN synthesis of the baked asset by
+// the runtime (dsn_lattice_tile_float), side by side. Throws std::runtime_error if the asset does not load.
 std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &result, uint32_t seed);
 
 } // namespace dsn
