@@ -90,6 +90,8 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
     sot_options.progress = options.progress;
     result.sot = sot_alternating_projections(result.target, support, sot_options);
     result.rme = relative_model_error(result.target, result.sot.texton);
+    result.rme_without_zero_frequency =
+        relative_model_error_without_zero_frequency(result.target, result.sot.texton);
 
     result.luminance = luminance_texton(result.target, support);
     result.rme_luminance = relative_model_error(result.target, result.luminance);

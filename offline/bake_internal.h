@@ -93,10 +93,18 @@ Texton luminance_texton(const Spectrum &model, const Support &support);
 
 // ---- Measures ----
 
-// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels, over the
-// frequencies xi != 0 (the texton's sum only moves the noise's mean, which the runtime subtracts).
+// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels: the
+// 2-Wasserstein distance between the Gaussian models of t_u and t relative to the exemplar's, summed over
+// every frequency as Galerne, Leclaire and Moisan define it (section 3). T_u(0) = 0 (the exemplar's mean
+// is subtracted), so a texton with a non-zero sum adds |T(0)|^2: its spot noise has that much more power
+// at the lowest frequencies (variation over scales beyond the exemplar), which the runtime's subtraction
+// of the noise's mean does not remove.
 double relative_model_error(const Spectrum &model, const Spectrum &texton);
 double relative_model_error(const Spectrum &model, const Texton &texton);
+// The same sums over the frequencies xi != 0 only: the figure the alternating projections minimize and
+// report per iteration (they leave T(0) free). RME^2 = this^2 + sum_c |T_c(0)|^2 / sum |T_u|^2.
+double relative_model_error_without_zero_frequency(const Spectrum &model, const Spectrum &texton);
+double relative_model_error_without_zero_frequency(const Spectrum &model, const Texton &texton);
 
 // Per channel: excess kurtosis of the spot-noise marginal with `impacts_per_pixel` impacts per pixel,
 // sum t^4 / (lambda (sum t^2)^2), lambda = impacts / |S|. 0 for a channel that is all zero.

@@ -122,7 +122,9 @@ enum class SotStop { IterationLimit, Converged };
 
 struct SotResult {
     Texton texton;
-    std::vector<double> rme_per_iteration; // [k] = RME of the texton after iteration k + 1
+    // [k] = relative model error without the zero frequency (BakeResult's rme_without_zero_frequency) of
+    // the texton after iteration k + 1: the figure the iterations minimize, T(0) being left free.
+    std::vector<double> rme_per_iteration;
     SotStop stop = SotStop::IterationLimit;
 };
 
@@ -131,7 +133,7 @@ using Matrix3 = std::array<double, 9>; // row-major
 // ---- The bake ----
 
 // Called after every iteration of the texton's optimization with (iterations done, iterations asked,
-// relative model error of the current texton).
+// relative model error of the current texton without the zero frequency, as in rme_per_iteration).
 using BakeProgress = std::function<void(int done, int total, double rme)>;
 
 // The default early stop: an improvement below 0.002 over 50 iterations (4e-5 per iteration).
@@ -213,8 +215,13 @@ struct BakeResult {
     Texton luminance;        // the baseline texton (the luminance texton), for comparison
     Texton quantized_texton; // dequantized: what the runtime uses
     // Relative model errors (0 is perfect) of the texton, of the luminance texton and of the quantized
-    // texton; excess kurtosis per channel of the noise at 30 impacts per pixel (0 is Gaussian).
-    double rme = 0, rme_luminance = 0, rme_quantized = 0;
+    // texton, summed over every frequency as Galerne, Leclaire and Moisan define it: the 2-Wasserstein
+    // distance between the Gaussian models of the texton's noise and of the exemplar, relative to the
+    // exemplar's; a texton with a non-zero sum counts the power it adds at the zero frequency. The texton's
+    // without the zero frequency (what the iterations minimize: rme_per_iteration's last value) is
+    // rme_without_zero_frequency. Excess kurtosis per channel of the noise at 30 impacts per pixel (0 is
+    // Gaussian).
+    double rme = 0, rme_luminance = 0, rme_quantized = 0, rme_without_zero_frequency = 0;
     std::vector<double> excess_kurtosis_30, excess_kurtosis_30_luminance;
     Matrix3 color_transform = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     AssetFields fields;

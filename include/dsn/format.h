@@ -47,7 +47,9 @@
       96     4  u32     bake_iterations: alternating-projection iterations run (metadata).
      100     4  u32     bake_seed: seed of the random-phase start (metadata).
      104     4  u32     bake_rme: relative model error of the stored (quantized) texton, Q8.24
-                        (metadata).
+                        (metadata), summed over every frequency including zero as Galerne,
+                        Leclaire and Moisan define it (bakers of version 1.1.0 and before left
+                        the zero frequency out).
      108     2  u16     exemplar_width  (metadata, 0 if unknown).
      110     2  u16     exemplar_height (metadata, 0 if unknown).
      112    16  u8[16]  reserved, must be 0.

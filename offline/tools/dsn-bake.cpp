@@ -43,7 +43,8 @@ const char *const kUsage =
     "                           the exemplar needs both sides >= 4R+1\n"
     "  --shape square|disk      support shape (default square)\n"
     "  --iterations N           the most alternating-projection iterations, 1..1000000 (default 1000)\n"
-    "  --stop-tolerance T       stop when the RME improved by less than T over the last 50 iterations,\n"
+    "  --stop-tolerance T       stop when the RME the iterations minimize (rme_per_iteration in the\n"
+    "                           report) improved by less than T over the last 50 iterations,\n"
     "                           after at least 2^22 / (width x height) iterations (default 0.002; 0 runs\n"
     "                           every iteration)\n"
     "  --seed S                 seed of the random-phase start, 0..4294967295 (default 0)\n"
@@ -67,7 +68,15 @@ const char *const kUsage =
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when the bake\n"
     "fails (unreadable or unusable image, cannot write). The asset, report and preview are written\n"
-    "together: all of them or none. Numbers are decimal.\n";
+    "together: all of them or none. Numbers are decimal.\n"
+    "\n"
+    "RME, the relative model error (0 is perfect): the optimal-transport distance between the Gaussian\n"
+    "model of the noise made from the texton and the exemplar's, relative to the exemplar's, summed over\n"
+    "every frequency as Galerne, Leclaire and Moisan define it: a texton whose values do not sum to zero\n"
+    "adds power at the zero frequency (slow variation over scales beyond the exemplar). It is the summary's\n"
+    "RME, the report's rme, rme_luminance and rme_quantized, and the asset's bake_rme (of the quantized\n"
+    "texton). The same sum without the zero frequency, which the iterations minimize, is the report's\n"
+    "rme_without_zero_frequency and rme_per_iteration, and the progress bar's RME(xi!=0).\n";
 
 struct Arguments {
     std::string input, output, report, preview;
@@ -146,7 +155,7 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
 void draw_progress(int done, int total, double rme) {
     if (done != total && done % std::max(1, total / 100) != 0) return;
     const int width = 40, filled = int(double(done) / total * width);
-    std::fprintf(stderr, "\r[%s%s] %d/%d  RME %.4f", std::string(size_t(filled), '#').c_str(),
+    std::fprintf(stderr, "\r[%s%s] %d/%d  RME(xi!=0) %.4f", std::string(size_t(filled), '#').c_str(),
                  std::string(size_t(width - filled), '.').c_str(), done, total, rme);
     if (done == total) std::fputc('\n', stderr);
     std::fflush(stderr);
@@ -237,6 +246,7 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     field("rme", json_number(result.rme));
     field("rme_luminance", json_number(result.rme_luminance));
     field("rme_quantized", json_number(result.rme_quantized));
+    field("rme_without_zero_frequency", json_number(result.rme_without_zero_frequency));
     field("excess_kurtosis_30", json_array(result.excess_kurtosis_30));
     field("excess_kurtosis_30_luminance", json_array(result.excess_kurtosis_30_luminance));
     field("mean", json_array(mean));
@@ -279,8 +289,10 @@ void print_summary(const Arguments &arguments, const dsn::Image &exemplar, const
                 options.interpolation == DSN_INTERPOLATION_BILINEAR ? "bilinear" : "lattice");
     std::printf("  iterations    %zu of at most %d (%s)\n", result.sot.rme_per_iteration.size(),
                 options.iterations, stop_description(result, options).c_str());
-    std::printf("  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f\n", result.rme,
-                result.rme_luminance, result.rme_quantized);
+    std::printf(
+        "  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f   (SOT without the zero "
+        "frequency %.4f)\n",
+        result.rme, result.rme_luminance, result.rme_quantized, result.rme_without_zero_frequency);
     std::printf("  kurtosis @30  SOT %s   luminance texton %s\n",
                 channel_list(result.excess_kurtosis_30, "%.3f").c_str(),
                 channel_list(result.excess_kurtosis_30_luminance, "%.3f").c_str());
