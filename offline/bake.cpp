@@ -1,4 +1,5 @@
-// bake.cpp - the whole pipeline: input checks, model, SOT, baseline, measures, colour, quantization, asset.
+// bake.cpp - the whole pipeline: input checks, model, SOT, baseline, measures, colour, quantization, pyramid,
+// asset.
 #include "bake_internal.h"
 
 #include <algorithm>
@@ -72,6 +73,7 @@ AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options,
     fields.exemplar_width = uint32_t(exemplar_width);
     fields.exemplar_height = uint32_t(exemplar_height);
     fields.texton = quantized.values;
+    if (options.pyramid) fields.pyramid = texton_pyramid(fields);
     return fields;
 }
 

@@ -98,11 +98,14 @@ void marginal_moments(const Image &exemplar, const Decorrelation &basis, int k, 
     }
 }
 
-// Asset bytes for a texton of `radius`, from the bake's own asset (the texton is stored as a full square).
-size_t asset_bytes_at(const BakeResult &result, int radius, int bits) {
-    const size_t side = size_t(2 * radius + 1), baked = size_t(result.sot.texton.support.side());
-    const size_t per_value = size_t(result.model.channels) * size_t(bits / 8);
-    return result.asset.size() - baked * baked * per_value + side * side * per_value;
+// Bytes of the asset a bake at `radius` writes: the bake's own fields with a texton (and, when the bake
+// has one, a pyramid) of that size.
+size_t asset_bytes_at(const BakeResult &result, int radius) {
+    AssetFields fields = result.fields;
+    fields.width = fields.height = uint32_t(2 * radius + 1);
+    fields.texton.assign(size_t(fields.width) * fields.height * fields.channels, 0);
+    if (!fields.pyramid.empty()) fields.pyramid = texton_pyramid(fields);
+    return encode_asset(fields).size();
 }
 
 } // namespace
@@ -220,9 +223,8 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
     // The runtime sums about `impacts per pixel` textons at every pixel whatever their size, so a larger
     // radius costs asset bytes (and texture memory), not time per pixel.
     auto radius_cost = [&](int radius) {
-        return "asset " + std::to_string(asset_bytes_at(result, radius, options.bits)) +
-               " bytes instead of " + std::to_string(result.asset.size()) +
-               ", about the same runtime cost per pixel";
+        return "asset " + std::to_string(asset_bytes_at(result, radius)) + " bytes instead of " +
+               std::to_string(result.asset.size()) + ", about the same runtime cost per pixel";
     };
     if (structure && verdict.suggested_radius > 0) {
         verdict.findings.push_back(VerdictFinding::StructureBeyondRadius);

@@ -95,8 +95,12 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
           doctest::Approx(result.rme_without_zero_frequency * result.rme_without_zero_frequency +
                           zero_frequency / model_energy)
               .epsilon(1e-6));
-    CHECK(result.asset.size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
-    CHECK(result.asset.size() <= 3200);
+    dsn::AssetFields plain = result.fields; // the 1.0 asset (dsn-bake --no-pyramid)
+    plain.pyramid.clear();
+    CHECK(dsn::encode_asset(plain).size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
+    CHECK(dsn::encode_asset(plain).size() <= 3200);
+    CHECK(result.fields.pyramid.size() == 4);
+    CHECK(result.asset.size() <= 6 * 1024);
     CHECK(result.fields.bake_iterations == 100);
     CHECK(result.fields.exemplar_width == uint32_t(exemplar.width));
     CHECK(result.fields.bake_rme_q24 == uint32_t(std::lround(result.rme_quantized * (1 << 24))));
@@ -108,7 +112,7 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
 
 TEST_CASE(
     "bake: 8-bit quantization changes the RME by < 0.001 on a generated spread-out texture, a 31x31 RGB "
-    "asset is <= 3.2 KB") {
+    "asset is <= 3.2 KB, <= 6 KB with its pyramid") {
     check_quantized_bake("known compact spot", random_phase_exemplar(64, 64, 3, 41), false, false);
     check_quantized_bake("spread-out spot", random_phase_texture(random_spot(80, 72, 3, 15, 23), 24), false,
                          true);
@@ -145,7 +149,8 @@ TEST_CASE("bake records its options: bits, shape, interpolation, identity transf
     options.interpolation = DSN_INTERPOLATION_BILINEAR;
     options.use_color_transform = false;
     const dsn::BakeResult result = dsn::bake(exemplar, options);
-    CHECK(result.asset.size() == 128 + 17 * 17 * 3 * 2 + 4);
+    CHECK(result.asset.size() == dsn_read_u32le(&result.asset[DSN_OFFSET_HEADER_SIZE]) + 17 * 17 * 3 * 2 +
+                                     4); // texton after the pyramid
     CHECK(result.asset[DSN_OFFSET_BITS] == 16);
     CHECK(result.asset[DSN_OFFSET_INTERPOLATION] == DSN_INTERPOLATION_BILINEAR);
     CHECK(result.asset[DSN_OFFSET_SHAPE] == DSN_SHAPE_RECTANGLE);

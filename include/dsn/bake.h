@@ -154,6 +154,9 @@ struct BakeOptions {
     // iterations, once at least 2^22 / (width x height) iterations ran (small exemplars run longer: their
     // error curves descend slowly, see the README). 0 runs every iteration.
     double stop_tolerance = kDefaultStopTolerance;
+    // Writes the texton pyramid (a format 1.1 asset) that the filtered evaluation reads; false writes a
+    // 1.0 asset, byte for byte what bakes without a pyramid always wrote.
+    bool pyramid = true;
     BakeProgress progress; // may be empty
 };
 
