@@ -3,18 +3,16 @@
    not installed (everything here has internal linkage).
 
    The same sums as the per-point evaluator (continuous_point.cpp), reorganized so that the work across
-   points runs on vectors. A chunk of points is evaluated in three passes:
+   points runs on vectors. A chunk of points is evaluated in two passes:
      1. per point, its cells are walked and their impulses sifted on the packed lattice fields
-        (continuous_sift.h), as per point; every slot of a pair is written to the candidate arrays and
+        (continuous_sift.h), as per point; every lane of a pair is written to the candidate arrays and
         the count moves only for the lanes that may reach the point (no branch per impulse);
-     2. per 16 candidates, in loops of a fixed length without branches (which the compiler turns into
-        vector code of the kernel's width): the fraction hash, the 16-bit position, the exact reach
-        test and the bilinear texton of every channel, read from a copy of the texton widened to 32
-        bits with a border of zeros (so that texels outside the window need no test, and a slot out of
-        reach reads texel 0 and is sent to a discarded sum);
-     3. the values are added to their point's 64-bit sums, then normalized (normalize_q32).
-   The same impulses, offsets, weights and integers as per point; integer sums modulo 2^64 do not
-   depend on the order, so the bits are the per-point ones. */
+     2. per candidate: the fraction hash, the 16-bit position, the exact reach test and the bilinear
+        texton of every channel, read from a table of the 2 x 2 texels at every position of the texton
+        bordered by zeros (so that texels outside the window need no test), added to the point's 64-bit
+        sums; on AVX2 (the AVX2 and AVX-512 kernels) 8 candidates at a time on vectors, else one by one.
+   The sums are then normalized (normalize_q32). The same impulses, offsets, weights and integers as per
+   point; integer sums modulo 2^64 do not depend on the order, so the bits are the per-point ones. */
 #ifndef DSN_CONTINUOUS_BATCH_H
 #define DSN_CONTINUOUS_BATCH_H
 
@@ -32,7 +30,7 @@ const uint32_t batch_lane_block = 16;   /* candidates per block of pass 2 */
    previous one: arrays 4 KB apart would make their loads wait on each other's stores (4K aliasing). */
 const uint32_t batch_array_gap = 64;
 const uint32_t batch_work_bytes =
-    batch_candidates * (3u * 4u + 2u * 8u) + (batch_chunk_points + 1u) * DSN_MAX_CHANNELS * 8u + 6u * batch_array_gap;
+    batch_candidates * (3u * 4u + 2u * 8u) + batch_chunk_points * DSN_MAX_CHANNELS * 8u + 6u * batch_array_gap;
 
 /* The texton as the batch reads it, built by continuous_batch.cpp once per call: for every position
    (row, column) of the texton bordered by one zero texel all around, rows and columns 0 .. height and
@@ -52,7 +50,7 @@ inline size_t batch_quad_count(const dsn_asset *asset) {
 struct BatchArrays {
     uint32_t *stream, *highs, *point;
     uint64_t *base_x, *base_y;
-    uint64_t *sums; /* (batch_chunk_points + 1) points; the last one takes the lanes out of reach */
+    uint64_t *sums; /* the chunk's points */
 };
 
 inline BatchArrays batch_arrays(void *work) {
@@ -62,7 +60,7 @@ inline BatchArrays batch_arrays(void *work) {
     arrays.base_y = arrays.base_x + batch_candidates + batch_array_gap / 8u;
     arrays.sums = arrays.base_y + batch_candidates + batch_array_gap / 8u;
     arrays.stream = static_cast<uint32_t *>(static_cast<void *>(
-        arrays.sums + (batch_chunk_points + 1u) * DSN_MAX_CHANNELS + batch_array_gap / 8u));
+        arrays.sums + batch_chunk_points * DSN_MAX_CHANNELS + batch_array_gap / 8u));
     arrays.highs = arrays.stream + batch_candidates + batch_array_gap / 4u;
     arrays.point = arrays.highs + batch_candidates + batch_array_gap / 4u;
     return arrays;
@@ -93,45 +91,55 @@ inline int32_t quad_half(uint32_t word, uint32_t index) {
     return static_cast<int32_t>(((word >> (16u * index)) & 0xFFFFu) ^ 0x8000u) - 32768;
 }
 
-/* Candidate `slot` (any slot: one out of reach adds to the discarded sum), one at a time. */
+/* Candidates [first, end) one at a time, each in reach adding its bilinear texton to its point's sums
+   (kept in registers while the point does not change: a point's candidates are consecutive). */
 template <uint32_t Channels, uint32_t Bytes>
-inline void batch_visit_one(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays,
-                            uint32_t slot) {
-    const uint32_t fraction = dsn_mix32(arrays.stream[slot]), highs = arrays.highs[slot];
-    /* dsn_impulse_hash's 16-bit positions, then bracket's shifted values */
-    const uint32_t bits_x = (highs & 0xFFFFu) | ((fraction & 0xFFFFu) >> k.half_shift);
-    const uint32_t bits_y = (highs >> 16) | ((fraction >> 16) >> k.half_shift);
-    const uint64_t shifted_x = arrays.base_x[slot] - (static_cast<uint64_t>(bits_x) << k.position_shift);
-    const uint64_t shifted_y = arrays.base_y[slot] - (static_cast<uint64_t>(bits_y) << k.position_shift);
-    if (shifted_x - 1u > k.limit_x - 1u || shifted_y - 1u > k.limit_y - 1u) return;
-    /* The bordered position is the texton's lower index plus 1: bracket's shifted >> 32. */
-    const uint32_t at = static_cast<uint32_t>(shifted_y >> 32) * k.quad_row +
-                        static_cast<uint32_t>(shifted_x >> 32) * Channels * (Bytes == 1 ? 1u : 2u);
-    const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
-    const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
-    uint64_t *sums = arrays.sums + arrays.point[slot] * Channels;
-    for (uint32_t c = 0; c < Channels; c++) {
-        int64_t top_left, top_right, bottom_left, bottom_right;
-        if (Bytes == 1) {
-            const uint32_t quad = quads[at + c];
-            top_left = quad_byte(quad, 0), top_right = quad_byte(quad, 1);
-            bottom_left = quad_byte(quad, 2), bottom_right = quad_byte(quad, 3);
-        } else {
-            const uint32_t top = quads[at + 2u * c], bottom = quads[at + 2u * c + 1u];
-            top_left = quad_half(top, 0), top_right = quad_half(top, 1);
-            bottom_left = quad_half(bottom, 0), bottom_right = quad_half(bottom, 1);
+void batch_visit_scalar(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays, uint32_t first,
+                        uint32_t end) {
+    uint64_t sums[Channels];
+    for (uint32_t c = 0; c < Channels; c++) sums[c] = 0;
+    uint32_t point = first < end ? arrays.point[first] : 0u;
+    for (uint32_t slot = first; slot < end; slot++) {
+        const uint32_t fraction = dsn_mix32(arrays.stream[slot]), highs = arrays.highs[slot];
+        /* dsn_impulse_hash's 16-bit positions, then bracket's shifted values */
+        const uint32_t bits_x = (highs & 0xFFFFu) | ((fraction & 0xFFFFu) >> k.half_shift);
+        const uint32_t bits_y = (highs >> 16) | ((fraction >> 16) >> k.half_shift);
+        const uint64_t shifted_x = arrays.base_x[slot] - (static_cast<uint64_t>(bits_x) << k.position_shift);
+        const uint64_t shifted_y = arrays.base_y[slot] - (static_cast<uint64_t>(bits_y) << k.position_shift);
+        if (shifted_x - 1u > k.limit_x - 1u || shifted_y - 1u > k.limit_y - 1u) continue;
+        if (arrays.point[slot] != point) {
+            for (uint32_t c = 0; c < Channels; c++) arrays.sums[point * Channels + c] += sums[c], sums[c] = 0;
+            point = arrays.point[slot];
         }
-        /* add_bilinear's integer with one product per step: (65536 - w) a + w b = 65536 a + w (b - a). */
-        const int64_t upper = top_left * 65536 + across * (top_right - top_left);
-        const int64_t lower = bottom_left * 65536 + across * (bottom_right - bottom_left);
-        sums[c] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+        /* The bordered position is the texton's lower index plus 1: bracket's shifted >> 32. */
+        const uint32_t at = static_cast<uint32_t>(shifted_y >> 32) * k.quad_row +
+                            static_cast<uint32_t>(shifted_x >> 32) * Channels * (Bytes == 1 ? 1u : 2u);
+        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
+        for (uint32_t c = 0; c < Channels; c++) {
+            int64_t top_left, top_right, bottom_left, bottom_right;
+            if (Bytes == 1) {
+                const uint32_t quad = quads[at + c];
+                top_left = quad_byte(quad, 0), top_right = quad_byte(quad, 1);
+                bottom_left = quad_byte(quad, 2), bottom_right = quad_byte(quad, 3);
+            } else {
+                const uint32_t top = quads[at + 2u * c], bottom = quads[at + 2u * c + 1u];
+                top_left = quad_half(top, 0), top_right = quad_half(top, 1);
+                bottom_left = quad_half(bottom, 0), bottom_right = quad_half(bottom, 1);
+            }
+            /* add_bilinear's integer with one product per step: (65536 - w) a + w b = 65536 a + w (b - a). */
+            const int64_t upper = top_left * 65536 + across * (top_right - top_left);
+            const int64_t lower = bottom_left * 65536 + across * (bottom_right - bottom_left);
+            sums[c] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+        }
     }
+    for (uint32_t c = 0; c < Channels; c++) arrays.sums[point * Channels + c] += sums[c];
 }
 
 #if defined(__AVX2__)
 /* ---- Pass 2 on AVX2 vectors (the AVX2 and AVX-512 kernels), 8-bit textons: 8 candidates at a time ----
-   The same integers as batch_visit_one: the hash in 32-bit lanes, the shifted values in 64-bit lanes,
-   the texels by one gather of quads per channel, the rows' interpolation in 32-bit lanes (below 2^25)
+   The same integers as batch_visit_scalar: the hash in 32-bit lanes, the shifted values in 64-bit lanes,
+   the texels by one gather of quads per channel (a lane out of reach reads quad 0, its values zeroed), the rows' interpolation in 32-bit lanes (below 2^25)
    and the column's in 64-bit lanes (_mm256_mul_epi32, signed 32 x 32 -> 64 bits, exact). */
 
 /* The low 32 bits of the 64-bit lanes of a (candidates 0-3) and b (4-7), as 8 lanes in order. */
@@ -169,8 +177,29 @@ inline __m256i mix32_8(__m256i x) {
     return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
 }
 
+/* The running sums of one point on vectors: the channels' 64-bit values of the even and odd
+   candidates, summed lane by lane (modulo 2^64, so in any order). */
+struct VectorSums {
+    __m256i channel[DSN_MAX_CHANNELS];
+    uint32_t point;
+};
+
 template <uint32_t Channels>
-void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays, uint32_t first) {
+inline void flush_vector_sums(VectorSums *running, const BatchArrays &arrays) {
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t lanes[4];
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes)), running->channel[c]);
+        arrays.sums[running->point * Channels + c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
+        running->channel[c] = _mm256_setzero_si256();
+    }
+}
+
+/* Candidates first .. first + 7. A lane out of reach reads quad 0 and its values are zeroed. When the 8
+   belong to one point (a point's candidates are consecutive, so the first and last tell) they go to the
+   running sums; otherwise those are flushed and the lanes added one by one. */
+template <uint32_t Channels>
+void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays, uint32_t first,
+                   VectorSums *running) {
     const __m256i fraction = mix32_8(load_8(arrays.stream + first)), highs = load_8(arrays.highs + first);
     const __m128i half_shift = _mm_cvtsi32_si128(static_cast<int>(k.half_shift));
     const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(k.position_shift));
@@ -181,13 +210,16 @@ void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchAr
     axis_8(bits_x, arrays.base_x + first, position_shift, _mm256_set1_epi64x(static_cast<long long>(k.limit_x)), &reaches_x, &column, &across);
     axis_8(bits_y, arrays.base_y + first, position_shift, _mm256_set1_epi64x(static_cast<long long>(k.limit_y)), &reaches_y, &row, &down);
     const __m256i reaches = _mm256_and_si256(reaches_x, reaches_y);
-    /* Out of reach: position 0 (any in-bounds quad) and the discarded sum. */
     const __m256i at = _mm256_and_si256(reaches, _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(static_cast<int>(k.quad_row))),
                                                                   _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels)))));
-    const __m256i targets = _mm256_blendv_epi8(_mm256_set1_epi32(static_cast<int>(batch_chunk_points * Channels)),
-                                               _mm256_mullo_epi32(load_8(arrays.point + first), _mm256_set1_epi32(static_cast<int>(Channels))), reaches);
-    uint32_t target[8];
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(target)), targets);
+    /* The reach of the even and odd lanes as 64-bit masks. */
+    const __m256i reaches_even = _mm256_shuffle_epi32(reaches, 0xA0), reaches_odd = _mm256_shuffle_epi32(reaches, 0xF5);
+    const uint32_t first_point = arrays.point[first], last_point = arrays.point[first + 7u];
+    const bool one_point = first_point == last_point;
+    if (!one_point || first_point != running->point) {
+        flush_vector_sums<Channels>(running, arrays);
+        running->point = one_point ? first_point : last_point;
+    }
     const __m256i scale = _mm256_set1_epi32(65536);
     for (uint32_t c = 0; c < Channels; c++) {
         const __m256i quad = _mm256_i32gather_epi32(static_cast<const int *>(static_cast<const void *>(quads + c)), at, 4);
@@ -196,15 +228,19 @@ void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchAr
         const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(top_left, 16), _mm256_mullo_epi32(across, _mm256_sub_epi32(top_right, top_left)));
         const __m256i lower = _mm256_add_epi32(_mm256_slli_epi32(bottom_left, 16), _mm256_mullo_epi32(across, _mm256_sub_epi32(bottom_right, bottom_left)));
         const __m256i difference = _mm256_sub_epi32(lower, upper);
-        const __m256i even = _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
-        const __m256i odd = _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
-                                             _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+        const __m256i even = _mm256_and_si256(reaches_even, _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference)));
+        const __m256i odd = _mm256_and_si256(reaches_odd, _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
+                                             _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32))));
+        if (one_point) {
+            running->channel[c] = _mm256_add_epi64(running->channel[c], _mm256_add_epi64(even, odd));
+            continue;
+        }
         uint64_t even_values[4], odd_values[4]; /* candidates 0, 2, 4, 6 and 1, 3, 5, 7 */
         _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(even_values)), even);
         _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(odd_values)), odd);
         for (uint32_t j = 0; j < 4; j++) {
-            arrays.sums[target[2 * j] + c] += even_values[j];
-            arrays.sums[target[2 * j + 1] + c] += odd_values[j];
+            arrays.sums[arrays.point[first + 2u * j] * Channels + c] += even_values[j];
+            arrays.sums[arrays.point[first + 2u * j + 1u] * Channels + c] += odd_values[j];
         }
     }
 }
@@ -216,10 +252,15 @@ void batch_visit(const dsn_noise_state *noise, const uint32_t *quads, const Batc
     const BatchConstants constants = batch_constants(noise);
     uint32_t slot = 0;
 #if defined(__AVX2__)
-    if (Bytes == 1)
-        for (; slot + 8u <= count; slot += 8u) batch_visit_8<Channels>(quads, constants, arrays, slot);
+    if (Bytes == 1 && count >= 8u) {
+        VectorSums running;
+        running.point = arrays.point[0];
+        for (uint32_t c = 0; c < Channels; c++) running.channel[c] = _mm256_setzero_si256();
+        for (; slot + 8u <= count; slot += 8u) batch_visit_8<Channels>(quads, constants, arrays, slot, &running);
+        flush_vector_sums<Channels>(&running, arrays);
+    }
 #endif
-    for (; slot < count; slot++) batch_visit_one<Channels, Bytes>(quads, constants, arrays, slot);
+    batch_visit_scalar<Channels, Bytes>(quads, constants, arrays, slot, count);
 }
 
 /* What the slots of one pair share. */
@@ -304,7 +345,7 @@ void batch_points(const dsn_noise_state *noise, const uint32_t *quads, const int
     const FieldLanes lanes = field_lanes(noise->cell_shift);
     for (uint32_t first = 0; first < count; first += batch_chunk_points) {
         const uint32_t points = count - first < batch_chunk_points ? count - first : batch_chunk_points;
-        for (uint32_t k = 0; k < (batch_chunk_points + 1u) * Channels; k++) arrays.sums[k] = 0;
+        for (uint32_t k = 0; k < batch_chunk_points * Channels; k++) arrays.sums[k] = 0;
         uint32_t candidates = 0;
         for (uint32_t p = 0; p < points; p++)
             candidates = batch_sift_point<Channels, Bytes>(noise, quads, lanes, arrays, candidates, p,

@@ -308,6 +308,54 @@ int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
     return err;
 }
 
+/* The grid's points as one batch (the fixed values, the same bytes as "c-point"; with `with_float`, then
+   the float values from the coordinates of continuous_conversions). The small build has no batch
+   functions (DSN_CONTINUOUS_BATCH 0): it takes the points one by one, which must give the same bytes. */
+int64_t batch_x[max_window_values / DSN_MAX_CHANNELS], batch_y[max_window_values / DSN_MAX_CHANNELS];
+double batch_x_double[max_window_values / DSN_MAX_CHANNELS], batch_y_double[max_window_values / DSN_MAX_CHANNELS];
+
+int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash, bool with_float) {
+    const uint32_t points = grid.width * grid.height, count = points * dsn_noise_channels(noise);
+    if (points * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            const uint32_t k = j * grid.width + i;
+            grid_point(grid.grid, i, j, &batch_x[k], &batch_y[k]);
+            batch_x_double[k] = grid_double(batch_x[k]);
+            batch_y_double[k] = grid_double(batch_y[k]);
+        }
+#if DSN_CONTINUOUS_BATCH
+    const size_t scratch_size = dsn_continuous_batch_scratch_size(noise);
+    if (scratch_size > scratch_capacity) return DSN_ERR_SCRATCH;
+    int err = dsn_continuous_batch_fixed(noise, batch_x, batch_y, points, tile_fixed_values, tile_scratch,
+                                         scratch_size);
+    if (err == DSN_OK && with_float)
+        err = dsn_continuous_batch_float(noise, batch_x_double, batch_y_double, points, tile_float_values,
+                                         tile_scratch, scratch_size);
+#else
+    int err = DSN_OK;
+    const uint32_t channels = dsn_noise_channels(noise);
+    for (uint32_t k = 0; err == DSN_OK && k < points; k++) {
+        err = dsn_continuous_point_fixed(noise, batch_x[k], batch_y[k], &tile_fixed_values[k * channels]);
+        if (err == DSN_OK && with_float)
+            err = dsn_continuous_point_float(noise, batch_x_double[k], batch_y_double[k],
+                                             &tile_float_values[k * channels]);
+    }
+#endif
+    if (err != DSN_OK) return err;
+    hash_fixed(hash, tile_fixed_values, count);
+    if (with_float) hash_float(hash, tile_float_values, count);
+    return DSN_OK;
+}
+
+int continuous_batch_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    return continuous_batch(noise, grid, hash, false);
+}
+
+int continuous_batch_fixed_float(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    return continuous_batch(noise, grid, hash, true);
+}
+
 /* IEEE bit patterns for the coordinate conversions: zeros, halves, the int32 ends, beyond 2^63, the
    smallest subnormal, the largest finite, infinities and NaNs. Built from bits so that no compiler
    option (-ffast-math) can change them. */
@@ -384,6 +432,8 @@ const Kind kinds[] = {
     {"a-point", 0, continuous_point_fixed, &affine_plan},
     {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
     {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
+    {"c-batch", 0, continuous_batch_fixed, &continuous_plan}, /* the same bytes as "c-point" */
+    {"a-batch", 0, continuous_batch_fixed_float, &affine_plan}, /* fixed then float, as one batch each */
 };
 
 void write_line(const char *kind, const char *asset, const char *detail) {
