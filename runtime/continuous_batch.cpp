@@ -14,10 +14,13 @@ namespace {
 
 const size_t scratch_alignment = 64;
 
-size_t round_up(size_t bytes) { return (bytes + scratch_alignment - 1u) / scratch_alignment * scratch_alignment; }
+size_t round_up(size_t bytes) {
+    return (bytes + scratch_alignment - 1u) / scratch_alignment * scratch_alignment;
+}
 
 size_t scratch_bytes(const dsn_noise_state *noise) {
-    return scratch_alignment - 1u + round_up(batch_quad_count(&noise->asset) * sizeof(uint32_t)) + batch_work_bytes;
+    return scratch_alignment - 1u + round_up(batch_quad_count(&noise->asset) * sizeof(uint32_t)) +
+           batch_work_bytes;
 }
 
 /* The aligned start of the caller's scratch. */
@@ -110,8 +113,8 @@ int dsn_continuous_batch_float(const dsn_noise *handle, const double *xs, const 
         }
         batch(noise, quads, chunk_x, chunk_y, points, fixed, work);
         for (uint32_t k = 0; k < points; k++)
-            dsn_store_pixel(out, dsn_output_float, static_cast<size_t>(first + k) * channels, fixed + k * channels,
-                            channels);
+            dsn_store_pixel(out, dsn_output_float, static_cast<size_t>(first + k) * channels,
+                            fixed + k * channels, channels);
     }
     return DSN_OK;
 }

@@ -68,7 +68,7 @@ struct CellAxis {
 
 /* False when no impulse of the cell can reach the point along this axis. */
 inline bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cell, const FieldLanes &lanes,
-               CellAxis *out) {
+                      CellAxis *out) {
     const uint32_t shift = point.axis.shift, origin = cell << shift;
     const uint32_t whole = 1u + span.base - point.axis.radius - origin; /* as in impulse_offset */
     const int64_t reach_limit =
@@ -95,7 +95,8 @@ inline bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cel
 }
 
 /* The lanes of a pair whose halves (x low, y high) may reach the point: their top bits. */
-inline uint64_t candidate_lanes(uint64_t pair, const FieldLanes &lanes, const CellAxis &x, const CellAxis &y) {
+inline uint64_t candidate_lanes(uint64_t pair, const FieldLanes &lanes, const CellAxis &x,
+                                const CellAxis &y) {
     const uint64_t halves_x = pair & lanes.halves, halves_y = (pair >> lanes.half_bits) & lanes.halves;
     return ((halves_x | lanes.tops) - x.low_lanes) & (x.high_lanes - halves_x) &
            ((halves_y | lanes.tops) - y.low_lanes) & (y.high_lanes - halves_y) & lanes.tops;

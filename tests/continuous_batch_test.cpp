@@ -51,7 +51,8 @@ void make_points(uint64_t seed, size_t count, std::vector<int64_t> *xs, std::vec
 
 // The batch (fixed and float) against the per-point functions, in every kernel this CPU runs; returns
 // the number of values that differ.
-size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs, const std::vector<int64_t> &ys) {
+size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
+                         const std::vector<int64_t> &ys) {
     const uint32_t channels = dsn_noise_channels(&noise);
     const uint32_t count = uint32_t(xs.size());
     std::vector<int32_t> expected(size_t(count) * channels);
@@ -78,8 +79,8 @@ size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
         std::vector<float> batch_float(expected.size(), -1.0f);
         REQUIRE(dsn_continuous_batch_fixed(&copy, xs.data(), ys.data(), count, batch.data(), scratch,
                                            scratch_size) == DSN_OK);
-        REQUIRE(dsn_continuous_batch_float(&copy, xs_double.data(), ys_double.data(), count, batch_float.data(),
-                                           scratch, scratch_size) == DSN_OK);
+        REQUIRE(dsn_continuous_batch_float(&copy, xs_double.data(), ys_double.data(), count,
+                                           batch_float.data(), scratch, scratch_size) == DSN_OK);
         for (size_t i = 0; i < expected.size(); i++) {
             differences += batch[i] != expected[i];
             differences += std::memcmp(&batch_float[i], &expected_float[i], sizeof(float)) != 0;
@@ -96,8 +97,8 @@ TEST_CASE("continuous batch: equal to per point for every texton kind, density a
     };
     // From the sparsest density (cells of 256 texels, fields of 16 bits) to dense ones (cells of 1 or 2
     // texels, several Poisson draws per cell, more candidates per point than the kernel's arrays hold).
-    const Case cases[] = {{3, 15, 8, 30u << 16},        {1, 15, 8, 30u << 16},  {3, 15, 16, 30u << 16},
-                          {1, 7, 16, 100u << 16},       {3, 2, 8, 1u << 16},    {3, 0, 8, 1u << 14},
+    const Case cases[] = {{3, 15, 8, 30u << 16},           {1, 15, 8, 30u << 16},   {3, 15, 16, 30u << 16},
+                          {1, 7, 16, 100u << 16},          {3, 2, 8, 1u << 16},     {3, 0, 8, 1u << 14},
                           {1, 20, 8, DSN_IMPACTS_MIN_Q16}, {3, 31, 16, 400u << 16}, {1, 1, 8, 64u << 16},
                           {3, 10, 8, 1000u << 16}};
     uint64_t seed = 1;
@@ -106,8 +107,8 @@ TEST_CASE("continuous batch: equal to per point for every texton kind, density a
         CAPTURE(c.radius);
         CAPTURE(c.bits);
         CAPTURE(c.impacts_q16);
-        auto noise = make_noise(random_texton_asset(c.channels, c.radius, c.bits, uint32_t(seed)), uint32_t(seed * 77),
-                                c.impacts_q16);
+        auto noise = make_noise(random_texton_asset(c.channels, c.radius, c.bits, uint32_t(seed)),
+                                uint32_t(seed * 77), c.impacts_q16);
         std::vector<int64_t> xs, ys;
         make_points(seed++, 101, &xs, &ys); // three chunks and a part
         CHECK(batch_differences(noise->noise, xs, ys) == 0);
@@ -156,15 +157,15 @@ TEST_CASE("continuous batch: errors, and nothing written on an error") {
     CHECK(dsn_continuous_batch_fixed(n, xs, ys, 2, nullptr, scratch.data(), scratch_size) == DSN_ERR_NULL);
     CHECK(dsn_continuous_batch_fixed(n, xs, ys, 2, out, nullptr, scratch_size) == DSN_ERR_SCRATCH);
     CHECK(dsn_continuous_batch_fixed(n, xs, ys, 2, out, scratch.data(), scratch_size - 1) == DSN_ERR_SCRATCH);
-    CHECK(dsn_continuous_batch_float(n, xs_double, ys_double, 2, out_float, scratch.data(), scratch_size - 1) ==
-          DSN_ERR_SCRATCH);
+    CHECK(dsn_continuous_batch_float(n, xs_double, ys_double, 2, out_float, scratch.data(),
+                                     scratch_size - 1) == DSN_ERR_SCRATCH);
     CHECK(dsn_continuous_batch_fixed(nullptr, xs, ys, 2, out, scratch.data(), scratch_size) == DSN_ERR_NULL);
     dsn_noise zeroed;
     std::memset(&zeroed, 0, sizeof zeroed);
     CHECK(dsn_continuous_batch_scratch_size(&zeroed) == 0);
     CHECK(dsn_continuous_batch_scratch_size(nullptr) == 0);
-    CHECK(dsn_continuous_batch_float(&zeroed, xs_double, ys_double, 2, out_float, scratch.data(), scratch_size) ==
-          DSN_ERR_NULL);
+    CHECK(dsn_continuous_batch_float(&zeroed, xs_double, ys_double, 2, out_float, scratch.data(),
+                                     scratch_size) == DSN_ERR_NULL);
     for (int i = 0; i < 6; i++) CHECK(out[i] == 7);
     for (int i = 0; i < 6; i++) CHECK(out_float[i] == 7.0f);
     // A lattice-baked asset is refused as by the per-point functions.

@@ -312,7 +312,8 @@ int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
    the float values from the coordinates of continuous_conversions). The small build has no batch
    functions (DSN_CONTINUOUS_BATCH 0): it takes the points one by one, which must give the same bytes. */
 int64_t batch_x[max_window_values / DSN_MAX_CHANNELS], batch_y[max_window_values / DSN_MAX_CHANNELS];
-double batch_x_double[max_window_values / DSN_MAX_CHANNELS], batch_y_double[max_window_values / DSN_MAX_CHANNELS];
+double batch_x_double[max_window_values / DSN_MAX_CHANNELS],
+    batch_y_double[max_window_values / DSN_MAX_CHANNELS];
 
 int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash, bool with_float) {
     const uint32_t points = grid.width * grid.height, count = points * dsn_noise_channels(noise);
@@ -430,9 +431,9 @@ const Kind kinds[] = {
     {"c-tile", 0, continuous_tile_fixed, &continuous_plan}, /* the same bytes as "c-point" */
     {"c-float", 0, continuous_conversions, &continuous_plan},
     {"a-point", 0, continuous_point_fixed, &affine_plan},
-    {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
-    {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
-    {"c-batch", 0, continuous_batch_fixed, &continuous_plan}, /* the same bytes as "c-point" */
+    {"a-tile", 0, continuous_tile_fixed, &affine_plan},         /* the same bytes as "a-point" */
+    {"a-float", 0, continuous_conversions, &affine_plan},       /* per point, tile float and u8 */
+    {"c-batch", 0, continuous_batch_fixed, &continuous_plan},   /* the same bytes as "c-point" */
     {"a-batch", 0, continuous_batch_fixed_float, &affine_plan}, /* fixed then float, as one batch each */
 };
 
