@@ -4,6 +4,7 @@
 // What to copy into your own renderer is `sample_texture`: turn the surface point into texture
 // coordinates in texels, hand them to dsn_continuous_point_float, and fade toward the texture's mean
 // colour when one pixel covers many texels (the noise has no mip-maps, but its mean is known exactly).
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <stb_image_write.h>
@@ -213,14 +215,24 @@ int run(int argc, char **argv) {
     const Vec up{0, forward.z, -forward.y};
     const double half_width = std::tan(30 * 3.14159265358979 / 180), pixel_angle = 2 * half_width / width;
     std::vector<uint8_t> pixels(size_t(width) * height * 3);
-    for (int j = 0; j < height; j++)
-        for (int i = 0; i < width; i++) {
-            const double sx = ((i + 0.5) / width * 2 - 1) * half_width;
-            const double sy = (1 - (j + 0.5) / height * 2) * half_width * height / width;
-            const Vec color = trace(scene, normalize(forward + right * sx + up * sy), pixel_angle);
-            uint8_t *pixel = &pixels[(size_t(j) * width + i) * 3];
-            pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
-        }
+    // Rows are shared out to one thread per core as they come (a configured dsn_noise may be read by
+    // several threads at once); every pixel is computed alone, so the picture does not depend on it.
+    std::atomic<int> next_row{0};
+    auto render_rows = [&] {
+        for (int j; (j = next_row++) < height;)
+            for (int i = 0; i < width; i++) {
+                const double sx = ((i + 0.5) / width * 2 - 1) * half_width;
+                const double sy = (1 - (j + 0.5) / height * 2) * half_width * height / width;
+                const Vec color = trace(scene, normalize(forward + right * sx + up * sy), pixel_angle);
+                uint8_t *pixel = &pixels[(size_t(j) * width + i) * 3];
+                pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
+            }
+    };
+    std::vector<std::thread> workers(
+        std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() - 1 : 0);
+    for (std::thread &worker : workers) worker = std::thread(render_rows);
+    render_rows();
+    for (std::thread &worker : workers) worker.join();
     write_png(output, width, height, pixels);
     return 0;
 }
