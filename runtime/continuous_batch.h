@@ -405,6 +405,7 @@ template <uint32_t Channels, uint32_t Bytes>
 void batch_sift_point(const dsn_noise_state *noise, const uint32_t *quads, const FieldLanes &lanes,
                       const BatchArrays &arrays, BatchFill *fill, uint32_t point, uint64_t x, uint64_t y) {
     const uint32_t shift = noise->cell_shift;
+    const bool two_steps = dsn_poisson_two_steps_fit(noise);
     const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
     const PointAxis py = point_axis(y, noise->radius[1], shift, noise->period[1]);
     for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
@@ -421,7 +422,8 @@ void batch_sift_point(const dsn_noise_state *noise, const uint32_t *quads, const
                     CellAxis in_x;
                     if (!cell_axis(px, span_x, cell_x, lanes, &in_x)) continue;
                     const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
-                    const uint32_t impulses = dsn_cell_impulse_count(noise, key);
+                    const uint32_t impulses = two_steps ? dsn_poisson_count_two_steps(noise, key)
+                                                        : dsn_cell_impulse_count(noise, key);
                     if (impulses == 0) continue;
                     if (fill->cells == batch_cells) {
                         batch_visit<Channels, Bytes>(noise, quads, arrays, fill->slots);
