@@ -10,7 +10,9 @@
 #endif
 
 #include "continuous_batch.h"
+#include "splat_row.h"
 #include "tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile, continuous_batch};
+extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile, continuous_batch,
+                                                               continuous_splat_row};
 #endif
