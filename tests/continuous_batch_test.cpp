@@ -175,10 +175,12 @@ TEST_CASE("continuous batch: errors, and nothing written on an error") {
     CHECK(dsn_continuous_batch_scratch_size(&lattice_noise->noise) == 0);
     CHECK(dsn_continuous_batch_fixed(&lattice_noise->noise, xs, ys, 2, out, scratch.data(), scratch_size) ==
           DSN_ERR_CONTINUOUS_MISMATCH);
-    // Every kernel of the table has the batch entry.
+    // Every kernel of the table has the batch entry and the splat's row loop.
     for (uint32_t i = 0; i < dsn_internal_kernel_count; i++) {
         const bool has_batch = dsn_internal_kernels[i].entries->continuous_batch != nullptr;
+        const bool has_splat_row = dsn_internal_kernels[i].entries->continuous_splat_row != nullptr;
         CHECK(has_batch);
+        CHECK(has_splat_row);
     }
 }
 
