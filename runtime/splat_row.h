@@ -93,27 +93,37 @@ inline __m256i signed_byte(__m256i words) {
 }
 
 template <uint32_t Channels>
-void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x, int64_t step_y,
-                      int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *pixel, size_t plane) {
+void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
+                      int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *pixel,
+                      size_t plane) {
     const uint32_t blocks = (count + 7u) / 8u;
     const __m256i steps_x = _mm256_set1_epi64x(8 * step_x), steps_y = _mm256_set1_epi64x(8 * step_y);
     const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
     /* bracket's shifted values of pixels 0-3 and 4-7 (modulo 2^64, as the scalar loop steps them) */
-    const uint64_t start_x = static_cast<uint64_t>(offset_x + reach_x), start_y = static_cast<uint64_t>(offset_y + reach_y);
+    const uint64_t start_x = static_cast<uint64_t>(offset_x + reach_x),
+                   start_y = static_cast<uint64_t>(offset_y + reach_y);
     const uint64_t four_x = 4u * static_cast<uint64_t>(step_x), four_y = 4u * static_cast<uint64_t>(step_y);
     __m256i low_x = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_x)),
                                      _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_x)));
     __m256i low_y = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_y)),
                                      _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_y)));
     /* _mm256_mul_epu32 takes the low 32 bits of the step: add the high part's multiples too */
-    low_x = _mm256_add_epi64(low_x, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(step_x) >> 32))), 32));
-    low_y = _mm256_add_epi64(low_y, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(step_y) >> 32))), 32));
+    low_x = _mm256_add_epi64(
+        low_x, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
+                                                             static_cast<uint64_t>(step_x) >> 32))),
+                                 32));
+    low_y = _mm256_add_epi64(
+        low_y, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
+                                                             static_cast<uint64_t>(step_y) >> 32))),
+                                 32));
     __m256i high_x = _mm256_add_epi64(low_x, _mm256_set1_epi64x(static_cast<long long>(four_x)));
     __m256i high_y = _mm256_add_epi64(low_y, _mm256_set1_epi64x(static_cast<long long>(four_y)));
-    const __m256i width = _mm256_set1_epi32(static_cast<int>(asset->width)), height = _mm256_set1_epi32(static_cast<int>(asset->height));
+    const __m256i width = _mm256_set1_epi32(static_cast<int>(asset->width)),
+                  height = _mm256_set1_epi32(static_cast<int>(asset->height));
     const __m256i sign = _mm256_set1_epi32(-2147483647 - 1);
     const __m256i width_sign = _mm256_xor_si256(width, sign), height_sign = _mm256_xor_si256(height, sign);
-    const __m256i ones = _mm256_set1_epi32(1), low_16 = _mm256_set1_epi32(0xFFFF), scale = _mm256_set1_epi32(65536);
+    const __m256i ones = _mm256_set1_epi32(1), low_16 = _mm256_set1_epi32(0xFFFF),
+                  scale = _mm256_set1_epi32(65536);
     const __m256i row_bytes = _mm256_set1_epi32(static_cast<int>(asset->width * Channels));
     const int *texton = static_cast<const int *>(static_cast<const void *>(asset->texton));
     const __m256i lane_numbers = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -121,37 +131,60 @@ void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y
         /* The last block's lanes past the row read nothing and leave their memory alone (masked). */
         const uint32_t remaining = count - 8u * block;
         const bool full = remaining >= 8u;
-        const __m256i present = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(remaining)), lane_numbers);
+        const __m256i present =
+            _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(remaining)), lane_numbers);
         /* The lower texel indices (column, row: -1 .. size - 1) and the upper weights. */
-        const __m256i column = _mm256_sub_epi32(splat_low_halves(_mm256_srli_epi64(low_x, 32), _mm256_srli_epi64(high_x, 32)), ones);
-        const __m256i row = _mm256_sub_epi32(splat_low_halves(_mm256_srli_epi64(low_y, 32), _mm256_srli_epi64(high_y, 32)), ones);
-        const __m256i across = _mm256_and_si256(splat_low_halves(_mm256_srli_epi64(low_x, 16), _mm256_srli_epi64(high_x, 16)), low_16);
-        const __m256i down = _mm256_and_si256(splat_low_halves(_mm256_srli_epi64(low_y, 16), _mm256_srli_epi64(high_y, 16)), low_16);
+        const __m256i column = _mm256_sub_epi32(
+            splat_low_halves(_mm256_srli_epi64(low_x, 32), _mm256_srli_epi64(high_x, 32)), ones);
+        const __m256i row = _mm256_sub_epi32(
+            splat_low_halves(_mm256_srli_epi64(low_y, 32), _mm256_srli_epi64(high_y, 32)), ones);
+        const __m256i across = _mm256_and_si256(
+            splat_low_halves(_mm256_srli_epi64(low_x, 16), _mm256_srli_epi64(high_x, 16)), low_16);
+        const __m256i down = _mm256_and_si256(
+            splat_low_halves(_mm256_srli_epi64(low_y, 16), _mm256_srli_epi64(high_y, 16)), low_16);
         /* index < size as unsigned (-1 fails): signed comparisons of the values flipped by 2^31 */
-        const __m256i left_in = _mm256_and_si256(present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(column, sign)));
-        const __m256i right_in =
-            _mm256_and_si256(present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(_mm256_add_epi32(column, ones), sign)));
+        const __m256i left_in =
+            _mm256_and_si256(present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(column, sign)));
+        const __m256i right_in = _mm256_and_si256(
+            present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(_mm256_add_epi32(column, ones), sign)));
         const __m256i top_in = _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(row, sign));
-        const __m256i bottom_in = _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(_mm256_add_epi32(row, ones), sign));
-        const __m256i at = _mm256_add_epi32(_mm256_mullo_epi32(row, row_bytes), _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels))));
+        const __m256i bottom_in =
+            _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(_mm256_add_epi32(row, ones), sign));
+        const __m256i at =
+            _mm256_add_epi32(_mm256_mullo_epi32(row, row_bytes),
+                             _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels))));
         const __m256i right = _mm256_set1_epi32(static_cast<int>(Channels));
         const __m256i zero = _mm256_setzero_si256();
-        const __m256i top_left = _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top_in, left_in), 1);
-        const __m256i top_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(at, right), _mm256_and_si256(top_in, right_in), 1);
+        const __m256i top_left =
+            _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top_in, left_in), 1);
+        const __m256i top_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(at, right),
+                                                              _mm256_and_si256(top_in, right_in), 1);
         const __m256i below = _mm256_add_epi32(at, row_bytes);
-        const __m256i bottom_left = _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom_in, left_in), 1);
-        const __m256i bottom_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(below, right), _mm256_and_si256(bottom_in, right_in), 1);
+        const __m256i bottom_left =
+            _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom_in, left_in), 1);
+        const __m256i bottom_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(below, right),
+                                                                 _mm256_and_si256(bottom_in, right_in), 1);
         for (uint32_t c = 0; c < Channels; c++) {
             __m256i a, b, d, e; /* top-left, top-right, bottom-left, bottom-right of channel c */
-            if (c == 0) a = signed_byte<0>(top_left), b = signed_byte<0>(top_right), d = signed_byte<0>(bottom_left), e = signed_byte<0>(bottom_right);
-            else if (c == 1) a = signed_byte<1>(top_left), b = signed_byte<1>(top_right), d = signed_byte<1>(bottom_left), e = signed_byte<1>(bottom_right);
-            else a = signed_byte<2>(top_left), b = signed_byte<2>(top_right), d = signed_byte<2>(bottom_left), e = signed_byte<2>(bottom_right);
-            const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(a, 16), _mm256_mullo_epi32(across, _mm256_sub_epi32(b, a)));
-            const __m256i lower = _mm256_add_epi32(_mm256_slli_epi32(d, 16), _mm256_mullo_epi32(across, _mm256_sub_epi32(e, d)));
+            if (c == 0)
+                a = signed_byte<0>(top_left), b = signed_byte<0>(top_right), d = signed_byte<0>(bottom_left),
+                e = signed_byte<0>(bottom_right);
+            else if (c == 1)
+                a = signed_byte<1>(top_left), b = signed_byte<1>(top_right), d = signed_byte<1>(bottom_left),
+                e = signed_byte<1>(bottom_right);
+            else
+                a = signed_byte<2>(top_left), b = signed_byte<2>(top_right), d = signed_byte<2>(bottom_left),
+                e = signed_byte<2>(bottom_right);
+            const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(a, 16),
+                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(b, a)));
+            const __m256i lower = _mm256_add_epi32(_mm256_slli_epi32(d, 16),
+                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(e, d)));
             const __m256i difference = _mm256_sub_epi32(lower, upper);
-            const __m256i even = _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
-            const __m256i odd = _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
-                                                 _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+            const __m256i even =
+                _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
+            const __m256i odd = _mm256_add_epi64(
+                _mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
+                _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
             /* even: pixels 0, 2 | 4, 6; odd: 1, 3 | 5, 7 */
             const __m256i first = _mm256_unpacklo_epi64(even, odd), second = _mm256_unpackhi_epi64(even, odd);
             const __m256i pixels_low = _mm256_permute2x128_si256(first, second, 0x20);
@@ -176,23 +209,29 @@ void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y
 
 /* The kernel entry: one copy per channel count and value size. */
 inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
-                                 int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *sums,
-                                 size_t plane) {
+                                 int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count,
+                                 uint64_t *sums, size_t plane) {
 #if defined(__AVX2__)
     if (asset->bits == 8) {
         if (asset->channels == 3)
-            splat_row_vector<3>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane);
+            splat_row_vector<3>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                                plane);
         else
-            splat_row_vector<1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane);
+            splat_row_vector<1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                                plane);
         return;
     }
 #endif
     if (asset->channels == 3)
-        asset->bits == 8 ? splat_row<3, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
-                         : splat_row<3, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane);
+        asset->bits == 8
+            ? splat_row<3, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
+            : splat_row<3, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                              plane);
     else
-        asset->bits == 8 ? splat_row<1, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
-                         : splat_row<1, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane);
+        asset->bits == 8
+            ? splat_row<1, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
+            : splat_row<1, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                              plane);
 }
 
 } // namespace

@@ -35,8 +35,8 @@ void make_points(uint64_t seed, size_t count, std::vector<int64_t> *xs, std::vec
             (*ys)[k] = int64_t(random());
             break;
         case 1: // around the int32 wrap of the integer part (2^31 texels)
-            (*xs)[k] = int64_t(uint64_t(INT32_MAX) << 32) + jitter_x;
-            (*ys)[k] = int64_t(uint64_t(INT32_MIN) << 32) + jitter_y;
+            (*xs)[k] = int64_t((uint64_t(INT32_MAX) << 32) + uint64_t(jitter_x)); // modulo 2^64
+            (*ys)[k] = int64_t((uint64_t(uint32_t(INT32_MIN)) << 32) + uint64_t(jitter_y));
             break;
         case 2: // around 0 and the 2^32 wrap of the torus
             (*xs)[k] = jitter_x;
