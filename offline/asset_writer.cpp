@@ -1,4 +1,5 @@
-// asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h.
+// asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h: a 1.0 file, or a 1.1 file
+// with a pyramid section when the fields have pyramid levels.
 #include "dsn/asset_writer.h"
 #include "../runtime/format_bytes.h"
 
@@ -50,6 +51,37 @@ void validate(const AssetFields &fields) {
                 require(value == 0 || dsn_in_support(fields.shape, fields.width, row, column),
                         "texton value outside the disk support");
             }
+    require(fields.pyramid.size() <= DSN_PYRAMID_MAX_LEVELS, "at most 8 pyramid levels");
+    for (const PyramidLevel &level : fields.pyramid) {
+        require(is_valid_side(level.width) && is_valid_side(level.height),
+                "pyramid level width and height must be odd, 1..255");
+        require(level.exponent >= DSN_PYRAMID_EXPONENT_MIN && level.exponent <= DSN_PYRAMID_EXPONENT_MAX,
+                "pyramid level exponent outside -24..24");
+        require(level.values.size() == size_t(level.width) * level.height * fields.channels,
+                "pyramid level must hold width * height * channels values");
+        for (int32_t value : level.values)
+            require(value >= -limit && value <= limit, "pyramid value outside the quantization range");
+    }
+}
+
+// The payload of the pyramid section (format.h, section kind 1).
+std::vector<unsigned char> encode_pyramid(const AssetFields &fields) {
+    const size_t value_bytes = fields.bits / 8;
+    std::vector<unsigned char> payload(DSN_PYRAMID_HEADER_SIZE +
+                                       DSN_PYRAMID_RECORD_SIZE * fields.pyramid.size());
+    payload[0] = uint8_t(fields.pyramid.size());
+    for (size_t l = 0; l < fields.pyramid.size(); l++) {
+        unsigned char *record = &payload[DSN_PYRAMID_HEADER_SIZE + DSN_PYRAMID_RECORD_SIZE * l];
+        record[0] = uint8_t(fields.pyramid[l].width);
+        record[1] = uint8_t(fields.pyramid[l].height);
+        record[2] = uint8_t(fields.pyramid[l].exponent & 0xFF);
+    }
+    for (const PyramidLevel &level : fields.pyramid)
+        for (int32_t value : level.values) {
+            payload.push_back(uint8_t(value & 0xFF));
+            if (value_bytes == 2) payload.push_back(uint8_t((value >> 8) & 0xFF));
+        }
+    return payload;
 }
 
 } // namespace
@@ -62,13 +94,21 @@ void set_identity_color_transform(AssetFields &fields) {
 std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     validate(fields);
     const size_t value_bytes = fields.bits / 8;
-    const size_t total = DSN_FORMAT_HEADER_SIZE + fields.texton.size() * value_bytes + DSN_FORMAT_CRC_SIZE;
+    const bool has_pyramid = !fields.pyramid.empty();
+    const std::vector<unsigned char> pyramid =
+        has_pyramid ? encode_pyramid(fields) : std::vector<unsigned char>();
+    const size_t padding =
+        (DSN_SECTION_ALIGNMENT - pyramid.size() % DSN_SECTION_ALIGNMENT) % DSN_SECTION_ALIGNMENT;
+    const size_t header_size =
+        DSN_FORMAT_HEADER_SIZE + (has_pyramid ? DSN_SECTION_HEADER_SIZE + pyramid.size() + padding : 0);
+    const size_t total = header_size + fields.texton.size() * value_bytes + DSN_FORMAT_CRC_SIZE;
     std::vector<unsigned char> bytes(total, 0);
     unsigned char *p = bytes.data();
     std::memcpy(p, DSN_FORMAT_MAGIC, DSN_FORMAT_MAGIC_SIZE);
     dsn_write_u16le(p + DSN_OFFSET_VERSION_MAJOR, DSN_FORMAT_VERSION_MAJOR);
-    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR, DSN_FORMAT_VERSION_MINOR);
-    dsn_write_u32le(p + DSN_OFFSET_HEADER_SIZE, DSN_FORMAT_HEADER_SIZE);
+    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR,
+                    has_pyramid ? DSN_FORMAT_SECTIONS_MINOR : DSN_FORMAT_VERSION_MINOR_PLAIN);
+    dsn_write_u32le(p + DSN_OFFSET_HEADER_SIZE, uint32_t(header_size));
     dsn_write_u32le(p + DSN_OFFSET_TOTAL_SIZE, uint32_t(total));
     p[DSN_OFFSET_CHANNELS] = uint8_t(fields.channels);
     p[DSN_OFFSET_BITS] = uint8_t(fields.bits);
@@ -88,7 +128,12 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     dsn_write_u32le(p + DSN_OFFSET_BAKE_RME, fields.bake_rme_q24);
     dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_WIDTH, uint16_t(fields.exemplar_width));
     dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_HEIGHT, uint16_t(fields.exemplar_height));
-    unsigned char *texton = p + DSN_FORMAT_HEADER_SIZE;
+    if (has_pyramid) {
+        dsn_write_u32le(p + DSN_FORMAT_HEADER_SIZE, DSN_SECTION_PYRAMID);
+        dsn_write_u32le(p + DSN_FORMAT_HEADER_SIZE + 4, uint32_t(pyramid.size()));
+        std::memcpy(p + DSN_FORMAT_HEADER_SIZE + DSN_SECTION_HEADER_SIZE, pyramid.data(), pyramid.size());
+    }
+    unsigned char *texton = p + header_size;
     for (size_t i = 0; i < fields.texton.size(); i++) {
         if (value_bytes == 1)
             texton[i] = uint8_t(fields.texton[i] & 0xFF);

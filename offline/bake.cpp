@@ -1,4 +1,5 @@
-// bake.cpp - the whole pipeline: input checks, model, SOT, baseline, measures, colour, quantization, asset.
+// bake.cpp - the whole pipeline: input checks, model, SOT, baseline, measures, colour, quantization, pyramid,
+// asset.
 #include "bake_internal.h"
 
 #include <algorithm>
@@ -72,6 +73,7 @@ AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options,
     fields.exemplar_width = uint32_t(exemplar_width);
     fields.exemplar_height = uint32_t(exemplar_height);
     fields.texton = quantized.values;
+    if (options.pyramid) fields.pyramid = texton_pyramid(fields);
     return fields;
 }
 
@@ -89,6 +91,8 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
     sot_options.progress = options.progress;
     result.sot = sot_alternating_projections(result.target, support, sot_options);
     result.rme = relative_model_error(result.target, result.sot.texton);
+    result.rme_without_zero_frequency =
+        relative_model_error_without_zero_frequency(result.target, result.sot.texton);
 
     result.luminance = luminance_texton(result.target, support);
     result.rme_luminance = relative_model_error(result.target, result.luminance);

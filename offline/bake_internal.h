@@ -3,7 +3,8 @@
 //
 //   gaussian_model (periodic_component, mean, t_u) -> interpolation_target -> support_mask ->
 //   sot_alternating_projections (RME of every iteration) -> luminance_texton (the baseline) ->
-//   relative_model_error, excess_kurtosis -> color_transform -> quantize -> assemble_asset.
+//   relative_model_error, excess_kurtosis -> color_transform -> quantize -> assemble_asset (with
+//   texton_pyramid: the prefiltered levels of format 1.1).
 //
 // The Gaussian model, the periodic component and the spectral ADSN are those of Galerne, Gousseau and
 // Morel, "Random phase textures: theory and synthesis" (IEEE TIP 2011); the alternating projections and
@@ -84,10 +85,18 @@ Texton luminance_texton(const Spectrum &model, const Support &support);
 
 // ---- Measures ----
 
-// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels, over the
-// frequencies xi != 0 (the texton's sum only moves the noise's mean, which the runtime subtracts).
+// RME = sqrt(sum(|T_u|^2 + |T|^2 - 2 |T_u^* T|) / sum |T_u|^2), T_u^* T summed over channels: the
+// 2-Wasserstein distance between the Gaussian models of t_u and t relative to the exemplar's, summed over
+// every frequency as Galerne, Leclaire and Moisan define it (section 3). T_u(0) = 0 (the exemplar's mean
+// is subtracted), so a texton with a non-zero sum adds |T(0)|^2: its spot noise has that much more power
+// at the lowest frequencies (variation over scales beyond the exemplar), which the runtime's subtraction
+// of the noise's mean does not remove.
 double relative_model_error(const Spectrum &model, const Spectrum &texton);
 double relative_model_error(const Spectrum &model, const Texton &texton);
+// The same sums over the frequencies xi != 0 only: the figure the alternating projections minimize and
+// report per iteration (they leave T(0) free). RME^2 = this^2 + sum_c |T_c(0)|^2 / sum |T_u|^2.
+double relative_model_error_without_zero_frequency(const Spectrum &model, const Spectrum &texton);
+double relative_model_error_without_zero_frequency(const Spectrum &model, const Texton &texton);
 
 // Per channel: excess kurtosis of the spot-noise marginal with `impacts_per_pixel` impacts per pixel,
 // sum t^4 / (lambda (sum t^2)^2), lambda = impacts / |S|. 0 for a channel that is all zero.
@@ -127,7 +136,34 @@ QuantizedTexton quantize(const Texton &texton, int bits);
 // The texton the runtime sees: q * scale_raw / 2^40.
 Texton dequantize(const QuantizedTexton &quantized, const Support &support, int channels);
 
-// The asset fields of a bake (quantized texton, scales, mean and K in Q8.24, metadata).
+// ---- Texton pyramid (format 1.1, dsn/format.h) ----
+
+// The number of levels for a texton of these radii: floor(log2(max radius)) + 1, 0 for a 1 x 1 texton.
+int pyramid_level_count(int radius_x, int radius_y);
+// A level's radius along an axis of texton radius `radius`: ceil((radius + 1 + 3 sigma) / 2^level),
+// sigma = 2^(level-1). The window keeps the spill of the blurred texton; its truncation loses well under
+// 1% of the energy of the texton convolved with the Gaussian (tests/bake_pyramid_test.cpp measures it).
+int pyramid_level_radius(int radius, int level);
+// kappa_l(u) = (hat_1 * g_sigma * hat_(2^l))(u), sigma = 2^(l-1): the inner product of a texel's tent,
+// blurred, with a level tent at distance u (per axis).
+double pyramid_kappa(int level, double u);
+
+// Level l before quantization: s_l, the L2 projection of t0 * G_l (t0 the bilinear texton of the
+// quantized values q * scale / 2^40) onto the tents of spacing 2^l centred on the texton's centre.
+struct PrefilteredLevel {
+    int level = 0;
+    int width = 0, height = 0;
+    std::vector<double> values; // s_l, row-major, channels interleaved
+};
+PrefilteredLevel prefiltered_level(const AssetFields &fields, int level);
+// The stored level: q_l = round(s_l 2^40 / (scale[c] 2^e)) with e the smallest exponent in -24..24 that
+// keeps every |q_l| within the texton's quantization range.
+PyramidLevel quantize_level(const PrefilteredLevel &level, const AssetFields &fields);
+// Every level of a texton (the fields' texton, scales, channels and bits), quantized.
+std::vector<PyramidLevel> texton_pyramid(const AssetFields &fields);
+
+// The asset fields of a bake (quantized texton, scales, mean and K in Q8.24, metadata, and the pyramid
+// unless options.pyramid is false).
 AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options, int exemplar_width,
                            int exemplar_height);
 

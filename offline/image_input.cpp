@@ -46,7 +46,9 @@ void *limited_malloc(size_t size) {
         allocation_refused = true;
         return nullptr;
     }
-    void *pointer = std::malloc(size);
+    // Zeroed: stb_image 2.27 decodes a JPEG scan with a Huffman table that no DHT segment defined from
+    // whatever its allocation held (found by make fuzz); zeros make that decode defined and repeatable.
+    void *pointer = std::calloc(size, 1);
     if (pointer) live_allocations[live_count++] = pointer;
     return pointer;
 }

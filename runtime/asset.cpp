@@ -1,5 +1,7 @@
 /* runtime/asset.cpp - validates a .dsnt asset in place (format.h, in its documented order) and reads
-   texton values; also the static error messages (format.h's error table). */
+   texton values and pyramid levels; also the static error messages (format.h's error table). A build
+   with DSN_FILTERING 0 leaves the 1.1 sections unread (format.h: such a runtime reads 1.1 files as 1.0),
+   which keeps the small build's code as it was. */
 #include "format_bytes.h"
 #include "init_internal.h"
 
@@ -100,6 +102,74 @@ int check_texton(const dsn_asset *asset) {
     return DSN_OK;
 }
 
+#if DSN_FILTERING
+/* Step 14: the sections fill [128, header_size) exactly, each padded with zeros to 4 bytes, a known kind
+   at most once. Finds the pyramid's payload (null when there is none). Every comparison is made on the
+   room left, so nothing can wrap. */
+int find_sections(const unsigned char *bytes, uint32_t header_size, const unsigned char **pyramid,
+                  uint32_t *pyramid_size) {
+    *pyramid = 0;
+    *pyramid_size = 0;
+    for (uint32_t offset = DSN_FORMAT_HEADER_SIZE; offset < header_size;) {
+        uint32_t room = header_size - offset;
+        if (room < DSN_SECTION_HEADER_SIZE) return DSN_ERR_SECTION;
+        room -= DSN_SECTION_HEADER_SIZE;
+        const uint32_t kind = dsn_read_u32le(bytes + offset);
+        const uint32_t size = dsn_read_u32le(bytes + offset + 4);
+        const uint32_t padding = (0u - size) & (DSN_SECTION_ALIGNMENT - 1u);
+        if (size > room || padding > room - size) return DSN_ERR_SECTION;
+        const unsigned char *payload = bytes + offset + DSN_SECTION_HEADER_SIZE;
+        for (uint32_t i = 0; i < padding; i++)
+            if (payload[size + i] != 0) return DSN_ERR_SECTION;
+        if (kind == DSN_SECTION_PYRAMID) {
+            if (*pyramid != 0) return DSN_ERR_SECTION;
+            *pyramid = payload;
+            *pyramid_size = size;
+        }
+        offset += DSN_SECTION_HEADER_SIZE + size + padding;
+    }
+    return DSN_OK;
+}
+
+/* Step 15: the pyramid's records, its exact size and its values. Sizes stay below 8 * 255 * 255 * 6. */
+int read_pyramid(dsn_asset *asset, const unsigned char *payload, uint32_t size) {
+    if (size < DSN_PYRAMID_HEADER_SIZE) return DSN_ERR_PYRAMID;
+    const uint32_t levels = payload[0];
+    if (levels == 0 || levels > DSN_PYRAMID_MAX_LEVELS || (payload[1] | payload[2] | payload[3]) != 0)
+        return DSN_ERR_PYRAMID;
+    const uint32_t value_size = asset->bits / 8;
+    uint32_t expected = DSN_PYRAMID_HEADER_SIZE + DSN_PYRAMID_RECORD_SIZE * levels;
+    if (size < expected) return DSN_ERR_PYRAMID;
+    for (uint32_t level = 0; level < levels; level++) {
+        const unsigned char *record = payload + DSN_PYRAMID_HEADER_SIZE + DSN_PYRAMID_RECORD_SIZE * level;
+        const int32_t exponent = dsn_read_i8(record + 2);
+        if (record[0] % 2 == 0 || record[1] % 2 == 0 || exponent < DSN_PYRAMID_EXPONENT_MIN ||
+            exponent > DSN_PYRAMID_EXPONENT_MAX || record[3] != 0)
+            return DSN_ERR_PYRAMID;
+        expected += uint32_t(record[0]) * record[1] * asset->channels * value_size;
+    }
+    if (size != expected) return DSN_ERR_PYRAMID;
+    const unsigned char *values = payload + DSN_PYRAMID_HEADER_SIZE + DSN_PYRAMID_RECORD_SIZE * levels;
+    const unsigned char *end = payload + size;
+    for (; values < end; values += value_size)
+        if (value_size == 1 ? values[0] == 0x80 : (values[0] == 0 && values[1] == 0x80))
+            return DSN_ERR_PYRAMID;
+    asset->pyramid = payload + DSN_PYRAMID_HEADER_SIZE;
+    asset->pyramid_levels = levels;
+    return DSN_OK;
+}
+
+/* Steps 14 and 15, for files of minor version 1 and later. */
+int read_sections(dsn_asset *asset, const unsigned char *bytes) {
+    if (dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR) < DSN_FORMAT_SECTIONS_MINOR) return DSN_OK;
+    const unsigned char *pyramid;
+    uint32_t pyramid_size;
+    int err = find_sections(bytes, dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE), &pyramid, &pyramid_size);
+    if (err == DSN_OK && pyramid != 0) err = read_pyramid(asset, pyramid, pyramid_size);
+    return err;
+}
+#endif
+
 int load(dsn_asset *asset, const unsigned char *bytes, size_t size) {
     if (size < DSN_FORMAT_MAGIC_SIZE) return DSN_ERR_TRUNCATED;
     int err = check_magic(bytes);
@@ -110,6 +180,9 @@ int load(dsn_asset *asset, const unsigned char *bytes, size_t size) {
     if (err != DSN_OK) return err;
     asset->texton = bytes + dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE);
     err = check_texton(asset);
+#if DSN_FILTERING
+    if (err == DSN_OK) err = read_sections(asset, bytes);
+#endif
     if (err != DSN_OK) return err;
     asset->version_minor = dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR);
     asset->bake_iterations = dsn_read_u32le(bytes + DSN_OFFSET_BAKE_ITERATIONS);
@@ -152,6 +225,36 @@ extern "C" int32_t dsn_asset_texton_value(const dsn_asset *asset, uint32_t row, 
     uint32_t index = (row * asset->width + column) * asset->channels + channel;
     return asset->bits == 8 ? dsn_read_i8(asset->texton + index) : dsn_read_i16le(asset->texton + 2 * index);
 }
+
+#if DSN_FILTERING
+extern "C" int dsn_asset_level(const dsn_asset *asset, uint32_t level, dsn_level *out) {
+    if (out == 0) return DSN_ERR_NULL;
+    out->values = 0;
+    out->width = out->height = 0;
+    out->exponent = 0;
+    if (asset == 0 || asset->texton == 0) return DSN_ERR_NULL;
+    if (level > asset->pyramid_levels || (level != 0 && asset->pyramid == 0)) return DSN_ERR_ARGUMENT;
+    if (level == 0) {
+        out->values = asset->texton;
+        out->width = asset->width;
+        out->height = asset->height;
+        return DSN_OK;
+    }
+    /* The values follow the records, level after level. */
+    const uint32_t value_size = asset->channels * (asset->bits / 8);
+    const unsigned char *values = asset->pyramid + DSN_PYRAMID_RECORD_SIZE * asset->pyramid_levels;
+    for (uint32_t previous = 0; previous + 1 < level; previous++) {
+        const unsigned char *record = asset->pyramid + DSN_PYRAMID_RECORD_SIZE * previous;
+        values += uint32_t(record[0]) * record[1] * value_size;
+    }
+    const unsigned char *record = asset->pyramid + DSN_PYRAMID_RECORD_SIZE * (level - 1);
+    out->values = values;
+    out->width = record[0];
+    out->height = record[1];
+    out->exponent = dsn_read_i8(record + 2);
+    return DSN_OK;
+}
+#endif
 
 extern "C" const char *dsn_error_message(int code) {
     switch (code) {

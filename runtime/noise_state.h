@@ -10,16 +10,18 @@
 #include "format_bytes.h" /* the evaluators read texton values with these */
 
 struct dsn_noise_state {
-    dsn_asset asset;
     uint32_t seed;
     uint32_t seed_column, seed_row; /* hashes of the seed mixed into the cell keys */
     uint32_t flags;
     uint32_t tile_kernel; /* the copy of the tile code this CPU runs (set by init; the bits are the same) */
     uint32_t impacts_q16;
-    uint32_t period[2];        /* 0 = not periodic */
-    uint32_t cell_shift;       /* cells are (1 << cell_shift) lattice points wide */
-    uint32_t radius[2];        /* (width - 1) / 2, (height - 1) / 2 */
-    uint32_t gain_shift;       /* fraction bits of gain and offset */
+    uint32_t period[2];  /* 0 = not periodic */
+    uint32_t cell_shift; /* cells are (1 << cell_shift) lattice points wide */
+    uint32_t radius[2];  /* (width - 1) / 2, (height - 1) / 2 */
+    uint32_t gain_shift; /* fraction bits of gain and offset */
+    /* The asset after the small fields that every evaluation reads: on Thumb-1 (the small build) a load
+       reaches 124 bytes past a pointer, so what sits first costs the least code. */
+    dsn_asset asset;
     int64_t gain[9];           /* fixed-point K * scale / sqrt(lambda), see runtime/normalize.cpp */
     int64_t offset[3];         /* fixed-point mean minus the expected sum */
     uint32_t poisson_parts;    /* a cell's count is the sum of this many draws from the table */

@@ -1,6 +1,7 @@
-// asset_corruption_test.cpp - every single-bit flip and every truncation of small valid assets is rejected
-// with the code the format.h validation order prescribes; hostile edits with a recomputed CRC are
-// rejected by a field check or load into a noise whose points and tiles are defined and agree.
+// asset_corruption_test.cpp - every single-bit flip and every truncation of small valid assets (1.0, and 1.1
+// with a pyramid) is rejected with the code the format.h validation order prescribes; hostile edits with a
+// recomputed CRC are rejected by a field check or load into a noise whose points and tiles are defined and
+// agree.
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -12,7 +13,7 @@
 
 namespace {
 
-std::vector<unsigned char> small_asset(uint32_t channels, uint32_t bits, uint32_t shape) {
+std::vector<unsigned char> small_asset(uint32_t channels, uint32_t bits, uint32_t shape, bool pyramid) {
     dsn::AssetFields fields;
     fields.channels = channels;
     fields.bits = bits;
@@ -31,6 +32,15 @@ std::vector<unsigned char> small_asset(uint32_t channels, uint32_t bits, uint32_
                 int32_t value = int32_t((row * 37 + column * 11 + c * 5) % 19) * limit / 19 - limit / 3;
                 fields.texton.push_back(dsn_in_support(shape, 5, row, column) ? value : 0);
             }
+    if (pyramid) { // format 1.1: a 3 x 3 level and a 1 x 1 level
+        dsn::PyramidLevel first, second;
+        first.width = first.height = 3;
+        first.exponent = -2;
+        for (uint32_t i = 0; i < 9 * channels; i++) first.values.push_back(int32_t(i * 29 % 41) - 20);
+        second.exponent = -5;
+        second.values.assign(channels, limit);
+        fields.pyramid = {first, second};
+    }
     return dsn::encode_asset(fields);
 }
 
@@ -61,6 +71,8 @@ bool is_field_check(int code) {
     case DSN_ERR_IMPACTS:
     case DSN_ERR_COLOR_TRANSFORM:
     case DSN_ERR_TEXTON:
+    case DSN_ERR_SECTION:
+    case DSN_ERR_PYRAMID:
         return true;
     default:
         return false;
@@ -96,13 +108,18 @@ void evaluate_everywhere(const dsn_asset &asset) {
 
 const struct {
     uint32_t channels, bits, shape;
-} kAssets[] = {{3, 8, DSN_SHAPE_DISK}, {1, 16, DSN_SHAPE_RECTANGLE}};
+    bool pyramid;
+} kAssets[] = {{3, 8, DSN_SHAPE_DISK, false},
+               {1, 16, DSN_SHAPE_RECTANGLE, false},
+               {3, 8, DSN_SHAPE_DISK, true},
+               {1, 16, DSN_SHAPE_RECTANGLE, true}};
 
 } // namespace
 
 TEST_CASE("every single-bit flip of a valid asset is rejected with the code of the validation order") {
     for (const auto &kind : kAssets) {
-        const std::vector<unsigned char> valid = small_asset(kind.channels, kind.bits, kind.shape);
+        const std::vector<unsigned char> valid =
+            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid);
         dsn_asset asset;
         REQUIRE(dsn_asset_load(&asset, valid.data(), valid.size()) == DSN_OK);
         size_t checked = 0;
@@ -125,7 +142,8 @@ TEST_CASE("every single-bit flip of a valid asset is rejected with the code of t
 
 TEST_CASE("every truncation of a valid asset is rejected as truncated") {
     for (const auto &kind : kAssets) {
-        const std::vector<unsigned char> valid = small_asset(kind.channels, kind.bits, kind.shape);
+        const std::vector<unsigned char> valid =
+            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid);
         dsn_asset asset;
         for (size_t size = 0; size < valid.size(); size++) {
             // A fresh copy of exactly `size` bytes, so a read past the end is a sanitizer error.
@@ -142,7 +160,8 @@ TEST_CASE("every truncation of a valid asset is rejected as truncated") {
 
 TEST_CASE("hostile fields with a recomputed CRC are refused by a field check or evaluate consistently") {
     for (const auto &kind : kAssets) {
-        const std::vector<unsigned char> valid = small_asset(kind.channels, kind.bits, kind.shape);
+        const std::vector<unsigned char> valid =
+            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid);
         size_t accepted = 0, refused = 0;
         for (size_t offset = DSN_OFFSET_FLAGS; offset < valid.size() - DSN_FORMAT_CRC_SIZE; offset++)
             for (int variant = 0; variant < 10; variant++) {

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <complex>
 #include <stdexcept>
 #include <string>
 
@@ -59,6 +60,44 @@ TEST_CASE("relative_model_error: 0 for the model and any phase of it, 1 for noth
     CHECK(dsn::relative_model_error(spot_spectrum, spot) < 1e-6);
     CHECK(dsn::relative_model_error(spot_spectrum, dsn::luminance_texton(spot_spectrum, spot.support)) >
           0.01);
+}
+
+TEST_CASE("relative_model_error sums every frequency as the SOT paper does: a texton with a non-zero sum "
+          "adds its |T(0)|^2, which relative_model_error_without_zero_frequency leaves out") {
+    const dsn::GaussianModel model = dsn::gaussian_model(random_phase_exemplar(40, 36, 3, 2), false);
+    double model_energy = 0; // sum over every frequency and channel of |T_u|^2; T_u(0) = 0
+    for (const auto &value : model.spectrum.values) model_energy += std::norm(std::complex<double>(value));
+    const size_t plane = model.spectrum.plane_size();
+    for (int c = 0; c < 3; c++) CHECK(std::abs(model.spectrum.values[size_t(c) * plane]) < 1e-5);
+    // t_u cropped to a small support: its values do not sum to zero.
+    const dsn::Texton cropped =
+        dsn::crop_to_support(dsn::inverse_dft(model.spectrum), dsn::support_mask(6, DSN_SHAPE_RECTANGLE));
+    const size_t points = cropped.support.mask.size();
+    double sum_squares = 0;
+    for (int c = 0; c < 3; c++) {
+        double sum = 0;
+        for (size_t i = 0; i < points; i++) sum += cropped.values[size_t(c) * points + i];
+        sum_squares += sum * sum;
+    }
+    const double every = dsn::relative_model_error(model.spectrum, cropped);
+    const double without = dsn::relative_model_error_without_zero_frequency(model.spectrum, cropped);
+    MESSAGE("cropped t_u: RME " << every << ", without the zero frequency " << without
+                                << ", |T(0)|^2 / |T_u|^2 " << sum_squares / model_energy);
+    REQUIRE(sum_squares / model_energy > 1e-3); // a texton that does have a sum worth measuring
+    // The two differ by exactly the zero frequency's term: T(0) = sum_x t(x) per channel, and T_u(0) = 0
+    // leaves no cross term there.
+    CHECK(every * every == doctest::Approx(without * without + sum_squares / model_energy).epsilon(1e-6));
+    CHECK(every > without);
+    // The same texton with each channel's sum removed over the support: the definitions agree.
+    dsn::Texton centred = cropped;
+    for (int c = 0; c < 3; c++) {
+        double sum = 0;
+        for (size_t i = 0; i < points; i++) sum += centred.values[size_t(c) * points + i];
+        for (size_t i = 0; i < points; i++) centred.values[size_t(c) * points + i] -= sum / double(points);
+    }
+    CHECK(dsn::relative_model_error(model.spectrum, centred) ==
+          doctest::Approx(dsn::relative_model_error_without_zero_frequency(model.spectrum, centred))
+              .epsilon(1e-6));
 }
 
 TEST_CASE("excess_kurtosis is sum t^4 / (lambda (sum t^2)^2), lambda = impacts / |S|") {

@@ -66,8 +66,9 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
     const dsn::BakeResult result = dsn::bake(exemplar, options);
     MESSAGE(name << ": RME " << result.rme << ", quantized " << result.rme_quantized << ", "
                  << result.asset.size() << " bytes");
-    // The RME is a distance: rounding the texton moves it by at most ||Q - T|| / ||T_u|| (Minkowski over
-    // the frequencies). On the known compact spot the SOT is nearly exact (RME ~0.015) and that rounding
+    // The RME (every frequency, the paper's; so is rme_quantized) is a distance: rounding the texton moves
+    // it by at most ||Q - T|| / ||T_u|| (Minkowski over the frequencies, Parseval for ||Q - T||). On the
+    // known compact spot the SOT is nearly exact (RME ~0.015) and that rounding
     // (~1% of the texton) shows in full; on textures whose texton spreads over the support it is far below
     // the 0.001 asked.
     double rounding = 0, model_energy = 0;
@@ -79,9 +80,27 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
     const double bound = std::sqrt(rounding * result.target.plane_size() / model_energy);
     CHECK(std::fabs(result.rme_quantized - result.rme) <= bound * (1 + 1e-9));
     if (small_change) CHECK(std::fabs(result.rme_quantized - result.rme) < 0.001);
-    CHECK(result.rme == doctest::Approx(result.sot.rme_per_iteration.back()).epsilon(1e-5));
-    CHECK(result.asset.size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
-    CHECK(result.asset.size() <= 3200);
+    // rme (every frequency) is rme_without_zero_frequency (the per-iteration figure) plus the zero
+    // frequency's |T(0)|^2 = (sum of the texton)^2 per channel.
+    CHECK(result.rme_without_zero_frequency ==
+          doctest::Approx(result.sot.rme_per_iteration.back()).epsilon(1e-5));
+    const size_t points = result.sot.texton.support.mask.size();
+    double zero_frequency = 0;
+    for (int c = 0; c < exemplar.channels; c++) {
+        double sum = 0;
+        for (size_t i = 0; i < points; i++) sum += result.sot.texton.values[size_t(c) * points + i];
+        zero_frequency += sum * sum;
+    }
+    CHECK(result.rme * result.rme ==
+          doctest::Approx(result.rme_without_zero_frequency * result.rme_without_zero_frequency +
+                          zero_frequency / model_energy)
+              .epsilon(1e-6));
+    dsn::AssetFields plain = result.fields; // the 1.0 asset (dsn-bake --no-pyramid)
+    plain.pyramid.clear();
+    CHECK(dsn::encode_asset(plain).size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
+    CHECK(dsn::encode_asset(plain).size() <= 3200);
+    CHECK(result.fields.pyramid.size() == 4);
+    CHECK(result.asset.size() <= 6 * 1024);
     CHECK(result.fields.bake_iterations == 100);
     CHECK(result.fields.exemplar_width == uint32_t(exemplar.width));
     CHECK(result.fields.bake_rme_q24 == uint32_t(std::lround(result.rme_quantized * (1 << 24))));
@@ -93,7 +112,7 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
 
 TEST_CASE(
     "bake: 8-bit quantization changes the RME by < 0.001 on a generated spread-out texture, a 31x31 RGB "
-    "asset is <= 3.2 KB") {
+    "asset is <= 3.2 KB, <= 6 KB with its pyramid") {
     check_quantized_bake("known compact spot", random_phase_exemplar(64, 64, 3, 41), false, false);
     check_quantized_bake("spread-out spot", random_phase_texture(random_spot(80, 72, 3, 15, 23), 24), false,
                          true);
@@ -130,7 +149,8 @@ TEST_CASE("bake records its options: bits, shape, interpolation, identity transf
     options.interpolation = DSN_INTERPOLATION_BILINEAR;
     options.use_color_transform = false;
     const dsn::BakeResult result = dsn::bake(exemplar, options);
-    CHECK(result.asset.size() == 128 + 17 * 17 * 3 * 2 + 4);
+    CHECK(result.asset.size() == dsn_read_u32le(&result.asset[DSN_OFFSET_HEADER_SIZE]) + 17 * 17 * 3 * 2 +
+                                     4); // texton after the pyramid
     CHECK(result.asset[DSN_OFFSET_BITS] == 16);
     CHECK(result.asset[DSN_OFFSET_INTERPOLATION] == DSN_INTERPOLATION_BILINEAR);
     CHECK(result.asset[DSN_OFFSET_SHAPE] == DSN_SHAPE_RECTANGLE);

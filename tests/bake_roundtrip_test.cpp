@@ -79,6 +79,7 @@ TEST_CASE("bilinear bake: the texton's spectrum times the B-spline factor is clo
             }
         return spectrum;
     };
+    // Relative model errors over every frequency (the paper's, like BakeResult's rme).
     const double corrected = dsn::relative_model_error(bilinear.model.spectrum, sampled(bilinear.sot.texton));
     const double uncorrected = dsn::relative_model_error(lattice.model.spectrum, sampled(lattice.sot.texton));
     MESSAGE("RME of the bilinear-sampled noise: corrected texton " << corrected << ", lattice texton "

@@ -20,8 +20,18 @@
 
 namespace dsn {
 
+// One level of the texton pyramid (format 1.1, format.h): width x height (odd, 1..255) quantized values
+// per channel, row-major, channels interleaved, standing for q * scale[c] * 2^exponent / 2^40.
+struct PyramidLevel {
+    uint32_t width = 1;
+    uint32_t height = 1;
+    int32_t exponent = 0; // DSN_PYRAMID_EXPONENT_MIN .. DSN_PYRAMID_EXPONENT_MAX
+    std::vector<int32_t> values;
+};
+
 // Every header field of format 1.0, in its stored fixed-point form, plus the quantized texton values
-// (width * height * channels, row-major from the top row, channels interleaved).
+// (width * height * channels, row-major from the top row, channels interleaved), and the optional
+// pyramid: with no level the file is a 1.0 file, with levels a 1.1 file with one pyramid section.
 struct AssetFields {
     uint32_t channels = 1;
     uint32_t bits = 8;
@@ -39,12 +49,14 @@ struct AssetFields {
     uint32_t exemplar_width = 0;
     uint32_t exemplar_height = 0;
     std::vector<int32_t> texton;
+    std::vector<PyramidLevel> pyramid; // levels 1, 2, ...: at most DSN_PYRAMID_MAX_LEVELS
 };
 
 // The identity colour transform for `channels` (grey: K[0] = 1, the other entries 0).
 void set_identity_color_transform(AssetFields &fields);
 
-// The complete file: header, texton, CRC. Throws std::invalid_argument on a field the loader rejects.
+// The complete file: header (with the pyramid section when there are levels), texton, CRC. Throws
+// std::invalid_argument on a field the loader rejects.
 std::vector<unsigned char> encode_asset(const AssetFields &fields);
 
 } // namespace dsn

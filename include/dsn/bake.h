@@ -118,7 +118,9 @@ struct Texton {
 
 struct SotResult {
     Texton texton;
-    std::vector<double> rme_per_iteration; // [k] = RME of the texton after iteration k + 1
+    // [k] = relative model error without the zero frequency (BakeResult's rme_without_zero_frequency) of
+    // the texton after iteration k + 1: the figure the iterations minimize, T(0) being left free.
+    std::vector<double> rme_per_iteration;
 };
 
 using Matrix3 = std::array<double, 9>; // row-major
@@ -126,7 +128,7 @@ using Matrix3 = std::array<double, 9>; // row-major
 // ---- The bake ----
 
 // Called after every iteration of the texton's optimization with (iterations done, iterations asked,
-// relative model error of the current texton).
+// relative model error of the current texton without the zero frequency, as in rme_per_iteration).
 using BakeProgress = std::function<void(int done, int total, double rme)>;
 
 struct BakeOptions {
@@ -143,6 +145,9 @@ struct BakeOptions {
     // Early stop: after at least 50 iterations, stop when the relative model error improved by less than
     // this over the last 50 iterations. 0 runs every iteration.
     double stop_tolerance = 0;
+    // Writes the texton pyramid (a format 1.1 asset) that the filtered evaluation reads; false writes a
+    // 1.0 asset, byte for byte what bakes without a pyramid always wrote.
+    bool pyramid = true;
     BakeProgress progress; // may be empty
 };
 
@@ -153,8 +158,13 @@ struct BakeResult {
     Texton luminance;        // the baseline texton (the luminance texton), for comparison
     Texton quantized_texton; // dequantized: what the runtime uses
     // Relative model errors (0 is perfect) of the texton, of the luminance texton and of the quantized
-    // texton; excess kurtosis per channel of the noise at 30 impacts per pixel (0 is Gaussian).
-    double rme = 0, rme_luminance = 0, rme_quantized = 0;
+    // texton, summed over every frequency as Galerne, Leclaire and Moisan define it: the 2-Wasserstein
+    // distance between the Gaussian models of the texton's noise and of the exemplar, relative to the
+    // exemplar's; a texton with a non-zero sum counts the power it adds at the zero frequency. The texton's
+    // without the zero frequency (what the iterations minimize: rme_per_iteration's last value) is
+    // rme_without_zero_frequency. Excess kurtosis per channel of the noise at 30 impacts per pixel (0 is
+    // Gaussian).
+    double rme = 0, rme_luminance = 0, rme_quantized = 0, rme_without_zero_frequency = 0;
     std::vector<double> excess_kurtosis_30, excess_kurtosis_30_luminance;
     Matrix3 color_transform = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     AssetFields fields;

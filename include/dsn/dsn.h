@@ -89,6 +89,10 @@
 #endif
 #endif
 
+#ifndef DSN_FILTERING /* 1: the filtered evaluation and the texton pyramid; default 0 in the small build */
+#define DSN_FILTERING (!DSN_SMALL_CODE)
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -122,6 +126,12 @@ typedef struct dsn_asset {
     int32_t color_transform[9];   /* Q8.24, row-major */
     uint32_t bake_iterations, bake_seed, bake_rme_q24;
     uint32_t exemplar_width, exemplar_height;
+    /* The texton pyramid of a 1.1 asset (format.h): the prefiltered levels 1 .. pyramid_levels that the
+       filtered evaluation reads. `pyramid` points at the first level record in the caller's buffer;
+       read the levels with dsn_asset_level. Null and 0 for an asset without one, and always in a
+       runtime built with DSN_FILTERING 0 (its loader does not read sections). */
+    const unsigned char *pyramid;
+    uint32_t pyramid_levels; /* 0 .. DSN_PYRAMID_MAX_LEVELS */
 } dsn_asset;
 
 /* Validates `size` bytes at `bytes` as a .dsnt asset and fills `asset`. Returns DSN_OK or the first
@@ -131,6 +141,21 @@ int dsn_asset_load(dsn_asset *asset, const void *bytes, size_t size);
 /* The quantized texton value of `channel` at texton row `row` (0 = top) and column `column`
    (0 = left); 0 for any index out of range. */
 int32_t dsn_asset_texton_value(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel);
+
+/* One level of the texton pyramid (format.h, version 1.1): width * height * channels quantized values
+   (i8 or i16 little-endian as the asset's `bits`, row-major, channels interleaved) at spacing 2^level
+   texels, centred on the impulse; value q of channel c stands for q * scale[c] * 2^exponent / 2^40. */
+typedef struct dsn_level {
+    const unsigned char *values; /* in the caller's buffer */
+    uint32_t width, height;      /* odd, 1..255 */
+    int32_t exponent;            /* -24..24; 0 for level 0 */
+} dsn_level;
+
+/* Fills `out` with level `level` of the asset: 0 is the texton itself (exponent 0), 1 ..
+   asset->pyramid_levels the pyramid's levels. Returns DSN_OK, DSN_ERR_NULL (null `asset` or `out`, or
+   an asset without a texton) or DSN_ERR_ARGUMENT (level above pyramid_levels); on an error *out is
+   zeroed. Not compiled when DSN_FILTERING is 0 (a program calling it then fails to link). */
+int dsn_asset_level(const dsn_asset *asset, uint32_t level, dsn_level *out);
 
 /* A static, one-line, human-readable message for any code (unknown codes included). */
 const char *dsn_error_message(int code);

@@ -2,7 +2,9 @@
 
    This comment block is the format's specification. The writer (offline/asset_writer.cpp) and the
    reader (runtime/asset.cpp) both follow it and read or write every field byte by byte (their shared
-   helpers are internal, runtime/format_bytes.h); neither casts a struct over the bytes.
+   helpers are internal, runtime/format_bytes.h); neither casts a struct over the bytes. Version 1.0
+   comes first; version 1.1 (below it) adds sections after the 1.0 header, the first of which holds a
+   pyramid of prefiltered textons.
 
    ==================================================================================================
    .dsnt version 1.0
@@ -23,8 +25,9 @@
        0     8  u8[8]   magic: 0x89 'D' 'S' 'N' 0x0D 0x0A 0x1A 0x0A  ("\x89DSN\r\n\x1a\n")
        8     2  u16     version_major: 1. Any other major version is rejected.
       10     2  u16     version_minor: 0. Readers of 1.x accept any minor (later minors only append
-                        header fields, which older readers skip by header_size).
-      12     4  u32     header_size: offset of the texton data. >= 128; exactly 128 in 1.0 files.
+                        header data, which older readers skip by header_size: see version 1.1).
+      12     4  u32     header_size: offset of the texton data. >= 128; exactly 128 in files written
+                        as 1.0 (a 1.0 reader ignores bytes [128, header_size) whatever they hold).
       16     4  u32     total_size: length of the whole file, CRC included.
                         Must equal header_size + texton bytes + 4.
       20     4  u32     flags: reserved, must be 0.
@@ -47,7 +50,9 @@
       96     4  u32     bake_iterations: alternating-projection iterations run (metadata).
      100     4  u32     bake_seed: seed of the random-phase start (metadata).
      104     4  u32     bake_rme: relative model error of the stored (quantized) texton, Q8.24
-                        (metadata).
+                        (metadata), summed over every frequency including zero as Galerne,
+                        Leclaire and Moisan define it (bakers of version 1.1.0 and before left
+                        the zero frequency out).
      108     2  u16     exemplar_width  (metadata, 0 if unknown).
      110     2  u16     exemplar_height (metadata, 0 if unknown).
      112    16  u8[16]  reserved, must be 0.
@@ -84,8 +89,73 @@
                                                                         DSN_ERR_RESERVED
     12. grey colour transform with non-zero unused entries ........... DSN_ERR_COLOR_TRANSFORM
     13. a texton value of -128 / -32768, or non-zero outside the disk  DSN_ERR_TEXTON
+    (a 1.1 reader continues with steps 14 and 15 of version 1.1 below)
     All size arithmetic is done so that it cannot overflow (sizes are compared before they are added).
    A buffer longer than total_size is accepted (trailing bytes are ignored).
+
+   ==================================================================================================
+   .dsnt version 1.1: sections, and the texton pyramid
+   ==================================================================================================
+
+   A 1.1 file is a 1.0 file (every rule above holds, version_minor = 1) whose header continues past
+   byte 128 with sections: header_size covers them, and the texton still starts at header_size. A 1.0
+   reader skips to header_size and reads the texton unchanged, so old readers read new files; a 1.1
+   reader reads 1.0 files (they have no sections). The CRC still covers the whole file.
+
+   Sections (only when version_minor >= 1; a minor-0 file's bytes [128, header_size) are ignored)
+   Bytes [128, header_size) are a sequence of sections that fills them exactly:
+       u32 kind, u32 size (payload bytes), payload, then zero bytes up to a multiple of 4
+   so every section starts 4-aligned relative to the file. A known kind appears at most once; readers
+   skip kinds they do not know (forward compatibility: a later minor adds kinds, not fixed fields).
+   Kinds: 1 = texton pyramid. Kind 0 and every other value are unknown to 1.1 readers.
+
+   Section kind 1: texton pyramid (payload offsets from the start of the payload)
+     off   size    type       field
+       0      1    u8         level_count L: 1..8
+       1      3    u8[3]      reserved, must be 0
+       4     4L    records    one 4-byte record per level, level 1 first:
+                                u8 width, u8 height: odd, 1..255
+                                i8 exponent e_l: -24..24
+                                u8 reserved, must be 0
+    4+4L      n    values     the levels' values, level 1 first, each width * height * channels values
+                              (i8 or i16 as the texton's `bits`, little-endian), row-major from the top
+                              row, channels interleaved, in [-127, 127] / [-32767, 32767] (-128 / -32768
+                              reserved, as in the texton).
+   size = 4 + 4 L + sum over the levels of width_l * height_l * channels * bits / 8, exactly.
+
+   Meaning of the pyramid
+   Level 0 is the texton as the continuous mode reads it (bilinearly): with r = (width - 1) / 2,
+   r' = (height - 1) / 2, hat(u, v) = max(0, 1 - |u|) max(0, 1 - |v|) the 2D tent and
+   t[j] = q[j] scale[c] / 2^40 the texton values at j in [-r, r] x [-r', r'],
+       t0(x) = sum_j t[j] hat(x - j).
+   Level l >= 1 stands for t0 convolved with the isotropic Gaussian G_l of standard deviation
+   sigma_l = 2^(l-1) texels: the prefiltered texton that a pixel filter of width about 2^l texels sees
+   (filtering a spot noise filters its texton: the noise of the same impulses with t * G_l is the
+   filtered noise). Its values are the samples of a bilinear texton at spacing 2^l, centred on the
+   impulse (level-l value (i, j) sits at offset (2^l (i - r_l), 2^l (j - r'_l)) in level-0 texels,
+   r_l = (width_l - 1) / 2, r'_l = (height_l - 1) / 2; no half-texel shift between levels):
+       t_l(x) = sum_(i,j) s_l[i, j] hat(x / 2^l - (i - r_l, j - r'_l)),
+       s_l = q_l scale[c] 2^e_l / 2^40
+   with q_l the stored integers and e_l the level's exponent (one per level, shared by the channels).
+   A writer chooses s_l as the L2 projection of t0 * G_l onto the span of those tents (least squares):
+   by Campbell's theorem that minimizes the expected squared error of the filtered noise, lambda times
+   the integral of (t_l - t0 * G_l)^2, so it is the best prefilter of that form. Level windows keep the
+   spill of the blurred texton beyond the original support (discarding it would make the mean drift).
+   dsn-bake makes L = floor(log2(max(r, r'))) + 1 levels (none for a 1 x 1 texton) with
+   r_l = ceil((r + 1 + 3 sigma_l) / 2^l) per axis; readers accept any level sizes within the rules
+   above. The mean of a level follows from its stored values alone: the noise of t_l has expectation
+   lambda * integral t_l = lambda 4^l sum s_l, so a reader computes each level's exact offset from the
+   integer sums of q_l (nothing of it is stored).
+
+   Validation order, continued (after step 13; only when version_minor >= 1)
+    14. section framing: a section header or payload (with its padding) overruns header_size, a
+        non-zero padding byte, a known kind that appears twice ..... DSN_ERR_SECTION
+    15. pyramid contents: level_count 0 or above 8, reserved bytes non-zero, a payload too short for
+        its records, a width or height even or 0, an exponent outside -24..24, a size that differs from
+        the formula above, a value of -128 / -32768 ................. DSN_ERR_PYRAMID
+   A runtime built without the filtered evaluation (DSN_FILTERING 0 in dsn.h, the small build) skips
+   steps 14 and 15: it reads every 1.1 file as a 1.0 file, and so accepts files whose sections a full
+   build rejects.
 
    ================================================================================================== */
 #ifndef DSN_FORMAT_H
@@ -97,7 +167,10 @@
 #define DSN_FORMAT_MAGIC "\211DSN\r\n\032\n" /* 0x89 'D' 'S' 'N' CR LF SUB LF */
 #define DSN_FORMAT_MAGIC_SIZE 8u
 #define DSN_FORMAT_VERSION_MAJOR 1u
-#define DSN_FORMAT_VERSION_MINOR 0u
+#define DSN_FORMAT_VERSION_MINOR                                                                             \
+    1u /* the newest minor this header describes; files without sections are                                 \
+           written as minor 0 (DSN_FORMAT_VERSION_MINOR_PLAIN) */
+#define DSN_FORMAT_VERSION_MINOR_PLAIN 0u
 #define DSN_FORMAT_HEADER_SIZE 128u
 #define DSN_FORMAT_CRC_SIZE 4u
 #define DSN_FORMAT_MAX_SIDE 255u
@@ -125,6 +198,17 @@
 #define DSN_OFFSET_EXEMPLAR_HEIGHT 110u
 #define DSN_OFFSET_RESERVED 112u
 #define DSN_RESERVED_SIZE 16u
+
+/* Sections (version 1.1). */
+#define DSN_FORMAT_SECTIONS_MINOR 1u /* sections are read from files of this minor version on */
+#define DSN_SECTION_HEADER_SIZE 8u   /* u32 kind, u32 size */
+#define DSN_SECTION_ALIGNMENT 4u
+#define DSN_SECTION_PYRAMID 1u
+#define DSN_PYRAMID_HEADER_SIZE 4u /* u8 level_count, u8[3] reserved */
+#define DSN_PYRAMID_RECORD_SIZE 4u /* u8 width, u8 height, i8 exponent, u8 reserved */
+#define DSN_PYRAMID_MAX_LEVELS 8u
+#define DSN_PYRAMID_EXPONENT_MIN (-24)
+#define DSN_PYRAMID_EXPONENT_MAX 24
 
 /* Field values. */
 #define DSN_SHAPE_RECTANGLE 0u
@@ -168,13 +252,15 @@
     X(DSN_ERR_CONTINUOUS_MISMATCH, -20, "continuous mode on a lattice-baked asset is not allowed")           \
     X(DSN_ERR_SCRATCH, -21, "scratch buffer missing or too small")                                           \
     X(DSN_ERR_TILE_SIZE, -22, "tile width or height is 0 or too large")                                      \
-    X(DSN_ERR_ARGUMENT, -23, "an argument is out of its documented range")
+    X(DSN_ERR_ARGUMENT, -23, "an argument is out of its documented range")                                   \
+    X(DSN_ERR_SECTION, -24, "a header section overruns the header, is badly padded or repeated")             \
+    X(DSN_ERR_PYRAMID, -25, "invalid texton pyramid: level count, sizes, exponent or reserved field")
 
 /* clang-format off */
 #define DSN_ERROR_ENUM_ENTRY(name, value, message) name = value,
 enum dsn_error {
     DSN_LIST_ERRORS(DSN_ERROR_ENUM_ENTRY)
-    DSN_ERR_LOWEST = DSN_ERR_ARGUMENT /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
+    DSN_ERR_LOWEST = DSN_ERR_PYRAMID /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
 };
 /* clang-format on */
 #undef DSN_ERROR_ENUM_ENTRY

@@ -17,9 +17,12 @@ namespace {
 const char *const kUsage =
     "usage: dsn-inspect A.dsnt [--json]\n"
     "\n"
-    "Validates a .dsnt asset with the runtime loader and prints its header. With --json, prints\n"
-    "the header, mean, color_transform, support and texton (dequantized values, row-major,\n"
-    "channels interleaved, top-left first) as one JSON object.\n"
+    "Validates a .dsnt asset with the runtime loader and prints its header, the levels of its texton\n"
+    "pyramid (format 1.1: side, spacing, exponent and bytes of each) and its size with and without the\n"
+    "pyramid. With --json, prints the header, mean, color_transform, support, texton and pyramid levels\n"
+    "(dequantized values, row-major, channels interleaved, top-left first) as one JSON object. bake_rme\n"
+    "(RME in the text) is the relative model error of the stored texton that the baker recorded, summed\n"
+    "over every frequency as Galerne, Leclaire and Moisan define it (dsn-bake --help says more).\n"
     "\n"
     "  --json                   print JSON instead of text\n"
     "  -h, --help               this help\n"
@@ -28,8 +31,9 @@ const char *const kUsage =
     "Errors are one line on stderr: exit 2 for a usage mistake (the line ends with \"(see --help)\"),\n"
     "exit 1 for a file that cannot be read or is not a valid asset (the loader's message).\n";
 
-// Assets are at most 128 + 255 * 255 * 3 * 2 + 4 bytes; anything much larger is not one.
-const long kMaxFileSize = 1 << 20;
+// Assets are at most about 3.5 MB (a 255 x 255 RGB 16-bit texton and 8 pyramid levels as large);
+// anything larger is not one.
+const long kMaxFileSize = 4 << 20;
 
 const double kQ24 = 16777216.0;
 const double kScaleOne = 1099511627776.0; // 2^40
@@ -60,9 +64,40 @@ const char *interpolation_name(uint32_t mode) {
     return mode == DSN_INTERPOLATION_BILINEAR ? "bilinear" : "lattice";
 }
 
+size_t level_bytes(const dsn_asset &asset, const dsn_level &level) {
+    return size_t(level.width) * level.height * asset.channels * (asset.bits / 8);
+}
+
+// A pyramid level's values as the numbers they stand for: q * scale[c] * 2^exponent / 2^40.
+std::vector<double> level_values(const dsn_asset &asset, const dsn_level &level) {
+    std::vector<double> values;
+    const size_t count = size_t(level.width) * level.height * asset.channels;
+    for (size_t i = 0; i < count; i++) {
+        const int32_t q =
+            asset.bits == 8 ? dsn_read_i8(level.values + i) : dsn_read_i16le(level.values + 2 * i);
+        values.push_back(
+            std::ldexp(double(q) * double(asset.scale[i % asset.channels]), level.exponent - 40));
+    }
+    return values;
+}
+
 double texton_value(const dsn_asset &asset, uint32_t row, uint32_t column, uint32_t channel) {
     return double(dsn_asset_texton_value(&asset, row, column, channel)) * double(asset.scale[channel]) /
            kScaleOne;
+}
+
+// The levels 1 .. pyramid_levels, and the bytes the pyramid's section takes in the file (0 without one).
+std::vector<dsn_level> pyramid_levels(const dsn_asset &asset, size_t &section_bytes) {
+    std::vector<dsn_level> levels;
+    size_t payload = DSN_PYRAMID_HEADER_SIZE;
+    for (uint32_t l = 1; l <= asset.pyramid_levels; l++) {
+        dsn_level level;
+        if (dsn_asset_level(&asset, l, &level) != DSN_OK) break;
+        levels.push_back(level);
+        payload += DSN_PYRAMID_RECORD_SIZE + level_bytes(asset, level);
+    }
+    section_bytes = levels.empty() ? 0 : DSN_SECTION_HEADER_SIZE + (payload + 3) / 4 * 4;
+    return levels;
 }
 
 void print_text(const char *path, size_t size, const dsn_asset &asset) {
@@ -91,6 +126,17 @@ void print_text(const char *path, size_t size, const dsn_asset &asset) {
     std::printf("\nbake            %u iterations, seed %u, RME %.6f\n", asset.bake_iterations,
                 asset.bake_seed, asset.bake_rme_q24 / kQ24);
     std::printf("exemplar        %ux%u\n", asset.exemplar_width, asset.exemplar_height);
+    size_t section_bytes;
+    const std::vector<dsn_level> levels = pyramid_levels(asset, section_bytes);
+    if (levels.empty()) {
+        std::printf("pyramid         none (the filtered evaluation fades to the mean)\n");
+        return;
+    }
+    std::printf("pyramid         %zu levels, %zu bytes; the asset is %zu bytes without it\n", levels.size(),
+                section_bytes, size - section_bytes);
+    for (size_t l = 0; l < levels.size(); l++)
+        std::printf("  level %zu       %ux%u at spacing %u, exponent %d, %zu bytes\n", l + 1, levels[l].width,
+                    levels[l].height, 1u << (l + 1), levels[l].exponent, level_bytes(asset, levels[l]));
 }
 
 void print_numbers(const std::vector<double> &values) {
@@ -134,7 +180,19 @@ void print_json(const char *path, size_t size, const dsn_asset &asset) {
     print_numbers(mask);
     std::printf("},\n  \"texton\": ");
     print_numbers(texton);
-    std::printf("\n}\n");
+    size_t section_bytes;
+    const std::vector<dsn_level> levels = pyramid_levels(asset, section_bytes);
+    std::printf(",\n  \"bytes_without_pyramid\": %zu,\n  \"pyramid\": [", size - section_bytes);
+    for (size_t l = 0; l < levels.size(); l++) {
+        std::printf(
+            "%s\n    {\"level\": %zu, \"width\": %u, \"height\": %u, \"spacing\": %u, \"exponent\": %d, "
+            "\"bytes\": %zu, \"values\": ",
+            l ? "," : "", l + 1, levels[l].width, levels[l].height, 1u << (l + 1), levels[l].exponent,
+            level_bytes(asset, levels[l]));
+        print_numbers(level_values(asset, levels[l]));
+        std::printf("}");
+    }
+    std::printf("%s]\n}\n", levels.empty() ? "" : "\n  ");
 }
 
 int inspect(dsn::CommandLine &command_line) {

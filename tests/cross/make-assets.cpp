@@ -1,9 +1,11 @@
 // make-assets.cpp - writes tests/cross/golden_assets.cpp: the four fixed assets the golden program hashes,
-// encoded once by the asset writer from fixed integers and committed as byte arrays.
+// encoded once by the asset writer from fixed integers, each with the texton pyramid the baker makes of it
+// (format 1.1: every target's loader, the small build's included, reads them), committed as byte arrays.
 //
 // The committed arrays, not this program, are the source of truth: every target of the cross test reads
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
 // tests/cross/golden.txt in the same commit.
+#include "../../offline/bake_internal.h"
 #include "../../offline/tools/file_output.h"
 #include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
@@ -154,7 +156,8 @@ int main(int argc, char **argv) {
         return argc == 2 ? 0 : 2;
     }
     try {
-        const std::vector<NamedAsset> assets = {grey8(), rgb8(), grey16(), rgb16()};
+        std::vector<NamedAsset> assets = {grey8(), rgb8(), grey16(), rgb16()};
+        for (NamedAsset &asset : assets) asset.fields.pyramid = dsn::texton_pyramid(asset.fields);
         const std::string text = source_file(assets);
         dsn::write_file_atomically(argv[1], std::vector<unsigned char>(text.begin(), text.end()));
     } catch (const std::exception &error) {
