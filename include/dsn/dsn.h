@@ -348,11 +348,11 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
    Point k of a batch is (xs[k], ys[k]); out receives count * channels values, point k's channels at
    out[k * channels], exactly what the per-point function of the same type returns there (the float
    variant: dsn_continuous_point_float, coordinates converted by dsn_coordinate_from_double). The points
-   may lie anywhere, in any order; the batch evaluates them together, hashing and interpolating across
-   points on vectors (the widest copy the CPU runs, as for tiles), so it pays from a few dozen points on.
-   The scratch holds a zero-bordered copy of the texton widened to 32 bits and the candidates' work
-   arrays: at least dsn_continuous_batch_scratch_size() bytes (no alignment needed; it depends on the
-   asset's texton size, not on count: about 60 KB for a 31 x 31 RGB texton). Returns DSN_OK (count 0
+   may lie anywhere, in any order; where the CPU runs AVX2 (the copy init chose, as for tiles) the batch
+   evaluates them together, hashing and interpolating across points on vectors, elsewhere point by point.
+   The scratch holds a table of the texton's 2 x 2 texel neighbourhoods and the work arrays: at least
+   dsn_continuous_batch_scratch_size() bytes (no alignment needed; it depends on the asset's texton size,
+   not on count: about 32 KB for a 31 x 31 RGB texton). Returns DSN_OK (count 0
    included: nothing is read or written), DSN_ERR_NULL (a null pointer with count > 0, or a noise not
    configured), DSN_ERR_CONTINUOUS_MISMATCH or DSN_ERR_SCRATCH; on an error nothing is written.
    dsn_continuous_batch_scratch_size returns 0 for a noise that the continuous functions refuse. */
