@@ -308,14 +308,15 @@ int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
     return err;
 }
 
-/* The grid's points as one batch (the fixed values, the same bytes as "c-point"; with `with_float`, then
-   the float values from the coordinates of continuous_conversions). The small build has no batch
-   functions (DSN_CONTINUOUS_BATCH 0): it takes the points one by one, which must give the same bytes. */
+/* The grid's points as one batch: the fixed values, then the float values from the coordinates of
+   continuous_conversions. The small build has no batch functions (DSN_CONTINUOUS_BATCH 0): it takes the
+   points one by one, which must give the same bytes. (The continuous grids only: the emulated
+   microcontroller evaluates every kind point by point, within the run's time limit.) */
 int64_t batch_x[max_window_values / DSN_MAX_CHANNELS], batch_y[max_window_values / DSN_MAX_CHANNELS];
 double batch_x_double[max_window_values / DSN_MAX_CHANNELS],
     batch_y_double[max_window_values / DSN_MAX_CHANNELS];
 
-int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash, bool with_float) {
+int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
     const uint32_t points = grid.width * grid.height, count = points * dsn_noise_channels(noise);
     if (points * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
     for (uint32_t j = 0; j < grid.height; j++)
@@ -330,7 +331,7 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash, bool w
     if (scratch_size > scratch_capacity) return DSN_ERR_SCRATCH;
     int err = dsn_continuous_batch_fixed(noise, batch_x, batch_y, points, tile_fixed_values, tile_scratch,
                                          scratch_size);
-    if (err == DSN_OK && with_float)
+    if (err == DSN_OK)
         err = dsn_continuous_batch_float(noise, batch_x_double, batch_y_double, points, tile_float_values,
                                          tile_scratch, scratch_size);
 #else
@@ -338,23 +339,15 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash, bool w
     const uint32_t channels = dsn_noise_channels(noise);
     for (uint32_t k = 0; err == DSN_OK && k < points; k++) {
         err = dsn_continuous_point_fixed(noise, batch_x[k], batch_y[k], &tile_fixed_values[k * channels]);
-        if (err == DSN_OK && with_float)
+        if (err == DSN_OK)
             err = dsn_continuous_point_float(noise, batch_x_double[k], batch_y_double[k],
                                              &tile_float_values[k * channels]);
     }
 #endif
     if (err != DSN_OK) return err;
     hash_fixed(hash, tile_fixed_values, count);
-    if (with_float) hash_float(hash, tile_float_values, count);
+    hash_float(hash, tile_float_values, count);
     return DSN_OK;
-}
-
-int continuous_batch_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
-    return continuous_batch(noise, grid, hash, false);
-}
-
-int continuous_batch_fixed_float(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
-    return continuous_batch(noise, grid, hash, true);
 }
 
 /* IEEE bit patterns for the coordinate conversions: zeros, halves, the int32 ends, beyond 2^63, the
@@ -431,10 +424,9 @@ const Kind kinds[] = {
     {"c-tile", 0, continuous_tile_fixed, &continuous_plan}, /* the same bytes as "c-point" */
     {"c-float", 0, continuous_conversions, &continuous_plan},
     {"a-point", 0, continuous_point_fixed, &affine_plan},
-    {"a-tile", 0, continuous_tile_fixed, &affine_plan},         /* the same bytes as "a-point" */
-    {"a-float", 0, continuous_conversions, &affine_plan},       /* per point, tile float and u8 */
-    {"c-batch", 0, continuous_batch_fixed, &continuous_plan},   /* the same bytes as "c-point" */
-    {"a-batch", 0, continuous_batch_fixed_float, &affine_plan}, /* fixed then float, as one batch each */
+    {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
+    {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
+    {"c-batch", 0, continuous_batch, &continuous_plan},   /* fixed then float, each as one batch */
 };
 
 void write_line(const char *kind, const char *asset, const char *detail) {
