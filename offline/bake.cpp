@@ -88,6 +88,7 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
     sot_options.iterations = options.iterations;
     sot_options.seed = options.seed;
     sot_options.stop_tolerance = options.stop_tolerance;
+    sot_options.minimum_iterations = early_stop_minimum_iterations(exemplar.width, exemplar.height);
     sot_options.progress = options.progress;
     result.sot = sot_alternating_projections(result.target, support, sot_options);
     result.rme = relative_model_error(result.target, result.sot.texton);
@@ -110,6 +111,7 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
     result.rme_quantized = relative_model_error(result.target, result.quantized_texton);
     result.fields = assemble_asset(result, options, exemplar.width, exemplar.height);
     result.asset = encode_asset(result.fields);
+    result.verdict = bake_verdict(exemplar, result, options);
     return result;
 }
 

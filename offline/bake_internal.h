@@ -63,14 +63,23 @@ Spectrum random_phase_start(const Spectrum &target, uint32_t seed);
 struct SotOptions {
     int iterations = 1000;
     uint32_t seed = 0;
-    // Early stop: after at least `stop_window` iterations, stop when the RME improved by less than
-    // `stop_tolerance` over the last `stop_window` iterations. 0 runs every iteration.
+    // Early stop: after more than `stop_window` iterations and at least `minimum_iterations`, stop when
+    // the RME improved by less than `stop_tolerance` over the last `stop_window` iterations. 0 runs every
+    // iteration.
     double stop_tolerance = 0;
     int stop_window = 50;
+    int minimum_iterations = 0;
     // Uses full-size 2-D FFTs per iteration instead of the pruned transforms: the slow reference.
     bool reference = false;
     BakeProgress progress; // may be empty
 };
+
+// The fewest iterations the bake runs before its early stop may end the run: kEarlyStopMinimumWork /
+// (width x height), the work of four iterations on a one-megapixel exemplar. Small exemplars cost little
+// per iteration, and their error curves (a large texton on a small torus) descend slowly or sit on a
+// plateau and then drop, which a window of 50 iterations mistakes for convergence.
+constexpr double kEarlyStopMinimumWork = 4194304;
+int early_stop_minimum_iterations(int width, int height);
 
 // Alternating projections between the textons supported on `support` and the textons whose spectrum
 // modulus is |target| (one common phase per frequency for all channels), from random_phase_start.

@@ -180,8 +180,14 @@ uint32_t big_endian_u32(const unsigned char *bytes) {
 void check_size(const std::string &name, uint64_t width, uint64_t height) {
     if (width == 0 || height == 0) fail(name, "image has zero size");
     if (width > uint64_t(kMaxExemplarSide) || height > uint64_t(kMaxExemplarSide))
-        fail(name, "image is " + std::to_string(width) + "x" + std::to_string(height) +
-                       ", larger than the limit of " + std::to_string(kMaxExemplarSide) + " per side");
+        fail(name,
+             "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                 ", larger than the limit of " + std::to_string(kMaxExemplarSide) +
+                 " per side; crop it (keeps the texture's scale), e.g. convert IN -gravity center -crop " +
+                 std::to_string(kMaxExemplarSide) + "x" + std::to_string(kMaxExemplarSide) +
+                 "+0+0 +repage OUT.png, or downscale it, e.g. convert IN -resize " +
+                 std::to_string(kMaxExemplarSide) + "x" + std::to_string(kMaxExemplarSide) +
+                 " OUT.png (ImageMagick)");
 }
 
 // Channels kept: grey (+alpha) -> 1, RGB(A) -> 3.

@@ -1,7 +1,9 @@
-// preview.cpp - the preview sheet: exemplar | Gaussian version (spectral ADSN) | texton | runtime DSN.
-// The only offline file that calls the runtime: the synthesis is what the baked asset really gives.
+// preview.cpp - the preview sheet: exemplar | Gaussian reference (spectral ADSN) | texton | runtime DSN,
+// each labelled, and the bake's verdict below. The only offline file that calls the runtime: the
+// synthesis is what the baked asset really gives.
 #include "bake_internal.h"
 #include "dsn/dsn.h"
+#include "label.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +15,7 @@ namespace dsn {
 namespace {
 
 const int kGap = 4;
-const unsigned char kBackground = 40;
+const unsigned char kBackground = 40, kText = 225;
 
 void append_bytes(void *context, void *data, int size) {
     auto *bytes = static_cast<std::vector<unsigned char> *>(context);
@@ -32,13 +34,13 @@ struct Sheet {
     }
 };
 
-// Draws a planar image (grey or RGB) at (left, 0).
-void draw(Sheet &sheet, const Image &image, int left) {
+// Draws a planar image (grey or RGB) at (left, top).
+void draw(Sheet &sheet, const Image &image, int left, int top) {
     for (int y = 0; y < image.height; y++)
         for (int x = 0; x < image.width; x++) {
             double rgb[3];
             for (int c = 0; c < 3; c++) rgb[c] = image.at(x, y, image.channels == 3 ? c : 0);
-            sheet.put(left + x, y, rgb);
+            sheet.put(left + x, top + y, rgb);
         }
 }
 
@@ -108,16 +110,56 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
 
 } // namespace
 
+namespace {
+
+// `text` cut into lines of at most `columns` characters, at spaces where it can.
+std::vector<std::string> wrap(const std::string &text, size_t columns) {
+    std::vector<std::string> lines;
+    std::string rest = text;
+    while (rest.size() > columns) {
+        size_t cut = rest.rfind(' ', columns);
+        if (cut == std::string::npos || cut == 0) cut = columns;
+        lines.push_back(rest.substr(0, cut));
+        rest = rest.substr(rest[cut] == ' ' ? cut + 1 : cut);
+    }
+    lines.push_back(rest);
+    return lines;
+}
+
+} // namespace
+
 std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &result, uint32_t seed) {
     const int width = exemplar.width, height = exemplar.height;
     const Image panels[4] = {exemplar, gaussian_version(result.model, seed),
                              texton_panel(result.quantized_texton, width, height),
                              runtime_synthesis(result.asset, width, height, seed)};
+    const char *const labels[4] = {"exemplar", "Gaussian reference", "texton (SOT)", "runtime synthesis"};
+    const int scale = width >= 160 ? 2 : 1, line = 12 * scale;
+    int columns[4], sheet_width = 3 * kGap;
+    for (int i = 0; i < 4; i++) {
+        columns[i] = std::max(width, label_width(labels[i], scale) + kGap);
+        sheet_width += columns[i];
+    }
+    // The verdict under the panels, wrapped to the sheet's width (a character is 6 font units wide).
+    std::vector<std::string> text;
+    const size_t characters = size_t(std::max(20, sheet_width / (6 * scale) - 1));
+    for (const std::string &part : wrap("verdict: " + result.verdict.summary, characters))
+        text.push_back(part);
+    for (const std::string &suggestion : result.verdict.suggestions)
+        for (const std::string &part : wrap("- " + suggestion, characters)) text.push_back(part);
     Sheet sheet;
-    sheet.width = 4 * width + 3 * kGap;
-    sheet.height = height;
+    sheet.width = sheet_width;
+    sheet.height = line + kGap + height + kGap + int(text.size()) * line;
     sheet.pixels.assign(size_t(sheet.width) * size_t(sheet.height) * 3, kBackground);
-    for (int i = 0; i < 4; i++) draw(sheet, panels[i], i * (width + kGap));
+    int left = 0;
+    for (int i = 0; i < 4; i++) {
+        draw_label(sheet.pixels, sheet.width, sheet.height, left, 0, labels[i], scale, kText);
+        draw(sheet, panels[i], left + (columns[i] - width) / 2, line + kGap);
+        left += columns[i] + kGap;
+    }
+    for (size_t i = 0; i < text.size(); i++)
+        draw_label(sheet.pixels, sheet.width, sheet.height, 0, line + 2 * kGap + height + int(i) * line,
+                   text[i], scale, kText);
     std::vector<unsigned char> png;
     if (!stbi_write_png_to_func(append_bytes, &png, sheet.width, sheet.height, 3, sheet.pixels.data(),
                                 sheet.width * 3))

@@ -15,7 +15,9 @@
 // of 2 C (M + N).
 #include "bake_internal.h"
 #include "kiss_plan.h"
+#include "parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -85,7 +87,7 @@ double rme_from_sums(double model_energy, const ProjectionSums &sums) {
 bool should_stop(const std::vector<double> &rme, const SotOptions &options) {
     if (!(options.stop_tolerance > 0) || options.stop_window < 1) return false;
     const size_t window = size_t(options.stop_window);
-    if (rme.size() <= window) return false;
+    if (rme.size() <= window || rme.size() < size_t(std::max(0, options.minimum_iterations))) return false;
     return rme[rme.size() - 1 - window] - rme.back() < options.stop_tolerance;
 }
 
@@ -144,7 +146,11 @@ class ReferenceIteration {
     double model_energy_ = 0;
 };
 
-// The pruned iteration on the half spectrum (see the top of the file).
+// The pruned iteration on the half spectrum (see the top of the file), in two parallel passes per
+// iteration: row pairs (inverse row transform, crop to the support, forward row transform) and columns
+// xi1 (forward column transforms of every channel, projection, inverse column transforms for the next
+// iteration). Each column's RME sums are kept apart and added in column order, so the result is the same
+// on any number of threads.
 class PrunedIteration {
   public:
     PrunedIteration(const Spectrum &target, const Support &support)
@@ -154,9 +160,8 @@ class PrunedIteration {
           column_forward_(make_fft_plan(target.height, false)),
           row_inverse_(make_fft_plan(target.width, true)), row_forward_(make_fft_plan(target.width, false)),
           model_(half_of(target)), spectrum_(model_.size()), rows_(size_t(channels_ * side_ * half_)),
-          texton_(size_t(channels_ * side_ * side_)), column_in_(size_t(height_)),
-          column_out_(size_t(height_)), row_in_(size_t(width_)), row_out_(size_t(width_)),
-          column_weight_(size_t(half_), 2.0) {
+          texton_(size_t(channels_ * side_ * side_)), column_weight_(size_t(half_), 2.0),
+          column_sums_(size_t(half_)) {
         column_weight_[0] = 1;
         if (width_ % 2 == 0) column_weight_[size_t(half_ - 1)] = 1; // xi1 = M/2 is its own conjugate
         for (size_t k = 0; k < size_t(half_); k++)
@@ -166,24 +171,51 @@ class PrunedIteration {
                         column_weight_[k] * std::norm(std::complex<double>(model_[column(c, k) + i]));
     }
 
-    void start(const Spectrum &start) { spectrum_ = half_of(start); }
+    void start(const Spectrum &start) {
+        spectrum_ = half_of(start);
+        parallel_ranges(size_t(half_), column_items_per_thread(), [&](size_t first, size_t last) {
+            std::vector<Complex> column_out(static_cast<size_t>(height_));
+            for (size_t k = first; k < last; k++) inverse_columns(k, column_out);
+        });
+    }
 
     double step(bool impose) {
-        spectrum_to_texton();
-        texton_to_spectrum();
-        ProjectionSums sums;
+        const size_t pairs = (row_count() + 1) / 2;
+        parallel_ranges(pairs, items_per_thread(size_t(width_)), [&](size_t first, size_t last) {
+            std::vector<Complex> row_in(static_cast<size_t>(width_)), row_out(row_in.size());
+            for (size_t pair = first; pair < last; pair++) row_pair(2 * pair, row_in, row_out);
+        });
         const size_t stride = size_t(half_) * size_t(height_);
-        for (size_t k = 0; k < size_t(half_); k++)
-            project_modulus(&spectrum_[column(0, k)], &model_[column(0, k)], size_t(height_), stride,
-                            channels_, column_weight_[k], impose, sums, k == 0 ? 1 : 0);
+        parallel_ranges(size_t(half_), column_items_per_thread(), [&](size_t first, size_t last) {
+            std::vector<Complex> column_in(static_cast<size_t>(height_)), column_out(column_in.size());
+            for (size_t k = first; k < last; k++) {
+                forward_columns(k, column_in);
+                column_sums_[k] = ProjectionSums();
+                project_modulus(&spectrum_[column(0, k)], &model_[column(0, k)], size_t(height_), stride,
+                                channels_, 1.0, impose, column_sums_[k], k == 0 ? 1 : 0);
+                if (impose) inverse_columns(k, column_out);
+            }
+        });
+        ProjectionSums sums;
+        for (size_t k = 0; k < size_t(half_); k++) {
+            sums.texton_energy += column_weight_[k] * column_sums_[k].texton_energy;
+            sums.cross += column_weight_[k] * column_sums_[k].cross;
+        }
         return rme_from_sums(model_energy_, sums);
     }
 
     const std::vector<double> &texton_values() const { return texton_; }
 
   private:
+    // A column of every channel per item, transformed both ways.
+    size_t column_items_per_thread() const {
+        return items_per_thread(2 * size_t(channels_) * size_t(height_));
+    }
+
     size_t column(int c, size_t k) const { return (size_t(c) * size_t(half_) + k) * size_t(height_); }
     size_t row_count() const { return size_t(channels_) * size_t(side_); }
+    // rows_ holds, for every channel and support row dy, the half row spectrum xi1 = 0..M/2.
+    Complex &row_entry(size_t row, size_t k) { return rows_[row * size_t(half_) + k]; }
 
     // Columns xi1 = 0..M/2 of every channel, each column contiguous over xi2.
     std::vector<Complex> half_of(const Spectrum &full) const {
@@ -196,37 +228,61 @@ class PrunedIteration {
         return half;
     }
 
-    // Inverse: columns -> support rows -> support values (masked), scaled by 1 / (M N).
-    void spectrum_to_texton() {
-        for (int c = 0; c < channels_; c++)
-            for (size_t k = 0; k < size_t(half_); k++) {
-                kiss_fft(column_inverse_.get(), as_kiss(&spectrum_[column(c, k)]),
-                         as_kiss(column_out_.data()));
-                for (int dy = 0; dy < side_; dy++)
-                    rows_[(size_t(c) * size_t(side_) + size_t(dy)) * size_t(half_) + k] =
-                        column_out_[wrap(dy - radius_, height_)];
-            }
+    // Column k of every channel -> its support rows (inverse transform, only 2r+1 outputs kept).
+    void inverse_columns(size_t k, std::vector<Complex> &column_out) {
+        for (int c = 0; c < channels_; c++) {
+            kiss_fft(column_inverse_.get(), as_kiss(&spectrum_[column(c, k)]), as_kiss(column_out.data()));
+            for (int dy = 0; dy < side_; dy++)
+                row_entry(size_t(c) * size_t(side_) + size_t(dy), k) =
+                    column_out[wrap(dy - radius_, height_)];
+        }
+    }
+
+    // Support rows of column k of every channel -> column k of the spectrum (forward transform).
+    void forward_columns(size_t k, std::vector<Complex> &column_in) {
+        std::fill(column_in.begin(), column_in.end(), Complex(0));
+        for (int c = 0; c < channels_; c++) {
+            for (int dy = 0; dy < side_; dy++)
+                column_in[wrap(dy - radius_, height_)] = row_entry(size_t(c) * size_t(side_) + size_t(dy), k);
+            kiss_fft(column_forward_.get(), as_kiss(column_in.data()), as_kiss(&spectrum_[column(c, k)]));
+        }
+    }
+
+    // Rows a and a + 1 (two real rows in one complex transform): half spectra -> support values
+    // (masked, scaled by 1 / (M N)) -> half spectra of the cropped rows.
+    void row_pair(size_t a, std::vector<Complex> &row_in, std::vector<Complex> &row_out) {
+        const size_t b = a + 1;
+        const bool second = b < row_count();
+        pack_hermitian_rows(&rows_[a * size_t(half_)], second ? &rows_[b * size_t(half_)] : nullptr, row_in);
+        kiss_fft(row_inverse_.get(), as_kiss(row_in.data()), as_kiss(row_out.data()));
         const float normalization = 1.0f / (float(width_) * float(height_));
-        for (size_t a = 0; a < row_count(); a += 2) {
-            const size_t b = a + 1;
-            const Complex *first = &rows_[a * size_t(half_)];
-            const Complex *second = b < row_count() ? &rows_[b * size_t(half_)] : nullptr;
-            pack_hermitian_rows(first, second);
-            kiss_fft(row_inverse_.get(), as_kiss(row_in_.data()), as_kiss(row_out_.data()));
-            const size_t dy = a % size_t(side_);
-            for (int dx = 0; dx < side_; dx++) {
-                const Complex value = row_out_[wrap(dx - radius_, width_)] * normalization;
-                const size_t mask_index = dy * size_t(side_) + size_t(dx);
-                texton_[a * size_t(side_) + size_t(dx)] = mask_[mask_index] ? value.real() : 0.0;
-                if (second)
-                    texton_[b * size_t(side_) + size_t(dx)] =
-                        mask_[(b % size_t(side_)) * size_t(side_) + size_t(dx)] ? value.imag() : 0.0;
+        for (int dx = 0; dx < side_; dx++) {
+            const Complex value = row_out[wrap(dx - radius_, width_)] * normalization;
+            texton_[a * size_t(side_) + size_t(dx)] =
+                mask_[(a % size_t(side_)) * size_t(side_) + size_t(dx)] ? value.real() : 0.0;
+            if (second)
+                texton_[b * size_t(side_) + size_t(dx)] =
+                    mask_[(b % size_t(side_)) * size_t(side_) + size_t(dx)] ? value.imag() : 0.0;
+        }
+        std::fill(row_in.begin(), row_in.end(), Complex(0));
+        for (int dx = 0; dx < side_; dx++)
+            row_in[wrap(dx - radius_, width_)] =
+                Complex(float(texton_[a * size_t(side_) + size_t(dx)]),
+                        second ? float(texton_[b * size_t(side_) + size_t(dx)]) : 0.0f);
+        kiss_fft(row_forward_.get(), as_kiss(row_in.data()), as_kiss(row_out.data()));
+        for (size_t k = 0; k < size_t(half_); k++) {
+            const Complex z = row_out[k], mirror = std::conj(row_out[(size_t(width_) - k) % size_t(width_)]);
+            rows_[a * size_t(half_) + k] = (z + mirror) * 0.5f;
+            if (second) {
+                const Complex difference = z - mirror; // = 2i B
+                rows_[b * size_t(half_) + k] = Complex(difference.imag() * 0.5f, -difference.real() * 0.5f);
             }
         }
     }
 
-    // row_in_ = A + i B over the full row, A and B Hermitian spectra given by their halves.
-    void pack_hermitian_rows(const Complex *first, const Complex *second) {
+    // row_in = A + i B over the full row, A and B Hermitian spectra given by their halves.
+    void pack_hermitian_rows(const Complex *first, const Complex *second,
+                             std::vector<Complex> &row_in) const {
         for (size_t k = 0; k < size_t(width_); k++) {
             const bool upper = k >= size_t(half_);
             const size_t source = upper ? size_t(width_) - k : k;
@@ -238,40 +294,8 @@ class PrunedIteration {
                 a = a.real(); // self-conjugate frequencies are real for a real row
                 b = b.real();
             }
-            row_in_[k] = Complex(a.real() - b.imag(), a.imag() + b.real());
+            row_in[k] = Complex(a.real() - b.imag(), a.imag() + b.real());
         }
-    }
-
-    // Forward: support rows (two real rows per complex FFT) -> half rows -> columns.
-    void texton_to_spectrum() {
-        std::fill(row_in_.begin(), row_in_.end(), Complex(0));
-        for (size_t a = 0; a < row_count(); a += 2) {
-            const size_t b = a + 1;
-            for (int dx = 0; dx < side_; dx++)
-                row_in_[wrap(dx - radius_, width_)] =
-                    Complex(float(texton_[a * size_t(side_) + size_t(dx)]),
-                            b < row_count() ? float(texton_[b * size_t(side_) + size_t(dx)]) : 0.0f);
-            kiss_fft(row_forward_.get(), as_kiss(row_in_.data()), as_kiss(row_out_.data()));
-            for (size_t k = 0; k < size_t(half_); k++) {
-                const Complex z = row_out_[k],
-                              mirror = std::conj(row_out_[(size_t(width_) - k) % size_t(width_)]);
-                rows_[a * size_t(half_) + k] = (z + mirror) * 0.5f;
-                if (b < row_count()) {
-                    const Complex difference = z - mirror; // = 2i B
-                    rows_[b * size_t(half_) + k] =
-                        Complex(difference.imag() * 0.5f, -difference.real() * 0.5f);
-                }
-            }
-        }
-        std::fill(column_in_.begin(), column_in_.end(), Complex(0));
-        for (int c = 0; c < channels_; c++)
-            for (size_t k = 0; k < size_t(half_); k++) {
-                for (int dy = 0; dy < side_; dy++)
-                    column_in_[wrap(dy - radius_, height_)] =
-                        rows_[(size_t(c) * size_t(side_) + size_t(dy)) * size_t(half_) + k];
-                kiss_fft(column_forward_.get(), as_kiss(column_in_.data()),
-                         as_kiss(&spectrum_[column(c, k)]));
-            }
     }
 
     int width_, height_, channels_, radius_, side_, half_;
@@ -279,8 +303,8 @@ class PrunedIteration {
     FftPlan column_inverse_, column_forward_, row_inverse_, row_forward_;
     std::vector<Complex> model_, spectrum_, rows_;
     std::vector<double> texton_;
-    std::vector<Complex> column_in_, column_out_, row_in_, row_out_;
     std::vector<double> column_weight_;
+    std::vector<ProjectionSums> column_sums_;
     double model_energy_ = 0;
 };
 
@@ -292,7 +316,10 @@ SotResult run_iterations(Iteration &iteration, const Spectrum &target, const Sup
         const bool last = done + 1 == options.iterations;
         result.rme_per_iteration.push_back(iteration.step(!last));
         if (options.progress) options.progress(done + 1, options.iterations, result.rme_per_iteration.back());
-        if (should_stop(result.rme_per_iteration, options)) break;
+        if (!last && should_stop(result.rme_per_iteration, options)) {
+            result.stop = SotStop::Converged;
+            break;
+        }
     }
     result.texton.support = support;
     result.texton.channels = target.channels;
@@ -328,6 +355,11 @@ Spectrum random_phase_start(const Spectrum &target, uint32_t seed) {
         }
     }
     return start;
+}
+
+int early_stop_minimum_iterations(int width, int height) {
+    const double pixels = std::max(1.0, double(width) * double(height));
+    return int(std::min(1e6, std::ceil(kEarlyStopMinimumWork / pixels)));
 }
 
 SotResult sot_alternating_projections(const Spectrum &target, const Support &support,

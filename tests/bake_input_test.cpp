@@ -237,6 +237,9 @@ TEST_CASE("decode_exemplar's messages name the real problem") {
     std::vector<unsigned char> huge = encode_png(1, 1, 8, 0, {0});
     huge[16 + 2] = 0x75, huge[16 + 3] = 0x30, huge[20 + 2] = 0x75, huge[20 + 3] = 0x30;
     CHECK(decode_error(huge).find("30000x30000, larger than the limit of 2048") != std::string::npos);
+    CHECK(decode_error(huge).find(
+              "crop it (keeps the texture's scale), e.g. convert IN -gravity center -crop 2048x2048") !=
+          std::string::npos);
     // A truncated JPEG is called a JPEG.
     const unsigned char jpeg_start[] = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x10, 'J', 'F', 'I', 'F',
                                         0,    1,    1,    0,    0,    1,    0,   1,   0,   0};

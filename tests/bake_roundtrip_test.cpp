@@ -8,6 +8,7 @@
 #include <stb_image.h>
 
 #include "../offline/bake_internal.h"
+#include "../offline/label.h"
 #include "dsn/dsn.h"
 #include "fixtures/bake_fixtures.h"
 
@@ -90,7 +91,8 @@ TEST_CASE("bilinear bake: the texton's spectrum times the B-spline factor is clo
     CHECK(corrected < lattice.rme + 0.05);
 }
 
-TEST_CASE("preview_png: four exemplar-sized panels, the first one the exemplar itself") {
+TEST_CASE("preview_png: four labelled exemplar-sized panels, the first one the exemplar itself, and the "
+          "verdict below") {
     const dsn::Image noise = dsn::white_noise(61, 64, 5);
     dsn::Image exemplar = noise;
     for (double &value : exemplar.values)
@@ -102,20 +104,41 @@ TEST_CASE("preview_png: four exemplar-sized panels, the first one the exemplar i
     int width = 0, height = 0, channels = 0;
     unsigned char *pixels = stbi_load_from_memory(png.data(), int(png.size()), &width, &height, &channels, 3);
     REQUIRE(pixels != nullptr);
-    CHECK(width == 4 * 61 + 3 * 4);
-    CHECK(height == 64);
+    // The layout of preview.cpp at this size: labels one 12-pixel line high (scale 1), a 4-pixel gap, the
+    // panels in columns as wide as the panel or the label (plus a gap), 4 pixels apart, then the verdict.
+    const char *const labels[4] = {"exemplar", "Gaussian reference", "texton (SOT)", "runtime synthesis"};
+    int columns[4], expected_width = 3 * 4;
+    for (int i = 0; i < 4; i++) {
+        columns[i] = std::max(61, dsn::label_width(labels[i], 1) + 4);
+        expected_width += columns[i];
+    }
+    const int top = 12 + 4, exemplar_left = (columns[0] - 61) / 2;
+    const int synthesis_left = columns[0] + columns[1] + columns[2] + 3 * 4 + (columns[3] - 61) / 2;
+    CHECK(width == expected_width);
+    REQUIRE(height > top + 64 + 4);
+    auto pixel = [&](int x, int y) { return pixels[(size_t(y) * size_t(width) + size_t(x)) * 3]; };
     int mismatches = 0;
     double sum = 0, square_sum = 0;
     for (int y = 0; y < 64; y++)
         for (int x = 0; x < 61; x++) {
             for (int c = 0; c < 3; c++)
-                mismatches += pixels[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)] !=
-                              (unsigned char)std::lround(exemplar.at(x, y, 0) * 255);
-            const double synthesized = pixels[(size_t(y) * size_t(width) + size_t(3 * (61 + 4) + x)) * 3];
+                mismatches +=
+                    pixels[(size_t(top + y) * size_t(width) + size_t(exemplar_left + x)) * 3 + size_t(c)] !=
+                    (unsigned char)std::lround(exemplar.at(x, y, 0) * 255);
+            const double synthesized = pixel(synthesis_left + x, top + y);
             sum += synthesized, square_sum += synthesized * synthesized;
         }
+    // Text (light grey on the dark background) in the label row and under the panels.
+    int label_pixels = 0, verdict_pixels = 0;
+    for (int x = 0; x < width; x++) {
+        for (int y = 0; y < 12; y++) label_pixels += pixel(x, y) == 225;
+        for (int y = top + 64 + 4; y < height; y++) verdict_pixels += pixel(x, y) == 225;
+    }
     stbi_image_free(pixels);
     CHECK(mismatches == 0);
+    CHECK(label_pixels > 100);
+    CHECK(verdict_pixels > 100);
+    CHECK(!result.verdict.summary.empty());
     const double mean = sum / (61 * 64), variance = square_sum / (61 * 64) - mean * mean;
     CHECK(variance > 1); // the runtime synthesis is a texture, not a flat panel
 }

@@ -1,6 +1,6 @@
 // dsn-contact-sheet: one labelled PNG that shows a bake at a glance: the exemplar, its Gaussian
 // reference (a random-phase synthesis of the exemplar's Gaussian model), the runtime synthesis, the
-// texton, and the renderer scene. Labels are drawn with stb_easy_font (quads rasterized here).
+// texton, and the renderer scene. Labels are drawn by the baker's draw_label (offline/label.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,13 +10,10 @@
 #include <string>
 #include <vector>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include <stb_easy_font.h>
-#pragma GCC diagnostic pop
 #include <stb_image.h>
 
 #include "../../offline/bake_internal.h"
+#include "../../offline/label.h"
 #include "../../offline/tools/command_line.h"
 #include "../../offline/tools/file_output.h"
 #include "../../offline/tools/png_output.h"
@@ -87,22 +84,9 @@ void paste(Picture &sheet, const Picture &source, int x0, int y0, int w, int h) 
         }
 }
 
-// Text at (x, y), `scale` pixels per font unit, in a dark grey.
+// Text at (x, y), `scale` pixels per font unit, in a dark grey (the bake preview's label drawing).
 void draw_label(Picture &sheet, int x, int y, const std::string &text, int scale) {
-    std::vector<char> buffer(text.begin(), text.end());
-    buffer.push_back('\0');
-    std::vector<float> vertices(text.size() * 300); // ~270 bytes of quads per character, 16 per vertex
-    unsigned char color[4] = {40, 40, 40, 255};
-    const int quads =
-        stb_easy_font_print(0, 0, buffer.data(), color, vertices.data(), int(vertices.size() * 4));
-    for (int q = 0; q < quads; q++) {
-        const float *v = &vertices[size_t(q) * 16]; // 4 vertices of (x, y, z, colour)
-        const int left = x + int(v[0] * float(scale)), top = y + int(v[1] * float(scale));
-        const int right = x + int(v[8] * float(scale)), bottom = y + int(v[9] * float(scale));
-        for (int py = std::max(0, top); py < std::min(sheet.height, bottom); py++)
-            for (int px = std::max(0, left); px < std::min(sheet.width, right); px++)
-                std::fill(sheet.at(px, py), sheet.at(px, py) + 3, 40);
-    }
+    dsn::draw_label(sheet.rgb, sheet.width, sheet.height, x, y, text, scale, 40);
 }
 
 // A random-phase synthesis of the exemplar's Gaussian model: the reference the DSN approximates.

@@ -116,11 +116,16 @@ struct Texton {
     }
 };
 
+// Why the texton's optimization ended: every iteration asked for ran, or the early stop found that the
+// error had stopped improving (BakeOptions::stop_tolerance).
+enum class SotStop { IterationLimit, Converged };
+
 struct SotResult {
     Texton texton;
     // [k] = relative model error without the zero frequency (BakeResult's rme_without_zero_frequency) of
     // the texton after iteration k + 1: the figure the iterations minimize, T(0) being left free.
     std::vector<double> rme_per_iteration;
+    SotStop stop = SotStop::IterationLimit;
 };
 
 using Matrix3 = std::array<double, 9>; // row-major
@@ -131,10 +136,13 @@ using Matrix3 = std::array<double, 9>; // row-major
 // relative model error of the current texton without the zero frequency, as in rme_per_iteration).
 using BakeProgress = std::function<void(int done, int total, double rme)>;
 
+// The default early stop: an improvement below 0.002 over 50 iterations (4e-5 per iteration).
+constexpr double kDefaultStopTolerance = 0.002;
+
 struct BakeOptions {
     int radius = 15; // 1..kMaxRadius; the exemplar needs both sides >= 4 radius + 1
     uint32_t shape = DSN_SHAPE_RECTANGLE;
-    int iterations = 1000;
+    int iterations = 1000; // the most iterations; the early stop usually ends the run sooner
     uint32_t seed = 0;
     int bits = 8; // 8 or 16
     bool periodic = true;
@@ -142,14 +150,66 @@ struct BakeOptions {
     // How the runtime reads the texton. Bilinear (the continuous mode, what renderers use) bakes a
     // texton corrected for the interpolation's smoothing; lattice suits the integer-lattice evaluators.
     uint32_t interpolation = DSN_INTERPOLATION_BILINEAR;
-    // Early stop: after at least 50 iterations, stop when the relative model error improved by less than
-    // this over the last 50 iterations. 0 runs every iteration.
-    double stop_tolerance = 0;
+    // Early stop: stop when the relative model error improved by less than this over the last 50
+    // iterations, once at least 2^22 / (width x height) iterations ran (small exemplars run longer: their
+    // error curves descend slowly, see the README). 0 runs every iteration.
+    double stop_tolerance = kDefaultStopTolerance;
     // Writes the texton pyramid (a format 1.1 asset) that the filtered evaluation reads; false writes a
     // 1.0 asset, byte for byte what bakes without a pyramid always wrote.
     bool pyramid = true;
     BakeProgress progress; // may be empty
 };
+
+// ---- The verdict ----
+
+// The marginal of one decorrelated channel of the exemplar (principal components of its colours,
+// strongest first): variance, sample skewness and excess kurtosis (0 for a Gaussian), and their standard
+// errors for a Gaussian field with the exemplar's own autocorrelation rho: sqrt(6 sum rho^3 / N) and
+// sqrt(24 sum rho^4 / N) (N pixels; 6/N and 24/N for independent samples).
+struct ChannelMarginal {
+    double variance = 0, skewness = 0, excess_kurtosis = 0, skewness_error = 0, kurtosis_error = 0;
+};
+
+enum class VerdictFinding {
+    StructureBeyondRadius,   // correlations reach beyond the texton; a radius that fits would hold them
+    StructureBeyondGaussian, // they reach beyond any radius that fits the exemplar
+    NonGaussianMarginal,     // the tones are far from Gaussian: the output cannot keep the histogram
+    HighModelError,          // the texton's spectrum stays far from the exemplar's
+};
+const char *verdict_finding_name(VerdictFinding finding); // "structure_beyond_radius", ...
+
+// The thresholds (the README says where they come from):
+//  - a decorrelated channel with at least a tenth of the strongest one's variance is non-Gaussian when
+//    |skewness| > 1 (Bulmer's "highly skewed") or |excess kurtosis| > 1 (flatter than a uniform's -1.2
+//    is two-level; a Laplace's 3 is speckled), each also beyond 3 of its standard errors;
+//  - structure lies beyond the texton when more than 10% of the exemplar's autocorrelation energy (sum
+//    of the squared autocorrelation over the lags, less the sampling noise Bartlett's formula puts at each
+//    lag) lies beyond lag 2r, the farthest lag the noise of a texton of radius r correlates, and the
+//    autocorrelation there reaches 0.2 of the variance;
+//  - the model error is high above an RME of 0.6: a texton that fits a photo's spectrum up to its sampling
+//    noise (the periodogram of a Gaussian field is exponentially distributed about its mean, which leaves
+//    RME = sqrt(1 - pi/4) = 0.46 to a smooth spectrum) stays below it.
+constexpr double kVerdictSkewness = 1.0;
+constexpr double kVerdictExcessKurtosis = 1.0;
+constexpr double kVerdictStructureShare = 0.10;
+constexpr double kVerdictCorrelation = 0.2;
+constexpr double kVerdictModelError = 0.6;
+
+struct BakeVerdict {
+    std::string summary;                  // one line: "good: ...", "fair: ...", "limited: ..."
+    std::vector<VerdictFinding> findings; // empty: good
+    std::vector<std::string> suggestions; // one per finding, each with what to do
+    // The signals.
+    double rme = 0, rme_luminance = 0;
+    std::vector<ChannelMarginal> channels;
+    double structure_beyond_reach = 0;   // share of the autocorrelation energy beyond lag 2r
+    double correlation_beyond_reach = 0; // the largest autocorrelation beyond lag 2r, over the variance
+    int suggested_radius = 0;            // 0: none (no structure beyond reach, or none fits)
+    int largest_fitting_radius = 0;
+};
+
+// The verdict on a bake of `exemplar` with `options` (bake() stores it in result.verdict).
+BakeVerdict bake_verdict(const Image &exemplar, const struct BakeResult &result, const BakeOptions &options);
 
 struct BakeResult {
     GaussianModel model;
@@ -169,6 +229,7 @@ struct BakeResult {
     Matrix3 color_transform = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     AssetFields fields;
     std::vector<unsigned char> asset; // the encoded .dsnt file
+    BakeVerdict verdict;              // how well the model holds the exemplar, and what to try
 };
 
 // Refuses what cannot be baked: options out of range (std::invalid_argument), an exemplar smaller than
@@ -181,9 +242,9 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options);
 
 // ---- Preview ----
 
-// One PNG (encoded in memory) a person reads at a glance: exemplar, its Gaussian version (spectral ADSN
-// of t_u, same size), the texton scaled for display and a DSN synthesis of the baked asset by the
-// runtime (dsn_lattice_tile_float), side by side. Throws std::runtime_error if the asset does not load.
+// One PNG (encoded in memory) a person reads at a glance, labelled: exemplar, its Gaussian reference
+// (spectral ADSN of t_u, same size), the texton scaled for display and a DSN synthesis of the baked asset by
+// the runtime (dsn_lattice_tile_float), side by side. Throws std::runtime_error if the asset does not load.
 std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &result, uint32_t seed);
 
 } // namespace dsn

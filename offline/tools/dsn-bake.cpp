@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -15,29 +16,38 @@
 namespace {
 
 const char *const kUsage =
-    "usage: dsn-bake IN -o OUT.dsnt [--radius R] [--shape square|disk] [--iterations N] [--seed S]\n"
+    "usage: dsn-bake IN -o OUT.dsnt [--radius R] [--shape square|disk] [--iterations N] [--stop-tolerance "
+    "T]\n"
+    "                [--seed S]\n"
     "                [--bits 8|16] [--interpolation bilinear|lattice] [--no-periodic] "
     "[--no-color-transform]\n"
     "                [--no-pyramid] [--report R.json] [--preview P.png] [--quiet]\n"
     "\n"
     "Bakes an exemplar image into a compact .dsnt asset: a synthesis-oriented texton of radius R, its\n"
     "colour transform, the exemplar mean and the texton's pyramid of prefiltered levels (for the\n"
-    "filtered evaluation of minified textures).\n"
+    "filtered evaluation of minified textures). Every bake ends with a verdict: how well a Gaussian\n"
+    "model holds the exemplar, and what to try (a larger radius, ...), from measured signals (README).\n"
     "\n"
     "Images read: PNG (8 or 16 bits), JPEG (baseline and progressive) and binary PGM/PPM (P5/P6, any\n"
     "maxval), grey or RGB; alpha is ignored (with a warning unless it is opaque). BMP, GIF, PSD, TGA,\n"
     "Radiance HDR, PIC, TIFF, WebP and plain-text PNM are refused: convert them to PNG. Limits: at most\n"
     "2048 pixels per side and 256 MiB of file; a truncated file or one whose data expands beyond its\n"
-    "declared size is refused.\n"
-    "Cost: memory grows with the exemplar's pixels, time with pixels x iterations: about 1 GB and\n"
-    "2.5 minutes for 2048x2048 at the default 1000 iterations (one core of a current x86-64; 40 ns\n"
-    "per pixel and iteration). A run estimated at more than 10 minutes prints a warning first.\n"
+    "declared size is refused. Crop or downscale a larger photo first (the error says how).\n"
+    "Cost: memory grows with the exemplar's pixels: about 160 bytes per pixel for RGB, 0.7 GB at the\n"
+    "2048x2048 limit (the preview adds 0.3 GB). Time grows with pixels x iterations run (about 50 ns\n"
+    "per pixel and iteration for RGB on one core of a current x86-64, split among the cores; set\n"
+    "DSN_BAKE_THREADS=1 for one thread). The early stop usually ends a bake of a photo after 50 to 300\n"
+    "iterations: seconds for 1024x1024. A run estimated at more than 10 minutes prints a warning first.\n"
     "\n"
     "  -o, --output OUT.dsnt    the asset to write (atomically: never a partial file); must end in .dsnt\n"
     "  --radius R               texton radius, 1..127; the texton is (2R+1)x(2R+1) (default 15);\n"
     "                           the exemplar needs both sides >= 4R+1\n"
     "  --shape square|disk      support shape (default square)\n"
-    "  --iterations N           alternating-projection iterations, 1..1000000 (default 1000)\n"
+    "  --iterations N           the most alternating-projection iterations, 1..1000000 (default 1000)\n"
+    "  --stop-tolerance T       stop when the RME the iterations minimize (rme_per_iteration in the\n"
+    "                           report) improved by less than T over the last 50 iterations,\n"
+    "                           after at least 2^22 / (width x height) iterations (default 0.002; 0 runs\n"
+    "                           every iteration)\n"
     "  --seed S                 seed of the random-phase start, 0..4294967295 (default 0)\n"
     "  --bits 8|16              quantization of the texton (default 8)\n"
     "  --interpolation bilinear|lattice\n"
@@ -49,9 +59,11 @@ const char *const kUsage =
     "  --no-color-transform     store the identity colour transform\n"
     "  --no-pyramid             leave out the texton pyramid: a format 1.0 asset, 43% smaller\n"
     "                           for a 31x31 texton, that the filtered evaluation fades to the mean\n"
-    "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, ...; its\n"
-    "                           asset_crc32 is the CRC stored at the end of the asset it describes)\n"
-    "  --preview P.png          write a sheet: exemplar | Gaussian version | texton | DSN synthesis\n"
+    "  --report R.json          write a JSON report (RMEs, kurtosis, RME of every iteration, why the\n"
+    "                           iterations stopped, the verdict and its signals, ...; its asset_crc32 is\n"
+    "                           the CRC stored at the end of the asset it describes)\n"
+    "  --preview P.png          write a labelled sheet: exemplar | Gaussian reference | texton | runtime\n"
+    "                           synthesis, and the verdict\n"
     "  --quiet                  no progress bar, warnings or summary\n"
     "  -h, --help               this help\n"
     "  --version                the version\n"
@@ -89,6 +101,13 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
             arguments.options.shape = shape == "disk" ? DSN_SHAPE_DISK : DSN_SHAPE_RECTANGLE;
         } else if (command_line.is("--iterations")) {
             arguments.options.iterations = int(dsn::parse_integer(command_line, 1, 1000000));
+        } else if (command_line.is("--stop-tolerance")) {
+            const std::string text = command_line.value();
+            char *end = nullptr;
+            const double tolerance = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != '\0' || !(tolerance >= 0) || !(tolerance <= 1))
+                throw dsn::UsageError("--stop-tolerance must be a number in 0..1, not '" + text + "'");
+            arguments.options.stop_tolerance = tolerance;
         } else if (command_line.is("--seed")) {
             arguments.options.seed = uint32_t(dsn::parse_integer(command_line, 0, 4294967295ll));
         } else if (command_line.is("--bits")) {
@@ -170,6 +189,41 @@ std::vector<double> interleaved(const dsn::Texton &texton) {
     return values;
 }
 
+// "converged" or "iteration_limit".
+const char *stop_reason(const dsn::BakeResult &result) {
+    return result.sot.stop == dsn::SotStop::Converged ? "converged" : "iteration_limit";
+}
+
+std::string stop_description(const dsn::BakeResult &result, const dsn::BakeOptions &options) {
+    if (result.sot.stop != dsn::SotStop::Converged) return "ran every iteration asked for";
+    char text[96];
+    std::snprintf(text, sizeof text, "stopped: RME improved by less than %g over the last 50",
+                  options.stop_tolerance);
+    return text;
+}
+
+std::string verdict_json(const dsn::BakeVerdict &verdict) {
+    std::string findings = "[", suggestions = "[", channels = "[";
+    for (size_t i = 0; i < verdict.findings.size(); i++)
+        findings += (i ? ", " : "") + dsn::json_string(dsn::verdict_finding_name(verdict.findings[i]));
+    for (size_t i = 0; i < verdict.suggestions.size(); i++)
+        suggestions += (i ? ", " : "") + dsn::json_string(verdict.suggestions[i]);
+    for (size_t i = 0; i < verdict.channels.size(); i++) {
+        const dsn::ChannelMarginal &channel = verdict.channels[i];
+        channels += std::string(i ? ", " : "") + "{\"variance\": " + json_number(channel.variance) +
+                    ", \"skewness\": " + json_number(channel.skewness) +
+                    ", \"skewness_error\": " + json_number(channel.skewness_error) +
+                    ", \"excess_kurtosis\": " + json_number(channel.excess_kurtosis) +
+                    ", \"kurtosis_error\": " + json_number(channel.kurtosis_error) + "}";
+    }
+    return "{\"summary\": " + dsn::json_string(verdict.summary) + ", \"findings\": " + findings +
+           "], \"suggestions\": " + suggestions + "], \"decorrelated_channels\": " + channels +
+           "], \"structure_beyond_reach\": " + json_number(verdict.structure_beyond_reach) +
+           ", \"correlation_beyond_reach\": " + json_number(verdict.correlation_beyond_reach) +
+           ", \"suggested_radius\": " + std::to_string(verdict.suggested_radius) +
+           ", \"largest_fitting_radius\": " + std::to_string(verdict.largest_fitting_radius) + "}";
+}
+
 std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, const dsn::BakeResult &result,
                         double seconds) {
     const dsn::BakeOptions &options = arguments.options;
@@ -189,6 +243,9 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     field("interpolation",
           options.interpolation == DSN_INTERPOLATION_BILINEAR ? "\"bilinear\"" : "\"lattice\"");
     field("iterations", std::to_string(result.sot.rme_per_iteration.size()));
+    field("iterations_limit", std::to_string(options.iterations));
+    field("stop_tolerance", json_number(options.stop_tolerance));
+    field("stop_reason", dsn::json_string(stop_reason(result)));
     field("seed", std::to_string(options.seed));
     field("bits", std::to_string(options.bits));
     field("periodic", options.periodic ? "true" : "false");
@@ -204,6 +261,7 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     field("rme_per_iteration", json_array(result.sot.rme_per_iteration));
     field("pyramid_levels", std::to_string(result.fields.pyramid.size()));
     field("bytes", std::to_string(result.asset.size()));
+    field("verdict", verdict_json(result.verdict));
     // The CRC the asset ends with: it tells which asset this report describes.
     char crc[16];
     const size_t size = result.asset.size();
@@ -233,10 +291,11 @@ void print_summary(const Arguments &arguments, const dsn::Image &exemplar, const
     const int side = 2 * options.radius + 1;
     std::printf("dsn-bake: %s (%dx%d %s) -> %s\n", arguments.input.c_str(), exemplar.width, exemplar.height,
                 exemplar.channels == 3 ? "RGB" : "grey", arguments.output.c_str());
-    std::printf("  texton        %dx%d %s, %zu iterations, seed %u, %d-bit, %s\n", side, side,
-                options.shape == DSN_SHAPE_DISK ? "disk" : "square", result.sot.rme_per_iteration.size(),
-                options.seed, options.bits,
+    std::printf("  texton        %dx%d %s, seed %u, %d-bit, %s\n", side, side,
+                options.shape == DSN_SHAPE_DISK ? "disk" : "square", options.seed, options.bits,
                 options.interpolation == DSN_INTERPOLATION_BILINEAR ? "bilinear" : "lattice");
+    std::printf("  iterations    %zu of at most %d (%s)\n", result.sot.rme_per_iteration.size(),
+                options.iterations, stop_description(result, options).c_str());
     std::printf(
         "  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f   (SOT without the zero "
         "frequency %.4f)\n",
@@ -254,6 +313,9 @@ void print_summary(const Arguments &arguments, const dsn::Image &exemplar, const
                     result.asset.size(), result.fields.pyramid.size(), dsn::encode_asset(plain).size(),
                     seconds);
     }
+    std::printf("  verdict       %s\n", result.verdict.summary.c_str());
+    for (const std::string &suggestion : result.verdict.suggestions)
+        std::printf("    - %s\n", suggestion.c_str());
 }
 
 std::vector<unsigned char> as_bytes(const std::string &text) {

@@ -1,0 +1,300 @@
+// verdict.cpp - how well a bake's Gaussian model holds its exemplar, from measured signals, with what
+// the user can do about it. The thresholds and where they come from are in dsn/bake.h (BakeVerdict) and
+// the README.
+#include "bake_internal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace dsn {
+namespace {
+
+// A decorrelated channel counts when its variance is at least this share of the strongest one's.
+const double kVisibleVariance = 0.1;
+
+std::string format(const char *pattern, double value) {
+    char text[256];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+// Offset of torus index i on a side of `size` points, in (-size/2, size/2].
+int signed_offset(int index, int size) { return index > size / 2 ? index - size : index; }
+
+// Distance of a lag in the support's own metric: Chebyshev for the square, Euclidean (rounded up) for
+// the disk, so that the noise of a texton of radius r reaches exactly the lags at distance <= 2r.
+int lag_distance(int dx, int dy, uint32_t shape) {
+    if (shape == DSN_SHAPE_DISK) return int(std::ceil(std::sqrt(double(dx) * dx + double(dy) * dy) - 1e-9));
+    return std::max(std::abs(dx), std::abs(dy));
+}
+
+// The exemplar's colours in the decorrelated (principal component) basis, strongest component first.
+struct Decorrelation {
+    int channels = 1;
+    Matrix3 vectors = {1, 0, 0, 0, 1, 0, 0, 0, 1}; // columns: components in the exemplar's channels
+    std::array<double, 3> variances = {0, 0, 0};
+};
+
+Decorrelation decorrelate(const Image &exemplar) {
+    Decorrelation result;
+    result.channels = exemplar.channels;
+    const size_t plane = size_t(exemplar.width) * size_t(exemplar.height);
+    std::array<double, 3> mean = {0, 0, 0};
+    for (int c = 0; c < exemplar.channels; c++) {
+        for (size_t i = 0; i < plane; i++) mean[size_t(c)] += exemplar.values[size_t(c) * plane + i];
+        mean[size_t(c)] /= double(plane);
+    }
+    Matrix3 covariance{};
+    for (int a = 0; a < exemplar.channels; a++)
+        for (int b = 0; b < exemplar.channels; b++) {
+            double sum = 0;
+            for (size_t i = 0; i < plane; i++)
+                sum += (exemplar.values[size_t(a) * plane + i] - mean[size_t(a)]) *
+                       (exemplar.values[size_t(b) * plane + i] - mean[size_t(b)]);
+            covariance[size_t(a * 3 + b)] = sum / double(plane);
+        }
+    if (exemplar.channels == 1) {
+        result.variances[0] = covariance[0];
+        return result;
+    }
+    std::array<double, 3> values;
+    Matrix3 vectors;
+    symmetric_eigen(covariance, values, vectors);
+    std::array<int, 3> order = {0, 1, 2};
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return values[size_t(a)] > values[size_t(b)]; });
+    for (int k = 0; k < 3; k++) {
+        result.variances[size_t(k)] = std::max(0.0, values[size_t(order[size_t(k)])]);
+        for (int c = 0; c < 3; c++)
+            result.vectors[size_t(c * 3 + k)] = vectors[size_t(c * 3 + order[size_t(k)])];
+    }
+    return result;
+}
+
+// Sample skewness and excess kurtosis of component k of the exemplar.
+void marginal_moments(const Image &exemplar, const Decorrelation &basis, int k, ChannelMarginal &marginal) {
+    const size_t plane = size_t(exemplar.width) * size_t(exemplar.height);
+    std::vector<double> values(plane, 0.0);
+    for (int c = 0; c < exemplar.channels; c++) {
+        const double weight = basis.vectors[size_t(c * 3 + k)];
+        for (size_t i = 0; i < plane; i++) values[i] += weight * exemplar.values[size_t(c) * plane + i];
+    }
+    double mean = 0;
+    for (double value : values) mean += value;
+    mean /= double(plane);
+    double m2 = 0, m3 = 0, m4 = 0;
+    for (double value : values) {
+        const double d = value - mean, square = d * d;
+        m2 += square;
+        m3 += square * d;
+        m4 += square * square;
+    }
+    m2 /= double(plane), m3 /= double(plane), m4 /= double(plane);
+    marginal.variance = m2;
+    if (m2 > 0) {
+        marginal.skewness = m3 / (m2 * std::sqrt(m2));
+        marginal.excess_kurtosis = m4 / (m2 * m2) - 3;
+    }
+}
+
+// Bytes of the asset a bake at `radius` writes: the bake's own fields with a texton (and, when the bake
+// has one, a pyramid) of that size.
+size_t asset_bytes_at(const BakeResult &result, int radius) {
+    AssetFields fields = result.fields;
+    fields.width = fields.height = uint32_t(2 * radius + 1);
+    fields.texton.assign(size_t(fields.width) * fields.height * fields.channels, 0);
+    if (!fields.pyramid.empty()) fields.pyramid = texton_pyramid(fields);
+    return encode_asset(fields).size();
+}
+
+} // namespace
+
+BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const BakeOptions &options) {
+    BakeVerdict verdict;
+    verdict.rme = result.rme;
+    verdict.rme_luminance = result.rme_luminance;
+    const GaussianModel &model = result.model;
+    const int width = model.width, height = model.height;
+    const size_t plane = size_t(width) * size_t(height);
+
+    // Decorrelated channels: their marginals and autocorrelations (IDFT of |P_k|^2, P_k the model's
+    // spectrum in the component basis).
+    const Decorrelation basis = decorrelate(exemplar);
+    Spectrum power;
+    power.width = width, power.height = height, power.channels = basis.channels;
+    power.values.assign(plane * size_t(basis.channels), 0.0f);
+    for (int k = 0; k < basis.channels; k++)
+        for (size_t i = 0; i < plane; i++) {
+            std::complex<double> component = 0;
+            for (int c = 0; c < model.channels; c++)
+                component += basis.vectors[size_t(c * 3 + k)] *
+                             std::complex<double>(model.spectrum.values[size_t(c) * plane + i]);
+            power.values[size_t(k) * plane + i] = float(std::norm(component));
+        }
+    const Image autocorrelation = inverse_dft(power);
+
+    const int reach = 2 * options.radius; // the noise of a texton of radius r correlates lags up to 2r
+    const int largest_distance = lag_distance(width / 2, height / 2, options.shape);
+    std::vector<double> ring_energy(size_t(largest_distance) + 1, 0.0), ring_peak(ring_energy.size(), 0.0);
+    std::vector<size_t> ring_count(ring_energy.size(), 0);
+    double total_variance = 0, noise_per_lag = 0, total_energy = 0;
+    for (int k = 0; k < basis.channels; k++) {
+        ChannelMarginal marginal;
+        marginal_moments(exemplar, basis, k, marginal);
+        const double *a = &autocorrelation.values[size_t(k) * plane];
+        const double variance = a[0];
+        total_variance += variance;
+        // Standard errors of the sample skewness and excess kurtosis of a Gaussian field with this
+        // autocorrelation: sqrt(6 sum rho^3 / N) and sqrt(24 sum rho^4 / N) (the Hermite expansion of the
+        // two statistics; 6/N and 24/N for independent samples). |rho|^3 keeps the first an upper bound.
+        double cubes = 0, fourths = 0, inside_energy = 0;
+        for (size_t i = 0; i < plane && variance > 0; i++) {
+            const double rho = a[i] / variance;
+            cubes += std::fabs(rho * rho * rho);
+            fourths += rho * rho * rho * rho;
+        }
+        marginal.skewness_error = std::sqrt(6 * std::max(1.0, cubes) / double(plane));
+        marginal.kurtosis_error = std::sqrt(24 * std::max(1.0, fourths) / double(plane));
+        verdict.channels.push_back(marginal);
+        for (int y = 0; y < height; y++)
+            for (int x = 0; x < width; x++) {
+                const int distance =
+                    lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape);
+                if (distance <= reach)
+                    inside_energy +=
+                        a[size_t(y) * size_t(width) + size_t(x)] * a[size_t(y) * size_t(width) + size_t(x)];
+            }
+        // Bartlett: a sample autocorrelation's variance at any lag is about (1/N) sum_y A(y)^2; the energy
+        // within reach stands for that sum.
+        noise_per_lag += inside_energy / double(plane);
+    }
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++) {
+            double sum = 0;
+            for (int k = 0; k < basis.channels; k++)
+                sum += autocorrelation.values[size_t(k) * plane + size_t(y) * size_t(width) + size_t(x)];
+            const int distance =
+                lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape);
+            const size_t ring = size_t(std::min(distance, largest_distance));
+            ring_energy[ring] += sum * sum;
+            ring_count[ring]++;
+            total_energy += sum * sum;
+            if (total_variance > 0) ring_peak[ring] = std::max(ring_peak[ring], sum / total_variance);
+        }
+    // Energy beyond reach, less what sampling noise alone puts there.
+    double beyond = 0;
+    for (size_t d = size_t(reach) + 1; d < ring_energy.size(); d++)
+        beyond += ring_energy[d] - double(ring_count[d]) * noise_per_lag;
+    verdict.structure_beyond_reach = total_energy > 0 ? std::max(0.0, beyond) / total_energy : 0;
+    // The strongest correlation beyond reach and its lag (the nearest of equal ones): a periodic
+    // pattern's period, or the size of its largest features.
+    double strongest = 0;
+    int peak_distance = 0;
+    for (size_t d = size_t(reach) + 1; d < ring_peak.size(); d++)
+        if (ring_peak[d] > strongest) strongest = ring_peak[d], peak_distance = int(d);
+    verdict.correlation_beyond_reach = strongest;
+    const int fitting = std::min(kMaxRadius, (std::min(width, height) - 1) / 4);
+    verdict.largest_fitting_radius = fitting;
+
+    // Findings.
+    // Only components that carry a visible share of the variance count.
+    bool non_gaussian = false;
+    {
+        for (size_t k = 0; k < verdict.channels.size(); k++) {
+            const ChannelMarginal &marginal = verdict.channels[k];
+            if (marginal.variance < kVisibleVariance * verdict.channels[0].variance) continue;
+            non_gaussian = non_gaussian ||
+                           (std::fabs(marginal.skewness) > kVerdictSkewness &&
+                            std::fabs(marginal.skewness) > 3 * marginal.skewness_error) ||
+                           (std::fabs(marginal.excess_kurtosis) > kVerdictExcessKurtosis &&
+                            std::fabs(marginal.excess_kurtosis) > 3 * marginal.kurtosis_error);
+        }
+    }
+    const bool structure = verdict.structure_beyond_reach > kVerdictStructureShare &&
+                           verdict.correlation_beyond_reach > kVerdictCorrelation;
+    if (structure) {
+        // A texton of radius d spans two periods of a pattern of period d: its noise keeps about half of
+        // the correlation at lag d.
+        const int wanted = std::max(options.radius + 1, peak_distance);
+        verdict.suggested_radius = wanted <= fitting ? wanted : 0;
+    }
+
+    // The runtime sums about `impacts per pixel` textons at every pixel whatever their size, so a larger
+    // radius costs asset bytes (and texture memory), not time per pixel.
+    auto radius_cost = [&](int radius) {
+        return "asset " + std::to_string(asset_bytes_at(result, radius)) + " bytes instead of " +
+               std::to_string(result.asset.size()) + ", about the same runtime cost per pixel";
+    };
+    if (structure && verdict.suggested_radius > 0) {
+        verdict.findings.push_back(VerdictFinding::StructureBeyondRadius);
+        verdict.suggestions.push_back(
+            "structure reaches beyond the texton (" + format("%.0f%%", 100 * verdict.structure_beyond_reach) +
+            " of the autocorrelation energy lies beyond lag " + std::to_string(reach) + "; correlation " +
+            format("%.2f", verdict.correlation_beyond_reach) + " at lag " + std::to_string(peak_distance) +
+            "): try --radius " + std::to_string(verdict.suggested_radius) + " (" +
+            radius_cost(verdict.suggested_radius) + ")");
+    } else if (structure) {
+        verdict.findings.push_back(VerdictFinding::StructureBeyondGaussian);
+        std::string text = "this material has structure a Gaussian model cannot hold here (" +
+                           format("%.0f%%", 100 * verdict.structure_beyond_reach) +
+                           " of the autocorrelation energy lies beyond the texton's reach, up to lag " +
+                           std::to_string(peak_distance) + ", more than the largest radius that fits this " +
+                           std::to_string(width) + "x" + std::to_string(height) + " exemplar (" +
+                           std::to_string(fitting) + ") can reach)";
+        if (fitting > options.radius)
+            text +=
+                "; --radius " + std::to_string(fitting) + " holds part of it (" + radius_cost(fitting) + ")";
+        verdict.suggestions.push_back(text);
+    }
+    if (non_gaussian) {
+        verdict.findings.push_back(VerdictFinding::NonGaussianMarginal);
+        std::string moments;
+        for (const ChannelMarginal &marginal : verdict.channels)
+            if (marginal.variance >= kVisibleVariance * verdict.channels[0].variance)
+                moments += (moments.empty() ? "" : ", ") + format("skewness %.2f", marginal.skewness) +
+                           format(" kurtosis %.2f", marginal.excess_kurtosis);
+        verdict.suggestions.push_back(
+            "the exemplar's tones are far from Gaussian (" + moments +
+            " per decorrelated channel): the output keeps its colours' mean and covariance but not its "
+            "histogram, so sharp speckles, veins and two-level patterns come out as soft blotches; a "
+            "histogram-preserving mode would help; today, match the output's histogram to the exemplar's "
+            "in an image editor, or bake a flatter-toned photo");
+    }
+    if (verdict.rme > kVerdictModelError || verdict.rme > verdict.rme_luminance) {
+        verdict.findings.push_back(VerdictFinding::HighModelError);
+        verdict.suggestions.push_back(
+            format("the texton's spectrum is far from the exemplar's (RME %.2f", verdict.rme) +
+            (verdict.rme > kVerdictModelError ? format(", above %.2f", kVerdictModelError) : std::string()) +
+            ")" +
+            (verdict.rme > verdict.rme_luminance
+                 ? format(", and no closer than the cropped luminance texton's (%.2f)", verdict.rme_luminance)
+                 : std::string()) +
+            (options.radius < fitting ? ": a larger --radius gives the texton more room" : ""));
+    }
+    if (verdict.findings.empty()) {
+        verdict.summary = "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme) +
+                          ", Gaussian tones, structure within the texton's reach)";
+    } else if (verdict.findings.size() == 1 && verdict.findings[0] == VerdictFinding::StructureBeyondRadius) {
+        verdict.summary = "fair: a larger radius would hold more of this exemplar";
+    } else {
+        verdict.summary = "limited: this exemplar has more than a Gaussian model of this texton holds";
+    }
+    return verdict;
+}
+
+const char *verdict_finding_name(VerdictFinding finding) {
+    switch (finding) {
+    case VerdictFinding::StructureBeyondRadius:
+        return "structure_beyond_radius";
+    case VerdictFinding::StructureBeyondGaussian:
+        return "structure_beyond_gaussian";
+    case VerdictFinding::NonGaussianMarginal:
+        return "non_gaussian_marginal";
+    case VerdictFinding::HighModelError:
+        return "high_model_error";
+    }
+    return "unknown";
+}
+
+} // namespace dsn
