@@ -28,6 +28,9 @@ struct dsn_noise_state {
     uint32_t poisson_size;     /* entries used in poisson_cdf */
     uint32_t poisson_cdf[96];  /* inverse-CDF thresholds of one draw, 32-bit */
     uint8_t poisson_guide[64]; /* first candidate count per top-6-bit bucket of the uniform */
+    /* The filtered evaluation (DSN_FILTERING): offset of pyramid level l + 1, as `offset` is level 0's
+       (the mean minus the level's own expected sum; zero without DSN_FILTERING or without a pyramid). */
+    int64_t level_offset[8][3];
 };
 
 static_assert(sizeof(dsn_noise_state) <= sizeof(dsn_noise), "dsn_noise must hold dsn_noise_state");

@@ -76,6 +76,63 @@ int64_t expected_sum(int64_t gain, int64_t sum, uint32_t impacts_q16, uint32_t s
     return negate_if(magnitude, negative);
 }
 
+#if DSN_FILTERING
+/* gain * lambda * sum * 2^power exactly rounded (power in [-24, 40]: a pyramid level's expected sum in
+   texton units, with sum its stored values' sum); saturated when it does not fit. */
+int64_t expected_level_sum(int64_t gain, int64_t sum, int32_t power, uint32_t impacts_q16,
+                           uint32_t support_size) {
+    int negative = (gain < 0) != (sum < 0);
+    uint64_t gain_magnitude = gain < 0 ? uint64_t(0) - uint64_t(gain) : uint64_t(gain);
+    uint64_t sum_magnitude = sum < 0 ? uint64_t(0) - uint64_t(sum) : uint64_t(sum);
+    uint64_t product = gain_magnitude * sum_magnitude; /* < 2^29 2^31 */
+    uint64_t divisor = uint64_t(support_size) << 16;
+    uint64_t magnitude;
+    if (power < 0)
+        magnitude = dsn_multiply_divide(product, impacts_q16, divisor << -power); /* below 2^54 */
+    else if (product > (UINT64_MAX >> power))
+        magnitude = UINT64_MAX;
+    else
+        magnitude = dsn_multiply_divide(product << power, impacts_q16, divisor);
+    return negate_if(magnitude, negative);
+}
+
+int64_t level_sum(const dsn_level *level, uint32_t channels, uint32_t bits, uint32_t channel) {
+    int64_t sum = 0;
+    const uint32_t count = level->width * level->height;
+    for (uint32_t i = 0; i < count; i++) {
+        const uint32_t index = i * channels + channel;
+        sum += bits == 8 ? dsn_read_i8(level->values + index) : dsn_read_i16le(level->values + 2 * index);
+    }
+    return sum;
+}
+
+/* Each pyramid level's offset: its expected value E[sum_i t_l(x - x_i)] = lambda 4^l sum s_l is, in
+   texton units, lambda (sum of its stored values) 2^(2l + exponent). Kept within +-2^61 like level 0's
+   (absurd assets saturate), which keeps the evaluator's sums below 2^63. */
+void compute_level_offsets(dsn_noise_state *noise) {
+    const dsn_asset *asset = &noise->asset;
+    const int64_t limit = int64_t(1) << 61;
+    for (uint32_t l = 1; l <= asset->pyramid_levels && l <= 8; l++) {
+        dsn_level level;
+        if (dsn_asset_level(asset, l, &level) != DSN_OK) return;
+        const int32_t power = int32_t(2 * l) + level.exponent;
+        for (uint32_t c = 0; c < asset->channels; c++) {
+            int64_t offset = int64_t(asset->mean[c]) * (int64_t(1) << (noise->gain_shift - 8));
+            for (uint32_t k = 0; k < asset->channels; k++) {
+                const int64_t expected = expected_level_sum(
+                    noise->gain[c * 3 + k], level_sum(&level, asset->channels, asset->bits, k), power,
+                    noise->impacts_q16, asset->support_size);
+                /* offset - expected, saturated (both are below 2^63 in magnitude) */
+                offset = expected > 0 && offset < INT64_MIN + expected   ? INT64_MIN
+                         : expected < 0 && offset > INT64_MAX + expected ? INT64_MAX
+                                                                         : offset - expected;
+            }
+            noise->level_offset[l - 1][c] = offset > limit ? limit : offset < -limit ? -limit : offset;
+        }
+    }
+}
+#endif
+
 } // namespace
 
 void dsn_internal_compute_normalization(dsn_noise_state *noise) {
@@ -112,4 +169,7 @@ void dsn_internal_compute_normalization(dsn_noise_state *noise) {
                                    asset->support_size);
         noise->offset[c] = offset;
     }
+#if DSN_FILTERING
+    compute_level_offsets(noise);
+#endif
 }

@@ -58,6 +58,12 @@
                         The runtime of this header then takes under 8 KB of Cortex-M0 or M4 code
                         (tests/cross/footprint checks it), and dsn_continuous_tile_scratch_size returns 0:
                         continuous tiles need no scratch.
+     DSN_FILTERING      default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the filtered evaluation out
+                        (the section "Filtered evaluation" below): its functions and dsn_asset_level are
+                        not compiled, so a program that calls them fails to link, and the loader does not
+                        read a 1.1 asset's sections (its pyramid is then neither checked nor used, so such
+                        a build accepts an asset whose pyramid a full build rejects). That keeps the small
+                        build under its 8 KB.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
                         copies of the texton and the impulse list on the stack: tens of KB. 0 takes the
@@ -368,6 +374,123 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
 #endif
 
 /* ==== End of the continuous mode ===================================================================== */
+
+/* ==== Filtered evaluation (anti-aliased continuous mode) ===========================================
+   The continuous mode point-sampled: seen from afar (a ground plane toward the horizon, a small distant
+   object) a pixel covers many texels and one sample per pixel aliases and shimmers as the camera moves.
+   The filtered evaluation returns instead, at each pixel, the noise filtered by the pixel's footprint,
+   in integer arithmetic with the same guarantees as the rest of this header (same bits everywhere, no
+   heap, no float on the evaluation path). It needs a runtime built with DSN_FILTERING (see the
+   configuration above) and reads the texton pyramid of a 1.1 asset (format.h; dsn-bake writes one).
+
+   The mathematics.
+   - A spot noise F = sum_i t(. - x_i) filtered by a kernel g is the spot noise of the same impulses
+     with the texton t * g (van Wijk, "Spot noise", SIGGRAPH 1991; Lagae, Lefebvre, Drettakis and Dutre,
+     "Procedural noise using sparse Gabor convolution", SIGGRAPH 2009, filter their Gabor kernels this
+     way). So a filtered evaluation is the ordinary evaluation with a prefiltered texton, over the same
+     impulses: its variance falls by itself as detail is filtered away, and its expectation does not
+     change. No renormalization is applied: dividing by the filtered standard deviation would bring the
+     aliasing back.
+   - The pyramid. Level 0 is the texton as the continuous mode reads it, t0(x) = sum_j t[j] hat(x - j)
+     (hat the bilinear tent). Level l >= 1 stands for t0 * G_l, G_l the isotropic Gaussian of standard
+     deviation 2^(l-1) texels, stored as a bilinear texton at spacing 2^l centred on the impulse (its
+     texel (i, j) at offset 2^l (i - r_l, j - r'_l) texels, r_l = (width_l - 1) / 2, so that changing
+     level does not shift the texture): t_l(x) = sum s_l[i, j] hat(x / 2^l - (i - r_l, j - r'_l)). The
+     baker chooses s_l as the least-squares (L2) projection of t0 * G_l on those tents; by Campbell's
+     theorem E[(F_l - F * G_l)^2] = lambda * integral (t_l - t0 * G_l)^2, so this is the best prefilter
+     of that form. The blurred texton spills past the texton's window: the spill is kept (Texton Noise,
+     Galerne, Leclaire and Moisan, Computer Graphics Forum 2017, discards impulses whose read falls
+     outside the texture, and its mean drifts). The pyramid has L = floor(log2(max(r, r'))) + 1 levels,
+     down to a few texels (a 31 x 31 RGB 8-bit asset with its pyramid is under 6 KB).
+   - The mean stays exact at every level: E[sum_i t_l(x - x_i)] = lambda * integral t_l = lambda 4^l
+     sum s_l, so each level has its own offset (the expected sum subtracted by the normalization),
+     computed by dsn_noise_init from the exact integer sum of the level's stored values. Beyond the
+     coarsest level the texture has faded to its mean colour (dsn_noise_mean_float) exactly: "level
+     L + 1" is the mean.
+   - Level of detail (Williams, "Pyramidal parametrics", SIGGRAPH 1983, for the trilinear blend; the
+     anisotropic taps follow the GPUs' anisotropic filtering, e.g. OpenGL's
+     EXT_texture_filter_anisotropic). From the footprint's two step vectors (texels per pixel):
+       Pmax = the longer length, Pmin = |det J| / Pmax (the footprint parallelogram's width across it),
+       N = taps = the smallest power of two >= Pmax / Pmin, at most the largest power of two <= max_taps,
+       LOD = log2(max(Pmax / N, Pmin)), computed in integers with 8 fraction bits (dsn_filter_level).
+     The N taps lie at x + ((2k + 1 - N) / (2N)) v, k = 0 .. N - 1, along the longer step vector v, with
+     equal weights 1/N. Each tap blends levels floor(LOD) and floor(LOD) + 1 with weights (1 - f, f), f
+     the fraction of LOD. Two levels that share the impulses blend linearly with no variance
+     correction: the blend is itself a linear filter of the same draw. So the filter a pixel gets is
+     sum_taps (1/N) [(1 - f) G_floor(LOD) + f G_floor(LOD)+1] (G_0 = no filter), centred on each tap.
+   - Exactness: a footprint whose longer step is at most one texel is not filtered (LOD 0, one tap,
+     whatever its shape) and gives exactly the bits of dsn_continuous_point_fixed, as does any footprint
+     with LOD <= 0 and one tap. LOD >= L + 1 gives exactly the mean colour without walking impulses.
+     In between, each level's value is normalized with 8 more fraction bits than the output, the two
+     levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
+     up) to Q16.16 and saturated.
+   - Cost: a level-l point visits the impulses within (r_l + 1) 2^l texels, up to 4 times more per
+     level than level 0 near the coarsest levels (the blurred texton covers more impulses); N taps cost
+     N such points. make bench reports the ratios to the continuous mode per level of detail.
+   An asset without a pyramid (format 1.0, or a 1 x 1 texton) has L = 0: the filtered evaluation then
+   fades from the continuous mode (LOD 0) to the mean colour (LOD 1 and beyond).
+
+   The same errors as the continuous mode (DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH), and
+   DSN_ERR_ARGUMENT for a null footprint or max_taps 0 or above DSN_FILTER_MAX_TAPS. Every other
+   footprint has a defined result: zero steps are LOD <= 0 (unfiltered), a negative determinant (a mirror)
+   is taken by its absolute value, a zero determinant (a degenerate, line-like footprint) gets the most
+   taps allowed, huge steps the mean colour. Lengths are computed without overflow for every int64
+   value. */
+
+#define DSN_FILTER_MAX_TAPS 16u
+
+/* A pixel's footprint in texture space: the 2 x 2 Jacobian of the texel coordinates per pixel, as two
+   step vectors in Q32.32 texels (the derivatives a renderer gets from ray differentials or from its
+   neighbours, ddx and ddy on a GPU), and the most anisotropic taps allowed. */
+typedef struct dsn_footprint {
+    int64_t column_step_x, column_step_y; /* texels per pixel step along the screen's x, Q32.32 */
+    int64_t row_step_x, row_step_y;       /* texels per pixel step along the screen's y, Q32.32 */
+    uint32_t max_taps;                    /* 1: isotropic; up to DSN_FILTER_MAX_TAPS: anisotropic */
+} dsn_footprint;
+
+/* Fills `footprint` from float derivatives in texels per pixel (dx_dpx = d texel x / d screen x, etc.):
+   each converted to Q32.32 from its bits with integer operations (rounded toward minus infinity, as
+   dsn_coordinate_from_double, but saturated to the int64 range instead of wrapped). Returns DSN_OK,
+   DSN_ERR_NULL (null footprint) or DSN_ERR_ARGUMENT (a NaN or infinite derivative, or max_taps 0 or
+   above DSN_FILTER_MAX_TAPS; the footprint is then zeroed). */
+int dsn_footprint_from_float(dsn_footprint *footprint, double dx_dpx, double dy_dpx, double dx_dpy,
+                             double dy_dpy, uint32_t max_taps);
+
+/* The level of detail and tap count the filtered evaluation uses for this footprint on this noise:
+   *lod_q8 in 1/256 levels, clamped to [0, 256 (L + 1)] (0: unfiltered; 256 (L + 1): the mean colour,
+   L the asset's pyramid levels), *taps in 1 .. max_taps (a power of two). Integer arithmetic: the same
+   on every platform. Returns DSN_OK, DSN_ERR_NULL (a null pointer or a noise not configured) or
+   DSN_ERR_ARGUMENT (max_taps 0 or above DSN_FILTER_MAX_TAPS); on an error *lod_q8 and *taps are 0. */
+int dsn_filter_level(const dsn_noise *noise, const dsn_footprint *footprint, int32_t *lod_q8, uint32_t *taps);
+
+/* out[channels]: Q16.16 values of the noise filtered by the footprint at the continuous point (x, y)
+   (Q32.32). Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH or DSN_ERR_ARGUMENT; on an error
+   out[0] (and every channel of a configured noise) is set to 0. */
+int dsn_filtered_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, const dsn_footprint *footprint,
+                             int32_t *out);
+/* The same from float64 coordinates (dsn_coordinate_from_double), output as float (exactly fixed /
+   65536 rounded to float); the same errors. */
+int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const dsn_footprint *footprint,
+                             float *out);
+
+/* A grid tile (dsn_grid, as dsn_continuous_tile_fixed) filtered by the grid's own footprint: its column
+   and row steps, with max_taps as in dsn_footprint. Exactly the per-point values of
+   dsn_filtered_point_fixed with that footprint at each grid point (the level of detail and taps are
+   computed once per tile). A grid whose footprint is unfiltered (level of detail 0, one tap) is
+   dsn_continuous_tile_fixed's tile, splat included, and needs its scratch; any other is evaluated point
+   by point without scratch. `scratch` holds at least dsn_filtered_tile_scratch_size() bytes (no
+   alignment needed; 0 for an invalid call or a grid evaluated point by point). Returns DSN_OK, DSN_ERR_NULL,
+   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
+size_t dsn_filtered_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
+                                      uint32_t width, uint32_t height);
+int dsn_filtered_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
+                            uint32_t height, int32_t *out, void *scratch, size_t scratch_size);
+int dsn_filtered_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
+                            uint32_t height, float *out, void *scratch, size_t scratch_size);
+int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
+                         uint32_t height, uint8_t *out, void *scratch, size_t scratch_size);
+
+/* ==== End of the filtered evaluation ================================================================= */
 
 #ifdef __cplusplus
 }

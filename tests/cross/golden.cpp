@@ -350,6 +350,108 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
     return DSN_OK;
 }
 
+/* The filtered evaluation: each grid's steps are the footprint, evaluated with 16 taps allowed then 1:
+   a minification by 2.5 rotated, by 6 across the int32 wrap, a slanted footprint (8 taps) with a
+   mirror, a degenerate one (zero determinant: the most taps), a magnification (the continuous bits) and
+   a huge one (the mean colour). */
+const Grid filtered_grids[] = {
+    {{-7 * q32_one / 3, 5 * q32_one, 10307921510, 3006477107, -3006477107, 10307921510}, 5, 4},
+    {{(INT64_C(0x7FFFFFF0) << 32) + 99, -q32_one / 5, 6 * q32_one, q32_one / 8, 0, 6 * q32_one}, 4, 3},
+    {{q32_one / 3, 40 * q32_one, 12 * q32_one, 5 * q32_one, q32_one / 2, -3 * q32_one / 2}, 4, 4},
+    {{-q32_one, -q32_one, 3 * q32_one, 3 * q32_one, 2 * q32_one, 2 * q32_one}, 3, 3},
+    {{11 * q32_one / 7, q32_one / 9, q32_one / 2, q32_one / 5, -q32_one / 5, q32_one / 2}, 4, 3},
+    {{0, 0, INT64_MAX / 3, INT64_MIN / 5, INT64_MAX / 7, INT64_MAX / 2}, 3, 2},
+};
+
+#if DSN_FILTERING
+dsn_footprint grid_footprint(const Grid &grid, uint32_t max_taps) {
+    dsn_footprint footprint;
+    footprint.column_step_x = grid.grid.column_step_x;
+    footprint.column_step_y = grid.grid.column_step_y;
+    footprint.row_step_x = grid.grid.row_step_x;
+    footprint.row_step_y = grid.grid.row_step_y;
+    footprint.max_taps = max_taps;
+    return footprint;
+}
+
+/* The level of detail and taps, then the points. */
+int filtered_point_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    for (uint32_t max_taps = 16; max_taps >= 1; max_taps /= 16) {
+        const dsn_footprint footprint = grid_footprint(grid, max_taps);
+        int32_t lod_q8;
+        uint32_t taps;
+        int err = dsn_filter_level(noise, &footprint, &lod_q8, &taps);
+        if (err != DSN_OK) return err;
+        hash_u32(hash, static_cast<uint32_t>(lod_q8));
+        hash_u32(hash, taps);
+        for (uint32_t j = 0; j < grid.height; j++)
+            for (uint32_t i = 0; i < grid.width; i++) {
+                int32_t values[DSN_MAX_CHANNELS];
+                int64_t x, y;
+                grid_point(grid.grid, i, j, &x, &y);
+                err = dsn_filtered_point_fixed(noise, x, y, &footprint, values);
+                if (err != DSN_OK) return err;
+                hash_fixed(hash, values, dsn_noise_channels(noise));
+            }
+    }
+    return DSN_OK;
+}
+
+int filtered_scratch_for(const dsn_noise *noise, const Grid &grid, uint32_t max_taps, size_t *size) {
+    *size = dsn_filtered_tile_scratch_size(noise, &grid.grid, max_taps, grid.width, grid.height);
+    return *size <= scratch_capacity && grid.width * grid.height * DSN_MAX_CHANNELS <= max_window_values
+               ? DSN_OK
+               : DSN_ERR_SCRATCH;
+}
+
+/* The same bytes as filtered_point_fixed, from the tile. */
+int filtered_tile_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    for (uint32_t max_taps = 16; max_taps >= 1; max_taps /= 16) {
+        const dsn_footprint footprint = grid_footprint(grid, max_taps);
+        int32_t lod_q8;
+        uint32_t taps;
+        size_t scratch_size;
+        int err = dsn_filter_level(noise, &footprint, &lod_q8, &taps);
+        if (err == DSN_OK) err = filtered_scratch_for(noise, grid, max_taps, &scratch_size);
+        if (err == DSN_OK)
+            err = dsn_filtered_tile_fixed(noise, &grid.grid, max_taps, grid.width, grid.height,
+                                          tile_fixed_values, tile_scratch, scratch_size);
+        if (err != DSN_OK) return err;
+        hash_u32(hash, static_cast<uint32_t>(lod_q8));
+        hash_u32(hash, taps);
+        hash_fixed(hash, tile_fixed_values, grid.width * grid.height * dsn_noise_channels(noise));
+    }
+    return DSN_OK;
+}
+
+/* The float API per point, then the float and 8-bit tiles, with 16 taps allowed. */
+int filtered_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const dsn_footprint footprint = grid_footprint(grid, 16);
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            float values[DSN_MAX_CHANNELS];
+            int64_t x, y;
+            grid_point(grid.grid, i, j, &x, &y);
+            const int err =
+                dsn_filtered_point_float(noise, grid_double(x), grid_double(y), &footprint, values);
+            if (err != DSN_OK) return err;
+            hash_float(hash, values, dsn_noise_channels(noise));
+        }
+    size_t scratch_size;
+    const uint32_t count = grid.width * grid.height * dsn_noise_channels(noise);
+    int err = filtered_scratch_for(noise, grid, 16, &scratch_size);
+    if (err == DSN_OK)
+        err = dsn_filtered_tile_float(noise, &grid.grid, 16, grid.width, grid.height, tile_float_values,
+                                      tile_scratch, scratch_size);
+    if (err == DSN_OK) hash_float(hash, tile_float_values, count);
+    if (err == DSN_OK)
+        err = dsn_filtered_tile_u8(noise, &grid.grid, 16, grid.width, grid.height, tile_u8_values,
+                                   tile_scratch, scratch_size);
+    if (err == DSN_OK) hash_u8(hash, tile_u8_values, count);
+    return err;
+}
+#endif
+
 /* IEEE bit patterns for the coordinate conversions: zeros, halves, the int32 ends, beyond 2^63, the
    smallest subnormal, the largest finite, infinities and NaNs. Built from bits so that no compiler
    option (-ffast-math) can change them. */
@@ -405,6 +507,8 @@ const Plan continuous_plan = {continuous_settings, GOLDEN_COUNT(continuous_setti
 
 const Plan affine_plan = {affine_settings, GOLDEN_COUNT(affine_settings), 0, 0,
                           affine_grids,    GOLDEN_COUNT(affine_grids)};
+const Plan filtered_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
+                            filtered_grids,      GOLDEN_COUNT(filtered_grids)};
 
 /* One kind of output: a lattice evaluator over the plan's windows or a continuous one over its grids. */
 struct Kind {
@@ -427,6 +531,11 @@ const Kind kinds[] = {
     {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
     {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
     {"c-batch", 0, continuous_batch, &continuous_plan},   /* fixed then float, each as one batch */
+#if DSN_FILTERING
+    {"f-point", 0, filtered_point_fixed, &filtered_plan},
+    {"f-tile", 0, filtered_tile_fixed, &filtered_plan},   /* the same bytes as "f-point" */
+    {"f-float", 0, filtered_conversions, &filtered_plan}, /* per point, tile float and u8 */
+#endif
 };
 
 void write_line(const char *kind, const char *asset, const char *detail) {

@@ -1,5 +1,7 @@
 // fuzz_asset_loader.cpp - arbitrary bytes -> asset loader -> when accepted, a configuration taken from the
-// bytes after the asset -> points (extreme coordinates included) and a small tile, which must agree.
+// bytes after the asset -> points (extreme coordinates included) and a small tile, which must agree; then
+// filtered points and a filtered tile under a footprint from the bytes (any int64 steps, any max_taps,
+// float derivatives NaN and infinities included), the tile equal to its points.
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +33,65 @@ void check_points_and_tile(const dsn_noise &noise, uint32_t channels, FuzzInput 
         }
 }
 
+int64_t i64(FuzzInput &input) { return int64_t(uint64_t(input.u32()) | (uint64_t(input.u32()) << 32)); }
+
+// A step: often small (a few texels, the interesting levels of detail), sometimes any int64.
+int64_t step(FuzzInput &input) {
+    const uint32_t kind = input.byte();
+    if (kind < 160) return int64_t(int32_t(input.u32())) * 8; // within +-2^34: up to 4 texels per unit
+    if (kind < 240) return int64_t(int32_t(input.u32())) << 12;
+    return i64(input);
+}
+
+void check_filtered(const dsn_noise &noise, uint32_t channels, FuzzInput &input) {
+    dsn_footprint footprint{step(input), step(input), step(input), step(input), input.byte() % 18u};
+    const bool valid_taps = footprint.max_taps >= 1 && footprint.max_taps <= DSN_FILTER_MAX_TAPS;
+    const bool continuous = dsn_continuous_check(&noise) == DSN_OK;
+    int32_t lod_q8;
+    uint32_t taps;
+    const int level_error = dsn_filter_level(&noise, &footprint, &lod_q8, &taps);
+    fuzz_require(level_error == (valid_taps ? DSN_OK : DSN_ERR_ARGUMENT));
+    if (level_error == DSN_OK)
+        fuzz_require(taps >= 1 && taps <= footprint.max_taps && (taps & (taps - 1)) == 0);
+    const int expected = !continuous ? DSN_ERR_CONTINUOUS_MISMATCH : valid_taps ? DSN_OK : DSN_ERR_ARGUMENT;
+
+    const dsn_grid grid{
+        i64(input),           i64(input),          footprint.column_step_x, footprint.column_step_y,
+        footprint.row_step_x, footprint.row_step_y};
+    const uint32_t width = 3, height = 2;
+    std::vector<int32_t> tile(width * height * channels);
+    std::vector<unsigned char> scratch(
+        dsn_filtered_tile_scratch_size(&noise, &grid, footprint.max_taps, width, height) + 1);
+    const int tile_error = dsn_filtered_tile_fixed(&noise, &grid, footprint.max_taps, width, height,
+                                                   tile.data(), scratch.data(), scratch.size());
+    fuzz_require(tile_error == expected);
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
+                                      j * uint64_t(grid.row_step_x));
+            const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
+                                      j * uint64_t(grid.row_step_y));
+            int32_t value[DSN_MAX_CHANNELS];
+            fuzz_require(dsn_filtered_point_fixed(&noise, x, y, &footprint, value) == expected);
+            for (uint32_t c = 0; expected == DSN_OK && c < channels; c++)
+                fuzz_require(tile[(j * width + i) * channels + c] == value[c]);
+        }
+
+    // Float derivatives from raw bits (NaN and infinities included): DSN_ERR_ARGUMENT or a footprint.
+    double derivatives[4];
+    for (double &d : derivatives) {
+        const uint64_t bits = uint64_t(input.u32()) | (uint64_t(input.u32()) << 32);
+        __builtin_memcpy(&d, &bits, sizeof d);
+    }
+    dsn_footprint from_float;
+    if (dsn_footprint_from_float(&from_float, derivatives[0], derivatives[1], derivatives[2], derivatives[3],
+                                 1u + input.byte() % 16u) == DSN_OK) {
+        float value[DSN_MAX_CHANNELS];
+        fuzz_require(dsn_filtered_point_float(&noise, 0.5, -3.25, &from_float, value) ==
+                     (continuous ? DSN_OK : DSN_ERR_CONTINUOUS_MISMATCH));
+    }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -51,5 +112,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     dsn_noise noise;
     if (dsn_noise_init(&noise, &asset, &config) != DSN_OK) return 0;
     check_points_and_tile(noise, asset.channels, input);
+    check_filtered(noise, asset.channels, input);
     return 0;
 }

@@ -1,0 +1,82 @@
+// filtered_bench.cpp - cost of the filtered evaluation as ratios to the continuous mode per point measured
+// in the same run (RGB, 31 x 31 texton with the baker's pyramid, 30 impacts per pixel, one thread):
+// isotropic per level of detail, anisotropic per tap, and the asset's size with and without its pyramid.
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "../../offline/bake_internal.h"
+#include "../fixtures/continuous_fixtures.h"
+#include "bench_timing.h"
+
+namespace {
+
+using bench::best_time;
+const uint32_t kPoints = 20000;
+int64_t checksum = 0; // keeps the evaluations observable
+
+int64_t q32(double texels) { return int64_t(std::floor(texels * 4294967296.0)); }
+
+} // namespace
+
+int main() {
+    using namespace continuous_fixtures;
+    dsn::AssetFields fields = random_texton_asset(3, 15, 8, 1);
+    const size_t plain_size = dsn::encode_asset(fields).size();
+    fields.pyramid = dsn::texton_pyramid(fields);
+    auto noise = make_noise(fields, 1, 30u << 16);
+    const dsn_noise *n = &noise->noise;
+    std::printf("asset (31 x 31 RGB 8-bit): %zu bytes with its %zu-level pyramid, %zu without (%.2fx)\n",
+                noise->bytes.size(), fields.pyramid.size(), plain_size,
+                double(noise->bytes.size()) / double(plain_size));
+
+    // Points on a rotated grid, as a renderer asks for them.
+    auto point = [](uint32_t i, int64_t *x, int64_t *y) {
+        *x = int64_t(i % 200) * q32(2.8191) - int64_t(i / 200) * q32(1.0261) + q32(1.0 / 3);
+        *y = int64_t(i % 200) * q32(1.0261) + int64_t(i / 200) * q32(2.8191) + q32(1.0 / 7);
+    };
+    const double continuous = best_time(3, [&] {
+        int32_t out[3];
+        for (uint32_t i = 0; i < kPoints; i++) {
+            int64_t x, y;
+            point(i, &x, &y);
+            dsn_continuous_point_fixed(n, x, y, out);
+            checksum += out[0];
+        }
+    });
+    std::printf("continuous per point: %.0f ns (the baseline)\n", continuous / kPoints * 1e9);
+    auto filtered = [&](const dsn_footprint &f) {
+        return best_time(3, [&] {
+            int32_t out[3];
+            for (uint32_t i = 0; i < kPoints; i++) {
+                int64_t x, y;
+                point(i, &x, &y);
+                dsn_filtered_point_fixed(n, x, y, &f, out);
+                checksum += out[0];
+            }
+        });
+    };
+    const double lods[] = {0, 0.5, 1, 1.5, 2, 2.5, 3, 3.5, 4, 4.5, 5};
+    for (double lod : lods) {
+        const double side = std::pow(2.0, lod);
+        const dsn_footprint f{q32(side), 0, 0, q32(side), 1};
+        const double time = filtered(f);
+        std::printf("isotropic filtered, LOD %.1f: %.2fx the continuous per point\n", lod, time / continuous);
+    }
+    const double ratios[] = {2, 4, 8, 16};
+    const double minors[] = {1, 2, 4};
+    for (double minor : minors)
+        for (double ratio : ratios) {
+            const dsn_footprint f{q32(minor * ratio), 0, 0, q32(minor), 16};
+            int32_t lod_q8;
+            uint32_t taps;
+            dsn_filter_level(n, &f, &lod_q8, &taps);
+            const double time = filtered(f);
+            std::printf(
+                "anisotropic %2.0f:1, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the continuous per "
+                "point, %.2fx per tap\n",
+                ratio, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps);
+        }
+    std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
+    return 0;
+}
