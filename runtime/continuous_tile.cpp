@@ -7,6 +7,7 @@
 #include "cell_walk.h"
 #include "continuous_internal.h"
 #include "impulse_position.h"
+#include "kernels.h"
 #include "normalize_fixed.h"
 #include "poisson_count.h"
 
@@ -239,67 +240,10 @@ void block_extent(const FrameAxis &axis, const Block &block, int64_t *low, int64
     *high = corner + (across > 0 ? across : 0) + (down > 0 ? down : 0);
 }
 
-/* One channel of the bilinear texton at (row, column) with the upper weights (down, across), texels
-   inside the window: add_bilinear's integer, with one product per step ((65536 - w) a + w b =
-   65536 a + w (b - a), the same integers). */
-template <uint32_t Bytes, uint32_t Stride>
-inline int64_t interior_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
-                                int64_t down) {
-    const int64_t top_left = stored_value<Bytes>(top), bottom_left = stored_value<Bytes>(bottom);
-    const int64_t upper = top_left * 65536 + across * (stored_value<Bytes>(top + Stride) - top_left);
-    const int64_t lower = bottom_left * 65536 + across * (stored_value<Bytes>(bottom + Stride) - bottom_left);
-    return upper * 65536 + down * (lower - upper);
-}
-
-/* A texel of channel c at (row, column), 0 outside the window (indices are unsigned: -1 is outside). */
-template <uint32_t Channels, uint32_t Bytes>
-inline int64_t edge_texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
-    if (row >= asset->height || column >= asset->width) return 0;
-    return stored_value<Bytes>(asset->texton + ((row * asset->width + column) * Channels + c) * Bytes);
-}
-
-/* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
-   reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
-   values lie in (0, 2 reach), so its lower index and weight are read off directly. */
-template <uint32_t Channels, uint32_t Bytes>
-void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x, int64_t step_y,
-               int64_t reach_x, int64_t reach_y, int64_t count, uint64_t *pixel) {
-    const uint32_t width = asset->width, height = asset->height, row_bytes = width * Channels * Bytes;
-    uint64_t shifted_x = static_cast<uint64_t>(offset_x + reach_x);
-    uint64_t shifted_y = static_cast<uint64_t>(offset_y + reach_y);
-    for (int64_t i = 0; i < count; i++, pixel += Channels) {
-        const uint32_t column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
-        const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u;
-        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
-        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
-        if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
-            const unsigned char *top = asset->texton + (row * width + column) * Channels * Bytes;
-            const unsigned char *bottom = top + row_bytes;
-            for (uint32_t c = 0; c < Channels; c++)
-                pixel[c] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
-                    top + c * Bytes, bottom + c * Bytes, across, down));
-        } else { /* at the window's edge: the same integers, texels outside read as 0 */
-            for (uint32_t c = 0; c < Channels; c++) {
-                const int64_t top_left = edge_texel<Channels, Bytes>(asset, row, column, c);
-                const int64_t bottom_left = edge_texel<Channels, Bytes>(asset, row + 1u, column, c);
-                const int64_t upper =
-                    top_left * 65536 +
-                    across * (edge_texel<Channels, Bytes>(asset, row, column + 1u, c) - top_left);
-                const int64_t lower =
-                    bottom_left * 65536 +
-                    across * (edge_texel<Channels, Bytes>(asset, row + 1u, column + 1u, c) - bottom_left);
-                pixel[c] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
-            }
-        }
-        shifted_x += static_cast<uint64_t>(step_x);
-        shifted_y += static_cast<uint64_t>(step_y);
-    }
-}
-
 /* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window. */
-template <uint32_t Channels, uint32_t Bytes>
 void splat_impulse(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
-                   uint32_t width, int64_t position_x, int64_t position_y, uint64_t *sums) {
+                   uint32_t width, int64_t position_x, int64_t position_y, uint64_t *sums,
+                   dsn_splat_row_entry *splat_row, size_t plane) {
     /* Offsets (pixel - impulse) of the block's first pixel. */
     const int64_t row_x = x.base + x.column * static_cast<int64_t>(block.first_column) +
                           x.row * static_cast<int64_t>(block.first_row) - position_x;
@@ -314,19 +258,17 @@ void splat_impulse(const dsn_noise_state *noise, const FrameAxis &x, const Frame
         column_bounds_apply(bounds_x, &first, &last);
         column_bounds_apply(bounds_y, &first, &last);
         if (first <= last)
-            splat_row<Channels, Bytes>(
-                &noise->asset, bounds_x.offset + x.column * first, bounds_y.offset + y.column * first,
-                x.column, y.column, x.reach, y.reach, last - first + 1,
-                sums + (static_cast<size_t>(j) * width + block.first_column + static_cast<size_t>(first)) *
-                           Channels);
+            splat_row(&noise->asset, bounds_x.offset + x.column * first, bounds_y.offset + y.column * first,
+                      x.column, y.column, x.reach, y.reach, static_cast<uint32_t>(last - first + 1),
+                      sums + static_cast<size_t>(j) * width + block.first_column + static_cast<size_t>(first),
+                      plane);
         column_bounds_next(&bounds_x);
         column_bounds_next(&bounds_y);
     }
 }
 
-template <uint32_t Channels, uint32_t Bytes>
 void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
-                 uint32_t width, uint64_t *sums) {
+                 uint32_t width, uint64_t *sums, dsn_splat_row_entry *splat_row, size_t plane) {
     const uint32_t shift = noise->cell_shift, cell_mask = 0xFFFFFFFFu >> shift;
     const uint32_t position_shift = 16u + shift, lattice_shift = 16u - shift;
     int64_t low_x, high_x, low_y, high_y;
@@ -364,8 +306,8 @@ void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAx
                         if (position_x <= low_x - x.reach || position_x >= high_x + x.reach ||
                             position_y <= low_y - y.reach || position_y >= high_y + y.reach)
                             continue;
-                        splat_impulse<Channels, Bytes>(noise, x, y, block, width, position_x, position_y,
-                                                       sums);
+                        splat_impulse(noise, x, y, block, width, position_x, position_y, sums, splat_row,
+                                      plane);
                     }
                 }
             }
@@ -412,9 +354,12 @@ uint64_t *aligned_sums(void *scratch) {
         static_cast<void *>(bytes + (misalignment ? sizeof(uint64_t) - misalignment : 0u)));
 }
 
-template <uint32_t Channels, uint32_t Bytes>
-void splat_blocks(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
-                  uint32_t height, uint64_t *sums) {
+/* The sums are planar (channel c of pixel p at sums[c * width * height + p]): the vector kernels add
+   runs of pixels of one channel. */
+void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
+                uint32_t height, uint64_t *sums) {
+    dsn_splat_row_entry *splat_row = dsn_kernel_entries_of(noise->tile_kernel)->continuous_splat_row;
+    const size_t plane = static_cast<size_t>(width) * height;
     for (uint32_t top = 0; top < height; top += block_side)
         for (uint32_t left = 0; left < width; left += block_side) {
             Block block;
@@ -422,20 +367,8 @@ void splat_blocks(const dsn_noise_state *noise, const FrameAxis &x, const FrameA
             block.end_column = width - left < block_side ? width : left + block_side;
             block.first_row = top;
             block.end_row = height - top < block_side ? height : top + block_side;
-            splat_block<Channels, Bytes>(noise, x, y, block, width, sums);
+            splat_block(noise, x, y, block, width, sums, splat_row, plane);
         }
-}
-
-/* One copy of the splat per channel count and value size. */
-void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
-                uint32_t height, uint64_t *sums) {
-    const dsn_asset *asset = &noise->asset;
-    if (asset->channels == 3)
-        asset->bits == 8 ? splat_blocks<3, 1>(noise, x, y, width, height, sums)
-                         : splat_blocks<3, 2>(noise, x, y, width, height, sums);
-    else
-        asset->bits == 8 ? splat_blocks<1, 1>(noise, x, y, width, height, sums)
-                         : splat_blocks<1, 2>(noise, x, y, width, height, sums);
 }
 
 #endif /* !DSN_SMALL_CODE */
@@ -455,12 +388,14 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
         uint64_t *sums = aligned_sums(scratch);
         const uint32_t channels = noise->asset.channels;
         int32_t pixel[DSN_MAX_CHANNELS];
-        const size_t values = static_cast<size_t>(width) * height * channels;
-        for (size_t i = 0; i < values; i++) sums[i] = 0;
+        const size_t plane = static_cast<size_t>(width) * height;
+        for (size_t i = 0; i < plane * channels; i++) sums[i] = 0;
         splat_grid(noise, x, y, width, height, sums);
-        for (size_t p = 0; p < values; p += channels) {
-            normalize_q32(noise, sums + p, pixel);
-            dsn_store_pixel(out, kind, p, pixel, channels);
+        for (size_t p = 0; p < plane; p++) {
+            uint64_t pixel_sums[DSN_MAX_CHANNELS];
+            for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * plane + p];
+            normalize_q32(noise, pixel_sums, pixel);
+            dsn_store_pixel(out, kind, p * channels, pixel, channels);
         }
         return DSN_OK;
     }

@@ -8,7 +8,10 @@
 #error "runtime/kernel_avx2.cpp must be compiled with -mavx2 when DSN_X86_DISPATCH is set"
 #endif
 
+#include "continuous_batch.h"
+#include "splat_row.h"
 #include "tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile};
+extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile, continuous_batch,
+                                                             continuous_splat_row};
 #endif

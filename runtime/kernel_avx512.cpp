@@ -9,7 +9,10 @@
 #error "runtime/kernel_avx512.cpp must be compiled with -mavx512f -mavx512bw when DSN_X86_DISPATCH is set"
 #endif
 
+#include "continuous_batch.h"
+#include "splat_row.h"
 #include "tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile};
+extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile, continuous_batch,
+                                                               continuous_splat_row};
 #endif

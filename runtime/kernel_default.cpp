@@ -3,4 +3,17 @@
 #include "kernels.h"
 #include "tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile};
+#if DSN_CONTINUOUS_BATCH
+#include "continuous_batch.h"
+#define BATCH_ENTRY continuous_batch
+#else
+#define BATCH_ENTRY 0
+#endif
+#if !DSN_SMALL_CODE
+#include "splat_row.h"
+#define SPLAT_ROW_ENTRY continuous_splat_row
+#else
+#define SPLAT_ROW_ENTRY 0
+#endif
+
+extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile, BATCH_ENTRY, SPLAT_ROW_ENTRY};

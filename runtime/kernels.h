@@ -30,9 +30,27 @@
 typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                     uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
 
-/* What one kernel computes: one member per kind of kernel. */
+/* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),
+   Q32.32, into out[k * channels], reading the texton from `quads` (continuous_batch.h's 2 x 2 texel
+   table, built by continuous_batch.cpp) and using `work` (batch_work_bytes bytes, 64-byte aligned). */
+typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint32_t *quads,
+                                        const int64_t *xs, const int64_t *ys, uint32_t count, int32_t *out,
+                                        void *work);
+
+/* The innermost loop of the continuous grid splat (splat_row.h's continuous_splat_row): one impulse added
+   to `count` pixels of a row from the offsets (pixel - impulse) given, all within reach, stepping by
+   (step_x, step_y); channel c of the row's first pixel sums at sums[c * plane]. */
+typedef void dsn_splat_row_entry(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
+                                 int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count,
+                                 uint64_t *sums, size_t plane);
+
+/* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
+   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_row in the small build
+   (DSN_SMALL_CODE), which evaluates grids point by point. */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
+    dsn_continuous_batch_entry *continuous_batch;
+    dsn_splat_row_entry *continuous_splat_row;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

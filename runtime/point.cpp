@@ -146,21 +146,6 @@ inline __m128i position_pairs(__m128i key) {
     return _mm_xor_si128(x, _mm_srli_epi64(x, 31));
 }
 
-/* dsn_poisson_draw (one draw on this path) with its first two steps of search taken without a branch:
-   from the guide, 90% of the counts need no step, 8% one and 1.3% two at the usual mean of 8, so a
-   branch on them would often be mispredicted. A step from n adds uniform >= cdf[n]:
-   exact below the table size; at or past it (cdf = 2^32 - 1, undercut by no uniform but 2^32 - 1) it
-   may overshoot, which the rare exact search behind catches, as it does counts that need more steps.
-   The reads go at most to cdf[size + 1] (accumulate checks that it is in the table). */
-inline uint32_t poisson_count(const dsn_noise_state *noise, uint32_t uniform) {
-    uint32_t n = noise->poisson_guide[uniform >> 26];
-    n += uint32_t(uniform >= noise->poisson_cdf[n]);
-    n += uint32_t(uniform >= noise->poisson_cdf[n]);
-    if (n > noise->poisson_size || (n < noise->poisson_size && uniform >= noise->poisson_cdf[n]))
-        n = dsn_poisson_draw(noise, uniform);
-    return n;
-}
-
 /* Lanes k >= count as all-ones bytes (the impulses that do not exist): 16 bytes of absent_window from
    16 - min(count, 16). */
 /* clang-format off */
@@ -335,7 +320,7 @@ void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, ui
                 flush_hit_sums<Channels, Bits>(&hit, sums);
                 slot = 0;
             }
-            const uint32_t count = poisson_count(noise, key);
+            const uint32_t count = dsn_poisson_count_two_steps(noise, key);
             masks[slot] = uint16_t(cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
                                              &row_range, corner, widths_less_16, entries + 16 * slot));
             slot++;
@@ -356,7 +341,8 @@ void accumulate(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *
     sums[0] = sums[1] = sums[2] = 0;
 #if defined(__SSE2__)
     const dsn_asset *asset = &noise->asset;
-    /* poisson_count reads up to cdf[size + 1]: always in the table for one draw (mean <= 16), checked */
+    /* dsn_poisson_count_two_steps reads up to cdf[size + 1]: always in the table for one draw (mean <= 16),
+     * checked */
     if (noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
         noise->period[1] == 0 &&
         noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0]) {

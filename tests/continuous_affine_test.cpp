@@ -1,6 +1,6 @@
 // continuous_affine_test.cpp - continuous tiles under any affine grid (rotations, zooms in and out, shear,
-// mirror, periodic noises) give exactly the per-point values, bit for
-// bit, including across the 32-bit wraps and on grids that fall back to per point.
+// mirror, periodic noises) give exactly the per-point values, bit for bit, in every kernel this CPU runs,
+// including across the 32-bit wraps and on grids that fall back to per point.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "../runtime/kernels.h"
 #include "fixtures/continuous_fixtures.h"
 
 using namespace continuous_fixtures;
@@ -37,7 +38,8 @@ dsn_grid affine_grid(int64_t origin_x, int64_t origin_y, double degrees, double 
 
 // Evaluates the grid as a tile in every output type and checks each pixel against the per-point call.
 // Returns whether the tile was splatted (asked for scratch).
-bool tile_matches_points(const dsn_noise *noise, const dsn_grid &grid, uint32_t width, uint32_t height) {
+bool tile_matches_points_in_kernel(const dsn_noise *noise, const dsn_grid &grid, uint32_t width,
+                                   uint32_t height) {
     const uint32_t channels = dsn_noise_channels(noise);
     const size_t scratch_size = dsn_continuous_tile_scratch_size(noise, &grid, width, height);
     std::vector<unsigned char> buffer(scratch_size + 3);
@@ -73,6 +75,18 @@ bool tile_matches_points(const dsn_noise *noise, const dsn_grid &grid, uint32_t 
             }
         }
     return scratch_size != 0;
+}
+
+// The same in every kernel (copy of the splat's inner loop) that this CPU runs.
+bool tile_matches_points(const dsn_noise *noise, const dsn_grid &grid, uint32_t width, uint32_t height) {
+    bool splatted = false;
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(noise)->tile_kernel; kernel++) {
+        dsn_noise copy = *noise;
+        dsn_state(&copy)->tile_kernel = kernel;
+        CAPTURE(kernel);
+        splatted = tile_matches_points_in_kernel(&copy, grid, width, height);
+    }
+    return splatted;
 }
 
 // Origins: anywhere, just before both 32-bit wraps (int32 lattice and the 2^64 torus), around 0.

@@ -6,7 +6,7 @@ $(BUILD)/obj/examples/tiny_renderer/%.o: examples/tiny_renderer/%.cpp
 
 $(BUILD)/bin/dsn-tiny-renderer: $(BUILD)/obj/examples/tiny_renderer/tiny_renderer.o $(LIBDSN)
 	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) $< -o $@ $(LIBDSN) $(LDFLAGS) $(STB_LIBS)
+	$(CXX) $(CXXFLAGS) $< -o $@ $(LIBDSN) $(LDFLAGS) $(STB_LIBS) -lpthread
 
 PROGRAMS += $(BUILD)/bin/dsn-tiny-renderer
 TEST_SCRIPTS += examples/tiny_renderer/smoke-test

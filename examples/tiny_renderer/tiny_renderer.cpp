@@ -6,6 +6,7 @@
 // from ray differentials: ray_differentials.h), and hand both to dsn_filtered_point_float. A pixel that
 // covers many texels then shows the texture filtered over its footprint, down to the exact mean colour
 // far away, instead of aliased noise.
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <stb_image_write.h>
@@ -253,18 +255,28 @@ int run(int argc, char **argv) {
     // A pinhole camera looking slightly down, 60 degrees of horizontal field of view.
     const tiny::Camera camera(Vec{0, 2.2, -5.5}, Vec{0, -0.2, 1}, 60, width, height);
     std::vector<uint8_t> pixels(size_t(crop_width) * crop_height * 3);
-    for (int j = 0; j < crop_height; j++)
-        for (int i = 0; i < crop_width; i++) {
-            // Supersampled: the average of samples at the centres of an N x N grid of sub-pixels.
-            Vec color{0, 0, 0};
-            for (int b = 0; b < supersample; b++)
-                for (int a = 0; a < supersample; a++)
-                    color = color + trace(scene, camera, crop_x + i + (a + 0.5) / supersample,
-                                          crop_y + j + (b + 0.5) / supersample, filter);
-            color = color * (1.0 / (supersample * supersample));
-            uint8_t *pixel = &pixels[(size_t(j) * crop_width + i) * 3];
-            pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
-        }
+    // Rows are shared out to one thread per core as they come (a configured dsn_noise may be read by
+    // several threads at once); every pixel is computed alone, so the picture does not depend on it.
+    std::atomic<int> next_row{0};
+    auto render_rows = [&] {
+        for (int j; (j = next_row++) < crop_height;)
+            for (int i = 0; i < crop_width; i++) {
+                // Supersampled: the average of samples at the centres of an N x N grid of sub-pixels.
+                Vec color{0, 0, 0};
+                for (int b = 0; b < supersample; b++)
+                    for (int a = 0; a < supersample; a++)
+                        color = color + trace(scene, camera, crop_x + i + (a + 0.5) / supersample,
+                                              crop_y + j + (b + 0.5) / supersample, filter);
+                color = color * (1.0 / (supersample * supersample));
+                uint8_t *pixel = &pixels[(size_t(j) * crop_width + i) * 3];
+                pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
+            }
+    };
+    std::vector<std::thread> workers(
+        std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() - 1 : 0);
+    for (std::thread &worker : workers) worker = std::thread(render_rows);
+    render_rows();
+    for (std::thread &worker : workers) worker.join();
     write_png(output, crop_width, crop_height, pixels);
     return 0;
 }

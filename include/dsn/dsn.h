@@ -346,6 +346,33 @@ int dsn_continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint
 int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                            uint8_t *out, void *scratch, size_t scratch_size);
 
+/* ---- Batches of continuous points (a renderer's ray hits) ----
+   DSN_CONTINUOUS_BATCH   default: 0 in the small build (DSN_SMALL_CODE), else 1. Like the configuration
+                          macros at the top, read when the runtime is compiled: 0 leaves the three batch
+                          functions below out of the runtime (and out of this header), so the small
+                          build keeps its code size; call dsn_continuous_point_* in a loop there.
+   Point k of a batch is (xs[k], ys[k]); out receives count * channels values, point k's channels at
+   out[k * channels], exactly what the per-point function of the same type returns there (the float
+   variant: dsn_continuous_point_float, coordinates converted by dsn_coordinate_from_double). The points
+   may lie anywhere, in any order; where the CPU runs AVX2 (the copy init chose, as for tiles) the batch
+   evaluates them together, hashing and interpolating across points on vectors, elsewhere point by point.
+   The scratch holds a table of the texton's 2 x 2 texel neighbourhoods and the work arrays: at least
+   dsn_continuous_batch_scratch_size() bytes (no alignment needed; it depends on the asset's texton size,
+   not on count: about 32 KB for a 31 x 31 RGB texton). Returns DSN_OK (count 0
+   included: nothing is read or written), DSN_ERR_NULL (a null pointer with count > 0, or a noise not
+   configured), DSN_ERR_CONTINUOUS_MISMATCH or DSN_ERR_SCRATCH; on an error nothing is written.
+   dsn_continuous_batch_scratch_size returns 0 for a noise that the continuous functions refuse. */
+#ifndef DSN_CONTINUOUS_BATCH
+#define DSN_CONTINUOUS_BATCH (!DSN_SMALL_CODE)
+#endif
+#if DSN_CONTINUOUS_BATCH
+size_t dsn_continuous_batch_scratch_size(const dsn_noise *noise);
+int dsn_continuous_batch_fixed(const dsn_noise *noise, const int64_t *xs, const int64_t *ys, uint32_t count,
+                               int32_t *out, void *scratch, size_t scratch_size);
+int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const double *ys, uint32_t count,
+                               float *out, void *scratch, size_t scratch_size);
+#endif
+
 /* ==== End of the continuous mode ===================================================================== */
 
 /* ==== Filtered evaluation (anti-aliased continuous mode) ===========================================

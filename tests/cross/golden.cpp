@@ -308,6 +308,48 @@ int continuous_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) 
     return err;
 }
 
+/* The grid's points as one batch: the fixed values, then the float values from the coordinates of
+   continuous_conversions. The small build has no batch functions (DSN_CONTINUOUS_BATCH 0): it takes the
+   points one by one, which must give the same bytes. (The continuous grids only: the emulated
+   microcontroller evaluates every kind point by point, within the run's time limit.) */
+int64_t batch_x[max_window_values / DSN_MAX_CHANNELS], batch_y[max_window_values / DSN_MAX_CHANNELS];
+double batch_x_double[max_window_values / DSN_MAX_CHANNELS],
+    batch_y_double[max_window_values / DSN_MAX_CHANNELS];
+
+int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t points = grid.width * grid.height, count = points * dsn_noise_channels(noise);
+    if (points * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            const uint32_t k = j * grid.width + i;
+            grid_point(grid.grid, i, j, &batch_x[k], &batch_y[k]);
+            batch_x_double[k] = grid_double(batch_x[k]);
+            batch_y_double[k] = grid_double(batch_y[k]);
+        }
+#if DSN_CONTINUOUS_BATCH
+    const size_t scratch_size = dsn_continuous_batch_scratch_size(noise);
+    if (scratch_size > scratch_capacity) return DSN_ERR_SCRATCH;
+    int err = dsn_continuous_batch_fixed(noise, batch_x, batch_y, points, tile_fixed_values, tile_scratch,
+                                         scratch_size);
+    if (err == DSN_OK)
+        err = dsn_continuous_batch_float(noise, batch_x_double, batch_y_double, points, tile_float_values,
+                                         tile_scratch, scratch_size);
+#else
+    int err = DSN_OK;
+    const uint32_t channels = dsn_noise_channels(noise);
+    for (uint32_t k = 0; err == DSN_OK && k < points; k++) {
+        err = dsn_continuous_point_fixed(noise, batch_x[k], batch_y[k], &tile_fixed_values[k * channels]);
+        if (err == DSN_OK)
+            err = dsn_continuous_point_float(noise, batch_x_double[k], batch_y_double[k],
+                                             &tile_float_values[k * channels]);
+    }
+#endif
+    if (err != DSN_OK) return err;
+    hash_fixed(hash, tile_fixed_values, count);
+    hash_float(hash, tile_float_values, count);
+    return DSN_OK;
+}
+
 /* The filtered evaluation: each grid's steps are the footprint, evaluated with 16 taps allowed then 1:
    a minification by 2.5 rotated, by 6 across the int32 wrap, a slanted footprint (8 taps) with a
    mirror, a degenerate one (zero determinant: the most taps), a magnification (the continuous bits) and
@@ -488,6 +530,7 @@ const Kind kinds[] = {
     {"a-point", 0, continuous_point_fixed, &affine_plan},
     {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
     {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
+    {"c-batch", 0, continuous_batch, &continuous_plan},   /* fixed then float, each as one batch */
 #if DSN_FILTERING
     {"f-point", 0, filtered_point_fixed, &filtered_plan},
     {"f-tile", 0, filtered_tile_fixed, &filtered_plan},   /* the same bytes as "f-point" */

@@ -1,0 +1,124 @@
+/* runtime/continuous_batch.cpp - the API of batches of continuous points (dsn.h): checks, the scratch's
+   layout (the texton's 2 x 2 texel table, built once per call, and the kernel's work arrays), the
+   float variant's conversions, and the call to the batch kernel that init chose (kernels.h,
+   continuous_batch.h). Empty when DSN_CONTINUOUS_BATCH is 0 (the small build). */
+#include "dsn/dsn.h"
+
+#if DSN_CONTINUOUS_BATCH
+#include "continuous_batch.h"
+#include "continuous_internal.h"
+#include "kernels.h"
+#include "normalize_fixed.h"
+
+namespace {
+
+const size_t scratch_alignment = 64;
+
+size_t round_up(size_t bytes) {
+    return (bytes + scratch_alignment - 1u) / scratch_alignment * scratch_alignment;
+}
+
+size_t scratch_bytes(const dsn_noise_state *noise) {
+    return scratch_alignment - 1u + round_up(batch_quad_count(&noise->asset) * sizeof(uint32_t)) +
+           batch_work_bytes;
+}
+
+/* The aligned start of the caller's scratch. */
+unsigned char *aligned_scratch(void *scratch) {
+    unsigned char *bytes = static_cast<unsigned char *>(scratch);
+    const uintptr_t misalignment = reinterpret_cast<uintptr_t>(bytes) % scratch_alignment;
+    return bytes + (misalignment ? scratch_alignment - misalignment : 0u);
+}
+
+/* Texton value of the bordered texton (row and column 0 are the border) as the low bits of a word. */
+uint32_t bordered_bits(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
+    /* dsn_asset_texton_value is 0 outside the window: row or column 0 is index 0xFFFFFFFF there */
+    return static_cast<uint32_t>(dsn_asset_texton_value(asset, row - 1u, column - 1u, c)) &
+           (asset->bits == 8 ? 0xFFu : 0xFFFFu);
+}
+
+/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch; returns the work arrays
+   after it. */
+void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned) {
+    const dsn_asset *asset = &noise->asset;
+    uint32_t *quads = static_cast<uint32_t *>(static_cast<void *>(aligned));
+    size_t index = 0;
+    for (uint32_t row = 0; row <= asset->height; row++)
+        for (uint32_t column = 0; column <= asset->width; column++)
+            for (uint32_t c = 0; c < asset->channels; c++) {
+                const uint32_t top_left = bordered_bits(asset, row, column, c),
+                               top_right = bordered_bits(asset, row, column + 1u, c);
+                const uint32_t bottom_left = bordered_bits(asset, row + 1u, column, c),
+                               bottom_right = bordered_bits(asset, row + 1u, column + 1u, c);
+                if (asset->bits == 8) {
+                    quads[index++] = top_left | (top_right << 8) | (bottom_left << 16) | (bottom_right << 24);
+                } else {
+                    quads[index++] = top_left | (top_right << 16);
+                    quads[index++] = bottom_left | (bottom_right << 16);
+                }
+            }
+    return aligned + round_up(index * sizeof(uint32_t));
+}
+
+/* The checks every batch call makes, in the order documented in dsn.h. */
+int check_batch(const dsn_noise_state *noise, const void *xs, const void *ys, uint32_t count, const void *out,
+                const void *scratch, size_t scratch_size) {
+    const int err = dsn_internal_continuous_check(noise);
+    if (err != DSN_OK) return err;
+    if (count == 0) return DSN_OK;
+    if (xs == 0 || ys == 0 || out == 0) return DSN_ERR_NULL;
+    if (scratch == 0 || scratch_size < scratch_bytes(noise)) return DSN_ERR_SCRATCH;
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+size_t dsn_continuous_batch_scratch_size(const dsn_noise *handle) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    return dsn_internal_continuous_check(noise) == DSN_OK ? scratch_bytes(noise) : 0u;
+}
+
+int dsn_continuous_batch_fixed(const dsn_noise *handle, const int64_t *xs, const int64_t *ys, uint32_t count,
+                               int32_t *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
+    if (err != DSN_OK || count == 0) return err;
+    unsigned char *aligned = aligned_scratch(scratch);
+    void *work = prepare_scratch(noise, aligned);
+    const uint32_t *quads = static_cast<const uint32_t *>(static_cast<void *>(aligned));
+    dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch(noise, quads, xs, ys, count, out, work);
+    return DSN_OK;
+}
+
+int dsn_continuous_batch_float(const dsn_noise *handle, const double *xs, const double *ys, uint32_t count,
+                               float *out, void *scratch, size_t scratch_size) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
+    if (err != DSN_OK || count == 0) return err;
+    unsigned char *aligned = aligned_scratch(scratch);
+    void *work = prepare_scratch(noise, aligned);
+    const uint32_t *quads = static_cast<const uint32_t *>(static_cast<void *>(aligned));
+    dsn_continuous_batch_entry *batch = dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch;
+    const uint32_t channels = noise->asset.channels;
+    /* Converted a chunk at a time on the stack (under 2 KB). */
+    int64_t chunk_x[batch_chunk_points], chunk_y[batch_chunk_points];
+    int32_t fixed[batch_chunk_points * DSN_MAX_CHANNELS];
+    for (uint32_t first = 0; first < count; first += batch_chunk_points) {
+        const uint32_t points = count - first < batch_chunk_points ? count - first : batch_chunk_points;
+        for (uint32_t k = 0; k < points; k++) {
+            chunk_x[k] = dsn_coordinate_from_double(xs[first + k]);
+            chunk_y[k] = dsn_coordinate_from_double(ys[first + k]);
+        }
+        batch(noise, quads, chunk_x, chunk_y, points, fixed, work);
+        for (uint32_t k = 0; k < points; k++)
+            dsn_store_pixel(out, dsn_output_float, static_cast<size_t>(first + k) * channels,
+                            fixed + k * channels, channels);
+    }
+    return DSN_OK;
+}
+
+} // extern "C"
+
+#endif /* DSN_CONTINUOUS_BATCH */

@@ -1,0 +1,239 @@
+/* runtime/splat_row.h - the innermost loop of the continuous grid splat (continuous_tile.cpp): one
+   impulse added to a run of pixels of one row, as a kernel (kernels.h: each kernel file includes it, so it
+   is built once per instruction set). On AVX2 (the AVX2 and AVX-512 kernels) 8-bit textons take 8 pixels
+   per step on vectors; the rest goes pixel by pixel. The same integers either way (add_bilinear's).
+   Internal to libdsn; not installed (everything here has internal linkage). */
+#ifndef DSN_SPLAT_ROW_H
+#define DSN_SPLAT_ROW_H
+
+#include "bilinear_texton.h"
+#include "kernels.h"
+#include "simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
+
+namespace {
+
+/* One channel of the bilinear texton at (row, column) with the upper weights (down, across), texels
+   inside the window: add_bilinear's integer, with one product per step ((65536 - w) a + w b =
+   65536 a + w (b - a), the same integers). */
+template <uint32_t Bytes, uint32_t Stride>
+inline int64_t interior_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
+                                int64_t down) {
+    const int64_t top_left = stored_value<Bytes>(top), bottom_left = stored_value<Bytes>(bottom);
+    const int64_t upper = top_left * 65536 + across * (stored_value<Bytes>(top + Stride) - top_left);
+    const int64_t lower = bottom_left * 65536 + across * (stored_value<Bytes>(bottom + Stride) - bottom_left);
+    return upper * 65536 + down * (lower - upper);
+}
+
+/* A texel of channel c at (row, column), 0 outside the window (indices are unsigned: -1 is outside). */
+template <uint32_t Channels, uint32_t Bytes>
+inline int64_t edge_texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
+    if (row >= asset->height || column >= asset->width) return 0;
+    return stored_value<Bytes>(asset->texton + ((row * asset->width + column) * Channels + c) * Bytes);
+}
+
+/* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
+   reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
+   values lie in (0, 2 reach), so its lower index and weight are read off directly. The sums are planar:
+   channel c of the row's first pixel at pixel[c * plane]. */
+template <uint32_t Channels, uint32_t Bytes>
+void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x, int64_t step_y,
+               int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *pixel, size_t plane) {
+    const uint32_t width = asset->width, height = asset->height, row_bytes = width * Channels * Bytes;
+    uint64_t shifted_x = static_cast<uint64_t>(offset_x + reach_x);
+    uint64_t shifted_y = static_cast<uint64_t>(offset_y + reach_y);
+    for (uint32_t i = 0; i < count; i++, pixel++) {
+        const uint32_t column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+        const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u;
+        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
+        if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+            const unsigned char *top = asset->texton + (row * width + column) * Channels * Bytes;
+            const unsigned char *bottom = top + row_bytes;
+            for (uint32_t c = 0; c < Channels; c++)
+                pixel[c * plane] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
+                    top + c * Bytes, bottom + c * Bytes, across, down));
+        } else { /* at the window's edge: the same integers, texels outside read as 0 */
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int64_t top_left = edge_texel<Channels, Bytes>(asset, row, column, c);
+                const int64_t bottom_left = edge_texel<Channels, Bytes>(asset, row + 1u, column, c);
+                const int64_t upper =
+                    top_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(asset, row, column + 1u, c) - top_left);
+                const int64_t lower =
+                    bottom_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(asset, row + 1u, column + 1u, c) - bottom_left);
+                pixel[c * plane] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+            }
+        }
+        shifted_x += static_cast<uint64_t>(step_x);
+        shifted_y += static_cast<uint64_t>(step_y);
+    }
+}
+
+#if defined(__AVX2__)
+/* ---- 8 pixels at a time on AVX2, 8-bit textons ----
+   Each pixel's 2 x 2 texels come from 4 gathers of 32-bit words at the texels' first bytes (the texel
+   and, for grey, the next one; for RGB the texel's 3 bytes and one more), each masked to the pixels whose
+   texel lies inside the window, so that the others read nothing and give 0. A word read at a texel of
+   the last row reaches at most 3 bytes past it: into the asset's 4-byte CRC, which the loader
+   guarantees lies in the buffer right after the texton (format.h: total_size). The rows' interpolation
+   runs in 32-bit lanes (below 2^25), the column's in 64-bit lanes (_mm256_mul_epi32, exact). A row's
+   last pixels take a block whose lanes past the row are masked out of the gathers and not added. */
+
+/* The low 32 bits of the 64-bit lanes of a (pixels 0-3) and b (4-7), as 8 lanes in order. */
+inline __m256i splat_low_halves(__m256i a, __m256i b) {
+    const __m256 mixed = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), 0x88);
+    return _mm256_permute4x64_epi64(_mm256_castps_si256(mixed), 0xD8);
+}
+
+/* Byte `index` of every 32-bit lane, sign-extended. */
+template <int Index>
+inline __m256i signed_byte(__m256i words) {
+    return _mm256_srai_epi32(_mm256_slli_epi32(words, 24 - 8 * Index), 24);
+}
+
+template <uint32_t Channels>
+void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
+                      int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *pixel,
+                      size_t plane) {
+    const uint32_t blocks = (count + 7u) / 8u;
+    const __m256i steps_x = _mm256_set1_epi64x(8 * step_x), steps_y = _mm256_set1_epi64x(8 * step_y);
+    const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+    /* bracket's shifted values of pixels 0-3 and 4-7 (modulo 2^64, as the scalar loop steps them) */
+    const uint64_t start_x = static_cast<uint64_t>(offset_x + reach_x),
+                   start_y = static_cast<uint64_t>(offset_y + reach_y);
+    const uint64_t four_x = 4u * static_cast<uint64_t>(step_x), four_y = 4u * static_cast<uint64_t>(step_y);
+    __m256i low_x = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_x)),
+                                     _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_x)));
+    __m256i low_y = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_y)),
+                                     _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_y)));
+    /* _mm256_mul_epu32 takes the low 32 bits of the step: add the high part's multiples too */
+    low_x = _mm256_add_epi64(
+        low_x, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
+                                                             static_cast<uint64_t>(step_x) >> 32))),
+                                 32));
+    low_y = _mm256_add_epi64(
+        low_y, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
+                                                             static_cast<uint64_t>(step_y) >> 32))),
+                                 32));
+    __m256i high_x = _mm256_add_epi64(low_x, _mm256_set1_epi64x(static_cast<long long>(four_x)));
+    __m256i high_y = _mm256_add_epi64(low_y, _mm256_set1_epi64x(static_cast<long long>(four_y)));
+    const __m256i width = _mm256_set1_epi32(static_cast<int>(asset->width)),
+                  height = _mm256_set1_epi32(static_cast<int>(asset->height));
+    const __m256i sign = _mm256_set1_epi32(-2147483647 - 1);
+    const __m256i width_sign = _mm256_xor_si256(width, sign), height_sign = _mm256_xor_si256(height, sign);
+    const __m256i ones = _mm256_set1_epi32(1), low_16 = _mm256_set1_epi32(0xFFFF),
+                  scale = _mm256_set1_epi32(65536);
+    const __m256i row_bytes = _mm256_set1_epi32(static_cast<int>(asset->width * Channels));
+    const int *texton = static_cast<const int *>(static_cast<const void *>(asset->texton));
+    const __m256i lane_numbers = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    for (uint32_t block = 0; block < blocks; block++, pixel += 8) {
+        /* The last block's lanes past the row read nothing and leave their memory alone (masked). */
+        const uint32_t remaining = count - 8u * block;
+        const bool full = remaining >= 8u;
+        const __m256i present =
+            _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(remaining)), lane_numbers);
+        /* The lower texel indices (column, row: -1 .. size - 1) and the upper weights. */
+        const __m256i column = _mm256_sub_epi32(
+            splat_low_halves(_mm256_srli_epi64(low_x, 32), _mm256_srli_epi64(high_x, 32)), ones);
+        const __m256i row = _mm256_sub_epi32(
+            splat_low_halves(_mm256_srli_epi64(low_y, 32), _mm256_srli_epi64(high_y, 32)), ones);
+        const __m256i across = _mm256_and_si256(
+            splat_low_halves(_mm256_srli_epi64(low_x, 16), _mm256_srli_epi64(high_x, 16)), low_16);
+        const __m256i down = _mm256_and_si256(
+            splat_low_halves(_mm256_srli_epi64(low_y, 16), _mm256_srli_epi64(high_y, 16)), low_16);
+        /* index < size as unsigned (-1 fails): signed comparisons of the values flipped by 2^31 */
+        const __m256i left_in =
+            _mm256_and_si256(present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(column, sign)));
+        const __m256i right_in = _mm256_and_si256(
+            present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(_mm256_add_epi32(column, ones), sign)));
+        const __m256i top_in = _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(row, sign));
+        const __m256i bottom_in =
+            _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(_mm256_add_epi32(row, ones), sign));
+        const __m256i at =
+            _mm256_add_epi32(_mm256_mullo_epi32(row, row_bytes),
+                             _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels))));
+        const __m256i right = _mm256_set1_epi32(static_cast<int>(Channels));
+        const __m256i zero = _mm256_setzero_si256();
+        const __m256i top_left =
+            _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top_in, left_in), 1);
+        const __m256i top_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(at, right),
+                                                              _mm256_and_si256(top_in, right_in), 1);
+        const __m256i below = _mm256_add_epi32(at, row_bytes);
+        const __m256i bottom_left =
+            _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom_in, left_in), 1);
+        const __m256i bottom_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(below, right),
+                                                                 _mm256_and_si256(bottom_in, right_in), 1);
+        for (uint32_t c = 0; c < Channels; c++) {
+            __m256i a, b, d, e; /* top-left, top-right, bottom-left, bottom-right of channel c */
+            if (c == 0)
+                a = signed_byte<0>(top_left), b = signed_byte<0>(top_right), d = signed_byte<0>(bottom_left),
+                e = signed_byte<0>(bottom_right);
+            else if (c == 1)
+                a = signed_byte<1>(top_left), b = signed_byte<1>(top_right), d = signed_byte<1>(bottom_left),
+                e = signed_byte<1>(bottom_right);
+            else
+                a = signed_byte<2>(top_left), b = signed_byte<2>(top_right), d = signed_byte<2>(bottom_left),
+                e = signed_byte<2>(bottom_right);
+            const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(a, 16),
+                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(b, a)));
+            const __m256i lower = _mm256_add_epi32(_mm256_slli_epi32(d, 16),
+                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(e, d)));
+            const __m256i difference = _mm256_sub_epi32(lower, upper);
+            const __m256i even =
+                _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
+            const __m256i odd = _mm256_add_epi64(
+                _mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
+                _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+            /* even: pixels 0, 2 | 4, 6; odd: 1, 3 | 5, 7 */
+            const __m256i first = _mm256_unpacklo_epi64(even, odd), second = _mm256_unpackhi_epi64(even, odd);
+            const __m256i pixels_low = _mm256_permute2x128_si256(first, second, 0x20);
+            const __m256i pixels_high = _mm256_permute2x128_si256(first, second, 0x31);
+            uint64_t *sums = pixel + c * plane;
+            if (full) {
+                __m256i *run = static_cast<__m256i *>(static_cast<void *>(sums));
+                _mm256_storeu_si256(run, _mm256_add_epi64(_mm256_loadu_si256(run), pixels_low));
+                _mm256_storeu_si256(run + 1, _mm256_add_epi64(_mm256_loadu_si256(run + 1), pixels_high));
+            } else {
+                uint64_t values[8];
+                _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(values)), pixels_low);
+                _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(values + 4)), pixels_high);
+                for (uint32_t i = 0; i < remaining; i++) sums[i] += values[i];
+            }
+        }
+        low_x = _mm256_add_epi64(low_x, steps_x), high_x = _mm256_add_epi64(high_x, steps_x);
+        low_y = _mm256_add_epi64(low_y, steps_y), high_y = _mm256_add_epi64(high_y, steps_y);
+    }
+}
+#endif
+
+/* The kernel entry: one copy per channel count and value size. */
+inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
+                                 int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count,
+                                 uint64_t *sums, size_t plane) {
+#if defined(__AVX2__)
+    if (asset->bits == 8) {
+        if (asset->channels == 3)
+            splat_row_vector<3>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                                plane);
+        else
+            splat_row_vector<1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                                plane);
+        return;
+    }
+#endif
+    if (asset->channels == 3)
+        asset->bits == 8
+            ? splat_row<3, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
+            : splat_row<3, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                              plane);
+    else
+        asset->bits == 8
+            ? splat_row<1, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
+            : splat_row<1, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
+                              plane);
+}
+
+} // namespace
+
+#endif /* DSN_SPLAT_ROW_H */
