@@ -1,7 +1,7 @@
 // command_line.h - the command-line conventions every dsn tool shares (part of libdsn_tools.a).
 //
 //   --flag value and --flag=value are the same; -h and --help print the tool's usage, --version its
-//   name and version ("dsn-bake 1.1.0", the version of libdsn), both on stdout, exit 0; "--" ends the
+//   name and version ("dsn-bake 1.2.0", the version of libdsn), both on stdout, exit 0; "--" ends the
 //   flags.
 //   A usage mistake (unknown flag, missing or malformed value, missing argument) prints one line
 //   "TOOL: what is wrong (see --help)" on stderr and exits 2; a failure while running (unreadable input,
