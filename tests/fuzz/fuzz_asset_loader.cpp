@@ -38,7 +38,7 @@ int64_t i64(FuzzInput &input) { return int64_t(uint64_t(input.u32()) | (uint64_t
 // A step: often small (a few texels, the interesting levels of detail), sometimes any int64.
 int64_t step(FuzzInput &input) {
     const uint32_t kind = input.byte();
-    if (kind < 160) return int64_t(int32_t(input.u32())) * 8; // within +-2^34: up to 4 texels per unit
+    if (kind < 160) return int64_t(int32_t(input.u32())) * 8;    // within +-2^34: up to 4 texels per unit
     if (kind < 240) return int64_t(int32_t(input.u32())) * 4096; // within +-2^43
     return i64(input);
 }
