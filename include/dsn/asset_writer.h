@@ -29,9 +29,25 @@ struct PyramidLevel {
     std::vector<int32_t> values;
 };
 
+// The histogram mapping (format 1.2, format.h, section kind 2): per decorrelated channel k and level l,
+// a table of entry_count Q3.12 values T[l][k][i] standing for the Gaussian-space input
+// input_low_q16 / 2^16 + i 2^-step_shift, then the rotation back to colours. Empty `tables` (the default)
+// writes no mapping.
+struct HistogramMapping {
+    uint32_t entry_count = 65; // N: 2 .. DSN_HISTOGRAM_MAX_ENTRIES
+    uint32_t level_count = 1;  // M: 1 .. 1 + pyramid levels
+    uint32_t step_shift = 3;   // s: 0 .. DSN_HISTOGRAM_MAX_STEP_SHIFT
+    int32_t input_low_q16 = -(4 << 16);
+    int32_t rotation[9] = {DSN_Q24_ONE, 0, 0, 0, DSN_Q24_ONE, 0, 0, 0, DSN_Q24_ONE}; // Q8.24
+    int32_t centre[3] = {0, 0, 0};                                                   // Q8.24
+    int32_t expected_q16[3] = {0, 0, 0};                                             // Q16.16
+    std::vector<int32_t> tables; // M * channels * N values, index (l * channels + k) * N + i
+};
+
 // Every header field of format 1.0, in its stored fixed-point form, plus the quantized texton values
 // (width * height * channels, row-major from the top row, channels interleaved), and the optional
-// pyramid: with no level the file is a 1.0 file, with levels a 1.1 file with one pyramid section.
+// pyramid and histogram mapping: with neither the file is a 1.0 file, with levels only a 1.1 file with
+// one pyramid section, with a mapping a 1.2 file.
 struct AssetFields {
     uint32_t channels = 1;
     uint32_t bits = 8;
@@ -50,6 +66,7 @@ struct AssetFields {
     uint32_t exemplar_height = 0;
     std::vector<int32_t> texton;
     std::vector<PyramidLevel> pyramid; // levels 1, 2, ...: at most DSN_PYRAMID_MAX_LEVELS
+    HistogramMapping histogram;        // with tables: a 1.2 file with the flag and a kind-2 section
 };
 
 // The identity colour transform for `channels` (grey: K[0] = 1, the other entries 0).

@@ -157,6 +157,62 @@
    steps 14 and 15: it reads every 1.1 file as a 1.0 file, and so accepts files whose sections a full
    build rejects.
 
+   ==================================================================================================
+   .dsnt version 1.2: the histogram-preserving output
+   ==================================================================================================
+
+   A 1.2 file may map the Gaussian noise through an inverse histogram (Heitz and Neyret, "High-
+   Performance By-Example Noise using a Histogram-Preserving Blending Operator", HPG 2018): the baker
+   decorrelates the exemplar's colours (PCA), Gaussianizes each decorrelated channel through its
+   empirical CDF and bakes the texton of that Gaussianized exemplar; the runtime evaluates the Gaussian
+   noise as in 1.0 (out_c above, here "Gaussian-space" values) and then maps each channel back through
+   a lookup table and the colour rotation. Such a file sets bit 0 of `flags` (DSN_FLAG_HISTOGRAM) and
+   holds exactly one section of kind 2; version_minor is 2. A 1.0 or 1.1 reader rejects it
+   (DSN_ERR_RESERVED: flags must be 0 there), so no older reader shows Gaussian-space values as colours.
+   Files without the flag are written with the lowest minor that holds their sections (0 or 1).
+
+   Section kind 2: histogram mapping (payload offsets from the start of the payload)
+     off   size     type      field
+       0      2     u16       entry_count N: 2..1024 (dsn-bake writes 65)
+       2      1     u8        level_count M: 1..9: tables for levels 0 .. M - 1 (dsn-bake writes
+                              1 + the pyramid's level count)
+       3      1     u8        step_shift s: 0..16: table entry i stands for the Gaussian-space value
+                              input_low + i 2^-s
+       4      4     i32       input_low, Q16.16
+       8     36     i32[9]    rotation P, Q8.24, row-major: output c = centre[c] + sum_k P[c*3+k] v_k.
+                              Grey: only P[0] is used, the other eight entries must be 0.
+      44     12     i32[3]    centre[c], Q8.24 (0 for unused channels)
+      56     12     i32[3]    expected[k], Q16.16: the value v_k the filtered evaluation fades to beyond
+                              its coarsest level (0 for unused channels)
+      68  2MNC     i16        table values T[l][k][i], Q3.12 (value = raw / 4096), level-major, then
+                              channel, then entry: (l, k, i) at index (l C + k) N + i, C = channels;
+                              in [-32767, 32767] (-32768 reserved)
+   size = 68 + 2 M N C exactly.
+
+   Meaning of the mapping
+   Let d = 16 - s. For Gaussian-space value g_k (Q16.16, the 1.0 output of channel k), with
+   u = clamp(g_k - input_low, 0, (N - 1) 2^d) (in 64-bit arithmetic), i = floor(u / 2^d),
+   f = u - i 2^d and j = min(i + 1, N - 1), the level-l table gives (Q16.16, linear interpolation,
+   exact integer arithmetic, one rounding half up):
+       v_k = round((T[l][k][i] 2^d + (T[l][k][j] - T[l][k][i]) f) 2^4 / 2^d)
+   and the output is (Q16.16, rounding half up, saturated to int32)
+       out_c = round((centre[c] 2^16 + sum_k P[c*3+k] v_k) / 2^24).
+   The unfiltered evaluations (lattice and continuous; point, tile and batch) use level 0. Level l >= 1
+   is level 0's table prefiltered for pyramid level l: T_l(y) = E[T_0(y + rho_l Z)], Z standard
+   normal, rho_l^2 = var_0 - var_l the variance of channel k that the level's filter removed (Deliot and
+   Heitz, "Procedural Stochastic Textures by Tiling and Blending", GPU Zen 2, prefilter the table per
+   mip level), so that a filtered pixel still averages to the exemplar's mean colour. The filtered
+   evaluation, blending levels l and l + 1 with weight w, maps its blended Gaussian-space value g by
+   (1 - w) T_l(g) + w T_(l+1)(g), with T_M = expected (the fade beyond the coarsest level).
+
+   Validation order, continued (only when version_minor >= 2, after step 15)
+    16. histogram: the flag without a kind-2 section or a kind-2 section without the flag, N, M or s
+        out of range, M above 1 + the pyramid's level count, a size that differs from the formula, a
+        grey rotation with non-zero unused entries, a non-zero unused centre or expected, a table value
+        of -32768 ....................................................... DSN_ERR_HISTOGRAM
+   A runtime built without the mapping (DSN_HISTOGRAM 0 in dsn.h, the default of the small build)
+   rejects any file with the flag: DSN_ERR_UNSUPPORTED.
+
    ================================================================================================== */
 #ifndef DSN_FORMAT_H
 #define DSN_FORMAT_H
@@ -209,6 +265,14 @@
 #define DSN_PYRAMID_MAX_LEVELS 8u
 #define DSN_PYRAMID_EXPONENT_MIN (-24)
 #define DSN_PYRAMID_EXPONENT_MAX 24
+#define DSN_SECTION_HISTOGRAM 2u      /* version 1.2 */
+#define DSN_FORMAT_HISTOGRAM_MINOR 2u /* files with the histogram mapping are written as this minor */
+#define DSN_FLAG_HISTOGRAM 1u         /* flags bit 0: the output goes through the kind-2 section */
+#define DSN_HISTOGRAM_HEADER_SIZE 68u /* payload bytes before the table values */
+#define DSN_HISTOGRAM_MAX_ENTRIES 1024u
+#define DSN_HISTOGRAM_MAX_LEVELS 9u
+#define DSN_HISTOGRAM_MAX_STEP_SHIFT 16u
+#define DSN_HISTOGRAM_VALUE_FRACTION_BITS 12 /* table values: Q3.12 */
 
 /* Field values. */
 #define DSN_SHAPE_RECTANGLE 0u
@@ -254,13 +318,15 @@
     X(DSN_ERR_TILE_SIZE, -22, "tile width or height is 0 or too large")                                      \
     X(DSN_ERR_ARGUMENT, -23, "an argument is out of its documented range")                                   \
     X(DSN_ERR_SECTION, -24, "a header section overruns the header, is badly padded or repeated")             \
-    X(DSN_ERR_PYRAMID, -25, "invalid texton pyramid: level count, sizes, exponent or reserved field")
+    X(DSN_ERR_PYRAMID, -25, "invalid texton pyramid: level count, sizes, exponent or reserved field")        \
+    X(DSN_ERR_HISTOGRAM, -26, "invalid histogram mapping: flag and section disagree, or a bad field")        \
+    X(DSN_ERR_UNSUPPORTED, -27, "the asset needs the histogram mapping, which this build leaves out")
 
 /* clang-format off */
 #define DSN_ERROR_ENUM_ENTRY(name, value, message) name = value,
 enum dsn_error {
     DSN_LIST_ERRORS(DSN_ERROR_ENUM_ENTRY)
-    DSN_ERR_LOWEST = DSN_ERR_PYRAMID /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
+    DSN_ERR_LOWEST = DSN_ERR_UNSUPPORTED /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
 };
 /* clang-format on */
 #undef DSN_ERROR_ENUM_ENTRY
