@@ -381,33 +381,49 @@ TEST_CASE("filtered: the variance falls along a sweep of levels of detail in 1/1
 
 namespace {
 
-// The supersampled reference: the unfiltered continuous noise on a grid of 1/4 texel over a 128-texel
-// square (16 x 16 samples per pixel from minification 4 on; at least 8 x 8 from 2), convolved with the
-// Gaussian of each level (standard deviation 2^(l-1) texels, truncated at 4 of them), read bilinearly
-// between samples; level 0 is the continuous point itself and level L + 1 the mean colour.
+// The supersampled reference: the unfiltered continuous noise over a 128-texel square, sampled at 1/16 of
+// each level's filter width 2^l (level 1 on a grid of 1/8 texel, levels 2 to 4 on a grid of 1/4 texel:
+// at least 16 x 16 samples per pixel of the filter the level stands for), convolved with the Gaussian of
+// the level (standard deviation 2^(l-1) texels, truncated at 4 of them), read bilinearly between
+// samples; level 0 is the continuous point itself and level L + 1 the mean colour.
 struct Reference {
-    static constexpr double spacing = 0.25, origin = 1000.0;
-    static constexpr int side = 512, levels = 4;
+    static constexpr double origin = 1000.0, extent = 128.0;
+    static constexpr int levels = 4;
+    struct Grid {
+        double spacing;
+        int side;
+        std::vector<double> samples;
+    };
     const dsn_noise *noise;
     double mean;
-    std::vector<double> samples;
+    Grid fine, coarse;                        // spacing 1/8 (level 1) and 1/4 (levels 2 to 4)
     std::vector<std::vector<double>> blurred; // levels 1 .. 4
     double deviation;                         // of the unfiltered samples
 
-    Reference(const dsn_noise &loaded, double mean_colour) : noise(&loaded), mean(mean_colour) {
-        const dsn_grid grid{q32(origin), q32(origin), q32(spacing), 0, 0, q32(spacing)};
-        std::vector<int32_t> fixed(size_t(side) * side);
-        std::vector<unsigned char> scratch(dsn_continuous_tile_scratch_size(noise, &grid, side, side));
-        REQUIRE(dsn_continuous_tile_fixed(noise, &grid, side, side, fixed.data(), scratch.data(),
-                                          scratch.size()) == DSN_OK);
-        for (int32_t v : fixed) samples.push_back(v / 65536.0);
-        deviation = std::sqrt(spread_of(samples).variance);
+    Reference(const dsn_noise &loaded, double mean_colour)
+        : noise(&loaded), mean(mean_colour), fine(sampled(0.125)), coarse(sampled(0.25)) {
+        deviation = std::sqrt(spread_of(coarse.samples).variance);
         for (int level = 1; level <= levels; level++)
-            blurred.push_back(blur(std::ldexp(1.0, level - 1) / spacing));
+            blurred.push_back(blur(grid_of(level), std::ldexp(1.0, level - 1) / grid_of(level).spacing));
     }
 
-    std::vector<double> blur(double sigma) const {
-        const int reach = int(std::ceil(4 * sigma));
+    const Grid &grid_of(int level) const { return level == 1 ? fine : coarse; }
+
+    Grid sampled(double spacing) const {
+        Grid grid{spacing, int(extent / spacing), {}};
+        const dsn_grid steps{q32(origin), q32(origin), q32(spacing), 0, 0, q32(spacing)};
+        const uint32_t side = uint32_t(grid.side);
+        std::vector<int32_t> fixed(size_t(side) * side);
+        std::vector<unsigned char> scratch(dsn_continuous_tile_scratch_size(noise, &steps, side, side));
+        REQUIRE(dsn_continuous_tile_fixed(noise, &steps, side, side, fixed.data(), scratch.data(),
+                                          scratch.size()) == DSN_OK);
+        for (int32_t v : fixed) grid.samples.push_back(v / 65536.0);
+        return grid;
+    }
+
+    static std::vector<double> blur(const Grid &grid, double sigma) {
+        const int reach = int(std::ceil(4 * sigma)), side = grid.side;
+        const std::vector<double> &samples = grid.samples;
         std::vector<double> kernel;
         double total = 0;
         for (int i = -reach; i <= reach; i++)
@@ -435,8 +451,9 @@ struct Reference {
     double level_at(int level, double x, double y) const {
         if (level == 0) return continuous_value(*noise, x, y);
         if (level > levels) return mean;
-        const double u = (x - origin) / spacing, v = (y - origin) / spacing;
-        const int i = int(std::floor(u)), j = int(std::floor(v));
+        const Grid &grid = grid_of(level);
+        const double u = (x - origin) / grid.spacing, v = (y - origin) / grid.spacing;
+        const int i = int(std::floor(u)), j = int(std::floor(v)), side = grid.side;
         if (i < 0 || j < 0 || i + 1 >= side || j + 1 >= side) return NAN;
         const std::vector<double> &image = blurred[size_t(level - 1)];
         const double a = u - i, b = v - j;
@@ -483,8 +500,8 @@ TEST_CASE("filtered: against a supersampled reference, minification 1-64 and ani
         double filtered_error = 0, unfiltered_error = 0;
         int count = 0;
         for (int attempt = 0; attempt < 4000 && count < 200; attempt++) {
-            const double x = Reference::origin + 128 * (random.next() % 100000) / 100000.0;
-            const double y = Reference::origin + 128 * (random.next() % 100000) / 100000.0;
+            const double x = Reference::origin + Reference::extent * (random.next() % 100000) / 100000.0;
+            const double y = Reference::origin + Reference::extent * (random.next() % 100000) / 100000.0;
             const double expected = reference.at(x, y, f);
             if (std::isnan(expected)) continue;
             const double filtered = filtered_value(loaded.noise, x, y, f) - expected;
