@@ -24,7 +24,8 @@ int32_t rounded(double value, double one, double limit) {
 // K of the fields as the runtime reads it (Q8.24; grey uses K[0] alone).
 Matrix3 stored_transform(const AssetFields &fields) {
     Matrix3 transform{};
-    for (int i = 0; i < 9; i++) transform[size_t(i)] = double(fields.color_transform[i]) / double(DSN_Q24_ONE);
+    for (int i = 0; i < 9; i++)
+        transform[size_t(i)] = double(fields.color_transform[i]) / double(DSN_Q24_ONE);
     return transform;
 }
 
@@ -97,7 +98,8 @@ HistogramModel histogram_model(const Image &exemplar) {
         for (int c = 0; c < exemplar.channels; c++) {
             const double weight = model.basis.vectors[size_t(c * 3 + k)];
             const double mean = model.basis.mean[size_t(c)];
-            for (size_t i = 0; i < plane; i++) values[i] += weight * (exemplar.values[size_t(c) * plane + i] - mean);
+            for (size_t i = 0; i < plane; i++)
+                values[i] += weight * (exemplar.values[size_t(c) * plane + i] - mean);
         }
         std::sort(values.begin(), values.end());
         model.sorted.push_back(std::move(values));
@@ -110,10 +112,10 @@ double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 double normal_quantile(double p) {
     if (!(p > 0 && p < 1)) throw std::invalid_argument("normal_quantile: probability outside (0, 1)");
     // Acklam's rational approximation (relative error 1.2e-9), then one Halley step on erfc.
-    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
                                1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
     static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                               6.680131188771972e+01,  -1.328068155288572e+01};
+                               6.680131188771972e+01, -1.328068155288572e+01};
     static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
                                -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
     static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
@@ -136,7 +138,8 @@ double normal_quantile(double p) {
 
 double empirical_quantile(const std::vector<double> &sorted, double probability) {
     if (sorted.empty()) throw std::invalid_argument("empirical_quantile: no values");
-    const double position = std::clamp(probability * double(sorted.size()) - 0.5, 0.0, double(sorted.size() - 1));
+    const double position =
+        std::clamp(probability * double(sorted.size()) - 0.5, 0.0, double(sorted.size() - 1));
     const size_t below = size_t(position);
     const size_t above = std::min(below + 1, sorted.size() - 1);
     const double fraction = position - double(below);
@@ -155,10 +158,12 @@ Image gaussianize(const Image &exemplar, const HistogramModel &model) {
         for (int c = 0; c < exemplar.channels; c++) {
             const double weight = model.basis.vectors[size_t(c * 3 + k)];
             const double mean = model.basis.mean[size_t(c)];
-            for (size_t i = 0; i < plane; i++) values[i] += weight * (exemplar.values[size_t(c) * plane + i] - mean);
+            for (size_t i = 0; i < plane; i++)
+                values[i] += weight * (exemplar.values[size_t(c) * plane + i] - mean);
         }
         std::iota(order.begin(), order.end(), size_t(0));
-        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return values[a] < values[b]; });
         double *out = &gaussian.values[size_t(k) * plane];
         for (size_t first = 0; first < plane;) {
             size_t end = first + 1;
@@ -246,7 +251,8 @@ HistogramMapping histogram_mapping(const HistogramModel &model, const AssetField
     }
 
     std::vector<std::array<double, 3>> deviations;
-    for (uint32_t l = 0; l < mapping.level_count; l++) deviations.push_back(gaussian_space_deviation(fields, int(l)));
+    for (uint32_t l = 0; l < mapping.level_count; l++)
+        deviations.push_back(gaussian_space_deviation(fields, int(l)));
     mapping.tables.assign(size_t(mapping.level_count) * size_t(channels) * kHistogramEntries, 0);
     const auto entry = [&](uint32_t l, int k, int i) -> int32_t & {
         return mapping.tables[(size_t(l) * size_t(channels) + size_t(k)) * kHistogramEntries + size_t(i)];
@@ -266,8 +272,9 @@ HistogramMapping histogram_mapping(const HistogramModel &model, const AssetField
             const double level_sigma = deviations[l][size_t(k)];
             const double rho = std::sqrt(std::max(0.0, sigma * sigma - level_sigma * level_sigma));
             for (int i = 0; i < kHistogramEntries; i++)
-                entry(l, k, i) =
-                    rounded(smoothed_table_value(base, kHistogramInputLow, step, kHistogramInputLow + i * step, rho), kTableOne, 32767);
+                entry(l, k, i) = rounded(
+                    smoothed_table_value(base, kHistogramInputLow, step, kHistogramInputLow + i * step, rho),
+                    kTableOne, 32767);
         }
         mapping.expected_q16[k] =
             rounded(smoothed_table_value(base, kHistogramInputLow, step, mean, sigma), kQ16One, limit_q24);

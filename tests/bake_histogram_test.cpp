@@ -64,16 +64,17 @@ std::vector<float> synthesize(const std::vector<unsigned char> &bytes, int size,
     std::vector<float> out(size_t(size) * size_t(size) * asset.channels);
     if (asset.interpolation == DSN_INTERPOLATION_BILINEAR) {
         const int64_t one = int64_t(1) << 32;
-        const dsn_grid grid = {x0 * one + int64_t(0.37 * double(one)), y0 * one + int64_t(0.61 * double(one)),
-                               one, 0, 0, one};
-        std::vector<unsigned char> scratch(
-            std::max<size_t>(1, dsn_continuous_tile_scratch_size(&noise, &grid, uint32_t(size), uint32_t(size))));
-        REQUIRE(dsn_continuous_tile_float(&noise, &grid, uint32_t(size), uint32_t(size), out.data(), scratch.data(),
-                                          scratch.size()) == DSN_OK);
+        const dsn_grid grid = {
+            x0 * one + int64_t(0.37 * double(one)), y0 * one + int64_t(0.61 * double(one)), one, 0, 0, one};
+        std::vector<unsigned char> scratch(std::max<size_t>(
+            1, dsn_continuous_tile_scratch_size(&noise, &grid, uint32_t(size), uint32_t(size))));
+        REQUIRE(dsn_continuous_tile_float(&noise, &grid, uint32_t(size), uint32_t(size), out.data(),
+                                          scratch.data(), scratch.size()) == DSN_OK);
     } else {
-        std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&noise, uint32_t(size), uint32_t(size)));
-        REQUIRE(dsn_lattice_tile_float(&noise, x0, y0, uint32_t(size), uint32_t(size), out.data(), scratch.data(),
-                                       scratch.size()) == DSN_OK);
+        std::vector<unsigned char> scratch(
+            dsn_lattice_tile_scratch_size(&noise, uint32_t(size), uint32_t(size)));
+        REQUIRE(dsn_lattice_tile_float(&noise, x0, y0, uint32_t(size), uint32_t(size), out.data(),
+                                       scratch.data(), scratch.size()) == DSN_OK);
     }
     return out;
 }
@@ -81,7 +82,8 @@ std::vector<float> synthesize(const std::vector<unsigned char> &bytes, int size,
 // Channel c of an interleaved picture, or of a planar Image.
 std::vector<double> channel_of(const std::vector<float> &interleaved, int channels, int c) {
     std::vector<double> values;
-    for (size_t i = size_t(c); i < interleaved.size(); i += size_t(channels)) values.push_back(interleaved[i]);
+    for (size_t i = size_t(c); i < interleaved.size(); i += size_t(channels))
+        values.push_back(interleaved[i]);
     return values;
 }
 std::vector<double> channel_of(const dsn::Image &image, int c) {
@@ -123,8 +125,10 @@ std::vector<double> autocorrelation(const std::vector<double> &values, int size,
             for (int y = 0; y < size; y++)
                 for (int x = 0; x < size; x++) {
                     int x2 = x + dx, y2 = y + dy;
-                    if (torus) x2 = (x2 + size) % size, y2 = (y2 + size) % size;
-                    else if (x2 < 0 || x2 >= size || y2 < 0 || y2 >= size) continue;
+                    if (torus)
+                        x2 = (x2 + size) % size, y2 = (y2 + size) % size;
+                    else if (x2 < 0 || x2 >= size || y2 < 0 || y2 >= size)
+                        continue;
                     sum += centred[size_t(y) * size_t(size) + size_t(x)] *
                            centred[size_t(y2) * size_t(size) + size_t(x2)];
                     count++;
@@ -157,7 +161,8 @@ dsn::BakeResult bake(const dsn::Image &exemplar, bool histogram, int radius = 10
 
 TEST_CASE("histogram: the normal quantile inverts the normal distribution function") {
     // Up to 5: beyond, normal_cdf(x) rounds to within a few ulps of 1, which the inverse cannot undo.
-    for (double x = -8; x <= 5; x += 0.125) CHECK(dsn::normal_quantile(dsn::normal_cdf(x)) == doctest::Approx(x).epsilon(1e-9));
+    for (double x = -8; x <= 5; x += 0.125)
+        CHECK(dsn::normal_quantile(dsn::normal_cdf(x)) == doctest::Approx(x).epsilon(1e-9));
     CHECK(dsn::normal_quantile(0.5) == doctest::Approx(0).scale(1).epsilon(1e-15));
     CHECK(dsn::normal_quantile(0.975) == doctest::Approx(1.959963984540054).epsilon(1e-13));
     CHECK_THROWS_AS(dsn::normal_quantile(0), std::invalid_argument);
@@ -166,9 +171,10 @@ TEST_CASE("histogram: the normal quantile inverts the normal distribution functi
 
 TEST_CASE("histogram: the empirical quantile puts rank i at probability (i + 0.5) / n") {
     const std::vector<double> sorted = {1, 2, 4, 8};
-    for (size_t i = 0; i < sorted.size(); i++) CHECK(dsn::empirical_quantile(sorted, (double(i) + 0.5) / 4) == sorted[i]);
-    CHECK(dsn::empirical_quantile(sorted, 0.5) == 3);    // half way between ranks 1 and 2
-    CHECK(dsn::empirical_quantile(sorted, 0.01) == 1);   // the extremes beyond
+    for (size_t i = 0; i < sorted.size(); i++)
+        CHECK(dsn::empirical_quantile(sorted, (double(i) + 0.5) / 4) == sorted[i]);
+    CHECK(dsn::empirical_quantile(sorted, 0.5) == 3);  // half way between ranks 1 and 2
+    CHECK(dsn::empirical_quantile(sorted, 0.01) == 1); // the extremes beyond
     CHECK(dsn::empirical_quantile(sorted, 0.999) == 8);
 }
 
@@ -182,11 +188,13 @@ TEST_CASE("histogram: principal components decorrelate, strongest first, with a 
     for (int k = 0; k < 3; k++) {
         double largest = 0;
         for (int c = 0; c < 3; c++)
-            if (std::fabs(basis.vectors[size_t(c * 3 + k)]) > std::fabs(largest)) largest = basis.vectors[size_t(c * 3 + k)];
+            if (std::fabs(basis.vectors[size_t(c * 3 + k)]) > std::fabs(largest))
+                largest = basis.vectors[size_t(c * 3 + k)];
         CHECK(largest > 0);
         for (int m = 0; m < 3; m++) {
             double dot = 0;
-            for (int c = 0; c < 3; c++) dot += basis.vectors[size_t(c * 3 + k)] * basis.vectors[size_t(c * 3 + m)];
+            for (int c = 0; c < 3; c++)
+                dot += basis.vectors[size_t(c * 3 + k)] * basis.vectors[size_t(c * 3 + m)];
             CHECK(dot == doctest::Approx(k == m ? 1 : 0).scale(1).epsilon(1e-12));
         }
         // The decorrelated channel's variance is the eigenvalue, and its mean 0.
@@ -205,7 +213,8 @@ TEST_CASE("histogram: Gaussianization keeps the order, ties together, and gives 
         const dsn::Image gaussian = dsn::gaussianize(image, dsn::histogram_model(image));
         const size_t n = gaussian.values.size();
         double sum = 0, square = 0, cubes = 0;
-        for (double value : gaussian.values) sum += value, square += value * value, cubes += value * value * value;
+        for (double value : gaussian.values)
+            sum += value, square += value * value, cubes += value * value * value;
         CHECK(sum / double(n) == doctest::Approx(0).scale(1).epsilon(1e-12));
         CHECK(square / double(n) == doctest::Approx(1).epsilon(1e-12));
         if (tone == Tone::Skewed) // symmetric ranks: no skewness left (of 2.6 before)
@@ -244,7 +253,8 @@ TEST_CASE("histogram: the smoothed table is the exact Gaussian average of the pi
                 }
                 expected = sum;
             }
-            CHECK(dsn::smoothed_table_value(table, low, step, y, rho) == doctest::Approx(expected).epsilon(1e-8));
+            CHECK(dsn::smoothed_table_value(table, low, step, y, rho) ==
+                  doctest::Approx(expected).epsilon(1e-8));
         }
 }
 
@@ -275,11 +285,13 @@ TEST_CASE("histogram: the Gaussian-space deviation is the runtime's output devia
                 const double measured = square / double(values.size());
                 const double predicted = std::pow(result.gaussian_deviations[0][size_t(c)], 2);
                 double energy = 0;
-                for (double rho : autocorrelation(channel_of(dsn::gaussianize(exemplar, result.histogram), c), 96, 14, true))
+                for (double rho : autocorrelation(channel_of(dsn::gaussianize(exemplar, result.histogram), c),
+                                                  96, 14, true))
                     energy += rho * rho;
                 const double relative_error = std::sqrt(2 * energy / double(values.size()));
                 INFO("channel " << c << " interpolation " << interpolation << ": measured " << measured
-                                << " predicted " << predicted << " (standard error " << relative_error << ")");
+                                << " predicted " << predicted << " (standard error " << relative_error
+                                << ")");
                 CHECK(std::fabs(measured / predicted - 1) < 4 * relative_error);
                 // Not 1: the periodic component and the texton's error move it by a few percent.
                 CHECK(predicted == doctest::Approx(1).epsilon(0.15));
@@ -287,7 +299,8 @@ TEST_CASE("histogram: the Gaussian-space deviation is the runtime's output devia
             // Every pyramid level removes variance, and the coarsest removes most of it.
             for (size_t l = 1; l < result.gaussian_deviations.size(); l++)
                 for (int c = 0; c < channels; c++)
-                    CHECK(result.gaussian_deviations[l][size_t(c)] < result.gaussian_deviations[l - 1][size_t(c)]);
+                    CHECK(result.gaussian_deviations[l][size_t(c)] <
+                          result.gaussian_deviations[l - 1][size_t(c)]);
         }
 }
 
@@ -304,7 +317,8 @@ TEST_CASE("histogram: the mapping's fields") {
     for (int c = 0; c < 3; c++) {
         CHECK(mapping.centre[c] == std::lround(result.histogram.basis.mean[size_t(c)] * (1 << 24)));
         for (int k = 0; k < 3; k++)
-            CHECK(mapping.rotation[c * 3 + k] == std::lround(result.histogram.basis.vectors[size_t(c * 3 + k)] * (1 << 24)));
+            CHECK(mapping.rotation[c * 3 + k] ==
+                  std::lround(result.histogram.basis.vectors[size_t(c * 3 + k)] * (1 << 24)));
     }
     for (int k = 0; k < 3; k++) {
         const std::vector<double> &sorted = result.histogram.sorted[size_t(k)];
@@ -336,7 +350,8 @@ Kept kept(const dsn::Image &exemplar, const dsn::BakeResult &result, int tile) {
     const std::vector<float> out = synthesize(result.asset, tile, 5, 1000, -700);
     Kept measured;
     for (int c = 0; c < exemplar.channels; c++) {
-        const std::vector<double> target = channel_of(exemplar, c), output = channel_of(out, exemplar.channels, c);
+        const std::vector<double> target = channel_of(exemplar, c),
+                                  output = channel_of(out, exemplar.channels, c);
         measured.w1.push_back(wasserstein1(output, target));
         const std::vector<double> target_correlation = autocorrelation(target, exemplar.width, reach, true);
         measured.spectrum.push_back(
@@ -374,9 +389,10 @@ TEST_CASE("histogram: skewed and two-level tones keep their histogram, Gaussian 
         int channels;
         std::string name;
     };
-    for (const Case &test : {Case{Tone::Skewed, 1, "skewed grey"}, Case{Tone::Skewed, 3, "skewed RGB"},
-                             Case{Tone::Binary, 1, "binary grey"}, Case{Tone::Binary, 3, "binary RGB"},
-                             Case{Tone::Identity, 1, "Gaussian grey"}, Case{Tone::Identity, 3, "Gaussian RGB"}}) {
+    for (const Case &test :
+         {Case{Tone::Skewed, 1, "skewed grey"}, Case{Tone::Skewed, 3, "skewed RGB"},
+          Case{Tone::Binary, 1, "binary grey"}, Case{Tone::Binary, 3, "binary RGB"},
+          Case{Tone::Identity, 1, "Gaussian grey"}, Case{Tone::Identity, 3, "Gaussian RGB"}}) {
         const dsn::Image exemplar = toned(random_phase_field(128, test.channels, 12), test.tone);
         const Kept plain = kept(exemplar, bake(exemplar, false), 512);
         const Kept mapped = kept(exemplar, bake(exemplar, true), 512);
@@ -384,8 +400,8 @@ TEST_CASE("histogram: skewed and two-level tones keep their histogram, Gaussian 
             const size_t i = size_t(c);
             MESSAGE(test.name << " channel " << c << ": W1 " << mapped.w1[i] << " vs plain " << plain.w1[i]
                               << " (ratio " << mapped.w1[i] / plain.w1[i] << ", noise " << plain.w1_noise[i]
-                              << "); spectrum error " << mapped.spectrum[i] << " vs plain " << plain.spectrum[i]
-                              << " (noise " << plain.spectrum_noise[i] << ")");
+                              << "); spectrum error " << mapped.spectrum[i] << " vs plain "
+                              << plain.spectrum[i] << " (noise " << plain.spectrum_noise[i] << ")");
             if (test.tone == Tone::Identity) {
                 CHECK(mapped.w1[i] <= plain.w1[i] + 4 * plain.w1_noise[i]);
                 CHECK(std::fabs(mapped.spectrum[i] - plain.spectrum[i]) <= 4 * plain.spectrum_noise[i]);
