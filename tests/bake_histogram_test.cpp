@@ -8,9 +8,12 @@
 
 #include "dsn/dsn.h"
 #include "fixtures/bake_fixtures.h"
+#include "fixtures/histogram_measures.h"
 #include <doctest/doctest.h>
 
 namespace {
+
+using namespace histogram_measures;
 
 // A random-phase texture: white noise convolved with the known spot, each channel scaled to zero mean
 // and unit variance (a Gaussian field with the spot's autocorrelation, channels correlated).
@@ -48,106 +51,6 @@ dsn::Image toned(const dsn::Image &field, Tone tone) {
             value = std::clamp(0.5 + 0.12 * value, 0.0, 1.0);
     }
     return image;
-}
-
-// The runtime's output for an asset over a size x size grid of unit steps from (x0 + 0.37, y0 + 0.61):
-// continuous for a bilinear asset (between lattice points), lattice otherwise. Interleaved.
-std::vector<float> synthesize(const std::vector<unsigned char> &bytes, int size, uint32_t seed, int x0 = 0,
-                              int y0 = 0) {
-    dsn_asset asset;
-    dsn_noise noise;
-    dsn_config config;
-    REQUIRE(dsn_asset_load(&asset, bytes.data(), bytes.size()) == DSN_OK);
-    dsn_config_defaults(&config);
-    config.seed = seed;
-    REQUIRE(dsn_noise_init(&noise, &asset, &config) == DSN_OK);
-    std::vector<float> out(size_t(size) * size_t(size) * asset.channels);
-    if (asset.interpolation == DSN_INTERPOLATION_BILINEAR) {
-        const int64_t one = int64_t(1) << 32;
-        const dsn_grid grid = {
-            x0 * one + int64_t(0.37 * double(one)), y0 * one + int64_t(0.61 * double(one)), one, 0, 0, one};
-        std::vector<unsigned char> scratch(std::max<size_t>(
-            1, dsn_continuous_tile_scratch_size(&noise, &grid, uint32_t(size), uint32_t(size))));
-        REQUIRE(dsn_continuous_tile_float(&noise, &grid, uint32_t(size), uint32_t(size), out.data(),
-                                          scratch.data(), scratch.size()) == DSN_OK);
-    } else {
-        std::vector<unsigned char> scratch(
-            dsn_lattice_tile_scratch_size(&noise, uint32_t(size), uint32_t(size)));
-        REQUIRE(dsn_lattice_tile_float(&noise, x0, y0, uint32_t(size), uint32_t(size), out.data(),
-                                       scratch.data(), scratch.size()) == DSN_OK);
-    }
-    return out;
-}
-
-// Channel c of an interleaved picture, or of a planar Image.
-std::vector<double> channel_of(const std::vector<float> &interleaved, int channels, int c) {
-    std::vector<double> values;
-    for (size_t i = size_t(c); i < interleaved.size(); i += size_t(channels))
-        values.push_back(interleaved[i]);
-    return values;
-}
-std::vector<double> channel_of(const dsn::Image &image, int c) {
-    const size_t plane = size_t(image.width) * size_t(image.height);
-    return std::vector<double>(image.values.begin() + long(size_t(c) * plane),
-                               image.values.begin() + long(size_t(c + 1) * plane));
-}
-
-// Wasserstein-1 distance between two samples' distributions: the mean |difference| of their quantile
-// functions over 4096 equally spaced probabilities.
-double wasserstein1(std::vector<double> a, std::vector<double> b) {
-    std::sort(a.begin(), a.end());
-    std::sort(b.begin(), b.end());
-    const int steps = 4096;
-    double sum = 0;
-    for (int i = 0; i < steps; i++) {
-        const double p = (i + 0.5) / steps;
-        sum += std::fabs(dsn::empirical_quantile(a, p) - dsn::empirical_quantile(b, p));
-    }
-    return sum / steps;
-}
-
-// Normalized autocorrelation of a size x size picture (torus sums for the exemplar, plain sums over the
-// overlap for a synthesized tile) at lags within the window |dx|, |dy| <= reach.
-std::vector<double> autocorrelation(const std::vector<double> &values, int size, int reach, bool torus) {
-    double mean = 0;
-    for (double value : values) mean += value;
-    mean /= double(values.size());
-    std::vector<double> centred(values.size());
-    for (size_t i = 0; i < values.size(); i++) centred[i] = values[i] - mean;
-    std::vector<double> result;
-    double variance = 0;
-    for (double value : centred) variance += value * value;
-    variance /= double(values.size());
-    for (int dy = -reach; dy <= reach; dy++)
-        for (int dx = -reach; dx <= reach; dx++) {
-            double sum = 0;
-            size_t count = 0;
-            for (int y = 0; y < size; y++)
-                for (int x = 0; x < size; x++) {
-                    int x2 = x + dx, y2 = y + dy;
-                    if (torus)
-                        x2 = (x2 + size) % size, y2 = (y2 + size) % size;
-                    else if (x2 < 0 || x2 >= size || y2 < 0 || y2 >= size)
-                        continue;
-                    sum += centred[size_t(y) * size_t(size) + size_t(x)] *
-                           centred[size_t(y2) * size_t(size) + size_t(x2)];
-                    count++;
-                }
-            result.push_back(sum / double(count) / variance);
-        }
-    return result;
-}
-
-// The relative L2 error of an output's autocorrelation against the exemplar's over the window: the
-// spectrum error at the resolution of the window (the window's autocorrelation is the spectrum smoothed
-// by the window's transform), 0 when equal.
-double spectrum_error(const std::vector<double> &output, const std::vector<double> &exemplar) {
-    double difference = 0, norm = 0;
-    for (size_t i = 0; i < output.size(); i++) {
-        difference += (output[i] - exemplar[i]) * (output[i] - exemplar[i]);
-        norm += exemplar[i] * exemplar[i];
-    }
-    return std::sqrt(difference / norm);
 }
 
 dsn::BakeResult bake(const dsn::Image &exemplar, bool histogram, int radius = 10) {
@@ -286,7 +189,7 @@ TEST_CASE("histogram: the Gaussian-space deviation is the runtime's output devia
                 const double predicted = std::pow(result.gaussian_deviations[0][size_t(c)], 2);
                 double energy = 0;
                 for (double rho : autocorrelation(channel_of(dsn::gaussianize(exemplar, result.histogram), c),
-                                                  96, 14, true))
+                                                  96, 96, 14, true))
                     energy += rho * rho;
                 const double relative_error = std::sqrt(2 * energy / double(values.size()));
                 INFO("channel " << c << " interpolation " << interpolation << ": measured " << measured
@@ -353,9 +256,10 @@ Kept kept(const dsn::Image &exemplar, const dsn::BakeResult &result, int tile) {
         const std::vector<double> target = channel_of(exemplar, c),
                                   output = channel_of(out, exemplar.channels, c);
         measured.w1.push_back(wasserstein1(output, target));
-        const std::vector<double> target_correlation = autocorrelation(target, exemplar.width, reach, true);
+        const std::vector<double> target_correlation =
+            autocorrelation(target, exemplar.width, exemplar.height, reach, true);
         measured.spectrum.push_back(
-            spectrum_error(autocorrelation(output, tile, reach, false), target_correlation));
+            spectrum_error(autocorrelation(output, tile, tile, reach, false), target_correlation));
         // Sampling noise for the tile's N values: an autocorrelation's variance at any lag is
         // sum_lags rho^2 / N (Bartlett), so the window's L lags add sqrt(L sum rho^2 / N) to the
         // error's numerator; a quantile's standard error is about deviation sqrt(sum rho^2 / N), and so
