@@ -18,7 +18,8 @@ namespace {
 int64_t table_read(const dsn_asset *asset, uint32_t level, uint32_t k, int32_t g) {
     const uint32_t d = 16u - asset->histogram_step_shift;
     const int64_t unit = static_cast<int64_t>(1) << d;
-    if (level >= asset->histogram_levels) return static_cast<int64_t>(asset->histogram_expected_q16[k]) * unit;
+    if (level >= asset->histogram_levels)
+        return static_cast<int64_t>(asset->histogram_expected_q16[k]) * unit;
     const uint32_t entries = asset->histogram_entries;
     /* g - input_low is exact in int64 (both int32); the clamp keeps u within [0, (N - 1) 2^d] < 2^26. */
     const int64_t top = static_cast<int64_t>(entries - 1u) * unit;

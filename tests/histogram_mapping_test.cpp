@@ -145,7 +145,8 @@ dsn::AssetFields mapped_fields(uint32_t channels, uint32_t bits, bool pyramid, u
 struct MappedPair {
     LoadedNoise mapped, gaussian;
     MappedPair(const dsn::AssetFields &fields, uint32_t seed)
-        : mapped(fields, make_config(seed)), gaussian(fields, make_config(seed, 30, 0, 0, DSN_FLAG_NO_HISTOGRAM)) {}
+        : mapped(fields, make_config(seed)),
+          gaussian(fields, make_config(seed, 30, 0, 0, DSN_FLAG_NO_HISTOGRAM)) {}
 };
 
 const int64_t kOne = int64_t(1) << 32;
@@ -188,8 +189,8 @@ TEST_CASE("histogram: the writer's mapping round-trips through the loader, in a 
                 REQUIRE(dsn_asset_load(&plain_asset, plain_bytes.data(), plain_bytes.size()) == DSN_OK);
                 CHECK(plain_asset.histogram_table == nullptr);
                 CHECK(plain_asset.version_minor == (pyramid ? 1u : 0u));
-                CHECK(std::memcmp(plain_asset.texton, asset.texton,
-                                  size_t(31) * 31 * channels * bits / 8) == 0);
+                CHECK(std::memcmp(plain_asset.texton, asset.texton, size_t(31) * 31 * channels * bits / 8) ==
+                      0);
             }
 }
 
@@ -236,8 +237,8 @@ TEST_CASE("histogram: the mapping of hand-built tables gives the specification's
     };
     // 0.5 lies halfway from 0 to 2: 1. -0.25: three quarters from -1 to 0: -0.25. Beyond the ends:
     // clamped to -1 and 2. An exact entry: 0 at g = 0.
-    const Case cases[] = {{32768, 65536}, {-16384, -16384}, {-5 * 65536, -65536}, {7 << 16, 131072}, {0, 0},
-                          {INT32_MIN, -65536}, {INT32_MAX, 131072}};
+    const Case cases[] = {{32768, 65536}, {-16384, -16384},    {-5 * 65536, -65536}, {7 << 16, 131072},
+                          {0, 0},         {INT32_MIN, -65536}, {INT32_MAX, 131072}};
     for (const Case &c : cases) {
         int32_t value = c.g;
         dsn_internal_histogram_map(&asset, &value, 0, 0);
@@ -328,4 +329,308 @@ TEST_CASE("histogram: per-point lattice and continuous values are the formula ap
             CHECK(differences == 0);
             CHECK(changed > 0);
         }
+}
+
+namespace {
+
+// Values where a lattice tile (fixed, float, u8) differs from the per-point functions, with every kernel
+// copy this CPU runs (runtime/kernels.h).
+size_t lattice_tile_differences(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width,
+                                uint32_t height) {
+    const uint32_t channels = dsn_noise_channels(&noise);
+    const size_t values = size_t(width) * height * channels;
+    size_t count = 0;
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&noise)->tile_kernel; kernel++) {
+        dsn_noise copy = noise;
+        dsn_state(&copy)->tile_kernel = kernel;
+        std::vector<int32_t> fixed(values);
+        std::vector<float> floats(values);
+        std::vector<uint8_t> bytes(values);
+        std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&copy, width, height));
+        REQUIRE(dsn_lattice_tile_fixed(&copy, x0, y0, width, height, fixed.data(), nullptr, 0) == DSN_OK);
+        REQUIRE(dsn_lattice_tile_float(&copy, x0, y0, width, height, floats.data(), scratch.data(),
+                                       scratch.size()) == DSN_OK);
+        REQUIRE(dsn_lattice_tile_u8(&copy, x0, y0, width, height, bytes.data(), scratch.data(),
+                                    scratch.size()) == DSN_OK);
+        for (uint32_t j = 0; j < height; j++)
+            for (uint32_t i = 0; i < width; i++) {
+                const int32_t x = int32_t(uint32_t(x0) + i), y = int32_t(uint32_t(y0) + j);
+                int32_t point[3];
+                float point_float[3];
+                uint8_t point_u8[3];
+                dsn_lattice_point_fixed(&copy, x, y, point);
+                dsn_lattice_point_float(&copy, x, y, point_float);
+                dsn_lattice_point_u8(&copy, x, y, point_u8);
+                for (uint32_t c = 0; c < channels; c++) {
+                    const size_t index = (size_t(j) * width + i) * channels + c;
+                    count += fixed[index] != point[c];
+                    count += std::memcmp(&floats[index], &point_float[c], sizeof(float)) != 0;
+                    count += bytes[index] != point_u8[c];
+                    const float as_float = dsn_fixed_to_float(point[c]);
+                    count += std::memcmp(&point_float[c], &as_float, sizeof(float)) != 0;
+                }
+            }
+    }
+    return count;
+}
+
+// Values where a continuous grid tile (fixed, float, u8) differs from the per-point functions.
+size_t continuous_tile_differences(const dsn_noise &noise, const dsn_grid &grid, uint32_t width,
+                                   uint32_t height, bool *splat) {
+    const uint32_t channels = dsn_noise_channels(&noise);
+    const size_t values = size_t(width) * height * channels;
+    std::vector<int32_t> fixed(values);
+    std::vector<float> floats(values);
+    std::vector<uint8_t> bytes(values);
+    const size_t scratch_size = dsn_continuous_tile_scratch_size(&noise, &grid, width, height);
+    *splat = scratch_size > 0;
+    std::vector<unsigned char> scratch(scratch_size);
+    REQUIRE(dsn_continuous_tile_fixed(&noise, &grid, width, height, fixed.data(), scratch.data(),
+                                      scratch.size()) == DSN_OK);
+    REQUIRE(dsn_continuous_tile_float(&noise, &grid, width, height, floats.data(), scratch.data(),
+                                      scratch.size()) == DSN_OK);
+    REQUIRE(dsn_continuous_tile_u8(&noise, &grid, width, height, bytes.data(), scratch.data(),
+                                   scratch.size()) == DSN_OK);
+    size_t count = 0;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
+                                      j * uint64_t(grid.row_step_x));
+            const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
+                                      j * uint64_t(grid.row_step_y));
+            int32_t point[3];
+            REQUIRE(dsn_continuous_point_fixed(&noise, x, y, point) == DSN_OK);
+            for (uint32_t c = 0; c < channels; c++) {
+                const size_t index = (size_t(j) * width + i) * channels + c;
+                const float as_float = dsn_fixed_to_float(point[c]);
+                count += fixed[index] != point[c];
+                count += std::memcmp(&floats[index], &as_float, sizeof(float)) != 0;
+                count += bytes[index] != dsn_fixed_to_u8(point[c]);
+            }
+        }
+    return count;
+}
+
+dsn_grid grid_of(double x, double y, double cx, double cy, double rx, double ry) {
+    const double q = 4294967296.0;
+    dsn_grid grid;
+    grid.origin_x = int64_t(std::floor(x * q)), grid.origin_y = int64_t(std::floor(y * q));
+    grid.column_step_x = int64_t(std::floor(cx * q)), grid.column_step_y = int64_t(std::floor(cy * q));
+    grid.row_step_x = int64_t(std::floor(rx * q)), grid.row_step_y = int64_t(std::floor(ry * q));
+    return grid;
+}
+
+} // namespace
+
+TEST_CASE("histogram: lattice tiles in every kernel copy and every output type equal the per-point bits") {
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u}) {
+            CAPTURE(channels);
+            CAPTURE(bits);
+            dsn::AssetFields fields = mapped_fields(channels, bits, false);
+            fields.interpolation = DSN_INTERPOLATION_LATTICE;
+            const LoadedNoise loaded(fields, make_config(5));
+            CHECK(lattice_tile_differences(loaded.noise, -37, 5, 70, 45) == 0);
+            CHECK(lattice_tile_differences(loaded.noise, INT32_MAX - 20, INT32_MIN + 3, 41, 9) == 0);
+            CHECK(lattice_tile_differences(loaded.noise, 1000, -1000, 1, 1) == 0);
+            // A dense noise, whose sums go past the 16-bit strips to the 32-bit path.
+            const LoadedNoise dense(fields, make_config(5, 600));
+            CHECK(lattice_tile_differences(dense.noise, 3, 4, 33, 17) == 0);
+        }
+}
+
+TEST_CASE("histogram: continuous tiles (splat and point by point), batches and float output equal the "
+          "per-point bits") {
+    for (uint32_t channels : {1u, 3u}) {
+        CAPTURE(channels);
+        const LoadedNoise loaded(mapped_fields(channels, 8, false), make_config(9));
+        const dsn_noise &noise = loaded.noise;
+        bool splat = false;
+        size_t splats = 0;
+        const dsn_grid grids[] = {grid_of(-3.3, 7.9, 0.37, 0, 0, 0.37),
+                                  grid_of(100.1, -50.7, 0.8, 0.6, -0.6, 0.8),
+                                  grid_of(5.5, 5.5, 1.7, -0.2, 0.3, 2.1), grid_of(0, 0, 20000, 3, -3, 20000)};
+        for (const dsn_grid &grid : grids) {
+            CHECK(continuous_tile_differences(noise, grid, 37, 23, &splat) == 0);
+            splats += splat;
+        }
+        CHECK(splats > 0);
+        CHECK(splats < 4); // both the splat and the point-by-point tiles ran
+        // Batches, in every kernel copy, and the float variants of the point functions.
+        std::vector<int64_t> xs, ys;
+        std::vector<double> dxs, dys;
+        dsn_test::TestRandom random(channels);
+        for (int k = 0; k < 301; k++) {
+            dxs.push_back(random.range(-100000, 100000) / 97.0);
+            dys.push_back(random.range(-100000, 100000) / 89.0);
+            xs.push_back(dsn_coordinate_from_double(dxs.back()));
+            ys.push_back(dsn_coordinate_from_double(dys.back()));
+        }
+        size_t differences = 0;
+        for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&noise)->tile_kernel; kernel++) {
+            dsn_noise copy = noise;
+            dsn_state(&copy)->tile_kernel = kernel;
+            std::vector<unsigned char> scratch(dsn_continuous_batch_scratch_size(&copy));
+            std::vector<int32_t> fixed(xs.size() * channels);
+            std::vector<float> floats(xs.size() * channels);
+            REQUIRE(dsn_continuous_batch_fixed(&copy, xs.data(), ys.data(), uint32_t(xs.size()), fixed.data(),
+                                               scratch.data(), scratch.size()) == DSN_OK);
+            REQUIRE(dsn_continuous_batch_float(&copy, dxs.data(), dys.data(), uint32_t(xs.size()),
+                                               floats.data(), scratch.data(), scratch.size()) == DSN_OK);
+            for (size_t k = 0; k < xs.size(); k++) {
+                int32_t point[3];
+                float point_float[3], sample[3];
+                REQUIRE(dsn_continuous_point_fixed(&copy, xs[k], ys[k], point) == DSN_OK);
+                REQUIRE(dsn_continuous_point_float(&copy, dxs[k], dys[k], point_float) == DSN_OK);
+                REQUIRE(dsn_sample(&copy, float(dxs[k]), float(dys[k]), sample) == DSN_OK);
+                int32_t at_float[3];
+                REQUIRE(dsn_continuous_point_fixed(&copy, dsn_coordinate_from_float(float(dxs[k])),
+                                                   dsn_coordinate_from_float(float(dys[k])),
+                                                   at_float) == DSN_OK);
+                for (uint32_t c = 0; c < channels; c++) {
+                    const float expected = dsn_fixed_to_float(point[c]),
+                                expected_sample = dsn_fixed_to_float(at_float[c]);
+                    differences += fixed[k * channels + c] != point[c];
+                    differences += std::memcmp(&floats[k * channels + c], &expected, sizeof(float)) != 0;
+                    differences += std::memcmp(&point_float[c], &expected, sizeof(float)) != 0;
+                    differences += std::memcmp(&sample[c], &expected_sample, sizeof(float)) != 0;
+                }
+            }
+        }
+        CHECK(differences == 0);
+    }
+}
+
+TEST_CASE("histogram: the filtered evaluation maps its Gaussian-space value through two levels' tables, "
+          "its tiles are its points, and it fades to centre + P expected") {
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t tables : {0u, 2u}) { // 0: one table per level and the texton (M = 1 + L)
+            CAPTURE(channels);
+            CAPTURE(tables);
+            dsn::AssetFields fields = mapped_fields(channels, 8, true);
+            if (tables != 0) fields.histogram = smooth_mapping(channels, tables);
+            const uint32_t levels = uint32_t(fields.pyramid.size());
+            REQUIRE(levels >= 3);
+            MappedPair pair(fields, 21);
+            const dsn::HistogramMapping &m = fields.histogram;
+            int32_t zero[3] = {0, 0, 0};
+            const std::vector<int32_t> fade = reference_map(m, channels, zero, m.level_count, 0);
+            // The fade colour: dsn_noise_mean_float, and the filtered value at the coarsest levels of detail.
+            float mean[3];
+            REQUIRE(dsn_noise_mean_float(&pair.mapped.noise, mean) == DSN_OK);
+            for (uint32_t c = 0; c < channels; c++) {
+                const float expected = dsn_fixed_to_float(fade[c]);
+                CHECK(std::memcmp(&mean[c], &expected, sizeof(float)) == 0);
+            }
+            size_t differences = 0, faded = 0, blended = 0;
+            const double sizes[] = {0.5, 0.9, 1.3, 2.0, 2.7, 3.9, 6.0, 9.5, 15.0, 40.0, 300.0, 1e6};
+            for (double size : sizes)
+                for (uint32_t max_taps : {1u, 4u}) {
+                    dsn_footprint footprint;
+                    REQUIRE(dsn_footprint_from_float(&footprint, size, 0.1 * size, -0.3 * size / max_taps,
+                                                     size / max_taps, max_taps) == DSN_OK);
+                    int32_t lod = 0;
+                    uint32_t taps = 0;
+                    REQUIRE(dsn_filter_level(&pair.mapped.noise, &footprint, &lod, &taps) == DSN_OK);
+                    const uint32_t lower = uint32_t(lod) >> 8, blend = uint32_t(lod) & 255;
+                    faded += lower >= m.level_count;
+                    blended += lower < m.level_count && blend != 0;
+                    for (int n = 0; n < 12; n++) {
+                        const int64_t x = dsn_coordinate_from_double(n * 13.7 - 50),
+                                      y = dsn_coordinate_from_double(n * -7.3 + 3);
+                        int32_t mapped[3], gaussian[3];
+                        REQUIRE(dsn_filtered_point_fixed(&pair.mapped.noise, x, y, &footprint, mapped) ==
+                                DSN_OK);
+                        REQUIRE(dsn_filtered_point_fixed(&pair.gaussian.noise, x, y, &footprint, gaussian) ==
+                                DSN_OK);
+                        const std::vector<int32_t> expected =
+                            reference_map(m, channels, gaussian, lower, blend);
+                        for (uint32_t c = 0; c < channels; c++) {
+                            differences += mapped[c] != expected[c];
+                            if (lower >= m.level_count) differences += mapped[c] != fade[c];
+                        }
+                        float as_float[3];
+                        REQUIRE(dsn_filtered_point_float(&pair.mapped.noise, n * 13.7 - 50, n * -7.3 + 3,
+                                                         &footprint, as_float) == DSN_OK);
+                        for (uint32_t c = 0; c < channels; c++) {
+                            const float expected_float = dsn_fixed_to_float(mapped[c]);
+                            differences += std::memcmp(&as_float[c], &expected_float, sizeof(float)) != 0;
+                        }
+                    }
+                    // The grid of this footprint: its tile is its points.
+                    dsn_grid grid;
+                    grid.origin_x = dsn_coordinate_from_double(-20.25),
+                    grid.origin_y = dsn_coordinate_from_double(7.5);
+                    grid.column_step_x = footprint.column_step_x,
+                    grid.column_step_y = footprint.column_step_y;
+                    grid.row_step_x = footprint.row_step_x, grid.row_step_y = footprint.row_step_y;
+                    const uint32_t width = 9, height = 5;
+                    std::vector<int32_t> tile(size_t(width) * height * channels);
+                    std::vector<unsigned char> scratch(
+                        dsn_filtered_tile_scratch_size(&pair.mapped.noise, &grid, max_taps, width, height));
+                    REQUIRE(dsn_filtered_tile_fixed(&pair.mapped.noise, &grid, max_taps, width, height,
+                                                    tile.data(), scratch.data(), scratch.size()) == DSN_OK);
+                    for (uint32_t j = 0; j < height; j++)
+                        for (uint32_t i = 0; i < width; i++) {
+                            int32_t point[3];
+                            const int64_t x =
+                                int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
+                                        j * uint64_t(grid.row_step_x));
+                            const int64_t y =
+                                int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
+                                        j * uint64_t(grid.row_step_y));
+                            REQUIRE(dsn_filtered_point_fixed(&pair.mapped.noise, x, y, &footprint, point) ==
+                                    DSN_OK);
+                            for (uint32_t c = 0; c < channels; c++)
+                                differences += tile[(size_t(j) * width + i) * channels + c] != point[c];
+                        }
+                }
+            CHECK(differences == 0);
+            CHECK(faded > 0);
+            CHECK(blended > 0);
+        }
+}
+
+TEST_CASE("histogram: DSN_FLAG_NO_HISTOGRAM, GPU packing, altered assets and 1.1 assets") {
+    const dsn::AssetFields fields = mapped_fields(3, 8, true);
+    MappedPair pair(fields, 3);
+    // The Gaussian-space noise is the asset's noise without the mapping: the bits of the same asset
+    // written without one.
+    dsn::AssetFields plain = fields;
+    plain.histogram.tables.clear();
+    const LoadedNoise unmapped(plain, make_config(3));
+    size_t differences = 0;
+    for (int32_t y = -5; y < 5; y++)
+        for (int32_t x = -5; x < 5; x++) {
+            int32_t a[3], b[3];
+            dsn_lattice_point_fixed(&pair.gaussian.noise, x, y, a);
+            dsn_lattice_point_fixed(&unmapped.noise, x, y, b);
+            differences += std::memcmp(a, b, sizeof a) != 0;
+        }
+    CHECK(differences == 0);
+    float mean_gaussian[3], mean_plain[3];
+    REQUIRE(dsn_noise_mean_float(&pair.gaussian.noise, mean_gaussian) == DSN_OK);
+    REQUIRE(dsn_noise_mean_float(&unmapped.noise, mean_plain) == DSN_OK);
+    CHECK(std::memcmp(mean_gaussian, mean_plain, sizeof mean_plain) == 0);
+    // dsn.glsl has no mapping: a mapped noise is refused, its Gaussian-space configuration packs.
+    std::vector<uint32_t> words(dsn_gpu_word_count(&pair.mapped.noise));
+    CHECK(dsn_gpu_pack(&pair.mapped.noise, words.data(), words.size()) == DSN_ERR_UNSUPPORTED);
+    CHECK(dsn_gpu_pack(&pair.gaussian.noise, words.data(), words.size()) == DSN_OK);
+    // dsn_noise_init refuses mapping fields the evaluators cannot read.
+    dsn_config config = make_config(3);
+    dsn_noise noise;
+    const auto init_code = [&](void (*alter)(dsn_asset &)) {
+        dsn_asset altered = pair.mapped.asset;
+        alter(altered);
+        return dsn_noise_init(&noise, &altered, &config);
+    };
+    CHECK(init_code([](dsn_asset &a) { a.histogram_step_shift = 17; }) == DSN_ERR_ARGUMENT);
+    CHECK(init_code([](dsn_asset &a) { a.histogram_entries = 1; }) == DSN_ERR_ARGUMENT);
+    CHECK(init_code([](dsn_asset &a) { a.histogram_levels = 0; }) == DSN_ERR_ARGUMENT);
+    CHECK(init_code([](dsn_asset &a) { a.histogram_expected_q16[1] = INT32_MIN; }) == DSN_ERR_ARGUMENT);
+    CHECK(init_code([](dsn_asset &a) { (void)a; }) == DSN_OK);
+    // An asset without a mapping (1.0 and 1.1 files) loads and evaluates as before: no table.
+    CHECK(unmapped.asset.histogram_table == nullptr);
+    CHECK(unmapped.asset.histogram_entries == 0);
+    CHECK(unmapped.asset.version_minor == 1);
 }
