@@ -64,6 +64,12 @@
                         read a 1.1 asset's sections (its pyramid is then neither checked nor used, so such
                         a build accepts an asset whose pyramid a full build rejects). That keeps the small
                         build under its 8 KB.
+     DSN_HISTOGRAM      default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the histogram-preserving
+                        output of format 1.2 out (the section "Histogram-preserving output" below): the
+                        loader then answers DSN_ERR_UNSUPPORTED for an asset that needs it (format.h,
+                        step 8) and does not check its section, and no evaluation applies a mapping.
+                        That keeps the small build under its 8 KB. 1 with DSN_FILTERING 0 reads the
+                        sections (and so checks a 1.1 asset's pyramid) to find the mapping.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
                         copies of the texton and the impulse list on the stack: tens of KB. 0 takes the
@@ -99,14 +105,18 @@
 #define DSN_FILTERING (!DSN_SMALL_CODE)
 #endif
 
+#ifndef DSN_HISTOGRAM /* 1: the histogram-preserving output of format 1.2; default 0 in the small build */
+#define DSN_HISTOGRAM (!DSN_SMALL_CODE)
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 2
+#define DSN_VERSION_MINOR 3
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.2.0"
+#define DSN_VERSION_STRING "1.3.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);
@@ -138,6 +148,19 @@ typedef struct dsn_asset {
        runtime built with DSN_FILTERING 0 (its loader does not read sections). */
     const unsigned char *pyramid;
     uint32_t pyramid_levels; /* 0 .. DSN_PYRAMID_MAX_LEVELS */
+    /* The histogram mapping of a 1.2 asset (format.h, section kind 2; "Histogram-preserving output"
+       below): `histogram_table` points at the table values T[l][k][i] in the caller's buffer (i16
+       little-endian, Q3.12, index (l channels + k) histogram_entries + i). Null and the other fields 0
+       for an asset without one, and always in a runtime built with DSN_HISTOGRAM 0 (its loader refuses
+       assets that have one). */
+    const unsigned char *histogram_table;
+    uint32_t histogram_entries;        /* N: 2 .. DSN_HISTOGRAM_MAX_ENTRIES */
+    uint32_t histogram_levels;         /* M: 1 .. 1 + pyramid_levels */
+    uint32_t histogram_step_shift;     /* s: entry i stands for input_low + i 2^-s */
+    int32_t histogram_input_low_q16;   /* Q16.16 */
+    int32_t histogram_rotation[9];     /* P, Q8.24, row-major */
+    int32_t histogram_centre[3];       /* Q8.24 */
+    int32_t histogram_expected_q16[3]; /* Q16.16: what the filtered evaluation fades to */
 } dsn_asset;
 
 /* Validates `size` bytes at `bytes` as a .dsnt asset and fills `asset`. Returns DSN_OK or the first
@@ -170,7 +193,9 @@ const char *dsn_error_message(int code);
 
 #define DSN_FLAG_NO_COLOR_TRANSFORM 1u       /* use the identity instead of the asset's transform */
 #define DSN_FLAG_ALLOW_LATTICE_CONTINUOUS 2u /* continuous mode on a lattice-baked texton */
-#define DSN_FLAGS_ALL (DSN_FLAG_NO_COLOR_TRANSFORM | DSN_FLAG_ALLOW_LATTICE_CONTINUOUS)
+#define DSN_FLAG_NO_HISTOGRAM 4u /* the Gaussian-space values of an asset with a histogram mapping */
+#define DSN_FLAGS_ALL                                                                                        \
+    (DSN_FLAG_NO_COLOR_TRANSFORM | DSN_FLAG_ALLOW_LATTICE_CONTINUOUS | DSN_FLAG_NO_HISTOGRAM)
 
 typedef struct dsn_config {
     uint32_t seed;        /* any value */
