@@ -259,12 +259,13 @@ HistogramMapping histogram_mapping(const HistogramModel &model, const AssetField
     };
     for (int k = 0; k < channels; k++) {
         const double mean = double(fields.mean[k]) / q24, sigma = deviations[0][size_t(k)];
-        if (!(sigma > 0)) throw std::invalid_argument("histogram mapping: a channel without variance");
-        // Level 0, quantized: the later levels smooth the table the runtime really reads.
+        // Level 0, quantized: the later levels smooth the table the runtime really reads. A channel
+        // without variance (grey stored as RGB) maps everything to its median.
         std::vector<double> base(kHistogramEntries);
         for (int i = 0; i < kHistogramEntries; i++) {
             const double y = kHistogramInputLow + i * step;
-            const double value = empirical_quantile(model.sorted[size_t(k)], normal_cdf((y - mean) / sigma));
+            const double probability = sigma > 0 ? normal_cdf((y - mean) / sigma) : 0.5;
+            const double value = empirical_quantile(model.sorted[size_t(k)], probability);
             entry(0, k, i) = rounded(value, kTableOne, 32767);
             base[size_t(i)] = entry(0, k, i) / kTableOne;
         }

@@ -26,7 +26,8 @@ Measured measure(const dsn::Image &exemplar, const dsn::BakeResult &result, int 
     const std::vector<float> out = synthesize(result.asset, tile, 5, 1000, -700);
     Measured measured;
     for (int c = 0; c < exemplar.channels; c++) {
-        const std::vector<double> target = channel_of(exemplar, c), output = channel_of(out, exemplar.channels, c);
+        const std::vector<double> target = channel_of(exemplar, c),
+                                  output = channel_of(out, exemplar.channels, c);
         measured.w1 += wasserstein1(output, target) / exemplar.channels;
         measured.spectrum +=
             spectrum_error(autocorrelation(output, tile, tile, reach, false),
