@@ -343,3 +343,52 @@ TEST_CASE("histogram: a grey picture stored as RGB bakes, its empty channels map
         CHECK(out[i + 2] == doctest::Approx(out[i]).epsilon(1e-3));
     }
 }
+
+TEST_CASE("histogram: the prefiltered tables keep a filtered pixel's mean at the exemplar's") {
+    // A two-level exemplar (34% light): the filtered evaluation at footprints of 2 to 32 texels averages
+    // to the exemplar's mean within 4 standard errors of a mean over an area A of 509^2 texels (96^2
+    // points 5.3 texels apart): variance sigma^2 sum_lags rho / A, which filtering does not change (it
+    // keeps the spectrum at frequency 0), with sigma and rho the exemplar's (lags within the texton's
+    // reach). The same asset with level 0's table at every level drifts towards the dark tone, beyond
+    // twice that from 4 texels on. Beyond the coarsest level both give `expected`, which sits within
+    // (1/16) phi(0) of the jump of the exemplar's mean (the table's linear ramp across the step).
+    const dsn::Image exemplar = toned(random_phase_field(128, 1, 21), Tone::Binary);
+    const dsn::BakeResult result = bake(exemplar, true);
+    dsn::AssetFields unfiltered = result.fields;
+    const size_t entries = unfiltered.histogram.entry_count;
+    for (size_t l = 1; l < unfiltered.histogram.level_count; l++)
+        std::copy(unfiltered.histogram.tables.begin(), unfiltered.histogram.tables.begin() + long(entries),
+                  unfiltered.histogram.tables.begin() + long(l * entries));
+    const std::vector<unsigned char> unfiltered_bytes = dsn::encode_asset(unfiltered);
+    double exemplar_mean = 0, exemplar_variance = 0, correlation_area = 0;
+    for (double value : exemplar.values) exemplar_mean += value;
+    exemplar_mean /= double(exemplar.values.size());
+    for (double value : exemplar.values) exemplar_variance += std::pow(value - exemplar_mean, 2);
+    exemplar_variance /= double(exemplar.values.size());
+    for (double rho : autocorrelation(exemplar.values, 128, 128, 20, true)) correlation_area += rho;
+    const int side = 96;
+    const double spacing = 5.3,
+                 tolerance = 4 * std::sqrt(exemplar_variance * correlation_area) / (side * spacing);
+    for (double width : {2.0, 4.0, 8.0, 32.0}) {
+        double means[2] = {0, 0};
+        for (int which = 0; which < 2; which++) {
+            const std::vector<unsigned char> &bytes = which == 0 ? result.asset : unfiltered_bytes;
+            dsn_noise noise;
+            REQUIRE(dsn_noise_load(&noise, bytes.data(), bytes.size(), 4) == DSN_OK);
+            dsn_footprint footprint;
+            REQUIRE(dsn_footprint_from_float(&footprint, width, 0, 0, width, 1) == DSN_OK);
+            for (int j = 0; j < side; j++)
+                for (int i = 0; i < side; i++) {
+                    float value;
+                    REQUIRE(dsn_filtered_point_float(&noise, 3.1 + i * spacing, 7.9 + j * spacing, &footprint,
+                                                     &value) == DSN_OK);
+                    means[which] += value / (side * side);
+                }
+        }
+        MESSAGE("footprint " << width << ": mean " << means[0] << " (level 0's table everywhere: " << means[1]
+                             << "), exemplar " << exemplar_mean << ", tolerance " << tolerance);
+        CHECK(std::fabs(means[0] - exemplar_mean) < tolerance);
+        if (width >= 4 && width <= 8) CHECK(std::fabs(means[1] - exemplar_mean) > 2 * tolerance);
+        if (width >= 32) CHECK(std::fabs(means[0] - exemplar_mean) < 0.4 / 16 * (0.8 - 0.25));
+    }
+}

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -57,14 +58,21 @@ int main() {
         dsn::BakeOptions options;
         options.radius = std::min(15, (std::min(exemplar.width, exemplar.height) - 1) / 4);
         if (options.radius < 1) continue;
-        const Measured plain = measure(exemplar, dsn::bake(exemplar, options), 256);
-        options.histogram = true;
-        const Measured mapped = measure(exemplar, dsn::bake(exemplar, options), 256);
+        const std::string name = std::filesystem::path(path).stem().string();
+        Measured plain, mapped;
+        try {
+            plain = measure(exemplar, dsn::bake(exemplar, options), 256);
+            options.histogram = true;
+            mapped = measure(exemplar, dsn::bake(exemplar, options), 256);
+        } catch (const std::runtime_error &error) { // a constant picture (its alpha held the pattern)
+            std::printf("%-28s refused: %s\n", name.c_str(), error.what());
+            continue;
+        }
         const double ratio = mapped.w1 / plain.w1;
         ratios.push_back(ratio);
-        std::printf("%-28s %4dx%-4d %4d %9.4f %9.4f %7.3f %9.3f %9.3f\n",
-                    std::filesystem::path(path).stem().string().c_str(), exemplar.width, exemplar.height,
-                    options.radius, plain.w1, mapped.w1, ratio, plain.spectrum, mapped.spectrum);
+        std::printf("%-28s %4dx%-4d %4d %9.4f %9.4f %7.3f %9.3f %9.3f\n", name.c_str(), exemplar.width,
+                    exemplar.height, options.radius, plain.w1, mapped.w1, ratio, plain.spectrum,
+                    mapped.spectrum);
     }
     if (ratios.empty()) return 0;
     std::sort(ratios.begin(), ratios.end());
