@@ -80,8 +80,9 @@ Image texton_panel(const Texton &texton, int width, int height) {
 }
 
 // A DSN synthesis of the asset by the runtime's tile evaluation, exemplar-sized: continuous for a bilinear
-// asset (what it was baked for), lattice otherwise.
-Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width, int height, uint32_t seed) {
+// asset (what it was baked for), lattice otherwise; `flags` as dsn_config's.
+Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width, int height, uint32_t seed,
+                        uint32_t flags = 0) {
     dsn_asset asset;
     dsn_noise noise;
     dsn_config config;
@@ -89,6 +90,7 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
     if (error == DSN_OK) {
         dsn_config_defaults(&config);
         config.seed = seed;
+        config.flags = flags;
         error = dsn_noise_init(&noise, &asset, &config);
     }
     if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
@@ -172,11 +174,10 @@ std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &
             model_deviation[size_t(k)] = std::sqrt(covariance[size_t(k * 4)]);
             noise_mean[size_t(k)] = double(result.fields.mean[k]) / double(DSN_Q24_ONE);
         }
-        AssetFields gaussian_fields = result.fields;
-        gaussian_fields.histogram = HistogramMapping();
         panels[1] = gaussian_colours(panels[1], basis, result.model.mean, model_deviation);
-        panels[3] = gaussian_colours(runtime_synthesis(encode_asset(gaussian_fields), width, height, seed),
-                                     basis, noise_mean, result.gaussian_deviations[0]);
+        panels[3] =
+            gaussian_colours(runtime_synthesis(result.asset, width, height, seed, DSN_FLAG_NO_HISTOGRAM),
+                             basis, noise_mean, result.gaussian_deviations[0]);
         panels.push_back(runtime_synthesis(result.asset, width, height, seed));
         labels.push_back("histogram-preserving");
     }

@@ -247,8 +247,10 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
             (options.radius < fitting ? ": a larger --radius gives the texton more room" : ""));
     }
     if (verdict.findings.empty()) {
-        verdict.summary = "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme) +
-                          ", Gaussian tones, structure within the texton's reach)";
+        verdict.summary =
+            "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme) +
+            (non_gaussian ? ", non-Gaussian tones kept by the histogram mapping" : ", Gaussian tones") +
+            ", structure within the texton's reach)";
     } else if (verdict.findings.size() == 1 && verdict.findings[0] == VerdictFinding::StructureBeyondRadius) {
         verdict.summary = "fair: a larger radius would hold more of this exemplar";
     } else {

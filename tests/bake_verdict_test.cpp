@@ -128,6 +128,7 @@ TEST_CASE("verdict: a two-level pattern gets --histogram suggested, and not once
         const dsn::BakeVerdict mapped = dsn::bake(binary, options).verdict;
         INFO(mapped.summary);
         CHECK(!has(mapped, dsn::VerdictFinding::NonGaussianMarginal));
+        CHECK(mapped.summary.find("non-Gaussian tones kept by the histogram mapping") != std::string::npos);
         for (const std::string &text : mapped.suggestions)
             CHECK(text.find("--histogram") == std::string::npos);
         // The signals still describe the exemplar's tones, and its structure as the plain bake saw it.
