@@ -1,5 +1,6 @@
-// asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h: a 1.0 file, or a 1.1 file
-// with a pyramid section when the fields have pyramid levels.
+// asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h: a 1.0 file, a 1.1 file
+// with a pyramid section when the fields have pyramid levels, a 1.2 file with the histogram flag and
+// section when they have a histogram mapping.
 #include "dsn/asset_writer.h"
 #include "../runtime/format_bytes.h"
 
@@ -64,6 +65,60 @@ void validate(const AssetFields &fields) {
     }
 }
 
+// The loader's step 16 (format.h) on a mapping that is to be written (non-empty tables).
+void validate_histogram(const AssetFields &fields) {
+    const HistogramMapping &mapping = fields.histogram;
+    require(mapping.entry_count >= 2 && mapping.entry_count <= DSN_HISTOGRAM_MAX_ENTRIES,
+            "histogram entry count outside 2..1024");
+    require(mapping.level_count >= 1 && mapping.level_count <= 1 + fields.pyramid.size(),
+            "histogram level count outside 1..1 + pyramid levels");
+    require(mapping.step_shift <= DSN_HISTOGRAM_MAX_STEP_SHIFT, "histogram step shift above 16");
+    require(mapping.tables.size() == size_t(mapping.level_count) * fields.channels * mapping.entry_count,
+            "histogram tables must hold level_count * channels * entry_count values");
+    for (int32_t value : mapping.tables)
+        require(value >= -DSN_HISTOGRAM_VALUE_LIMIT && value <= DSN_HISTOGRAM_VALUE_LIMIT,
+                "histogram table value outside -32767..32767");
+    if (fields.channels == 1)
+        for (int i = 1; i < 9; i++) require(mapping.rotation[i] == 0, "grey histogram rotation must be 1x1");
+    for (uint32_t c = 0; c < 3; c++) {
+        require(c < fields.channels || (mapping.centre[c] == 0 && mapping.expected_q16[c] == 0),
+                "unused channel histogram fields must be 0");
+        require(mapping.expected_q16[c] >= -DSN_HISTOGRAM_EXPECTED_LIMIT &&
+                    mapping.expected_q16[c] <= DSN_HISTOGRAM_EXPECTED_LIMIT,
+                "histogram expected value outside the tables' range");
+    }
+}
+
+// The payload of the histogram section (format.h, section kind 2).
+std::vector<unsigned char> encode_histogram(const HistogramMapping &mapping) {
+    std::vector<unsigned char> payload(DSN_HISTOGRAM_HEADER_SIZE + 2 * mapping.tables.size());
+    unsigned char *p = payload.data();
+    dsn_write_u16le(p, uint16_t(mapping.entry_count));
+    p[2] = uint8_t(mapping.level_count);
+    p[3] = uint8_t(mapping.step_shift);
+    dsn_write_i32le(p + 4, mapping.input_low_q16);
+    for (int i = 0; i < 9; i++) dsn_write_i32le(p + 8 + 4 * i, mapping.rotation[i]);
+    for (int c = 0; c < 3; c++) {
+        dsn_write_i32le(p + 44 + 4 * c, mapping.centre[c]);
+        dsn_write_i32le(p + 56 + 4 * c, mapping.expected_q16[c]);
+    }
+    for (size_t i = 0; i < mapping.tables.size(); i++)
+        dsn_write_u16le(p + DSN_HISTOGRAM_HEADER_SIZE + 2 * i, uint16_t(mapping.tables[i] & 0xFFFF));
+    return payload;
+}
+
+// Appends one section (kind, size, payload, zero padding to 4 bytes) to the header bytes.
+void append_section(std::vector<unsigned char> &header, uint32_t kind,
+                    const std::vector<unsigned char> &payload) {
+    const size_t start = header.size();
+    const size_t padding =
+        (DSN_SECTION_ALIGNMENT - payload.size() % DSN_SECTION_ALIGNMENT) % DSN_SECTION_ALIGNMENT;
+    header.resize(start + DSN_SECTION_HEADER_SIZE + payload.size() + padding, 0);
+    dsn_write_u32le(&header[start], kind);
+    dsn_write_u32le(&header[start + 4], uint32_t(payload.size()));
+    std::memcpy(&header[start + DSN_SECTION_HEADER_SIZE], payload.data(), payload.size());
+}
+
 // The payload of the pyramid section (format.h, section kind 1).
 std::vector<unsigned char> encode_pyramid(const AssetFields &fields) {
     const size_t value_bytes = fields.bits / 8;
@@ -93,23 +148,26 @@ void set_identity_color_transform(AssetFields &fields) {
 
 std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     validate(fields);
+    const bool has_histogram = !fields.histogram.tables.empty();
+    if (has_histogram) validate_histogram(fields);
     const size_t value_bytes = fields.bits / 8;
     const bool has_pyramid = !fields.pyramid.empty();
-    const std::vector<unsigned char> pyramid =
-        has_pyramid ? encode_pyramid(fields) : std::vector<unsigned char>();
-    const size_t padding =
-        (DSN_SECTION_ALIGNMENT - pyramid.size() % DSN_SECTION_ALIGNMENT) % DSN_SECTION_ALIGNMENT;
-    const size_t header_size =
-        DSN_FORMAT_HEADER_SIZE + (has_pyramid ? DSN_SECTION_HEADER_SIZE + pyramid.size() + padding : 0);
+    std::vector<unsigned char> header(DSN_FORMAT_HEADER_SIZE, 0);
+    if (has_pyramid) append_section(header, DSN_SECTION_PYRAMID, encode_pyramid(fields));
+    if (has_histogram) append_section(header, DSN_SECTION_HISTOGRAM, encode_histogram(fields.histogram));
+    const size_t header_size = header.size();
     const size_t total = header_size + fields.texton.size() * value_bytes + DSN_FORMAT_CRC_SIZE;
     std::vector<unsigned char> bytes(total, 0);
     unsigned char *p = bytes.data();
+    std::memcpy(p, header.data(), header_size);
     std::memcpy(p, DSN_FORMAT_MAGIC, DSN_FORMAT_MAGIC_SIZE);
     dsn_write_u16le(p + DSN_OFFSET_VERSION_MAJOR, DSN_FORMAT_VERSION_MAJOR);
-    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR,
-                    has_pyramid ? DSN_FORMAT_SECTIONS_MINOR : DSN_FORMAT_VERSION_MINOR_PLAIN);
+    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR, has_histogram ? DSN_FORMAT_HISTOGRAM_MINOR
+                                                  : has_pyramid ? DSN_FORMAT_SECTIONS_MINOR
+                                                                : DSN_FORMAT_VERSION_MINOR_PLAIN);
     dsn_write_u32le(p + DSN_OFFSET_HEADER_SIZE, uint32_t(header_size));
     dsn_write_u32le(p + DSN_OFFSET_TOTAL_SIZE, uint32_t(total));
+    dsn_write_u32le(p + DSN_OFFSET_FLAGS, has_histogram ? DSN_FLAG_HISTOGRAM : 0u);
     p[DSN_OFFSET_CHANNELS] = uint8_t(fields.channels);
     p[DSN_OFFSET_BITS] = uint8_t(fields.bits);
     p[DSN_OFFSET_SHAPE] = uint8_t(fields.shape);
@@ -128,11 +186,6 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     dsn_write_u32le(p + DSN_OFFSET_BAKE_RME, fields.bake_rme_q24);
     dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_WIDTH, uint16_t(fields.exemplar_width));
     dsn_write_u16le(p + DSN_OFFSET_EXEMPLAR_HEIGHT, uint16_t(fields.exemplar_height));
-    if (has_pyramid) {
-        dsn_write_u32le(p + DSN_FORMAT_HEADER_SIZE, DSN_SECTION_PYRAMID);
-        dsn_write_u32le(p + DSN_FORMAT_HEADER_SIZE + 4, uint32_t(pyramid.size()));
-        std::memcpy(p + DSN_FORMAT_HEADER_SIZE + DSN_SECTION_HEADER_SIZE, pyramid.data(), pyramid.size());
-    }
     unsigned char *texton = p + header_size;
     for (size_t i = 0; i < fields.texton.size(); i++) {
         if (value_bytes == 1)

@@ -81,7 +81,10 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
     check_bake_input(exemplar, options);
     const Support support = support_mask(options.radius, options.shape);
     BakeResult result;
-    result.model = gaussian_model(exemplar, options.periodic);
+    // The histogram-preserving mode bakes the Gaussianized exemplar; the verdict still judges the exemplar.
+    if (options.histogram) result.histogram = histogram_model(exemplar);
+    result.model = gaussian_model(options.histogram ? gaussianize(exemplar, result.histogram) : exemplar,
+                                  options.periodic);
     result.target = interpolation_target(result.model.spectrum, options.interpolation);
 
     SotOptions sot_options;
@@ -110,6 +113,11 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
         dequantize(quantize(result.sot.texton, options.bits), support, exemplar.channels);
     result.rme_quantized = relative_model_error(result.target, result.quantized_texton);
     result.fields = assemble_asset(result, options, exemplar.width, exemplar.height);
+    if (options.histogram) {
+        result.fields.histogram = histogram_mapping(result.histogram, result.fields);
+        for (uint32_t l = 0; l < result.fields.histogram.level_count; l++)
+            result.gaussian_deviations.push_back(gaussian_space_deviation(result.fields, int(l)));
+    }
     result.asset = encode_asset(result.fields);
     result.verdict = bake_verdict(exemplar, result, options);
     return result;

@@ -171,6 +171,15 @@ PyramidLevel quantize_level(const PrefilteredLevel &level, const AssetFields &fi
 // Every level of a texton (the fields' texton, scales, channels and bits), quantized.
 std::vector<PyramidLevel> texton_pyramid(const AssetFields &fields);
 
+// ---- Histogram mapping (format 1.2; the functions are in dsn/bake.h) ----
+
+// The tables dsn-bake writes: 65 entries 1/8 apart from -4, which cover the Gaussian-space values within
+// four standard deviations of a unit-variance channel (all but 6e-5 of them; beyond, the table's ends
+// hold the exemplar's extreme values).
+constexpr int kHistogramEntries = 65;
+constexpr int kHistogramStepShift = 3;
+constexpr double kHistogramInputLow = -4;
+
 // The asset fields of a bake (quantized texton, scales, mean and K in Q8.24, metadata, and the pyramid
 // unless options.pyramid is false).
 AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options, int exemplar_width,

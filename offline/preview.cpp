@@ -1,5 +1,6 @@
-// preview.cpp - the preview sheet: exemplar | Gaussian reference (spectral ADSN) | texton | runtime DSN,
-// each labelled, and the bake's verdict below. The only offline file that calls the runtime: the
+// preview.cpp - the preview sheet: exemplar | Gaussian reference (spectral ADSN) | texton | runtime DSN
+// (and, for a histogram-preserving bake, the same noise through the asset's mapping), each labelled, and
+// the bake's verdict below. The only offline file that calls the runtime: the
 // synthesis is what the baked asset really gives.
 #include "bake_internal.h"
 #include "dsn/dsn.h"
@@ -78,8 +79,10 @@ Image texton_panel(const Texton &texton, int width, int height) {
     return panel;
 }
 
-// A DSN synthesis of the asset by the runtime's tile evaluation, exemplar-sized.
-Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width, int height, uint32_t seed) {
+// A DSN synthesis of the asset by the runtime's tile evaluation, exemplar-sized: continuous for a bilinear
+// asset (what it was baked for), lattice otherwise; `flags` as dsn_config's.
+Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width, int height, uint32_t seed,
+                        uint32_t flags = 0) {
     dsn_asset asset;
     dsn_noise noise;
     dsn_config config;
@@ -87,15 +90,25 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
     if (error == DSN_OK) {
         dsn_config_defaults(&config);
         config.seed = seed;
+        config.flags = flags;
         error = dsn_noise_init(&noise, &asset, &config);
     }
     if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
     const int channels = int(asset.channels);
-    std::vector<unsigned char> scratch(
-        dsn_lattice_tile_scratch_size(&noise, uint32_t(width), uint32_t(height)));
     std::vector<float> values(size_t(width) * size_t(height) * size_t(channels));
-    error = dsn_lattice_tile_float(&noise, 0, 0, uint32_t(width), uint32_t(height), values.data(),
-                                   scratch.data(), scratch.size());
+    if (asset.interpolation == DSN_INTERPOLATION_BILINEAR) {
+        const int64_t one = int64_t(1) << 32;
+        const dsn_grid grid = {0, 0, one, 0, 0, one};
+        std::vector<unsigned char> scratch(std::max<size_t>(
+            1, dsn_continuous_tile_scratch_size(&noise, &grid, uint32_t(width), uint32_t(height))));
+        error = dsn_continuous_tile_float(&noise, &grid, uint32_t(width), uint32_t(height), values.data(),
+                                          scratch.data(), scratch.size());
+    } else {
+        std::vector<unsigned char> scratch(
+            dsn_lattice_tile_scratch_size(&noise, uint32_t(width), uint32_t(height)));
+        error = dsn_lattice_tile_float(&noise, 0, 0, uint32_t(width), uint32_t(height), values.data(),
+                                       scratch.data(), scratch.size());
+    }
     if (error != DSN_OK) throw std::runtime_error(std::string("preview: ") + dsn_error_message(error));
     Image image;
     image.width = width, image.height = height, image.channels = channels;
@@ -108,9 +121,26 @@ Image runtime_synthesis(const std::vector<unsigned char> &asset_bytes, int width
     return image;
 }
 
-} // namespace
-
-namespace {
+// Gaussian-space values (a histogram-preserving bake's model and noise: decorrelated channels of mean
+// `mean` and standard deviation `deviation`) as colours with the exemplar's mean and covariance: the
+// plain Gaussian output, mu + P diag(sqrt(variance_k)) (g_k - mean_k) / deviation_k.
+Image gaussian_colours(const Image &gaussian, const ColourBasis &basis, const std::array<double, 3> &mean,
+                       const std::array<double, 3> &deviation) {
+    Image image = gaussian;
+    const size_t plane = size_t(image.width) * size_t(image.height);
+    for (size_t i = 0; i < plane; i++) {
+        std::array<double, 3> v = {0, 0, 0};
+        for (int k = 0; k < image.channels; k++)
+            v[size_t(k)] = std::sqrt(basis.variances[size_t(k)]) *
+                           (gaussian.values[size_t(k) * plane + i] - mean[size_t(k)]) / deviation[size_t(k)];
+        for (int c = 0; c < image.channels; c++) {
+            double value = basis.mean[size_t(c)];
+            for (int k = 0; k < image.channels; k++) value += basis.vectors[size_t(c * 3 + k)] * v[size_t(k)];
+            image.values[size_t(c) * plane + i] = value;
+        }
+    }
+    return image;
+}
 
 // `text` cut into lines of at most `columns` characters, at spaces where it can.
 std::vector<std::string> wrap(const std::string &text, size_t columns) {
@@ -130,15 +160,34 @@ std::vector<std::string> wrap(const std::string &text, size_t columns) {
 
 std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &result, uint32_t seed) {
     const int width = exemplar.width, height = exemplar.height;
-    const Image panels[4] = {exemplar, gaussian_version(result.model, seed),
-                             texton_panel(result.quantized_texton, width, height),
-                             runtime_synthesis(result.asset, width, height, seed)};
-    const char *const labels[4] = {"exemplar", "Gaussian reference", "texton (SOT)", "runtime synthesis"};
+    std::vector<Image> panels = {exemplar, gaussian_version(result.model, seed),
+                                 texton_panel(result.quantized_texton, width, height),
+                                 runtime_synthesis(result.asset, width, height, seed)};
+    std::vector<std::string> labels = {"exemplar", "Gaussian reference", "texton (SOT)", "runtime synthesis"};
+    if (!result.fields.histogram.tables.empty()) {
+        // The model and the noise are Gaussian-space: shown as the plain Gaussian output would be, beside
+        // the same noise through the asset's mapping.
+        const ColourBasis &basis = result.histogram.basis;
+        const Matrix3 covariance = model_covariance(result.model);
+        std::array<double, 3> model_deviation = {1, 1, 1}, noise_mean = {0, 0, 0};
+        for (int k = 0; k < exemplar.channels; k++) {
+            model_deviation[size_t(k)] = std::sqrt(covariance[size_t(k * 4)]);
+            noise_mean[size_t(k)] = double(result.fields.mean[k]) / double(DSN_Q24_ONE);
+        }
+        panels[1] = gaussian_colours(panels[1], basis, result.model.mean, model_deviation);
+        panels[3] =
+            gaussian_colours(runtime_synthesis(result.asset, width, height, seed, DSN_FLAG_NO_HISTOGRAM),
+                             basis, noise_mean, result.gaussian_deviations[0]);
+        panels.push_back(runtime_synthesis(result.asset, width, height, seed));
+        labels.push_back("histogram-preserving");
+    }
+    const int count = int(panels.size());
     const int scale = width >= 160 ? 2 : 1, line = 12 * scale;
-    int columns[4], sheet_width = 3 * kGap;
-    for (int i = 0; i < 4; i++) {
-        columns[i] = std::max(width, label_width(labels[i], scale) + kGap);
-        sheet_width += columns[i];
+    std::vector<int> columns(panels.size());
+    int sheet_width = (count - 1) * kGap;
+    for (int i = 0; i < count; i++) {
+        columns[size_t(i)] = std::max(width, label_width(labels[size_t(i)], scale) + kGap);
+        sheet_width += columns[size_t(i)];
     }
     // The verdict under the panels, wrapped to the sheet's width (a character is 6 font units wide).
     std::vector<std::string> text;
@@ -152,7 +201,7 @@ std::vector<unsigned char> preview_png(const Image &exemplar, const BakeResult &
     sheet.height = line + kGap + height + kGap + int(text.size()) * line;
     sheet.pixels.assign(size_t(sheet.width) * size_t(sheet.height) * 3, kBackground);
     int left = 0;
-    for (int i = 0; i < 4; i++) {
+    for (size_t i = 0; i < size_t(count); i++) {
         draw_label(sheet.pixels, sheet.width, sheet.height, left, 0, labels[i], scale, kText);
         draw(sheet, panels[i], left + (columns[i] - width) / 2, line + kGap);
         left += columns[i] + kGap;

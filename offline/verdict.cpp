@@ -29,51 +29,8 @@ int lag_distance(int dx, int dy, uint32_t shape) {
     return std::max(std::abs(dx), std::abs(dy));
 }
 
-// The exemplar's colours in the decorrelated (principal component) basis, strongest component first.
-struct Decorrelation {
-    int channels = 1;
-    Matrix3 vectors = {1, 0, 0, 0, 1, 0, 0, 0, 1}; // columns: components in the exemplar's channels
-    std::array<double, 3> variances = {0, 0, 0};
-};
-
-Decorrelation decorrelate(const Image &exemplar) {
-    Decorrelation result;
-    result.channels = exemplar.channels;
-    const size_t plane = size_t(exemplar.width) * size_t(exemplar.height);
-    std::array<double, 3> mean = {0, 0, 0};
-    for (int c = 0; c < exemplar.channels; c++) {
-        for (size_t i = 0; i < plane; i++) mean[size_t(c)] += exemplar.values[size_t(c) * plane + i];
-        mean[size_t(c)] /= double(plane);
-    }
-    Matrix3 covariance{};
-    for (int a = 0; a < exemplar.channels; a++)
-        for (int b = 0; b < exemplar.channels; b++) {
-            double sum = 0;
-            for (size_t i = 0; i < plane; i++)
-                sum += (exemplar.values[size_t(a) * plane + i] - mean[size_t(a)]) *
-                       (exemplar.values[size_t(b) * plane + i] - mean[size_t(b)]);
-            covariance[size_t(a * 3 + b)] = sum / double(plane);
-        }
-    if (exemplar.channels == 1) {
-        result.variances[0] = covariance[0];
-        return result;
-    }
-    std::array<double, 3> values;
-    Matrix3 vectors;
-    symmetric_eigen(covariance, values, vectors);
-    std::array<int, 3> order = {0, 1, 2};
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return values[size_t(a)] > values[size_t(b)]; });
-    for (int k = 0; k < 3; k++) {
-        result.variances[size_t(k)] = std::max(0.0, values[size_t(order[size_t(k)])]);
-        for (int c = 0; c < 3; c++)
-            result.vectors[size_t(c * 3 + k)] = vectors[size_t(c * 3 + order[size_t(k)])];
-    }
-    return result;
-}
-
 // Sample skewness and excess kurtosis of component k of the exemplar.
-void marginal_moments(const Image &exemplar, const Decorrelation &basis, int k, ChannelMarginal &marginal) {
+void marginal_moments(const Image &exemplar, const ColourBasis &basis, int k, ChannelMarginal &marginal) {
     const size_t plane = size_t(exemplar.width) * size_t(exemplar.height);
     std::vector<double> values(plane, 0.0);
     for (int c = 0; c < exemplar.channels; c++) {
@@ -108,6 +65,13 @@ size_t asset_bytes_at(const BakeResult &result, int radius) {
     return encode_asset(fields).size();
 }
 
+// Bytes the histogram mapping adds to this bake's asset: the section header and its tables.
+size_t histogram_table_bytes(const BakeResult &result) {
+    const size_t levels = std::min<size_t>(1 + result.fields.pyramid.size(), DSN_HISTOGRAM_MAX_LEVELS);
+    return DSN_SECTION_HEADER_SIZE + DSN_HISTOGRAM_HEADER_SIZE +
+           2 * levels * result.fields.channels * size_t(kHistogramEntries);
+}
+
 } // namespace
 
 BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const BakeOptions &options) {
@@ -119,19 +83,27 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
     const size_t plane = size_t(width) * size_t(height);
 
     // Decorrelated channels: their marginals and autocorrelations (IDFT of |P_k|^2, P_k the model's
-    // spectrum in the component basis).
-    const Decorrelation basis = decorrelate(exemplar);
+    // spectrum in the component basis). A histogram-preserving bake's model is already in that basis,
+    // Gaussianized to unit variance: its channels are rescaled to the components' variances.
+    const ColourBasis basis = principal_components(exemplar);
     Spectrum power;
     power.width = width, power.height = height, power.channels = basis.channels;
     power.values.assign(plane * size_t(basis.channels), 0.0f);
-    for (int k = 0; k < basis.channels; k++)
+    for (int k = 0; k < basis.channels; k++) {
+        double model_variance = 0;
         for (size_t i = 0; i < plane; i++) {
             std::complex<double> component = 0;
-            for (int c = 0; c < model.channels; c++)
-                component += basis.vectors[size_t(c * 3 + k)] *
-                             std::complex<double>(model.spectrum.values[size_t(c) * plane + i]);
+            for (int c = 0; c < model.channels; c++) {
+                const double weight = options.histogram ? double(c == k) : basis.vectors[size_t(c * 3 + k)];
+                component += weight * std::complex<double>(model.spectrum.values[size_t(c) * plane + i]);
+            }
             power.values[size_t(k) * plane + i] = float(std::norm(component));
+            model_variance += std::norm(component) / double(plane);
         }
+        if (options.histogram && model_variance > 0)
+            for (size_t i = 0; i < plane; i++)
+                power.values[size_t(k) * plane + i] *= float(basis.variances[size_t(k)] / model_variance);
+    }
     const Image autocorrelation = inverse_dft(power);
 
     const int reach = 2 * options.radius; // the noise of a texton of radius r correlates lags up to 2r
@@ -247,7 +219,7 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
                 "; --radius " + std::to_string(fitting) + " holds part of it (" + radius_cost(fitting) + ")";
         verdict.suggestions.push_back(text);
     }
-    if (non_gaussian) {
+    if (non_gaussian && !options.histogram) {
         verdict.findings.push_back(VerdictFinding::NonGaussianMarginal);
         std::string moments;
         for (const ChannelMarginal &marginal : verdict.channels)
@@ -257,9 +229,11 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
         verdict.suggestions.push_back(
             "the exemplar's tones are far from Gaussian (" + moments +
             " per decorrelated channel): the output keeps its colours' mean and covariance but not its "
-            "histogram, so sharp speckles, veins and two-level patterns come out as soft blotches; a "
-            "histogram-preserving mode would help; today, match the output's histogram to the exemplar's "
-            "in an image editor, or bake a flatter-toned photo");
+            "histogram, so sharp speckles, veins and two-level patterns come out as soft blotches; try "
+            "--histogram (a histogram-preserving output: the asset maps the noise back to the exemplar's "
+            "own tones, " +
+            std::to_string(histogram_table_bytes(result)) +
+            " bytes of tables, a table lookup per pixel and channel)");
     }
     if (verdict.rme > kVerdictModelError || verdict.rme > verdict.rme_luminance) {
         verdict.findings.push_back(VerdictFinding::HighModelError);
@@ -273,8 +247,10 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
             (options.radius < fitting ? ": a larger --radius gives the texton more room" : ""));
     }
     if (verdict.findings.empty()) {
-        verdict.summary = "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme) +
-                          ", Gaussian tones, structure within the texton's reach)";
+        verdict.summary =
+            "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme) +
+            (non_gaussian ? ", non-Gaussian tones kept by the histogram mapping" : ", Gaussian tones") +
+            ", structure within the texton's reach)";
     } else if (verdict.findings.size() == 1 && verdict.findings[0] == VerdictFinding::StructureBeyondRadius) {
         verdict.summary = "fair: a larger radius would hold more of this exemplar";
     } else {

@@ -1,9 +1,12 @@
 /* runtime/asset.cpp - validates a .dsnt asset in place (format.h, in its documented order) and reads
    texton values and pyramid levels; also the static error messages (format.h's error table). A build
-   with DSN_FILTERING 0 leaves the 1.1 sections unread (format.h: such a runtime reads 1.1 files as 1.0),
-   which keeps the small build's code as it was. */
+   with neither DSN_FILTERING nor DSN_HISTOGRAM leaves the sections unread (format.h: such a runtime reads
+   1.1 files as 1.0 and refuses 1.2 files with the histogram flag), which keeps the small build's code as
+   it was. */
 #include "format_bytes.h"
 #include "init_internal.h"
+
+#define DSN_READS_SECTIONS (DSN_FILTERING || DSN_HISTOGRAM)
 
 namespace {
 
@@ -38,11 +41,15 @@ int check_envelope(const unsigned char *bytes, size_t size) {
     return DSN_OK;
 }
 
+/* Step 8: the only flag is the histogram's, from minor 2 on. */
 int check_reserved(const unsigned char *bytes) {
-    if (dsn_read_u32le(bytes + DSN_OFFSET_FLAGS) != 0) return DSN_ERR_RESERVED;
+    const uint32_t flags = dsn_read_u32le(bytes + DSN_OFFSET_FLAGS);
+    if (flags != 0 && (flags != DSN_FLAG_HISTOGRAM ||
+                       dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR) < DSN_FORMAT_HISTOGRAM_MINOR))
+        return DSN_ERR_RESERVED;
     for (uint32_t i = 0; i < DSN_RESERVED_SIZE; i++)
         if (bytes[DSN_OFFSET_RESERVED + i] != 0) return DSN_ERR_RESERVED;
-    return DSN_OK;
+    return DSN_HISTOGRAM || flags == 0 ? DSN_OK : DSN_ERR_UNSUPPORTED;
 }
 
 /* Steps 9 and 10: the texton's shape and the exact file size. */
@@ -102,14 +109,19 @@ int check_texton(const dsn_asset *asset) {
     return DSN_OK;
 }
 
-#if DSN_FILTERING
+#if DSN_READS_SECTIONS
+/* A section's payload: null when the file has none of that kind. */
+struct section {
+    const unsigned char *payload;
+    uint32_t size;
+};
+
 /* Step 14: the sections fill [128, header_size) exactly, each padded with zeros to 4 bytes, a known kind
-   at most once. Finds the pyramid's payload (null when there is none). Every comparison is made on the
-   room left, so nothing can wrap. */
-int find_sections(const unsigned char *bytes, uint32_t header_size, const unsigned char **pyramid,
-                  uint32_t *pyramid_size) {
-    *pyramid = 0;
-    *pyramid_size = 0;
+   at most once (the histogram's is known from minor 2 on). Finds the pyramid's and the histogram's
+   payloads. Every comparison is made on the room left, so nothing can wrap. */
+int find_sections(const unsigned char *bytes, uint32_t header_size, section *pyramid, section *histogram) {
+    const int knows_histogram =
+        dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR) >= DSN_FORMAT_HISTOGRAM_MINOR;
     for (uint32_t offset = DSN_FORMAT_HEADER_SIZE; offset < header_size;) {
         uint32_t room = header_size - offset;
         if (room < DSN_SECTION_HEADER_SIZE) return DSN_ERR_SECTION;
@@ -121,10 +133,13 @@ int find_sections(const unsigned char *bytes, uint32_t header_size, const unsign
         const unsigned char *payload = bytes + offset + DSN_SECTION_HEADER_SIZE;
         for (uint32_t i = 0; i < padding; i++)
             if (payload[size + i] != 0) return DSN_ERR_SECTION;
-        if (kind == DSN_SECTION_PYRAMID) {
-            if (*pyramid != 0) return DSN_ERR_SECTION;
-            *pyramid = payload;
-            *pyramid_size = size;
+        section *known = kind == DSN_SECTION_PYRAMID                        ? pyramid
+                         : kind == DSN_SECTION_HISTOGRAM && knows_histogram ? histogram
+                                                                            : 0;
+        if (known != 0) {
+            if (known->payload != 0) return DSN_ERR_SECTION;
+            known->payload = payload;
+            known->size = size;
         }
         offset += DSN_SECTION_HEADER_SIZE + size + padding;
     }
@@ -159,13 +174,54 @@ int read_pyramid(dsn_asset *asset, const unsigned char *payload, uint32_t size) 
     return DSN_OK;
 }
 
-/* Steps 14 and 15, for files of minor version 1 and later. */
+#if DSN_HISTOGRAM
+/* Step 16: the flag and the section agree, and the mapping's fields are in range. Sizes stay below
+   68 + 2 * 9 * 1024 * 3. */
+int read_histogram(dsn_asset *asset, const unsigned char *bytes, section histogram) {
+    const int flagged = dsn_read_u32le(bytes + DSN_OFFSET_FLAGS) == DSN_FLAG_HISTOGRAM;
+    if (histogram.payload == 0) return flagged ? DSN_ERR_HISTOGRAM : DSN_OK;
+    const unsigned char *payload = histogram.payload;
+    if (!flagged || histogram.size < DSN_HISTOGRAM_HEADER_SIZE) return DSN_ERR_HISTOGRAM;
+    const uint32_t entries = dsn_read_u16le(payload), levels = payload[2], step_shift = payload[3];
+    const uint32_t channels = asset->channels;
+    if (entries < 2 || entries > DSN_HISTOGRAM_MAX_ENTRIES || levels == 0 ||
+        levels > 1u + asset->pyramid_levels || step_shift > DSN_HISTOGRAM_MAX_STEP_SHIFT ||
+        histogram.size != DSN_HISTOGRAM_HEADER_SIZE + 2u * levels * entries * channels)
+        return DSN_ERR_HISTOGRAM;
+    asset->histogram_input_low_q16 = dsn_read_i32le(payload + 4);
+    for (uint32_t i = 0; i < 9; i++) {
+        asset->histogram_rotation[i] = dsn_read_i32le(payload + 8 + 4 * i);
+        if (channels == 1 && i != 0 && asset->histogram_rotation[i] != 0) return DSN_ERR_HISTOGRAM;
+    }
+    for (uint32_t c = 0; c < 3; c++) {
+        const int32_t centre = dsn_read_i32le(payload + 44 + 4 * c);
+        const int32_t expected = dsn_read_i32le(payload + 56 + 4 * c);
+        if ((c >= channels && (centre != 0 || expected != 0)) || expected < -DSN_HISTOGRAM_EXPECTED_LIMIT ||
+            expected > DSN_HISTOGRAM_EXPECTED_LIMIT)
+            return DSN_ERR_HISTOGRAM;
+        asset->histogram_centre[c] = centre;
+        asset->histogram_expected_q16[c] = expected;
+    }
+    const unsigned char *table = payload + DSN_HISTOGRAM_HEADER_SIZE;
+    for (const unsigned char *value = table; value < payload + histogram.size; value += 2)
+        if (value[0] == 0 && value[1] == 0x80) return DSN_ERR_HISTOGRAM;
+    asset->histogram_table = table;
+    asset->histogram_entries = entries;
+    asset->histogram_levels = levels;
+    asset->histogram_step_shift = step_shift;
+    return DSN_OK;
+}
+#endif
+
+/* Steps 14 to 16, for files of minor version 1 and later (16 from minor 2 on). */
 int read_sections(dsn_asset *asset, const unsigned char *bytes) {
     if (dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR) < DSN_FORMAT_SECTIONS_MINOR) return DSN_OK;
-    const unsigned char *pyramid;
-    uint32_t pyramid_size;
-    int err = find_sections(bytes, dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE), &pyramid, &pyramid_size);
-    if (err == DSN_OK && pyramid != 0) err = read_pyramid(asset, pyramid, pyramid_size);
+    section pyramid = {0, 0}, histogram = {0, 0};
+    int err = find_sections(bytes, dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE), &pyramid, &histogram);
+    if (err == DSN_OK && pyramid.payload != 0) err = read_pyramid(asset, pyramid.payload, pyramid.size);
+#if DSN_HISTOGRAM
+    if (err == DSN_OK) err = read_histogram(asset, bytes, histogram);
+#endif
     return err;
 }
 #endif
@@ -180,7 +236,7 @@ int load(dsn_asset *asset, const unsigned char *bytes, size_t size) {
     if (err != DSN_OK) return err;
     asset->texton = bytes + dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE);
     err = check_texton(asset);
-#if DSN_FILTERING
+#if DSN_READS_SECTIONS
     if (err == DSN_OK) err = read_sections(asset, bytes);
 #endif
     if (err != DSN_OK) return err;

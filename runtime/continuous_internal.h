@@ -40,6 +40,7 @@ inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, in
         accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
         out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
     }
+    dsn_map_output(noise, out);
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "cell_walk.h"
 #include "continuous_internal.h"
 #include "filtered_internal.h"
+#include "histogram_map.h"
 #include "impulse_position.h"
 #include "normalize_fixed.h"
 #include "poisson_count.h"
@@ -188,6 +189,13 @@ void dsn_internal_filtered_point(const dsn_noise_state *noise, uint64_t x, uint6
     const uint32_t channels = noise->asset.channels, levels = noise->asset.pyramid_levels;
     const uint32_t lower = static_cast<uint32_t>(plan->lod_q8) >> 8;
     const int64_t blend = plan->lod_q8 & 255;
+#if DSN_HISTOGRAM
+    const int mapped = noise->asset.histogram_table != 0;
+    if (mapped && lower >= noise->asset.histogram_levels) { /* both tables are `expected`: whatever g is */
+        dsn_internal_histogram_fade(&noise->asset, out);
+        return;
+    }
+#endif
     if (lower > levels) { /* the mean colour, exactly */
         for (uint32_t c = 0; c < channels; c++) out[c] = dsn_round_saturate(noise->asset.mean[c], extra_bits);
         return;
@@ -221,6 +229,9 @@ void dsn_internal_filtered_point(const dsn_noise_state *noise, uint64_t x, uint6
     while ((1u << tap_shift) < plan->taps) tap_shift++;
     for (uint32_t c = 0; c < channels; c++)
         out[c] = dsn_round_saturate(totals[c], 8u + tap_shift + extra_bits);
+#if DSN_HISTOGRAM
+    if (mapped) dsn_internal_histogram_map(&noise->asset, out, lower, static_cast<uint32_t>(blend));
+#endif
 }
 
 namespace {

@@ -1,6 +1,7 @@
 /* runtime/float_path.cpp - the float path of dsn.h: dsn_noise_load, dsn_sample and dsn_noise_mean_float,
    the common case in three calls, each a thin layer over the full API (so the same bits). */
 #include "continuous_internal.h"
+#include "histogram_map.h"
 #include "noise_state.h"
 
 extern "C" int dsn_noise_load(dsn_noise *noise, const void *bytes, size_t size, uint32_t seed) {
@@ -33,6 +34,14 @@ extern "C" int dsn_noise_mean_float(const dsn_noise *handle, float *out) {
         out[0] = dsn_fixed_to_float(0);
         return DSN_ERR_NULL;
     }
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0) { /* the filtered evaluation's fade colour, exactly */
+        int32_t fade[DSN_MAX_CHANNELS];
+        dsn_internal_histogram_fade(&noise->asset, fade);
+        for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_float(fade[c]);
+        return DSN_OK;
+    }
+#endif
     /* Q8.24: one rounding to float, then an exact power-of-two scaling (as dsn_fixed_to_float). */
     for (uint32_t c = 0; c < noise->asset.channels; c++)
         out[c] = static_cast<float>(noise->asset.mean[c]) * (1.0f / 16777216.0f);

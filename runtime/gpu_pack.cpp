@@ -29,7 +29,8 @@ const unsigned char header_fields[14] = {
     DSN_STATE_FIELD(poisson_parts), DSN_STATE_FIELD(poisson_size)};
 #undef DSN_ASSET_FIELD
 #undef DSN_STATE_FIELD
-static_assert(sizeof(dsn_noise_state) / 4 <= 255, "header_fields holds word indexes in bytes");
+static_assert(offsetof(dsn_noise_state, poisson_size) / 4 <= 255,
+              "header_fields holds word indexes in bytes");
 static_assert(offsetof(dsn_noise_state, poisson_size) % 4 == 0 && offsetof(dsn_asset, height) % 4 == 0,
               "the header fields are whole words");
 
@@ -66,6 +67,9 @@ extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t cap
     if (count == 0 || capacity < count) return DSN_ERR_ARGUMENT;
     const dsn_noise_state *noise = dsn_state(handle);
     const dsn_asset *asset = &noise->asset;
+    /* dsn.glsl evaluates the Gaussian-space noise only (a noise made with DSN_FLAG_NO_HISTOGRAM has no
+       mapping left). */
+    if (asset->histogram_table != 0) return DSN_ERR_UNSUPPORTED;
     const unsigned char *state = static_cast<const unsigned char *>(static_cast<const void *>(noise));
     uint32_t i;
     words[0] = DSN_GPU_MAGIC;

@@ -1,6 +1,7 @@
 /* runtime/noise_init.cpp - dsn_config_defaults and dsn_noise_init: checks the configuration, chooses the
    cell size, then builds the Poisson table and the normalization (their own files). */
 #include "cell_hash.h"
+#include "histogram_map.h"
 #include "init_internal.h"
 #include "kernels.h"
 #include "wide_arithmetic.h"
@@ -62,6 +63,11 @@ uint32_t choose_cell_shift(const dsn_asset *asset, uint32_t impacts_q16, uint64_
 /* A dsn_asset that dsn_asset_load did not fill (or that was altered) must not reach the evaluators. */
 int asset_is_usable(const dsn_asset *asset) {
     uint32_t support_size;
+#if DSN_HISTOGRAM
+    if (!dsn_internal_histogram_usable(asset)) return 0;
+#else
+    if (asset->histogram_table != 0) return 0; /* an asset this build cannot show as it should */
+#endif
     return asset->texton != 0 && dsn_internal_check_geometry(asset, &support_size) == DSN_OK &&
            asset->support_size == support_size;
 }
@@ -100,6 +106,9 @@ extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const d
     /* Every period 1 .. 2^32 - 1 is valid (0 = none): nothing to check. */
 
     noise->asset = *asset;
+#if DSN_HISTOGRAM
+    if (config->flags & DSN_FLAG_NO_HISTOGRAM) noise->asset.histogram_table = 0; /* Gaussian-space values */
+#endif
     noise->seed = config->seed;
     noise->seed_column = dsn_mix32(config->seed ^ 0x68E31DA4u);
     noise->seed_row = dsn_mix32(config->seed + 0xB5297A4Du);

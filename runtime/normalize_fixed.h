@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "histogram_map.h"
 #include "noise_state.h"
 #include "shared_inline.h"
 
@@ -29,6 +30,17 @@ static inline int32_t dsn_signed_sum(uint32_t sum) {
     return (sum & 0x80000000u) ? -int32_t(~sum) - 1 : int32_t(sum);
 }
 
+/* The last step of every unfiltered evaluation: the histogram mapping's level 0, where the noise has
+   one (dsn_noise_init leaves it out of the noise with DSN_FLAG_NO_HISTOGRAM). */
+static inline void dsn_map_output(const dsn_noise_state *noise, int32_t *out) {
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0) dsn_internal_histogram_map(&noise->asset, out, 0, 0);
+#else
+    (void)noise;
+    (void)out;
+#endif
+}
+
 /* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */
 DSN_SHARED void dsn_normalize(const dsn_noise_state *noise, const uint32_t *sums, int32_t *out) {
     uint32_t c, k, channels = noise->asset.channels;
@@ -37,6 +49,7 @@ DSN_SHARED void dsn_normalize(const dsn_noise_state *noise, const uint32_t *sums
         for (k = 0; k < channels; k++) accumulated += noise->gain[c * 3 + k] * dsn_signed_sum(sums[k]);
         out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
     }
+    dsn_map_output(noise, out);
 }
 
 /* The API edge's output types, for the paths that convert pixel by pixel through a switch rather than

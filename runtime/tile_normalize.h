@@ -30,6 +30,10 @@ typedef struct split_normalization {
 int make_split_normalization(const dsn_noise_state *noise, split_normalization *split) {
     const uint32_t s = noise->gain_shift, channels = noise->asset.channels;
     if (s < 16 || s > 32) return 0;
+#if DSN_HISTOGRAM
+    /* The histogram mapping reads tables per value: those rows go pixel by pixel through dsn_normalize. */
+    if (noise->asset.histogram_table != 0) return 0;
+#endif
     for (uint32_t c = 0; c < channels; c++) {
         const int64_t gain_limit = int64_t(1) << 29, offset_limit = int64_t(1) << 61;
         if (noise->offset[c] <= -offset_limit || noise->offset[c] >= offset_limit) return 0;

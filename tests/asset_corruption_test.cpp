@@ -1,7 +1,7 @@
-// asset_corruption_test.cpp - every single-bit flip and every truncation of small valid assets (1.0, and 1.1
-// with a pyramid) is rejected with the code the format.h validation order prescribes; hostile edits with a
-// recomputed CRC are rejected by a field check or load into a noise whose points and tiles are defined and
-// agree.
+// asset_corruption_test.cpp - every single-bit flip and every truncation of small valid assets (1.0, 1.1
+// with a pyramid, and 1.2 with a histogram mapping) is rejected with the code the format.h validation order
+// prescribes; hostile edits with a recomputed CRC are rejected by a field check or load into a noise whose
+// points and tiles are defined and agree.
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -13,7 +13,8 @@
 
 namespace {
 
-std::vector<unsigned char> small_asset(uint32_t channels, uint32_t bits, uint32_t shape, bool pyramid) {
+std::vector<unsigned char> small_asset(uint32_t channels, uint32_t bits, uint32_t shape, bool pyramid,
+                                       bool histogram) {
     dsn::AssetFields fields;
     fields.channels = channels;
     fields.bits = bits;
@@ -40,6 +41,21 @@ std::vector<unsigned char> small_asset(uint32_t channels, uint32_t bits, uint32_
         second.exponent = -5;
         second.values.assign(channels, limit);
         fields.pyramid = {first, second};
+    }
+    if (histogram) { // format 1.2: 5 entries per table, a table per level
+        dsn::HistogramMapping &mapping = fields.histogram;
+        mapping.entry_count = 5;
+        mapping.level_count = uint32_t(1 + fields.pyramid.size());
+        mapping.step_shift = 1;
+        mapping.input_low_q16 = -65536;
+        for (uint32_t i = 0; i < mapping.level_count * channels * 5; i++)
+            mapping.tables.push_back(int32_t(i * 4099 % 16001) - 8000);
+        for (uint32_t c = 0; c < channels; c++) {
+            mapping.centre[c] = int32_t(c + 2) << 21;
+            mapping.expected_q16[c] = int32_t(c * 1000) - 700;
+        }
+        for (uint32_t i = 0; i < 9; i++)
+            mapping.rotation[i] = channels == 3 || i == 0 ? int32_t(i * 977 % 31) << 19 : 0;
     }
     return dsn::encode_asset(fields);
 }
@@ -73,6 +89,7 @@ bool is_field_check(int code) {
     case DSN_ERR_TEXTON:
     case DSN_ERR_SECTION:
     case DSN_ERR_PYRAMID:
+    case DSN_ERR_HISTOGRAM:
         return true;
     default:
         return false;
@@ -108,18 +125,17 @@ void evaluate_everywhere(const dsn_asset &asset) {
 
 const struct {
     uint32_t channels, bits, shape;
-    bool pyramid;
-} kAssets[] = {{3, 8, DSN_SHAPE_DISK, false},
-               {1, 16, DSN_SHAPE_RECTANGLE, false},
-               {3, 8, DSN_SHAPE_DISK, true},
-               {1, 16, DSN_SHAPE_RECTANGLE, true}};
+    bool pyramid, histogram;
+} kAssets[] = {{3, 8, DSN_SHAPE_DISK, false, false}, {1, 16, DSN_SHAPE_RECTANGLE, false, false},
+               {3, 8, DSN_SHAPE_DISK, true, false},  {1, 16, DSN_SHAPE_RECTANGLE, true, false},
+               {3, 8, DSN_SHAPE_DISK, true, true},   {1, 16, DSN_SHAPE_RECTANGLE, false, true}};
 
 } // namespace
 
 TEST_CASE("every single-bit flip of a valid asset is rejected with the code of the validation order") {
     for (const auto &kind : kAssets) {
         const std::vector<unsigned char> valid =
-            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid);
+            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid, kind.histogram);
         dsn_asset asset;
         REQUIRE(dsn_asset_load(&asset, valid.data(), valid.size()) == DSN_OK);
         size_t checked = 0;
@@ -143,7 +159,7 @@ TEST_CASE("every single-bit flip of a valid asset is rejected with the code of t
 TEST_CASE("every truncation of a valid asset is rejected as truncated") {
     for (const auto &kind : kAssets) {
         const std::vector<unsigned char> valid =
-            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid);
+            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid, kind.histogram);
         dsn_asset asset;
         for (size_t size = 0; size < valid.size(); size++) {
             // A fresh copy of exactly `size` bytes, so a read past the end is a sanitizer error.
@@ -161,7 +177,7 @@ TEST_CASE("every truncation of a valid asset is rejected as truncated") {
 TEST_CASE("hostile fields with a recomputed CRC are refused by a field check or evaluate consistently") {
     for (const auto &kind : kAssets) {
         const std::vector<unsigned char> valid =
-            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid);
+            small_asset(kind.channels, kind.bits, kind.shape, kind.pyramid, kind.histogram);
         size_t accepted = 0, refused = 0;
         for (size_t offset = DSN_OFFSET_FLAGS; offset < valid.size() - DSN_FORMAT_CRC_SIZE; offset++)
             for (int variant = 0; variant < 10; variant++) {

@@ -1,6 +1,7 @@
 // asset_sections_test.cpp - format 1.1: the loader reads sections and the texton pyramid (format.h steps
 // 14 and 15, each failure with its own code), skips unknown kinds, still reads 1.0 files, and a 1.1 file
-// read by the 1.0 rules yields the same texton; dsn_asset_level reads every level.
+// read by the 1.0 rules yields the same texton; dsn_asset_level reads every level. Format 1.2: every
+// failure of step 16 is DSN_ERR_HISTOGRAM, and the flag and kind 2 count from minor 2 on.
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -319,4 +320,128 @@ TEST_CASE("the writer refuses pyramids the loader would reject") {
     dsn_asset asset;
     CHECK(dsn_asset_load(&asset, bytes.data(), bytes.size()) == DSN_OK);
     CHECK(asset.pyramid_levels == 8);
+}
+
+namespace {
+
+// A 1.2 file with a 4-entry mapping and no pyramid: its one section starts at byte 128.
+Bytes mapped_asset(uint32_t channels) {
+    dsn::AssetFields fields = dsn_test::synthetic_fields(channels, 5, 8, DSN_SHAPE_RECTANGLE, 5);
+    dsn::HistogramMapping &m = fields.histogram;
+    m.entry_count = 4, m.step_shift = 2, m.input_low_q16 = -131072;
+    for (uint32_t i = 0; i < 4 * channels; i++) m.tables.push_back(int32_t(i * 3001 % 20000) - 10000);
+    if (channels == 1)
+        for (int i = 1; i < 9; i++) m.rotation[i] = 0;
+    for (uint32_t c = 0; c < channels; c++) m.centre[c] = 1 << 23, m.expected_q16[c] = -100;
+    return dsn::encode_asset(fields);
+}
+
+const size_t kPayload = DSN_FORMAT_HEADER_SIZE + DSN_SECTION_HEADER_SIZE; // of the one section
+
+int load_code(const Bytes &bytes) {
+    dsn_asset asset;
+    return dsn_asset_load(&asset, bytes.data(), bytes.size());
+}
+
+// `valid` with its histogram payload replaced by `payload` (padded to 4 bytes), resealed.
+Bytes with_payload(const Bytes &valid, const Bytes &payload) {
+    const uint32_t old_size = dsn_read_u32le(&valid[DSN_FORMAT_HEADER_SIZE + 4]);
+    Bytes padded = payload;
+    padded.resize((payload.size() + 3) / 4 * 4, 0);
+    Bytes bytes(valid.begin(), valid.begin() + long(kPayload));
+    dsn_write_u32le(&bytes[DSN_FORMAT_HEADER_SIZE + 4], uint32_t(payload.size()));
+    bytes.insert(bytes.end(), padded.begin(), padded.end());
+    bytes.insert(bytes.end(), valid.begin() + long(kPayload + (old_size + 3) / 4 * 4), valid.end());
+    dsn_write_u32le(&bytes[DSN_OFFSET_HEADER_SIZE], dsn_read_u32le(&valid[DSN_OFFSET_HEADER_SIZE]) +
+                                                        uint32_t(padded.size()) - (old_size + 3) / 4 * 4);
+    dsn_write_u32le(&bytes[DSN_OFFSET_TOTAL_SIZE], uint32_t(bytes.size()));
+    reseal(bytes);
+    return bytes;
+}
+
+} // namespace
+
+TEST_CASE("1.2: every failure of step 16 is DSN_ERR_HISTOGRAM") {
+    for (uint32_t channels : {1u, 3u}) {
+        CAPTURE(channels);
+        const Bytes valid = mapped_asset(channels);
+        REQUIRE(load_code(valid) == DSN_OK);
+        const uint32_t size = dsn_read_u32le(&valid[DSN_FORMAT_HEADER_SIZE + 4]);
+        REQUIRE(size == DSN_HISTOGRAM_HEADER_SIZE + 2 * 4 * channels);
+        const Bytes payload(valid.begin() + long(kPayload), valid.begin() + long(kPayload + size));
+        REQUIRE(load_code(with_payload(valid, payload)) == DSN_OK); // the helper itself changes nothing
+        const auto patched = [&](size_t offset, uint32_t value, int width) {
+            Bytes p = payload;
+            for (int i = 0; i < width; i++) p[offset + size_t(i)] = uint8_t(value >> (8 * i));
+            return load_code(with_payload(valid, p));
+        };
+        CHECK(patched(0, 1, 2) == DSN_ERR_HISTOGRAM);    // N = 1
+        CHECK(patched(0, 1025, 2) == DSN_ERR_HISTOGRAM); // N above 1024 (size then differs too)
+        CHECK(patched(2, 0, 1) == DSN_ERR_HISTOGRAM);    // M = 0
+        CHECK(patched(2, 2, 1) == DSN_ERR_HISTOGRAM);    // M above 1 + no pyramid level
+        CHECK(patched(3, 17, 1) == DSN_ERR_HISTOGRAM);   // s above 16
+        CHECK(patched(3, 16, 1) == DSN_OK);
+        CHECK(patched(56, uint32_t(DSN_HISTOGRAM_EXPECTED_LIMIT + 1), 4) == DSN_ERR_HISTOGRAM);
+        CHECK(patched(56, uint32_t(-DSN_HISTOGRAM_EXPECTED_LIMIT - 1), 4) == DSN_ERR_HISTOGRAM);
+        CHECK(patched(56, uint32_t(-DSN_HISTOGRAM_EXPECTED_LIMIT), 4) == DSN_OK);
+        CHECK(patched(DSN_HISTOGRAM_HEADER_SIZE + 2, 0x8000, 2) == DSN_ERR_HISTOGRAM); // -32768
+        CHECK(patched(DSN_HISTOGRAM_HEADER_SIZE + 2, 0x8001, 2) == DSN_OK);            // -32767
+        if (channels == 1) {
+            CHECK(patched(8 + 4 * 5, 1, 4) == DSN_ERR_HISTOGRAM);  // an unused rotation entry
+            CHECK(patched(44 + 4 * 2, 1, 4) == DSN_ERR_HISTOGRAM); // an unused centre
+            CHECK(patched(56 + 4 * 1, 1, 4) == DSN_ERR_HISTOGRAM); // an unused expected
+        } else {
+            CHECK(patched(8 + 4 * 5, 1, 4) == DSN_OK);
+            CHECK(patched(44 + 4 * 2, 1, 4) == DSN_OK);
+        }
+        // Sizes that differ from 68 + 2 M N C: one table value more or less, a payload shorter than 68.
+        Bytes longer = payload;
+        longer.push_back(0), longer.push_back(0);
+        CHECK(load_code(with_payload(valid, longer)) == DSN_ERR_HISTOGRAM);
+        CHECK(load_code(with_payload(valid, Bytes(payload.begin(), payload.end() - 2))) == DSN_ERR_HISTOGRAM);
+        CHECK(load_code(with_payload(valid, Bytes(payload.begin(), payload.begin() + 67))) ==
+              DSN_ERR_HISTOGRAM);
+        CHECK(load_code(with_payload(valid, Bytes())) == DSN_ERR_HISTOGRAM);
+        // The flag without the section (its kind made unknown), the section without the flag.
+        Bytes unflagged = valid, unknown_kind = valid;
+        dsn_write_u32le(&unflagged[DSN_OFFSET_FLAGS], 0);
+        dsn_write_u32le(&unknown_kind[DSN_FORMAT_HEADER_SIZE], 9);
+        reseal(unflagged), reseal(unknown_kind);
+        CHECK(load_code(unflagged) == DSN_ERR_HISTOGRAM);
+        CHECK(load_code(unknown_kind) == DSN_ERR_HISTOGRAM);
+    }
+}
+
+TEST_CASE("1.2: the flag and the kind-2 section count from minor 2 on; two kind-2 sections are framing") {
+    const Bytes valid = mapped_asset(3);
+    const uint32_t size = dsn_read_u32le(&valid[DSN_FORMAT_HEADER_SIZE + 4]);
+    const Bytes one_section(valid.begin() + DSN_FORMAT_HEADER_SIZE, valid.begin() + long(kPayload + size));
+    // Flags: another bit, or the flag in a minor-1 file, are reserved.
+    Bytes other_bit = valid, minor_one = valid;
+    dsn_write_u32le(&other_bit[DSN_OFFSET_FLAGS], DSN_FLAG_HISTOGRAM | 2u);
+    dsn_write_u16le(&minor_one[DSN_OFFSET_VERSION_MINOR], 1);
+    reseal(other_bit), reseal(minor_one);
+    CHECK(load_code(other_bit) == DSN_ERR_RESERVED);
+    CHECK(load_code(minor_one) == DSN_ERR_RESERVED);
+    // In a minor-1 file kind 2 is unknown: skipped (even twice, even with bad contents).
+    Bytes bad_section = one_section;
+    bad_section[DSN_SECTION_HEADER_SIZE] = 0; // N = 0 (low byte of 4)
+    Bytes twice = one_section;
+    twice.insert(twice.end(), bad_section.begin(), bad_section.end());
+    const Bytes skipped = with_sections(twice, 1, 3, 8);
+    dsn_asset asset;
+    REQUIRE(dsn_asset_load(&asset, skipped.data(), skipped.size()) == DSN_OK);
+    CHECK(asset.histogram_table == nullptr);
+    // In a minor-2 file, two kind-2 sections are a framing error (step 14, before step 16).
+    Bytes duplicated = with_sections(twice, 2, 3, 8);
+    dsn_write_u32le(&duplicated[DSN_OFFSET_FLAGS], DSN_FLAG_HISTOGRAM);
+    reseal(duplicated);
+    CHECK(load_code(duplicated) == DSN_ERR_SECTION);
+    // The writer's file with its one section, rebuilt: loads, and its texton is the 1.0 file's.
+    Bytes rebuilt = with_sections(one_section, 2, 3, 8);
+    dsn_write_u32le(&rebuilt[DSN_OFFSET_FLAGS], DSN_FLAG_HISTOGRAM);
+    reseal(rebuilt);
+    REQUIRE(dsn_asset_load(&asset, rebuilt.data(), rebuilt.size()) == DSN_OK);
+    CHECK(asset.histogram_table == rebuilt.data() + kPayload + DSN_HISTOGRAM_HEADER_SIZE);
+    CHECK(asset.histogram_entries == 4);
 }

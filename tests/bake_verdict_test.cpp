@@ -107,6 +107,38 @@ TEST_CASE("verdict: a two-level pattern gets the non-Gaussian-marginal finding")
     CHECK(verdict.summary.rfind("limited", 0) == 0);
 }
 
+TEST_CASE("verdict: a two-level pattern gets --histogram suggested, and not once it is on") {
+    for (int channels : {1, 3}) {
+        dsn::Image binary = gaussian_exemplar(128, channels, 9);
+        for (double &value : binary.values) value = value > 0.5 ? 0.7 : 0.3;
+        dsn::BakeOptions options;
+        const dsn::BakeResult plain = dsn::bake(binary, options);
+        REQUIRE(has(plain.verdict, dsn::VerdictFinding::NonGaussianMarginal));
+        const auto suggestion =
+            std::find_if(plain.verdict.suggestions.begin(), plain.verdict.suggestions.end(),
+                         [](const std::string &text) { return text.find("tones") != std::string::npos; });
+        REQUIRE(suggestion != plain.verdict.suggestions.end());
+        INFO(*suggestion);
+        CHECK(suggestion->find("try --histogram") != std::string::npos);
+        // It names the bytes the mapping adds: header, 1 + levels tables of 65 Q3.12 entries per channel.
+        const size_t tables = 2 * 65 * size_t(channels) * (1 + plain.fields.pyramid.size());
+        CHECK(suggestion->find(std::to_string(8 + 68 + tables) + " bytes") != std::string::npos);
+
+        options.histogram = true;
+        const dsn::BakeVerdict mapped = dsn::bake(binary, options).verdict;
+        INFO(mapped.summary);
+        CHECK(!has(mapped, dsn::VerdictFinding::NonGaussianMarginal));
+        CHECK(mapped.summary.find("non-Gaussian tones kept by the histogram mapping") != std::string::npos);
+        for (const std::string &text : mapped.suggestions)
+            CHECK(text.find("--histogram") == std::string::npos);
+        // The signals still describe the exemplar's tones, and its structure as the plain bake saw it.
+        CHECK(mapped.channels[0].excess_kurtosis ==
+              doctest::Approx(plain.verdict.channels[0].excess_kurtosis));
+        CHECK(!has(mapped, dsn::VerdictFinding::StructureBeyondRadius));
+        CHECK(mapped.structure_beyond_reach < dsn::kVerdictStructureShare);
+    }
+}
+
 TEST_CASE("bake: the early stop reports why it stopped, and threads change no bit") {
     const dsn::Image exemplar = gaussian_exemplar(128, 3, 11);
     dsn::BakeOptions options; // default early stop

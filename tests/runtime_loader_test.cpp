@@ -192,7 +192,7 @@ TEST_CASE("configuration and evaluation arguments are checked") {
     altered = asset;
     altered.width += 1;
     CHECK(dsn_noise_init(&noise, &altered, &config) == DSN_ERR_ARGUMENT);
-    config.flags = 4;
+    config.flags = DSN_FLAGS_ALL + 1; // the lowest unknown bit
     CHECK(dsn_noise_init(&noise, &asset, &config) == DSN_ERR_ARGUMENT);
     config.flags = 0;
     config.impacts_q16 = DSN_IMPACTS_MIN_Q16 - 1;

@@ -157,8 +157,63 @@ struct BakeOptions {
     // Writes the texton pyramid (a format 1.1 asset) that the filtered evaluation reads; false writes a
     // 1.0 asset, byte for byte what bakes without a pyramid always wrote.
     bool pyramid = true;
+    // The histogram-preserving output (a format 1.2 asset, Heitz and Neyret, HPG 2018): the texton is
+    // baked on the Gaussianized exemplar (see HistogramModel) and the asset maps the Gaussian noise back
+    // through the exemplar's own marginals, so binary, speckled or skewed tones keep their histogram.
+    bool histogram = false;
     BakeProgress progress; // may be empty
 };
+
+// ---- The histogram-preserving mode (offline/histogram.cpp) ----
+
+// The principal components of an image's colours: mean, covariance eigenvalues (strongest first) and
+// eigenvectors in the columns of `vectors`, each with its largest-magnitude entry positive (the first
+// of equal ones), so the same image always gives the same basis. Grey: the identity, one variance.
+struct ColourBasis {
+    int channels = 1;
+    std::array<double, 3> mean = {0, 0, 0};
+    std::array<double, 3> variances = {0, 0, 0};
+    Matrix3 vectors = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+};
+ColourBasis principal_components(const Image &image);
+
+// What the mapping needs of the exemplar: its colour basis and, per decorrelated channel
+// v_k = P^T (u - mean), the channel's values sorted (its empirical distribution).
+struct HistogramModel {
+    ColourBasis basis;
+    std::vector<std::vector<double>> sorted; // [k]: the n values of v_k, ascending
+};
+HistogramModel histogram_model(const Image &exemplar);
+
+// The standard normal distribution function and its inverse (p in (0, 1); relative error ~1e-15).
+double normal_cdf(double x);
+double normal_quantile(double p);
+
+// The empirical quantile of sorted values: the value of rank i stands for probability (i + 0.5) / n,
+// linear in between, the extreme values beyond.
+double empirical_quantile(const std::vector<double> &sorted, double probability);
+
+// The Gaussianized exemplar w: each decorrelated channel through its empirical distribution
+// function, g = normal_quantile((rank + 0.5) / n) with tied values given their average rank, then
+// scaled to zero mean and unit variance (ties leave fewer distinct values and less variance).
+Image gaussianize(const Image &exemplar, const HistogramModel &model);
+
+// The standard deviation of Gaussian-space channel k (the 1.0 output of format.h) of the noise these
+// asset fields give, by Campbell's theorem: sqrt((K C K^T)_kk), C_km the integral of t_k t_m (lattice:
+// the sum over the texels; bilinear: weighted by the sampled cubic B-spline). Level 0 is the texton,
+// level l >= 1 the pyramid level l (bilinear tents at spacing 2^l, so its integral carries 4^l).
+std::array<double, 3> gaussian_space_deviation(const AssetFields &fields, int level);
+
+// E[f(y + rho Z)], Z standard normal, for f the piecewise-linear table (values at low + i step,
+// constant beyond both ends): exact, from the normal distribution and density at the nodes.
+double smoothed_table_value(const std::vector<double> &table, double low, double step, double y, double rho);
+
+// The mapping of format 1.2 for an asset baked on gaussianize(exemplar): level 0's table
+// T_0(y) = empirical quantile of v_k at normal_cdf((y - mean_k) / sigma_0k), the prefiltered tables
+// T_l(y) = E[T_0(y + rho_l Z)] with rho_l^2 = sigma_0k^2 - sigma_lk^2 (sigma from
+// gaussian_space_deviation) for each pyramid level, expected_k = E[T_0(mean_k + sigma_0k Z)], and the
+// rotation P and centre (the basis' mean): 65 entries over [-4, 4] (1/8 apart), Q3.12.
+HistogramMapping histogram_mapping(const HistogramModel &model, const AssetFields &fields);
 
 // ---- The verdict ----
 
@@ -228,6 +283,10 @@ struct BakeResult {
     std::vector<double> excess_kurtosis_30, excess_kurtosis_30_luminance;
     Matrix3 color_transform = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     AssetFields fields;
+    // With BakeOptions::histogram: the exemplar's marginals that fields.histogram maps back to, and the
+    // Gaussian-space standard deviation of every channel at every level (level 0 first).
+    HistogramModel histogram;
+    std::vector<std::array<double, 3>> gaussian_deviations;
     std::vector<unsigned char> asset; // the encoded .dsnt file
     BakeVerdict verdict;              // how well the model holds the exemplar, and what to try
 };

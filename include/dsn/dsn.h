@@ -64,6 +64,12 @@
                         read a 1.1 asset's sections (its pyramid is then neither checked nor used, so such
                         a build accepts an asset whose pyramid a full build rejects). That keeps the small
                         build under its 8 KB.
+     DSN_HISTOGRAM      default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the histogram-preserving
+                        output of format 1.2 out (the section "Histogram-preserving output" below): the
+                        loader then answers DSN_ERR_UNSUPPORTED for an asset that needs it (format.h,
+                        step 8) and does not check its section, and no evaluation applies a mapping.
+                        That keeps the small build under its 8 KB. 1 with DSN_FILTERING 0 reads the
+                        sections (and so checks a 1.1 asset's pyramid) to find the mapping.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
                         copies of the texton and the impulse list on the stack: tens of KB. 0 takes the
@@ -99,14 +105,18 @@
 #define DSN_FILTERING (!DSN_SMALL_CODE)
 #endif
 
+#ifndef DSN_HISTOGRAM /* 1: the histogram-preserving output of format 1.2; default 0 in the small build */
+#define DSN_HISTOGRAM (!DSN_SMALL_CODE)
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 2
+#define DSN_VERSION_MINOR 3
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.2.0"
+#define DSN_VERSION_STRING "1.3.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);
@@ -135,9 +145,22 @@ typedef struct dsn_asset {
     /* The texton pyramid of a 1.1 asset (format.h): the prefiltered levels 1 .. pyramid_levels that the
        filtered evaluation reads. `pyramid` points at the first level record in the caller's buffer;
        read the levels with dsn_asset_level. Null and 0 for an asset without one, and always in a
-       runtime built with DSN_FILTERING 0 (its loader does not read sections). */
+       runtime built with DSN_FILTERING 0 and DSN_HISTOGRAM 0 (its loader does not read sections). */
     const unsigned char *pyramid;
     uint32_t pyramid_levels; /* 0 .. DSN_PYRAMID_MAX_LEVELS */
+    /* The histogram mapping of a 1.2 asset (format.h, section kind 2; "Histogram-preserving output"
+       below): `histogram_table` points at the table values T[l][k][i] in the caller's buffer (i16
+       little-endian, Q3.12, index (l channels + k) histogram_entries + i). Null and the other fields 0
+       for an asset without one, and always in a runtime built with DSN_HISTOGRAM 0 (its loader refuses
+       assets that have one). */
+    const unsigned char *histogram_table;
+    uint32_t histogram_entries;        /* N: 2 .. DSN_HISTOGRAM_MAX_ENTRIES */
+    uint32_t histogram_levels;         /* M: 1 .. 1 + pyramid_levels */
+    uint32_t histogram_step_shift;     /* s: entry i stands for input_low + i 2^-s */
+    int32_t histogram_input_low_q16;   /* Q16.16 */
+    int32_t histogram_rotation[9];     /* P, Q8.24, row-major */
+    int32_t histogram_centre[3];       /* Q8.24 */
+    int32_t histogram_expected_q16[3]; /* Q16.16: what the filtered evaluation fades to */
 } dsn_asset;
 
 /* Validates `size` bytes at `bytes` as a .dsnt asset and fills `asset`. Returns DSN_OK or the first
@@ -170,7 +193,9 @@ const char *dsn_error_message(int code);
 
 #define DSN_FLAG_NO_COLOR_TRANSFORM 1u       /* use the identity instead of the asset's transform */
 #define DSN_FLAG_ALLOW_LATTICE_CONTINUOUS 2u /* continuous mode on a lattice-baked texton */
-#define DSN_FLAGS_ALL (DSN_FLAG_NO_COLOR_TRANSFORM | DSN_FLAG_ALLOW_LATTICE_CONTINUOUS)
+#define DSN_FLAG_NO_HISTOGRAM 4u /* skip the asset's histogram mapping: its Gaussian-space values */
+#define DSN_FLAGS_ALL                                                                                        \
+    (DSN_FLAG_NO_COLOR_TRANSFORM | DSN_FLAG_ALLOW_LATTICE_CONTINUOUS | DSN_FLAG_NO_HISTOGRAM)
 
 typedef struct dsn_config {
     uint32_t seed;        /* any value */
@@ -229,16 +254,20 @@ int dsn_sample(const dsn_noise *noise, float x, float y, float *out);
 /* out[channels]: the noise's mean colour as float, the value its samples average to over any large area
    (the asset's mean, which the normalization keeps exact up to the output's 1/65536 resolution; the
    colour transform and the density change the contrast around it, not the mean). What a renderer fades
-   to where the texture is too fine to show (far away, minified). Returns DSN_OK, or DSN_ERR_NULL (null
-   `noise` or `out`, or a noise never configured); on an error out[0] (and every channel of a configured
-   noise) is set to 0. Any configured noise, lattice or continuous. */
+   to where the texture is too fine to show (far away, minified). With a histogram mapping (see
+   "Histogram-preserving output" below) it is the colour the filtered evaluation fades to, exactly
+   (centre + P expected, rounded to Q16.16 then converted as dsn_fixed_to_float).
+   Returns DSN_OK, or DSN_ERR_NULL (null `noise` or `out`, or a noise never configured); on an error
+   out[0] (and every channel of a configured noise) is set to 0. Any configured noise, lattice or
+   continuous. */
 int dsn_noise_mean_float(const dsn_noise *noise, float *out);
 
 /* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
    normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS or
-   DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill). Every period
-   1 .. 2^32 - 1 is valid. On failure `noise` is zeroed, and the evaluation functions then write nothing
-   (lattice per point) or return an error (the others).
+   DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill, its histogram
+   fields out of format.h's ranges included; a build with DSN_HISTOGRAM 0 refuses any histogram table).
+   Every period 1 .. 2^32 - 1 is valid. On failure `noise` is zeroed, and the evaluation functions then
+   write nothing (lattice per point) or return an error (the others).
    Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen by a fixed cost model of the per-point
    call (the same choice on every platform, since the cell size is part of the output); a 31 x 31 texton
    at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
@@ -491,6 +520,39 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
                          uint32_t height, uint8_t *out, void *scratch, size_t scratch_size);
 
 /* ==== End of the filtered evaluation ================================================================= */
+
+/* ==== Histogram-preserving output (format 1.2) =======================================================
+   A spot noise is Gaussian: it keeps an exemplar's mean, colours' covariance and spectrum, but not the
+   histogram of each colour (a bimodal or skewed exemplar comes out as a softer Gaussian one). An asset
+   of format 1.2 carries the mapping of Heitz and Neyret ("High-Performance By-Example Noise using a
+   Histogram-Preserving Blending Operator", HPG 2018): the baker decorrelated the exemplar's colours,
+   Gaussianized each decorrelated channel through its empirical CDF and baked the texton of that
+   Gaussianized exemplar; the runtime evaluates that Gaussian noise as always (g_k, "Gaussian-space"
+   values), then maps each channel through a lookup table (the inverse CDF) and rotates the result back
+   to colours: out_c = centre[c] + sum_k P[c][k] T_k(g_k). format.h states the integer arithmetic
+   exactly; the asset's fields are in dsn_asset (histogram_*).
+
+   How to call it: nothing changes. dsn_asset_load reads the mapping, dsn_noise_init keeps it in the
+   noise, and every evaluation function applies it to its output: lattice and continuous, point, tile
+   and batch, filtered, fixed, float and 8-bit, with the same guarantees (same bits everywhere, tiles
+   and batches equal to their points, integer arithmetic only). Configure with DSN_FLAG_NO_HISTOGRAM to
+   get the Gaussian-space values instead (the noise of the texton itself: for analysis, or for
+   dsn.glsl, which does not apply the mapping; dsn_gpu_pack refuses a noise that has one with
+   DSN_ERR_UNSUPPORTED). A runtime built with DSN_HISTOGRAM 0 (the small build's default) refuses such
+   assets at load time, DSN_ERR_UNSUPPORTED, rather than show Gaussian-space values as colours.
+
+   The filtered evaluation filters in Gaussian space and maps the result with tables prefiltered per
+   level (Deliot and Heitz, "Procedural Stochastic Textures by Tiling and Blending", GPU Zen 2): a
+   footprint that blends levels l and l + 1 with weight w maps its value g with (1 - w) T_l(g) +
+   w T_(l+1)(g), the levels past the asset's tables being the constant `expected` (each channel's mean
+   after the mapping), so that minified texture fades to centre + P expected (dsn_noise_mean_float):
+   the exemplar's mean colour, which the mapping of the Gaussian mean is not when T is not linear.
+   Unfiltered footprints give exactly the continuous mode's mapped bits.
+
+   Cost: per pixel, a table read and interpolation per channel and a 3 x 3 rotation in 64-bit integers;
+   lattice tiles then normalize pixel by pixel instead of in SIMD lanes (make bench reports the ratio). */
+
+/* ==== End of the histogram-preserving output ========================================================= */
 
 #ifdef __cplusplus
 }

@@ -80,6 +80,8 @@
      7. CRC mismatch ................................................. DSN_ERR_CRC
         (skipped when built with FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION)
      8. flags or reserved bytes non-zero ............................. DSN_ERR_RESERVED
+        (a 1.2 reader accepts flags = DSN_FLAG_HISTOGRAM in a file of minor 2 or later; a runtime
+        built without the mapping answers such a file ................. DSN_ERR_UNSUPPORTED)
      9. channels, bits, shape, interpolation, width/height ........... DSN_ERR_CHANNELS, DSN_ERR_BITS,
                                                                         DSN_ERR_SHAPE,
                                                                         DSN_ERR_INTERPOLATION,
@@ -170,6 +172,8 @@
    holds exactly one section of kind 2; version_minor is 2. A 1.0 or 1.1 reader rejects it
    (DSN_ERR_RESERVED: flags must be 0 there), so no older reader shows Gaussian-space values as colours.
    Files without the flag are written with the lowest minor that holds their sections (0 or 1).
+   Kind 2 is a known kind from minor 2 on: in a file of minor 1 a 1.2 reader skips it, as a 1.1 reader
+   does, and flags must be 0 there (step 8).
 
    Section kind 2: histogram mapping (payload offsets from the start of the payload)
      off   size     type      field
@@ -183,7 +187,8 @@
                               Grey: only P[0] is used, the other eight entries must be 0.
       44     12     i32[3]    centre[c], Q8.24 (0 for unused channels)
       56     12     i32[3]    expected[k], Q16.16: the value v_k the filtered evaluation fades to beyond
-                              its coarsest level (0 for unused channels)
+                              its coarsest level, within the tables' range [-32767 2^4, 32767 2^4]
+                              (0 for unused channels)
       68  2MNC     i16        table values T[l][k][i], Q3.12 (value = raw / 4096), level-major, then
                               channel, then entry: (l, k, i) at index (l C + k) N + i, C = channels;
                               in [-32767, 32767] (-32768 reserved)
@@ -197,21 +202,32 @@
        v_k = round((T[l][k][i] 2^d + (T[l][k][j] - T[l][k][i]) f) 2^4 / 2^d)
    and the output is (Q16.16, rounding half up, saturated to int32)
        out_c = round((centre[c] 2^16 + sum_k P[c*3+k] v_k) / 2^24).
+   (|v_k| <= 32767 2^4 < 2^19, so the sum stays below 2^47 + 3 2^31 2^19 < 2^52 and |out_c| < 2^28:
+   64-bit integers hold every step and the saturation never acts.)
    The unfiltered evaluations (lattice and continuous; point, tile and batch) use level 0. Level l >= 1
    is level 0's table prefiltered for pyramid level l: T_l(y) = E[T_0(y + rho_l Z)], Z standard
    normal, rho_l^2 = var_0 - var_l the variance of channel k that the level's filter removed (Deliot and
    Heitz, "Procedural Stochastic Textures by Tiling and Blending", GPU Zen 2, prefilter the table per
    mip level), so that a filtered pixel still averages to the exemplar's mean colour. The filtered
    evaluation, blending levels l and l + 1 with weight w, maps its blended Gaussian-space value g by
-   (1 - w) T_l(g) + w T_(l+1)(g), with T_M = expected (the fade beyond the coarsest level).
+   (1 - w) T_l(g) + w T_(l+1)(g), with T_l = expected for every l >= M (the fade beyond the coarsest
+   table). Exactly, with w = b / 256 (b = 0..255 the fraction of the level of detail, dsn.h), g_k the
+   Q16.16 value the filtered evaluation returns without the mapping and X_l = (T[l][k][i] 2^d +
+   (T[l][k][j] - T[l][k][i]) f) 2^4 for l < M, X_l = expected[k] 2^d for l >= M (i, j, f from g_k
+   as above):
+       v_k = round(((256 - b) X_l + b X_(l+1)) / 2^(d + 8))     (one rounding, half up)
+   which is the level-0 formula above when l = 0 and b = 0, and v_k = expected[k] once l >= M; out_c
+   follows from v_k as above.
 
    Validation order, continued (only when version_minor >= 2, after step 15)
     16. histogram: the flag without a kind-2 section or a kind-2 section without the flag, N, M or s
         out of range, M above 1 + the pyramid's level count, a size that differs from the formula, a
-        grey rotation with non-zero unused entries, a non-zero unused centre or expected, a table value
-        of -32768 ....................................................... DSN_ERR_HISTOGRAM
+        grey rotation with non-zero unused entries, a non-zero unused centre or expected, an expected
+        value outside [-32767 2^4, 32767 2^4], a table value of -32768 .. DSN_ERR_HISTOGRAM
    A runtime built without the mapping (DSN_HISTOGRAM 0 in dsn.h, the default of the small build)
-   rejects any file with the flag: DSN_ERR_UNSUPPORTED.
+   rejects any file with the flag (DSN_ERR_UNSUPPORTED, at step 8) and skips step 16. A runtime built
+   with the mapping but without the filtered evaluation still runs steps 14 and 15 (it reads the
+   sections to find the mapping).
 
    ================================================================================================== */
 #ifndef DSN_FORMAT_H
@@ -224,7 +240,7 @@
 #define DSN_FORMAT_MAGIC_SIZE 8u
 #define DSN_FORMAT_VERSION_MAJOR 1u
 #define DSN_FORMAT_VERSION_MINOR                                                                             \
-    1u /* the newest minor this header describes; files without sections are                                 \
+    2u /* the newest minor this header describes; files without sections are                                 \
            written as minor 0 (DSN_FORMAT_VERSION_MINOR_PLAIN) */
 #define DSN_FORMAT_VERSION_MINOR_PLAIN 0u
 #define DSN_FORMAT_HEADER_SIZE 128u
@@ -272,7 +288,9 @@
 #define DSN_HISTOGRAM_MAX_ENTRIES 1024u
 #define DSN_HISTOGRAM_MAX_LEVELS 9u
 #define DSN_HISTOGRAM_MAX_STEP_SHIFT 16u
-#define DSN_HISTOGRAM_VALUE_FRACTION_BITS 12 /* table values: Q3.12 */
+#define DSN_HISTOGRAM_VALUE_FRACTION_BITS 12      /* table values: Q3.12 */
+#define DSN_HISTOGRAM_VALUE_LIMIT 32767           /* |table value| <= this; -32768 is reserved */
+#define DSN_HISTOGRAM_EXPECTED_LIMIT (32767 << 4) /* |expected[k]| <= this (Q16.16) */
 
 /* Field values. */
 #define DSN_SHAPE_RECTANGLE 0u

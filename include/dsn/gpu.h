@@ -10,7 +10,7 @@
    How to call it
        uint32_t words[...];                                  // dsn_gpu_word_count(&noise) of them
        size_t count = dsn_gpu_word_count(&noise);            // 0: not a configured noise
-       int err = dsn_gpu_pack(&noise, words, count);         // DSN_OK, DSN_ERR_NULL or DSN_ERR_ARGUMENT
+       int err = dsn_gpu_pack(&noise, words, count);         // DSN_OK or an error (below)
        glBufferData(GL_SHADER_STORAGE_BUFFER, count * 4, words, GL_STATIC_DRAW);   // for example
    Upload the words as they are: the values are host integers (a GL buffer holds them in the host's byte
    order, which is what the shader reads).
@@ -64,7 +64,9 @@ size_t dsn_gpu_word_count(const dsn_noise *noise);
 
 /* Writes the dsn_gpu_word_count(noise) words of the layout above to `words`. Returns DSN_OK;
    DSN_ERR_NULL for a null `noise` or `words`; DSN_ERR_ARGUMENT for a noise that dsn_noise_init did not
-   fill, or a `capacity` (in words) below the count. On an error nothing is written. Freestanding like the
+   fill, or a `capacity` (in words) below the count; DSN_ERR_UNSUPPORTED for a noise with a histogram
+   mapping (format 1.2: dsn.glsl does not apply it; a noise configured with DSN_FLAG_NO_HISTOGRAM packs,
+   and the shader then gives its Gaussian-space values). On an error nothing is written. Freestanding like the
    rest of the runtime: no allocation, integer arithmetic only. */
 int dsn_gpu_pack(const dsn_noise *noise, uint32_t *words, size_t capacity);
 

@@ -2,9 +2,11 @@
 // the share of that time spent in FFTs, and the pruned iteration against the straightforward full-FFT
 // reference measured in the same run. Then whole default bakes (early stop, every core) of 256x256 and
 // 1024x1024 RGB (targets <= 0.5 s and <= 5 s wall), each against the 1000-iteration bake of the same
-// exemplar in the same run: time ratio and RME difference, over several runs (the machine is shared). Last,
-// every photo in ../shared/textures (DSN_TEXTURES overrides it; skipped when absent): its default bake
-// against its 1000-iteration bake, the early stop's RME gap (target <= 0.005) and time.
+// exemplar in the same run: time ratio and RME difference, over several runs (the machine is shared).
+// Then every photo in ../shared/textures (DSN_TEXTURES overrides it; skipped when absent): its default
+// bake against its 1000-iteration bake, the early stop's RME gap (target <= 0.005) and time. Last, the
+// histogram-preserving bake (--histogram) of the 256x256 exemplar against the plain one, runs
+// interleaved, and the time of its own steps (colour basis, Gaussianization, tables) alone.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -155,6 +157,39 @@ void shared_texture_gaps() {
         baked, within, baked, worst, worst_name.c_str(), default_seconds, full_seconds, refused);
 }
 
+// Plain and histogram-preserving default bakes of a size x size exemplar, interleaved, `runs` each.
+void histogram_bake(int size, int runs) {
+    const dsn::Image image = exemplar(size);
+    dsn::BakeOptions options;
+    std::vector<double> plain_walls, mapped_walls;
+    dsn::BakeResult plain, mapped;
+    for (int run = 0; run < runs; run++) {
+        options.histogram = false;
+        plain_walls.push_back(measure([&] { plain = dsn::bake(image, options); }).wall);
+        options.histogram = true;
+        mapped_walls.push_back(measure([&] { mapped = dsn::bake(image, options); }).wall);
+    }
+    std::vector<double> step_walls;
+    for (int run = 0; run < runs; run++)
+        step_walls.push_back(measure([&] {
+                                 const dsn::HistogramModel model = dsn::histogram_model(image);
+                                 dsn::gaussianize(image, model);
+                                 dsn::histogram_mapping(model, mapped.fields);
+                             }).wall);
+    std::sort(plain_walls.begin(), plain_walls.end());
+    std::sort(mapped_walls.begin(), mapped_walls.end());
+    std::sort(step_walls.begin(), step_walls.end());
+    const double plain_median = plain_walls[plain_walls.size() / 2];
+    std::printf(
+        "histogram-preserving bake %dx%d RGB: wall %.3f s median vs plain %.3f s (ratio %.2fx; %zu vs "
+        "%zu iterations, the early stop sees another model); its own steps %.4f s = %.1f%% of the "
+        "plain bake\n",
+        size, size, mapped_walls[mapped_walls.size() / 2], plain_median,
+        mapped_walls[mapped_walls.size() / 2] / plain_median, mapped.sot.rme_per_iteration.size(),
+        plain.sot.rme_per_iteration.size(), step_walls[step_walls.size() / 2],
+        100 * step_walls[step_walls.size() / 2] / plain_median);
+}
+
 int main() {
     const int size = 256, radius = 15, iterations = 1000, reference_iterations = 40;
     const dsn::GaussianModel model = dsn::gaussian_model(exemplar(size), true);
@@ -184,5 +219,6 @@ int main() {
     default_bake(256, 5, 0.5);
     default_bake(1024, 3, 5.0);
     shared_texture_gaps();
+    histogram_bake(256, 5);
     return 0;
 }

@@ -510,31 +510,42 @@ const Plan affine_plan = {affine_settings, GOLDEN_COUNT(affine_settings), 0, 0,
 const Plan filtered_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
                             filtered_grids,      GOLDEN_COUNT(filtered_grids)};
 
-/* One kind of output: a lattice evaluator over the plan's windows or a continuous one over its grids. */
+/* One kind of output: a lattice evaluator over the plan's windows or a continuous one over its grids, on
+   the four assets or (`mapped`) on the two with a histogram mapping (format 1.2). */
 struct Kind {
     const char *name;
     Evaluator evaluate;
     GridEvaluator evaluate_grid;
     const Plan *plan;
+    bool mapped;
 };
 
 const Kind kinds[] = {
-    {"point", point_fixed, 0, &lattice_plan},
-    {"tile", tile_fixed, 0, &lattice_plan}, /* the same bytes as "point": the two paths must agree */
-    {"float32", float_outputs, 0, &lattice_plan},
-    {"u8", u8_outputs, 0, &lattice_plan},
-    {"tileable", point_then_tile, 0, &tileable_plan},
-    {"c-point", 0, continuous_point_fixed, &continuous_plan},
-    {"c-tile", 0, continuous_tile_fixed, &continuous_plan}, /* the same bytes as "c-point" */
-    {"c-float", 0, continuous_conversions, &continuous_plan},
-    {"a-point", 0, continuous_point_fixed, &affine_plan},
-    {"a-tile", 0, continuous_tile_fixed, &affine_plan},   /* the same bytes as "a-point" */
-    {"a-float", 0, continuous_conversions, &affine_plan}, /* per point, tile float and u8 */
-    {"c-batch", 0, continuous_batch, &continuous_plan},   /* fixed then float, each as one batch */
+    {"point", point_fixed, 0, &lattice_plan, false},
+    {"tile", tile_fixed, 0, &lattice_plan, false}, /* the same bytes as "point": the two paths must agree */
+    {"float32", float_outputs, 0, &lattice_plan, false},
+    {"u8", u8_outputs, 0, &lattice_plan, false},
+    {"tileable", point_then_tile, 0, &tileable_plan, false},
+    {"c-point", 0, continuous_point_fixed, &continuous_plan, false},
+    {"c-tile", 0, continuous_tile_fixed, &continuous_plan, false}, /* the same bytes as "c-point" */
+    {"c-float", 0, continuous_conversions, &continuous_plan, false},
+    {"a-point", 0, continuous_point_fixed, &affine_plan, false},
+    {"a-tile", 0, continuous_tile_fixed, &affine_plan, false},   /* the same bytes as "a-point" */
+    {"a-float", 0, continuous_conversions, &affine_plan, false}, /* per point, tile float and u8 */
+    {"c-batch", 0, continuous_batch, &continuous_plan, false},   /* fixed then float, each as one batch */
 #if DSN_FILTERING
-    {"f-point", 0, filtered_point_fixed, &filtered_plan},
-    {"f-tile", 0, filtered_tile_fixed, &filtered_plan},   /* the same bytes as "f-point" */
-    {"f-float", 0, filtered_conversions, &filtered_plan}, /* per point, tile float and u8 */
+    {"f-point", 0, filtered_point_fixed, &filtered_plan, false},
+    {"f-tile", 0, filtered_tile_fixed, &filtered_plan, false},   /* the same bytes as "f-point" */
+    {"f-float", 0, filtered_conversions, &filtered_plan, false}, /* per point, tile float and u8 */
+#endif
+    {"h-point", point_fixed, 0, &lattice_plan, true},
+    {"h-tile", tile_fixed, 0, &lattice_plan, true}, /* the same bytes as "h-point" */
+    {"h-u8", u8_outputs, 0, &lattice_plan, true},
+    {"h-c-point", 0, continuous_point_fixed, &affine_plan, true},
+    {"h-c-tile", 0, continuous_tile_fixed, &affine_plan, true}, /* the same bytes as "h-c-point" */
+#if DSN_FILTERING
+    {"h-f-point", 0, filtered_point_fixed, &filtered_plan, true},
+    {"h-f-tile", 0, filtered_tile_fixed, &filtered_plan, true}, /* the same bytes as "h-f-point" */
 #endif
 };
 
@@ -588,8 +599,9 @@ int main() {
     int failures = 0;
     for (uint32_t k = 0; k < GOLDEN_COUNT(kinds); k++) {
         Fnv all = {fnv_offset_basis};
-        for (uint32_t a = 0; a < CROSS_ASSET_COUNT; a++) {
-            const cross_asset &bytes = cross_assets[a];
+        const uint32_t asset_count = kinds[k].mapped ? CROSS_HISTOGRAM_ASSET_COUNT : CROSS_ASSET_COUNT;
+        for (uint32_t a = 0; a < asset_count; a++) {
+            const cross_asset &bytes = kinds[k].mapped ? cross_histogram_assets[a] : cross_assets[a];
             Fnv hash = {fnv_offset_basis};
             dsn_asset asset;
             int err = dsn_asset_load(&asset, bytes.bytes, bytes.size);

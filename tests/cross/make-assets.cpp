@@ -1,6 +1,7 @@
 // make-assets.cpp - writes tests/cross/golden_assets.cpp: the four fixed assets the golden program hashes,
 // encoded once by the asset writer from fixed integers, each with the texton pyramid the baker makes of it
-// (format 1.1: every target's loader, the small build's included, reads them), committed as byte arrays.
+// (format 1.1: every target's loader, the small build's included, reads them), and two of them again
+// with a histogram mapping (format 1.2), committed as byte arrays.
 //
 // The committed arrays, not this program, are the source of truth: every target of the cross test reads
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
@@ -123,6 +124,30 @@ NamedAsset rgb16() {
     return asset;
 }
 
+// A histogram mapping from fixed integers (format 1.2): per level and channel an increasing table of 33
+// entries (an odd cubic, flatter at coarser levels) over the 4 texels around the asset's first mean, a
+// rotation with every entry used (RGB), a centre and an expected value per channel.
+void add_histogram(dsn::AssetFields &f) {
+    dsn::HistogramMapping &m = f.histogram;
+    m.entry_count = 33;
+    m.level_count = uint32_t(1 + f.pyramid.size());
+    m.step_shift = 3;
+    m.input_low_q16 = (f.mean[0] >> 8) - (2 << 16);
+    m.tables.clear();
+    for (uint32_t l = 0; l < m.level_count; l++)
+        for (uint32_t k = 0; k < f.channels; k++)
+            for (int32_t i = -16; i <= 16; i++)
+                m.tables.push_back(i * (1200 - 150 * int32_t(l)) + i * i * i * int32_t(3 + k) / 4 +
+                                   int32_t(k) * 300);
+    const int32_t rotation[9] = {14000000, -5000000, 3000000, 6000000, 15000000,
+                                 -2000000, -4000000, 2500000, 17000000};
+    for (int i = 0; i < 9; i++) m.rotation[i] = f.channels == 3 || i == 0 ? rotation[i] : 0;
+    for (uint32_t c = 0; c < f.channels; c++) {
+        m.centre[c] = f.mean[c] + int32_t(c) * 100000;
+        m.expected_q16[c] = 1000 - 700 * int32_t(c);
+    }
+}
+
 std::string byte_array(const char *name, const std::vector<unsigned char> &bytes) {
     std::string text = "extern const unsigned char cross_asset_" + std::string(name) + "[" +
                        std::to_string(bytes.size()) + "] = {";
@@ -134,16 +159,22 @@ std::string byte_array(const char *name, const std::vector<unsigned char> &bytes
     return text + "\n};\n";
 }
 
-std::string source_file(const std::vector<NamedAsset> &assets) {
-    std::string text = "// golden_assets.cpp - the fixed assets of the cross test, as bytes. Written by "
-                       "make-assets.cpp;\n// these arrays are the source of truth (see golden.txt).\n"
-                       "// clang-format off\n#include \"golden_assets.h\"\n\n";
-    for (const NamedAsset &asset : assets) text += byte_array(asset.name, dsn::encode_asset(asset.fields));
-    text += "\nextern const cross_asset cross_assets[] = {\n";
+// The table of `assets` named `table`.
+std::string asset_table(const char *table, const std::vector<NamedAsset> &assets) {
+    std::string text = "\nextern const cross_asset " + std::string(table) + "[] = {\n";
     for (const NamedAsset &asset : assets)
         text += "    {\"" + std::string(asset.name) + "\", cross_asset_" + asset.name +
                 ", sizeof cross_asset_" + asset.name + "},\n";
     return text + "};\n";
+}
+
+std::string source_file(const std::vector<NamedAsset> &assets, const std::vector<NamedAsset> &mapped) {
+    std::string text = "// golden_assets.cpp - the fixed assets of the cross test, as bytes. Written by "
+                       "make-assets.cpp;\n// these arrays are the source of truth (see golden.txt).\n"
+                       "// clang-format off\n#include \"golden_assets.h\"\n\n";
+    for (const NamedAsset &asset : assets) text += byte_array(asset.name, dsn::encode_asset(asset.fields));
+    for (const NamedAsset &asset : mapped) text += byte_array(asset.name, dsn::encode_asset(asset.fields));
+    return text + asset_table("cross_assets", assets) + asset_table("cross_histogram_assets", mapped);
 }
 
 } // namespace
@@ -158,7 +189,9 @@ int main(int argc, char **argv) {
     try {
         std::vector<NamedAsset> assets = {grey8(), rgb8(), grey16(), rgb16()};
         for (NamedAsset &asset : assets) asset.fields.pyramid = dsn::texton_pyramid(asset.fields);
-        const std::string text = source_file(assets);
+        std::vector<NamedAsset> mapped = {{"hgrey8", assets[0].fields}, {"hrgb8", assets[1].fields}};
+        for (NamedAsset &asset : mapped) add_histogram(asset.fields);
+        const std::string text = source_file(assets, mapped);
         dsn::write_file_atomically(argv[1], std::vector<unsigned char>(text.begin(), text.end()));
     } catch (const std::exception &error) {
         std::fprintf(stderr, "make-assets: %s\n", error.what());
