@@ -49,9 +49,9 @@ int main() {
     std::vector<int32_t> fixed(size_t(side) * side * 3);
     std::vector<uint8_t> bytes(fixed.size());
     dsn_grid grid{q32(0.3), q32(0.7), q32(0.37), q32(0.05), q32(-0.05), q32(0.37)};
-    std::vector<unsigned char> scratch(
-        std::max({dsn_lattice_tile_scratch_size(mapped, side, side),
-                  dsn_continuous_tile_scratch_size(mapped, &grid, side, side), dsn_continuous_batch_scratch_size(mapped)}));
+    std::vector<unsigned char> scratch(std::max({dsn_lattice_tile_scratch_size(mapped, side, side),
+                                                 dsn_continuous_tile_scratch_size(mapped, &grid, side, side),
+                                                 dsn_continuous_batch_scratch_size(mapped)}));
     std::vector<int64_t> xs(points), ys(points);
     for (uint32_t i = 0; i < points; i++) {
         xs[i] = int64_t(i % 200) * q32(2.8191) - int64_t(i / 200) * q32(1.0261) + q32(1.0 / 3);
@@ -61,62 +61,77 @@ int main() {
 
     struct Case {
         const char *name;
-        void (*run)(const dsn_noise *, std::vector<int32_t> &, std::vector<uint8_t> &, std::vector<unsigned char> &,
-                    const dsn_grid &, const std::vector<int64_t> &, const std::vector<int64_t> &, const dsn_footprint &);
+        void (*run)(const dsn_noise *, std::vector<int32_t> &, std::vector<uint8_t> &,
+                    std::vector<unsigned char> &, const dsn_grid &, const std::vector<int64_t> &,
+                    const std::vector<int64_t> &, const dsn_footprint &);
     };
     const Case cases[] = {
         {"lattice point (20000)",
          [](const dsn_noise *n, std::vector<int32_t> &, std::vector<uint8_t> &, std::vector<unsigned char> &,
-            const dsn_grid &, const std::vector<int64_t> &, const std::vector<int64_t> &, const dsn_footprint &) {
+            const dsn_grid &, const std::vector<int64_t> &, const std::vector<int64_t> &,
+            const dsn_footprint &) {
              int32_t out[3];
-             for (int32_t i = 0; i < 20000; i++) dsn_lattice_point_fixed(n, i % 200, i / 200, out), checksum += out[0];
+             for (int32_t i = 0; i < 20000; i++)
+                 dsn_lattice_point_fixed(n, i % 200, i / 200, out), checksum += out[0];
          }},
         {"lattice tile 256 x 256 fixed",
          [](const dsn_noise *n, std::vector<int32_t> &f, std::vector<uint8_t> &, std::vector<unsigned char> &,
-            const dsn_grid &, const std::vector<int64_t> &, const std::vector<int64_t> &, const dsn_footprint &) {
+            const dsn_grid &, const std::vector<int64_t> &, const std::vector<int64_t> &,
+            const dsn_footprint &) {
              dsn_lattice_tile_fixed(n, 5, 7, 256, 256, f.data(), nullptr, 0);
              checksum += f[1000];
          }},
         {"lattice tile 256 x 256 u8",
-         [](const dsn_noise *n, std::vector<int32_t> &, std::vector<uint8_t> &b, std::vector<unsigned char> &s,
-            const dsn_grid &, const std::vector<int64_t> &, const std::vector<int64_t> &, const dsn_footprint &) {
+         [](const dsn_noise *n, std::vector<int32_t> &, std::vector<uint8_t> &b,
+            std::vector<unsigned char> &s, const dsn_grid &, const std::vector<int64_t> &,
+            const std::vector<int64_t> &, const dsn_footprint &) {
              dsn_lattice_tile_u8(n, 5, 7, 256, 256, b.data(), s.data(), s.size());
              checksum += b[1000];
          }},
         {"continuous point (20000)",
          [](const dsn_noise *n, std::vector<int32_t> &, std::vector<uint8_t> &, std::vector<unsigned char> &,
-            const dsn_grid &, const std::vector<int64_t> &x, const std::vector<int64_t> &y, const dsn_footprint &) {
+            const dsn_grid &, const std::vector<int64_t> &x, const std::vector<int64_t> &y,
+            const dsn_footprint &) {
              int32_t out[3];
-             for (size_t i = 0; i < x.size(); i++) dsn_continuous_point_fixed(n, x[i], y[i], out), checksum += out[0];
+             for (size_t i = 0; i < x.size(); i++)
+                 dsn_continuous_point_fixed(n, x[i], y[i], out), checksum += out[0];
          }},
         {"continuous tile 256 x 256 (splat)",
-         [](const dsn_noise *n, std::vector<int32_t> &f, std::vector<uint8_t> &, std::vector<unsigned char> &s,
-            const dsn_grid &g, const std::vector<int64_t> &, const std::vector<int64_t> &, const dsn_footprint &) {
+         [](const dsn_noise *n, std::vector<int32_t> &f, std::vector<uint8_t> &,
+            std::vector<unsigned char> &s, const dsn_grid &g, const std::vector<int64_t> &,
+            const std::vector<int64_t> &, const dsn_footprint &) {
              dsn_continuous_tile_fixed(n, &g, 256, 256, f.data(), s.data(), s.size());
              checksum += f[1000];
          }},
         {"continuous batch (20000)",
-         [](const dsn_noise *n, std::vector<int32_t> &f, std::vector<uint8_t> &, std::vector<unsigned char> &s,
-            const dsn_grid &, const std::vector<int64_t> &x, const std::vector<int64_t> &y, const dsn_footprint &) {
-             dsn_continuous_batch_fixed(n, x.data(), y.data(), uint32_t(x.size()), f.data(), s.data(), s.size());
+         [](const dsn_noise *n, std::vector<int32_t> &f, std::vector<uint8_t> &,
+            std::vector<unsigned char> &s, const dsn_grid &, const std::vector<int64_t> &x,
+            const std::vector<int64_t> &y, const dsn_footprint &) {
+             dsn_continuous_batch_fixed(n, x.data(), y.data(), uint32_t(x.size()), f.data(), s.data(),
+                                        s.size());
              checksum += f[1000];
          }},
         {"filtered point, LOD 1.5 (20000)",
          [](const dsn_noise *n, std::vector<int32_t> &, std::vector<uint8_t> &, std::vector<unsigned char> &,
-            const dsn_grid &, const std::vector<int64_t> &x, const std::vector<int64_t> &y, const dsn_footprint &fp) {
+            const dsn_grid &, const std::vector<int64_t> &x, const std::vector<int64_t> &y,
+            const dsn_footprint &fp) {
              int32_t out[3];
-             for (size_t i = 0; i < x.size(); i++) dsn_filtered_point_fixed(n, x[i], y[i], &fp, out), checksum += out[0];
+             for (size_t i = 0; i < x.size(); i++)
+                 dsn_filtered_point_fixed(n, x[i], y[i], &fp, out), checksum += out[0];
          }},
     };
     for (const Case &c : cases) {
         // Alternate the two noises so that both see the same machine load; keep each one's best.
         double with = 1e30, without = 1e30;
         for (int round = 0; round < 5; round++) {
-            without = std::min(without, best_time(1, [&] { c.run(gaussian, fixed, bytes, scratch, grid, xs, ys, footprint); }));
-            with = std::min(with, best_time(1, [&] { c.run(mapped, fixed, bytes, scratch, grid, xs, ys, footprint); }));
+            without = std::min(without, best_time(1, [&] {
+                                   c.run(gaussian, fixed, bytes, scratch, grid, xs, ys, footprint);
+                               }));
+            with = std::min(
+                with, best_time(1, [&] { c.run(mapped, fixed, bytes, scratch, grid, xs, ys, footprint); }));
         }
-        std::printf("%-36s %.2fx the Gaussian-space noise (%.2f ms vs %.2f ms)\n", c.name, with / without, with * 1e3,
-                    without * 1e3);
+        std::printf("%-36s %.2fx the Gaussian-space noise (%.2f ms vs %.2f ms)\n", c.name, with / without,
+                    with * 1e3, without * 1e3);
     }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
