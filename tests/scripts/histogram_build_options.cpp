@@ -29,8 +29,8 @@ unsigned char copy[4096];
 int main() {
     dsn_asset asset;
     for (uint32_t a = 0; a < CROSS_ASSET_COUNT; a++)
-        check(dsn_asset_load(&asset, cross_assets[a].bytes, cross_assets[a].size) == DSN_OK, "a 1.1 asset loads",
-              cross_assets[a].name);
+        check(dsn_asset_load(&asset, cross_assets[a].bytes, cross_assets[a].size) == DSN_OK,
+              "a 1.1 asset loads", cross_assets[a].name);
     for (uint32_t a = 0; a < CROSS_HISTOGRAM_ASSET_COUNT; a++) {
         const cross_asset &bytes = cross_histogram_assets[a];
         const int code = dsn_asset_load(&asset, bytes.bytes, bytes.size);
@@ -49,7 +49,8 @@ int main() {
         check(asset.histogram_table != 0 && asset.pyramid_levels > 0 &&
                   asset.histogram_levels == asset.pyramid_levels + 1,
               "the mapping and the pyramid are read", bytes.name);
-        check(unflagged_code == DSN_ERR_HISTOGRAM, "a kind-2 section without the flag is refused", bytes.name);
+        check(unflagged_code == DSN_ERR_HISTOGRAM, "a kind-2 section without the flag is refused",
+              bytes.name);
         dsn_config config;
         dsn_config_defaults(&config);
         dsn_noise mapped, gaussian;
@@ -73,7 +74,8 @@ int main() {
         dsn_noise noise;
         check(dsn_noise_init(&noise, &unflagged, &config) == DSN_OK, "init", bytes.name);
         unflagged.histogram_table = copy;
-        check(dsn_noise_init(&noise, &unflagged, &config) == DSN_ERR_ARGUMENT, "init refuses a mapping", bytes.name);
+        check(dsn_noise_init(&noise, &unflagged, &config) == DSN_ERR_ARGUMENT, "init refuses a mapping",
+              bytes.name);
 #endif
     }
     return failures == 0 ? 0 : 1;
