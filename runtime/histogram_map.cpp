@@ -5,51 +5,84 @@
 #include "histogram_map.h"
 
 #include "format_bytes.h"
-#include "normalize_fixed.h"
 
 #if DSN_HISTOGRAM
 
 namespace {
 
-/* X_l of format.h: level l's table of channel k read at g, linearly interpolated, Q16.16 with d = 16 - s
-   more fraction bits; expected[k] 2^d for l >= M. The interpolation lies between T[i] 2^d and T[j] 2^d
-   (0 <= f < 2^d), so |X| <= 32767 2^4 2^16 < 2^35, and so is |expected 2^d| (the loader bounds
-   expected by 32767 2^4). */
-int64_t table_read(const dsn_asset *asset, uint32_t level, uint32_t k, int32_t g) {
-    const uint32_t d = 16u - asset->histogram_step_shift;
-    const int64_t unit = static_cast<int64_t>(1) << d;
-    if (level >= asset->histogram_levels)
-        return static_cast<int64_t>(asset->histogram_expected_q16[k]) * unit;
-    const uint32_t entries = asset->histogram_entries;
-    /* g - input_low is exact in int64 (both int32); the clamp keeps u within [0, (N - 1) 2^d] < 2^26. */
-    const int64_t top = static_cast<int64_t>(entries - 1u) * unit;
-    int64_t u = static_cast<int64_t>(g) - asset->histogram_input_low_q16;
-    u = u < 0 ? 0 : u > top ? top : u;
+/* round(value / 2^shift), halves up, for |value| < 2^62 and shift <= 32 (no saturation: the bounds
+   below keep every result far inside int32). A negative value is not shifted (implementation-defined):
+   it goes through uint64 with a 2^63 bias, as dsn_round_saturate does. */
+inline int64_t round_shift(int64_t value, uint32_t shift) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    const uint64_t biased = static_cast<uint64_t>(value) + bias + ((static_cast<uint64_t>(1) << shift) >> 1);
+    return static_cast<int64_t>(biased >> shift) - static_cast<int64_t>(bias >> shift);
+}
+
+/* The asset's mapping as the reads need it. */
+struct mapping {
+    const unsigned char *table;
+    uint32_t channels, entries, levels, d; /* d = 16 - step_shift: fraction bits of an entry step */
+    int64_t low, top;                      /* input_low; (N - 1) 2^d, the clamp's top, < 2^26 */
+};
+
+inline mapping mapping_of(const dsn_asset *asset) {
+    mapping m;
+    m.table = asset->histogram_table;
+    m.channels = asset->channels;
+    m.entries = asset->histogram_entries;
+    m.levels = asset->histogram_levels;
+    m.d = 16u - asset->histogram_step_shift;
+    m.low = asset->histogram_input_low_q16;
+    m.top = static_cast<int64_t>(m.entries - 1u) << m.d;
+    return m;
+}
+
+/* X_l of format.h: the table of level `level` < M and channel k read at g, linearly interpolated, in
+   Q16.16 with d more fraction bits. The interpolation lies between T[i] 2^d and T[j] 2^d (0 <= f <
+   2^d), so |X| <= 32767 2^4 2^16 < 2^35. */
+inline int64_t table_read(const mapping &m, uint32_t level, uint32_t k, int32_t g) {
+    /* g - input_low is exact in int64 (both int32); the clamp keeps u within [0, (N - 1) 2^d]. */
+    int64_t u = static_cast<int64_t>(g) - m.low;
+    u = u < 0 ? 0 : u > m.top ? m.top : u;
     const uint32_t position = static_cast<uint32_t>(u);
-    const uint32_t i = position >> d, f = position & (static_cast<uint32_t>(unit) - 1u);
-    const uint32_t j = i + 1u < entries ? i + 1u : entries - 1u;
-    const unsigned char *row = asset->histogram_table + 2u * ((level * asset->channels + k) * entries);
+    const uint32_t i = position >> m.d, f = position & ((1u << m.d) - 1u);
+    const uint32_t j = i + 1u < m.entries ? i + 1u : i;
+    const unsigned char *row = m.table + 2u * ((level * m.channels + k) * m.entries);
     const int64_t low = dsn_read_i16le(row + 2u * i), high = dsn_read_i16le(row + 2u * j);
-    return (low * unit + (high - low) * static_cast<int64_t>(f)) * 16;
+    return (low * (static_cast<int64_t>(1) << m.d) + (high - low) * static_cast<int64_t>(f)) * 16;
+}
+
+/* X_l for any level: expected[k] 2^d at and above M (|expected| <= 32767 2^4, so below 2^35 too). */
+inline int64_t level_read(const dsn_asset *asset, const mapping &m, uint32_t level, uint32_t k, int32_t g) {
+    if (level >= m.levels)
+        return static_cast<int64_t>(asset->histogram_expected_q16[k]) * (int64_t(1) << m.d);
+    return table_read(m, level, k, g);
 }
 
 } // namespace
 
 void dsn_internal_histogram_map(const dsn_asset *asset, int32_t *values, uint32_t level, uint32_t blend) {
-    const uint32_t channels = asset->channels, d = 16u - asset->histogram_step_shift;
-    int64_t mapped[DSN_MAX_CHANNELS];
-    for (uint32_t k = 0; k < channels; k++) {
-        /* |(256 - b) X_l + b X_(l+1)| <= 256 2^35 = 2^43; v_k then lies within +-32767 2^4 < 2^19. */
-        int64_t blended = static_cast<int64_t>(256u - blend) * table_read(asset, level, k, values[k]);
-        if (blend != 0) blended += static_cast<int64_t>(blend) * table_read(asset, level + 1u, k, values[k]);
-        mapped[k] = dsn_round_saturate(blended, d + 8u);
+    const mapping m = mapping_of(asset);
+    int64_t v[DSN_MAX_CHANNELS] = {0, 0, 0}; /* |v_k| <= 32767 2^4 < 2^19 */
+    if (blend == 0 && level < m.levels) {    /* one table, every unfiltered evaluation: round(X / 2^d) */
+        for (uint32_t k = 0; k < m.channels; k++) v[k] = round_shift(table_read(m, level, k, values[k]), m.d);
+    } else {
+        /* |(256 - b) X_l + b X_(l+1)| <= 256 2^35 = 2^43. */
+        for (uint32_t k = 0; k < m.channels; k++) {
+            const int64_t lower = level_read(asset, m, level, k, values[k]);
+            const int64_t upper = blend == 0 ? 0 : level_read(asset, m, level + 1u, k, values[k]);
+            v[k] = round_shift(
+                static_cast<int64_t>(256u - blend) * lower + static_cast<int64_t>(blend) * upper, m.d + 8u);
+        }
     }
-    for (uint32_t c = 0; c < channels; c++) {
-        /* |centre 2^16| <= 2^47 and |P v| < 2^31 2^19: the sum stays below 2^52 (format.h). */
-        int64_t accumulated = static_cast<int64_t>(asset->histogram_centre[c]) * 65536;
-        for (uint32_t k = 0; k < channels; k++)
-            accumulated += static_cast<int64_t>(asset->histogram_rotation[c * 3 + k]) * mapped[k];
-        values[c] = dsn_round_saturate(accumulated, 24);
+    /* |centre 2^16| <= 2^47 and |P v| < 2^31 2^19: the sum stays below 2^52 and out_c below 2^28 (format.h),
+       so the int32 saturation never acts. */
+    const int32_t *p = asset->histogram_rotation;
+    for (uint32_t c = 0; c < m.channels; c++) {
+        const int64_t sum = static_cast<int64_t>(asset->histogram_centre[c]) * 65536 + p[3 * c] * v[0] +
+                            p[3 * c + 1] * v[1] + p[3 * c + 2] * v[2]; /* v[1], v[2] are 0 for grey */
+        values[c] = static_cast<int32_t>(round_shift(sum, 24));
     }
 }
 

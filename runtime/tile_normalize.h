@@ -30,10 +30,6 @@ typedef struct split_normalization {
 int make_split_normalization(const dsn_noise_state *noise, split_normalization *split) {
     const uint32_t s = noise->gain_shift, channels = noise->asset.channels;
     if (s < 16 || s > 32) return 0;
-#if DSN_HISTOGRAM
-    /* The histogram mapping reads tables per value: those rows go pixel by pixel through dsn_normalize. */
-    if (noise->asset.histogram_table != 0) return 0;
-#endif
     for (uint32_t c = 0; c < channels; c++) {
         const int64_t gain_limit = int64_t(1) << 29, offset_limit = int64_t(1) << 61;
         if (noise->offset[c] <= -offset_limit || noise->offset[c] >= offset_limit) return 0;
@@ -57,6 +53,19 @@ int make_split_normalization(const dsn_noise_state *noise, split_normalization *
     split->shift = s - 15;
     return 1;
 }
+
+#if DSN_HISTOGRAM
+/* The histogram mapping of `pixels` pixels of Q16.16 values normalized in lanes, then their conversion:
+   what dsn_normalize does last, pixel by pixel (a table read per value). */
+template <uint32_t Channels, typename Value>
+void map_pixels(const dsn_noise_state *noise, int32_t *fixed, uint32_t pixels, Value *out) {
+    for (uint32_t i = 0; i < pixels; i++) {
+        int32_t *pixel = fixed + i * Channels;
+        dsn_internal_histogram_map(&noise->asset, pixel, 0, 0);
+        for (uint32_t c = 0; c < Channels; c++) store_value(out + i * Channels + c, pixel[c]);
+    }
+}
+#endif
 
 /* Q_k of a 16-bit sum, as the uint32 bits dsn_normalize reads. */
 inline uint32_t widen_sum(uint16_t value) { return (uint32_t(value) ^ 0x8000u) - 0x8000u; }

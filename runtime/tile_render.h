@@ -102,6 +102,14 @@ void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
     for (uint32_t s = 0; s * lane < width; s++) {
         const uint32_t pixels = width - s * lane < lane ? width - s * lane : lane;
         const simd_vector *strip = sums[s] + 3 * row;
+#if DSN_HISTOGRAM
+        if (setup->split_ok && noise->asset.histogram_table != 0) { /* lanes, then the mapping */
+            int32_t fixed[lane * Channels];
+            normalize_strip<Channels>(&setup->split, strip, pixels, fixed, 0);
+            map_pixels<Channels>(noise, fixed, pixels, out + s * lane * Channels);
+            continue;
+        }
+#endif
         if (setup->split_ok)
             normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels, setup->stream);
         else

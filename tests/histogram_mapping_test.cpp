@@ -394,10 +394,8 @@ size_t continuous_tile_differences(const dsn_noise &noise, const dsn_grid &grid,
     size_t count = 0;
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
-            const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
-                                      j * uint64_t(grid.row_step_x));
-            const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
-                                      j * uint64_t(grid.row_step_y));
+            int64_t x, y;
+            dsn_test::grid_point(grid, i, j, &x, &y);
             int32_t point[3];
             REQUIRE(dsn_continuous_point_fixed(&noise, x, y, point) == DSN_OK);
             for (uint32_t c = 0; c < channels; c++) {
@@ -573,12 +571,8 @@ TEST_CASE("histogram: the filtered evaluation maps its Gaussian-space value thro
                     for (uint32_t j = 0; j < height; j++)
                         for (uint32_t i = 0; i < width; i++) {
                             int32_t point[3];
-                            const int64_t x =
-                                int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
-                                        j * uint64_t(grid.row_step_x));
-                            const int64_t y =
-                                int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
-                                        j * uint64_t(grid.row_step_y));
+                            int64_t x, y;
+                            dsn_test::grid_point(grid, i, j, &x, &y);
                             REQUIRE(dsn_filtered_point_fixed(&pair.mapped.noise, x, y, &footprint, point) ==
                                     DSN_OK);
                             for (uint32_t c = 0; c < channels; c++)

@@ -40,8 +40,8 @@ struct HistogramMapping {
     int32_t input_low_q16 = -(4 << 16);
     int32_t rotation[9] = {DSN_Q24_ONE, 0, 0, 0, DSN_Q24_ONE, 0, 0, 0, DSN_Q24_ONE}; // Q8.24
     int32_t centre[3] = {0, 0, 0};                                                   // Q8.24
-    int32_t expected_q16[3] = {0, 0, 0};                                             // Q16.16
-    std::vector<int32_t> tables; // M * channels * N values, index (l * channels + k) * N + i
+    int32_t expected_q16[3] = {0, 0, 0}; // Q16.16, within +-DSN_HISTOGRAM_EXPECTED_LIMIT
+    std::vector<int32_t> tables;         // M * channels * N values, index (l * channels + k) * N + i
 };
 
 // Every header field of format 1.0, in its stored fixed-point form, plus the quantized texton values

@@ -452,7 +452,8 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
      with LOD <= 0 and one tap. LOD >= L + 1 gives exactly the mean colour without walking impulses.
      In between, each level's value is normalized with 8 more fraction bits than the output, the two
      levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
-     up) to Q16.16 and saturated.
+     up) to Q16.16 and saturated. An asset with a histogram mapping then maps that value through the
+     two levels' tables, and fades to its own colour (see "Histogram-preserving output" below).
    - Cost: a level-l point visits the impulses within (r_l + 1) 2^l texels, up to 4 times more per
      level than level 0 near the coarsest levels (the blurred texton covers more impulses); N taps cost
      N such points. make bench reports the ratios to the continuous mode per level of detail.

@@ -5,3 +5,4 @@ TEST_SCRIPTS += tests/scripts/bake-errors tests/scripts/bake-roundtrip tests/scr
 TEST_SCRIPTS += tests/scripts/check-public-header
 TEST_SCRIPTS += tests/scripts/synth-errors
 TEST_SCRIPTS += tests/scripts/image-input-valgrind
+TEST_SCRIPTS += tests/scripts/histogram-build-options
