@@ -36,7 +36,7 @@ int check_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t widt
    image visited once), the same offset (the frame difference is the per-point offset for every impulse
    within reach), the same weights, and integer sums do not depend on the order. */
 
-const uint32_t block_side = 32u; /* pixels per side of a block */
+const uint32_t block_side = dsn_splat_run_most; /* pixels per side of a block: a run per row at most */
 /* Frame coordinates stay below 2^62 in magnitude: the tile's extent below 2^61, the reach and the
    frame base below 2^60. */
 const uint64_t max_extent = static_cast<uint64_t>(1) << 61;
@@ -238,6 +238,24 @@ void block_extent(const FrameAxis &axis, const Block &block, int64_t *low, int64
     *high = corner + (across > 0 ? across : 0) + (down > 0 ? down : 0);
 }
 
+/* Narrows the rows [*first, *last] of a block to those where one axis can be within reach: the row's
+   offsets (pixel - impulse) span offset + j row + [min(0, across), max(0, across)] (across: from the
+   row's first column to its last), which must meet (-reach, reach). Rows outside have no run. */
+void narrow_rows(int64_t offset, int64_t across, int64_t row, int64_t reach, int64_t *first, int64_t *last) {
+    const int64_t least = offset + (across < 0 ? across : 0), most = offset + (across > 0 ? across : 0);
+    int64_t low, high; /* j low < j row, j row < high */
+    if (row == 0) return;
+    if (row > 0) {
+        low = floor_divide(-reach - most, row) + 1;       /* j row > -reach - most */
+        high = floor_divide(reach - least - 1, row);      /* j row < reach - least */
+    } else {
+        low = floor_divide(least - reach, -row) + 1;      /* j (-row) > least - reach */
+        high = floor_divide(reach + most - 1, -row);      /* j (-row) < reach + most */
+    }
+    if (low > *first) *first = low;
+    if (high < *last) *last = high;
+}
+
 /* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window: one run of
    columns per row, all handed to the kernel at once. The block's sums are its own (row-major, `columns`
    per row, one plane per channel). */
@@ -249,13 +267,16 @@ void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, i
                           x.row * static_cast<int64_t>(block.first_row) - position_x;
     const int64_t row_y = y.base + y.column * static_cast<int64_t>(block.first_column) +
                           y.row * static_cast<int64_t>(block.first_row) - position_y;
-    ColumnBounds bounds_x, bounds_y;
-    column_bounds_init(&bounds_x, x.columns, row_x);
-    column_bounds_init(&bounds_y, y.columns, row_y);
     const int64_t columns = static_cast<int64_t>(block.end_column - block.first_column);
+    int64_t first_row = 0, last_row = static_cast<int64_t>(block.end_row - block.first_row) - 1;
+    narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
+    narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
+    ColumnBounds bounds_x, bounds_y;
+    column_bounds_init(&bounds_x, x.columns, row_x + first_row * x.row);
+    column_bounds_init(&bounds_y, y.columns, row_y + first_row * y.row);
     dsn_splat_run runs[block_side];
     uint32_t run_count = 0;
-    for (uint32_t j = block.first_row; j < block.end_row; j++) {
+    for (int64_t j = first_row; j <= last_row; j++) {
         int64_t first = 0, last = columns - 1;
         column_bounds_apply(bounds_x, x.columns, &first, &last);
         column_bounds_apply(bounds_y, y.columns, &first, &last);
@@ -263,8 +284,7 @@ void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, i
             dsn_splat_run *run = &runs[run_count++];
             run->offset_x = bounds_x.offset + x.column * first;
             run->offset_y = bounds_y.offset + y.column * first;
-            run->sums = sums + static_cast<size_t>(j - block.first_row) * static_cast<size_t>(columns) +
-                        static_cast<size_t>(first);
+            run->sums = sums + static_cast<size_t>(j * columns + first);
             run->count = static_cast<uint32_t>(last - first + 1);
         }
         column_bounds_next(&bounds_x, x.columns);

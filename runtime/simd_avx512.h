@@ -177,6 +177,12 @@ inline splat_vector splat_across_weights(splat_vector value) {
 inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
     return _mm512_mul_epu32(_mm512_srli_epi64(value, 32), _mm512_set1_epi64(factor));
 }
+/* Two RGB cells (4 records each) in one vector. */
+inline __m512i splat_cell_pair(const uint64_t *first, const uint64_t *second) {
+    return _mm512_inserti64x4(
+        _mm512_castsi256_si512(_mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(first)))),
+        _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(second))), 1);
+}
 /* The records of `Channels` channels of the cells at cells[index[k]] (splat_cells.h: one record per
    channel, 4 per cell for RGB): records[c] holds channel c of each lane's cell. RGB cells are loaded in
    pairs and transposed by two-source permutes. */
@@ -190,22 +196,19 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
             static_cast<long long>(cells[index[1]]), static_cast<long long>(cells[index[0]]));
         return;
     }
-    __m512i pair[4]; /* cells 2k and 2k + 1 */
-    for (uint32_t k = 0; k < 4; k++)
-        pair[k] = _mm512_inserti64x4(_mm512_castsi256_si512(_mm256_loadu_si256(static_cast<const __m256i *>(
-                                         static_cast<const void *>(cells + index[2 * k])))),
-                                     _mm256_loadu_si256(static_cast<const __m256i *>(
-                                         static_cast<const void *>(cells + index[2 * k + 1]))),
-                                     1);
+    const __m512i pair_0 = splat_cell_pair(cells + index[0], cells + index[1]);
+    const __m512i pair_1 = splat_cell_pair(cells + index[2], cells + index[3]);
+    const __m512i pair_2 = splat_cell_pair(cells + index[4], cells + index[5]);
+    const __m512i pair_3 = splat_cell_pair(cells + index[6], cells + index[7]);
     const __m512i channels_01 = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13),
                   channel_2 = _mm512_setr_epi64(2, 6, 10, 14, 2, 6, 10, 14);
-    const __m512i low_01 = _mm512_permutex2var_epi64(pair[0], channels_01, pair[1]);
-    const __m512i high_01 = _mm512_permutex2var_epi64(pair[2], channels_01, pair[3]);
+    const __m512i low_01 = _mm512_permutex2var_epi64(pair_0, channels_01, pair_1);
+    const __m512i high_01 = _mm512_permutex2var_epi64(pair_2, channels_01, pair_3);
     records[0] = _mm512_shuffle_i64x2(low_01, high_01, _MM_SHUFFLE(1, 0, 1, 0));
     records[1] = _mm512_shuffle_i64x2(low_01, high_01, _MM_SHUFFLE(3, 2, 3, 2));
     records[Channels - 1] =
-        _mm512_shuffle_i64x2(_mm512_permutex2var_epi64(pair[0], channel_2, pair[1]),
-                             _mm512_permutex2var_epi64(pair[2], channel_2, pair[3]), _MM_SHUFFLE(1, 0, 1, 0));
+        _mm512_shuffle_i64x2(_mm512_permutex2var_epi64(pair_0, channel_2, pair_1),
+                             _mm512_permutex2var_epi64(pair_2, channel_2, pair_3), _MM_SHUFFLE(1, 0, 1, 0));
 }
 /* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
    products of the dwords. */

@@ -251,26 +251,43 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
     const splat_vector next_x = splat_set(step_x * splat_lanes), next_y = splat_set(step_y * splat_lanes);
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
     const size_t plane = setup->plane;
+    /* First every lane's cell (where its records start), then the sums: the loads of the records do not
+       wait on the vector stores of their indices. */
+    uint64_t cell[dsn_splat_run_most * (dsn_splat_run_most + splat_lanes)];
+    uint64_t *at = cell;
+    for (uint32_t r = 0; r < run_count; r++) {
+        /* bracket's shifted values: the cell is (shifted_y >> 32) rows and (shifted_x >> 32) columns into
+           the table, whose row and column 0 are the texel indices -1 */
+        splat_vector shifted_x =
+            splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_x + setup->reach_x)), lanes_x);
+        splat_vector shifted_y =
+            splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_y + setup->reach_y)), lanes_y);
+        for (uint32_t done = 0; done < runs[r].count; done += splat_lanes, at += splat_lanes) {
+            splat_store(at, splat_add(splat_whole_times(shifted_y, row_records),
+                                      splat_whole_times(shifted_x, cell_records)));
+            for (uint32_t k = runs[r].count - done; k < splat_lanes; k++) at[k] = 0;
+            shifted_x = splat_add(shifted_x, next_x);
+            shifted_y = splat_add(shifted_y, next_y);
+        }
+    }
+    at = cell;
     for (uint32_t r = 0; r < run_count; r++) {
         const dsn_splat_run &run = runs[r];
-        /* bracket's shifted values: the cell index is (shifted_y >> 32) rows and (shifted_x >> 32) columns
-           into the table, whose row and column 0 are the texel indices -1 */
         splat_vector shifted_x =
             splat_add(splat_set(static_cast<uint64_t>(run.offset_x + setup->reach_x)), lanes_x);
         splat_vector shifted_y =
             splat_add(splat_set(static_cast<uint64_t>(run.offset_y + setup->reach_y)), lanes_y);
         uint64_t *sums = run.sums;
-        for (uint32_t done = 0; done < run.count; done += splat_lanes, sums += splat_lanes) {
+        for (uint32_t done = 0; done < run.count; done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
             const uint32_t remaining = run.count - done;
-            uint64_t record[splat_lanes];
-            splat_store(record, splat_add(splat_whole_times(shifted_y, row_records),
-                                          splat_whole_times(shifted_x, cell_records)));
-            for (uint32_t k = remaining; k < splat_lanes; k++) record[k] = 0;
             const splat_vector across = splat_across_weights(shifted_x), down = splat_fraction(shifted_y);
-            splat_vector records[Channels];
-            splat_load_cells<Channels>(setup->cells, record, records);
-            for (uint32_t c = 0; c < Channels; c++)
-                splat_accumulate(sums + c * plane, splat_bilinear(records[c], across, down), remaining);
+            splat_vector records[3];
+            splat_load_cells<Channels>(setup->cells, at, records);
+            splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining);
+            if (Channels == 3) {
+                splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining);
+                splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining);
+            }
             shifted_x = splat_add(shifted_x, next_x);
             shifted_y = splat_add(shifted_y, next_y);
         }
