@@ -246,11 +246,11 @@ void narrow_rows(int64_t offset, int64_t across, int64_t row, int64_t reach, int
     int64_t low, high; /* j low < j row, j row < high */
     if (row == 0) return;
     if (row > 0) {
-        low = floor_divide(-reach - most, row) + 1;       /* j row > -reach - most */
-        high = floor_divide(reach - least - 1, row);      /* j row < reach - least */
+        low = floor_divide(-reach - most, row) + 1;  /* j row > -reach - most */
+        high = floor_divide(reach - least - 1, row); /* j row < reach - least */
     } else {
-        low = floor_divide(least - reach, -row) + 1;      /* j (-row) > least - reach */
-        high = floor_divide(reach + most - 1, -row);      /* j (-row) < reach + most */
+        low = floor_divide(least - reach, -row) + 1; /* j (-row) > least - reach */
+        high = floor_divide(reach + most - 1, -row); /* j (-row) < reach + most */
     }
     if (low > *first) *first = low;
     if (high < *last) *last = high;

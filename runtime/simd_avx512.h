@@ -180,7 +180,8 @@ inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
 /* Two RGB cells (4 records each) in one vector. */
 inline __m512i splat_cell_pair(const uint64_t *first, const uint64_t *second) {
     return _mm512_inserti64x4(
-        _mm512_castsi256_si512(_mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(first)))),
+        _mm512_castsi256_si512(
+            _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(first)))),
         _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(second))), 1);
 }
 /* The records of `Channels` channels of the cells at cells[index[k]] (splat_cells.h: one record per

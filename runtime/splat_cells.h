@@ -30,14 +30,18 @@ namespace {
    89 x 89; larger ones go pixel by pixel. */
 const uint32_t splat_cell_capacity = 8192;
 
-inline uint64_t splat_word(int32_t value) { return static_cast<uint64_t>(static_cast<uint32_t>(value) & 0xFFFFu); }
+inline uint64_t splat_word(int32_t value) {
+    return static_cast<uint64_t>(static_cast<uint32_t>(value) & 0xFFFFu);
+}
 
 /* Fills `cells` (splat_cell_capacity records at most) and sets *cell_row (cells per row: width + 1; each
-   cell has one record per channel, in order), or returns false when the texton has no records (16-bit, or too large). */
+   cell has one record per channel, in order), or returns false when the texton has no records (16-bit, or too
+   large). */
 inline bool make_splat_cells(const dsn_asset *asset, uint64_t *cells, uint32_t *cell_row) {
     const uint32_t channels = asset->channels, columns = asset->width + 1u, rows = asset->height + 1u;
     const uint32_t cell_records = channels == 3 ? 4u : 1u; /* RGB cells padded to 32 bytes */
-    if (asset->bits != 8 || static_cast<uint64_t>(columns) * rows * cell_records > splat_cell_capacity) return false;
+    if (asset->bits != 8 || static_cast<uint64_t>(columns) * rows * cell_records > splat_cell_capacity)
+        return false;
     *cell_row = columns;
     uint64_t *record = cells;
     for (uint32_t row = 0; row < rows; row++)

@@ -278,7 +278,8 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
         splat_vector shifted_y =
             splat_add(splat_set(static_cast<uint64_t>(run.offset_y + setup->reach_y)), lanes_y);
         uint64_t *sums = run.sums;
-        for (uint32_t done = 0; done < run.count; done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
+        for (uint32_t done = 0; done < run.count;
+             done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
             const uint32_t remaining = run.count - done;
             const splat_vector across = splat_across_weights(shifted_x), down = splat_fraction(shifted_y);
             splat_vector records[3];
