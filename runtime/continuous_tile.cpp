@@ -396,7 +396,7 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
     setup.cells = 0;
     setup.cell_row = 0;
 #if DSN_SPLAT_CELLS
-    uint64_t cells[splat_cell_capacity];
+    alignas(64) uint64_t cells[splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
     if (make_splat_cells(&noise->asset, cells, &setup.cell_row)) setup.cells = cells;
 #endif
     for (uint32_t top = 0; top < height; top += block_side)
