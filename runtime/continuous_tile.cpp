@@ -36,7 +36,8 @@ int check_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t widt
    image visited once), the same offset (the frame difference is the per-point offset for every impulse
    within reach), the same weights, and integer sums do not depend on the order. */
 
-const uint32_t block_side = dsn_splat_run_most; /* pixels per side of a block: a run per row at most */
+/* Pixels per row and rows of a block: a run per row at most, as long as a row. */
+const uint32_t block_columns = dsn_splat_run_longest, block_rows = dsn_splat_runs_most;
 /* Frame coordinates stay below 2^62 in magnitude: the tile's extent below 2^61, the reach and the
    frame base below 2^60. */
 const uint64_t max_extent = static_cast<uint64_t>(1) << 61;
@@ -274,7 +275,7 @@ void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, i
     ColumnBounds bounds_x, bounds_y;
     column_bounds_init(&bounds_x, x.columns, row_x + first_row * x.row);
     column_bounds_init(&bounds_y, y.columns, row_y + first_row * y.row);
-    dsn_splat_run runs[block_side];
+    dsn_splat_run runs[block_rows];
     uint32_t run_count = 0;
     for (int64_t j = first_row; j <= last_row; j++) {
         int64_t first = 0, last = columns - 1;
@@ -399,13 +400,13 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
     alignas(64) uint64_t cells[splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
     if (make_splat_cells(&noise->asset, cells, &setup.cell_row)) setup.cells = cells;
 #endif
-    for (uint32_t top = 0; top < height; top += block_side)
-        for (uint32_t left = 0; left < width; left += block_side) {
+    for (uint32_t top = 0; top < height; top += block_rows)
+        for (uint32_t left = 0; left < width; left += block_columns) {
             Block block;
             block.first_column = left;
-            block.end_column = width - left < block_side ? width : left + block_side;
+            block.end_column = width - left < block_columns ? width : left + block_columns;
             block.first_row = top;
-            block.end_row = height - top < block_side ? height : top + block_side;
+            block.end_row = height - top < block_rows ? height : top + block_rows;
             const uint32_t columns = block.end_column - left, rows = block.end_row - top;
             const size_t pixels = static_cast<size_t>(columns) * rows;
             setup.plane = pixels;

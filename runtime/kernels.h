@@ -39,9 +39,9 @@ typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint
 
 /* The runs of pixels one impulse of the continuous grid splat reaches (continuous_tile.cpp), one per row
    of a block: the offsets (pixel - impulse) of the run's first pixel, all `count` pixels within reach,
-   and where its channel-0 sums start (channel c at sums[c * plane]). A call has dsn_splat_run_most runs
-   at most, each of dsn_splat_run_most pixels at most (a block's side). */
-enum { dsn_splat_run_most = 32 };
+   and where its channel-0 sums start (channel c at sums[c * plane]). A call has dsn_splat_runs_most runs
+   at most (a block's rows), each of dsn_splat_run_longest pixels at most (a block's columns). */
+enum { dsn_splat_runs_most = 32, dsn_splat_run_longest = 64 };
 typedef struct dsn_splat_run {
     int64_t offset_x, offset_y;
     uint64_t *sums;

@@ -253,7 +253,7 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
     const size_t plane = setup->plane;
     /* First every lane's cell (where its records start), then the sums: the loads of the records do not
        wait on the vector stores of their indices. */
-    uint64_t cell[dsn_splat_run_most * (dsn_splat_run_most + splat_lanes)];
+    uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
     uint64_t *at = cell;
     for (uint32_t r = 0; r < run_count; r++) {
         /* bracket's shifted values: the cell is (shifted_y >> 32) rows and (shifted_x >> 32) columns into
