@@ -101,6 +101,11 @@ inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm256_ad
 inline void splat_store(uint64_t *out, splat_vector value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), value);
 }
+/* The first `count` lanes (all of them from splat_lanes up), the others 0. */
+inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
+    return _mm256_and_si256(value,
+                            _mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3)));
+}
 /* Bits 16 to 31 of each lane. */
 inline splat_vector splat_fraction(splat_vector value) {
     return _mm256_and_si256(_mm256_srli_epi64(value, 16), _mm256_set1_epi64x(0xFFFF));

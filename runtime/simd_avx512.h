@@ -161,6 +161,11 @@ inline splat_vector splat_lane_steps(uint64_t first, uint64_t step) {
 }
 inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm512_add_epi64(a, b); }
 inline void splat_store(uint64_t *out, splat_vector value) { _mm512_storeu_si512(out, value); }
+/* The first `count` lanes (all of them from splat_lanes up), the others 0. */
+inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
+    return _mm512_maskz_mov_epi64(
+        count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u), value);
+}
 /* Bits 16 to 31 of each lane. */
 inline splat_vector splat_fraction(splat_vector value) {
     return _mm512_and_si512(_mm512_srli_epi64(value, 16), _mm512_set1_epi64(0xFFFF));

@@ -77,6 +77,10 @@ inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm_add_e
 inline void splat_store(uint64_t *out, splat_vector value) {
     _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)), value);
 }
+/* The first `count` lanes (all of them from splat_lanes up), the others 0. */
+inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
+    return count >= 2 ? value : _mm_move_epi64(value);
+}
 /* Bits 16 to 31 of each lane. */
 inline splat_vector splat_fraction(splat_vector value) {
     return _mm_and_si128(_mm_srli_epi64(value, 16), _mm_set1_epi64x(0xFFFF));

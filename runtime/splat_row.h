@@ -263,9 +263,10 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
         splat_vector shifted_y =
             splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_y + setup->reach_y)), lanes_y);
         for (uint32_t done = 0; done < runs[r].count; done += splat_lanes, at += splat_lanes) {
-            splat_store(at, splat_add(splat_whole_times(shifted_y, row_records),
-                                      splat_whole_times(shifted_x, cell_records)));
-            for (uint32_t k = runs[r].count - done; k < splat_lanes; k++) at[k] = 0;
+            /* lanes past the run read cell 0 */
+            splat_store(at, splat_first_lanes(splat_add(splat_whole_times(shifted_y, row_records),
+                                                        splat_whole_times(shifted_x, cell_records)),
+                                              runs[r].count - done));
             shifted_x = splat_add(shifted_x, next_x);
             shifted_y = splat_add(shifted_y, next_y);
         }
