@@ -55,6 +55,7 @@ typedef struct dsn_splat_setup {
     const dsn_asset *asset;
     int64_t step_x, step_y, reach_x, reach_y;
     size_t plane;
+    const uint64_t *sums_end; /* the runs' sums lie before; vectors may add 0 to any sum up to there */
     const uint64_t *cells;
     uint32_t cell_row; /* cells per row of the table */
 } dsn_splat_setup;

@@ -223,8 +223,9 @@ inline splat_vector splat_bilinear(splat_vector records, splat_vector across, sp
     return _mm512_add_epi64(_mm512_mul_epi32(rows, _mm512_set1_epi64(65536)),
                             _mm512_mul_epi32(_mm512_srli_epi64(rows, 32), down));
 }
-/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..]. */
-inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count) {
+/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
+   of the sums is not needed). */
+inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *) {
     const __mmask8 present =
         count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u);
     _mm512_mask_storeu_epi64(sums, present,

@@ -128,8 +128,9 @@ inline splat_vector splat_combine_rows(splat_vector rows, splat_vector down) {
 inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
     return splat_combine_rows(_mm_madd_epi16(records, across), down);
 }
-/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..]. */
-inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count) {
+/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
+   of the sums is not needed). */
+inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *) {
     __m128i *at = static_cast<__m128i *>(static_cast<void *>(sums));
     if (count >= 2)
         _mm_storeu_si128(at, _mm_add_epi64(_mm_loadu_si128(at), values));

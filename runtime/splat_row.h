@@ -251,6 +251,7 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
     const splat_vector next_x = splat_set(step_x * splat_lanes), next_y = splat_set(step_y * splat_lanes);
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
     const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
     /* First every lane's cell (where its records start), then the sums: the loads of the records do not
        wait on the vector stores of their indices. */
     uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
@@ -285,10 +286,10 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
             const splat_vector across = splat_across_weights(shifted_x), down = splat_fraction(shifted_y);
             splat_vector records[3];
             splat_load_cells<Channels>(setup->cells, at, records);
-            splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining);
+            splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
             if (Channels == 3) {
-                splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining);
-                splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining);
+                splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining, end);
+                splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining, end);
             }
             shifted_x = splat_add(shifted_x, next_x);
             shifted_y = splat_add(shifted_y, next_y);
