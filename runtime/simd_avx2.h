@@ -1,5 +1,6 @@
 /* runtime/simd_avx2.h - the vector operations of the strip path for AVX2 (256-bit vectors: 16 pixels per
-   strip). The same names as simd_sse2.h and simd_avx512.h; simd.h picks one. */
+   strip), and of the continuous splat's runs (splat_row.h: 4 pixels per vector). The same names as
+   simd_sse2.h and simd_avx512.h; simd.h picks one. */
 #ifndef DSN_SIMD_AVX2_H
 #define DSN_SIMD_AVX2_H
 
@@ -113,9 +114,7 @@ inline splat_vector splat_fraction(splat_vector value) {
 /* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31: bytes 2 and 3 of
    the lane into words 1 and 3, then the top bit of every word flipped. */
 inline splat_vector splat_across_weights(splat_vector value) {
-    const __m128i order =
-        _mm_setr_epi8(-128, -128, 2, 3, -128, -128, 2, 3, -128, -128, 10, 11, -128, -128, 10, 11);
-    return _mm256_xor_si256(_mm256_shuffle_epi8(value, _mm256_broadcastsi128_si256(order)),
+    return _mm256_xor_si256(_mm256_shuffle_epi8(value, _mm256_broadcastsi128_si256(splat_across_order())),
                             _mm256_set1_epi16(-32768));
 }
 /* (lane >> 32) times factor, modulo 2^64. */

@@ -1,5 +1,6 @@
 /* runtime/simd_avx512.h - the vector operations of the strip path for AVX-512 F and BW (512-bit vectors:
-   32 pixels per strip). The same names as simd_sse2.h and simd_avx2.h; simd.h picks one. */
+   32 pixels per strip), and of the continuous splat's runs (splat_row.h: 8 pixels per vector). The same names
+   as simd_sse2.h and simd_avx2.h; simd.h picks one. */
 #ifndef DSN_SIMD_AVX512_H
 #define DSN_SIMD_AVX512_H
 
@@ -173,9 +174,7 @@ inline splat_vector splat_fraction(splat_vector value) {
 /* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31: bytes 2 and 3 of
    the lane into words 1 and 3, then the top bit of every word flipped. */
 inline splat_vector splat_across_weights(splat_vector value) {
-    const __m128i order =
-        _mm_setr_epi8(-128, -128, 2, 3, -128, -128, 2, 3, -128, -128, 10, 11, -128, -128, 10, 11);
-    return _mm512_xor_si512(_mm512_shuffle_epi8(value, _mm512_broadcast_i32x4(order)),
+    return _mm512_xor_si512(_mm512_shuffle_epi8(value, _mm512_broadcast_i32x4(splat_across_order())),
                             _mm512_set1_epi16(-32768));
 }
 /* (lane >> 32) times factor, modulo 2^64. */

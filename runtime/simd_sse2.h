@@ -1,5 +1,6 @@
 /* runtime/simd_sse2.h - the vector operations of the strip path for SSE2 (128-bit vectors: 8 pixels per
-   strip). simd_avx2.h and simd_avx512.h define the same names for their widths; simd.h picks one. */
+   strip), and of the continuous splat's runs (splat_row.h: 2 pixels per vector). simd_avx2.h and
+   simd_avx512.h define the same names for their widths; simd.h picks one. */
 #ifndef DSN_SIMD_SSE2_H
 #define DSN_SIMD_SSE2_H
 
