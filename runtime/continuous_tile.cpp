@@ -244,7 +244,7 @@ void block_extent(const FrameAxis &axis, const Block &block, int64_t *low, int64
    row's first column to its last), which must meet (-reach, reach). Rows outside have no run. */
 void narrow_rows(int64_t offset, int64_t across, int64_t row, int64_t reach, int64_t *first, int64_t *last) {
     const int64_t least = offset + (across < 0 ? across : 0), most = offset + (across > 0 ? across : 0);
-    int64_t low, high; /* j low < j row, j row < high */
+    int64_t low, high; /* the rows low .. high */
     if (row == 0) return;
     if (row > 0) {
         low = floor_divide(-reach - most, row) + 1;  /* j row > -reach - most */
