@@ -1,8 +1,10 @@
-/* runtime/splat_row.h - the innermost loop of the continuous grid splat (continuous_tile.cpp): one
-   impulse added to a run of pixels of one row, as a kernel (kernels.h: each kernel file includes it, so it
-   is built once per instruction set). On AVX2 (the AVX2 and AVX-512 kernels) 8-bit textons take 8 pixels
-   per step on vectors; the rest goes pixel by pixel. The same integers either way (add_bilinear's).
-   Internal to libdsn; not installed (everything here has internal linkage). */
+/* runtime/splat_row.h - the innermost loops of the continuous grid splat (continuous_tile.cpp): one
+   impulse added to its runs of pixels, one run per row of a block, as a kernel (kernels.h: each kernel
+   file includes it, so it is built once per instruction set). On x86 8-bit textons are read from their
+   cell records (splat_cells.h) on vectors of 64-bit lanes, one pixel per lane (2, 4 or 8 by the copy);
+   8-bit textons too large for the records take 8 pixels per step with gathers on AVX2 and AVX-512; the
+   rest goes pixel by pixel. The same integers every way (add_bilinear's). Internal to libdsn; not
+   installed (everything here has internal linkage). */
 #ifndef DSN_SPLAT_ROW_H
 #define DSN_SPLAT_ROW_H
 
@@ -72,7 +74,7 @@ void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64
 }
 
 #if defined(__AVX2__)
-/* ---- 8 pixels at a time on AVX2, 8-bit textons ----
+/* ---- 8 pixels at a time on AVX2, 8-bit textons without cell records ----
    Each pixel's 2 x 2 texels come from 4 gathers of 32-bit words at the texels' first bytes (the texel
    and, for grey, the next one; for RGB the texel's 3 bytes and one more), each masked to the pixels whose
    texel lies inside the window, so that the others read nothing and give 0. A word read at a texel of
