@@ -121,6 +121,10 @@ inline splat_vector splat_across_weights(splat_vector value) {
 inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
     return _mm256_mul_epu32(_mm256_srli_epi64(value, 32), _mm256_set1_epi64x(factor));
 }
+/* One RGB cell (4 records). */
+inline __m256i splat_load_cell(const uint64_t *cell) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(cell)));
+}
 /* The records of `Channels` channels of the cells at cells[index[k]] (splat_cells.h: one record per
    channel, 4 per cell for RGB): records[c] holds channel c of each lane's cell, a 4 x 4 transpose. */
 template <uint32_t Channels>
@@ -131,14 +135,12 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
             static_cast<long long>(cells[index[1]]), static_cast<long long>(cells[index[0]]));
         return;
     }
-    __m256i cell[4];
-    for (uint32_t k = 0; k < 4; k++)
-        cell[k] =
-            _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(cells + index[k])));
-    const __m256i even_01 = _mm256_unpacklo_epi64(cell[0], cell[1]),
-                  odd_01 = _mm256_unpackhi_epi64(cell[0], cell[1]);
-    const __m256i even_23 = _mm256_unpacklo_epi64(cell[2], cell[3]),
-                  odd_23 = _mm256_unpackhi_epi64(cell[2], cell[3]);
+    const __m256i cell_0 = splat_load_cell(cells + index[0]), cell_1 = splat_load_cell(cells + index[1]);
+    const __m256i cell_2 = splat_load_cell(cells + index[2]), cell_3 = splat_load_cell(cells + index[3]);
+    const __m256i even_01 = _mm256_unpacklo_epi64(cell_0, cell_1),
+                  odd_01 = _mm256_unpackhi_epi64(cell_0, cell_1);
+    const __m256i even_23 = _mm256_unpacklo_epi64(cell_2, cell_3),
+                  odd_23 = _mm256_unpackhi_epi64(cell_2, cell_3);
     records[0] = _mm256_permute2x128_si256(even_01, even_23, 0x20);
     records[1] = _mm256_permute2x128_si256(odd_01, odd_23, 0x20);
     records[Channels - 1] = _mm256_permute2x128_si256(even_01, even_23, 0x31);
