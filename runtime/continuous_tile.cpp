@@ -10,6 +10,7 @@
 #include "kernels.h"
 #include "normalize_fixed.h"
 #include "poisson_count.h"
+#include "splat_cells.h"
 
 namespace {
 
@@ -35,7 +36,8 @@ int check_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t widt
    image visited once), the same offset (the frame difference is the per-point offset for every impulse
    within reach), the same weights, and integer sums do not depend on the order. */
 
-const uint32_t block_side = 32u; /* pixels per side of a block */
+/* Pixels per row and rows of a block: a run per row at most, as long as a row. */
+const uint32_t block_columns = dsn_splat_run_longest, block_rows = dsn_splat_runs_most;
 /* Frame coordinates stay below 2^62 in magnitude: the tile's extent below 2^61, the reach and the
    frame base below 2^60. */
 const uint64_t max_extent = static_cast<uint64_t>(1) << 61;
@@ -57,6 +59,33 @@ uint64_t magnitude(int64_t value) {
     return value < 0 ? ~static_cast<uint64_t>(value) + 1u : static_cast<uint64_t>(value);
 }
 
+/* The columns i with -reach < offset + i column < reach along one axis, the offset moving by `row` per
+   row: first <= i <= last, with first - 1 and last the floors of two numerators over |column| that differ
+   by 2 reach - 1 and step by a constant per row. The low one is kept as a quotient and a remainder in
+   [0, |column|), moved without dividing, and the high one follows from it with one comparison; what
+   depends on the grid alone (ColumnSteps) is computed once, so an impulse costs one division per axis.
+   With column 0 the condition does not depend on i and is tested per row. */
+struct ColumnSteps {
+    int64_t denominator;                     /* |column|; 0: the axis is constant along a row */
+    int64_t sign;                            /* low numerator = sign offset - reach: -1 for column > 0 */
+    int64_t step_quotient, step_remainder;   /* sign row over the denominator */
+    int64_t width_quotient, width_remainder; /* 2 reach - 1 over the denominator */
+    int64_t row, reach;
+};
+
+void column_steps_init(ColumnSteps *s, int64_t column, int64_t row, int64_t reach) {
+    s->row = row;
+    s->reach = reach;
+    s->denominator = column < 0 ? -column : column;
+    s->sign = column > 0 ? -1 : 1;
+    s->step_quotient = s->step_remainder = s->width_quotient = s->width_remainder = 0;
+    if (column == 0) return;
+    s->step_quotient = floor_divide(s->sign * row, s->denominator);
+    s->step_remainder = s->sign * row - s->step_quotient * s->denominator;
+    s->width_quotient = floor_divide(2 * reach - 1, s->denominator);
+    s->width_remainder = 2 * reach - 1 - s->width_quotient * s->denominator;
+}
+
 /* One axis of the grid in its frame. */
 struct FrameAxis {
     int64_t base;           /* frame coordinate of pixel (0, 0) */
@@ -64,7 +93,8 @@ struct FrameAxis {
     uint32_t lattice_base;  /* without a period: the lattice coordinate of frame 0 */
     uint32_t period, shift; /* period 0: none */
     uint32_t radius;
-    int64_t reach; /* (radius + 1) texels: an impulse reaches the offsets in (-reach, reach) */
+    int64_t reach;       /* (radius + 1) texels: an impulse reaches the offsets in (-reach, reach) */
+    ColumnSteps columns; /* the runs of columns an impulse reaches (splat_impulse) */
 };
 
 /* The frame of one axis, or false when the grid does not fit one (too large, or a periodic axis whose
@@ -83,6 +113,7 @@ bool frame_axis(FrameAxis *axis, int64_t origin, int64_t column, int64_t row, ui
     axis->shift = shift;
     axis->radius = radius;
     axis->reach = static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel);
+    column_steps_init(&axis->columns, column, row, axis->reach);
     const uint64_t point = static_cast<uint64_t>(origin);
     if (period == 0) {
         /* The lattice is a torus of 2^32 texels: frame = point - (lattice_base << 32). */
@@ -158,71 +189,39 @@ FrameSpan frame_span(const FrameAxis &axis, const FrameSpans &spans, uint32_t in
     return span;
 }
 
-/* floor(numerator / denominator) as numerator steps by a constant, denominator > 0: a quotient and a
-   remainder in [0, denominator), moved without dividing. */
-struct FloorStep {
-    int64_t quotient, remainder, denominator, step_quotient, step_remainder;
-};
-
-void floor_step_init(FloorStep *s, int64_t numerator, int64_t denominator, int64_t step) {
-    s->denominator = denominator;
-    s->quotient = floor_divide(numerator, denominator);
-    s->remainder = numerator - s->quotient * denominator;
-    s->step_quotient = floor_divide(step, denominator);
-    s->step_remainder = step - s->step_quotient * denominator;
-}
-
-inline void floor_step_next(FloorStep *s) {
-    s->quotient += s->step_quotient;
-    s->remainder += s->step_remainder;
-    if (s->remainder >= s->denominator) {
-        s->remainder -= s->denominator;
-        s->quotient++;
-    }
-}
-
-/* The columns i with -reach < offset + i column < reach along one axis (offset the row's, moving by
-   `row` per row): i >= first, i <= last, as floors that step per row. With column 0 the condition does
-   not depend on i and is tested per row. */
 struct ColumnBounds {
-    FloorStep low, high; /* first = low + 1, last = high */
-    int64_t offset, row;
-    int64_t reach;
-    bool constant;
+    int64_t quotient, remainder; /* the low floor: first = quotient + 1 */
+    int64_t offset;              /* the row's offset */
 };
 
-void column_bounds_init(ColumnBounds *b, int64_t offset, int64_t column, int64_t row, int64_t reach) {
+inline void column_bounds_init(ColumnBounds *b, const ColumnSteps &s, int64_t offset) {
     b->offset = offset;
-    b->row = row;
-    b->reach = reach;
-    b->constant = column == 0;
-    if (b->constant) return;
-    /* i column in (-reach - offset, reach - offset); for column < 0, i (-column) in (offset - reach,
-       offset + reach). */
-    if (column > 0) {
-        floor_step_init(&b->low, -reach - offset, column, -row);
-        floor_step_init(&b->high, reach - offset - 1, column, -row);
-    } else {
-        floor_step_init(&b->low, offset - reach, -column, row);
-        floor_step_init(&b->high, offset + reach - 1, -column, row);
-    }
+    b->quotient = b->remainder = 0;
+    if (s.denominator == 0) return;
+    const int64_t numerator = s.sign * offset - s.reach;
+    b->quotient = floor_divide(numerator, s.denominator);
+    b->remainder = numerator - b->quotient * s.denominator;
 }
 
 /* Narrows [*first, *last] to this axis' columns in the current row. */
-inline void column_bounds_apply(const ColumnBounds &b, int64_t *first, int64_t *last) {
-    if (b.constant) {
-        if (b.offset <= -b.reach || b.offset >= b.reach) *last = *first - 1;
+inline void column_bounds_apply(const ColumnBounds &b, const ColumnSteps &s, int64_t *first, int64_t *last) {
+    if (s.denominator == 0) {
+        if (b.offset <= -s.reach || b.offset >= s.reach) *last = *first - 1;
         return;
     }
-    if (b.low.quotient + 1 > *first) *first = b.low.quotient + 1;
-    if (b.high.quotient < *last) *last = b.high.quotient;
+    const int64_t low = b.quotient + 1;
+    const int64_t high =
+        b.quotient + s.width_quotient + (b.remainder + s.width_remainder >= s.denominator ? 1 : 0);
+    if (low > *first) *first = low;
+    if (high < *last) *last = high;
 }
 
-inline void column_bounds_next(ColumnBounds *b) {
-    b->offset += b->row;
-    if (b->constant) return;
-    floor_step_next(&b->low);
-    floor_step_next(&b->high);
+inline void column_bounds_next(ColumnBounds *b, const ColumnSteps &s) {
+    b->offset += s.row;
+    b->remainder += s.step_remainder;
+    const int64_t carry = b->remainder >= s.denominator ? 1 : 0;
+    b->quotient += s.step_quotient + carry;
+    b->remainder -= carry * s.denominator;
 }
 
 /* A block of the tile: columns [first_column, end_column), rows [first_row, end_row). */
@@ -240,35 +239,63 @@ void block_extent(const FrameAxis &axis, const Block &block, int64_t *low, int64
     *high = corner + (across > 0 ? across : 0) + (down > 0 ? down : 0);
 }
 
-/* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window. */
-void splat_impulse(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
-                   uint32_t width, int64_t position_x, int64_t position_y, uint64_t *sums,
-                   dsn_splat_row_entry *splat_row, size_t plane) {
+/* Narrows the rows [*first, *last] of a block to those where one axis can be within reach: the row's
+   offsets (pixel - impulse) span offset + j row + [min(0, across), max(0, across)] (across: from the
+   row's first column to its last), which must meet (-reach, reach). Rows outside have no run. */
+void narrow_rows(int64_t offset, int64_t across, int64_t row, int64_t reach, int64_t *first, int64_t *last) {
+    const int64_t least = offset + (across < 0 ? across : 0), most = offset + (across > 0 ? across : 0);
+    int64_t low, high; /* the rows low .. high */
+    if (row == 0) return;
+    if (row > 0) {
+        low = floor_divide(-reach - most, row) + 1;  /* j row > -reach - most */
+        high = floor_divide(reach - least - 1, row); /* j row < reach - least */
+    } else {
+        low = floor_divide(least - reach, -row) + 1; /* j (-row) > least - reach */
+        high = floor_divide(reach + most - 1, -row); /* j (-row) < reach + most */
+    }
+    if (low > *first) *first = low;
+    if (high < *last) *last = high;
+}
+
+/* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window: one run of
+   columns per row, all handed to the kernel at once. The block's sums are its own (row-major, `columns`
+   per row, one plane per channel). */
+void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, int64_t position_x,
+                   int64_t position_y, uint64_t *sums, const dsn_splat_setup *setup,
+                   dsn_splat_runs_entry *splat_runs) {
     /* Offsets (pixel - impulse) of the block's first pixel. */
     const int64_t row_x = x.base + x.column * static_cast<int64_t>(block.first_column) +
                           x.row * static_cast<int64_t>(block.first_row) - position_x;
     const int64_t row_y = y.base + y.column * static_cast<int64_t>(block.first_column) +
                           y.row * static_cast<int64_t>(block.first_row) - position_y;
-    ColumnBounds bounds_x, bounds_y;
-    column_bounds_init(&bounds_x, row_x, x.column, x.row, x.reach);
-    column_bounds_init(&bounds_y, row_y, y.column, y.row, y.reach);
     const int64_t columns = static_cast<int64_t>(block.end_column - block.first_column);
-    for (uint32_t j = block.first_row; j < block.end_row; j++) {
+    int64_t first_row = 0, last_row = static_cast<int64_t>(block.end_row - block.first_row) - 1;
+    narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
+    narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
+    ColumnBounds bounds_x, bounds_y;
+    column_bounds_init(&bounds_x, x.columns, row_x + first_row * x.row);
+    column_bounds_init(&bounds_y, y.columns, row_y + first_row * y.row);
+    dsn_splat_run runs[block_rows];
+    uint32_t run_count = 0;
+    for (int64_t j = first_row; j <= last_row; j++) {
         int64_t first = 0, last = columns - 1;
-        column_bounds_apply(bounds_x, &first, &last);
-        column_bounds_apply(bounds_y, &first, &last);
-        if (first <= last)
-            splat_row(&noise->asset, bounds_x.offset + x.column * first, bounds_y.offset + y.column * first,
-                      x.column, y.column, x.reach, y.reach, static_cast<uint32_t>(last - first + 1),
-                      sums + static_cast<size_t>(j) * width + block.first_column + static_cast<size_t>(first),
-                      plane);
-        column_bounds_next(&bounds_x);
-        column_bounds_next(&bounds_y);
+        column_bounds_apply(bounds_x, x.columns, &first, &last);
+        column_bounds_apply(bounds_y, y.columns, &first, &last);
+        if (first <= last) {
+            dsn_splat_run *run = &runs[run_count++];
+            run->offset_x = bounds_x.offset + x.column * first;
+            run->offset_y = bounds_y.offset + y.column * first;
+            run->sums = sums + static_cast<size_t>(j * columns + first);
+            run->count = static_cast<uint32_t>(last - first + 1);
+        }
+        column_bounds_next(&bounds_x, x.columns);
+        column_bounds_next(&bounds_y, y.columns);
     }
+    if (run_count != 0) splat_runs(setup, runs, run_count);
 }
 
 void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, const Block &block,
-                 uint32_t width, uint64_t *sums, dsn_splat_row_entry *splat_row, size_t plane) {
+                 uint64_t *sums, const dsn_splat_setup *setup, dsn_splat_runs_entry *splat_runs) {
     const uint32_t shift = noise->cell_shift, cell_mask = 0xFFFFFFFFu >> shift;
     const uint32_t position_shift = 16u + shift, lattice_shift = 16u - shift;
     int64_t low_x, high_x, low_y, high_y;
@@ -306,8 +333,7 @@ void splat_block(const dsn_noise_state *noise, const FrameAxis &x, const FrameAx
                         if (position_x <= low_x - x.reach || position_x >= high_x + x.reach ||
                             position_y <= low_y - y.reach || position_y >= high_y + y.reach)
                             continue;
-                        splat_impulse(noise, x, y, block, width, position_x, position_y, sums, splat_row,
-                                      plane);
+                        splat_impulse(x, y, block, position_x, position_y, sums, setup, splat_runs);
                     }
                 }
             }
@@ -354,20 +380,49 @@ uint64_t *aligned_sums(void *scratch) {
         static_cast<void *>(bytes + (misalignment ? sizeof(uint64_t) - misalignment : 0u)));
 }
 
-/* The sums are planar (channel c of pixel p at sums[c * width * height + p]): the vector kernels add
-   runs of pixels of one channel. */
+/* The tile block by block: each block's sums are splatted into the start of the scratch (planar, channel
+   c of the block's pixel p at sums[c * pixels + p], so the vector kernels add runs of pixels of one
+   channel), then normalized into `out`; a block's sums stay in the caches. 8-bit textons are read from
+   their cell records (splat_cells.h) where the kernels take them, kept on the stack for the call. */
 void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
-                uint32_t height, uint64_t *sums) {
-    dsn_splat_row_entry *splat_row = dsn_kernel_entries_of(noise->tile_kernel)->continuous_splat_row;
-    const size_t plane = static_cast<size_t>(width) * height;
-    for (uint32_t top = 0; top < height; top += block_side)
-        for (uint32_t left = 0; left < width; left += block_side) {
+                uint32_t height, uint64_t *sums, void *out, dsn_output_kind kind) {
+    dsn_splat_runs_entry *splat_runs = dsn_kernel_entries_of(noise->tile_kernel)->continuous_splat_runs;
+    const uint32_t channels = noise->asset.channels;
+    dsn_splat_setup setup;
+    setup.asset = &noise->asset;
+    setup.step_x = x.column;
+    setup.step_y = y.column;
+    setup.reach_x = x.reach;
+    setup.reach_y = y.reach;
+    setup.cells = 0;
+    setup.cell_row = 0;
+    setup.sums_end = sums + static_cast<size_t>(width) * height * channels;
+#if DSN_SPLAT_CELLS
+    alignas(64) uint64_t cells[splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
+    if (make_splat_cells(&noise->asset, cells, &setup.cell_row)) setup.cells = cells;
+#endif
+    for (uint32_t top = 0; top < height; top += block_rows)
+        for (uint32_t left = 0; left < width; left += block_columns) {
             Block block;
             block.first_column = left;
-            block.end_column = width - left < block_side ? width : left + block_side;
+            block.end_column = width - left < block_columns ? width : left + block_columns;
             block.first_row = top;
-            block.end_row = height - top < block_side ? height : top + block_side;
-            splat_block(noise, x, y, block, width, sums, splat_row, plane);
+            block.end_row = height - top < block_rows ? height : top + block_rows;
+            const uint32_t columns = block.end_column - left, rows = block.end_row - top;
+            const size_t pixels = static_cast<size_t>(columns) * rows;
+            setup.plane = pixels;
+            for (size_t i = 0; i < pixels * channels; i++) sums[i] = 0;
+            splat_block(noise, x, y, block, sums, &setup, splat_runs);
+            for (uint32_t j = 0; j < rows; j++)
+                for (uint32_t i = 0; i < columns; i++) {
+                    const size_t p = static_cast<size_t>(j) * columns + i;
+                    uint64_t pixel_sums[DSN_MAX_CHANNELS];
+                    int32_t pixel[DSN_MAX_CHANNELS];
+                    for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * pixels + p];
+                    normalize_q32(noise, pixel_sums, pixel);
+                    dsn_store_pixel(out, kind, (static_cast<size_t>(top + j) * width + left + i) * channels,
+                                    pixel, channels);
+                }
         }
 }
 
@@ -385,18 +440,7 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
         splat_frames(noise, grid, width, height, &x, &y) ? splat_scratch_size(noise, width, height) : 0;
     if (needed != 0) {
         if (scratch == 0 || scratch_size < needed) return DSN_ERR_SCRATCH;
-        uint64_t *sums = aligned_sums(scratch);
-        const uint32_t channels = noise->asset.channels;
-        int32_t pixel[DSN_MAX_CHANNELS];
-        const size_t plane = static_cast<size_t>(width) * height;
-        for (size_t i = 0; i < plane * channels; i++) sums[i] = 0;
-        splat_grid(noise, x, y, width, height, sums);
-        for (size_t p = 0; p < plane; p++) {
-            uint64_t pixel_sums[DSN_MAX_CHANNELS];
-            for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * plane + p];
-            normalize_q32(noise, pixel_sums, pixel);
-            dsn_store_pixel(out, kind, p * channels, pixel, channels);
-        }
+        splat_grid(noise, x, y, width, height, aligned_sums(scratch), out, kind);
         return DSN_OK;
     }
 #else

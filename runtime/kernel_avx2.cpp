@@ -13,5 +13,5 @@
 #include "tile_render.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile, continuous_batch,
-                                                             continuous_splat_row};
+                                                             continuous_splat_runs};
 #endif

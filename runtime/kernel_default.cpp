@@ -11,7 +11,7 @@
 #endif
 #if !DSN_SMALL_CODE
 #include "splat_row.h"
-#define SPLAT_ROW_ENTRY continuous_splat_row
+#define SPLAT_ROW_ENTRY continuous_splat_runs
 #else
 #define SPLAT_ROW_ENTRY 0
 #endif

@@ -37,20 +37,41 @@ typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint
                                         const int64_t *xs, const int64_t *ys, uint32_t count, int32_t *out,
                                         void *work);
 
-/* The innermost loop of the continuous grid splat (splat_row.h's continuous_splat_row): one impulse added
-   to `count` pixels of a row from the offsets (pixel - impulse) given, all within reach, stepping by
-   (step_x, step_y); channel c of the row's first pixel sums at sums[c * plane]. */
-typedef void dsn_splat_row_entry(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
-                                 int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count,
-                                 uint64_t *sums, size_t plane);
+/* The runs of pixels one impulse of the continuous grid splat reaches (continuous_tile.cpp), one per row
+   of a block: the offsets (pixel - impulse) of the run's first pixel, all `count` pixels within reach,
+   and where its channel-0 sums start (channel c at sums[c * plane]). A call has dsn_splat_runs_most runs
+   at most (a block's rows), each of dsn_splat_run_longest pixels at most (a block's columns). */
+enum { dsn_splat_runs_most = 32, dsn_splat_run_longest = 64 };
+typedef struct dsn_splat_run {
+    int64_t offset_x, offset_y;
+    uint64_t *sums;
+    uint32_t count;
+} dsn_splat_run;
+
+/* What every run of a grid shares: the texton, the steps (pixel to next pixel) and reaches of both axes,
+   the distance between channel planes, and the texton's bilinear cells (splat_cells.h) or 0 where the
+   runs go pixel by pixel (16-bit textons, cells too large for the stack). */
+typedef struct dsn_splat_setup {
+    const dsn_asset *asset;
+    int64_t step_x, step_y, reach_x, reach_y;
+    size_t plane;
+    const uint64_t *sums_end; /* the runs' sums lie before; vectors may add 0 to any sum up to there */
+    const uint64_t *cells;
+    uint32_t cell_row; /* cells per row of the table */
+} dsn_splat_setup;
+
+/* The innermost loops of the continuous grid splat (splat_row.h's continuous_splat_runs): one impulse
+   added to its runs. */
+typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_run *runs,
+                                  uint32_t run_count);
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
-   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_row in the small build
+   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs in the small build
    (DSN_SMALL_CODE), which evaluates grids point by point. */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_continuous_batch_entry *continuous_batch;
-    dsn_splat_row_entry *continuous_splat_row;
+    dsn_splat_runs_entry *continuous_splat_runs;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

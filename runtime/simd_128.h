@@ -1,5 +1,6 @@
 /* runtime/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
-   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width. Included by
+   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, and a
+   constant of the continuous splat. Included by
    the ops headers (simd.h). */
 #ifndef DSN_SIMD_128_H
 #define DSN_SIMD_128_H
@@ -40,6 +41,12 @@ inline __m128i to_u8_range(__m128i value) {
     value = _mm_or_si128(_mm_and_si128(above, one), _mm_andnot_si128(above, value));
     return _mm_srli_epi32(
         _mm_add_epi32(_mm_sub_epi32(_mm_slli_epi32(value, 8), value), _mm_set1_epi32(32768)), 16);
+}
+
+/* The continuous splat's byte order for the across weights (simd_avx2.h, simd_avx512.h): bytes 2 and 3 of
+   each 64-bit lane into its words 1 and 3, zeros elsewhere. */
+inline __m128i splat_across_order() {
+    return _mm_setr_epi8(-128, -128, 2, 3, -128, -128, 2, 3, -128, -128, 10, 11, -128, -128, 10, 11);
 }
 
 } // namespace

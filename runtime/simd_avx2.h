@@ -1,5 +1,6 @@
 /* runtime/simd_avx2.h - the vector operations of the strip path for AVX2 (256-bit vectors: 16 pixels per
-   strip). The same names as simd_sse2.h and simd_avx512.h; simd.h picks one. */
+   strip), and of the continuous splat's runs (splat_row.h: 4 pixels per vector). The same names as
+   simd_sse2.h and simd_avx512.h; simd.h picks one. */
 #ifndef DSN_SIMD_AVX2_H
 #define DSN_SIMD_AVX2_H
 
@@ -84,6 +85,89 @@ inline void put_vector(float *out, simd_floats values, int stream_aligned) {
 template <uint32_t Channels>
 inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {
     return 0;
+}
+
+/* ---- Continuous splat (splat_row.h): 64-bit lanes, one pixel each ---- */
+typedef __m256i splat_vector;
+const uint32_t splat_lanes = 4;
+
+inline splat_vector splat_set(uint64_t value) { return _mm256_set1_epi64x(static_cast<long long>(value)); }
+/* Lane k: first + k step, modulo 2^64. */
+inline splat_vector splat_lane_steps(uint64_t first, uint64_t step) {
+    return _mm256_set_epi64x(static_cast<long long>(first + 3u * step),
+                             static_cast<long long>(first + 2u * step), static_cast<long long>(first + step),
+                             static_cast<long long>(first));
+}
+inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm256_add_epi64(a, b); }
+inline void splat_store(uint64_t *out, splat_vector value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), value);
+}
+/* The first `count` lanes (all of them from splat_lanes up), the others 0. */
+inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
+    return _mm256_and_si256(value,
+                            _mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3)));
+}
+/* Bits 16 to 31 of each lane. */
+inline splat_vector splat_fraction(splat_vector value) {
+    return _mm256_and_si256(_mm256_srli_epi64(value, 16), _mm256_set1_epi64x(0xFFFF));
+}
+/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31: bytes 2 and 3 of
+   the lane into words 1 and 3, then the top bit of every word flipped. */
+inline splat_vector splat_across_weights(splat_vector value) {
+    return _mm256_xor_si256(_mm256_shuffle_epi8(value, _mm256_broadcastsi128_si256(splat_across_order())),
+                            _mm256_set1_epi16(-32768));
+}
+/* (lane >> 32) times factor, modulo 2^64. */
+inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
+    return _mm256_mul_epu32(_mm256_srli_epi64(value, 32), _mm256_set1_epi64x(factor));
+}
+/* One RGB cell (4 records). */
+inline __m256i splat_load_cell(const uint64_t *cell) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(cell)));
+}
+/* The records of `Channels` channels of the cells at cells[index[k]] (splat_cells.h: one record per
+   channel, 4 per cell for RGB): records[c] holds channel c of each lane's cell, a 4 x 4 transpose. */
+template <uint32_t Channels>
+inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat_vector *records) {
+    if (Channels == 1) {
+        records[0] = _mm256_set_epi64x(
+            static_cast<long long>(cells[index[3]]), static_cast<long long>(cells[index[2]]),
+            static_cast<long long>(cells[index[1]]), static_cast<long long>(cells[index[0]]));
+        return;
+    }
+    const __m256i cell_0 = splat_load_cell(cells + index[0]), cell_1 = splat_load_cell(cells + index[1]);
+    const __m256i cell_2 = splat_load_cell(cells + index[2]), cell_3 = splat_load_cell(cells + index[3]);
+    const __m256i even_01 = _mm256_unpacklo_epi64(cell_0, cell_1),
+                  odd_01 = _mm256_unpackhi_epi64(cell_0, cell_1);
+    const __m256i even_23 = _mm256_unpacklo_epi64(cell_2, cell_3),
+                  odd_23 = _mm256_unpackhi_epi64(cell_2, cell_3);
+    records[0] = _mm256_permute2x128_si256(even_01, even_23, 0x20);
+    records[1] = _mm256_permute2x128_si256(odd_01, odd_23, 0x20);
+    records[Channels - 1] = _mm256_permute2x128_si256(even_01, even_23, 0x31);
+}
+/* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
+   products of the dwords. */
+inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
+    const splat_vector rows = _mm256_madd_epi16(records, across);
+    return _mm256_add_epi64(_mm256_mul_epi32(rows, _mm256_set1_epi64x(65536)),
+                            _mm256_mul_epi32(_mm256_srli_epi64(rows, 32), down));
+}
+/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..], where sums up to `end`
+   may be read and written back. Where a whole vector fits, the other lanes add 0 (a masked store is
+   many times slower on AMD's CPUs). */
+inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *end) {
+    long long *at = static_cast<long long *>(static_cast<void *>(sums));
+    __m256i *run = static_cast<__m256i *>(static_cast<void *>(sums));
+    if (count >= 4) {
+        _mm256_storeu_si256(run, _mm256_add_epi64(_mm256_loadu_si256(run), values));
+        return;
+    }
+    const __m256i present = _mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3));
+    if (end - sums >= 4)
+        _mm256_storeu_si256(run,
+                            _mm256_add_epi64(_mm256_loadu_si256(run), _mm256_and_si256(values, present)));
+    else
+        _mm256_maskstore_epi64(at, present, _mm256_add_epi64(_mm256_maskload_epi64(at, present), values));
 }
 
 } // namespace

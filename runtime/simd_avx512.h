@@ -1,5 +1,6 @@
 /* runtime/simd_avx512.h - the vector operations of the strip path for AVX-512 F and BW (512-bit vectors:
-   32 pixels per strip). The same names as simd_sse2.h and simd_avx2.h; simd.h picks one. */
+   32 pixels per strip), and of the continuous splat's runs (splat_row.h: 8 pixels per vector). The same names
+   as simd_sse2.h and simd_avx2.h; simd.h picks one. */
 #ifndef DSN_SIMD_AVX512_H
 #define DSN_SIMD_AVX512_H
 
@@ -148,6 +149,88 @@ inline int store_whole_strip_u8(const simd_vector *values, uint8_t *out) {
                                 _mm512_permutexvar_epi64(_mm512_setr_epi64(0, 2, 4, 6, 0, 0, 0, 0), bytes)));
     }
     return 1;
+}
+
+/* ---- Continuous splat (splat_row.h): 64-bit lanes, one pixel each ---- */
+typedef __m512i splat_vector;
+const uint32_t splat_lanes = 8;
+
+inline splat_vector splat_set(uint64_t value) { return _mm512_set1_epi64(static_cast<long long>(value)); }
+/* Lane k: first + k step, modulo 2^64. */
+inline splat_vector splat_lane_steps(uint64_t first, uint64_t step) {
+    return _mm512_add_epi64(_mm512_set1_epi64(static_cast<long long>(first)),
+                            _mm512_mullox_epi64(_mm512_set1_epi64(static_cast<long long>(step)),
+                                                _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7)));
+}
+inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm512_add_epi64(a, b); }
+inline void splat_store(uint64_t *out, splat_vector value) { _mm512_storeu_si512(out, value); }
+/* The first `count` lanes (all of them from splat_lanes up), the others 0. */
+inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
+    return _mm512_maskz_mov_epi64(
+        count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u), value);
+}
+/* Bits 16 to 31 of each lane. */
+inline splat_vector splat_fraction(splat_vector value) {
+    return _mm512_and_si512(_mm512_srli_epi64(value, 16), _mm512_set1_epi64(0xFFFF));
+}
+/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31: bytes 2 and 3 of
+   the lane into words 1 and 3, then the top bit of every word flipped. */
+inline splat_vector splat_across_weights(splat_vector value) {
+    return _mm512_xor_si512(_mm512_shuffle_epi8(value, _mm512_broadcast_i32x4(splat_across_order())),
+                            _mm512_set1_epi16(-32768));
+}
+/* (lane >> 32) times factor, modulo 2^64. */
+inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
+    return _mm512_mul_epu32(_mm512_srli_epi64(value, 32), _mm512_set1_epi64(factor));
+}
+/* Two RGB cells (4 records each) in one vector. */
+inline __m512i splat_cell_pair(const uint64_t *first, const uint64_t *second) {
+    return _mm512_inserti64x4(
+        _mm512_castsi256_si512(
+            _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(first)))),
+        _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(second))), 1);
+}
+/* The records of `Channels` channels of the cells at cells[index[k]] (splat_cells.h: one record per
+   channel, 4 per cell for RGB): records[c] holds channel c of each lane's cell. RGB cells are loaded in
+   pairs and transposed by two-source permutes. */
+template <uint32_t Channels>
+inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat_vector *records) {
+    if (Channels == 1) {
+        records[0] = _mm512_set_epi64(
+            static_cast<long long>(cells[index[7]]), static_cast<long long>(cells[index[6]]),
+            static_cast<long long>(cells[index[5]]), static_cast<long long>(cells[index[4]]),
+            static_cast<long long>(cells[index[3]]), static_cast<long long>(cells[index[2]]),
+            static_cast<long long>(cells[index[1]]), static_cast<long long>(cells[index[0]]));
+        return;
+    }
+    const __m512i pair_0 = splat_cell_pair(cells + index[0], cells + index[1]);
+    const __m512i pair_1 = splat_cell_pair(cells + index[2], cells + index[3]);
+    const __m512i pair_2 = splat_cell_pair(cells + index[4], cells + index[5]);
+    const __m512i pair_3 = splat_cell_pair(cells + index[6], cells + index[7]);
+    const __m512i channels_01 = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13),
+                  channel_2 = _mm512_setr_epi64(2, 6, 10, 14, 2, 6, 10, 14);
+    const __m512i low_01 = _mm512_permutex2var_epi64(pair_0, channels_01, pair_1);
+    const __m512i high_01 = _mm512_permutex2var_epi64(pair_2, channels_01, pair_3);
+    records[0] = _mm512_shuffle_i64x2(low_01, high_01, _MM_SHUFFLE(1, 0, 1, 0));
+    records[1] = _mm512_shuffle_i64x2(low_01, high_01, _MM_SHUFFLE(3, 2, 3, 2));
+    records[Channels - 1] =
+        _mm512_shuffle_i64x2(_mm512_permutex2var_epi64(pair_0, channel_2, pair_1),
+                             _mm512_permutex2var_epi64(pair_2, channel_2, pair_3), _MM_SHUFFLE(1, 0, 1, 0));
+}
+/* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
+   products of the dwords. */
+inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
+    const splat_vector rows = _mm512_madd_epi16(records, across);
+    return _mm512_add_epi64(_mm512_mul_epi32(rows, _mm512_set1_epi64(65536)),
+                            _mm512_mul_epi32(_mm512_srli_epi64(rows, 32), down));
+}
+/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
+   of the sums is not needed). */
+inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *) {
+    const __mmask8 present =
+        count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u);
+    _mm512_mask_storeu_epi64(sums, present,
+                             _mm512_add_epi64(_mm512_maskz_loadu_epi64(present, sums), values));
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 /* runtime/simd_sse2.h - the vector operations of the strip path for SSE2 (128-bit vectors: 8 pixels per
-   strip). simd_avx2.h and simd_avx512.h define the same names for their widths; simd.h picks one. */
+   strip), and of the continuous splat's runs (splat_row.h: 2 pixels per vector). simd_avx2.h and
+   simd_avx512.h define the same names for their widths; simd.h picks one. */
 #ifndef DSN_SIMD_SSE2_H
 #define DSN_SIMD_SSE2_H
 
@@ -62,6 +63,80 @@ inline void put_vector(float *out, simd_floats values, int stream_aligned) {
 template <uint32_t Channels>
 inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {
     return 0;
+}
+
+/* ---- Continuous splat (splat_row.h): 64-bit lanes, one pixel each ---- */
+typedef __m128i splat_vector;
+const uint32_t splat_lanes = 2;
+
+inline splat_vector splat_set(uint64_t value) { return _mm_set1_epi64x(static_cast<long long>(value)); }
+/* Lane k: first + k step, modulo 2^64. */
+inline splat_vector splat_lane_steps(uint64_t first, uint64_t step) {
+    return _mm_set_epi64x(static_cast<long long>(first + step), static_cast<long long>(first));
+}
+inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm_add_epi64(a, b); }
+inline void splat_store(uint64_t *out, splat_vector value) {
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)), value);
+}
+/* The first `count` lanes (all of them from splat_lanes up), the others 0. */
+inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
+    return count >= 2 ? value : _mm_move_epi64(value);
+}
+/* Bits 16 to 31 of each lane. */
+inline splat_vector splat_fraction(splat_vector value) {
+    return _mm_and_si128(_mm_srli_epi64(value, 16), _mm_set1_epi64x(0xFFFF));
+}
+/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31. */
+inline splat_vector splat_across_weights(splat_vector value) {
+    const splat_vector biased = _mm_xor_si128(splat_fraction(value), _mm_set1_epi64x(0x8000));
+    const splat_vector pair = _mm_or_si128(_mm_slli_epi64(biased, 16), _mm_set1_epi64x(0x8000));
+    return _mm_or_si128(pair, _mm_slli_epi64(pair, 32));
+}
+/* (lane >> 32) times factor, modulo 2^64. */
+inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
+    return _mm_mul_epu32(_mm_srli_epi64(value, 32), _mm_set1_epi64x(factor));
+}
+/* The records of `Channels` channels of the cells at cells[index[k]] (splat_cells.h: one record per
+   channel, 4 per cell for RGB): records[c] holds channel c of each lane's cell. */
+template <uint32_t Channels>
+inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat_vector *records) {
+    const __m128i *first = static_cast<const __m128i *>(static_cast<const void *>(cells + index[0]));
+    const __m128i *second = static_cast<const __m128i *>(static_cast<const void *>(cells + index[1]));
+    if (Channels == 1) {
+        records[0] = _mm_unpacklo_epi64(_mm_loadl_epi64(first), _mm_loadl_epi64(second));
+        return;
+    }
+    const __m128i first_01 = _mm_loadu_si128(first), second_01 = _mm_loadu_si128(second);
+    records[0] = _mm_unpacklo_epi64(first_01, second_01);
+    records[1] = _mm_unpackhi_epi64(first_01, second_01);
+    records[Channels - 1] = _mm_unpacklo_epi64(_mm_loadl_epi64(first + 1), _mm_loadl_epi64(second + 1));
+}
+/* 65536 upper + down (lower - upper), the dwords of rows (low, high) being upper and lower - upper and
+   down (below 2^16) the low dword of each lane. SSE2 multiplies unsigned only: a negative dword s reads
+   as s + 2^32, so its product is 2^32 times the other factor too much. */
+inline splat_vector splat_combine_rows(splat_vector rows, splat_vector down) {
+    const splat_vector signs = _mm_srai_epi32(rows, 31);
+    const splat_vector upper_negative = _mm_shuffle_epi32(signs, _MM_SHUFFLE(2, 2, 0, 0));
+    const splat_vector difference_negative = _mm_shuffle_epi32(signs, _MM_SHUFFLE(3, 3, 1, 1));
+    const splat_vector scaled =
+        _mm_sub_epi64(_mm_mul_epu32(rows, _mm_set1_epi64x(65536)),
+                      _mm_and_si128(upper_negative, _mm_set1_epi64x(static_cast<long long>(1) << 48)));
+    const splat_vector crossed = _mm_sub_epi64(_mm_mul_epu32(_mm_srli_epi64(rows, 32), down),
+                                               _mm_and_si128(difference_negative, _mm_slli_epi64(down, 32)));
+    return _mm_add_epi64(scaled, crossed);
+}
+/* The records' bilinear values: splat_cells.h's multiply-add, then the rows combined. */
+inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
+    return splat_combine_rows(_mm_madd_epi16(records, across), down);
+}
+/* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
+   of the sums is not needed). */
+inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *) {
+    __m128i *at = static_cast<__m128i *>(static_cast<void *>(sums));
+    if (count >= 2)
+        _mm_storeu_si128(at, _mm_add_epi64(_mm_loadu_si128(at), values));
+    else
+        _mm_storel_epi64(at, _mm_add_epi64(_mm_loadl_epi64(at), values));
 }
 
 } // namespace

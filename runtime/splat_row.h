@@ -1,14 +1,17 @@
-/* runtime/splat_row.h - the innermost loop of the continuous grid splat (continuous_tile.cpp): one
-   impulse added to a run of pixels of one row, as a kernel (kernels.h: each kernel file includes it, so it
-   is built once per instruction set). On AVX2 (the AVX2 and AVX-512 kernels) 8-bit textons take 8 pixels
-   per step on vectors; the rest goes pixel by pixel. The same integers either way (add_bilinear's).
-   Internal to libdsn; not installed (everything here has internal linkage). */
+/* runtime/splat_row.h - the innermost loops of the continuous grid splat (continuous_tile.cpp): one
+   impulse added to its runs of pixels, one run per row of a block, as a kernel (kernels.h: each kernel
+   file includes it, so it is built once per instruction set). On x86 8-bit textons are read from their
+   cell records (splat_cells.h) on vectors of 64-bit lanes, one pixel per lane (2, 4 or 8 by the copy);
+   8-bit textons too large for the records take 8 pixels per step with gathers on AVX2 and AVX-512; the
+   rest goes pixel by pixel. The same integers every way (add_bilinear's). Internal to libdsn; not
+   installed (everything here has internal linkage). */
 #ifndef DSN_SPLAT_ROW_H
 #define DSN_SPLAT_ROW_H
 
 #include "bilinear_texton.h"
 #include "kernels.h"
 #include "simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
+#include "splat_cells.h"
 
 namespace {
 
@@ -71,7 +74,7 @@ void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64
 }
 
 #if defined(__AVX2__)
-/* ---- 8 pixels at a time on AVX2, 8-bit textons ----
+/* ---- 8 pixels at a time on AVX2, 8-bit textons without cell records ----
    Each pixel's 2 x 2 texels come from 4 gathers of 32-bit words at the texels' first bytes (the texel
    and, for grey, the next one; for RGB the texel's 3 bytes and one more), each masked to the pixels whose
    texel lies inside the window, so that the others read nothing and give 0. A word read at a texel of
@@ -207,7 +210,8 @@ void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y
 }
 #endif
 
-/* The kernel entry: one copy per channel count and value size. */
+/* One impulse on one run, pixel by pixel but for 8-bit textons on AVX2: one copy per channel count and
+   value size. */
 inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
                                  int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count,
                                  uint64_t *sums, size_t plane) {
@@ -232,6 +236,85 @@ inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64
             ? splat_row<1, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
             : splat_row<1, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
                               plane);
+}
+
+#if DSN_SPLAT_CELLS
+/* ---- The runs on vectors of 64-bit lanes, 8-bit textons (the x86 kernels: simd.h's splat ops) ----
+   Each lane is one pixel of the run: its shifted offsets step as the scalar loop steps them, its cell's
+   record of each channel is read from the table (splat_cells.h) at the cell index the lower texel indices
+   give, and one multiply-add of 16-bit pairs and two signed 32 x 32-bit products give interior_channel's
+   integer, edge cells included (their texels outside the window are 0 in the records). No gathers: the
+   records are loaded one by one. Lanes past a run read cell 0 and are not added. */
+template <uint32_t Channels>
+void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
+                   step_y = static_cast<uint64_t>(setup->step_y);
+    const splat_vector lanes_x = splat_lane_steps(0, step_x), lanes_y = splat_lane_steps(0, step_y);
+    const splat_vector next_x = splat_set(step_x * splat_lanes), next_y = splat_set(step_y * splat_lanes);
+    const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
+    const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
+    /* First every lane's cell (where its records start), then the sums: the loads of the records do not
+       wait on the vector stores of their indices. */
+    uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
+    uint64_t *at = cell;
+    for (uint32_t r = 0; r < run_count; r++) {
+        /* bracket's shifted values: the cell is (shifted_y >> 32) rows and (shifted_x >> 32) columns into
+           the table, whose row and column 0 are the texel indices -1 */
+        splat_vector shifted_x =
+            splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_x + setup->reach_x)), lanes_x);
+        splat_vector shifted_y =
+            splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_y + setup->reach_y)), lanes_y);
+        for (uint32_t done = 0; done < runs[r].count; done += splat_lanes, at += splat_lanes) {
+            /* lanes past the run read cell 0 */
+            splat_store(at, splat_first_lanes(splat_add(splat_whole_times(shifted_y, row_records),
+                                                        splat_whole_times(shifted_x, cell_records)),
+                                              runs[r].count - done));
+            shifted_x = splat_add(shifted_x, next_x);
+            shifted_y = splat_add(shifted_y, next_y);
+        }
+    }
+    at = cell;
+    for (uint32_t r = 0; r < run_count; r++) {
+        const dsn_splat_run &run = runs[r];
+        splat_vector shifted_x =
+            splat_add(splat_set(static_cast<uint64_t>(run.offset_x + setup->reach_x)), lanes_x);
+        splat_vector shifted_y =
+            splat_add(splat_set(static_cast<uint64_t>(run.offset_y + setup->reach_y)), lanes_y);
+        uint64_t *sums = run.sums;
+        for (uint32_t done = 0; done < run.count;
+             done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
+            const uint32_t remaining = run.count - done;
+            const splat_vector across = splat_across_weights(shifted_x), down = splat_fraction(shifted_y);
+            splat_vector records[3];
+            splat_load_cells<Channels>(setup->cells, at, records);
+            splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
+            if (Channels == 3) {
+                splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining, end);
+                splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining, end);
+            }
+            shifted_x = splat_add(shifted_x, next_x);
+            shifted_y = splat_add(shifted_y, next_y);
+        }
+    }
+}
+#endif
+
+/* The kernel entry: the runs on vectors where the texton has records, else pixel by pixel. */
+inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
+                                  uint32_t run_count) {
+#if DSN_SPLAT_CELLS
+    if (setup->cells != 0) {
+        if (setup->asset->channels == 3)
+            splat_runs_vector<3>(setup, runs, run_count);
+        else
+            splat_runs_vector<1>(setup, runs, run_count);
+        return;
+    }
+#endif
+    for (uint32_t r = 0; r < run_count; r++)
+        continuous_splat_row(setup->asset, runs[r].offset_x, runs[r].offset_y, setup->step_x, setup->step_y,
+                             setup->reach_x, setup->reach_y, runs[r].count, runs[r].sums, setup->plane);
 }
 
 } // namespace

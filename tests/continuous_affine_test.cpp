@@ -1,6 +1,7 @@
 // continuous_affine_test.cpp - continuous tiles under any affine grid (rotations, zooms in and out, shear,
 // mirror, periodic noises) give exactly the per-point values, bit for bit, in every kernel this CPU runs,
-// including across the 32-bit wraps and on grids that fall back to per point.
+// including across the 32-bit wraps, on grids that fall back to per point, and on the textons the vector
+// runs read from cell records as well as those they read pixel by pixel.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "../runtime/kernels.h"
+#include "../runtime/splat_cells.h"
 #include "fixtures/continuous_fixtures.h"
 
 using namespace continuous_fixtures;
@@ -208,4 +210,81 @@ TEST_CASE("continuous affine: larger tiles across several blocks") {
     }
     const dsn_grid aligned = affine_grid(one / 7, one / 9, 0, 1.7, 0, false);
     tile_matches_points(&noise->noise, aligned, 90, 65);
+}
+
+namespace {
+
+// An 8- or 16-bit texton of (2 radius_x + 1) x (2 radius_y + 1) texels: the rows of a square random one,
+// or, `extreme`, every texel at an end of the 8-bit range (the cell records' widest words).
+dsn::AssetFields texton_asset(uint32_t channels, uint32_t radius_x, uint32_t radius_y, uint32_t bits,
+                              uint32_t seed, bool extreme = false) {
+    dsn::AssetFields fields =
+        random_texton_asset(channels, radius_x > radius_y ? radius_x : radius_y, bits, seed);
+    const uint32_t side = fields.width;
+    std::vector<int32_t> texton;
+    std::mt19937 random(seed);
+    for (uint32_t row = 0; row < 2 * radius_y + 1; row++)
+        for (uint32_t column = 0; column < 2 * radius_x + 1; column++)
+            for (uint32_t c = 0; c < channels; c++)
+                texton.push_back(extreme ? ((random() & 1) ? 127 : -127)
+                                         : fields.texton[(row * side + column) * channels + c]);
+    fields.width = 2 * radius_x + 1;
+    fields.height = 2 * radius_y + 1;
+    fields.texton = texton;
+    return fields;
+}
+
+} // namespace
+
+TEST_CASE("continuous affine: the vector runs of every kernel, every run length, edge cells and fallbacks") {
+    std::mt19937_64 random(19);
+    struct Case {
+        uint32_t channels, radius_x, radius_y, bits;
+        uint32_t impacts; // per pixel; 0: the default density
+        bool extreme;
+        bool records; // read from the cell records (8-bit and small enough), else pixel by pixel
+    };
+    const Case cases[] = {
+        {3, 6, 3, 8, 0, false, true},    {1, 2, 9, 8, 0, false, true},   {3, 4, 4, 8, 0, true, true},
+        {1, 5, 5, 8, 0, true, true},     {3, 0, 2, 8, 0, false, true},   {3, 3, 5, 8, 400, false, true},
+        {1, 3, 2, 8, 500, true, true},   {3, 26, 2, 8, 0, false, true},  {3, 24, 25, 8, 0, false, false},
+        {1, 47, 46, 8, 0, false, false}, {3, 4, 6, 16, 0, false, false}, {1, 1, 1, 8, 1, false, true},
+    };
+    size_t splatted = 0, total = 0;
+    int which = 0;
+    for (const Case &c : cases) {
+        const dsn::AssetFields fields =
+            texton_asset(c.channels, c.radius_x, c.radius_y, c.bits, 20 + which, c.extreme);
+        auto noise = make_noise(fields, 90 + which, c.impacts << 16);
+        CAPTURE(c.channels);
+        CAPTURE(c.radius_x);
+        CAPTURE(c.radius_y);
+        CAPTURE(c.bits);
+        CAPTURE(c.impacts);
+#if DSN_SPLAT_CELLS
+        static uint64_t cells[splat_cell_capacity];
+        uint32_t cell_row = 0;
+        CHECK(make_splat_cells(&dsn_state(&noise->noise)->asset, cells, &cell_row) == c.records);
+#endif
+        for (double angle : {30.0, 0.0, 90.0, 163.0, 271.0})
+            for (double zoom : {0.7, 1.7, 0.3, 3.1}) {
+                const dsn_grid grid =
+                    affine_grid(origin_near_wraps(random, which), origin_near_wraps(random, which + 1), angle,
+                                zoom, which % 4 == 0 ? 0.3 : 0.0, which % 3 == 1);
+                CAPTURE(angle);
+                CAPTURE(zoom);
+                CAPTURE(grid.origin_x);
+                CAPTURE(grid.origin_y);
+                // Up to two blocks across and down: runs of every length up to a block's side.
+                splatted += tile_matches_points(&noise->noise, grid, 1 + uint32_t(random() % 60),
+                                                1 + uint32_t(random() % 45));
+                total++;
+                which++;
+            }
+    }
+#if DSN_SMALL_CODE
+    CHECK(splatted == 0);
+#else
+    CHECK(splatted * 10 >= total * 7);
+#endif
 }

@@ -178,7 +178,7 @@ TEST_CASE("continuous batch: errors, and nothing written on an error") {
     // Every kernel of the table has the batch entry and the splat's row loop.
     for (uint32_t i = 0; i < dsn_internal_kernel_count; i++) {
         const bool has_batch = dsn_internal_kernels[i].entries->continuous_batch != nullptr;
-        const bool has_splat_row = dsn_internal_kernels[i].entries->continuous_splat_row != nullptr;
+        const bool has_splat_row = dsn_internal_kernels[i].entries->continuous_splat_runs != nullptr;
         CHECK(has_batch);
         CHECK(has_splat_row);
     }

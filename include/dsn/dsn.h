@@ -360,12 +360,16 @@ typedef struct dsn_grid {
    DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH.
    Any grid (zoom in or out, rotation, shear, mirror, periodic noises) is evaluated by splatting: each
    impulse near the tile adds its texton to the pixels it reaches, so the cost follows the tile's area in
-   texels rather than its pixel count; the scratch then holds one 64-bit sum per pixel and channel
-   (width * height * channels * 8 bytes, plus 7). Grids where that does not pay or cannot be done exactly
-   (a pixel covering more texels than a point visits, steps of 2^14 texels or more, a periodic axis whose
-   points cross the int32 wrap of the coordinate or a period of 2^27 or more) are evaluated point by point
-   and dsn_continuous_tile_scratch_size() returns 0 for them; so does every grid in the small build
-   (DSN_SMALL_CODE), which evaluates point by point. Either way the bits are the per-point ones. */
+   texels rather than its pixel count; the scratch then holds the 64-bit sums of the pixels (it is asked
+   for one per pixel and channel: width * height * channels * 8 bytes, plus 7; the tile goes through it a
+   block of 64 x 32 pixels at a time). On x86 an 8-bit texton is read from 64-bit records per 2 x 2 texels
+   kept on the tile call's stack (up to 64 KB, beside about 20 KB of the splat's own), unless it has more
+   than 8192 of them (RGB past 49 x 49 texels, grey past 89 x 89), which go pixel by pixel. Grids where that
+   does not pay or cannot be done exactly (a pixel covering more texels than a point visits, steps of 2^14
+   texels or more, a periodic axis whose points cross the int32 wrap of the coordinate or a period of 2^27 or
+   more) are evaluated point by point and dsn_continuous_tile_scratch_size() returns 0 for them; so does every
+   grid in the small build (DSN_SMALL_CODE), which evaluates point by point. Either way the bits are the
+   per-point ones. */
 size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
                                         uint32_t height);
 int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
