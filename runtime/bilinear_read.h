@@ -77,18 +77,20 @@ struct BilinearSums {
     __m128i even, odd; /* 64-bit lanes: channels 0 and 2; channel 1 (RGB) or the lower row (grey) */
 };
 
-/* A row's texels as (left, right) 16-bit pairs of biased values, one pair per channel (lanes past the
-   channels hold garbage, never used). */
+/* The bytes of a row's two texels, from its first: 8 of them (RGB: the 6 needed and 2 more) or 4 (grey:
+   2 and 2 more). */
 template <uint32_t Channels>
-inline __m128i row_pairs(const unsigned char *row) {
-    __m128i bytes;
-    if (Channels == 3) {
-        bytes = _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(row)));
-    } else {
-        uint32_t word;
-        __builtin_memcpy(&word, row, sizeof word);
-        bytes = _mm_cvtsi32_si128(static_cast<int>(word)); /* the bits unchanged */
-    }
+inline __m128i row_bytes(const unsigned char *row) {
+    if (Channels == 3) return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(row)));
+    uint32_t word;
+    __builtin_memcpy(&word, row, sizeof word);
+    return _mm_cvtsi32_si128(static_cast<int>(word)); /* the bits unchanged */
+}
+
+/* A row's texels (its bytes as row_bytes loads them) as (left, right) 16-bit pairs of biased values, one
+   pair per channel (lanes past the channels hold garbage, never used). */
+template <uint32_t Channels>
+inline __m128i row_pairs(__m128i bytes) {
     const __m128i values = _mm_unpacklo_epi8(_mm_xor_si128(bytes, _mm_set1_epi8(-128)), _mm_setzero_si128());
     /* grey: (left, right) already; RGB: left channels in lanes 0-2, right ones in lanes 3-5 */
     return Channels == 3 ? _mm_unpacklo_epi16(values, _mm_srli_si128(values, 6)) : values;
@@ -107,9 +109,10 @@ inline __m128i interpolate_pairs(__m128i pairs, __m128i high, __m128i low) {
     return _mm_add_epi32(_mm_slli_epi32(_mm_madd_epi16(pairs, high), 7), _mm_madd_epi16(pairs, low));
 }
 
+/* The bilinear texton of the two rows' texels (their bytes as row_bytes loads them). */
 template <uint32_t Channels>
-inline void add_bilinear_vector(const unsigned char *top, const unsigned char *bottom, uint32_t across,
-                                uint32_t down, BilinearSums *sums) {
+inline void add_bilinear_bytes(__m128i top, __m128i bottom, uint32_t across, uint32_t down,
+                               BilinearSums *sums) {
     __m128i high, low;
     weight_parts(across, &high, &low);
     const __m128i down_weights = _mm_set_epi32(0, static_cast<int>(down), 0, static_cast<int>(65536u - down));
@@ -129,6 +132,12 @@ inline void add_bilinear_vector(const unsigned char *top, const unsigned char *b
             interpolate_pairs(_mm_unpacklo_epi32(row_pairs<1>(top), row_pairs<1>(bottom)), high, low);
         sums->even = _mm_add_epi64(sums->even, _mm_mul_epu32(_mm_shuffle_epi32(rows, 0x10), down_weights));
     }
+}
+
+template <uint32_t Channels>
+inline void add_bilinear_vector(const unsigned char *top, const unsigned char *bottom, uint32_t across,
+                                uint32_t down, BilinearSums *sums) {
+    add_bilinear_bytes<Channels>(row_bytes<Channels>(top), row_bytes<Channels>(bottom), across, down, sums);
 }
 
 /* The channel sums of the vector's lanes (modulo 2^64). */

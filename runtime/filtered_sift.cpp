@@ -75,11 +75,13 @@ struct LevelTest {
 
 LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64_t tap_shift) {
     const uint32_t l = level.level;
-    const int64_t spacing_texel = static_cast<int64_t>(one_texel) << l, spacing = static_cast<int64_t>(1) << l;
+    const int64_t spacing_texel = static_cast<int64_t>(one_texel) << l, spacing = static_cast<int64_t>(1)
+                                                                                  << l;
     LevelTest test;
-    test.start = static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - spacing -
-                                       tap_shift);
-    test.limit = static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - spacing);
+    test.start =
+        static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - spacing - tap_shift);
+    test.limit =
+        static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - spacing);
     return test;
 }
 
@@ -105,6 +107,35 @@ void clear(LevelAccumulator *sums) {
     sums->interior_count = 0;
 }
 
+#if defined(__SSE2__)
+/* The row above or below a level's window: zeros. */
+const unsigned char zero_row[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+
+/* The 2 x 2 texels of 8-bit values at (row, column) in [-1, height - 1] x [-1, width - 1], width >= 2,
+   zero outside the window, added without a branch: rows outside read zero_row, and the pair of texels
+   is read from the column clamped into [0, width - 2] and moved by one texel where it was clamped, the
+   texel that left the window zeroed. The reads stay within the rows' bytes plus 2 (as the interior's). */
+template <uint32_t Channels>
+inline __m128i bordered_row(const unsigned char *values, uint32_t offset, bool inside, bool left_out,
+                            bool right_out) {
+    const uint32_t texel_bits = 8u * Channels;
+    const unsigned char *from = inside ? values + offset : zero_row;
+    uint64_t word;
+    if (Channels == 3) {
+        __builtin_memcpy(&word, from, sizeof word);
+    } else {
+        uint32_t half;
+        __builtin_memcpy(&half, from, sizeof half);
+        word = half;
+    }
+    const uint64_t right_mask =
+        right_out ? (static_cast<uint64_t>(1) << texel_bits) - 1u : ~static_cast<uint64_t>(0);
+    word = ((word << (left_out ? texel_bits : 0u)) >> (right_out ? texel_bits : 0u)) & right_mask;
+    if (Channels == 3) return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(&word)));
+    return _mm_cvtsi32_si128(static_cast<int>(static_cast<uint32_t>(word))); /* the bits unchanged */
+}
+#endif
+
 template <uint32_t Channels, uint32_t Bytes>
 inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64_t shifted_y,
                        LevelAccumulator *sums) {
@@ -113,6 +144,20 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
     const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu),
                   across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
     const uint32_t width = level.width;
+#if defined(__SSE2__)
+    if (Bytes == 1 && width >= 2) {
+        const bool left_out = column == 0xFFFFFFFFu, right_out = column == width - 1u;
+        const uint32_t first = column + (left_out ? 1u : 0u) - (right_out ? 1u : 0u);
+        const uint32_t row_size = width * Channels, top = row * row_size + first * Channels;
+        sums->interior_count++;
+        add_bilinear_bytes<Channels>(
+            bordered_row<Channels>(level.values, top, row != 0xFFFFFFFFu, left_out, right_out),
+            bordered_row<Channels>(level.values, top + row_size, row + 1u < level.height, left_out,
+                                   right_out),
+            static_cast<uint32_t>(across), static_cast<uint32_t>(down), &sums->vector);
+        return;
+    }
+#endif
     if (row < level.height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
         /* The vector read passes a level's last value by 2 bytes: the texton and its CRC follow the
            pyramid section in the asset, so those bytes are in the buffer. */
@@ -121,8 +166,8 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
         sums->interior_count++;
 #if defined(__SSE2__)
         if (Bytes == 1) {
-            add_bilinear_vector<Channels>(top, bottom, static_cast<uint32_t>(across), static_cast<uint32_t>(down),
-                                          &sums->vector);
+            add_bilinear_vector<Channels>(top, bottom, static_cast<uint32_t>(across),
+                                          static_cast<uint32_t>(down), &sums->vector);
             return;
         }
 #endif
@@ -130,7 +175,8 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
             sums->interior[c] +=
                 bilinear_channel<Bytes, Channels * Bytes>(top + c * Bytes, bottom + c * Bytes, across, down);
     } else {
-        add_border<Channels, Bytes>(level.values, width, level.height, row, column, across, down, sums->border);
+        add_border<Channels, Bytes>(level.values, width, level.height, row, column, across, down,
+                                    sums->border);
     }
 }
 
@@ -169,8 +215,9 @@ void visit(const TapGroup &group, CandidateList *list, dsn_filter_sums sums) {
                 const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y[l].start;
                 if (ux >= test_x[l].limit || uy >= test_y[l].limit) continue;
                 const uint32_t level = group.levels[l].level;
-                read_level<Channels, Bytes>(group.levels[l], (ux + (static_cast<uint64_t>(1) << level)) >> level,
-                                            (uy + (static_cast<uint64_t>(1) << level)) >> level, &level_sums[l]);
+                read_level<Channels, Bytes>(
+                    group.levels[l], (ux + (static_cast<uint64_t>(1) << level)) >> level,
+                    (uy + (static_cast<uint64_t>(1) << level)) >> level, &level_sums[l]);
             }
         }
         for (uint32_t l = 0; l < group.level_count; l++)
@@ -227,8 +274,8 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
         for (uint32_t j = 0; j < span_y.cell_count; j++) {
             const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
             CellAxis in_y;
-            if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit, lanes,
-                                  &in_y))
+            if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit,
+                                  lanes, &in_y))
                 continue;
             const uint32_t row_key = dsn_row_key(noise, cell_y);
             for (uint32_t sx = 0; sx < group.x.axis.span_count; sx++) {
@@ -236,8 +283,8 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
                     const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
                     CellAxis in_x;
-                    if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra, group.x.reach_limit,
-                                         lanes, &in_x))
+                    if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
+                                         group.x.reach_limit, lanes, &in_x))
                         list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key), lanes,
                                                    group, in_x, in_y, &list, sums);
                 }

@@ -56,8 +56,9 @@ void compare_point(const dsn_noise &noise, int64_t x, int64_t y, const dsn_footp
         for (uint32_t l = lower; l <= lower + 1 && l <= state->asset.pyramid_levels; l++) {
             dsn_level stored;
             REQUIRE(dsn_asset_level(&state->asset, l, &stored) == DSN_OK);
-            levels[count++] = dsn_walked_level{stored.values, stored.width,          stored.height,
-                                               (stored.width - 1) / 2, (stored.height - 1) / 2, l,
+            levels[count++] = dsn_walked_level{stored.values,           stored.width,
+                                               stored.height,           (stored.width - 1) / 2,
+                                               (stored.height - 1) / 2, l,
                                                stored.exponent};
         }
         dsn_filter_sums walked, sifted;

@@ -1,6 +1,8 @@
 // filtered_bench.cpp - cost of the filtered evaluation as ratios to the continuous mode per point measured
 // in the same run (RGB, 31 x 31 texton with the baker's pyramid, 30 impacts per pixel, one thread):
 // isotropic per level of detail, anisotropic per tap, and the asset's size with and without its pyramid.
+// Beside each ratio, the expected number of impulses within reach of a tap at the coarser level read,
+// lambda (2 (r_l + 1) 2^l)^2, against level 0's: the part of the cost that grows with the level.
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -56,12 +58,29 @@ int main() {
             }
         });
     };
+    // Impulses within reach of one tap reading level l (lambda = impacts / support size).
+    const double lambda = 30.0 / noise->asset.support_size;
+    auto impulses = [&](int32_t lod_q8) {
+        const uint32_t lower = uint32_t(lod_q8) >> 8, levels = noise->asset.pyramid_levels;
+        const uint32_t level = (lod_q8 & 255) != 0 && lower < levels ? lower + 1 : lower;
+        dsn_level stored;
+        if (level > levels || dsn_asset_level(&noise->asset, level, &stored) != DSN_OK) return 0.0;
+        const double spacing = std::ldexp(1.0, int(level));
+        return lambda * (stored.width + 1) * spacing * (stored.height + 1) * spacing;
+    };
+    const double level0 = impulses(0);
+    std::printf("impulses within reach of a continuous point: %.0f\n", level0);
     const double lods[] = {0, 0.5, 1, 1.5, 2, 2.5, 3, 3.5, 4, 4.5, 5};
     for (double lod : lods) {
         const double side = std::pow(2.0, lod);
         const dsn_footprint f{q32(side), 0, 0, q32(side), 1};
+        int32_t lod_q8;
+        uint32_t taps;
+        dsn_filter_level(n, &f, &lod_q8, &taps);
         const double time = filtered(f);
-        std::printf("isotropic filtered, LOD %.1f: %.2fx the continuous per point\n", lod, time / continuous);
+        std::printf(
+            "isotropic filtered, LOD %.1f: %.2fx the continuous per point, %.0f impulses in reach (%.2fx)\n",
+            lod, time / continuous, impulses(lod_q8), impulses(lod_q8) / level0);
     }
     const double ratios[] = {2, 4, 8, 16};
     const double minors[] = {1, 2, 4};
@@ -74,8 +93,9 @@ int main() {
             const double time = filtered(f);
             std::printf(
                 "anisotropic %2.0f:1, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the continuous per "
-                "point, %.2fx per tap\n",
-                ratio, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps);
+                "point, %.2fx per tap, %.0f impulses in reach of a tap (%.2fx)\n",
+                ratio, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps,
+                impulses(lod_q8), impulses(lod_q8) / level0);
         }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
