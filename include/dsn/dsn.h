@@ -76,7 +76,8 @@
                         Left at 0 there is one copy, built with the runtime's own flags.
 
    Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the
-   stack), a continuous per-point call under 2 KB, a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
+   stack), a continuous per-point call under 2 KB, a filtered per-point call or tile under 5 KB (the sums
+   of every tap), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
    (see above).
 */
 #ifndef DSN_DSN_H
@@ -424,9 +425,13 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
      In between, each level's value is normalized with 8 more fraction bits than the output, the two
      levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
      up) to Q16.16 and saturated.
-   - Cost: a level-l point visits the impulses within (r_l + 1) 2^l texels, up to 4 times more per
-     level than level 0 near the coarsest levels (the blurred texton covers more impulses); N taps cost
-     N such points. make bench reports the ratios to the continuous mode per level of detail.
+   - Cost: a level-l tap reads the impulses within (r_l + 1) 2^l texels, lambda (2 (r_l + 1) 2^l)^2 of
+     them, up to 4 times more per level than level 0 near the coarsest levels (the blurred texton
+     covers more impulses: about 2x level 0's at level 1, 3x at 2, 6x at 3, 16x at 4 for a 31 x 31
+     texton); a fractional LOD reads both levels over one walk of the coarser one's impulses. The N taps
+     of a point share one walk over the box that holds their reaches, each impulse read at every tap it
+     reaches, so a tap costs less than a point of its level alone. make bench reports the ratios to the
+     continuous mode per level of detail and per tap, with the impulse counts.
    An asset without a pyramid (format 1.0, or a 1 x 1 texton) has L = 0: the filtered evaluation then
    fades from the continuous mode (LOD 0) to the mean colour (LOD 1 and beyond).
 
