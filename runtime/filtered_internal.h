@@ -38,11 +38,18 @@ typedef struct dsn_walked_level {
    channel: the bilinear reads of the level at every impulse within its reach of the tap. */
 typedef uint64_t dsn_filter_sums[DSN_FILTER_MAX_TAPS][2][DSN_MAX_CHANNELS];
 
-/* The walk radius of a level along one axis: impulses whose floor lies within radius + 1 of the point's
-   integer part X, that is every impulse within (level radius + 1) 2^level texels (as the continuous
-   mode's radius r for level 0). */
-static inline uint32_t dsn_filter_walk_radius(uint32_t level_radius, uint32_t level) {
-    return ((level_radius + 1u) << level) - 1u;
+/* The walk radii of `count` levels along each axis: the larger of theirs, a level's being that of the
+   impulses whose floor lies within radius + 1 of the point's integer part X, that is every impulse
+   within (level radius + 1) 2^level texels (as the continuous mode's radius r for level 0). */
+static inline void dsn_filter_walk_radii(const dsn_walked_level *levels, uint32_t count, uint32_t *radius_x,
+                                         uint32_t *radius_y) {
+    *radius_x = *radius_y = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        const uint32_t rx = ((levels[i].radius_x + 1u) << levels[i].level) - 1u;
+        const uint32_t ry = ((levels[i].radius_y + 1u) << levels[i].level) - 1u;
+        *radius_x = rx > *radius_x ? rx : *radius_x;
+        *radius_y = ry > *radius_y ? ry : *radius_y;
+    }
 }
 
 /* The sums of `count` levels at each tap of the plan around (x, y), zeroed first. Two ways, the same

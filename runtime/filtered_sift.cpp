@@ -297,13 +297,8 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
 /* The taps first .. first + taps - 1 of the points (x, y) in one walk; false when they lie too far apart. */
 bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t first,
                uint32_t taps, const dsn_walked_level *levels, uint32_t count, TapGroup *group) {
-    uint32_t radius_x = 0, radius_y = 0;
-    for (uint32_t i = 0; i < count; i++) {
-        const uint32_t rx = dsn_filter_walk_radius(levels[i].radius_x, levels[i].level);
-        const uint32_t ry = dsn_filter_walk_radius(levels[i].radius_y, levels[i].level);
-        radius_x = rx > radius_x ? rx : radius_x;
-        radius_y = ry > radius_y ? ry : radius_y;
-    }
+    uint32_t radius_x, radius_y;
+    dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
     group->level_count = count;
     group->first = first;

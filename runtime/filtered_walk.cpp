@@ -77,13 +77,8 @@ inline bool impulse_offset(const WalkAxis &walk, const dsn_span &span, uint32_t 
 void level_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_walked_level *levels,
                 uint32_t count, uint64_t (*sums)[DSN_MAX_CHANNELS]) {
     const uint32_t shift = noise->cell_shift, channels = noise->asset.channels, bits = noise->asset.bits;
-    uint32_t radius_x = 0, radius_y = 0;
-    for (uint32_t i = 0; i < count; i++) {
-        const uint32_t rx = dsn_filter_walk_radius(levels[i].radius_x, levels[i].level);
-        const uint32_t ry = dsn_filter_walk_radius(levels[i].radius_y, levels[i].level);
-        radius_x = rx > radius_x ? rx : radius_x;
-        radius_y = ry > radius_y ? ry : radius_y;
-    }
+    uint32_t radius_x, radius_y;
+    dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     const WalkAxis wx = walk_axis(x, radius_x, shift, noise->period[0]);
     const WalkAxis wy = walk_axis(y, radius_y, shift, noise->period[1]);
     for (uint32_t sy = 0; sy < wy.axis.span_count; sy++) {
