@@ -41,15 +41,16 @@ inline uint64_t bilinear_channel(const unsigned char *top, const unsigned char *
 }
 
 /* The bilinear texton of every channel, as add_bilinear computes it, for 2 x 2 texels that may leave the
-   window (zero there): the same integers, each texel read with its own bounds test. */
+   window of width x height values (rows `stride` values apart; zero outside): the same integers, each
+   texel read with its own bounds test. */
 template <uint32_t Channels, uint32_t Bytes>
-inline void add_border(const unsigned char *texton, uint32_t width, uint32_t height, uint32_t row,
-                       uint32_t column, int64_t across, int64_t down, uint64_t *sums) {
+inline void add_border(const unsigned char *texton, uint32_t width, uint32_t height, uint32_t stride,
+                       uint32_t row, uint32_t column, int64_t across, int64_t down, uint64_t *sums) {
     int64_t corners[4][DSN_MAX_CHANNELS];
     for (uint32_t corner = 0; corner < 4; corner++) {
         const uint32_t at_row = row + (corner >> 1), at_column = column + (corner & 1u);
         const bool inside = at_row < height && at_column < width; /* -1 (0xFFFFFFFF) is outside too */
-        const unsigned char *at = texton + (inside ? (at_row * width + at_column) * Channels * Bytes : 0u);
+        const unsigned char *at = texton + (inside ? (at_row * stride + at_column) * Channels * Bytes : 0u);
         for (uint32_t c = 0; c < Channels; c++)
             corners[corner][c] =
                 inside ? biased_value<Bytes>(at + c * Bytes) - (static_cast<int64_t>(1) << (8u * Bytes - 1u))

@@ -155,7 +155,7 @@ void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, Candi
                         top + 2 * Bytes, bottom + 2 * Bytes, across, down);
                 }
             } else {
-                add_border<Channels, Bytes>(texton, width, height, row, column, across, down, border);
+                add_border<Channels, Bytes>(texton, width, height, width, row, column, across, down, border);
             }
         }
         buffer->lanes[word] = 0;

@@ -27,12 +27,17 @@ typedef struct dsn_filter_plan {
 int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan);
 
 /* One pyramid level as the walks read it: values at spacing 2^level texels, centred on the impulse
-   (level 0 is the texton). */
+   (level 0 is the texton): the window of width x height values from `values`, rows `stride` values
+   apart. */
 typedef struct dsn_walked_level {
     const unsigned char *values;
-    uint32_t width, height, radius_x, radius_y, level;
+    uint32_t width, height, stride, radius_x, radius_y, level;
     int32_t exponent;
 } dsn_walked_level;
+
+/* Level `level` (<= pyramid_levels) as the walks read it: its window less its all-zero margins
+   (level_margin), so the same texton with a shorter reach (filtered_point.cpp). */
+dsn_walked_level dsn_internal_walked_level(const dsn_noise_state *noise, uint32_t level);
 
 /* The sums (Q.32, stored-value units, modulo 2^64) of each tap, of each of one or two levels, of each
    channel: the bilinear reads of the level at every impulse within its reach of the tap. */

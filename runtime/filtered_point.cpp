@@ -22,20 +22,6 @@ int64_t floor_shift(int64_t value, uint32_t shift) {
     return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
 }
 
-dsn_walked_level level_of(const dsn_noise_state *noise, uint32_t level) {
-    dsn_level stored;
-    dsn_walked_level out;
-    dsn_asset_level(&noise->asset, level, &stored); /* level <= pyramid_levels: cannot fail */
-    out.values = stored.values;
-    out.width = stored.width;
-    out.height = stored.height;
-    out.radius_x = (stored.width - 1u) / 2u;
-    out.radius_y = (stored.height - 1u) / 2u;
-    out.level = level;
-    out.exponent = stored.exponent;
-    return out;
-}
-
 /* A level's sums (stored-value units, Q.32) in level-0 units: times 2^exponent, rounded to nearest
    (halves up) when that divides; modulo 2^64 as every sum. */
 uint64_t in_texton_units(uint64_t sum, int32_t exponent) {
@@ -95,9 +81,9 @@ void filtered_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, const 
     }
     /* The levels walked: the lower one, and the upper one unless it has no weight or is the mean. */
     dsn_walked_level walked[2];
-    walked[0] = level_of(noise, lower);
+    walked[0] = dsn_internal_walked_level(noise, lower);
     uint32_t count = 1;
-    if (blend != 0 && lower < levels) walked[count++] = level_of(noise, lower + 1u);
+    if (blend != 0 && lower < levels) walked[count++] = dsn_internal_walked_level(noise, lower + 1u);
     dsn_filter_sums sums;
     level_sums(noise, x, y, plan, walked, count, sums);
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
@@ -144,6 +130,60 @@ uint32_t values_written(const dsn_noise_state *noise) {
 } // namespace
 
 int dsn_internal_filtered_check(const dsn_noise_state *noise) { return dsn_internal_continuous_check(noise); }
+
+namespace {
+
+/* Whether the values of rows first .. first + rows - 1 and columns left .. left + columns - 1 are all 0. */
+bool zero_block(const dsn_level &level, uint32_t channels, uint32_t bits, uint32_t first, uint32_t rows,
+                uint32_t left, uint32_t columns) {
+    for (uint32_t row = first; row < first + rows; row++)
+        for (uint32_t index = (row * level.width + left) * channels;
+             index < (row * level.width + left + columns) * channels; index++)
+            if ((bits == 8 ? dsn_read_i8(level.values + index) : dsn_read_i16le(level.values + 2u * index)) !=
+                0)
+                return false;
+    return true;
+}
+
+} // namespace
+
+/* The margins grow while both outer columns (rows) inside the current ones are zero: a symmetric cut
+   keeps the window centred on the impulse (radius - margin on each side), so every read is the same. */
+void dsn_internal_compute_level_margins(dsn_noise_state *noise) {
+    const dsn_asset *asset = &noise->asset;
+    for (uint32_t l = 0; l <= asset->pyramid_levels && l <= DSN_PYRAMID_MAX_LEVELS; l++) {
+        dsn_level level;
+        if (dsn_asset_level(asset, l, &level) != DSN_OK) return;
+        uint32_t x = 0, y = 0;
+        while (2u * x + 2u < level.width &&
+               zero_block(level, asset->channels, asset->bits, 0, level.height, x, 1) &&
+               zero_block(level, asset->channels, asset->bits, 0, level.height, level.width - 1u - x, 1))
+            x++;
+        while (2u * y + 2u < level.height &&
+               zero_block(level, asset->channels, asset->bits, y, 1, 0, level.width) &&
+               zero_block(level, asset->channels, asset->bits, level.height - 1u - y, 1, 0, level.width))
+            y++;
+        noise->level_margin[l][0] = static_cast<uint8_t>(x);
+        noise->level_margin[l][1] = static_cast<uint8_t>(y);
+    }
+}
+
+dsn_walked_level dsn_internal_walked_level(const dsn_noise_state *noise, uint32_t level) {
+    dsn_level stored;
+    dsn_walked_level out;
+    dsn_asset_level(&noise->asset, level, &stored); /* level <= pyramid_levels: cannot fail */
+    const uint32_t margin_x = noise->level_margin[level][0], margin_y = noise->level_margin[level][1];
+    const uint32_t value_bytes = noise->asset.channels * noise->asset.bits / 8u;
+    out.values = stored.values + (margin_y * stored.width + margin_x) * value_bytes;
+    out.width = stored.width - 2u * margin_x;
+    out.height = stored.height - 2u * margin_y;
+    out.stride = stored.width;
+    out.radius_x = (out.width - 1u) / 2u;
+    out.radius_y = (out.height - 1u) / 2u;
+    out.level = level;
+    out.exponent = stored.exponent;
+    return out;
+}
 
 extern "C" {
 

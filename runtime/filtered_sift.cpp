@@ -148,7 +148,7 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
     if (Bytes == 1 && width >= 2) {
         const bool left_out = column == 0xFFFFFFFFu, right_out = column == width - 1u;
         const uint32_t first = column + (left_out ? 1u : 0u) - (right_out ? 1u : 0u);
-        const uint32_t row_size = width * Channels, top = row * row_size + first * Channels;
+        const uint32_t row_size = level.stride * Channels, top = row * row_size + first * Channels;
         sums->interior_count++;
         add_bilinear_bytes<Channels>(
             bordered_row<Channels>(level.values, top, row != 0xFFFFFFFFu, left_out, right_out),
@@ -161,8 +161,8 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
     if (row < level.height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
         /* The vector read passes a level's last value by 2 bytes: the texton and its CRC follow the
            pyramid section in the asset, so those bytes are in the buffer. */
-        const unsigned char *top = level.values + (row * width + column) * Channels * Bytes;
-        const unsigned char *bottom = top + width * Channels * Bytes;
+        const unsigned char *top = level.values + (row * level.stride + column) * Channels * Bytes;
+        const unsigned char *bottom = top + level.stride * Channels * Bytes;
         sums->interior_count++;
 #if defined(__SSE2__)
         if (Bytes == 1) {
@@ -175,8 +175,8 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
             sums->interior[c] +=
                 bilinear_channel<Bytes, Channels * Bytes>(top + c * Bytes, bottom + c * Bytes, across, down);
     } else {
-        add_border<Channels, Bytes>(level.values, width, level.height, row, column, across, down,
-                                    sums->border);
+        add_border<Channels, Bytes>(level.values, width, level.height, level.stride, row, column, across,
+                                    down, sums->border);
     }
 }
 

@@ -24,7 +24,7 @@ int64_t floor_shift_walk(int64_t value, uint32_t shift) {
 inline int64_t level_texel(const dsn_walked_level &level, uint32_t channels, uint32_t bits, uint32_t row,
                            uint32_t column, uint32_t channel) {
     if (row >= level.height || column >= level.width) return 0;
-    const uint32_t index = (row * level.width + column) * channels + channel;
+    const uint32_t index = (row * level.stride + column) * channels + channel;
     return bits == 8 ? dsn_read_i8(level.values + index) : dsn_read_i16le(level.values + 2u * index);
 }
 
