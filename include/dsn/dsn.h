@@ -425,15 +425,15 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
      In between, each level's value is normalized with 8 more fraction bits than the output, the two
      levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
      up) to Q16.16 and saturated.
-   - Cost: a level-l tap reads the impulses within (r_l + 1) 2^l texels, lambda (2 (r_l + 1) 2^l)^2 of
-     them, up to 4 times more per level than level 0 near the coarsest levels (the blurred texton
-     covers more impulses: for make bench's 31 x 31 texton and its baked pyramid about 1.9x level 0's at level
-   1, 3x at 2, 6x at 3, 16x at 4). All-zero columns and rows at the edges of a level's window (the spill often
-     quantizes to 0 there) are left out of its reach: the same values, fewer impulses (1.4x, 2.3x, 5x
-     for that texton). A fractional LOD reads both levels over one walk of the coarser one's impulses.
-     The N taps of a point share one walk over the box that holds their reaches, each impulse read at
-     every tap it reaches, so a tap costs less than a point of its level alone. make bench reports the
-     ratios to the continuous mode per level of detail and per tap, with the impulse counts.
+   - Cost: a level-l tap reads the impulses within (r_l + 1) 2^l texels, lambda (2 (r_l + 1) 2^l)^2 of them,
+     up to 4 times more per level than level 0 near the coarsest levels (the blurred texton covers more
+     impulses: for make bench's 31 x 31 texton and its baked pyramid about 1.9x level 0's at level 1, 3x at
+     2, 6x at 3, 16x at 4). All-zero columns and rows at the edges of a level's window (the spill often
+     quantizes to 0 there) are left out of its reach: the same values, fewer impulses (1.4x, 2.3x, 5x for
+     that texton). A fractional LOD reads both levels over one walk of the coarser one's impulses. The N
+     taps of a point share one walk over the box that holds their reaches, each impulse read at every tap it
+     reaches, so a tap costs less than a point of its level alone. make bench reports the ratios to the
+     continuous mode per level of detail and per tap, with the impulse counts.
    An asset without a pyramid (format 1.0, or a 1 x 1 texton) has L = 0: the filtered evaluation then
    fades from the continuous mode (LOD 0) to the mean colour (LOD 1 and beyond).
 
