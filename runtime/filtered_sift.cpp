@@ -198,30 +198,34 @@ struct TapGroup {
     TapAxis x, y;
 };
 
-/* Every tap of the group visits every listed candidate; empties the list. */
+/* Every tap of the group visits every listed candidate; empties the list. The in-reach tests of a tap
+   and level run over the whole list first, into a mask (no branch: most candidates of a long footprint's
+   box are out of one tap's reach, and the outcome would be hard to predict), then the reads follow the
+   mask's bits. */
 template <uint32_t Channels, uint32_t Bytes>
 void visit(const TapGroup &group, CandidateList *list, dsn_filter_sums sums) {
     for (uint32_t t = 0; t < group.taps; t++) {
-        LevelTest test_x[2], test_y[2];
-        LevelAccumulator level_sums[2];
         for (uint32_t l = 0; l < group.level_count; l++) {
-            test_x[l] = level_test(group.levels[l], group.levels[l].radius_x, group.x.tap_shift[t]);
-            test_y[l] = level_test(group.levels[l], group.levels[l].radius_y, group.y.tap_shift[t]);
-            clear(&level_sums[l]);
-        }
-        for (uint32_t i = 0; i < list->count; i++) {
-            for (uint32_t l = 0; l < group.level_count; l++) {
-                const uint64_t ux = static_cast<uint64_t>(list->x[i]) + test_x[l].start;
-                const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y[l].start;
-                if (ux >= test_x[l].limit || uy >= test_y[l].limit) continue;
-                const uint32_t level = group.levels[l].level;
-                read_level<Channels, Bytes>(
-                    group.levels[l], (ux + (static_cast<uint64_t>(1) << level)) >> level,
-                    (uy + (static_cast<uint64_t>(1) << level)) >> level, &level_sums[l]);
+            const dsn_walked_level &level = group.levels[l];
+            const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
+            const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
+            uint64_t in_reach = 0;
+            for (uint32_t i = 0; i < list->count; i++) {
+                const uint64_t ux = static_cast<uint64_t>(list->x[i]) + test_x.start;
+                const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y.start;
+                in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
             }
+            LevelAccumulator level_sums;
+            clear(&level_sums);
+            const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
+            for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                const uint32_t i = lowest_bit(in_reach);
+                read_level<Channels, Bytes>(
+                    level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
+                    (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, &level_sums);
+            }
+            take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
         }
-        for (uint32_t l = 0; l < group.level_count; l++)
-            take<Channels, Bytes>(level_sums[l], sums[group.first + t][l]);
     }
     list->count = 0;
 }

@@ -93,19 +93,23 @@ int main() {
     }
     const double ratios[] = {2, 4, 8, 16};
     const double minors[] = {1, 2, 4};
-    for (double minor : minors)
-        for (double ratio : ratios) {
-            const dsn_footprint f{q32(minor * ratio), 0, 0, q32(minor), 16};
-            int32_t lod_q8;
-            uint32_t taps;
-            dsn_filter_level(n, &f, &lod_q8, &taps);
-            const double time = filtered(f);
-            std::printf(
-                "anisotropic %2.0f:1, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the continuous per "
-                "point, %.2fx per tap; a tap has %s\n",
-                ratio, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps,
-                impulse_text(lod_q8));
-        }
+    // Along x, then along the diagonal (the taps' box is then widest for their reaches).
+    for (int degrees : {0, 45})
+        for (double minor : minors)
+            for (double ratio : ratios) {
+                const double c = std::cos(degrees * M_PI / 180), s = std::sin(degrees * M_PI / 180);
+                const dsn_footprint f{q32(minor * ratio * c), q32(minor * ratio * s), q32(-minor * s),
+                                      q32(minor * c), 16};
+                int32_t lod_q8;
+                uint32_t taps;
+                dsn_filter_level(n, &f, &lod_q8, &taps);
+                const double time = filtered(f);
+                std::printf(
+                    "anisotropic %2.0f:1 at %2d degrees, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the "
+                    "continuous per point, %.2fx per tap; a tap has %s\n",
+                    ratio, degrees, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps,
+                    impulse_text(lod_q8));
+            }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }
