@@ -199,12 +199,55 @@ struct TapGroup {
     TapAxis x, y;
 };
 
+/* A small level read at a single tap: the impulses' bilinear weights are added up per texel first, and
+   multiplied by the texels once at the end. The same integer: each read is sum over its 4 texels of
+   (row weight)(column weight)(value), so the sum over impulses is sum over texels of (value)(sum of
+   their weight products) modulo 2^64. Texel (R, C), R in [-1, height], C in [-1, width], has its sum at
+   (R + 1)(width + 2) + C + 1 (the border ones are never multiplied: their values are 0). The coarse
+   levels, whose reach holds the most impulses, have the smallest windows. */
+const uint32_t splat_capacity = 128;
+
+struct SplatGrid {
+    uint64_t weights[splat_capacity];
+    uint32_t level_index; /* which of the group's levels */
+};
+
+bool splat_fits(const dsn_walked_level &level) {
+    return (level.width + 2u) * (level.height + 2u) <= splat_capacity;
+}
+
+inline void splat(const dsn_walked_level &level, uint64_t shifted_x, uint64_t shifted_y, SplatGrid *grid) {
+    const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
+                   column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+    const uint64_t down = (shifted_y >> 16) & 0xFFFFu, across = (shifted_x >> 16) & 0xFFFFu;
+    const uint32_t side = level.width + 2u;
+    uint64_t *at = grid->weights + (row + 1u) * side + (column + 1u);
+    at[0] += (65536u - down) * (65536u - across);
+    at[1] += (65536u - down) * across;
+    at[side] += down * (65536u - across);
+    at[side + 1u] += down * across;
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void take_splat(const SplatGrid &grid, const dsn_walked_level &level, uint64_t *out) {
+    const uint32_t side = level.width + 2u;
+    for (uint32_t row = 0; row < level.height; row++)
+        for (uint32_t column = 0; column < level.width; column++) {
+            const uint64_t weight = grid.weights[(row + 1u) * side + column + 1u];
+            const unsigned char *at = level.values + (row * level.stride + column) * Channels * Bytes;
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int32_t value = Bytes == 1 ? dsn_read_i8(at + c) : dsn_read_i16le(at + 2u * c);
+                out[c] += weight * static_cast<uint64_t>(static_cast<int64_t>(value));
+            }
+        }
+}
+
 /* Every tap of the group visits every listed candidate; empties the list. The in-reach tests of a tap
    and level run over the whole list first, into a mask (no branch: most candidates of a long footprint's
    box are out of one tap's reach, and the outcome would be hard to predict), then the reads follow the
    mask's bits. */
 template <uint32_t Channels, uint32_t Bytes>
-void visit(const TapGroup &group, CandidateList *list, dsn_filter_sums sums) {
+void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
     for (uint32_t t = 0; t < group.taps; t++) {
         for (uint32_t l = 0; l < group.level_count; l++) {
             const dsn_walked_level &level = group.levels[l];
@@ -216,9 +259,17 @@ void visit(const TapGroup &group, CandidateList *list, dsn_filter_sums sums) {
                 const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y.start;
                 in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
             }
+            const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
+            if (grid != 0 && grid->level_index == l) {
+                for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                    const uint32_t i = lowest_bit(in_reach);
+                    splat(level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
+                          (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, grid);
+                }
+                continue;
+            }
             LevelAccumulator level_sums;
             clear(&level_sums);
-            const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
             for (; in_reach != 0; in_reach &= in_reach - 1u) {
                 const uint32_t i = lowest_bit(in_reach);
                 read_level<Channels, Bytes>(
@@ -235,7 +286,8 @@ void visit(const TapGroup &group, CandidateList *list, dsn_filter_sums sums) {
    reach the box, then those whose 16-bit positions do. */
 template <uint32_t Channels, uint32_t Bytes>
 void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const TapGroup &group,
-               const CellAxis &x, const CellAxis &y, CandidateList *list, dsn_filter_sums sums) {
+               const CellAxis &x, const CellAxis &y, CandidateList *list, SplatGrid *grid,
+               dsn_filter_sums sums) {
     const uint32_t count = dsn_cell_impulse_count(noise, key);
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
     const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
@@ -261,7 +313,7 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lan
                 static_cast<uint64_t>(y.shifted_base) - (static_cast<uint64_t>(bits_y) << position_shift);
             if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue; /* beyond every tap */
             if (list->count == (group.taps == 1 ? one_tap_buffer_size : buffer_size))
-                visit<Channels, Bytes>(group, list, sums);
+                visit<Channels, Bytes>(group, list, grid, sums);
             list->x[list->count] = static_cast<int64_t>(shifted_x);
             list->y[list->count] = static_cast<int64_t>(shifted_y);
             list->count++;
@@ -275,6 +327,14 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
     const FieldLanes lanes = field_lanes(shift);
     CandidateList list;
     list.count = 0;
+    /* One tap: its coarser level through the splat grid when that is small. */
+    SplatGrid splat_grid, *grid = 0;
+    const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
+    if (group.taps == 1 && splat_fits(coarser)) {
+        grid = &splat_grid;
+        grid->level_index = group.level_count - 1u;
+        for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
+    }
     for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
         for (uint32_t j = 0; j < span_y.cell_count; j++) {
@@ -292,12 +352,13 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
                     if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
                                          group.x.reach_limit, lanes, &in_x))
                         list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key), lanes,
-                                                   group, in_x, in_y, &list, sums);
+                                                   group, in_x, in_y, &list, grid, sums);
                 }
             }
         }
     }
-    visit<Channels, Bytes>(group, &list, sums);
+    visit<Channels, Bytes>(group, &list, grid, sums);
+    if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
 }
 
 /* The taps first .. first + taps - 1 of the points (x, y) in one walk; false when they lie too far apart. */
