@@ -76,7 +76,7 @@
                         Left at 0 there is one copy, built with the runtime's own flags.
 
    Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the
-   stack), a continuous per-point call under 2 KB, a filtered per-point call or tile under 5 KB (the sums
+   stack), a continuous per-point call under 2 KB, a filtered per-point call or tile under 6 KB (the sums
    of every tap), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
    (see above).
 */
