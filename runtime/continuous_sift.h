@@ -27,6 +27,20 @@ inline PointAxis point_axis(uint64_t coordinate, uint32_t radius, uint32_t shift
     return point;
 }
 
+/* Offset (Q32.32) from an impulse to the point along one axis, given the impulse's cell origin and its
+   16-bit in-cell position; false when the impulse lies beyond the period (discarded, as in lattice mode).
+   The point is at window index 1, that is at texton index 1 + base - p for an impulse at lattice p. */
+inline bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_t cell_origin,
+                           uint32_t bits16, int64_t *offset) {
+    const uint32_t shift = point.axis.shift;
+    if (cell_origin + (bits16 >> (16u - shift)) > span.last_position) return false;
+    const uint32_t whole = 1u + span.base - point.axis.radius - cell_origin; /* X - cell origin, mod 2^32 */
+    const int64_t in_cell = static_cast<int64_t>(static_cast<uint64_t>(bits16) << (16u + shift));
+    *offset = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
+              static_cast<int64_t>(point.fraction) - in_cell;
+    return true;
+}
+
 #if !DSN_SMALL_CODE
 /* Floor of value / 2^shift (1 <= shift <= 63) for a value far from the int64 limits, without shifting
    a negative number (implementation-defined): through a 2^63 bias, as dsn_round_saturate does. */

@@ -6,6 +6,7 @@
 #include "bilinear_texton.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
+#include "continuous_sift.h"
 #include "filtered_internal.h"
 #include "impulse_position.h"
 #include "poisson_count.h"
@@ -47,40 +48,14 @@ inline void add_level(const dsn_walked_level &level, uint32_t channels, uint32_t
     }
 }
 
-/* One axis of the walk: the cells around the point's integer part for this radius, and its fraction. */
-struct WalkAxis {
-    dsn_axis axis;
-    uint32_t fraction;
-};
-
-WalkAxis walk_axis(uint64_t coordinate, uint32_t radius, uint32_t shift, uint32_t period) {
-    WalkAxis walk;
-    walk.fraction = static_cast<uint32_t>(coordinate);
-    dsn_axis_init(&walk.axis, static_cast<uint32_t>(coordinate >> 32) - 1u, 3u, radius, shift, period);
-    return walk;
-}
-
-/* Offset (Q32.32) from an impulse at 16-bit in-cell position bits16 of the cell at cell_origin to the
-   point, as the continuous mode computes it; false beyond the period (the impulse is discarded). */
-inline bool impulse_offset(const WalkAxis &walk, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
-                           int64_t *offset) {
-    const uint32_t shift = walk.axis.shift;
-    if (cell_origin + (bits16 >> (16u - shift)) > span.last_position) return false;
-    const uint32_t whole = 1u + span.base - walk.axis.radius - cell_origin; /* X - cell origin, mod 2^32 */
-    const int64_t in_cell = static_cast<int64_t>(static_cast<uint64_t>(bits16) << (16u + shift));
-    *offset = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
-              static_cast<int64_t>(walk.fraction) - in_cell;
-    return true;
-}
-
 /* The sums of one or two levels at the point (x, y), over every impulse within reach of either. */
 void level_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_walked_level *levels,
                 uint32_t count, uint64_t (*sums)[DSN_MAX_CHANNELS]) {
     const uint32_t shift = noise->cell_shift, channels = noise->asset.channels, bits = noise->asset.bits;
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
-    const WalkAxis wx = walk_axis(x, radius_x, shift, noise->period[0]);
-    const WalkAxis wy = walk_axis(y, radius_y, shift, noise->period[1]);
+    const PointAxis wx = point_axis(x, radius_x, shift, noise->period[0]);
+    const PointAxis wy = point_axis(y, radius_y, shift, noise->period[1]);
     for (uint32_t sy = 0; sy < wy.axis.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&wy.axis, sy);
         for (uint32_t j = 0; j < span_y.cell_count; j++) {
