@@ -3,6 +3,7 @@
    point walks its impulses one by one; the fast build sifts them on their packed lattice fields first
    (evaluate_fast) and, on SSE2, interpolates 8-bit textons on vectors. Also the API's mode check and
    per-point functions. */
+#include "bilinear_read.h"
 #include "bilinear_texton.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
@@ -11,29 +12,11 @@
 #include "normalize_fixed.h"
 #include "poisson_count.h"
 
-#if !DSN_SMALL_CODE && defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace {
 
 /* ---- Walking the impulses around one point ---- */
 
 #if DSN_SMALL_CODE
-/* Offset (Q32.32) from an impulse to the point along one axis, given the impulse's cell origin and its
-   16-bit in-cell position; false when the impulse lies beyond the period (discarded, as in lattice mode).
-   The point is at window index 1, that is at texton index 1 + base - p for an impulse at lattice p. */
-bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
-                    int64_t *offset) {
-    const uint32_t shift = point.axis.shift;
-    if (cell_origin + (bits16 >> (16u - shift)) > span.last_position) return false;
-    const uint32_t whole = 1u + span.base - point.axis.radius - cell_origin; /* X - cell origin, mod 2^32 */
-    const int64_t in_cell = static_cast<int64_t>(static_cast<uint64_t>(bits16) << (16u + shift));
-    *offset = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
-              static_cast<int64_t>(point.fraction) - in_cell;
-    return true;
-}
-
 /* Both steps along one axis: the texels that bracket the impulse (see bracket), or false when it lies
    beyond the period or out of reach. */
 bool impulse_bracket(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
@@ -86,134 +69,8 @@ namespace {
    The same impulses, offsets and weights as the small build's walk above (so the same bits; integer sums do
    not depend on the order), found with less work: each position pair is hashed once for all the impulses it
    holds, all of them are tested against the point at once on their lattice fields (which bound the 16-bit
-   positions to within one texel), and only the candidates get their fraction hash and the exact test. */
-
-/* Stored value (8- or 16-bit) plus 2^(8 Bytes - 1), as an unsigned number: flipping the sign bit of a
-   two's-complement value (one operation; sign-extending it takes more). */
-template <uint32_t Bytes>
-inline int64_t biased_value(const unsigned char *at) {
-    if (Bytes == 1) return static_cast<int64_t>(at[0] ^ 0x80u);
-    return static_cast<int64_t>((at[0] | (static_cast<uint32_t>(at[1]) << 8)) ^ 0x8000u);
-}
-
-/* One channel of the bilinear texton (as add_bilinear) of the biased values, with its top-left texel at
-   `top`, the texel right of it Stride bytes further, the row below at `bottom`: the weights add up to
-   2^32, so it is the texton's plus 2^(32 + 8 Bytes - 1) exactly (the caller takes that off). The
-   interpolation is rewritten with one product per step, (65536 - w) a + w b = 65536 a + w (b - a): the
-   same integers. */
-template <uint32_t Bytes, uint32_t Stride>
-inline uint64_t bilinear_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
-                                 int64_t down) {
-    const int64_t top_left = biased_value<Bytes>(top), bottom_left = biased_value<Bytes>(bottom);
-    const int64_t upper = top_left * 65536 + across * (biased_value<Bytes>(top + Stride) - top_left);
-    const int64_t lower = bottom_left * 65536 + across * (biased_value<Bytes>(bottom + Stride) - bottom_left);
-    return static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
-}
-
-/* The bilinear texton of every channel, as add_bilinear computes it, for 2 x 2 texels that may leave the
-   window (zero there): the same integers, each texel read with its own bounds test. */
-template <uint32_t Channels, uint32_t Bytes>
-inline void add_border(const unsigned char *texton, uint32_t width, uint32_t height, uint32_t row,
-                       uint32_t column, int64_t across, int64_t down, uint64_t *sums) {
-    int64_t corners[4][DSN_MAX_CHANNELS];
-    for (uint32_t corner = 0; corner < 4; corner++) {
-        const uint32_t at_row = row + (corner >> 1), at_column = column + (corner & 1u);
-        const bool inside = at_row < height && at_column < width; /* -1 (0xFFFFFFFF) is outside too */
-        const unsigned char *at = texton + (inside ? (at_row * width + at_column) * Channels * Bytes : 0u);
-        for (uint32_t c = 0; c < Channels; c++)
-            corners[corner][c] =
-                inside ? biased_value<Bytes>(at + c * Bytes) - (static_cast<int64_t>(1) << (8u * Bytes - 1u))
-                       : 0;
-    }
-    for (uint32_t c = 0; c < Channels; c++) {
-        const int64_t upper = (65536 - across) * corners[0][c] + across * corners[1][c];
-        const int64_t lower = (65536 - across) * corners[2][c] + across * corners[3][c];
-        sums[c] += static_cast<uint64_t>((65536 - down) * upper + down * lower);
-    }
-}
-
-#if defined(__SSE2__)
-/* ---- The bilinear texton of 8-bit values on SSE2 vectors ----
-   The same integers as bilinear_channel, exactly, with every channel at once. The biased values v
-   (0..255) of the two texels of a row sit in 16-bit lanes as pairs (left, right), one pair per
-   channel; the row's interpolation (65536 - across) left + across right is a dot product with the
-   weight pair, each weight w split as 128 (w >> 7) + (w & 127) so that both parts fit signed 16-bit
-   lanes (w >> 7 <= 512): two _mm_madd_epi16, exact in 32 bits (below 2^24). The column's interpolation
-   (65536 - down) upper + down lower, below 2^41, takes 64-bit lanes (_mm_mul_epu32, unsigned: every
-   term is non-negative). Reads: 8 bytes from a row's first texel (RGB: the 6 needed and 2 more) or 4
-   (grey: 2 and 2 more); past the texton's last row they reach at most 2 bytes into the asset's 4-byte
-   CRC, which the loader guarantees lies in the buffer right after the texton (format.h: total_size). */
-struct BilinearSums {
-    __m128i even, odd; /* 64-bit lanes: channels 0 and 2; channel 1 (RGB) or the lower row (grey) */
-};
-
-/* A row's texels as (left, right) 16-bit pairs of biased values, one pair per channel (lanes past the
-   channels hold garbage, never used). */
-template <uint32_t Channels>
-inline __m128i row_pairs(const unsigned char *row) {
-    __m128i bytes;
-    if (Channels == 3) {
-        bytes = _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(row)));
-    } else {
-        uint32_t word;
-        __builtin_memcpy(&word, row, sizeof word);
-        bytes = _mm_cvtsi32_si128(static_cast<int>(word)); /* the bits unchanged */
-    }
-    const __m128i values = _mm_unpacklo_epi8(_mm_xor_si128(bytes, _mm_set1_epi8(-128)), _mm_setzero_si128());
-    /* grey: (left, right) already; RGB: left channels in lanes 0-2, right ones in lanes 3-5 */
-    return Channels == 3 ? _mm_unpacklo_epi16(values, _mm_srli_si128(values, 6)) : values;
-}
-
-/* A weight pair (65536 - w, w) as its two parts: high parts (w >> 7) and low parts (w & 127), each
-   broadcast as a (left, right) pair of 16-bit lanes. */
-inline void weight_parts(uint32_t weight, __m128i *high, __m128i *low) {
-    const uint32_t left = 65536u - weight;
-    *high = _mm_set1_epi32(static_cast<int>((left >> 7) | ((weight >> 7) << 16)));
-    *low = _mm_set1_epi32(static_cast<int>((left & 127u) | ((weight & 127u) << 16)));
-}
-
-/* (65536 - w) left + w right of every pair, in 32-bit lanes. */
-inline __m128i interpolate_pairs(__m128i pairs, __m128i high, __m128i low) {
-    return _mm_add_epi32(_mm_slli_epi32(_mm_madd_epi16(pairs, high), 7), _mm_madd_epi16(pairs, low));
-}
-
-template <uint32_t Channels>
-inline void add_bilinear_vector(const unsigned char *top, const unsigned char *bottom, uint32_t across,
-                                uint32_t down, BilinearSums *sums) {
-    __m128i high, low;
-    weight_parts(across, &high, &low);
-    const __m128i down_weights = _mm_set_epi32(0, static_cast<int>(down), 0, static_cast<int>(65536u - down));
-    if (Channels == 3) {
-        const __m128i upper = interpolate_pairs(row_pairs<3>(top), high, low);
-        const __m128i lower = interpolate_pairs(row_pairs<3>(bottom), high, low);
-        const __m128i up_weight = _mm_shuffle_epi32(down_weights, 0x00),
-                      down_weight = _mm_shuffle_epi32(down_weights, 0xAA);
-        sums->even = _mm_add_epi64(
-            sums->even, _mm_add_epi64(_mm_mul_epu32(upper, up_weight), _mm_mul_epu32(lower, down_weight)));
-        sums->odd =
-            _mm_add_epi64(sums->odd, _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(upper, 32), up_weight),
-                                                   _mm_mul_epu32(_mm_srli_epi64(lower, 32), down_weight)));
-    } else {
-        /* lanes: upper, lower; spread to 64-bit lanes, each times its weight */
-        const __m128i rows =
-            interpolate_pairs(_mm_unpacklo_epi32(row_pairs<1>(top), row_pairs<1>(bottom)), high, low);
-        sums->even = _mm_add_epi64(sums->even, _mm_mul_epu32(_mm_shuffle_epi32(rows, 0x10), down_weights));
-    }
-}
-
-/* The channel sums of the vector's lanes (modulo 2^64). */
-template <uint32_t Channels>
-inline void take_bilinear_sums(const BilinearSums &sums, uint64_t *out) {
-    uint64_t even[2], odd[2];
-    __builtin_memcpy(even, &sums.even, sizeof even);
-    __builtin_memcpy(odd, &sums.odd, sizeof odd);
-    if (Channels == 3) {
-        out[0] = even[0], out[1] = odd[0], out[2] = even[1];
-    } else {
-        out[0] = even[0] + even[1];
-    }
-}
-#endif
+   positions to within one texel), and only the candidates get their fraction hash and the exact test.
+   The texels are read by bilinear_read.h. */
 
 /* The candidates of up to 16 pairs (the usual point has 9 cells of 1 or 2 pairs) wait in a buffer and
    are visited all together: the loop over them then ends once per buffer rather than once per pair, and
@@ -284,7 +141,7 @@ void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, Candi
                         top + 2 * Bytes, bottom + 2 * Bytes, across, down);
                 }
             } else {
-                add_border<Channels, Bytes>(texton, width, height, row, column, across, down, border);
+                add_border<Channels, Bytes>(texton, width, height, width, row, column, across, down, border);
             }
         }
         buffer->lanes[word] = 0;

@@ -27,6 +27,20 @@ inline PointAxis point_axis(uint64_t coordinate, uint32_t radius, uint32_t shift
     return point;
 }
 
+/* Offset (Q32.32) from an impulse to the point along one axis, given the impulse's cell origin and its
+   16-bit in-cell position; false when the impulse lies beyond the period (discarded, as in lattice mode).
+   The point is at window index 1, that is at texton index 1 + base - p for an impulse at lattice p. */
+inline bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_t cell_origin,
+                           uint32_t bits16, int64_t *offset) {
+    const uint32_t shift = point.axis.shift;
+    if (cell_origin + (bits16 >> (16u - shift)) > span.last_position) return false;
+    const uint32_t whole = 1u + span.base - point.axis.radius - cell_origin; /* X - cell origin, mod 2^32 */
+    const int64_t in_cell = static_cast<int64_t>(static_cast<uint64_t>(bits16) << (16u + shift));
+    *offset = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
+              static_cast<int64_t>(point.fraction) - in_cell;
+    return true;
+}
+
 #if !DSN_SMALL_CODE
 /* Floor of value / 2^shift (1 <= shift <= 63) for a value far from the int64 limits, without shifting
    a negative number (implementation-defined): through a 2^63 bias, as dsn_round_saturate does. */
@@ -66,16 +80,15 @@ struct CellAxis {
     uint64_t low_lanes, high_lanes;
 };
 
-/* False when no impulse of the cell can reach the point along this axis. */
-inline bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cell, const FieldLanes &lanes,
-                      CellAxis *out) {
-    const uint32_t shift = point.axis.shift, origin = cell << shift;
-    const uint32_t whole = 1u + span.base - point.axis.radius - origin; /* as in impulse_offset */
-    const int64_t reach_limit =
-        static_cast<int64_t>(2u * point.axis.radius + 2u) * static_cast<int64_t>(one_texel);
-    out->shifted_base = static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) +
-                        static_cast<int64_t>(point.fraction) +
-                        static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel);
+/* The sifting of cell_axis for any reach: an impulse of the cell at in-cell position b is in reach when
+   0 < (X - cell origin) one_texel + base_extra - b 2^(16 + shift) < reach_limit, X the window's start + 1
+   (span.base - radius + 1). False when no impulse of the cell can be. */
+inline bool cell_axis_within(const dsn_axis &axis, const dsn_span &span, uint32_t cell, int64_t base_extra,
+                             int64_t reach_limit, const FieldLanes &lanes, CellAxis *out) {
+    const uint32_t shift = axis.shift, origin = cell << shift;
+    const uint32_t whole = 1u + span.base - axis.radius - origin; /* as in impulse_offset */
+    out->shifted_base =
+        static_cast<int64_t>(dsn_signed_sum(whole)) * static_cast<int64_t>(one_texel) + base_extra;
     /* With step = 2^(32 + shift - half_bits) (the offset's change per unit of h, at most one texel) and
        the rest of b taking less than a step: h is in reach only when h step < shifted_base and
        h step + step > shifted_base - reach_limit - step. */
@@ -92,6 +105,14 @@ inline bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cel
     out->low_lanes = lanes.ones * first;
     out->high_lanes = (lanes.ones * static_cast<uint64_t>(high)) | lanes.tops;
     return true;
+}
+
+/* False when no impulse of the cell can reach the point along this axis. */
+inline bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cell, const FieldLanes &lanes,
+                      CellAxis *out) {
+    const int64_t reach = static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel);
+    return cell_axis_within(point.axis, span, cell, static_cast<int64_t>(point.fraction) + reach, 2 * reach,
+                            lanes, out);
 }
 
 /* The lanes of a pair whose halves (x low, y high) may reach the point: their top bits. */

@@ -1,6 +1,7 @@
 /* runtime/filtered_internal.h - what the files of the filtered evaluation share: the plan of one
-   footprint (level of detail, taps and their spacing, computed in filter_footprint.cpp) and the
-   filtered point evaluator (filtered_point.cpp) that the tile calls at each grid point. The mathematics
+   footprint (level of detail, taps and their spacing, computed in filter_footprint.cpp), the levels'
+   sums at the taps (filtered_walk.cpp, filtered_sift.cpp) and the filtered point evaluator
+   (filtered_point.cpp) that the tile calls at each grid point. The mathematics
    is documented in dsn.h ("Filtered evaluation"). Compiled only with DSN_FILTERING. Internal to libdsn;
    not installed. */
 #ifndef DSN_FILTERED_INTERNAL_H
@@ -25,6 +26,50 @@ typedef struct dsn_filter_plan {
    (filter_footprint.cpp). */
 int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan);
 
+/* One pyramid level as the walks read it: values at spacing 2^level texels, centred on the impulse
+   (level 0 is the texton): the window of width x height values from `values`, rows `stride` values
+   apart. */
+typedef struct dsn_walked_level {
+    const unsigned char *values;
+    uint32_t width, height, stride, radius_x, radius_y, level;
+    int32_t exponent;
+} dsn_walked_level;
+
+/* Level `level` (<= pyramid_levels) as the walks read it: its window less its all-zero margins
+   (level_margin), so the same texton with a shorter reach (filtered_point.cpp). */
+dsn_walked_level dsn_internal_walked_level(const dsn_noise_state *noise, uint32_t level);
+
+/* The sums (Q.32, stored-value units, modulo 2^64) of each tap, of each of one or two levels, of each
+   channel: the bilinear reads of the level at every impulse within its reach of the tap. */
+typedef uint64_t dsn_filter_sums[DSN_FILTER_MAX_TAPS][2][DSN_MAX_CHANNELS];
+
+/* The walk radii of `count` levels along each axis: the larger of theirs, a level's being that of the
+   impulses whose floor lies within radius + 1 of the point's integer part X, that is every impulse
+   within (level radius + 1) 2^level texels (as the continuous mode's radius r for level 0). */
+static inline void dsn_filter_walk_radii(const dsn_walked_level *levels, uint32_t count, uint32_t *radius_x,
+                                         uint32_t *radius_y) {
+    *radius_x = *radius_y = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        const uint32_t rx = ((levels[i].radius_x + 1u) << levels[i].level) - 1u;
+        const uint32_t ry = ((levels[i].radius_y + 1u) << levels[i].level) - 1u;
+        *radius_x = rx > *radius_x ? rx : *radius_x;
+        *radius_y = ry > *radius_y ? ry : *radius_y;
+    }
+}
+
+/* The sums of `count` levels at each tap of the plan around (x, y), zeroed first. Two ways, the same
+   integers: tap by tap, impulse by impulse (filtered_walk.cpp: the small build's, and the reference
+   of the tests), and, in the fast build, every tap at once over impulses sifted on their lattice
+   fields (filtered_sift.cpp). */
+void dsn_internal_filter_sums_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                     const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                     uint32_t count, dsn_filter_sums sums);
+#if !DSN_SMALL_CODE
+void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                     const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                     uint32_t count, dsn_filter_sums sums);
+#endif
+
 /* DSN_OK when the filtered functions may evaluate `noise` (the continuous mode's check). */
 int dsn_internal_filtered_check(const dsn_noise_state *noise);
 
@@ -32,6 +77,10 @@ int dsn_internal_filtered_check(const dsn_noise_state *noise);
    (filtered_point.cpp). */
 void dsn_internal_filtered_point(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                  const dsn_filter_plan *plan, int32_t *out);
+
+/* The same bits through dsn_internal_filter_sums_walked in every build (the tests' reference). */
+void dsn_internal_filtered_point_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                        const dsn_filter_plan *plan, int32_t *out);
 
 #endif /* DSN_FILTERING */
 

@@ -16,6 +16,11 @@ void dsn_internal_build_poisson_table(dsn_noise_state *noise, uint64_t cell_mean
 /* Fills gain_shift, gain and offset from the asset, impacts_q16 and flags. */
 void dsn_internal_compute_normalization(dsn_noise_state *noise);
 
+#if DSN_FILTERING
+/* Fills level_margin from the asset's levels (filtered_point.cpp). */
+void dsn_internal_compute_level_margins(dsn_noise_state *noise);
+#endif
+
 /* The loader's checks of channels, bits, shape, interpolation and width/height (format.h step 9, in
    that order): the first failure, or DSN_OK and the number of support points. dsn_noise_init runs them
    again on an asset it did not see loaded. */

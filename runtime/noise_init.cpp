@@ -123,5 +123,8 @@ extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const d
     noise->cell_shift = choose_cell_shift(asset, impacts, &mean_q32);
     dsn_internal_build_poisson_table(noise, mean_q32);
     dsn_internal_compute_normalization(noise);
+#if DSN_FILTERING
+    dsn_internal_compute_level_margins(noise);
+#endif
     return DSN_OK;
 }

@@ -31,6 +31,9 @@ struct dsn_noise_state {
     /* The filtered evaluation (DSN_FILTERING): offset of pyramid level l + 1, as `offset` is level 0's
        (the mean minus the level's own expected sum; zero without DSN_FILTERING or without a pyramid). */
     int64_t level_offset[8][3];
+    /* The filtered evaluation: per level 0 .. 8, the all-zero columns (x) and rows (y) on each side of
+       its window, read as if absent (the same values, a shorter reach). */
+    uint8_t level_margin[9][2];
 };
 
 static_assert(sizeof(dsn_noise_state) <= sizeof(dsn_noise), "dsn_noise must hold dsn_noise_state");

@@ -82,7 +82,8 @@
                         Left at 0 there is one copy, built with the runtime's own flags.
 
    Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the
-   stack), a continuous per-point call under 2 KB, a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
+   stack), a continuous per-point call under 2 KB, a filtered per-point call or tile under 6 KB (the sums
+   of every tap), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
    (see above).
 */
 #ifndef DSN_DSN_H
@@ -214,7 +215,7 @@ void dsn_config_defaults(dsn_config *config);
    versions: copy it with memcpy if needed, never read or write its words. It keeps a pointer to the
    asset's texton (the caller's buffer), and init records which copy of the tile code the CPU runs (x86-64:
    AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
-#define DSN_NOISE_WORDS 128 /* 64-bit words: DSN_NOISE_BYTES = 1024 */
+#define DSN_NOISE_WORDS 144 /* 64-bit words: DSN_NOISE_BYTES = 1152 */
 #define DSN_NOISE_BYTES (DSN_NOISE_WORDS * 8)
 typedef union dsn_noise {
     uint64_t words[DSN_NOISE_WORDS];
@@ -458,9 +459,15 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
      levels are blended and the taps averaged in 64-bit integers, and the result is rounded once (half
      up) to Q16.16 and saturated. An asset with a histogram mapping then maps that value through the
      two levels' tables, and fades to its own colour (see "Histogram-preserving output" below).
-   - Cost: a level-l point visits the impulses within (r_l + 1) 2^l texels, up to 4 times more per
-     level than level 0 near the coarsest levels (the blurred texton covers more impulses); N taps cost
-     N such points. make bench reports the ratios to the continuous mode per level of detail.
+   - Cost: a level-l tap reads the impulses within (r_l + 1) 2^l texels, lambda (2 (r_l + 1) 2^l)^2 of them,
+     up to 4 times more per level than level 0 near the coarsest levels (the blurred texton covers more
+     impulses: for make bench's 31 x 31 texton and its baked pyramid about 1.9x level 0's at level 1, 3x at
+     2, 6x at 3, 16x at 4). All-zero columns and rows at the edges of a level's window (the spill often
+     quantizes to 0 there) are left out of its reach: the same values, fewer impulses (1.4x, 2.3x, 5x for
+     that texton). A fractional LOD reads both levels over one walk of the coarser one's impulses. The N
+     taps of a point share one walk over the box that holds their reaches, each impulse read at every tap it
+     reaches, so a tap costs less than a point of its level alone. make bench reports the ratios to the
+     continuous mode per level of detail and per tap, with the impulse counts.
    An asset without a pyramid (format 1.0, or a 1 x 1 texton) has L = 0: the filtered evaluation then
    fades from the continuous mode (LOD 0) to the mean colour (LOD 1 and beyond).
 

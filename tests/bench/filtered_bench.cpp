@@ -1,11 +1,14 @@
 // filtered_bench.cpp - cost of the filtered evaluation as ratios to the continuous mode per point measured
 // in the same run (RGB, 31 x 31 texton with the baker's pyramid, 30 impacts per pixel, one thread):
 // isotropic per level of detail, anisotropic per tap, and the asset's size with and without its pyramid.
+// Beside each ratio, the expected number of impulses within reach of a tap at the coarser level read,
+// lambda (2 (r_l + 1) 2^l)^2, against level 0's: the part of the cost that grows with the level.
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "../../offline/bake_internal.h"
+#include "../../runtime/filtered_internal.h"
 #include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
 
@@ -56,27 +59,57 @@ int main() {
             }
         });
     };
+    // Impulses within reach of one tap reading level l (lambda = impacts / support size), with the
+    // window the evaluation reads (its all-zero margins cut) or the stored one.
+    const double lambda = 30.0 / noise->asset.support_size;
+    auto impulses = [&](int32_t lod_q8, bool stored_window) {
+        const uint32_t lower = uint32_t(lod_q8) >> 8, levels = noise->asset.pyramid_levels;
+        const uint32_t level = (lod_q8 & 255) != 0 && lower < levels ? lower + 1 : lower;
+        dsn_level stored;
+        if (level > levels || dsn_asset_level(&noise->asset, level, &stored) != DSN_OK) return 0.0;
+        const dsn_walked_level read = dsn_internal_walked_level(dsn_state(n), level);
+        const double spacing = std::ldexp(1.0, int(level));
+        return stored_window ? lambda * (stored.width + 1) * spacing * (stored.height + 1) * spacing
+                             : lambda * (read.width + 1) * spacing * (read.height + 1) * spacing;
+    };
+    auto impulse_text = [&](int32_t lod_q8) {
+        static char text[96];
+        std::snprintf(text, sizeof text, "%.0f impulses in reach (%.2fx; stored window %.2fx)",
+                      impulses(lod_q8, false), impulses(lod_q8, false) / impulses(0, false),
+                      impulses(lod_q8, true) / impulses(0, false));
+        return text;
+    };
+    std::printf("impulses within reach of a continuous point: %.0f\n", impulses(0, true));
     const double lods[] = {0, 0.5, 1, 1.5, 2, 2.5, 3, 3.5, 4, 4.5, 5};
     for (double lod : lods) {
         const double side = std::pow(2.0, lod);
         const dsn_footprint f{q32(side), 0, 0, q32(side), 1};
+        int32_t lod_q8;
+        uint32_t taps;
+        dsn_filter_level(n, &f, &lod_q8, &taps);
         const double time = filtered(f);
-        std::printf("isotropic filtered, LOD %.1f: %.2fx the continuous per point\n", lod, time / continuous);
+        std::printf("isotropic filtered, LOD %.1f: %.2fx the continuous per point, %s\n", lod,
+                    time / continuous, impulse_text(lod_q8));
     }
     const double ratios[] = {2, 4, 8, 16};
     const double minors[] = {1, 2, 4};
-    for (double minor : minors)
-        for (double ratio : ratios) {
-            const dsn_footprint f{q32(minor * ratio), 0, 0, q32(minor), 16};
-            int32_t lod_q8;
-            uint32_t taps;
-            dsn_filter_level(n, &f, &lod_q8, &taps);
-            const double time = filtered(f);
-            std::printf(
-                "anisotropic %2.0f:1, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the continuous per "
-                "point, %.2fx per tap\n",
-                ratio, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps);
-        }
+    // Along x, then along the diagonal (the taps' box is then widest for their reaches).
+    for (int degrees : {0, 45})
+        for (double minor : minors)
+            for (double ratio : ratios) {
+                const double c = std::cos(degrees * M_PI / 180), s = std::sin(degrees * M_PI / 180);
+                const dsn_footprint f{q32(minor * ratio * c), q32(minor * ratio * s), q32(-minor * s),
+                                      q32(minor * c), 16};
+                int32_t lod_q8;
+                uint32_t taps;
+                dsn_filter_level(n, &f, &lod_q8, &taps);
+                const double time = filtered(f);
+                std::printf(
+                    "anisotropic %2.0f:1 at %2d degrees, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the "
+                    "continuous per point, %.2fx per tap; a tap has %s\n",
+                    ratio, degrees, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps,
+                    impulse_text(lod_q8));
+            }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }

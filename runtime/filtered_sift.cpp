@@ -1,0 +1,417 @@
+/* runtime/filtered_sift.cpp - the fast build's levels' sums at the taps of a filtered point: every tap at
+   once. The cells of the box that holds every tap's reach are walked once, their impulses sifted on
+   their packed lattice fields against that box (continuous_sift.h), and each candidate is then tested
+   against each tap and each level exactly and read where in reach (bilinear_read.h). The same impulses,
+   offsets and integers as the tap-by-tap walk (filtered_walk.cpp), so the same sums: integer sums modulo
+   2^64 do not depend on the order. Compiled only with DSN_FILTERING in the fast build. */
+#include "bilinear_read.h"
+#include "cell_walk.h"
+#include "continuous_internal.h"
+#include "continuous_sift.h"
+#include "filtered_internal.h"
+#include "impulse_position.h"
+#include "normalize_fixed.h"
+#include "poisson_count.h"
+
+#if DSN_FILTERING && !DSN_SMALL_CODE
+
+namespace {
+
+/* Taps whose integer parts lie further apart than this along an axis (never, under the footprint rules,
+   below the mean colour's level of detail; or across the int32 seam of the coordinates, where the walk
+   reduces each tap on its own side) are summed one by one: every offset then stays far below 2^31
+   texels, so the box's offsets plus the taps' distances are the walk's offsets exactly. */
+const int64_t tap_spread_limit = static_cast<int64_t>(1) << 20;
+
+/* Candidates wait in a buffer, then each tap visits all of them with its own tests in registers: up to
+   64 (one bit each in a tap's mask) for several taps, 32 for one (measured faster there). */
+const uint32_t buffer_size = 64, one_tap_buffer_size = 32;
+
+/* One axis of the taps summed together: the walk's window from the lowest tap's X - 1 to the highest
+   tap's X + 1 with the walk radius R; an impulse's candidate value c (the offset from the box's
+   start, shifted so that 0 < c < reach_limit holds for every impulse within R + 1 texels of a tap) and
+   each tap's offset to it: the tap's offset to the impulse is c - tap_shift[tap]. */
+struct TapAxis {
+    dsn_axis axis;
+    int64_t base_extra, reach_limit;
+    int64_t tap_shift[DSN_FILTER_MAX_TAPS];
+};
+
+/* False when the taps lie too far apart (tap_spread_limit). The walk reads tap t's integer part as
+   S_t = int32(X_t - 1) and its offset to an impulse at integer position p (its copy's) as
+   (S_t + 1 - p) 2^32 + fraction_t - in_cell; with S the lowest S_t that is
+   (S + 1 - p) 2^32 - in_cell + relative_t, relative_t = (S_t - S) 2^32 + fraction_t. */
+bool tap_axis(const uint64_t *coordinates, uint32_t taps, uint32_t radius, uint32_t shift, uint32_t period,
+              TapAxis *out) {
+    int64_t starts[DSN_FILTER_MAX_TAPS];
+    int64_t lowest = 0, highest = 0;
+    for (uint32_t t = 0; t < taps; t++) {
+        starts[t] = dsn_signed_sum(static_cast<uint32_t>(coordinates[t] >> 32) - 1u);
+        lowest = t == 0 || starts[t] < lowest ? starts[t] : lowest;
+        highest = t == 0 || starts[t] > highest ? starts[t] : highest;
+    }
+    if (highest - lowest > tap_spread_limit) return false;
+    int64_t relative[DSN_FILTER_MAX_TAPS], least = 0, most = 0;
+    for (uint32_t t = 0; t < taps; t++) {
+        relative[t] = (starts[t] - lowest) * static_cast<int64_t>(one_texel) +
+                      static_cast<int64_t>(static_cast<uint32_t>(coordinates[t]));
+        least = t == 0 || relative[t] < least ? relative[t] : least;
+        most = t == 0 || relative[t] > most ? relative[t] : most;
+    }
+    dsn_axis_init(&out->axis, static_cast<uint32_t>(static_cast<uint64_t>(lowest)),
+                  static_cast<uint32_t>(highest - lowest) + 3u, radius, shift, period);
+    const int64_t reach = static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel);
+    out->base_extra = most + reach;
+    out->reach_limit = 2 * reach + most - least;
+    for (uint32_t t = 0; t < taps; t++) out->tap_shift[t] = reach + most - relative[t];
+    return true;
+}
+
+/* The exact test of one level along one axis for one tap, as the walk's bracket of floor(offset / 2^l):
+   with u = c + start (modulo 2^64) the impulse is in reach when u < limit, and then (u + 2^l) >> l is
+   bracket's shifted value. */
+struct LevelTest {
+    uint64_t start, limit;
+};
+
+LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64_t tap_shift) {
+    const uint32_t l = level.level;
+    const int64_t spacing_texel = static_cast<int64_t>(one_texel) << l, spacing = static_cast<int64_t>(1)
+                                                                                  << l;
+    LevelTest test;
+    test.start =
+        static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - spacing - tap_shift);
+    test.limit =
+        static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - spacing);
+    return test;
+}
+
+struct CandidateList {
+    int64_t x[buffer_size], y[buffer_size];
+    uint32_t count;
+};
+
+/* One level's sums at one tap while the candidates are visited: interior reads (8-bit ones on SSE2
+   vectors) of biased values, and their count; border reads as they are. */
+struct LevelAccumulator {
+#if defined(__SSE2__)
+    BilinearSums vector;
+#endif
+    uint64_t interior[DSN_MAX_CHANNELS], border[DSN_MAX_CHANNELS], interior_count;
+};
+
+void clear(LevelAccumulator *sums) {
+#if defined(__SSE2__)
+    sums->vector.even = sums->vector.odd = _mm_setzero_si128();
+#endif
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums->interior[c] = sums->border[c] = 0;
+    sums->interior_count = 0;
+}
+
+#if defined(__SSE2__)
+/* The row above or below a level's window: zeros. */
+const unsigned char zero_row[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+
+/* The 2 x 2 texels of 8-bit values at (row, column) in [-1, height - 1] x [-1, width - 1], width >= 2,
+   zero outside the window, added without a branch: rows outside read zero_row, and the pair of texels
+   is read from the column clamped into [0, width - 2] and moved by one texel where it was clamped, the
+   texel that left the window zeroed. The reads stay within the rows' bytes plus 2 (as the interior's). */
+template <uint32_t Channels>
+inline __m128i bordered_row(const unsigned char *values, uint32_t offset, bool inside, bool left_out,
+                            bool right_out) {
+    const uint32_t texel_bits = 8u * Channels;
+    const unsigned char *from = inside ? values + offset : zero_row;
+    uint64_t word;
+    if (Channels == 3) {
+        __builtin_memcpy(&word, from, sizeof word);
+    } else {
+        uint32_t half;
+        __builtin_memcpy(&half, from, sizeof half);
+        word = half;
+    }
+    const uint64_t right_mask =
+        right_out ? (static_cast<uint64_t>(1) << texel_bits) - 1u : ~static_cast<uint64_t>(0);
+    word = ((word << (left_out ? texel_bits : 0u)) >> (right_out ? texel_bits : 0u)) & right_mask;
+    if (Channels == 3) return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(&word)));
+    return _mm_cvtsi32_si128(static_cast<int>(static_cast<uint32_t>(word))); /* the bits unchanged */
+}
+#endif
+
+template <uint32_t Channels, uint32_t Bytes>
+inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64_t shifted_y,
+                       LevelAccumulator *sums) {
+    const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
+                   column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+    const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu),
+                  across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+    const uint32_t width = level.width;
+#if defined(__SSE2__)
+    if (Bytes == 1 && width >= 2) {
+        const bool left_out = column == 0xFFFFFFFFu, right_out = column == width - 1u;
+        const uint32_t first = column + (left_out ? 1u : 0u) - (right_out ? 1u : 0u);
+        const uint32_t row_size = level.stride * Channels, top = row * row_size + first * Channels;
+        sums->interior_count++;
+        add_bilinear_bytes<Channels>(
+            bordered_row<Channels>(level.values, top, row != 0xFFFFFFFFu, left_out, right_out),
+            bordered_row<Channels>(level.values, top + row_size, row + 1u < level.height, left_out,
+                                   right_out),
+            static_cast<uint32_t>(across), static_cast<uint32_t>(down), &sums->vector);
+        return;
+    }
+#endif
+    if (row < level.height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+        /* The vector read passes a level's last value by 2 bytes: the texton and its CRC follow the
+           pyramid section in the asset, so those bytes are in the buffer. */
+        const unsigned char *top = level.values + (row * level.stride + column) * Channels * Bytes;
+        const unsigned char *bottom = top + level.stride * Channels * Bytes;
+        sums->interior_count++;
+#if defined(__SSE2__)
+        if (Bytes == 1) {
+            add_bilinear_vector<Channels>(top, bottom, static_cast<uint32_t>(across),
+                                          static_cast<uint32_t>(down), &sums->vector);
+            return;
+        }
+#endif
+        for (uint32_t c = 0; c < Channels; c++)
+            sums->interior[c] +=
+                bilinear_channel<Bytes, Channels * Bytes>(top + c * Bytes, bottom + c * Bytes, across, down);
+    } else {
+        add_border<Channels, Bytes>(level.values, width, level.height, level.stride, row, column, across,
+                                    down, sums->border);
+    }
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void take(const LevelAccumulator &sums, uint64_t *out) {
+    uint64_t interior[DSN_MAX_CHANNELS] = {sums.interior[0], sums.interior[1], sums.interior[2]};
+#if defined(__SSE2__)
+    if (Bytes == 1) take_bilinear_sums<Channels>(sums.vector, interior);
+#endif
+    /* Each interior read was of biased values: 2^(32 + 8 Bytes - 1) too high. */
+    for (uint32_t c = 0; c < Channels; c++)
+        out[c] += interior[c] - (sums.interior_count << (31u + 8u * Bytes)) + sums.border[c];
+}
+
+/* The taps that one walk serves, and the levels they read. */
+struct TapGroup {
+    const dsn_walked_level *levels;
+    uint32_t level_count, first, taps;
+    TapAxis x, y;
+};
+
+/* A small level read at a single tap: the impulses' bilinear weights are added up per texel first, and
+   multiplied by the texels once at the end. The same integer: each read is sum over its 4 texels of
+   (row weight)(column weight)(value), so the sum over impulses is sum over texels of (value)(sum of
+   their weight products) modulo 2^64. Texel (R, C), R in [-1, height], C in [-1, width], has its sum at
+   (R + 1)(width + 2) + C + 1 (the border ones are never multiplied: their values are 0). The coarse
+   levels, whose reach holds the most impulses, have the smallest windows. */
+const uint32_t splat_capacity = 128;
+
+struct SplatGrid {
+    uint64_t weights[splat_capacity];
+    uint32_t level_index; /* which of the group's levels */
+};
+
+bool splat_fits(const dsn_walked_level &level) {
+    return (level.width + 2u) * (level.height + 2u) <= splat_capacity;
+}
+
+inline void splat(const dsn_walked_level &level, uint64_t shifted_x, uint64_t shifted_y, SplatGrid *grid) {
+    const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
+                   column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
+    const uint64_t down = (shifted_y >> 16) & 0xFFFFu, across = (shifted_x >> 16) & 0xFFFFu;
+    const uint32_t side = level.width + 2u;
+    uint64_t *at = grid->weights + (row + 1u) * side + (column + 1u);
+    at[0] += (65536u - down) * (65536u - across);
+    at[1] += (65536u - down) * across;
+    at[side] += down * (65536u - across);
+    at[side + 1u] += down * across;
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void take_splat(const SplatGrid &grid, const dsn_walked_level &level, uint64_t *out) {
+    const uint32_t side = level.width + 2u;
+    for (uint32_t row = 0; row < level.height; row++)
+        for (uint32_t column = 0; column < level.width; column++) {
+            const uint64_t weight = grid.weights[(row + 1u) * side + column + 1u];
+            const unsigned char *at = level.values + (row * level.stride + column) * Channels * Bytes;
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int32_t value = Bytes == 1 ? dsn_read_i8(at + c) : dsn_read_i16le(at + 2u * c);
+                out[c] += weight * static_cast<uint64_t>(static_cast<int64_t>(value));
+            }
+        }
+}
+
+/* Every tap of the group visits every listed candidate; empties the list. The in-reach tests of a tap
+   and level run over the whole list first, into a mask (no branch: most candidates of a long footprint's
+   box are out of one tap's reach, and the outcome would be hard to predict), then the reads follow the
+   mask's bits. */
+template <uint32_t Channels, uint32_t Bytes>
+void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    for (uint32_t t = 0; t < group.taps; t++) {
+        for (uint32_t l = 0; l < group.level_count; l++) {
+            const dsn_walked_level &level = group.levels[l];
+            const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
+            const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
+            uint64_t in_reach = 0;
+            for (uint32_t i = 0; i < list->count; i++) {
+                const uint64_t ux = static_cast<uint64_t>(list->x[i]) + test_x.start;
+                const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y.start;
+                in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
+            }
+            const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
+            if (grid != 0 && grid->level_index == l) {
+                for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                    const uint32_t i = lowest_bit(in_reach);
+                    splat(level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
+                          (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, grid);
+                }
+                continue;
+            }
+            LevelAccumulator level_sums;
+            clear(&level_sums);
+            for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                const uint32_t i = lowest_bit(in_reach);
+                read_level<Channels, Bytes>(
+                    level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
+                    (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, &level_sums);
+            }
+            take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
+        }
+    }
+    list->count = 0;
+}
+
+/* Lists the candidates of the cell with this key: the impulses of its pairs that the lattice fields let
+   reach the box, then those whose 16-bit positions do. */
+template <uint32_t Channels, uint32_t Bytes>
+void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const TapGroup &group,
+               const CellAxis &x, const CellAxis &y, CandidateList *list, SplatGrid *grid,
+               dsn_filter_sums sums) {
+    const uint32_t count = dsn_cell_impulse_count(noise, key);
+    const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
+    const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
+    const uint64_t limit_x = static_cast<uint64_t>(group.x.reach_limit) - 1u,
+                   limit_y = static_cast<uint64_t>(group.y.reach_limit) - 1u;
+    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
+        const uint64_t pair = dsn_position_pair(key, first >> (6u - lanes.field_shift));
+        uint32_t candidates = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes);
+        const uint32_t present = count - first;
+        if (present < lanes.per_pair) candidates &= (1u << present) - 1u; /* impulses that do not exist */
+        for (; candidates != 0; candidates &= candidates - 1u) {
+            const uint32_t lane = lowest_bit(candidates);
+            const uint32_t field = dsn_pair_bits(pair, lane << lanes.field_shift);
+            const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + first + lane);
+            /* dsn_impulse_hash's 16-bit positions */
+            const uint32_t bits_x =
+                ((field & half_mask) << high_shift) | ((fraction & 0xFFFFu) >> fraction_shift);
+            const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
+                                    ((fraction >> 16) >> fraction_shift);
+            const uint64_t shifted_x =
+                static_cast<uint64_t>(x.shifted_base) - (static_cast<uint64_t>(bits_x) << position_shift);
+            const uint64_t shifted_y =
+                static_cast<uint64_t>(y.shifted_base) - (static_cast<uint64_t>(bits_y) << position_shift);
+            if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue; /* beyond every tap */
+            if (list->count == (group.taps == 1 ? one_tap_buffer_size : buffer_size))
+                visit<Channels, Bytes>(group, list, grid, sums);
+            list->x[list->count] = static_cast<int64_t>(shifted_x);
+            list->y[list->count] = static_cast<int64_t>(shifted_y);
+            list->count++;
+        }
+    }
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_sums sums) {
+    const uint32_t shift = noise->cell_shift;
+    const FieldLanes lanes = field_lanes(shift);
+    CandidateList list;
+    list.count = 0;
+    /* One tap: its coarser level through the splat grid when that is small. */
+    SplatGrid splat_grid, *grid = 0;
+    const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
+    if (group.taps == 1 && splat_fits(coarser)) {
+        grid = &splat_grid;
+        grid->level_index = group.level_count - 1u;
+        for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
+    }
+    for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
+        for (uint32_t j = 0; j < span_y.cell_count; j++) {
+            const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
+            CellAxis in_y;
+            if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit,
+                                  lanes, &in_y))
+                continue;
+            const uint32_t row_key = dsn_row_key(noise, cell_y);
+            for (uint32_t sx = 0; sx < group.x.axis.span_count; sx++) {
+                const dsn_span span_x = dsn_axis_span(&group.x.axis, sx);
+                for (uint32_t i = 0; i < span_x.cell_count; i++) {
+                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
+                    CellAxis in_x;
+                    if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
+                                         group.x.reach_limit, lanes, &in_x))
+                        list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key), lanes,
+                                                   group, in_x, in_y, &list, grid, sums);
+                }
+            }
+        }
+    }
+    visit<Channels, Bytes>(group, &list, grid, sums);
+    if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
+}
+
+/* The taps first .. first + taps - 1 of the points (x, y) in one walk; false when they lie too far apart. */
+bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t first,
+               uint32_t taps, const dsn_walked_level *levels, uint32_t count, TapGroup *group) {
+    uint32_t radius_x, radius_y;
+    dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
+    group->levels = levels;
+    group->level_count = count;
+    group->first = first;
+    group->taps = taps;
+    return tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) &&
+           tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y);
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void sum_taps(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t taps,
+              const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums) {
+    TapGroup group;
+    if (tap_group(noise, x, y, 0, taps, levels, count, &group)) {
+        sum_group<Channels, Bytes>(noise, group, sums);
+        return;
+    }
+    for (uint32_t t = 0; t < taps; t++) {
+        tap_group(noise, x, y, t, 1, levels, count, &group); /* one tap has no spread */
+        sum_group<Channels, Bytes>(noise, group, sums);
+    }
+}
+
+} // namespace
+
+void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                     const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                     uint32_t count, dsn_filter_sums sums) {
+    uint64_t tap_x[DSN_FILTER_MAX_TAPS], tap_y[DSN_FILTER_MAX_TAPS];
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        tap_x[tap] = x + static_cast<uint64_t>(plan->offset_x[tap]);
+        tap_y[tap] = y + static_cast<uint64_t>(plan->offset_y[tap]);
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
+    }
+    const dsn_asset *asset = &noise->asset;
+    if (asset->channels == 3) {
+        if (asset->bits == 8)
+            sum_taps<3, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+        else
+            sum_taps<3, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+    } else {
+        if (asset->bits == 8)
+            sum_taps<1, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+        else
+            sum_taps<1, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+    }
+}
+
+#endif /* DSN_FILTERING && !DSN_SMALL_CODE */

@@ -1,0 +1,171 @@
+// filtered_sift_test.cpp - the fast build's filtered sums (every tap and both levels from one sifted walk,
+// runtime/filtered_sift.cpp) against the tap-by-tap walk (runtime/filtered_walk.cpp), bit for bit: the
+// sums of every tap and level and the points' values, over 8- and 16-bit, grey and RGB assets, with and
+// without a pyramid, periodic (periods shorter than a level's reach included) or not, for isotropic
+// footprints across every level of detail and anisotropic ones of every tap count and direction, at
+// ordinary points and where the taps straddle the seam of the int32 coordinates; and the levels read with
+// their all-zero margins cut (a shorter reach) against the levels as stored.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "../offline/bake_internal.h"
+#include "../runtime/filtered_internal.h"
+#include "fixtures/test_assets.h"
+
+using namespace dsn_test;
+
+#if DSN_FILTERING && !DSN_SMALL_CODE
+
+namespace {
+
+int64_t q32(double texels) { return int64_t(std::floor(texels * 4294967296.0)); }
+
+dsn_footprint slanted(double minor, double ratio, double angle, uint32_t max_taps) {
+    const double c = std::cos(angle), s = std::sin(angle), major = minor * ratio;
+    return dsn_footprint{q32(major * c), q32(major * s), q32(-minor * s), q32(minor * c), max_taps};
+}
+
+// The footprints compared: isotropic in 1/8 steps of level of detail up to the mean, rotated, and
+// anisotropic of ratios 1.5 .. 40 with every tap count.
+std::vector<dsn_footprint> footprints(TestRandom &random) {
+    std::vector<dsn_footprint> list;
+    for (int eighth = 0; eighth <= 8 * 7; eighth++) {
+        const double side = std::pow(2.0, eighth / 8.0), angle = random.next() / 4294967296.0 * 6.2832;
+        list.push_back(slanted(side, 1, angle, 1));
+    }
+    for (double minor : {0.4, 1.0, 2.0, 3.3, 8.0})
+        for (double ratio : {1.5, 2.0, 4.0, 7.0, 16.0, 40.0})
+            for (uint32_t max_taps : {2u, 4u, 16u}) {
+                const double angle = random.next() / 4294967296.0 * 6.2832;
+                list.push_back(slanted(minor, ratio, angle, max_taps));
+            }
+    return list;
+}
+
+// Compares the sums and the values of one point under one footprint; counts the comparisons made.
+void compare_point(const dsn_noise &noise, int64_t x, int64_t y, const dsn_footprint &f, size_t *compared) {
+    const dsn_noise_state *state = dsn_state(&noise);
+    dsn_filter_plan plan;
+    REQUIRE(dsn_internal_filter_plan(&f, state->asset.pyramid_levels, &plan) == DSN_OK);
+    const uint32_t lower = uint32_t(plan.lod_q8) >> 8;
+    if (lower <= state->asset.pyramid_levels) {
+        // The levels as stored, and as the evaluation reads them (their all-zero margins cut).
+        dsn_walked_level stored_levels[2], cut_levels[2];
+        uint32_t count = 0;
+        for (uint32_t l = lower; l <= lower + 1 && l <= state->asset.pyramid_levels; l++) {
+            dsn_level stored;
+            REQUIRE(dsn_asset_level(&state->asset, l, &stored) == DSN_OK);
+            stored_levels[count] = dsn_walked_level{stored.values,
+                                                    stored.width,
+                                                    stored.height,
+                                                    stored.width,
+                                                    (stored.width - 1) / 2,
+                                                    (stored.height - 1) / 2,
+                                                    l,
+                                                    stored.exponent};
+            cut_levels[count++] = dsn_internal_walked_level(state, l);
+        }
+        dsn_filter_sums walked, sifted, walked_cut, sifted_cut;
+        std::memset(sifted, 0xA5, sizeof sifted); // every sum must be written
+        std::memset(sifted_cut, 0xA5, sizeof sifted_cut);
+        dsn_internal_filter_sums_walked(state, uint64_t(x), uint64_t(y), &plan, stored_levels, count, walked);
+        dsn_internal_filter_sums_sifted(state, uint64_t(x), uint64_t(y), &plan, stored_levels, count, sifted);
+        dsn_internal_filter_sums_walked(state, uint64_t(x), uint64_t(y), &plan, cut_levels, count,
+                                        walked_cut);
+        dsn_internal_filter_sums_sifted(state, uint64_t(x), uint64_t(y), &plan, cut_levels, count,
+                                        sifted_cut);
+        for (uint32_t t = 0; t < plan.taps; t++)
+            for (uint32_t l = 0; l < count; l++)
+                for (uint32_t c = 0; c < state->asset.channels; c++) {
+                    INFO("tap " << t << " level " << stored_levels[l].level << " channel " << c << " LOD q8 "
+                                << plan.lod_q8 << " taps " << plan.taps << " at " << x << ", " << y);
+                    REQUIRE(sifted[t][l][c] == walked[t][l][c]);
+                    REQUIRE(walked_cut[t][l][c] == walked[t][l][c]);
+                    REQUIRE(sifted_cut[t][l][c] == walked[t][l][c]);
+                }
+    }
+    int32_t reference[3] = {0, 0, 0}, fast[3] = {0, 0, 0};
+    dsn_internal_filtered_point_walked(state, uint64_t(x), uint64_t(y), &plan, reference);
+    dsn_internal_filtered_point(state, uint64_t(x), uint64_t(y), &plan, fast);
+    for (uint32_t c = 0; c < state->asset.channels; c++) REQUIRE(fast[c] == reference[c]);
+    ++*compared;
+}
+
+// The number of levels of the noise whose window the evaluation cuts (all-zero margins).
+uint32_t cut_levels(const dsn_noise &noise) {
+    const dsn_noise_state *state = dsn_state(&noise);
+    uint32_t cut = 0;
+    for (uint32_t l = 0; l <= state->asset.pyramid_levels; l++) {
+        dsn_level stored;
+        REQUIRE(dsn_asset_level(&state->asset, l, &stored) == DSN_OK);
+        const dsn_walked_level read = dsn_internal_walked_level(state, l);
+        REQUIRE(read.radius_x <= (stored.width - 1) / 2);
+        REQUIRE(read.radius_y <= (stored.height - 1) / 2);
+        cut += read.width < stored.width || read.height < stored.height ? 1 : 0;
+    }
+    return cut;
+}
+
+void compare_noise(const dsn_noise &noise, uint64_t seed) {
+    TestRandom random(seed);
+    const std::vector<dsn_footprint> list = footprints(random);
+    size_t compared = 0;
+    for (const dsn_footprint &f : list)
+        for (int i = 0; i < 3; i++) {
+            const int64_t x = q32(random.range(-100000, 100000) + random.next() / 4294967296.0);
+            const int64_t y = q32(random.range(-100000, 100000) + random.next() / 4294967296.0);
+            compare_point(noise, x, y, f, &compared);
+        }
+    // Around the int32 seam of the coordinates (the taps on both sides of it) and at the int64 ends.
+    const int64_t top = INT64_MAX, bottom = INT64_MIN;
+    const int64_t seams[][2] = {{top - q32(3.7), q32(5.2)},
+                                {bottom + q32(2.1), top - q32(1.5)},
+                                {q32(-0.3), bottom + q32(40.25)},
+                                {top, bottom}};
+    for (const dsn_footprint &f : list)
+        for (const auto &point : seams) compare_point(noise, point[0], point[1], f, &compared);
+    CHECK(compared == list.size() * 7);
+}
+
+} // namespace
+
+TEST_CASE("filtered sift: every tap and level summed at once equals the tap-by-tap walk, bit for bit") {
+    uint64_t seed = 1;
+    uint32_t cut = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u}) {
+            dsn::AssetFields fields = synthetic_fields(channels, 31, bits, DSN_SHAPE_RECTANGLE, 40 + seed);
+            fields.interpolation = DSN_INTERPOLATION_BILINEAR;
+            fields.pyramid = dsn::texton_pyramid(fields);
+            // Periods: none; one shorter than the coarsest level's reach on x; long ones on both axes.
+            const uint32_t periods[][2] = {{0, 0}, {37, 0}, {0, 23}, {1000, 777}};
+            for (const auto &period : periods) {
+                INFO("channels " << channels << " bits " << bits << " period " << period[0] << " x "
+                                 << period[1]);
+                LoadedNoise loaded(fields, make_config(uint32_t(seed), 30, period[0], period[1]));
+                compare_noise(loaded.noise, seed++);
+                cut += cut_levels(loaded.noise);
+            }
+        }
+    CHECK(cut > 0); // the baker's levels keep all-zero margins of their spill: cut ones were compared
+}
+
+TEST_CASE("filtered sift: a disk texton, an asset without a pyramid and a sparse noise") {
+    uint64_t seed = 100;
+    dsn::AssetFields disk = synthetic_fields(3, 23, 8, DSN_SHAPE_DISK, 7);
+    disk.interpolation = DSN_INTERPOLATION_BILINEAR;
+    disk.pyramid = dsn::texton_pyramid(disk);
+    LoadedNoise disk_noise(disk, make_config(3, 5));
+    compare_noise(disk_noise.noise, seed++);
+
+    dsn::AssetFields plain = synthetic_fields(1, 15, 8, DSN_SHAPE_RECTANGLE, 8);
+    plain.interpolation = DSN_INTERPOLATION_BILINEAR;
+    LoadedNoise plain_noise(plain, make_config(4, 60));
+    REQUIRE(plain_noise.asset.pyramid_levels == 0);
+    compare_noise(plain_noise.noise, seed++);
+}
+
+#endif
