@@ -173,11 +173,12 @@ std::vector<PyramidLevel> texton_pyramid(const AssetFields &fields);
 
 // ---- Histogram mapping (format 1.2; the functions are in dsn/bake.h) ----
 
-// The tables dsn-bake writes: 65 entries 1/8 apart from -4, which cover the Gaussian-space values within
-// four standard deviations of a unit-variance channel (all but 6e-5 of them; beyond, the table's ends
-// hold the exemplar's extreme values).
-constexpr int kHistogramEntries = 65;
-constexpr int kHistogramStepShift = 3;
+// The tables dsn-bake writes: 129 entries 1/16 apart from -4 (fine enough to keep the steps of a quantized
+// exemplar's quantile function sharp), which cover the Gaussian-space
+// values within four standard deviations of a unit-variance channel (all but 6e-5 of them; beyond, the
+// table's ends hold the exemplar's extreme values).
+constexpr int kHistogramEntries = 129;
+constexpr int kHistogramStepShift = 4;
 constexpr double kHistogramInputLow = -4;
 
 // The asset fields of a bake (quantized texton, scales, mean and K in Q8.24, metadata, and the pyramid

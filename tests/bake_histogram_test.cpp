@@ -221,11 +221,12 @@ TEST_CASE("histogram: the mapping's fields") {
     const dsn::BakeResult result = bake(exemplar, true, 6);
     const dsn::HistogramMapping &mapping = result.fields.histogram;
     const size_t levels = 1 + result.fields.pyramid.size();
-    CHECK(mapping.entry_count == 65);
-    CHECK(mapping.step_shift == 3);
+    const size_t n = 129;
+    CHECK(mapping.entry_count == n);
+    CHECK(mapping.step_shift == 4);
     CHECK(mapping.input_low_q16 == -(4 << 16));
     CHECK(mapping.level_count == levels);
-    REQUIRE(mapping.tables.size() == levels * 3 * 65);
+    REQUIRE(mapping.tables.size() == levels * 3 * n);
     for (int c = 0; c < 3; c++) {
         CHECK(mapping.centre[c] == std::lround(result.histogram.basis.mean[size_t(c)] * (1 << 24)));
         for (int k = 0; k < 3; k++)
@@ -235,16 +236,16 @@ TEST_CASE("histogram: the mapping's fields") {
     for (int k = 0; k < 3; k++) {
         const std::vector<double> &sorted = result.histogram.sorted[size_t(k)];
         for (size_t l = 0; l < levels; l++) {
-            const int32_t *table = &mapping.tables[(l * 3 + size_t(k)) * 65];
-            CHECK(std::is_sorted(table, table + 65)); // monotone at every level
+            const int32_t *table = &mapping.tables[(l * 3 + size_t(k)) * n];
+            CHECK(std::is_sorted(table, table + n)); // monotone at every level
             // Within the channel's range (Q3.12 rounding aside).
             CHECK(table[0] >= std::lround(sorted.front() * 4096) - 1);
-            CHECK(table[64] <= std::lround(sorted.back() * 4096) + 1);
+            CHECK(table[n - 1] <= std::lround(sorted.back() * 4096) + 1);
         }
         // Level 0's ends are the extremes; expected is the channel's mean (0) up to the table's resolution.
-        CHECK(mapping.tables[size_t(k) * 65] == std::lround(sorted.front() * 4096));
-        CHECK(mapping.tables[size_t(k) * 65 + 64] == std::lround(sorted.back() * 4096));
-        // The ramp of 1/8 between two table nodes moves the mean by at most (1/16) phi(0) of a jump.
+        CHECK(mapping.tables[size_t(k) * n] == std::lround(sorted.front() * 4096));
+        CHECK(mapping.tables[size_t(k) * n + n - 1] == std::lround(sorted.back() * 4096));
+        // The ramp of 1/16 between two table nodes moves the mean by at most (1/32) phi(0) of a jump.
         CHECK(std::fabs(mapping.expected_q16[k] / 65536.0) < 0.025 * (sorted.back() - sorted.front()));
     }
 }
@@ -350,8 +351,9 @@ TEST_CASE("histogram: the prefiltered tables keep a filtered pixel's mean at the
     // points 5.3 texels apart): variance sigma^2 sum_lags rho / A, which filtering does not change (it
     // keeps the spectrum at frequency 0), with sigma and rho the exemplar's (lags within the texton's
     // reach). The same asset with level 0's table at every level drifts towards the dark tone, beyond
-    // twice that from 4 texels on. Beyond the coarsest level both give `expected`, which sits within
-    // (1/16) phi(0) of the jump of the exemplar's mean (the table's linear ramp across the step).
+    // that tolerance from 4 texels on and beyond twice it at 8. Beyond the coarsest level both give
+    // `expected`, which sits within (1/32) phi(0) of the jump of the exemplar's mean (the table's linear
+    // ramp across the step).
     const dsn::Image exemplar = toned(random_phase_field(128, 1, 21), Tone::Binary);
     const dsn::BakeResult result = bake(exemplar, true);
     dsn::AssetFields unfiltered = result.fields;
@@ -388,7 +390,8 @@ TEST_CASE("histogram: the prefiltered tables keep a filtered pixel's mean at the
         MESSAGE("footprint " << width << ": mean " << means[0] << " (level 0's table everywhere: " << means[1]
                              << "), exemplar " << exemplar_mean << ", tolerance " << tolerance);
         CHECK(std::fabs(means[0] - exemplar_mean) < tolerance);
-        if (width >= 4 && width <= 8) CHECK(std::fabs(means[1] - exemplar_mean) > 2 * tolerance);
-        if (width >= 32) CHECK(std::fabs(means[0] - exemplar_mean) < 0.4 / 16 * (0.8 - 0.25));
+        if (width >= 4 && width <= 8) CHECK(std::fabs(means[1] - exemplar_mean) > tolerance);
+        if (width == 8) CHECK(std::fabs(means[1] - exemplar_mean) > 2 * tolerance);
+        if (width >= 32) CHECK(std::fabs(means[0] - exemplar_mean) < 0.4 / 32 * (0.8 - 0.25));
     }
 }

@@ -120,8 +120,8 @@ TEST_CASE("verdict: a two-level pattern gets --histogram suggested, and not once
         REQUIRE(suggestion != plain.verdict.suggestions.end());
         INFO(*suggestion);
         CHECK(suggestion->find("try --histogram") != std::string::npos);
-        // It names the bytes the mapping adds: header, 1 + levels tables of 65 Q3.12 entries per channel.
-        const size_t tables = 2 * 65 * size_t(channels) * (1 + plain.fields.pyramid.size());
+        // It names the bytes the mapping adds: header, 1 + levels tables of 129 Q3.12 entries per channel.
+        const size_t tables = 2 * 129 * size_t(channels) * (1 + plain.fields.pyramid.size());
         CHECK(suggestion->find(std::to_string(8 + 68 + tables) + " bytes") != std::string::npos);
 
         options.histogram = true;

@@ -212,7 +212,7 @@ double smoothed_table_value(const std::vector<double> &table, double low, double
 // T_0(y) = empirical quantile of v_k at normal_cdf((y - mean_k) / sigma_0k), the prefiltered tables
 // T_l(y) = E[T_0(y + rho_l Z)] with rho_l^2 = sigma_0k^2 - sigma_lk^2 (sigma from
 // gaussian_space_deviation) for each pyramid level, expected_k = E[T_0(mean_k + sigma_0k Z)], and the
-// rotation P and centre (the basis' mean): 65 entries over [-4, 4] (1/8 apart), Q3.12.
+// rotation P and centre (the basis' mean): 129 entries over [-4, 4] (1/16 apart), Q3.12.
 HistogramMapping histogram_mapping(const HistogramModel &model, const AssetFields &fields);
 
 // ---- The verdict ----

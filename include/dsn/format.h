@@ -177,7 +177,7 @@
 
    Section kind 2: histogram mapping (payload offsets from the start of the payload)
      off   size     type      field
-       0      2     u16       entry_count N: 2..1024 (dsn-bake writes 65)
+       0      2     u16       entry_count N: 2..1024 (dsn-bake writes 129)
        2      1     u8        level_count M: 1..9: tables for levels 0 .. M - 1 (dsn-bake writes
                               1 + the pyramid's level count)
        3      1     u8        step_shift s: 0..16: table entry i stands for the Gaussian-space value

@@ -62,7 +62,7 @@ const char *const kUsage =
     "  --histogram              histogram-preserving output (a format 1.2 asset; Heitz and Neyret,\n"
     "                           HPG 2018): the texton is baked on the exemplar's tones mapped to a\n"
     "                           Gaussian, and the asset maps the noise back through per-channel tables\n"
-    "                           (about 2 KB for RGB), so speckles, veins and two-level patterns keep\n"
+    "                           (about 4 KB for RGB), so speckles, veins and two-level patterns keep\n"
     "                           their histogram instead of turning into soft blotches. Off by default:\n"
     "                           it needs a runtime built with the mapping (DSN_HISTOGRAM), a Gaussian\n"
     "                           exemplar gains nothing from it, and the mapping keeps each decorrelated\n"
