@@ -199,6 +199,24 @@ inline __m256i mix32_8(__m256i x) {
     return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
 }
 
+/* The bilinear texton of 8 candidates from their texels' values (32-bit lanes) and weights (0 .. 65535):
+   add_bilinear's integer with one product per step, (65536 - w) a + w b = 65536 a + w (b - a), the rows
+   in 32-bit lanes (below 2^25), the column in 64-bit lanes (_mm256_mul_epi32, signed 32 x 32 -> 64 bits,
+   exact): candidates 0, 2, 4, 6 in `even`, 1, 3, 5, 7 in `odd`. */
+inline void bilinear_8(__m256i top_left, __m256i top_right, __m256i bottom_left, __m256i bottom_right,
+                       __m256i across, __m256i down, __m256i *even, __m256i *odd) {
+    const __m256i scale = _mm256_set1_epi32(65536);
+    const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(top_left, 16),
+                                           _mm256_mullo_epi32(across, _mm256_sub_epi32(top_right, top_left)));
+    const __m256i lower =
+        _mm256_add_epi32(_mm256_slli_epi32(bottom_left, 16),
+                         _mm256_mullo_epi32(across, _mm256_sub_epi32(bottom_right, bottom_left)));
+    const __m256i difference = _mm256_sub_epi32(lower, upper);
+    *even = _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
+    *odd = _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
+                            _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+}
+
 /* The running sums of one point on vectors: the channels' 64-bit values of the even and odd
    candidates, summed lane by lane (modulo 2^64, so in any order). */
 struct VectorSums {
@@ -255,28 +273,16 @@ void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchAr
         flush_vector_sums<Channels>(running, arrays);
         running->point = one_point ? first_point : last_point;
     }
-    const __m256i scale = _mm256_set1_epi32(65536);
     for (uint32_t c = 0; c < Channels; c++) {
         const __m256i quad =
             _mm256_i32gather_epi32(static_cast<const int *>(static_cast<const void *>(quads + c)), at, 4);
-        const __m256i top_left = _mm256_srai_epi32(_mm256_slli_epi32(quad, 24), 24),
-                      top_right = _mm256_srai_epi32(_mm256_slli_epi32(quad, 16), 24);
-        const __m256i bottom_left = _mm256_srai_epi32(_mm256_slli_epi32(quad, 8), 24),
-                      bottom_right = _mm256_srai_epi32(quad, 24);
-        const __m256i upper =
-            _mm256_add_epi32(_mm256_slli_epi32(top_left, 16),
-                             _mm256_mullo_epi32(across, _mm256_sub_epi32(top_right, top_left)));
-        const __m256i lower =
-            _mm256_add_epi32(_mm256_slli_epi32(bottom_left, 16),
-                             _mm256_mullo_epi32(across, _mm256_sub_epi32(bottom_right, bottom_left)));
-        const __m256i difference = _mm256_sub_epi32(lower, upper);
-        const __m256i even =
-            _mm256_and_si256(reaches_even, _mm256_add_epi64(_mm256_mul_epi32(upper, scale),
-                                                            _mm256_mul_epi32(down, difference)));
-        const __m256i odd = _mm256_and_si256(
-            reaches_odd, _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
-                                          _mm256_mul_epi32(_mm256_srli_epi64(down, 32),
-                                                           _mm256_srli_epi64(difference, 32))));
+        __m256i even, odd;
+        bilinear_8(_mm256_srai_epi32(_mm256_slli_epi32(quad, 24), 24),
+                   _mm256_srai_epi32(_mm256_slli_epi32(quad, 16), 24),
+                   _mm256_srai_epi32(_mm256_slli_epi32(quad, 8), 24), _mm256_srai_epi32(quad, 24), across,
+                   down, &even, &odd);
+        even = _mm256_and_si256(reaches_even, even);
+        odd = _mm256_and_si256(reaches_odd, odd);
         if (one_point) {
             running->channel[c] = _mm256_add_epi64(running->channel[c], _mm256_add_epi64(even, odd));
             continue;
@@ -368,9 +374,11 @@ const uint32_t packing_table[256] = {
 };
 /* clang-format on */
 
-/* batch_emit_pair<8> on vectors: the 8 lanes' values are packed (candidates first) and stored at once. */
-inline void batch_emit_pair_8(const BatchArrays &arrays, BatchFill *fill, uint64_t pair, uint32_t candidates,
-                              uint32_t stream) {
+/* The 8 lanes of a pair of 8-bit fields packed, candidates first (bit i of `candidates`: lane i): their
+   fraction hash inputs (stream + lane G) and their fields, in 32-bit lanes. Returns the candidates'
+   count. */
+inline uint32_t pack_pair_8(uint64_t pair, uint32_t candidates, uint32_t stream, __m256i *streams,
+                            __m256i *fields) {
     const uint32_t entry = packing_table[candidates & 0xFFu];
     const __m256i order = _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(entry)),
                                                              _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
@@ -378,15 +386,23 @@ inline void batch_emit_pair_8(const BatchArrays &arrays, BatchFill *fill, uint64
     /* lane * 0x9E3779B9 modulo 2^32, as int32 bit patterns */
     const __m256i weyl = _mm256_setr_epi32(0, -0x61C88647, 0x3C6EF372, -0x255992D5, 0x78DDE6E4, 0x1715609D,
                                            -0x4AB325AA, 0x5384540F);
-    const __m256i streams = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(stream)), weyl);
-    const __m256i fields =
-        _mm256_or_si256(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(pair))),
-                        _mm256_set1_epi32(static_cast<int>((fill->cells - 1u) << 16)));
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.stream + fill->slots)),
-                        _mm256_permutevar8x32_epi32(streams, order));
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.packed + fill->slots)),
-                        _mm256_permutevar8x32_epi32(fields, order));
-    fill->slots += entry >> 24;
+    *streams = _mm256_permutevar8x32_epi32(
+        _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(stream)), weyl), order);
+    *fields = _mm256_permutevar8x32_epi32(
+        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(pair))), order);
+    return entry >> 24;
+}
+
+/* batch_emit_pair<8> on vectors: the 8 lanes' values are packed (candidates first) and stored at once. */
+inline void batch_emit_pair_8(const BatchArrays &arrays, BatchFill *fill, uint64_t pair, uint32_t candidates,
+                              uint32_t stream) {
+    __m256i streams, fields;
+    const uint32_t count = pack_pair_8(pair, candidates, stream, &streams, &fields);
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.stream + fill->slots)), streams);
+    _mm256_storeu_si256(
+        static_cast<__m256i *>(static_cast<void *>(arrays.packed + fill->slots)),
+        _mm256_or_si256(fields, _mm256_set1_epi32(static_cast<int>((fill->cells - 1u) << 16))));
+    fill->slots += count;
 }
 #endif
 

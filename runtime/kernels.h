@@ -37,6 +37,11 @@ typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint
                                         const int64_t *xs, const int64_t *ys, uint32_t count, int32_t *out,
                                         void *work);
 
+/* One continuous point (continuous_point_vector.h's continuous_point_vector): the Q16.16 values of the
+   point (x, y), Q32.32, into out, as dsn_internal_continuous_point gives them; returns 0, writing
+   nothing, for a noise it does not take (dsn_internal_continuous_point then evaluates the point itself). */
+typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
+
 /* The innermost loop of the continuous grid splat (splat_row.h's continuous_splat_row): one impulse added
    to `count` pixels of a row from the offsets (pixel - impulse) given, all within reach, stepping by
    (step_x, step_y); channel c of the row's first pixel sums at sums[c * plane]. */
@@ -46,11 +51,13 @@ typedef void dsn_splat_row_entry(const dsn_asset *asset, int64_t offset_x, int64
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_row in the small build
-   (DSN_SMALL_CODE), which evaluates grids point by point. */
+   (DSN_SMALL_CODE), which evaluates grids point by point, continuous_point in kernels built without
+   AVX2 (continuous_point.cpp's own evaluator then runs). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_row_entry *continuous_splat_row;
+    dsn_continuous_point_entry *continuous_point;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

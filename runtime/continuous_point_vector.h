@@ -1,0 +1,236 @@
+/* runtime/continuous_point_vector.h - the continuous mode at one point on AVX2 vectors, as a kernel
+   (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit textons and cells of side <= 16 (pairs
+   of 8 impulses). The cells are walked and their pairs sifted as by continuous_point.cpp's evaluator
+   (continuous_sift.h); each pair's candidates are packed into arrays, then visited 8 at a time: the
+   fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all in 32-bit lanes
+   (64-bit for the column's interpolation), the texels gathered straight from the texton. Candidates whose
+   2 x 2 texels leave the window read those inside it only. The same impulses, offsets, weights
+   and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything here
+   has internal linkage). */
+#ifndef DSN_CONTINUOUS_POINT_VECTOR_H
+#define DSN_CONTINUOUS_POINT_VECTOR_H
+
+#include "continuous_batch.h" /* pack_pair_8, bilinear_8, mix32_8, load_8 (AVX2) */
+#include "continuous_sift.h"
+
+#if defined(__AVX2__)
+namespace {
+
+/* The offsets in 32-bit lanes. Write S = floor(shifted / 2^16) for bracket's shifted value (CellAxis's
+   shifted_base less b 2^(16 + shift) for the 16-bit position b): S = floor(shifted_base / 2^16) - b 2^shift
+   exactly, as b 2^(16 + shift) is a multiple of 2^16. The lower index is (S >> 16) - 1 and the weight
+   S & 0xFFFF. bracket keeps 0 < shifted < (2 radius + 2) 2^32, that is 0 <= S <= (2 radius + 2) 2^16 - 1
+   except shifted = 0 (S = 0 with low bits zero), which the test below keeps too: its texels are those of
+   rows -1 and 0 with weight 0 on row 0, so it adds exactly zero. For a cell that passes cell_axis,
+   0 < shifted_base < (2 radius + 2) 2^32 + 2^(32 + shift), so S lies within (-2^20, 2^30) for the radii
+   taken (continuous_point_vector). */
+const uint32_t point_vector_slots = 64; /* candidates visited at once (a usual point has about 35) */
+const uint32_t point_vector_cells = 8;  /* cells of a point along each axis, at most (a usual point has 3) */
+
+/* The packed candidates: fraction hash input, 8-bit field, and the cell's floor(shifted_base / 2^16) per
+   axis (bit patterns of int32). 8 slots past the end take the last pair's store and the padding. */
+struct PointCandidates {
+    uint32_t stream[point_vector_slots + 8], field[point_vector_slots + 8];
+    uint32_t base_x[point_vector_slots + 8], base_y[point_vector_slots + 8];
+    uint32_t count;
+};
+
+inline __m256i broadcast_8(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
+
+inline void store_8(uint32_t *at, __m256i value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
+}
+
+/* a <= limit as unsigned 32-bit lanes. */
+inline __m256i at_most(__m256i a, __m256i limit) { return _mm256_cmpeq_epi32(_mm256_min_epu32(a, limit), a); }
+
+/* What the visits of one point share, and its sums (64-bit lanes per channel). */
+template <uint32_t Channels>
+struct PointVisit {
+    const unsigned char *texton;
+    uint32_t width, height;
+    __m256i last_x, last_y; /* the largest S in reach */
+    __m128i shift;
+    __m256i sums[Channels];
+};
+
+/* Byte `index` of every 32-bit lane, sign-extended. */
+inline __m256i lane_byte(__m256i words, int index) {
+    return _mm256_srai_epi32(_mm256_sll_epi32(words, _mm_cvtsi32_si128(24 - 8 * index)), 24);
+}
+
+/* Candidates first .. first + 7 of which the first `valid` exist. */
+template <uint32_t Channels>
+inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
+                          uint32_t valid) {
+    const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
+                  field = load_8(candidates.field + first);
+    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), one = _mm256_set1_epi32(1);
+    /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
+    const __m256i bits_x = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(field, _mm256_set1_epi32(15)), 12),
+                                           _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
+    const __m256i bits_y =
+        _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(field, 4), 12), _mm256_srli_epi32(fraction, 20));
+    const __m256i s_x = _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
+    const __m256i s_y = _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
+    const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256i reach =
+        _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, visit->last_x), at_most(s_y, visit->last_y)));
+    const __m256i column = _mm256_sub_epi32(_mm256_srli_epi32(s_x, 16), one),
+                  row = _mm256_sub_epi32(_mm256_srli_epi32(s_y, 16), one);
+    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
+    /* Each texel is read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is
+       zero elsewhere, as add_bilinear's, without a branch: one gather per texel column and row. */
+    const __m256i last_column = broadcast_8(visit->width - 1u), last_row = broadcast_8(visit->height - 1u);
+    const __m256i left = at_most(column, last_column), right = at_most(_mm256_add_epi32(column, one), last_column);
+    const __m256i top = _mm256_and_si256(reach, at_most(row, last_row)),
+                  bottom = _mm256_and_si256(reach, at_most(_mm256_add_epi32(row, one), last_row));
+    /* Byte offset of the top-left texel (unread where it is outside). */
+    const __m256i entry = _mm256_add_epi32(_mm256_mullo_epi32(row, broadcast_8(visit->width)), column);
+    const __m256i at = Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(entry, 1), entry) : entry;
+    const __m256i below = _mm256_add_epi32(at, broadcast_8(visit->width * Channels));
+    const int *texton = static_cast<const int *>(static_cast<const void *>(visit->texton));
+    const int *next = static_cast<const int *>(static_cast<const void *>(visit->texton + Channels));
+    const __m256i zero = _mm256_setzero_si256();
+    /* 4 bytes from each texel: its channels first. Reads reach at most 3 bytes past the texton, into the
+       asset's 4-byte CRC, which the loader guarantees lies in the buffer right after it (format.h:
+       total_size). */
+    const __m256i top_left = _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top, left), 1),
+                  top_right = _mm256_mask_i32gather_epi32(zero, next, at, _mm256_and_si256(top, right), 1),
+                  bottom_left =
+                      _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom, left), 1),
+                  bottom_right =
+                      _mm256_mask_i32gather_epi32(zero, next, below, _mm256_and_si256(bottom, right), 1);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const int byte = static_cast<int>(c);
+        __m256i even, odd;
+        bilinear_8(lane_byte(top_left, byte), lane_byte(top_right, byte), lane_byte(bottom_left, byte),
+                   lane_byte(bottom_right, byte), across, down, &even, &odd);
+        visit->sums[c] = _mm256_add_epi64(visit->sums[c], _mm256_add_epi64(even, odd));
+    }
+}
+
+/* Visits the buffered candidates and empties the buffer. */
+template <uint32_t Channels>
+inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
+    const uint32_t count = candidates->count;
+    /* The lanes past the last candidate hold zeros (defined values; the count leaves them out). */
+    const __m256i zero = _mm256_setzero_si256();
+    store_8(candidates->stream + count, zero), store_8(candidates->field + count, zero);
+    store_8(candidates->base_x + count, zero), store_8(candidates->base_y + count, zero);
+    for (uint32_t first = 0; first < count; first += 8u) visit_point_8<Channels>(visit, *candidates, first, count - first);
+    candidates->count = 0;
+}
+
+/* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
+   whose impulses are `count` (none when count <= first). */
+inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m256i base_x, __m256i base_y) {
+    const uint64_t pair = dsn_position_pair(key, first >> 3);
+    const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
+    const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
+    __m256i streams, fields;
+    /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
+    const uint32_t packed = pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
+    const uint32_t slot = candidates->count;
+    store_8(candidates->stream + slot, streams), store_8(candidates->field + slot, fields);
+    store_8(candidates->base_x + slot, base_x), store_8(candidates->base_y + slot, base_y);
+    candidates->count = slot + packed;
+}
+
+/* floor(value / 2^16) as an int32 bit pattern (the value far from the int64 limits). */
+inline uint32_t shifted_16(int64_t value) { return static_cast<uint32_t>(static_cast<uint64_t>(floor_shift(value, 16))); }
+
+/* The cells of one axis that may reach the point (cell_axis), with their floor(shifted_base / 2^16). */
+struct AxisCells {
+    uint32_t cell[point_vector_cells], base[point_vector_cells];
+    CellAxis axis[point_vector_cells];
+    uint32_t count;
+};
+
+/* False when there are more than point_vector_cells. */
+inline bool axis_cells(const PointAxis &point, const FieldLanes &lanes, AxisCells *cells) {
+    cells->count = 0;
+    for (uint32_t s = 0; s < point.axis.span_count; s++) {
+        const dsn_span span = dsn_axis_span(&point.axis, s);
+        for (uint32_t i = 0; i < span.cell_count; i++) {
+            const uint32_t cell = dsn_span_cell(&span, i, point.axis.shift), at = cells->count;
+            if (!cell_axis(point, span, cell, lanes, &cells->axis[at])) continue;
+            if (at == point_vector_cells) return false;
+            cells->cell[at] = cell;
+            cells->base[at] = shifted_16(cells->axis[at].shifted_base);
+            cells->count = at + 1u;
+        }
+    }
+    return true;
+}
+
+template <uint32_t Channels>
+int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    const uint32_t shift = noise->cell_shift;
+    const FieldLanes lanes = field_lanes(shift);
+    AxisCells columns, rows;
+    if (!axis_cells(point_axis(x, noise->radius[0], shift, noise->period[0]), lanes, &columns) ||
+        !axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, &rows))
+        return 0;
+    PointVisit<Channels> visit;
+    visit.texton = noise->asset.texton;
+    visit.width = noise->asset.width, visit.height = noise->asset.height;
+    visit.last_x = broadcast_8(((2u * noise->radius[0] + 2u) << 16) - 1u);
+    visit.last_y = broadcast_8(((2u * noise->radius[1] + 2u) << 16) - 1u);
+    visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
+    for (uint32_t c = 0; c < Channels; c++) visit.sums[c] = _mm256_setzero_si256();
+    /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
+    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+    const uint32_t cells = rows.count * columns.count;
+    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
+        const uint32_t row_key = dsn_row_key(noise, rows.cell[j]);
+        for (uint32_t i = 0; i < columns.count; i++, k++) keys[k] = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
+    }
+    if (dsn_poisson_two_steps_fit(noise))
+        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_poisson_count_two_steps(noise, keys[k]);
+    else
+        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_cell_impulse_count(noise, keys[k]);
+    PointCandidates candidates;
+    candidates.count = 0;
+    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
+        const __m256i base_y = broadcast_8(rows.base[j]);
+        for (uint32_t i = 0; i < columns.count; i++, k++) {
+            const uint32_t key = keys[k], count = counts[k];
+            const __m256i base_x = broadcast_8(columns.base[i]);
+            /* The first two pairs whether the cell has impulses there or not: a branch on the count
+               would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
+            if (candidates.count > point_vector_slots - 16u) visit_point_candidates<Channels>(&visit, &candidates);
+            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+            for (uint32_t first = 16; first < count; first += 8u) {
+                if (candidates.count > point_vector_slots - 8u) visit_point_candidates<Channels>(&visit, &candidates);
+                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+            }
+        }
+    }
+    visit_point_candidates<Channels>(&visit, &candidates);
+    uint64_t sums[DSN_MAX_CHANNELS];
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t lanes_64[4];
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes_64)), visit.sums[c]);
+        sums[c] = lanes_64[0] + lanes_64[1] + lanes_64[2] + lanes_64[3];
+    }
+    normalize_q32(noise, sums, out);
+    return 1;
+}
+
+/* The kernel entry: the noises it takes (8-bit textons, cells of side <= 16,
+   radii below 2^12), one copy per channel count. */
+inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    const dsn_asset *asset = &noise->asset;
+    if (asset->bits != 8 || dsn_field_shift(noise->cell_shift) != 3 || noise->radius[0] >= 4096u ||
+        noise->radius[1] >= 4096u)
+        return 0;
+    return asset->channels == 3 ? point_vector<3>(noise, x, y, out) : point_vector<1>(noise, x, y, out);
+}
+
+} // namespace
+#endif /* __AVX2__ */
+
+#endif /* DSN_CONTINUOUS_POINT_VECTOR_H */
