@@ -67,12 +67,15 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
                   field = load_8(candidates.field + first);
     const __m256i low_16 = _mm256_set1_epi32(0xFFFF), one = _mm256_set1_epi32(1);
     /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
-    const __m256i bits_x = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(field, _mm256_set1_epi32(15)), 12),
-                                           _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
+    const __m256i bits_x =
+        _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(field, _mm256_set1_epi32(15)), 12),
+                        _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
     const __m256i bits_y =
         _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(field, 4), 12), _mm256_srli_epi32(fraction, 20));
-    const __m256i s_x = _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
-    const __m256i s_y = _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
+    const __m256i s_x =
+        _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
+    const __m256i s_y =
+        _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
     const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     const __m256i reach =
         _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, visit->last_x), at_most(s_y, visit->last_y)));
@@ -82,7 +85,8 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
     /* Each texel is read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is
        zero elsewhere, as add_bilinear's, without a branch: one gather per texel column and row. */
     const __m256i last_column = broadcast_8(visit->width - 1u), last_row = broadcast_8(visit->height - 1u);
-    const __m256i left = at_most(column, last_column), right = at_most(_mm256_add_epi32(column, one), last_column);
+    const __m256i left = at_most(column, last_column),
+                  right = at_most(_mm256_add_epi32(column, one), last_column);
     const __m256i top = _mm256_and_si256(reach, at_most(row, last_row)),
                   bottom = _mm256_and_si256(reach, at_most(_mm256_add_epi32(row, one), last_row));
     /* Byte offset of the top-left texel (unread where it is outside). */
@@ -118,20 +122,23 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
     const __m256i zero = _mm256_setzero_si256();
     store_8(candidates->stream + count, zero), store_8(candidates->field + count, zero);
     store_8(candidates->base_x + count, zero), store_8(candidates->base_y + count, zero);
-    for (uint32_t first = 0; first < count; first += 8u) visit_point_8<Channels>(visit, *candidates, first, count - first);
+    for (uint32_t first = 0; first < count; first += 8u)
+        visit_point_8<Channels>(visit, *candidates, first, count - first);
     candidates->count = 0;
 }
 
 /* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
    whose impulses are `count` (none when count <= first). */
 inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
-                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m256i base_x, __m256i base_y) {
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m256i base_x,
+                     __m256i base_y) {
     const uint64_t pair = dsn_position_pair(key, first >> 3);
     const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
     const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
     __m256i streams, fields;
     /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
-    const uint32_t packed = pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
+    const uint32_t packed =
+        pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
     const uint32_t slot = candidates->count;
     store_8(candidates->stream + slot, streams), store_8(candidates->field + slot, fields);
     store_8(candidates->base_x + slot, base_x), store_8(candidates->base_y + slot, base_y);
@@ -139,7 +146,9 @@ inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, 
 }
 
 /* floor(value / 2^16) as an int32 bit pattern (the value far from the int64 limits). */
-inline uint32_t shifted_16(int64_t value) { return static_cast<uint32_t>(static_cast<uint64_t>(floor_shift(value, 16))); }
+inline uint32_t shifted_16(int64_t value) {
+    return static_cast<uint32_t>(static_cast<uint64_t>(floor_shift(value, 16)));
+}
 
 /* The cells of one axis that may reach the point (cell_axis), with their floor(shifted_base / 2^16). */
 struct AxisCells {
@@ -185,7 +194,8 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     const uint32_t cells = rows.count * columns.count;
     for (uint32_t j = 0, k = 0; j < rows.count; j++) {
         const uint32_t row_key = dsn_row_key(noise, rows.cell[j]);
-        for (uint32_t i = 0; i < columns.count; i++, k++) keys[k] = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
+        for (uint32_t i = 0; i < columns.count; i++, k++)
+            keys[k] = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
     }
     if (dsn_poisson_two_steps_fit(noise))
         for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_poisson_count_two_steps(noise, keys[k]);
@@ -200,12 +210,15 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
             const __m256i base_x = broadcast_8(columns.base[i]);
             /* The first two pairs whether the cell has impulses there or not: a branch on the count
                would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
-            if (candidates.count > point_vector_slots - 16u) visit_point_candidates<Channels>(&visit, &candidates);
+            if (candidates.count > point_vector_slots - 16u)
+                visit_point_candidates<Channels>(&visit, &candidates);
             add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
             add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
             for (uint32_t first = 16; first < count; first += 8u) {
-                if (candidates.count > point_vector_slots - 8u) visit_point_candidates<Channels>(&visit, &candidates);
-                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+                if (candidates.count > point_vector_slots - 8u)
+                    visit_point_candidates<Channels>(&visit, &candidates);
+                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j], base_x,
+                         base_y);
             }
         }
     }
