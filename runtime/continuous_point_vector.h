@@ -10,7 +10,8 @@
 #ifndef DSN_CONTINUOUS_POINT_VECTOR_H
 #define DSN_CONTINUOUS_POINT_VECTOR_H
 
-#include "continuous_batch.h" /* pack_pair_8, bilinear_8, mix32_8, load_8 (AVX2) */
+#include "continuous_internal.h"
+#include "continuous_lanes.h"
 #include "continuous_sift.h"
 
 #if defined(__AVX2__)
@@ -233,14 +234,18 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     return 1;
 }
 
-/* The kernel entry: the noises it takes (8-bit textons, cells of side <= 16,
-   radii below 2^12), one copy per channel count. */
+/* The noises the vector evaluator takes: 8-bit textons, cells of side <= 16 (pairs of 8 impulses), radii
+   below 2^12. */
+inline bool point_vector_takes(const dsn_noise_state *noise) {
+    return noise->asset.bits == 8 && dsn_field_shift(noise->cell_shift) == 3 && noise->radius[0] < 4096u &&
+           noise->radius[1] < 4096u;
+}
+
+/* The kernel entry, one copy per channel count; 0 for a noise it does not take, or a point with more
+   than point_vector_cells cells along an axis. */
 inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
-    const dsn_asset *asset = &noise->asset;
-    if (asset->bits != 8 || dsn_field_shift(noise->cell_shift) != 3 || noise->radius[0] >= 4096u ||
-        noise->radius[1] >= 4096u)
-        return 0;
-    return asset->channels == 3 ? point_vector<3>(noise, x, y, out) : point_vector<1>(noise, x, y, out);
+    if (!point_vector_takes(noise)) return 0;
+    return noise->asset.channels == 3 ? point_vector<3>(noise, x, y, out) : point_vector<1>(noise, x, y, out);
 }
 
 } // namespace
