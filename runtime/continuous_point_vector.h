@@ -28,11 +28,19 @@ namespace {
 const uint32_t point_vector_slots = 64; /* candidates visited at once (a usual point has about 35) */
 const uint32_t point_vector_cells = 8;  /* cells of a point along each axis, at most (a usual point has 3) */
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+const uint32_t point_vector_lanes = 16; /* candidates per visit: 512-bit vectors */
+typedef __m512i point_sums;
+#else
+const uint32_t point_vector_lanes = 8;
+typedef __m256i point_sums;
+#endif
+
 /* The packed candidates: fraction hash input, 8-bit field, and the cell's floor(shifted_base / 2^16) per
-   axis (bit patterns of int32). 8 slots past the end take the last pair's store and the padding. */
+   axis (bit patterns of int32). The slots past the end take the last pair's store and the padding. */
 struct PointCandidates {
-    uint32_t stream[point_vector_slots + 8], field[point_vector_slots + 8];
-    uint32_t base_x[point_vector_slots + 8], base_y[point_vector_slots + 8];
+    uint32_t stream[point_vector_slots + 16], field[point_vector_slots + 16];
+    uint32_t base_x[point_vector_slots + 16], base_y[point_vector_slots + 16];
     uint32_t count;
 };
 
@@ -50,9 +58,9 @@ template <uint32_t Channels>
 struct PointVisit {
     const unsigned char *texton;
     uint32_t width, height;
-    __m256i last_x, last_y; /* the largest S in reach */
+    uint32_t last_x, last_y; /* the largest S in reach */
     __m128i shift;
-    __m256i sums[Channels];
+    point_sums sums[Channels];
 };
 
 /* Byte `index` of every 32-bit lane, sign-extended. */
@@ -79,7 +87,8 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
         _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
     const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     const __m256i reach =
-        _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, visit->last_x), at_most(s_y, visit->last_y)));
+        _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
+                                                  at_most(s_y, broadcast_8(visit->last_y))));
     const __m256i column = _mm256_sub_epi32(_mm256_srli_epi32(s_x, 16), one),
                   row = _mm256_sub_epi32(_mm256_srli_epi32(s_y, 16), one);
     const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
@@ -115,16 +124,91 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
     }
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* visit_point_8 on 512-bit vectors: candidates first .. first + 15 of which the first `valid` exist. */
+inline __m512i load_16(const uint32_t *at) { return _mm512_loadu_si512(at); }
+inline __m512i broadcast_16(uint32_t value) { return _mm512_set1_epi32(static_cast<int>(value)); }
+inline __m512i lane_byte_16(__m512i words, unsigned int index) {
+    return _mm512_srai_epi32(_mm512_slli_epi32(words, 24 - 8 * index), 24);
+}
+
+template <uint32_t Channels>
+inline void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
+                           uint32_t valid) {
+    __m512i fraction = load_16(candidates.stream + first); /* dsn_mix32 */
+    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
+    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(0x7FEB352D));
+    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 15));
+    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
+    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
+    const __m512i field = load_16(candidates.field + first), low_16 = _mm512_set1_epi32(0xFFFF);
+    const __m512i bits_x =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(field, _mm512_set1_epi32(15)), 12),
+                        _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
+    const __m512i bits_y =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(field, 4), 12), _mm512_srli_epi32(fraction, 20));
+    const __m512i s_x =
+        _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
+    const __m512i s_y =
+        _mm512_sub_epi32(load_16(candidates.base_y + first), _mm512_sll_epi32(bits_y, visit->shift));
+    const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
+    const __mmask16 reach =
+        _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
+                                     s_y, broadcast_16(visit->last_y));
+    /* the texton indices of the right column and the lower row, and of the left column and upper row */
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i column = _mm512_sub_epi32(right_column, _mm512_set1_epi32(1)),
+                  row = _mm512_sub_epi32(lower_row, _mm512_set1_epi32(1));
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    const __m512i last_column = broadcast_16(visit->width - 1u), last_row = broadcast_16(visit->height - 1u);
+    const __mmask16 left = _mm512_cmple_epu32_mask(column, last_column),
+                    right = _mm512_cmple_epu32_mask(right_column, last_column);
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach, row, last_row),
+                    bottom = _mm512_mask_cmple_epu32_mask(reach, lower_row, last_row);
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(visit->width)), column);
+    const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry;
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(visit->width * Channels));
+    const void *texton = visit->texton, *next = visit->texton + Channels;
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i top_left = _mm512_mask_i32gather_epi32(zero, top & left, at, texton, 1),
+                  top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
+                  bottom_left = _mm512_mask_i32gather_epi32(zero, bottom & left, below, texton, 1),
+                  bottom_right = _mm512_mask_i32gather_epi32(zero, bottom & right, below, next, 1);
+    const __m512i scale = _mm512_set1_epi32(65536);
+    for (uint32_t c = 0; c < Channels; c++) { /* as bilinear_8 */
+        const __m512i a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c);
+        const __m512i d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
+        const __m512i upper =
+            _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
+        const __m512i lower =
+            _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
+        const __m512i difference = _mm512_sub_epi32(lower, upper);
+        const __m512i even =
+            _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
+        const __m512i odd = _mm512_add_epi64(
+            _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
+            _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
+        visit->sums[c] = _mm512_add_epi64(visit->sums[c], _mm512_add_epi64(even, odd));
+    }
+}
+#endif
+
 /* Visits the buffered candidates and empties the buffer. */
 template <uint32_t Channels>
 inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
     const uint32_t count = candidates->count;
     /* The lanes past the last candidate hold zeros (defined values; the count leaves them out). */
     const __m256i zero = _mm256_setzero_si256();
-    store_8(candidates->stream + count, zero), store_8(candidates->field + count, zero);
-    store_8(candidates->base_x + count, zero), store_8(candidates->base_y + count, zero);
-    for (uint32_t first = 0; first < count; first += 8u)
+    for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u) {
+        store_8(candidates->stream + pad, zero), store_8(candidates->field + pad, zero);
+        store_8(candidates->base_x + pad, zero), store_8(candidates->base_y + pad, zero);
+    }
+    for (uint32_t first = 0; first < count; first += point_vector_lanes)
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        visit_point_16<Channels>(visit, *candidates, first, count - first);
+#else
         visit_point_8<Channels>(visit, *candidates, first, count - first);
+#endif
     candidates->count = 0;
 }
 
@@ -186,10 +270,10 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     PointVisit<Channels> visit;
     visit.texton = noise->asset.texton;
     visit.width = noise->asset.width, visit.height = noise->asset.height;
-    visit.last_x = broadcast_8(((2u * noise->radius[0] + 2u) << 16) - 1u);
-    visit.last_y = broadcast_8(((2u * noise->radius[1] + 2u) << 16) - 1u);
+    visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
+    visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
     visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
-    for (uint32_t c = 0; c < Channels; c++) visit.sums[c] = _mm256_setzero_si256();
+    for (uint32_t c = 0; c < Channels; c++) visit.sums[c] = point_sums();
     /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
     uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
     const uint32_t cells = rows.count * columns.count;
@@ -226,9 +310,10 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     visit_point_candidates<Channels>(&visit, &candidates);
     uint64_t sums[DSN_MAX_CHANNELS];
     for (uint32_t c = 0; c < Channels; c++) {
-        uint64_t lanes_64[4];
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes_64)), visit.sums[c]);
-        sums[c] = lanes_64[0] + lanes_64[1] + lanes_64[2] + lanes_64[3];
+        uint64_t lanes_64[sizeof(point_sums) / 8];
+        __builtin_memcpy(lanes_64, &visit.sums[c], sizeof lanes_64);
+        sums[c] = 0;
+        for (uint32_t k = 0; k < sizeof(point_sums) / 8; k++) sums[c] += lanes_64[k];
     }
     normalize_q32(noise, sums, out);
     return 1;

@@ -5,9 +5,11 @@
 
 #if defined(__GNUC__) && !defined(__clang__)
 /* GCC 12's AVX-512 intrinsics start some results from a deliberately undefined vector and then warn
-   -Wmaybe-uninitialized on their own lines (GCC bug 105593, fixed in GCC 13). */
+   -Wmaybe-uninitialized or -Wuninitialized (the shifts) on their own lines (GCC bug 105593, fixed in
+   GCC 13). */
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
 #else
