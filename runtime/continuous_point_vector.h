@@ -230,6 +230,55 @@ inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, 
     candidates->count = slot + packed;
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* Number of set bits of a 16-bit mask. */
+inline uint32_t mask_count(uint32_t mask) {
+#if defined(__POPCNT__)
+    return static_cast<uint32_t>(__builtin_popcount(mask));
+#else
+    mask -= (mask >> 1) & 0x5555u;
+    mask = (mask & 0x3333u) + ((mask >> 2) & 0x3333u);
+    mask = (mask + (mask >> 4)) & 0x0F0Fu;
+    return (mask + (mask >> 8)) & 0x1Fu;
+#endif
+}
+
+/* add_pair for the cell's first two pairs at once (impulses 0 .. 15): the sifting of both pairs in one
+   128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
+   compressed into place. */
+inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
+                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m512i base_x,
+                            __m512i base_y) {
+    const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
+                                         static_cast<long long>(dsn_position_pair(key, 0)));
+    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
+                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
+    const __m128i halves_x = _mm_and_si128(pairs, halves),
+                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
+    const __m128i in_x = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
+    const __m128i in_y = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
+    uint32_t sifted = static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+    if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
+    /* dsn_cell_stream(key, 2^31 + k) of impulse k */
+    const __m512i streams = _mm512_add_epi32(
+        _mm512_set1_epi32(static_cast<int>(key + 0x80000000u * 0x9E3779B9u)),
+        _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                           _mm512_set1_epi32(-0x61C88647 /* 0x9E3779B9 */)));
+    const __mmask16 keep = static_cast<__mmask16>(sifted);
+    const uint32_t slot = candidates->count;
+    _mm512_storeu_si512(candidates->stream + slot, _mm512_maskz_compress_epi32(keep, streams));
+    _mm512_storeu_si512(candidates->field + slot,
+                        _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs)));
+    _mm512_storeu_si512(candidates->base_x + slot, base_x);
+    _mm512_storeu_si512(candidates->base_y + slot, base_y);
+    candidates->count = slot + mask_count(sifted);
+}
+#endif
+
 /* floor(value / 2^16) as an int32 bit pattern (the value far from the int64 limits). */
 inline uint32_t shifted_16(int64_t value) {
     return static_cast<uint32_t>(static_cast<uint64_t>(floor_shift(value, 16)));
@@ -297,8 +346,14 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
                would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
             if (candidates.count > point_vector_slots - 16u)
                 visit_point_candidates<Channels>(&visit, &candidates);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            add_first_pairs(&candidates, key, count, lanes, columns.axis[i], rows.axis[j],
+                            _mm512_set1_epi32(static_cast<int>(columns.base[i])),
+                            _mm512_set1_epi32(static_cast<int>(rows.base[j])));
+#else
             add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
             add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+#endif
             for (uint32_t first = 16; first < count; first += 8u) {
                 if (candidates.count > point_vector_slots - 8u)
                     visit_point_candidates<Channels>(&visit, &candidates);
