@@ -29,11 +29,9 @@ const uint32_t point_vector_slots = 64; /* candidates visited at once (a usual p
 const uint32_t point_vector_cells = 8;  /* cells of a point along each axis, at most (a usual point has 3) */
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-const uint32_t point_vector_lanes = 16; /* candidates per visit: 512-bit vectors */
-typedef __m512i point_sums;
+const uint32_t point_vector_lanes = 16; /* candidates per visit: 512-bit vectors (the last 8 or fewer: 256) */
 #else
 const uint32_t point_vector_lanes = 8;
-typedef __m256i point_sums;
 #endif
 
 /* The packed candidates: fraction hash input, 8-bit field, and the cell's floor(shifted_base / 2^16) per
@@ -60,7 +58,10 @@ struct PointVisit {
     uint32_t width, height;
     uint32_t last_x, last_y; /* the largest S in reach */
     __m128i shift;
-    point_sums sums[Channels];
+    __m256i sums[Channels];
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    __m512i wide_sums[Channels];
+#endif
 };
 
 /* Byte `index` of every 32-bit lane, sign-extended. */
@@ -188,7 +189,7 @@ inline void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &c
         const __m512i odd = _mm512_add_epi64(
             _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
             _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
-        visit->sums[c] = _mm512_add_epi64(visit->sums[c], _mm512_add_epi64(even, odd));
+        visit->wide_sums[c] = _mm512_add_epi64(visit->wide_sums[c], _mm512_add_epi64(even, odd));
     }
 }
 #endif
@@ -203,12 +204,12 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
         store_8(candidates->stream + pad, zero), store_8(candidates->field + pad, zero);
         store_8(candidates->base_x + pad, zero), store_8(candidates->base_y + pad, zero);
     }
-    for (uint32_t first = 0; first < count; first += point_vector_lanes)
+    uint32_t first = 0;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
+    for (; first + 8u < count; first += 16u)
         visit_point_16<Channels>(visit, *candidates, first, count - first);
-#else
-        visit_point_8<Channels>(visit, *candidates, first, count - first);
 #endif
+    for (; first < count; first += 8u) visit_point_8<Channels>(visit, *candidates, first, count - first);
     candidates->count = 0;
 }
 
@@ -322,7 +323,12 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
     visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
     visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
-    for (uint32_t c = 0; c < Channels; c++) visit.sums[c] = point_sums();
+    for (uint32_t c = 0; c < Channels; c++) {
+        visit.sums[c] = _mm256_setzero_si256();
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        visit.wide_sums[c] = _mm512_setzero_si512();
+#endif
+    }
     /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
     uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
     const uint32_t cells = rows.count * columns.count;
@@ -365,10 +371,13 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     visit_point_candidates<Channels>(&visit, &candidates);
     uint64_t sums[DSN_MAX_CHANNELS];
     for (uint32_t c = 0; c < Channels; c++) {
-        uint64_t lanes_64[sizeof(point_sums) / 8];
-        __builtin_memcpy(lanes_64, &visit.sums[c], sizeof lanes_64);
+        uint64_t lanes_64[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        __builtin_memcpy(lanes_64, &visit.sums[c], 32);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        __builtin_memcpy(lanes_64 + 4, &visit.wide_sums[c], 64);
+#endif
         sums[c] = 0;
-        for (uint32_t k = 0; k < sizeof(point_sums) / 8; k++) sums[c] += lanes_64[k];
+        for (uint32_t k = 0; k < 12; k++) sums[c] += lanes_64[k];
     }
     normalize_q32(noise, sums, out);
     return 1;
