@@ -1,12 +1,13 @@
-/* runtime/continuous_point_vector.h - the continuous mode at one point on AVX2 vectors, as a kernel
-   (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit textons and cells of side <= 16 (pairs
-   of 8 impulses). The cells are walked and their pairs sifted as by continuous_point.cpp's evaluator
-   (continuous_sift.h); each pair's candidates are packed into arrays, then visited 8 at a time: the
-   fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all in 32-bit lanes
-   (64-bit for the column's interpolation), the texels gathered straight from the texton. Candidates whose
-   2 x 2 texels leave the window read those inside it only. The same impulses, offsets, weights
-   and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything here
-   has internal linkage). */
+/* runtime/continuous_point_vector.h - the continuous mode at one point on AVX2 or AVX-512 vectors, as a
+   kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit textons and cells of side <= 16
+   (pairs of 8 impulses). The cells are walked and their pairs sifted as by continuous_point.cpp's
+   evaluator (continuous_sift.h), the keys and counts of all the cells first; each pair's candidates are
+   packed into arrays (AVX-512: a cell's first two pairs at once, compressed), then visited 8 (AVX-512: 16)
+   at a time: the fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all
+   in 32-bit lanes (64-bit for the column's interpolation), the texels gathered straight from the texton,
+   each where it lies inside the window (no branch at the window's edge). The same impulses, offsets,
+   weights and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything
+   here has internal linkage). */
 #ifndef DSN_CONTINUOUS_POINT_VECTOR_H
 #define DSN_CONTINUOUS_POINT_VECTOR_H
 
