@@ -2,7 +2,9 @@
    (kernels.h): each kernel file includes it, so it is built once per instruction set. Internal to libdsn;
    not installed (everything here has internal linkage).
 
-   The same sums as the per-point evaluator (continuous_point.cpp), reorganized so that the work across
+   With AVX2, the noises that the kernel's vector per-point evaluator takes (continuous_point_vector.h:
+   8-bit textons, the usual densities) go through it point by point, which is faster there. The others:
+   the same sums as the per-point evaluator (continuous_point.cpp), reorganized so that the work across
    points runs on vectors. A chunk of points is evaluated in two passes:
      1. per point, its cells are walked and their impulses sifted on the packed lattice fields
         (continuous_sift.h), as per point; every lane of a pair is written to the candidate arrays and
