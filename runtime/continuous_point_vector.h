@@ -307,10 +307,12 @@ DSN_POINT_INLINE bool axis_cells(const PointAxis &point, const FieldLanes &lanes
         const dsn_span span = dsn_axis_span(&point.axis, s);
         for (uint32_t i = 0; i < span.cell_count; i++) {
             const uint32_t cell = dsn_span_cell(&span, i, point.axis.shift), at = cells->count;
-            if (!cell_axis(point, span, cell, lanes, &cells->axis[at])) continue;
+            CellAxis axis;
+            if (!cell_axis(point, span, cell, lanes, &axis)) continue;
             if (at == point_vector_cells) return false;
+            cells->axis[at] = axis;
             cells->cell[at] = cell;
-            cells->base[at] = shifted_16(cells->axis[at].shifted_base);
+            cells->base[at] = shifted_16(axis.shifted_base);
             cells->count = at + 1u;
         }
     }
