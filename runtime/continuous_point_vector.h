@@ -15,6 +15,15 @@
 #include "continuous_lanes.h"
 #include "continuous_sift.h"
 
+namespace {
+/* The noises the vector evaluator takes (continuous_batch.cpp asks too, built without AVX2): 8-bit
+   textons, cells of side <= 16 (pairs of 8 impulses), radii below 2^12. */
+inline bool point_vector_takes(const dsn_noise_state *noise) {
+    return noise->asset.bits == 8 && dsn_field_shift(noise->cell_shift) == 3 && noise->radius[0] < 4096u &&
+           noise->radius[1] < 4096u;
+}
+} // namespace
+
 #if defined(__AVX2__)
 /* Forced into the walk (the compiler left them out of line, measurably slower). */
 #if defined(__GNUC__)
@@ -391,13 +400,6 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
     }
     normalize_q32(noise, sums, out);
     return 1;
-}
-
-/* The noises the vector evaluator takes: 8-bit textons, cells of side <= 16 (pairs of 8 impulses), radii
-   below 2^12. */
-inline bool point_vector_takes(const dsn_noise_state *noise) {
-    return noise->asset.bits == 8 && dsn_field_shift(noise->cell_shift) == 3 && noise->radius[0] < 4096u &&
-           noise->radius[1] < 4096u;
 }
 
 /* The kernel entry, one copy per channel count; 0 for a noise it does not take, or a point with more
