@@ -2,7 +2,9 @@
    (kernels.h): each kernel file includes it, so it is built once per instruction set. Internal to libdsn;
    not installed (everything here has internal linkage).
 
-   The same sums as the per-point evaluator (continuous_point.cpp), reorganized so that the work across
+   With AVX2, the noises that the kernel's vector per-point evaluator takes (continuous_point_vector.h:
+   8-bit textons, the usual densities) go through it point by point, which is faster there. The others:
+   the same sums as the per-point evaluator (continuous_point.cpp), reorganized so that the work across
    points runs on vectors. A chunk of points is evaluated in two passes:
      1. per point, its cells are walked and their impulses sifted on the packed lattice fields
         (continuous_sift.h), as per point; every lane of a pair is written to the candidate arrays and
@@ -17,6 +19,8 @@
 #define DSN_CONTINUOUS_BATCH_H
 
 #include "continuous_internal.h"
+#include "continuous_lanes.h"
+#include "continuous_point_vector.h"
 #include "continuous_sift.h"
 #include "kernels.h"
 #include "simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
@@ -168,10 +172,6 @@ inline __m256i below_64(__m256i a, __m256i b) {
     return _mm256_cmpgt_epi64(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
 }
 
-inline __m256i load_8(const uint32_t *at) {
-    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
-}
-
 /* One axis of 8 candidates: shifted = base - (bits << position_shift) in 64-bit lanes (candidates 0-3,
    4-7), whether 0 < shifted <= limit, and the 32-bit lanes of shifted >> 32 and (shifted >> 16) & 0xFFFF. */
 inline void axis_8(__m256i bits, const uint64_t *bases, __m256i cells, __m128i position_shift, __m256i limit,
@@ -189,14 +189,6 @@ inline void axis_8(__m256i bits, const uint64_t *bases, __m256i cells, __m128i p
     *whole = low_halves(_mm256_srli_epi64(low, 32), _mm256_srli_epi64(high, 32));
     *weight = _mm256_and_si256(low_halves(_mm256_srli_epi64(low, 16), _mm256_srli_epi64(high, 16)),
                                _mm256_set1_epi32(0xFFFF));
-}
-
-inline __m256i mix32_8(__m256i x) {
-    x = _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
-    x = _mm256_mullo_epi32(x, _mm256_set1_epi32(0x7FEB352D));
-    x = _mm256_xor_si256(x, _mm256_srli_epi32(x, 15));
-    x = _mm256_mullo_epi32(x, _mm256_set1_epi32(-0x7B935975 /* 0x846CA68B */));
-    return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
 }
 
 /* The running sums of one point on vectors: the channels' 64-bit values of the even and odd
@@ -255,28 +247,16 @@ void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchAr
         flush_vector_sums<Channels>(running, arrays);
         running->point = one_point ? first_point : last_point;
     }
-    const __m256i scale = _mm256_set1_epi32(65536);
     for (uint32_t c = 0; c < Channels; c++) {
         const __m256i quad =
             _mm256_i32gather_epi32(static_cast<const int *>(static_cast<const void *>(quads + c)), at, 4);
-        const __m256i top_left = _mm256_srai_epi32(_mm256_slli_epi32(quad, 24), 24),
-                      top_right = _mm256_srai_epi32(_mm256_slli_epi32(quad, 16), 24);
-        const __m256i bottom_left = _mm256_srai_epi32(_mm256_slli_epi32(quad, 8), 24),
-                      bottom_right = _mm256_srai_epi32(quad, 24);
-        const __m256i upper =
-            _mm256_add_epi32(_mm256_slli_epi32(top_left, 16),
-                             _mm256_mullo_epi32(across, _mm256_sub_epi32(top_right, top_left)));
-        const __m256i lower =
-            _mm256_add_epi32(_mm256_slli_epi32(bottom_left, 16),
-                             _mm256_mullo_epi32(across, _mm256_sub_epi32(bottom_right, bottom_left)));
-        const __m256i difference = _mm256_sub_epi32(lower, upper);
-        const __m256i even =
-            _mm256_and_si256(reaches_even, _mm256_add_epi64(_mm256_mul_epi32(upper, scale),
-                                                            _mm256_mul_epi32(down, difference)));
-        const __m256i odd = _mm256_and_si256(
-            reaches_odd, _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
-                                          _mm256_mul_epi32(_mm256_srli_epi64(down, 32),
-                                                           _mm256_srli_epi64(difference, 32))));
+        __m256i even, odd;
+        bilinear_8(_mm256_srai_epi32(_mm256_slli_epi32(quad, 24), 24),
+                   _mm256_srai_epi32(_mm256_slli_epi32(quad, 16), 24),
+                   _mm256_srai_epi32(_mm256_slli_epi32(quad, 8), 24), _mm256_srai_epi32(quad, 24), across,
+                   down, &even, &odd);
+        even = _mm256_and_si256(reaches_even, even);
+        odd = _mm256_and_si256(reaches_odd, odd);
         if (one_point) {
             running->channel[c] = _mm256_add_epi64(running->channel[c], _mm256_add_epi64(even, odd));
             continue;
@@ -329,64 +309,16 @@ inline void batch_emit_pair(const BatchArrays &arrays, BatchFill *fill, uint64_t
 }
 
 #if defined(__AVX2__)
-/* For each set of lanes (bit i: lane i) the lanes in order, 3 bits each from bit 0, and their count at
-   bit 24: the permutation that packs a pair's candidates to the front of a vector. */
-/* clang-format off */
-const uint32_t packing_table[256] = {
-    0x00000000u, 0x01000000u, 0x01000001u, 0x02000008u, 0x01000002u, 0x02000010u, 0x02000011u, 0x03000088u,
-    0x01000003u, 0x02000018u, 0x02000019u, 0x030000C8u, 0x0200001Au, 0x030000D0u, 0x030000D1u, 0x04000688u,
-    0x01000004u, 0x02000020u, 0x02000021u, 0x03000108u, 0x02000022u, 0x03000110u, 0x03000111u, 0x04000888u,
-    0x02000023u, 0x03000118u, 0x03000119u, 0x040008C8u, 0x0300011Au, 0x040008D0u, 0x040008D1u, 0x05004688u,
-    0x01000005u, 0x02000028u, 0x02000029u, 0x03000148u, 0x0200002Au, 0x03000150u, 0x03000151u, 0x04000A88u,
-    0x0200002Bu, 0x03000158u, 0x03000159u, 0x04000AC8u, 0x0300015Au, 0x04000AD0u, 0x04000AD1u, 0x05005688u,
-    0x0200002Cu, 0x03000160u, 0x03000161u, 0x04000B08u, 0x03000162u, 0x04000B10u, 0x04000B11u, 0x05005888u,
-    0x03000163u, 0x04000B18u, 0x04000B19u, 0x050058C8u, 0x04000B1Au, 0x050058D0u, 0x050058D1u, 0x0602C688u,
-    0x01000006u, 0x02000030u, 0x02000031u, 0x03000188u, 0x02000032u, 0x03000190u, 0x03000191u, 0x04000C88u,
-    0x02000033u, 0x03000198u, 0x03000199u, 0x04000CC8u, 0x0300019Au, 0x04000CD0u, 0x04000CD1u, 0x05006688u,
-    0x02000034u, 0x030001A0u, 0x030001A1u, 0x04000D08u, 0x030001A2u, 0x04000D10u, 0x04000D11u, 0x05006888u,
-    0x030001A3u, 0x04000D18u, 0x04000D19u, 0x050068C8u, 0x04000D1Au, 0x050068D0u, 0x050068D1u, 0x06034688u,
-    0x02000035u, 0x030001A8u, 0x030001A9u, 0x04000D48u, 0x030001AAu, 0x04000D50u, 0x04000D51u, 0x05006A88u,
-    0x030001ABu, 0x04000D58u, 0x04000D59u, 0x05006AC8u, 0x04000D5Au, 0x05006AD0u, 0x05006AD1u, 0x06035688u,
-    0x030001ACu, 0x04000D60u, 0x04000D61u, 0x05006B08u, 0x04000D62u, 0x05006B10u, 0x05006B11u, 0x06035888u,
-    0x04000D63u, 0x05006B18u, 0x05006B19u, 0x060358C8u, 0x05006B1Au, 0x060358D0u, 0x060358D1u, 0x071AC688u,
-    0x01000007u, 0x02000038u, 0x02000039u, 0x030001C8u, 0x0200003Au, 0x030001D0u, 0x030001D1u, 0x04000E88u,
-    0x0200003Bu, 0x030001D8u, 0x030001D9u, 0x04000EC8u, 0x030001DAu, 0x04000ED0u, 0x04000ED1u, 0x05007688u,
-    0x0200003Cu, 0x030001E0u, 0x030001E1u, 0x04000F08u, 0x030001E2u, 0x04000F10u, 0x04000F11u, 0x05007888u,
-    0x030001E3u, 0x04000F18u, 0x04000F19u, 0x050078C8u, 0x04000F1Au, 0x050078D0u, 0x050078D1u, 0x0603C688u,
-    0x0200003Du, 0x030001E8u, 0x030001E9u, 0x04000F48u, 0x030001EAu, 0x04000F50u, 0x04000F51u, 0x05007A88u,
-    0x030001EBu, 0x04000F58u, 0x04000F59u, 0x05007AC8u, 0x04000F5Au, 0x05007AD0u, 0x05007AD1u, 0x0603D688u,
-    0x030001ECu, 0x04000F60u, 0x04000F61u, 0x05007B08u, 0x04000F62u, 0x05007B10u, 0x05007B11u, 0x0603D888u,
-    0x04000F63u, 0x05007B18u, 0x05007B19u, 0x0603D8C8u, 0x05007B1Au, 0x0603D8D0u, 0x0603D8D1u, 0x071EC688u,
-    0x0200003Eu, 0x030001F0u, 0x030001F1u, 0x04000F88u, 0x030001F2u, 0x04000F90u, 0x04000F91u, 0x05007C88u,
-    0x030001F3u, 0x04000F98u, 0x04000F99u, 0x05007CC8u, 0x04000F9Au, 0x05007CD0u, 0x05007CD1u, 0x0603E688u,
-    0x030001F4u, 0x04000FA0u, 0x04000FA1u, 0x05007D08u, 0x04000FA2u, 0x05007D10u, 0x05007D11u, 0x0603E888u,
-    0x04000FA3u, 0x05007D18u, 0x05007D19u, 0x0603E8C8u, 0x05007D1Au, 0x0603E8D0u, 0x0603E8D1u, 0x071F4688u,
-    0x030001F5u, 0x04000FA8u, 0x04000FA9u, 0x05007D48u, 0x04000FAAu, 0x05007D50u, 0x05007D51u, 0x0603EA88u,
-    0x04000FABu, 0x05007D58u, 0x05007D59u, 0x0603EAC8u, 0x05007D5Au, 0x0603EAD0u, 0x0603EAD1u, 0x071F5688u,
-    0x04000FACu, 0x05007D60u, 0x05007D61u, 0x0603EB08u, 0x05007D62u, 0x0603EB10u, 0x0603EB11u, 0x071F5888u,
-    0x05007D63u, 0x0603EB18u, 0x0603EB19u, 0x071F58C8u, 0x0603EB1Au, 0x071F58D0u, 0x071F58D1u, 0x08FAC688u,
-};
-/* clang-format on */
-
 /* batch_emit_pair<8> on vectors: the 8 lanes' values are packed (candidates first) and stored at once. */
 inline void batch_emit_pair_8(const BatchArrays &arrays, BatchFill *fill, uint64_t pair, uint32_t candidates,
                               uint32_t stream) {
-    const uint32_t entry = packing_table[candidates & 0xFFu];
-    const __m256i order = _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(entry)),
-                                                             _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
-                                           _mm256_set1_epi32(7));
-    /* lane * 0x9E3779B9 modulo 2^32, as int32 bit patterns */
-    const __m256i weyl = _mm256_setr_epi32(0, -0x61C88647, 0x3C6EF372, -0x255992D5, 0x78DDE6E4, 0x1715609D,
-                                           -0x4AB325AA, 0x5384540F);
-    const __m256i streams = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(stream)), weyl);
-    const __m256i fields =
-        _mm256_or_si256(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(pair))),
-                        _mm256_set1_epi32(static_cast<int>((fill->cells - 1u) << 16)));
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.stream + fill->slots)),
-                        _mm256_permutevar8x32_epi32(streams, order));
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.packed + fill->slots)),
-                        _mm256_permutevar8x32_epi32(fields, order));
-    fill->slots += entry >> 24;
+    __m256i streams, fields;
+    const uint32_t count = pack_pair_8(pair, candidates, stream, &streams, &fields);
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.stream + fill->slots)), streams);
+    _mm256_storeu_si256(
+        static_cast<__m256i *>(static_cast<void *>(arrays.packed + fill->slots)),
+        _mm256_or_si256(fields, _mm256_set1_epi32(static_cast<int>((fill->cells - 1u) << 16))));
+    fill->slots += count;
 }
 #endif
 
@@ -477,12 +409,22 @@ void batch_points(const dsn_noise_state *noise, const uint32_t *quads, const int
 }
 
 /* The kernel entry. With AVX2 (the AVX2 and AVX-512 kernels, or a default kernel built for AVX2) the
-   passes above, one copy per channel count and value size. Without, those (pass 2 one candidate at a
-   time) measured slower than the per-point evaluator with its SSE2 bilinear reads, which the entry
-   then calls point by point (work and quads unused). */
+   vector per-point evaluator point by point for the noises it takes (continuous_point_vector.h: faster
+   than the passes above there), else the passes above, one copy per channel count and value size. Without,
+   those (pass 2 one candidate at a time) measured slower than the per-point evaluator with its SSE2 bilinear
+   reads, which the entry then calls point by point (work and quads unused). */
 inline void continuous_batch(const dsn_noise_state *noise, const uint32_t *quads, const int64_t *xs,
                              const int64_t *ys, uint32_t count, int32_t *out, void *work) {
 #if defined(__AVX2__)
+    if (point_vector_takes(noise)) { /* point by point is faster there */
+        for (uint32_t k = 0; k < count; k++) {
+            const uint64_t x = static_cast<uint64_t>(xs[k]), y = static_cast<uint64_t>(ys[k]);
+            int32_t *values = out + static_cast<size_t>(k) * noise->asset.channels;
+            if (!continuous_point_vector(noise, x, y, values))
+                dsn_internal_continuous_point(noise, x, y, values);
+        }
+        return;
+    }
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3)
         asset->bits == 8 ? batch_points<3, 1>(noise, quads, xs, ys, count, out, work)

@@ -1,7 +1,8 @@
 /* runtime/continuous_point.cpp - the continuous mode at one point: the impulses of the cells around it,
    each adding its bilinear texton (bilinear_texton.h) to the channel sums. With DSN_SMALL_CODE (dsn.h) a
    point walks its impulses one by one; the fast build sifts them on their packed lattice fields first
-   (evaluate_fast) and, on SSE2, interpolates 8-bit textons on vectors. Also the API's mode check and
+   (evaluate_fast) and, on SSE2, interpolates 8-bit textons on vectors; kernels built for AVX2 have their
+   own copy for the usual noises (continuous_point_vector.h). Also the API's mode check and
    per-point functions. */
 #include "bilinear_read.h"
 #include "bilinear_texton.h"
@@ -9,6 +10,7 @@
 #include "continuous_internal.h"
 #include "continuous_sift.h"
 #include "impulse_position.h"
+#include "kernels.h"
 #include "normalize_fixed.h"
 #include "poisson_count.h"
 
@@ -214,8 +216,11 @@ void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t
 
 } // namespace
 
-/* The fast build evaluates through the sifting walk, one copy per channel count and value size. */
+/* The fast build evaluates through the kernel's vector evaluator where it has one that takes the noise
+   (continuous_point_vector.h), else through the sifting walk, one copy per channel count and value size. */
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    dsn_continuous_point_entry *vector = dsn_kernel_entries_of(noise->tile_kernel)->continuous_point;
+    if (vector != 0 && vector(noise, x, y, out)) return;
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3)
         asset->bits == 8 ? evaluate_fast<3, 1>(noise, x, y, out) : evaluate_fast<3, 2>(noise, x, y, out);

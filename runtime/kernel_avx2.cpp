@@ -9,9 +9,10 @@
 #endif
 
 #include "continuous_batch.h"
+#include "continuous_point_vector.h"
 #include "splat_row.h"
 #include "tile_render.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile, continuous_batch,
-                                                             continuous_splat_runs};
+                                                             continuous_splat_runs, continuous_point_vector};
 #endif

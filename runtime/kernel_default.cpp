@@ -1,5 +1,6 @@
 /* runtime/kernel_default.cpp - the default kernel: the evaluation code built with the runtime's own
-   flags (on x86 the widest vectors those flags allow, simd.h), the one every build has. */
+   flags (on x86 the widest vectors those flags allow, simd.h), the one every build has. Built for AVX2, it
+   has the vector per-point evaluator too. */
 #include "kernels.h"
 #include "tile_render.h"
 
@@ -15,5 +16,12 @@
 #else
 #define SPLAT_ROW_ENTRY 0
 #endif
+#if !DSN_SMALL_CODE && defined(__AVX2__)
+#include "continuous_point_vector.h"
+#define POINT_ENTRY continuous_point_vector
+#else
+#define POINT_ENTRY 0
+#endif
 
-extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile, BATCH_ENTRY, SPLAT_ROW_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile, BATCH_ENTRY, SPLAT_ROW_ENTRY,
+                                                                POINT_ENTRY};

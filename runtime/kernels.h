@@ -65,13 +65,20 @@ typedef struct dsn_splat_setup {
 typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count);
 
+/* One continuous point (continuous_point_vector.h's continuous_point_vector): the Q16.16 values of the
+   point (x, y), Q32.32, into out, as dsn_internal_continuous_point gives them; returns 0, writing
+   nothing, for a noise it does not take (dsn_internal_continuous_point then evaluates the point itself). */
+typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs in the small build
-   (DSN_SMALL_CODE), which evaluates grids point by point. */
+   (DSN_SMALL_CODE), which evaluates grids point by point, continuous_point in kernels built without
+   AVX2 (continuous_point.cpp's own evaluator then runs). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_runs_entry *continuous_splat_runs;
+    dsn_continuous_point_entry *continuous_point;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

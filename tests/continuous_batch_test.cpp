@@ -20,36 +20,8 @@ namespace {
 
 const int64_t one = int64_t(1) << 32;
 
-// Points that a renderer might ask for, and the ones the wraps make hard: random 64-bit coordinates,
-// points near the int32 wrap of the integer part and near 0, and lattice points.
-void make_points(uint64_t seed, size_t count, std::vector<int64_t> *xs, std::vector<int64_t> *ys) {
-    std::mt19937_64 random(seed);
-    xs->resize(count);
-    ys->resize(count);
-    for (size_t k = 0; k < count; k++) {
-        const int64_t jitter_x = int64_t(random() >> 24) - (int64_t(1) << 39); // +-128 texels
-        const int64_t jitter_y = int64_t(random() >> 24) - (int64_t(1) << 39);
-        switch (k % 4) {
-        case 0: // anywhere on the torus
-            (*xs)[k] = int64_t(random());
-            (*ys)[k] = int64_t(random());
-            break;
-        case 1: // around the int32 wrap of the integer part (2^31 texels)
-            (*xs)[k] = int64_t((uint64_t(INT32_MAX) << 32) + uint64_t(jitter_x)); // modulo 2^64
-            (*ys)[k] = int64_t((uint64_t(uint32_t(INT32_MIN)) << 32) + uint64_t(jitter_y));
-            break;
-        case 2: // around 0 and the 2^32 wrap of the torus
-            (*xs)[k] = jitter_x;
-            (*ys)[k] = int64_t(uint64_t(jitter_y) + (uint64_t(0xFFFFFFFFu) << 32));
-            break;
-        default: // lattice points
-            (*xs)[k] = int64_t(uint64_t(random() % 4096) << 32) - 2048 * one;
-            (*ys)[k] = int64_t(uint64_t(random() % 4096) << 32) - 2048 * one;
-        }
-    }
-}
-
-// The batch (fixed and float) against the per-point functions, in every kernel this CPU runs; returns
+// The batch (fixed and float), in every kernel this CPU runs, against the per-point functions of the default
+// kernel; returns
 // the number of values that differ.
 size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
                          const std::vector<int64_t> &ys) {
@@ -58,12 +30,15 @@ size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
     std::vector<int32_t> expected(size_t(count) * channels);
     std::vector<float> expected_float(expected.size());
     std::vector<double> xs_double(count), ys_double(count);
+    dsn_noise reference = noise; // the default kernel's per-point evaluator
+    dsn_state(&reference)->tile_kernel = DSN_KERNEL_DEFAULT;
     for (uint32_t k = 0; k < count; k++) {
-        REQUIRE(dsn_continuous_point_fixed(&noise, xs[k], ys[k], &expected[size_t(k) * channels]) == DSN_OK);
+        REQUIRE(dsn_continuous_point_fixed(&reference, xs[k], ys[k], &expected[size_t(k) * channels]) ==
+                DSN_OK);
         // Doubles with the same Q32.32 value (exact: at most 53 significant bits are kept)
         xs_double[k] = double(xs[k] >> 12) / double(1 << 20);
         ys_double[k] = double(ys[k] >> 12) / double(1 << 20);
-        REQUIRE(dsn_continuous_point_float(&noise, xs_double[k], ys_double[k],
+        REQUIRE(dsn_continuous_point_float(&reference, xs_double[k], ys_double[k],
                                            &expected_float[size_t(k) * channels]) == DSN_OK);
     }
     const size_t scratch_size = dsn_continuous_batch_scratch_size(&noise);
@@ -110,7 +85,7 @@ TEST_CASE("continuous batch: equal to per point for every texton kind, density a
         auto noise = make_noise(random_texton_asset(c.channels, c.radius, c.bits, uint32_t(seed)),
                                 uint32_t(seed * 77), c.impacts_q16);
         std::vector<int64_t> xs, ys;
-        make_points(seed++, 101, &xs, &ys); // three chunks and a part
+        renderer_points(seed++, 101, &xs, &ys); // three chunks and a part
         CHECK(batch_differences(noise->noise, xs, ys) == 0);
     }
 }
@@ -123,7 +98,7 @@ TEST_CASE("continuous batch: periodic noises, where points cross the int32 wrap 
         CAPTURE(period[1]);
         auto noise = make_noise(random_texton_asset(3, 9, 8, 5), 9, 30u << 16, period[0], period[1]);
         std::vector<int64_t> xs, ys;
-        make_points(seed++, 70, &xs, &ys);
+        renderer_points(seed++, 70, &xs, &ys);
         CHECK(batch_differences(noise->noise, xs, ys) == 0);
     }
 }
@@ -133,7 +108,7 @@ TEST_CASE("continuous batch: every length around the chunk size, and points in a
     for (uint32_t count : {1u, 2u, 15u, 16u, 17u, 31u, 32u, 33u, 64u, 65u}) {
         CAPTURE(count);
         std::vector<int64_t> xs, ys;
-        make_points(count, count, &xs, &ys);
+        renderer_points(count, count, &xs, &ys);
         CHECK(batch_differences(noise->noise, xs, ys) == 0);
     }
     // The same point many times, and a dense run along a row (a renderer's coherent hits).

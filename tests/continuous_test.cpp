@@ -1,6 +1,7 @@
 // continuous_test.cpp - the continuous mode's exact behaviour: coordinate conversion from IEEE bits,
-// the lattice-asset error, the bilinear sum against a brute-force reference over every nearby cell,
-// grid tiles against per-point calls, and periodicity.
+// the lattice-asset error, the bilinear sum against a brute-force reference over every nearby cell, the
+// per-point evaluator of every kernel against the default kernel's, grid tiles against per-point calls,
+// and periodicity.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "../runtime/impulse_position.h"
+#include "../runtime/kernels.h"
 #include "../runtime/poisson_count.h"
 #include "fixtures/continuous_fixtures.h"
 
@@ -211,6 +213,57 @@ TEST_CASE("continuous: the value is the bilinear sum over every impulse (brute-f
                 REQUIRE(std::fabs((long double)out[k] - expected[k]) <= 1.0L); // final rounding only
             }
         }
+    }
+}
+
+TEST_CASE("continuous: every kernel's per-point evaluator gives the default kernel's bits") {
+    struct Case {
+        uint32_t channels, radius, bits, impacts_q16, period_x, period_y;
+    };
+    // Every texton kind (the vector evaluators take 8-bit textons and cells of side <= 16: the others
+    // check that they are left to the default evaluator), from the sparsest density to ones with more
+    // candidates per point than a vector evaluator buffers, and periodic noises.
+    const Case cases[] = {{3, 15, 8, 30u << 16, 0, 0},
+                          {1, 15, 8, 30u << 16, 0, 0},
+                          {3, 15, 16, 30u << 16, 0, 0},
+                          {3, 0, 8, 1u << 14, 0, 0},
+                          {1, 1, 8, 64u << 16, 0, 0},
+                          {3, 10, 8, 1000u << 16, 0, 0},
+                          {1, 20, 8, DSN_IMPACTS_MIN_Q16, 0, 0},
+                          {3, 40, 8, 30u << 16, 0, 0},
+                          {3, 9, 8, 30u << 16, 16, 13},
+                          {1, 9, 8, 30u << 16, 37, 0},
+                          {3, 9, 8, 30u << 16, 1, 1},
+                          {3, 9, 8, 30u << 16, 3000, 77777},
+                          {3, 9, 8, 30u << 16, 0xFFFFFFFFu, 1u << 31}};
+    uint64_t seed = 7;
+    for (const Case &c : cases) {
+        CAPTURE(c.channels);
+        CAPTURE(c.radius);
+        CAPTURE(c.bits);
+        CAPTURE(c.impacts_q16);
+        CAPTURE(c.period_x);
+        CAPTURE(c.period_y);
+        auto noise = make_noise(random_texton_asset(c.channels, c.radius, c.bits, uint32_t(seed)),
+                                uint32_t(seed * 31), c.impacts_q16, c.period_x, c.period_y);
+        std::vector<int64_t> xs, ys;
+        renderer_points(seed++, 400, &xs, &ys);
+        dsn_noise reference = noise->noise;
+        dsn_state(&reference)->tile_kernel = DSN_KERNEL_DEFAULT;
+        size_t differences = 0;
+        for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= dsn_state(&noise->noise)->tile_kernel;
+             kernel++) {
+            CAPTURE(kernel);
+            dsn_noise copy = noise->noise;
+            dsn_state(&copy)->tile_kernel = kernel;
+            for (size_t k = 0; k < xs.size(); k++) {
+                int32_t expected[3] = {0, 0, 0}, got[3] = {0, 0, 0};
+                REQUIRE(dsn_continuous_point_fixed(&reference, xs[k], ys[k], expected) == DSN_OK);
+                REQUIRE(dsn_continuous_point_fixed(&copy, xs[k], ys[k], got) == DSN_OK);
+                differences += std::memcmp(expected, got, sizeof got) != 0;
+            }
+        }
+        CHECK(differences == 0);
     }
 }
 

@@ -213,8 +213,8 @@ void dsn_config_defaults(dsn_config *config);
 /* The configured noise: caller-owned storage of a fixed size (DSN_NOISE_BYTES on every platform), filled by
    dsn_noise_init and read by every evaluator. Its contents are private to the runtime and change between
    versions: copy it with memcpy if needed, never read or write its words. It keeps a pointer to the
-   asset's texton (the caller's buffer), and init records which copy of the tile code the CPU runs (x86-64:
-   AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
+   asset's texton (the caller's buffer), and init records which copy of the tile and continuous point code
+   the CPU runs (x86-64: AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
 #define DSN_NOISE_WORDS 144 /* 64-bit words: DSN_NOISE_BYTES = 1152 */
 #define DSN_NOISE_BYTES (DSN_NOISE_WORDS * 8)
 typedef union dsn_noise {
@@ -389,7 +389,9 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
    out[k * channels], exactly what the per-point function of the same type returns there (the float
    variant: dsn_continuous_point_float, coordinates converted by dsn_coordinate_from_double). The points
    may lie anywhere, in any order; where the CPU runs AVX2 (the copy init chose, as for tiles) the batch
-   evaluates them together, hashing and interpolating across points on vectors, elsewhere point by point.
+   evaluates them on vectors: 8-bit textons with cells of side <= 16 (the usual densities) point by point
+   through the vectorized per-point evaluator, other assets together, hashing and interpolating across
+   points; elsewhere point by point.
    The scratch holds a table of the texton's 2 x 2 texel neighbourhoods and the work arrays: at least
    dsn_continuous_batch_scratch_size() bytes (no alignment needed; it depends on the asset's texton size,
    not on count: about 32 KB for a 31 x 31 RGB texton). Returns DSN_OK (count 0

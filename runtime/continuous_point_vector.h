@@ -1,0 +1,415 @@
+/* runtime/continuous_point_vector.h - the continuous mode at one point on AVX2 or AVX-512 vectors, as a
+   kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit textons and cells of side <= 16
+   (pairs of 8 impulses). The cells are walked and their pairs sifted as by continuous_point.cpp's
+   evaluator (continuous_sift.h), the keys and counts of all the cells first; each pair's candidates are
+   packed into arrays (AVX-512: a cell's first two pairs at once, compressed), then visited 8 (AVX-512: 16)
+   at a time: the fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all
+   in 32-bit lanes (64-bit for the column's interpolation), the texels gathered straight from the texton,
+   each where it lies inside the window (no branch at the window's edge). The same impulses, offsets,
+   weights and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything
+   here has internal linkage). */
+#ifndef DSN_CONTINUOUS_POINT_VECTOR_H
+#define DSN_CONTINUOUS_POINT_VECTOR_H
+
+#include "continuous_internal.h"
+#include "continuous_lanes.h"
+#include "continuous_sift.h"
+
+namespace {
+/* The noises the vector evaluator takes (continuous_batch.cpp asks too, built without AVX2): 8-bit
+   textons, cells of side <= 16 (pairs of 8 impulses), radii below 2^12. */
+inline bool point_vector_takes(const dsn_noise_state *noise) {
+    return noise->asset.bits == 8 && dsn_field_shift(noise->cell_shift) == 3 && noise->radius[0] < 4096u &&
+           noise->radius[1] < 4096u;
+}
+} // namespace
+
+#if defined(__AVX2__)
+/* Forced into the walk (the compiler left them out of line, measurably slower). */
+#if defined(__GNUC__)
+#define DSN_POINT_INLINE inline __attribute__((always_inline))
+#else
+#define DSN_POINT_INLINE inline
+#endif
+
+namespace {
+
+/* The offsets in 32-bit lanes. Write S = floor(shifted / 2^16) for bracket's shifted value (CellAxis's
+   shifted_base less b 2^(16 + shift) for the 16-bit position b): S = floor(shifted_base / 2^16) - b 2^shift
+   exactly, as b 2^(16 + shift) is a multiple of 2^16. The lower index is (S >> 16) - 1 and the weight
+   S & 0xFFFF. bracket keeps 0 < shifted < (2 radius + 2) 2^32, that is 0 <= S <= (2 radius + 2) 2^16 - 1
+   except shifted = 0 (S = 0 with low bits zero), which the test below keeps too: its texels are those of
+   rows -1 and 0 with weight 0 on row 0, so it adds exactly zero. For a cell that passes cell_axis,
+   0 < shifted_base < (2 radius + 2) 2^32 + 2^(32 + shift), so S lies within (-2^20, 2^30) for the radii
+   taken (continuous_point_vector). */
+const uint32_t point_vector_slots = 64; /* candidates visited at once (a usual point has about 35) */
+const uint32_t point_vector_cells = 8;  /* cells of a point along each axis, at most (a usual point has 3) */
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+const uint32_t point_vector_lanes = 16; /* candidates per visit: 512-bit vectors (the last 8 or fewer: 256) */
+#else
+const uint32_t point_vector_lanes = 8;
+#endif
+
+/* The packed candidates: fraction hash input, 8-bit field, and the cell's floor(shifted_base / 2^16) per
+   axis (bit patterns of int32). The slots past the end take the last pair's store and the padding. */
+struct PointCandidates {
+    uint32_t stream[point_vector_slots + 16], field[point_vector_slots + 16];
+    uint32_t base_x[point_vector_slots + 16], base_y[point_vector_slots + 16];
+    uint32_t count;
+};
+
+inline __m256i broadcast_8(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
+
+inline void store_8(uint32_t *at, __m256i value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
+}
+
+/* a <= limit as unsigned 32-bit lanes. */
+inline __m256i at_most(__m256i a, __m256i limit) { return _mm256_cmpeq_epi32(_mm256_min_epu32(a, limit), a); }
+
+/* What the visits of one point share, and its sums (64-bit lanes per channel). */
+template <uint32_t Channels>
+struct PointVisit {
+    const unsigned char *texton;
+    uint32_t width, height;
+    uint32_t last_x, last_y; /* the largest S in reach */
+    __m128i shift;
+    __m256i sums[Channels];
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    __m512i wide_sums[Channels];
+#endif
+};
+
+/* Byte `index` of every 32-bit lane, sign-extended. */
+inline __m256i lane_byte(__m256i words, int index) {
+    return _mm256_srai_epi32(_mm256_sll_epi32(words, _mm_cvtsi32_si128(24 - 8 * index)), 24);
+}
+
+/* Candidates first .. first + 7 of which the first `valid` exist. */
+template <uint32_t Channels>
+inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
+                          uint32_t valid) {
+    const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
+                  field = load_8(candidates.field + first);
+    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), one = _mm256_set1_epi32(1);
+    /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
+    const __m256i bits_x =
+        _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(field, _mm256_set1_epi32(15)), 12),
+                        _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
+    const __m256i bits_y =
+        _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(field, 4), 12), _mm256_srli_epi32(fraction, 20));
+    const __m256i s_x =
+        _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
+    const __m256i s_y =
+        _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
+    const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256i reach =
+        _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
+                                                  at_most(s_y, broadcast_8(visit->last_y))));
+    const __m256i column = _mm256_sub_epi32(_mm256_srli_epi32(s_x, 16), one),
+                  row = _mm256_sub_epi32(_mm256_srli_epi32(s_y, 16), one);
+    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
+    /* Each texel is read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is
+       zero elsewhere, as add_bilinear's, without a branch: one gather per texel column and row. */
+    const __m256i last_column = broadcast_8(visit->width - 1u), last_row = broadcast_8(visit->height - 1u);
+    const __m256i left = at_most(column, last_column),
+                  right = at_most(_mm256_add_epi32(column, one), last_column);
+    const __m256i top = _mm256_and_si256(reach, at_most(row, last_row)),
+                  bottom = _mm256_and_si256(reach, at_most(_mm256_add_epi32(row, one), last_row));
+    /* Byte offset of the top-left texel (unread where it is outside). */
+    const __m256i entry = _mm256_add_epi32(_mm256_mullo_epi32(row, broadcast_8(visit->width)), column);
+    const __m256i at = Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(entry, 1), entry) : entry;
+    const __m256i below = _mm256_add_epi32(at, broadcast_8(visit->width * Channels));
+    const int *texton = static_cast<const int *>(static_cast<const void *>(visit->texton));
+    const int *next = static_cast<const int *>(static_cast<const void *>(visit->texton + Channels));
+    const __m256i zero = _mm256_setzero_si256();
+    /* 4 bytes from each texel: its channels first. Reads reach at most 3 bytes past the texton, into the
+       asset's 4-byte CRC, which the loader guarantees lies in the buffer right after it (format.h:
+       total_size). */
+    const __m256i top_left = _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top, left), 1),
+                  top_right = _mm256_mask_i32gather_epi32(zero, next, at, _mm256_and_si256(top, right), 1),
+                  bottom_left =
+                      _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom, left), 1),
+                  bottom_right =
+                      _mm256_mask_i32gather_epi32(zero, next, below, _mm256_and_si256(bottom, right), 1);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const int byte = static_cast<int>(c);
+        __m256i even, odd;
+        bilinear_8(lane_byte(top_left, byte), lane_byte(top_right, byte), lane_byte(bottom_left, byte),
+                   lane_byte(bottom_right, byte), across, down, &even, &odd);
+        visit->sums[c] = _mm256_add_epi64(visit->sums[c], _mm256_add_epi64(even, odd));
+    }
+}
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* visit_point_8 on 512-bit vectors: candidates first .. first + 15 of which the first `valid` exist. */
+inline __m512i load_16(const uint32_t *at) { return _mm512_loadu_si512(at); }
+inline __m512i broadcast_16(uint32_t value) { return _mm512_set1_epi32(static_cast<int>(value)); }
+inline __m512i lane_byte_16(__m512i words, unsigned int index) {
+    return _mm512_srai_epi32(_mm512_slli_epi32(words, 24 - 8 * index), 24);
+}
+
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
+                                     uint32_t first, uint32_t valid) {
+    __m512i fraction = load_16(candidates.stream + first); /* dsn_mix32 */
+    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
+    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(0x7FEB352D));
+    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 15));
+    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
+    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
+    const __m512i field = load_16(candidates.field + first), low_16 = _mm512_set1_epi32(0xFFFF);
+    const __m512i bits_x =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(field, _mm512_set1_epi32(15)), 12),
+                        _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
+    const __m512i bits_y =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(field, 4), 12), _mm512_srli_epi32(fraction, 20));
+    const __m512i s_x =
+        _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
+    const __m512i s_y =
+        _mm512_sub_epi32(load_16(candidates.base_y + first), _mm512_sll_epi32(bits_y, visit->shift));
+    const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
+    const __mmask16 reach =
+        _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
+                                     s_y, broadcast_16(visit->last_y));
+    /* the texton indices of the right column and the lower row, and of the left column and upper row */
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i column = _mm512_sub_epi32(right_column, _mm512_set1_epi32(1)),
+                  row = _mm512_sub_epi32(lower_row, _mm512_set1_epi32(1));
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    const __m512i last_column = broadcast_16(visit->width - 1u), last_row = broadcast_16(visit->height - 1u);
+    const __mmask16 left = _mm512_cmple_epu32_mask(column, last_column),
+                    right = _mm512_cmple_epu32_mask(right_column, last_column);
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach, row, last_row),
+                    bottom = _mm512_mask_cmple_epu32_mask(reach, lower_row, last_row);
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(visit->width)), column);
+    const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry;
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(visit->width * Channels));
+    const void *texton = visit->texton, *next = visit->texton + Channels;
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i top_left = _mm512_mask_i32gather_epi32(zero, top & left, at, texton, 1),
+                  top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
+                  bottom_left = _mm512_mask_i32gather_epi32(zero, bottom & left, below, texton, 1),
+                  bottom_right = _mm512_mask_i32gather_epi32(zero, bottom & right, below, next, 1);
+    const __m512i scale = _mm512_set1_epi32(65536);
+    for (uint32_t c = 0; c < Channels; c++) { /* as bilinear_8 */
+        const __m512i a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c);
+        const __m512i d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
+        const __m512i upper =
+            _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
+        const __m512i lower =
+            _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
+        const __m512i difference = _mm512_sub_epi32(lower, upper);
+        const __m512i even =
+            _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
+        const __m512i odd = _mm512_add_epi64(
+            _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
+            _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
+        visit->wide_sums[c] = _mm512_add_epi64(visit->wide_sums[c], _mm512_add_epi64(even, odd));
+    }
+}
+#endif
+
+/* Visits the buffered candidates and empties the buffer. */
+template <uint32_t Channels>
+inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
+    const uint32_t count = candidates->count;
+    /* The lanes past the last candidate hold zeros (defined values; the count leaves them out). */
+    const __m256i zero = _mm256_setzero_si256();
+    for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u) {
+        store_8(candidates->stream + pad, zero), store_8(candidates->field + pad, zero);
+        store_8(candidates->base_x + pad, zero), store_8(candidates->base_y + pad, zero);
+    }
+    uint32_t first = 0;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    for (; first + 8u < count; first += 16u)
+        visit_point_16<Channels>(visit, *candidates, first, count - first);
+#endif
+    for (; first < count; first += 8u) visit_point_8<Channels>(visit, *candidates, first, count - first);
+    candidates->count = 0;
+}
+
+/* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
+   whose impulses are `count` (none when count <= first). */
+inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m256i base_x,
+                     __m256i base_y) {
+    const uint64_t pair = dsn_position_pair(key, first >> 3);
+    const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
+    const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
+    __m256i streams, fields;
+    /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
+    const uint32_t packed =
+        pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
+    const uint32_t slot = candidates->count;
+    store_8(candidates->stream + slot, streams), store_8(candidates->field + slot, fields);
+    store_8(candidates->base_x + slot, base_x), store_8(candidates->base_y + slot, base_y);
+    candidates->count = slot + packed;
+}
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* Number of set bits of a 16-bit mask. */
+inline uint32_t mask_count(uint32_t mask) {
+#if defined(__POPCNT__)
+    return static_cast<uint32_t>(__builtin_popcount(mask));
+#else
+    mask -= (mask >> 1) & 0x5555u;
+    mask = (mask & 0x3333u) + ((mask >> 2) & 0x3333u);
+    mask = (mask + (mask >> 4)) & 0x0F0Fu;
+    return (mask + (mask >> 8)) & 0x1Fu;
+#endif
+}
+
+/* add_pair for the cell's first two pairs at once (impulses 0 .. 15): the sifting of both pairs in one
+   128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
+   compressed into place. */
+inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
+                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m512i base_x,
+                            __m512i base_y) {
+    const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
+                                         static_cast<long long>(dsn_position_pair(key, 0)));
+    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
+                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
+    const __m128i halves_x = _mm_and_si128(pairs, halves),
+                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
+    const __m128i in_x = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
+    const __m128i in_y = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
+    uint32_t sifted = static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+    if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
+    /* dsn_cell_stream(key, 2^31 + k) of impulse k */
+    const __m512i streams = _mm512_add_epi32(
+        _mm512_set1_epi32(static_cast<int>(key + 0x80000000u * 0x9E3779B9u)),
+        _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                           _mm512_set1_epi32(-0x61C88647 /* 0x9E3779B9 */)));
+    const __mmask16 keep = static_cast<__mmask16>(sifted);
+    const uint32_t slot = candidates->count;
+    _mm512_storeu_si512(candidates->stream + slot, _mm512_maskz_compress_epi32(keep, streams));
+    _mm512_storeu_si512(candidates->field + slot,
+                        _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs)));
+    _mm512_storeu_si512(candidates->base_x + slot, base_x);
+    _mm512_storeu_si512(candidates->base_y + slot, base_y);
+    candidates->count = slot + mask_count(sifted);
+}
+#endif
+
+/* floor(value / 2^16) as an int32 bit pattern (the value far from the int64 limits). */
+inline uint32_t shifted_16(int64_t value) {
+    return static_cast<uint32_t>(static_cast<uint64_t>(floor_shift(value, 16)));
+}
+
+/* The cells of one axis that may reach the point (cell_axis), with their floor(shifted_base / 2^16). */
+struct AxisCells {
+    uint32_t cell[point_vector_cells], base[point_vector_cells];
+    CellAxis axis[point_vector_cells];
+    uint32_t count;
+};
+
+/* False when there are more than point_vector_cells. */
+DSN_POINT_INLINE bool axis_cells(const PointAxis &point, const FieldLanes &lanes, AxisCells *cells) {
+    cells->count = 0;
+    for (uint32_t s = 0; s < point.axis.span_count; s++) {
+        const dsn_span span = dsn_axis_span(&point.axis, s);
+        for (uint32_t i = 0; i < span.cell_count; i++) {
+            const uint32_t cell = dsn_span_cell(&span, i, point.axis.shift), at = cells->count;
+            CellAxis axis;
+            if (!cell_axis(point, span, cell, lanes, &axis)) continue;
+            if (at == point_vector_cells) return false;
+            cells->axis[at] = axis;
+            cells->cell[at] = cell;
+            cells->base[at] = shifted_16(axis.shifted_base);
+            cells->count = at + 1u;
+        }
+    }
+    return true;
+}
+
+template <uint32_t Channels>
+int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    const uint32_t shift = noise->cell_shift;
+    const FieldLanes lanes = field_lanes(shift);
+    AxisCells columns, rows;
+    if (!axis_cells(point_axis(x, noise->radius[0], shift, noise->period[0]), lanes, &columns) ||
+        !axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, &rows))
+        return 0;
+    PointVisit<Channels> visit;
+    visit.texton = noise->asset.texton;
+    visit.width = noise->asset.width, visit.height = noise->asset.height;
+    visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
+    visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
+    visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
+    for (uint32_t c = 0; c < Channels; c++) {
+        visit.sums[c] = _mm256_setzero_si256();
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        visit.wide_sums[c] = _mm512_setzero_si512();
+#endif
+    }
+    /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
+    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+    const uint32_t cells = rows.count * columns.count;
+    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
+        const uint32_t row_key = dsn_row_key(noise, rows.cell[j]);
+        for (uint32_t i = 0; i < columns.count; i++, k++)
+            keys[k] = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
+    }
+    if (dsn_poisson_two_steps_fit(noise))
+        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_poisson_count_two_steps(noise, keys[k]);
+    else
+        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_cell_impulse_count(noise, keys[k]);
+    PointCandidates candidates;
+    candidates.count = 0;
+    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
+        const __m256i base_y = broadcast_8(rows.base[j]);
+        for (uint32_t i = 0; i < columns.count; i++, k++) {
+            const uint32_t key = keys[k], count = counts[k];
+            const __m256i base_x = broadcast_8(columns.base[i]);
+            /* The first two pairs whether the cell has impulses there or not: a branch on the count
+               would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
+            if (candidates.count > point_vector_slots - 16u)
+                visit_point_candidates<Channels>(&visit, &candidates);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            add_first_pairs(&candidates, key, count, lanes, columns.axis[i], rows.axis[j],
+                            _mm512_set1_epi32(static_cast<int>(columns.base[i])),
+                            _mm512_set1_epi32(static_cast<int>(rows.base[j])));
+#else
+            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+#endif
+            for (uint32_t first = 16; first < count; first += 8u) {
+                if (candidates.count > point_vector_slots - 8u)
+                    visit_point_candidates<Channels>(&visit, &candidates);
+                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j], base_x,
+                         base_y);
+            }
+        }
+    }
+    visit_point_candidates<Channels>(&visit, &candidates);
+    uint64_t sums[DSN_MAX_CHANNELS];
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t lanes_64[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        __builtin_memcpy(lanes_64, &visit.sums[c], 32);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        __builtin_memcpy(lanes_64 + 4, &visit.wide_sums[c], 64);
+#endif
+        sums[c] = 0;
+        for (uint32_t k = 0; k < 12; k++) sums[c] += lanes_64[k];
+    }
+    normalize_q32(noise, sums, out);
+    return 1;
+}
+
+/* The kernel entry, one copy per channel count; 0 for a noise it does not take, or a point with more
+   than point_vector_cells cells along an axis. */
+inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    if (!point_vector_takes(noise)) return 0;
+    return noise->asset.channels == 3 ? point_vector<3>(noise, x, y, out) : point_vector<1>(noise, x, y, out);
+}
+
+} // namespace
+#endif /* __AVX2__ */
+
+#endif /* DSN_CONTINUOUS_POINT_VECTOR_H */
