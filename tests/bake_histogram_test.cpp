@@ -15,25 +15,9 @@ namespace {
 
 using namespace histogram_measures;
 
-// A random-phase texture: white noise convolved with the known spot, each channel scaled to zero mean
-// and unit variance (a Gaussian field with the spot's autocorrelation, channels correlated).
+// A random-phase texture: a Gaussian field with unit variance (bake_fixtures::spot_noise_field).
 dsn::Image random_phase_field(int size, int channels, uint32_t seed) {
-    dsn::Spectrum spectrum = dsn::forward_dft(bake_fixtures::known_spot(size, size, channels));
-    const dsn::Spectrum noise = dsn::forward_dft(dsn::white_noise(size, size, seed));
-    const size_t plane = spectrum.plane_size();
-    for (int c = 0; c < channels; c++)
-        for (size_t i = 0; i < plane; i++) spectrum.values[size_t(c) * plane + i] *= noise.values[i];
-    dsn::Image image = dsn::inverse_dft(spectrum);
-    for (int c = 0; c < channels; c++) {
-        double *values = &image.values[size_t(c) * plane];
-        double mean = 0, square = 0;
-        for (size_t i = 0; i < plane; i++) mean += values[i];
-        mean /= double(plane);
-        for (size_t i = 0; i < plane; i++) square += (values[i] - mean) * (values[i] - mean);
-        const double deviation = std::sqrt(square / double(plane));
-        for (size_t i = 0; i < plane; i++) values[i] = (values[i] - mean) / deviation;
-    }
-    return image;
+    return bake_fixtures::spot_noise_field(size, channels, seed, 0, 1);
 }
 
 enum class Tone { Skewed, Binary, TwoColour, Identity };

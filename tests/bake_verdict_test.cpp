@@ -11,26 +11,10 @@
 
 namespace {
 
-// Asymptotic discrete spot noise of the known spot: white noise convolved with it, so the exemplar has
+// Asymptotic discrete spot noise of the known spot (bake_fixtures::spot_noise_field), so the exemplar has
 // the sampling fluctuations of a photo of a Gaussian texture; mean 0.5, standard deviation 0.1.
 dsn::Image gaussian_exemplar(int size, int channels, uint32_t seed) {
-    dsn::Spectrum spectrum = dsn::forward_dft(bake_fixtures::known_spot(size, size, channels));
-    const dsn::Spectrum noise = dsn::forward_dft(dsn::white_noise(size, size, seed));
-    const size_t plane = spectrum.plane_size();
-    for (int c = 0; c < channels; c++)
-        for (size_t i = 0; i < plane; i++) spectrum.values[size_t(c) * plane + i] *= noise.values[i];
-    dsn::Image image = dsn::inverse_dft(spectrum);
-    for (int c = 0; c < channels; c++) {
-        double mean = 0, square = 0;
-        for (size_t i = 0; i < plane; i++) mean += image.values[size_t(c) * plane + i];
-        mean /= double(plane);
-        for (size_t i = 0; i < plane; i++) square += std::pow(image.values[size_t(c) * plane + i] - mean, 2);
-        const double deviation = std::sqrt(square / double(plane));
-        for (size_t i = 0; i < plane; i++)
-            image.values[size_t(c) * plane + i] =
-                0.5 + 0.1 * (image.values[size_t(c) * plane + i] - mean) / deviation;
-    }
-    return image;
+    return bake_fixtures::spot_noise_field(size, channels, seed, 0.5, 0.1);
 }
 
 dsn::BakeResult bake_at(const dsn::Image &exemplar, int radius) {
