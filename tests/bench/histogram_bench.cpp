@@ -26,16 +26,6 @@ struct Measured {
     double w1_decorrelated = 0, w1_rgb = 0, spectrum = 0; // the channels' means
 };
 
-// Channel k of the exemplar's decorrelated basis, of an interleaved picture.
-std::vector<double> decorrelated_channel(const std::vector<double> *channels, size_t count,
-                                         const dsn::ColourBasis &basis, int k) {
-    std::vector<double> values(count, 0.0);
-    for (int c = 0; c < basis.channels; c++)
-        for (size_t i = 0; i < count; i++)
-            values[i] += basis.vectors[size_t(c * 3 + k)] * (channels[c][i] - basis.mean[size_t(c)]);
-    return values;
-}
-
 // A constant channel (a flat colour component) has no autocorrelation and counts for W1 alone.
 Measured measure(const dsn::Image &exemplar, const dsn::ColourBasis &basis, const dsn::BakeResult &result,
                  int tile) {
