@@ -538,6 +538,8 @@ const Kind kinds[] = {
     {"f-tile", 0, filtered_tile_fixed, &filtered_plan, false},   /* the same bytes as "f-point" */
     {"f-float", 0, filtered_conversions, &filtered_plan, false}, /* per point, tile float and u8 */
 #endif
+#ifndef GOLDEN_WITHOUT_HISTOGRAM /* the GLSL evaluator has no histogram mapping (tests/gpu leaves these out) \
+                                  */
     {"h-point", point_fixed, 0, &lattice_plan, true},
     {"h-tile", tile_fixed, 0, &lattice_plan, true}, /* the same bytes as "h-point" */
     {"h-u8", u8_outputs, 0, &lattice_plan, true},
@@ -546,6 +548,7 @@ const Kind kinds[] = {
 #if DSN_FILTERING
     {"h-f-point", 0, filtered_point_fixed, &filtered_plan, true},
     {"h-f-tile", 0, filtered_tile_fixed, &filtered_plan, true}, /* the same bytes as "h-f-point" */
+#endif
 #endif
 };
 
