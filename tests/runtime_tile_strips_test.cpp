@@ -165,7 +165,7 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
     // 1200 x 1200 RGB is 17.3 MB of fixed or float output (streamed, runtime/tile_render.h); the same
     // window in 8 bands of 150 rows stays under the threshold. Origins and widths keep some strips off
     // the 16-byte alignment streaming needs, so both kinds of store meet; a copy written one value further
-    // on meets every offset of a row's first value within its cache line.
+    // on starts its rows 4 bytes past where the first does within their cache lines.
     auto fields = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 14);
     LoadedNoise loaded(fields, dsn_test::make_config(3, 30));
     const uint32_t side = 1200, band = 150;
