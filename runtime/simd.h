@@ -17,5 +17,10 @@
 #else
 #define DSN_SIMD 0
 #endif
+/* 1 where the ops header streams whole rows in cache lines (stream_line), else strips stream their own
+   16-byte stores. */
+#ifndef DSN_SIMD_STREAM_LINES
+#define DSN_SIMD_STREAM_LINES 0
+#endif
 
 #endif /* DSN_SIMD_H */

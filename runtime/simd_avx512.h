@@ -100,23 +100,17 @@ inline void output_order(const simd_vector *values, simd_vector *ordered) {
 inline simd_floats to_output_floats(simd_vector fixed) {
     return _mm512_mul_ps(_mm512_cvtepi32_ps(fixed), _mm512_set1_ps(1.0f / 65536.0f));
 }
-/* 16 output values. `stream_aligned` (out is then 16-byte aligned): past the caches (put_4), in one
-   store where out is 64-byte aligned, else in four. */
-inline void put_vector(int32_t *out, simd_vector values, int stream_aligned) {
-    if (stream_aligned && (reinterpret_cast<uintptr_t>(out) & 63u) == 0) {
-        _mm512_stream_si512(static_cast<__m512i *>(static_cast<void *>(out)), values);
-    } else if (stream_aligned) {
-        __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
-        _mm_stream_si128(destination, _mm512_castsi512_si128(values));
-        _mm_stream_si128(destination + 1, _mm512_extracti32x4_epi32(values, 1));
-        _mm_stream_si128(destination + 2, _mm512_extracti32x4_epi32(values, 2));
-        _mm_stream_si128(destination + 3, _mm512_extracti32x4_epi32(values, 3));
-    } else {
-        _mm512_storeu_si512(out, values);
-    }
-}
-inline void put_vector(float *out, simd_floats values, int stream_aligned) {
-    put_vector(static_cast<int32_t *>(static_cast<void *>(out)), _mm512_castps_si512(values), stream_aligned);
+/* 16 output values. Never past the caches here: streamed rows go through stream_line instead
+   (DSN_SIMD_STREAM_LINES). */
+inline void put_vector(int32_t *out, simd_vector values, int) { _mm512_storeu_si512(out, values); }
+inline void put_vector(float *out, simd_floats values, int) { _mm512_storeu_ps(out, values); }
+
+/* Streamed rows are staged and written a 64-byte cache line per store (tile_render.h): 16-byte streaming
+   stores of a strip that starts inside a line cost more here than the staging. */
+#define DSN_SIMD_STREAM_LINES 1
+/* A 64-byte cache line from 64-byte aligned `line` to 64-byte aligned `out`, past the caches. */
+inline void stream_line(void *out, const void *line) {
+    _mm512_stream_si512(static_cast<__m512i *>(out), _mm512_load_si512(line));
 }
 
 /* to_u8_range (simd_128.h) on 16 values. */

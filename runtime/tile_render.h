@@ -44,7 +44,7 @@ typedef struct strip_setup {
     strip_texton texton;
     rectangle_size rectangle;
     int split_ok;
-    int stream; /* output far larger than the caches: written past them (put_4) */
+    int stream; /* output far larger than the caches: written past them (put_4, stream_row) */
     split_vectors split;
 } strip_setup;
 
@@ -95,10 +95,21 @@ void render_rectangle_32(const dsn_noise_state *noise, const tile_run *rectangle
 }
 
 #if DSN_TILE_BLOCKS
-/* One row of a rectangle from its strips' sums (3 vectors per strip) into `out`, the row's first pixel. */
+/* One row of a rectangle from its strips' sums (3 vectors per strip) into `row_out`, its first pixel. */
 template <uint32_t Channels, typename Value>
 void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
-                   simd_vector (*sums)[3 * strip_rows], uint32_t row, uint32_t width, Value *out) {
+                   simd_vector (*sums)[3 * strip_rows], uint32_t row, uint32_t width, Value *row_out) {
+    Value *out = row_out;
+    int stream = setup->stream;
+#if DSN_SIMD_STREAM_LINES
+    /* A streamed row is normalized into `stage` at the same offset in a cache line, then copied in whole
+       lines (stream_row). */
+    alignas(64) Value stage[rectangle_width * Channels + 64 / sizeof(Value)];
+    const uintptr_t address = reinterpret_cast<uintptr_t>(row_out);
+    const int staged = stream && sizeof(Value) == sizeof(int32_t) && address % sizeof(Value) == 0;
+    if (staged) out = stage + (address & 63u) / sizeof(Value);
+    stream = 0;
+#endif
     for (uint32_t s = 0; s * lane < width; s++) {
         const uint32_t pixels = width - s * lane < lane ? width - s * lane : lane;
         const simd_vector *strip = sums[s] + 3 * row;
@@ -111,10 +122,13 @@ void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
         }
 #endif
         if (setup->split_ok)
-            normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels, setup->stream);
+            normalize_strip<Channels>(&setup->split, strip, pixels, out + s * lane * Channels, stream);
         else
             normalize_strip_scalar(noise, strip, pixels, out + s * lane * Channels);
     }
+#if DSN_SIMD_STREAM_LINES
+    if (staged) stream_row(out, width * Channels, row_out);
+#endif
 }
 
 /* A rectangle of the tile, setup->rectangle at most: its impulses are listed and filed

@@ -1,6 +1,7 @@
 /* runtime/tile_store.h - the strip path's output stores: a normalized strip row into the caller's fixed,
    float or 8-bit values, whole strips in the widest stores the instruction set has, partial strips 8
-   pixels (one 128-bit lane) at a time, past the caches when the output is far larger than them.
+   pixels (one 128-bit lane) at a time, past the caches when the output is far larger than them (where
+   the instruction set streams whole lines, DSN_SIMD_STREAM_LINES, rows staged then copied past them).
    Internal to tile_render.h.
 
    A normalized strip row arrives as 2 Channels vectors whose 128-bit lane j holds 4 pixels' interleaved
@@ -99,6 +100,22 @@ inline void store_strip(const simd_vector *values, uint32_t pixels, Value *out, 
         store_vectors(out + 8 * Channels * part, group, vectors, (rest < 8 ? rest : 8) * Channels, stream);
     }
 }
+
+#if DSN_SIMD_STREAM_LINES
+/* `count` 32-bit output values of a row, normalized into `staged` (which agrees with out modulo 64 bytes),
+   into `out`: the whole cache lines past the caches, 64 bytes at a time; the partial lines at either end,
+   which the neighbouring rectangles share, in ordinary stores. */
+template <typename Value>
+inline void stream_row(const Value *staged, uint32_t count, Value *out) {
+    const uint32_t line_values = 64 / sizeof(Value);
+    const uint32_t to_line = uint32_t(-reinterpret_cast<uintptr_t>(out) & 63u) / sizeof(Value);
+    const uint32_t head = to_line < count ? to_line : count;
+    uint32_t i = 0;
+    for (; i < head; i++) out[i] = staged[i];
+    for (; i + line_values <= count; i += line_values) stream_line(out + i, staged + i);
+    for (; i < count; i++) out[i] = staged[i];
+}
+#endif
 
 } // namespace
 

@@ -164,11 +164,12 @@ TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at 
 TEST_CASE("a tile written past the caches (16 MB or more) equals the same window in smaller tiles") {
     // 1200 x 1200 RGB is 17.3 MB of fixed or float output (streamed, runtime/tile_render.h); the same
     // window in 8 bands of 150 rows stays under the threshold. Origins and widths keep some strips off
-    // the 16-byte alignment streaming needs, so both kinds of store meet.
+    // the 16-byte alignment streaming needs, so both kinds of store meet; a copy written one value further
+    // on starts its rows 4 bytes past where the first does within their cache lines.
     auto fields = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 14);
     LoadedNoise loaded(fields, dsn_test::make_config(3, 30));
     const uint32_t side = 1200, band = 150;
-    std::vector<int32_t> whole(size_t(side) * side * 3), bands(whole.size());
+    std::vector<int32_t> whole(size_t(side) * side * 3), bands(whole.size()), shifted(whole.size() + 1);
     std::vector<float> whole_float(whole.size()), bands_float(whole.size());
     std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(&loaded.noise, side, side));
     for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&loaded.noise)->tile_kernel; kernel++) {
@@ -178,6 +179,7 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
         REQUIRE(dsn_lattice_tile_fixed(&noise, -7, 3, side, side, whole.data(), nullptr, 0) == DSN_OK);
         REQUIRE(dsn_lattice_tile_float(&noise, -7, 3, side, side, whole_float.data(), scratch.data(),
                                        scratch.size()) == DSN_OK);
+        REQUIRE(dsn_lattice_tile_fixed(&noise, -7, 3, side, side, shifted.data() + 1, nullptr, 0) == DSN_OK);
         for (uint32_t y = 0; y < side; y += band) {
             const size_t first = size_t(y) * side * 3;
             REQUIRE(dsn_lattice_tile_fixed(&noise, -7, int32_t(3 + y), side, band, bands.data() + first,
@@ -186,6 +188,7 @@ TEST_CASE("a tile written past the caches (16 MB or more) equals the same window
                                            scratch.data(), scratch.size()) == DSN_OK);
         }
         CHECK(std::memcmp(whole.data(), bands.data(), whole.size() * sizeof(int32_t)) == 0);
+        CHECK(std::memcmp(whole.data(), shifted.data() + 1, whole.size() * sizeof(int32_t)) == 0);
         CHECK(std::memcmp(whole_float.data(), bands_float.data(), whole.size() * sizeof(float)) == 0);
     }
 }
