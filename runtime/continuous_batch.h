@@ -160,18 +160,6 @@ void batch_visit_scalar(const uint32_t *quads, const BatchConstants &k, const Ba
    rows' interpolation in 32-bit lanes (below 2^25) and the column's in 64-bit lanes (_mm256_mul_epi32, signed
    32 x 32 -> 64 bits, exact). */
 
-/* The low 32 bits of the 64-bit lanes of a (candidates 0-3) and b (4-7), as 8 lanes in order. */
-inline __m256i low_halves(__m256i a, __m256i b) {
-    const __m256 mixed = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), 0x88);
-    return _mm256_permute4x64_epi64(_mm256_castps_si256(mixed), 0xD8);
-}
-
-/* a < b as unsigned 64-bit lanes (AVX2 compares signed: both flipped by 2^63). */
-inline __m256i below_64(__m256i a, __m256i b) {
-    const __m256i sign = _mm256_set1_epi64x(static_cast<long long>(0x8000000000000000u));
-    return _mm256_cmpgt_epi64(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
-}
-
 /* One axis of 8 candidates: shifted = base - (bits << position_shift) in 64-bit lanes (candidates 0-3,
    4-7), whether 0 < shifted <= limit, and the 32-bit lanes of shifted >> 32 and (shifted >> 16) & 0xFFFF. */
 inline void axis_8(__m256i bits, const uint64_t *bases, __m256i cells, __m128i position_shift, __m256i limit,

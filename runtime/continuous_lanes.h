@@ -1,6 +1,7 @@
 /* runtime/continuous_lanes.h - the AVX2 pieces that the vector continuous evaluators (one point:
    continuous_point_vector.h; a batch of points: continuous_batch.h) share: a pair's candidates packed
-   into lanes, the fraction hash and the bilinear texton of 8 candidates. Internal to libdsn; not
+   into lanes, the fraction hash and the bilinear texton of 8 candidates, 64-bit lanes packed and compared
+   (also filtered_reads_vector.h's). Internal to libdsn; not
    installed (everything here has internal linkage). */
 #ifndef DSN_CONTINUOUS_LANES_H
 #define DSN_CONTINUOUS_LANES_H
@@ -15,6 +16,18 @@ namespace {
 /* 8 lanes from memory, unaligned. */
 inline __m256i load_8(const uint32_t *at) {
     return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
+}
+
+/* The low 32 bits of the 64-bit lanes of a (candidates 0-3) and b (4-7), as 8 lanes in order. */
+inline __m256i low_halves(__m256i a, __m256i b) {
+    const __m256 mixed = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), 0x88);
+    return _mm256_permute4x64_epi64(_mm256_castps_si256(mixed), 0xD8);
+}
+
+/* a < b as unsigned 64-bit lanes (AVX2 compares signed: both flipped by 2^63). */
+inline __m256i below_64(__m256i a, __m256i b) {
+    const __m256i sign = _mm256_set1_epi64x(static_cast<long long>(0x8000000000000000u));
+    return _mm256_cmpgt_epi64(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
 }
 
 /* dsn_mix32 of every lane. */

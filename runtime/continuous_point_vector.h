@@ -86,13 +86,56 @@ inline __m256i lane_byte(__m256i words, int index) {
     return _mm256_srai_epi32(_mm256_sll_epi32(words, _mm_cvtsi32_si128(24 - 8 * index)), 24);
 }
 
+/* The bilinear reads of 8 candidates in reach (`reach`) of a window of width x height 8-bit texels,
+   `stride` texels a row, added to sums (64-bit lanes, one per channel): bracket's floor(shifted / 2^16)
+   of each axis in 32-bit lanes, the lower index (S >> 16) - 1 and the weight S & 0xFFFF. Each texel is
+   read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is zero elsewhere, as
+   add_bilinear's, without a branch: one gather per texel column and row, 4 bytes from each texel (its
+   channels first). Reads reach at most 3 bytes past the window's last texel: into the asset's 4-byte CRC
+   (format.h: total_size), which the loader guarantees lies in the buffer after the texton and the
+   pyramid. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t width, uint32_t height,
+                                         uint32_t stride, __m256i s_x, __m256i s_y, __m256i reach,
+                                         __m256i *sums) {
+    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), one = _mm256_set1_epi32(1);
+    const __m256i column = _mm256_sub_epi32(_mm256_srli_epi32(s_x, 16), one),
+                  row = _mm256_sub_epi32(_mm256_srli_epi32(s_y, 16), one);
+    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
+    const __m256i last_column = broadcast_8(width - 1u), last_row = broadcast_8(height - 1u);
+    const __m256i left = at_most(column, last_column),
+                  right = at_most(_mm256_add_epi32(column, one), last_column);
+    const __m256i top = _mm256_and_si256(reach, at_most(row, last_row)),
+                  bottom = _mm256_and_si256(reach, at_most(_mm256_add_epi32(row, one), last_row));
+    /* Byte offset of the top-left texel (unread where it is outside). */
+    const __m256i entry = _mm256_add_epi32(_mm256_mullo_epi32(row, broadcast_8(stride)), column);
+    const __m256i at = Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(entry, 1), entry) : entry;
+    const __m256i below = _mm256_add_epi32(at, broadcast_8(stride * Channels));
+    const int *texels = static_cast<const int *>(static_cast<const void *>(values));
+    const int *next = static_cast<const int *>(static_cast<const void *>(values + Channels));
+    const __m256i zero = _mm256_setzero_si256();
+    const __m256i top_left = _mm256_mask_i32gather_epi32(zero, texels, at, _mm256_and_si256(top, left), 1),
+                  top_right = _mm256_mask_i32gather_epi32(zero, next, at, _mm256_and_si256(top, right), 1),
+                  bottom_left =
+                      _mm256_mask_i32gather_epi32(zero, texels, below, _mm256_and_si256(bottom, left), 1),
+                  bottom_right =
+                      _mm256_mask_i32gather_epi32(zero, next, below, _mm256_and_si256(bottom, right), 1);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const int byte = static_cast<int>(c);
+        __m256i even, odd;
+        bilinear_8(lane_byte(top_left, byte), lane_byte(top_right, byte), lane_byte(bottom_left, byte),
+                   lane_byte(bottom_right, byte), across, down, &even, &odd);
+        sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(even, odd));
+    }
+}
+
 /* Candidates first .. first + 7 of which the first `valid` exist. */
 template <uint32_t Channels>
 inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
                           uint32_t valid) {
     const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
                   field = load_8(candidates.field + first);
-    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), one = _mm256_set1_epi32(1);
+    const __m256i low_16 = _mm256_set1_epi32(0xFFFF);
     /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
     const __m256i bits_x =
         _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(field, _mm256_set1_epi32(15)), 12),
@@ -107,39 +150,8 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
     const __m256i reach =
         _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
                                                   at_most(s_y, broadcast_8(visit->last_y))));
-    const __m256i column = _mm256_sub_epi32(_mm256_srli_epi32(s_x, 16), one),
-                  row = _mm256_sub_epi32(_mm256_srli_epi32(s_y, 16), one);
-    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
-    /* Each texel is read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is
-       zero elsewhere, as add_bilinear's, without a branch: one gather per texel column and row. */
-    const __m256i last_column = broadcast_8(visit->width - 1u), last_row = broadcast_8(visit->height - 1u);
-    const __m256i left = at_most(column, last_column),
-                  right = at_most(_mm256_add_epi32(column, one), last_column);
-    const __m256i top = _mm256_and_si256(reach, at_most(row, last_row)),
-                  bottom = _mm256_and_si256(reach, at_most(_mm256_add_epi32(row, one), last_row));
-    /* Byte offset of the top-left texel (unread where it is outside). */
-    const __m256i entry = _mm256_add_epi32(_mm256_mullo_epi32(row, broadcast_8(visit->width)), column);
-    const __m256i at = Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(entry, 1), entry) : entry;
-    const __m256i below = _mm256_add_epi32(at, broadcast_8(visit->width * Channels));
-    const int *texton = static_cast<const int *>(static_cast<const void *>(visit->texton));
-    const int *next = static_cast<const int *>(static_cast<const void *>(visit->texton + Channels));
-    const __m256i zero = _mm256_setzero_si256();
-    /* 4 bytes from each texel: its channels first. Reads reach at most 3 bytes past the texton, into the
-       asset's 4-byte CRC, which the loader guarantees lies in the buffer right after it (format.h:
-       total_size). */
-    const __m256i top_left = _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top, left), 1),
-                  top_right = _mm256_mask_i32gather_epi32(zero, next, at, _mm256_and_si256(top, right), 1),
-                  bottom_left =
-                      _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom, left), 1),
-                  bottom_right =
-                      _mm256_mask_i32gather_epi32(zero, next, below, _mm256_and_si256(bottom, right), 1);
-    for (uint32_t c = 0; c < Channels; c++) {
-        const int byte = static_cast<int>(c);
-        __m256i even, odd;
-        bilinear_8(lane_byte(top_left, byte), lane_byte(top_right, byte), lane_byte(bottom_left, byte),
-                   lane_byte(bottom_right, byte), across, down, &even, &odd);
-        visit->sums[c] = _mm256_add_epi64(visit->sums[c], _mm256_add_epi64(even, odd));
-    }
+    add_window_reads_8<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y, reach,
+                                 visit->sums);
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)

@@ -3,13 +3,15 @@
    their packed lattice fields against that box (continuous_sift.h), and each candidate is then tested
    against each tap and each level exactly and read where in reach (bilinear_read.h). The same impulses,
    offsets and integers as the tap-by-tap walk (filtered_walk.cpp), so the same sums: integer sums modulo
-   2^64 do not depend on the order. Compiled only with DSN_FILTERING in the fast build. */
+   2^64 do not depend on the order. The kernel's vector reads (filtered_reads_vector.h) take the reads of
+   8-bit levels where it has them. Compiled only with DSN_FILTERING in the fast build. */
 #include "bilinear_read.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
 #include "continuous_sift.h"
 #include "filtered_internal.h"
 #include "impulse_position.h"
+#include "kernels.h"
 #include "normalize_fixed.h"
 #include "poisson_count.h"
 
@@ -195,6 +197,7 @@ void take(const LevelAccumulator &sums, uint64_t *out) {
 /* The taps that one walk serves, and the levels they read. */
 struct TapGroup {
     const dsn_walked_level *levels;
+    dsn_filter_level_reads_entry *vector_reads; /* the kernel's (8-bit levels), or null */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -253,6 +256,13 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const dsn_walked_level &level = group.levels[l];
             const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
             const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
+            const bool splat_level = grid != 0 && grid->level_index == l;
+            if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
+                const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
+                group.vector_reads(&level, Channels, list->x, list->y, list->count, tests,
+                                   sums[group.first + t][l]);
+                continue;
+            }
             uint64_t in_reach = 0;
             for (uint32_t i = 0; i < list->count; i++) {
                 const uint64_t ux = static_cast<uint64_t>(list->x[i]) + test_x.start;
@@ -260,7 +270,7 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
                 in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
             }
             const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
-            if (grid != 0 && grid->level_index == l) {
+            if (splat_level) {
                 for (; in_reach != 0; in_reach &= in_reach - 1u) {
                     const uint32_t i = lowest_bit(in_reach);
                     splat(level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
@@ -367,6 +377,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
+    group->vector_reads = dsn_kernel_entries_of(noise->tile_kernel)->filter_level_reads;
     group->level_count = count;
     group->first = first;
     group->taps = taps;

@@ -1,6 +1,6 @@
 /* runtime/kernel_default.cpp - the default kernel: the evaluation code built with the runtime's own
    flags (on x86 the widest vectors those flags allow, simd.h), the one every build has. Built for AVX2, it
-   has the vector per-point evaluator too. */
+   has the vector per-point evaluator and filtered reads too. */
 #include "kernels.h"
 #include "tile_render.h"
 
@@ -22,6 +22,7 @@
 #else
 #define POINT_ENTRY 0
 #endif
+#include "filtered_reads_vector.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile, BATCH_ENTRY, SPLAT_ROW_ENTRY,
-                                                                POINT_ENTRY};
+                                                                POINT_ENTRY, DSN_FILTER_READS_ENTRY};

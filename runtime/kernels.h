@@ -70,15 +70,26 @@ typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_
    nothing, for a noise it does not take (dsn_internal_continuous_point then evaluates the point itself). */
 typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
 
+/* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
+   filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start
+   and limit along x, then along y: filtered_sift.cpp's LevelTest) keep, their bilinear reads of `level`
+   (`channels` 8-bit values a texel) added to out[0 .. channels - 1] modulo 2^64. */
+struct dsn_walked_level;
+typedef void dsn_filter_level_reads_entry(const struct dsn_walked_level *level, uint32_t channels,
+                                          const int64_t *xs, const int64_t *ys, uint32_t count,
+                                          const uint64_t *tests, uint64_t *out);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs in the small build
    (DSN_SMALL_CODE), which evaluates grids point by point, continuous_point in kernels built without
-   AVX2 (continuous_point.cpp's own evaluator then runs). */
+   AVX2 (continuous_point.cpp's own evaluator then runs), filter_level_reads likewise (filtered_sift.cpp
+   then reads each candidate itself). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_runs_entry *continuous_splat_runs;
     dsn_continuous_point_entry *continuous_point;
+    dsn_filter_level_reads_entry *filter_level_reads;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -4,7 +4,8 @@
 // without a pyramid, periodic (periods shorter than a level's reach included) or not, for isotropic
 // footprints across every level of detail and anisotropic ones of every tap count and direction, at
 // ordinary points and where the taps straddle the seam of the int32 coordinates; and the levels read with
-// their all-zero margins cut (a shorter reach) against the levels as stored.
+// their all-zero margins cut (a shorter reach) against the levels as stored; in every kernel copy the CPU
+// runs.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 
 #include "../offline/bake_internal.h"
 #include "../runtime/filtered_internal.h"
+#include "../runtime/kernels.h"
 #include "fixtures/test_assets.h"
 
 using namespace dsn_test;
@@ -109,7 +111,7 @@ uint32_t cut_levels(const dsn_noise &noise) {
     return cut;
 }
 
-void compare_noise(const dsn_noise &noise, uint64_t seed) {
+void compare_noise_in_kernel(const dsn_noise &noise, uint64_t seed) {
     TestRandom random(seed);
     const std::vector<dsn_footprint> list = footprints(random);
     size_t compared = 0;
@@ -128,6 +130,16 @@ void compare_noise(const dsn_noise &noise, uint64_t seed) {
     for (const dsn_footprint &f : list)
         for (const auto &point : seams) compare_point(noise, point[0], point[1], f, &compared);
     CHECK(compared == list.size() * 7);
+}
+
+// Every kernel copy this CPU runs (the vector reads of 8-bit levels in the AVX2 and AVX-512 ones).
+void compare_noise(const dsn_noise &noise, uint64_t seed) {
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&noise)->tile_kernel; kernel++) {
+        CAPTURE(kernel);
+        dsn_noise copy = noise;
+        dsn_state(&copy)->tile_kernel = kernel;
+        compare_noise_in_kernel(copy, seed);
+    }
 }
 
 } // namespace

@@ -1,0 +1,91 @@
+/* runtime/filtered_reads_vector.h - the reads of the filtered sift (filtered_sift.cpp) on AVX2 vectors, as
+   a kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit levels: the buffered
+   candidates of one tap and one level, 8 at a time: the exact reach test in 64-bit lanes, the bracket's
+   offsets in 32-bit lanes, the reads as the continuous evaluator's (continuous_point_vector.h's
+   add_window_reads_8, here with the level's stride). The same reads and
+   integers as the sift's own, so the same sums modulo 2^64. Internal to libdsn; not installed
+   (everything here has internal linkage). */
+#ifndef DSN_FILTERED_READS_VECTOR_H
+#define DSN_FILTERED_READS_VECTOR_H
+
+#include "continuous_point_vector.h"
+#include "filtered_internal.h"
+#include "kernels.h"
+
+#if defined(__AVX2__) && DSN_FILTERING && !DSN_SMALL_CODE
+namespace {
+
+/* 4 candidates' values; those of a group's last, partial vector where `present` (zeros elsewhere: no read
+   past the list). */
+inline __m256i load_64(const int64_t *at, __m256i present, bool whole) {
+    const long long *from = static_cast<const long long *>(static_cast<const void *>(at));
+    return whole ? _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)))
+                 : _mm256_maskload_epi64(from, present);
+}
+
+/* The reach test of one axis for 4 candidates: u = c + start, in reach when u < limit, and the bracket's
+   floor((u + 2^l) / 2^(l + 16)) (below 2^32 where in reach: (2 radius + 2) 2^16). */
+inline __m256i axis_offsets(__m256i c, __m256i start, __m256i limit, __m256i bias, __m128i shift,
+                            __m256i *in_reach) {
+    const __m256i u = _mm256_add_epi64(c, start);
+    *in_reach = _mm256_and_si256(*in_reach, below_64(u, limit));
+    return _mm256_srl_epi64(_mm256_add_epi64(u, bias), shift);
+}
+
+template <uint32_t Channels>
+void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys, uint32_t count,
+                          const uint64_t *tests, uint64_t *out) {
+    const __m256i start_x = _mm256_set1_epi64x(static_cast<long long>(tests[0])),
+                  limit_x = _mm256_set1_epi64x(static_cast<long long>(tests[1])),
+                  start_y = _mm256_set1_epi64x(static_cast<long long>(tests[2])),
+                  limit_y = _mm256_set1_epi64x(static_cast<long long>(tests[3]));
+    const __m256i bias = _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
+    const __m128i shift = _mm_cvtsi32_si128(static_cast<int>(level->level + 16u));
+    const __m256i zero = _mm256_setzero_si256();
+    __m256i sums[Channels];
+    for (uint32_t c = 0; c < Channels; c++) sums[c] = zero;
+    for (uint32_t first = 0; first < count; first += 8u) {
+        const uint32_t valid = count - first;
+        const __m256i valid_lanes = _mm256_set1_epi64x(static_cast<long long>(valid));
+        __m256i reach_low = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(0, 1, 2, 3)),
+                reach_high = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(4, 5, 6, 7));
+        const bool whole = valid >= 8u;
+        const __m256i s_x =
+            low_halves(axis_offsets(load_64(xs + first, reach_low, whole), start_x, limit_x, bias, shift,
+                                    &reach_low),
+                       axis_offsets(load_64(xs + first + 4, reach_high, whole), start_x, limit_x, bias,
+                                    shift, &reach_high));
+        const __m256i s_y =
+            low_halves(axis_offsets(load_64(ys + first, reach_low, whole), start_y, limit_y, bias, shift,
+                                    &reach_low),
+                       axis_offsets(load_64(ys + first + 4, reach_high, whole), start_y, limit_y, bias,
+                                    shift, &reach_high));
+        const __m256i reach = low_halves(reach_low, reach_high);
+        if (_mm256_testz_si256(reach, reach)) continue;
+        add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride, s_x, s_y, reach,
+                                     sums);
+    }
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t lanes[4];
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes)), sums[c]);
+        out[c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
+    }
+}
+
+/* kernels.h's filter_level_reads. */
+void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs, const int64_t *ys,
+                        uint32_t count, const uint64_t *tests, uint64_t *out) {
+    if (channels == 3)
+        filter_level_reads_8<3>(level, xs, ys, count, tests, out);
+    else
+        filter_level_reads_8<1>(level, xs, ys, count, tests, out);
+}
+
+} // namespace
+/* The kernel entry (kernels.h): null where there is none. */
+#define DSN_FILTER_READS_ENTRY filter_level_reads
+#else
+#define DSN_FILTER_READS_ENTRY 0
+#endif
+
+#endif /* DSN_FILTERED_READS_VECTOR_H */
