@@ -50,20 +50,18 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         __m256i reach_low = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(0, 1, 2, 3)),
                 reach_high = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(4, 5, 6, 7));
         const bool whole = valid >= 8u;
-        const __m256i s_x =
-            low_halves(axis_offsets(load_64(xs + first, reach_low, whole), start_x, limit_x, bias, shift,
-                                    &reach_low),
-                       axis_offsets(load_64(xs + first + 4, reach_high, whole), start_x, limit_x, bias,
-                                    shift, &reach_high));
-        const __m256i s_y =
-            low_halves(axis_offsets(load_64(ys + first, reach_low, whole), start_y, limit_y, bias, shift,
-                                    &reach_low),
-                       axis_offsets(load_64(ys + first + 4, reach_high, whole), start_y, limit_y, bias,
-                                    shift, &reach_high));
+        const __m256i s_x = low_halves(
+            axis_offsets(load_64(xs + first, reach_low, whole), start_x, limit_x, bias, shift, &reach_low),
+            axis_offsets(load_64(xs + first + 4, reach_high, whole), start_x, limit_x, bias, shift,
+                         &reach_high));
+        const __m256i s_y = low_halves(
+            axis_offsets(load_64(ys + first, reach_low, whole), start_y, limit_y, bias, shift, &reach_low),
+            axis_offsets(load_64(ys + first + 4, reach_high, whole), start_y, limit_y, bias, shift,
+                         &reach_high));
         const __m256i reach = low_halves(reach_low, reach_high);
         if (_mm256_testz_si256(reach, reach)) continue;
-        add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride, s_x, s_y, reach,
-                                     sums);
+        add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride, s_x, s_y,
+                                     reach, sums);
     }
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t lanes[4];
@@ -73,8 +71,8 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
 }
 
 /* kernels.h's filter_level_reads. */
-void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs, const int64_t *ys,
-                        uint32_t count, const uint64_t *tests, uint64_t *out) {
+void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs,
+                        const int64_t *ys, uint32_t count, const uint64_t *tests, uint64_t *out) {
     if (channels == 3)
         filter_level_reads_8<3>(level, xs, ys, count, tests, out);
     else
