@@ -5,19 +5,11 @@
 #include "histogram_map.h"
 
 #include "format_bytes.h"
+#include "normalize_fixed.h"
 
 #if DSN_HISTOGRAM
 
 namespace {
-
-/* round(value / 2^shift), halves up, for |value| < 2^62 and shift <= 32 (no saturation: the bounds
-   below keep every result far inside int32). A negative value is not shifted (implementation-defined):
-   it goes through uint64 with a 2^63 bias, as dsn_round_saturate does. */
-inline int64_t round_shift(int64_t value, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    const uint64_t biased = static_cast<uint64_t>(value) + bias + ((static_cast<uint64_t>(1) << shift) >> 1);
-    return static_cast<int64_t>(biased >> shift) - static_cast<int64_t>(bias >> shift);
-}
 
 /* The asset's mapping as the reads need it. */
 struct mapping {
@@ -66,23 +58,24 @@ void dsn_internal_histogram_map(const dsn_asset *asset, int32_t *values, uint32_
     const mapping m = mapping_of(asset);
     int64_t v[DSN_MAX_CHANNELS] = {0, 0, 0}; /* |v_k| <= 32767 2^4 < 2^19 */
     if (blend == 0 && level < m.levels) {    /* one table, every unfiltered evaluation: round(X / 2^d) */
-        for (uint32_t k = 0; k < m.channels; k++) v[k] = round_shift(table_read(m, level, k, values[k]), m.d);
+        for (uint32_t k = 0; k < m.channels; k++)
+            v[k] = dsn_round_saturate(table_read(m, level, k, values[k]), m.d);
     } else {
         /* |(256 - b) X_l + b X_(l+1)| <= 256 2^35 = 2^43. */
         for (uint32_t k = 0; k < m.channels; k++) {
             const int64_t lower = level_read(asset, m, level, k, values[k]);
             const int64_t upper = blend == 0 ? 0 : level_read(asset, m, level + 1u, k, values[k]);
-            v[k] = round_shift(
+            v[k] = dsn_round_saturate(
                 static_cast<int64_t>(256u - blend) * lower + static_cast<int64_t>(blend) * upper, m.d + 8u);
         }
     }
     /* |centre 2^16| <= 2^47 and |P v| < 2^31 2^19: the sum stays below 2^52 and out_c below 2^28 (format.h),
-       so the int32 saturation never acts. */
+       so dsn_round_saturate's int32 saturation never acts here, nor for v_k: each is one rounding half up. */
     const int32_t *p = asset->histogram_rotation;
     for (uint32_t c = 0; c < m.channels; c++) {
         const int64_t sum = static_cast<int64_t>(asset->histogram_centre[c]) * 65536 + p[3 * c] * v[0] +
                             p[3 * c + 1] * v[1] + p[3 * c + 2] * v[2]; /* v[1], v[2] are 0 for grey */
-        values[c] = static_cast<int32_t>(round_shift(sum, 24));
+        values[c] = dsn_round_saturate(sum, 24);
     }
 }
 
