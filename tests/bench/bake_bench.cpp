@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <dirent.h>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -104,32 +103,20 @@ void default_bake(int size, int runs, double target_seconds) {
         result.rme - full.rme);
 }
 
-std::vector<std::string> shared_texture_names() {
-    std::vector<std::string> names;
-    if (DIR *folder = opendir(bake_fixtures::textures_folder().c_str())) {
-        while (const dirent *entry = readdir(folder)) {
-            const std::string name = entry->d_name;
-            if (name.size() > 4 && name.compare(name.size() - 4, 4, ".png") == 0) names.push_back(name);
-        }
-        closedir(folder);
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
 // Exemplars too small for the default radius are baked at the largest radius that fits, as the
 // baker's refusal suggests.
 void shared_texture_gaps() {
-    const std::vector<std::string> names = shared_texture_names();
-    if (names.empty()) {
+    const std::vector<std::string> paths = bake_fixtures::texture_paths();
+    if (paths.empty()) {
         std::printf("shared textures: skipped (%s not found)\n", bake_fixtures::textures_folder().c_str());
         return;
     }
     double worst = 0, default_seconds = 0, full_seconds = 0;
     std::string worst_name;
     int within = 0, baked = 0, refused = 0;
-    for (const std::string &name : names) {
-        const dsn::Image image = dsn::load_exemplar(bake_fixtures::textures_folder() + "/" + name, nullptr);
+    for (const std::string &path : paths) {
+        const std::string name = path.substr(path.find_last_of('/') + 1);
+        const dsn::Image image = dsn::load_exemplar(path, nullptr);
         dsn::BakeOptions options;
         options.radius = std::min(options.radius, (std::min(image.width, image.height) - 1) / 4);
         if (options.radius < 1) continue;

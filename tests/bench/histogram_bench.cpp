@@ -85,15 +85,12 @@ void summarize(const char *basis, Ratios ratios) {
 } // namespace
 
 int main() {
-    const std::string folder = bake_fixtures::textures_folder();
-    if (!std::filesystem::is_directory(folder)) {
-        std::printf("histogram bench: SKIPPED, no texture folder %s (set DSN_TEXTURES)\n", folder.c_str());
+    const std::vector<std::string> paths = bake_fixtures::texture_paths();
+    if (paths.empty()) {
+        std::printf("histogram bench: SKIPPED, no texture folder %s (set DSN_TEXTURES)\n",
+                    bake_fixtures::textures_folder().c_str());
         return 0;
     }
-    std::vector<std::string> paths;
-    for (const auto &entry : std::filesystem::directory_iterator(folder))
-        if (entry.path().extension() == ".png") paths.push_back(entry.path().string());
-    std::sort(paths.begin(), paths.end());
     std::printf("%-22s %9s %3s | W1 decorrelated: %7s %7s %6s | W1 RGB: %7s %7s %6s | spectrum: %5s %5s\n",
                 "texture", "size", "r", "plain", "hist", "ratio", "plain", "hist", "ratio", "plain", "hist");
     Ratios decorrelated, rgb;
