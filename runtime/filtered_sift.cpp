@@ -26,8 +26,14 @@ namespace {
 const int64_t tap_spread_limit = static_cast<int64_t>(1) << 20;
 
 /* Candidates wait in a buffer, then each tap visits all of them with its own tests in registers: up to
-   64 (one bit each in a tap's mask) for several taps, 32 for one (measured faster there). */
-const uint32_t buffer_size = 64, one_tap_buffer_size = 32;
+   64 (one bit each in a tap's mask) for several taps, 32 for one (measured faster there). The kernel's
+   listing (filter_candidates) fills the buffer up to its capacity instead, whole cells at a time, and
+   the masks then take 64 candidates at a time. */
+const uint32_t buffer_size = 64, one_tap_buffer_size = 32, mask_size = 64, buffer_capacity = 512;
+
+/* The kernel's listing takes the cells of a row of the box in batches of at most this many, which it
+   lists at once; a box wider than box_columns cells is listed candidate by candidate. */
+const uint32_t cell_batch = 16, box_columns = 64;
 
 /* One axis of the taps summed together: the walk's window from the lowest tap's X - 1 to the highest
    tap's X + 1 with the walk radius R; an impulse's candidate value c (the offset from the box's
@@ -89,7 +95,7 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
 }
 
 struct CandidateList {
-    int64_t x[buffer_size], y[buffer_size];
+    int64_t x[buffer_capacity], y[buffer_capacity];
     uint32_t count;
 };
 
@@ -197,7 +203,8 @@ void take(const LevelAccumulator &sums, uint64_t *out) {
 /* The taps that one walk serves, and the levels they read. */
 struct TapGroup {
     const dsn_walked_level *levels;
-    dsn_filter_level_reads_entry *vector_reads; /* the kernel's (8-bit levels), or null */
+    dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
+    dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -263,30 +270,31 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
                                    sums[group.first + t][l]);
                 continue;
             }
-            uint64_t in_reach = 0;
-            for (uint32_t i = 0; i < list->count; i++) {
-                const uint64_t ux = static_cast<uint64_t>(list->x[i]) + test_x.start;
-                const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y.start;
-                in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
-            }
             const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
-            if (splat_level) {
-                for (; in_reach != 0; in_reach &= in_reach - 1u) {
-                    const uint32_t i = lowest_bit(in_reach);
-                    splat(level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
-                          (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, grid);
-                }
-                continue;
-            }
             LevelAccumulator level_sums;
             clear(&level_sums);
-            for (; in_reach != 0; in_reach &= in_reach - 1u) {
-                const uint32_t i = lowest_bit(in_reach);
-                read_level<Channels, Bytes>(
-                    level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
-                    (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, &level_sums);
+            for (uint32_t chunk = 0; chunk < list->count; chunk += mask_size) {
+                const int64_t *xs = list->x + chunk, *ys = list->y + chunk;
+                const uint32_t size = list->count - chunk < mask_size ? list->count - chunk : mask_size;
+                uint64_t in_reach = 0;
+                for (uint32_t i = 0; i < size; i++) {
+                    const uint64_t ux = static_cast<uint64_t>(xs[i]) + test_x.start;
+                    const uint64_t uy = static_cast<uint64_t>(ys[i]) + test_y.start;
+                    in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
+                }
+                for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                    const uint32_t i = lowest_bit(in_reach);
+                    const uint64_t shifted_x =
+                                       (static_cast<uint64_t>(xs[i]) + test_x.start + bias) >> level.level,
+                                   shifted_y =
+                                       (static_cast<uint64_t>(ys[i]) + test_y.start + bias) >> level.level;
+                    if (splat_level)
+                        splat(level, shifted_x, shifted_y, grid);
+                    else
+                        read_level<Channels, Bytes>(level, shifted_x, shifted_y, &level_sums);
+                }
             }
-            take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
+            if (!splat_level) take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
         }
     }
     list->count = 0;
@@ -322,11 +330,96 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lan
             const uint64_t shifted_y =
                 static_cast<uint64_t>(y.shifted_base) - (static_cast<uint64_t>(bits_y) << position_shift);
             if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue; /* beyond every tap */
-            if (list->count == (group.taps == 1 ? one_tap_buffer_size : buffer_size))
+            if (list->count >= (group.taps == 1 ? one_tap_buffer_size : buffer_size))
                 visit<Channels, Bytes>(group, list, grid, sums);
             list->x[list->count] = static_cast<int64_t>(shifted_x);
             list->y[list->count] = static_cast<int64_t>(shifted_y);
             list->count++;
+        }
+    }
+}
+
+/* The cells of the box along x that its impulses may reach it from (cell_axis_within). */
+struct BoxColumns {
+    uint32_t cell[box_columns];
+    CellAxis axis[box_columns];
+    uint32_t count;
+};
+
+/* False when there are more than box_columns. */
+bool box_columns_of(const TapGroup &group, const FieldLanes &lanes, BoxColumns *columns) {
+    columns->count = 0;
+    for (uint32_t s = 0; s < group.x.axis.span_count; s++) {
+        const dsn_span span = dsn_axis_span(&group.x.axis, s);
+        for (uint32_t i = 0; i < span.cell_count; i++) {
+            const uint32_t cell = dsn_span_cell(&span, i, group.x.axis.shift);
+            CellAxis axis;
+            if (!cell_axis_within(group.x.axis, span, cell, group.x.base_extra, group.x.reach_limit, lanes,
+                                  &axis))
+                continue;
+            if (columns->count == box_columns) return false;
+            columns->cell[columns->count] = cell;
+            columns->axis[columns->count] = axis;
+            columns->count++;
+        }
+    }
+    return true;
+}
+
+/* The box's candidates through the kernel's listing: for each row of cells, the keys and counts of a
+   batch of its cells first (their chains of dependent loads then overlap), then the batch listed at once
+   where the buffer has room for it, the buffer visited where it has not. */
+template <uint32_t Channels, uint32_t Bytes>
+void list_box(const dsn_noise_state *noise, const TapGroup &group, const BoxColumns &columns,
+              CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    const uint32_t shift = noise->cell_shift;
+    const FieldLanes lanes = field_lanes(shift);
+    const bool two_steps = dsn_poisson_two_steps_fit(noise);
+    for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
+        for (uint32_t j = 0; j < span_y.cell_count; j++) {
+            const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
+            CellAxis in_y;
+            if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit,
+                                  lanes, &in_y))
+                continue;
+            const uint32_t row_key = dsn_row_key(noise, cell_y);
+            for (uint32_t first = 0; first < columns.count; first += cell_batch) {
+                const uint32_t batch =
+                    columns.count - first < cell_batch ? columns.count - first : cell_batch;
+                dsn_filter_cell cells[cell_batch];
+                for (uint32_t i = 0; i < batch; i++) {
+                    cells[i].key = dsn_cell_key_in_row(noise, columns.cell[first + i], row_key);
+                    cells[i].x = columns.axis[first + i];
+                    cells[i].y = in_y;
+                }
+                if (two_steps)
+                    for (uint32_t i = 0; i < batch; i++)
+                        cells[i].count = dsn_poisson_count_two_steps(noise, cells[i].key);
+                else
+                    for (uint32_t i = 0; i < batch; i++)
+                        cells[i].count = dsn_cell_impulse_count(noise, cells[i].key);
+                /* The cells that fit the buffer's room (each pair may store 8), at once. */
+                for (uint32_t i = 0; i < batch;) {
+                    uint32_t end = i, room = buffer_capacity - list->count;
+                    for (; end < batch; end++) {
+                        const uint32_t needed = (cells[end].count + 7u) & ~7u;
+                        if (needed > room) break;
+                        room -= needed;
+                    }
+                    if (end > i) {
+                        list->count =
+                            group.list_candidates(cells + i, end - i, shift, list->count, list->x, list->y);
+                        i = end;
+                    } else if (list->count != 0) {
+                        visit<Channels, Bytes>(group, list, grid, sums);
+                    } else { /* a cell of more impulses than the buffer holds: candidate by candidate */
+                        list_cell<Channels, Bytes>(noise, cells[i].key, lanes, group, cells[i].x, in_y, list,
+                                                   grid, sums);
+                        i++;
+                    }
+                }
+            }
         }
     }
 }
@@ -345,28 +438,32 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
         grid->level_index = group.level_count - 1u;
         for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
     }
-    for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
-        const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
-        for (uint32_t j = 0; j < span_y.cell_count; j++) {
-            const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
-            CellAxis in_y;
-            if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit,
-                                  lanes, &in_y))
-                continue;
-            const uint32_t row_key = dsn_row_key(noise, cell_y);
-            for (uint32_t sx = 0; sx < group.x.axis.span_count; sx++) {
-                const dsn_span span_x = dsn_axis_span(&group.x.axis, sx);
-                for (uint32_t i = 0; i < span_x.cell_count; i++) {
-                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
-                    CellAxis in_x;
-                    if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
-                                         group.x.reach_limit, lanes, &in_x))
-                        list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key), lanes,
-                                                   group, in_x, in_y, &list, grid, sums);
+    BoxColumns columns;
+    if (group.list_candidates != 0 && lanes.field_shift == 3 && box_columns_of(group, lanes, &columns))
+        list_box<Channels, Bytes>(noise, group, columns, &list, grid, sums);
+    else
+        for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
+            const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
+            for (uint32_t j = 0; j < span_y.cell_count; j++) {
+                const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
+                CellAxis in_y;
+                if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit,
+                                      lanes, &in_y))
+                    continue;
+                const uint32_t row_key = dsn_row_key(noise, cell_y);
+                for (uint32_t sx = 0; sx < group.x.axis.span_count; sx++) {
+                    const dsn_span span_x = dsn_axis_span(&group.x.axis, sx);
+                    for (uint32_t i = 0; i < span_x.cell_count; i++) {
+                        const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
+                        CellAxis in_x;
+                        if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
+                                             group.x.reach_limit, lanes, &in_x))
+                            list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key),
+                                                       lanes, group, in_x, in_y, &list, grid, sums);
+                    }
                 }
             }
         }
-    }
     visit<Channels, Bytes>(group, &list, grid, sums);
     if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
 }
@@ -378,6 +475,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
     group->vector_reads = dsn_kernel_entries_of(noise->tile_kernel)->filter_level_reads;
+    group->list_candidates = dsn_kernel_entries_of(noise->tile_kernel)->filter_candidates;
     group->level_count = count;
     group->first = first;
     group->taps = taps;
