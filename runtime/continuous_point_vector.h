@@ -162,6 +162,49 @@ inline __m512i lane_byte_16(__m512i words, unsigned int index) {
     return _mm512_srai_epi32(_mm512_slli_epi32(words, 24 - 8 * index), 24);
 }
 
+/* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
+                                          uint32_t stride, __m512i s_x, __m512i s_y, __mmask16 reach,
+                                          __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
+    /* the texton indices of the right column and the lower row, and of the left column and upper row */
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i column = _mm512_sub_epi32(right_column, _mm512_set1_epi32(1)),
+                  row = _mm512_sub_epi32(lower_row, _mm512_set1_epi32(1));
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    const __m512i last_column = broadcast_16(width - 1u), last_row = broadcast_16(height - 1u);
+    const __mmask16 left = _mm512_cmple_epu32_mask(column, last_column),
+                    right = _mm512_cmple_epu32_mask(right_column, last_column);
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach, row, last_row),
+                    bottom = _mm512_mask_cmple_epu32_mask(reach, lower_row, last_row);
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(stride)), column);
+    const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry;
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(stride * Channels));
+    const void *texton = values, *next = values + Channels;
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i top_left = _mm512_mask_i32gather_epi32(zero, top & left, at, texton, 1),
+                  top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
+                  bottom_left = _mm512_mask_i32gather_epi32(zero, bottom & left, below, texton, 1),
+                  bottom_right = _mm512_mask_i32gather_epi32(zero, bottom & right, below, next, 1);
+    const __m512i scale = _mm512_set1_epi32(65536);
+    for (uint32_t c = 0; c < Channels; c++) { /* as bilinear_8 */
+        const __m512i a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c);
+        const __m512i d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
+        const __m512i upper =
+            _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
+        const __m512i lower =
+            _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
+        const __m512i difference = _mm512_sub_epi32(lower, upper);
+        const __m512i even =
+            _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
+        const __m512i odd = _mm512_add_epi64(
+            _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
+            _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
+        sums[c] = _mm512_add_epi64(sums[c], _mm512_add_epi64(even, odd));
+    }
+}
+
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
@@ -185,41 +228,8 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
     const __mmask16 reach =
         _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
                                      s_y, broadcast_16(visit->last_y));
-    /* the texton indices of the right column and the lower row, and of the left column and upper row */
-    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
-    const __m512i column = _mm512_sub_epi32(right_column, _mm512_set1_epi32(1)),
-                  row = _mm512_sub_epi32(lower_row, _mm512_set1_epi32(1));
-    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i last_column = broadcast_16(visit->width - 1u), last_row = broadcast_16(visit->height - 1u);
-    const __mmask16 left = _mm512_cmple_epu32_mask(column, last_column),
-                    right = _mm512_cmple_epu32_mask(right_column, last_column);
-    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach, row, last_row),
-                    bottom = _mm512_mask_cmple_epu32_mask(reach, lower_row, last_row);
-    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(visit->width)), column);
-    const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry;
-    const __m512i below = _mm512_add_epi32(at, broadcast_16(visit->width * Channels));
-    const void *texton = visit->texton, *next = visit->texton + Channels;
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i top_left = _mm512_mask_i32gather_epi32(zero, top & left, at, texton, 1),
-                  top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
-                  bottom_left = _mm512_mask_i32gather_epi32(zero, bottom & left, below, texton, 1),
-                  bottom_right = _mm512_mask_i32gather_epi32(zero, bottom & right, below, next, 1);
-    const __m512i scale = _mm512_set1_epi32(65536);
-    for (uint32_t c = 0; c < Channels; c++) { /* as bilinear_8 */
-        const __m512i a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c);
-        const __m512i d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
-        const __m512i upper =
-            _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
-        const __m512i lower =
-            _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
-        const __m512i difference = _mm512_sub_epi32(lower, upper);
-        const __m512i even =
-            _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
-        const __m512i odd = _mm512_add_epi64(
-            _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
-            _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
-        visit->wide_sums[c] = _mm512_add_epi64(visit->wide_sums[c], _mm512_add_epi64(even, odd));
-    }
+    add_window_reads_16<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y, reach,
+                                  visit->wide_sums);
 }
 #endif
 

@@ -27,14 +27,14 @@ inline void store_shifted(int64_t *at, __m256i base, __m256i bits, __m128i posit
 }
 
 /* kernels.h's filter_candidates. */
-uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift, uint32_t count,
-                           int64_t *xs, int64_t *ys) {
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           uint32_t count, int64_t *xs, int64_t *ys) {
     const FieldLanes lanes = field_lanes(cell_shift);
     const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift));
     const __m256i low_16 = _mm256_set1_epi32(0xFFFF), low_4 = _mm256_set1_epi32(15);
     for (uint32_t k = 0; k < cell_count; k++) {
         const dsn_filter_cell &cell = cells[k];
-                const __m256i base_x = _mm256_set1_epi64x(static_cast<long long>(cell.x.shifted_base)),
+        const __m256i base_x = _mm256_set1_epi64x(static_cast<long long>(cell.x.shifted_base)),
                       base_y = _mm256_set1_epi64x(static_cast<long long>(cell.y.shifted_base));
         for (uint32_t first = 0; first < cell.count; first += 8u) {
             const uint64_t pair = dsn_position_pair(cell.key, first >> 3);

@@ -3,7 +3,8 @@
    candidates of one tap and one level, 8 at a time: the exact reach test in 64-bit lanes, the bracket's
    offsets in 32-bit lanes, the reads as the continuous evaluator's (continuous_point_vector.h's
    add_window_reads_8, here with the level's stride). The same reads and
-   integers as the sift's own, so the same sums modulo 2^64. Internal to libdsn; not installed
+   integers as the sift's own, so the same sums modulo 2^64. The AVX-512 kernel takes 16 candidates at a
+   time (add_window_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
    (everything here has internal linkage). */
 #ifndef DSN_FILTERED_READS_VECTOR_H
 #define DSN_FILTERED_READS_VECTOR_H
@@ -32,6 +33,38 @@ inline __m256i axis_offsets(__m256i c, __m256i start, __m256i limit, __m256i bia
     return _mm256_srl_epi64(_mm256_add_epi64(u, bias), shift);
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* axis_offsets for 8 candidates on 512-bit vectors, all present: the offsets in 32-bit lanes. */
+inline __m256i axis_offsets_wide(const int64_t *at, __m512i start, __m512i limit, __m512i bias, __m128i shift,
+                                 __mmask8 *in_reach) {
+    const __m512i u = _mm512_add_epi64(_mm512_loadu_si512(at), start);
+    *in_reach = _mm512_mask_cmplt_epu64_mask(*in_reach, u, limit);
+    return _mm512_cvtepi64_epi32(_mm512_srl_epi64(_mm512_add_epi64(u, bias), shift));
+}
+
+/* Candidates first .. first + 15, all present, 16 at once (add_window_reads_16). */
+template <uint32_t Channels>
+inline void level_reads_16(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
+                           const uint64_t *tests, __m128i shift, __m512i *sums) {
+    const __m512i start_x = _mm512_set1_epi64(static_cast<long long>(tests[0])),
+                  limit_x = _mm512_set1_epi64(static_cast<long long>(tests[1])),
+                  start_y = _mm512_set1_epi64(static_cast<long long>(tests[2])),
+                  limit_y = _mm512_set1_epi64(static_cast<long long>(tests[3]));
+    const __m512i bias = _mm512_set1_epi64(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
+    __mmask8 low = 0xFF, high = 0xFF;
+    const __m256i x_low = axis_offsets_wide(xs, start_x, limit_x, bias, shift, &low),
+                  x_high = axis_offsets_wide(xs + 8, start_x, limit_x, bias, shift, &high),
+                  y_low = axis_offsets_wide(ys, start_y, limit_y, bias, shift, &low),
+                  y_high = axis_offsets_wide(ys + 8, start_y, limit_y, bias, shift, &high);
+    const __mmask16 reach =
+        static_cast<__mmask16>(static_cast<uint32_t>(low) | (static_cast<uint32_t>(high) << 8));
+    if (reach == 0) return;
+    add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride,
+                                  _mm512_inserti64x4(_mm512_castsi256_si512(x_low), x_high, 1),
+                                  _mm512_inserti64x4(_mm512_castsi256_si512(y_low), y_high, 1), reach, sums);
+}
+#endif
+
 template <uint32_t Channels>
 void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys, uint32_t count,
                           const uint64_t *tests, uint64_t *out) {
@@ -44,7 +77,17 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     const __m256i zero = _mm256_setzero_si256();
     __m256i sums[Channels];
     for (uint32_t c = 0; c < Channels; c++) sums[c] = zero;
-    for (uint32_t first = 0; first < count; first += 8u) {
+    uint32_t first = 0;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    __m512i wide_sums[Channels];
+    for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
+    for (; first + 16u <= count; first += 16u)
+        level_reads_16<Channels>(level, xs + first, ys + first, tests, shift, wide_sums);
+    for (uint32_t c = 0; c < Channels; c++) /* the 64-bit lanes' sums folded into 4 lanes */
+        sums[c] = _mm256_add_epi64(_mm512_castsi512_si256(wide_sums[c]),
+                                   _mm512_extracti64x4_epi64(wide_sums[c], 1));
+#endif
+    for (; first < count; first += 8u) {
         const uint32_t valid = count - first;
         const __m256i valid_lanes = _mm256_set1_epi64x(static_cast<long long>(valid));
         __m256i reach_low = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(0, 1, 2, 3)),
