@@ -28,7 +28,7 @@ inline void store_shifted(int64_t *at, __m256i base, __m256i bits, __m128i posit
 
 /* kernels.h's filter_candidates. */
 uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                           uint32_t count, int64_t *xs, int64_t *ys) {
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *ends) {
     const FieldLanes lanes = field_lanes(cell_shift);
     const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift));
     const __m256i low_16 = _mm256_set1_epi32(0xFFFF), low_4 = _mm256_set1_epi32(15);
@@ -55,6 +55,7 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             store_shifted(ys + count, base_y, bits_y, position_shift);
             count += packed;
         }
+        ends[k] = count;
     }
     return count;
 }

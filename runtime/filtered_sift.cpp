@@ -94,10 +94,45 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
     return test;
 }
 
+/* The buffer; where the kernel listed it, also each listed cell's end in it and the largest offset c
+   of its candidates along each axis (their shifted_base): the cell's candidates lie within a cell's
+   side below, so a tap's level need not test the cells that lie beyond its reach. */
+const uint32_t listed_cells_most = 128;
+
 struct CandidateList {
     int64_t x[buffer_capacity], y[buffer_capacity];
     uint32_t count;
+    uint32_t cells, cell_end[listed_cells_most];
+    int64_t cell_x[listed_cells_most], cell_y[listed_cells_most];
 };
+
+/* The runs [runs[2k], runs[2k + 1]) of the list whose cells the level tests x, y may keep, their count:
+   with u = c + start the test keeps 0 <= u < limit, and a cell's candidates have u within
+   (w - 2^(32 + shift), w] for w its largest. The whole list where the cells were not recorded. */
+uint32_t reached_runs(const CandidateList &list, const LevelTest &x, const LevelTest &y, uint32_t shift,
+                      uint32_t *runs) {
+    if (list.cells == 0) {
+        runs[0] = 0, runs[1] = list.count;
+        return 1;
+    }
+    const int64_t side = static_cast<int64_t>(1) << (32u + shift);
+    const int64_t limit_x = static_cast<int64_t>(x.limit) + side,
+                  limit_y = static_cast<int64_t>(y.limit) + side;
+    uint32_t count = 0, from = 0, to = 0;
+    for (uint32_t k = 0; k < list.cells; k++) {
+        const int64_t w_x = signed_from_bits(static_cast<uint64_t>(list.cell_x[k]) + x.start),
+                      w_y = signed_from_bits(static_cast<uint64_t>(list.cell_y[k]) + y.start);
+        if (w_x < 0 || w_x >= limit_x || w_y < 0 || w_y >= limit_y) continue;
+        const uint32_t begin = k == 0 ? 0u : list.cell_end[k - 1u];
+        if (begin != to) {
+            if (to != from) runs[2u * count] = from, runs[2u * count + 1u] = to, count++;
+            from = begin;
+        }
+        to = list.cell_end[k];
+    }
+    if (to != from) runs[2u * count] = from, runs[2u * count + 1u] = to, count++;
+    return count;
+}
 
 /* One level's sums at one tap while the candidates are visited: interior reads (8-bit ones on SSE2
    vectors) of biased values, and their count; border reads as they are. */
@@ -205,6 +240,7 @@ struct TapGroup {
     const dsn_walked_level *levels;
     dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
     dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
+    uint32_t shift;                               /* the noise's cell_shift */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -264,40 +300,46 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
             const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
             const bool splat_level = grid != 0 && grid->level_index == l;
+            uint32_t runs[2u * listed_cells_most + 2u];
+            const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
-                group.vector_reads(&level, Channels, list->x, list->y, list->count, tests,
-                                   sums[group.first + t][l]);
+                for (uint32_t r = 0; r < run_count; r++)
+                    group.vector_reads(&level, Channels, list->x + runs[2u * r], list->y + runs[2u * r],
+                                       runs[2u * r + 1u] - runs[2u * r], tests, sums[group.first + t][l]);
                 continue;
             }
             const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
             LevelAccumulator level_sums;
             clear(&level_sums);
-            for (uint32_t chunk = 0; chunk < list->count; chunk += mask_size) {
-                const int64_t *xs = list->x + chunk, *ys = list->y + chunk;
-                const uint32_t size = list->count - chunk < mask_size ? list->count - chunk : mask_size;
-                uint64_t in_reach = 0;
-                for (uint32_t i = 0; i < size; i++) {
-                    const uint64_t ux = static_cast<uint64_t>(xs[i]) + test_x.start;
-                    const uint64_t uy = static_cast<uint64_t>(ys[i]) + test_y.start;
-                    in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
+            for (uint32_t r = 0; r < run_count; r++)
+                for (uint32_t chunk = runs[2u * r]; chunk < runs[2u * r + 1u]; chunk += mask_size) {
+                    const int64_t *xs = list->x + chunk, *ys = list->y + chunk;
+                    const uint32_t size =
+                        runs[2u * r + 1u] - chunk < mask_size ? runs[2u * r + 1u] - chunk : mask_size;
+                    uint64_t in_reach = 0;
+                    for (uint32_t i = 0; i < size; i++) {
+                        const uint64_t ux = static_cast<uint64_t>(xs[i]) + test_x.start;
+                        const uint64_t uy = static_cast<uint64_t>(ys[i]) + test_y.start;
+                        in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
+                    }
+                    for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                        const uint32_t i = lowest_bit(in_reach);
+                        const uint64_t shifted_x = (static_cast<uint64_t>(xs[i]) + test_x.start + bias) >>
+                                                   level.level,
+                                       shifted_y = (static_cast<uint64_t>(ys[i]) + test_y.start + bias) >>
+                                                   level.level;
+                        if (splat_level)
+                            splat(level, shifted_x, shifted_y, grid);
+                        else
+                            read_level<Channels, Bytes>(level, shifted_x, shifted_y, &level_sums);
+                    }
                 }
-                for (; in_reach != 0; in_reach &= in_reach - 1u) {
-                    const uint32_t i = lowest_bit(in_reach);
-                    const uint64_t shifted_x =
-                                       (static_cast<uint64_t>(xs[i]) + test_x.start + bias) >> level.level,
-                                   shifted_y =
-                                       (static_cast<uint64_t>(ys[i]) + test_y.start + bias) >> level.level;
-                    if (splat_level)
-                        splat(level, shifted_x, shifted_y, grid);
-                    else
-                        read_level<Channels, Bytes>(level, shifted_x, shifted_y, &level_sums);
-                }
-            }
             if (!splat_level) take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
         }
     }
     list->count = 0;
+    list->cells = 0;
 }
 
 /* Lists the candidates of the cell with this key: the impulses of its pairs that the lattice fields let
@@ -402,20 +444,25 @@ void list_box(const dsn_noise_state *noise, const TapGroup &group, const BoxColu
                 /* The cells that fit the buffer's room (each pair may store 8), at once. */
                 for (uint32_t i = 0; i < batch;) {
                     uint32_t end = i, room = buffer_capacity - list->count;
-                    for (; end < batch; end++) {
+                    for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
                         const uint32_t needed = (cells[end].count + 7u) & ~7u;
                         if (needed > room) break;
                         room -= needed;
                     }
                     if (end > i) {
-                        list->count =
-                            group.list_candidates(cells + i, end - i, shift, list->count, list->x, list->y);
-                        i = end;
-                    } else if (list->count != 0) {
+                        list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,
+                                                            list->y, list->cell_end + list->cells);
+                        for (; i < end; i++, list->cells++) {
+                            list->cell_x[list->cells] = cells[i].x.shifted_base;
+                            list->cell_y[list->cells] = cells[i].y.shifted_base;
+                        }
+                    } else if (list->count != 0 || list->cells != 0) {
                         visit<Channels, Bytes>(group, list, grid, sums);
-                    } else { /* a cell of more impulses than the buffer holds: candidate by candidate */
+                    } else { /* a cell of more impulses than the buffer holds: candidate by candidate, its
+                                candidates visited before the next cell's are recorded */
                         list_cell<Channels, Bytes>(noise, cells[i].key, lanes, group, cells[i].x, in_y, list,
                                                    grid, sums);
+                        visit<Channels, Bytes>(group, list, grid, sums);
                         i++;
                     }
                 }
@@ -429,7 +476,7 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
     const uint32_t shift = noise->cell_shift;
     const FieldLanes lanes = field_lanes(shift);
     CandidateList list;
-    list.count = 0;
+    list.count = list.cells = 0;
     /* One tap: its coarser level through the splat grid when that is small. */
     SplatGrid splat_grid, *grid = 0;
     const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
@@ -476,6 +523,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->levels = levels;
     group->vector_reads = dsn_kernel_entries_of(noise->tile_kernel)->filter_level_reads;
     group->list_candidates = dsn_kernel_entries_of(noise->tile_kernel)->filter_candidates;
+    group->shift = noise->cell_shift;
     group->level_count = count;
     group->first = first;
     group->taps = taps;
