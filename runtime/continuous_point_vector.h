@@ -162,6 +162,31 @@ inline __m512i lane_byte_16(__m512i words, unsigned int index) {
     return _mm512_srai_epi32(_mm512_slli_epi32(words, 24 - 8 * index), 24);
 }
 
+/* dsn_mix32 of every lane. */
+inline __m512i mix32_16(__m512i x) {
+    x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
+    x = _mm512_mullo_epi32(x, _mm512_set1_epi32(0x7FEB352D));
+    x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 15));
+    x = _mm512_mullo_epi32(x, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
+    return _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
+}
+
+/* candidate_lanes of two pairs of 8-bit fields at once in one 128-bit vector (the first pair low), their
+   top bits gathered by one movemask: bit i for impulse i of the first pair, 8 + i of the second. */
+inline uint32_t sift_two_pairs(__m128i pairs, const FieldLanes &lanes, const CellAxis &x, const CellAxis &y) {
+    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
+                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
+    const __m128i halves_x = _mm_and_si128(pairs, halves),
+                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
+    const __m128i in_x = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
+    const __m128i in_y = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
+    return static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+}
+
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
@@ -208,12 +233,7 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
-    __m512i fraction = load_16(candidates.stream + first); /* dsn_mix32 */
-    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
-    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(0x7FEB352D));
-    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 15));
-    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
-    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
+    const __m512i fraction = mix32_16(load_16(candidates.stream + first));
     const __m512i field = load_16(candidates.field + first), low_16 = _mm512_set1_epi32(0xFFFF);
     const __m512i bits_x =
         _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(field, _mm512_set1_epi32(15)), 12),
@@ -291,17 +311,7 @@ inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t 
                             __m512i base_y) {
     const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
                                          static_cast<long long>(dsn_position_pair(key, 0)));
-    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
-                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
-    const __m128i halves_x = _mm_and_si128(pairs, halves),
-                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
-    const __m128i in_x = _mm_and_si128(
-        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
-        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
-    const __m128i in_y = _mm_and_si128(
-        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
-        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
-    uint32_t sifted = static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+    uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
     if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
     /* dsn_cell_stream(key, 2^31 + k) of impulse k */
     const __m512i streams = _mm512_add_epi32(

@@ -34,6 +34,7 @@ const uint32_t buffer_size = 64, one_tap_buffer_size = 32, mask_size = 64, buffe
 /* The kernel's listing takes the cells of a row of the box in batches of at most this many, which it
    lists at once; a box wider than box_columns cells is listed candidate by candidate. */
 const uint32_t cell_batch = 16, box_columns = 64;
+const uint32_t candidates_overrun = 16; /* the values the kernel's listing may write past the last */
 
 /* One axis of the taps summed together: the walk's window from the lowest tap's X - 1 to the highest
    tap's X + 1 with the walk radius R; an impulse's candidate value c (the offset from the box's
@@ -441,13 +442,12 @@ void list_box(const dsn_noise_state *noise, const TapGroup &group, const BoxColu
                 else
                     for (uint32_t i = 0; i < batch; i++)
                         cells[i].count = dsn_cell_impulse_count(noise, cells[i].key);
-                /* The cells that fit the buffer's room (each pair may store 8), at once. */
+                /* The cells that fit the buffer's room, at once. */
                 for (uint32_t i = 0; i < batch;) {
-                    uint32_t end = i, room = buffer_capacity - list->count;
+                    uint32_t end = i, room = buffer_capacity - candidates_overrun - list->count;
                     for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
-                        const uint32_t needed = (cells[end].count + 7u) & ~7u;
-                        if (needed > room) break;
-                        room -= needed;
+                        if (cells[end].count > room) break;
+                        room -= cells[end].count;
                     }
                     if (end > i) {
                         list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,

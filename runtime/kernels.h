@@ -94,8 +94,8 @@ typedef struct dsn_filter_cell {
    side 2^cell_shift <= 16: the impulses of `cell_count` cells whose lattice fields let them reach the
    box, their shifted offsets (CellAxis's shifted_base less the 16-bit position's) stored from
    xs[count], ys[count] on, cell by cell, and where each cell's end in ends[0 .. cell_count - 1]; returns
-   the new count. Writes up to 8 values past each pair's candidates: the caller leaves room for the sum
-   over the cells of their counts rounded up to 8. */
+   the new count. Writes up to 16 values past the last candidate: the caller leaves room for the sum of
+   the cells' counts plus 16. */
 typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
                                              uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
                                              uint32_t *ends);
