@@ -31,9 +31,9 @@ const int64_t tap_spread_limit = static_cast<int64_t>(1) << 20;
    the masks then take 64 candidates at a time. */
 const uint32_t buffer_size = 64, one_tap_buffer_size = 32, mask_size = 64, buffer_capacity = 512;
 
-/* The kernel's listing takes the cells of a row of the box in batches of at most this many, which it
-   lists at once; a box wider than box_columns cells is listed candidate by candidate. */
-const uint32_t cell_batch = 16, box_columns = 64;
+/* The kernel's listing takes the box's columns of cells this many at a time, and the cells of a row of
+   them at once. */
+const uint32_t cell_batch = 16;
 const uint32_t candidates_overrun = 16; /* the values the kernel's listing may write past the last */
 
 /* One axis of the taps summed together: the walk's window from the lowest tap's X - 1 to the highest
@@ -382,40 +382,30 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lan
     }
 }
 
-/* The cells of the box along x that its impulses may reach it from (cell_axis_within). */
+/* Whether the kernel lists the group's candidates: it has a listing, the cells have side <= 16 and an
+   empty buffer holds the most impulses a cell can have (each of poisson_parts draws at most
+   poisson_size). */
+bool kernel_listing_takes(const dsn_noise_state *noise, const TapGroup &group) {
+    return group.list_candidates != 0 && dsn_field_shift(noise->cell_shift) == 3 &&
+           static_cast<uint64_t>(noise->poisson_parts) * noise->poisson_size + candidates_overrun <=
+               buffer_capacity;
+}
+
+/* Up to cell_batch cells of the box along x from which its impulses may reach it (cell_axis_within). */
 struct BoxColumns {
-    uint32_t cell[box_columns];
-    CellAxis axis[box_columns];
+    uint32_t cell[cell_batch];
+    CellAxis axis[cell_batch];
     uint32_t count;
 };
 
-/* False when there are more than box_columns. */
-bool box_columns_of(const TapGroup &group, const FieldLanes &lanes, BoxColumns *columns) {
-    columns->count = 0;
-    for (uint32_t s = 0; s < group.x.axis.span_count; s++) {
-        const dsn_span span = dsn_axis_span(&group.x.axis, s);
-        for (uint32_t i = 0; i < span.cell_count; i++) {
-            const uint32_t cell = dsn_span_cell(&span, i, group.x.axis.shift);
-            CellAxis axis;
-            if (!cell_axis_within(group.x.axis, span, cell, group.x.base_extra, group.x.reach_limit, lanes,
-                                  &axis))
-                continue;
-            if (columns->count == box_columns) return false;
-            columns->cell[columns->count] = cell;
-            columns->axis[columns->count] = axis;
-            columns->count++;
-        }
-    }
-    return true;
-}
-
-/* The box's candidates through the kernel's listing: for each row of cells, the keys and counts of a
-   batch of its cells first (their chains of dependent loads then overlap), then the batch listed at once
-   where the buffer has room for it, the buffer visited where it has not. */
+/* The candidates of the box's cells in these columns through the kernel's listing: for each row of
+   cells, the keys and counts of the columns' cells first (their chains of dependent loads then overlap),
+   then those cells listed at once where the buffer has room for them, the buffer visited where it has
+   not. */
 template <uint32_t Channels, uint32_t Bytes>
-void list_box(const dsn_noise_state *noise, const TapGroup &group, const BoxColumns &columns,
-              CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
-    const uint32_t shift = noise->cell_shift;
+void list_columns(const dsn_noise_state *noise, const TapGroup &group, const BoxColumns &columns,
+                  CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    const uint32_t shift = noise->cell_shift, batch = columns.count;
     const FieldLanes lanes = field_lanes(shift);
     const bool two_steps = dsn_poisson_two_steps_fit(noise);
     for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
@@ -427,48 +417,62 @@ void list_box(const dsn_noise_state *noise, const TapGroup &group, const BoxColu
                                   lanes, &in_y))
                 continue;
             const uint32_t row_key = dsn_row_key(noise, cell_y);
-            for (uint32_t first = 0; first < columns.count; first += cell_batch) {
-                const uint32_t batch =
-                    columns.count - first < cell_batch ? columns.count - first : cell_batch;
-                dsn_filter_cell cells[cell_batch];
-                for (uint32_t i = 0; i < batch; i++) {
-                    cells[i].key = dsn_cell_key_in_row(noise, columns.cell[first + i], row_key);
-                    cells[i].x = columns.axis[first + i];
-                    cells[i].y = in_y;
+            dsn_filter_cell cells[cell_batch];
+            for (uint32_t i = 0; i < batch; i++) {
+                cells[i].key = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
+                cells[i].x = columns.axis[i];
+                cells[i].y = in_y;
+            }
+            if (two_steps)
+                for (uint32_t i = 0; i < batch; i++)
+                    cells[i].count = dsn_poisson_count_two_steps(noise, cells[i].key);
+            else
+                for (uint32_t i = 0; i < batch; i++)
+                    cells[i].count = dsn_cell_impulse_count(noise, cells[i].key);
+            for (uint32_t i = 0; i < batch;) {
+                uint32_t end = i, room = buffer_capacity - candidates_overrun - list->count;
+                for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
+                    if (cells[end].count > room) break;
+                    room -= cells[end].count;
                 }
-                if (two_steps)
-                    for (uint32_t i = 0; i < batch; i++)
-                        cells[i].count = dsn_poisson_count_two_steps(noise, cells[i].key);
-                else
-                    for (uint32_t i = 0; i < batch; i++)
-                        cells[i].count = dsn_cell_impulse_count(noise, cells[i].key);
-                /* The cells that fit the buffer's room, at once. */
-                for (uint32_t i = 0; i < batch;) {
-                    uint32_t end = i, room = buffer_capacity - candidates_overrun - list->count;
-                    for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
-                        if (cells[end].count > room) break;
-                        room -= cells[end].count;
+                if (end > i) {
+                    list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,
+                                                        list->y, list->cell_end + list->cells);
+                    for (; i < end; i++, list->cells++) {
+                        list->cell_x[list->cells] = cells[i].x.shifted_base;
+                        list->cell_y[list->cells] = cells[i].y.shifted_base;
                     }
-                    if (end > i) {
-                        list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,
-                                                            list->y, list->cell_end + list->cells);
-                        for (; i < end; i++, list->cells++) {
-                            list->cell_x[list->cells] = cells[i].x.shifted_base;
-                            list->cell_y[list->cells] = cells[i].y.shifted_base;
-                        }
-                    } else if (list->count != 0 || list->cells != 0) {
-                        visit<Channels, Bytes>(group, list, grid, sums);
-                    } else { /* a cell of more impulses than the buffer holds: candidate by candidate, its
-                                candidates visited before the next cell's are recorded */
-                        list_cell<Channels, Bytes>(noise, cells[i].key, lanes, group, cells[i].x, in_y, list,
-                                                   grid, sums);
-                        visit<Channels, Bytes>(group, list, grid, sums);
-                        i++;
-                    }
+                } else { /* an empty buffer has room for any cell (kernel_listing_takes) */
+                    visit<Channels, Bytes>(group, list, grid, sums);
                 }
             }
         }
     }
+}
+
+/* The box's candidates through the kernel's listing, cell_batch columns at a time. */
+template <uint32_t Channels, uint32_t Bytes>
+void list_box(const dsn_noise_state *noise, const TapGroup &group, const FieldLanes &lanes,
+              CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    BoxColumns columns;
+    columns.count = 0;
+    for (uint32_t s = 0; s < group.x.axis.span_count; s++) {
+        const dsn_span span = dsn_axis_span(&group.x.axis, s);
+        for (uint32_t i = 0; i < span.cell_count; i++) {
+            const uint32_t cell = dsn_span_cell(&span, i, group.x.axis.shift);
+            CellAxis axis;
+            if (!cell_axis_within(group.x.axis, span, cell, group.x.base_extra, group.x.reach_limit, lanes,
+                                  &axis))
+                continue;
+            columns.cell[columns.count] = cell;
+            columns.axis[columns.count] = axis;
+            if (++columns.count == cell_batch) {
+                list_columns<Channels, Bytes>(noise, group, columns, list, grid, sums);
+                columns.count = 0;
+            }
+        }
+    }
+    if (columns.count != 0) list_columns<Channels, Bytes>(noise, group, columns, list, grid, sums);
 }
 
 template <uint32_t Channels, uint32_t Bytes>
@@ -485,9 +489,8 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
         grid->level_index = group.level_count - 1u;
         for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
     }
-    BoxColumns columns;
-    if (group.list_candidates != 0 && lanes.field_shift == 3 && box_columns_of(group, lanes, &columns))
-        list_box<Channels, Bytes>(noise, group, columns, &list, grid, sums);
+    if (kernel_listing_takes(noise, group))
+        list_box<Channels, Bytes>(noise, group, lanes, &list, grid, sums);
     else
         for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
             const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
