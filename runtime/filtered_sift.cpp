@@ -481,10 +481,11 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
     const FieldLanes lanes = field_lanes(shift);
     CandidateList list;
     list.count = list.cells = 0;
-    /* One tap: its coarser level through the splat grid when that is small. */
+    /* One tap: its coarser level through the splat grid when that is small, unless the kernel reads the
+       level on vectors (faster). */
     SplatGrid splat_grid, *grid = 0;
     const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
-    if (group.taps == 1 && splat_fits(coarser)) {
+    if (group.taps == 1 && splat_fits(coarser) && !(Bytes == 1 && group.vector_reads != 0)) {
         grid = &splat_grid;
         grid->level_index = group.level_count - 1u;
         for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
