@@ -3,8 +3,10 @@
    their packed lattice fields against that box (continuous_sift.h), and each candidate is then tested
    against each tap and each level exactly and read where in reach (bilinear_read.h). The same impulses,
    offsets and integers as the tap-by-tap walk (filtered_walk.cpp), so the same sums: integer sums modulo
-   2^64 do not depend on the order. The kernel's vector reads (filtered_reads_vector.h) take the reads of
-   8-bit levels where it has them. Compiled only with DSN_FILTERING in the fast build. */
+   2^64 do not depend on the order. Where the kernel has them, its listing (filtered_candidates_vector.h)
+   lists the candidates of whole cells at once, each tap's level then tests only the runs of cells that
+   may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels. Compiled
+   only with DSN_FILTERING in the fast build. */
 #include "bilinear_read.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
