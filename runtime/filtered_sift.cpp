@@ -345,13 +345,12 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
     list->cells = 0;
 }
 
-/* Lists the candidates of the cell with this key: the impulses of its pairs that the lattice fields let
-   reach the box, then those whose 16-bit positions do. */
+/* Lists the candidates of the cell with this key and impulse count: the impulses of its pairs that the
+   lattice fields let reach the box, then those whose 16-bit positions do. */
 template <uint32_t Channels, uint32_t Bytes>
-void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const TapGroup &group,
-               const CellAxis &x, const CellAxis &y, CandidateList *list, SplatGrid *grid,
-               dsn_filter_sums sums) {
-    const uint32_t count = dsn_cell_impulse_count(noise, key);
+void list_cell(const dsn_noise_state *noise, uint32_t key, uint32_t count, const FieldLanes &lanes,
+               const TapGroup &group, const CellAxis &x, const CellAxis &y, CandidateList *list,
+               SplatGrid *grid, dsn_filter_sums sums) {
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
     const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
     const uint64_t limit_x = static_cast<uint64_t>(group.x.reach_limit) - 1u,
@@ -400,16 +399,16 @@ struct BoxColumns {
     uint32_t count;
 };
 
-/* The candidates of the box's cells in these columns through the kernel's listing: for each row of
-   cells, the keys and counts of the columns' cells first (their chains of dependent loads then overlap),
-   then those cells listed at once where the buffer has room for them, the buffer visited where it has
-   not. */
+/* The candidates of the box's cells in these columns: for each row of cells, the keys and counts of the
+   columns' cells first (their chains of dependent loads then overlap), then the cells listed: by the
+   kernel, those at once for which the buffer has room (the buffer visited where it has none for the
+   next), or else one by one. */
 template <uint32_t Channels, uint32_t Bytes>
 void list_columns(const dsn_noise_state *noise, const TapGroup &group, const BoxColumns &columns,
                   CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
     const uint32_t shift = noise->cell_shift, batch = columns.count;
     const FieldLanes lanes = field_lanes(shift);
-    const bool two_steps = dsn_poisson_two_steps_fit(noise);
+    const bool two_steps = dsn_poisson_two_steps_fit(noise), by_kernel = kernel_listing_takes(noise, group);
     for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
         for (uint32_t j = 0; j < span_y.cell_count; j++) {
@@ -431,6 +430,12 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
             else
                 for (uint32_t i = 0; i < batch; i++)
                     cells[i].count = dsn_cell_impulse_count(noise, cells[i].key);
+            if (!by_kernel) {
+                for (uint32_t i = 0; i < batch; i++)
+                    list_cell<Channels, Bytes>(noise, cells[i].key, cells[i].count, lanes, group, cells[i].x,
+                                               in_y, list, grid, sums);
+                continue;
+            }
             for (uint32_t i = 0; i < batch;) {
                 uint32_t end = i, room = buffer_capacity - candidates_overrun - list->count;
                 for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
@@ -452,7 +457,7 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
     }
 }
 
-/* The box's candidates through the kernel's listing, cell_batch columns at a time. */
+/* The box's candidates, cell_batch columns of cells at a time. */
 template <uint32_t Channels, uint32_t Bytes>
 void list_box(const dsn_noise_state *noise, const TapGroup &group, const FieldLanes &lanes,
               CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
@@ -492,31 +497,7 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
         grid->level_index = group.level_count - 1u;
         for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
     }
-    if (kernel_listing_takes(noise, group))
-        list_box<Channels, Bytes>(noise, group, lanes, &list, grid, sums);
-    else
-        for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
-            const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
-            for (uint32_t j = 0; j < span_y.cell_count; j++) {
-                const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
-                CellAxis in_y;
-                if (!cell_axis_within(group.y.axis, span_y, cell_y, group.y.base_extra, group.y.reach_limit,
-                                      lanes, &in_y))
-                    continue;
-                const uint32_t row_key = dsn_row_key(noise, cell_y);
-                for (uint32_t sx = 0; sx < group.x.axis.span_count; sx++) {
-                    const dsn_span span_x = dsn_axis_span(&group.x.axis, sx);
-                    for (uint32_t i = 0; i < span_x.cell_count; i++) {
-                        const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
-                        CellAxis in_x;
-                        if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
-                                             group.x.reach_limit, lanes, &in_x))
-                            list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key),
-                                                       lanes, group, in_x, in_y, &list, grid, sums);
-                    }
-                }
-            }
-        }
+    list_box<Channels, Bytes>(noise, group, lanes, &list, grid, sums);
     visit<Channels, Bytes>(group, &list, grid, sums);
     if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
 }
