@@ -7,7 +7,6 @@
 #if DSN_CONTINUOUS_BATCH
 #include "continuous_batch.h"
 #include "continuous_internal.h"
-#include "continuous_point_vector.h"
 #include "kernels.h"
 #include "normalize_fixed.h"
 
@@ -38,13 +37,10 @@ uint32_t bordered_bits(const dsn_asset *asset, uint32_t row, uint32_t column, ui
            (asset->bits == 8 ? 0xFFu : 0xFFFFu);
 }
 
-/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch, unless the kernel
-   evaluates the noise through its vector per-point evaluator (continuous_point_vector.h), which reads the
-   texton itself; returns the work arrays after the table. */
+/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch; returns the work arrays
+   after the table. */
 void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned) {
     const dsn_asset *asset = &noise->asset;
-    if (dsn_kernel_entries_of(noise->tile_kernel)->continuous_point != 0 && point_vector_takes(noise))
-        return aligned + round_up(batch_quad_count(asset) * sizeof(uint32_t));
     uint32_t *quads = static_cast<uint32_t *>(static_cast<void *>(aligned));
     size_t index = 0;
     for (uint32_t row = 0; row <= asset->height; row++)

@@ -117,6 +117,27 @@ TEST_CASE("continuous batch: every length around the chunk size, and points in a
     CHECK(batch_differences(noise->noise, xs, ys) == 0);
 }
 
+TEST_CASE("continuous batch: points at the int64 extremes, in groups of every fill") {
+    // Whole and fractional parts next to INT64_MIN and INT64_MAX, mixed with ordinary points so that the
+    // kernels' groups of points hold both; lengths that leave a group partly filled.
+    const int64_t most = INT64_MAX, least = INT64_MIN;
+    const int64_t extremes[] = {
+        most, least, most - one / 3, least + one / 7, most - 5 * one, least + 3 * one + 1,
+        0,    -1,    one / 2,        -one / 2};
+    auto noise = make_noise(random_texton_asset(3, 15, 8, 6), 11, 30u << 16);
+    auto periodic = make_noise(random_texton_asset(1, 9, 8, 7), 12, 30u << 16, 37, 1000);
+    for (uint32_t count : {3u, 9u, 23u, 40u}) {
+        CAPTURE(count);
+        std::vector<int64_t> xs, ys;
+        for (uint32_t k = 0; k < count; k++) {
+            xs.push_back(extremes[k % 10]);
+            ys.push_back(extremes[(k * 7 + 3) % 10]);
+        }
+        CHECK(batch_differences(noise->noise, xs, ys) == 0);
+        CHECK(batch_differences(periodic->noise, xs, ys) == 0);
+    }
+}
+
 TEST_CASE("continuous batch: errors, and nothing written on an error") {
     auto noise = make_noise(random_texton_asset(3, 4, 8, 1), 1);
     const dsn_noise *n = &noise->noise;
