@@ -30,11 +30,15 @@ unsigned char *aligned_scratch(void *scratch) {
     return bytes + (misalignment ? scratch_alignment - misalignment : 0u);
 }
 
-/* Texton value of the bordered texton (row and column 0 are the border) as the low bits of a word. */
-uint32_t bordered_bits(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
-    /* dsn_asset_texton_value is 0 outside the window: row or column 0 is index 0xFFFFFFFF there */
-    return static_cast<uint32_t>(dsn_asset_texton_value(asset, row - 1u, column - 1u, c)) &
-           (asset->bits == 8 ? 0xFFu : 0xFFFFu);
+/* Texton value of the bordered texton (row and column 0 are the border) as the low bits of a word: the
+   value's bytes (dsn_asset_texton_value's, read here without a call per value), 0 outside the window. */
+inline uint32_t bordered_bits(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
+    row -= 1u, column -= 1u; /* the border: 0xFFFFFFFF, outside */
+    if (row >= asset->height || column >= asset->width) return 0;
+    const size_t index = (static_cast<size_t>(row) * asset->width + column) * asset->channels + c;
+    if (asset->bits == 8) return asset->texton[index];
+    return static_cast<uint32_t>(asset->texton[2u * index]) |
+           static_cast<uint32_t>(asset->texton[2u * index + 1u]) << 8;
 }
 
 /* Fills the quad table (continuous_batch.h) at the start of the aligned scratch; returns the work arrays
