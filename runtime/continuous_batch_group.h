@@ -18,46 +18,32 @@ namespace {
 const uint32_t group_points = 8; /* points a group's vectors hold */
 const uint32_t group_cells = 3;  /* cells along each axis a group's vectors hold */
 
-/* What a group's points share: the noise's Poisson guide widened to 32 bits (for gathers). */
+/* What a group's points share: the Poisson table's thresholds with their top bits flipped (compared as
+   signed numbers). */
 struct GroupShared {
     FieldLanes lanes;
-    uint32_t guide[64];
-    bool two_steps;
+    uint32_t flipped_cdf[sizeof(dsn_noise_state::poisson_cdf) / sizeof(uint32_t)];
+    bool one_draw; /* a cell's count is one draw */
 };
 
 inline GroupShared group_shared(const dsn_noise_state *noise) {
     GroupShared shared;
     shared.lanes = field_lanes(noise->cell_shift);
-    for (uint32_t k = 0; k < 64; k++) shared.guide[k] = noise->poisson_guide[k];
-    shared.two_steps = dsn_poisson_two_steps_fit(noise);
+    for (uint32_t k = 0; k < noise->poisson_size; k++)
+        shared.flipped_cdf[k] = noise->poisson_cdf[k] ^ 0x80000000u;
+    shared.one_draw = noise->poisson_parts == 1;
     return shared;
 }
 
-/* a >= b as unsigned 32-bit lanes. */
-inline __m256i at_least(__m256i a, __m256i b) { return _mm256_cmpeq_epi32(_mm256_max_epu32(a, b), a); }
-
-/* dsn_poisson_count_two_steps of 8 keys (the noise passed dsn_poisson_two_steps_fit): the guide, two
-   steps (a step adds 1 where the key is at least cdf[n]: the compare's -1 subtracted), and the exact
-   search for the lanes that need it, one by one. */
+/* dsn_poisson_draw of 8 uniforms (the keys: a cell's count when it is one draw), without a search: the
+   thresholds cdf[0 .. size - 1] increase, so those at or below the uniform are the n below the smallest
+   with uniform < cdf[n] (the guide only skips some of them), and the count is size less those above. */
 inline __m256i group_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i keys) {
-    const int *cdf = static_cast<const int *>(static_cast<const void *>(noise->poisson_cdf));
-    const int *guide = static_cast<const int *>(static_cast<const void *>(shared.guide));
-    __m256i n = _mm256_i32gather_epi32(guide, _mm256_srli_epi32(keys, 26), 4);
-    n = _mm256_sub_epi32(n, at_least(keys, _mm256_i32gather_epi32(cdf, n, 4)));
-    n = _mm256_sub_epi32(n, at_least(keys, _mm256_i32gather_epi32(cdf, n, 4)));
-    const __m256i size = broadcast_8(noise->poisson_size);
-    const __m256i over = _mm256_cmpgt_epi32(n, size), under = _mm256_cmpgt_epi32(size, n);
-    const __m256i next = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), cdf, n, under, 4);
-    const __m256i search = _mm256_or_si256(over, _mm256_and_si256(under, at_least(keys, next)));
-    uint32_t searched = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(search)));
-    if (searched == 0) return n;
-    uint32_t counts[8], values[8];
-    store_8(counts, n), store_8(values, keys);
-    for (; searched != 0; searched &= searched - 1u) {
-        const uint32_t point = lowest_bit(searched);
-        counts[point] = dsn_poisson_draw(noise, values[point]);
-    }
-    return load_8(counts);
+    const __m256i flipped = _mm256_xor_si256(keys, broadcast_8(0x80000000u));
+    __m256i above = _mm256_setzero_si256(); /* minus their number */
+    for (uint32_t k = 0; k < noise->poisson_size; k++)
+        above = _mm256_add_epi32(above, _mm256_cmpgt_epi32(broadcast_8(shared.flipped_cdf[k]), flipped));
+    return _mm256_add_epi32(broadcast_8(noise->poisson_size), above);
 }
 
 /* axis_cells(point_axis(...)) of the group's points along a non-periodic axis (`axis`: 0 for x, 1 for y)
@@ -193,7 +179,7 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
             const __m256i key =
                 mix32_8(_mm256_add_epi32(_mm256_xor_si256(load_8(cell_x[i]), seed_column), row_key));
             store_8(keys, key);
-            if (shared.two_steps)
+            if (shared.one_draw)
                 store_8(counts, group_counts(noise, shared, key));
             else
                 for (uint32_t p = 0; p < group_points; p++)
