@@ -1,12 +1,12 @@
 /* runtime/continuous_batch_group.h - the batch of continuous points for the noises the vector per-point
-   evaluator takes (continuous_point_vector.h), 8 points at a time: their cells found point by point, the
-   keys and impulse counts of the 3 x 3 cells a usual point has computed on vectors with a point in each
-   lane (the key hashes and the counts' table searches, chains of dependent steps per point, then run 8
-   points abreast), then each point's impulses sifted, visited and normalized by the per-point evaluator's
-   code, its texels read from the batch's quad table (continuous_batch.h: one gather per channel, no test
-   at the window's edge). A point with more cells along an axis goes through the per-point evaluator. The same
-   keys and counts as per point, so the same bits. Internal to libdsn; not installed (everything here has
-   internal linkage). */
+   evaluator takes (continuous_point_vector.h), 8 points at a time with a point in each vector lane: their
+   cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
+   3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search), then each
+   point's impulses sifted, visited and normalized by the per-point evaluator's code, its texels read from
+   the batch's quad table (continuous_batch.h: one gather per channel, no test at the window's edge). A
+   point with more cells along an axis goes through the per-point evaluator. The same cells, keys and
+   counts as per point, so the same bits. Internal to libdsn; not installed (everything here has internal
+   linkage). */
 #ifndef DSN_CONTINUOUS_BATCH_GROUP_H
 #define DSN_CONTINUOUS_BATCH_GROUP_H
 
