@@ -7,6 +7,7 @@
 #if DSN_CONTINUOUS_BATCH
 #include "continuous_batch.h"
 #include "continuous_internal.h"
+#include "continuous_point_vector.h"
 #include "kernels.h"
 #include "normalize_fixed.h"
 
@@ -41,10 +42,22 @@ inline uint32_t bordered_bits(const dsn_asset *asset, uint32_t row, uint32_t col
            static_cast<uint32_t>(asset->texton[2u * index + 1u]) << 8;
 }
 
-/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch; returns the work arrays
-   after the table. */
-void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned) {
+/* Points from which a call builds the quad table for the noises that the kernel's vector evaluator takes
+   (continuous_batch_group.h reads the texton itself without it): fewer do not repay its building. */
+const uint32_t quad_table_least_points = 1024;
+
+/* Whether a call of `count` points builds the quad table: always where the kernel's passes across points
+   run (they read only it), from quad_table_least_points points for the vector evaluator's noises. */
+bool quad_table_used(const dsn_noise_state *noise, uint32_t count) {
+    return dsn_kernel_entries_of(noise->tile_kernel)->continuous_point == 0 || !point_vector_takes(noise) ||
+           count >= quad_table_least_points;
+}
+
+/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch where the call uses it;
+   returns the work arrays after the table. */
+void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned, bool table) {
     const dsn_asset *asset = &noise->asset;
+    if (!table) return aligned + round_up(batch_quad_count(asset) * sizeof(uint32_t));
     uint32_t *quads = static_cast<uint32_t *>(static_cast<void *>(aligned));
     size_t index = 0;
     for (uint32_t row = 0; row <= asset->height; row++)
@@ -90,8 +103,9 @@ int dsn_continuous_batch_fixed(const dsn_noise *handle, const int64_t *xs, const
     const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
     if (err != DSN_OK || count == 0) return err;
     unsigned char *aligned = aligned_scratch(scratch);
-    void *work = prepare_scratch(noise, aligned);
-    const uint32_t *quads = static_cast<const uint32_t *>(static_cast<void *>(aligned));
+    const bool table = quad_table_used(noise, count);
+    void *work = prepare_scratch(noise, aligned, table);
+    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
     dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch(noise, quads, xs, ys, count, out, work);
     return DSN_OK;
 }
@@ -102,8 +116,9 @@ int dsn_continuous_batch_float(const dsn_noise *handle, const double *xs, const 
     const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
     if (err != DSN_OK || count == 0) return err;
     unsigned char *aligned = aligned_scratch(scratch);
-    void *work = prepare_scratch(noise, aligned);
-    const uint32_t *quads = static_cast<const uint32_t *>(static_cast<void *>(aligned));
+    const bool table = quad_table_used(noise, count);
+    void *work = prepare_scratch(noise, aligned, table);
+    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
     dsn_continuous_batch_entry *batch = dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch;
     const uint32_t channels = noise->asset.channels;
     /* Converted a chunk at a time on the stack (under 2 KB). */

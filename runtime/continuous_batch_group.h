@@ -3,7 +3,8 @@
    cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
    3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search), then each
    point's impulses sifted, visited and normalized by the per-point evaluator's code, its texels read from
-   the batch's quad table (continuous_batch.h: one gather per channel, no test at the window's edge). A
+   the batch's quad table where the call built it (continuous_batch.h: one gather per channel, no test at
+   the window's edge; continuous_batch.cpp builds it for large batches only). A
    point with more cells along an axis goes through the per-point evaluator. The same cells, keys and
    counts as per point, so the same bits. Internal to libdsn; not installed (everything here has internal
    linkage). */
@@ -189,7 +190,8 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
     return fits;
 }
 
-/* The batch's points, Channels values each, into out; quads: the batch's table. */
+/* The batch's points, Channels values each, into out; quads: the batch's table, or null (the texels then
+   read from the texton, each where it lies inside the window). */
 template <uint32_t Channels>
 void batch_groups(const dsn_noise_state *noise, const uint32_t *quads, const int64_t *xs, const int64_t *ys,
                   uint32_t count, int32_t *out) {

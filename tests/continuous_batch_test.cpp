@@ -1,7 +1,8 @@
 // continuous_batch_test.cpp - batches of continuous points give exactly the per-point values, bit for bit,
 // in every kernel this CPU runs: points anywhere (across the 32-bit wraps), periodic noises, densities
 // from the sparsest to ones whose candidates overflow the kernel's arrays in the middle of a point, every
-// cell size, 8- and 16-bit, grey and RGB textons, batches of every length around the chunk size.
+// cell size, 8- and 16-bit, grey and RGB textons, batches of every length around the chunk size and the
+// size from which the texel table is built.
 #include <doctest/doctest.h>
 
 #include <cstdint>
@@ -115,6 +116,20 @@ TEST_CASE("continuous batch: every length around the chunk size, and points in a
     std::vector<int64_t> xs(40, 12345 * one / 7), ys(40, -one / 3);
     for (uint32_t k = 0; k < 40; k++) xs.push_back(int64_t(k) * one / 5), ys.push_back(one / 9);
     CHECK(batch_differences(noise->noise, xs, ys) == 0);
+}
+
+TEST_CASE("continuous batch: batches large enough for the texel table the kernels build for them") {
+    // continuous_batch.cpp builds its 2 x 2 texel table for 8-bit textons only from 1024 points: batches
+    // on both sides, grey and RGB, plain and periodic.
+    auto rgb = make_noise(random_texton_asset(3, 15, 8, 8), 21, 30u << 16);
+    auto grey = make_noise(random_texton_asset(1, 6, 8, 9), 22, 50u << 16, 0, 300);
+    for (uint32_t count : {1023u, 1024u, 1500u}) {
+        CAPTURE(count);
+        std::vector<int64_t> xs, ys;
+        renderer_points(count + 7, count, &xs, &ys);
+        CHECK(batch_differences(rgb->noise, xs, ys) == 0);
+        CHECK(batch_differences(grey->noise, xs, ys) == 0);
+    }
 }
 
 TEST_CASE("continuous batch: points at the int64 extremes, in groups of every fill") {
