@@ -31,29 +31,50 @@ unsigned char *aligned_scratch(void *scratch) {
     return bytes + (misalignment ? scratch_alignment - misalignment : 0u);
 }
 
-/* Texton value of the bordered texton (row and column 0 are the border) as the low bits of a word. */
-uint32_t bordered_bits(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
-    /* dsn_asset_texton_value is 0 outside the window: row or column 0 is index 0xFFFFFFFF there */
-    return static_cast<uint32_t>(dsn_asset_texton_value(asset, row - 1u, column - 1u, c)) &
-           (asset->bits == 8 ? 0xFFu : 0xFFFFu);
+/* Texel `column` (bordered: texton column column - 1) of a texton row (null: the border) in channel c,
+   its value's bytes in the low bits of a word (dsn_asset_texton_value's, read without a call per value);
+   0 outside the window. */
+inline uint32_t bordered_bits(const dsn_asset *asset, const unsigned char *row, uint32_t column, uint32_t c) {
+    column -= 1u; /* the border: 0xFFFFFFFF, outside */
+    if (row == 0 || column >= asset->width) return 0;
+    const size_t index = static_cast<size_t>(column) * asset->channels + c;
+    if (asset->bits == 8) return row[index];
+    return static_cast<uint32_t>(row[2u * index]) | static_cast<uint32_t>(row[2u * index + 1u]) << 8;
 }
 
-/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch, unless the kernel
-   evaluates the noise through its vector per-point evaluator (continuous_point_vector.h), which reads the
-   texton itself; returns the work arrays after the table. */
-void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned) {
+/* Texton row `row` of the bordered texton (texton row row - 1), or null for the border. */
+inline const unsigned char *bordered_row(const dsn_asset *asset, uint32_t row) {
+    if (row - 1u >= asset->height) return 0;
+    return asset->texton +
+           static_cast<size_t>(row - 1u) * asset->width * asset->channels * (asset->bits / 8u);
+}
+
+/* Points from which a call builds the quad table for the noises that the kernel's vector evaluator takes
+   (continuous_batch_group.h reads the texton itself without it): fewer do not repay its building. */
+const uint32_t quad_table_least_points = 512;
+
+/* Whether a call of `count` points builds the quad table: always where the kernel's passes across points
+   run (they read only it), from quad_table_least_points points for the vector evaluator's noises. */
+bool quad_table_used(const dsn_noise_state *noise, uint32_t count) {
+    return dsn_kernel_entries_of(noise->tile_kernel)->continuous_point == 0 || !point_vector_takes(noise) ||
+           count >= quad_table_least_points;
+}
+
+/* Fills the quad table (continuous_batch.h) at the start of the aligned scratch where the call uses it;
+   returns the work arrays after the table. */
+void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned, bool table) {
     const dsn_asset *asset = &noise->asset;
-    if (dsn_kernel_entries_of(noise->tile_kernel)->continuous_point != 0 && point_vector_takes(noise))
-        return aligned + round_up(batch_quad_count(asset) * sizeof(uint32_t));
+    if (!table) return aligned + round_up(batch_quad_count(asset) * sizeof(uint32_t));
     uint32_t *quads = static_cast<uint32_t *>(static_cast<void *>(aligned));
     size_t index = 0;
-    for (uint32_t row = 0; row <= asset->height; row++)
+    for (uint32_t row = 0; row <= asset->height; row++) {
+        const unsigned char *top = bordered_row(asset, row), *bottom = bordered_row(asset, row + 1u);
         for (uint32_t column = 0; column <= asset->width; column++)
             for (uint32_t c = 0; c < asset->channels; c++) {
-                const uint32_t top_left = bordered_bits(asset, row, column, c),
-                               top_right = bordered_bits(asset, row, column + 1u, c);
-                const uint32_t bottom_left = bordered_bits(asset, row + 1u, column, c),
-                               bottom_right = bordered_bits(asset, row + 1u, column + 1u, c);
+                const uint32_t top_left = bordered_bits(asset, top, column, c),
+                               top_right = bordered_bits(asset, top, column + 1u, c);
+                const uint32_t bottom_left = bordered_bits(asset, bottom, column, c),
+                               bottom_right = bordered_bits(asset, bottom, column + 1u, c);
                 if (asset->bits == 8) {
                     quads[index++] = top_left | (top_right << 8) | (bottom_left << 16) | (bottom_right << 24);
                 } else {
@@ -61,6 +82,7 @@ void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned) {
                     quads[index++] = bottom_left | (bottom_right << 16);
                 }
             }
+    }
     return aligned + round_up(index * sizeof(uint32_t));
 }
 
@@ -90,8 +112,9 @@ int dsn_continuous_batch_fixed(const dsn_noise *handle, const int64_t *xs, const
     const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
     if (err != DSN_OK || count == 0) return err;
     unsigned char *aligned = aligned_scratch(scratch);
-    void *work = prepare_scratch(noise, aligned);
-    const uint32_t *quads = static_cast<const uint32_t *>(static_cast<void *>(aligned));
+    const bool table = quad_table_used(noise, count);
+    void *work = prepare_scratch(noise, aligned, table);
+    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
     dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch(noise, quads, xs, ys, count, out, work);
     return DSN_OK;
 }
@@ -102,8 +125,9 @@ int dsn_continuous_batch_float(const dsn_noise *handle, const double *xs, const 
     const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
     if (err != DSN_OK || count == 0) return err;
     unsigned char *aligned = aligned_scratch(scratch);
-    void *work = prepare_scratch(noise, aligned);
-    const uint32_t *quads = static_cast<const uint32_t *>(static_cast<void *>(aligned));
+    const bool table = quad_table_used(noise, count);
+    void *work = prepare_scratch(noise, aligned, table);
+    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
     dsn_continuous_batch_entry *batch = dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch;
     const uint32_t channels = noise->asset.channels;
     /* Converted a chunk at a time on the stack (under 2 KB). */

@@ -3,7 +3,8 @@
    not installed (everything here has internal linkage).
 
    With AVX2, the noises that the kernel's vector per-point evaluator takes (continuous_point_vector.h:
-   8-bit textons, the usual densities) go through it point by point, which is faster there. The others:
+   8-bit textons, the usual densities) go through its code 8 points at a time (continuous_batch_group.h),
+   which is faster there, reading the texton from the quad table below. The others:
    the same sums as the per-point evaluator (continuous_point.cpp), reorganized so that the work across
    points runs on vectors. A chunk of points is evaluated in two passes:
      1. per point, its cells are walked and their impulses sifted on the packed lattice fields
@@ -18,6 +19,7 @@
 #ifndef DSN_CONTINUOUS_BATCH_H
 #define DSN_CONTINUOUS_BATCH_H
 
+#include "continuous_batch_group.h"
 #include "continuous_internal.h"
 #include "continuous_lanes.h"
 #include "continuous_point_vector.h"
@@ -397,20 +399,16 @@ void batch_points(const dsn_noise_state *noise, const uint32_t *quads, const int
 }
 
 /* The kernel entry. With AVX2 (the AVX2 and AVX-512 kernels, or a default kernel built for AVX2) the
-   vector per-point evaluator point by point for the noises it takes (continuous_point_vector.h: faster
-   than the passes above there), else the passes above, one copy per channel count and value size. Without,
+   groups of continuous_batch_group.h for the noises the vector per-point evaluator takes (faster than the
+   passes above there), else the passes above, one copy per channel count and value size. Without,
    those (pass 2 one candidate at a time) measured slower than the per-point evaluator with its SSE2 bilinear
    reads, which the entry then calls point by point (work and quads unused). */
 inline void continuous_batch(const dsn_noise_state *noise, const uint32_t *quads, const int64_t *xs,
                              const int64_t *ys, uint32_t count, int32_t *out, void *work) {
 #if defined(__AVX2__)
-    if (point_vector_takes(noise)) { /* point by point is faster there */
-        for (uint32_t k = 0; k < count; k++) {
-            const uint64_t x = static_cast<uint64_t>(xs[k]), y = static_cast<uint64_t>(ys[k]);
-            int32_t *values = out + static_cast<size_t>(k) * noise->asset.channels;
-            if (!continuous_point_vector(noise, x, y, values))
-                dsn_internal_continuous_point(noise, x, y, values);
-        }
+    if (point_vector_takes(noise)) { /* faster there */
+        noise->asset.channels == 3 ? batch_groups<3>(noise, quads, xs, ys, count, out)
+                                   : batch_groups<1>(noise, quads, xs, ys, count, out);
         return;
     }
     const dsn_asset *asset = &noise->asset;

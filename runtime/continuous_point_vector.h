@@ -72,7 +72,11 @@ inline __m256i at_most(__m256i a, __m256i limit) { return _mm256_cmpeq_epi32(_mm
 template <uint32_t Channels>
 struct PointVisit {
     const unsigned char *texton;
+    /* The batch's 2 x 2 texel table of the bordered texton (continuous_batch.h's quads; null per point):
+       one read per channel, no test at the window's edge. */
+    const uint32_t *quads;
     uint32_t width, height;
+    uint32_t quad_row;       /* quads per row of the table: (width + 1) Channels */
     uint32_t last_x, last_y; /* the largest S in reach */
     __m128i shift;
     __m256i sums[Channels];
@@ -129,6 +133,27 @@ DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t w
     }
 }
 
+/* add_window_reads_8 from the quad table: the bordered position of the top-left texel is the lower index
+   plus 1, (S >> 16) along each axis; a lane out of reach reads nothing and adds zero. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row, __m256i s_x, __m256i s_y,
+                                       __m256i reach, __m256i *sums) {
+    const __m256i low_16 = _mm256_set1_epi32(0xFFFF);
+    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
+    const __m256i column = _mm256_srli_epi32(s_x, 16);
+    const __m256i at =
+        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_srli_epi32(s_y, 16), broadcast_8(quad_row)),
+                         Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(column, 1), column) : column);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const int *table = static_cast<const int *>(static_cast<const void *>(quads + c));
+        const __m256i quad = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), table, at, reach, 4);
+        __m256i even, odd;
+        bilinear_8(lane_byte(quad, 0), lane_byte(quad, 1), lane_byte(quad, 2), lane_byte(quad, 3), across,
+                   down, &even, &odd);
+        sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(even, odd));
+    }
+}
+
 /* Candidates first .. first + 7 of which the first `valid` exist. */
 template <uint32_t Channels>
 inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
@@ -150,8 +175,11 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
     const __m256i reach =
         _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
                                                   at_most(s_y, broadcast_8(visit->last_y))));
-    add_window_reads_8<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y, reach,
-                                 visit->sums);
+    if (visit->quads != 0)
+        add_quad_reads_8<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->sums);
+    else
+        add_window_reads_8<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y,
+                                     reach, visit->sums);
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -187,6 +215,39 @@ inline uint32_t sift_two_pairs(__m128i pairs, const FieldLanes &lanes, const Cel
     return static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
 }
 
+/* bilinear_8 on 16 lanes, the 16 values added to sum's 64-bit lanes. */
+DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e, __m512i across,
+                                      __m512i down, __m512i *sum) {
+    const __m512i scale = _mm512_set1_epi32(65536);
+    const __m512i upper =
+        _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
+    const __m512i lower =
+        _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
+    const __m512i difference = _mm512_sub_epi32(lower, upper);
+    const __m512i even = _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
+    const __m512i odd =
+        _mm512_add_epi64(_mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
+                         _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
+    *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
+}
+
+/* add_quad_reads_8 on 16 lanes. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, __m512i s_x, __m512i s_y,
+                                        __mmask16 reach, __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    const __m512i column = _mm512_srli_epi32(s_x, 16);
+    const __m512i at =
+        _mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(s_y, 16), broadcast_16(quad_row)),
+                         Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(column, 1), column) : column);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const __m512i quad = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), reach, at, quads + c, 4);
+        add_bilinear_16(lane_byte_16(quad, 0), lane_byte_16(quad, 1), lane_byte_16(quad, 2),
+                        lane_byte_16(quad, 3), across, down, &sums[c]);
+    }
+}
+
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
@@ -212,22 +273,9 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
                   top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
                   bottom_left = _mm512_mask_i32gather_epi32(zero, bottom & left, below, texton, 1),
                   bottom_right = _mm512_mask_i32gather_epi32(zero, bottom & right, below, next, 1);
-    const __m512i scale = _mm512_set1_epi32(65536);
-    for (uint32_t c = 0; c < Channels; c++) { /* as bilinear_8 */
-        const __m512i a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c);
-        const __m512i d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
-        const __m512i upper =
-            _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
-        const __m512i lower =
-            _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
-        const __m512i difference = _mm512_sub_epi32(lower, upper);
-        const __m512i even =
-            _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
-        const __m512i odd = _mm512_add_epi64(
-            _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
-            _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
-        sums[c] = _mm512_add_epi64(sums[c], _mm512_add_epi64(even, odd));
-    }
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(top_left, c), lane_byte_16(top_right, c), lane_byte_16(bottom_left, c),
+                        lane_byte_16(bottom_right, c), across, down, &sums[c]);
 }
 
 template <uint32_t Channels>
@@ -248,8 +296,11 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
     const __mmask16 reach =
         _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
                                      s_y, broadcast_16(visit->last_y));
-    add_window_reads_16<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y, reach,
-                                  visit->wide_sums);
+    if (visit->quads != 0)
+        add_quad_reads_16<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->wide_sums);
+    else
+        add_window_reads_16<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y,
+                                      reach, visit->wide_sums);
 }
 #endif
 
@@ -360,17 +411,27 @@ DSN_POINT_INLINE bool axis_cells(const PointAxis &point, const FieldLanes &lanes
     return true;
 }
 
-template <uint32_t Channels>
-int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+/* The cells of the point (x, y) along both axes; false when an axis has more than point_vector_cells. */
+DSN_POINT_INLINE bool point_cells(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                  const FieldLanes &lanes, AxisCells *columns, AxisCells *rows) {
     const uint32_t shift = noise->cell_shift;
-    const FieldLanes lanes = field_lanes(shift);
-    AxisCells columns, rows;
-    if (!axis_cells(point_axis(x, noise->radius[0], shift, noise->period[0]), lanes, &columns) ||
-        !axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, &rows))
-        return 0;
+    return axis_cells(point_axis(x, noise->radius[0], shift, noise->period[0]), lanes, columns) &&
+           axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, rows);
+}
+
+/* The point's values from its cells, with the key and impulse count of the cell (columns i, rows j) at
+   index j row_step + i column_step of keys and counts; quads: the batch's table (PointVisit), or null. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const FieldLanes &lanes,
+                                       const AxisCells &columns, const AxisCells &rows, const uint32_t *keys,
+                                       const uint32_t *counts, uint32_t row_step, uint32_t column_step,
+                                       const uint32_t *quads, int32_t *out) {
+    const uint32_t shift = noise->cell_shift;
     PointVisit<Channels> visit;
     visit.texton = noise->asset.texton;
+    visit.quads = quads;
     visit.width = noise->asset.width, visit.height = noise->asset.height;
+    visit.quad_row = (noise->asset.width + 1u) * Channels;
     visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
     visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
     visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
@@ -380,24 +441,13 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
         visit.wide_sums[c] = _mm512_setzero_si512();
 #endif
     }
-    /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
-    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
-    const uint32_t cells = rows.count * columns.count;
-    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
-        const uint32_t row_key = dsn_row_key(noise, rows.cell[j]);
-        for (uint32_t i = 0; i < columns.count; i++, k++)
-            keys[k] = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
-    }
-    if (dsn_poisson_two_steps_fit(noise))
-        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_poisson_count_two_steps(noise, keys[k]);
-    else
-        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_cell_impulse_count(noise, keys[k]);
     PointCandidates candidates;
     candidates.count = 0;
-    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
+    for (uint32_t j = 0; j < rows.count; j++) {
         const __m256i base_y = broadcast_8(rows.base[j]);
-        for (uint32_t i = 0; i < columns.count; i++, k++) {
-            const uint32_t key = keys[k], count = counts[k];
+        for (uint32_t i = 0; i < columns.count; i++) {
+            const uint32_t key = keys[j * row_step + i * column_step],
+                           count = counts[j * row_step + i * column_step];
             const __m256i base_x = broadcast_8(columns.base[i]);
             /* The first two pairs whether the cell has impulses there or not: a branch on the count
                would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
@@ -431,6 +481,26 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
         for (uint32_t k = 0; k < 12; k++) sums[c] += lanes_64[k];
     }
     normalize_q32(noise, sums, out);
+}
+
+template <uint32_t Channels>
+int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    const FieldLanes lanes = field_lanes(noise->cell_shift);
+    AxisCells columns, rows;
+    if (!point_cells(noise, x, y, lanes, &columns, &rows)) return 0;
+    /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
+    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+    const uint32_t cells = rows.count * columns.count;
+    for (uint32_t j = 0, k = 0; j < rows.count; j++) {
+        const uint32_t row_key = dsn_row_key(noise, rows.cell[j]);
+        for (uint32_t i = 0; i < columns.count; i++, k++)
+            keys[k] = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
+    }
+    if (dsn_poisson_two_steps_fit(noise))
+        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_poisson_count_two_steps(noise, keys[k]);
+    else
+        for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_cell_impulse_count(noise, keys[k]);
+    point_vector_sum<Channels>(noise, lanes, columns, rows, keys, counts, columns.count, 1, 0, out);
     return 1;
 }
 

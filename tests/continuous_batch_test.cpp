@@ -1,7 +1,8 @@
 // continuous_batch_test.cpp - batches of continuous points give exactly the per-point values, bit for bit,
 // in every kernel this CPU runs: points anywhere (across the 32-bit wraps), periodic noises, densities
 // from the sparsest to ones whose candidates overflow the kernel's arrays in the middle of a point, every
-// cell size, 8- and 16-bit, grey and RGB textons, batches of every length around the chunk size.
+// cell size, 8- and 16-bit, grey and RGB textons, batches of every length around the chunk size and the
+// size from which the texel table is built.
 #include <doctest/doctest.h>
 
 #include <cstdint>
@@ -115,6 +116,41 @@ TEST_CASE("continuous batch: every length around the chunk size, and points in a
     std::vector<int64_t> xs(40, 12345 * one / 7), ys(40, -one / 3);
     for (uint32_t k = 0; k < 40; k++) xs.push_back(int64_t(k) * one / 5), ys.push_back(one / 9);
     CHECK(batch_differences(noise->noise, xs, ys) == 0);
+}
+
+TEST_CASE("continuous batch: batches large enough for the texel table the kernels build for them") {
+    // continuous_batch.cpp builds its 2 x 2 texel table for 8-bit textons only from 512 points: batches
+    // on both sides, grey and RGB, plain and periodic.
+    auto rgb = make_noise(random_texton_asset(3, 15, 8, 8), 21, 30u << 16);
+    auto grey = make_noise(random_texton_asset(1, 6, 8, 9), 22, 50u << 16, 0, 300);
+    for (uint32_t count : {511u, 512u, 1100u}) {
+        CAPTURE(count);
+        std::vector<int64_t> xs, ys;
+        renderer_points(count + 7, count, &xs, &ys);
+        CHECK(batch_differences(rgb->noise, xs, ys) == 0);
+        CHECK(batch_differences(grey->noise, xs, ys) == 0);
+    }
+}
+
+TEST_CASE("continuous batch: points at the int64 extremes, in groups of every fill") {
+    // Whole and fractional parts next to INT64_MIN and INT64_MAX, mixed with ordinary points so that the
+    // kernels' groups of points hold both; lengths that leave a group partly filled.
+    const int64_t most = INT64_MAX, least = INT64_MIN;
+    const int64_t extremes[] = {
+        most, least, most - one / 3, least + one / 7, most - 5 * one, least + 3 * one + 1,
+        0,    -1,    one / 2,        -one / 2};
+    auto noise = make_noise(random_texton_asset(3, 15, 8, 6), 11, 30u << 16);
+    auto periodic = make_noise(random_texton_asset(1, 9, 8, 7), 12, 30u << 16, 37, 1000);
+    for (uint32_t count : {3u, 9u, 23u, 40u}) {
+        CAPTURE(count);
+        std::vector<int64_t> xs, ys;
+        for (uint32_t k = 0; k < count; k++) {
+            xs.push_back(extremes[k % 10]);
+            ys.push_back(extremes[(k * 7 + 3) % 10]);
+        }
+        CHECK(batch_differences(noise->noise, xs, ys) == 0);
+        CHECK(batch_differences(periodic->noise, xs, ys) == 0);
+    }
 }
 
 TEST_CASE("continuous batch: errors, and nothing written on an error") {

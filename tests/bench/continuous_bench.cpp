@@ -1,6 +1,7 @@
 // continuous_bench.cpp - cost of the continuous (renderer) mode as ratios to the lattice mode measured in
 // the same run: per point over a 512 x 512 grid, tiles under rotations and zooms, and random
-// points one by one and as a batch, RGB, 31 x 31 texton, 30 impacts per pixel, one thread.
+// points one by one and as a batch (in every kernel copy the CPU runs), RGB, 31 x 31 texton, 30 impacts per
+// pixel, one thread.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -91,6 +92,18 @@ int main() {
                                    batch_scratch.data(), batch_scratch.size());
         checksum += batch_out[5];
     });
+    // The batch in the narrower kernels this CPU runs too (the copies built for other instruction sets).
+    const uint32_t widest = dsn_state(n)->tile_kernel;
+    std::vector<double> copy_batch_times;
+    for (uint32_t kernel = 0; kernel < widest; kernel++) {
+        dsn_noise copy = *n;
+        dsn_state(&copy)->tile_kernel = kernel;
+        copy_batch_times.push_back(best_time(5, [&] {
+            dsn_continuous_batch_fixed(&copy, batch_x.data(), batch_y.data(), uint32_t(batch),
+                                       batch_out.data(), batch_scratch.data(), batch_scratch.size());
+            checksum += batch_out[5];
+        }));
+    }
     const double lattice_random = best_time(5, [&] {
         int32_t out[3];
         for (size_t k = 0; k < batch; k++) {
@@ -123,6 +136,11 @@ int main() {
                 "%.2f to the continuous per point\n",
                 batch, batch_call_time / double(batch) * 1e9, batch_call_time / lattice_random,
                 batch_call_time / batch_time);
+    const char *copy_names[] = {"SSE2", "AVX2", "AVX-512"};
+    for (uint32_t kernel = 0; kernel < widest; kernel++)
+        std::printf("    the batch in the %s copy: %.0f ns/point: ratio %.2f to the lattice per point\n",
+                    kernel < 3 ? copy_names[kernel] : "other", copy_batch_times[kernel] / double(batch) * 1e9,
+                    copy_batch_times[kernel] / lattice_random);
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }
