@@ -396,6 +396,7 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
     setup.reach_y = y.reach;
     setup.cells = 0;
     setup.cell_row = 0;
+    setup.columns_shared = x.row == 0 && y.column == 0;
     setup.sums_end = sums + static_cast<size_t>(width) * height * channels;
 #if DSN_SPLAT_CELLS
     alignas(64) uint64_t cells[splat_cell_capacity]; /* RGB cells on 32-byte boundaries */

@@ -58,6 +58,9 @@ typedef struct dsn_splat_setup {
     const uint64_t *sums_end; /* the runs' sums lie before; vectors may add 0 to any sum up to there */
     const uint64_t *cells;
     uint32_t cell_row; /* cells per row of the table */
+    /* Nonzero for axis-aligned grids (the steps along a row move x alone, those to the next row y alone):
+       the runs of a call then start at the same offset_x, have the same count and a constant offset_y. */
+    int columns_shared;
 } dsn_splat_setup;
 
 /* The innermost loops of the continuous grid splat (splat_row.h's continuous_splat_runs): one impulse

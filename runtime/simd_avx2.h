@@ -145,12 +145,16 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
     records[1] = _mm256_permute2x128_si256(odd_01, odd_23, 0x20);
     records[Channels - 1] = _mm256_permute2x128_si256(even_01, even_23, 0x31);
 }
-/* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
-   products of the dwords. */
-inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    const splat_vector rows = _mm256_madd_epi16(records, across);
-    return _mm256_add_epi64(_mm256_mul_epi32(rows, _mm256_set1_epi64x(65536)),
-                            _mm256_mul_epi32(_mm256_srli_epi64(rows, 32), down));
+/* splat_cells.h's multiply-add: each lane's dwords (low, high) become upper and lower - upper. */
+inline splat_vector splat_rows(splat_vector records, splat_vector across) {
+    return _mm256_madd_epi16(records, across);
+}
+/* 65536 upper and down (lower - upper) (down below 2^16 in each lane), signed products of the dwords. */
+inline splat_vector splat_scaled_upper(splat_vector rows) {
+    return _mm256_mul_epi32(rows, _mm256_set1_epi64x(65536));
+}
+inline splat_vector splat_down_part(splat_vector rows, splat_vector down) {
+    return _mm256_mul_epi32(_mm256_srli_epi64(rows, 32), down);
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..], where sums up to `end`
    may be read and written back. Where a whole vector fits, the other lanes add 0 (a masked store is

@@ -211,12 +211,16 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
         _mm512_shuffle_i64x2(_mm512_permutex2var_epi64(pair_0, channel_2, pair_1),
                              _mm512_permutex2var_epi64(pair_2, channel_2, pair_3), _MM_SHUFFLE(1, 0, 1, 0));
 }
-/* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
-   products of the dwords. */
-inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    const splat_vector rows = _mm512_madd_epi16(records, across);
-    return _mm512_add_epi64(_mm512_mul_epi32(rows, _mm512_set1_epi64(65536)),
-                            _mm512_mul_epi32(_mm512_srli_epi64(rows, 32), down));
+/* splat_cells.h's multiply-add: each lane's dwords (low, high) become upper and lower - upper. */
+inline splat_vector splat_rows(splat_vector records, splat_vector across) {
+    return _mm512_madd_epi16(records, across);
+}
+/* 65536 upper and down (lower - upper) (down below 2^16 in each lane), signed products of the dwords. */
+inline splat_vector splat_scaled_upper(splat_vector rows) {
+    return _mm512_mul_epi32(rows, _mm512_set1_epi64(65536));
+}
+inline splat_vector splat_down_part(splat_vector rows, splat_vector down) {
+    return _mm512_mul_epi32(_mm512_srli_epi64(rows, 32), down);
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */

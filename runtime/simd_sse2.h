@@ -111,23 +111,22 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
     records[1] = _mm_unpackhi_epi64(first_01, second_01);
     records[Channels - 1] = _mm_unpacklo_epi64(_mm_loadl_epi64(first + 1), _mm_loadl_epi64(second + 1));
 }
-/* 65536 upper + down (lower - upper), the dwords of rows (low, high) being upper and lower - upper and
-   down (below 2^16) the low dword of each lane. SSE2 multiplies unsigned only: a negative dword s reads
-   as s + 2^32, so its product is 2^32 times the other factor too much. */
-inline splat_vector splat_combine_rows(splat_vector rows, splat_vector down) {
-    const splat_vector signs = _mm_srai_epi32(rows, 31);
-    const splat_vector upper_negative = _mm_shuffle_epi32(signs, _MM_SHUFFLE(2, 2, 0, 0));
-    const splat_vector difference_negative = _mm_shuffle_epi32(signs, _MM_SHUFFLE(3, 3, 1, 1));
-    const splat_vector scaled =
-        _mm_sub_epi64(_mm_mul_epu32(rows, _mm_set1_epi64x(65536)),
-                      _mm_and_si128(upper_negative, _mm_set1_epi64x(static_cast<long long>(1) << 48)));
-    const splat_vector crossed = _mm_sub_epi64(_mm_mul_epu32(_mm_srli_epi64(rows, 32), down),
-                                               _mm_and_si128(difference_negative, _mm_slli_epi64(down, 32)));
-    return _mm_add_epi64(scaled, crossed);
+/* splat_cells.h's multiply-add: each lane's dwords (low, high) become upper and lower - upper. */
+inline splat_vector splat_rows(splat_vector records, splat_vector across) {
+    return _mm_madd_epi16(records, across);
 }
-/* The records' bilinear values: splat_cells.h's multiply-add, then the rows combined. */
-inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    return splat_combine_rows(_mm_madd_epi16(records, across), down);
+/* 65536 upper and down (lower - upper) (down below 2^16 in each lane). SSE2 multiplies unsigned only: a
+   negative dword s reads as s + 2^32, so its product is 2^32 times the other factor too much. */
+inline splat_vector splat_scaled_upper(splat_vector rows) {
+    const splat_vector upper_negative = _mm_shuffle_epi32(_mm_srai_epi32(rows, 31), _MM_SHUFFLE(2, 2, 0, 0));
+    return _mm_sub_epi64(_mm_mul_epu32(rows, _mm_set1_epi64x(65536)),
+                         _mm_and_si128(upper_negative, _mm_set1_epi64x(static_cast<long long>(1) << 48)));
+}
+inline splat_vector splat_down_part(splat_vector rows, splat_vector down) {
+    const splat_vector difference_negative =
+        _mm_shuffle_epi32(_mm_srai_epi32(rows, 31), _MM_SHUFFLE(3, 3, 1, 1));
+    return _mm_sub_epi64(_mm_mul_epu32(_mm_srli_epi64(rows, 32), down),
+                         _mm_and_si128(difference_negative, _mm_slli_epi64(down, 32)));
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */

@@ -245,6 +245,12 @@ inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64
    give, and one multiply-add of 16-bit pairs and two signed 32 x 32-bit products give interior_channel's
    integer, edge cells included (their texels outside the window are 0 in the records). No gathers: the
    records are loaded one by one. Lanes past a run read cell 0 and are not added. */
+/* The records' bilinear values: 65536 upper + down (lower - upper). */
+inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
+    const splat_vector rows = splat_rows(records, across);
+    return splat_add(splat_scaled_upper(rows), splat_down_part(rows, down));
+}
+
 template <uint32_t Channels>
 void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
@@ -300,10 +306,71 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
 }
 #endif
 
+#if DSN_SPLAT_CELLS
+/* ---- Axis-aligned grids: the runs share their columns (splat_columns_shared) ----
+   A pixel's cell column and across weights then depend on its column alone, its cell row and down weight
+   on its row alone: each run's interpolation along the row (splat_rows, both dwords of each record) is
+   computed once per cell row met, and every pixel row adds 65536 upper + down (lower - upper) from it,
+   the same integers. Lanes past the run read the row's first cell and are not added. */
+template <uint32_t Channels>
+void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    const uint32_t vectors_most = dsn_splat_run_longest / splat_lanes;
+    const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
+    const uint32_t count = runs[0].count, vectors = (count + splat_lanes - 1u) / splat_lanes;
+    const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
+    const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
+    /* The columns: each lane's first record in a row of cells, and its across weights. */
+    uint64_t column[dsn_splat_run_longest];
+    splat_vector across[vectors_most];
+    splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),
+                                       splat_lane_steps(0, step_x));
+    const splat_vector next_x = splat_set(step_x * splat_lanes);
+    for (uint32_t v = 0; v < vectors; v++) {
+        splat_store(column + v * splat_lanes,
+                    splat_first_lanes(splat_whole_times(shifted_x, cell_records), count - v * splat_lanes));
+        across[v] = splat_across_weights(shifted_x);
+        shifted_x = splat_add(shifted_x, next_x);
+    }
+    /* The current cell row's 65536 upper and its rows (lower - upper in the high dwords), per channel. */
+    splat_vector scaled[Channels][vectors_most], rows[Channels][vectors_most];
+    uint64_t current = ~static_cast<uint64_t>(0);
+    for (uint32_t r = 0; r < run_count; r++) {
+        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y);
+        const uint64_t cell_row = shifted_y >> 32;
+        if (cell_row != current) {
+            current = cell_row;
+            const uint64_t *cells = setup->cells + cell_row * row_records;
+            for (uint32_t v = 0; v < vectors; v++) {
+                splat_vector records[3];
+                splat_load_cells<Channels>(cells, column + v * splat_lanes, records);
+                for (uint32_t c = 0; c < Channels; c++) {
+                    rows[c][v] = splat_rows(records[c], across[v]);
+                    scaled[c][v] = splat_scaled_upper(rows[c][v]);
+                }
+            }
+        }
+        const splat_vector down = splat_set((shifted_y >> 16) & 0xFFFFu);
+        for (uint32_t v = 0; v < vectors; v++)
+            for (uint32_t c = 0; c < Channels; c++)
+                splat_accumulate(runs[r].sums + c * plane + v * splat_lanes,
+                                 splat_add(scaled[c][v], splat_down_part(rows[c][v], down)),
+                                 count - v * splat_lanes, end);
+    }
+}
+#endif
+
 /* The kernel entry: the runs on vectors where the texton has records, else pixel by pixel. */
 inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count) {
 #if DSN_SPLAT_CELLS
+    if (setup->cells != 0 && setup->columns_shared) {
+        if (setup->asset->channels == 3)
+            splat_runs_aligned<3>(setup, runs, run_count);
+        else
+            splat_runs_aligned<1>(setup, runs, run_count);
+        return;
+    }
     if (setup->cells != 0) {
         if (setup->asset->channels == 3)
             splat_runs_vector<3>(setup, runs, run_count);
