@@ -307,55 +307,63 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
 #endif
 
 #if DSN_SPLAT_CELLS
-/* ---- Axis-aligned grids: the runs share their columns (splat_columns_shared) ----
+/* ---- Axis-aligned grids: the runs share their columns (splat_setup.columns_shared) ----
    A pixel's cell column and across weights then depend on its column alone, its cell row and down weight
-   on its row alone: each run's interpolation along the row (splat_rows, both dwords of each record) is
-   computed once per cell row met, and every pixel row adds 65536 upper + down (lower - upper) from it,
-   the same integers. Lanes past the run read the row's first cell and are not added. */
+   on its row alone. Going down the runs one vector of columns at a time, the interpolation along the row
+   (splat_rows: both dwords of each record) stays in registers while the cell row does not change, and
+   each pixel adds 65536 upper + down (lower - upper) from it: the same integers. Lanes past the runs read
+   the row's first cell and are not added. */
 template <uint32_t Channels>
 void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
-    const uint32_t vectors_most = dsn_splat_run_longest / splat_lanes;
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
-    const uint32_t count = runs[0].count, vectors = (count + splat_lanes - 1u) / splat_lanes;
+    const uint32_t count = runs[0].count;
     const size_t plane = setup->plane;
     const uint64_t *end = setup->sums_end;
+    /* Each run's first record in the table and down weight. */
+    uint64_t row_start[dsn_splat_runs_most], down[dsn_splat_runs_most];
+    for (uint32_t r = 0; r < run_count; r++) {
+        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y);
+        row_start[r] = (shifted_y >> 32) * row_records;
+        down[r] = (shifted_y >> 16) & 0xFFFFu;
+    }
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
-    /* The columns: each lane's first record in a row of cells, and its across weights. */
-    uint64_t column[dsn_splat_run_longest];
-    splat_vector across[vectors_most];
     splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),
                                        splat_lane_steps(0, step_x));
     const splat_vector next_x = splat_set(step_x * splat_lanes);
-    for (uint32_t v = 0; v < vectors; v++) {
-        splat_store(column + v * splat_lanes,
-                    splat_first_lanes(splat_whole_times(shifted_x, cell_records), count - v * splat_lanes));
-        across[v] = splat_across_weights(shifted_x);
-        shifted_x = splat_add(shifted_x, next_x);
-    }
-    /* The current cell row's 65536 upper and its rows (lower - upper in the high dwords), per channel. */
-    splat_vector scaled[Channels][vectors_most], rows[Channels][vectors_most];
-    uint64_t current = ~static_cast<uint64_t>(0);
-    for (uint32_t r = 0; r < run_count; r++) {
-        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y);
-        const uint64_t cell_row = shifted_y >> 32;
-        if (cell_row != current) {
-            current = cell_row;
-            const uint64_t *cells = setup->cells + cell_row * row_records;
-            for (uint32_t v = 0; v < vectors; v++) {
+    for (uint32_t done = 0; done < count; done += splat_lanes) {
+        const uint32_t remaining = count - done;
+        uint64_t column[splat_lanes]; /* each lane's first record in a row of the table */
+        splat_store(column, splat_first_lanes(splat_whole_times(shifted_x, cell_records), remaining));
+        const splat_vector across = splat_across_weights(shifted_x);
+        /* The current cell row's rows and 65536 upper, channel by channel (kept in registers). */
+        splat_vector rows_0 = splat_set(0), rows_1 = rows_0, rows_2 = rows_0;
+        splat_vector scaled_0 = rows_0, scaled_1 = rows_0, scaled_2 = rows_0;
+        uint64_t current = ~static_cast<uint64_t>(0);
+        for (uint32_t r = 0; r < run_count; r++) {
+            if (row_start[r] != current) {
+                current = row_start[r];
                 splat_vector records[3];
-                splat_load_cells<Channels>(cells, column + v * splat_lanes, records);
-                for (uint32_t c = 0; c < Channels; c++) {
-                    rows[c][v] = splat_rows(records[c], across[v]);
-                    scaled[c][v] = splat_scaled_upper(rows[c][v]);
+                splat_load_cells<Channels>(setup->cells + current, column, records);
+                rows_0 = splat_rows(records[0], across);
+                scaled_0 = splat_scaled_upper(rows_0);
+                if (Channels == 3) {
+                    rows_1 = splat_rows(records[1], across);
+                    scaled_1 = splat_scaled_upper(rows_1);
+                    rows_2 = splat_rows(records[2], across);
+                    scaled_2 = splat_scaled_upper(rows_2);
                 }
             }
+            const splat_vector weight = splat_set(down[r]);
+            uint64_t *sums = runs[r].sums + done;
+            splat_accumulate(sums, splat_add(scaled_0, splat_down_part(rows_0, weight)), remaining, end);
+            if (Channels == 3) {
+                splat_accumulate(sums + plane, splat_add(scaled_1, splat_down_part(rows_1, weight)),
+                                 remaining, end);
+                splat_accumulate(sums + 2 * plane, splat_add(scaled_2, splat_down_part(rows_2, weight)),
+                                 remaining, end);
+            }
         }
-        const splat_vector down = splat_set((shifted_y >> 16) & 0xFFFFu);
-        for (uint32_t v = 0; v < vectors; v++)
-            for (uint32_t c = 0; c < Channels; c++)
-                splat_accumulate(runs[r].sums + c * plane + v * splat_lanes,
-                                 splat_add(scaled[c][v], splat_down_part(rows[c][v], down)),
-                                 count - v * splat_lanes, end);
+        shifted_x = splat_add(shifted_x, next_x);
     }
 }
 #endif
