@@ -1,7 +1,8 @@
 /* runtime/splat_row.h - the innermost loops of the continuous grid splat (continuous_tile.cpp): one
    impulse added to its runs of pixels, one run per row of a block, as a kernel (kernels.h: each kernel
    file includes it, so it is built once per instruction set). On x86 8-bit textons are read from their
-   cell records (splat_cells.h) on vectors of 64-bit lanes, one pixel per lane (2, 4 or 8 by the copy);
+   cell records (splat_cells.h) on vectors of 64-bit lanes, one pixel per lane (2, 4 or 8 by the copy),
+   axis-aligned grids reusing each record's interpolation along the row down the runs;
    8-bit textons too large for the records take 8 pixels per step with gathers on AVX2 and AVX-512; the
    rest goes pixel by pixel. The same integers every way (add_bilinear's). Internal to libdsn; not
    installed (everything here has internal linkage). */
@@ -307,7 +308,7 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
 #endif
 
 #if DSN_SPLAT_CELLS
-/* ---- Axis-aligned grids: the runs share their columns (splat_setup.columns_shared) ----
+/* ---- Axis-aligned grids: the runs share their columns (dsn_splat_setup.columns_shared) ----
    A pixel's cell column and across weights then depend on its column alone, its cell row and down weight
    on its row alone. Going down the runs one vector of columns at a time, the interpolation along the row
    (splat_rows: both dwords of each record) stays in registers while the cell row does not change, and
