@@ -1,6 +1,7 @@
 // continuous_bench.cpp - cost of the continuous (renderer) mode as ratios to the lattice mode measured in
-// the same run: per point over a 512 x 512 grid, tiles under rotations and zooms, and random
-// points one by one and as a batch, RGB, 31 x 31 texton, 30 impacts per pixel, one thread.
+// the same run: per point over a 512 x 512 grid, tiles rotated and axis-aligned at two zooms with every
+// copy of the tile code this CPU runs (each against its own lattice tile), and random points one by one
+// and as a batch, RGB, 31 x 31 texton, 30 impacts per pixel, one thread.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
