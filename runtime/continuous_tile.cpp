@@ -382,11 +382,13 @@ uint64_t *aligned_sums(void *scratch) {
 
 /* The tile block by block: each block's sums are splatted into the start of the scratch (planar, channel
    c of the block's pixel p at sums[c * pixels + p], so the vector kernels add runs of pixels of one
-   channel), then normalized into `out`; a block's sums stay in the caches. 8-bit textons are read from
+   channel), then normalized a row at a time by the kernel (on vectors of pixels too) and mapped and stored
+   into `out` pixel by pixel; a block's sums stay in the caches. 8-bit textons are read from
    their cell records (splat_cells.h) where the kernels take them, kept on the stack for the call. */
 void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
                 uint32_t height, uint64_t *sums, void *out, dsn_output_kind kind) {
-    dsn_splat_runs_entry *splat_runs = dsn_kernel_entries_of(noise->tile_kernel)->continuous_splat_runs;
+    const dsn_kernel_entries *kernel = dsn_kernel_entries_of(noise->tile_kernel);
+    dsn_splat_runs_entry *splat_runs = kernel->continuous_splat_runs;
     const uint32_t channels = noise->asset.channels;
     dsn_splat_setup setup;
     setup.asset = &noise->asset;
@@ -414,16 +416,17 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
             setup.plane = pixels;
             for (size_t i = 0; i < pixels * channels; i++) sums[i] = 0;
             splat_block(noise, x, y, block, sums, &setup, splat_runs);
-            for (uint32_t j = 0; j < rows; j++)
+            for (uint32_t j = 0; j < rows; j++) {
+                int32_t values[block_columns * DSN_MAX_CHANNELS];
+                kernel->continuous_splat_normalize(noise, sums + static_cast<size_t>(j) * columns, pixels,
+                                                   columns, values);
                 for (uint32_t i = 0; i < columns; i++) {
-                    const size_t p = static_cast<size_t>(j) * columns + i;
-                    uint64_t pixel_sums[DSN_MAX_CHANNELS];
-                    int32_t pixel[DSN_MAX_CHANNELS];
-                    for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * pixels + p];
-                    normalize_q32(noise, pixel_sums, pixel);
+                    int32_t *pixel = values + i * channels;
+                    dsn_map_output(noise, pixel);
                     dsn_store_pixel(out, kind, (static_cast<size_t>(top + j) * width + left + i) * channels,
                                     pixel, channels);
                 }
+            }
         }
 }
 

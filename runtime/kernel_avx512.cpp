@@ -15,6 +15,10 @@
 #include "splat_row.h"
 #include "tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
-    render_tile, continuous_batch, continuous_splat_runs, continuous_point_vector, DSN_FILTER_READS_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
+                                                               continuous_batch,
+                                                               continuous_splat_runs,
+                                                               continuous_splat_normalize,
+                                                               continuous_point_vector,
+                                                               DSN_FILTER_READS_ENTRY};
 #endif

@@ -158,6 +158,11 @@ inline splat_vector splat_lane_steps(uint64_t first, uint64_t step) {
 }
 inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm512_add_epi64(a, b); }
 inline void splat_store(uint64_t *out, splat_vector value) { _mm512_storeu_si512(out, value); }
+inline splat_vector splat_load(const uint64_t *from) { return _mm512_loadu_si512(from); }
+inline splat_vector splat_sub(splat_vector a, splat_vector b) { return _mm512_sub_epi64(a, b); }
+inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
+    return _mm512_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
+}
 /* The first `count` lanes (all of them from splat_lanes up), the others 0. */
 inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return _mm512_maskz_mov_epi64(
@@ -215,12 +220,17 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
 inline splat_vector splat_rows(splat_vector records, splat_vector across) {
     return _mm512_madd_epi16(records, across);
 }
-/* 65536 upper and down (lower - upper) (down below 2^16 in each lane), signed products of the dwords. */
+/* 65536 times the low dword of each lane, signed. */
 inline splat_vector splat_scaled_upper(splat_vector rows) {
     return _mm512_mul_epi32(rows, _mm512_set1_epi64(65536));
 }
-inline splat_vector splat_down_part(splat_vector rows, splat_vector down) {
-    return _mm512_mul_epi32(_mm512_srli_epi64(rows, 32), down);
+/* The high dword of each lane, signed, times the low dword of factor's (below 2^31). */
+inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
+    return _mm512_mul_epi32(_mm512_srli_epi64(value, 32), factor);
+}
+/* The low dword of each lane, unsigned, times the low dword of factor's (unsigned). */
+inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
+    return _mm512_mul_epu32(value, factor);
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */
