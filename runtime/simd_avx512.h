@@ -220,13 +220,9 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
 inline splat_vector splat_rows(splat_vector records, splat_vector across) {
     return _mm512_madd_epi16(records, across);
 }
-/* 65536 times the low dword of each lane, signed. */
-inline splat_vector splat_scaled_upper(splat_vector rows) {
-    return _mm512_mul_epi32(rows, _mm512_set1_epi64(65536));
-}
-/* The high dword of each lane, signed, times the low dword of factor's (below 2^31). */
-inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
-    return _mm512_mul_epi32(_mm512_srli_epi64(value, 32), factor);
+/* The low dword of each lane, signed, times the low dword of factor's (below 2^31). */
+inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) {
+    return _mm512_mul_epi32(value, factor);
 }
 /* The low dword of each lane, unsigned, times the low dword of factor's (unsigned). */
 inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {

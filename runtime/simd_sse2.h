@@ -122,18 +122,11 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
 inline splat_vector splat_rows(splat_vector records, splat_vector across) {
     return _mm_madd_epi16(records, across);
 }
-/* 65536 times the low dword of each lane, signed, and the high dword of each lane, signed, times the low
-   dword of factor's (below 2^31). SSE2 multiplies unsigned only: a negative dword s reads as s + 2^32, so
-   its product is 2^32 times the other factor too much. */
-inline splat_vector splat_scaled_upper(splat_vector rows) {
-    const splat_vector upper_negative = _mm_shuffle_epi32(_mm_srai_epi32(rows, 31), _MM_SHUFFLE(2, 2, 0, 0));
-    return _mm_sub_epi64(_mm_mul_epu32(rows, _mm_set1_epi64x(65536)),
-                         _mm_and_si128(upper_negative, _mm_set1_epi64x(static_cast<long long>(1) << 48)));
-}
-inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
-    const splat_vector high_negative = _mm_shuffle_epi32(_mm_srai_epi32(value, 31), _MM_SHUFFLE(3, 3, 1, 1));
-    return _mm_sub_epi64(_mm_mul_epu32(_mm_srli_epi64(value, 32), factor),
-                         _mm_and_si128(high_negative, _mm_slli_epi64(factor, 32)));
+/* The low dword of each lane, signed, times the low dword of factor's (below 2^31). SSE2 multiplies
+   unsigned only: a negative dword s reads as s + 2^32, so its product is 2^32 times the factor too much. */
+inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) {
+    const splat_vector negative = _mm_shuffle_epi32(_mm_srai_epi32(value, 31), _MM_SHUFFLE(2, 2, 0, 0));
+    return _mm_sub_epi64(_mm_mul_epu32(value, factor), _mm_and_si128(negative, _mm_slli_epi64(factor, 32)));
 }
 /* The low dword of each lane, unsigned, times the low dword of factor's (unsigned). */
 inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {

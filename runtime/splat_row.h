@@ -250,7 +250,8 @@ inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64
 /* The records' bilinear values: 65536 upper + down (lower - upper). */
 inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
     const splat_vector rows = splat_rows(records, across);
-    return splat_add(splat_scaled_upper(rows), splat_high_times(rows, down));
+    return splat_add(splat_signed_times(rows, splat_set(65536)),
+                     splat_signed_times(splat_shift_right(rows, 32), down));
 }
 
 template <uint32_t Channels>
@@ -331,38 +332,43 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
     splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),
                                        splat_lane_steps(0, step_x));
-    const splat_vector next_x = splat_set(step_x * splat_lanes);
+    const splat_vector next_x = splat_set(step_x * splat_lanes), sixteen_bits = splat_set(65536);
     for (uint32_t done = 0; done < count; done += splat_lanes) {
         const uint32_t remaining = count - done;
         uint64_t column[splat_lanes]; /* each lane's first record in a row of the table */
         splat_store(column, splat_first_lanes(splat_whole_times(shifted_x, cell_records), remaining));
         const splat_vector across = splat_across_weights(shifted_x);
-        /* The current cell row's rows and 65536 upper, channel by channel (kept in registers). */
-        splat_vector rows_0 = splat_set(0), rows_1 = rows_0, rows_2 = rows_0;
-        splat_vector scaled_0 = rows_0, scaled_1 = rows_0, scaled_2 = rows_0;
+        /* The current cell row's 65536 upper and lower - upper, channel by channel (kept in registers). */
+        splat_vector scaled_0 = splat_set(0), scaled_1 = scaled_0, scaled_2 = scaled_0;
+        splat_vector difference_0 = scaled_0, difference_1 = scaled_0, difference_2 = scaled_0;
         uint64_t current = ~static_cast<uint64_t>(0);
         for (uint32_t r = 0; r < run_count; r++) {
             if (row_start[r] != current) {
                 current = row_start[r];
                 splat_vector records[3];
                 splat_load_cells<Channels>(setup->cells + current, column, records);
-                rows_0 = splat_rows(records[0], across);
-                scaled_0 = splat_scaled_upper(rows_0);
+                const splat_vector rows_0 = splat_rows(records[0], across);
+                scaled_0 = splat_signed_times(rows_0, sixteen_bits);
+                difference_0 = splat_shift_right(rows_0, 32);
                 if (Channels == 3) {
-                    rows_1 = splat_rows(records[1], across);
-                    scaled_1 = splat_scaled_upper(rows_1);
-                    rows_2 = splat_rows(records[2], across);
-                    scaled_2 = splat_scaled_upper(rows_2);
+                    const splat_vector rows_1 = splat_rows(records[1], across);
+                    const splat_vector rows_2 = splat_rows(records[2], across);
+                    scaled_1 = splat_signed_times(rows_1, sixteen_bits);
+                    difference_1 = splat_shift_right(rows_1, 32);
+                    scaled_2 = splat_signed_times(rows_2, sixteen_bits);
+                    difference_2 = splat_shift_right(rows_2, 32);
                 }
             }
             const splat_vector weight = splat_set(down[r]);
             uint64_t *sums = runs[r].sums + done;
-            splat_accumulate(sums, splat_add(scaled_0, splat_high_times(rows_0, weight)), remaining, end);
+            splat_accumulate(sums, splat_add(scaled_0, splat_signed_times(difference_0, weight)), remaining,
+                             end);
             if (Channels == 3) {
-                splat_accumulate(sums + plane, splat_add(scaled_1, splat_high_times(rows_1, weight)),
+                splat_accumulate(sums + plane, splat_add(scaled_1, splat_signed_times(difference_1, weight)),
                                  remaining, end);
-                splat_accumulate(sums + 2 * plane, splat_add(scaled_2, splat_high_times(rows_2, weight)),
-                                 remaining, end);
+                splat_accumulate(sums + 2 * plane,
+                                 splat_add(scaled_2, splat_signed_times(difference_2, weight)), remaining,
+                                 end);
             }
         }
         shifted_x = splat_add(shifted_x, next_x);
@@ -420,7 +426,7 @@ void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, 
                 const int64_t gain = noise->gain[c * 3 + k];
                 const splat_vector size =
                     splat_set(gain < 0 ? 0u - static_cast<uint64_t>(gain) : static_cast<uint64_t>(gain));
-                const splat_vector whole = splat_high_times(pixel_sums[k], size),
+                const splat_vector whole = splat_signed_times(splat_shift_right(pixel_sums[k], 32), size),
                                    fraction = splat_low_times(pixel_sums[k], size);
                 accumulated = gain < 0 ? splat_sub(accumulated, whole) : splat_add(accumulated, whole);
                 fractions = gain < 0 ? splat_sub(fractions, fraction) : splat_add(fractions, fraction);
