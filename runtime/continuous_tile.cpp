@@ -227,6 +227,7 @@ inline void column_bounds_next(ColumnBounds *b, const ColumnSteps &s) {
 /* A block of the tile: columns [first_column, end_column), rows [first_row, end_row). */
 struct Block {
     uint32_t first_column, end_column, first_row, end_row;
+    uint32_t stride; /* sums from one row of the block to the next */
 };
 
 /* The frame interval of the block's pixels along one axis. */
@@ -285,7 +286,7 @@ void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, i
             dsn_splat_run *run = &runs[run_count++];
             run->offset_x = bounds_x.offset + x.column * first;
             run->offset_y = bounds_y.offset + y.column * first;
-            run->sums = sums + static_cast<size_t>(j * columns + first);
+            run->sums = sums + static_cast<size_t>(j * static_cast<int64_t>(block.stride) + first);
             run->count = static_cast<uint32_t>(last - first + 1);
         }
         column_bounds_next(&bounds_x, x.columns);
@@ -381,10 +382,10 @@ uint64_t *aligned_sums(void *scratch) {
 }
 
 /* The tile block by block: each block's sums are splatted into the start of the scratch (planar, channel
-   c of the block's pixel p at sums[c * pixels + p], so the vector kernels add runs of pixels of one
-   channel), then normalized a row at a time by the kernel (on vectors of pixels too) and mapped and stored
-   into `out` pixel by pixel; a block's sums stay in the caches. 8-bit textons are read from
-   their cell records (splat_cells.h) where the kernels take them, kept on the stack for the call. */
+   c of the block's pixel (i, j) at sums[c * plane + j * stride + i], so the vector kernels add runs of
+   pixels of one channel), then normalized a row at a time by the kernel (on vectors of pixels too) and mapped
+   and stored into `out` pixel by pixel; a block's sums stay in the caches. 8-bit textons are read from their
+   cell records (splat_cells.h) where the kernels take them, kept on the stack for the call. */
 void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
                 uint32_t height, uint64_t *sums, void *out, dsn_output_kind kind) {
     const dsn_kernel_entries *kernel = dsn_kernel_entries_of(noise->tile_kernel);
@@ -412,13 +413,19 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
             block.first_row = top;
             block.end_row = height - top < block_rows ? height : top + block_rows;
             const uint32_t columns = block.end_column - left, rows = block.end_row - top;
-            const size_t pixels = static_cast<size_t>(columns) * rows;
-            setup.plane = pixels;
-            for (size_t i = 0; i < pixels * channels; i++) sums[i] = 0;
+            /* Rows of 64 sums would lie 512 bytes apart, each column of a block (and each channel's)
+               in the same few cache sets: they are spread by a cache line where the scratch has room. */
+            const uint32_t padded = columns + 8u;
+            block.stride = static_cast<uint64_t>(padded) * rows <= static_cast<uint64_t>(width) * height
+                               ? padded
+                               : columns;
+            const size_t plane = static_cast<size_t>(block.stride) * rows;
+            setup.plane = plane;
+            for (size_t i = 0; i < plane * channels; i++) sums[i] = 0;
             splat_block(noise, x, y, block, sums, &setup, splat_runs);
             for (uint32_t j = 0; j < rows; j++) {
                 int32_t values[block_columns * DSN_MAX_CHANNELS];
-                kernel->continuous_splat_normalize(noise, sums + static_cast<size_t>(j) * columns, pixels,
+                kernel->continuous_splat_normalize(noise, sums + static_cast<size_t>(j) * block.stride, plane,
                                                    columns, values);
                 for (uint32_t i = 0; i < columns; i++) {
                     int32_t *pixel = values + i * channels;
