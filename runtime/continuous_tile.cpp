@@ -427,12 +427,14 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
                 int32_t values[block_columns * DSN_MAX_CHANNELS];
                 kernel->continuous_splat_normalize(noise, sums + static_cast<size_t>(j) * block.stride, plane,
                                                    columns, values);
-                for (uint32_t i = 0; i < columns; i++) {
-                    int32_t *pixel = values + i * channels;
-                    dsn_map_output(noise, pixel);
-                    dsn_store_pixel(out, kind, (static_cast<size_t>(top + j) * width + left + i) * channels,
-                                    pixel, channels);
-                }
+                const size_t first = (static_cast<size_t>(top + j) * width + left) * channels;
+                for (uint32_t i = 0; i < columns; i++) dsn_map_output(noise, values + i * channels);
+                if (kind == dsn_output_fixed)
+                    for (uint32_t i = 0; i < columns * channels; i++)
+                        static_cast<int32_t *>(out)[first + i] = values[i];
+                else
+                    for (uint32_t i = 0; i < columns; i++)
+                        dsn_store_pixel(out, kind, first + i * channels, values + i * channels, channels);
             }
         }
 }
