@@ -96,15 +96,20 @@ const uint32_t packing_table[256] = {
 };
 /* clang-format on */
 
+/* The lane indices of a packing_table entry, in 32-bit lanes (for _mm256_permutevar8x32_epi32). */
+inline __m256i packing_order(uint32_t entry) {
+    return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(entry)),
+                                              _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
+                            _mm256_set1_epi32(7));
+}
+
 /* The 8 lanes of a pair of 8-bit fields packed, candidates first (bit i of `candidates`: lane i): their
    fraction hash inputs (stream + lane G) and their fields, in 32-bit lanes. Returns the candidates'
    count. */
 inline uint32_t pack_pair_8(uint64_t pair, uint32_t candidates, uint32_t stream, __m256i *streams,
                             __m256i *fields) {
     const uint32_t entry = packing_table[candidates & 0xFFu];
-    const __m256i order = _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(entry)),
-                                                             _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
-                                           _mm256_set1_epi32(7));
+    const __m256i order = packing_order(entry);
     /* lane * 0x9E3779B9 modulo 2^32, as int32 bit patterns */
     const __m256i weyl = _mm256_setr_epi32(0, -0x61C88647, 0x3C6EF372, -0x255992D5, 0x78DDE6E4, 0x1715609D,
                                            -0x4AB325AA, 0x5384540F);

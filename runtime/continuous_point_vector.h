@@ -162,43 +162,51 @@ inline __m512i lane_byte_16(__m512i words, unsigned int index) {
     return _mm512_srai_epi32(_mm512_slli_epi32(words, 24 - 8 * index), 24);
 }
 
+/* dsn_mix32 of every lane. */
+inline __m512i mix32_16(__m512i x) {
+    x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
+    x = _mm512_mullo_epi32(x, _mm512_set1_epi32(0x7FEB352D));
+    x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 15));
+    x = _mm512_mullo_epi32(x, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
+    return _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
+}
+
+/* candidate_lanes of two pairs of 8-bit fields at once in one 128-bit vector (the first pair low), their
+   top bits gathered by one movemask: bit i for impulse i of the first pair, 8 + i of the second. */
+inline uint32_t sift_two_pairs(__m128i pairs, const FieldLanes &lanes, const CellAxis &x, const CellAxis &y) {
+    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
+                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
+    const __m128i halves_x = _mm_and_si128(pairs, halves),
+                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
+    const __m128i in_x = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
+    const __m128i in_y = _mm_and_si128(
+        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
+        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
+    return static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+}
+
+/* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
-                                     uint32_t first, uint32_t valid) {
-    __m512i fraction = load_16(candidates.stream + first); /* dsn_mix32 */
-    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
-    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(0x7FEB352D));
-    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 15));
-    fraction = _mm512_mullo_epi32(fraction, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
-    fraction = _mm512_xor_si512(fraction, _mm512_srli_epi32(fraction, 16));
-    const __m512i field = load_16(candidates.field + first), low_16 = _mm512_set1_epi32(0xFFFF);
-    const __m512i bits_x =
-        _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(field, _mm512_set1_epi32(15)), 12),
-                        _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
-    const __m512i bits_y =
-        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(field, 4), 12), _mm512_srli_epi32(fraction, 20));
-    const __m512i s_x =
-        _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
-    const __m512i s_y =
-        _mm512_sub_epi32(load_16(candidates.base_y + first), _mm512_sll_epi32(bits_y, visit->shift));
-    const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
-    const __mmask16 reach =
-        _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
-                                     s_y, broadcast_16(visit->last_y));
+DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
+                                          uint32_t stride, __m512i s_x, __m512i s_y, __mmask16 reach,
+                                          __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
     /* the texton indices of the right column and the lower row, and of the left column and upper row */
     const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
     const __m512i column = _mm512_sub_epi32(right_column, _mm512_set1_epi32(1)),
                   row = _mm512_sub_epi32(lower_row, _mm512_set1_epi32(1));
     const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i last_column = broadcast_16(visit->width - 1u), last_row = broadcast_16(visit->height - 1u);
+    const __m512i last_column = broadcast_16(width - 1u), last_row = broadcast_16(height - 1u);
     const __mmask16 left = _mm512_cmple_epu32_mask(column, last_column),
                     right = _mm512_cmple_epu32_mask(right_column, last_column);
     const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach, row, last_row),
                     bottom = _mm512_mask_cmple_epu32_mask(reach, lower_row, last_row);
-    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(visit->width)), column);
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(stride)), column);
     const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry;
-    const __m512i below = _mm512_add_epi32(at, broadcast_16(visit->width * Channels));
-    const void *texton = visit->texton, *next = visit->texton + Channels;
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(stride * Channels));
+    const void *texton = values, *next = values + Channels;
     const __m512i zero = _mm512_setzero_si512();
     const __m512i top_left = _mm512_mask_i32gather_epi32(zero, top & left, at, texton, 1),
                   top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
@@ -218,8 +226,30 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
         const __m512i odd = _mm512_add_epi64(
             _mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
             _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
-        visit->wide_sums[c] = _mm512_add_epi64(visit->wide_sums[c], _mm512_add_epi64(even, odd));
+        sums[c] = _mm512_add_epi64(sums[c], _mm512_add_epi64(even, odd));
     }
+}
+
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
+                                     uint32_t first, uint32_t valid) {
+    const __m512i fraction = mix32_16(load_16(candidates.stream + first));
+    const __m512i field = load_16(candidates.field + first), low_16 = _mm512_set1_epi32(0xFFFF);
+    const __m512i bits_x =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(field, _mm512_set1_epi32(15)), 12),
+                        _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
+    const __m512i bits_y =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(field, 4), 12), _mm512_srli_epi32(fraction, 20));
+    const __m512i s_x =
+        _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
+    const __m512i s_y =
+        _mm512_sub_epi32(load_16(candidates.base_y + first), _mm512_sll_epi32(bits_y, visit->shift));
+    const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
+    const __mmask16 reach =
+        _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
+                                     s_y, broadcast_16(visit->last_y));
+    add_window_reads_16<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y, reach,
+                                  visit->wide_sums);
 }
 #endif
 
@@ -281,17 +311,7 @@ inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t 
                             __m512i base_y) {
     const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
                                          static_cast<long long>(dsn_position_pair(key, 0)));
-    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
-                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
-    const __m128i halves_x = _mm_and_si128(pairs, halves),
-                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
-    const __m128i in_x = _mm_and_si128(
-        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
-        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
-    const __m128i in_y = _mm_and_si128(
-        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
-        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
-    uint32_t sifted = static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+    uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
     if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
     /* dsn_cell_stream(key, 2^31 + k) of impulse k */
     const __m512i streams = _mm512_add_epi32(

@@ -9,6 +9,7 @@
 #include "cell_walk.h"
 #include "continuous_internal.h"
 #include "impulse_position.h"
+#include "kernels.h"
 
 namespace {
 
@@ -75,10 +76,7 @@ inline FieldLanes field_lanes(uint32_t cell_shift) {
    b to [h, h + 1) 2^(16 - half_bits), that is the offset to within one texel: the halves in
    [low, high] (in every lane of low_lanes, and of high_lanes with the top bits set) are those that may
    be in reach and lie before the period's end. */
-struct CellAxis {
-    int64_t shifted_base;
-    uint64_t low_lanes, high_lanes;
-};
+typedef dsn_filter_cell_axis CellAxis; /* kernels.h's, for the filtered sift's kernel (the same fields) */
 
 /* The sifting of cell_axis for any reach: an impulse of the cell at in-cell position b is in reach when
    0 < (X - cell origin) one_texel + base_extra - b 2^(16 + shift) < reach_limit, X the window's start + 1

@@ -3,7 +3,8 @@
    candidates of one tap and one level, 8 at a time: the exact reach test in 64-bit lanes, the bracket's
    offsets in 32-bit lanes, the reads as the continuous evaluator's (continuous_point_vector.h's
    add_window_reads_8, here with the level's stride). The same reads and
-   integers as the sift's own, so the same sums modulo 2^64. Internal to libdsn; not installed
+   integers as the sift's own, so the same sums modulo 2^64. The AVX-512 kernel takes 16 candidates at a
+   time (add_window_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
    (everything here has internal linkage). */
 #ifndef DSN_FILTERED_READS_VECTOR_H
 #define DSN_FILTERED_READS_VECTOR_H
@@ -32,37 +33,118 @@ inline __m256i axis_offsets(__m256i c, __m256i start, __m256i limit, __m256i bia
     return _mm256_srl_epi64(_mm256_add_epi64(u, bias), shift);
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* axis_offsets for 8 candidates on 512-bit vectors, all present: the offsets in 32-bit lanes. */
+inline __m256i axis_offsets_wide(const int64_t *at, __m512i start, __m512i limit, __m512i bias, __m128i shift,
+                                 __mmask8 *in_reach) {
+    const __m512i u = _mm512_add_epi64(_mm512_loadu_si512(at), start);
+    *in_reach = _mm512_mask_cmplt_epu64_mask(*in_reach, u, limit);
+    return _mm512_cvtepi64_epi32(_mm512_srl_epi64(_mm512_add_epi64(u, bias), shift));
+}
+
+/* The offsets of candidates first .. first + 15 (all present) in reach, packed from packed_x[packed],
+   packed_y[packed] on (16 values stored); returns their count. */
+inline uint32_t pack_offsets_16(const int64_t *xs, const int64_t *ys, const __m512i *tests, __m128i shift,
+                                uint32_t *packed_x, uint32_t *packed_y) {
+    __mmask8 low = 0xFF, high = 0xFF;
+    const __m256i x_low = axis_offsets_wide(xs, tests[0], tests[1], tests[4], shift, &low),
+                  x_high = axis_offsets_wide(xs + 8, tests[0], tests[1], tests[4], shift, &high),
+                  y_low = axis_offsets_wide(ys, tests[2], tests[3], tests[4], shift, &low),
+                  y_high = axis_offsets_wide(ys + 8, tests[2], tests[3], tests[4], shift, &high);
+    const __mmask16 reach =
+        static_cast<__mmask16>(static_cast<uint32_t>(low) | (static_cast<uint32_t>(high) << 8));
+    _mm512_storeu_si512(packed_x, _mm512_maskz_compress_epi32(
+                                      reach, _mm512_inserti64x4(_mm512_castsi256_si512(x_low), x_high, 1)));
+    _mm512_storeu_si512(packed_y, _mm512_maskz_compress_epi32(
+                                      reach, _mm512_inserti64x4(_mm512_castsi256_si512(y_low), y_high, 1)));
+    return mask_count(reach);
+}
+#endif
+
+/* pack_offsets_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
+inline uint32_t pack_offsets_8(const int64_t *xs, const int64_t *ys, uint32_t valid, const __m256i *tests,
+                               __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const __m256i valid_lanes = _mm256_set1_epi64x(static_cast<long long>(valid));
+    __m256i reach_low = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(0, 1, 2, 3)),
+            reach_high = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(4, 5, 6, 7));
+    const bool whole = valid >= 8u;
+    const __m256i s_x = low_halves(
+        axis_offsets(load_64(xs, reach_low, whole), tests[0], tests[1], tests[4], shift, &reach_low),
+        axis_offsets(load_64(xs + 4, reach_high, whole), tests[0], tests[1], tests[4], shift, &reach_high));
+    const __m256i s_y = low_halves(
+        axis_offsets(load_64(ys, reach_low, whole), tests[2], tests[3], tests[4], shift, &reach_low),
+        axis_offsets(load_64(ys + 4, reach_high, whole), tests[2], tests[3], tests[4], shift, &reach_high));
+    const uint32_t reach =
+        static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(low_halves(reach_low, reach_high))));
+    const uint32_t entry = packing_table[reach];
+    const __m256i order = packing_order(entry);
+    store_8(packed_x, _mm256_permutevar8x32_epi32(s_x, order));
+    store_8(packed_y, _mm256_permutevar8x32_epi32(s_y, order));
+    return entry >> 24;
+}
+
+/* Candidates are tested and their offsets packed a block at a time, then read. */
+const uint32_t packed_block = 256;
+
 template <uint32_t Channels>
 void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys, uint32_t count,
                           const uint64_t *tests, uint64_t *out) {
-    const __m256i start_x = _mm256_set1_epi64x(static_cast<long long>(tests[0])),
-                  limit_x = _mm256_set1_epi64x(static_cast<long long>(tests[1])),
-                  start_y = _mm256_set1_epi64x(static_cast<long long>(tests[2])),
-                  limit_y = _mm256_set1_epi64x(static_cast<long long>(tests[3]));
     const __m256i bias = _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
+    const __m256i narrow_tests[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
+                                     _mm256_set1_epi64x(static_cast<long long>(tests[1])),
+                                     _mm256_set1_epi64x(static_cast<long long>(tests[2])),
+                                     _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
     const __m128i shift = _mm_cvtsi32_si128(static_cast<int>(level->level + 16u));
     const __m256i zero = _mm256_setzero_si256();
     __m256i sums[Channels];
     for (uint32_t c = 0; c < Channels; c++) sums[c] = zero;
-    for (uint32_t first = 0; first < count; first += 8u) {
-        const uint32_t valid = count - first;
-        const __m256i valid_lanes = _mm256_set1_epi64x(static_cast<long long>(valid));
-        __m256i reach_low = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(0, 1, 2, 3)),
-                reach_high = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(4, 5, 6, 7));
-        const bool whole = valid >= 8u;
-        const __m256i s_x = low_halves(
-            axis_offsets(load_64(xs + first, reach_low, whole), start_x, limit_x, bias, shift, &reach_low),
-            axis_offsets(load_64(xs + first + 4, reach_high, whole), start_x, limit_x, bias, shift,
-                         &reach_high));
-        const __m256i s_y = low_halves(
-            axis_offsets(load_64(ys + first, reach_low, whole), start_y, limit_y, bias, shift, &reach_low),
-            axis_offsets(load_64(ys + first + 4, reach_high, whole), start_y, limit_y, bias, shift,
-                         &reach_high));
-        const __m256i reach = low_halves(reach_low, reach_high);
-        if (_mm256_testz_si256(reach, reach)) continue;
-        add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride, s_x, s_y,
-                                     reach, sums);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    const __m512i wide_tests[5] = {
+        _mm512_set1_epi64(static_cast<long long>(tests[0])),
+        _mm512_set1_epi64(static_cast<long long>(tests[1])),
+        _mm512_set1_epi64(static_cast<long long>(tests[2])),
+        _mm512_set1_epi64(static_cast<long long>(tests[3])),
+        _mm512_set1_epi64(static_cast<long long>(static_cast<uint64_t>(1) << level->level))};
+    __m512i wide_sums[Channels];
+    for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
+#endif
+    uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
+    for (uint32_t block = 0; block < count; block += packed_block) {
+        const uint32_t end = count - block < packed_block ? count : block + packed_block;
+        uint32_t packed = 0, first = block;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        for (; first + 16u <= end; first += 16u)
+            packed += pack_offsets_16(xs + first, ys + first, wide_tests, shift, packed_x + packed,
+                                      packed_y + packed);
+#endif
+        for (; first < end; first += 8u)
+            packed += pack_offsets_8(xs + first, ys + first, end - first, narrow_tests, shift,
+                                     packed_x + packed, packed_y + packed);
+        /* The lanes past the last packed offset read zeros (defined values; the masks leave them out). */
+        store_8(packed_x + packed, zero), store_8(packed_x + packed + 8, zero);
+        store_8(packed_y + packed, zero), store_8(packed_y + packed + 8, zero);
+        uint32_t next = 0;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        for (; next + 8u < packed; next += 16u) {
+            const uint32_t left = packed - next;
+            const __mmask16 reach = static_cast<__mmask16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
+            add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride,
+                                          _mm512_loadu_si512(packed_x + next),
+                                          _mm512_loadu_si512(packed_y + next), reach, wide_sums);
+        }
+#endif
+        for (; next < packed; next += 8u) {
+            const __m256i reach =
+                _mm256_cmpgt_epi32(broadcast_8(packed - next), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+            add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride,
+                                         load_8(packed_x + next), load_8(packed_y + next), reach, sums);
+        }
     }
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    for (uint32_t c = 0; c < Channels; c++) /* the 64-bit lanes' sums folded into 4 lanes */
+        sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(_mm512_castsi512_si256(wide_sums[c]),
+                                                             _mm512_extracti64x4_epi64(wide_sums[c], 1)));
+#endif
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t lanes[4];
         _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes)), sums[c]);

@@ -3,8 +3,10 @@
    their packed lattice fields against that box (continuous_sift.h), and each candidate is then tested
    against each tap and each level exactly and read where in reach (bilinear_read.h). The same impulses,
    offsets and integers as the tap-by-tap walk (filtered_walk.cpp), so the same sums: integer sums modulo
-   2^64 do not depend on the order. The kernel's vector reads (filtered_reads_vector.h) take the reads of
-   8-bit levels where it has them. Compiled only with DSN_FILTERING in the fast build. */
+   2^64 do not depend on the order. Where the kernel has them, its listing (filtered_candidates_vector.h)
+   lists the candidates of whole cells at once, each tap's level then tests only the runs of cells that
+   may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels. Compiled
+   only with DSN_FILTERING in the fast build. */
 #include "bilinear_read.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
@@ -26,8 +28,15 @@ namespace {
 const int64_t tap_spread_limit = static_cast<int64_t>(1) << 20;
 
 /* Candidates wait in a buffer, then each tap visits all of them with its own tests in registers: up to
-   64 (one bit each in a tap's mask) for several taps, 32 for one (measured faster there). */
-const uint32_t buffer_size = 64, one_tap_buffer_size = 32;
+   64 (one bit each in a tap's mask) for several taps, 32 for one (measured faster there). The kernel's
+   listing (filter_candidates) fills the buffer up to its capacity instead, whole cells at a time, and
+   the masks then take 64 candidates at a time. */
+const uint32_t buffer_size = 64, one_tap_buffer_size = 32, mask_size = 64, buffer_capacity = 512;
+
+/* The kernel's listing takes the box's columns of cells this many at a time, and the cells of a row of
+   them at once. */
+const uint32_t cell_batch = 16;
+const uint32_t candidates_overrun = 16; /* the values the kernel's listing may write past the last */
 
 /* One axis of the taps summed together: the walk's window from the lowest tap's X - 1 to the highest
    tap's X + 1 with the walk radius R; an impulse's candidate value c (the offset from the box's
@@ -88,10 +97,45 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
     return test;
 }
 
+/* The buffer; where the kernel listed it, also each listed cell's end in it and the largest offset c
+   of its candidates along each axis (their shifted_base): the cell's candidates lie within a cell's
+   side below, so a tap's level need not test the cells that lie beyond its reach. */
+const uint32_t listed_cells_most = 128;
+
 struct CandidateList {
-    int64_t x[buffer_size], y[buffer_size];
+    int64_t x[buffer_capacity], y[buffer_capacity];
     uint32_t count;
+    uint32_t cells, cell_end[listed_cells_most];
+    int64_t cell_x[listed_cells_most], cell_y[listed_cells_most];
 };
+
+/* The runs [runs[2k], runs[2k + 1]) of the list whose cells the level tests x, y may keep, their count:
+   with u = c + start the test keeps 0 <= u < limit, and a cell's candidates have u within
+   (w - 2^(32 + shift), w] for w its largest. The whole list where the cells were not recorded. */
+uint32_t reached_runs(const CandidateList &list, const LevelTest &x, const LevelTest &y, uint32_t shift,
+                      uint32_t *runs) {
+    if (list.cells == 0) {
+        runs[0] = 0, runs[1] = list.count;
+        return 1;
+    }
+    const int64_t side = static_cast<int64_t>(1) << (32u + shift);
+    const int64_t limit_x = static_cast<int64_t>(x.limit) + side,
+                  limit_y = static_cast<int64_t>(y.limit) + side;
+    uint32_t count = 0, from = 0, to = 0;
+    for (uint32_t k = 0; k < list.cells; k++) {
+        const int64_t w_x = signed_from_bits(static_cast<uint64_t>(list.cell_x[k]) + x.start),
+                      w_y = signed_from_bits(static_cast<uint64_t>(list.cell_y[k]) + y.start);
+        if (w_x < 0 || w_x >= limit_x || w_y < 0 || w_y >= limit_y) continue;
+        const uint32_t begin = k == 0 ? 0u : list.cell_end[k - 1u];
+        if (begin != to) {
+            if (to != from) runs[2u * count] = from, runs[2u * count + 1u] = to, count++;
+            from = begin;
+        }
+        to = list.cell_end[k];
+    }
+    if (to != from) runs[2u * count] = from, runs[2u * count + 1u] = to, count++;
+    return count;
+}
 
 /* One level's sums at one tap while the candidates are visited: interior reads (8-bit ones on SSE2
    vectors) of biased values, and their count; border reads as they are. */
@@ -197,7 +241,9 @@ void take(const LevelAccumulator &sums, uint64_t *out) {
 /* The taps that one walk serves, and the levels they read. */
 struct TapGroup {
     const dsn_walked_level *levels;
-    dsn_filter_level_reads_entry *vector_reads; /* the kernel's (8-bit levels), or null */
+    dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
+    dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
+    uint32_t shift;                               /* the noise's cell_shift */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -257,48 +303,54 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
             const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
             const bool splat_level = grid != 0 && grid->level_index == l;
+            uint32_t runs[2u * listed_cells_most + 2u];
+            const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
-                group.vector_reads(&level, Channels, list->x, list->y, list->count, tests,
-                                   sums[group.first + t][l]);
+                for (uint32_t r = 0; r < run_count; r++)
+                    group.vector_reads(&level, Channels, list->x + runs[2u * r], list->y + runs[2u * r],
+                                       runs[2u * r + 1u] - runs[2u * r], tests, sums[group.first + t][l]);
                 continue;
-            }
-            uint64_t in_reach = 0;
-            for (uint32_t i = 0; i < list->count; i++) {
-                const uint64_t ux = static_cast<uint64_t>(list->x[i]) + test_x.start;
-                const uint64_t uy = static_cast<uint64_t>(list->y[i]) + test_y.start;
-                in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
             }
             const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
-            if (splat_level) {
-                for (; in_reach != 0; in_reach &= in_reach - 1u) {
-                    const uint32_t i = lowest_bit(in_reach);
-                    splat(level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
-                          (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, grid);
-                }
-                continue;
-            }
             LevelAccumulator level_sums;
             clear(&level_sums);
-            for (; in_reach != 0; in_reach &= in_reach - 1u) {
-                const uint32_t i = lowest_bit(in_reach);
-                read_level<Channels, Bytes>(
-                    level, (static_cast<uint64_t>(list->x[i]) + test_x.start + bias) >> level.level,
-                    (static_cast<uint64_t>(list->y[i]) + test_y.start + bias) >> level.level, &level_sums);
-            }
-            take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
+            for (uint32_t r = 0; r < run_count; r++)
+                for (uint32_t chunk = runs[2u * r]; chunk < runs[2u * r + 1u]; chunk += mask_size) {
+                    const int64_t *xs = list->x + chunk, *ys = list->y + chunk;
+                    const uint32_t size =
+                        runs[2u * r + 1u] - chunk < mask_size ? runs[2u * r + 1u] - chunk : mask_size;
+                    uint64_t in_reach = 0;
+                    for (uint32_t i = 0; i < size; i++) {
+                        const uint64_t ux = static_cast<uint64_t>(xs[i]) + test_x.start;
+                        const uint64_t uy = static_cast<uint64_t>(ys[i]) + test_y.start;
+                        in_reach |= static_cast<uint64_t>((ux < test_x.limit) & (uy < test_y.limit)) << i;
+                    }
+                    for (; in_reach != 0; in_reach &= in_reach - 1u) {
+                        const uint32_t i = lowest_bit(in_reach);
+                        const uint64_t shifted_x = (static_cast<uint64_t>(xs[i]) + test_x.start + bias) >>
+                                                   level.level,
+                                       shifted_y = (static_cast<uint64_t>(ys[i]) + test_y.start + bias) >>
+                                                   level.level;
+                        if (splat_level)
+                            splat(level, shifted_x, shifted_y, grid);
+                        else
+                            read_level<Channels, Bytes>(level, shifted_x, shifted_y, &level_sums);
+                    }
+                }
+            if (!splat_level) take<Channels, Bytes>(level_sums, sums[group.first + t][l]);
         }
     }
     list->count = 0;
+    list->cells = 0;
 }
 
-/* Lists the candidates of the cell with this key: the impulses of its pairs that the lattice fields let
-   reach the box, then those whose 16-bit positions do. */
+/* Lists the candidates of the cell with this key and impulse count: the impulses of its pairs that the
+   lattice fields let reach the box, then those whose 16-bit positions do. */
 template <uint32_t Channels, uint32_t Bytes>
-void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const TapGroup &group,
-               const CellAxis &x, const CellAxis &y, CandidateList *list, SplatGrid *grid,
-               dsn_filter_sums sums) {
-    const uint32_t count = dsn_cell_impulse_count(noise, key);
+void list_cell(const dsn_noise_state *noise, uint32_t key, uint32_t count, const FieldLanes &lanes,
+               const TapGroup &group, const CellAxis &x, const CellAxis &y, CandidateList *list,
+               SplatGrid *grid, dsn_filter_sums sums) {
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
     const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
     const uint64_t limit_x = static_cast<uint64_t>(group.x.reach_limit) - 1u,
@@ -322,7 +374,7 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lan
             const uint64_t shifted_y =
                 static_cast<uint64_t>(y.shifted_base) - (static_cast<uint64_t>(bits_y) << position_shift);
             if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue; /* beyond every tap */
-            if (list->count == (group.taps == 1 ? one_tap_buffer_size : buffer_size))
+            if (list->count >= (group.taps == 1 ? one_tap_buffer_size : buffer_size))
                 visit<Channels, Bytes>(group, list, grid, sums);
             list->x[list->count] = static_cast<int64_t>(shifted_x);
             list->y[list->count] = static_cast<int64_t>(shifted_y);
@@ -331,20 +383,32 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lan
     }
 }
 
+/* Whether the kernel lists the group's candidates: it has a listing, the cells have side <= 16 and an
+   empty buffer holds the most impulses a cell can have (each of poisson_parts draws at most
+   poisson_size). */
+bool kernel_listing_takes(const dsn_noise_state *noise, const TapGroup &group) {
+    return group.list_candidates != 0 && dsn_field_shift(noise->cell_shift) == 3 &&
+           static_cast<uint64_t>(noise->poisson_parts) * noise->poisson_size + candidates_overrun <=
+               buffer_capacity;
+}
+
+/* Up to cell_batch cells of the box along x from which its impulses may reach it (cell_axis_within). */
+struct BoxColumns {
+    uint32_t cell[cell_batch];
+    CellAxis axis[cell_batch];
+    uint32_t count;
+};
+
+/* The candidates of the box's cells in these columns: for each row of cells, the keys and counts of the
+   columns' cells first (their chains of dependent loads then overlap), then the cells listed: by the
+   kernel, those at once for which the buffer has room (the buffer visited where it has none for the
+   next), or else one by one. */
 template <uint32_t Channels, uint32_t Bytes>
-void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_sums sums) {
-    const uint32_t shift = noise->cell_shift;
+void list_columns(const dsn_noise_state *noise, const TapGroup &group, const BoxColumns &columns,
+                  CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    const uint32_t shift = noise->cell_shift, batch = columns.count;
     const FieldLanes lanes = field_lanes(shift);
-    CandidateList list;
-    list.count = 0;
-    /* One tap: its coarser level through the splat grid when that is small. */
-    SplatGrid splat_grid, *grid = 0;
-    const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
-    if (group.taps == 1 && splat_fits(coarser)) {
-        grid = &splat_grid;
-        grid->level_index = group.level_count - 1u;
-        for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
-    }
+    const bool two_steps = dsn_poisson_two_steps_fit(noise), by_kernel = kernel_listing_takes(noise, group);
     for (uint32_t sy = 0; sy < group.y.axis.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&group.y.axis, sy);
         for (uint32_t j = 0; j < span_y.cell_count; j++) {
@@ -354,19 +418,86 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
                                   lanes, &in_y))
                 continue;
             const uint32_t row_key = dsn_row_key(noise, cell_y);
-            for (uint32_t sx = 0; sx < group.x.axis.span_count; sx++) {
-                const dsn_span span_x = dsn_axis_span(&group.x.axis, sx);
-                for (uint32_t i = 0; i < span_x.cell_count; i++) {
-                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
-                    CellAxis in_x;
-                    if (cell_axis_within(group.x.axis, span_x, cell_x, group.x.base_extra,
-                                         group.x.reach_limit, lanes, &in_x))
-                        list_cell<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key), lanes,
-                                                   group, in_x, in_y, &list, grid, sums);
+            dsn_filter_cell cells[cell_batch];
+            for (uint32_t i = 0; i < batch; i++) {
+                cells[i].key = dsn_cell_key_in_row(noise, columns.cell[i], row_key);
+                cells[i].x = columns.axis[i];
+                cells[i].y = in_y;
+            }
+            if (two_steps)
+                for (uint32_t i = 0; i < batch; i++)
+                    cells[i].count = dsn_poisson_count_two_steps(noise, cells[i].key);
+            else
+                for (uint32_t i = 0; i < batch; i++)
+                    cells[i].count = dsn_cell_impulse_count(noise, cells[i].key);
+            if (!by_kernel) {
+                for (uint32_t i = 0; i < batch; i++)
+                    list_cell<Channels, Bytes>(noise, cells[i].key, cells[i].count, lanes, group, cells[i].x,
+                                               in_y, list, grid, sums);
+                continue;
+            }
+            for (uint32_t i = 0; i < batch;) {
+                uint32_t end = i, room = buffer_capacity - candidates_overrun - list->count;
+                for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
+                    if (cells[end].count > room) break;
+                    room -= cells[end].count;
+                }
+                if (end > i) {
+                    list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,
+                                                        list->y, list->cell_end + list->cells);
+                    for (; i < end; i++, list->cells++) {
+                        list->cell_x[list->cells] = cells[i].x.shifted_base;
+                        list->cell_y[list->cells] = cells[i].y.shifted_base;
+                    }
+                } else { /* an empty buffer has room for any cell (kernel_listing_takes) */
+                    visit<Channels, Bytes>(group, list, grid, sums);
                 }
             }
         }
     }
+}
+
+/* The box's candidates, cell_batch columns of cells at a time. */
+template <uint32_t Channels, uint32_t Bytes>
+void list_box(const dsn_noise_state *noise, const TapGroup &group, const FieldLanes &lanes,
+              CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    BoxColumns columns;
+    columns.count = 0;
+    for (uint32_t s = 0; s < group.x.axis.span_count; s++) {
+        const dsn_span span = dsn_axis_span(&group.x.axis, s);
+        for (uint32_t i = 0; i < span.cell_count; i++) {
+            const uint32_t cell = dsn_span_cell(&span, i, group.x.axis.shift);
+            CellAxis axis;
+            if (!cell_axis_within(group.x.axis, span, cell, group.x.base_extra, group.x.reach_limit, lanes,
+                                  &axis))
+                continue;
+            columns.cell[columns.count] = cell;
+            columns.axis[columns.count] = axis;
+            if (++columns.count == cell_batch) {
+                list_columns<Channels, Bytes>(noise, group, columns, list, grid, sums);
+                columns.count = 0;
+            }
+        }
+    }
+    if (columns.count != 0) list_columns<Channels, Bytes>(noise, group, columns, list, grid, sums);
+}
+
+template <uint32_t Channels, uint32_t Bytes>
+void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_sums sums) {
+    const uint32_t shift = noise->cell_shift;
+    const FieldLanes lanes = field_lanes(shift);
+    CandidateList list;
+    list.count = list.cells = 0;
+    /* One tap: its coarser level through the splat grid when that is small, unless the kernel reads the
+       level on vectors (faster). */
+    SplatGrid splat_grid, *grid = 0;
+    const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
+    if (group.taps == 1 && splat_fits(coarser) && !(Bytes == 1 && group.vector_reads != 0)) {
+        grid = &splat_grid;
+        grid->level_index = group.level_count - 1u;
+        for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
+    }
+    list_box<Channels, Bytes>(noise, group, lanes, &list, grid, sums);
     visit<Channels, Bytes>(group, &list, grid, sums);
     if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
 }
@@ -378,6 +509,8 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
     group->vector_reads = dsn_kernel_entries_of(noise->tile_kernel)->filter_level_reads;
+    group->list_candidates = dsn_kernel_entries_of(noise->tile_kernel)->filter_candidates;
+    group->shift = noise->cell_shift;
     group->level_count = count;
     group->first = first;
     group->taps = taps;

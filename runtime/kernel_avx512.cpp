@@ -11,6 +11,7 @@
 
 #include "continuous_batch.h"
 #include "continuous_point_vector.h"
+#include "filtered_candidates_vector.h"
 #include "filtered_reads_vector.h"
 #include "splat_row.h"
 #include "tile_render.h"
@@ -20,5 +21,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
                                                                continuous_splat_runs,
                                                                continuous_splat_normalize,
                                                                continuous_point_vector,
-                                                               DSN_FILTER_READS_ENTRY};
+                                                               DSN_FILTER_READS_ENTRY,
+                                                               DSN_FILTER_CANDIDATES_ENTRY};
 #endif

@@ -24,7 +24,13 @@
 #else
 #define POINT_ENTRY 0
 #endif
+#include "filtered_candidates_vector.h"
 #include "filtered_reads_vector.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_default = {
-    render_tile, BATCH_ENTRY, SPLAT_ROW_ENTRY, SPLAT_NORMALIZE_ENTRY, POINT_ENTRY, DSN_FILTER_READS_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
+                                                                BATCH_ENTRY,
+                                                                SPLAT_ROW_ENTRY,
+                                                                SPLAT_NORMALIZE_ENTRY,
+                                                                POINT_ENTRY,
+                                                                DSN_FILTER_READS_ENTRY,
+                                                                DSN_FILTER_CANDIDATES_ENTRY};

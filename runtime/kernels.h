@@ -88,11 +88,33 @@ typedef void dsn_filter_level_reads_entry(const struct dsn_walked_level *level, 
                                           const int64_t *xs, const int64_t *ys, uint32_t count,
                                           const uint64_t *tests, uint64_t *out);
 
+/* One axis of one cell as the sifts see it: continuous_sift.h's CellAxis, which documents it. One cell
+   of the filtered sift's box (filtered_sift.cpp): its key, its impulse count and both axes. */
+typedef struct dsn_filter_cell_axis {
+    int64_t shifted_base;
+    uint64_t low_lanes, high_lanes;
+} dsn_filter_cell_axis;
+typedef struct dsn_filter_cell {
+    uint32_t key, count;
+    dsn_filter_cell_axis x, y;
+} dsn_filter_cell;
+
+/* The candidates of the filtered sift (filtered_candidates_vector.h's filter_candidates), for cells of
+   side 2^cell_shift <= 16: the impulses of `cell_count` cells whose lattice fields let them reach the
+   box, their shifted offsets (CellAxis's shifted_base less the 16-bit position's) stored from
+   xs[count], ys[count] on, cell by cell, and where each cell's end in ends[0 .. cell_count - 1]; returns
+   the new count. Writes up to 16 values past the last candidate: the caller leaves room for the sum of
+   the cells' counts plus 16. */
+typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
+                                             uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
+                                             uint32_t *ends);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and
    continuous_splat_normalize in the small build (DSN_SMALL_CODE), which evaluates grids point by point,
    continuous_point in kernels built without AVX2 (continuous_point.cpp's own evaluator then runs),
-   filter_level_reads likewise (filtered_sift.cpp then reads each candidate itself). */
+   filter_level_reads and filter_candidates likewise (filtered_sift.cpp then reads, or lists, each
+   candidate itself). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_continuous_batch_entry *continuous_batch;
@@ -100,6 +122,7 @@ typedef struct dsn_kernel_entries {
     dsn_splat_normalize_entry *continuous_splat_normalize;
     dsn_continuous_point_entry *continuous_point;
     dsn_filter_level_reads_entry *filter_level_reads;
+    dsn_filter_candidates_entry *filter_candidates;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -4,8 +4,8 @@
 // without a pyramid, periodic (periods shorter than a level's reach included) or not, for isotropic
 // footprints across every level of detail and anisotropic ones of every tap count and direction, at
 // ordinary points and where the taps straddle the seam of the int32 coordinates; and the levels read with
-// their all-zero margins cut (a shorter reach) against the levels as stored; in every kernel copy the CPU
-// runs.
+// their all-zero margins cut (a shorter reach) against the levels as stored; cells of every side the
+// kernels' listing takes or leaves; in every kernel copy the CPU runs.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -178,6 +178,27 @@ TEST_CASE("filtered sift: a disk texton, an asset without a pyramid and a sparse
     LoadedNoise plain_noise(plain, make_config(4, 60));
     REQUIRE(plain_noise.asset.pyramid_levels == 0);
     compare_noise(plain_noise.noise, seed++);
+}
+
+// The kernels list the candidates of cells of side <= 16, 16 columns of cells at a time: small cells (the
+// long footprints' boxes then span several such batches) and large ones (listed candidate by candidate,
+// read by the kernels' vector reads).
+TEST_CASE("filtered sift: cells of side 4 and 32") {
+    uint64_t seed = 200;
+    for (uint32_t channels : {1u, 3u}) {
+        dsn::AssetFields small = synthetic_fields(channels, 7, 8, DSN_SHAPE_RECTANGLE, 9 + channels);
+        small.interpolation = DSN_INTERPOLATION_BILINEAR;
+        small.pyramid = dsn::texton_pyramid(small);
+        LoadedNoise small_noise(small, make_config(5, 30));
+        REQUIRE(dsn_state(&small_noise.noise)->cell_shift == 2);
+        compare_noise(small_noise.noise, seed++);
+    }
+    dsn::AssetFields large = synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 12);
+    large.interpolation = DSN_INTERPOLATION_BILINEAR;
+    large.pyramid = dsn::texton_pyramid(large);
+    LoadedNoise large_noise(large, make_config(6, 1));
+    REQUIRE(dsn_state(&large_noise.noise)->cell_shift == 5);
+    compare_noise(large_noise.noise, seed++);
 }
 
 #endif

@@ -1,0 +1,126 @@
+/* runtime/filtered_candidates_vector.h - the listing of the filtered sift's candidates (filtered_sift.cpp)
+   on AVX2 vectors, as a kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for cells of side
+   <= 16 (pairs of 8 impulses): each pair sifted on its packed lattice fields against the taps' box
+   (continuous_sift.h) and its candidates packed to the front of a vector (continuous_lanes.h, as the
+   continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes and their
+   shifted offsets in 64-bit lanes, 8 stored at once (AVX-512: two pairs at once, 16 compressed). Only the
+   sift bounds them: a candidate may lie up to a texel beyond the box, which the level tests, exact for any
+   offset of that size, leave out as the walk does. Internal to libdsn; not installed (everything here has
+   internal linkage). */
+#ifndef DSN_FILTERED_CANDIDATES_VECTOR_H
+#define DSN_FILTERED_CANDIDATES_VECTOR_H
+
+#include "cell_hash.h"
+#include "continuous_lanes.h"
+#include "continuous_point_vector.h"
+#include "continuous_sift.h"
+#include "kernels.h"
+
+#if defined(__AVX2__) && DSN_FILTERING && !DSN_SMALL_CODE
+namespace {
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* shifted_base - bits 2^position_shift for the 16 candidates of `bits` (32-bit lanes), in order. */
+inline void store_shifted_16(int64_t *at, __m512i base, __m512i bits, __m128i position_shift) {
+    const __m512i low = _mm512_sll_epi64(_mm512_cvtepu32_epi64(_mm512_castsi512_si256(bits)), position_shift),
+                  high = _mm512_sll_epi64(_mm512_cvtepu32_epi64(_mm512_extracti64x4_epi64(bits, 1)),
+                                          position_shift);
+    _mm512_storeu_si512(at, _mm512_sub_epi64(base, low));
+    _mm512_storeu_si512(at + 8, _mm512_sub_epi64(base, high));
+}
+
+/* kernels.h's filter_candidates, two pairs at a time (impulses first .. first + 15 of a cell), on 512-bit
+   vectors: both sifted in one 128-bit vector (sift_two_pairs) and their candidates compressed to the front.
+ */
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *ends) {
+    const FieldLanes lanes = field_lanes(cell_shift);
+    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift));
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), low_4 = _mm512_set1_epi32(15);
+    /* lane * 0x9E3779B9 modulo 2^32 */
+    const __m512i weyl =
+        _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                           _mm512_set1_epi32(-0x61C88647 /* 0x9E3779B9 */));
+    for (uint32_t k = 0; k < cell_count; k++) {
+        const dsn_filter_cell &cell = cells[k];
+        const __m512i base_x = _mm512_set1_epi64(static_cast<long long>(cell.x.shifted_base)),
+                      base_y = _mm512_set1_epi64(static_cast<long long>(cell.y.shifted_base));
+        for (uint32_t first = 0; first < cell.count; first += 16u) {
+            const __m128i pairs =
+                _mm_set_epi64x(static_cast<long long>(dsn_position_pair(cell.key, (first >> 3) + 1u)),
+                               static_cast<long long>(dsn_position_pair(cell.key, first >> 3)));
+            uint32_t sifted = sift_two_pairs(pairs, lanes, cell.x, cell.y);
+            if (cell.count - first < 16u)
+                sifted &= (1u << (cell.count - first)) - 1u; /* impulses that do not exist */
+            const __mmask16 keep = static_cast<__mmask16>(sifted);
+            /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
+            const __m512i streams = _mm512_add_epi32(
+                _mm512_set1_epi32(static_cast<int>(cell.key + (0x80000000u + first) * 0x9E3779B9u)), weyl);
+            const __m512i fraction = mix32_16(_mm512_maskz_compress_epi32(keep, streams));
+            const __m512i fields = _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs));
+            const __m512i bits_x = _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(fields, low_4), 12),
+                                                   _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
+            const __m512i bits_y = _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(fields, 4), 12),
+                                                   _mm512_srli_epi32(fraction, 20));
+            store_shifted_16(xs + count, base_x, bits_x, position_shift);
+            store_shifted_16(ys + count, base_y, bits_y, position_shift);
+            count += mask_count(sifted);
+        }
+        ends[k] = count;
+    }
+    return count;
+}
+#else
+/* shifted_base - bits 2^position_shift for the 8 candidates of `bits` (32-bit lanes), in order. */
+inline void store_shifted(int64_t *at, __m256i base, __m256i bits, __m128i position_shift) {
+    const __m256i low = _mm256_sll_epi64(_mm256_cvtepu32_epi64(_mm256_castsi256_si128(bits)), position_shift),
+                  high = _mm256_sll_epi64(_mm256_cvtepu32_epi64(_mm256_extracti128_si256(bits, 1)),
+                                          position_shift);
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), _mm256_sub_epi64(base, low));
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at + 4)), _mm256_sub_epi64(base, high));
+}
+
+/* kernels.h's filter_candidates, a pair at a time. */
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *ends) {
+    const FieldLanes lanes = field_lanes(cell_shift);
+    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift));
+    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), low_4 = _mm256_set1_epi32(15);
+    for (uint32_t k = 0; k < cell_count; k++) {
+        const dsn_filter_cell &cell = cells[k];
+        const __m256i base_x = _mm256_set1_epi64x(static_cast<long long>(cell.x.shifted_base)),
+                      base_y = _mm256_set1_epi64x(static_cast<long long>(cell.y.shifted_base));
+        for (uint32_t first = 0; first < cell.count; first += 8u) {
+            const uint64_t pair = dsn_position_pair(cell.key, first >> 3);
+            const uint32_t present = cell.count - first < 8u ? cell.count - first : 8u;
+            const uint32_t sifted =
+                gather_lanes(candidate_lanes(pair, lanes, cell.x, cell.y), lanes) & ((1u << present) - 1u);
+            __m256i streams, fields;
+            /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
+            const uint32_t packed =
+                pack_pair_8(pair, sifted, cell.key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
+            const __m256i fraction = mix32_8(streams);
+            /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
+            const __m256i bits_x = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(fields, low_4), 12),
+                                                   _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
+            const __m256i bits_y = _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(fields, 4), 12),
+                                                   _mm256_srli_epi32(fraction, 20));
+            store_shifted(xs + count, base_x, bits_x, position_shift);
+            store_shifted(ys + count, base_y, bits_y, position_shift);
+            count += packed;
+        }
+        ends[k] = count;
+    }
+    return count;
+}
+
+#endif
+
+} // namespace
+/* The kernel entry (kernels.h): null where there is none. */
+#define DSN_FILTER_CANDIDATES_ENTRY filter_candidates
+#else
+#define DSN_FILTER_CANDIDATES_ENTRY 0
+#endif
+
+#endif /* DSN_FILTERED_CANDIDATES_VECTOR_H */
