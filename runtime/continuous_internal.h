@@ -26,8 +26,9 @@ inline int64_t signed_from_bits(uint64_t bits) {
 }
 
 /* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
-   it as in lattice mode, the fractions are added once, rounded down, before the final rounding. */
-inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+   it as in lattice mode, the fractions are added once, rounded down, before the final rounding; then the
+   histogram mapping (normalize_q32), or not yet (normalize_q32_unmapped). */
+inline void normalize_q32_unmapped(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
     const uint32_t channels = noise->asset.channels;
     for (uint32_t c = 0; c < channels; c++) {
         int64_t accumulated = noise->offset[c], fractions = 0;
@@ -40,6 +41,10 @@ inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, in
         accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
         out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
     }
+}
+
+inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+    normalize_q32_unmapped(noise, sums, out);
     dsn_map_output(noise, out);
 }
 

@@ -227,6 +227,7 @@ inline void column_bounds_next(ColumnBounds *b, const ColumnSteps &s) {
 /* A block of the tile: columns [first_column, end_column), rows [first_row, end_row). */
 struct Block {
     uint32_t first_column, end_column, first_row, end_row;
+    uint32_t stride; /* sums from one row of the block to the next */
 };
 
 /* The frame interval of the block's pixels along one axis. */
@@ -285,7 +286,7 @@ void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, i
             dsn_splat_run *run = &runs[run_count++];
             run->offset_x = bounds_x.offset + x.column * first;
             run->offset_y = bounds_y.offset + y.column * first;
-            run->sums = sums + static_cast<size_t>(j * columns + first);
+            run->sums = sums + static_cast<size_t>(j * static_cast<int64_t>(block.stride) + first);
             run->count = static_cast<uint32_t>(last - first + 1);
         }
         column_bounds_next(&bounds_x, x.columns);
@@ -381,12 +382,14 @@ uint64_t *aligned_sums(void *scratch) {
 }
 
 /* The tile block by block: each block's sums are splatted into the start of the scratch (planar, channel
-   c of the block's pixel p at sums[c * pixels + p], so the vector kernels add runs of pixels of one
-   channel), then normalized into `out`; a block's sums stay in the caches. 8-bit textons are read from
-   their cell records (splat_cells.h) where the kernels take them, kept on the stack for the call. */
+   c of the block's pixel (i, j) at sums[c * plane + j * stride + i], so the vector kernels add runs of
+   pixels of one channel), then normalized a row at a time by the kernel (on vectors of pixels too) and mapped
+   and stored into `out` pixel by pixel; a block's sums stay in the caches. 8-bit textons are read from their
+   cell records (splat_cells.h) where the kernels take them, kept on the stack for the call. */
 void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxis &y, uint32_t width,
                 uint32_t height, uint64_t *sums, void *out, dsn_output_kind kind) {
-    dsn_splat_runs_entry *splat_runs = dsn_kernel_entries_of(noise->tile_kernel)->continuous_splat_runs;
+    const dsn_kernel_entries *kernel = dsn_kernel_entries_of(noise->tile_kernel);
+    dsn_splat_runs_entry *splat_runs = kernel->continuous_splat_runs;
     const uint32_t channels = noise->asset.channels;
     dsn_splat_setup setup;
     setup.asset = &noise->asset;
@@ -396,6 +399,7 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
     setup.reach_y = y.reach;
     setup.cells = 0;
     setup.cell_row = 0;
+    setup.columns_shared = x.row == 0 && y.column == 0;
     setup.sums_end = sums + static_cast<size_t>(width) * height * channels;
 #if DSN_SPLAT_CELLS
     alignas(64) uint64_t cells[splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
@@ -409,20 +413,29 @@ void splat_grid(const dsn_noise_state *noise, const FrameAxis &x, const FrameAxi
             block.first_row = top;
             block.end_row = height - top < block_rows ? height : top + block_rows;
             const uint32_t columns = block.end_column - left, rows = block.end_row - top;
-            const size_t pixels = static_cast<size_t>(columns) * rows;
-            setup.plane = pixels;
-            for (size_t i = 0; i < pixels * channels; i++) sums[i] = 0;
+            /* Rows of 64 sums would lie 512 bytes apart, each column of a block (and each channel's)
+               in the same few cache sets: they are spread by a cache line where the scratch has room. */
+            const uint32_t padded = columns + 8u;
+            block.stride = static_cast<uint64_t>(padded) * rows <= static_cast<uint64_t>(width) * height
+                               ? padded
+                               : columns;
+            const size_t plane = static_cast<size_t>(block.stride) * rows;
+            setup.plane = plane;
+            for (size_t i = 0; i < plane * channels; i++) sums[i] = 0;
             splat_block(noise, x, y, block, sums, &setup, splat_runs);
-            for (uint32_t j = 0; j < rows; j++)
-                for (uint32_t i = 0; i < columns; i++) {
-                    const size_t p = static_cast<size_t>(j) * columns + i;
-                    uint64_t pixel_sums[DSN_MAX_CHANNELS];
-                    int32_t pixel[DSN_MAX_CHANNELS];
-                    for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * pixels + p];
-                    normalize_q32(noise, pixel_sums, pixel);
-                    dsn_store_pixel(out, kind, (static_cast<size_t>(top + j) * width + left + i) * channels,
-                                    pixel, channels);
-                }
+            for (uint32_t j = 0; j < rows; j++) {
+                int32_t values[block_columns * DSN_MAX_CHANNELS];
+                kernel->continuous_splat_normalize(noise, sums + static_cast<size_t>(j) * block.stride, plane,
+                                                   columns, values);
+                const size_t first = (static_cast<size_t>(top + j) * width + left) * channels;
+                for (uint32_t i = 0; i < columns; i++) dsn_map_output(noise, values + i * channels);
+                if (kind == dsn_output_fixed)
+                    for (uint32_t i = 0; i < columns * channels; i++)
+                        static_cast<int32_t *>(out)[first + i] = values[i];
+                else
+                    for (uint32_t i = 0; i < columns; i++)
+                        dsn_store_pixel(out, kind, first + i * channels, values + i * channels, channels);
+            }
         }
 }
 

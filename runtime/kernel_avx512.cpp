@@ -19,6 +19,7 @@
 extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
                                                                continuous_batch,
                                                                continuous_splat_runs,
+                                                               continuous_splat_normalize,
                                                                continuous_point_vector,
                                                                DSN_FILTER_READS_ENTRY,
                                                                DSN_FILTER_CANDIDATES_ENTRY};

@@ -13,8 +13,10 @@
 #if !DSN_SMALL_CODE
 #include "splat_row.h"
 #define SPLAT_ROW_ENTRY continuous_splat_runs
+#define SPLAT_NORMALIZE_ENTRY continuous_splat_normalize
 #else
 #define SPLAT_ROW_ENTRY 0
+#define SPLAT_NORMALIZE_ENTRY 0
 #endif
 #if !DSN_SMALL_CODE && defined(__AVX2__)
 #include "continuous_point_vector.h"
@@ -28,6 +30,7 @@
 extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
                                                                 BATCH_ENTRY,
                                                                 SPLAT_ROW_ENTRY,
+                                                                SPLAT_NORMALIZE_ENTRY,
                                                                 POINT_ENTRY,
                                                                 DSN_FILTER_READS_ENTRY,
                                                                 DSN_FILTER_CANDIDATES_ENTRY};

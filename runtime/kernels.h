@@ -58,12 +58,21 @@ typedef struct dsn_splat_setup {
     const uint64_t *sums_end; /* the runs' sums lie before; vectors may add 0 to any sum up to there */
     const uint64_t *cells;
     uint32_t cell_row; /* cells per row of the table */
+    /* Nonzero for axis-aligned grids (the steps along a row move x alone, those to the next row y alone):
+       the runs of a call then start at the same offset_x, have the same count and a constant offset_y. */
+    int columns_shared;
 } dsn_splat_setup;
 
 /* The innermost loops of the continuous grid splat (splat_row.h's continuous_splat_runs): one impulse
    added to its runs. */
 typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count);
+
+/* The normalization of the continuous grid splat's sums (splat_row.h's continuous_splat_normalize):
+   `count` pixels, channel c of pixel p at sums[c * plane + p], into out[p * channels + c] as
+   normalize_q32_unmapped gives them (continuous_internal.h). */
+typedef void dsn_splat_normalize_entry(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
+                                       uint32_t count, int32_t *out);
 
 /* One continuous point (continuous_point_vector.h's continuous_point_vector): the Q16.16 values of the
    point (x, y), Q32.32, into out, as dsn_internal_continuous_point gives them; returns 0, writing
@@ -101,14 +110,16 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
                                              uint32_t *ends);
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
-   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs in the small build
-   (DSN_SMALL_CODE), which evaluates grids point by point, continuous_point in kernels built without
-   AVX2 (continuous_point.cpp's own evaluator then runs), filter_level_reads and filter_candidates likewise
-   (filtered_sift.cpp then reads, or lists, each candidate itself). */
+   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and
+   continuous_splat_normalize in the small build (DSN_SMALL_CODE), which evaluates grids point by point,
+   continuous_point in kernels built without AVX2 (continuous_point.cpp's own evaluator then runs),
+   filter_level_reads and filter_candidates likewise (filtered_sift.cpp then reads, or lists, each
+   candidate itself). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_runs_entry *continuous_splat_runs;
+    dsn_splat_normalize_entry *continuous_splat_normalize;
     dsn_continuous_point_entry *continuous_point;
     dsn_filter_level_reads_entry *filter_level_reads;
     dsn_filter_candidates_entry *filter_candidates;

@@ -102,6 +102,13 @@ inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm256_ad
 inline void splat_store(uint64_t *out, splat_vector value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), value);
 }
+inline splat_vector splat_load(const uint64_t *from) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(from)));
+}
+inline splat_vector splat_sub(splat_vector a, splat_vector b) { return _mm256_sub_epi64(a, b); }
+inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
+    return _mm256_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
+}
 /* The first `count` lanes (all of them from splat_lanes up), the others 0. */
 inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return _mm256_and_si256(value,
@@ -145,12 +152,17 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
     records[1] = _mm256_permute2x128_si256(odd_01, odd_23, 0x20);
     records[Channels - 1] = _mm256_permute2x128_si256(even_01, even_23, 0x31);
 }
-/* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
-   products of the dwords. */
-inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    const splat_vector rows = _mm256_madd_epi16(records, across);
-    return _mm256_add_epi64(_mm256_mul_epi32(rows, _mm256_set1_epi64x(65536)),
-                            _mm256_mul_epi32(_mm256_srli_epi64(rows, 32), down));
+/* splat_cells.h's multiply-add: each lane's dwords (low, high) become upper and lower - upper. */
+inline splat_vector splat_rows(splat_vector records, splat_vector across) {
+    return _mm256_madd_epi16(records, across);
+}
+/* The low dword of each lane, signed, times the low dword of factor's (below 2^31). */
+inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) {
+    return _mm256_mul_epi32(value, factor);
+}
+/* The low dword of each lane, unsigned, times the low dword of factor's (unsigned). */
+inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
+    return _mm256_mul_epu32(value, factor);
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..], where sums up to `end`
    may be read and written back. Where a whole vector fits, the other lanes add 0 (a masked store is

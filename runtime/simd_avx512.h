@@ -158,6 +158,11 @@ inline splat_vector splat_lane_steps(uint64_t first, uint64_t step) {
 }
 inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm512_add_epi64(a, b); }
 inline void splat_store(uint64_t *out, splat_vector value) { _mm512_storeu_si512(out, value); }
+inline splat_vector splat_load(const uint64_t *from) { return _mm512_loadu_si512(from); }
+inline splat_vector splat_sub(splat_vector a, splat_vector b) { return _mm512_sub_epi64(a, b); }
+inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
+    return _mm512_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
+}
 /* The first `count` lanes (all of them from splat_lanes up), the others 0. */
 inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return _mm512_maskz_mov_epi64(
@@ -211,12 +216,17 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
         _mm512_shuffle_i64x2(_mm512_permutex2var_epi64(pair_0, channel_2, pair_1),
                              _mm512_permutex2var_epi64(pair_2, channel_2, pair_3), _MM_SHUFFLE(1, 0, 1, 0));
 }
-/* The records' bilinear values (splat_cells.h's multiply-add): 65536 upper + down (lower - upper), signed
-   products of the dwords. */
-inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    const splat_vector rows = _mm512_madd_epi16(records, across);
-    return _mm512_add_epi64(_mm512_mul_epi32(rows, _mm512_set1_epi64(65536)),
-                            _mm512_mul_epi32(_mm512_srli_epi64(rows, 32), down));
+/* splat_cells.h's multiply-add: each lane's dwords (low, high) become upper and lower - upper. */
+inline splat_vector splat_rows(splat_vector records, splat_vector across) {
+    return _mm512_madd_epi16(records, across);
+}
+/* The low dword of each lane, signed, times the low dword of factor's (below 2^31). */
+inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) {
+    return _mm512_mul_epi32(value, factor);
+}
+/* The low dword of each lane, unsigned, times the low dword of factor's (unsigned). */
+inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
+    return _mm512_mul_epu32(value, factor);
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */

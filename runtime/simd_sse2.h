@@ -78,6 +78,13 @@ inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm_add_e
 inline void splat_store(uint64_t *out, splat_vector value) {
     _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)), value);
 }
+inline splat_vector splat_load(const uint64_t *from) {
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(from)));
+}
+inline splat_vector splat_sub(splat_vector a, splat_vector b) { return _mm_sub_epi64(a, b); }
+inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
+    return _mm_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
+}
 /* The first `count` lanes (all of them from splat_lanes up), the others 0. */
 inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return count >= 2 ? value : _mm_move_epi64(value);
@@ -111,23 +118,19 @@ inline void splat_load_cells(const uint64_t *cells, const uint64_t *index, splat
     records[1] = _mm_unpackhi_epi64(first_01, second_01);
     records[Channels - 1] = _mm_unpacklo_epi64(_mm_loadl_epi64(first + 1), _mm_loadl_epi64(second + 1));
 }
-/* 65536 upper + down (lower - upper), the dwords of rows (low, high) being upper and lower - upper and
-   down (below 2^16) the low dword of each lane. SSE2 multiplies unsigned only: a negative dword s reads
-   as s + 2^32, so its product is 2^32 times the other factor too much. */
-inline splat_vector splat_combine_rows(splat_vector rows, splat_vector down) {
-    const splat_vector signs = _mm_srai_epi32(rows, 31);
-    const splat_vector upper_negative = _mm_shuffle_epi32(signs, _MM_SHUFFLE(2, 2, 0, 0));
-    const splat_vector difference_negative = _mm_shuffle_epi32(signs, _MM_SHUFFLE(3, 3, 1, 1));
-    const splat_vector scaled =
-        _mm_sub_epi64(_mm_mul_epu32(rows, _mm_set1_epi64x(65536)),
-                      _mm_and_si128(upper_negative, _mm_set1_epi64x(static_cast<long long>(1) << 48)));
-    const splat_vector crossed = _mm_sub_epi64(_mm_mul_epu32(_mm_srli_epi64(rows, 32), down),
-                                               _mm_and_si128(difference_negative, _mm_slli_epi64(down, 32)));
-    return _mm_add_epi64(scaled, crossed);
+/* splat_cells.h's multiply-add: each lane's dwords (low, high) become upper and lower - upper. */
+inline splat_vector splat_rows(splat_vector records, splat_vector across) {
+    return _mm_madd_epi16(records, across);
 }
-/* The records' bilinear values: splat_cells.h's multiply-add, then the rows combined. */
-inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    return splat_combine_rows(_mm_madd_epi16(records, across), down);
+/* The low dword of each lane, signed, times the low dword of factor's (below 2^31). SSE2 multiplies
+   unsigned only: a negative dword s reads as s + 2^32, so its product is 2^32 times the factor too much. */
+inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) {
+    const splat_vector negative = _mm_shuffle_epi32(_mm_srai_epi32(value, 31), _MM_SHUFFLE(2, 2, 0, 0));
+    return _mm_sub_epi64(_mm_mul_epu32(value, factor), _mm_and_si128(negative, _mm_slli_epi64(factor, 32)));
+}
+/* The low dword of each lane, unsigned, times the low dword of factor's (unsigned). */
+inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
+    return _mm_mul_epu32(value, factor);
 }
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */

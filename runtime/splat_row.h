@@ -1,14 +1,16 @@
 /* runtime/splat_row.h - the innermost loops of the continuous grid splat (continuous_tile.cpp): one
-   impulse added to its runs of pixels, one run per row of a block, as a kernel (kernels.h: each kernel
-   file includes it, so it is built once per instruction set). On x86 8-bit textons are read from their
-   cell records (splat_cells.h) on vectors of 64-bit lanes, one pixel per lane (2, 4 or 8 by the copy);
-   8-bit textons too large for the records take 8 pixels per step with gathers on AVX2 and AVX-512; the
-   rest goes pixel by pixel. The same integers every way (add_bilinear's). Internal to libdsn; not
-   installed (everything here has internal linkage). */
+   impulse added to its runs of pixels, one run per row of a block, and the normalization of a row of the
+   block's sums, as kernels (kernels.h: each kernel file includes it, so it is built once per instruction
+   set). On x86 8-bit textons are read from their cell records (splat_cells.h) on vectors of 64-bit lanes,
+   one pixel per lane (2, 4 or 8 by the copy), axis-aligned grids reusing each record's interpolation along
+   the row down the runs; 8-bit textons too large for the records take 8 pixels per step with gathers on
+   AVX2 and AVX-512; the rest goes pixel by pixel. The same integers every way (add_bilinear's). Internal
+   to libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_SPLAT_ROW_H
 #define DSN_SPLAT_ROW_H
 
 #include "bilinear_texton.h"
+#include "continuous_internal.h"
 #include "kernels.h"
 #include "simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
 #include "splat_cells.h"
@@ -245,6 +247,13 @@ inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64
    give, and one multiply-add of 16-bit pairs and two signed 32 x 32-bit products give interior_channel's
    integer, edge cells included (their texels outside the window are 0 in the records). No gathers: the
    records are loaded one by one. Lanes past a run read cell 0 and are not added. */
+/* The records' bilinear values: 65536 upper + down (lower - upper). */
+inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
+    const splat_vector rows = splat_rows(records, across);
+    return splat_add(splat_signed_times(rows, splat_set(65536)),
+                     splat_signed_times(splat_shift_right(rows, 32), down));
+}
+
 template <uint32_t Channels>
 void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
@@ -300,10 +309,84 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
 }
 #endif
 
+#if DSN_SPLAT_CELLS
+/* ---- Axis-aligned grids: the runs share their columns (dsn_splat_setup.columns_shared) ----
+   A pixel's cell column and across weights then depend on its column alone, its cell row and down weight
+   on its row alone. Going down the runs one vector of columns at a time, the interpolation along the row
+   (splat_rows: both dwords of each record) stays in registers while the cell row does not change, and
+   each pixel adds 65536 upper + down (lower - upper) from it: the same integers. Lanes past the runs read
+   the row's first cell and are not added. */
+template <uint32_t Channels>
+void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
+    const uint32_t count = runs[0].count;
+    const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
+    /* Each run's first record in the table and down weight. */
+    uint64_t row_start[dsn_splat_runs_most], down[dsn_splat_runs_most];
+    for (uint32_t r = 0; r < run_count; r++) {
+        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y);
+        row_start[r] = (shifted_y >> 32) * row_records;
+        down[r] = (shifted_y >> 16) & 0xFFFFu;
+    }
+    const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
+    splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),
+                                       splat_lane_steps(0, step_x));
+    const splat_vector next_x = splat_set(step_x * splat_lanes), sixteen_bits = splat_set(65536);
+    for (uint32_t done = 0; done < count; done += splat_lanes) {
+        const uint32_t remaining = count - done;
+        uint64_t column[splat_lanes]; /* each lane's first record in a row of the table */
+        splat_store(column, splat_first_lanes(splat_whole_times(shifted_x, cell_records), remaining));
+        const splat_vector across = splat_across_weights(shifted_x);
+        /* The current cell row's 65536 upper and lower - upper, channel by channel (kept in registers). */
+        splat_vector scaled_0 = splat_set(0), scaled_1 = scaled_0, scaled_2 = scaled_0;
+        splat_vector difference_0 = scaled_0, difference_1 = scaled_0, difference_2 = scaled_0;
+        uint64_t current = ~static_cast<uint64_t>(0);
+        for (uint32_t r = 0; r < run_count; r++) {
+            if (row_start[r] != current) {
+                current = row_start[r];
+                splat_vector records[3];
+                splat_load_cells<Channels>(setup->cells + current, column, records);
+                const splat_vector rows_0 = splat_rows(records[0], across);
+                scaled_0 = splat_signed_times(rows_0, sixteen_bits);
+                difference_0 = splat_shift_right(rows_0, 32);
+                if (Channels == 3) {
+                    const splat_vector rows_1 = splat_rows(records[1], across);
+                    const splat_vector rows_2 = splat_rows(records[2], across);
+                    scaled_1 = splat_signed_times(rows_1, sixteen_bits);
+                    difference_1 = splat_shift_right(rows_1, 32);
+                    scaled_2 = splat_signed_times(rows_2, sixteen_bits);
+                    difference_2 = splat_shift_right(rows_2, 32);
+                }
+            }
+            const splat_vector weight = splat_set(down[r]);
+            uint64_t *sums = runs[r].sums + done;
+            splat_accumulate(sums, splat_add(scaled_0, splat_signed_times(difference_0, weight)), remaining,
+                             end);
+            if (Channels == 3) {
+                splat_accumulate(sums + plane, splat_add(scaled_1, splat_signed_times(difference_1, weight)),
+                                 remaining, end);
+                splat_accumulate(sums + 2 * plane,
+                                 splat_add(scaled_2, splat_signed_times(difference_2, weight)), remaining,
+                                 end);
+            }
+        }
+        shifted_x = splat_add(shifted_x, next_x);
+    }
+}
+#endif
+
 /* The kernel entry: the runs on vectors where the texton has records, else pixel by pixel. */
 inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count) {
 #if DSN_SPLAT_CELLS
+    if (setup->cells != 0 && setup->columns_shared) {
+        if (setup->asset->channels == 3)
+            splat_runs_aligned<3>(setup, runs, run_count);
+        else
+            splat_runs_aligned<1>(setup, runs, run_count);
+        return;
+    }
     if (setup->cells != 0) {
         if (setup->asset->channels == 3)
             splat_runs_vector<3>(setup, runs, run_count);
@@ -315,6 +398,78 @@ inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_
     for (uint32_t r = 0; r < run_count; r++)
         continuous_splat_row(setup->asset, runs[r].offset_x, runs[r].offset_y, setup->step_x, setup->step_y,
                              setup->reach_x, setup->reach_y, runs[r].count, runs[r].sums, setup->plane);
+}
+
+#if DSN_SPLAT_CELLS
+/* ---- The normalization on vectors of 64-bit lanes, one pixel each ----
+   normalize_q32_unmapped's integers, modulo 2^64 as they never wrap: the offset plus the gains times the
+   signed whole parts, plus the floor of the gains times the fractions over 2^32 (the gains' magnitudes
+   multiplied, then added or subtracted), then the biased rounding shift; the int32 saturation per value.
+   Pixels past the last whole vector go one by one. */
+template <uint32_t Channels>
+void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, size_t plane, uint32_t count,
+                            int32_t *out) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    const uint32_t shift = noise->gain_shift;
+    const splat_vector rounding = splat_set(bias + ((static_cast<uint64_t>(1) << shift) >> 1));
+    const splat_vector rounding_bias = splat_set(bias >> shift), floor_bias = splat_set(bias),
+                       floor_unbias = splat_set(bias >> 32);
+    uint32_t done = 0;
+    for (; done + splat_lanes <= count; done += splat_lanes) {
+        splat_vector pixel_sums[Channels];
+        for (uint32_t k = 0; k < Channels; k++) pixel_sums[k] = splat_load(sums + k * plane + done);
+        uint64_t values[Channels][splat_lanes];
+        for (uint32_t c = 0; c < Channels; c++) {
+            splat_vector accumulated = splat_set(static_cast<uint64_t>(noise->offset[c]));
+            splat_vector fractions = splat_set(0);
+            for (uint32_t k = 0; k < Channels; k++) {
+                const int64_t gain = noise->gain[c * 3 + k];
+                const splat_vector size =
+                    splat_set(gain < 0 ? 0u - static_cast<uint64_t>(gain) : static_cast<uint64_t>(gain));
+                const splat_vector whole = splat_signed_times(splat_shift_right(pixel_sums[k], 32), size),
+                                   fraction = splat_low_times(pixel_sums[k], size);
+                accumulated = gain < 0 ? splat_sub(accumulated, whole) : splat_add(accumulated, whole);
+                fractions = gain < 0 ? splat_sub(fractions, fraction) : splat_add(fractions, fraction);
+            }
+            /* floor(fractions / 2^32) and the rounding shift, as unsigned shifts of biased values */
+            accumulated =
+                splat_add(accumulated,
+                          splat_sub(splat_shift_right(splat_add(fractions, floor_bias), 32), floor_unbias));
+            splat_store(values[c],
+                        splat_sub(splat_shift_right(splat_add(accumulated, rounding), shift), rounding_bias));
+        }
+        for (uint32_t k = 0; k < splat_lanes; k++)
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int64_t value = signed_from_bits(values[c][k]);
+                out[(done + k) * Channels + c] = value > INT32_MAX   ? INT32_MAX
+                                                 : value < INT32_MIN ? INT32_MIN
+                                                                     : static_cast<int32_t>(value);
+            }
+    }
+    for (; done < count; done++) {
+        uint64_t pixel_sums[Channels];
+        for (uint32_t c = 0; c < Channels; c++) pixel_sums[c] = sums[c * plane + done];
+        normalize_q32_unmapped(noise, pixel_sums, out + done * Channels);
+    }
+}
+#endif
+
+/* The normalization entry: on vectors on x86, else pixel by pixel. */
+inline void continuous_splat_normalize(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
+                                       uint32_t count, int32_t *out) {
+#if DSN_SPLAT_CELLS
+    if (noise->asset.channels == 3)
+        splat_normalize_vector<3>(noise, sums, plane, count, out);
+    else
+        splat_normalize_vector<1>(noise, sums, plane, count, out);
+#else
+    const uint32_t channels = noise->asset.channels;
+    for (uint32_t p = 0; p < count; p++) {
+        uint64_t pixel_sums[DSN_MAX_CHANNELS];
+        for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * plane + p];
+        normalize_q32_unmapped(noise, pixel_sums, out + p * channels);
+    }
+#endif
 }
 
 } // namespace

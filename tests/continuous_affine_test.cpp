@@ -105,6 +105,27 @@ int64_t origin_near_wraps(std::mt19937_64 &random, int which) {
     }
 }
 
+// One grid at a random size up to max_width x max_height, counted in *total and, when splatted, in
+// *splatted.
+void check_random_size(const dsn_noise *noise, const dsn_grid &grid, std::mt19937_64 &random,
+                       uint32_t max_width, uint32_t max_height, size_t *splatted, size_t *total) {
+    CAPTURE(grid.origin_x);
+    CAPTURE(grid.origin_y);
+    *splatted += tile_matches_points(noise, grid, 1 + uint32_t(random() % max_width),
+                                     1 + uint32_t(random() % max_height));
+    ++*total;
+}
+
+// At least 7 in 10 of the grids were splatted (none in the small build).
+void check_mostly_splatted(size_t splatted, size_t total) {
+#if DSN_SMALL_CODE
+    (void)total;
+    CHECK(splatted == 0);
+#else
+    CHECK(splatted * 10 >= total * 7);
+#endif
+}
+
 } // namespace
 
 TEST_CASE("continuous affine: rotated, zoomed, sheared and mirrored tiles equal per point") {
@@ -273,18 +294,49 @@ TEST_CASE("continuous affine: the vector runs of every kernel, every run length,
                                 zoom, which % 4 == 0 ? 0.3 : 0.0, which % 3 == 1);
                 CAPTURE(angle);
                 CAPTURE(zoom);
-                CAPTURE(grid.origin_x);
-                CAPTURE(grid.origin_y);
                 // Up to two blocks across and down: runs of every length up to a block's side.
-                splatted += tile_matches_points(&noise->noise, grid, 1 + uint32_t(random() % 60),
-                                                1 + uint32_t(random() % 45));
-                total++;
+                check_random_size(&noise->noise, grid, random, 60, 45, &splatted, &total);
                 which++;
             }
     }
-#if DSN_SMALL_CODE
-    CHECK(splatted == 0);
-#else
-    CHECK(splatted * 10 >= total * 7);
-#endif
+    check_mostly_splatted(splatted, total);
+}
+
+TEST_CASE("continuous affine: axis-aligned grids (zoomed, mirrored, periodic, dense) equal per point") {
+    std::mt19937_64 random(21);
+    struct Case {
+        uint32_t channels, radius, impacts, period_x, period_y;
+    };
+    const Case cases[] = {
+        {3, 5, 0, 0, 0},   {1, 7, 0, 0, 0},  {3, 4, 400, 0, 0}, {1, 3, 600, 0, 0},
+        {3, 4, 0, 37, 11}, {1, 6, 0, 0, 50}, {3, 15, 30, 0, 0}, {1, 2, 0, 64, 64},
+    };
+    // Texels per pixel along x and y: zoomed in and out, unequal, each sign (mirrored on each axis).
+    const double steps[][2] = {{0.7, 0.7},  {1.7, 1.7},   {0.3, 2.2},   {3.1, 0.45}, {-0.7, 0.7},
+                               {1.7, -1.7}, {-1.3, -0.6}, {0.05, 0.05}, {1.0, -1.0}};
+    size_t splatted = 0, total = 0;
+    int which = 0;
+    for (const Case &c : cases) {
+        auto noise = make_noise(random_texton_asset(c.channels, c.radius, 8, 30 + uint32_t(which)),
+                                100 + uint32_t(which), c.impacts << 16, c.period_x, c.period_y);
+        CAPTURE(c.channels);
+        CAPTURE(c.radius);
+        CAPTURE(c.impacts);
+        CAPTURE(c.period_x);
+        CAPTURE(c.period_y);
+        for (const auto &step : steps) {
+            const dsn_grid grid = {origin_near_wraps(random, which),
+                                   origin_near_wraps(random, which + 1),
+                                   q32(step[0]),
+                                   0,
+                                   0,
+                                   q32(step[1])};
+            CAPTURE(step[0]);
+            CAPTURE(step[1]);
+            // Up to three blocks across and down: runs cut at the blocks' edges.
+            check_random_size(&noise->noise, grid, random, 150, 80, &splatted, &total);
+            which++;
+        }
+    }
+    check_mostly_splatted(splatted, total);
 }

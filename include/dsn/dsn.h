@@ -365,7 +365,9 @@ typedef struct dsn_grid {
    for one per pixel and channel: width * height * channels * 8 bytes, plus 7; the tile goes through it a
    block of 64 x 32 pixels at a time). On x86 an 8-bit texton is read from 64-bit records per 2 x 2 texels
    kept on the tile call's stack (up to 64 KB, beside about 20 KB of the splat's own), unless it has more
-   than 8192 of them (RGB past 49 x 49 texels, grey past 89 x 89), which go pixel by pixel. Grids where that
+   than 8192 of them (RGB past 49 x 49 texels, grey past 89 x 89), which go pixel by pixel; on an
+   axis-aligned grid (column step along x alone, row step along y alone, either sign) each record's
+   interpolation along its row of texels is shared by the pixels of a column. Grids where that
    does not pay or cannot be done exactly (a pixel covering more texels than a point visits, steps of 2^14
    texels or more, a periodic axis whose points cross the int32 wrap of the coordinate or a period of 2^27 or
    more) are evaluated point by point and dsn_continuous_tile_scratch_size() returns 0 for them; so does every

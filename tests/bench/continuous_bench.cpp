@@ -1,7 +1,7 @@
 // continuous_bench.cpp - cost of the continuous (renderer) mode as ratios to the lattice mode measured in
-// the same run: per point over a 512 x 512 grid, tiles under rotations and zooms, and random
-// points one by one and as a batch (in every kernel copy the CPU runs), RGB, 31 x 31 texton, 30 impacts per
-// pixel, one thread.
+// the same run: per point over a 512 x 512 grid, tiles rotated and axis-aligned at two zooms with every
+// copy of the tile code this CPU runs (each against its own lattice tile), and random points one by one
+// and as a batch (the batch in every copy too), RGB, 31 x 31 texton, 30 impacts per pixel, one thread.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -49,26 +49,41 @@ int main() {
     });
     std::vector<int32_t> tile(size_t(samples) * 3);
     std::vector<unsigned char> scratch(dsn_lattice_tile_scratch_size(n, kSide, kSide));
-    const double lattice_tile = best_time(3, [&] {
-        dsn_lattice_tile_fixed(n, 0, 0, kSide, kSide, tile.data(), scratch.data(), scratch.size());
-        checksum += tile[7];
-    });
-    // Grids a renderer asks for, all splatted into the scratch: rotated by 30 degrees at 0.7 and 1.7 texels
-    // per pixel, and axis-aligned at 1.7.
-    auto grid_tile = [&](double degrees, double step) {
-        const double angle = degrees * 3.14159265358979323846 / 180.0;
-        const int64_t c = int64_t(std::cos(angle) * step * double(one));
-        const int64_t s = int64_t(std::sin(angle) * step * double(one));
-        const dsn_grid grid = {one / 3, one / 7, c, s, -s, c};
-        std::vector<unsigned char> grid_scratch(dsn_continuous_tile_scratch_size(n, &grid, kSide, kSide));
-        return best_time(3, [&] {
-            dsn_continuous_tile_fixed(n, &grid, kSide, kSide, tile.data(), grid_scratch.data(),
-                                      grid_scratch.size());
+    // Grids a renderer asks for, all splatted into the scratch: rotated by 30 degrees and axis-aligned, at
+    // 0.7 and 1.7 texels per pixel, each timed with every copy of the tile code this CPU runs (x86-64:
+    // SSE2, AVX2, AVX-512) against the lattice tile of the same copy.
+    const struct {
+        const char *name;
+        double degrees, step;
+    } grids[] = {{"rotated 30 degrees, 0.7 texel/pixel", 30, 0.7},
+                 {"rotated 30 degrees, 1.7 texel/pixel", 30, 1.7},
+                 {"axis-aligned, 0.7 texel/pixel", 0, 0.7},
+                 {"axis-aligned, 1.7 texel/pixel", 0, 1.7}};
+    const uint32_t grid_count = sizeof grids / sizeof grids[0];
+    const char *copy_names[] = {"default (SSE2 on x86-64)", "AVX2", "AVX-512"};
+    const uint32_t widest = dsn_state(n)->tile_kernel;
+    std::vector<double> lattice_tiles(widest + 1), grid_tiles((widest + 1) * grid_count);
+    for (uint32_t kernel = 0; kernel <= widest; kernel++) {
+        dsn_noise copy = *n;
+        dsn_state(&copy)->tile_kernel = kernel;
+        lattice_tiles[kernel] = best_time(5, [&] {
+            dsn_lattice_tile_fixed(&copy, 0, 0, kSide, kSide, tile.data(), scratch.data(), scratch.size());
             checksum += tile[7];
         });
-    };
-    const double rotated_07 = grid_tile(30, 0.7), rotated_17 = grid_tile(30, 1.7),
-                 aligned_17 = grid_tile(0, 1.7);
+        for (uint32_t g = 0; g < grid_count; g++) {
+            const double angle = grids[g].degrees * 3.14159265358979323846 / 180.0;
+            const int64_t c = int64_t(std::cos(angle) * grids[g].step * double(one));
+            const int64_t s = int64_t(std::sin(angle) * grids[g].step * double(one));
+            const dsn_grid grid = {one / 3, one / 7, c, s, -s, c};
+            std::vector<unsigned char> grid_scratch(
+                dsn_continuous_tile_scratch_size(&copy, &grid, kSide, kSide));
+            grid_tiles[kernel * grid_count + g] = best_time(3, [&] {
+                dsn_continuous_tile_fixed(&copy, &grid, kSide, kSide, tile.data(), grid_scratch.data(),
+                                          grid_scratch.size());
+                checksum += tile[7];
+            });
+        }
+    }
     // 4096 random points (a renderer's ray hits) one by one, against as many lattice points.
     const size_t batch = 4096;
     std::vector<int64_t> batch_x(batch), batch_y(batch);
@@ -117,17 +132,16 @@ int main() {
     std::printf("  per point: lattice %.0f ns/sample, continuous %.0f ns/sample: ratio %.2f\n",
                 lattice_point / samples * 1e9, continuous_point / samples * 1e9,
                 continuous_point / lattice_point);
-    const double lattice_rate = samples / lattice_tile / 1e6;
-    std::printf("  tile 512x512: lattice %.1f Mpixel/s\n", lattice_rate);
-    const struct {
-        const char *name;
-        double time;
-    } tiles[] = {{"rotated 30 degrees, 0.7 texel/pixel", rotated_07},
-                 {"rotated 30 degrees, 1.7 texel/pixel", rotated_17},
-                 {"axis-aligned, 1.7 texel/pixel", aligned_17}};
-    for (const auto &t : tiles)
-        std::printf("  continuous tile %s: %.1f Mpixel/s, %.3f of the lattice tile (1/%.1f)\n", t.name,
-                    samples / t.time / 1e6, lattice_tile / t.time, t.time / lattice_tile);
+    for (uint32_t kernel = widest + 1; kernel-- > 0;) {
+        const double lattice_tile = lattice_tiles[kernel];
+        std::printf("  %s tile code: lattice tile 512x512 %.1f Mpixel/s\n", copy_names[kernel],
+                    samples / lattice_tile / 1e6);
+        for (uint32_t g = 0; g < grid_count; g++) {
+            const double time = grid_tiles[kernel * grid_count + g];
+            std::printf("    continuous tile %s: %.1f Mpixel/s, %.3f of the lattice tile (1/%.1f)\n",
+                        grids[g].name, samples / time / 1e6, lattice_tile / time, time / lattice_tile);
+        }
+    }
     std::printf("  %zu random points: continuous %.0f ns/point, lattice per point %.0f ns/point: "
                 "ratio %.2f\n",
                 batch, batch_time / double(batch) * 1e9, lattice_random / double(batch) * 1e9,
