@@ -231,6 +231,10 @@ inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */
 inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *) {
+    if (count >= 8) {
+        _mm512_storeu_si512(sums, _mm512_add_epi64(_mm512_loadu_si512(sums), values));
+        return;
+    }
     const __mmask8 present =
         count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u);
     _mm512_mask_storeu_epi64(sums, present,
