@@ -278,6 +278,23 @@ void splat_impulse(const FrameAxis &x, const FrameAxis &y, const Block &block, i
     column_bounds_init(&bounds_y, y.columns, row_y + first_row * y.row);
     dsn_splat_run runs[block_rows];
     uint32_t run_count = 0;
+    if (x.row == 0 && y.column == 0) {
+        /* Axis-aligned: x does not move down the rows nor y along them, so every row has the first row's
+           run (the rows narrow_rows kept have y within reach; with y.row 0, y is the same on every row). */
+        int64_t first = 0, last = columns - 1;
+        column_bounds_apply(bounds_x, x.columns, &first, &last);
+        column_bounds_apply(bounds_y, y.columns, &first, &last);
+        if (first > last) return;
+        for (int64_t j = first_row; j <= last_row; j++) {
+            dsn_splat_run *run = &runs[run_count++];
+            run->offset_x = bounds_x.offset + x.column * first;
+            run->offset_y = row_y + j * y.row;
+            run->sums = sums + static_cast<size_t>(j * static_cast<int64_t>(block.stride) + first);
+            run->count = static_cast<uint32_t>(last - first + 1);
+        }
+        if (run_count != 0) splat_runs(setup, runs, run_count);
+        return;
+    }
     for (int64_t j = first_row; j <= last_row; j++) {
         int64_t first = 0, last = columns - 1;
         column_bounds_apply(bounds_x, x.columns, &first, &last);

@@ -164,6 +164,35 @@ inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) 
 inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
     return _mm256_mul_epu32(value, factor);
 }
+/* Lane k of values[c] saturated to int32 into out[k * Channels + c], for k < splat_lanes: clamped by 64-bit
+   comparisons, the low dwords gathered, then interleaved by permutes and blends (no store of lanes read
+   back one by one). */
+#define DSN_SPLAT_STORE_PIXELS 1
+inline __m256i splat_saturated_dwords(__m256i value) { /* dwords 0-3 and again 4-7 */
+    const __m256i most = _mm256_set1_epi64x(INT32_MAX), least = _mm256_set1_epi64x(INT32_MIN);
+    const __m256i below = _mm256_blendv_epi8(value, most, _mm256_cmpgt_epi64(value, most));
+    const __m256i clamped = _mm256_blendv_epi8(below, least, _mm256_cmpgt_epi64(least, below));
+    return _mm256_permutevar8x32_epi32(clamped, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6));
+}
+template <uint32_t Channels>
+inline void splat_store_pixels(int32_t *out, const splat_vector *values) {
+    const __m256i first = splat_saturated_dwords(values[0]);
+    if (Channels == 1) {
+        _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)), _mm256_castsi256_si128(first));
+        return;
+    }
+    /* two: channel 0 in dwords 0-3, channel 1 in 4-7; three: channel 2 in 0-3 and 4-7 */
+    const __m256i two = _mm256_blend_epi32(first, splat_saturated_dwords(values[1]), 0xF0);
+    const __m256i three = splat_saturated_dwords(values[Channels - 1]);
+    const __m256i low = _mm256_blend_epi32(
+        _mm256_permutevar8x32_epi32(two, _mm256_setr_epi32(0, 4, 0, 1, 5, 0, 2, 6)),
+        _mm256_permutevar8x32_epi32(three, _mm256_setr_epi32(0, 0, 0, 0, 0, 1, 0, 0)), 0x24);
+    const __m256i high = _mm256_blend_epi32(
+        _mm256_permutevar8x32_epi32(two, _mm256_setr_epi32(0, 3, 7, 0, 0, 0, 0, 0)),
+        _mm256_permutevar8x32_epi32(three, _mm256_setr_epi32(2, 0, 0, 3, 0, 0, 0, 0)), 0x09);
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), low);
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out + 8)), _mm256_castsi256_si128(high));
+}
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..], where sums up to `end`
    may be read and written back. Where a whole vector fits, the other lanes add 0 (a masked store is
    many times slower on AMD's CPUs). */

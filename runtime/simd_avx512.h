@@ -228,9 +228,33 @@ inline splat_vector splat_signed_times(splat_vector value, splat_vector factor) 
 inline splat_vector splat_low_times(splat_vector value, splat_vector factor) {
     return _mm512_mul_epu32(value, factor);
 }
+/* Lane k of values[c] saturated to int32 into out[k * Channels + c], for k < splat_lanes: narrowed with
+   saturation, then interleaved by two-source permutes (no store of lanes read back one by one). */
+#define DSN_SPLAT_STORE_PIXELS 1
+template <uint32_t Channels>
+inline void splat_store_pixels(int32_t *out, const splat_vector *values) {
+    const __m256i first = _mm512_cvtsepi64_epi32(values[0]);
+    if (Channels == 1) {
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), first);
+        return;
+    }
+    /* dwords 0-7: channel 0, 8-15: channel 1, 16-23: channel 2 (the second source) */
+    const __m512i two =
+        _mm512_inserti64x4(_mm512_castsi256_si512(first), _mm512_cvtsepi64_epi32(values[1]), 1);
+    const __m512i three = _mm512_castsi256_si512(_mm512_cvtsepi64_epi32(values[Channels - 1]));
+    const __m512i low = _mm512_setr_epi32(0, 8, 16, 1, 9, 17, 2, 10, 18, 3, 11, 19, 4, 12, 20, 5),
+                  high = _mm512_setr_epi32(13, 21, 6, 14, 22, 7, 15, 23, 0, 0, 0, 0, 0, 0, 0, 0);
+    _mm512_storeu_si512(out, _mm512_permutex2var_epi32(two, low, three));
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out + 16)),
+                        _mm512_castsi512_si256(_mm512_permutex2var_epi32(two, high, three)));
+}
 /* Adds the first `count` lanes (all of them from splat_lanes up) to sums[0 ..] (and no further: the end
    of the sums is not needed). */
 inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count, const uint64_t *) {
+    if (count >= 8) {
+        _mm512_storeu_si512(sums, _mm512_add_epi64(_mm512_loadu_si512(sums), values));
+        return;
+    }
     const __mmask8 present =
         count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u);
     _mm512_mask_storeu_epi64(sums, present,

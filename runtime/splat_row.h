@@ -404,8 +404,9 @@ inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_
 /* ---- The normalization on vectors of 64-bit lanes, one pixel each ----
    normalize_q32_unmapped's integers, modulo 2^64 as they never wrap: the offset plus the gains times the
    signed whole parts, plus the floor of the gains times the fractions over 2^32 (the gains' magnitudes
-   multiplied, then added or subtracted), then the biased rounding shift; the int32 saturation per value.
-   Pixels past the last whole vector go one by one. */
+   multiplied, then added or subtracted), then the biased rounding shift; the int32 saturation per value (on
+   vectors, interleaved by permutes, where the ops header has splat_store_pixels). Pixels past the last whole
+   vector go one by one. */
 template <uint32_t Channels>
 void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, size_t plane, uint32_t count,
                             int32_t *out) {
@@ -418,7 +419,7 @@ void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, 
     for (; done + splat_lanes <= count; done += splat_lanes) {
         splat_vector pixel_sums[Channels];
         for (uint32_t k = 0; k < Channels; k++) pixel_sums[k] = splat_load(sums + k * plane + done);
-        uint64_t values[Channels][splat_lanes];
+        splat_vector values[Channels];
         for (uint32_t c = 0; c < Channels; c++) {
             splat_vector accumulated = splat_set(static_cast<uint64_t>(noise->offset[c]));
             splat_vector fractions = splat_set(0);
@@ -435,16 +436,21 @@ void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, 
             accumulated =
                 splat_add(accumulated,
                           splat_sub(splat_shift_right(splat_add(fractions, floor_bias), 32), floor_unbias));
-            splat_store(values[c],
-                        splat_sub(splat_shift_right(splat_add(accumulated, rounding), shift), rounding_bias));
+            values[c] = splat_sub(splat_shift_right(splat_add(accumulated, rounding), shift), rounding_bias);
         }
+#if defined(DSN_SPLAT_STORE_PIXELS)
+        splat_store_pixels<Channels>(out + done * Channels, values);
+#else
+        uint64_t lanes[Channels][splat_lanes];
+        for (uint32_t c = 0; c < Channels; c++) splat_store(lanes[c], values[c]);
         for (uint32_t k = 0; k < splat_lanes; k++)
             for (uint32_t c = 0; c < Channels; c++) {
-                const int64_t value = signed_from_bits(values[c][k]);
+                const int64_t value = signed_from_bits(lanes[c][k]);
                 out[(done + k) * Channels + c] = value > INT32_MAX   ? INT32_MAX
                                                  : value < INT32_MIN ? INT32_MIN
                                                                      : static_cast<int32_t>(value);
             }
+#endif
     }
     for (; done < count; done++) {
         uint64_t pixel_sums[Channels];

@@ -340,3 +340,54 @@ TEST_CASE("continuous affine: axis-aligned grids (zoomed, mirrored, periodic, de
     }
     check_mostly_splatted(splatted, total);
 }
+
+TEST_CASE("continuous affine: the splat's normalization of every kernel, saturated values included") {
+    // Sums from small to far past int32 once normalized (either sign), every count of pixels up to past
+    // two vectors: each kernel's normalize entry equals normalize_q32_unmapped pixel by pixel.
+    std::mt19937_64 random(23);
+    for (uint32_t channels : {1u, 3u}) {
+        auto noise = make_noise(random_texton_asset(channels, 4, 8, 40 + channels), 7 + channels);
+        const size_t plane = 40;
+        std::vector<uint64_t> sums(plane * channels);
+        for (uint32_t round = 0; round < 20; round++) {
+            for (uint64_t &sum : sums) {
+                const uint32_t magnitude = uint32_t(random() % 5); // 2^20 .. 2^62 around 0
+                sum = random() >> (2 + 10 * magnitude);
+                if (random() & 1) sum = 0u - sum;
+            }
+            for (uint32_t count = 1; count <= 19; count++) {
+                std::vector<int32_t> expected(count * channels);
+                for (uint32_t p = 0; p < count; p++) {
+                    uint64_t pixel[3];
+                    for (uint32_t c = 0; c < channels; c++) pixel[c] = sums[c * plane + p];
+                    normalize_q32_unmapped(dsn_state(&noise->noise), pixel, &expected[p * channels]);
+                }
+                for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&noise->noise)->tile_kernel;
+                     kernel++) {
+                    const dsn_kernel_entries *entries = dsn_kernel_entries_of(kernel);
+                    if (entries->continuous_splat_normalize == 0) continue;
+                    std::vector<int32_t> got(count * channels);
+                    entries->continuous_splat_normalize(dsn_state(&noise->noise), sums.data(), plane, count,
+                                                        got.data());
+                    CAPTURE(kernel);
+                    CAPTURE(count);
+                    CHECK(got == expected);
+                }
+            }
+        }
+        // The sums reach both int32 bounds (the test is not vacuous).
+        bool low = false, high = false;
+        for (uint32_t p = 0; p < plane; p++) {
+            uint64_t pixel[3];
+            int32_t value[3];
+            for (uint32_t c = 0; c < channels; c++) pixel[c] = sums[c * plane + p];
+            normalize_q32_unmapped(dsn_state(&noise->noise), pixel, value);
+            for (uint32_t c = 0; c < channels; c++) {
+                low = low || value[c] == INT32_MIN;
+                high = high || value[c] == INT32_MAX;
+            }
+        }
+        CHECK(low);
+        CHECK(high);
+    }
+}

@@ -108,7 +108,6 @@ int main() {
         checksum += batch_out[5];
     });
     // The batch in the narrower kernels this CPU runs too (the copies built for other instruction sets).
-    const uint32_t widest = dsn_state(n)->tile_kernel;
     std::vector<double> copy_batch_times;
     for (uint32_t kernel = 0; kernel < widest; kernel++) {
         dsn_noise copy = *n;
@@ -150,7 +149,6 @@ int main() {
                 "%.2f to the continuous per point\n",
                 batch, batch_call_time / double(batch) * 1e9, batch_call_time / lattice_random,
                 batch_call_time / batch_time);
-    const char *copy_names[] = {"SSE2", "AVX2", "AVX-512"};
     for (uint32_t kernel = 0; kernel < widest; kernel++)
         std::printf("    the batch in the %s copy: %.0f ns/point: ratio %.2f to the lattice per point\n",
                     kernel < 3 ? copy_names[kernel] : "other", copy_batch_times[kernel] / double(batch) * 1e9,
