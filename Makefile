@@ -123,9 +123,10 @@ $(TEST_RUNNER): $(TEST_OBJECTS) $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN)
 deps:
 	@.ci/install-packages $(DEPS_PACKAGES)
 
-# Build in a second make so that package flags are read after `deps` has installed the packages.
+# Build in a second make so that package flags are read after `deps` has installed the packages. The
+# benchmarks are built too (not run), so that a change cannot leave them broken.
 test: deps
-	@$(MAKE) --no-print-directory all $(TEST_RUNNER) $(TEST_PROGRAMS)
+	@$(MAKE) --no-print-directory all $(TEST_RUNNER) $(TEST_PROGRAMS) $(BENCH_PROGRAMS)
 	@BUILD="$(BUILD)" tests/run-tests $(TEST_RUNNER) $(TEST_SCRIPTS)
 
 demo: deps
