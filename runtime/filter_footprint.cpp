@@ -16,17 +16,20 @@ const uint64_t component_limit = static_cast<uint64_t>(1) << 62;
 /* floor(log2(value)) * 2^16 + 16 fraction bits (truncated), for value >= 1: the integer part is the top
    bit's index, the fraction bits come one by one from squaring the mantissa (kept in [2^31, 2^32)). */
 int32_t log2_q16(uint64_t value) {
+#if defined(__GNUC__)
+    const uint32_t top = 63u - static_cast<uint32_t>(__builtin_clzll(value));
+#else
     uint32_t top = 63;
     while ((value >> top) == 0) top--;
+#endif
     uint64_t mantissa = top >= 31 ? value >> (top - 31u) : value << (31u - top);
     uint32_t fraction = 0;
     for (uint32_t bit = 0; bit < 16; bit++) {
         mantissa = (mantissa * mantissa) >> 31; /* in [2^31, 2^33) */
-        fraction <<= 1;
-        if (mantissa >= (static_cast<uint64_t>(1) << 32)) {
-            mantissa >>= 1;
-            fraction |= 1u;
-        }
+        /* the bit without a branch: the outcome is as likely either way */
+        const uint32_t over = static_cast<uint32_t>(mantissa >> 32);
+        mantissa >>= over;
+        fraction = (fraction << 1) | over;
     }
     return static_cast<int32_t>((top << 16) | fraction);
 }

@@ -59,6 +59,60 @@ inline uint32_t pack_offsets_16(const int64_t *xs, const int64_t *ys, const __m5
                                       reach, _mm512_inserti64x4(_mm512_castsi256_si512(y_low), y_high, 1)));
     return mask_count(reach);
 }
+
+/* One row's two texels (3 channels) of 16 candidates by one 8-byte read each, from the pair's column
+   clamped into [0, width - 2] (at: its byte offsets) and moved by one texel where it was clamped, the
+   texel that left the window zeroed: left and right hold each lane's left and right texel in the low 3
+   bytes, as add_window_reads_16's gathers. Lanes outside `rows` read zeros. The reads stay within the
+   rows' bytes plus 2 (as the interior's). */
+inline void texel_pairs_16(const unsigned char *values, __m512i at, __mmask16 rows, __mmask16 left_out,
+                           __mmask16 right_out, __m512i *left, __m512i *right) {
+    const __m512i zero = _mm512_setzero_si512(), first_texel = _mm512_set1_epi64(0xFFFFFF);
+    const __m512i evens = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    __m512i words[2];
+    for (uint32_t half = 0; half < 2; half++) {
+        const __mmask8 lanes = static_cast<__mmask8>(rows >> (8u * half)),
+                       left_lanes = static_cast<__mmask8>(left_out >> (8u * half)),
+                       right_lanes = static_cast<__mmask8>(right_out >> (8u * half));
+        const __m256i index = half == 0 ? _mm512_castsi512_si256(at) : _mm512_extracti64x4_epi64(at, 1);
+        __m512i word = _mm512_mask_i32gather_epi64(zero, lanes, index, values, 1);
+        word = _mm512_mask_slli_epi64(word, left_lanes, word, 24);
+        word = _mm512_mask_and_epi64(word, right_lanes, _mm512_srli_epi64(word, 24), first_texel);
+        words[half] = word;
+    }
+    *left = _mm512_permutex2var_epi32(words[0], evens, words[1]);
+    *right =
+        _mm512_permutex2var_epi32(_mm512_srli_epi64(words[0], 24), evens, _mm512_srli_epi64(words[1], 24));
+}
+
+/* add_window_reads_16 for 3-channel levels at least 2 texels wide: each row's two texels by one read
+   (texel_pairs_16), half the gathered values; the same values, so the same sums. */
+DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
+                                        uint32_t stride, __m512i s_x, __m512i s_y, __mmask16 reach,
+                                        __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), one = _mm512_set1_epi32(1);
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i row = _mm512_sub_epi32(lower_row, one);
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    /* right_column 0: the left texel is out; width: the right one; beyond: both (never in reach). */
+    const __mmask16 left_out = _mm512_cmpeq_epi32_mask(right_column, _mm512_setzero_si512()),
+                    right_out = _mm512_cmpeq_epi32_mask(right_column, broadcast_16(width)),
+                    inside = _mm512_mask_cmple_epu32_mask(reach, right_column, broadcast_16(width));
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(inside, row, broadcast_16(height - 1u)),
+                    bottom = _mm512_mask_cmple_epu32_mask(inside, lower_row, broadcast_16(height - 1u));
+    const __m512i first =
+        _mm512_min_epu32(_mm512_max_epi32(_mm512_sub_epi32(right_column, one), _mm512_setzero_si512()),
+                         broadcast_16(width - 2u));
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(stride)), first);
+    const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry);
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(stride * 3u));
+    __m512i top_left, top_right, bottom_left, bottom_right;
+    texel_pairs_16(values, at, top, left_out, right_out, &top_left, &top_right);
+    texel_pairs_16(values, below, bottom, left_out, right_out, &bottom_left, &bottom_right);
+    for (uint32_t c = 0; c < 3; c++)
+        add_bilinear_16(lane_byte_16(top_left, c), lane_byte_16(top_right, c), lane_byte_16(bottom_left, c),
+                        lane_byte_16(bottom_right, c), across, down, &sums[c]);
+}
 #endif
 
 /* pack_offsets_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
@@ -128,9 +182,14 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         for (; next + 8u < packed; next += 16u) {
             const uint32_t left = packed - next;
             const __mmask16 reach = static_cast<__mmask16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
-            add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride,
-                                          _mm512_loadu_si512(packed_x + next),
-                                          _mm512_loadu_si512(packed_y + next), reach, wide_sums);
+            const __m512i s_x = _mm512_loadu_si512(packed_x + next),
+                          s_y = _mm512_loadu_si512(packed_y + next);
+            if (Channels == 3 && level->width >= 2)
+                add_pair_reads_16(level->values, level->width, level->height, level->stride, s_x, s_y, reach,
+                                  wide_sums);
+            else
+                add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride, s_x,
+                                              s_y, reach, wide_sums);
         }
 #endif
         for (; next < packed; next += 8u) {
