@@ -137,17 +137,62 @@ inline uint32_t pack_offsets_8(const int64_t *xs, const int64_t *ys, uint32_t va
     return entry >> 24;
 }
 
+/* a < b as unsigned 32-bit lanes (AVX2 compares signed: both flipped by 2^31). */
+inline __m256i below_32(__m256i a, __m256i b) {
+    const __m256i sign = broadcast_8(0x80000000u);
+    return _mm256_cmpgt_epi32(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
+}
+
+/* The reach test of one axis on narrow offsets (kernels.h, filtered_sift.cpp's NarrowTest): in reach
+   when c + add < limit, the bracket's value (c + read) >> l. */
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+inline uint32_t pack_narrow_16(const uint32_t *xs, const uint32_t *ys, __mmask16 present,
+                               const __m512i *tests, __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const __m512i c_x = _mm512_maskz_loadu_epi32(present, xs), c_y = _mm512_maskz_loadu_epi32(present, ys);
+    const __mmask16 reach = _mm512_mask_cmplt_epu32_mask(
+        _mm512_mask_cmplt_epu32_mask(present, _mm512_add_epi32(c_x, tests[0]), tests[1]),
+        _mm512_add_epi32(c_y, tests[3]), tests[4]);
+    _mm512_storeu_si512(packed_x, _mm512_maskz_compress_epi32(
+                                      reach, _mm512_srl_epi32(_mm512_add_epi32(c_x, tests[2]), shift)));
+    _mm512_storeu_si512(packed_y, _mm512_maskz_compress_epi32(
+                                      reach, _mm512_srl_epi32(_mm512_add_epi32(c_y, tests[5]), shift)));
+    return mask_count(reach);
+}
+#endif
+
+/* pack_narrow_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
+inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t valid, const __m256i *tests,
+                              __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const __m256i present = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const int *from_x = static_cast<const int *>(static_cast<const void *>(xs)),
+              *from_y = static_cast<const int *>(static_cast<const void *>(ys));
+    const __m256i c_x = valid >= 8u ? load_8(xs) : _mm256_maskload_epi32(from_x, present),
+                  c_y = valid >= 8u ? load_8(ys) : _mm256_maskload_epi32(from_y, present);
+    const __m256i in_x = below_32(_mm256_add_epi32(c_x, tests[0]), tests[1]),
+                  in_y = below_32(_mm256_add_epi32(c_y, tests[3]), tests[4]);
+    const uint32_t reach = static_cast<uint32_t>(
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_and_si256(present, _mm256_and_si256(in_x, in_y)))));
+    const uint32_t entry = packing_table[reach];
+    const __m256i order = packing_order(entry);
+    store_8(packed_x,
+            _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_x, tests[2]), shift), order));
+    store_8(packed_y,
+            _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_y, tests[5]), shift), order));
+    return entry >> 24;
+}
+
 /* Candidates are tested and their offsets packed a block at a time, then read. */
 const uint32_t packed_block = 256;
 
 template <uint32_t Channels>
-void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys, uint32_t count,
-                          const uint64_t *tests, uint64_t *out) {
+void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
+                          const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
+                          const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
     const __m256i bias = _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
-    const __m256i narrow_tests[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
-                                     _mm256_set1_epi64x(static_cast<long long>(tests[1])),
-                                     _mm256_set1_epi64x(static_cast<long long>(tests[2])),
-                                     _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
+    const __m256i narrow_tests_64[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
+                                        _mm256_set1_epi64x(static_cast<long long>(tests[1])),
+                                        _mm256_set1_epi64x(static_cast<long long>(tests[2])),
+                                        _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
     const __m128i shift = _mm_cvtsi32_si128(static_cast<int>(level->level + 16u));
     const __m256i zero = _mm256_setzero_si256();
     __m256i sums[Channels];
@@ -162,18 +207,39 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     __m512i wide_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
 #endif
+    __m256i narrow_8[6];
+    for (uint32_t i = 0; i < 6; i++) narrow_8[i] = broadcast_8(narrow_tests[i]);
+    const __m128i narrow_shift = _mm_cvtsi32_si128(static_cast<int>(level->level));
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    __m512i narrow_16[6];
+    for (uint32_t i = 0; i < 6; i++) narrow_16[i] = broadcast_16(narrow_tests[i]);
+#endif
     uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
     for (uint32_t block = 0; block < count; block += packed_block) {
         const uint32_t end = count - block < packed_block ? count : block + packed_block;
         uint32_t packed = 0, first = block;
+        if (narrow_xs != 0) {
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-        for (; first + 16u <= end; first += 16u)
-            packed += pack_offsets_16(xs + first, ys + first, wide_tests, shift, packed_x + packed,
-                                      packed_y + packed);
+            for (; first < end; first += 16u) {
+                const __mmask16 present =
+                    static_cast<__mmask16>(end - first >= 16u ? 0xFFFFu : (1u << (end - first)) - 1u);
+                packed += pack_narrow_16(narrow_xs + first, narrow_ys + first, present, narrow_16,
+                                         narrow_shift, packed_x + packed, packed_y + packed);
+            }
 #endif
-        for (; first < end; first += 8u)
-            packed += pack_offsets_8(xs + first, ys + first, end - first, narrow_tests, shift,
-                                     packed_x + packed, packed_y + packed);
+            for (; first < end; first += 8u)
+                packed += pack_narrow_8(narrow_xs + first, narrow_ys + first, end - first, narrow_8,
+                                        narrow_shift, packed_x + packed, packed_y + packed);
+        } else {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            for (; first + 16u <= end; first += 16u)
+                packed += pack_offsets_16(xs + first, ys + first, wide_tests, shift, packed_x + packed,
+                                          packed_y + packed);
+#endif
+            for (; first < end; first += 8u)
+                packed += pack_offsets_8(xs + first, ys + first, end - first, narrow_tests_64, shift,
+                                         packed_x + packed, packed_y + packed);
+        }
         /* The lanes past the last packed offset read zeros (defined values; the masks leave them out). */
         store_8(packed_x + packed, zero), store_8(packed_x + packed + 8, zero);
         store_8(packed_y + packed, zero), store_8(packed_y + packed + 8, zero);
@@ -213,11 +279,12 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
 
 /* kernels.h's filter_level_reads. */
 void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs,
-                        const int64_t *ys, uint32_t count, const uint64_t *tests, uint64_t *out) {
+                        const int64_t *ys, const uint32_t *narrow_xs, const uint32_t *narrow_ys,
+                        uint32_t count, const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
     if (channels == 3)
-        filter_level_reads_8<3>(level, xs, ys, count, tests, out);
+        filter_level_reads_8<3>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
     else
-        filter_level_reads_8<1>(level, xs, ys, count, tests, out);
+        filter_level_reads_8<1>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
 }
 
 } // namespace

@@ -97,6 +97,21 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
     return test;
 }
 
+/* The level test on the kernel's narrow offsets C = floor(c / 2^16) modulo 2^32, every c of an axis
+   having the same low 16 bits K (its cells' shifted_base's): with A = start + K, u = c + start is
+   (C + floor(A / 2^16)) 2^16 + (A modulo 2^16). Where every |u| stays below 2^46 (narrow_reach_limit), an
+   impulse is in reach when V = C + add (modulo 2^32) is below limit, and the bracket's shifted value
+   (u + 2^l) >> (l + 16) is then (C + read) >> l: tests[0 .. 2] = add, limit, read. */
+const int64_t narrow_reach_limit = static_cast<int64_t>(1) << 44;
+
+void narrow_test(const LevelTest &test, uint32_t level, int64_t shifted_base, uint32_t *tests) {
+    const uint64_t a = test.start + (static_cast<uint64_t>(shifted_base) & 0xFFFFu), a_low = a & 0xFFFFu;
+    const uint32_t add = static_cast<uint32_t>(a >> 16);
+    tests[0] = add;
+    tests[1] = static_cast<uint32_t>((test.limit - a_low + 0xFFFFu) >> 16);
+    tests[2] = add + static_cast<uint32_t>((a_low + (static_cast<uint64_t>(1) << level)) >> 16);
+}
+
 /* The buffer; where the kernel listed it, also each listed cell's end in it and the largest offset c
    of its candidates along each axis (their shifted_base): the cell's candidates lie within a cell's
    side below, so a tap's level need not test the cells that lie beyond its reach. */
@@ -104,6 +119,7 @@ const uint32_t listed_cells_most = 128;
 
 struct CandidateList {
     int64_t x[buffer_capacity], y[buffer_capacity];
+    uint32_t narrow_x[buffer_capacity], narrow_y[buffer_capacity]; /* the kernel's: x / 2^16, y / 2^16 */
     uint32_t count;
     uint32_t cells, cell_end[listed_cells_most];
     int64_t cell_x[listed_cells_most], cell_y[listed_cells_most];
@@ -244,6 +260,7 @@ struct TapGroup {
     dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
     dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
     uint32_t shift;                               /* the noise's cell_shift */
+    bool narrow; /* the kernel's listing and reads take the narrow offsets only (NarrowTest) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -307,9 +324,19 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
-                for (uint32_t r = 0; r < run_count; r++)
-                    group.vector_reads(&level, Channels, list->x + runs[2u * r], list->y + runs[2u * r],
-                                       runs[2u * r + 1u] - runs[2u * r], tests, sums[group.first + t][l]);
+                uint32_t narrow_tests[6];
+                const bool narrow = group.narrow && list->cells != 0;
+                if (narrow) {
+                    narrow_test(test_x, level.level, list->cell_x[0], narrow_tests);
+                    narrow_test(test_y, level.level, list->cell_y[0], narrow_tests + 3);
+                }
+                for (uint32_t r = 0; r < run_count; r++) {
+                    const uint32_t from = runs[2u * r];
+                    group.vector_reads(&level, Channels, list->x + from, list->y + from,
+                                       narrow ? list->narrow_x + from : 0, narrow ? list->narrow_y + from : 0,
+                                       runs[2u * r + 1u] - from, tests, narrow_tests,
+                                       sums[group.first + t][l]);
+                }
                 continue;
             }
             const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
@@ -443,8 +470,10 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                     room -= cells[end].count;
                 }
                 if (end > i) {
-                    list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,
-                                                        list->y, list->cell_end + list->cells);
+                    list->count =
+                        group.list_candidates(cells + i, end - i, shift, list->count,
+                                              group.narrow ? 0 : list->x, group.narrow ? 0 : list->y,
+                                              list->narrow_x, list->narrow_y, list->cell_end + list->cells);
                     for (; i < end; i++, list->cells++) {
                         list->cell_x[list->cells] = cells[i].x.shifted_base;
                         list->cell_y[list->cells] = cells[i].y.shifted_base;
@@ -514,8 +543,12 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->level_count = count;
     group->first = first;
     group->taps = taps;
-    return tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) &&
-           tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y);
+    if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
+        !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
+        return false;
+    group->narrow = group->vector_reads != 0 && group->list_candidates != 0 && noise->asset.bits == 8 &&
+                    group->x.reach_limit < narrow_reach_limit && group->y.reach_limit < narrow_reach_limit;
+    return true;
 }
 
 template <uint32_t Channels, uint32_t Bytes>
