@@ -123,7 +123,22 @@ struct CandidateList {
     uint32_t count;
     uint32_t cells, cell_end[listed_cells_most];
     int64_t cell_x[listed_cells_most], cell_y[listed_cells_most];
+    int64_t lowest_x, highest_x, lowest_y, highest_y; /* of cell_x, cell_y */
 };
+
+void record_cell(CandidateList *list, int64_t x, int64_t y) {
+    if (list->cells == 0) {
+        list->lowest_x = list->highest_x = x;
+        list->lowest_y = list->highest_y = y;
+    }
+    list->lowest_x = x < list->lowest_x ? x : list->lowest_x;
+    list->highest_x = x > list->highest_x ? x : list->highest_x;
+    list->lowest_y = y < list->lowest_y ? y : list->lowest_y;
+    list->highest_y = y > list->highest_y ? y : list->highest_y;
+    list->cell_x[list->cells] = x;
+    list->cell_y[list->cells] = y;
+    list->cells++;
+}
 
 /* The runs [runs[2k], runs[2k + 1]) of the list whose cells the level tests x, y may keep, their count:
    with u = c + start the test keeps 0 <= u < limit, and a cell's candidates have u within
@@ -137,6 +152,14 @@ uint32_t reached_runs(const CandidateList &list, const LevelTest &x, const Level
     const int64_t side = static_cast<int64_t>(1) << (32u + shift);
     const int64_t limit_x = static_cast<int64_t>(x.limit) + side,
                   limit_y = static_cast<int64_t>(y.limit) + side;
+    /* Every cell kept (w grows with the cell's offset: the box is far narrower than 2^62): one run. */
+    if (signed_from_bits(static_cast<uint64_t>(list.lowest_x) + x.start) >= 0 &&
+        signed_from_bits(static_cast<uint64_t>(list.highest_x) + x.start) < limit_x &&
+        signed_from_bits(static_cast<uint64_t>(list.lowest_y) + y.start) >= 0 &&
+        signed_from_bits(static_cast<uint64_t>(list.highest_y) + y.start) < limit_y) {
+        runs[0] = 0, runs[1] = list.count;
+        return 1;
+    }
     uint32_t count = 0, from = 0, to = 0;
     for (uint32_t k = 0; k < list.cells; k++) {
         const int64_t w_x = signed_from_bits(static_cast<uint64_t>(list.cell_x[k]) + x.start),
@@ -474,10 +497,7 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                         group.list_candidates(cells + i, end - i, shift, list->count,
                                               group.narrow ? 0 : list->x, group.narrow ? 0 : list->y,
                                               list->narrow_x, list->narrow_y, list->cell_end + list->cells);
-                    for (; i < end; i++, list->cells++) {
-                        list->cell_x[list->cells] = cells[i].x.shifted_base;
-                        list->cell_y[list->cells] = cells[i].y.shifted_base;
-                    }
+                    for (; i < end; i++) record_cell(list, cells[i].x.shifted_base, cells[i].y.shifted_base);
                 } else { /* an empty buffer has room for any cell (kernel_listing_takes) */
                     visit<Channels, Bytes>(group, list, grid, sums);
                 }
