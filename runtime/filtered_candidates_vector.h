@@ -2,8 +2,9 @@
    on AVX2 vectors, as a kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for cells of side
    <= 16 (pairs of 8 impulses): each pair sifted on its packed lattice fields against the taps' box
    (continuous_sift.h) and its candidates packed to the front of a vector (continuous_lanes.h, as the
-   continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes and their
-   shifted offsets in 64-bit lanes, 8 stored at once (AVX-512: two pairs at once, 16 compressed). Only the
+   continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes, their shifted
+   offsets in 64-bit lanes (where the caller reads them) and those offsets / 2^16 in 32-bit lanes, 8
+   stored at once (AVX-512: two pairs at once, 16 compressed). Only the
    sift bounds them: a candidate may lie up to a texel beyond the box, which the level tests, exact for any
    offset of that size, leave out as the walk does. Internal to libdsn; not installed (everything here has
    internal linkage). */

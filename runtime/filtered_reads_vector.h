@@ -1,10 +1,11 @@
 /* runtime/filtered_reads_vector.h - the reads of the filtered sift (filtered_sift.cpp) on AVX2 vectors, as
    a kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit levels: the buffered
-   candidates of one tap and one level, 8 at a time: the exact reach test in 64-bit lanes, the bracket's
-   offsets in 32-bit lanes, the reads as the continuous evaluator's (continuous_point_vector.h's
-   add_window_reads_8, here with the level's stride). The same reads and
-   integers as the sift's own, so the same sums modulo 2^64. The AVX-512 kernel takes 16 candidates at a
-   time (add_window_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
+   candidates of one tap and one level, 8 at a time: the exact reach test (on the listing's 32-bit narrow
+   offsets where it has them, else in 64-bit lanes), the bracket's offsets in 32-bit lanes, the reads as
+   the continuous evaluator's (continuous_point_vector.h's add_window_reads_8, here with the level's
+   stride). The same reads and integers as the sift's own, so the same sums modulo 2^64. The AVX-512
+   kernel takes 16 candidates at a time (add_window_reads_16; for RGB levels both texels of a row by one
+   8-byte read, add_pair_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
    (everything here has internal linkage). */
 #ifndef DSN_FILTERED_READS_VECTOR_H
 #define DSN_FILTERED_READS_VECTOR_H
@@ -143,7 +144,7 @@ inline __m256i below_32(__m256i a, __m256i b) {
     return _mm256_cmpgt_epi32(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
 }
 
-/* The reach test of one axis on narrow offsets (kernels.h, filtered_sift.cpp's NarrowTest): in reach
+/* The reach test of one axis on narrow offsets (kernels.h, filtered_sift.cpp's narrow_test): in reach
    when c + add < limit, the bracket's value (c + read) >> l. */
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 inline uint32_t pack_narrow_16(const uint32_t *xs, const uint32_t *ys, __mmask16 present,
@@ -189,10 +190,10 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
                           const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
                           const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
     const __m256i bias = _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
-    const __m256i narrow_tests_64[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
-                                        _mm256_set1_epi64x(static_cast<long long>(tests[1])),
-                                        _mm256_set1_epi64x(static_cast<long long>(tests[2])),
-                                        _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
+    const __m256i offset_tests_8[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
+                                       _mm256_set1_epi64x(static_cast<long long>(tests[1])),
+                                       _mm256_set1_epi64x(static_cast<long long>(tests[2])),
+                                       _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
     const __m128i shift = _mm_cvtsi32_si128(static_cast<int>(level->level + 16u));
     const __m256i zero = _mm256_setzero_si256();
     __m256i sums[Channels];
@@ -207,12 +208,12 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     __m512i wide_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
 #endif
-    __m256i narrow_8[6];
-    for (uint32_t i = 0; i < 6; i++) narrow_8[i] = broadcast_8(narrow_tests[i]);
+    __m256i narrow_tests_8[6];
+    for (uint32_t i = 0; i < 6; i++) narrow_tests_8[i] = broadcast_8(narrow_tests[i]);
     const __m128i narrow_shift = _mm_cvtsi32_si128(static_cast<int>(level->level));
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    __m512i narrow_16[6];
-    for (uint32_t i = 0; i < 6; i++) narrow_16[i] = broadcast_16(narrow_tests[i]);
+    __m512i narrow_tests_16[6];
+    for (uint32_t i = 0; i < 6; i++) narrow_tests_16[i] = broadcast_16(narrow_tests[i]);
 #endif
     uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
     for (uint32_t block = 0; block < count; block += packed_block) {
@@ -223,12 +224,12 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
             for (; first < end; first += 16u) {
                 const __mmask16 present =
                     static_cast<__mmask16>(end - first >= 16u ? 0xFFFFu : (1u << (end - first)) - 1u);
-                packed += pack_narrow_16(narrow_xs + first, narrow_ys + first, present, narrow_16,
+                packed += pack_narrow_16(narrow_xs + first, narrow_ys + first, present, narrow_tests_16,
                                          narrow_shift, packed_x + packed, packed_y + packed);
             }
 #endif
             for (; first < end; first += 8u)
-                packed += pack_narrow_8(narrow_xs + first, narrow_ys + first, end - first, narrow_8,
+                packed += pack_narrow_8(narrow_xs + first, narrow_ys + first, end - first, narrow_tests_8,
                                         narrow_shift, packed_x + packed, packed_y + packed);
         } else {
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -237,7 +238,7 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
                                           packed_y + packed);
 #endif
             for (; first < end; first += 8u)
-                packed += pack_offsets_8(xs + first, ys + first, end - first, narrow_tests_64, shift,
+                packed += pack_offsets_8(xs + first, ys + first, end - first, offset_tests_8, shift,
                                          packed_x + packed, packed_y + packed);
         }
         /* The lanes past the last packed offset read zeros (defined values; the masks leave them out). */

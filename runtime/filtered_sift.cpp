@@ -5,7 +5,8 @@
    offsets and integers as the tap-by-tap walk (filtered_walk.cpp), so the same sums: integer sums modulo
    2^64 do not depend on the order. Where the kernel has them, its listing (filtered_candidates_vector.h)
    lists the candidates of whole cells at once, each tap's level then tests only the runs of cells that
-   may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels. Compiled
+   may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels, on the
+   listing's 32-bit offsets (narrow_test) where the box is small enough. Compiled
    only with DSN_FILTERING in the fast build. */
 #include "bilinear_read.h"
 #include "cell_walk.h"
@@ -99,9 +100,12 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
 
 /* The level test on the kernel's narrow offsets C = floor(c / 2^16) modulo 2^32, every c of an axis
    having the same low 16 bits K (its cells' shifted_base's): with A = start + K, u = c + start is
-   (C + floor(A / 2^16)) 2^16 + (A modulo 2^16). Where every |u| stays below 2^46 (narrow_reach_limit), an
-   impulse is in reach when V = C + add (modulo 2^32) is below limit, and the bracket's shifted value
-   (u + 2^l) >> (l + 16) is then (C + read) >> l: tests[0 .. 2] = add, limit, read. */
+   V 2^16 + (A modulo 2^16), V = C + floor(A / 2^16). With both axes' reach_limit below
+   narrow_reach_limit every |c|, |start| and |u| of the group stays below 2^46, so V modulo 2^32 is V for
+   u >= 0 and at least 2^32 - 2^30 (above any limit) for u < 0: an impulse is in reach when C + add
+   (modulo 2^32) is below limit = ceil((test limit - A modulo 2^16) / 2^16), and the bracket's shifted
+   value (u + 2^l) >> (l + 16) is then (C + read) >> l, read = add + the carry of A modulo 2^16 + 2^l:
+   tests[0 .. 2] = add, limit, read. */
 const int64_t narrow_reach_limit = static_cast<int64_t>(1) << 44;
 
 void narrow_test(const LevelTest &test, uint32_t level, int64_t shifted_base, uint32_t *tests) {
@@ -283,7 +287,7 @@ struct TapGroup {
     dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
     dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
     uint32_t shift;                               /* the noise's cell_shift */
-    bool narrow; /* the kernel's listing and reads take the narrow offsets only (NarrowTest) */
+    bool narrow; /* the kernel's listing and reads take the narrow offsets only (narrow_test) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -347,7 +351,7 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
-                uint32_t narrow_tests[6];
+                uint32_t narrow_tests[6] = {0, 0, 0, 0, 0, 0};
                 const bool narrow = group.narrow && list->cells != 0;
                 if (narrow) {
                     narrow_test(test_x, level.level, list->cell_x[0], narrow_tests);

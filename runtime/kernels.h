@@ -75,7 +75,7 @@ typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x,
    and limit along x, then along y: filtered_sift.cpp's LevelTest) keep, their bilinear reads of `level`
    (`channels` 8-bit values a texel) added to out[0 .. channels - 1] modulo 2^64. Where narrow_xs is not
    null the candidates are read from narrow_xs, narrow_ys instead (their offsets / 2^16 modulo 2^32, as
-   filter_candidates lists them) with narrow_tests[0 .. 5] (filtered_sift.cpp's NarrowTest along x, then
+   filter_candidates lists them) with narrow_tests[0 .. 5] (filtered_sift.cpp's narrow_test along x, then
    along y). */
 struct dsn_walked_level;
 typedef void dsn_filter_level_reads_entry(const struct dsn_walked_level *level, uint32_t channels,
