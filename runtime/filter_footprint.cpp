@@ -26,12 +26,12 @@ uint64_t log2_mantissa(uint64_t value, uint32_t *top) {
     return *top >= 31 ? value >> (*top - 31u) : value << (31u - *top);
 }
 
-/* One fraction bit: the mantissa squared back into [2^31, 2^32), and whether it passed 2^32 (without a
-   branch: either way is as likely). */
+/* One fraction bit: the mantissa squared back into [2^31, 2^32), and whether the square passed 2^63
+   (chosen without a branch: either way is as likely). */
 uint32_t log2_step(uint64_t *mantissa) {
-    const uint64_t square = (*mantissa * *mantissa) >> 31; /* in [2^31, 2^33) */
-    const uint32_t over = static_cast<uint32_t>(square >> 32);
-    *mantissa = square >> over;
+    const uint64_t square = *mantissa * *mantissa; /* below 2^64 */
+    const uint32_t over = static_cast<uint32_t>(square >> 63);
+    *mantissa = over != 0 ? square >> 32 : square >> 31;
     return over;
 }
 
