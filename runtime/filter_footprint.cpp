@@ -14,21 +14,38 @@ namespace {
 const uint64_t component_limit = static_cast<uint64_t>(1) << 62;
 
 /* floor(log2(value)) * 2^16 + 16 fraction bits (truncated), for value >= 1: the integer part is the top
-   bit's index, the fraction bits come one by one from squaring the mantissa (kept in [2^31, 2^32)). */
-int32_t log2_q16(uint64_t value) {
-    uint32_t top = 63;
-    while ((value >> top) == 0) top--;
-    uint64_t mantissa = top >= 31 ? value >> (top - 31u) : value << (31u - top);
-    uint32_t fraction = 0;
+   bit's index, the fraction bits come one by one from squaring the mantissa (kept in [2^31, 2^32)). Two
+   values at once, their chains of squarings overlapping. */
+uint64_t log2_mantissa(uint64_t value, uint32_t *top) {
+#if defined(__GNUC__)
+    *top = 63u - static_cast<uint32_t>(__builtin_clzll(value));
+#else
+    *top = 63;
+    while ((value >> *top) == 0) --*top;
+#endif
+    return *top >= 31 ? value >> (*top - 31u) : value << (31u - *top);
+}
+
+/* One fraction bit: the mantissa squared back into [2^31, 2^32), and whether the square passed 2^63
+   (chosen without a branch: either way is as likely). */
+uint32_t log2_step(uint64_t *mantissa) {
+    const uint64_t square = *mantissa * *mantissa; /* below 2^64 */
+    const uint32_t over = static_cast<uint32_t>(square >> 63);
+    *mantissa = over != 0 ? square >> 32 : square >> 31;
+    return over;
+}
+
+void log2_q16_pair(uint64_t first, uint64_t second, int32_t *log_first, int32_t *log_second) {
+    uint32_t top_first, top_second;
+    uint64_t mantissa_first = log2_mantissa(first, &top_first),
+             mantissa_second = log2_mantissa(second, &top_second);
+    uint32_t fraction_first = 0, fraction_second = 0;
     for (uint32_t bit = 0; bit < 16; bit++) {
-        mantissa = (mantissa * mantissa) >> 31; /* in [2^31, 2^33) */
-        fraction <<= 1;
-        if (mantissa >= (static_cast<uint64_t>(1) << 32)) {
-            mantissa >>= 1;
-            fraction |= 1u;
-        }
+        fraction_first = (fraction_first << 1) | log2_step(&mantissa_first);
+        fraction_second = (fraction_second << 1) | log2_step(&mantissa_second);
     }
-    return static_cast<int32_t>((top << 16) | fraction);
+    *log_first = static_cast<int32_t>((top_first << 16) | fraction_first);
+    *log_second = static_cast<int32_t>((top_second << 16) | fraction_second);
 }
 
 uint64_t magnitude_of(int64_t value) {
@@ -103,10 +120,12 @@ int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, ds
     }
 
     /* LOD = log2(max(Pmax / N, Pmin)), Pmin = area / Pmax, in the scaled units, then back to texels. */
-    const int32_t log_major = log2_q16(major_square) / 2;
+    int32_t log_major_square, log_area;
+    log2_q16_pair(major_square, area != 0 ? area : 1u, &log_major_square, &log_area);
+    const int32_t log_major = log_major_square / 2;
     int32_t lod_q16 = log_major - static_cast<int32_t>(tap_shift << 16);
     if (area != 0) {
-        const int32_t log_minor = log2_q16(area) - log_major;
+        const int32_t log_minor = log_area - log_major;
         if (log_minor > lod_q16) lod_q16 = log_minor;
     }
     lod_q16 += (static_cast<int32_t>(shift) - 32) * 65536;

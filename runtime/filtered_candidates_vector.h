@@ -2,8 +2,9 @@
    on AVX2 vectors, as a kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for cells of side
    <= 16 (pairs of 8 impulses): each pair sifted on its packed lattice fields against the taps' box
    (continuous_sift.h) and its candidates packed to the front of a vector (continuous_lanes.h, as the
-   continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes and their
-   shifted offsets in 64-bit lanes, 8 stored at once (AVX-512: two pairs at once, 16 compressed). Only the
+   continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes, their shifted
+   offsets in 64-bit lanes (where the caller reads them) and those offsets / 2^16 in 32-bit lanes, 8
+   stored at once (AVX-512: two pairs at once, 16 compressed). Only the
    sift bounds them: a candidate may lie up to a texel beyond the box, which the level tests, exact for any
    offset of that size, leave out as the walk does. Internal to libdsn; not installed (everything here has
    internal linkage). */
@@ -19,6 +20,12 @@
 #if defined(__AVX2__) && DSN_FILTERING && !DSN_SMALL_CODE
 namespace {
 
+/* A shifted_base / 2^16 modulo 2^32, as a lane: the narrow offsets are it less the 16-bit positions times
+   2^cell_shift (the offset's low 16 bits are the same for every impulse of an axis: its shifted_base's). */
+inline int narrow_base(int64_t shifted_base) {
+    return static_cast<int>(static_cast<uint32_t>(static_cast<uint64_t>(shifted_base) >> 16));
+}
+
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* shifted_base - bits 2^position_shift for the 16 candidates of `bits` (32-bit lanes), in order. */
 inline void store_shifted_16(int64_t *at, __m512i base, __m512i bits, __m128i position_shift) {
@@ -33,9 +40,11 @@ inline void store_shifted_16(int64_t *at, __m512i base, __m512i bits, __m128i po
    vectors: both sifted in one 128-bit vector (sift_two_pairs) and their candidates compressed to the front.
  */
 uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *ends) {
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
+                           uint32_t *ends) {
     const FieldLanes lanes = field_lanes(cell_shift);
-    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift));
+    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift)),
+                  cell_shift_vector = _mm_cvtsi32_si128(static_cast<int>(cell_shift));
     const __m512i low_16 = _mm512_set1_epi32(0xFFFF), low_4 = _mm512_set1_epi32(15);
     /* lane * 0x9E3779B9 modulo 2^32 */
     const __m512i weyl =
@@ -45,6 +54,8 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
         const dsn_filter_cell &cell = cells[k];
         const __m512i base_x = _mm512_set1_epi64(static_cast<long long>(cell.x.shifted_base)),
                       base_y = _mm512_set1_epi64(static_cast<long long>(cell.y.shifted_base));
+        const __m512i narrow_base_x = _mm512_set1_epi32(narrow_base(cell.x.shifted_base)),
+                      narrow_base_y = _mm512_set1_epi32(narrow_base(cell.y.shifted_base));
         for (uint32_t first = 0; first < cell.count; first += 16u) {
             const __m128i pairs =
                 _mm_set_epi64x(static_cast<long long>(dsn_position_pair(cell.key, (first >> 3) + 1u)),
@@ -62,8 +73,14 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
                                                    _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
             const __m512i bits_y = _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(fields, 4), 12),
                                                    _mm512_srli_epi32(fraction, 20));
-            store_shifted_16(xs + count, base_x, bits_x, position_shift);
-            store_shifted_16(ys + count, base_y, bits_y, position_shift);
+            if (xs != 0) {
+                store_shifted_16(xs + count, base_x, bits_x, position_shift);
+                store_shifted_16(ys + count, base_y, bits_y, position_shift);
+            }
+            _mm512_storeu_si512(narrow_xs + count,
+                                _mm512_sub_epi32(narrow_base_x, _mm512_sll_epi32(bits_x, cell_shift_vector)));
+            _mm512_storeu_si512(narrow_ys + count,
+                                _mm512_sub_epi32(narrow_base_y, _mm512_sll_epi32(bits_y, cell_shift_vector)));
             count += mask_count(sifted);
         }
         ends[k] = count;
@@ -82,14 +99,18 @@ inline void store_shifted(int64_t *at, __m256i base, __m256i bits, __m128i posit
 
 /* kernels.h's filter_candidates, a pair at a time. */
 uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *ends) {
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
+                           uint32_t *ends) {
     const FieldLanes lanes = field_lanes(cell_shift);
-    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift));
+    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift)),
+                  cell_shift_vector = _mm_cvtsi32_si128(static_cast<int>(cell_shift));
     const __m256i low_16 = _mm256_set1_epi32(0xFFFF), low_4 = _mm256_set1_epi32(15);
     for (uint32_t k = 0; k < cell_count; k++) {
         const dsn_filter_cell &cell = cells[k];
         const __m256i base_x = _mm256_set1_epi64x(static_cast<long long>(cell.x.shifted_base)),
                       base_y = _mm256_set1_epi64x(static_cast<long long>(cell.y.shifted_base));
+        const __m256i narrow_base_x = _mm256_set1_epi32(narrow_base(cell.x.shifted_base)),
+                      narrow_base_y = _mm256_set1_epi32(narrow_base(cell.y.shifted_base));
         for (uint32_t first = 0; first < cell.count; first += 8u) {
             const uint64_t pair = dsn_position_pair(cell.key, first >> 3);
             const uint32_t present = cell.count - first < 8u ? cell.count - first : 8u;
@@ -105,8 +126,14 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
                                                    _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
             const __m256i bits_y = _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(fields, 4), 12),
                                                    _mm256_srli_epi32(fraction, 20));
-            store_shifted(xs + count, base_x, bits_x, position_shift);
-            store_shifted(ys + count, base_y, bits_y, position_shift);
+            if (xs != 0) {
+                store_shifted(xs + count, base_x, bits_x, position_shift);
+                store_shifted(ys + count, base_y, bits_y, position_shift);
+            }
+            store_8(narrow_xs + count,
+                    _mm256_sub_epi32(narrow_base_x, _mm256_sll_epi32(bits_x, cell_shift_vector)));
+            store_8(narrow_ys + count,
+                    _mm256_sub_epi32(narrow_base_y, _mm256_sll_epi32(bits_y, cell_shift_vector)));
             count += packed;
         }
         ends[k] = count;

@@ -1,10 +1,11 @@
 /* runtime/filtered_reads_vector.h - the reads of the filtered sift (filtered_sift.cpp) on AVX2 vectors, as
    a kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit levels: the buffered
-   candidates of one tap and one level, 8 at a time: the exact reach test in 64-bit lanes, the bracket's
-   offsets in 32-bit lanes, the reads as the continuous evaluator's (continuous_point_vector.h's
-   add_window_reads_8, here with the level's stride). The same reads and
-   integers as the sift's own, so the same sums modulo 2^64. The AVX-512 kernel takes 16 candidates at a
-   time (add_window_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
+   candidates of one tap and one level, 8 at a time: the exact reach test (on the listing's 32-bit narrow
+   offsets where it has them, else in 64-bit lanes), the bracket's offsets in 32-bit lanes, the reads as
+   the continuous evaluator's (continuous_point_vector.h's add_window_reads_8, here with the level's
+   stride). The same reads and integers as the sift's own, so the same sums modulo 2^64. The AVX-512
+   kernel takes 16 candidates at a time (add_window_reads_16; for RGB levels both texels of a row by one
+   8-byte read, add_pair_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
    (everything here has internal linkage). */
 #ifndef DSN_FILTERED_READS_VECTOR_H
 #define DSN_FILTERED_READS_VECTOR_H
@@ -59,6 +60,60 @@ inline uint32_t pack_offsets_16(const int64_t *xs, const int64_t *ys, const __m5
                                       reach, _mm512_inserti64x4(_mm512_castsi256_si512(y_low), y_high, 1)));
     return mask_count(reach);
 }
+
+/* One row's two texels (3 channels) of 16 candidates by one 8-byte read each, from the pair's column
+   clamped into [0, width - 2] (at: its byte offsets) and moved by one texel where it was clamped, the
+   texel that left the window zeroed: left and right hold each lane's left and right texel in the low 3
+   bytes, as add_window_reads_16's gathers. Lanes outside `rows` read zeros. The reads stay within the
+   rows' bytes plus 2 (as the interior's). */
+inline void texel_pairs_16(const unsigned char *values, __m512i at, __mmask16 rows, __mmask16 left_out,
+                           __mmask16 right_out, __m512i *left, __m512i *right) {
+    const __m512i zero = _mm512_setzero_si512(), first_texel = _mm512_set1_epi64(0xFFFFFF);
+    const __m512i evens = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    __m512i words[2];
+    for (uint32_t half = 0; half < 2; half++) {
+        const __mmask8 lanes = static_cast<__mmask8>(rows >> (8u * half)),
+                       left_lanes = static_cast<__mmask8>(left_out >> (8u * half)),
+                       right_lanes = static_cast<__mmask8>(right_out >> (8u * half));
+        const __m256i index = half == 0 ? _mm512_castsi512_si256(at) : _mm512_extracti64x4_epi64(at, 1);
+        __m512i word = _mm512_mask_i32gather_epi64(zero, lanes, index, values, 1);
+        word = _mm512_mask_slli_epi64(word, left_lanes, word, 24);
+        word = _mm512_mask_and_epi64(word, right_lanes, _mm512_srli_epi64(word, 24), first_texel);
+        words[half] = word;
+    }
+    *left = _mm512_permutex2var_epi32(words[0], evens, words[1]);
+    *right =
+        _mm512_permutex2var_epi32(_mm512_srli_epi64(words[0], 24), evens, _mm512_srli_epi64(words[1], 24));
+}
+
+/* add_window_reads_16 for 3-channel levels at least 2 texels wide: each row's two texels by one read
+   (texel_pairs_16), half the gathered values; the same values, so the same sums. */
+DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
+                                        uint32_t stride, __m512i s_x, __m512i s_y, __mmask16 reach,
+                                        __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), one = _mm512_set1_epi32(1);
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i row = _mm512_sub_epi32(lower_row, one);
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    /* right_column 0: the left texel is out; width: the right one; beyond: both (never in reach). */
+    const __mmask16 left_out = _mm512_cmpeq_epi32_mask(right_column, _mm512_setzero_si512()),
+                    right_out = _mm512_cmpeq_epi32_mask(right_column, broadcast_16(width)),
+                    inside = _mm512_mask_cmple_epu32_mask(reach, right_column, broadcast_16(width));
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(inside, row, broadcast_16(height - 1u)),
+                    bottom = _mm512_mask_cmple_epu32_mask(inside, lower_row, broadcast_16(height - 1u));
+    const __m512i first =
+        _mm512_min_epu32(_mm512_max_epi32(_mm512_sub_epi32(right_column, one), _mm512_setzero_si512()),
+                         broadcast_16(width - 2u));
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(stride)), first);
+    const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry);
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(stride * 3u));
+    __m512i top_left, top_right, bottom_left, bottom_right;
+    texel_pairs_16(values, at, top, left_out, right_out, &top_left, &top_right);
+    texel_pairs_16(values, below, bottom, left_out, right_out, &bottom_left, &bottom_right);
+    for (uint32_t c = 0; c < 3; c++)
+        add_bilinear_16(lane_byte_16(top_left, c), lane_byte_16(top_right, c), lane_byte_16(bottom_left, c),
+                        lane_byte_16(bottom_right, c), across, down, &sums[c]);
+}
 #endif
 
 /* pack_offsets_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
@@ -83,17 +138,62 @@ inline uint32_t pack_offsets_8(const int64_t *xs, const int64_t *ys, uint32_t va
     return entry >> 24;
 }
 
+/* a < b as unsigned 32-bit lanes (AVX2 compares signed: both flipped by 2^31). */
+inline __m256i below_32(__m256i a, __m256i b) {
+    const __m256i sign = broadcast_8(0x80000000u);
+    return _mm256_cmpgt_epi32(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
+}
+
+/* The reach test of one axis on narrow offsets (kernels.h, filtered_sift.cpp's narrow_test): in reach
+   when c + add < limit, the bracket's value (c + read) >> l. */
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+inline uint32_t pack_narrow_16(const uint32_t *xs, const uint32_t *ys, __mmask16 present,
+                               const __m512i *tests, __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const __m512i c_x = _mm512_maskz_loadu_epi32(present, xs), c_y = _mm512_maskz_loadu_epi32(present, ys);
+    const __mmask16 reach = _mm512_mask_cmplt_epu32_mask(
+        _mm512_mask_cmplt_epu32_mask(present, _mm512_add_epi32(c_x, tests[0]), tests[1]),
+        _mm512_add_epi32(c_y, tests[3]), tests[4]);
+    _mm512_storeu_si512(packed_x, _mm512_maskz_compress_epi32(
+                                      reach, _mm512_srl_epi32(_mm512_add_epi32(c_x, tests[2]), shift)));
+    _mm512_storeu_si512(packed_y, _mm512_maskz_compress_epi32(
+                                      reach, _mm512_srl_epi32(_mm512_add_epi32(c_y, tests[5]), shift)));
+    return mask_count(reach);
+}
+#endif
+
+/* pack_narrow_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
+inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t valid, const __m256i *tests,
+                              __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const __m256i present = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const int *from_x = static_cast<const int *>(static_cast<const void *>(xs)),
+              *from_y = static_cast<const int *>(static_cast<const void *>(ys));
+    const __m256i c_x = valid >= 8u ? load_8(xs) : _mm256_maskload_epi32(from_x, present),
+                  c_y = valid >= 8u ? load_8(ys) : _mm256_maskload_epi32(from_y, present);
+    const __m256i in_x = below_32(_mm256_add_epi32(c_x, tests[0]), tests[1]),
+                  in_y = below_32(_mm256_add_epi32(c_y, tests[3]), tests[4]);
+    const uint32_t reach = static_cast<uint32_t>(
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_and_si256(present, _mm256_and_si256(in_x, in_y)))));
+    const uint32_t entry = packing_table[reach];
+    const __m256i order = packing_order(entry);
+    store_8(packed_x,
+            _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_x, tests[2]), shift), order));
+    store_8(packed_y,
+            _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_y, tests[5]), shift), order));
+    return entry >> 24;
+}
+
 /* Candidates are tested and their offsets packed a block at a time, then read. */
 const uint32_t packed_block = 256;
 
 template <uint32_t Channels>
-void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys, uint32_t count,
-                          const uint64_t *tests, uint64_t *out) {
+void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
+                          const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
+                          const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
     const __m256i bias = _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
-    const __m256i narrow_tests[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
-                                     _mm256_set1_epi64x(static_cast<long long>(tests[1])),
-                                     _mm256_set1_epi64x(static_cast<long long>(tests[2])),
-                                     _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
+    const __m256i offset_tests_8[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
+                                       _mm256_set1_epi64x(static_cast<long long>(tests[1])),
+                                       _mm256_set1_epi64x(static_cast<long long>(tests[2])),
+                                       _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
     const __m128i shift = _mm_cvtsi32_si128(static_cast<int>(level->level + 16u));
     const __m256i zero = _mm256_setzero_si256();
     __m256i sums[Channels];
@@ -108,18 +208,39 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     __m512i wide_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
 #endif
+    __m256i narrow_tests_8[6];
+    for (uint32_t i = 0; i < 6; i++) narrow_tests_8[i] = broadcast_8(narrow_tests[i]);
+    const __m128i narrow_shift = _mm_cvtsi32_si128(static_cast<int>(level->level));
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    __m512i narrow_tests_16[6];
+    for (uint32_t i = 0; i < 6; i++) narrow_tests_16[i] = broadcast_16(narrow_tests[i]);
+#endif
     uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
     for (uint32_t block = 0; block < count; block += packed_block) {
         const uint32_t end = count - block < packed_block ? count : block + packed_block;
         uint32_t packed = 0, first = block;
+        if (narrow_xs != 0) {
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-        for (; first + 16u <= end; first += 16u)
-            packed += pack_offsets_16(xs + first, ys + first, wide_tests, shift, packed_x + packed,
-                                      packed_y + packed);
+            for (; first < end; first += 16u) {
+                const __mmask16 present =
+                    static_cast<__mmask16>(end - first >= 16u ? 0xFFFFu : (1u << (end - first)) - 1u);
+                packed += pack_narrow_16(narrow_xs + first, narrow_ys + first, present, narrow_tests_16,
+                                         narrow_shift, packed_x + packed, packed_y + packed);
+            }
 #endif
-        for (; first < end; first += 8u)
-            packed += pack_offsets_8(xs + first, ys + first, end - first, narrow_tests, shift,
-                                     packed_x + packed, packed_y + packed);
+            for (; first < end; first += 8u)
+                packed += pack_narrow_8(narrow_xs + first, narrow_ys + first, end - first, narrow_tests_8,
+                                        narrow_shift, packed_x + packed, packed_y + packed);
+        } else {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            for (; first + 16u <= end; first += 16u)
+                packed += pack_offsets_16(xs + first, ys + first, wide_tests, shift, packed_x + packed,
+                                          packed_y + packed);
+#endif
+            for (; first < end; first += 8u)
+                packed += pack_offsets_8(xs + first, ys + first, end - first, offset_tests_8, shift,
+                                         packed_x + packed, packed_y + packed);
+        }
         /* The lanes past the last packed offset read zeros (defined values; the masks leave them out). */
         store_8(packed_x + packed, zero), store_8(packed_x + packed + 8, zero);
         store_8(packed_y + packed, zero), store_8(packed_y + packed + 8, zero);
@@ -128,9 +249,14 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         for (; next + 8u < packed; next += 16u) {
             const uint32_t left = packed - next;
             const __mmask16 reach = static_cast<__mmask16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
-            add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride,
-                                          _mm512_loadu_si512(packed_x + next),
-                                          _mm512_loadu_si512(packed_y + next), reach, wide_sums);
+            const __m512i s_x = _mm512_loadu_si512(packed_x + next),
+                          s_y = _mm512_loadu_si512(packed_y + next);
+            if (Channels == 3 && level->width >= 2)
+                add_pair_reads_16(level->values, level->width, level->height, level->stride, s_x, s_y, reach,
+                                  wide_sums);
+            else
+                add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride, s_x,
+                                              s_y, reach, wide_sums);
         }
 #endif
         for (; next < packed; next += 8u) {
@@ -154,11 +280,12 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
 
 /* kernels.h's filter_level_reads. */
 void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs,
-                        const int64_t *ys, uint32_t count, const uint64_t *tests, uint64_t *out) {
+                        const int64_t *ys, const uint32_t *narrow_xs, const uint32_t *narrow_ys,
+                        uint32_t count, const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
     if (channels == 3)
-        filter_level_reads_8<3>(level, xs, ys, count, tests, out);
+        filter_level_reads_8<3>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
     else
-        filter_level_reads_8<1>(level, xs, ys, count, tests, out);
+        filter_level_reads_8<1>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
 }
 
 } // namespace

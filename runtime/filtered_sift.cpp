@@ -5,7 +5,8 @@
    offsets and integers as the tap-by-tap walk (filtered_walk.cpp), so the same sums: integer sums modulo
    2^64 do not depend on the order. Where the kernel has them, its listing (filtered_candidates_vector.h)
    lists the candidates of whole cells at once, each tap's level then tests only the runs of cells that
-   may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels. Compiled
+   may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels, on the
+   listing's 32-bit offsets (narrow_test) where the box is small enough. Compiled
    only with DSN_FILTERING in the fast build. */
 #include "bilinear_read.h"
 #include "cell_walk.h"
@@ -97,6 +98,24 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
     return test;
 }
 
+/* The level test on the kernel's narrow offsets C = floor(c / 2^16) modulo 2^32, every c of an axis
+   having the same low 16 bits K (its cells' shifted_base's): with A = start + K, u = c + start is
+   V 2^16 + (A modulo 2^16), V = C + floor(A / 2^16). With both axes' reach_limit below
+   narrow_reach_limit every |c|, |start| and |u| of the group stays below 2^46, so V modulo 2^32 is V for
+   u >= 0 and at least 2^32 - 2^30 (above any limit) for u < 0: an impulse is in reach when C + add
+   (modulo 2^32) is below limit = ceil((test limit - A modulo 2^16) / 2^16), and the bracket's shifted
+   value (u + 2^l) >> (l + 16) is then (C + read) >> l, read = add + the carry of A modulo 2^16 + 2^l:
+   tests[0 .. 2] = add, limit, read. */
+const int64_t narrow_reach_limit = static_cast<int64_t>(1) << 44;
+
+void narrow_test(const LevelTest &test, uint32_t level, int64_t shifted_base, uint32_t *tests) {
+    const uint64_t a = test.start + (static_cast<uint64_t>(shifted_base) & 0xFFFFu), a_low = a & 0xFFFFu;
+    const uint32_t add = static_cast<uint32_t>(a >> 16);
+    tests[0] = add;
+    tests[1] = static_cast<uint32_t>((test.limit - a_low + 0xFFFFu) >> 16);
+    tests[2] = add + static_cast<uint32_t>((a_low + (static_cast<uint64_t>(1) << level)) >> 16);
+}
+
 /* The buffer; where the kernel listed it, also each listed cell's end in it and the largest offset c
    of its candidates along each axis (their shifted_base): the cell's candidates lie within a cell's
    side below, so a tap's level need not test the cells that lie beyond its reach. */
@@ -104,10 +123,26 @@ const uint32_t listed_cells_most = 128;
 
 struct CandidateList {
     int64_t x[buffer_capacity], y[buffer_capacity];
+    uint32_t narrow_x[buffer_capacity], narrow_y[buffer_capacity]; /* the kernel's: x / 2^16, y / 2^16 */
     uint32_t count;
     uint32_t cells, cell_end[listed_cells_most];
     int64_t cell_x[listed_cells_most], cell_y[listed_cells_most];
+    int64_t lowest_x, highest_x, lowest_y, highest_y; /* of cell_x, cell_y */
 };
+
+void record_cell(CandidateList *list, int64_t x, int64_t y) {
+    if (list->cells == 0) {
+        list->lowest_x = list->highest_x = x;
+        list->lowest_y = list->highest_y = y;
+    }
+    list->lowest_x = x < list->lowest_x ? x : list->lowest_x;
+    list->highest_x = x > list->highest_x ? x : list->highest_x;
+    list->lowest_y = y < list->lowest_y ? y : list->lowest_y;
+    list->highest_y = y > list->highest_y ? y : list->highest_y;
+    list->cell_x[list->cells] = x;
+    list->cell_y[list->cells] = y;
+    list->cells++;
+}
 
 /* The runs [runs[2k], runs[2k + 1]) of the list whose cells the level tests x, y may keep, their count:
    with u = c + start the test keeps 0 <= u < limit, and a cell's candidates have u within
@@ -121,6 +156,14 @@ uint32_t reached_runs(const CandidateList &list, const LevelTest &x, const Level
     const int64_t side = static_cast<int64_t>(1) << (32u + shift);
     const int64_t limit_x = static_cast<int64_t>(x.limit) + side,
                   limit_y = static_cast<int64_t>(y.limit) + side;
+    /* Every cell kept (w grows with the cell's offset: the box is far narrower than 2^62): one run. */
+    if (signed_from_bits(static_cast<uint64_t>(list.lowest_x) + x.start) >= 0 &&
+        signed_from_bits(static_cast<uint64_t>(list.highest_x) + x.start) < limit_x &&
+        signed_from_bits(static_cast<uint64_t>(list.lowest_y) + y.start) >= 0 &&
+        signed_from_bits(static_cast<uint64_t>(list.highest_y) + y.start) < limit_y) {
+        runs[0] = 0, runs[1] = list.count;
+        return 1;
+    }
     uint32_t count = 0, from = 0, to = 0;
     for (uint32_t k = 0; k < list.cells; k++) {
         const int64_t w_x = signed_from_bits(static_cast<uint64_t>(list.cell_x[k]) + x.start),
@@ -244,6 +287,7 @@ struct TapGroup {
     dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
     dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
     uint32_t shift;                               /* the noise's cell_shift */
+    bool narrow; /* the kernel's listing and reads take the narrow offsets only (narrow_test) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -307,9 +351,19 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
-                for (uint32_t r = 0; r < run_count; r++)
-                    group.vector_reads(&level, Channels, list->x + runs[2u * r], list->y + runs[2u * r],
-                                       runs[2u * r + 1u] - runs[2u * r], tests, sums[group.first + t][l]);
+                uint32_t narrow_tests[6] = {0, 0, 0, 0, 0, 0};
+                const bool narrow = group.narrow && list->cells != 0;
+                if (narrow) {
+                    narrow_test(test_x, level.level, list->cell_x[0], narrow_tests);
+                    narrow_test(test_y, level.level, list->cell_y[0], narrow_tests + 3);
+                }
+                for (uint32_t r = 0; r < run_count; r++) {
+                    const uint32_t from = runs[2u * r];
+                    group.vector_reads(&level, Channels, list->x + from, list->y + from,
+                                       narrow ? list->narrow_x + from : 0, narrow ? list->narrow_y + from : 0,
+                                       runs[2u * r + 1u] - from, tests, narrow_tests,
+                                       sums[group.first + t][l]);
+                }
                 continue;
             }
             const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
@@ -443,12 +497,11 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                     room -= cells[end].count;
                 }
                 if (end > i) {
-                    list->count = group.list_candidates(cells + i, end - i, shift, list->count, list->x,
-                                                        list->y, list->cell_end + list->cells);
-                    for (; i < end; i++, list->cells++) {
-                        list->cell_x[list->cells] = cells[i].x.shifted_base;
-                        list->cell_y[list->cells] = cells[i].y.shifted_base;
-                    }
+                    list->count =
+                        group.list_candidates(cells + i, end - i, shift, list->count,
+                                              group.narrow ? 0 : list->x, group.narrow ? 0 : list->y,
+                                              list->narrow_x, list->narrow_y, list->cell_end + list->cells);
+                    for (; i < end; i++) record_cell(list, cells[i].x.shifted_base, cells[i].y.shifted_base);
                 } else { /* an empty buffer has room for any cell (kernel_listing_takes) */
                     visit<Channels, Bytes>(group, list, grid, sums);
                 }
@@ -514,8 +567,12 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->level_count = count;
     group->first = first;
     group->taps = taps;
-    return tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) &&
-           tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y);
+    if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
+        !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
+        return false;
+    group->narrow = group->vector_reads != 0 && group->list_candidates != 0 && noise->asset.bits == 8 &&
+                    group->x.reach_limit < narrow_reach_limit && group->y.reach_limit < narrow_reach_limit;
+    return true;
 }
 
 template <uint32_t Channels, uint32_t Bytes>

@@ -82,11 +82,15 @@ typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x,
 /* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
    filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start
    and limit along x, then along y: filtered_sift.cpp's LevelTest) keep, their bilinear reads of `level`
-   (`channels` 8-bit values a texel) added to out[0 .. channels - 1] modulo 2^64. */
+   (`channels` 8-bit values a texel) added to out[0 .. channels - 1] modulo 2^64. Where narrow_xs is not
+   null the candidates are read from narrow_xs, narrow_ys instead (their offsets / 2^16 modulo 2^32, as
+   filter_candidates lists them) with narrow_tests[0 .. 5] (filtered_sift.cpp's narrow_test along x, then
+   along y). */
 struct dsn_walked_level;
 typedef void dsn_filter_level_reads_entry(const struct dsn_walked_level *level, uint32_t channels,
-                                          const int64_t *xs, const int64_t *ys, uint32_t count,
-                                          const uint64_t *tests, uint64_t *out);
+                                          const int64_t *xs, const int64_t *ys, const uint32_t *narrow_xs,
+                                          const uint32_t *narrow_ys, uint32_t count, const uint64_t *tests,
+                                          const uint32_t *narrow_tests, uint64_t *out);
 
 /* One axis of one cell as the sifts see it: continuous_sift.h's CellAxis, which documents it. One cell
    of the filtered sift's box (filtered_sift.cpp): its key, its impulse count and both axes. */
@@ -102,12 +106,14 @@ typedef struct dsn_filter_cell {
 /* The candidates of the filtered sift (filtered_candidates_vector.h's filter_candidates), for cells of
    side 2^cell_shift <= 16: the impulses of `cell_count` cells whose lattice fields let them reach the
    box, their shifted offsets (CellAxis's shifted_base less the 16-bit position's) stored from
-   xs[count], ys[count] on, cell by cell, and where each cell's end in ends[0 .. cell_count - 1]; returns
-   the new count. Writes up to 16 values past the last candidate: the caller leaves room for the sum of
-   the cells' counts plus 16. */
+   xs[count], ys[count] on (unless xs is null), cell by cell, the same offsets / 2^16 modulo 2^32 from
+   narrow_xs[count],
+   narrow_ys[count] on, and where each cell's end in ends[0 .. cell_count - 1]; returns the new count.
+   Writes up to 16 values past the last candidate: the caller leaves room for the sum of the cells' counts
+   plus 16. */
 typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
                                              uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
-                                             uint32_t *ends);
+                                             uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends);
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and

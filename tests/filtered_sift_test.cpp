@@ -201,4 +201,54 @@ TEST_CASE("filtered sift: cells of side 4 and 32") {
     compare_noise(large_noise.noise, seed++);
 }
 
+// The kernels list 32-bit offsets (1/65536 texel) for boxes of up to 4096 texels along each axis, and the
+// 64-bit ones beyond: plans (not reachable from a footprint below the mean colour's level of detail) whose
+// two taps lie 1000 .. 100000 texels apart, at both levels of a half level.
+TEST_CASE("filtered sift: taps thousands of texels apart") {
+    for (uint32_t channels : {1u, 3u}) {
+        dsn::AssetFields fields = synthetic_fields(channels, 15, 8, DSN_SHAPE_RECTANGLE, 20 + channels);
+        fields.interpolation = DSN_INTERPOLATION_BILINEAR;
+        fields.pyramid = dsn::texton_pyramid(fields);
+        LoadedNoise loaded(fields, make_config(7, 30));
+        const dsn_noise_state *state = dsn_state(&loaded.noise);
+        REQUIRE(state->cell_shift <= 4); // listed by the kernels
+        REQUIRE(state->asset.pyramid_levels >= 1);
+        TestRandom random(300 + channels);
+        size_t compared = 0;
+        for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= state->tile_kernel; kernel++)
+            for (double apart : {1000.0, 3000.0, 9000.0, 100000.0})
+                for (int i = 0; i < 4; i++) {
+                    CAPTURE(kernel);
+                    CAPTURE(apart);
+                    dsn_noise copy = loaded.noise;
+                    dsn_state(&copy)->tile_kernel = kernel;
+                    dsn_filter_plan plan;
+                    std::memset(&plan, 0, sizeof plan);
+                    plan.lod_q8 = 128;
+                    plan.taps = 2;
+                    const double angle = random.next() / 4294967296.0 * 6.2832;
+                    plan.offset_x[0] = q32(-apart / 2 * std::cos(angle)),
+                    plan.offset_x[1] = -plan.offset_x[0];
+                    plan.offset_y[0] = q32(-apart / 2 * std::sin(angle)),
+                    plan.offset_y[1] = -plan.offset_y[0];
+                    dsn_walked_level levels[2] = {dsn_internal_walked_level(state, 0),
+                                                  dsn_internal_walked_level(state, 1)};
+                    const uint64_t x =
+                        uint64_t(q32(random.range(-100000, 100000) + random.next() / 4294967296.0));
+                    const uint64_t y =
+                        uint64_t(q32(random.range(-100000, 100000) + random.next() / 4294967296.0));
+                    dsn_filter_sums walked, sifted;
+                    std::memset(sifted, 0xA5, sizeof sifted);
+                    dsn_internal_filter_sums_walked(dsn_state(&copy), x, y, &plan, levels, 2, walked);
+                    dsn_internal_filter_sums_sifted(dsn_state(&copy), x, y, &plan, levels, 2, sifted);
+                    for (uint32_t t = 0; t < 2; t++)
+                        for (uint32_t l = 0; l < 2; l++)
+                            for (uint32_t c = 0; c < channels; c++)
+                                REQUIRE(sifted[t][l][c] == walked[t][l][c]);
+                    compared++;
+                }
+        CHECK(compared == (state->tile_kernel + 1u - DSN_KERNEL_DEFAULT) * 16u);
+    }
+}
+
 #endif
