@@ -39,6 +39,15 @@ inline __m256i mix32_8(__m256i x) {
     return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
 }
 
+/* dsn_impulse_hash's 16-bit positions of 8 impulses with 8-bit fields (cells of side <= 16): each 4-bit
+   half of the field above 12 bits of the impulse's fraction hash. */
+inline void impulse_bits_8(__m256i fields, __m256i fraction, __m256i *bits_x, __m256i *bits_y) {
+    *bits_x = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(fields, _mm256_set1_epi32(15)), 12),
+                              _mm256_srli_epi32(_mm256_and_si256(fraction, _mm256_set1_epi32(0xFFFF)), 4));
+    *bits_y =
+        _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(fields, 4), 12), _mm256_srli_epi32(fraction, 20));
+}
+
 /* The bilinear texton of 8 candidates from their texels' values (32-bit lanes) and weights (0 .. 65535):
    add_bilinear's integer with one product per step, (65536 - w) a + w b = 65536 a + w (b - a), the rows
    in 32-bit lanes (below 2^25), the column in 64-bit lanes (_mm256_mul_epi32, signed 32 x 32 -> 64 bits,

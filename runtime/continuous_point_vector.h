@@ -160,13 +160,8 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
                           uint32_t valid) {
     const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
                   field = load_8(candidates.field + first);
-    const __m256i low_16 = _mm256_set1_epi32(0xFFFF);
-    /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
-    const __m256i bits_x =
-        _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(field, _mm256_set1_epi32(15)), 12),
-                        _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
-    const __m256i bits_y =
-        _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(field, 4), 12), _mm256_srli_epi32(fraction, 20));
+    __m256i bits_x, bits_y;
+    impulse_bits_8(field, fraction, &bits_x, &bits_y);
     const __m256i s_x =
         _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
     const __m256i s_y =
@@ -197,6 +192,14 @@ inline __m512i mix32_16(__m512i x) {
     x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 15));
     x = _mm512_mullo_epi32(x, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
     return _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
+}
+
+/* impulse_bits_8 on 16 lanes. */
+inline void impulse_bits_16(__m512i fields, __m512i fraction, __m512i *bits_x, __m512i *bits_y) {
+    *bits_x = _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(fields, _mm512_set1_epi32(15)), 12),
+                              _mm512_srli_epi32(_mm512_and_si512(fraction, _mm512_set1_epi32(0xFFFF)), 4));
+    *bits_y =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(fields, 4), 12), _mm512_srli_epi32(fraction, 20));
 }
 
 /* candidate_lanes of two pairs of 8-bit fields at once in one 128-bit vector (the first pair low), their
@@ -282,12 +285,8 @@ template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
     const __m512i fraction = mix32_16(load_16(candidates.stream + first));
-    const __m512i field = load_16(candidates.field + first), low_16 = _mm512_set1_epi32(0xFFFF);
-    const __m512i bits_x =
-        _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(field, _mm512_set1_epi32(15)), 12),
-                        _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
-    const __m512i bits_y =
-        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(field, 4), 12), _mm512_srli_epi32(fraction, 20));
+    __m512i bits_x, bits_y;
+    impulse_bits_16(load_16(candidates.field + first), fraction, &bits_x, &bits_y);
     const __m512i s_x =
         _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
     const __m512i s_y =

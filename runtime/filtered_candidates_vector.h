@@ -45,7 +45,6 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
     const FieldLanes lanes = field_lanes(cell_shift);
     const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift)),
                   cell_shift_vector = _mm_cvtsi32_si128(static_cast<int>(cell_shift));
-    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), low_4 = _mm512_set1_epi32(15);
     /* lane * 0x9E3779B9 modulo 2^32 */
     const __m512i weyl =
         _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
@@ -69,10 +68,8 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
                 _mm512_set1_epi32(static_cast<int>(cell.key + (0x80000000u + first) * 0x9E3779B9u)), weyl);
             const __m512i fraction = mix32_16(_mm512_maskz_compress_epi32(keep, streams));
             const __m512i fields = _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs));
-            const __m512i bits_x = _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(fields, low_4), 12),
-                                                   _mm512_srli_epi32(_mm512_and_si512(fraction, low_16), 4));
-            const __m512i bits_y = _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(fields, 4), 12),
-                                                   _mm512_srli_epi32(fraction, 20));
+            __m512i bits_x, bits_y;
+            impulse_bits_16(fields, fraction, &bits_x, &bits_y);
             if (xs != 0) {
                 store_shifted_16(xs + count, base_x, bits_x, position_shift);
                 store_shifted_16(ys + count, base_y, bits_y, position_shift);
@@ -104,7 +101,6 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
     const FieldLanes lanes = field_lanes(cell_shift);
     const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(16u + cell_shift)),
                   cell_shift_vector = _mm_cvtsi32_si128(static_cast<int>(cell_shift));
-    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), low_4 = _mm256_set1_epi32(15);
     for (uint32_t k = 0; k < cell_count; k++) {
         const dsn_filter_cell &cell = cells[k];
         const __m256i base_x = _mm256_set1_epi64x(static_cast<long long>(cell.x.shifted_base)),
@@ -121,11 +117,8 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             const uint32_t packed =
                 pack_pair_8(pair, sifted, cell.key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
             const __m256i fraction = mix32_8(streams);
-            /* dsn_impulse_hash's 16-bit positions: 4-bit field halves above 12 bits of the fraction hash */
-            const __m256i bits_x = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(fields, low_4), 12),
-                                                   _mm256_srli_epi32(_mm256_and_si256(fraction, low_16), 4));
-            const __m256i bits_y = _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(fields, 4), 12),
-                                                   _mm256_srli_epi32(fraction, 20));
+            __m256i bits_x, bits_y;
+            impulse_bits_8(fields, fraction, &bits_x, &bits_y);
             if (xs != 0) {
                 store_shifted(xs + count, base_x, bits_x, position_shift);
                 store_shifted(ys + count, base_y, bits_y, position_shift);
