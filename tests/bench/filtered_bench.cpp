@@ -16,6 +16,7 @@ namespace {
 
 using bench::best_time;
 const uint32_t kPoints = 20000;
+const int kRounds = 5;
 int64_t checksum = 0; // keeps the evaluations observable
 
 int64_t q32(double texels) { return int64_t(std::floor(texels * 4294967296.0)); }
@@ -38,7 +39,7 @@ int main() {
         *x = int64_t(i % 200) * q32(2.8191) - int64_t(i / 200) * q32(1.0261) + q32(1.0 / 3);
         *y = int64_t(i % 200) * q32(1.0261) + int64_t(i / 200) * q32(2.8191) + q32(1.0 / 7);
     };
-    const double continuous = best_time(3, [&] {
+    auto continuous = [&] {
         int32_t out[3];
         for (uint32_t i = 0; i < kPoints; i++) {
             int64_t x, y;
@@ -46,10 +47,11 @@ int main() {
             dsn_continuous_point_fixed(n, x, y, out);
             checksum += out[0];
         }
-    });
-    std::printf("continuous per point: %.0f ns (the baseline)\n", continuous / kPoints * 1e9);
+    };
+    // Each case is timed in rounds against the continuous per point (bench_timing.h): the ratio of the
+    // median round, and of the best times.
     auto filtered = [&](const dsn_footprint &f) {
-        return best_time(3, [&] {
+        return bench::paired_ratio(kRounds, continuous, [&] {
             int32_t out[3];
             for (uint32_t i = 0; i < kPoints; i++) {
                 int64_t x, y;
@@ -59,6 +61,9 @@ int main() {
             }
         });
     };
+    std::printf("continuous per point: %.0f ns (the baseline, timed beside each case; ratios: median of %d "
+                "rounds, then best over best)\n",
+                best_time(3, continuous) / kPoints * 1e9, kRounds);
     // Impulses within reach of one tap reading level l (lambda = impacts / support size), with the
     // window the evaluation reads (its all-zero margins cut) or the stored one.
     const double lambda = 30.0 / noise->asset.support_size;
@@ -87,9 +92,9 @@ int main() {
         int32_t lod_q8;
         uint32_t taps;
         dsn_filter_level(n, &f, &lod_q8, &taps);
-        const double time = filtered(f);
-        std::printf("isotropic filtered, LOD %.1f: %.2fx the continuous per point, %s\n", lod,
-                    time / continuous, impulse_text(lod_q8));
+        const bench::PairedRatio cost = filtered(f);
+        std::printf("isotropic filtered, LOD %.1f: %.2fx (%.2fx) the continuous per point, %s\n", lod,
+                    cost.median, cost.best, impulse_text(lod_q8));
     }
     const double ratios[] = {2, 4, 8, 16};
     const double minors[] = {1, 2, 4};
@@ -103,12 +108,12 @@ int main() {
                 int32_t lod_q8;
                 uint32_t taps;
                 dsn_filter_level(n, &f, &lod_q8, &taps);
-                const double time = filtered(f);
+                const bench::PairedRatio cost = filtered(f);
                 std::printf(
                     "anisotropic %2.0f:1 at %2d degrees, minor %.0f texels (LOD %.2f, %2u taps): %.2fx the "
-                    "continuous per point, %.2fx per tap; a tap has %s\n",
-                    ratio, degrees, minor, lod_q8 / 256.0, taps, time / continuous, time / continuous / taps,
-                    impulse_text(lod_q8));
+                    "continuous per point, %.2fx (%.2fx) per tap; a tap has %s\n",
+                    ratio, degrees, minor, lod_q8 / 256.0, taps, cost.median, cost.median / taps,
+                    cost.best / taps, impulse_text(lod_q8));
             }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
