@@ -77,8 +77,15 @@ inline int store_whole_strip(const simd_vector *values, Value *out, int stream) 
     const int stream_aligned = stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0;
     simd_vector ordered[6];
     output_order<Channels>(values, ordered);
-    for (uint32_t m = 0; m < 2 * Channels; m++)
-        put_vector(out + values_per_vector * m, output_vector(ordered[m], out), stream_aligned);
+    if (stream_aligned) {
+#pragma GCC unroll 6
+        for (uint32_t m = 0; m < 2 * Channels; m++)
+            put_vector(out + values_per_vector * m, output_vector(ordered[m], out), 1);
+    } else {
+#pragma GCC unroll 6
+        for (uint32_t m = 0; m < 2 * Channels; m++)
+            put_vector(out + values_per_vector * m, output_vector(ordered[m], out), 0);
+    }
     return 1;
 }
 /* 8-bit output of a whole strip, where the instruction set packs it in one go (else returns 0). */
