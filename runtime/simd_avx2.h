@@ -62,25 +62,11 @@ inline void output_order(const simd_vector *values, simd_vector *ordered) {
 inline simd_floats to_output_floats(simd_vector fixed) {
     return _mm256_mul_ps(_mm256_cvtepi32_ps(fixed), _mm256_set1_ps(1.0f / 65536.0f));
 }
-/* 8 output values. `stream_aligned` (out is then 16-byte aligned): past the caches (put_4), in two
-   16-byte stores. */
-inline void put_vector(int32_t *out, simd_vector values, int stream_aligned) {
-    if (stream_aligned) {
-        __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
-        _mm_stream_si128(destination, _mm256_castsi256_si128(values));
-        _mm_stream_si128(destination + 1, _mm256_extracti128_si256(values, 1));
-    } else {
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
-    }
+/* 8 output values (streamed strips go out 16 bytes at a time instead, tile_store.h). */
+inline void put_vector(int32_t *out, simd_vector values) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
 }
-inline void put_vector(float *out, simd_floats values, int stream_aligned) {
-    if (stream_aligned) {
-        _mm_stream_ps(out, _mm256_castps256_ps128(values));
-        _mm_stream_ps(out + 4, _mm256_extractf128_ps(values, 1));
-    } else {
-        _mm256_storeu_ps(out, values);
-    }
-}
+inline void put_vector(float *out, simd_floats values) { _mm256_storeu_ps(out, values); }
 /* 8-bit output of a whole strip in one go: none wider than the 128-bit path (returns 0). */
 template <uint32_t Channels>
 inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {
