@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <random>
 #include <vector>
 
 #include <time.h>
@@ -144,7 +145,8 @@ int main() {
 
     // Tile vs spectral ADSN: thread CPU times, minimum and median of several runs of each. The machine
     // has slower phases lasting about a second, so the runs are interleaved one by one: every round runs
-    // each of them once, in an order rotated from round to round, and no copy's runs clump in one phase.
+    // each of them once, in an order shuffled anew each round (with a fixed seed; a rotation would keep
+    // which job follows which), and no copy's runs clump in one phase.
     const uint32_t side = 2048;
     const size_t values = size_t(side) * side * 3;
     std::vector<int32_t> tile(values);
@@ -189,9 +191,13 @@ int main() {
                 dsn_lattice_tile_fixed(&copies[job - 4], -1000, 5000, side, side, tile.data(), nullptr, 0);
             });
     };
-    const uint32_t jobs = 4 + other_copies, rounds = 9;
-    for (uint32_t round = 0; round < rounds; round++)
-        for (uint32_t j = 0; j < jobs; j++) run_job((j + round) % jobs);
+    std::vector<uint32_t> order(4 + other_copies);
+    for (uint32_t j = 0; j < order.size(); j++) order[j] = j;
+    std::mt19937 shuffler(12345);
+    for (int round = 0; round < 9; round++) {
+        std::shuffle(order.begin(), order.end(), shuffler);
+        for (uint32_t job : order) run_job(job);
+    }
     for (auto *times : {&tile_times, &u8_times, &float_times, &adsn_times, &copy_times[0], &copy_times[1]})
         std::sort(times->begin(), times->end());
     double megapixels = double(side) * side / 1e6;
