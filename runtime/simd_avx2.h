@@ -24,6 +24,16 @@ inline simd_vector zero_vector() { return _mm256_setzero_si256(); }
 inline void store_16(uint16_t *dst, simd_vector value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(dst)), value);
 }
+inline simd_vector sub_16(simd_vector a, simd_vector b) { return _mm256_sub_epi16(a, b); }
+/* Two rows of one channel from one load (tile_strips.h): each 16-bit texel of a paired plane holds
+   row t in its low byte and row t + 1 in its high byte, both biased by 128 (unsigned). vpmaddubsw
+   with the byte weights (1, 0), then (0, 1), widens either byte: multiplies, not shuffles, which the
+   sums' other loads leave free (the sums are bound by their loads). */
+#define DSN_SIMD_PAIRED_ROWS 1
+inline void add_pair(simd_vector texels, simd_vector *row_0, simd_vector *row_1) {
+    *row_0 = _mm256_add_epi16(*row_0, _mm256_maddubs_epi16(texels, _mm256_set1_epi16(1)));
+    *row_1 = _mm256_add_epi16(*row_1, _mm256_maddubs_epi16(texels, _mm256_set1_epi16(0x100)));
+}
 
 /* ---- Normalization, per 128-bit lane (AVX2 unpacks and shuffles each lane on its own) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
