@@ -22,5 +22,9 @@
 #ifndef DSN_SIMD_STREAM_LINES
 #define DSN_SIMD_STREAM_LINES 0
 #endif
+/* 1 where the ops header sums two rows of a channel from one load of a paired plane (add_pair). */
+#ifndef DSN_SIMD_PAIRED_ROWS
+#define DSN_SIMD_PAIRED_ROWS 0
+#endif
 
 #endif /* DSN_SIMD_H */

@@ -24,6 +24,16 @@ inline simd_vector zero_vector() { return _mm256_setzero_si256(); }
 inline void store_16(uint16_t *dst, simd_vector value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(dst)), value);
 }
+inline simd_vector sub_16(simd_vector a, simd_vector b) { return _mm256_sub_epi16(a, b); }
+/* Two rows of one channel from one load (tile_strips.h): each 16-bit texel of a paired plane holds
+   row t in its low byte and row t + 1 in its high byte, both biased by 128 (unsigned). vpmaddubsw
+   with the byte weights (1, 0), then (0, 1), widens either byte: multiplies, not shuffles, which the
+   sums' other loads leave free (the sums are bound by their loads). */
+#define DSN_SIMD_PAIRED_ROWS 1
+inline void add_pair(simd_vector texels, simd_vector *row_0, simd_vector *row_1) {
+    *row_0 = _mm256_add_epi16(*row_0, _mm256_maddubs_epi16(texels, _mm256_set1_epi16(1)));
+    *row_1 = _mm256_add_epi16(*row_1, _mm256_maddubs_epi16(texels, _mm256_set1_epi16(0x100)));
+}
 
 /* ---- Normalization, per 128-bit lane (AVX2 unpacks and shuffles each lane on its own) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
@@ -62,25 +72,11 @@ inline void output_order(const simd_vector *values, simd_vector *ordered) {
 inline simd_floats to_output_floats(simd_vector fixed) {
     return _mm256_mul_ps(_mm256_cvtepi32_ps(fixed), _mm256_set1_ps(1.0f / 65536.0f));
 }
-/* 8 output values. `stream_aligned` (out is then 16-byte aligned): past the caches (put_4), in two
-   16-byte stores. */
-inline void put_vector(int32_t *out, simd_vector values, int stream_aligned) {
-    if (stream_aligned) {
-        __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
-        _mm_stream_si128(destination, _mm256_castsi256_si128(values));
-        _mm_stream_si128(destination + 1, _mm256_extracti128_si256(values, 1));
-    } else {
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
-    }
+/* 8 output values (streamed strips go out 16 bytes at a time instead, tile_store.h). */
+inline void put_vector(int32_t *out, simd_vector values) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
 }
-inline void put_vector(float *out, simd_floats values, int stream_aligned) {
-    if (stream_aligned) {
-        _mm_stream_ps(out, _mm256_castps256_ps128(values));
-        _mm_stream_ps(out + 4, _mm256_extractf128_ps(values, 1));
-    } else {
-        _mm256_storeu_ps(out, values);
-    }
-}
+inline void put_vector(float *out, simd_floats values) { _mm256_storeu_ps(out, values); }
 /* 8-bit output of a whole strip in one go: none wider than the 128-bit path (returns 0). */
 template <uint32_t Channels>
 inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {

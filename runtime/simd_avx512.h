@@ -102,8 +102,8 @@ inline simd_floats to_output_floats(simd_vector fixed) {
 }
 /* 16 output values. Never past the caches here: streamed rows go through stream_line instead
    (DSN_SIMD_STREAM_LINES). */
-inline void put_vector(int32_t *out, simd_vector values, int) { _mm512_storeu_si512(out, values); }
-inline void put_vector(float *out, simd_floats values, int) { _mm512_storeu_ps(out, values); }
+inline void put_vector(int32_t *out, simd_vector values) { _mm512_storeu_si512(out, values); }
+inline void put_vector(float *out, simd_floats values) { _mm512_storeu_ps(out, values); }
 
 /* Streamed rows are staged and written a 64-byte cache line per store (tile_render.h): 16-byte streaming
    stores of a strip that starts inside a line cost more here than the staging. */

@@ -52,13 +52,9 @@ inline void output_order(const simd_vector *values, simd_vector *ordered) {
     for (uint32_t i = 0; i < 2 * Channels; i++) ordered[i] = values[i];
 }
 inline simd_floats to_output_floats(simd_vector fixed) { return to_float_4(fixed); }
-/* 4 output values; `stream_aligned` (out is then 16-byte aligned): past the caches (put_4). */
-inline void put_vector(int32_t *out, simd_vector values, int stream_aligned) {
-    put_4(out, values, stream_aligned);
-}
-inline void put_vector(float *out, simd_floats values, int stream_aligned) {
-    put_4(out, values, stream_aligned);
-}
+/* 4 output values (streamed strips go out through put_4 instead, tile_store.h). */
+inline void put_vector(int32_t *out, simd_vector values) { put_4(out, values, 0); }
+inline void put_vector(float *out, simd_floats values) { put_4(out, values, 0); }
 /* 8-bit output of a whole strip in one go: none wider than the 128-bit path (returns 0). */
 template <uint32_t Channels>
 inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {

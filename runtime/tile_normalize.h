@@ -145,11 +145,16 @@ inline void normalize_strip(const split_vectors *v, const simd_vector *sums, uin
     simd_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);
     simd_vector values[6];
     if (Channels == 3) {
-        interleave_3(normalize_lanes(v, 0, pair_low, third_low), normalize_lanes(v, 1, pair_low, third_low),
-                     normalize_lanes(v, 2, pair_low, third_low), values);
-        interleave_3(normalize_lanes(v, 0, pair_high, third_high),
-                     normalize_lanes(v, 1, pair_high, third_high),
-                     normalize_lanes(v, 2, pair_high, third_high), values + 3);
+        /* Channel by channel, both halves: each constant is read once (AVX2's 16 registers cannot hold
+           them all, and the compiler would spill them to the stack rather than read them again). */
+        simd_vector low[3], high[3];
+#pragma GCC unroll 3
+        for (uint32_t c = 0; c < 3; c++) {
+            low[c] = normalize_lanes(v, c, pair_low, third_low);
+            high[c] = normalize_lanes(v, c, pair_high, third_high);
+        }
+        interleave_3(low[0], low[1], low[2], values);
+        interleave_3(high[0], high[1], high[2], values + 3);
     } else {
         values[0] = normalize_lanes(v, 0, pair_low, third_low);
         values[1] = normalize_lanes(v, 0, pair_high, third_high);

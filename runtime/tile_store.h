@@ -1,7 +1,8 @@
 /* runtime/tile_store.h - the strip path's output stores: a normalized strip row into the caller's fixed,
    float or 8-bit values, whole strips in the widest stores the instruction set has, partial strips 8
-   pixels (one 128-bit lane) at a time, past the caches when the output is far larger than them (where
-   the instruction set streams whole lines, DSN_SIMD_STREAM_LINES, rows staged then copied past them).
+   pixels (one 128-bit lane) at a time, past the caches when the output is far larger than them: in
+   16-byte streaming stores, or where the instruction set streams whole lines (DSN_SIMD_STREAM_LINES),
+   rows staged then copied past them.
    Internal to tile_render.h.
 
    A normalized strip row arrives as 2 Channels vectors whose 128-bit lane j holds 4 pixels' interleaved
@@ -69,16 +70,31 @@ inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint
 inline simd_vector output_vector(simd_vector fixed, int32_t *) { return fixed; }
 inline simd_floats output_vector(simd_vector fixed, float *) { return to_output_floats(fixed); }
 
+/* A vector of normalized values as the bits of the output's 32-bit values. */
+inline simd_vector output_bits(simd_vector fixed, int32_t *) { return fixed; }
+inline simd_vector output_bits(simd_vector fixed, float *) { return as_integers(to_output_floats(fixed)); }
+inline void stream_4(int32_t *out, __m128i bits) { put_4(out, bits, 1); }
+inline void stream_4(float *out, __m128i bits) { put_4(out, _mm_castsi128_ps(bits), 1); }
+
 /* A whole strip of fixed or float output in full-width stores, in output order. The streaming decision
-   (16-byte alignment) is taken once per strip: every store of the strip has the same alignment. */
+   (16-byte alignment) is taken once per strip: every store of the strip has the same alignment. Streamed,
+   the strip goes out in 16-byte stores, which need no output order: lane j of the vectors in turn. */
 template <uint32_t Channels, typename Value>
 inline int store_whole_strip(const simd_vector *values, Value *out, int stream) {
     const uint32_t values_per_vector = sizeof(simd_vector) / sizeof(int32_t);
-    const int stream_aligned = stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0;
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0) {
+#pragma GCC unroll 4
+        for (uint32_t part = 0; part < lane / 8; part++)
+#pragma GCC unroll 6
+            for (uint32_t i = 0; i < 2 * Channels; i++)
+                stream_4(out + 8 * Channels * part + 4 * i, lane_128(output_bits(values[i], out), part));
+        return 1;
+    }
     simd_vector ordered[6];
     output_order<Channels>(values, ordered);
+#pragma GCC unroll 6
     for (uint32_t m = 0; m < 2 * Channels; m++)
-        put_vector(out + values_per_vector * m, output_vector(ordered[m], out), stream_aligned);
+        put_vector(out + values_per_vector * m, output_vector(ordered[m], out));
     return 1;
 }
 /* 8-bit output of a whole strip, where the instruction set packs it in one go (else returns 0). */

@@ -4,7 +4,8 @@
    sorted by the row of their texton's first row, and filed under every strip they reach. Then, row by
    row, each strip adds in registers one texton row per impulse active on that row (a range of its sorted
    entries), in 16-bit lanes, read from a copy of the texton padded with a vector of zeros on each side so
-   that every read is one whole vector (two rows at a time, sharing the loop). A sum is normalized
+   that every read is one whole vector (two rows at a time, sharing the loop; with AVX2 the last channel
+   of RGB reads both rows in one load, see paired_channel). A sum is normalized
    straight from its register: nothing is accumulated in memory, so the cost is loads, not
    read-modify-write stores.
    When no column of the rectangle is reached by more than coverage_limit impulses, no pixel is, and no
@@ -24,19 +25,33 @@ namespace {
    the entries active on only some of them). */
 typedef simd_texel strip_texel;
 const uint32_t lane = simd_int16_count, strip_rows = 2;
+static_assert(strip_rows == 2, "add_strip_rows and the paired planes sum two rows");
+/* Where the ops header sums two rows from one load (DSN_SIMD_PAIRED_ROWS), channel 2 of an RGB texton
+   is kept as a paired plane: the texel at the place of texton row t (in the other planes) holds rows
+   t and t + 1 at its column, one byte each,
+   biased by 128 (so unsigned), and one load gives both rows of a strip (add_pair). The other planes
+   keep one row per texel, biased by zero_texel: every texel reads zero_texel more than its value, a
+   paired one 128 more per byte, so the padding of every plane is zero_texel alike (a copy 1 window that
+   runs into the next plane reads the right zeros), and the sums take count times the bias off at the
+   end (modulo 2^16, exact: the true sums fit). Elsewhere no channel is paired and the bias is 0. */
+const uint32_t paired_channel = DSN_SIMD_PAIRED_ROWS ? 2 : 3;
+const uint32_t zero_texel = DSN_SIMD_PAIRED_ROWS ? 0x8080u : 0u;
 /* Texels per 64-byte cache line. */
 const uint32_t line_texels = 64 / sizeof(strip_texel);
-const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
+const uint32_t rectangle_width = 256, rectangle_height = 176; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
 /* Rectangles are chosen to meet at most rectangle_impulses impulses on average (at 30 impacts per pixel
-   a 31 x 31 texton gets 128 x 128 rectangles, meeting lambda (128 + 30)^2 = 779); the list holds 1024,
-   almost 9 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
-   fewer cells twice and file fewer impulses per pixel; the lists then take more of the L1 cache. */
-const uint32_t rectangle_impulses = 800, list_capacity = 1024;
+   a 31 x 31 texton gets 256 x 160 rectangles, each meeting about lambda (256 + 30)(160 + 30) = 1696
+   impulses); the list holds 2048, more than 8 standard
+   deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk fewer cells twice
+   and file fewer impulses per pixel (the impulses that reach a rectangle only in part weigh less); the
+   lists then take more of the stack (about 100 KB in all) and of the L1 cache. */
+const uint32_t rectangle_impulses = 1700, list_capacity = 2048;
 /* And at most column_impulses on average in a column: the count is Poisson, so a column goes over
-   coverage_limit about once in 10^4 (3.9 standard deviations; that rectangle takes the 32-bit path). */
-const uint32_t column_impulses = 200;
+   coverage_limit about once in 3 10^5 (4.7 standard deviations; that rectangle takes the 32-bit path;
+   a wide rectangle has hundreds of columns, if far from independent). */
+const uint32_t column_impulses = 190;
 /* Largest texton side of this path, and most strips one impulse may reach (a texton w wide reaches at
    most (w + lane - 2) / lane + 1: 5 of 8 pixels for w <= 33, and of 16 for w <= 63). */
 const uint32_t strip_texton_side = 63, strips_per_impulse_limit = 5;
@@ -51,9 +66,9 @@ constexpr uint32_t strip_stride(uint32_t width) {
 }
 
 /* The texton as strip_texel values, twice. Each copy has one plane per channel, strip_rows - 1 rows of
-   zeros above and below each plane, and rows of `stride` values: zeros, the texton row from value lane
-   (copy 0) or 2 lane (copy 1, `shifted` values further), zeros. The sums are bound by their loads, and
-   a vector load that crosses a 64-byte cache line costs two: rows are whole cache lines, so whether a
+   zeros (zero_texel) above and below each plane, and rows of `stride` values: zeros, the texton row from
+   value lane (copy 0) or 2 lane (copy 1, `shifted` values further), zeros. The sums are bound by their loads,
+   and a vector load that crosses a 64-byte cache line costs two: rows are whole cache lines, so whether a
    window's load crosses one depends only on its column, and the other copy then holds the same window
    at a column where it does not (file_strip_entries picks it). Every window read is inside the copies
    or the `stride` zeros after them (a copy 1 window may run up to lane - 1 values into the next row's
@@ -65,9 +80,20 @@ typedef struct strip_texton {
     uint32_t copies; /* 1 or 2: copy 1 pays off only over thousands of pixels */
 } strip_texton;
 
-/* A texton byte (two's complement) as a strip_texel: as it is in 8 bits, sign-extended in 16. */
+/* A texton byte (two's complement) as a strip_texel: as it is in 8 bits, sign-extended in 16 (plus
+   zero_texel, modulo 2^16). */
 inline strip_texel make_texel(unsigned char byte) {
-    return strip_texel(sizeof(strip_texel) == 1 ? uint32_t(byte) : (uint32_t(byte) ^ 0x80u) - 0x80u);
+    return strip_texel(sizeof(strip_texel) == 1 ? uint32_t(byte)
+                                                : (uint32_t(byte) ^ 0x80u) - 0x80u + zero_texel);
+}
+
+/* Texel (t, x) of a paired plane, from the texton's channel c (rows outside the texton are zeros). */
+inline strip_texel make_paired_texel(const dsn_asset *asset, uint32_t c, uint32_t t, uint32_t x) {
+    const unsigned char *column = asset->texton + x * asset->channels + c;
+    const uint32_t row_bytes = asset->width * asset->channels;
+    const uint32_t first = t > 0 ? column[(t - 1) * row_bytes] : 0u,
+                   second = t < asset->height ? column[t * row_bytes] : 0u;
+    return strip_texel((first ^ 0x80u) | (second ^ 0x80u) << 8);
 }
 
 /* How many copies of the texton strip_texton can hold (2, 1, or 0 when the strip path cannot take it). */
@@ -127,8 +153,22 @@ void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *te
     texton->width = asset->width;
     texton->height = asset->height;
     texton->shifted = channels * texton->plane;
-    for (uint32_t i = 0; i < copies * texton->shifted + texton->stride; i++) texton->values[i] = 0;
-    for (uint32_t c = 0; c < channels; c++)
+    for (uint32_t i = 0; i < copies * texton->shifted + texton->stride; i++)
+        texton->values[i] = strip_texel(zero_texel);
+    for (uint32_t c = 0; c < channels; c++) {
+        if (channels == 3 && c == paired_channel) {
+            /* Pair row t holds texton rows t - 1 and t: at the place of texton row t - 1 in the other planes.
+             */
+            for (uint32_t t = 0; t <= asset->height; t++) {
+                strip_texel *dst = texton->values + c * texton->plane + t * texton->stride + lane;
+                for (uint32_t column = 0; column < asset->width; column++) {
+                    const strip_texel value = make_paired_texel(asset, c, t, column);
+                    dst[column] = value;
+                    if (copies == 2) dst[texton->shifted + lane + column] = value;
+                }
+            }
+            continue;
+        }
         for (uint32_t row = 0; row < asset->height; row++) {
             strip_texel *dst =
                 texton->values + c * texton->plane + (row + strip_rows - 1) * texton->stride + lane;
@@ -139,6 +179,7 @@ void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *te
                 if (copies == 2) dst[texton->shifted + lane + column] = value;
             }
         }
+    }
 }
 
 /* An impulse that reaches the rectangle: the rectangle column and row of its texton's first texel
@@ -264,28 +305,41 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, ui
 
 /* strip_rows rows of one strip: sums[3 r + c] = the sum over `count` entries of the texton row each
    puts on row r, channel c, read from `row` (texton row 0 offset by the first rectangle row). An entry
-   active on only some of the rows reads zero padding rows on the others. Out of line: inlined into the
+   active on only some of the rows reads zero padding rows on the others; the planes' bias (zero_texel)
+   comes off at the end. Out of line: inlined into the
    row loop, the compiler runs out of registers and reloads in the inner loop. */
 template <uint32_t Channels>
 __attribute__((noinline)) void add_strip_rows(const strip_texel *row, const int32_t *base, uint32_t count,
                                               uint32_t plane, uint32_t stride, simd_vector *sums) {
-    simd_vector sum[strip_rows][3];
-#pragma GCC unroll 4
-    for (uint32_t r = 0; r < strip_rows; r++) sum[r][0] = sum[r][1] = sum[r][2] = zero_vector();
+    /* Named accumulators (row, channel): from an array GCC copies every sum to another register on
+       every entry. */
+    simd_vector sum_00 = zero_vector(), sum_01 = zero_vector(), sum_02 = zero_vector();
+    simd_vector sum_10 = zero_vector(), sum_11 = zero_vector(), sum_12 = zero_vector();
     for (uint32_t i = 0; i < count; i++) {
         const strip_texel *texels = row + base[i];
-#pragma GCC unroll 4
-        for (uint32_t r = 0; r < strip_rows; r++) {
-            sum[r][0] = add_16(sum[r][0], load_texels(texels + r * stride));
-            if (Channels == 3) {
-                sum[r][1] = add_16(sum[r][1], load_texels(texels + r * stride + plane));
-                sum[r][2] = add_16(sum[r][2], load_texels(texels + r * stride + 2 * plane));
-            }
+        sum_00 = add_16(sum_00, load_texels(texels));
+        sum_10 = add_16(sum_10, load_texels(texels + stride));
+        if (Channels == 3) {
+            sum_01 = add_16(sum_01, load_texels(texels + plane));
+            sum_11 = add_16(sum_11, load_texels(texels + plane + stride));
+#if DSN_SIMD_PAIRED_ROWS /* both rows in one load, kept at the first row's place */
+            add_pair(load_texels(texels + 2 * plane), &sum_02, &sum_12);
+#else
+            sum_02 = add_16(sum_02, load_texels(texels + 2 * plane));
+            sum_12 = add_16(sum_12, load_texels(texels + 2 * plane + stride));
+#endif
         }
     }
-#pragma GCC unroll 4
-    for (uint32_t r = 0; r < strip_rows; r++)
-        for (uint32_t c = 0; c < 3; c++) sums[3 * r + c] = sum[r][c];
+    sums[0] = sum_00, sums[1] = sum_01, sums[2] = sum_02, sums[3] = sum_10, sums[4] = sum_11,
+    sums[5] = sum_12;
+#if DSN_SIMD_PAIRED_ROWS
+    for (uint32_t c = 0; c < Channels; c++) { /* each entry's bias, modulo 2^16 */
+        const uint32_t bias = (c == paired_channel ? 0x80u : zero_texel) * count & 0xFFFFu;
+        const simd_vector total = set_16(int16_t(int32_t(bias ^ 0x8000u) - 0x8000));
+        sums[c] = sub_16(sums[c], total);
+        sums[3 + c] = sub_16(sums[3 + c], total);
+    }
+#endif
 }
 
 } // namespace

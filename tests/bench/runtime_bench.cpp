@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <random>
 #include <vector>
 
 #include <time.h>
@@ -34,19 +35,7 @@ double thread_seconds() {
     return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
-// Thread CPU times of `repeats` runs of `work`, sorted (front: the minimum, middle: the median).
-template <typename Work>
-std::vector<double> cpu_times(int repeats, Work work) {
-    std::vector<double> times;
-    for (int i = 0; i < repeats; i++) {
-        double start = thread_seconds();
-        work();
-        times.push_back(thread_seconds() - start);
-    }
-    std::sort(times.begin(), times.end());
-    return times;
-}
-
+// The median of sorted times.
 double median(const std::vector<double> &sorted) { return sorted[sorted.size() / 2]; }
 
 // Spectral ADSN of the same texton on an n x n torus, as a careful KissFFT user writes it: one forward
@@ -129,11 +118,11 @@ void count_work(const dsn_noise &noise, uint32_t x, uint32_t y, uint64_t *cells,
         }
 }
 
-// Stack depth of `call` by painting: fill the 64 KB below this frame (still inside the thread's stack),
+// Stack depth of `call` by painting: fill the 256 KB below this frame (still inside the thread's stack),
 // make the call, and find the deepest byte it changed.
 template <typename Call>
 __attribute__((noinline)) size_t painted_stack(Call call) {
-    const size_t region_size = 1 << 16, guard = 128; // guard: this frame's own locals and spills
+    const size_t region_size = 1 << 18, guard = 128; // guard: this frame's own locals and spills
     volatile unsigned char *top = static_cast<unsigned char *>(__builtin_frame_address(0)) - guard;
     for (size_t i = 1; i <= region_size; i++) top[-std::ptrdiff_t(i)] = 0xA5;
     call();
@@ -154,8 +143,10 @@ int main() {
                 30.0 / 961 * double(1u << (2 * dsn_state(&noise)->cell_shift)),
                 dsn_state(&noise)->poisson_parts, dsn_state(&noise)->poisson_size);
 
-    // Tile vs spectral ADSN: thread CPU times, minimum and median of several runs of each, interleaved
-    // so that both see the same machine load.
+    // Tile vs spectral ADSN: thread CPU times, minimum and median of several runs of each. The machine
+    // has slower phases lasting about a second, so the runs are interleaved one by one: every round runs
+    // each of them once, in an order shuffled anew each round (with a fixed seed; a rotation would keep
+    // which job follows which), and no copy's runs clump in one phase.
     const uint32_t side = 2048;
     const size_t values = size_t(side) * side * 3;
     std::vector<int32_t> tile(values);
@@ -169,29 +160,43 @@ int main() {
     const uint32_t other_copies = dsn_state(&noise)->tile_kernel;
     const char *copy_names[] = {"SSE2", "AVX2", "AVX-512"};
     std::vector<double> tile_times, u8_times, float_times, adsn_times, copy_times[2];
-    for (int round = 0; round < 3; round++) {
-        auto more = [](std::vector<double> &all, const std::vector<double> &times) {
-            all.insert(all.end(), times.begin(), times.end());
-        };
-        more(tile_times, cpu_times(3, [&] {
-                 dsn_lattice_tile_fixed(&noise, -1000, 5000, side, side, tile.data(), nullptr, 0);
-             }));
-        more(u8_times, cpu_times(1, [&] {
-                 dsn_lattice_tile_u8(&noise, -1000, 5000, side, side, tile_u8.data(), scratch.data(),
-                                     scratch.size());
-             }));
-        more(float_times, cpu_times(1, [&] {
-                 dsn_lattice_tile_float(&noise, -1000, 5000, side, side, tile_float.data(), scratch.data(),
-                                        scratch.size());
-             }));
-        more(adsn_times, cpu_times(1, [&] { adsn.synthesize(++seed); }));
-        for (uint32_t kernel = 0; kernel < other_copies; kernel++) {
-            dsn_noise copy = noise;
-            dsn_state(&copy)->tile_kernel = kernel;
-            more(copy_times[kernel], cpu_times(3, [&] {
-                     dsn_lattice_tile_fixed(&copy, -1000, 5000, side, side, tile.data(), nullptr, 0);
-                 }));
-        }
+    dsn_noise copies[2] = {noise, noise};
+    for (uint32_t kernel = 0; kernel < other_copies; kernel++)
+        dsn_state(&copies[kernel])->tile_kernel = kernel;
+    auto time_once = [](std::vector<double> &times, auto work) {
+        const double start = thread_seconds();
+        work();
+        times.push_back(thread_seconds() - start);
+    };
+    // Job j of a round: 0 the chosen copy (fixed), 1 u8, 2 float, 3 ADSN, 4 + k the other copy k.
+    auto run_job = [&](uint32_t job) {
+        if (job == 0)
+            time_once(tile_times, [&] {
+                dsn_lattice_tile_fixed(&noise, -1000, 5000, side, side, tile.data(), nullptr, 0);
+            });
+        else if (job == 1)
+            time_once(u8_times, [&] {
+                dsn_lattice_tile_u8(&noise, -1000, 5000, side, side, tile_u8.data(), scratch.data(),
+                                    scratch.size());
+            });
+        else if (job == 2)
+            time_once(float_times, [&] {
+                dsn_lattice_tile_float(&noise, -1000, 5000, side, side, tile_float.data(), scratch.data(),
+                                       scratch.size());
+            });
+        else if (job == 3)
+            time_once(adsn_times, [&] { adsn.synthesize(++seed); });
+        else
+            time_once(copy_times[job - 4], [&] {
+                dsn_lattice_tile_fixed(&copies[job - 4], -1000, 5000, side, side, tile.data(), nullptr, 0);
+            });
+    };
+    std::vector<uint32_t> order(4 + other_copies);
+    for (uint32_t j = 0; j < order.size(); j++) order[j] = j;
+    std::mt19937 shuffler(12345);
+    for (int round = 0; round < 9; round++) {
+        std::shuffle(order.begin(), order.end(), shuffler);
+        for (uint32_t job : order) run_job(job);
     }
     for (auto *times : {&tile_times, &u8_times, &float_times, &adsn_times, &copy_times[0], &copy_times[1]})
         std::sort(times->begin(), times->end());
