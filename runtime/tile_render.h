@@ -10,7 +10,7 @@
 #ifndef DSN_TILE_RENDER_H
 #define DSN_TILE_RENDER_H
 
-/* The strip path (x86: SSE2, AVX2 or AVX-512, simd.h) keeps about 100 KB on the stack (two padded
+/* The strip path (x86: SSE2, AVX2 or AVX-512, simd.h) keeps tens of kilobytes on the stack (two padded
    copies of the texton, the impulse list and the strip entries); elsewhere the 32-bit path keeps a tile
    call's stack small, which microcontrollers need. Both give the same bits. Define DSN_TILE_BLOCKS to 0 to
    take the 32-bit path on x86 too. */

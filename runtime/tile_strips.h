@@ -38,20 +38,17 @@ const uint32_t paired_channel = DSN_SIMD_PAIRED_ROWS ? 2 : 3;
 const uint32_t zero_texel = DSN_SIMD_PAIRED_ROWS ? 0x8080u : 0u;
 /* Texels per 64-byte cache line. */
 const uint32_t line_texels = 64 / sizeof(strip_texel);
-const uint32_t rectangle_width = 256, rectangle_height = 176; /* the largest rectangle */
+const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
 /* Rectangles are chosen to meet at most rectangle_impulses impulses on average (at 30 impacts per pixel
-   a 31 x 31 texton gets 256 x 160 rectangles, each meeting about lambda (256 + 30)(160 + 30) = 1696
-   impulses); the list holds 2048, more than 8 standard
-   deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk fewer cells twice
-   and file fewer impulses per pixel (the impulses that reach a rectangle only in part weigh less); the
-   lists then take more of the stack (about 100 KB in all) and of the L1 cache. */
-const uint32_t rectangle_impulses = 1700, list_capacity = 2048;
+   a 31 x 31 texton gets 128 x 128 rectangles, meeting lambda (128 + 30)^2 = 779); the list holds 1024,
+   almost 9 standard deviations more (a fuller rectangle takes the 32-bit path). Larger rectangles walk
+   fewer cells twice and file fewer impulses per pixel; the lists then take more of the L1 cache. */
+const uint32_t rectangle_impulses = 800, list_capacity = 1024;
 /* And at most column_impulses on average in a column: the count is Poisson, so a column goes over
-   coverage_limit about once in 3 10^5 (4.7 standard deviations; that rectangle takes the 32-bit path;
-   a wide rectangle has hundreds of columns, if far from independent). */
-const uint32_t column_impulses = 190;
+   coverage_limit about once in 10^4 (3.9 standard deviations; that rectangle takes the 32-bit path). */
+const uint32_t column_impulses = 200;
 /* Largest texton side of this path, and most strips one impulse may reach (a texton w wide reaches at
    most (w + lane - 2) / lane + 1: 5 of 8 pixels for w <= 33, and of 16 for w <= 63). */
 const uint32_t strip_texton_side = 63, strips_per_impulse_limit = 5;
