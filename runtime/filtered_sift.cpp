@@ -348,7 +348,12 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
             const bool splat_level = grid != 0 && grid->level_index == l;
             uint32_t runs[2u * listed_cells_most + 2u];
-            const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
+            /* A single tap's kernel reads take the whole list at once (their exact tests leave out what
+               lies beyond the level's reach): a call per run of cells, each with its partial vectors,
+               costs more than testing the candidates of the cells beyond. */
+            const bool whole_list = Bytes == 1 && group.vector_reads != 0 && !splat_level && group.taps == 1;
+            const uint32_t run_count = whole_list ? (runs[0] = 0, runs[1] = list->count, 1u)
+                                                  : reached_runs(*list, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
                 uint32_t narrow_tests[6] = {0, 0, 0, 0, 0, 0};
