@@ -77,9 +77,23 @@ int64_t scaled_offset(int64_t value, int32_t multiple, uint32_t shift) {
     return signed_from_bits(product + static_cast<uint64_t>(floor_shift_signed(low * multiple, shift)));
 }
 
-} // namespace
+/* floor((log2_q16(square) + 1) / 512) for square >= 1, log2_q16 being log2_q16_pair's: the level of
+   detail in 1/256 levels of a footprint whose area is its major square (ceil(log2_q16 / 2) / 256,
+   floored). Only the first 7 fraction bits and whether the 9 after them are all ones decide it, so the
+   squarings stop at the first zero among those 9. */
+int32_t isotropic_lod_q8(uint64_t square) {
+    uint32_t top;
+    uint64_t mantissa = log2_mantissa(square, &top);
+    uint32_t high = 0;
+    for (uint32_t bit = 0; bit < 7; bit++) high = (high << 1) | log2_step(&mantissa);
+    uint32_t carry = 1;
+    for (uint32_t bit = 0; bit < 9 && carry != 0; bit++) carry = log2_step(&mantissa);
+    return static_cast<int32_t>((top << 7) + high + carry);
+}
 
-int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan) {
+/* dsn_internal_filter_plan; isotropic_shortcut: whether isotropic footprints take isotropic_lod_q8. */
+int filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan,
+                bool isotropic_shortcut) {
     plan->lod_q8 = 0;
     plan->taps = 1;
     plan->offset_x[0] = plan->offset_y[0] = 0;
@@ -106,6 +120,16 @@ int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, ds
     const int64_t determinant = cx * ry - cy * rx; /* each product below 2^62 */
     const uint64_t area =
         determinant < 0 ? 0u - static_cast<uint64_t>(determinant) : static_cast<uint64_t>(determinant);
+    const int32_t lod_limit = static_cast<int32_t>((levels + 1u) << 8);
+
+    /* An isotropic footprint (a rotated square: its area is its major square): one tap at the point, the
+       level of detail log2(area) / 2 (below, the general rule's: its minor part ceil(L / 2) is the
+       larger). */
+    if (isotropic_shortcut && area == major_square) {
+        const int32_t lod_q8 = isotropic_lod_q8(area) + (static_cast<int32_t>(shift) - 32) * 256;
+        plan->lod_q8 = lod_q8 < 0 ? 0 : lod_q8 > lod_limit ? lod_limit : lod_q8;
+        return DSN_OK;
+    }
 
     /* Taps: the smallest 2^k with 2^k area >= major^2 (= Pmax / Pmin >= ... exactly), capped. */
     uint32_t most = 0;
@@ -130,7 +154,6 @@ int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, ds
     }
     lod_q16 += (static_cast<int32_t>(shift) - 32) * 65536;
     const int32_t lod_q8 = static_cast<int32_t>(floor_shift_signed(lod_q16, 8));
-    const int32_t lod_limit = static_cast<int32_t>((levels + 1u) << 8);
     plan->lod_q8 = lod_q8 < 0 ? 0 : lod_q8 > lod_limit ? lod_limit : lod_q8;
 
     /* Tap k at ((2k + 1 - N) / (2N)) along the major step vector (its exact components, modulo 2^64). */
@@ -144,6 +167,16 @@ int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, ds
         plan->offset_y[k] = scaled_offset(major_y, multiple, tap_shift + 1u);
     }
     return DSN_OK;
+}
+
+} // namespace
+
+int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan) {
+    return filter_plan(footprint, levels, plan, true);
+}
+
+int dsn_internal_filter_plan_general(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan) {
+    return filter_plan(footprint, levels, plan, false);
 }
 
 namespace {

@@ -26,6 +26,10 @@ typedef struct dsn_filter_plan {
    (filter_footprint.cpp). */
 int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan);
 
+/* The same plan by the general rule alone, without the shortcut that isotropic footprints take (the
+   tests' reference for it). */
+int dsn_internal_filter_plan_general(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan);
+
 /* One pyramid level as the walks read it: values at spacing 2^level texels, centred on the impulse
    (level 0 is the texton): the window of width x height values from `values`, rows `stride` values
    apart. */

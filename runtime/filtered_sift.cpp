@@ -127,28 +127,37 @@ struct CandidateList {
     uint32_t count;
     uint32_t cells, cell_end[listed_cells_most];
     int64_t cell_x[listed_cells_most], cell_y[listed_cells_most];
-    int64_t lowest_x, highest_x, lowest_y, highest_y; /* of cell_x, cell_y */
 };
 
 void record_cell(CandidateList *list, int64_t x, int64_t y) {
-    if (list->cells == 0) {
-        list->lowest_x = list->highest_x = x;
-        list->lowest_y = list->highest_y = y;
-    }
-    list->lowest_x = x < list->lowest_x ? x : list->lowest_x;
-    list->highest_x = x > list->highest_x ? x : list->highest_x;
-    list->lowest_y = y < list->lowest_y ? y : list->lowest_y;
-    list->highest_y = y > list->highest_y ? y : list->highest_y;
     list->cell_x[list->cells] = x;
     list->cell_y[list->cells] = y;
     list->cells++;
 }
 
+/* The least and largest cell_x, cell_y of a list whose cells were recorded (reached_runs's), found
+   only where runs are asked for. */
+struct CellBounds {
+    int64_t lowest_x, highest_x, lowest_y, highest_y;
+};
+
+CellBounds cell_bounds(const CandidateList &list) {
+    CellBounds bounds = {0, 0, 0, 0};
+    for (uint32_t k = 0; k < list.cells; k++) {
+        const int64_t x = list.cell_x[k], y = list.cell_y[k];
+        bounds.lowest_x = k == 0 || x < bounds.lowest_x ? x : bounds.lowest_x;
+        bounds.highest_x = k == 0 || x > bounds.highest_x ? x : bounds.highest_x;
+        bounds.lowest_y = k == 0 || y < bounds.lowest_y ? y : bounds.lowest_y;
+        bounds.highest_y = k == 0 || y > bounds.highest_y ? y : bounds.highest_y;
+    }
+    return bounds;
+}
+
 /* The runs [runs[2k], runs[2k + 1]) of the list whose cells the level tests x, y may keep, their count:
    with u = c + start the test keeps 0 <= u < limit, and a cell's candidates have u within
    (w - 2^(32 + shift), w] for w its largest. The whole list where the cells were not recorded. */
-uint32_t reached_runs(const CandidateList &list, const LevelTest &x, const LevelTest &y, uint32_t shift,
-                      uint32_t *runs) {
+uint32_t reached_runs(const CandidateList &list, const CellBounds &bounds, const LevelTest &x,
+                      const LevelTest &y, uint32_t shift, uint32_t *runs) {
     if (list.cells == 0) {
         runs[0] = 0, runs[1] = list.count;
         return 1;
@@ -157,10 +166,10 @@ uint32_t reached_runs(const CandidateList &list, const LevelTest &x, const Level
     const int64_t limit_x = static_cast<int64_t>(x.limit) + side,
                   limit_y = static_cast<int64_t>(y.limit) + side;
     /* Every cell kept (w grows with the cell's offset: the box is far narrower than 2^62): one run. */
-    if (signed_from_bits(static_cast<uint64_t>(list.lowest_x) + x.start) >= 0 &&
-        signed_from_bits(static_cast<uint64_t>(list.highest_x) + x.start) < limit_x &&
-        signed_from_bits(static_cast<uint64_t>(list.lowest_y) + y.start) >= 0 &&
-        signed_from_bits(static_cast<uint64_t>(list.highest_y) + y.start) < limit_y) {
+    if (signed_from_bits(static_cast<uint64_t>(bounds.lowest_x) + x.start) >= 0 &&
+        signed_from_bits(static_cast<uint64_t>(bounds.highest_x) + x.start) < limit_x &&
+        signed_from_bits(static_cast<uint64_t>(bounds.lowest_y) + y.start) >= 0 &&
+        signed_from_bits(static_cast<uint64_t>(bounds.highest_y) + y.start) < limit_y) {
         runs[0] = 0, runs[1] = list.count;
         return 1;
     }
@@ -341,6 +350,11 @@ void take_splat(const SplatGrid &grid, const dsn_walked_level &level, uint64_t *
    mask's bits. */
 template <uint32_t Channels, uint32_t Bytes>
 void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    /* A single tap's kernel reads take the whole list at once (their exact tests leave out what lies
+       beyond the level's reach): a call per run of cells, each with its partial vectors, costs more
+       than testing the candidates of the cells beyond. (No splat grid then: sum_group.) */
+    const bool whole_list = Bytes == 1 && group.vector_reads != 0 && group.taps == 1;
+    const CellBounds bounds = whole_list ? CellBounds() : cell_bounds(*list);
     for (uint32_t t = 0; t < group.taps; t++) {
         for (uint32_t l = 0; l < group.level_count; l++) {
             const dsn_walked_level &level = group.levels[l];
@@ -348,7 +362,9 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
             const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
             const bool splat_level = grid != 0 && grid->level_index == l;
             uint32_t runs[2u * listed_cells_most + 2u];
-            const uint32_t run_count = reached_runs(*list, test_x, test_y, group.shift, runs);
+            const uint32_t run_count = whole_list
+                                           ? (runs[0] = 0, runs[1] = list->count, 1u)
+                                           : reached_runs(*list, bounds, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
                 const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
                 uint32_t narrow_tests[6] = {0, 0, 0, 0, 0, 0};

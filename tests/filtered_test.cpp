@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../offline/bake_internal.h"
+#include "../runtime/filtered_internal.h"
 #include "fixtures/pyramid_fixture.h"
 #include "fixtures/test_assets.h"
 
@@ -140,6 +141,42 @@ TEST_CASE("filtered: level of detail and taps of footprints, bad ones included")
     CHECK(dsn_filtered_point_fixed(nullptr, 0, 0, &bad, out) == DSN_ERR_NULL);
     CHECK(dsn_filter_level(&noise, nullptr, &lod, &taps) == DSN_ERR_NULL);
 }
+
+#if DSN_FILTERING
+TEST_CASE("filtered: isotropic footprints take the general rule's plan") {
+    // Rotated and mirrored squares {a, b, -b, a}, {a, b, b, -a} with sides from 2^-12 to 2^30 texels (most
+    // within the levels' range),
+    // powers of two and their neighbours included: their level of detail by the shortcut that stops the
+    // logarithm's squarings early, against the general rule's; and slightly unequal ones (the general rule).
+    TestRandom random(11);
+    uint32_t isotropic = 0;
+    for (uint32_t levels : {0u, 4u, 8u})
+        for (int i = 0; i < 60000; i++) {
+            const uint32_t top = i % 11 == 0 ? 20u + random.next() % 43u : 28u + random.next() % 17u;
+            uint64_t a = (uint64_t(random.next()) << 32 | random.next()) >> (63u - top);
+            uint64_t b = i % 3 == 0 ? 0 : (uint64_t(random.next()) << 32 | random.next()) >> (63u - top);
+            if (i % 7 == 0) a = (uint64_t(1) << top) + uint64_t(int(random.next() % 3) - 1);
+            const int64_t sa = random.next() & 1 ? -int64_t(a) : int64_t(a),
+                          sb = random.next() & 1 ? -int64_t(b) : int64_t(b);
+            const int64_t nudge = i % 5 == 0 ? 1 : 0; // unequal sides: no longer isotropic
+            const dsn_footprint footprints[] = {{sa, sb, -sb, sa + nudge, 1 + uint32_t(i % 16)},
+                                                {sa, sb, sb, -sa, 16}};
+            for (const dsn_footprint &f : footprints) {
+                dsn_filter_plan fast, general;
+                REQUIRE(dsn_internal_filter_plan(&f, levels, &fast) == DSN_OK);
+                REQUIRE(dsn_internal_filter_plan_general(&f, levels, &general) == DSN_OK);
+                REQUIRE(fast.lod_q8 == general.lod_q8);
+                REQUIRE(fast.taps == general.taps);
+                for (uint32_t t = 0; t < fast.taps; t++) {
+                    REQUIRE(fast.offset_x[t] == general.offset_x[t]);
+                    REQUIRE(fast.offset_y[t] == general.offset_y[t]);
+                }
+                isotropic += nudge == 0 && fast.lod_q8 > 0 && fast.lod_q8 < int32_t((levels + 1) << 8);
+            }
+        }
+    CHECK(isotropic > 60000); // most compared footprints reached the shortcut, unclamped
+}
+#endif
 
 TEST_CASE("filtered: the baker's pyramid is the one the test computes from the definition") {
     for (uint32_t bits : {8u, 16u}) {
