@@ -5,7 +5,8 @@
    packed into arrays (AVX-512: a cell's first two pairs at once, compressed), then visited 8 (AVX-512: 16)
    at a time: the fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all
    in 32-bit lanes (64-bit for the column's interpolation), the texels gathered straight from the texton,
-   each where it lies inside the window (no branch at the window's edge). The same impulses, offsets,
+   each where it lies inside the window (no branch at the window's edge; AVX-512: both texels of a row by
+   one 8-byte read). The same impulses, offsets,
    weights and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything
    here has internal linkage). */
 #ifndef DSN_CONTINUOUS_POINT_VECTOR_H
@@ -281,6 +282,49 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
                         lane_byte_16(bottom_right, c), across, down, &sums[c]);
 }
 
+/* add_window_reads_16 on the whole texton (the per-point visit's window): each row's two texels by one
+   8-byte read from 4 bytes before the right texel, 8 lanes a gather, half the values gathered. The left
+   texel's channels end at byte 3 of the read and the right one's start at byte 4: the gathered words'
+   low and high halves, each zeroed where its texel is outside. The reads reach at most 4 bytes before
+   the texton and 4 past it: into the asset's header (format.h: header_size >= 128) and 4-byte CRC, in the
+   buffer that the loader checked (asset.cpp sets the texton there only). */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
+                                          __m512i s_x, __m512i s_y, __mmask16 reach, __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), one = _mm512_set1_epi32(1);
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i row = _mm512_sub_epi32(lower_row, one);
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    const __m512i last_column = broadcast_16(width - 1u), last_row = broadcast_16(height - 1u);
+    const __mmask16 left = _mm512_cmple_epu32_mask(_mm512_sub_epi32(right_column, one), last_column),
+                    right = _mm512_cmple_epu32_mask(right_column, last_column);
+    /* a row is read where one of its texels is inside */
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach & (left | right), row, last_row),
+                    bottom = _mm512_mask_cmple_epu32_mask(reach & (left | right), lower_row, last_row);
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(width)), right_column);
+    const __m512i at = _mm512_sub_epi32(
+        Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry, _mm512_set1_epi32(4));
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(width * Channels));
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
+                  highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+    __m512i texels[4]; /* top left, top right, bottom left, bottom right */
+    for (uint32_t pass = 0; pass < 2; pass++) {
+        const __mmask16 rows = pass == 0 ? top : bottom;
+        const __m512i from = pass == 0 ? at : below;
+        const __m512i first = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(rows),
+                                                          _mm512_castsi512_si256(from), texton, 1),
+                      second = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(rows >> 8),
+                                                           _mm512_extracti64x4_epi64(from, 1), texton, 1);
+        texels[2 * pass] = _mm512_maskz_permutex2var_epi32(left, first, lows, second);
+        texels[2 * pass + 1] = _mm512_maskz_permutex2var_epi32(right, first, highs, second);
+    }
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(texels[0], 4u - Channels + c), lane_byte_16(texels[1], c),
+                        lane_byte_16(texels[2], 4u - Channels + c), lane_byte_16(texels[3], c), across, down,
+                        &sums[c]);
+}
+
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
@@ -298,8 +342,8 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
     if (visit->quads != 0)
         add_quad_reads_16<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->wide_sums);
     else
-        add_window_reads_16<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y,
-                                      reach, visit->wide_sums);
+        add_texton_pairs_16<Channels>(visit->texton, visit->width, visit->height, s_x, s_y, reach,
+                                      visit->wide_sums);
 }
 #endif
 
