@@ -52,13 +52,16 @@ const uint32_t point_vector_lanes = 16; /* candidates per visit: 512-bit vectors
 const uint32_t point_vector_lanes = 8;
 #endif
 
-/* The packed candidates: fraction hash input, 8-bit field, and the cell's floor(shifted_base / 2^16) per
-   axis (bit patterns of int32). The slots past the end take the last pair's store and the padding. */
+/* The packed candidates: fraction hash input, and the 8-bit field with the cell's column i and row j
+   among the point's cells (AxisCells) above it: field | i << 8 | j << 11. The slots past the end take
+   the last pair's store and the padding. */
 struct PointCandidates {
     uint32_t stream[point_vector_slots + 16], field[point_vector_slots + 16];
-    uint32_t base_x[point_vector_slots + 16], base_y[point_vector_slots + 16];
     uint32_t count;
 };
+
+/* A candidate's column and row index above its field (PointCandidates). */
+inline uint32_t cell_indices(uint32_t i, uint32_t j) { return i << 8 | j << 11; }
 
 inline __m256i broadcast_8(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
 
@@ -80,6 +83,8 @@ struct PointVisit {
     uint32_t quad_row;       /* quads per row of the table: (width + 1) Channels */
     uint32_t last_x, last_y; /* the largest S in reach */
     __m128i shift;
+    /* floor(shifted_base / 2^16) of the point's column and row cells (AxisCells's base) */
+    __m256i column_bases, row_bases;
     __m256i sums[Channels];
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     __m512i wide_sums[Channels];
@@ -160,13 +165,14 @@ template <uint32_t Channels>
 inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
                           uint32_t valid) {
     const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
-                  field = load_8(candidates.field + first);
+                  packed = load_8(candidates.field + first);
     __m256i bits_x, bits_y;
-    impulse_bits_8(field, fraction, &bits_x, &bits_y);
-    const __m256i s_x =
-        _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
-    const __m256i s_y =
-        _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
+    impulse_bits_8(_mm256_and_si256(packed, broadcast_8(0xFF)), fraction, &bits_x, &bits_y);
+    /* the cells' bases by their indices (the permutes read the low 3 bits) */
+    const __m256i base_x = _mm256_permutevar8x32_epi32(visit->column_bases, _mm256_srli_epi32(packed, 8)),
+                  base_y = _mm256_permutevar8x32_epi32(visit->row_bases, _mm256_srli_epi32(packed, 11));
+    const __m256i s_x = _mm256_sub_epi32(base_x, _mm256_sll_epi32(bits_x, visit->shift));
+    const __m256i s_y = _mm256_sub_epi32(base_y, _mm256_sll_epi32(bits_y, visit->shift));
     const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     const __m256i reach =
         _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
@@ -329,12 +335,16 @@ template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
     const __m512i fraction = mix32_16(load_16(candidates.stream + first));
+    const __m512i packed = load_16(candidates.field + first);
     __m512i bits_x, bits_y;
-    impulse_bits_16(load_16(candidates.field + first), fraction, &bits_x, &bits_y);
-    const __m512i s_x =
-        _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
-    const __m512i s_y =
-        _mm512_sub_epi32(load_16(candidates.base_y + first), _mm512_sll_epi32(bits_y, visit->shift));
+    impulse_bits_16(_mm512_and_si512(packed, broadcast_16(0xFF)), fraction, &bits_x, &bits_y);
+    /* the cells' bases by their indices (the permutes read the low 4 bits: the bases twice) */
+    const __m512i column_bases = _mm512_broadcast_i64x4(visit->column_bases),
+                  row_bases = _mm512_broadcast_i64x4(visit->row_bases);
+    const __m512i base_x = _mm512_permutexvar_epi32(_mm512_srli_epi32(packed, 8), column_bases),
+                  base_y = _mm512_permutexvar_epi32(_mm512_srli_epi32(packed, 11), row_bases);
+    const __m512i s_x = _mm512_sub_epi32(base_x, _mm512_sll_epi32(bits_x, visit->shift));
+    const __m512i s_y = _mm512_sub_epi32(base_y, _mm512_sll_epi32(bits_y, visit->shift));
     const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
     const __mmask16 reach =
         _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
@@ -355,7 +365,6 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
     const __m256i zero = _mm256_setzero_si256();
     for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u) {
         store_8(candidates->stream + pad, zero), store_8(candidates->field + pad, zero);
-        store_8(candidates->base_x + pad, zero), store_8(candidates->base_y + pad, zero);
     }
     uint32_t first = 0;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -367,10 +376,9 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
 }
 
 /* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
-   whose impulses are `count` (none when count <= first). */
+   whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
 inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
-                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m256i base_x,
-                     __m256i base_y) {
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
     const uint64_t pair = dsn_position_pair(key, first >> 3);
     const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
     const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
@@ -379,8 +387,8 @@ inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, 
     const uint32_t packed =
         pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
     const uint32_t slot = candidates->count;
-    store_8(candidates->stream + slot, streams), store_8(candidates->field + slot, fields);
-    store_8(candidates->base_x + slot, base_x), store_8(candidates->base_y + slot, base_y);
+    store_8(candidates->stream + slot, streams);
+    store_8(candidates->field + slot, _mm256_or_si256(fields, broadcast_8(indices)));
     candidates->count = slot + packed;
 }
 
@@ -401,8 +409,7 @@ inline uint32_t mask_count(uint32_t mask) {
    128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
    compressed into place. */
 inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
-                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m512i base_x,
-                            __m512i base_y) {
+                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
     const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
                                          static_cast<long long>(dsn_position_pair(key, 0)));
     uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
@@ -416,9 +423,8 @@ inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t 
     const uint32_t slot = candidates->count;
     _mm512_storeu_si512(candidates->stream + slot, _mm512_maskz_compress_epi32(keep, streams));
     _mm512_storeu_si512(candidates->field + slot,
-                        _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs)));
-    _mm512_storeu_si512(candidates->base_x + slot, base_x);
-    _mm512_storeu_si512(candidates->base_y + slot, base_y);
+                        _mm512_maskz_compress_epi32(
+                            keep, _mm512_or_si512(_mm512_cvtepu8_epi32(pairs), broadcast_16(indices))));
     candidates->count = slot + mask_count(sifted);
 }
 #endif
@@ -478,6 +484,13 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
     visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
     visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
     visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
+    /* the bases past the axes' cells are not read (masked: defined values) */
+    visit.column_bases = _mm256_maskload_epi32(
+        static_cast<const int *>(static_cast<const void *>(columns.base)),
+        _mm256_cmpgt_epi32(broadcast_8(columns.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    visit.row_bases = _mm256_maskload_epi32(
+        static_cast<const int *>(static_cast<const void *>(rows.base)),
+        _mm256_cmpgt_epi32(broadcast_8(rows.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
     for (uint32_t c = 0; c < Channels; c++) {
         visit.sums[c] = _mm256_setzero_si256();
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -487,28 +500,25 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
     PointCandidates candidates;
     candidates.count = 0;
     for (uint32_t j = 0; j < rows.count; j++) {
-        const __m256i base_y = broadcast_8(rows.base[j]);
         for (uint32_t i = 0; i < columns.count; i++) {
             const uint32_t key = keys[j * row_step + i * column_step],
                            count = counts[j * row_step + i * column_step];
-            const __m256i base_x = broadcast_8(columns.base[i]);
             /* The first two pairs whether the cell has impulses there or not: a branch on the count
                would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
             if (candidates.count > point_vector_slots - 16u)
                 visit_point_candidates<Channels>(&visit, &candidates);
 #if defined(__AVX512F__) && defined(__AVX512BW__)
             add_first_pairs(&candidates, key, count, lanes, columns.axis[i], rows.axis[j],
-                            _mm512_set1_epi32(static_cast<int>(columns.base[i])),
-                            _mm512_set1_epi32(static_cast<int>(rows.base[j])));
+                            cell_indices(i, j));
 #else
-            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
-            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
+            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
 #endif
             for (uint32_t first = 16; first < count; first += 8u) {
                 if (candidates.count > point_vector_slots - 8u)
                     visit_point_candidates<Channels>(&visit, &candidates);
-                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j], base_x,
-                         base_y);
+                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j],
+                         cell_indices(i, j));
             }
         }
     }
