@@ -405,6 +405,50 @@ inline uint32_t mask_count(uint32_t mask) {
 #endif
 }
 
+/* The Poisson table of a noise whose cell counts are one draw, in vectors: the guide widened to 32 bits
+   and cdf[0 .. 31]. dsn_poisson_count_two_steps then reads no threshold past cdf[31] when the guide's
+   counts are at most 29 (count_tables_fit). */
+struct CountTables {
+    __m512i guide[4], cdf[2];
+};
+
+inline bool count_tables_fit(const dsn_noise_state *noise) {
+    return noise->poisson_parts == 1 && noise->poisson_guide[63] <= 29u &&
+           sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0] >= 32u;
+}
+
+inline void count_tables(const dsn_noise_state *noise, CountTables *tables) {
+    for (uint32_t q = 0; q < 4; q++)
+        tables->guide[q] = _mm512_cvtepu8_epi32(_mm_loadu_si128(
+            static_cast<const __m128i *>(static_cast<const void *>(noise->poisson_guide + 16 * q))));
+    tables->cdf[0] = _mm512_loadu_si512(noise->poisson_cdf);
+    tables->cdf[1] = _mm512_loadu_si512(noise->poisson_cdf + 16);
+}
+
+/* dsn_poisson_count_two_steps of 16 keys (count_tables_fit), the guide and thresholds read by permutes;
+   the rare lanes that need the exact search take dsn_poisson_draw. */
+inline __m512i counts_16(const dsn_noise_state *noise, const CountTables &tables, __m512i keys) {
+    const __m512i bucket = _mm512_srli_epi32(keys, 26), one = _mm512_set1_epi32(1);
+    __m512i n = _mm512_mask_blend_epi32(_mm512_cmpge_epu32_mask(bucket, _mm512_set1_epi32(32)),
+                                        _mm512_permutex2var_epi32(tables.guide[0], bucket, tables.guide[1]),
+                                        _mm512_permutex2var_epi32(tables.guide[2], bucket, tables.guide[3]));
+    for (uint32_t step = 0; step < 2; step++)
+        n = _mm512_mask_add_epi32(
+            n, _mm512_cmpge_epu32_mask(keys, _mm512_permutex2var_epi32(tables.cdf[0], n, tables.cdf[1])), n,
+            one);
+    const __m512i size = broadcast_16(noise->poisson_size);
+    const __mmask16 search =
+        _mm512_cmpgt_epu32_mask(n, size) |
+        _mm512_mask_cmpge_epu32_mask(_mm512_cmplt_epu32_mask(n, size), keys,
+                                     _mm512_permutex2var_epi32(tables.cdf[0], n, tables.cdf[1]));
+    if (search == 0) return n;
+    uint32_t lanes[16], uniforms[16];
+    _mm512_storeu_si512(lanes, n), _mm512_storeu_si512(uniforms, keys);
+    for (uint32_t k = 0; k < 16; k++)
+        if ((search >> k) & 1u) lanes[k] = dsn_poisson_draw(noise, uniforms[k]);
+    return _mm512_loadu_si512(lanes);
+}
+
 /* add_pair for the cell's first two pairs at once (impulses 0 .. 15): the sifting of both pairs in one
    128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
    compressed into place. */
