@@ -241,7 +241,9 @@ DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e
     *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
 }
 
-/* add_quad_reads_8 on 16 lanes. */
+/* add_quad_reads_8 on 16 lanes; 3 channels by 8-byte reads, 8 lanes a gather (half the values
+   gathered): channels 0 and 1, then channel 2 and the next word (continuous_batch.h: the table ends
+   with one more word), the words' halves taken by permutes. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, __m512i s_x, __m512i s_y,
                                         __mmask16 reach, __m512i *sums) {
@@ -251,11 +253,28 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
     const __m512i at =
         _mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(s_y, 16), broadcast_16(quad_row)),
                          Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(column, 1), column) : column);
-    for (uint32_t c = 0; c < Channels; c++) {
-        const __m512i quad = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), reach, at, quads + c, 4);
-        add_bilinear_16(lane_byte_16(quad, 0), lane_byte_16(quad, 1), lane_byte_16(quad, 2),
-                        lane_byte_16(quad, 3), across, down, &sums[c]);
+    const __m512i zero = _mm512_setzero_si512();
+    __m512i quad[Channels];
+    if (Channels == 3) {
+        const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
+                      highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+        __m512i words[2][2]; /* [channels 0 and 1, channel 2][candidates 0 .. 7, 8 .. 15] */
+        for (uint32_t part = 0; part < 2; part++) {
+            words[part][0] = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
+                                                         _mm512_castsi512_si256(at), quads + 2 * part, 4);
+            words[part][1] =
+                _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
+                                            _mm512_extracti64x4_epi64(at, 1), quads + 2 * part, 4);
+        }
+        quad[0] = _mm512_permutex2var_epi32(words[0][0], lows, words[0][1]);
+        quad[Channels - 2] = _mm512_permutex2var_epi32(words[0][0], highs, words[0][1]);
+        quad[Channels - 1] = _mm512_permutex2var_epi32(words[1][0], lows, words[1][1]);
+    } else {
+        quad[0] = _mm512_mask_i32gather_epi32(zero, reach, at, quads, 4);
     }
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(quad[c], 0), lane_byte_16(quad[c], 1), lane_byte_16(quad[c], 2),
+                        lane_byte_16(quad[c], 3), across, down, &sums[c]);
 }
 
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
