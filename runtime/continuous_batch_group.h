@@ -1,10 +1,11 @@
 /* runtime/continuous_batch_group.h - the batch of continuous points for the noises the vector per-point
    evaluator takes (continuous_point_vector.h), 8 points at a time with a point in each vector lane: their
    cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
-   3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search), then each
-   point's impulses sifted, visited and normalized by the per-point evaluator's code, its texels read from
-   the batch's quad table where the call built it (continuous_batch.h: one gather per channel, no test at
-   the window's edge; continuous_batch.cpp builds it for large batches only). A
+   3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search; AVX-512: by
+   the two-step search on 16 lanes, counts_16), then each point's impulses sifted, visited and normalized
+   by the per-point evaluator's code, its texels read from the batch's quad table where the call built it
+   (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the window's edge;
+   continuous_batch.cpp builds it for large batches only). A
    point with more cells along an axis goes through the per-point evaluator. The same cells, keys and
    counts as per point, so the same bits. Internal to libdsn; not installed (everything here has internal
    linkage). */

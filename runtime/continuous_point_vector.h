@@ -2,7 +2,8 @@
    kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit textons and cells of side <= 16
    (pairs of 8 impulses). The cells are walked and their pairs sifted as by continuous_point.cpp's
    evaluator (continuous_sift.h), the keys and counts of all the cells first; each pair's candidates are
-   packed into arrays (AVX-512: a cell's first two pairs at once, compressed), then visited 8 (AVX-512: 16)
+   packed into arrays, their cell by its column and row index (AVX-512: a cell's first two pairs at once,
+   compressed), then visited 8 (AVX-512: 16)
    at a time: the fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all
    in 32-bit lanes (64-bit for the column's interpolation), the texels gathered straight from the texton,
    each where it lies inside the window (no branch at the window's edge; AVX-512: both texels of a row by
