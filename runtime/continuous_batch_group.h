@@ -1,10 +1,11 @@
 /* runtime/continuous_batch_group.h - the batch of continuous points for the noises the vector per-point
    evaluator takes (continuous_point_vector.h), 8 points at a time with a point in each vector lane: their
    cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
-   3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search), then each
-   point's impulses sifted, visited and normalized by the per-point evaluator's code, its texels read from
-   the batch's quad table where the call built it (continuous_batch.h: one gather per channel, no test at
-   the window's edge; continuous_batch.cpp builds it for large batches only). A
+   3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search; AVX-512: by
+   the two-step search on 16 lanes, counts_16), then each point's impulses sifted, visited and normalized
+   by the per-point evaluator's code, its texels read from the batch's quad table where the call built it
+   (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the window's edge;
+   continuous_batch.cpp builds it for large batches only). A
    point with more cells along an axis goes through the per-point evaluator. The same cells, keys and
    counts as per point, so the same bits. Internal to libdsn; not installed (everything here has internal
    linkage). */
@@ -25,6 +26,10 @@ struct GroupShared {
     FieldLanes lanes;
     uint32_t flipped_cdf[sizeof(dsn_noise_state::poisson_cdf) / sizeof(uint32_t)];
     bool one_draw; /* a cell's count is one draw */
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    bool by_tables; /* the counts by counts_16 (count_tables_fit) */
+    CountTables tables;
+#endif
 };
 
 inline GroupShared group_shared(const dsn_noise_state *noise) {
@@ -33,6 +38,10 @@ inline GroupShared group_shared(const dsn_noise_state *noise) {
     for (uint32_t k = 0; k < noise->poisson_size; k++)
         shared.flipped_cdf[k] = noise->poisson_cdf[k] ^ 0x80000000u;
     shared.one_draw = noise->poisson_parts == 1;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    shared.by_tables = count_tables_fit(noise);
+    if (shared.by_tables) count_tables(noise, &shared.tables);
+#endif
     return shared;
 }
 
@@ -180,6 +189,13 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
             const __m256i key =
                 mix32_8(_mm256_add_epi32(_mm256_xor_si256(load_8(cell_x[i]), seed_column), row_key));
             store_8(keys, key);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            if (shared.by_tables) {
+                store_8(counts,
+                        _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key))));
+                continue;
+            }
+#endif
             if (shared.one_draw)
                 store_8(counts, group_counts(noise, shared, key));
             else

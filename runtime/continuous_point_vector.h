@@ -2,10 +2,12 @@
    kernel (kernels.h: the AVX2 and AVX-512 kernels include it), for 8-bit textons and cells of side <= 16
    (pairs of 8 impulses). The cells are walked and their pairs sifted as by continuous_point.cpp's
    evaluator (continuous_sift.h), the keys and counts of all the cells first; each pair's candidates are
-   packed into arrays (AVX-512: a cell's first two pairs at once, compressed), then visited 8 (AVX-512: 16)
+   packed into arrays, their cell by its column and row index (AVX-512: a cell's first two pairs at once,
+   compressed), then visited 8 (AVX-512: 16)
    at a time: the fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all
    in 32-bit lanes (64-bit for the column's interpolation), the texels gathered straight from the texton,
-   each where it lies inside the window (no branch at the window's edge). The same impulses, offsets,
+   each where it lies inside the window (no branch at the window's edge; AVX-512: both texels of a row by
+   one 8-byte read). The same impulses, offsets,
    weights and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything
    here has internal linkage). */
 #ifndef DSN_CONTINUOUS_POINT_VECTOR_H
@@ -51,13 +53,16 @@ const uint32_t point_vector_lanes = 16; /* candidates per visit: 512-bit vectors
 const uint32_t point_vector_lanes = 8;
 #endif
 
-/* The packed candidates: fraction hash input, 8-bit field, and the cell's floor(shifted_base / 2^16) per
-   axis (bit patterns of int32). The slots past the end take the last pair's store and the padding. */
+/* The packed candidates: fraction hash input, and the 8-bit field with the cell's column i and row j
+   among the point's cells (AxisCells) above it: field | i << 8 | j << 11. The slots past the end take
+   the last pair's store and the padding. */
 struct PointCandidates {
     uint32_t stream[point_vector_slots + 16], field[point_vector_slots + 16];
-    uint32_t base_x[point_vector_slots + 16], base_y[point_vector_slots + 16];
     uint32_t count;
 };
+
+/* A candidate's column and row index above its field (PointCandidates). */
+inline uint32_t cell_indices(uint32_t i, uint32_t j) { return i << 8 | j << 11; }
 
 inline __m256i broadcast_8(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
 
@@ -79,6 +84,8 @@ struct PointVisit {
     uint32_t quad_row;       /* quads per row of the table: (width + 1) Channels */
     uint32_t last_x, last_y; /* the largest S in reach */
     __m128i shift;
+    /* floor(shifted_base / 2^16) of the point's column and row cells (AxisCells's base) */
+    __m256i column_bases, row_bases;
     __m256i sums[Channels];
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     __m512i wide_sums[Channels];
@@ -159,13 +166,14 @@ template <uint32_t Channels>
 inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
                           uint32_t valid) {
     const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
-                  field = load_8(candidates.field + first);
+                  packed = load_8(candidates.field + first);
     __m256i bits_x, bits_y;
-    impulse_bits_8(field, fraction, &bits_x, &bits_y);
-    const __m256i s_x =
-        _mm256_sub_epi32(load_8(candidates.base_x + first), _mm256_sll_epi32(bits_x, visit->shift));
-    const __m256i s_y =
-        _mm256_sub_epi32(load_8(candidates.base_y + first), _mm256_sll_epi32(bits_y, visit->shift));
+    impulse_bits_8(_mm256_and_si256(packed, broadcast_8(0xFF)), fraction, &bits_x, &bits_y);
+    /* the cells' bases by their indices (the permutes read the low 3 bits) */
+    const __m256i base_x = _mm256_permutevar8x32_epi32(visit->column_bases, _mm256_srli_epi32(packed, 8)),
+                  base_y = _mm256_permutevar8x32_epi32(visit->row_bases, _mm256_srli_epi32(packed, 11));
+    const __m256i s_x = _mm256_sub_epi32(base_x, _mm256_sll_epi32(bits_x, visit->shift));
+    const __m256i s_y = _mm256_sub_epi32(base_y, _mm256_sll_epi32(bits_y, visit->shift));
     const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     const __m256i reach =
         _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
@@ -234,7 +242,9 @@ DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e
     *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
 }
 
-/* add_quad_reads_8 on 16 lanes. */
+/* add_quad_reads_8 on 16 lanes; 3 channels by 8-byte reads, 8 lanes a gather (half the values
+   gathered): channels 0 and 1, then channel 2 and the next word (continuous_batch.h: the table ends
+   with one more word), the words' halves taken by permutes. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, __m512i s_x, __m512i s_y,
                                         __mmask16 reach, __m512i *sums) {
@@ -244,11 +254,28 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
     const __m512i at =
         _mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(s_y, 16), broadcast_16(quad_row)),
                          Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(column, 1), column) : column);
-    for (uint32_t c = 0; c < Channels; c++) {
-        const __m512i quad = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), reach, at, quads + c, 4);
-        add_bilinear_16(lane_byte_16(quad, 0), lane_byte_16(quad, 1), lane_byte_16(quad, 2),
-                        lane_byte_16(quad, 3), across, down, &sums[c]);
+    const __m512i zero = _mm512_setzero_si512();
+    __m512i quad[Channels];
+    if (Channels == 3) {
+        const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
+                      highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+        __m512i words[2][2]; /* [channels 0 and 1, channel 2][candidates 0 .. 7, 8 .. 15] */
+        for (uint32_t part = 0; part < 2; part++) {
+            words[part][0] = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
+                                                         _mm512_castsi512_si256(at), quads + 2 * part, 4);
+            words[part][1] =
+                _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
+                                            _mm512_extracti64x4_epi64(at, 1), quads + 2 * part, 4);
+        }
+        quad[0] = _mm512_permutex2var_epi32(words[0][0], lows, words[0][1]);
+        quad[Channels - 2] = _mm512_permutex2var_epi32(words[0][0], highs, words[0][1]);
+        quad[Channels - 1] = _mm512_permutex2var_epi32(words[1][0], lows, words[1][1]);
+    } else {
+        quad[0] = _mm512_mask_i32gather_epi32(zero, reach, at, quads, 4);
     }
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(quad[c], 0), lane_byte_16(quad[c], 1), lane_byte_16(quad[c], 2),
+                        lane_byte_16(quad[c], 3), across, down, &sums[c]);
 }
 
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
@@ -281,16 +308,63 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
                         lane_byte_16(bottom_right, c), across, down, &sums[c]);
 }
 
+/* add_window_reads_16 on the whole texton (the per-point visit's window): each row's two texels by one
+   8-byte read from 4 bytes before the right texel, 8 lanes a gather, half the values gathered. The left
+   texel's channels end at byte 3 of the read and the right one's start at byte 4: the gathered words'
+   low and high halves, each zeroed where its texel is outside. The reads reach at most 4 bytes before
+   the texton and 4 past it: into the asset's header (format.h: header_size >= 128) and 4-byte CRC, in the
+   buffer that the loader checked (asset.cpp sets the texton there only). */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
+                                          __m512i s_x, __m512i s_y, __mmask16 reach, __m512i *sums) {
+    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), one = _mm512_set1_epi32(1);
+    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
+    const __m512i row = _mm512_sub_epi32(lower_row, one);
+    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+    const __m512i last_column = broadcast_16(width - 1u), last_row = broadcast_16(height - 1u);
+    const __mmask16 left = _mm512_cmple_epu32_mask(_mm512_sub_epi32(right_column, one), last_column),
+                    right = _mm512_cmple_epu32_mask(right_column, last_column);
+    /* a row is read where one of its texels is inside */
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach & (left | right), row, last_row),
+                    bottom = _mm512_mask_cmple_epu32_mask(reach & (left | right), lower_row, last_row);
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(width)), right_column);
+    const __m512i at = _mm512_sub_epi32(
+        Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry, _mm512_set1_epi32(4));
+    const __m512i below = _mm512_add_epi32(at, broadcast_16(width * Channels));
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
+                  highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+    __m512i texels[4]; /* top left, top right, bottom left, bottom right */
+    for (uint32_t pass = 0; pass < 2; pass++) {
+        const __mmask16 rows = pass == 0 ? top : bottom;
+        const __m512i from = pass == 0 ? at : below;
+        const __m512i first = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(rows),
+                                                          _mm512_castsi512_si256(from), texton, 1),
+                      second = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(rows >> 8),
+                                                           _mm512_extracti64x4_epi64(from, 1), texton, 1);
+        texels[2 * pass] = _mm512_maskz_permutex2var_epi32(left, first, lows, second);
+        texels[2 * pass + 1] = _mm512_maskz_permutex2var_epi32(right, first, highs, second);
+    }
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(texels[0], 4u - Channels + c), lane_byte_16(texels[1], c),
+                        lane_byte_16(texels[2], 4u - Channels + c), lane_byte_16(texels[3], c), across, down,
+                        &sums[c]);
+}
+
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
     const __m512i fraction = mix32_16(load_16(candidates.stream + first));
+    const __m512i packed = load_16(candidates.field + first);
     __m512i bits_x, bits_y;
-    impulse_bits_16(load_16(candidates.field + first), fraction, &bits_x, &bits_y);
-    const __m512i s_x =
-        _mm512_sub_epi32(load_16(candidates.base_x + first), _mm512_sll_epi32(bits_x, visit->shift));
-    const __m512i s_y =
-        _mm512_sub_epi32(load_16(candidates.base_y + first), _mm512_sll_epi32(bits_y, visit->shift));
+    impulse_bits_16(_mm512_and_si512(packed, broadcast_16(0xFF)), fraction, &bits_x, &bits_y);
+    /* the cells' bases by their indices (the permutes read the low 4 bits: the bases twice) */
+    const __m512i column_bases = _mm512_broadcast_i64x4(visit->column_bases),
+                  row_bases = _mm512_broadcast_i64x4(visit->row_bases);
+    const __m512i base_x = _mm512_permutexvar_epi32(_mm512_srli_epi32(packed, 8), column_bases),
+                  base_y = _mm512_permutexvar_epi32(_mm512_srli_epi32(packed, 11), row_bases);
+    const __m512i s_x = _mm512_sub_epi32(base_x, _mm512_sll_epi32(bits_x, visit->shift));
+    const __m512i s_y = _mm512_sub_epi32(base_y, _mm512_sll_epi32(bits_y, visit->shift));
     const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
     const __mmask16 reach =
         _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
@@ -298,8 +372,8 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
     if (visit->quads != 0)
         add_quad_reads_16<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->wide_sums);
     else
-        add_window_reads_16<Channels>(visit->texton, visit->width, visit->height, visit->width, s_x, s_y,
-                                      reach, visit->wide_sums);
+        add_texton_pairs_16<Channels>(visit->texton, visit->width, visit->height, s_x, s_y, reach,
+                                      visit->wide_sums);
 }
 #endif
 
@@ -311,7 +385,6 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
     const __m256i zero = _mm256_setzero_si256();
     for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u) {
         store_8(candidates->stream + pad, zero), store_8(candidates->field + pad, zero);
-        store_8(candidates->base_x + pad, zero), store_8(candidates->base_y + pad, zero);
     }
     uint32_t first = 0;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -323,10 +396,9 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
 }
 
 /* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
-   whose impulses are `count` (none when count <= first). */
+   whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
 inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
-                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m256i base_x,
-                     __m256i base_y) {
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
     const uint64_t pair = dsn_position_pair(key, first >> 3);
     const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
     const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
@@ -335,8 +407,8 @@ inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, 
     const uint32_t packed =
         pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
     const uint32_t slot = candidates->count;
-    store_8(candidates->stream + slot, streams), store_8(candidates->field + slot, fields);
-    store_8(candidates->base_x + slot, base_x), store_8(candidates->base_y + slot, base_y);
+    store_8(candidates->stream + slot, streams);
+    store_8(candidates->field + slot, _mm256_or_si256(fields, broadcast_8(indices)));
     candidates->count = slot + packed;
 }
 
@@ -353,12 +425,55 @@ inline uint32_t mask_count(uint32_t mask) {
 #endif
 }
 
+/* The Poisson table of a noise whose cell counts are one draw, in vectors: the guide widened to 32 bits
+   and cdf[0 .. 31]. dsn_poisson_count_two_steps then reads no threshold past cdf[31] when the guide's
+   counts are at most 29 (count_tables_fit). */
+struct CountTables {
+    __m512i guide[4], cdf[2];
+};
+
+inline bool count_tables_fit(const dsn_noise_state *noise) {
+    return noise->poisson_parts == 1 && noise->poisson_guide[63] <= 29u &&
+           sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0] >= 32u;
+}
+
+inline void count_tables(const dsn_noise_state *noise, CountTables *tables) {
+    for (uint32_t q = 0; q < 4; q++)
+        tables->guide[q] = _mm512_cvtepu8_epi32(_mm_loadu_si128(
+            static_cast<const __m128i *>(static_cast<const void *>(noise->poisson_guide + 16 * q))));
+    tables->cdf[0] = _mm512_loadu_si512(noise->poisson_cdf);
+    tables->cdf[1] = _mm512_loadu_si512(noise->poisson_cdf + 16);
+}
+
+/* dsn_poisson_count_two_steps of 16 keys (count_tables_fit), the guide and thresholds read by permutes;
+   the rare lanes that need the exact search take dsn_poisson_draw. */
+inline __m512i counts_16(const dsn_noise_state *noise, const CountTables &tables, __m512i keys) {
+    const __m512i bucket = _mm512_srli_epi32(keys, 26), one = _mm512_set1_epi32(1);
+    __m512i n = _mm512_mask_blend_epi32(_mm512_cmpge_epu32_mask(bucket, _mm512_set1_epi32(32)),
+                                        _mm512_permutex2var_epi32(tables.guide[0], bucket, tables.guide[1]),
+                                        _mm512_permutex2var_epi32(tables.guide[2], bucket, tables.guide[3]));
+    for (uint32_t step = 0; step < 2; step++)
+        n = _mm512_mask_add_epi32(
+            n, _mm512_cmpge_epu32_mask(keys, _mm512_permutex2var_epi32(tables.cdf[0], n, tables.cdf[1])), n,
+            one);
+    const __m512i size = broadcast_16(noise->poisson_size);
+    const __mmask16 search =
+        _mm512_cmpgt_epu32_mask(n, size) |
+        _mm512_mask_cmpge_epu32_mask(_mm512_cmplt_epu32_mask(n, size), keys,
+                                     _mm512_permutex2var_epi32(tables.cdf[0], n, tables.cdf[1]));
+    if (search == 0) return n;
+    uint32_t lanes[16], uniforms[16];
+    _mm512_storeu_si512(lanes, n), _mm512_storeu_si512(uniforms, keys);
+    for (uint32_t k = 0; k < 16; k++)
+        if ((search >> k) & 1u) lanes[k] = dsn_poisson_draw(noise, uniforms[k]);
+    return _mm512_loadu_si512(lanes);
+}
+
 /* add_pair for the cell's first two pairs at once (impulses 0 .. 15): the sifting of both pairs in one
    128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
    compressed into place. */
 inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
-                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, __m512i base_x,
-                            __m512i base_y) {
+                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
     const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
                                          static_cast<long long>(dsn_position_pair(key, 0)));
     uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
@@ -372,9 +487,8 @@ inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t 
     const uint32_t slot = candidates->count;
     _mm512_storeu_si512(candidates->stream + slot, _mm512_maskz_compress_epi32(keep, streams));
     _mm512_storeu_si512(candidates->field + slot,
-                        _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs)));
-    _mm512_storeu_si512(candidates->base_x + slot, base_x);
-    _mm512_storeu_si512(candidates->base_y + slot, base_y);
+                        _mm512_maskz_compress_epi32(
+                            keep, _mm512_or_si512(_mm512_cvtepu8_epi32(pairs), broadcast_16(indices))));
     candidates->count = slot + mask_count(sifted);
 }
 #endif
@@ -434,6 +548,13 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
     visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
     visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
     visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
+    /* the bases past the axes' cells are not read (masked: defined values) */
+    visit.column_bases = _mm256_maskload_epi32(
+        static_cast<const int *>(static_cast<const void *>(columns.base)),
+        _mm256_cmpgt_epi32(broadcast_8(columns.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    visit.row_bases = _mm256_maskload_epi32(
+        static_cast<const int *>(static_cast<const void *>(rows.base)),
+        _mm256_cmpgt_epi32(broadcast_8(rows.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
     for (uint32_t c = 0; c < Channels; c++) {
         visit.sums[c] = _mm256_setzero_si256();
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -443,28 +564,25 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
     PointCandidates candidates;
     candidates.count = 0;
     for (uint32_t j = 0; j < rows.count; j++) {
-        const __m256i base_y = broadcast_8(rows.base[j]);
         for (uint32_t i = 0; i < columns.count; i++) {
             const uint32_t key = keys[j * row_step + i * column_step],
                            count = counts[j * row_step + i * column_step];
-            const __m256i base_x = broadcast_8(columns.base[i]);
             /* The first two pairs whether the cell has impulses there or not: a branch on the count
                would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
             if (candidates.count > point_vector_slots - 16u)
                 visit_point_candidates<Channels>(&visit, &candidates);
 #if defined(__AVX512F__) && defined(__AVX512BW__)
             add_first_pairs(&candidates, key, count, lanes, columns.axis[i], rows.axis[j],
-                            _mm512_set1_epi32(static_cast<int>(columns.base[i])),
-                            _mm512_set1_epi32(static_cast<int>(rows.base[j])));
+                            cell_indices(i, j));
 #else
-            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
-            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], base_x, base_y);
+            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
+            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
 #endif
             for (uint32_t first = 16; first < count; first += 8u) {
                 if (candidates.count > point_vector_slots - 8u)
                     visit_point_candidates<Channels>(&visit, &candidates);
-                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j], base_x,
-                         base_y);
+                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j],
+                         cell_indices(i, j));
             }
         }
     }

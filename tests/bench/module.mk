@@ -3,6 +3,6 @@
 BENCH_SOURCES := $(wildcard tests/bench/*.cpp)
 BENCH_PROGRAMS += $(patsubst tests/bench/%.cpp,$(BUILD)/bench/%,$(BENCH_SOURCES))
 
-$(BUILD)/bench/%: $(BUILD)/obj/tests/bench/%.o $(LIBDSN_BAKE) $(LIBDSN)
+$(BUILD)/bench/%: $(BUILD)/obj/tests/bench/%.o $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $< -o $@ $(OFFLINE_LINK)
