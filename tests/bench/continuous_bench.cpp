@@ -1,7 +1,8 @@
 // continuous_bench.cpp - cost of the continuous (renderer) mode as ratios to the lattice mode measured in
 // the same run: per point over a 512 x 512 grid, tiles rotated and axis-aligned at two zooms with every
-// copy of the tile code this CPU runs (each against its own lattice tile), and random points one by one
-// and as a batch (the batch in every copy too), RGB, 31 x 31 texton, 30 impacts per pixel, one thread.
+// copy of the tile code this CPU runs (each timed in rounds beside its own lattice tile), and random points
+// one by one and as a batch (the batch in every copy too), RGB, 31 x 31 texton, 30 impacts per pixel, one
+// thread.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -63,14 +64,17 @@ int main() {
     const uint32_t grid_count = sizeof grids / sizeof grids[0];
     const char *copy_names[] = {"default (SSE2 on x86-64)", "AVX2", "AVX-512"};
     const uint32_t widest = dsn_state(n)->tile_kernel;
-    std::vector<double> lattice_tiles(widest + 1), grid_tiles((widest + 1) * grid_count);
+    // Each grid tile is timed in rounds beside the lattice tile of the same copy (bench::paired_ratio).
+    const int tile_rounds = 5;
+    std::vector<double> lattice_tiles(widest + 1, 1e30);
+    std::vector<bench::PairedRatio> grid_tiles((widest + 1) * grid_count);
     for (uint32_t kernel = 0; kernel <= widest; kernel++) {
         dsn_noise copy = *n;
         dsn_state(&copy)->tile_kernel = kernel;
-        lattice_tiles[kernel] = best_time(5, [&] {
+        auto lattice_tile = [&] {
             dsn_lattice_tile_fixed(&copy, 0, 0, kSide, kSide, tile.data(), scratch.data(), scratch.size());
             checksum += tile[7];
-        });
+        };
         for (uint32_t g = 0; g < grid_count; g++) {
             const double angle = grids[g].degrees * 3.14159265358979323846 / 180.0;
             const int64_t c = int64_t(std::cos(angle) * grids[g].step * double(one));
@@ -78,11 +82,13 @@ int main() {
             const dsn_grid grid = {one / 3, one / 7, c, s, -s, c};
             std::vector<unsigned char> grid_scratch(
                 dsn_continuous_tile_scratch_size(&copy, &grid, kSide, kSide));
-            grid_tiles[kernel * grid_count + g] = best_time(3, [&] {
+            const bench::PairedRatio cost = bench::paired_ratio(tile_rounds, lattice_tile, [&] {
                 dsn_continuous_tile_fixed(&copy, &grid, kSide, kSide, tile.data(), grid_scratch.data(),
                                           grid_scratch.size());
                 checksum += tile[7];
             });
+            grid_tiles[kernel * grid_count + g] = cost;
+            lattice_tiles[kernel] = std::min(lattice_tiles[kernel], cost.baseline_best);
         }
     }
     // 4096 random points (a renderer's ray hits) one by one, against as many lattice points.
@@ -149,13 +155,14 @@ int main() {
                 lattice_point / samples * 1e9, continuous_point / samples * 1e9,
                 continuous_point / lattice_point);
     for (uint32_t kernel = widest + 1; kernel-- > 0;) {
-        const double lattice_tile = lattice_tiles[kernel];
-        std::printf("  %s tile code: lattice tile 512x512 %.1f Mpixel/s\n", copy_names[kernel],
-                    samples / lattice_tile / 1e6);
+        std::printf("  %s tile code: lattice tile 512x512 %.1f Mpixel/s (best of its runs)\n",
+                    copy_names[kernel], samples / lattice_tiles[kernel] / 1e6);
         for (uint32_t g = 0; g < grid_count; g++) {
-            const double time = grid_tiles[kernel * grid_count + g];
-            std::printf("    continuous tile %s: %.1f Mpixel/s, %.3f of the lattice tile (1/%.1f)\n",
-                        grids[g].name, samples / time / 1e6, lattice_tile / time, time / lattice_tile);
+            const bench::PairedRatio &cost = grid_tiles[kernel * grid_count + g];
+            std::printf("    continuous tile %s: %.1f Mpixel/s, 1/%.1f of the lattice tile (best over best; "
+                        "median of %d paired rounds 1/%.1f)\n",
+                        grids[g].name, samples / (cost.best * cost.baseline_best) / 1e6, cost.best,
+                        tile_rounds, cost.median);
         }
     }
     std::printf("  %zu random points: continuous %.0f ns/point, lattice per point %.0f ns/point: "
