@@ -1,10 +1,11 @@
-// bench_timing.h - timing shared by the benchmark programs: the best wall-clock time of several runs, and
-// a cost ratio measured in pairs (work and baseline timed back to back, round after round).
+// bench_timing.h - timing shared by the benchmark programs: the best wall-clock or thread CPU time of
+// several runs, and jobs timed in rounds (each job once per round) to compare them under the same load.
 #ifndef DSN_BENCH_TIMING_H
 #define DSN_BENCH_TIMING_H
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <vector>
 
 #include <time.h>
@@ -43,33 +44,50 @@ double thread_time(Work work) {
     return thread_seconds() - start;
 }
 
-// The cost of `work` over that of `baseline`, both timed in each of `rounds` rounds, back to back and in
-// alternating order. The machine's slow phases last longer than a round, so the ratio of one round
-// compares the two under the same load: `median` is the median of those ratios; `best` is the best time
-// of the work over the best of the baseline.
+template <typename Work>
+double best_thread_time(int repeats, Work work) {
+    double best = 1e30;
+    for (int i = 0; i < repeats; i++) best = std::min(best, thread_time(work));
+    return best;
+}
+
+// Thread CPU times of each job, every job run once per round for `rounds` rounds, the order rotating each
+// round: the machine's slow phases last longer than a round, so they fall on all the jobs alike, and no
+// job always runs right after the same one. times[job][round].
+inline std::vector<std::vector<double>> timed_rounds(int rounds,
+                                                     const std::vector<std::function<void()>> &jobs) {
+    std::vector<std::vector<double>> times(jobs.size());
+    for (int round = 0; round < rounds; round++)
+        for (size_t k = 0; k < jobs.size(); k++) {
+            const size_t job = (k + size_t(round)) % jobs.size();
+            times[job].push_back(thread_time(jobs[job]));
+        }
+    return times;
+}
+
+inline double fastest(const std::vector<double> &times) {
+    return *std::min_element(times.begin(), times.end());
+}
+
+// The median over the rounds of work[round] / baseline[round]: the two compared under the same load.
+inline double median_ratio(const std::vector<double> &work, const std::vector<double> &baseline) {
+    std::vector<double> ratios;
+    for (size_t round = 0; round < work.size(); round++) ratios.push_back(work[round] / baseline[round]);
+    std::sort(ratios.begin(), ratios.end());
+    return ratios[ratios.size() / 2];
+}
+
+// The cost of `work` over that of `baseline`, timed in rounds (timed_rounds): `median` is median_ratio,
+// `best` the best time of the work over the best of the baseline.
 struct PairedRatio {
     double median, best, baseline_best;
 };
 
 template <typename Baseline, typename Work>
 PairedRatio paired_ratio(int rounds, Baseline baseline, Work work) {
-    std::vector<double> ratios;
-    double best_work = 1e30, best_baseline = 1e30;
-    for (int round = 0; round < rounds; round++) {
-        double work_time, baseline_time;
-        if (round % 2 == 0) {
-            baseline_time = thread_time(baseline);
-            work_time = thread_time(work);
-        } else {
-            work_time = thread_time(work);
-            baseline_time = thread_time(baseline);
-        }
-        ratios.push_back(work_time / baseline_time);
-        best_work = std::min(best_work, work_time);
-        best_baseline = std::min(best_baseline, baseline_time);
-    }
-    std::sort(ratios.begin(), ratios.end());
-    return PairedRatio{ratios[ratios.size() / 2], best_work / best_baseline, best_baseline};
+    const auto times = timed_rounds(rounds, {baseline, work});
+    return PairedRatio{median_ratio(times[1], times[0]), fastest(times[1]) / fastest(times[0]),
+                       fastest(times[0])};
 }
 
 } // namespace bench

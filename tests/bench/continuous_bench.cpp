@@ -121,22 +121,12 @@ int main() {
             checksum += out[0];
         }
     };
-    // The three timed in turn, several rounds (the machine is shared): best of each, and the median of
-    // the per-round ratios to the lattice per point.
+    // The three timed in rounds (the machine is shared): best of each, and the median of the per-round
+    // ratios to the lattice per point.
     const int rounds = 7;
-    double batch_time = 1e30, batch_call_time = 1e30, lattice_random = 1e30;
-    std::vector<double> points_ratios, batch_ratios;
-    for (int round = 0; round < rounds; round++) {
-        const double points = best_time(1, points_pass), called = best_time(1, batch_pass),
-                     lattice = best_time(1, lattice_pass);
-        batch_time = std::min(batch_time, points);
-        batch_call_time = std::min(batch_call_time, called);
-        lattice_random = std::min(lattice_random, lattice);
-        points_ratios.push_back(points / lattice);
-        batch_ratios.push_back(called / lattice);
-    }
-    std::sort(points_ratios.begin(), points_ratios.end());
-    std::sort(batch_ratios.begin(), batch_ratios.end());
+    const auto times = bench::timed_rounds(rounds, {points_pass, batch_pass, lattice_pass});
+    const double batch_time = bench::fastest(times[0]), batch_call_time = bench::fastest(times[1]),
+                 lattice_random = bench::fastest(times[2]);
     // The batch in the narrower kernels this CPU runs too (the copies built for other instruction sets).
     std::vector<double> copy_batch_times;
     for (uint32_t kernel = 0; kernel < widest; kernel++) {
@@ -168,12 +158,12 @@ int main() {
     std::printf("  %zu random points: continuous %.0f ns/point, lattice per point %.0f ns/point: "
                 "ratio %.2f best, %.2f median of %d\n",
                 batch, batch_time / double(batch) * 1e9, lattice_random / double(batch) * 1e9,
-                batch_time / lattice_random, points_ratios[rounds / 2], rounds);
+                batch_time / lattice_random, bench::median_ratio(times[0], times[2]), rounds);
     std::printf(
         "  %zu random points as one batch: %.0f ns/point: ratio %.2f best, %.2f median to the lattice "
         "per point (target <= 1.5), %.2f to the continuous per point\n",
         batch, batch_call_time / double(batch) * 1e9, batch_call_time / lattice_random,
-        batch_ratios[rounds / 2], batch_call_time / batch_time);
+        bench::median_ratio(times[1], times[2]), batch_call_time / batch_time);
     for (uint32_t kernel = 0; kernel < widest; kernel++)
         std::printf("    the batch in the %s copy: %.0f ns/point: ratio %.2f to the lattice per point\n",
                     kernel < 3 ? copy_names[kernel] : "other", copy_batch_times[kernel] / double(batch) * 1e9,

@@ -11,27 +11,12 @@
 
 #include "../../runtime/noise_state.h"
 #include "../fixtures/continuous_fixtures.h"
+#include "bench_timing.h"
 #include "texton_noise_baseline.h"
 
 namespace {
 
-// Thread CPU time of the best of `repeats` runs of `work`: on a machine shared with other jobs it counts
-// only the time the work ran.
-template <typename Work>
-double best_time(int repeats, Work work) {
-    auto now = [] {
-        timespec time;
-        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &time);
-        return double(time.tv_sec) + 1e-9 * double(time.tv_nsec);
-    };
-    double best = 1e30;
-    for (int i = 0; i < repeats; i++) {
-        const double start = now();
-        work();
-        best = std::min(best, now() - start);
-    }
-    return best;
-}
+using bench::best_thread_time;
 const uint32_t kSide = 512;
 const double kImpacts = 30;
 
@@ -98,26 +83,17 @@ int main() {
             baseline.evaluate(float_points[2 * i], float_points[2 * i + 1], &baseline_values[3 * i]);
         float_sink += baseline_values[7];
     };
-    // The three timed in turn, several rounds (the machine is shared): best of each, and the median of
-    // the per-round ratios.
-    double lattice_time = 1e30, continuous_time = 1e30, baseline_time = 1e30;
-    std::vector<double> over_lattice, under_baseline;
-    for (int round = 0; round < 5; round++) {
-        const double lattice = best_time(1, lattice_pass), continuous = best_time(1, continuous_pass),
-                     published = best_time(1, baseline_pass);
-        lattice_time = std::min(lattice_time, lattice);
-        continuous_time = std::min(continuous_time, continuous);
-        baseline_time = std::min(baseline_time, published);
-        over_lattice.push_back(continuous / lattice);
-        under_baseline.push_back(published / continuous);
-    }
-    std::sort(over_lattice.begin(), over_lattice.end());
-    std::sort(under_baseline.begin(), under_baseline.end());
+    // The three timed in rounds (the machine is shared): best of each, and the median of the per-round
+    // ratios.
+    const int rounds = 5;
+    const auto times = bench::timed_rounds(rounds, {lattice_pass, continuous_pass, baseline_pass});
+    const double lattice_time = bench::fastest(times[0]), continuous_time = bench::fastest(times[1]),
+                 baseline_time = bench::fastest(times[2]);
 
     // The lattice tile (2048 x 2048, fixed point), the ceiling of a renderer's tile mode.
     const uint32_t tile_side = 2048;
     std::vector<int32_t> tile(size_t(tile_side) * tile_side * 3);
-    const double tile_time = best_time(3, [&] {
+    const double tile_time = best_thread_time(3, [&] {
         dsn_lattice_tile_fixed(noise, -1000, 5000, tile_side, tile_side, tile.data(), nullptr, 0);
         checksum += tile[7];
     });
@@ -135,10 +111,10 @@ int main() {
         "  per point: lattice %.0f ns, continuous %.0f ns, Texton Noise (float, Gaussian counts) %.0f "
         "ns per RGB sample\n",
         lattice_time / samples * 1e9, continuous_time / samples * 1e9, baseline_time / samples * 1e9);
-    std::printf("  continuous / lattice %.2fx best, %.2fx median of 5 (target <= 2.5x); Texton Noise / "
+    std::printf("  continuous / lattice %.2fx best, %.2fx median of %d (target <= 2.5x); Texton Noise / "
                 "continuous %.2fx best, %.2fx median (target >= 4x)\n",
-                continuous_time / lattice_time, over_lattice[2], baseline_time / continuous_time,
-                under_baseline[2]);
+                continuous_time / lattice_time, bench::median_ratio(times[1], times[0]), rounds,
+                baseline_time / continuous_time, 1 / bench::median_ratio(times[1], times[2]));
     std::printf("  lattice tile 2048x2048 fixed: %.0f Mpixel/s\n",
                 double(tile_side) * tile_side / tile_time / 1e6);
     std::printf("  moments over the grid, mean / deviation per channel: continuous");

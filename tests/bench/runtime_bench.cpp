@@ -27,13 +27,7 @@
 namespace {
 
 using bench::best_time;
-
-// CPU time of this thread: on a machine shared with other jobs it counts only the time the work ran.
-double thread_seconds() {
-    timespec now;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
-}
+using bench::thread_seconds;
 
 // The median of sorted times.
 double median(const std::vector<double> &sorted) { return sorted[sorted.size() / 2]; }
