@@ -77,10 +77,37 @@ inline void put_vector(int32_t *out, simd_vector values) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), values);
 }
 inline void put_vector(float *out, simd_floats values) { _mm256_storeu_ps(out, values); }
-/* 8-bit output of a whole strip in one go: none wider than the 128-bit path (returns 0). */
+/* to_u8_range (simd_128.h) on 8 values. */
+inline __m256i to_u8_range(__m256i value) {
+    value = _mm256_min_epi32(_mm256_max_epi32(value, _mm256_setzero_si256()), _mm256_set1_epi32(DSN_ONE));
+    return _mm256_srli_epi32(
+        _mm256_add_epi32(_mm256_sub_epi32(_mm256_slli_epi32(value, 8), value), _mm256_set1_epi32(32768)), 16);
+}
+
+/* 8-bit output of a whole strip (16 pixels), packed like the 128-bit path per lane: 16 + 8 bytes (RGB)
+   or 8 bytes (grey) of each lane, brought together by qword permutes. Returns 1. */
 template <uint32_t Channels>
-inline int store_whole_strip_u8(const simd_vector *, uint8_t *) {
-    return 0;
+inline int store_whole_strip_u8(const simd_vector *values, uint8_t *out) {
+    if (Channels == 3) {
+        /* first: bytes 0-15 of pixels 0-7 (qwords F0 F1), then of pixels 8-15 (F2 F3); second: bytes
+           16-23 of pixels 0-7 (S0) twice, then of pixels 8-15 (S2) twice. Out: F0 F1 S0 F2 | F3 S2. */
+        const __m256i first =
+            _mm256_packus_epi16(_mm256_packs_epi32(to_u8_range(values[0]), to_u8_range(values[1])),
+                                _mm256_packs_epi32(to_u8_range(values[2]), to_u8_range(values[3])));
+        const __m256i words = _mm256_packs_epi32(to_u8_range(values[4]), to_u8_range(values[5]));
+        const __m256i second = _mm256_packus_epi16(words, words);
+        const __m256i low = _mm256_blend_epi32(_mm256_permute4x64_epi64(first, _MM_SHUFFLE(2, 0, 1, 0)),
+                                               _mm256_permute4x64_epi64(second, 0), 0x30);
+        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out)), low);
+        _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out + 32)),
+                         _mm256_extracti128_si256(_mm256_unpackhi_epi64(first, second), 1));
+    } else {
+        const __m256i words = _mm256_packs_epi32(to_u8_range(values[0]), to_u8_range(values[1]));
+        const __m256i bytes = _mm256_packus_epi16(words, words);
+        _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)),
+                         _mm256_castsi256_si128(_mm256_permute4x64_epi64(bytes, _MM_SHUFFLE(3, 1, 2, 0))));
+    }
+    return 1;
 }
 
 /* ---- Continuous splat (splat_row.h): 64-bit lanes, one pixel each ---- */
