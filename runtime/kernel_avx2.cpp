@@ -20,6 +20,10 @@ void dsn_internal_lattice_tile_avx2(const dsn_noise_state *noise, uint32_t x0, u
     render_tile(noise, x0, y0, width, height, out, kind, accumulator);
 }
 
+int dsn_internal_avx2_strips_take(const dsn_noise_state *noise) {
+    return strip_texton_copies(&noise->asset) != 0 && choose_rectangle(noise).width != 0;
+}
+
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile,
                                                              continuous_batch,
                                                              continuous_splat_runs,

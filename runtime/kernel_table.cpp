@@ -43,11 +43,14 @@ int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && os_saves(0x6u); }
 int cpu_runs_avx512(void) { return leaf_7_has((1u << 5) | (1u << 16) | (1u << 30)) && os_saves(0xE6u); }
 
 /* AMD Zen 4 (vendor AuthenticAMD, family 19h, with AVX-512) runs a 512-bit instruction as two 256-bit
-   halves. Its lattice tiles of fixed and float values, bound by loads and byte widenings, are faster with
-   the AVX2 kernel's strips than with AVX-512's (runtime_bench's 2048 x 2048 RGB tile on a shared EPYC:
-   13.5-13.8 ms against 14.1-16.1), its 8-bit tiles with AVX-512's (14.9 against 17.8), and the
-   continuous point, batch, splat and filtered reads with AVX-512: the last row takes each from the
-   faster. Other CPUs (Intel, AMD families with full-width units) keep AVX-512 throughout. */
+   halves. Its RGB lattice tiles, bound by loads and byte widenings, are faster with the AVX2 kernel's
+   strips than with AVX-512's, every output kind (a 2048 x 2048 tile of a 31 x 31 texton at 30 impacts on
+   a shared EPYC: fixed 13.9-14.5 ms against 14.2-15.8, float 14.1-14.3 against 14.8-16.9, 8-bit 13.9-14.1
+   against 15.1-15.7; 1024 x 1024 of a 15 x 15 texton: fixed 6.4-6.5 against 7.6-7.9, 8-bit 6.0-6.2
+   against 7.2-7.5). Its grey tiles are not (fixed 8.8-9.1 ms against 7.0-7.1 at 2048 x 2048), nor those
+   of RGB textons the AVX2 strips cannot hold (63 x 63: 35 ms on AVX2's 32-bit path against 3.5), nor
+   the continuous point, batch, splat and filtered reads: the last row takes each from the faster. Other
+   CPUs (Intel, AMD families with full-width units) keep AVX-512 throughout. */
 int cpu_is_zen_4(void) {
     unsigned int eax = 0, ebx = 0, ecx = 0, edx = 0;
     if (!__get_cpuid(0, &eax, &ebx, &ecx, &edx)) return 0;
@@ -69,7 +72,7 @@ extern const dsn_kernel dsn_internal_kernels[] = {
 #if DSN_KERNEL_X86_COPIES
     {DSN_KERNEL_AVX2, "AVX2", cpu_runs_avx2, &dsn_internal_entries_avx2},
     {DSN_KERNEL_AVX512, "AVX-512", cpu_runs_avx512, &dsn_internal_entries_avx512},
-    {DSN_KERNEL_AVX512_AVX2_TILES, "AVX-512, AVX2 fixed and float lattice tiles", cpu_runs_avx512_avx2_tiles,
+    {DSN_KERNEL_AVX512_AVX2_TILES, "AVX-512, AVX2 RGB lattice tiles", cpu_runs_avx512_avx2_tiles,
      &dsn_internal_entries_avx512_avx2_tiles},
 #endif
 };

@@ -6,7 +6,7 @@
    x86-64 the Makefile also builds kernel_avx2.cpp with -mavx2 and kernel_avx512.cpp with -mavx512f
    -mavx512bw and defines DSN_X86_DISPATCH=1 for the whole runtime: init then records the last row of the
    table whose CPU check passes: the widest kernel this CPU (and its OS) runs, or on AMD Zen 4 the
-   AVX-512 kernel with AVX2's fixed and float lattice tiles (kernel_table.cpp says why). Built any other way
+   AVX-512 kernel with AVX2's lattice tiles of RGB noises (kernel_table.cpp says why). Built any other way
    (other CPUs, other build systems, the small build) there is the default kernel alone and no CPU check.
    Adding a kernel is one file defining its entries (dsn_internal_entries_NAME, built with its flags by the
    Makefile) and one row of the table (with its id below); adding a kind of kernel is one member of
@@ -139,7 +139,7 @@ typedef enum dsn_kernel_id {
     DSN_KERNEL_DEFAULT, /* the copy built with the runtime's own flags */
     DSN_KERNEL_AVX2,
     DSN_KERNEL_AVX512,           /* AVX-512 F and BW */
-    DSN_KERNEL_AVX512_AVX2_TILES /* AVX-512's, but fixed and float lattice tiles AVX2's */
+    DSN_KERNEL_AVX512_AVX2_TILES /* AVX-512's, but RGB lattice tiles AVX2's where its strips take them */
 } dsn_kernel_id;
 
 typedef struct dsn_kernel {
@@ -156,9 +156,12 @@ extern const uint32_t dsn_internal_kernel_count;
 /* The id of the last row whose CPU check passes (init records it in tile_kernel). */
 uint32_t dsn_internal_choose_kernel(void);
 
-/* The AVX2 kernel's lattice tile, which DSN_KERNEL_AVX512_AVX2_TILES takes (kernel_avx512.cpp). */
+/* The AVX2 kernel's lattice tile, which DSN_KERNEL_AVX512_AVX2_TILES takes for some noises
+   (kernel_avx512.cpp), and whether the AVX2 kernel's strip path takes the noise (its texton fits the
+   16-bit copies and a rectangle exists; else its tiles take the 32-bit path). */
 #if DSN_KERNEL_X86_COPIES
 dsn_lattice_tile_entry dsn_internal_lattice_tile_avx2;
+int dsn_internal_avx2_strips_take(const dsn_noise_state *noise);
 #endif
 
 /* The entries of kernel `id` (the default kernel's for an id outside the table). */

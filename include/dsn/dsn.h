@@ -79,8 +79,8 @@
                         runtime/kernel_avx512.cpp with -mavx512f -mavx512bw (the build must pass those
                         flags to those two files), and dsn_noise_init picks from the table of kernels
                         (runtime/kernel_table.cpp) the widest copy that the CPU and the OS run; on AMD
-                        Zen 4, which runs 512-bit vectors as two halves, AVX-512 but for fixed and float
-                        lattice tiles, which the AVX2 copy makes faster there.
+                        Zen 4, which runs 512-bit vectors as two halves, AVX-512 but for the lattice tiles
+                        of RGB noises whose texton the AVX2 copy's strips hold, which it makes faster there.
                         Left at 0 there is one copy, built with the runtime's own flags.
 
    Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the

@@ -63,7 +63,7 @@ int main() {
                  {"axis-aligned, 1.7 texel/pixel", 0, 1.7}};
     const uint32_t grid_count = sizeof grids / sizeof grids[0];
     const char *copy_names[] = {"default (SSE2 on x86-64)", "AVX2", "AVX-512",
-                                "AVX-512 (AVX2 fixed and float lattice tiles)"};
+                                "AVX-512 (AVX2 RGB lattice tiles)"};
     const uint32_t widest = dsn_state(n)->tile_kernel;
     // Each grid tile is timed in rounds beside the lattice tile of the same copy (bench::paired_ratio).
     const int tile_rounds = 5;

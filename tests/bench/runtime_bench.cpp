@@ -153,7 +153,7 @@ int main() {
     // before the chosen one: on x86-64 SSE2, AVX2, AVX-512), timed in the same rounds as often as the
     // chosen copy.
     const uint32_t other_copies = dsn_state(&noise)->tile_kernel;
-    const char *copy_names[] = {"SSE2", "AVX2", "AVX-512", "AVX-512 (AVX2 fixed and float lattice tiles)"};
+    const char *copy_names[] = {"SSE2", "AVX2", "AVX-512", "AVX-512 (AVX2 RGB lattice tiles)"};
     std::vector<double> tile_times, u8_times, float_times, adsn_times;
     std::vector<std::vector<double>> copy_times(other_copies);
     std::vector<dsn_noise> copies(other_copies, noise);
