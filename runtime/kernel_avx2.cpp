@@ -15,11 +15,6 @@
 #include "splat_row.h"
 #include "tile_render.h"
 
-void dsn_internal_lattice_tile_avx2(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
-                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator) {
-    render_tile(noise, x0, y0, width, height, out, kind, accumulator);
-}
-
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile,
                                                              continuous_batch,
                                                              continuous_splat_runs,

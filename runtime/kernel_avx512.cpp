@@ -24,6 +24,8 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
                                                                DSN_FILTER_READS_ENTRY,
                                                                DSN_FILTER_CANDIDATES_ENTRY};
 
+extern const dsn_kernel_entries dsn_internal_entries_avx2;
+
 namespace {
 
 /* The lattice tiles of the kernel below: 8-bit output from this kernel's strips, fixed and float output
@@ -33,7 +35,7 @@ void lattice_tile_avx2_unless_u8(const dsn_noise_state *noise, uint32_t x0, uint
     if (kind == dsn_output_u8)
         render_tile(noise, x0, y0, width, height, out, kind, accumulator);
     else
-        dsn_internal_lattice_tile_avx2(noise, x0, y0, width, height, out, kind, accumulator);
+        dsn_internal_entries_avx2.lattice_tile(noise, x0, y0, width, height, out, kind, accumulator);
 }
 
 } // namespace

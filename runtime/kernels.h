@@ -156,11 +156,6 @@ extern const uint32_t dsn_internal_kernel_count;
 /* The id of the last row whose CPU check passes (init records it in tile_kernel). */
 uint32_t dsn_internal_choose_kernel(void);
 
-/* The AVX2 kernel's lattice tile, which DSN_KERNEL_AVX512_AVX2_TILES takes (kernel_avx512.cpp). */
-#if DSN_KERNEL_X86_COPIES
-dsn_lattice_tile_entry dsn_internal_lattice_tile_avx2;
-#endif
-
 /* The entries of kernel `id` (the default kernel's for an id outside the table). */
 static inline const dsn_kernel_entries *dsn_kernel_entries_of(uint32_t id) {
     return dsn_internal_kernels[id < dsn_internal_kernel_count ? id : 0u].entries;
