@@ -15,16 +15,8 @@
 #include "splat_row.h"
 #include "tile_render.h"
 
-void dsn_internal_lattice_tile_avx2(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
-                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator) {
-    render_tile(noise, x0, y0, width, height, out, kind, accumulator);
-}
-
-int dsn_internal_avx2_strips_take(const dsn_noise_state *noise) {
-    return strip_texton_copies(&noise->asset) != 0 && choose_rectangle(noise).width != 0;
-}
-
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile,
+                                                             lattice_strips_take,
                                                              continuous_batch,
                                                              continuous_splat_runs,
                                                              continuous_splat_normalize,

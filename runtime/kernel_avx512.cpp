@@ -17,6 +17,7 @@
 #include "tile_render.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
+                                                               lattice_strips_take,
                                                                continuous_batch,
                                                                continuous_splat_runs,
                                                                continuous_splat_normalize,
@@ -24,23 +25,32 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
                                                                DSN_FILTER_READS_ENTRY,
                                                                DSN_FILTER_CANDIDATES_ENTRY};
 
+extern const dsn_kernel_entries dsn_internal_entries_avx2;
+
 namespace {
 
 /* The lattice tiles of the kernel below: of RGB noises whose texton the AVX2 kernel's strips take, the
    AVX2 kernel's, every output kind; of the others (grey, or textons only this kernel's byte-wide copies
    hold) this kernel's (kernel_table.cpp says where and why). */
+int avx2_takes(const dsn_noise_state *noise) {
+    return noise->asset.channels == 3 && dsn_internal_entries_avx2.lattice_strips_take(noise);
+}
 void lattice_tile_avx2_if_rgb(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                               uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator) {
-    if (noise->asset.channels == 3 && dsn_internal_avx2_strips_take(noise))
-        dsn_internal_lattice_tile_avx2(noise, x0, y0, width, height, out, kind, accumulator);
+    if (avx2_takes(noise))
+        dsn_internal_entries_avx2.lattice_tile(noise, x0, y0, width, height, out, kind, accumulator);
     else
         render_tile(noise, x0, y0, width, height, out, kind, accumulator);
+}
+int lattice_strips_take_avx2_if_rgb(const dsn_noise_state *noise) {
+    return avx2_takes(noise) || lattice_strips_take(noise);
 }
 
 } // namespace
 
 /* This kernel but for the lattice tiles of RGB noises, which take the AVX2 kernel's. */
 extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
-    lattice_tile_avx2_if_rgb, continuous_batch,       continuous_splat_runs,      continuous_splat_normalize,
-    continuous_point_vector,  DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};
+    lattice_tile_avx2_if_rgb, lattice_strips_take_avx2_if_rgb, continuous_batch,
+    continuous_splat_runs,    continuous_splat_normalize,      continuous_point_vector,
+    DSN_FILTER_READS_ENTRY,   DSN_FILTER_CANDIDATES_ENTRY};
 #endif

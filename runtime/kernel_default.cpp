@@ -28,6 +28,7 @@
 #include "filtered_reads_vector.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
+                                                                lattice_strips_take,
                                                                 BATCH_ENTRY,
                                                                 SPLAT_ROW_ENTRY,
                                                                 SPLAT_NORMALIZE_ENTRY,

@@ -32,6 +32,10 @@
 typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                     uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
 
+/* Whether the kernel's lattice tiles of `noise` take its strip path (tile_render.h's lattice_strips_take):
+   the texton fits its copies of the texton and a rectangle exists; else they take the 32-bit path. */
+typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
+
 /* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),
    Q32.32, into out[k * channels], reading the texton from `quads` (continuous_batch.h's 2 x 2 texel
    table, built by continuous_batch.cpp) and using `work` (batch_work_bytes bytes, 64-byte aligned). */
@@ -125,6 +129,7 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
    candidate itself). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
+    dsn_lattice_strips_take_entry *lattice_strips_take;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_runs_entry *continuous_splat_runs;
     dsn_splat_normalize_entry *continuous_splat_normalize;
@@ -155,14 +160,6 @@ extern const uint32_t dsn_internal_kernel_count;
 
 /* The id of the last row whose CPU check passes (init records it in tile_kernel). */
 uint32_t dsn_internal_choose_kernel(void);
-
-/* The AVX2 kernel's lattice tile, which DSN_KERNEL_AVX512_AVX2_TILES takes for some noises
-   (kernel_avx512.cpp), and whether the AVX2 kernel's strip path takes the noise (its texton fits the
-   16-bit copies and a rectangle exists; else its tiles take the 32-bit path). */
-#if DSN_KERNEL_X86_COPIES
-dsn_lattice_tile_entry dsn_internal_lattice_tile_avx2;
-int dsn_internal_avx2_strips_take(const dsn_noise_state *noise);
-#endif
 
 /* The entries of kernel `id` (the default kernel's for an id outside the table). */
 static inline const dsn_kernel_entries *dsn_kernel_entries_of(uint32_t id) {

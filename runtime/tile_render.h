@@ -198,6 +198,16 @@ void render_strip_tile(const dsn_noise_state *noise, const tile_run *runs_x, uin
 }
 #endif /* DSN_TILE_BLOCKS */
 
+/* Whether render_tile takes the strip path for tiles of more than one pixel. */
+int lattice_strips_take(const dsn_noise_state *noise) {
+#if DSN_TILE_BLOCKS
+    return strip_texton_copies(&noise->asset) != 0 && choose_rectangle(noise).width != 0;
+#else
+    (void)noise;
+    return 0;
+#endif
+}
+
 /* The whole tile: strips of 16-bit sums when the texton allows, else 32-bit sums run by run. */
 void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
                  void *out, dsn_output_kind kind, uint32_t *accumulator) {
@@ -208,7 +218,7 @@ void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_
 #if DSN_TILE_BLOCKS
     /* A single point takes the 32-bit path: no padded copy of the texton for one pixel. */
     const uint64_t pixels = uint64_t(width) * height;
-    if (pixels > 1 && strip_texton_copies(&noise->asset) != 0 && choose_rectangle(noise).width != 0) {
+    if (pixels > 1 && lattice_strips_take(noise)) {
         if (kind == dsn_output_float)
             render_strip_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
         else if (kind == dsn_output_u8)

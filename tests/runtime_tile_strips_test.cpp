@@ -125,24 +125,23 @@ TEST_CASE("the AVX-512 kernel with AVX2 lattice tiles is the AVX-512 kernel but 
     CHECK(same_rest);
 }
 
-#if defined(__x86_64__)
-// Defined (kernel_avx2.cpp) where the runtime has the x86 kernels (DSN_X86_DISPATCH, which this file is not
-// built with); weak, so that the tests link without them too.
-__attribute__((weak)) int dsn_internal_avx2_strips_take(const dsn_noise_state *noise);
-
 TEST_CASE("the AVX2 strips take the RGB textons the AVX-512 kernel with AVX2 lattice tiles hands them, not "
           "those only the AVX-512 strips hold") {
-    if (dsn_internal_avx2_strips_take == nullptr) return;
+    if (dsn_internal_kernel_count < 4) return;
+    dsn_lattice_strips_take_entry *avx2 = dsn_internal_kernels[DSN_KERNEL_AVX2].entries->lattice_strips_take,
+                                  *avx512 =
+                                      dsn_internal_kernels[DSN_KERNEL_AVX512].entries->lattice_strips_take;
     auto small = dsn_test::synthetic_fields(3, 31, 8, DSN_SHAPE_RECTANGLE, 7);
     LoadedNoise small_noise(small, dsn_test::make_config(1, 30));
-    CHECK(dsn_internal_avx2_strips_take(dsn_state(&small_noise.noise)) == 1);
+    CHECK(avx2(dsn_state(&small_noise.noise)) == 1);
+    CHECK(avx512(dsn_state(&small_noise.noise)) == 1);
     // 63 x 63 RGB: three 16-bit planes of 63 + 2 rows exceed the AVX2 copy's room (a 31 x 31 RGB texton
     // twice); the AVX-512 copy keeps texels in bytes and holds it once.
     auto large = dsn_test::synthetic_fields(3, 63, 8, DSN_SHAPE_RECTANGLE, 7);
     LoadedNoise large_noise(large, dsn_test::make_config(1, 30));
-    CHECK(dsn_internal_avx2_strips_take(dsn_state(&large_noise.noise)) == 0);
+    CHECK(avx2(dsn_state(&large_noise.noise)) == 0);
+    CHECK(avx512(dsn_state(&large_noise.noise)) == 1);
 }
-#endif
 
 TEST_CASE("init records the last kernel this CPU runs: the widest, or on AMD Zen 4 AVX-512 with AVX2 RGB "
           "lattice tiles") {
