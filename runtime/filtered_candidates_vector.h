@@ -38,8 +38,9 @@ inline void store_shifted_16(int64_t *at, __m512i base, __m512i bits, __m128i po
 
 /* kernels.h's filter_candidates, two pairs at a time (impulses first .. first + 15 of a cell), on 512-bit
    vectors: both sifted in one 128-bit vector (sift_two_pairs) and their candidates compressed to the front.
- */
-uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+   Wide: xs, ys are written (a loop of its own without them: fewer live registers). */
+template <bool Wide>
+uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
                            uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
                            uint32_t *ends) {
     const FieldLanes lanes = field_lanes(cell_shift);
@@ -70,7 +71,7 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             const __m512i fields = _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs));
             __m512i bits_x, bits_y;
             impulse_bits_16(fields, fraction, &bits_x, &bits_y);
-            if (xs != 0) {
+            if (Wide) {
                 store_shifted_16(xs + count, base_x, bits_x, position_shift);
                 store_shifted_16(ys + count, base_y, bits_y, position_shift);
             }
@@ -83,6 +84,15 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
         ends[k] = count;
     }
     return count;
+}
+
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
+                           uint32_t *ends) {
+    return xs != 0 ? listed_candidates<true>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
+                                             narrow_ys, ends)
+                   : listed_candidates<false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
+                                              narrow_ys, ends);
 }
 #else
 /* shifted_base - bits 2^position_shift for the 8 candidates of `bits` (32-bit lanes), in order. */
