@@ -67,18 +67,22 @@ uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
             const __m512i streams = _mm512_add_epi32(
                 _mm512_set1_epi32(static_cast<int>(cell.key + (0x80000000u + first) * 0x9E3779B9u)), weyl);
-            const __m512i fraction = mix32_16(_mm512_maskz_compress_epi32(keep, streams));
-            const __m512i fields = _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs));
+            /* hashed and placed before the sift's mask is known (lanewise: the same values), off its
+               chain; then only what is stored is compressed */
             __m512i bits_x, bits_y;
-            impulse_bits_16(fields, fraction, &bits_x, &bits_y);
+            impulse_bits_16(_mm512_cvtepu8_epi32(pairs), mix32_16(streams), &bits_x, &bits_y);
+            const __m512i narrow_x =
+                              _mm512_sub_epi32(narrow_base_x, _mm512_sll_epi32(bits_x, cell_shift_vector)),
+                          narrow_y =
+                              _mm512_sub_epi32(narrow_base_y, _mm512_sll_epi32(bits_y, cell_shift_vector));
             if (Wide) {
-                store_shifted_16(xs + count, base_x, bits_x, position_shift);
-                store_shifted_16(ys + count, base_y, bits_y, position_shift);
+                store_shifted_16(xs + count, base_x, _mm512_maskz_compress_epi32(keep, bits_x),
+                                 position_shift);
+                store_shifted_16(ys + count, base_y, _mm512_maskz_compress_epi32(keep, bits_y),
+                                 position_shift);
             }
-            _mm512_storeu_si512(narrow_xs + count,
-                                _mm512_sub_epi32(narrow_base_x, _mm512_sll_epi32(bits_x, cell_shift_vector)));
-            _mm512_storeu_si512(narrow_ys + count,
-                                _mm512_sub_epi32(narrow_base_y, _mm512_sll_epi32(bits_y, cell_shift_vector)));
+            _mm512_storeu_si512(narrow_xs + count, _mm512_maskz_compress_epi32(keep, narrow_x));
+            _mm512_storeu_si512(narrow_ys + count, _mm512_maskz_compress_epi32(keep, narrow_y));
             count += mask_count(sifted);
         }
         ends[k] = count;
