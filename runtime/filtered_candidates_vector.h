@@ -4,7 +4,8 @@
    (continuous_sift.h) and its candidates packed to the front of a vector (continuous_lanes.h, as the
    continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes, their shifted
    offsets in 64-bit lanes (where the caller reads them) and those offsets / 2^16 in 32-bit lanes, 8
-   stored at once (AVX-512: two pairs at once, 16 compressed). Only the
+   stored at once (AVX-512: two pairs at once, hashed and placed on all 16 lanes while the sift runs, and
+   only what is stored compressed). Only the
    sift bounds them: a candidate may lie up to a texel beyond the box, which the level tests, exact for any
    offset of that size, leave out as the walk does. Internal to libdsn; not installed (everything here has
    internal linkage). */
