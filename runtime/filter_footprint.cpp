@@ -79,16 +79,66 @@ int64_t scaled_offset(int64_t value, int32_t multiple, uint32_t shift) {
 
 /* floor((log2_q16(square) + 1) / 512) for square >= 1, log2_q16 being log2_q16_pair's: the level of
    detail in 1/256 levels of a footprint whose area is its major square (ceil(log2_q16 / 2) / 256,
-   floored). Only the first 7 fraction bits and whether the 9 after them are all ones decide it, so the
-   squarings stop at the first zero among those 9. */
+   floored). Only the first 7 fraction bits and whether the 9 after them are all ones decide it, a
+   function of the 32-bit mantissa m in [2^31, 2^32) that never decreases as m grows and steps by one at
+   most once within each of the 256 ranges of m's top 9 bits (the steps lie 2^(1/128) apart, more than
+   such a range): lod_step_below[b] + (m >= lod_step_at[b]) for b = (m >> 23) - 256. The tables hold the
+   squarings' results (16 fraction bits, the carry's squarings stopping at the first zero), checked
+   against them for every m. */
+const uint8_t lod_step_below[256] = {
+    0,   0,   1,   2,   2,   3,   4,   4,   5,   6,   7,   7,   8,   9,   9,   10,  11,  11,  12,  13,
+    13,  14,  15,  15,  16,  17,  17,  18,  19,  19,  20,  21,  21,  22,  23,  23,  24,  24,  25,  26,
+    26,  27,  28,  28,  29,  29,  30,  31,  31,  32,  32,  33,  34,  34,  35,  35,  36,  37,  37,  38,
+    38,  39,  40,  40,  41,  41,  42,  42,  43,  44,  44,  45,  45,  46,  46,  47,  48,  48,  49,  49,
+    50,  50,  51,  51,  52,  52,  53,  54,  54,  55,  55,  56,  56,  57,  57,  58,  58,  59,  59,  60,
+    60,  61,  61,  62,  62,  63,  63,  64,  64,  65,  66,  66,  67,  67,  68,  68,  69,  69,  70,  70,
+    70,  71,  71,  72,  72,  73,  73,  74,  74,  75,  75,  76,  76,  77,  77,  78,  78,  79,  79,  80,
+    80,  81,  81,  81,  82,  82,  83,  83,  84,  84,  85,  85,  86,  86,  86,  87,  87,  88,  88,  89,
+    89,  90,  90,  90,  91,  91,  92,  92,  93,  93,  94,  94,  94,  95,  95,  96,  96,  97,  97,  97,
+    98,  98,  99,  99,  100, 100, 100, 101, 101, 102, 102, 102, 103, 103, 104, 104, 104, 105, 105, 106,
+    106, 107, 107, 107, 108, 108, 109, 109, 109, 110, 110, 111, 111, 111, 112, 112, 112, 113, 113, 114,
+    114, 114, 115, 115, 116, 116, 116, 117, 117, 117, 118, 118, 119, 119, 119, 120, 120, 121, 121, 121,
+    122, 122, 122, 123, 123, 123, 124, 124, 125, 125, 125, 126, 126, 126, 127, 127};
+const uint32_t lod_step_at[256] = {
+    0xFFFFFFFFu, 0x80B1941Cu, 0x81647844u, 0xFFFFFFFFu, 0x82185518u, 0x82CD2BEFu, 0xFFFFFFFFu, 0x8382FE27u,
+    0x8439CD1Eu, 0x84F19A31u, 0xFFFFFFFFu, 0x85AA66C2u, 0x86643435u, 0xFFFFFFFFu, 0x871F03EFu, 0x87DAD756u,
+    0xFFFFFFFFu, 0x8897AFD3u, 0x89558ED3u, 0xFFFFFFFFu, 0x8A1475C0u, 0x8AD4660Bu, 0xFFFFFFFFu, 0x8B956124u,
+    0x8C57687Eu, 0xFFFFFFFFu, 0x8D1A7D8Eu, 0x8DDEA1CBu, 0xFFFFFFFFu, 0x8EA3D6ADu, 0x8F6A1DB0u, 0xFFFFFFFFu,
+    0x90317852u, 0x90F9E80Fu, 0xFFFFFFFFu, 0x91C36E6Bu, 0xFFFFFFFFu, 0x928E0CE9u, 0x9359C50Du, 0xFFFFFFFFu,
+    0x94269860u, 0x94F4886Au, 0xFFFFFFFFu, 0x95C396B8u, 0xFFFFFFFFu, 0x9693C4D9u, 0x9765145Au, 0xFFFFFFFFu,
+    0x983786D0u, 0xFFFFFFFFu, 0x990B1DCEu, 0x99DFDAEBu, 0xFFFFFFFFu, 0x9AB5BFC1u, 0xFFFFFFFFu, 0x9B8CCDE9u,
+    0x9C650701u, 0xFFFFFFFFu, 0x9D3E6CAAu, 0xFFFFFFFFu, 0x9E190084u, 0x9EF4C433u, 0xFFFFFFFFu, 0x9FD1B95Fu,
+    0xFFFFFFFFu, 0xA0AFE1AFu, 0xFFFFFFFFu, 0xA18F3ECFu, 0xA26FD26Cu, 0xFFFFFFFFu, 0xA3519E36u, 0xFFFFFFFFu,
+    0xA434A3DDu, 0xFFFFFFFFu, 0xA518E518u, 0xA5FE639Bu, 0xFFFFFFFFu, 0xA6E52122u, 0xFFFFFFFFu, 0xA7CD1F66u,
+    0xFFFFFFFFu, 0xA8B66026u, 0xFFFFFFFFu, 0xA9A0E522u, 0xFFFFFFFFu, 0xAA8CB01Cu, 0xAB79C2DBu, 0xFFFFFFFFu,
+    0xAC681F25u, 0xFFFFFFFFu, 0xAD57C6C4u, 0xFFFFFFFFu, 0xAE48BB86u, 0xFFFFFFFFu, 0xAF3AFF38u, 0xFFFFFFFFu,
+    0xB02E93AEu, 0xFFFFFFFFu, 0xB1237ABAu, 0xFFFFFFFFu, 0xB219B634u, 0xFFFFFFFFu, 0xB31147F5u, 0xFFFFFFFFu,
+    0xB40A31D8u, 0xFFFFFFFFu, 0xB50475BCu, 0xFFFFFFFFu, 0xB6001582u, 0xB6FD130Du, 0xFFFFFFFFu, 0xB7FB7045u,
+    0xFFFFFFFFu, 0xB8FB2F10u, 0xFFFFFFFFu, 0xB9FC515Cu, 0xFFFFFFFFu, 0xBAFED915u, 0xFFFFFFFFu, 0xFFFFFFFFu,
+    0xBC02C82Eu, 0xFFFFFFFFu, 0xBD08209Au, 0xFFFFFFFFu, 0xBE0EE44Du, 0xFFFFFFFFu, 0xBF171543u, 0xFFFFFFFFu,
+    0xC020B577u, 0xFFFFFFFFu, 0xC12BC6E6u, 0xFFFFFFFFu, 0xC2384B93u, 0xFFFFFFFFu, 0xC3464580u, 0xFFFFFFFFu,
+    0xC455B6B6u, 0xFFFFFFFFu, 0xC566A13Eu, 0xFFFFFFFFu, 0xC6790725u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xC78CEA78u,
+    0xFFFFFFFFu, 0xC8A24D4Cu, 0xFFFFFFFFu, 0xC9B931B5u, 0xFFFFFFFFu, 0xCAD199CAu, 0xFFFFFFFFu, 0xCBEB87A7u,
+    0xFFFFFFFFu, 0xFFFFFFFFu, 0xCD06FD6Au, 0xFFFFFFFFu, 0xCE23FD33u, 0xFFFFFFFFu, 0xCF428927u, 0xFFFFFFFFu,
+    0xD062A36Bu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xD1844E29u, 0xFFFFFFFFu, 0xD2A78B8Fu, 0xFFFFFFFFu, 0xD3CC5DCBu,
+    0xFFFFFFFFu, 0xD4F2C712u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xD61AC997u, 0xFFFFFFFFu, 0xD7446795u, 0xFFFFFFFFu,
+    0xD86FA348u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xD99C7EEDu, 0xFFFFFFFFu, 0xDACAFCC8u, 0xFFFFFFFFu, 0xDBFB1F1Eu,
+    0xFFFFFFFFu, 0xFFFFFFFFu, 0xDD2CE837u, 0xFFFFFFFFu, 0xDE605A60u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xDF9577E6u,
+    0xFFFFFFFFu, 0xE0CC431Cu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xE204BE57u, 0xFFFFFFFFu, 0xE33EEBF0u, 0xFFFFFFFFu,
+    0xE47ACE43u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xE5B867ADu, 0xFFFFFFFFu, 0xE6F7BA94u, 0xFFFFFFFFu, 0xFFFFFFFFu,
+    0xE838C95Bu, 0xFFFFFFFFu, 0xE97B966Bu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xEAC02431u, 0xFFFFFFFFu, 0xFFFFFFFFu,
+    0xEC06751Eu, 0xFFFFFFFFu, 0xED4E8BA2u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xEE986A37u, 0xFFFFFFFFu, 0xEFE41355u,
+    0xFFFFFFFFu, 0xFFFFFFFFu, 0xF131897Au, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xF280CF26u, 0xFFFFFFFFu, 0xF3D1E6DEu,
+    0xFFFFFFFFu, 0xFFFFFFFFu, 0xF524D32Au, 0xFFFFFFFFu, 0xF6799695u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xF7D033AFu,
+    0xFFFFFFFFu, 0xFFFFFFFFu, 0xF928AD08u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFA830538u, 0xFFFFFFFFu, 0xFBDF3ED8u,
+    0xFFFFFFFFu, 0xFFFFFFFFu, 0xFD3D5C85u, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFE9D60E1u, 0xFFFFFFFFu, 0xFFFF4E8Fu};
+
 int32_t isotropic_lod_q8(uint64_t square) {
     uint32_t top;
-    uint64_t mantissa = log2_mantissa(square, &top);
-    uint32_t high = 0;
-    for (uint32_t bit = 0; bit < 7; bit++) high = (high << 1) | log2_step(&mantissa);
-    uint32_t carry = 1;
-    for (uint32_t bit = 0; bit < 9 && carry != 0; bit++) carry = log2_step(&mantissa);
-    return static_cast<int32_t>((top << 7) + high + carry);
+    const uint32_t mantissa = static_cast<uint32_t>(log2_mantissa(square, &top));
+    const uint32_t range = (mantissa >> 23) - 256u;
+    return static_cast<int32_t>((top << 7) + lod_step_below[range] +
+                                (mantissa >= lod_step_at[range] ? 1u : 0u));
 }
 
 /* dsn_internal_filter_plan; isotropic_shortcut: whether isotropic footprints take isotropic_lod_q8. */
@@ -106,7 +156,12 @@ int filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan
     const uint64_t largest = magnitude_of(footprint->column_step_x) | magnitude_of(footprint->column_step_y) |
                              magnitude_of(footprint->row_step_x) | magnitude_of(footprint->row_step_y);
     uint32_t shift = 0;
+#if defined(__GNUC__)
+    if (largest >= (static_cast<uint64_t>(1) << 31))
+        shift = 33u - static_cast<uint32_t>(__builtin_clzll(largest));
+#else
     while ((largest >> shift) >= (static_cast<uint64_t>(1) << 31)) shift++;
+#endif
     const int64_t cx = scaled(footprint->column_step_x, shift), cy = scaled(footprint->column_step_y, shift);
     const int64_t rx = scaled(footprint->row_step_x, shift), ry = scaled(footprint->row_step_y, shift);
     const uint64_t column_square = static_cast<uint64_t>(cx * cx) + static_cast<uint64_t>(cy * cy);
@@ -174,6 +229,8 @@ int filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan
 int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan) {
     return filter_plan(footprint, levels, plan, true);
 }
+
+int32_t dsn_internal_isotropic_lod_q8(uint64_t square) { return isotropic_lod_q8(square); }
 
 int dsn_internal_filter_plan_general(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan) {
     return filter_plan(footprint, levels, plan, false);

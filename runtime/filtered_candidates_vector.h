@@ -4,7 +4,8 @@
    (continuous_sift.h) and its candidates packed to the front of a vector (continuous_lanes.h, as the
    continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes, their shifted
    offsets in 64-bit lanes (where the caller reads them) and those offsets / 2^16 in 32-bit lanes, 8
-   stored at once (AVX-512: two pairs at once, 16 compressed). Only the
+   stored at once (AVX-512: two pairs at once, hashed and placed on all 16 lanes while the sift runs, and
+   only what is stored compressed). Only the
    sift bounds them: a candidate may lie up to a texel beyond the box, which the level tests, exact for any
    offset of that size, leave out as the walk does. Internal to libdsn; not installed (everything here has
    internal linkage). */
@@ -38,8 +39,9 @@ inline void store_shifted_16(int64_t *at, __m512i base, __m512i bits, __m128i po
 
 /* kernels.h's filter_candidates, two pairs at a time (impulses first .. first + 15 of a cell), on 512-bit
    vectors: both sifted in one 128-bit vector (sift_two_pairs) and their candidates compressed to the front.
- */
-uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+   Wide: xs, ys are written (a loop of its own without them: fewer live registers). */
+template <bool Wide>
+uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
                            uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
                            uint32_t *ends) {
     const FieldLanes lanes = field_lanes(cell_shift);
@@ -66,23 +68,36 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
             const __m512i streams = _mm512_add_epi32(
                 _mm512_set1_epi32(static_cast<int>(cell.key + (0x80000000u + first) * 0x9E3779B9u)), weyl);
-            const __m512i fraction = mix32_16(_mm512_maskz_compress_epi32(keep, streams));
-            const __m512i fields = _mm512_maskz_compress_epi32(keep, _mm512_cvtepu8_epi32(pairs));
+            /* hashed and placed before the sift's mask is known (lanewise: the same values), off its
+               chain; then only what is stored is compressed */
             __m512i bits_x, bits_y;
-            impulse_bits_16(fields, fraction, &bits_x, &bits_y);
-            if (xs != 0) {
-                store_shifted_16(xs + count, base_x, bits_x, position_shift);
-                store_shifted_16(ys + count, base_y, bits_y, position_shift);
+            impulse_bits_16(_mm512_cvtepu8_epi32(pairs), mix32_16(streams), &bits_x, &bits_y);
+            const __m512i narrow_x =
+                              _mm512_sub_epi32(narrow_base_x, _mm512_sll_epi32(bits_x, cell_shift_vector)),
+                          narrow_y =
+                              _mm512_sub_epi32(narrow_base_y, _mm512_sll_epi32(bits_y, cell_shift_vector));
+            if (Wide) {
+                store_shifted_16(xs + count, base_x, _mm512_maskz_compress_epi32(keep, bits_x),
+                                 position_shift);
+                store_shifted_16(ys + count, base_y, _mm512_maskz_compress_epi32(keep, bits_y),
+                                 position_shift);
             }
-            _mm512_storeu_si512(narrow_xs + count,
-                                _mm512_sub_epi32(narrow_base_x, _mm512_sll_epi32(bits_x, cell_shift_vector)));
-            _mm512_storeu_si512(narrow_ys + count,
-                                _mm512_sub_epi32(narrow_base_y, _mm512_sll_epi32(bits_y, cell_shift_vector)));
+            _mm512_storeu_si512(narrow_xs + count, _mm512_maskz_compress_epi32(keep, narrow_x));
+            _mm512_storeu_si512(narrow_ys + count, _mm512_maskz_compress_epi32(keep, narrow_y));
             count += mask_count(sifted);
         }
         ends[k] = count;
     }
     return count;
+}
+
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
+                           uint32_t *ends) {
+    return xs != 0 ? listed_candidates<true>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
+                                             narrow_ys, ends)
+                   : listed_candidates<false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
+                                              narrow_ys, ends);
 }
 #else
 /* shifted_base - bits 2^position_shift for the 8 candidates of `bits` (32-bit lanes), in order. */

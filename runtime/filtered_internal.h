@@ -26,6 +26,10 @@ typedef struct dsn_filter_plan {
    (filter_footprint.cpp). */
 int dsn_internal_filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan);
 
+/* floor((log2(square) in 16 fraction bits, truncated + 1) / 512) for square >= 1: the isotropic shortcut's
+   level of detail in 1/256 levels before scaling (the tests compare it with the squarings' log2). */
+int32_t dsn_internal_isotropic_lod_q8(uint64_t square);
+
 /* The same plan by the general rule alone, without the shortcut that isotropic footprints take (the
    tests' reference for it). */
 int dsn_internal_filter_plan_general(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan *plan);

@@ -176,6 +176,54 @@ TEST_CASE("filtered: isotropic footprints take the general rule's plan") {
         }
     CHECK(isotropic > 60000); // most compared footprints reached the shortcut, unclamped
 }
+
+// log2(value) with 16 fraction bits, truncated, by squaring the 32-bit mantissa (dsn.h's rule), value >= 1.
+int32_t log2_q16_by_squarings(uint64_t value) {
+    uint32_t top = 63;
+    while ((value >> top) == 0) top--;
+    uint64_t mantissa = top >= 31 ? value >> (top - 31) : value << (31 - top);
+    uint32_t fraction = 0;
+    for (int bit = 0; bit < 16; bit++) {
+        const uint64_t square = mantissa * mantissa;
+        const uint32_t over = uint32_t(square >> 63);
+        mantissa = over ? square >> 32 : square >> 31;
+        fraction = fraction << 1 | over;
+    }
+    return int32_t(top << 16 | fraction);
+}
+
+TEST_CASE("filtered: the isotropic level of detail's table steps where the squarings' logarithm does") {
+    // Every mantissa range's first and last value, each step and the value below it, at several scales
+    // (the mantissa's position in the square), and random squares: floor((log2_q16 + 1) / 512).
+    TestRandom random(12);
+    uint32_t steps = 0;
+    for (uint32_t range = 0; range < 256; range++) {
+        const uint64_t first = uint64_t(256 + range) << 23, last = first + (uint64_t(1) << 23) - 1;
+        uint64_t low = first, high = last; // the least mantissa of the range above first's result, if any
+        const int32_t below = dsn_internal_isotropic_lod_q8(first);
+        while (low < high) {
+            const uint64_t middle = (low + high) / 2;
+            if ((log2_q16_by_squarings(middle) + 1) / 512 > below)
+                high = middle;
+            else
+                low = middle + 1;
+        }
+        steps += (log2_q16_by_squarings(low) + 1) / 512 > below;
+        for (uint32_t top : {0u, 1u, 31u, 32u, 33u, 47u, 63u})
+            for (uint64_t mantissa : {first, last, low, low - 1, low + 1}) {
+                if (mantissa < first || mantissa > last) continue;
+                const uint64_t square = top >= 31 ? mantissa << (top - 31) : mantissa >> (31 - top);
+                if (square == 0 || square >> top != 1) continue;
+                REQUIRE(dsn_internal_isotropic_lod_q8(square) == (log2_q16_by_squarings(square) + 1) / 512);
+            }
+    }
+    CHECK(steps == 128); // the level's 128 steps between 1 and 2
+    for (int i = 0; i < 200000; i++) {
+        const uint64_t square = (uint64_t(random.next()) << 32 | random.next()) >> (random.next() % 64);
+        if (square == 0) continue;
+        REQUIRE(dsn_internal_isotropic_lod_q8(square) == (log2_q16_by_squarings(square) + 1) / 512);
+    }
+}
 #endif
 
 TEST_CASE("filtered: the baker's pyramid is the one the test computes from the definition") {
