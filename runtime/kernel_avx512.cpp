@@ -31,7 +31,8 @@ namespace {
 
 /* The lattice tiles of the kernel below: of RGB noises whose texton the AVX2 kernel's strips take, the
    AVX2 kernel's, every output kind; of the others (grey, or textons only this kernel's byte-wide copies
-   hold) this kernel's (kernel_table.cpp says where and why). */
+   hold) this kernel's (kernel_table.cpp says where and why). A noise too dense for AVX2's rectangles is
+   too dense for this kernel's (its widths are among AVX2's), so both would take the 32-bit path. */
 int avx2_takes(const dsn_noise_state *noise) {
     return noise->asset.channels == 3 && dsn_internal_entries_avx2.lattice_strips_take(noise);
 }

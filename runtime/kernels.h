@@ -32,8 +32,8 @@
 typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                     uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
 
-/* Whether the kernel's lattice tiles of `noise` take its strip path (tile_render.h's lattice_strips_take):
-   the texton fits its copies of the texton and a rectangle exists; else they take the 32-bit path. */
+/* Whether the kernel's strip path holds the texton of `noise` (tile_render.h's lattice_strips_take): its
+   lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */
 typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
 
 /* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),

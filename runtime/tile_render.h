@@ -50,11 +50,11 @@ typedef struct strip_setup {
 
 /* The second copy of the texton is built only when it fits and the tile is large enough to pay for it
    (it saves a little on every pixel and costs a fixed amount per tile). */
-void make_strip_setup(const dsn_noise_state *noise, uint64_t pixels, uint32_t value_bytes,
-                      strip_setup *setup) {
+void make_strip_setup(const dsn_noise_state *noise, rectangle_size rectangle, uint64_t pixels,
+                      uint32_t value_bytes, strip_setup *setup) {
     const uint32_t copies = strip_texton_copies(&noise->asset) == 2 && pixels >= 4096 ? 2u : 1u;
     make_strip_texton(&noise->asset, copies, &setup->texton);
-    setup->rectangle = choose_rectangle(noise);
+    setup->rectangle = rectangle;
     setup->stream = pixels * noise->asset.channels * value_bytes >= stream_bytes;
     split_normalization split;
     setup->split_ok = make_split_normalization(noise, &split);
@@ -182,11 +182,11 @@ void render_region(const dsn_noise_state *noise, const strip_setup *setup, const
 
 /* The whole tile in rectangles, with the copy of the strip path for the output type and channels. */
 template <typename Value>
-void render_strip_tile(const dsn_noise_state *noise, const tile_run *runs_x, uint32_t run_count_x,
-                       const tile_run *runs_y, uint32_t run_count_y, uint64_t pixels,
+void render_strip_tile(const dsn_noise_state *noise, rectangle_size rectangle, const tile_run *runs_x,
+                       uint32_t run_count_x, const tile_run *runs_y, uint32_t run_count_y, uint64_t pixels,
                        const tile_target *target) {
     strip_setup setup;
-    make_strip_setup(noise, pixels, sizeof(Value), &setup);
+    make_strip_setup(noise, rectangle, pixels, sizeof(Value), &setup);
     for (uint32_t ry = 0; ry < run_count_y; ry++)
         for (uint32_t rx = 0; rx < run_count_x; rx++) {
             if (noise->asset.channels == 3)
@@ -198,10 +198,10 @@ void render_strip_tile(const dsn_noise_state *noise, const tile_run *runs_x, uin
 }
 #endif /* DSN_TILE_BLOCKS */
 
-/* Whether render_tile takes the strip path for tiles of more than one pixel. */
+/* Whether the strip path holds the noise's texton (render_tile takes it when a rectangle exists too). */
 int lattice_strips_take(const dsn_noise_state *noise) {
 #if DSN_TILE_BLOCKS
-    return strip_texton_copies(&noise->asset) != 0 && choose_rectangle(noise).width != 0;
+    return strip_texton_copies(&noise->asset) != 0;
 #else
     (void)noise;
     return 0;
@@ -218,13 +218,18 @@ void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_
 #if DSN_TILE_BLOCKS
     /* A single point takes the 32-bit path: no padded copy of the texton for one pixel. */
     const uint64_t pixels = uint64_t(width) * height;
-    if (pixels > 1 && lattice_strips_take(noise)) {
+    const rectangle_size rectangle =
+        pixels > 1 && lattice_strips_take(noise) ? choose_rectangle(noise) : rectangle_size{0, 0};
+    if (rectangle.width != 0) {
         if (kind == dsn_output_float)
-            render_strip_tile<float>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
+            render_strip_tile<float>(noise, rectangle, runs_x, run_count_x, runs_y, run_count_y, pixels,
+                                     &target);
         else if (kind == dsn_output_u8)
-            render_strip_tile<uint8_t>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
+            render_strip_tile<uint8_t>(noise, rectangle, runs_x, run_count_x, runs_y, run_count_y, pixels,
+                                       &target);
         else
-            render_strip_tile<int32_t>(noise, runs_x, run_count_x, runs_y, run_count_y, pixels, &target);
+            render_strip_tile<int32_t>(noise, rectangle, runs_x, run_count_x, runs_y, run_count_y, pixels,
+                                       &target);
         return;
     }
 #endif

@@ -55,8 +55,7 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
             dsn_test::make_config(9, c.impacts));
         const dsn_noise_state &noise = *dsn_state(&loaded.noise);
         strip_setup setup;
-        make_strip_setup(&noise, uint64_t(width) * height, sizeof(int32_t), &setup);
-        setup.rectangle = c.rectangle;
+        make_strip_setup(&noise, c.rectangle, uint64_t(width) * height, sizeof(int32_t), &setup);
         uint32_t fallbacks = 0, strips = 0;
         count_fallbacks(noise, setup, x0, y0, width, height, &fallbacks, &strips);
         CAPTURE(c.impacts);
