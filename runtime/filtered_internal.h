@@ -78,6 +78,26 @@ void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, u
                                      uint32_t count, dsn_filter_sums sums);
 #endif
 
+/* A filtered value, step by step (filtered_point.cpp; the filtered tile takes the same steps):
+   - dsn_internal_filter_fade: where the plan's level of detail lies past the pyramid (or the histogram's
+     levels), writes the faded value and returns 1; else returns 0;
+   - dsn_internal_filter_walked_levels: the one or two levels the plan blends, into walked; returns how many;
+   - per tap and level, dsn_internal_filter_level_values normalizes the level's sums (8 more fraction bits
+     than Q16.16, saturated to +-2^46) and dsn_internal_filter_add_level adds them, times the level's blend
+     weight out of 256, to the totals (int64, zeroed first); with one level,
+     dsn_internal_filter_add_mean adds the mean colour at the upper level's weight;
+   - dsn_internal_filter_finish rounds the totals once (over 256 taps 2^8) and maps the histogram. */
+int dsn_internal_filter_fade(const dsn_noise_state *noise, const dsn_filter_plan *plan, int32_t *out);
+uint32_t dsn_internal_filter_walked_levels(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                           dsn_walked_level *walked);
+void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                      const uint64_t *level_sums, int64_t *values);
+void dsn_internal_filter_add_level(const dsn_noise_state *noise, const dsn_filter_plan *plan, uint32_t index,
+                                   const int64_t *values, int64_t *totals);
+void dsn_internal_filter_add_mean(const dsn_noise_state *noise, const dsn_filter_plan *plan, int64_t *totals);
+void dsn_internal_filter_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                const int64_t *totals, int32_t *out);
+
 /* DSN_OK when the filtered functions may evaluate `noise` (the continuous mode's check). */
 int dsn_internal_filtered_check(const dsn_noise_state *noise);
 

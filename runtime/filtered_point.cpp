@@ -32,14 +32,14 @@ uint64_t in_texton_units(uint64_t sum, int32_t exponent) {
         floor_shift(signed_from_bits(sum + (static_cast<uint64_t>(1) << (shift - 1u))), shift));
 }
 
-/* The normalized value of one level (the lattice normalization of normalize_q32 with the level's offset)
-   with extra_bits more fraction bits than Q16.16, saturated to +-level_value_limit. */
-void level_values(const dsn_noise_state *noise, const dsn_walked_level &level, const uint64_t *level_sums,
-                  int64_t *values) {
+} // namespace
+
+void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                      const uint64_t *level_sums, int64_t *values) {
     const uint32_t channels = noise->asset.channels;
-    const int64_t *offset = level.level == 0 ? noise->offset : noise->level_offset[level.level - 1u];
+    const int64_t *offset = level->level == 0 ? noise->offset : noise->level_offset[level->level - 1u];
     uint64_t sums[DSN_MAX_CHANNELS];
-    for (uint32_t k = 0; k < channels; k++) sums[k] = in_texton_units(level_sums[k], level.exponent);
+    for (uint32_t k = 0; k < channels; k++) sums[k] = in_texton_units(level_sums[k], level->exponent);
     for (uint32_t c = 0; c < channels; c++) {
         /* |offset| <= 2^61 (init), |gain| < 2^29: below 2^63 as in normalize_q32. */
         int64_t accumulated = offset[c], fractions = 0;
@@ -60,7 +60,55 @@ void level_values(const dsn_noise_state *noise, const dsn_walked_level &level, c
     }
 }
 
-} // namespace
+int dsn_internal_filter_fade(const dsn_noise_state *noise, const dsn_filter_plan *plan, int32_t *out) {
+    const uint32_t lower = static_cast<uint32_t>(plan->lod_q8) >> 8;
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0 && lower >= noise->asset.histogram_levels) {
+        dsn_internal_histogram_fade(&noise->asset, out); /* both tables are `expected`: whatever g is */
+        return 1;
+    }
+#endif
+    if (lower <= noise->asset.pyramid_levels) return 0;
+    for (uint32_t c = 0; c < noise->asset.channels; c++) /* the mean colour, exactly */
+        out[c] = dsn_round_saturate(noise->asset.mean[c], extra_bits);
+    return 1;
+}
+
+uint32_t dsn_internal_filter_walked_levels(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                           dsn_walked_level *walked) {
+    const uint32_t lower = static_cast<uint32_t>(plan->lod_q8) >> 8;
+    walked[0] = dsn_internal_walked_level(noise, lower);
+    if ((plan->lod_q8 & 255) == 0 || lower >= noise->asset.pyramid_levels) return 1;
+    walked[1] = dsn_internal_walked_level(noise, lower + 1u);
+    return 2;
+}
+
+void dsn_internal_filter_add_level(const dsn_noise_state *noise, const dsn_filter_plan *plan, uint32_t index,
+                                   const int64_t *values, int64_t *totals) {
+    const int64_t blend = plan->lod_q8 & 255, weight = index == 0 ? 256 - blend : blend;
+    for (uint32_t c = 0; c < noise->asset.channels; c++) totals[c] += values[c] * weight;
+}
+
+void dsn_internal_filter_add_mean(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                  int64_t *totals) {
+    const int64_t blend = plan->lod_q8 & 255;
+    for (uint32_t c = 0; c < noise->asset.channels; c++)
+        totals[c] += static_cast<int64_t>(noise->asset.mean[c]) * blend;
+}
+
+void dsn_internal_filter_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                const int64_t *totals, int32_t *out) {
+    /* taps = 2^k: one rounding of totals / (256 2^k 2^extra_bits). */
+    uint32_t tap_shift = 0;
+    while ((1u << tap_shift) < plan->taps) tap_shift++;
+    for (uint32_t c = 0; c < noise->asset.channels; c++)
+        out[c] = dsn_round_saturate(totals[c], 8u + tap_shift + extra_bits);
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0)
+        dsn_internal_histogram_map(&noise->asset, out, static_cast<uint32_t>(plan->lod_q8) >> 8,
+                                   static_cast<uint32_t>(plan->lod_q8 & 255));
+#endif
+}
 
 namespace {
 
@@ -69,51 +117,26 @@ typedef void (*filter_sums_function)(const dsn_noise_state *, uint64_t, uint64_t
 
 void filtered_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
                     filter_sums_function level_sums, int32_t *out) {
-    const uint32_t channels = noise->asset.channels, levels = noise->asset.pyramid_levels;
-    const uint32_t lower = static_cast<uint32_t>(plan->lod_q8) >> 8;
-    const int64_t blend = plan->lod_q8 & 255;
-#if DSN_HISTOGRAM
-    const int mapped = noise->asset.histogram_table != 0;
-    if (mapped && lower >= noise->asset.histogram_levels) { /* both tables are `expected`: whatever g is */
-        dsn_internal_histogram_fade(&noise->asset, out);
-        return;
-    }
-#endif
-    if (lower > levels) { /* the mean colour, exactly */
-        for (uint32_t c = 0; c < channels; c++) out[c] = dsn_round_saturate(noise->asset.mean[c], extra_bits);
-        return;
-    }
+    if (dsn_internal_filter_fade(noise, plan, out)) return;
     if (plan->lod_q8 == 0 && plan->taps == 1) {
         dsn_internal_continuous_point(noise, x, y, out);
         return;
     }
     /* The levels walked: the lower one, and the upper one unless it has no weight or is the mean. */
     dsn_walked_level walked[2];
-    walked[0] = dsn_internal_walked_level(noise, lower);
-    uint32_t count = 1;
-    if (blend != 0 && lower < levels) walked[count++] = dsn_internal_walked_level(noise, lower + 1u);
+    const uint32_t count = dsn_internal_filter_walked_levels(noise, plan, walked);
     dsn_filter_sums sums;
     level_sums(noise, x, y, plan, walked, count, sums);
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
-        int64_t values[2][DSN_MAX_CHANNELS];
-        level_values(noise, walked[0], sums[tap][0], values[0]);
-        if (count == 2) level_values(noise, walked[1], sums[tap][1], values[1]);
-        for (uint32_t c = 0; c < channels; c++) {
-            const int64_t upper = count == 2   ? values[1][c]
-                                  : blend != 0 ? static_cast<int64_t>(noise->asset.mean[c])
-                                               : 0;
-            totals[c] += values[0][c] * (256 - blend) + upper * blend;
+        for (uint32_t l = 0; l < count; l++) {
+            int64_t values[DSN_MAX_CHANNELS];
+            dsn_internal_filter_level_values(noise, &walked[l], sums[tap][l], values);
+            dsn_internal_filter_add_level(noise, plan, l, values, totals);
         }
+        if (count == 1) dsn_internal_filter_add_mean(noise, plan, totals);
     }
-    /* taps = 2^k: one rounding of totals / (256 2^k 2^extra_bits). */
-    uint32_t tap_shift = 0;
-    while ((1u << tap_shift) < plan->taps) tap_shift++;
-    for (uint32_t c = 0; c < channels; c++)
-        out[c] = dsn_round_saturate(totals[c], 8u + tap_shift + extra_bits);
-#if DSN_HISTOGRAM
-    if (mapped) dsn_internal_histogram_map(&noise->asset, out, lower, static_cast<uint32_t>(blend));
-#endif
+    dsn_internal_filter_finish(noise, plan, totals, out);
 }
 
 } // namespace

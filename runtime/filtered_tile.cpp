@@ -1,10 +1,15 @@
 /* runtime/filtered_tile.cpp - the filtered evaluation on a grid (dsn_grid) whose footprint is the grid's
-   own steps: the plan (level of detail, taps) is computed once, then each grid point is the filtered
-   point's bits. An unfiltered plan (level of detail 0, one tap) is the continuous mode's tile, splat
-   included. Compiled only with DSN_FILTERING. */
+   own steps: the plan (level of detail, taps) is computed once; then each tap's grid (the grid moved by
+   the tap's offset) is splatted with each level the plan blends (grid_splat.h), block by block, and each
+   pixel's level sums go through the filtered point's steps (filtered_internal.h), so the tile has the
+   filtered point's bits. Grids that do not splat (too sparse, too large, the small build) and faded plans
+   go point by point; an unfiltered plan (level of detail 0, one tap) is the continuous mode's tile.
+   Compiled only with DSN_FILTERING. */
 #include "continuous_internal.h"
 #include "filtered_internal.h"
+#include "grid_splat.h"
 #include "normalize_fixed.h"
+#include "splat_cells.h"
 
 #if DSN_FILTERING
 
@@ -36,6 +41,173 @@ int tile_plan(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t max_t
 
 bool unfiltered(const dsn_filter_plan &plan) { return plan.lod_q8 == 0 && plan.taps == 1; }
 
+#if !DSN_SMALL_CODE
+/* The level as the grid splat reads it. */
+dsn_splat_texture level_texture(const dsn_noise_state *noise, const dsn_walked_level &level) {
+    dsn_splat_texture texture;
+    texture.values = level.values;
+    texture.width = level.width;
+    texture.height = level.height;
+    texture.stride = level.stride;
+    texture.channels = noise->asset.channels;
+    texture.bits = noise->asset.bits;
+    texture.level = level.level;
+    return texture;
+}
+
+/* The grid of one tap: moved by the tap's offset (modulo 2^64, as per point). */
+dsn_grid tap_grid(const dsn_grid *grid, const dsn_filter_plan &plan, uint32_t tap) {
+    dsn_grid moved = *grid;
+    moved.origin_x =
+        signed_from_bits(static_cast<uint64_t>(grid->origin_x) + static_cast<uint64_t>(plan.offset_x[tap]));
+    moved.origin_y =
+        signed_from_bits(static_cast<uint64_t>(grid->origin_y) + static_cast<uint64_t>(plan.offset_y[tap]));
+    return moved;
+}
+
+/* What a splatted filtered tile shares: the plan, its levels and their cell records. */
+struct FilteredSplat {
+    dsn_filter_plan plan;
+    dsn_walked_level walked[2];
+    uint32_t count;
+    const uint64_t *cells[2];
+    uint32_t cell_row[2];
+};
+
+/* The splat of one tap's grid with one level (its records where made), or 0 where it does not splat. */
+int tap_level_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                    const FilteredSplat &filtered, uint32_t tap, uint32_t index, dsn_grid_splat *splat) {
+    const dsn_grid moved = tap_grid(grid, filtered.plan, tap);
+    const dsn_splat_texture texture = level_texture(noise, filtered.walked[index]);
+    if (!dsn_internal_grid_splat_init(noise, &moved, width, height, &texture, splat)) return 0;
+    splat->setup.cells = filtered.cells[index];
+    splat->setup.cell_row = filtered.cell_row[index];
+    return 1;
+}
+
+/* Whether every tap's grid splats with every level (else the tile goes point by point). */
+bool tile_splats(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                 const FilteredSplat &filtered) {
+    for (uint32_t tap = 0; tap < filtered.plan.taps; tap++)
+        for (uint32_t k = 0; k < filtered.count; k++) {
+            dsn_grid_splat splat;
+            if (!tap_level_splat(noise, grid, width, height, filtered, tap, k, &splat)) return false;
+        }
+    return true;
+}
+
+/* One block: every tap's levels splatted into `sums` in turn, each pixel's values added to its totals,
+   then the totals finished and stored. */
+void filter_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                  const FilteredSplat &filtered, const dsn_splat_block &block, uint64_t *sums,
+                  int64_t *totals, void *out, dsn_output_kind kind) {
+    const uint32_t channels = noise->asset.channels, pixels = block.columns * block.rows;
+    for (uint32_t i = 0; i < pixels * channels; i++) totals[i] = 0;
+    for (uint32_t tap = 0; tap < filtered.plan.taps; tap++) {
+        for (uint32_t k = 0; k < filtered.count; k++) {
+            dsn_grid_splat splat;
+            tap_level_splat(noise, grid, width, height, filtered, tap, k, &splat); /* tile_splats said 1 */
+            dsn_internal_grid_splat_block(noise, &splat, &block, sums);
+            for (uint32_t p = 0; p < pixels; p++) {
+                const size_t at = static_cast<size_t>(p / block.columns) * block.stride + p % block.columns;
+                uint64_t level_sums[DSN_MAX_CHANNELS];
+                int64_t values[DSN_MAX_CHANNELS];
+                for (uint32_t c = 0; c < channels; c++) level_sums[c] = sums[c * block.plane + at];
+                dsn_internal_filter_level_values(noise, &filtered.walked[k], level_sums, values);
+                dsn_internal_filter_add_level(noise, &filtered.plan, k, values, totals + p * channels);
+            }
+        }
+        if (filtered.count == 1)
+            for (uint32_t p = 0; p < pixels; p++)
+                dsn_internal_filter_add_mean(noise, &filtered.plan, totals + p * channels);
+    }
+    for (uint32_t p = 0; p < pixels; p++) {
+        int32_t pixel[DSN_MAX_CHANNELS];
+        dsn_internal_filter_finish(noise, &filtered.plan, totals + p * channels, pixel);
+        const size_t index =
+            (static_cast<size_t>(block.top + p / block.columns) * width + block.left + p % block.columns) *
+            channels;
+        dsn_store_pixel(out, kind, index, pixel, channels);
+    }
+}
+
+/* The scratch a splatted filtered tile takes: the block sums, then the totals. */
+size_t filtered_splat_size(const dsn_noise_state *noise, uint32_t width, uint32_t height) {
+    const size_t sums = dsn_internal_splat_sums_size(noise->asset.channels, width, height);
+    return sums == 0 || sums > static_cast<size_t>(-1) / 2u ? 0 : 2u * sums;
+}
+
+/* Whether an impulse of every level reaches at least splat_run_least pixels of a row through its centre:
+   2 (radius + 1) 2^level texels against the column step along each axis. On shorter runs the splat's
+   cost per impulse outweighs what it shares, and the filtered point (which shares each impulse across
+   the taps) is as fast or faster. */
+const uint64_t splat_run_least = 12;
+
+bool runs_long_enough(const dsn_grid *grid, const FilteredSplat &filtered) {
+    const uint64_t step_x =
+        static_cast<uint64_t>(grid->column_step_x < 0 ? -grid->column_step_x : grid->column_step_x);
+    const uint64_t step_y =
+        static_cast<uint64_t>(grid->column_step_y < 0 ? -grid->column_step_y : grid->column_step_y);
+    for (uint32_t k = 0; k < filtered.count; k++) {
+        const dsn_walked_level &level = filtered.walked[k];
+        const uint64_t reach_x = static_cast<uint64_t>(level.radius_x + 1u) << (32u + level.level);
+        const uint64_t reach_y = static_cast<uint64_t>(level.radius_y + 1u) << (32u + level.level);
+        /* |steps| < 2^46 (tile_splats), reaches < 2^60 */
+        if (2u * reach_x < splat_run_least * step_x || 2u * reach_y < splat_run_least * step_y) return false;
+    }
+    return true;
+}
+
+/* Prepares `filtered` and returns the scratch the splat needs, or 0 when the tile goes point by point. */
+size_t filtered_splat_prepare(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                              uint32_t height, const dsn_filter_plan &plan, FilteredSplat *filtered) {
+    int32_t faded[DSN_MAX_CHANNELS];
+    if (dsn_internal_filter_fade(noise, &plan, faded)) return 0;
+    filtered->plan = plan;
+    filtered->count = dsn_internal_filter_walked_levels(noise, &plan, filtered->walked);
+    filtered->cells[0] = filtered->cells[1] = 0; /* made by filtered_splat */
+    filtered->cell_row[0] = filtered->cell_row[1] = 0;
+    if (!tile_splats(noise, grid, width, height, *filtered) || !runs_long_enough(grid, *filtered)) return 0;
+    return filtered_splat_size(noise, width, height);
+}
+
+void filtered_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                    FilteredSplat *filtered, void *scratch, void *out, dsn_output_kind kind) {
+    uint64_t *sums = dsn_internal_aligned_sums(scratch);
+    int64_t *totals = static_cast<int64_t *>(
+        static_cast<void *>(sums + static_cast<size_t>(width) * height * noise->asset.channels));
+#if DSN_SPLAT_CELLS
+    alignas(64) uint64_t cells[splat_cell_capacity]; /* the levels' records, one after the other */
+    uint32_t used = 0;
+    for (uint32_t k = 0; k < filtered->count; k++) {
+        const dsn_splat_texture texture = level_texture(noise, filtered->walked[k]);
+        const uint32_t records =
+            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered->cell_row[k]);
+        if (records != 0) filtered->cells[k] = cells + used;
+        used += records;
+    }
+#endif
+    for (uint32_t top = 0; top < height; top += dsn_splat_block_rows)
+        for (uint32_t left = 0; left < width; left += dsn_splat_block_columns) {
+            const dsn_splat_block block = dsn_internal_splat_block(left, top, width, height);
+            filter_block(noise, grid, width, height, *filtered, block, sums, totals, out, kind);
+        }
+    filtered->cells[0] = filtered->cells[1] = 0;
+}
+#endif
+
+/* The scratch the tile asks for: the continuous tile's for an unfiltered plan, the splat's, or 0. */
+size_t tile_scratch_size(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height,
+                         const dsn_filter_plan &plan) {
+    if (unfiltered(plan)) return dsn_continuous_tile_scratch_size(handle, grid, width, height);
+#if !DSN_SMALL_CODE
+    FilteredSplat filtered;
+    return filtered_splat_prepare(dsn_state(handle), grid, width, height, plan, &filtered);
+#else
+    return 0;
+#endif
+}
+
 int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
                   uint32_t height, void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
@@ -52,6 +224,17 @@ int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_ta
         return dsn_continuous_tile_u8(handle, grid, width, height, static_cast<uint8_t *>(out), scratch,
                                       scratch_size);
     }
+#if !DSN_SMALL_CODE
+    FilteredSplat filtered;
+    const size_t needed = filtered_splat_prepare(noise, grid, width, height, plan, &filtered);
+    if (needed != 0) {
+        if (scratch == 0 || scratch_size < needed) return DSN_ERR_SCRATCH;
+        filtered_splat(noise, grid, width, height, &filtered, scratch, out, kind);
+        return DSN_OK;
+    }
+#else
+    (void)scratch, (void)scratch_size;
+#endif
     /* Pixel (i, j) is origin + i column_step + j row_step modulo 2^64: stepping adds the same values. */
     const uint32_t channels = noise->asset.channels;
     int32_t pixel[DSN_MAX_CHANNELS];
@@ -79,7 +262,7 @@ size_t dsn_filtered_tile_scratch_size(const dsn_noise *handle, const dsn_grid *g
                                       uint32_t width, uint32_t height) {
     dsn_filter_plan plan;
     if (tile_plan(dsn_state(handle), grid, max_taps, width, height, grid, &plan) != DSN_OK) return 0;
-    return unfiltered(plan) ? dsn_continuous_tile_scratch_size(handle, grid, width, height) : 0;
+    return tile_scratch_size(handle, grid, width, height, plan);
 }
 
 int dsn_filtered_tile_fixed(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_taps, uint32_t width,

@@ -43,7 +43,7 @@ typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint
                                         const int64_t *xs, const int64_t *ys, uint32_t count, int32_t *out,
                                         void *work);
 
-/* The runs of pixels one impulse of the continuous grid splat reaches (continuous_tile.cpp), one per row
+/* The runs of pixels one impulse of the grid splat reaches (grid_splat.cpp), one per row
    of a block: the offsets (pixel - impulse) of the run's first pixel, all `count` pixels within reach,
    and where its channel-0 sums start (channel c at sums[c * plane]). A call has dsn_splat_runs_most runs
    at most (a block's rows), each of dsn_splat_run_longest pixels at most (a block's columns). */
@@ -54,11 +54,21 @@ typedef struct dsn_splat_run {
     uint32_t count;
 } dsn_splat_run;
 
-/* What every run of a grid shares: the texton, the steps (pixel to next pixel) and reaches of both axes,
-   the distance between channel planes, and the texton's bilinear cells (splat_cells.h) or 0 where the
-   runs go pixel by pixel (16-bit textons, cells too large for the stack). */
+/* What the grid splat reads: the texton, or a level of its pyramid (the filtered tile): the window of
+   width x height texels (`channels` values of `bits` bits each) from `values`, rows `stride` texels apart.
+   An offset (pixel - impulse) is divided by 2^level, rounded down, before it is read, as the filtered
+   walk reads a level (filtered_walk.cpp's add_level); level 0 reads it as it is. */
+typedef struct dsn_splat_texture {
+    const unsigned char *values;
+    uint32_t width, height, stride, channels, bits, level;
+} dsn_splat_texture;
+
+/* What every run of a grid shares: the texture, the steps (pixel to next pixel) and reaches of both axes
+   (an impulse reaches the offsets in (-reach, reach): (radius + 1) 2^(32 + level), the radius the
+   texture's), the distance between channel planes, and the texture's bilinear cells (splat_cells.h) or 0
+   where the runs go pixel by pixel (16-bit textons, cells too large for the stack). */
 typedef struct dsn_splat_setup {
-    const dsn_asset *asset;
+    dsn_splat_texture texture;
     int64_t step_x, step_y, reach_x, reach_y;
     size_t plane;
     const uint64_t *sums_end; /* the runs' sums lie before; vectors may add 0 to any sum up to there */

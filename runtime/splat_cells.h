@@ -1,8 +1,8 @@
-/* runtime/splat_cells.h - the texton as the vector splat of continuous grids reads it (splat_row.h): one
-   64-bit record per cell and channel, a cell being the 2 x 2 texels whose top-left texel is (row, column)
-   for row in [-1, height - 1] and column in [-1, width - 1] (texels outside the window are 0), so that
-   every pixel within reach reads one record per channel, wherever it lies, with no bounds check.
-   Built per tile by continuous_tile.cpp. Internal to libdsn; not installed.
+/* runtime/splat_cells.h - the texton (or a pyramid level) as the vector splat of grids reads it
+   (splat_row.h): one 64-bit record per cell and channel, a cell being the 2 x 2 texels whose top-left texel
+   is (row, column) for row in [-1, height - 1] and column in [-1, width - 1] (texels outside the window are
+   0), so that every pixel within reach reads one record per channel, wherever it lies, with no bounds check.
+   Built per tile by grid_splat.cpp. Internal to libdsn; not installed.
 
    A record holds four int16 words, low first: -(TL + TR), TR - TL, -(BL + BR - TL - TR) and
    TL - TR - BL + BR (T, B: top and bottom row; L, R: left and right column). Multiplied-and-added in
@@ -15,6 +15,7 @@
 #define DSN_SPLAT_CELLS_H
 
 #include "bilinear_texton.h"
+#include "kernels.h"
 
 /* DSN_SPLAT_CELLS: the x86 kernels read records (the tile builds them); elsewhere the runs go pixel by
    pixel and no table is kept on the stack. */
@@ -34,14 +35,23 @@ inline uint64_t splat_word(int32_t value) {
     return static_cast<uint64_t>(static_cast<uint32_t>(value) & 0xFFFFu);
 }
 
-/* Fills `cells` (splat_cell_capacity records at most) and sets *cell_row (cells per row: width + 1; each
-   cell has one record per channel, in order), or returns false when the texton has no records (16-bit, or too
-   large). */
-inline bool make_splat_cells(const dsn_asset *asset, uint64_t *cells, uint32_t *cell_row) {
-    const uint32_t channels = asset->channels, columns = asset->width + 1u, rows = asset->height + 1u;
-    const uint32_t cell_records = channels == 3 ? 4u : 1u; /* RGB cells padded to 32 bytes */
-    if (asset->bits != 8 || static_cast<uint64_t>(columns) * rows * cell_records > splat_cell_capacity)
-        return false;
+/* Value `channel` of texel (row, column) of the texture; 0 outside its window (-1 too: unsigned). */
+inline int32_t texture_texel(const dsn_splat_texture &texture, uint32_t row, uint32_t column,
+                             uint32_t channel) {
+    if (row >= texture.height || column >= texture.width) return 0;
+    const uint32_t index = (row * texture.stride + column) * texture.channels + channel;
+    return texture.bits == 8 ? dsn_read_i8(texture.values + index)
+                             : dsn_read_i16le(texture.values + 2u * index);
+}
+
+/* Fills `cells` (`capacity` records at most) and sets *cell_row (cells per row: width + 1; each cell has
+   one record per channel, in order, RGB cells padded to 4), and returns the records used, or 0 when the
+   texture has no records (16-bit, or too large). */
+inline uint32_t make_splat_cells(const dsn_splat_texture &texture, uint64_t *cells, uint32_t capacity,
+                                 uint32_t *cell_row) {
+    const uint32_t channels = texture.channels, columns = texture.width + 1u, rows = texture.height + 1u;
+    const uint32_t cell_records = channels == 3 ? 4u : 1u;
+    if (texture.bits != 8 || static_cast<uint64_t>(columns) * rows * cell_records > capacity) return 0;
     *cell_row = columns;
     uint64_t *record = cells;
     for (uint32_t row = 0; row < rows; row++)
@@ -52,15 +62,15 @@ inline bool make_splat_cells(const dsn_asset *asset, uint64_t *cells, uint32_t *
                     continue;
                 }
                 /* Texel indices row - 1 and column - 1: -1 wraps to 0xFFFFFFFF, outside like width. */
-                const int32_t top_left = texel(asset, row - 1u, column - 1u, c),
-                              top_right = texel(asset, row - 1u, column, c),
-                              bottom_left = texel(asset, row, column - 1u, c),
-                              bottom_right = texel(asset, row, column, c);
+                const int32_t top_left = texture_texel(texture, row - 1u, column - 1u, c),
+                              top_right = texture_texel(texture, row - 1u, column, c),
+                              bottom_left = texture_texel(texture, row, column - 1u, c),
+                              bottom_right = texture_texel(texture, row, column, c);
                 *record++ = splat_word(-(top_left + top_right)) | splat_word(top_right - top_left) << 16 |
                             splat_word(top_left + top_right - bottom_left - bottom_right) << 32 |
                             splat_word(top_left - top_right - bottom_left + bottom_right) << 48;
             }
-    return true;
+    return columns * rows * cell_records;
 }
 
 } // namespace

@@ -1,4 +1,4 @@
-/* runtime/splat_row.h - the innermost loops of the continuous grid splat (continuous_tile.cpp): one
+/* runtime/splat_row.h - the innermost loops of the grid splat (grid_splat.cpp): one
    impulse added to its runs of pixels, one run per row of a block, and the normalization of a row of the
    block's sums, as kernels (kernels.h: each kernel file includes it, so it is built once per instruction
    set). On x86 8-bit textons are read from their cell records (splat_cells.h) on vectors of 64-bit lanes,
@@ -31,52 +31,57 @@ inline int64_t interior_channel(const unsigned char *top, const unsigned char *b
 
 /* A texel of channel c at (row, column), 0 outside the window (indices are unsigned: -1 is outside). */
 template <uint32_t Channels, uint32_t Bytes>
-inline int64_t edge_texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t c) {
-    if (row >= asset->height || column >= asset->width) return 0;
-    return stored_value<Bytes>(asset->texton + ((row * asset->width + column) * Channels + c) * Bytes);
+inline int64_t edge_texel(const dsn_splat_texture &texture, uint32_t row, uint32_t column, uint32_t c) {
+    if (row >= texture.height || column >= texture.width) return 0;
+    return stored_value<Bytes>(texture.values + ((row * texture.stride + column) * Channels + c) * Bytes);
 }
 
 /* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
    reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
-   values lie in (0, 2 reach), so its lower index and weight are read off directly. The sums are planar:
-   channel c of the row's first pixel at pixel[c * plane]. */
+   values (offset + reach, divided by 2^level) lie in [0, 2 reach / 2^level), so its lower index and weight
+   are read off directly (0 gives index -1 and weight 0: nothing). The sums are planar: channel c of the
+   row's first pixel at pixel[c * plane]. */
 template <uint32_t Channels, uint32_t Bytes>
-void splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x, int64_t step_y,
-               int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *pixel, size_t plane) {
-    const uint32_t width = asset->width, height = asset->height, row_bytes = width * Channels * Bytes;
-    uint64_t shifted_x = static_cast<uint64_t>(offset_x + reach_x);
-    uint64_t shifted_y = static_cast<uint64_t>(offset_y + reach_y);
+void splat_row(const dsn_splat_setup *setup, int64_t offset_x, int64_t offset_y, uint32_t count,
+               uint64_t *pixel) {
+    const dsn_splat_texture &texture = setup->texture;
+    const uint32_t width = texture.width, height = texture.height, level = texture.level;
+    const uint32_t row_bytes = texture.stride * Channels * Bytes;
+    const size_t plane = setup->plane;
+    uint64_t shifted_x = static_cast<uint64_t>(offset_x + setup->reach_x);
+    uint64_t shifted_y = static_cast<uint64_t>(offset_y + setup->reach_y);
     for (uint32_t i = 0; i < count; i++, pixel++) {
-        const uint32_t column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
-        const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u;
-        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
-        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
+        const uint64_t level_x = shifted_x >> level, level_y = shifted_y >> level;
+        const uint32_t column = static_cast<uint32_t>(level_x >> 32) - 1u;
+        const uint32_t row = static_cast<uint32_t>(level_y >> 32) - 1u;
+        const int64_t across = static_cast<int64_t>((level_x >> 16) & 0xFFFFu);
+        const int64_t down = static_cast<int64_t>((level_y >> 16) & 0xFFFFu);
         if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
-            const unsigned char *top = asset->texton + (row * width + column) * Channels * Bytes;
+            const unsigned char *top = texture.values + (row * texture.stride + column) * Channels * Bytes;
             const unsigned char *bottom = top + row_bytes;
             for (uint32_t c = 0; c < Channels; c++)
                 pixel[c * plane] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
                     top + c * Bytes, bottom + c * Bytes, across, down));
         } else { /* at the window's edge: the same integers, texels outside read as 0 */
             for (uint32_t c = 0; c < Channels; c++) {
-                const int64_t top_left = edge_texel<Channels, Bytes>(asset, row, column, c);
-                const int64_t bottom_left = edge_texel<Channels, Bytes>(asset, row + 1u, column, c);
+                const int64_t top_left = edge_texel<Channels, Bytes>(texture, row, column, c);
+                const int64_t bottom_left = edge_texel<Channels, Bytes>(texture, row + 1u, column, c);
                 const int64_t upper =
                     top_left * 65536 +
-                    across * (edge_texel<Channels, Bytes>(asset, row, column + 1u, c) - top_left);
+                    across * (edge_texel<Channels, Bytes>(texture, row, column + 1u, c) - top_left);
                 const int64_t lower =
                     bottom_left * 65536 +
-                    across * (edge_texel<Channels, Bytes>(asset, row + 1u, column + 1u, c) - bottom_left);
+                    across * (edge_texel<Channels, Bytes>(texture, row + 1u, column + 1u, c) - bottom_left);
                 pixel[c * plane] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
             }
         }
-        shifted_x += static_cast<uint64_t>(step_x);
-        shifted_y += static_cast<uint64_t>(step_y);
+        shifted_x += static_cast<uint64_t>(setup->step_x);
+        shifted_y += static_cast<uint64_t>(setup->step_y);
     }
 }
 
 #if defined(__AVX2__)
-/* ---- 8 pixels at a time on AVX2, 8-bit textons without cell records ----
+/* ---- 8 pixels at a time on AVX2, 8-bit textons (level 0) without cell records ----
    Each pixel's 2 x 2 texels come from 4 gathers of 32-bit words at the texels' first bytes (the texel
    and, for grey, the next one; for RGB the texel's 3 bytes and one more), each masked to the pixels whose
    texel lies inside the window, so that the others read nothing and give 0. A word read at a texel of
@@ -98,15 +103,17 @@ inline __m256i signed_byte(__m256i words) {
 }
 
 template <uint32_t Channels>
-void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
-                      int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count, uint64_t *pixel,
-                      size_t plane) {
+void splat_row_vector(const dsn_splat_setup *setup, int64_t offset_x, int64_t offset_y, uint32_t count,
+                      uint64_t *pixel) {
+    const dsn_splat_texture &texture = setup->texture;
+    const int64_t step_x = setup->step_x, step_y = setup->step_y;
+    const size_t plane = setup->plane;
     const uint32_t blocks = (count + 7u) / 8u;
     const __m256i steps_x = _mm256_set1_epi64x(8 * step_x), steps_y = _mm256_set1_epi64x(8 * step_y);
     const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
     /* bracket's shifted values of pixels 0-3 and 4-7 (modulo 2^64, as the scalar loop steps them) */
-    const uint64_t start_x = static_cast<uint64_t>(offset_x + reach_x),
-                   start_y = static_cast<uint64_t>(offset_y + reach_y);
+    const uint64_t start_x = static_cast<uint64_t>(offset_x + setup->reach_x),
+                   start_y = static_cast<uint64_t>(offset_y + setup->reach_y);
     const uint64_t four_x = 4u * static_cast<uint64_t>(step_x), four_y = 4u * static_cast<uint64_t>(step_y);
     __m256i low_x = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_x)),
                                      _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_x)));
@@ -123,14 +130,14 @@ void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y
                                  32));
     __m256i high_x = _mm256_add_epi64(low_x, _mm256_set1_epi64x(static_cast<long long>(four_x)));
     __m256i high_y = _mm256_add_epi64(low_y, _mm256_set1_epi64x(static_cast<long long>(four_y)));
-    const __m256i width = _mm256_set1_epi32(static_cast<int>(asset->width)),
-                  height = _mm256_set1_epi32(static_cast<int>(asset->height));
+    const __m256i width = _mm256_set1_epi32(static_cast<int>(texture.width)),
+                  height = _mm256_set1_epi32(static_cast<int>(texture.height));
     const __m256i sign = _mm256_set1_epi32(-2147483647 - 1);
     const __m256i width_sign = _mm256_xor_si256(width, sign), height_sign = _mm256_xor_si256(height, sign);
     const __m256i ones = _mm256_set1_epi32(1), low_16 = _mm256_set1_epi32(0xFFFF),
                   scale = _mm256_set1_epi32(65536);
-    const __m256i row_bytes = _mm256_set1_epi32(static_cast<int>(asset->width * Channels));
-    const int *texton = static_cast<const int *>(static_cast<const void *>(asset->texton));
+    const __m256i row_bytes = _mm256_set1_epi32(static_cast<int>(texture.stride * Channels));
+    const int *texton = static_cast<const int *>(static_cast<const void *>(texture.values));
     const __m256i lane_numbers = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     for (uint32_t block = 0; block < blocks; block++, pixel += 8) {
         /* The last block's lanes past the row read nothing and leave their memory alone (masked). */
@@ -212,32 +219,25 @@ void splat_row_vector(const dsn_asset *asset, int64_t offset_x, int64_t offset_y
 }
 #endif
 
-/* One impulse on one run, pixel by pixel but for 8-bit textons on AVX2: one copy per channel count and
-   value size. */
-inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64_t offset_y, int64_t step_x,
-                                 int64_t step_y, int64_t reach_x, int64_t reach_y, uint32_t count,
-                                 uint64_t *sums, size_t plane) {
+/* One impulse on one run, pixel by pixel but for 8-bit textons (level 0) on AVX2: one copy per channel
+   count and value size. */
+inline void continuous_splat_row(const dsn_splat_setup *setup, const dsn_splat_run &run) {
+    const dsn_splat_texture &texture = setup->texture;
 #if defined(__AVX2__)
-    if (asset->bits == 8) {
-        if (asset->channels == 3)
-            splat_row_vector<3>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
-                                plane);
+    if (texture.bits == 8 && texture.level == 0) {
+        if (texture.channels == 3)
+            splat_row_vector<3>(setup, run.offset_x, run.offset_y, run.count, run.sums);
         else
-            splat_row_vector<1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
-                                plane);
+            splat_row_vector<1>(setup, run.offset_x, run.offset_y, run.count, run.sums);
         return;
     }
 #endif
-    if (asset->channels == 3)
-        asset->bits == 8
-            ? splat_row<3, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
-            : splat_row<3, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
-                              plane);
+    if (texture.channels == 3)
+        texture.bits == 8 ? splat_row<3, 1>(setup, run.offset_x, run.offset_y, run.count, run.sums)
+                          : splat_row<3, 2>(setup, run.offset_x, run.offset_y, run.count, run.sums);
     else
-        asset->bits == 8
-            ? splat_row<1, 1>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums, plane)
-            : splat_row<1, 2>(asset, offset_x, offset_y, step_x, step_y, reach_x, reach_y, count, sums,
-                              plane);
+        texture.bits == 8 ? splat_row<1, 1>(setup, run.offset_x, run.offset_y, run.count, run.sums)
+                          : splat_row<1, 2>(setup, run.offset_x, run.offset_y, run.count, run.sums);
 }
 
 #if DSN_SPLAT_CELLS
@@ -246,7 +246,8 @@ inline void continuous_splat_row(const dsn_asset *asset, int64_t offset_x, int64
    record of each channel is read from the table (splat_cells.h) at the cell index the lower texel indices
    give, and one multiply-add of 16-bit pairs and two signed 32 x 32-bit products give interior_channel's
    integer, edge cells included (their texels outside the window are 0 in the records). No gathers: the
-   records are loaded one by one. Lanes past a run read cell 0 and are not added. */
+   records are loaded one by one. Lanes past a run read cell 0 and are not added. A pyramid level
+   (Leveled) divides each lane's shifted values by 2^level first. */
 /* The records' bilinear values: 65536 upper + down (lower - upper). */
 inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
     const splat_vector rows = splat_rows(records, across);
@@ -254,7 +255,13 @@ inline splat_vector splat_bilinear(splat_vector records, splat_vector across, sp
                      splat_signed_times(splat_shift_right(rows, 32), down));
 }
 
-template <uint32_t Channels>
+/* bracket's shifted values of a level: the lanes' (offset + reach) / 2^level. */
+template <bool Leveled>
+inline splat_vector splat_level(splat_vector shifted, uint32_t level) {
+    return Leveled ? splat_shift_right(shifted, level) : shifted;
+}
+
+template <uint32_t Channels, bool Leveled>
 void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
                    step_y = static_cast<uint64_t>(setup->step_y);
@@ -263,6 +270,7 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
     const size_t plane = setup->plane;
     const uint64_t *end = setup->sums_end;
+    const uint32_t level = setup->texture.level;
     /* First every lane's cell (where its records start), then the sums: the loads of the records do not
        wait on the vector stores of their indices. */
     uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
@@ -276,9 +284,11 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
             splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_y + setup->reach_y)), lanes_y);
         for (uint32_t done = 0; done < runs[r].count; done += splat_lanes, at += splat_lanes) {
             /* lanes past the run read cell 0 */
-            splat_store(at, splat_first_lanes(splat_add(splat_whole_times(shifted_y, row_records),
-                                                        splat_whole_times(shifted_x, cell_records)),
-                                              runs[r].count - done));
+            splat_store(
+                at, splat_first_lanes(
+                        splat_add(splat_whole_times(splat_level<Leveled>(shifted_y, level), row_records),
+                                  splat_whole_times(splat_level<Leveled>(shifted_x, level), cell_records)),
+                        runs[r].count - done));
             shifted_x = splat_add(shifted_x, next_x);
             shifted_y = splat_add(shifted_y, next_y);
         }
@@ -294,7 +304,8 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
         for (uint32_t done = 0; done < run.count;
              done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
             const uint32_t remaining = run.count - done;
-            const splat_vector across = splat_across_weights(shifted_x), down = splat_fraction(shifted_y);
+            const splat_vector across = splat_across_weights(splat_level<Leveled>(shifted_x, level)),
+                               down = splat_fraction(splat_level<Leveled>(shifted_y, level));
             splat_vector records[3];
             splat_load_cells<Channels>(setup->cells, at, records);
             splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
@@ -316,16 +327,17 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
    (splat_rows: both dwords of each record) stays in registers while the cell row does not change, and
    each pixel adds 65536 upper + down (lower - upper) from it: the same integers. Lanes past the runs read
    the row's first cell and are not added. */
-template <uint32_t Channels>
+template <uint32_t Channels, bool Leveled>
 void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
     const uint32_t count = runs[0].count;
     const size_t plane = setup->plane;
     const uint64_t *end = setup->sums_end;
+    const uint32_t level = setup->texture.level;
     /* Each run's first record in the table and down weight. */
     uint64_t row_start[dsn_splat_runs_most], down[dsn_splat_runs_most];
     for (uint32_t r = 0; r < run_count; r++) {
-        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y);
+        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y) >> level;
         row_start[r] = (shifted_y >> 32) * row_records;
         down[r] = (shifted_y >> 16) & 0xFFFFu;
     }
@@ -336,8 +348,9 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
     for (uint32_t done = 0; done < count; done += splat_lanes) {
         const uint32_t remaining = count - done;
         uint64_t column[splat_lanes]; /* each lane's first record in a row of the table */
-        splat_store(column, splat_first_lanes(splat_whole_times(shifted_x, cell_records), remaining));
-        const splat_vector across = splat_across_weights(shifted_x);
+        const splat_vector level_x = splat_level<Leveled>(shifted_x, level);
+        splat_store(column, splat_first_lanes(splat_whole_times(level_x, cell_records), remaining));
+        const splat_vector across = splat_across_weights(level_x);
         /* The current cell row's 65536 upper and lower - upper, channel by channel (kept in registers). */
         splat_vector scaled_0 = splat_set(0), scaled_1 = scaled_0, scaled_2 = scaled_0;
         splat_vector difference_0 = scaled_0, difference_1 = scaled_0, difference_2 = scaled_0;
@@ -376,28 +389,33 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
 }
 #endif
 
-/* The kernel entry: the runs on vectors where the texton has records, else pixel by pixel. */
+#if DSN_SPLAT_CELLS
+/* The runs on vectors of records, axis-aligned grids or not, of a level or of the texton. */
+template <uint32_t Channels, bool Leveled>
+inline void splat_runs_cells(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    if (setup->columns_shared)
+        splat_runs_aligned<Channels, Leveled>(setup, runs, run_count);
+    else
+        splat_runs_vector<Channels, Leveled>(setup, runs, run_count);
+}
+#endif
+
+/* The kernel entry: the runs on vectors where the texture has records, else pixel by pixel. */
 inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count) {
 #if DSN_SPLAT_CELLS
-    if (setup->cells != 0 && setup->columns_shared) {
-        if (setup->asset->channels == 3)
-            splat_runs_aligned<3>(setup, runs, run_count);
-        else
-            splat_runs_aligned<1>(setup, runs, run_count);
-        return;
-    }
     if (setup->cells != 0) {
-        if (setup->asset->channels == 3)
-            splat_runs_vector<3>(setup, runs, run_count);
+        const bool leveled = setup->texture.level != 0;
+        if (setup->texture.channels == 3)
+            leveled ? splat_runs_cells<3, true>(setup, runs, run_count)
+                    : splat_runs_cells<3, false>(setup, runs, run_count);
         else
-            splat_runs_vector<1>(setup, runs, run_count);
+            leveled ? splat_runs_cells<1, true>(setup, runs, run_count)
+                    : splat_runs_cells<1, false>(setup, runs, run_count);
         return;
     }
 #endif
-    for (uint32_t r = 0; r < run_count; r++)
-        continuous_splat_row(setup->asset, runs[r].offset_x, runs[r].offset_y, setup->step_x, setup->step_y,
-                             setup->reach_x, setup->reach_y, runs[r].count, runs[r].sums, setup->plane);
+    for (uint32_t r = 0; r < run_count; r++) continuous_splat_row(setup, runs[r]);
 }
 
 #if DSN_SPLAT_CELLS

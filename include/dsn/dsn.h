@@ -525,10 +525,17 @@ int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const d
    and row steps, with max_taps as in dsn_footprint. Exactly the per-point values of
    dsn_filtered_point_fixed with that footprint at each grid point (the level of detail and taps are
    computed once per tile). A grid whose footprint is unfiltered (level of detail 0, one tap) is
-   dsn_continuous_tile_fixed's tile, splat included, and needs its scratch; any other is evaluated point
-   by point without scratch. `scratch` holds at least dsn_filtered_tile_scratch_size() bytes (no
-   alignment needed; 0 for an invalid call or a grid evaluated point by point). Returns DSN_OK, DSN_ERR_NULL,
-   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
+   dsn_continuous_tile_fixed's tile, splat included, and needs its scratch. Any other is splatted too:
+   the grid of each tap (moved by the tap's offset) with each level the plan blends, each impulse adding
+   the level to the pixels it reaches, block by block, the scratch holding the pixels' 64-bit sums and
+   their totals (twice the continuous tile's). Evaluated point by point without scratch instead: grids
+   whose impulses would each reach fewer than 12 pixels of a row at some blended level (the coarse
+   levels of small textons, footprints stretched along the rows' direction), where the filtered point,
+   which shares each impulse among the taps, is as fast; grids the continuous tile would not splat (too
+   sparse, too large); plans past the coarsest level (the fade); every grid of the small build. `scratch`
+   holds at least dsn_filtered_tile_scratch_size() bytes (no alignment needed; 0 for an invalid call or a grid
+   evaluated point by point). Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT
+   (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
 size_t dsn_filtered_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
                                       uint32_t width, uint32_t height);
 int dsn_filtered_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,

@@ -1,6 +1,7 @@
 // filtered_bench.cpp - cost of the filtered evaluation as ratios to the continuous mode per point measured
 // in the same run (RGB, 31 x 31 texton with the baker's pyramid, 30 impacts per pixel, one thread):
-// isotropic per level of detail, anisotropic per tap, and the asset's size with and without its pyramid.
+// isotropic per level of detail, anisotropic per tap, filtered tiles (splatted) against the same pixels
+// point by point, and the asset's size with and without its pyramid.
 // Beside each ratio, the expected number of impulses within reach of a tap at the coarser level read,
 // lambda (2 (r_l + 1) 2^l)^2, against level 0's: the part of the cost that grows with the level.
 #include <cmath>
@@ -115,6 +116,44 @@ int main() {
                     ratio, degrees, minor, lod_q8 / 256.0, taps, cost.median, cost.median / taps,
                     cost.best / taps, impulse_text(lod_q8));
             }
+    // Tiles of a rotated grid minified to a level of detail (isotropic, then 4:1 with 4 taps), splatted,
+    // against the same pixels evaluated by dsn_filtered_point_fixed one by one.
+    const uint32_t side = 128;
+    std::vector<int32_t> tile(side * side * 3);
+    for (double stretch : {1.0, 4.0})
+        for (double lod : {0.5, 1.0, 1.5, 2.0, 2.5, 3.0}) {
+            const double zoom = std::pow(2.0, lod), c = std::cos(0.5) * zoom, s = std::sin(0.5) * zoom;
+            const dsn_grid grid{q32(1.0 / 3),     q32(1.0 / 7), q32(c * stretch),
+                                q32(s * stretch), q32(-s),      q32(c)};
+            const uint32_t max_taps = stretch > 1 ? 4 : 1;
+            std::vector<unsigned char> scratch(
+                dsn_filtered_tile_scratch_size(n, &grid, max_taps, side, side));
+            const dsn_footprint f{grid.column_step_x, grid.column_step_y, grid.row_step_x, grid.row_step_y,
+                                  max_taps};
+            const bench::PairedRatio cost = bench::paired_ratio(
+                kRounds,
+                [&] {
+                    int32_t out[3];
+                    for (uint32_t j = 0; j < side; j++)
+                        for (uint32_t i = 0; i < side; i++) {
+                            dsn_filtered_point_fixed(
+                                n, grid.origin_x + i * grid.column_step_x + j * grid.row_step_x,
+                                grid.origin_y + i * grid.column_step_y + j * grid.row_step_y, &f, out);
+                            checksum += out[0];
+                        }
+                },
+                [&] {
+                    dsn_filtered_tile_fixed(n, &grid, max_taps, side, side, tile.data(), scratch.data(),
+                                            scratch.size());
+                    checksum += tile[7];
+                });
+            const double pixel = cost.best * cost.baseline_best / (side * side);
+            std::printf(
+                "filtered tile %ux%u, %s LOD %.1f: %.0f ns/pixel, 1/%.1f (1/%.1f) of the filtered per "
+                "point\n",
+                side, side, stretch > 1 ? "4:1 (4 taps), minor axis at" : "isotropic,", lod, pixel * 1e9,
+                1 / cost.median, 1 / cost.best);
+        }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }

@@ -352,8 +352,9 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
 
 /* The filtered evaluation: each grid's steps are the footprint, evaluated with 16 taps allowed then 1:
    a minification by 2.5 rotated, by 6 across the int32 wrap, a slanted footprint (8 taps) with a
-   mirror, a degenerate one (zero determinant: the most taps), a magnification (the continuous bits) and
-   a huge one (the mean colour). */
+   mirror, a degenerate one (zero determinant: the most taps), a magnification (the continuous bits), a
+   huge one (the mean colour) and one slanted along its rows, whose tiles are splatted (levels 1 and 2
+   with one tap, level 0 at 8 taps on the RGB 8-bit asset). */
 const Grid filtered_grids[] = {
     {{-7 * q32_one / 3, 5 * q32_one, 10307921510, 3006477107, -3006477107, 10307921510}, 5, 4},
     {{(INT64_C(0x7FFFFFF0) << 32) + 99, -q32_one / 5, 6 * q32_one, q32_one / 8, 0, 6 * q32_one}, 4, 3},
@@ -361,6 +362,7 @@ const Grid filtered_grids[] = {
     {{-q32_one, -q32_one, 3 * q32_one, 3 * q32_one, 2 * q32_one, 2 * q32_one}, 3, 3},
     {{11 * q32_one / 7, q32_one / 9, q32_one / 2, q32_one / 5, -q32_one / 5, q32_one / 2}, 4, 3},
     {{0, 0, INT64_MAX / 3, INT64_MIN / 5, INT64_MAX / 7, INT64_MAX / 2}, 3, 2},
+    {{-13 * q32_one / 7, 3 * q32_one + 5, 3221225472, 536870912, -2147483648, 13958643712}, 10, 6},
 };
 
 #if DSN_FILTERING
