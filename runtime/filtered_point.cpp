@@ -130,7 +130,7 @@ void filtered_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, const 
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         for (uint32_t l = 0; l < count; l++) {
-            int64_t values[DSN_MAX_CHANNELS];
+            int64_t values[DSN_MAX_CHANNELS] = {0, 0, 0};
             dsn_internal_filter_level_values(noise, &walked[l], sums[tap][l], values);
             dsn_internal_filter_add_level(noise, plan, l, values, totals);
         }

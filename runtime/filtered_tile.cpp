@@ -133,8 +133,7 @@ void filter_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
 
 /* The scratch a splatted filtered tile takes: the block sums, then the totals. */
 size_t filtered_splat_size(const dsn_noise_state *noise, uint32_t width, uint32_t height) {
-    const size_t sums = dsn_internal_splat_sums_size(noise->asset.channels, width, height);
-    return sums == 0 || sums > static_cast<size_t>(-1) / 2u ? 0 : 2u * sums;
+    return 2u * dsn_internal_splat_sums_size(noise->asset.channels, width, height);
 }
 
 /* Whether an impulse of every level reaches at least splat_run_least pixels of a row through its centre:
@@ -175,7 +174,7 @@ void filtered_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t
                     FilteredSplat *filtered, void *scratch, void *out, dsn_output_kind kind) {
     uint64_t *sums = dsn_internal_aligned_sums(scratch);
     int64_t *totals = static_cast<int64_t *>(
-        static_cast<void *>(sums + static_cast<size_t>(width) * height * noise->asset.channels));
+        static_cast<void *>(sums + dsn_internal_splat_block_pixels(width, height) * noise->asset.channels));
 #if DSN_SPLAT_CELLS
     alignas(64) uint64_t cells[splat_cell_capacity]; /* the levels' records, one after the other */
     uint32_t used = 0;

@@ -23,6 +23,8 @@ namespace {
 const uint64_t max_extent = static_cast<uint64_t>(1) << 61;
 const uint32_t max_splat_period = 1u << 27;
 const uint32_t max_reach_texels = 1u << 27;
+/* Sums past a block's row before the next (a cache line of them), where the scratch has room. */
+const uint32_t splat_row_padding = 8;
 
 /* Floor of value / 2^shift (shift < 63) without shifting a negative number. */
 int64_t floor_shift(int64_t value, uint32_t shift) {
@@ -363,19 +365,26 @@ int dsn_internal_grid_splat_init(const dsn_noise_state *noise, const dsn_grid *g
     return 1;
 }
 
+size_t dsn_internal_splat_block_pixels(uint32_t width, uint32_t height) {
+    const uint64_t tile = static_cast<uint64_t>(width) * height;
+    const uint64_t block = (dsn_splat_block_columns + splat_row_padding) * dsn_splat_block_rows;
+    return static_cast<size_t>(tile < block ? tile : block);
+}
+
 dsn_splat_block dsn_internal_splat_block(uint32_t left, uint32_t top, uint32_t width, uint32_t height) {
     dsn_splat_block block;
+    const uint32_t most_columns = dsn_splat_block_columns, most_rows = dsn_splat_block_rows;
     block.left = left;
     block.top = top;
-    const uint32_t most_columns = dsn_splat_block_columns, most_rows = dsn_splat_block_rows;
     block.columns = width - left < most_columns ? width - left : most_columns;
     block.rows = height - top < most_rows ? height - top : most_rows;
     /* Rows of 64 sums would lie 512 bytes apart, each column of a block (and each channel's) in the same
        few cache sets: they are spread by a cache line where the scratch has room. */
-    const uint32_t padded = block.columns + 8u;
-    block.stride = static_cast<uint64_t>(padded) * block.rows <= static_cast<uint64_t>(width) * height
-                       ? padded
-                       : block.columns;
+    const uint32_t padded = block.columns + splat_row_padding;
+    block.stride =
+        static_cast<uint64_t>(padded) * block.rows <= dsn_internal_splat_block_pixels(width, height)
+            ? padded
+            : block.columns;
     block.plane = static_cast<size_t>(block.stride) * block.rows;
     return block;
 }
@@ -391,10 +400,8 @@ void dsn_internal_grid_splat_block(const dsn_noise_state *noise, const dsn_grid_
 }
 
 size_t dsn_internal_splat_sums_size(uint32_t channels, uint32_t width, uint32_t height) {
-    const uint64_t bytes = static_cast<uint64_t>(width) * height * channels * sizeof(uint64_t);
-    const uint64_t alignment_slack = sizeof(uint64_t) - 1u;
-    if (bytes + alignment_slack > static_cast<size_t>(-1)) return 0;
-    return static_cast<size_t>(bytes + alignment_slack);
+    return dsn_internal_splat_block_pixels(width, height) * channels * sizeof(uint64_t) +
+           (sizeof(uint64_t) - 1u);
 }
 
 uint64_t *dsn_internal_aligned_sums(void *scratch) {

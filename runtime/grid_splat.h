@@ -59,15 +59,20 @@ typedef struct dsn_splat_block {
 int dsn_internal_grid_splat_init(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                                  uint32_t height, const dsn_splat_texture *texture, dsn_grid_splat *splat);
 
-/* The block of the tile whose top-left pixel is (left, top) (multiples of the block sides). */
+/* The pixels whose sums a block of the tile takes at most: the tile's, or one block's with its rows
+   padded by a cache line, whichever is fewer (at most 72 x 32). */
+size_t dsn_internal_splat_block_pixels(uint32_t width, uint32_t height);
+
+/* The block of the tile whose top-left pixel is (left, top) (multiples of the block sides), its rows
+   padded where dsn_internal_splat_block_pixels leaves room. */
 dsn_splat_block dsn_internal_splat_block(uint32_t left, uint32_t top, uint32_t width, uint32_t height);
 
 /* Zeroes the block's sums (sums[0 .. channels plane)) and adds every impulse within reach. */
 void dsn_internal_grid_splat_block(const dsn_noise_state *noise, const dsn_grid_splat *splat,
                                    const dsn_splat_block *block, uint64_t *sums);
 
-/* Bytes of scratch that holds the 64-bit sums of every pixel of the tile at any alignment (a block's,
-   padded or not, never take more); 0 when that does not fit a size_t. */
+/* Bytes of scratch that hold the 64-bit sums of dsn_internal_splat_block_pixels pixels at any
+   alignment: every block's, one at a time. */
 size_t dsn_internal_splat_sums_size(uint32_t channels, uint32_t width, uint32_t height);
 
 /* The scratch as an array of uint64, aligned (the caller's buffer needs no alignment). */

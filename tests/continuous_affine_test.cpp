@@ -219,6 +219,9 @@ TEST_CASE("continuous affine: degenerate, sparse and huge-step grids fall back o
     CHECK(dsn_continuous_tile_scratch_size(n, &grids[3], 10, 10) == 0);
     CHECK(dsn_continuous_tile_scratch_size(n, &grids[4], 10, 10) == 0);
     CHECK(dsn_continuous_tile_scratch_size(n, &grids[1], 10, 10) == 10 * 10 * 3 * 8 + 7);
+    // One block's sums (64 x 32 pixels, rows padded by 8), however large the tile.
+    CHECK(dsn_continuous_tile_scratch_size(n, &grids[1], 4096, 4096) == 72 * 32 * 3 * 8 + 7);
+    CHECK(dsn_continuous_tile_scratch_size(n, &grids[1], 100, 23) == 100 * 23 * 3 * 8 + 7);
 #endif
 }
 

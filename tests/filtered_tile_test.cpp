@@ -145,6 +145,8 @@ TEST_CASE("filtered tiles: splatted levels and taps equal the filtered points in
             CAPTURE(grid.origin_y);
             // Up to three blocks across and two down.
             const uint32_t width = 1 + uint32_t(random() % 150), height = 1 + uint32_t(random() % 50);
+            CAPTURE(width);
+            CAPTURE(height);
             const bool splat = tile_matches_points(&loaded.noise, grid, f.max_taps, width, height);
             // As planned for the 31-texel textons (a larger one reaches longer runs), but for periodic grids
             // crossing the int32 wrap (point by point).
@@ -161,4 +163,11 @@ TEST_CASE("filtered tiles: splatted levels and taps equal the filtered points in
         total++;
     }
     CHECK(splatted >= (DSN_SMALL_CODE ? 0 : total / 2));
+#if !DSN_SMALL_CODE
+    // A block's sums and totals (twice the continuous tile's), however large the tile.
+    LoadedNoise loaded(pyramid_fields(3, 31, 8, 3), make_config(1));
+    const dsn_grid minified = filtered_grid(0, 0, 30, 2.0, 1, 0, false);
+    CHECK(dsn_filtered_tile_scratch_size(&loaded.noise, &minified, 1, 4096, 4096) ==
+          2 * (72 * 32 * 3 * 8 + 7));
+#endif
 }

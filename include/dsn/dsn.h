@@ -84,9 +84,10 @@
                         Left at 0 there is one copy, built with the runtime's own flags.
 
    Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the
-   stack), a continuous per-point call under 2 KB, a filtered per-point call or tile under 6 KB (the sums
-   of every tap), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
-   (see above).
+   stack), a continuous per-point call under 2 KB, a filtered per-point call under 6 KB (the sums of
+   every tap), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS (see above), a continuous or
+   filtered tile up to about 84 KB where it is splatted (the texton's records, see
+   dsn_continuous_tile_fixed), under 6 KB where it goes point by point.
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H
@@ -363,18 +364,18 @@ typedef struct dsn_grid {
    DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH.
    Any grid (zoom in or out, rotation, shear, mirror, periodic noises) is evaluated by splatting: each
    impulse near the tile adds its texton to the pixels it reaches, so the cost follows the tile's area in
-   texels rather than its pixel count; the scratch then holds the 64-bit sums of the pixels (it is asked
-   for one per pixel and channel: width * height * channels * 8 bytes, plus 7; the tile goes through it a
-   block of 64 x 32 pixels at a time). On x86 an 8-bit texton is read from 64-bit records per 2 x 2 texels
-   kept on the tile call's stack (up to 64 KB, beside about 20 KB of the splat's own), unless it has more
-   than 8192 of them (RGB past 49 x 49 texels, grey past 89 x 89), which go pixel by pixel; on an
-   axis-aligned grid (column step along x alone, row step along y alone, either sign) each record's
-   interpolation along its row of texels is shared by the pixels of a column. Grids where that
-   does not pay or cannot be done exactly (a pixel covering more texels than a point visits, steps of 2^14
-   texels or more, a periodic axis whose points cross the int32 wrap of the coordinate or a period of 2^27 or
-   more) are evaluated point by point and dsn_continuous_tile_scratch_size() returns 0 for them; so does every
-   grid in the small build (DSN_SMALL_CODE), which evaluates point by point. Either way the bits are the
-   per-point ones. */
+   texels rather than its pixel count; the scratch then holds the 64-bit sums of a block of pixels (the
+   tile goes through it 64 x 32 pixels at a time, each row of sums padded by a cache line where that fits:
+   it is asked for min(width * height, 72 * 32) * channels * 8 bytes, plus 7, at most 55 303 bytes). On x86 an
+   8-bit texton is read from 64-bit records per 2 x 2 texels kept on the tile call's stack (up to 64 KB,
+   beside about 20 KB of the splat's own), unless it has more than 8192 of them (RGB past 49 x 49 texels, grey
+   past 89 x 89), which go pixel by pixel; on an axis-aligned grid (column step along x alone, row step along
+   y alone, either sign) each record's interpolation along its row of texels is shared by the pixels of a
+   column. Grids where that does not pay or cannot be done exactly (a pixel covering more texels than a point
+   visits, steps of 2^14 texels or more, a periodic axis whose points cross the int32 wrap of the coordinate
+   or a period of 2^27 or more) are evaluated point by point and dsn_continuous_tile_scratch_size() returns 0
+   for them; so does every grid in the small build (DSN_SMALL_CODE), which evaluates point by point. Either
+   way the bits are the per-point ones. */
 size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
                                         uint32_t height);
 int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
