@@ -26,5 +26,9 @@
 #ifndef DSN_SIMD_PAIRED_ROWS
 #define DSN_SIMD_PAIRED_ROWS 0
 #endif
+/* 1 where every plane is paired (else only channel 2 of RGB, where DSN_SIMD_PAIRED_ROWS). */
+#ifndef DSN_SIMD_PAIRED_ALL
+#define DSN_SIMD_PAIRED_ALL 0
+#endif
 
 #endif /* DSN_SIMD_H */

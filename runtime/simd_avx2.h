@@ -12,11 +12,10 @@ namespace {
 
 typedef __m256i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
 typedef __m256 simd_floats;
-typedef uint16_t simd_texel; /* the texton as the sums read it: sign-extended to 16 bits once */
 const uint32_t simd_int16_count = 16;
 
 /* ---- Sums ---- */
-inline simd_vector load_texels(const simd_texel *src) {
+inline simd_vector load_texels(const uint16_t *src) {
     return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src)));
 }
 inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm256_add_epi16(a, b); }
@@ -34,6 +33,8 @@ inline void add_pair(simd_vector texels, simd_vector *row_0, simd_vector *row_1)
     *row_0 = _mm256_add_epi16(*row_0, _mm256_maddubs_epi16(texels, _mm256_set1_epi16(1)));
     *row_1 = _mm256_add_epi16(*row_1, _mm256_maddubs_epi16(texels, _mm256_set1_epi16(0x100)));
 }
+/* The two rows' sums as add_pair leaves them (nothing left to do here; see simd_avx512.h). */
+inline void finish_pair(simd_vector *, simd_vector) {}
 
 /* ---- Normalization, per 128-bit lane (AVX2 unpacks and shuffles each lane on its own) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
