@@ -22,13 +22,10 @@
 #ifndef DSN_SIMD_STREAM_LINES
 #define DSN_SIMD_STREAM_LINES 0
 #endif
-/* 1 where the ops header sums two rows of a channel from one load of a paired plane (add_pair). */
+/* 1 where the ops header sums two rows of a channel from one load of a paired plane (add_pair, then
+   finish_pair): then every plane of the strips' texton is paired. */
 #ifndef DSN_SIMD_PAIRED_ROWS
 #define DSN_SIMD_PAIRED_ROWS 0
-#endif
-/* 1 where every plane is paired (else only channel 2 of RGB, where DSN_SIMD_PAIRED_ROWS). */
-#ifndef DSN_SIMD_PAIRED_ALL
-#define DSN_SIMD_PAIRED_ALL 0
 #endif
 
 #endif /* DSN_SIMD_H */

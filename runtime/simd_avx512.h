@@ -34,7 +34,6 @@ inline simd_vector load_texels(const uint16_t *src) { return _mm512_loadu_si512(
    bytes 256 times over, row_1 the high bytes shifted down, and finish_pair takes row_1 256 times off
    row_0 once per strip (all modulo 2^16, exact: the true sums fit). */
 #define DSN_SIMD_PAIRED_ROWS 1
-#define DSN_SIMD_PAIRED_ALL 1
 inline void add_pair(simd_vector texels, simd_vector *row_0, simd_vector *row_1) {
     /* One register for both uses: GCC would fold the load into the add and the shift, reading the
        vector (which crosses a cache line wherever it does not start one) twice. */
