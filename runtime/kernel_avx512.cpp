@@ -1,7 +1,7 @@
 /* runtime/kernel_avx512.cpp - the AVX-512 kernel: the evaluation code built for AVX-512 F and BW (the
-   Makefile compiles this file with -mavx512f -mavx512bw on x86-64), 32 pixels per strip, summed from the
-   texton's bytes widened as they are loaded. Runs only where init found AVX-512 (kernel_table.cpp); its
-   bits are those of every other kernel. Empty unless DSN_KERNEL_X86_COPIES. */
+   Makefile compiles this file with -mavx512f -mavx512bw on x86-64), 32 pixels per strip, summed two
+   rows per load from paired planes of the texton (simd_avx512.h). Runs only where init found AVX-512
+   (kernel_table.cpp); its bits are those of every other kernel. Empty unless DSN_KERNEL_X86_COPIES. */
 #include "kernels.h"
 
 #if DSN_KERNEL_X86_COPIES
@@ -30,8 +30,8 @@ extern const dsn_kernel_entries dsn_internal_entries_avx2;
 namespace {
 
 /* The lattice tiles of the kernel below: of RGB noises whose texton the AVX2 kernel's strips take, the
-   AVX2 kernel's, every output kind; of the others (grey, or textons only this kernel's byte-wide copies
-   hold) this kernel's (kernel_table.cpp says where and why). A noise too dense for AVX2's rectangles is
+   AVX2 kernel's, every output kind; of the others (grey, or textons only this kernel's single copy has
+   room for) this kernel's (kernel_table.cpp says where and why). A noise too dense for AVX2's rectangles is
    too dense for this kernel's (its widths are among AVX2's), so both would take the 32-bit path. */
 int avx2_takes(const dsn_noise_state *noise) {
     return noise->asset.channels == 3 && dsn_internal_entries_avx2.lattice_strips_take(noise);

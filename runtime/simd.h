@@ -22,7 +22,8 @@
 #ifndef DSN_SIMD_STREAM_LINES
 #define DSN_SIMD_STREAM_LINES 0
 #endif
-/* 1 where the ops header sums two rows of a channel from one load of a paired plane (add_pair). */
+/* 1 where the ops header sums two rows of a channel from one load of a paired plane (add_pair, then
+   finish_pair): then every plane of the strips' texton is paired. */
 #ifndef DSN_SIMD_PAIRED_ROWS
 #define DSN_SIMD_PAIRED_ROWS 0
 #endif

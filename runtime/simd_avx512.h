@@ -23,20 +23,31 @@ namespace {
 
 typedef __m512i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
 typedef __m512 simd_floats;
-/* The texton as the sums read it: its bytes as they are, widened as they are loaded (32 bytes, half a
-   cache line, give a whole vector of sums: a 64-byte load of 16-bit values would cross a cache line
-   almost always). */
-typedef uint8_t simd_texel;
 const uint32_t simd_int16_count = 32;
 
 /* ---- Sums ---- */
-inline simd_vector load_texels(const simd_texel *src) {
-    return _mm512_cvtepi8_epi16(
-        _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(src))));
+inline simd_vector load_texels(const uint16_t *src) { return _mm512_loadu_si512(src); }
+/* Every channel's two rows from one load (tile_strips.h): each 16-bit texel of a paired plane holds row
+   t in its low byte and row t + 1 in its high byte, both biased by 128 (unsigned). Widening the bytes
+   (a shuffle per 32 of them, which bound the strips here: two of the four vector pipes of AMD's Zen 4
+   run shuffles, at half rate on 512 bits) is left out: row_0 adds the texels as they are, their high
+   bytes 256 times over, row_1 the high bytes shifted down, and finish_pair takes row_1 256 times off
+   row_0 once per strip (all modulo 2^16, exact: the true sums fit). */
+#define DSN_SIMD_PAIRED_ROWS 1
+inline void add_pair(simd_vector texels, simd_vector *row_0, simd_vector *row_1) {
+    /* One register for both uses: GCC would fold the load into the add and the shift, reading the
+       vector (which crosses a cache line wherever it does not start one) twice. */
+    __asm__("" : "+v"(texels));
+    *row_0 = _mm512_add_epi16(*row_0, texels);
+    *row_1 = _mm512_add_epi16(*row_1, _mm512_srli_epi16(texels, 8));
+}
+inline void finish_pair(simd_vector *row_0, simd_vector row_1) {
+    *row_0 = _mm512_sub_epi16(*row_0, _mm512_slli_epi16(row_1, 8));
 }
 inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm512_add_epi16(a, b); }
 inline simd_vector zero_vector() { return _mm512_setzero_si512(); }
 inline void store_16(uint16_t *dst, simd_vector value) { _mm512_storeu_si512(dst, value); }
+inline simd_vector sub_16(simd_vector a, simd_vector b) { return _mm512_sub_epi16(a, b); }
 
 /* ---- Normalization, per 128-bit lane (AVX-512 unpacks and shuffles each lane on its own) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm512_broadcast_i32x4(value); }

@@ -10,11 +10,10 @@ namespace {
 
 typedef __m128i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
 typedef __m128 simd_floats;
-typedef uint16_t simd_texel; /* the texton as the sums read it: sign-extended to 16 bits once */
 const uint32_t simd_int16_count = 8;
 
 /* ---- Sums ---- */
-inline simd_vector load_texels(const simd_texel *src) {
+inline simd_vector load_texels(const uint16_t *src) {
     return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src)));
 }
 inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm_add_epi16(a, b); }

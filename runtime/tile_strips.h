@@ -4,8 +4,8 @@
    sorted by the row of their texton's first row, and filed under every strip they reach. Then, row by
    row, each strip adds in registers one texton row per impulse active on that row (a range of its sorted
    entries), in 16-bit lanes, read from a copy of the texton padded with a vector of zeros on each side so
-   that every read is one whole vector (two rows at a time, sharing the loop; with AVX2 the last channel
-   of RGB reads both rows in one load, see paired_channel). A sum is normalized
+   that every read is one whole vector (two rows at a time, sharing the loop; with AVX2 and AVX-512 a
+   channel's two rows in one load, see make_paired_texel). A sum is normalized
    straight from its register: nothing is accumulated in memory, so the cost is loads, not
    read-modify-write stores.
    When no column of the rectangle is reached by more than coverage_limit impulses, no pixel is, and no
@@ -19,25 +19,24 @@
 
 namespace {
 
-/* Pixels per strip (16-bit sums per vector); the texton's values as the strips read them (simd_texel:
-   the AVX-512 copy reads the texton's bytes as they are, the others keep it in 16 bits); rows summed at
-   once (sharing the loop over entries; strip_rows - 1 rows of zeros pad the texton above and below, for
-   the entries active on only some of them). */
-typedef simd_texel strip_texel;
+/* Pixels per strip (16-bit sums per vector); the texton's values as the strips read them (16 bits, one
+   per pixel of a vector); rows summed at once (sharing the loop over entries; strip_rows - 1 rows of
+   zeros pad the texton above and below, for the entries active on only some of them). */
+typedef uint16_t strip_texel;
 const uint32_t lane = simd_int16_count, strip_rows = 2;
 static_assert(strip_rows == 2, "add_strip_rows and the paired planes sum two rows");
-/* Where the ops header sums two rows from one load (DSN_SIMD_PAIRED_ROWS), channel 2 of an RGB texton
-   is kept as a paired plane: the texel at the place of texton row t (in the other planes) holds rows
-   t and t + 1 at its column, one byte each,
-   biased by 128 (so unsigned), and one load gives both rows of a strip (add_pair). The other planes
-   keep one row per texel, biased by zero_texel: every texel reads zero_texel more than its value, a
-   paired one 128 more per byte, so the padding of every plane is zero_texel alike (a copy 1 window that
-   runs into the next plane reads the right zeros), and the sums take count times the bias off at the
-   end (modulo 2^16, exact: the true sums fit). Elsewhere no channel is paired and the bias is 0. */
-const uint32_t paired_channel = DSN_SIMD_PAIRED_ROWS ? 2 : 3;
+/* Where the ops header sums two rows from one load (DSN_SIMD_PAIRED_ROWS), every channel is kept as a
+   paired plane: the texel at the place of texton row t (in an unpaired plane) holds rows t and t + 1 at
+   its column, one byte each, biased by 128 (so unsigned), and one load gives both rows of a strip
+   (add_pair, then finish_pair). Elsewhere (SSE2) the planes keep one row per texel, sign-extended. The
+   padding of every plane is zero_texel (a paired texel of zeros, or 0), and the sums take count times
+   the bias off at the end (modulo 2^16, exact: the true sums fit). */
 const uint32_t zero_texel = DSN_SIMD_PAIRED_ROWS ? 0x8080u : 0u;
-/* Texels per 64-byte cache line. */
+/* Texels per 64-byte cache line, and copies of the texton (strip_texton) worth keeping: two where a
+   window is shorter than a line, one where it is a whole line (AVX-512), since such a window crosses a
+   line wherever it starts but at the line's start, and a second copy cannot change that. */
 const uint32_t line_texels = 64 / sizeof(strip_texel);
+const uint32_t copies_limit = lane < line_texels ? 2 : 1;
 const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
 const uint32_t coverage_limit = 255;
@@ -57,32 +56,32 @@ const uint32_t strip_entry_capacity = list_capacity * strips_per_impulse_limit;
 const uint32_t key_limit = rectangle_height + strip_texton_side;
 
 /* Texels per texton row in strip_texton: room for lane zeros on the left of copy 0's windows, 2 lane in
-   copy 1, a whole number of cache lines. */
+   copy 1 (when there is one), a whole number of cache lines. */
 constexpr uint32_t strip_stride(uint32_t width) {
-    return (width + 2 * lane + line_texels - 1) / line_texels * line_texels;
+    return (width + copies_limit * lane + line_texels - 1) / line_texels * line_texels;
 }
 
-/* The texton as strip_texel values, twice. Each copy has one plane per channel, strip_rows - 1 rows of
-   zeros (zero_texel) above and below each plane, and rows of `stride` values: zeros, the texton row from
-   value lane (copy 0) or 2 lane (copy 1, `shifted` values further), zeros. The sums are bound by their loads,
-   and a vector load that crosses a 64-byte cache line costs two: rows are whole cache lines, so whether a
-   window's load crosses one depends only on its column, and the other copy then holds the same window
-   at a column where it does not (file_strip_entries picks it). Every window read is inside the copies
-   or the `stride` zeros after them (a copy 1 window may run up to lane - 1 values into the next row's
-   zeros). */
+/* The texton as strip_texel values, twice (once where copies_limit is 1). Each copy has one plane per
+   channel, strip_rows - 1 rows of zeros (zero_texel) above and below each plane, and rows of `stride` values:
+   zeros, the texton row from value lane (copy 0) or 2 lane (copy 1, `shifted` values further), zeros. The
+   sums are bound by their loads, and a vector load that crosses a 64-byte cache line costs two: rows are
+   whole cache lines, so whether a window's load crosses one depends only on its column, and the other copy
+   then holds the same window at a column where it does not (file_strip_entries picks it). Every window read
+   is inside the copies or the `stride` zeros after them (a copy 1 window may run up to lane - 1 values into
+   the next row's zeros). */
 typedef struct strip_texton {
-    alignas(64) strip_texel values[2 * 3 * (31 + 2 * (strip_rows - 1)) * strip_stride(31) +
-                                   strip_stride(31)]; /* 31 x 31 RGB fits */
+    /* 31 x 31 RGB fits twice, or (one copy only) the largest RGB texton once */
+    alignas(64) strip_texel
+        values[copies_limit == 2
+                   ? 2 * 3 * (31 + 2 * (strip_rows - 1)) * strip_stride(31) + strip_stride(31)
+                   : 3 * (strip_texton_side + 2 * (strip_rows - 1)) * strip_stride(strip_texton_side) +
+                         strip_stride(strip_texton_side)];
     uint32_t stride, plane, width, height, shifted; /* values per row and plane, texton size, copy 1 offset */
     uint32_t copies; /* 1 or 2: copy 1 pays off only over thousands of pixels */
 } strip_texton;
 
-/* A texton byte (two's complement) as a strip_texel: as it is in 8 bits, sign-extended in 16 (plus
-   zero_texel, modulo 2^16). */
-inline strip_texel make_texel(unsigned char byte) {
-    return strip_texel(sizeof(strip_texel) == 1 ? uint32_t(byte)
-                                                : (uint32_t(byte) ^ 0x80u) - 0x80u + zero_texel);
-}
+/* A texton byte (two's complement) as a strip_texel of an unpaired plane: sign-extended to 16 bits. */
+inline strip_texel make_texel(unsigned char byte) { return strip_texel((uint32_t(byte) ^ 0x80u) - 0x80u); }
 
 /* Texel (t, x) of a paired plane, from the texton's channel c (rows outside the texton are zeros). */
 inline strip_texel make_paired_texel(const dsn_asset *asset, uint32_t c, uint32_t t, uint32_t x) {
@@ -101,7 +100,7 @@ uint32_t strip_texton_copies(const dsn_asset *asset) {
     const uint32_t copy =
         asset->channels * (asset->height + 2 * (strip_rows - 1)) * strip_stride(asset->width);
     const uint32_t room = sizeof(strip_texton().values) / sizeof(strip_texel) - strip_stride(asset->width);
-    return 2 * copy <= room ? 2 : copy <= room ? 1 : 0;
+    return 2 * copy <= room && copies_limit == 2 ? 2 : copy <= room ? 1 : 0;
 }
 
 /* The size of the rectangles a tile is cut into. Below 4 rows, walking the cells per rectangle costs
@@ -153,9 +152,9 @@ void make_strip_texton(const dsn_asset *asset, uint32_t copies, strip_texton *te
     for (uint32_t i = 0; i < copies * texton->shifted + texton->stride; i++)
         texton->values[i] = strip_texel(zero_texel);
     for (uint32_t c = 0; c < channels; c++) {
-        if (channels == 3 && c == paired_channel) {
-            /* Pair row t holds texton rows t - 1 and t: at the place of texton row t - 1 in the other planes.
-             */
+        if (DSN_SIMD_PAIRED_ROWS) {
+            /* Pair row t holds texton rows t - 1 and t: at the place of texton row t - 1 in an unpaired
+               plane. */
             for (uint32_t t = 0; t <= asset->height; t++) {
                 strip_texel *dst = texton->values + c * texton->plane + t * texton->stride + lane;
                 for (uint32_t column = 0; column < asset->width; column++) {
@@ -300,11 +299,31 @@ void file_strip_entries(const impulse_list *list, const strip_texton *texton, ui
     }
 }
 
+/* Both rows of one plane: a paired plane's from one load, an unpaired one's from two. */
+inline void add_rows(const strip_texel *texels, uint32_t stride, simd_vector *row_0, simd_vector *row_1) {
+#if DSN_SIMD_PAIRED_ROWS
+    (void)stride;
+    add_pair(load_texels(texels), row_0, row_1);
+#else
+    *row_0 = add_16(*row_0, load_texels(texels));
+    *row_1 = add_16(*row_1, load_texels(texels + stride));
+#endif
+}
+
+#if DSN_SIMD_PAIRED_ROWS
+/* A paired plane's two sums finished, less `total`, the entries' bias. */
+inline void finish_rows(simd_vector *row_0, simd_vector *row_1, simd_vector total) {
+    finish_pair(row_0, *row_1);
+    *row_0 = sub_16(*row_0, total);
+    *row_1 = sub_16(*row_1, total);
+}
+#endif
+
 /* strip_rows rows of one strip: sums[3 r + c] = the sum over `count` entries of the texton row each
    puts on row r, channel c, read from `row` (texton row 0 offset by the first rectangle row). An entry
-   active on only some of the rows reads zero padding rows on the others; the planes' bias (zero_texel)
-   comes off at the end. Out of line: inlined into the
-   row loop, the compiler runs out of registers and reloads in the inner loop. */
+   active on only some of the rows reads zero padding rows on the others; paired planes' sums are
+   finished and their bias taken off at the end. Out of line: inlined into the row loop, the compiler
+   runs out of registers and reloads in the inner loop. */
 template <uint32_t Channels>
 __attribute__((noinline)) void add_strip_rows(const strip_texel *row, const int32_t *base, uint32_t count,
                                               uint32_t plane, uint32_t stride, simd_vector *sums) {
@@ -314,28 +333,20 @@ __attribute__((noinline)) void add_strip_rows(const strip_texel *row, const int3
     simd_vector sum_10 = zero_vector(), sum_11 = zero_vector(), sum_12 = zero_vector();
     for (uint32_t i = 0; i < count; i++) {
         const strip_texel *texels = row + base[i];
-        sum_00 = add_16(sum_00, load_texels(texels));
-        sum_10 = add_16(sum_10, load_texels(texels + stride));
+        add_rows(texels, stride, &sum_00, &sum_10);
         if (Channels == 3) {
-            sum_01 = add_16(sum_01, load_texels(texels + plane));
-            sum_11 = add_16(sum_11, load_texels(texels + plane + stride));
-#if DSN_SIMD_PAIRED_ROWS /* both rows in one load, kept at the first row's place */
-            add_pair(load_texels(texels + 2 * plane), &sum_02, &sum_12);
-#else
-            sum_02 = add_16(sum_02, load_texels(texels + 2 * plane));
-            sum_12 = add_16(sum_12, load_texels(texels + 2 * plane + stride));
-#endif
+            add_rows(texels + plane, stride, &sum_01, &sum_11);
+            add_rows(texels + 2 * plane, stride, &sum_02, &sum_12);
         }
     }
+    /* Stored before they are finished: finished in registers, the accumulators take register copies
+       on every entry. */
     sums[0] = sum_00, sums[1] = sum_01, sums[2] = sum_02, sums[3] = sum_10, sums[4] = sum_11,
     sums[5] = sum_12;
 #if DSN_SIMD_PAIRED_ROWS
-    for (uint32_t c = 0; c < Channels; c++) { /* each entry's bias, modulo 2^16 */
-        const uint32_t bias = (c == paired_channel ? 0x80u : zero_texel) * count & 0xFFFFu;
-        const simd_vector total = set_16(int16_t(int32_t(bias ^ 0x8000u) - 0x8000));
-        sums[c] = sub_16(sums[c], total);
-        sums[3 + c] = sub_16(sums[3 + c], total);
-    }
+    const uint32_t bias = 0x80u * count & 0xFFFFu; /* each entry's, per byte, modulo 2^16 */
+    const simd_vector total = set_16(int16_t(int32_t(bias ^ 0x8000u) - 0x8000));
+    for (uint32_t c = 0; c < Channels; c++) finish_rows(&sums[c], &sums[3 + c], total);
 #endif
 }
 

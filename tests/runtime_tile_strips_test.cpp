@@ -136,7 +136,8 @@ TEST_CASE("the AVX2 strips take the RGB textons the AVX-512 kernel with AVX2 lat
     CHECK(avx2(dsn_state(&small_noise.noise)) == 1);
     CHECK(avx512(dsn_state(&small_noise.noise)) == 1);
     // 63 x 63 RGB: three 16-bit planes of 63 + 2 rows exceed the AVX2 copy's room (a 31 x 31 RGB texton
-    // twice); the AVX-512 copy keeps texels in bytes and holds it once.
+    // twice); the AVX-512 copy keeps one copy only (its windows are whole cache lines) and has room for the
+    // largest texton once.
     auto large = dsn_test::synthetic_fields(3, 63, 8, DSN_SHAPE_RECTANGLE, 7);
     LoadedNoise large_noise(large, dsn_test::make_config(1, 30));
     CHECK(avx2(dsn_state(&large_noise.noise)) == 0);
@@ -178,7 +179,7 @@ TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of
                               {123456789, -987654321, 65, 100}};
     // Side 45: a 1-channel texton takes the strip path with AVX2 (16-pixel strips) and AVX-512 and the
     // 32-bit path with SSE2 (where it could reach 6 strips of 8); an RGB one takes the strip path with
-    // AVX-512 (one copy of its 8-bit texton fits) and the 32-bit path otherwise (no room for it).
+    // AVX-512 (its one copy has room for it) and the 32-bit path otherwise (no room for it).
     for (uint32_t channels : {1u, 3u})
         for (uint32_t side : {31u, 9u, 1u, 45u}) {
             auto fields = dsn_test::synthetic_fields(channels, side, 8, DSN_SHAPE_RECTANGLE, random.next());

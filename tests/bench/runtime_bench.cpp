@@ -112,11 +112,11 @@ void count_work(const dsn_noise &noise, uint32_t x, uint32_t y, uint64_t *cells,
         }
 }
 
-// Stack depth of `call` by painting: fill the 64 KB below this frame (still inside the thread's stack),
+// Stack depth of `call` by painting: fill the 128 KB below this frame (still inside the thread's stack),
 // make the call, and find the deepest byte it changed.
 template <typename Call>
 __attribute__((noinline)) size_t painted_stack(Call call) {
-    const size_t region_size = 1 << 16, guard = 128; // guard: this frame's own locals and spills
+    const size_t region_size = 1 << 17, guard = 128; // guard: this frame's own locals and spills
     volatile unsigned char *top = static_cast<unsigned char *>(__builtin_frame_address(0)) - guard;
     for (size_t i = 1; i <= region_size; i++) top[-std::ptrdiff_t(i)] = 0xA5;
     call();
