@@ -91,18 +91,10 @@ bool tile_matches_points(const dsn_noise *noise, const dsn_grid &grid, uint32_t 
     return splatted;
 }
 
-// Origins: anywhere, just before both 32-bit wraps (int32 lattice and the 2^64 torus), around 0.
+// Origins across the wraps, 20 texels before them (tiles up to 60 pixels at up to 3.1 texels per pixel
+// cross them).
 int64_t origin_near_wraps(std::mt19937_64 &random, int which) {
-    switch (which % 4) {
-    case 0:
-        return int64_t(random());
-    case 1:
-        return int64_t(uint64_t(INT32_MAX - 20) << 32) + int64_t(random() >> 32); // int32 wrap ahead
-    case 2:
-        return INT64_MAX - 25 * one + int64_t(random() >> 33); // the 2^64 wrap ahead
-    default:
-        return -30 * one + int64_t(random() >> 32);
-    }
+    return continuous_fixtures::origin_near_wraps(random, which, 20);
 }
 
 // One grid at a random size up to max_width x max_height, counted in *total and, when splatted, in

@@ -12,6 +12,7 @@
 
 #include "../offline/bake_internal.h"
 #include "../runtime/kernels.h"
+#include "fixtures/continuous_fixtures.h"
 #include "fixtures/test_assets.h"
 
 using namespace dsn_test;
@@ -41,17 +42,10 @@ dsn_grid filtered_grid(int64_t origin_x, int64_t origin_y, double degrees, doubl
         q32(c * down)};
 }
 
+// Origins across the wraps, 90 texels before them (tiles up to 150 pixels at 1.1 to 10.5 texels per pixel
+// cross them).
 int64_t origin_near_wraps(std::mt19937_64 &random, int which) {
-    switch (which % 4) {
-    case 0:
-        return int64_t(random());
-    case 1:
-        return int64_t(uint64_t(INT32_MAX - 90) << 32) + int64_t(random() >> 32); // int32 wrap ahead
-    case 2:
-        return INT64_MAX - 120 * one + int64_t(random() >> 33); // the 2^64 wrap ahead
-    default:
-        return -60 * one + int64_t(random() >> 32);
-    }
+    return continuous_fixtures::origin_near_wraps(random, which, 90);
 }
 
 // The tile of `grid` in every kernel and output type against the filtered points; returns whether it
