@@ -237,6 +237,7 @@ struct Footprint {
     int64_t least_j, most_j, least_i, most_i; /* j D (i D) for j in [0, rows) (i in [0, columns)) */
     int64_t sign;                             /* of D; 0: too close to 0 to bound the rows */
     int64_t least_d, most_d;                  /* |D| over 2^32 lies in [least_d, most_d] */
+    int64_t inside_i;                         /* (columns - 1) least_d */
 };
 
 const int64_t footprint_bound = static_cast<int64_t>(1) << 27;
@@ -260,7 +261,7 @@ void footprint_init(Footprint *f, const FrameAxis &x, const FrameAxis &y, const 
                  absolute(f->row_y) < footprint_bound && reach_x < footprint_bound &&
                  reach_y < footprint_bound && offset_x < footprint_bound && offset_y < footprint_bound;
     f->margin_j = f->margin_i = f->least_j = f->most_j = f->least_i = f->most_i = 0;
-    f->sign = f->least_d = f->most_d = 0;
+    f->sign = f->least_d = f->most_d = f->inside_i = 0;
     if (!f->enabled) return;
     const int64_t column_sum = absolute(f->column_x) + absolute(f->column_y);
     const int64_t row_sum = absolute(f->row_x) + absolute(f->row_y);
@@ -278,28 +279,39 @@ void footprint_init(Footprint *f, const FrameAxis &x, const FrameAxis &y, const 
         f->sign = d < 0 ? -1 : 1;
         f->least_d = absolute(d) - error;
         f->most_d = absolute(d) + error;
+        f->inside_i = columns * f->least_d;
     }
 }
 
+/* What footprint_rows finds of an impulse. */
+enum FootprintReach {
+    reaches_nothing,     /* no pixel of the block */
+    reaches_rows,        /* rows narrowed */
+    reaches_rows_inside, /* rows narrowed, and its footprint lies within the block's columns */
+};
+
 /* Narrows [*first_row, *last_row] to the rows the impulse whose offsets from the block's first pixel are
-   (offset_x, offset_y) may reach; false when it reaches no pixel of the block. */
-inline bool footprint_rows(const Footprint &f, int64_t offset_x, int64_t offset_y, int64_t *first_row,
-                           int64_t *last_row) {
+   (offset_x, offset_y) may reach. */
+inline FootprintReach footprint_rows(const Footprint &f, int64_t offset_x, int64_t offset_y,
+                                     int64_t *first_row, int64_t *last_row) {
     const int64_t a = floor_shift(offset_x, 16), b = floor_shift(offset_y, 16);
     const int64_t spread = absolute(a) + absolute(b);
     const int64_t centre_j = f.column_y * a - f.column_x * b, margin_j = f.margin_j + spread;
     const int64_t centre_i = f.row_x * b - f.row_y * a, margin_i = f.margin_i + spread;
     if (centre_j + margin_j <= f.least_j || centre_j - margin_j >= f.most_j ||
         centre_i + margin_i <= f.least_i || centre_i - margin_i >= f.most_i)
-        return false;
-    if (f.sign == 0) return true;
+        return reaches_nothing;
+    if (f.sign == 0) return reaches_rows;
     /* j |D| / 2^32 lies in (low, high), |D| / 2^32 in [least_d, most_d]. */
     const int64_t low = f.sign * centre_j - margin_j, high = f.sign * centre_j + margin_j;
     const int64_t first = floor_divide(low, low >= 0 ? f.most_d : f.least_d) + 1;
     const int64_t last = floor_divide(high - 1, high >= 0 ? f.least_d : f.most_d);
     if (first > *first_row) *first_row = first;
     if (last < *last_row) *last_row = last;
-    return true;
+    /* i |D| / 2^32 lies in (sign centre_i -+ margin_i): within [0, columns) when that lies in [0, columns
+       - 1] least_d. */
+    const int64_t low_i = f.sign * centre_i - margin_i, high_i = f.sign * centre_i + margin_i;
+    return low_i >= 0 && high_i <= f.inside_i ? reaches_rows_inside : reaches_rows;
 }
 
 /* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window: one run of
@@ -315,9 +327,15 @@ void splat_impulse(const dsn_grid_splat &splat, const dsn_splat_setup *setup, co
                           y.row * static_cast<int64_t>(block.top) - position_y;
     const int64_t columns = static_cast<int64_t>(block.columns);
     int64_t first_row = 0, last_row = static_cast<int64_t>(block.rows) - 1;
-    if (footprint.enabled && !footprint_rows(footprint, row_x, row_y, &first_row, &last_row)) return;
-    narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
-    narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
+    const FootprintReach reach =
+        footprint.enabled ? footprint_rows(footprint, row_x, row_y, &first_row, &last_row) : reaches_rows;
+    if (reach == reaches_nothing) return;
+    /* A footprint within the block's columns has its rows already: those where a whole row of the block
+       meets each axis' reach include them. */
+    if (reach != reaches_rows_inside) {
+        narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
+        narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
+    }
     ColumnBounds bounds_x, bounds_y;
     column_bounds_init(&bounds_x, x.columns, row_x + first_row * x.row);
     column_bounds_init(&bounds_y, y.columns, row_y + first_row * y.row);
