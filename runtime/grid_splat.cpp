@@ -234,7 +234,8 @@ struct Footprint {
     bool enabled;
     int64_t column_x, column_y, row_x, row_y; /* the steps in 2^-16 texel, floored */
     int64_t margin_j, margin_i;               /* half widths of the intervals, truncation included */
-    int64_t least_j, most_j, least_i, most_i; /* j D (i D) for j in [0, rows) (i in [0, columns)) */
+    int64_t least_j, most_j, least_i, most_i; /* j D / 2^32 for j in [0, rows), i D / 2^32 for i in
+                                                 [0, columns), lie within these */
     int64_t sign;                             /* of D; 0: too close to 0 to bound the rows */
     int64_t least_d, most_d;                  /* |D| over 2^32 lies in [least_d, most_d] */
     int64_t inside_i;                         /* (columns - 1) least_d */
@@ -269,17 +270,17 @@ void footprint_init(Footprint *f, const FrameAxis &x, const FrameAxis &y, const 
         (absolute(f->column_x) + 1) * reach_y + (absolute(f->column_y) + 1) * reach_x + column_sum + 2;
     f->margin_i = (absolute(f->row_y) + 1) * reach_x + (absolute(f->row_x) + 1) * reach_y + row_sum + 2;
     const int64_t d = f->column_x * f->row_y - f->column_y * f->row_x, error = column_sum + row_sum + 2;
-    const int64_t rows = static_cast<int64_t>(block.rows) - 1,
-                  columns = static_cast<int64_t>(block.columns) - 1;
-    f->least_j = rows * (d - error) < 0 ? rows * (d - error) : 0;
-    f->most_j = rows * (d + error) > 0 ? rows * (d + error) : 0;
-    f->least_i = columns * (d - error) < 0 ? columns * (d - error) : 0;
-    f->most_i = columns * (d + error) > 0 ? columns * (d + error) : 0;
+    const int64_t last_row = static_cast<int64_t>(block.rows) - 1,
+                  last_column = static_cast<int64_t>(block.columns) - 1;
+    f->least_j = last_row * (d - error) < 0 ? last_row * (d - error) : 0;
+    f->most_j = last_row * (d + error) > 0 ? last_row * (d + error) : 0;
+    f->least_i = last_column * (d - error) < 0 ? last_column * (d - error) : 0;
+    f->most_i = last_column * (d + error) > 0 ? last_column * (d + error) : 0;
     if (absolute(d) > error) {
         f->sign = d < 0 ? -1 : 1;
         f->least_d = absolute(d) - error;
         f->most_d = absolute(d) + error;
-        f->inside_i = columns * f->least_d;
+        f->inside_i = last_column * f->least_d;
     }
 }
 
@@ -330,8 +331,8 @@ void splat_impulse(const dsn_grid_splat &splat, const dsn_splat_setup *setup, co
     const FootprintReach reach =
         footprint.enabled ? footprint_rows(footprint, row_x, row_y, &first_row, &last_row) : reaches_rows;
     if (reach == reaches_nothing) return;
-    /* A footprint within the block's columns has its rows already: those where a whole row of the block
-       meets each axis' reach include them. */
+    /* A footprint within the block's columns has its rows already: narrow_rows would keep every row it
+       meets. (The footprint test is off on axis-aligned grids, whose path below needs narrow_rows.) */
     if (reach != reaches_rows_inside) {
         narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
         narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
