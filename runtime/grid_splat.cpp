@@ -219,11 +219,107 @@ void narrow_rows(int64_t offset, int64_t across, int64_t row, int64_t reach, int
     if (high < *last) *last = high;
 }
 
+/* The rows an impulse can reach in a block, from its footprint alone: pixel (i, j) lies at offsets X =
+   ox + i column_x + j row_x and Y = oy + i column_y + j row_y from the impulse, reached when |X| < reach_x
+   and |Y| < reach_y; eliminating i, j D = (column_x Y - column_y X) - (column_x oy - column_y ox) with
+   D = column_x row_y - column_y row_x, whose first term lies within +-(|column_x| reach_y + |column_y|
+   reach_x). That bounds the rows (narrow_rows bounds them by each axis over a whole row of the block,
+   which on a rotated grid keeps most of them), and the same with i, eliminating j, bounds the columns:
+   the impulses that reach none of the block's rows or columns are skipped (the cell walk covers the
+   block's extent widened by the reach, much more than its parallelogram widened by the reach there).
+   Everything is taken in units of 2^-16 texel (floors) with the truncation errors added to the
+   intervals, so only rows and impulses that reach no pixel are ever left out; blocks whose magnitudes
+   would overflow int64 this way skip it, as do blocks that are rectangles in the frame. */
+struct Footprint {
+    bool enabled;
+    int64_t column_x, column_y, row_x, row_y; /* the steps in 2^-16 texel, floored */
+    int64_t margin_j, margin_i;               /* half widths of the intervals, truncation included */
+    int64_t least_j, most_j, least_i, most_i; /* j D / 2^32 for j in [0, rows), i D / 2^32 for i in
+                                                 [0, columns), lie within these */
+    int64_t sign;                             /* of D; 0: too close to 0 to bound the rows */
+    int64_t least_d, most_d;                  /* |D| over 2^32 lies in [least_d, most_d] */
+    int64_t inside_i;                         /* (columns - 1) least_d */
+};
+
+const int64_t footprint_bound = static_cast<int64_t>(1) << 27;
+
+int64_t absolute(int64_t value) { return value < 0 ? -value : value; }
+
+void footprint_init(Footprint *f, const FrameAxis &x, const FrameAxis &y, const dsn_splat_block &block,
+                    int64_t extent_x, int64_t extent_y) {
+    f->column_x = floor_shift(x.column, 16);
+    f->column_y = floor_shift(y.column, 16);
+    f->row_x = floor_shift(x.row, 16);
+    f->row_y = floor_shift(y.row, 16);
+    const int64_t reach_x = x.reach >> 16, reach_y = y.reach >> 16; /* exact: whole texels */
+    /* Offsets of the block's first pixel from an impulse inside the walked box: below extent + reach. */
+    const int64_t offset_x = ((extent_x + x.reach) >> 16) + 1, offset_y = ((extent_y + y.reach) >> 16) + 1;
+    /* A block that is a rectangle in the frame gains nothing: its box is its parallelogram, and
+       narrow_rows bounds its rows exactly. */
+    const bool rectangle = (x.row == 0 && y.column == 0) || (x.column == 0 && y.row == 0);
+    f->enabled = !rectangle && absolute(f->column_x) < footprint_bound &&
+                 absolute(f->column_y) < footprint_bound && absolute(f->row_x) < footprint_bound &&
+                 absolute(f->row_y) < footprint_bound && reach_x < footprint_bound &&
+                 reach_y < footprint_bound && offset_x < footprint_bound && offset_y < footprint_bound;
+    f->margin_j = f->margin_i = f->least_j = f->most_j = f->least_i = f->most_i = 0;
+    f->sign = f->least_d = f->most_d = f->inside_i = 0;
+    if (!f->enabled) return;
+    const int64_t column_sum = absolute(f->column_x) + absolute(f->column_y);
+    const int64_t row_sum = absolute(f->row_x) + absolute(f->row_y);
+    f->margin_j =
+        (absolute(f->column_x) + 1) * reach_y + (absolute(f->column_y) + 1) * reach_x + column_sum + 2;
+    f->margin_i = (absolute(f->row_y) + 1) * reach_x + (absolute(f->row_x) + 1) * reach_y + row_sum + 2;
+    const int64_t d = f->column_x * f->row_y - f->column_y * f->row_x, error = column_sum + row_sum + 2;
+    const int64_t last_row = static_cast<int64_t>(block.rows) - 1,
+                  last_column = static_cast<int64_t>(block.columns) - 1;
+    f->least_j = last_row * (d - error) < 0 ? last_row * (d - error) : 0;
+    f->most_j = last_row * (d + error) > 0 ? last_row * (d + error) : 0;
+    f->least_i = last_column * (d - error) < 0 ? last_column * (d - error) : 0;
+    f->most_i = last_column * (d + error) > 0 ? last_column * (d + error) : 0;
+    if (absolute(d) > error) {
+        f->sign = d < 0 ? -1 : 1;
+        f->least_d = absolute(d) - error;
+        f->most_d = absolute(d) + error;
+        f->inside_i = last_column * f->least_d;
+    }
+}
+
+/* What footprint_rows finds of an impulse. */
+enum FootprintReach {
+    reaches_nothing,     /* no pixel of the block */
+    reaches_rows,        /* rows narrowed */
+    reaches_rows_inside, /* rows narrowed, and its footprint lies within the block's columns */
+};
+
+/* Narrows [*first_row, *last_row] to the rows the impulse whose offsets from the block's first pixel are
+   (offset_x, offset_y) may reach. */
+inline FootprintReach footprint_rows(const Footprint &f, int64_t offset_x, int64_t offset_y,
+                                     int64_t *first_row, int64_t *last_row) {
+    const int64_t a = floor_shift(offset_x, 16), b = floor_shift(offset_y, 16);
+    const int64_t spread = absolute(a) + absolute(b);
+    const int64_t centre_j = f.column_y * a - f.column_x * b, margin_j = f.margin_j + spread;
+    const int64_t centre_i = f.row_x * b - f.row_y * a, margin_i = f.margin_i + spread;
+    if (centre_j + margin_j <= f.least_j || centre_j - margin_j >= f.most_j ||
+        centre_i + margin_i <= f.least_i || centre_i - margin_i >= f.most_i)
+        return reaches_nothing;
+    if (f.sign == 0) return reaches_rows;
+    /* j |D| / 2^32 lies in (low, high), |D| / 2^32 in [least_d, most_d]. */
+    const int64_t low = f.sign * centre_j - margin_j, high = f.sign * centre_j + margin_j;
+    const int64_t first = floor_divide(low, low >= 0 ? f.most_d : f.least_d) + 1;
+    const int64_t last = floor_divide(high - 1, high >= 0 ? f.least_d : f.most_d);
+    if (first > *first_row) *first_row = first;
+    if (last < *last_row) *last_row = last;
+    /* i |D| / 2^32 lies in (sign centre_i -+ margin_i): within [0, columns) when that lies in [0, columns
+       - 1] least_d. */
+    const int64_t low_i = f.sign * centre_i - margin_i, high_i = f.sign * centre_i + margin_i;
+    return low_i >= 0 && high_i <= f.inside_i ? reaches_rows_inside : reaches_rows;
+}
+
 /* Adds the impulse at frame (position_x, position_y) to the block's pixels within its window: one run of
    columns per row, all handed to the kernel at once. The block's sums are its own (row-major, `columns`
    per row, one plane per channel). */
 void splat_impulse(const dsn_grid_splat &splat, const dsn_splat_setup *setup, const dsn_splat_block &block,
-                   int64_t position_x, int64_t position_y, uint64_t *sums) {
+                   const Footprint &footprint, int64_t position_x, int64_t position_y, uint64_t *sums) {
     const FrameAxis &x = splat.x, &y = splat.y;
     /* Offsets (pixel - impulse) of the block's first pixel. */
     const int64_t row_x = x.base + x.column * static_cast<int64_t>(block.left) +
@@ -232,8 +328,15 @@ void splat_impulse(const dsn_grid_splat &splat, const dsn_splat_setup *setup, co
                           y.row * static_cast<int64_t>(block.top) - position_y;
     const int64_t columns = static_cast<int64_t>(block.columns);
     int64_t first_row = 0, last_row = static_cast<int64_t>(block.rows) - 1;
-    narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
-    narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
+    const FootprintReach reach =
+        footprint.enabled ? footprint_rows(footprint, row_x, row_y, &first_row, &last_row) : reaches_rows;
+    if (reach == reaches_nothing) return;
+    /* A footprint within the block's columns has its rows already: narrow_rows would keep every row it
+       meets. (The footprint test is off on axis-aligned grids, whose path below needs narrow_rows.) */
+    if (reach != reaches_rows_inside) {
+        narrow_rows(row_x, x.column * (columns - 1), x.row, x.reach, &first_row, &last_row);
+        narrow_rows(row_y, y.column * (columns - 1), y.row, y.reach, &first_row, &last_row);
+    }
     ColumnBounds bounds_x, bounds_y;
     column_bounds_init(&bounds_x, x.columns, row_x + first_row * x.row);
     column_bounds_init(&bounds_y, y.columns, row_y + first_row * y.row);
@@ -286,6 +389,8 @@ void splat_block(const dsn_noise_state *noise, const dsn_grid_splat &splat, cons
     frame_spans(x, low_x - x.reach, high_x + x.reach, &spans_x);
     frame_spans(y, low_y - y.reach, high_y + y.reach, &spans_y);
     const int64_t cell_step = static_cast<int64_t>(one_texel) << shift;
+    Footprint footprint;
+    footprint_init(&footprint, x, y, block, high_x - low_x, high_y - low_y);
     for (uint32_t sy = 0; sy < spans_y.span_count; sy++) {
         const FrameSpan span_y = frame_span(y, spans_y, sy);
         for (uint32_t sx = 0; sx < spans_x.span_count; sx++) {
@@ -313,7 +418,7 @@ void splat_block(const dsn_noise_state *noise, const dsn_grid_splat &splat, cons
                         if (position_x <= low_x - x.reach || position_x >= high_x + x.reach ||
                             position_y <= low_y - y.reach || position_y >= high_y + y.reach)
                             continue;
-                        splat_impulse(splat, setup, block, position_x, position_y, sums);
+                        splat_impulse(splat, setup, block, footprint, position_x, position_y, sums);
                     }
                 }
             }
