@@ -217,6 +217,36 @@ TEST_CASE("continuous affine: degenerate, sparse and huge-step grids fall back o
 #endif
 }
 
+TEST_CASE(
+    "continuous affine: random grids (any angle, unequal axes, shear, near-degenerate) equal per point") {
+    // Rotated and sheared blocks take the splat's footprint test (the impulses and rows of the block's
+    // box that no pixel reaches are skipped): grids at every angle, 0.1 to 6 texels per pixel, unequal
+    // axes, shears and nearly collinear steps, on three noises (one periodic), check every row it keeps.
+    std::mt19937_64 random(31);
+    auto rgb = make_noise(random_texton_asset(3, 15, 8, 1), 1, 30u << 16);
+    auto grey16 = make_noise(random_texton_asset(1, 4, 16, 4), 78, 12u << 16);
+    auto periodic = make_noise(random_texton_asset(3, 6, 8, 5), 79, 60u << 16, 37, 11);
+    const dsn_noise *noises[] = {&rgb->noise, &grey16->noise, &periodic->noise};
+    std::uniform_real_distribution<double> unit(0, 1);
+    size_t splatted = 0, total = 0;
+    for (int t = 0; t < 90; t++) {
+        const double degrees = unit(random) * 360, zoom = 0.1 * std::pow(60.0, unit(random));
+        const double shear = t % 2 ? unit(random) - 0.5 : 0;
+        dsn_grid grid = affine_grid(origin_near_wraps(random, t), origin_near_wraps(random, t + 1), degrees,
+                                    zoom, shear, t % 5 == 2);
+        const double stretch = 0.3 + 2 * unit(random); // unequal axes: the row step scaled
+        grid.row_step_x = int64_t(double(grid.row_step_x) * stretch);
+        grid.row_step_y = int64_t(double(grid.row_step_y) * stretch);
+        if (t % 7 == 3)
+            grid.row_step_x = grid.column_step_x / 3 + int64_t(random() % 1000); // nearly collinear
+        CAPTURE(t);
+        CAPTURE(degrees);
+        CAPTURE(zoom);
+        check_random_size(noises[t % 3], grid, random, 120, 80, &splatted, &total);
+    }
+    check_mostly_splatted(splatted, total);
+}
+
 TEST_CASE("continuous affine: larger tiles across several blocks") {
     std::mt19937_64 random(18);
     auto noise = make_noise(random_texton_asset(3, 15, 8, 9), 1, 30u << 16);
