@@ -86,7 +86,8 @@ void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, u
      than Q16.16, saturated to +-2^46) and dsn_internal_filter_add_level adds them, times the level's blend
      weight out of 256, to the totals (int64, zeroed first); with one level,
      dsn_internal_filter_add_mean adds the mean colour at the upper level's weight;
-   - dsn_internal_filter_finish rounds the totals once (over 256 taps 2^8) and maps the histogram. */
+   - dsn_internal_filter_finish divides the totals by 256 x taps x 2^8, rounding once, and maps the
+     histogram. */
 int dsn_internal_filter_fade(const dsn_noise_state *noise, const dsn_filter_plan *plan, int32_t *out);
 uint32_t dsn_internal_filter_walked_levels(const dsn_noise_state *noise, const dsn_filter_plan *plan,
                                            dsn_walked_level *walked);
