@@ -72,7 +72,20 @@ struct FilteredSplat {
     uint32_t count;
     const uint64_t *cells[2];
     uint32_t cell_row[2];
+    /* Splatted as the transposed grid (columns and rows swapped, whose rows are then the longer runs):
+       its pixel (i, j) is the tile's (j, i). */
+    int transposed;
 };
+
+/* The grid with its columns and rows swapped. */
+dsn_grid transposed_grid(const dsn_grid *grid) {
+    dsn_grid swapped = *grid;
+    swapped.column_step_x = grid->row_step_x;
+    swapped.column_step_y = grid->row_step_y;
+    swapped.row_step_x = grid->column_step_x;
+    swapped.row_step_y = grid->column_step_y;
+    return swapped;
+}
 
 /* The splat of one tap's grid with one level (its records where made), or 0 where it does not splat. */
 int tap_level_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
@@ -96,8 +109,9 @@ bool tile_splats(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t wi
     return true;
 }
 
-/* One block: every tap's levels splatted into `sums` in turn, each pixel's values added to its totals,
-   then the totals finished and stored. */
+/* One block of the splatted grid (width x height pixels; the tile's own or, transposed, the tile's
+   height x width): every tap's levels splatted into `sums` in turn, each pixel's values added to its
+   totals, then the totals finished and stored at the tile's pixel. */
 void filter_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                   const FilteredSplat &filtered, const dsn_splat_block &block, uint64_t *sums,
                   int64_t *totals, void *out, dsn_output_kind kind) {
@@ -121,13 +135,13 @@ void filter_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
             for (uint32_t p = 0; p < pixels; p++)
                 dsn_internal_filter_add_mean(noise, &filtered.plan, totals + p * channels);
     }
+    /* Output pixels from one splatted grid column and row to the next. */
+    const size_t step_i = filtered.transposed ? height : 1u, step_j = filtered.transposed ? 1u : width;
     for (uint32_t p = 0; p < pixels; p++) {
         int32_t pixel[DSN_MAX_CHANNELS];
         dsn_internal_filter_finish(noise, &filtered.plan, totals + p * channels, pixel);
-        const size_t index =
-            (static_cast<size_t>(block.top + p / block.columns) * width + block.left + p % block.columns) *
-            channels;
-        dsn_store_pixel(out, kind, index, pixel, channels);
+        const size_t i = block.left + p % block.columns, j = block.top + p / block.columns;
+        dsn_store_pixel(out, kind, (i * step_i + j * step_j) * channels, pixel, channels);
     }
 }
 
@@ -157,7 +171,9 @@ bool runs_long_enough(const dsn_grid *grid, const FilteredSplat &filtered) {
     return true;
 }
 
-/* Prepares `filtered` and returns the scratch the splat needs, or 0 when the tile goes point by point. */
+/* Prepares `filtered` and returns the scratch the splat needs, or 0 when the tile goes point by point.
+   A grid whose rows make runs too short is splatted transposed where its columns make them long enough
+   (a footprint stretched along the rows' direction). */
 size_t filtered_splat_prepare(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                               uint32_t height, const dsn_filter_plan &plan, FilteredSplat *filtered) {
     int32_t faded[DSN_MAX_CHANNELS];
@@ -166,12 +182,23 @@ size_t filtered_splat_prepare(const dsn_noise_state *noise, const dsn_grid *grid
     filtered->count = dsn_internal_filter_walked_levels(noise, &plan, filtered->walked);
     filtered->cells[0] = filtered->cells[1] = 0; /* made by filtered_splat */
     filtered->cell_row[0] = filtered->cell_row[1] = 0;
-    if (!tile_splats(noise, grid, width, height, *filtered) || !runs_long_enough(grid, *filtered)) return 0;
-    return filtered_splat_size(noise, width, height);
+    filtered->transposed = 0;
+    if (tile_splats(noise, grid, width, height, *filtered) && runs_long_enough(grid, *filtered))
+        return filtered_splat_size(noise, width, height);
+    const dsn_grid swapped = transposed_grid(grid);
+    if (!tile_splats(noise, &swapped, height, width, *filtered) || !runs_long_enough(&swapped, *filtered))
+        return 0;
+    filtered->transposed = 1;
+    return filtered_splat_size(noise, height, width);
 }
 
-void filtered_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
-                    FilteredSplat *filtered, void *scratch, void *out, dsn_output_kind kind) {
+void filtered_splat(const dsn_noise_state *noise, const dsn_grid *tile_grid, uint32_t tile_width,
+                    uint32_t tile_height, FilteredSplat *filtered, void *scratch, void *out,
+                    dsn_output_kind kind) {
+    const dsn_grid swapped = transposed_grid(tile_grid);
+    const dsn_grid *grid = filtered->transposed ? &swapped : tile_grid;
+    const uint32_t width = filtered->transposed ? tile_height : tile_width;
+    const uint32_t height = filtered->transposed ? tile_width : tile_height;
     uint64_t *sums = dsn_internal_aligned_sums(scratch);
     int64_t *totals = static_cast<int64_t *>(
         static_cast<void *>(sums + dsn_internal_splat_block_pixels(width, height) * noise->asset.channels));

@@ -107,16 +107,16 @@ TEST_CASE("filtered tiles: splatted levels and taps equal the filtered points in
     const Case cases[] = {{3, 31, 8, 0, 0},   {1, 31, 8, 0, 0}, {3, 31, 16, 0, 0},
                           {1, 21, 16, 40, 0}, {3, 61, 8, 0, 0}, {3, 31, 8, 48, 32}};
     // Levels of detail about 0.5, 1, 1.5 and 2 (two levels, level 0 among them, or one), anisotropic ones
-    // (2 to 16 taps) along the rows, all splatted; with a 31-texel texton, coarser ones and those
-    // anisotropic along the columns (impulses reaching too few pixels of a row) and one past the pyramid
-    // (the fade) go point by point.
+    // (2 to 16 taps) stretched down the columns, and stretched along the rows (splatted transposed), all
+    // splatted; with a 31-texel texton, coarser ones (impulses reaching too few pixels of a row) and one
+    // past the pyramid (the fade) go point by point.
     const struct {
         double zoom, stretch;
         uint32_t max_taps;
         bool splatted;
     } footprints[] = {{1.41, 1, 1, true},  {2.0, 1, 1, true},  {2.83, 1, 4, true},   {4.0, 1, 1, true},
                       {1.2, 4, 8, true},   {2.2, 3, 4, true},  {1.1, 16, 16, true},  {5.6, 1, 1, false},
-                      {10.5, 1, 1, false}, {300, 1, 1, false}, {6.4, 0.25, 4, false}};
+                      {10.5, 1, 1, false}, {300, 1, 1, false}, {6.4, 0.25, 4, true}, {12.0, 0.25, 4, true}};
     std::mt19937_64 random(77);
     size_t splatted = 0, total = 0; // tiles splatted, of all
     int which = 0;

@@ -530,10 +530,11 @@ int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const d
    dsn_continuous_tile_fixed's tile, splat included, and needs its scratch. Any other is splatted too:
    the grid of each tap (moved by the tap's offset) with each level the plan blends, each impulse adding
    the level to the pixels it reaches, block by block, the scratch holding the pixels' 64-bit sums and
-   their totals (twice the continuous tile's). Evaluated point by point without scratch instead: grids
-   whose impulses would each reach fewer than 12 pixels of a row at some blended level (the coarse
-   levels of small textons, footprints stretched along the rows' direction), where the filtered point,
-   which shares each impulse among the taps, is as fast; grids the continuous tile would not splat (too
+   their totals (twice the continuous tile's). A grid whose impulses would each reach fewer than 12
+   pixels of a row at some blended level is splatted transposed (columns for rows) where its columns
+   are long enough (a footprint stretched along the rows' direction), and otherwise (the coarse levels
+   of small textons) evaluated point by point without scratch, as the filtered point, which shares each
+   impulse among the taps, is as fast there; so are grids the continuous tile would not splat (too
    sparse, too large); plans past the coarsest level (the fade); every grid of the small build. `scratch`
    holds at least dsn_filtered_tile_scratch_size() bytes (no alignment needed; 0 for an invalid call or a grid
    evaluated point by point). Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT

@@ -116,17 +116,21 @@ int main() {
                     ratio, degrees, minor, lod_q8 / 256.0, taps, cost.median, cost.median / taps,
                     cost.best / taps, impulse_text(lod_q8));
             }
-    // Tiles of a rotated grid minified to a level of detail (isotropic, then 4:1 along the rows' direction
-    // with 4 taps), splatted where the runs are long enough, against the same pixels evaluated by
-    // dsn_filtered_point_fixed one by one.
+    // Tiles of a rotated grid minified to a level of detail (isotropic, then 4:1 with the row step the
+    // longer, then with the column step the longer, 4 taps), splatted where the runs are long enough
+    // (transposed in the last case), against the same pixels evaluated by dsn_filtered_point_fixed one
+    // by one.
     const uint32_t side = 128;
     std::vector<int32_t> tile(side * side * 3);
-    for (double stretch : {1.0, 4.0})
+    const char *shapes[] = {"isotropic,", "4:1, the row step the longer (4 taps), minor axis at",
+                            "4:1, the column step the longer (4 taps), minor axis at"};
+    for (int shape = 0; shape < 3; shape++)
         for (double lod : {0.5, 1.0, 1.5, 2.0, 2.5, 3.0}) {
             const double zoom = std::pow(2.0, lod), c = std::cos(0.5) * zoom, s = std::sin(0.5) * zoom;
-            const dsn_grid grid{q32(1.0 / 3), q32(1.0 / 7),      q32(c),
-                                q32(s),       q32(-s * stretch), q32(c * stretch)};
-            const uint32_t max_taps = stretch > 1 ? 4 : 1;
+            const double rows = shape == 1 ? 4 : 1, columns = shape == 2 ? 4 : 1;
+            const dsn_grid grid{q32(1.0 / 3),     q32(1.0 / 7),   q32(c * columns),
+                                q32(s * columns), q32(-s * rows), q32(c * rows)};
+            const uint32_t max_taps = shape != 0 ? 4 : 1;
             std::vector<unsigned char> scratch(
                 dsn_filtered_tile_scratch_size(n, &grid, max_taps, side, side));
             const dsn_footprint f{grid.column_step_x, grid.column_step_y, grid.row_step_x, grid.row_step_y,
@@ -152,8 +156,8 @@ int main() {
             std::printf(
                 "filtered tile %ux%u, %s LOD %.1f: %.0f ns/pixel, 1/%.1f (1/%.1f) of the filtered per "
                 "point%s\n",
-                side, side, stretch > 1 ? "4:1 (4 taps), minor axis at" : "isotropic,", lod, pixel * 1e9,
-                1 / cost.median, 1 / cost.best, scratch.empty() ? " (point by point)" : "");
+                side, side, shapes[shape], lod, pixel * 1e9, 1 / cost.median, 1 / cost.best,
+                scratch.empty() ? " (point by point)" : "");
         }
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
