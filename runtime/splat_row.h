@@ -248,11 +248,37 @@ inline void continuous_splat_row(const dsn_splat_setup *setup, const dsn_splat_r
    integer, edge cells included (their texels outside the window are 0 in the records). No gathers: the
    records are loaded one by one. Lanes past a run read cell 0 and are not added. A pyramid level
    (Leveled) divides each lane's shifted values by 2^level first. */
+/* The records' two integers (splat_rows: upper, lower - upper) and their products: 65536 upper, and
+   down (lower - upper) for a down weight in [0, 65536). SSE2 has no signed 32 x 32-bit product
+   (splat_signed_times takes several operations), so in its copy the two integers, below 2^25 in
+   magnitude (splat_cells.h), are made non-negative dwords first (upper + 2^25, lower - upper + 2^26),
+   multiplied unsigned, and the biases' products taken back: the same integers modulo 2^64. */
+#if defined(__AVX2__)
+inline splat_vector splat_row_integers(splat_vector records, splat_vector across) {
+    return splat_rows(records, across);
+}
+inline splat_vector splat_upper_scaled(splat_vector rows) {
+    return splat_signed_times(rows, splat_set(65536));
+}
+inline splat_vector splat_difference_times(splat_vector difference, splat_vector down) {
+    return splat_signed_times(difference, down);
+}
+#else
+inline splat_vector splat_row_integers(splat_vector records, splat_vector across) {
+    return _mm_add_epi32(splat_rows(records, across), _mm_set_epi32(1 << 26, 1 << 25, 1 << 26, 1 << 25));
+}
+inline splat_vector splat_upper_scaled(splat_vector rows) {
+    return splat_sub(splat_low_times(rows, splat_set(65536)), splat_set(static_cast<uint64_t>(1) << 41));
+}
+inline splat_vector splat_difference_times(splat_vector difference, splat_vector down) {
+    return splat_sub(splat_low_times(difference, down), _mm_slli_epi64(down, 26));
+}
+#endif
+
 /* The records' bilinear values: 65536 upper + down (lower - upper). */
 inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
-    const splat_vector rows = splat_rows(records, across);
-    return splat_add(splat_signed_times(rows, splat_set(65536)),
-                     splat_signed_times(splat_shift_right(rows, 32), down));
+    const splat_vector rows = splat_row_integers(records, across);
+    return splat_add(splat_upper_scaled(rows), splat_difference_times(splat_shift_right(rows, 32), down));
 }
 
 /* bracket's shifted values of a level: the lanes' (offset + reach) / 2^level. */
@@ -344,7 +370,7 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
     splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),
                                        splat_lane_steps(0, step_x));
-    const splat_vector next_x = splat_set(step_x * splat_lanes), sixteen_bits = splat_set(65536);
+    const splat_vector next_x = splat_set(step_x * splat_lanes);
     for (uint32_t done = 0; done < count; done += splat_lanes) {
         const uint32_t remaining = count - done;
         uint64_t column[splat_lanes]; /* each lane's first record in a row of the table */
@@ -360,27 +386,28 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                 current = row_start[r];
                 splat_vector records[3];
                 splat_load_cells<Channels>(setup->cells + current, column, records);
-                const splat_vector rows_0 = splat_rows(records[0], across);
-                scaled_0 = splat_signed_times(rows_0, sixteen_bits);
+                const splat_vector rows_0 = splat_row_integers(records[0], across);
+                scaled_0 = splat_upper_scaled(rows_0);
                 difference_0 = splat_shift_right(rows_0, 32);
                 if (Channels == 3) {
-                    const splat_vector rows_1 = splat_rows(records[1], across);
-                    const splat_vector rows_2 = splat_rows(records[2], across);
-                    scaled_1 = splat_signed_times(rows_1, sixteen_bits);
+                    const splat_vector rows_1 = splat_row_integers(records[1], across);
+                    const splat_vector rows_2 = splat_row_integers(records[2], across);
+                    scaled_1 = splat_upper_scaled(rows_1);
                     difference_1 = splat_shift_right(rows_1, 32);
-                    scaled_2 = splat_signed_times(rows_2, sixteen_bits);
+                    scaled_2 = splat_upper_scaled(rows_2);
                     difference_2 = splat_shift_right(rows_2, 32);
                 }
             }
             const splat_vector weight = splat_set(down[r]);
             uint64_t *sums = runs[r].sums + done;
-            splat_accumulate(sums, splat_add(scaled_0, splat_signed_times(difference_0, weight)), remaining,
-                             end);
+            splat_accumulate(sums, splat_add(scaled_0, splat_difference_times(difference_0, weight)),
+                             remaining, end);
             if (Channels == 3) {
-                splat_accumulate(sums + plane, splat_add(scaled_1, splat_signed_times(difference_1, weight)),
-                                 remaining, end);
+                splat_accumulate(sums + plane,
+                                 splat_add(scaled_1, splat_difference_times(difference_1, weight)), remaining,
+                                 end);
                 splat_accumulate(sums + 2 * plane,
-                                 splat_add(scaled_2, splat_signed_times(difference_2, weight)), remaining,
+                                 splat_add(scaled_2, splat_difference_times(difference_2, weight)), remaining,
                                  end);
             }
         }
@@ -419,6 +446,18 @@ inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_
 }
 
 #if DSN_SPLAT_CELLS
+/* The high dword of each lane, signed, times the low dword of factor's (below 2^31). SSE2's copy flips
+   the dword's sign bit (adding 2^31: non-negative), multiplies unsigned and takes 2^31 factor back. */
+inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
+#if defined(__AVX2__)
+    return splat_signed_times(splat_shift_right(value, 32), factor);
+#else
+    return splat_sub(
+        splat_low_times(_mm_xor_si128(splat_shift_right(value, 32), splat_set(0x80000000u)), factor),
+        _mm_slli_epi64(factor, 31));
+#endif
+}
+
 /* ---- The normalization on vectors of 64-bit lanes, one pixel each ----
    normalize_q32_unmapped's integers, modulo 2^64 as they never wrap: the offset plus the gains times the
    signed whole parts, plus the floor of the gains times the fractions over 2^32 (the gains' magnitudes
@@ -445,7 +484,7 @@ void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, 
                 const int64_t gain = noise->gain[c * 3 + k];
                 const splat_vector size =
                     splat_set(gain < 0 ? 0u - static_cast<uint64_t>(gain) : static_cast<uint64_t>(gain));
-                const splat_vector whole = splat_signed_times(splat_shift_right(pixel_sums[k], 32), size),
+                const splat_vector whole = splat_high_times(pixel_sums[k], size),
                                    fraction = splat_low_times(pixel_sums[k], size);
                 accumulated = gain < 0 ? splat_sub(accumulated, whole) : splat_add(accumulated, whole);
                 fractions = gain < 0 ? splat_sub(fractions, fraction) : splat_add(fractions, fraction);
