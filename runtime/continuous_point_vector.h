@@ -395,13 +395,10 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
     candidates->count = 0;
 }
 
-/* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
-   whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
-inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
-                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
-    const uint64_t pair = dsn_position_pair(key, first >> 3);
-    const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
-    const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
+/* Buffers the candidates `sifted` (bit i: lane i) of the pair `pair` that holds impulses first .. first + 7
+   of the cell with this key; indices: the cell's (cell_indices). */
+inline void add_sifted_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint64_t pair,
+                            uint32_t sifted, uint32_t indices) {
     __m256i streams, fields;
     /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
     const uint32_t packed =
@@ -410,6 +407,16 @@ inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, 
     store_8(candidates->stream + slot, streams);
     store_8(candidates->field + slot, _mm256_or_si256(fields, broadcast_8(indices)));
     candidates->count = slot + packed;
+}
+
+/* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
+   whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
+inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
+    const uint64_t pair = dsn_position_pair(key, first >> 3);
+    const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
+    const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
+    add_sifted_pair(candidates, key, first, pair, sifted, indices);
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
