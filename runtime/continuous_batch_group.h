@@ -144,7 +144,8 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
 }
 
 /* The cells of a group's points, and the keys and counts of their first group_cells x group_cells cells:
-   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p]. */
+   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p], the count 0 past the
+   point's cells (and for the points that do not fit). */
 struct PointGroup {
     AxisCells columns[group_points], rows[group_points];
     uint32_t keys[group_cells * group_cells * group_points], counts[group_cells * group_cells * group_points];
@@ -164,11 +165,25 @@ inline void group_bounds(const AxisCells &cells, bool fit, uint32_t p, uint64_t 
     }
 }
 
+/* The impulse counts of the cells of 8 points with these keys (also in memory at keys). */
+inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i key,
+                           const uint32_t *keys) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    if (shared.by_tables)
+        return _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key)));
+#endif
+    if (shared.one_draw) return group_counts(noise, shared, key);
+    uint32_t counts[group_points];
+    for (uint32_t p = 0; p < group_points; p++) counts[p] = dsn_cell_impulse_count(noise, keys[p]);
+    return load_8(counts);
+}
+
 /* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
    cells fit the vectors (at most group_cells along each axis). */
 inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shared, const int64_t *xs,
                            const int64_t *ys, uint32_t count, PointGroup *group) {
     uint32_t cell_x[group_cells][group_points], cell_y[group_cells][group_points];
+    uint32_t column_count[group_points], row_count[group_points];
     const uint32_t shift = noise->cell_shift;
     const uint32_t fits_x =
         noise->period[0] == 0 ? group_axis(noise, 0, xs, count, shared.lanes, group->columns) : 0xFFu;
@@ -193,30 +208,25 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
             cell_x[i][p] = fit && i < columns->count ? columns->cell[i] : 0u;
             cell_y[i][p] = fit && i < rows->count ? rows->cell[i] : 0u;
         }
+        column_count[p] = fit ? columns->count : 0u, row_count[p] = fit ? rows->count : 0u;
         group_bounds(*columns, fit, p, group->low_x, group->high_x);
         group_bounds(*rows, fit, p, group->low_y, group->high_y);
     }
     const __m256i seed_row = broadcast_8(noise->seed_row), seed_column = broadcast_8(noise->seed_column);
+    const __m256i columns_there = load_8(column_count), rows_there = load_8(row_count);
     for (uint32_t j = 0; j < group_cells; j++) {
         const __m256i row_key = mix32_8(_mm256_add_epi32(load_8(cell_y[j]), seed_row)); /* dsn_row_key */
+        const __m256i row_there = _mm256_cmpgt_epi32(rows_there, broadcast_8(j));
         for (uint32_t i = 0; i < group_cells; i++) {
             uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
             uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
             const __m256i key =
                 mix32_8(_mm256_add_epi32(_mm256_xor_si256(load_8(cell_x[i]), seed_column), row_key));
             store_8(keys, key);
-#if defined(__AVX512F__) && defined(__AVX512BW__)
-            if (shared.by_tables) {
-                store_8(counts,
-                        _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key))));
-                continue;
-            }
-#endif
-            if (shared.one_draw)
-                store_8(counts, group_counts(noise, shared, key));
-            else
-                for (uint32_t p = 0; p < group_points; p++)
-                    counts[p] = dsn_cell_impulse_count(noise, keys[p]);
+            store_8(counts,
+                    _mm256_and_si256(
+                        cell_counts(noise, shared, key, keys),
+                        _mm256_and_si256(row_there, _mm256_cmpgt_epi32(columns_there, broadcast_8(i)))));
         }
     }
     return fits;
@@ -367,26 +377,26 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
     point_visit_start<Channels>(noise, columns, rows, quads, &visit);
     PointCandidates candidates;
     candidates.count = 0;
-    for (uint32_t j = 0; j < rows.count; j++) {
-        for (uint32_t i = 0; i < columns.count; i++) {
-            const uint32_t cell = j * group_cells + i, indices = cell_indices(i, j);
-            const uint32_t key = group.keys[cell * group_points + p],
-                           count = group.counts[cell * group_points + p];
-            if (candidates.count > point_vector_slots - 16u)
-                visit_point_candidates<Channels>(&visit, &candidates);
-            const uint32_t sifted = (pairs.sifted[cell][p / 2u] >> (16u * (p % 2u))) & 0xFFFFu;
+    /* every cell of the vectors (those past the point's have no impulse): no branch on the cells' number */
+    for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+        const uint32_t i = cell % group_cells, j = cell / group_cells, indices = cell_indices(i, j);
+        const uint32_t key = group.keys[cell * group_points + p],
+                       count = group.counts[cell * group_points + p];
+        if (candidates.count > point_vector_slots - 16u)
+            visit_point_candidates<Channels>(&visit, &candidates);
+        const uint32_t sifted = (pairs.sifted[cell][p / 2u] >> (16u * (p % 2u))) & 0xFFFFu;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-            add_sifted_pairs(&candidates, key,
-                             _mm_loadu_si128(static_cast<const __m128i *>(
-                                 static_cast<const void *>(pairs.pairs[cell] + 2u * p))),
-                             sifted, indices);
+        add_sifted_pairs(&candidates, key,
+                         _mm_loadu_si128(static_cast<const __m128i *>(
+                             static_cast<const void *>(pairs.pairs[cell] + 2u * p))),
+                         sifted, indices);
 #else
-            add_sifted_pair(&candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
-            add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
+        add_sifted_pair(&candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
+        add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
 #endif
+        if (count > 16u)
             add_later_pairs<Channels>(&visit, &candidates, key, count, lanes, columns.axis[i], rows.axis[j],
                                       indices);
-        }
     }
     point_visit_finish<Channels>(noise, &visit, &candidates, out);
 }
