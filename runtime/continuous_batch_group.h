@@ -277,6 +277,7 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
         const __m512i four =
             _mm512_add_epi32(_mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
                              _mm512_set1_epi32(static_cast<int>(from)));
+#pragma GCC unroll 9
         for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
             const uint32_t i = cell % group_cells, j = cell / group_cells;
             const __m512i keys = _mm512_cvtepu32_epi64(
@@ -341,6 +342,7 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
         const uint32_t from = 2u * half;
         const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 0, 0, 0, 0), broadcast_8(from));
         const __m256i four = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), broadcast_8(from));
+#pragma GCC unroll 9
         for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
             const uint32_t i = cell % group_cells, j = cell / group_cells;
             const __m256i keys = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(
