@@ -2,13 +2,13 @@
    evaluator takes (continuous_point_vector.h), 8 points at a time with a point in each vector lane: their
    cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
    3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search; AVX-512: by
-   the two-step search on 16 lanes, counts_16), then each point's impulses sifted, visited and normalized
-   by the per-point evaluator's code, its texels read from the batch's quad table where the call built it
-   (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the window's edge;
-   continuous_batch.cpp builds it for large batches only). A
-   point with more cells along an axis goes through the per-point evaluator. The same cells, keys and
-   counts as per point, so the same bits. Internal to libdsn; not installed (everything here has internal
-   linkage). */
+   the two-step search on 16 lanes, counts_16), and the first two pairs of those cells hashed and sifted
+   with a pair in each 64-bit lane (group_pairs), then each point's candidates packed, visited and
+   normalized by the per-point evaluator's code, its texels read from the batch's quad table where the
+   call built it (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the
+   window's edge; continuous_batch.cpp builds it for large batches only). A point with more cells along an
+   axis goes through the per-point evaluator. The same cells, keys, counts and pairs as per point, so the
+   same bits. Internal to libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_CONTINUOUS_BATCH_GROUP_H
 #define DSN_CONTINUOUS_BATCH_GROUP_H
 
@@ -144,17 +144,46 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
 }
 
 /* The cells of a group's points, and the keys and counts of their first group_cells x group_cells cells:
-   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p]. */
+   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p], the count 0 past the
+   point's cells (and for the points that do not fit). */
 struct PointGroup {
     AxisCells columns[group_points], rows[group_points];
     uint32_t keys[group_cells * group_cells * group_points], counts[group_cells * group_cells * group_points];
+    /* The sifting bounds (CellAxis's low_lanes and high_lanes) of column i and row j of point p, at 2p
+       and 2p + 1 (one lane for each of a cell's first two pairs; zero past the point's cells). */
+    uint64_t low_x[group_cells][2 * group_points], high_x[group_cells][2 * group_points];
+    uint64_t low_y[group_cells][2 * group_points], high_y[group_cells][2 * group_points];
 };
+
+/* The bounds of point p's cells along one axis into its lanes of low and high (PointGroup). */
+inline void group_bounds(const AxisCells &cells, bool fit, uint32_t p, uint64_t (*low)[2 * group_points],
+                         uint64_t (*high)[2 * group_points]) {
+    for (uint32_t i = 0; i < group_cells; i++) {
+        const bool there = fit && i < cells.count;
+        low[i][2u * p] = low[i][2u * p + 1u] = there ? cells.axis[i].low_lanes : 0u;
+        high[i][2u * p] = high[i][2u * p + 1u] = there ? cells.axis[i].high_lanes : 0u;
+    }
+}
+
+/* The impulse counts of the cells of 8 points with these keys (also in memory at keys). */
+inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i key,
+                           const uint32_t *keys) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    if (shared.by_tables)
+        return _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key)));
+#endif
+    if (shared.one_draw) return group_counts(noise, shared, key);
+    uint32_t counts[group_points];
+    for (uint32_t p = 0; p < group_points; p++) counts[p] = dsn_cell_impulse_count(noise, keys[p]);
+    return load_8(counts);
+}
 
 /* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
    cells fit the vectors (at most group_cells along each axis). */
 inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shared, const int64_t *xs,
                            const int64_t *ys, uint32_t count, PointGroup *group) {
     uint32_t cell_x[group_cells][group_points], cell_y[group_cells][group_points];
+    uint32_t column_count[group_points], row_count[group_points];
     const uint32_t shift = noise->cell_shift;
     const uint32_t fits_x =
         noise->period[0] == 0 ? group_axis(noise, 0, xs, count, shared.lanes, group->columns) : 0xFFu;
@@ -179,31 +208,201 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
             cell_x[i][p] = fit && i < columns->count ? columns->cell[i] : 0u;
             cell_y[i][p] = fit && i < rows->count ? rows->cell[i] : 0u;
         }
+        column_count[p] = fit ? columns->count : 0u, row_count[p] = fit ? rows->count : 0u;
+        group_bounds(*columns, fit, p, group->low_x, group->high_x);
+        group_bounds(*rows, fit, p, group->low_y, group->high_y);
     }
     const __m256i seed_row = broadcast_8(noise->seed_row), seed_column = broadcast_8(noise->seed_column);
+    const __m256i columns_there = load_8(column_count), rows_there = load_8(row_count);
     for (uint32_t j = 0; j < group_cells; j++) {
         const __m256i row_key = mix32_8(_mm256_add_epi32(load_8(cell_y[j]), seed_row)); /* dsn_row_key */
+        const __m256i row_there = _mm256_cmpgt_epi32(rows_there, broadcast_8(j));
         for (uint32_t i = 0; i < group_cells; i++) {
             uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
             uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
             const __m256i key =
                 mix32_8(_mm256_add_epi32(_mm256_xor_si256(load_8(cell_x[i]), seed_column), row_key));
             store_8(keys, key);
-#if defined(__AVX512F__) && defined(__AVX512BW__)
-            if (shared.by_tables) {
-                store_8(counts,
-                        _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key))));
-                continue;
-            }
-#endif
-            if (shared.one_draw)
-                store_8(counts, group_counts(noise, shared, key));
-            else
-                for (uint32_t p = 0; p < group_points; p++)
-                    counts[p] = dsn_cell_impulse_count(noise, keys[p]);
+            store_8(counts,
+                    _mm256_and_si256(
+                        cell_counts(noise, shared, key, keys),
+                        _mm256_and_si256(row_there, _mm256_cmpgt_epi32(columns_there, broadcast_8(i)))));
         }
     }
     return fits;
+}
+
+/* The first two pairs of every cell of a group's points and their candidates (add_first_pairs' sifted
+   bits), computed on vectors a pair in each 64-bit lane, the two pairs of a point side by side. */
+struct GroupPairs {
+    uint64_t pairs[group_cells * group_cells][2 * group_points];  /* point p's first two at 2p, 2p + 1 */
+    uint32_t sifted[group_cells * group_cells][group_points / 2]; /* p's 16 bits at 16 (p % 2) of [p / 2] */
+};
+
+/* What group_pairs adds to (key << 32) of pairs 0 and 1: index 0x9E3779B97F4A7C15 (dsn_position_pair). */
+const long long pair_1_step = -0x61C8864680B583EB; /* 0x9E3779B97F4A7C15 */
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products (the kernel has no
+   AVX512DQ): the high halves' product only reaches bits 64 and up. */
+inline __m512i multiply_64(__m512i x, uint64_t factor) {
+    const __m512i low = _mm512_set1_epi64(static_cast<long long>(factor & 0xFFFFFFFFu)),
+                  high = _mm512_set1_epi64(static_cast<long long>(factor >> 32));
+    const __m512i cross =
+        _mm512_add_epi64(_mm512_mul_epu32(_mm512_srli_epi64(x, 32), low), _mm512_mul_epu32(x, high));
+    return _mm512_add_epi64(_mm512_mul_epu32(x, low), _mm512_slli_epi64(cross, 32));
+}
+
+/* dsn_mix64 of every 64-bit lane. */
+inline __m512i mix64_8(__m512i x) {
+    x = multiply_64(_mm512_xor_si512(x, _mm512_srli_epi64(x, 30)), 0xBF58476D1CE4E5B9u);
+    x = multiply_64(_mm512_xor_si512(x, _mm512_srli_epi64(x, 27)), 0x94D049BB133111EBu);
+    return _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
+}
+
+/* add_first_pairs' pairs and sifted bits of every cell of the group (the cells past a point's, defined
+   values unused): dsn_position_pair(key, 0) and (key, 1), candidate_lanes of both with the lanes' top bits
+   gathered by one byte movemask for 4 points, less the impulses at or past the cell's count (each
+   byte's impulse index compared with the count). */
+inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupPairs *out) {
+    const __m512i halves = _mm512_set1_epi64(static_cast<long long>(lanes.halves)),
+                  tops = _mm512_set1_epi64(static_cast<long long>(lanes.tops));
+    const __m512i second = _mm512_setr_epi64(0, pair_1_step, 0, pair_1_step, 0, pair_1_step, 0, pair_1_step);
+    const __m512i impulse =
+        _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    const __m512i most = _mm512_set1_epi32(16);
+    for (uint32_t quarter = 0; quarter < 2; quarter++) { /* points 4 quarter .. 4 quarter + 3 */
+        const uint32_t from = 4u * quarter;
+        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), broadcast_8(from));
+        const __m512i four =
+            _mm512_add_epi32(_mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
+                             _mm512_set1_epi32(static_cast<int>(from)));
+#pragma GCC unroll 9
+        for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+            const uint32_t i = cell % group_cells, j = cell / group_cells;
+            const __m512i keys = _mm512_cvtepu32_epi64(
+                _mm256_permutevar8x32_epi32(load_8(group.keys + cell * group_points), twice));
+            const __m512i pairs = mix64_8(_mm512_add_epi64(_mm512_slli_epi64(keys, 32), second));
+            const __m512i counts = _mm512_min_epu32(
+                _mm512_permutexvar_epi32(four,
+                                         _mm512_castsi256_si512(load_8(group.counts + cell * group_points))),
+                most);
+            /* every byte of a point's 128 bits: its count (below 256) */
+            const __mmask64 exist =
+                _mm512_cmpgt_epu8_mask(_mm512_shuffle_epi8(counts, _mm512_setzero_si512()), impulse);
+            const __m512i halves_x = _mm512_and_si512(pairs, halves),
+                          halves_y = _mm512_and_si512(_mm512_srli_epi64(pairs, 4), halves);
+            const __m512i in_x =
+                _mm512_and_si512(_mm512_sub_epi64(_mm512_or_si512(halves_x, tops),
+                                                  _mm512_loadu_si512(group.low_x[i] + 2u * from)),
+                                 _mm512_sub_epi64(_mm512_loadu_si512(group.high_x[i] + 2u * from), halves_x));
+            const __m512i in_y =
+                _mm512_and_si512(_mm512_sub_epi64(_mm512_or_si512(halves_y, tops),
+                                                  _mm512_loadu_si512(group.low_y[j] + 2u * from)),
+                                 _mm512_sub_epi64(_mm512_loadu_si512(group.high_y[j] + 2u * from), halves_y));
+            const uint64_t sifted = _cvtmask64_u64(exist & _mm512_movepi8_mask(_mm512_and_si512(in_x, in_y)));
+            out->sifted[cell][2u * quarter] = static_cast<uint32_t>(sifted);
+            out->sifted[cell][2u * quarter + 1u] = static_cast<uint32_t>(sifted >> 32);
+            _mm512_storeu_si512(out->pairs[cell] + 2u * from, pairs);
+        }
+    }
+}
+#else
+/* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products: the high halves'
+   product only reaches bits 64 and up. */
+inline __m256i multiply_64(__m256i x, uint64_t factor) {
+    const __m256i low = _mm256_set1_epi64x(static_cast<long long>(factor & 0xFFFFFFFFu)),
+                  high = _mm256_set1_epi64x(static_cast<long long>(factor >> 32));
+    const __m256i cross =
+        _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(x, 32), low), _mm256_mul_epu32(x, high));
+    return _mm256_add_epi64(_mm256_mul_epu32(x, low), _mm256_slli_epi64(cross, 32));
+}
+
+/* dsn_mix64 of every 64-bit lane. */
+inline __m256i mix64_4(__m256i x) {
+    x = multiply_64(_mm256_xor_si256(x, _mm256_srli_epi64(x, 30)), 0xBF58476D1CE4E5B9u);
+    x = multiply_64(_mm256_xor_si256(x, _mm256_srli_epi64(x, 27)), 0x94D049BB133111EBu);
+    return _mm256_xor_si256(x, _mm256_srli_epi64(x, 31));
+}
+
+inline __m256i load_4x64(const uint64_t *at) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
+}
+
+/* group_pairs of the AVX-512 copy on AVX2 vectors, 2 points a vector: add_pair's pairs 0 and 1 and their
+   sifted bits (candidate_lanes' top bits by one byte movemask, less the impulses at or past the count). */
+inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupPairs *out) {
+    const __m256i halves = _mm256_set1_epi64x(static_cast<long long>(lanes.halves)),
+                  tops = _mm256_set1_epi64x(static_cast<long long>(lanes.tops));
+    const __m256i second = _mm256_setr_epi64x(0, pair_1_step, 0, pair_1_step);
+    const __m256i impulse = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3,
+                                             4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m256i most = broadcast_8(16);
+    for (uint32_t half = 0; half < group_points / 2; half++) { /* points 2 half and 2 half + 1 */
+        const uint32_t from = 2u * half;
+        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 0, 0, 0, 0), broadcast_8(from));
+        const __m256i four = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), broadcast_8(from));
+#pragma GCC unroll 9
+        for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+            const uint32_t i = cell % group_cells, j = cell / group_cells;
+            const __m256i keys = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(
+                _mm256_permutevar8x32_epi32(load_8(group.keys + cell * group_points), twice)));
+            const __m256i pairs = mix64_4(_mm256_add_epi64(_mm256_slli_epi64(keys, 32), second));
+            const __m256i counts = _mm256_min_epu32(
+                _mm256_permutevar8x32_epi32(load_8(group.counts + cell * group_points), four), most);
+            /* every byte of a point's 128 bits: its count (at most 16) */
+            const __m256i exist =
+                _mm256_cmpgt_epi8(_mm256_shuffle_epi8(counts, _mm256_setzero_si256()), impulse);
+            const __m256i halves_x = _mm256_and_si256(pairs, halves),
+                          halves_y = _mm256_and_si256(_mm256_srli_epi64(pairs, 4), halves);
+            const __m256i in_x = _mm256_and_si256(
+                _mm256_sub_epi64(_mm256_or_si256(halves_x, tops), load_4x64(group.low_x[i] + 2u * from)),
+                _mm256_sub_epi64(load_4x64(group.high_x[i] + 2u * from), halves_x));
+            const __m256i in_y = _mm256_and_si256(
+                _mm256_sub_epi64(_mm256_or_si256(halves_y, tops), load_4x64(group.low_y[j] + 2u * from)),
+                _mm256_sub_epi64(load_4x64(group.high_y[j] + 2u * from), halves_y));
+            out->sifted[cell][half] = static_cast<uint32_t>(
+                _mm256_movemask_epi8(_mm256_and_si256(exist, _mm256_and_si256(in_x, in_y))));
+            _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out->pairs[cell] + 2u * from)),
+                                pairs);
+        }
+    }
+}
+#endif
+
+/* point_vector_sum of point p of the group, its cells' first two pairs from group_pairs. */
+template <uint32_t Channels>
+void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, const PointGroup &group,
+                     const GroupPairs &pairs, uint32_t p, const uint32_t *quads, int32_t *out) {
+    const AxisCells &columns = group.columns[p], &rows = group.rows[p];
+    PointVisit<Channels> visit;
+    point_visit_start<Channels>(noise, columns, rows, quads, &visit);
+    PointCandidates candidates;
+    candidates.count = 0;
+    /* every cell of the vectors (those past the point's have no impulse): no branch on the cells' number;
+       unrolled, each cell's offsets and indices are constants */
+#pragma GCC unroll 9
+    for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+        const uint32_t i = cell % group_cells, j = cell / group_cells, indices = cell_indices(i, j);
+        const uint32_t key = group.keys[cell * group_points + p],
+                       count = group.counts[cell * group_points + p];
+        if (candidates.count > point_vector_slots - 16u)
+            visit_point_candidates<Channels>(&visit, &candidates);
+        const uint32_t sifted = (pairs.sifted[cell][p / 2u] >> (16u * (p % 2u))) & 0xFFFFu;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        add_sifted_pairs(&candidates, key,
+                         _mm_loadu_si128(static_cast<const __m128i *>(
+                             static_cast<const void *>(pairs.pairs[cell] + 2u * p))),
+                         sifted, indices);
+#else
+        add_sifted_pair(&candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
+        add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
+#endif
+        if (count > 16u)
+            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes, columns.axis[i], rows.axis[j],
+                                      indices);
+    }
+    point_visit_finish<Channels>(noise, &visit, &candidates, out);
 }
 
 /* The batch's points, Channels values each, into out; quads: the batch's table, or null (the texels then
@@ -213,15 +412,15 @@ void batch_groups(const dsn_noise_state *noise, const uint32_t *quads, const int
                   uint32_t count, int32_t *out) {
     const GroupShared shared = group_shared(noise);
     PointGroup group;
+    GroupPairs pairs;
     for (uint32_t first = 0; first < count; first += group_points) {
         const uint32_t points = count - first < group_points ? count - first : group_points;
         const uint32_t fits = fill_group(noise, shared, xs + first, ys + first, points, &group);
+        group_pairs(group, shared.lanes, &pairs);
         for (uint32_t p = 0; p < points; p++) {
             int32_t *values = out + static_cast<size_t>(first + p) * Channels;
             if ((fits >> p) & 1u) {
-                point_vector_sum<Channels>(noise, shared.lanes, group.columns[p], group.rows[p],
-                                           group.keys + p, group.counts + p, group_cells * group_points,
-                                           group_points, quads, values);
+                group_point_sum<Channels>(noise, shared.lanes, group, pairs, p, quads, values);
                 continue;
             }
             const uint64_t x = static_cast<uint64_t>(xs[first + p]), y = static_cast<uint64_t>(ys[first + p]);

@@ -395,13 +395,10 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
     candidates->count = 0;
 }
 
-/* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
-   whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
-inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
-                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
-    const uint64_t pair = dsn_position_pair(key, first >> 3);
-    const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
-    const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
+/* Buffers the candidates `sifted` (bit i: lane i) of the pair `pair` that holds impulses first .. first + 7
+   of the cell with this key; indices: the cell's (cell_indices). */
+inline void add_sifted_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint64_t pair,
+                            uint32_t sifted, uint32_t indices) {
     __m256i streams, fields;
     /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
     const uint32_t packed =
@@ -410,6 +407,16 @@ inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, 
     store_8(candidates->stream + slot, streams);
     store_8(candidates->field + slot, _mm256_or_si256(fields, broadcast_8(indices)));
     candidates->count = slot + packed;
+}
+
+/* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
+   whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
+inline void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
+                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
+    const uint64_t pair = dsn_position_pair(key, first >> 3);
+    const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
+    const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);
+    add_sifted_pair(candidates, key, first, pair, sifted, indices);
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -469,15 +476,10 @@ inline __m512i counts_16(const dsn_noise_state *noise, const CountTables &tables
     return _mm512_loadu_si512(lanes);
 }
 
-/* add_pair for the cell's first two pairs at once (impulses 0 .. 15): the sifting of both pairs in one
-   128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
-   compressed into place. */
-inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
-                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
-    const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
-                                         static_cast<long long>(dsn_position_pair(key, 0)));
-    uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
-    if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
+/* The candidates `sifted` (bit k: impulse k) of a cell's first two pairs (`pairs`, the first low)
+   compressed into place; indices: the cell's (cell_indices). */
+inline void add_sifted_pairs(PointCandidates *candidates, uint32_t key, __m128i pairs, uint32_t sifted,
+                             uint32_t indices) {
     /* dsn_cell_stream(key, 2^31 + k) of impulse k */
     const __m512i streams = _mm512_add_epi32(
         _mm512_set1_epi32(static_cast<int>(key + 0x80000000u * 0x9E3779B9u)),
@@ -490,6 +492,18 @@ inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t 
                         _mm512_maskz_compress_epi32(
                             keep, _mm512_or_si512(_mm512_cvtepu8_epi32(pairs), broadcast_16(indices))));
     candidates->count = slot + mask_count(sifted);
+}
+
+/* add_pair for the cell's first two pairs at once (impulses 0 .. 15): the sifting of both pairs in one
+   128-bit vector (candidate_lanes), their top bits gathered by one movemask, and the candidates
+   compressed into place. */
+inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
+                            const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
+    const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
+                                         static_cast<long long>(dsn_position_pair(key, 0)));
+    uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
+    if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
+    add_sifted_pairs(candidates, key, pairs, sifted, indices);
 }
 #endif
 
@@ -532,6 +546,64 @@ DSN_POINT_INLINE bool point_cells(const dsn_noise_state *noise, uint64_t x, uint
            axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, rows);
 }
 
+/* The visit of the point whose cells are columns x rows, its sums zero; quads: the batch's table
+   (PointVisit), or null. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const AxisCells &columns,
+                                        const AxisCells &rows, const uint32_t *quads,
+                                        PointVisit<Channels> *visit) {
+    visit->texton = noise->asset.texton;
+    visit->quads = quads;
+    visit->width = noise->asset.width, visit->height = noise->asset.height;
+    visit->quad_row = (noise->asset.width + 1u) * Channels;
+    visit->last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
+    visit->last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
+    visit->shift = _mm_cvtsi32_si128(static_cast<int>(noise->cell_shift));
+    /* the bases past the axes' cells are not read (masked: defined values) */
+    visit->column_bases = _mm256_maskload_epi32(
+        static_cast<const int *>(static_cast<const void *>(columns.base)),
+        _mm256_cmpgt_epi32(broadcast_8(columns.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    visit->row_bases = _mm256_maskload_epi32(
+        static_cast<const int *>(static_cast<const void *>(rows.base)),
+        _mm256_cmpgt_epi32(broadcast_8(rows.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    for (uint32_t c = 0; c < Channels; c++) {
+        visit->sums[c] = _mm256_setzero_si256();
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        visit->wide_sums[c] = _mm512_setzero_si512();
+#endif
+    }
+}
+
+/* Buffers the candidates of a cell's pairs from impulse 16 on (cells of more than 16 impulses), visiting
+   the buffer whenever a pair might not fit. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_later_pairs(PointVisit<Channels> *visit, PointCandidates *candidates, uint32_t key,
+                                      uint32_t count, const FieldLanes &lanes, const CellAxis &x,
+                                      const CellAxis &y, uint32_t indices) {
+    for (uint32_t first = 16; first < count; first += 8u) {
+        if (candidates->count > point_vector_slots - 8u) visit_point_candidates<Channels>(visit, candidates);
+        add_pair(candidates, key, first, count, lanes, x, y, indices);
+    }
+}
+
+/* Visits the candidates left and writes the point's values. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void point_visit_finish(const dsn_noise_state *noise, PointVisit<Channels> *visit,
+                                         PointCandidates *candidates, int32_t *out) {
+    visit_point_candidates<Channels>(visit, candidates);
+    uint64_t sums[DSN_MAX_CHANNELS];
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t lanes_64[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        __builtin_memcpy(lanes_64, &visit->sums[c], 32);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        __builtin_memcpy(lanes_64 + 4, &visit->wide_sums[c], 64);
+#endif
+        sums[c] = 0;
+        for (uint32_t k = 0; k < 12; k++) sums[c] += lanes_64[k];
+    }
+    normalize_q32(noise, sums, out);
+}
+
 /* The point's values from its cells, with the key and impulse count of the cell (columns i, rows j) at
    index j row_step + i column_step of keys and counts; quads: the batch's table (PointVisit), or null. */
 template <uint32_t Channels>
@@ -539,28 +611,8 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
                                        const AxisCells &columns, const AxisCells &rows, const uint32_t *keys,
                                        const uint32_t *counts, uint32_t row_step, uint32_t column_step,
                                        const uint32_t *quads, int32_t *out) {
-    const uint32_t shift = noise->cell_shift;
     PointVisit<Channels> visit;
-    visit.texton = noise->asset.texton;
-    visit.quads = quads;
-    visit.width = noise->asset.width, visit.height = noise->asset.height;
-    visit.quad_row = (noise->asset.width + 1u) * Channels;
-    visit.last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
-    visit.last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
-    visit.shift = _mm_cvtsi32_si128(static_cast<int>(shift));
-    /* the bases past the axes' cells are not read (masked: defined values) */
-    visit.column_bases = _mm256_maskload_epi32(
-        static_cast<const int *>(static_cast<const void *>(columns.base)),
-        _mm256_cmpgt_epi32(broadcast_8(columns.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-    visit.row_bases = _mm256_maskload_epi32(
-        static_cast<const int *>(static_cast<const void *>(rows.base)),
-        _mm256_cmpgt_epi32(broadcast_8(rows.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-    for (uint32_t c = 0; c < Channels; c++) {
-        visit.sums[c] = _mm256_setzero_si256();
-#if defined(__AVX512F__) && defined(__AVX512BW__)
-        visit.wide_sums[c] = _mm512_setzero_si512();
-#endif
-    }
+    point_visit_start<Channels>(noise, columns, rows, quads, &visit);
     PointCandidates candidates;
     candidates.count = 0;
     for (uint32_t j = 0; j < rows.count; j++) {
@@ -578,26 +630,11 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
             add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
             add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
 #endif
-            for (uint32_t first = 16; first < count; first += 8u) {
-                if (candidates.count > point_vector_slots - 8u)
-                    visit_point_candidates<Channels>(&visit, &candidates);
-                add_pair(&candidates, key, first, count, lanes, columns.axis[i], rows.axis[j],
-                         cell_indices(i, j));
-            }
+            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes, columns.axis[i], rows.axis[j],
+                                      cell_indices(i, j));
         }
     }
-    visit_point_candidates<Channels>(&visit, &candidates);
-    uint64_t sums[DSN_MAX_CHANNELS];
-    for (uint32_t c = 0; c < Channels; c++) {
-        uint64_t lanes_64[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-        __builtin_memcpy(lanes_64, &visit.sums[c], 32);
-#if defined(__AVX512F__) && defined(__AVX512BW__)
-        __builtin_memcpy(lanes_64 + 4, &visit.wide_sums[c], 64);
-#endif
-        sums[c] = 0;
-        for (uint32_t k = 0; k < 12; k++) sums[c] += lanes_64[k];
-    }
-    normalize_q32(noise, sums, out);
+    point_visit_finish<Channels>(noise, &visit, &candidates, out);
 }
 
 template <uint32_t Channels>

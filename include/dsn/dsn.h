@@ -396,9 +396,9 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
    variant: dsn_continuous_point_float, coordinates converted by dsn_coordinate_from_double). The points
    may lie anywhere, in any order; where the CPU runs AVX2 (the copy init chose, as for tiles) the batch
    evaluates them on vectors: 8-bit textons with cells of side <= 16 (the usual densities) 8 points at a
-   time (their cells, cell hashes and impulse counts across points, then each point's impulses through the
-   vectorized per-point evaluator), other assets together, hashing and interpolating across points;
-   elsewhere point by point.
+   time (their cells, cell hashes, impulse counts and the first 16 impulses' positions of each cell across
+   points, then each point's impulses through the vectorized per-point evaluator), other assets together,
+   hashing and interpolating across points; elsewhere point by point.
    The scratch holds a table of the texton's 2 x 2 texel neighbourhoods and the work arrays: at least
    dsn_continuous_batch_scratch_size() bytes (no alignment needed; it depends on the asset's texton size,
    not on count: about 32 KB for a 31 x 31 RGB texton). Returns DSN_OK (count 0
