@@ -131,12 +131,12 @@ struct RegisterLevel {
     __m512i last_column, last_row;                          /* width, height */
 };
 
-/* The sums of add_register_reads_16: 64-bit lanes, and the 32-bit lanes of the terms times 2^16, 2^31
-   and 2^32 (the last: 2^32 (A - B - D + E) where the product a d, a 32-bit signed lane, went below 0),
-   which widen_register_sums adds to the 64-bit ones before they could overflow. */
-template <uint32_t Channels>
+/* A channel's sums of add_register_reads_16: 64-bit lanes, and the 32-bit lanes of the terms times 2^16
+   and 2^31 (the latter with 2 (A - B - D + E) where the product a d, a 32-bit signed lane, went below 0:
+   its product then lacks 2^32 (A - B - D + E)), which widen_register_sums adds to the 64-bit ones before
+   they could overflow. */
 struct RegisterSums {
-    __m512i wide[Channels], times_16[Channels], times_31[Channels], times_32[Channels];
+    __m512i wide, times_16, times_31;
 };
 
 /* Byte `index` of each 32-bit lane, sign-extended. */
@@ -193,10 +193,26 @@ inline __m512i table_entry(const __m512i *table, __m512i index, __mmask16 inside
         _mm512_maskz_permutex2var_epi32(static_cast<__mmask16>(inside & upper), table[2], index, table[3]));
 }
 
+/* One channel's part of add_register_reads_16. */
+DSN_POINT_INLINE void add_register_channel(const __m512i *difference_table, const __m512i *corner_table,
+                                          __m512i index, __mmask16 inside, __mmask16 upper, __m512i weights,
+                                          __m512i product, __m512i product_odd, __mmask16 negative,
+                                          RegisterSums *sums) {
+    const __m512i differences = table_entry(difference_table, index, inside, upper),
+                  corners = table_entry(corner_table, index, inside, upper);
+    sums->times_16 = _mm512_add_epi32(sums->times_16, _mm512_madd_epi16(weights, differences));
+    const __m512i cross = _mm512_srai_epi32(_mm512_slli_epi32(corners, 16), 16);
+    sums->times_31 = _mm512_add_epi32(sums->times_31, _mm512_srai_epi32(corners, 16));
+    sums->times_31 = _mm512_mask_add_epi32(sums->times_31, negative, sums->times_31, _mm512_add_epi32(cross, cross));
+    sums->wide = _mm512_add_epi64(sums->wide,
+                                  _mm512_add_epi64(_mm512_mul_epi32(product, cross),
+                                                   _mm512_mul_epi32(product_odd, _mm512_srli_epi64(cross, 32))));
+}
+
 /* add_pair_reads_16's reads (the same integers, so the same sums) from a level in registers. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels> &level, __m512i s_x, __m512i s_y,
-                                            __mmask16 reach, RegisterSums<Channels> *sums) {
+                                            __mmask16 reach, RegisterSums *sums) {
     const __m512i low_16 = _mm512_set1_epi32(0xFFFF), half = _mm512_set1_epi32(0x8000);
     const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
     const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
@@ -209,16 +225,14 @@ DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels> &level
                                              _mm512_or_si512(half, _mm512_slli_epi32(half, 16)));
     const __m512i product = _mm512_mullo_epi32(across, down), product_odd = _mm512_srli_epi64(product, 32);
     const __mmask16 negative = _mm512_cmplt_epi32_mask(product, _mm512_setzero_si512());
-    for (uint32_t c = 0; c < Channels; c++) {
-        const __m512i differences = table_entry(level.differences[c], index, inside, upper),
-                      corners = table_entry(level.corners[c], index, inside, upper);
-        sums->times_16[c] = _mm512_add_epi32(sums->times_16[c], _mm512_madd_epi16(weights, differences));
-        sums->times_31[c] = _mm512_add_epi32(sums->times_31[c], _mm512_srai_epi32(corners, 16));
-        const __m512i cross = _mm512_srai_epi32(_mm512_slli_epi32(corners, 16), 16);
-        sums->times_32[c] = _mm512_mask_add_epi32(sums->times_32[c], negative, sums->times_32[c], cross);
-        sums->wide[c] = _mm512_add_epi64(
-            sums->wide[c], _mm512_add_epi64(_mm512_mul_epi32(product, cross),
-                                            _mm512_mul_epi32(product_odd, _mm512_srli_epi64(cross, 32))));
+    /* the channels written out: the compiler then keeps each one's sums in registers */
+    add_register_channel(level.differences[0], level.corners[0], index, inside, upper, weights, product,
+                         product_odd, negative, &sums[0]);
+    if (Channels == 3) {
+        add_register_channel(level.differences[1], level.corners[1], index, inside, upper, weights, product,
+                             product_odd, negative, &sums[1]);
+        add_register_channel(level.differences[2], level.corners[2], index, inside, upper, weights, product,
+                             product_odd, negative, &sums[2]);
     }
 }
 
@@ -232,15 +246,10 @@ inline __m512i widened(__m512i lanes, uint32_t shift) {
 
 /* The 32-bit sums added to the 64-bit ones and cleared: per 16 reads each grows by less than 2^25 (the
    multiply-add), so every block of packed_block reads or fewer keeps them exact. */
-template <uint32_t Channels>
-inline void widen_register_sums(RegisterSums<Channels> *sums) {
-    for (uint32_t c = 0; c < Channels; c++) {
-        sums->wide[c] = _mm512_add_epi64(
-            sums->wide[c],
-            _mm512_add_epi64(_mm512_add_epi64(widened(sums->times_16[c], 16), widened(sums->times_31[c], 31)),
-                             widened(sums->times_32[c], 32)));
-        sums->times_16[c] = sums->times_31[c] = sums->times_32[c] = _mm512_setzero_si512();
-    }
+inline void widen_register_sums(RegisterSums *sums) {
+    sums->wide = _mm512_add_epi64(sums->wide,
+                                  _mm512_add_epi64(widened(sums->times_16, 16), widened(sums->times_31, 31)));
+    sums->times_16 = sums->times_31 = _mm512_setzero_si512();
 }
 #endif
 
@@ -346,10 +355,9 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     const bool in_registers = level->width <= register_level_side && level->height <= register_level_side;
     RegisterLevel<Channels> registers;
-    RegisterSums<Channels> register_sums;
+    RegisterSums register_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++)
-        register_sums.wide[c] = register_sums.times_16[c] = register_sums.times_31[c] =
-            register_sums.times_32[c] = _mm512_setzero_si512();
+        register_sums[c].wide = register_sums[c].times_16 = register_sums[c].times_31 = _mm512_setzero_si512();
     if (in_registers) register_level<Channels>(level, &registers);
 #endif
     uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
@@ -388,9 +396,9 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
                 const uint32_t left = packed - next;
                 const __mmask16 reach = static_cast<__mmask16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
                 add_register_reads_16<Channels>(registers, _mm512_loadu_si512(packed_x + next),
-                                                _mm512_loadu_si512(packed_y + next), reach, &register_sums);
+                                                _mm512_loadu_si512(packed_y + next), reach, register_sums);
             }
-            widen_register_sums<Channels>(&register_sums);
+            for (uint32_t c = 0; c < Channels; c++) widen_register_sums(&register_sums[c]);
         }
         for (; next + 8u < packed; next += 16u) {
             const uint32_t left = packed - next;
@@ -414,7 +422,7 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     for (uint32_t c = 0; c < Channels; c++)
-        wide_sums[c] = _mm512_add_epi64(wide_sums[c], register_sums.wide[c]);
+        wide_sums[c] = _mm512_add_epi64(wide_sums[c], register_sums[c].wide);
     for (uint32_t c = 0; c < Channels; c++) /* the 64-bit lanes' sums folded into 4 lanes */
         sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(_mm512_castsi512_si256(wide_sums[c]),
                                                              _mm512_extracti64x4_epi64(wide_sums[c], 1)));
