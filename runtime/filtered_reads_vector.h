@@ -195,18 +195,19 @@ inline __m512i table_entry(const __m512i *table, __m512i index, __mmask16 inside
 
 /* One channel's part of add_register_reads_16. */
 DSN_POINT_INLINE void add_register_channel(const __m512i *difference_table, const __m512i *corner_table,
-                                          __m512i index, __mmask16 inside, __mmask16 upper, __m512i weights,
-                                          __m512i product, __m512i product_odd, __mmask16 negative,
-                                          RegisterSums *sums) {
+                                           __m512i index, __mmask16 inside, __mmask16 upper, __m512i weights,
+                                           __m512i product, __m512i product_odd, __mmask16 negative,
+                                           RegisterSums *sums) {
     const __m512i differences = table_entry(difference_table, index, inside, upper),
                   corners = table_entry(corner_table, index, inside, upper);
     sums->times_16 = _mm512_add_epi32(sums->times_16, _mm512_madd_epi16(weights, differences));
     const __m512i cross = _mm512_srai_epi32(_mm512_slli_epi32(corners, 16), 16);
     sums->times_31 = _mm512_add_epi32(sums->times_31, _mm512_srai_epi32(corners, 16));
-    sums->times_31 = _mm512_mask_add_epi32(sums->times_31, negative, sums->times_31, _mm512_add_epi32(cross, cross));
-    sums->wide = _mm512_add_epi64(sums->wide,
-                                  _mm512_add_epi64(_mm512_mul_epi32(product, cross),
-                                                   _mm512_mul_epi32(product_odd, _mm512_srli_epi64(cross, 32))));
+    sums->times_31 =
+        _mm512_mask_add_epi32(sums->times_31, negative, sums->times_31, _mm512_add_epi32(cross, cross));
+    sums->wide = _mm512_add_epi64(
+        sums->wide, _mm512_add_epi64(_mm512_mul_epi32(product, cross),
+                                     _mm512_mul_epi32(product_odd, _mm512_srli_epi64(cross, 32))));
 }
 
 /* add_pair_reads_16's reads (the same integers, so the same sums) from a level in registers. */
@@ -357,7 +358,8 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     RegisterLevel<Channels> registers;
     RegisterSums register_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++)
-        register_sums[c].wide = register_sums[c].times_16 = register_sums[c].times_31 = _mm512_setzero_si512();
+        register_sums[c].wide = register_sums[c].times_16 = register_sums[c].times_31 =
+            _mm512_setzero_si512();
     if (in_registers) register_level<Channels>(level, &registers);
 #endif
     uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
