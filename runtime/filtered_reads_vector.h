@@ -5,8 +5,10 @@
    the continuous evaluator's (continuous_point_vector.h's add_window_reads_8, here with the level's
    stride). The same reads and integers as the sift's own, so the same sums modulo 2^64. The AVX-512
    kernel takes 16 candidates at a time (add_window_reads_16; for RGB levels both texels of a row by one
-   8-byte read, add_pair_reads_16), the last 15 or fewer 8 at a time. Internal to libdsn; not installed
-   (everything here has internal linkage). */
+   8-byte read, add_pair_reads_16), the last 15 or fewer 8 at a time; levels of at most 7 x 7 texels (the
+   coarse ones, whose reach holds the most impulses) it holds in registers as tables of the reads' texel
+   differences instead (add_register_reads_16), read without gathers by a rearranged, equal, integer. Internal
+   to libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_FILTERED_READS_VECTOR_H
 #define DSN_FILTERED_READS_VECTOR_H
 
@@ -123,7 +125,7 @@ DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t wi
    so each entry holds the 16-bit pairs (B - A, D - A) and (A - B - D + E, B + D): one multiply-add of
    16-bit pairs, 32-bit sums for all but the last term, and one 64-bit product per lane. 64 entries, 4
    vectors a pair, looked up by permutes. */
-const uint32_t register_level_side = 7;
+const uint32_t register_level_side = 7, register_level_least = 64;
 
 template <uint32_t Channels>
 struct RegisterLevel {
@@ -323,7 +325,9 @@ inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t v
 /* Candidates are tested and their offsets packed a block at a time, then read. */
 const uint32_t packed_block = 256;
 
-template <uint32_t Channels>
+/* InRegisters: the level's tables built (the caller checks register_level_side) and its reads taken from
+   them; a copy of its own, so that the other calls neither make room for them nor clear their sums. */
+template <uint32_t Channels, bool InRegisters>
 void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
                           const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
                           const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
@@ -354,7 +358,7 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     for (uint32_t i = 0; i < 6; i++) narrow_tests_16[i] = broadcast_16(narrow_tests[i]);
 #endif
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    const bool in_registers = level->width <= register_level_side && level->height <= register_level_side;
+    const bool in_registers = InRegisters;
     RegisterLevel<Channels> registers;
     RegisterSums register_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++)
@@ -423,8 +427,9 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         }
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    for (uint32_t c = 0; c < Channels; c++)
-        wide_sums[c] = _mm512_add_epi64(wide_sums[c], register_sums[c].wide);
+    if (in_registers)
+        for (uint32_t c = 0; c < Channels; c++)
+            wide_sums[c] = _mm512_add_epi64(wide_sums[c], register_sums[c].wide);
     for (uint32_t c = 0; c < Channels; c++) /* the 64-bit lanes' sums folded into 4 lanes */
         sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(_mm512_castsi512_si256(wide_sums[c]),
                                                              _mm512_extracti64x4_epi64(wide_sums[c], 1)));
@@ -440,10 +445,23 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
 void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs,
                         const int64_t *ys, const uint32_t *narrow_xs, const uint32_t *narrow_ys,
                         uint32_t count, const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    /* the tables cost as much to build as the reads they spare on a few dozen candidates */
+    if (level->width <= register_level_side && level->height <= register_level_side &&
+        count >= register_level_least) {
+        if (channels == 3)
+            filter_level_reads_8<3, true>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                          out);
+        else
+            filter_level_reads_8<1, true>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                          out);
+        return;
+    }
+#endif
     if (channels == 3)
-        filter_level_reads_8<3>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+        filter_level_reads_8<3, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
     else
-        filter_level_reads_8<1>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+        filter_level_reads_8<1, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
 }
 
 } // namespace
