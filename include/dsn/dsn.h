@@ -84,11 +84,13 @@
                         of RGB noises whose texton the AVX2 copy's strips hold, which it makes faster there.
                         Left at 0 there is one copy, built with the runtime's own flags.
 
-   Stack: a per-point call uses under 1 KB (its fast path keeps the impulses of the nearby cells on the
-   stack), a continuous per-point call under 2 KB, a filtered per-point call under 6 KB (the sums of
-   every tap), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS (see above), a continuous or
-   filtered tile up to about 84 KB where it is splatted (the texton's records, see
-   dsn_continuous_tile_fixed), under 6 KB where it goes point by point.
+   Stack, as make bench measures it on x86-64 (painted, the deepest of its cases): a per-point call uses
+   under 1 KB (its fast path keeps the impulses of the nearby cells on the stack), a continuous per-point
+   call under 3 KB, a batch call under 12 KB, a filtered per-point call up to about 30 KB (the candidate
+   impulses of every tap, and the coarse levels' tables of the AVX-512 copy), a lattice tile call under
+   1 KB unless DSN_TILE_BLOCKS (see above), a continuous or filtered tile up to about 88 KB where it is
+   splatted (the texture's records, see dsn_continuous_tile_fixed), and what its points take where it goes
+   point by point.
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H
@@ -369,14 +371,14 @@ typedef struct dsn_grid {
    tile goes through it 64 x 32 pixels at a time, each row of sums padded by a cache line where that fits:
    it is asked for min(width * height, 72 * 32) * channels * 8 bytes, plus 7, at most 55 303 bytes). On x86 an
    8-bit texton is read from 64-bit records per 2 x 2 texels kept on the tile call's stack (up to 64 KB,
-   beside about 20 KB of the splat's own), unless it has more than 8192 of them (RGB past 49 x 49 texels, grey
-   past 89 x 89), which go pixel by pixel; on an axis-aligned grid (column step along x alone, row step along
-   y alone, either sign) each record's interpolation along its row of texels is shared by the pixels of a
-   column. Grids where that does not pay or cannot be done exactly (a pixel covering more texels than a point
-   visits, steps of 2^14 texels or more, a periodic axis whose points cross the int32 wrap of the coordinate
-   or a period of 2^27 or more) are evaluated point by point and dsn_continuous_tile_scratch_size() returns 0
-   for them; so does every grid in the small build (DSN_SMALL_CODE), which evaluates point by point. Either
-   way the bits are the per-point ones. */
+   beside up to about 24 KB of the splat's own), unless it has more than 8192 of them (RGB past 49 x 49
+   texels, grey past 89 x 89), which go pixel by pixel; on an axis-aligned grid (column step along x alone,
+   row step along y alone, either sign) each record's interpolation along its row of texels is shared by the
+   pixels of a column. Grids where that does not pay or cannot be done exactly (a pixel covering more texels
+   than a point visits, steps of 2^14 texels or more, a periodic axis whose points cross the int32 wrap of the
+   coordinate or a period of 2^27 or more) are evaluated point by point and dsn_continuous_tile_scratch_size()
+   returns 0 for them; so does every grid in the small build (DSN_SMALL_CODE), which evaluates point by point.
+   Either way the bits are the per-point ones. */
 size_t dsn_continuous_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
                                         uint32_t height);
 int dsn_continuous_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,

@@ -13,6 +13,7 @@
 #include "../../runtime/noise_state.h"
 #include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
+#include "painted_stack.h"
 
 namespace {
 
@@ -69,6 +70,7 @@ int main() {
     const int tile_rounds = 5;
     std::vector<double> lattice_tiles(widest + 1, 1e30);
     std::vector<bench::PairedRatio> grid_tiles((widest + 1) * grid_count);
+    std::vector<size_t> grid_stacks(widest + 1, 0); // the deepest painted stack of a grid tile call
     for (uint32_t kernel = 0; kernel <= widest; kernel++) {
         dsn_noise copy = *n;
         dsn_state(&copy)->tile_kernel = kernel;
@@ -89,6 +91,11 @@ int main() {
                 checksum += tile[7];
             });
             grid_tiles[kernel * grid_count + g] = cost;
+            grid_stacks[kernel] =
+                std::max(grid_stacks[kernel], bench::painted_stack([&] {
+                             dsn_continuous_tile_fixed(&copy, &grid, kSide, kSide, tile.data(),
+                                                       grid_scratch.data(), grid_scratch.size());
+                         }));
             lattice_tiles[kernel] = std::min(lattice_tiles[kernel], cost.baseline_best);
         }
     }
@@ -169,6 +176,17 @@ int main() {
         std::printf("    the batch in the %s copy: %.0f ns/point: ratio %.2f to the lattice per point\n",
                     kernel < 3 ? copy_names[kernel] : "other", copy_batch_times[kernel] / double(batch) * 1e9,
                     copy_batch_times[kernel] / lattice_random);
-    std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
+    int32_t point_out[3];
+    std::printf(
+        "  stack (painted) of a continuous per-point call: %zu bytes, of a batch call: %zu bytes, of a "
+        "continuous tile call:",
+        bench::painted_stack([&] { dsn_continuous_point_fixed(n, one / 3, one / 7, point_out); }),
+        bench::painted_stack([&] {
+            dsn_continuous_batch_fixed(n, batch_x.data(), batch_y.data(), uint32_t(batch), batch_out.data(),
+                                       batch_scratch.data(), batch_scratch.size());
+        }));
+    for (uint32_t kernel = widest + 1; kernel-- > 0;)
+        std::printf(" %zu bytes (%s)", grid_stacks[kernel], copy_names[kernel]);
+    std::printf("\n  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }

@@ -4,6 +4,7 @@
 // point by point, and the asset's size with and without its pyramid.
 // Beside each ratio, the expected number of impulses within reach of a tap at the coarser level read,
 // lambda (2 (r_l + 1) 2^l)^2, against level 0's: the part of the cost that grows with the level.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "../../runtime/filtered_internal.h"
 #include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
+#include "painted_stack.h"
 
 namespace {
 
@@ -51,7 +53,12 @@ int main() {
     };
     // Each case is timed in rounds against the continuous per point (bench_timing.h): the ratio of the
     // median round, and of the best times.
+    size_t point_stack = 0, tile_stack = 0; // the deepest painted stack of one call, over the cases
     auto filtered = [&](const dsn_footprint &f) {
+        point_stack = std::max(point_stack, bench::painted_stack([&] {
+                                   int32_t out[3];
+                                   dsn_filtered_point_fixed(n, q32(1.0 / 3), q32(1.0 / 7), &f, out);
+                               }));
         return bench::paired_ratio(kRounds, continuous, [&] {
             int32_t out[3];
             for (uint32_t i = 0; i < kPoints; i++) {
@@ -152,6 +159,10 @@ int main() {
                                             scratch.size());
                     checksum += tile[7];
                 });
+            tile_stack = std::max(tile_stack, bench::painted_stack([&] {
+                                      dsn_filtered_tile_fixed(n, &grid, max_taps, side, side, tile.data(),
+                                                              scratch.data(), scratch.size());
+                                  }));
             const double pixel = cost.best * cost.baseline_best / (side * side);
             std::printf(
                 "filtered tile %ux%u, %s LOD %.1f: %.0f ns/pixel, 1/%.1f (1/%.1f) of the filtered per "
@@ -159,6 +170,9 @@ int main() {
                 side, side, shapes[shape], lod, pixel * 1e9, 1 / cost.median, 1 / cost.best,
                 scratch.empty() ? " (point by point)" : "");
         }
+    std::printf("stack (painted, deepest over the cases above) of a filtered per-point call: %zu bytes, of a "
+                "filtered tile call: %zu bytes\n",
+                point_stack, tile_stack);
     std::printf("(checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }

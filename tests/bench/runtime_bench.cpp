@@ -23,6 +23,7 @@
 #include "../../runtime/poisson_count.h"
 #include "../fixtures/test_assets.h"
 #include "bench_timing.h"
+#include "painted_stack.h"
 
 namespace {
 
@@ -110,19 +111,6 @@ void count_work(const dsn_noise &noise, uint32_t x, uint32_t y, uint64_t *cells,
             *cells += 1;
             *impulses += dsn_cell_impulse_count(dsn_state(&noise), key);
         }
-}
-
-// Stack depth of `call` by painting: fill the 128 KB below this frame (still inside the thread's stack),
-// make the call, and find the deepest byte it changed.
-template <typename Call>
-__attribute__((noinline)) size_t painted_stack(Call call) {
-    const size_t region_size = 1 << 17, guard = 128; // guard: this frame's own locals and spills
-    volatile unsigned char *top = static_cast<unsigned char *>(__builtin_frame_address(0)) - guard;
-    for (size_t i = 1; i <= region_size; i++) top[-std::ptrdiff_t(i)] = 0xA5;
-    call();
-    size_t deepest = region_size;
-    while (deepest > 0 && top[-std::ptrdiff_t(deepest)] == 0xA5) deepest--;
-    return deepest + guard; // an upper bound: includes the guard above the region
 }
 
 } // namespace
@@ -294,15 +282,15 @@ int main() {
     int32_t point_out[3];
     std::vector<int32_t> tile_out(64 * 64 * 3);
     const size_t point_stack =
-        painted_stack([&] { dsn_lattice_point_fixed(&noise, 12345, -678, point_out); });
+        bench::painted_stack([&] { dsn_lattice_point_fixed(&noise, 12345, -678, point_out); });
     std::printf("sizeof(dsn_noise) = %zu bytes, sizeof(dsn_asset) = %zu bytes; stack (painted) of one "
                 "per-point call: %zu bytes, of a tile call:",
                 sizeof(dsn_noise), sizeof(dsn_asset), point_stack);
     for (uint32_t kernel = 0; kernel <= other_copies; kernel++) {
         dsn_noise copy = noise;
         dsn_state(&copy)->tile_kernel = kernel;
-        const size_t tile_stack =
-            painted_stack([&] { dsn_lattice_tile_fixed(&copy, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
+        const size_t tile_stack = bench::painted_stack(
+            [&] { dsn_lattice_tile_fixed(&copy, 5, 7, 64, 64, tile_out.data(), nullptr, 0); });
         std::printf(" %zu bytes (%s tile code)", tile_stack,
                     other_copies != 0 ? copy_names[kernel] : "default");
     }
