@@ -90,9 +90,8 @@ inline splat_vector splat_fraction(splat_vector value) {
 }
 /* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31. */
 inline splat_vector splat_across_weights(splat_vector value) {
-    const splat_vector biased = _mm_xor_si128(splat_fraction(value), _mm_set1_epi64x(0x8000));
-    const splat_vector pair = _mm_or_si128(_mm_slli_epi64(biased, 16), _mm_set1_epi64x(0x8000));
-    return _mm_or_si128(pair, _mm_slli_epi64(pair, 32));
+    const splat_vector spread = _mm_shufflehi_epi16(_mm_shufflelo_epi16(value, 0x55), 0x55); /* word 1 */
+    return _mm_xor_si128(_mm_and_si128(spread, _mm_set1_epi32(-65536)), _mm_set1_epi16(-32768));
 }
 /* (lane >> 32) times factor, modulo 2^64. */
 inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
