@@ -242,9 +242,8 @@ DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e
     *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
 }
 
-/* add_quad_reads_8 on 16 lanes; 3 channels by 8-byte reads, 8 lanes a gather (half the values
-   gathered): channels 0 and 1, then channel 2 and the next word (continuous_batch.h: the table ends
-   with one more word), the words' halves taken by permutes. */
+/* add_quad_reads_8 on 16 lanes; 3 channels: channels 0 and 1 by 8-byte reads, 8 lanes a gather, the
+   words' halves taken by permutes, and channel 2 by one gather of 16 words. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, __m512i s_x, __m512i s_y,
                                         __mmask16 reach, __m512i *sums) {
@@ -259,17 +258,14 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
     if (Channels == 3) {
         const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
                       highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
-        __m512i words[2][2]; /* [channels 0 and 1, channel 2][candidates 0 .. 7, 8 .. 15] */
-        for (uint32_t part = 0; part < 2; part++) {
-            words[part][0] = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
-                                                         _mm512_castsi512_si256(at), quads + 2 * part, 4);
-            words[part][1] =
-                _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
-                                            _mm512_extracti64x4_epi64(at, 1), quads + 2 * part, 4);
-        }
-        quad[0] = _mm512_permutex2var_epi32(words[0][0], lows, words[0][1]);
-        quad[Channels - 2] = _mm512_permutex2var_epi32(words[0][0], highs, words[0][1]);
-        quad[Channels - 1] = _mm512_permutex2var_epi32(words[1][0], lows, words[1][1]);
+        /* channels 0 and 1 of candidates 0 .. 7 and 8 .. 15 */
+        const __m512i low_words = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
+                                                              _mm512_castsi512_si256(at), quads, 4);
+        const __m512i high_words = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
+                                                               _mm512_extracti64x4_epi64(at, 1), quads, 4);
+        quad[Channels - 1] = _mm512_mask_i32gather_epi32(zero, reach, at, quads + 2, 4);
+        quad[0] = _mm512_permutex2var_epi32(low_words, lows, high_words);
+        quad[Channels - 2] = _mm512_permutex2var_epi32(low_words, highs, high_words);
     } else {
         quad[0] = _mm512_mask_i32gather_epi32(zero, reach, at, quads, 4);
     }
@@ -356,8 +352,13 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
                                      uint32_t first, uint32_t valid) {
     const __m512i fraction = mix32_16(load_16(candidates.stream + first));
     const __m512i packed = load_16(candidates.field + first);
-    __m512i bits_x, bits_y;
-    impulse_bits_16(_mm512_and_si512(packed, broadcast_16(0xFF)), fraction, &bits_x, &bits_y);
+    /* impulse_bits_16, each axis's field bits selected into bits 12 .. 15 (0xEC: A & C | B) */
+    const __m512i field_bits = broadcast_16(0xF000);
+    const __m512i bits_x =
+        _mm512_ternarylogic_epi32(_mm512_slli_epi32(packed, 12),
+                                  _mm512_srli_epi32(_mm512_slli_epi32(fraction, 16), 20), field_bits, 0xEC);
+    const __m512i bits_y = _mm512_ternarylogic_epi32(_mm512_slli_epi32(packed, 8),
+                                                     _mm512_srli_epi32(fraction, 20), field_bits, 0xEC);
     /* the cells' bases by their indices (the permutes read the low 4 bits: the bases twice) */
     const __m512i column_bases = _mm512_broadcast_i64x4(visit->column_bases),
                   row_bases = _mm512_broadcast_i64x4(visit->row_bases);
