@@ -140,6 +140,12 @@ DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t w
     }
 }
 
+/* The multipliers of a quad's index (S_y >> 16) quad_row + (S_x >> 16) Channels as 16-bit halves, for
+   a product-sum of the 16-bit halves (S_x >> 16, S_y >> 16) of each lane: in reach, S >> 16 is at most
+   2 radius + 1 < 2^13, and quad_row = (width + 1) Channels <= (2 radius + 3) 3 < 2^15 (the radii the
+   vector evaluator takes), so that every factor is a non-negative int16 and the index an int32. */
+inline uint32_t quad_index_factors(uint32_t quad_row, uint32_t channels) { return quad_row << 16 | channels; }
+
 /* add_window_reads_8 from the quad table: the bordered position of the top-left texel is the lower index
    plus 1, (S >> 16) along each axis; a lane out of reach reads nothing and adds zero. */
 template <uint32_t Channels>
@@ -147,10 +153,8 @@ DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row,
                                        __m256i reach, __m256i *sums) {
     const __m256i low_16 = _mm256_set1_epi32(0xFFFF);
     const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
-    const __m256i column = _mm256_srli_epi32(s_x, 16);
-    const __m256i at =
-        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_srli_epi32(s_y, 16), broadcast_8(quad_row)),
-                         Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(column, 1), column) : column);
+    const __m256i at = _mm256_madd_epi16(_mm256_blend_epi16(_mm256_srli_epi32(s_x, 16), s_y, 0xAA),
+                                         broadcast_8(quad_index_factors(quad_row, Channels)));
     for (uint32_t c = 0; c < Channels; c++) {
         const int *table = static_cast<const int *>(static_cast<const void *>(quads + c));
         const __m256i quad = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), table, at, reach, 4);
@@ -227,19 +231,36 @@ inline uint32_t sift_two_pairs(__m128i pairs, const FieldLanes &lanes, const Cel
 }
 
 /* bilinear_8 on 16 lanes, the 16 values added to sum's 64-bit lanes. */
-DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e, __m512i across,
-                                      __m512i down, __m512i *sum) {
+/* The rows' interpolations upper and lower (32-bit lanes) interpolated down the column, added to sum. */
+DSN_POINT_INLINE void add_column_16(__m512i upper, __m512i lower, __m512i down, __m512i *sum) {
     const __m512i scale = _mm512_set1_epi32(65536);
-    const __m512i upper =
-        _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
-    const __m512i lower =
-        _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
     const __m512i difference = _mm512_sub_epi32(lower, upper);
     const __m512i even = _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
     const __m512i odd =
         _mm512_add_epi64(_mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
                          _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
     *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
+}
+
+DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e, __m512i across,
+                                      __m512i down, __m512i *sum) {
+    add_column_16(
+        _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a))),
+        _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d))), down,
+        sum);
+}
+
+/* add_bilinear_16 of quads (bytes a, b, d, e), the bytes taken and the rows' steps made in 16-bit halves:
+   a and d, b and e sign-extended, then b - a and e - d (within int16). */
+DSN_POINT_INLINE void add_quad_bilinear_16(__m512i quad, __m512i across, __m512i down, __m512i *sum) {
+    const __m512i left = _mm512_srai_epi16(_mm512_slli_epi16(quad, 8), 8), right = _mm512_srai_epi16(quad, 8);
+    const __m512i step = _mm512_sub_epi16(right, left);
+    const __m512i upper =
+        _mm512_add_epi32(_mm512_slli_epi32(left, 16),
+                         _mm512_mullo_epi32(across, _mm512_srai_epi32(_mm512_slli_epi32(step, 16), 16)));
+    const __m512i lower = _mm512_add_epi32(_mm512_and_si512(left, broadcast_16(0xFFFF0000u)),
+                                           _mm512_mullo_epi32(across, _mm512_srai_epi32(step, 16)));
+    add_column_16(upper, lower, down, sum);
 }
 
 /* add_quad_reads_8 on 16 lanes; 3 channels: channels 0 and 1 by 8-byte reads, 8 lanes a gather, the
@@ -249,10 +270,9 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
                                         __mmask16 reach, __m512i *sums) {
     const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
     const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i column = _mm512_srli_epi32(s_x, 16);
     const __m512i at =
-        _mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(s_y, 16), broadcast_16(quad_row)),
-                         Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(column, 1), column) : column);
+        _mm512_madd_epi16(_mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srli_epi32(s_x, 16), s_y),
+                          broadcast_16(quad_index_factors(quad_row, Channels)));
     const __m512i zero = _mm512_setzero_si512();
     __m512i quad[Channels];
     if (Channels == 3) {
@@ -269,9 +289,7 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
     } else {
         quad[0] = _mm512_mask_i32gather_epi32(zero, reach, at, quads, 4);
     }
-    for (uint32_t c = 0; c < Channels; c++)
-        add_bilinear_16(lane_byte_16(quad[c], 0), lane_byte_16(quad[c], 1), lane_byte_16(quad[c], 2),
-                        lane_byte_16(quad[c], 3), across, down, &sums[c]);
+    for (uint32_t c = 0; c < Channels; c++) add_quad_bilinear_16(quad[c], across, down, &sums[c]);
 }
 
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
