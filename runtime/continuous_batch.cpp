@@ -83,7 +83,6 @@ void *prepare_scratch(const dsn_noise_state *noise, unsigned char *aligned, bool
                 }
             }
     }
-    quads[index++] = 0; /* the word past the last (batch_quad_count) */
     return aligned + round_up(index * sizeof(uint32_t));
 }
 

@@ -42,14 +42,11 @@ const uint32_t batch_work_bytes = batch_candidates * 2u * 4u + batch_cells * (2u
    (row, column) of the texton bordered by one zero texel all around, rows and columns 0 .. height and
    0 .. width, and every channel, the 2 x 2 texels that a bilinear read there needs, so that one load
    (8-bit values: the bytes top-left, top-right, bottom-left, bottom-right of one int32) or two (16-bit:
-   top-left | top-right << 16, then the bottom row) give them all, with no test at the window's edge.
-   One zero word follows the last (the AVX-512 reads of 3 channels take each position's last channel by
-   an 8-byte read). */
+   top-left | top-right << 16, then the bottom row) give them all, with no test at the window's edge. */
 inline uint32_t batch_quad_words(uint32_t bits) { return bits == 8 ? 1u : 2u; }
 inline size_t batch_quad_count(const dsn_asset *asset) {
     return static_cast<size_t>(asset->height + 1u) * (asset->width + 1u) * asset->channels *
-               batch_quad_words(asset->bits) +
-           1u;
+           batch_quad_words(asset->bits);
 }
 
 /* The work arrays, carved from 64-byte aligned memory. A slot holds a candidate (an impulse of a pair

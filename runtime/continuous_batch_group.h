@@ -223,12 +223,31 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
             const __m256i key =
                 mix32_8(_mm256_add_epi32(_mm256_xor_si256(load_8(cell_x[i]), seed_column), row_key));
             store_8(keys, key);
-            store_8(counts,
-                    _mm256_and_si256(
-                        cell_counts(noise, shared, key, keys),
-                        _mm256_and_si256(row_there, _mm256_cmpgt_epi32(columns_there, broadcast_8(i)))));
+            const __m256i there =
+                _mm256_and_si256(row_there, _mm256_cmpgt_epi32(columns_there, broadcast_8(i)));
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            if (shared.by_tables) { /* the counts below, two cells a vector */
+                store_8(counts, there);
+                continue;
+            }
+#endif
+            store_8(counts, _mm256_and_si256(cell_counts(noise, shared, key, keys), there));
         }
     }
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    if (shared.by_tables) {
+        const uint32_t cells = group_cells * group_cells * group_points;
+        uint32_t at = 0;
+        for (; at + 16u <= cells; at += 16u)
+            _mm512_storeu_si512(group->counts + at,
+                                _mm512_and_si512(counts_16(noise, shared.tables, load_16(group->keys + at)),
+                                                 load_16(group->counts + at)));
+        for (; at < cells; at += group_points)
+            store_8(group->counts + at,
+                    _mm256_and_si256(cell_counts(noise, shared, load_8(group->keys + at), group->keys + at),
+                                     load_8(group->counts + at)));
+    }
+#endif
     return fits;
 }
 

@@ -140,6 +140,12 @@ DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t w
     }
 }
 
+/* The multipliers of a quad's index (S_y >> 16) quad_row + (S_x >> 16) Channels as 16-bit halves, for
+   a product-sum of the 16-bit halves (S_x >> 16, S_y >> 16) of each lane: in reach, S >> 16 is at most
+   2 radius + 1 < 2^13, and quad_row = (width + 1) Channels <= (2 radius + 3) 3 < 2^15 (the radii the
+   vector evaluator takes), so that every factor is a non-negative int16 and the index an int32. */
+inline uint32_t quad_index_factors(uint32_t quad_row, uint32_t channels) { return quad_row << 16 | channels; }
+
 /* add_window_reads_8 from the quad table: the bordered position of the top-left texel is the lower index
    plus 1, (S >> 16) along each axis; a lane out of reach reads nothing and adds zero. */
 template <uint32_t Channels>
@@ -147,10 +153,8 @@ DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row,
                                        __m256i reach, __m256i *sums) {
     const __m256i low_16 = _mm256_set1_epi32(0xFFFF);
     const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
-    const __m256i column = _mm256_srli_epi32(s_x, 16);
-    const __m256i at =
-        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_srli_epi32(s_y, 16), broadcast_8(quad_row)),
-                         Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(column, 1), column) : column);
+    const __m256i at = _mm256_madd_epi16(_mm256_blend_epi16(_mm256_srli_epi32(s_x, 16), s_y, 0xAA),
+                                         broadcast_8(quad_index_factors(quad_row, Channels)));
     for (uint32_t c = 0; c < Channels; c++) {
         const int *table = static_cast<const int *>(static_cast<const void *>(quads + c));
         const __m256i quad = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), table, at, reach, 4);
@@ -227,13 +231,9 @@ inline uint32_t sift_two_pairs(__m128i pairs, const FieldLanes &lanes, const Cel
 }
 
 /* bilinear_8 on 16 lanes, the 16 values added to sum's 64-bit lanes. */
-DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e, __m512i across,
-                                      __m512i down, __m512i *sum) {
+/* The rows' interpolations upper and lower (32-bit lanes) interpolated down the column, added to sum. */
+DSN_POINT_INLINE void add_column_16(__m512i upper, __m512i lower, __m512i down, __m512i *sum) {
     const __m512i scale = _mm512_set1_epi32(65536);
-    const __m512i upper =
-        _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a)));
-    const __m512i lower =
-        _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d)));
     const __m512i difference = _mm512_sub_epi32(lower, upper);
     const __m512i even = _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
     const __m512i odd =
@@ -242,40 +242,54 @@ DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e
     *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
 }
 
-/* add_quad_reads_8 on 16 lanes; 3 channels by 8-byte reads, 8 lanes a gather (half the values
-   gathered): channels 0 and 1, then channel 2 and the next word (continuous_batch.h: the table ends
-   with one more word), the words' halves taken by permutes. */
+DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e, __m512i across,
+                                      __m512i down, __m512i *sum) {
+    add_column_16(
+        _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a))),
+        _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d))), down,
+        sum);
+}
+
+/* add_bilinear_16 of quads (bytes a, b, d, e), the bytes taken and the rows' steps made in 16-bit halves:
+   a and d, b and e sign-extended, then b - a and e - d (within int16). */
+DSN_POINT_INLINE void add_quad_bilinear_16(__m512i quad, __m512i across, __m512i down, __m512i *sum) {
+    const __m512i left = _mm512_srai_epi16(_mm512_slli_epi16(quad, 8), 8), right = _mm512_srai_epi16(quad, 8);
+    const __m512i step = _mm512_sub_epi16(right, left);
+    const __m512i upper =
+        _mm512_add_epi32(_mm512_slli_epi32(left, 16),
+                         _mm512_mullo_epi32(across, _mm512_srai_epi32(_mm512_slli_epi32(step, 16), 16)));
+    const __m512i lower = _mm512_add_epi32(_mm512_and_si512(left, broadcast_16(0xFFFF0000u)),
+                                           _mm512_mullo_epi32(across, _mm512_srai_epi32(step, 16)));
+    add_column_16(upper, lower, down, sum);
+}
+
+/* add_quad_reads_8 on 16 lanes; 3 channels: channels 0 and 1 by 8-byte reads, 8 lanes a gather, the
+   words' halves taken by permutes, and channel 2 by one gather of 16 words. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, __m512i s_x, __m512i s_y,
                                         __mmask16 reach, __m512i *sums) {
     const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
     const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i column = _mm512_srli_epi32(s_x, 16);
     const __m512i at =
-        _mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(s_y, 16), broadcast_16(quad_row)),
-                         Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(column, 1), column) : column);
+        _mm512_madd_epi16(_mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srli_epi32(s_x, 16), s_y),
+                          broadcast_16(quad_index_factors(quad_row, Channels)));
     const __m512i zero = _mm512_setzero_si512();
     __m512i quad[Channels];
     if (Channels == 3) {
         const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
                       highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
-        __m512i words[2][2]; /* [channels 0 and 1, channel 2][candidates 0 .. 7, 8 .. 15] */
-        for (uint32_t part = 0; part < 2; part++) {
-            words[part][0] = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
-                                                         _mm512_castsi512_si256(at), quads + 2 * part, 4);
-            words[part][1] =
-                _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
-                                            _mm512_extracti64x4_epi64(at, 1), quads + 2 * part, 4);
-        }
-        quad[0] = _mm512_permutex2var_epi32(words[0][0], lows, words[0][1]);
-        quad[Channels - 2] = _mm512_permutex2var_epi32(words[0][0], highs, words[0][1]);
-        quad[Channels - 1] = _mm512_permutex2var_epi32(words[1][0], lows, words[1][1]);
+        /* channels 0 and 1 of candidates 0 .. 7 and 8 .. 15 */
+        const __m512i low_words = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
+                                                              _mm512_castsi512_si256(at), quads, 4);
+        const __m512i high_words = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
+                                                               _mm512_extracti64x4_epi64(at, 1), quads, 4);
+        quad[Channels - 1] = _mm512_mask_i32gather_epi32(zero, reach, at, quads + 2, 4);
+        quad[0] = _mm512_permutex2var_epi32(low_words, lows, high_words);
+        quad[Channels - 2] = _mm512_permutex2var_epi32(low_words, highs, high_words);
     } else {
         quad[0] = _mm512_mask_i32gather_epi32(zero, reach, at, quads, 4);
     }
-    for (uint32_t c = 0; c < Channels; c++)
-        add_bilinear_16(lane_byte_16(quad[c], 0), lane_byte_16(quad[c], 1), lane_byte_16(quad[c], 2),
-                        lane_byte_16(quad[c], 3), across, down, &sums[c]);
+    for (uint32_t c = 0; c < Channels; c++) add_quad_bilinear_16(quad[c], across, down, &sums[c]);
 }
 
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
@@ -356,8 +370,13 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
                                      uint32_t first, uint32_t valid) {
     const __m512i fraction = mix32_16(load_16(candidates.stream + first));
     const __m512i packed = load_16(candidates.field + first);
-    __m512i bits_x, bits_y;
-    impulse_bits_16(_mm512_and_si512(packed, broadcast_16(0xFF)), fraction, &bits_x, &bits_y);
+    /* impulse_bits_16, each axis's field bits selected into bits 12 .. 15 (0xEC: A & C | B) */
+    const __m512i field_bits = broadcast_16(0xF000);
+    const __m512i bits_x =
+        _mm512_ternarylogic_epi32(_mm512_slli_epi32(packed, 12),
+                                  _mm512_srli_epi32(_mm512_slli_epi32(fraction, 16), 20), field_bits, 0xEC);
+    const __m512i bits_y = _mm512_ternarylogic_epi32(_mm512_slli_epi32(packed, 8),
+                                                     _mm512_srli_epi32(fraction, 20), field_bits, 0xEC);
     /* the cells' bases by their indices (the permutes read the low 4 bits: the bases twice) */
     const __m512i column_bases = _mm512_broadcast_i64x4(visit->column_bases),
                   row_bases = _mm512_broadcast_i64x4(visit->row_bases);
