@@ -396,8 +396,9 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
     const AxisCells &columns = group.columns[p], &rows = group.rows[p];
     PointVisit<Channels> visit;
     point_visit_start<Channels>(noise, columns, rows, quads, &visit);
-    /* Its stores land at any 4-byte offset: kept within one page (1024-byte aligned, 644 bytes), so that
-       none crosses a page, which costs far more than crossing a cache line. */
+    /* The candidates are stored at any 4-byte offset, and a store that crosses a page costs far more
+       than one that crosses a cache line: 1024-byte alignment keeps the buffer (644 bytes) within one
+       page. */
     alignas(1024) PointCandidates candidates;
     candidates.count = 0;
     /* every cell of the vectors (those past the point's have no impulse): no branch on the cells' number;

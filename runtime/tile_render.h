@@ -102,18 +102,14 @@ void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
     Value *out = row_out;
     int stream = setup->stream;
 #if DSN_SIMD_STREAM_LINES
-    /* A streamed row is normalized into a stage at the same offset in a cache line, then copied in whole
+    /* A streamed row is normalized into `stage` at the same offset in a cache line, then copied in whole
        lines (stream_row). The stores into the stage are as misaligned as the row, and a store that
-       crosses a page costs far more than one that crosses a cache line: the stage lies in one page,
-       the first or the second half of `stage` (one page boundary at most falls in the first half). */
-    const uint32_t stage_values = rectangle_width * Channels + 64 / sizeof(Value);
-    alignas(64) Value stage[2 * stage_values];
+       crosses a page costs far more than one that crosses a cache line: 2048-byte alignment keeps the
+       stage (at most 1600 bytes) within one page. */
+    alignas(2048) Value stage[rectangle_width * Channels + 64 / sizeof(Value)];
     const uintptr_t address = reinterpret_cast<uintptr_t>(row_out);
     const int staged = stream && sizeof(Value) == sizeof(int32_t) && address % sizeof(Value) == 0;
-    const uintptr_t stage_start = reinterpret_cast<uintptr_t>(stage), page = 4096u;
-    const uintptr_t to_page = (page - stage_start % page) % page; /* bytes to the next page boundary */
-    Value *in_page = stage + (to_page < sizeof(Value) * stage_values ? to_page / sizeof(Value) : 0u);
-    if (staged) out = in_page + (address & 63u) / sizeof(Value);
+    if (staged) out = stage + (address & 63u) / sizeof(Value);
     stream = 0;
 #endif
     for (uint32_t s = 0; s * lane < width; s++) {

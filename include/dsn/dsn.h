@@ -72,7 +72,7 @@
                         sections (and so checks a 1.1 asset's pyramid) to find the mapping.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
-                        copies of the texton and the impulse list on the stack: 62-78 KB per tile call
+                        copies of the texton and the impulse list on the stack: 62-80 KB per tile call
                         by the copy of the tile code (make bench's runtime_bench). 0 takes the
                         32-bit accumulator path, under 1 KB of stack per tile call, slower.
      DSN_X86_DISPATCH   default: undefined (0); the Makefile defines it to 1 on x86-64. 1 builds the tile
