@@ -400,6 +400,7 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
        than one that crosses a cache line: 1024-byte alignment keeps the buffer (644 bytes) within one
        page. */
     alignas(1024) PointCandidates candidates;
+    static_assert(sizeof(PointCandidates) <= 1024, "the candidates must fit their alignment");
     candidates.count = 0;
     /* every cell of the vectors (those past the point's have no impulse): no branch on the cells' number;
        unrolled, each cell's offsets and indices are constants */

@@ -107,6 +107,7 @@ void normalize_row(const dsn_noise_state *noise, const strip_setup *setup,
        crosses a page costs far more than one that crosses a cache line: 2048-byte alignment keeps the
        stage (at most 1600 bytes) within one page. */
     alignas(2048) Value stage[rectangle_width * Channels + 64 / sizeof(Value)];
+    static_assert(sizeof(stage) <= 2048, "the stage must fit its alignment to stay within a page");
     const uintptr_t address = reinterpret_cast<uintptr_t>(row_out);
     const int staged = stream && sizeof(Value) == sizeof(int32_t) && address % sizeof(Value) == 0;
     if (staged) out = stage + (address & 63u) / sizeof(Value);
