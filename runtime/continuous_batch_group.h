@@ -3,16 +3,18 @@
    cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
    3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search; AVX-512: by
    the two-step search on 16 lanes, counts_16), and the first two pairs of those cells hashed and sifted
-   with a pair in each 64-bit lane (group_pairs), then each point's candidates packed, visited and
-   normalized by the per-point evaluator's code, its texels read from the batch's quad table where the
-   call built it (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the
-   window's edge; continuous_batch.cpp builds it for large batches only). A point with more cells along an
-   axis goes through the per-point evaluator. The same cells, keys, counts and pairs as per point, so the
-   same bits. Internal to libdsn; not installed (everything here has internal linkage). */
+   with a pair in each 64-bit lane (group_pairs), then each point's candidates packed and visited by the
+   per-point evaluator's code, its texels read from the batch's quad table where the call built it
+   (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the window's edge;
+   continuous_batch.cpp builds it for large batches only), and the group's sums normalized on vectors, a
+   point in each 64-bit lane (splat_row.h). A point with more cells along an axis goes through the
+   per-point evaluator. The same cells, keys, counts and pairs as per point, so the same bits. Internal to
+   libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_CONTINUOUS_BATCH_GROUP_H
 #define DSN_CONTINUOUS_BATCH_GROUP_H
 
 #include "continuous_point_vector.h"
+#include "splat_row.h"
 
 #if defined(__AVX2__)
 namespace {
@@ -56,18 +58,29 @@ inline __m256i group_counts(const dsn_noise_state *noise, const GroupShared &sha
     return _mm256_add_epi32(broadcast_8(noise->poisson_size), above);
 }
 
-/* axis_cells(point_axis(...)) of the group's points along a non-periodic axis (`axis`: 0 for x, 1 for y)
-   with a point in each lane, all in 32-bit lanes: the window's cells (dsn_axis_span's first cell and count),
-   and for each cell cell_axis_within's bounds on the field halves. With the cell's offset
-   W = X - origin (X the point's integer part, small: the cell is one of the point's) and the fraction f,
+/* A group's cells along one axis, cell i of point p at [i][p]: its index, floor(shifted_base / 2^16)
+   (AxisCells's base) and its sifting bounds (CellAxis's low_lanes and high_lanes: 8-bit lanes, which the
+   noises of the vector evaluator have, so that one 32-bit word holds a bound's repeating bytes); passes[i]:
+   the points (bit p) whose cell i may reach them. Along a non-periodic axis cell i is the window's first
+   cell + i, along a periodic one the i-th that axis_cells lists: a candidate's cell index means the same
+   cell at every step, and the sums do not depend on the order of the cells. */
+struct GroupAxis {
+    uint32_t cell[group_cells][group_points], base[group_cells][group_points];
+    uint32_t low[group_cells][group_points], high[group_cells][group_points];
+    uint32_t passes[group_cells];
+};
+
+/* The group's cells along a non-periodic axis (`axis`: 0 for x, 1 for y), a point in each 32-bit lane:
+   axis_cells(point_axis(...)) unpacked. The window's cells (dsn_axis_span's first cell and count), and
+   for each cell cell_axis_within's bounds on the field halves. With the cell's offset W = X - origin (X the
+   point's integer part, small: the cell is one of the point's) and the fraction f,
    shifted_base = (W + radius + 1) 2^32 + f, and the halves' bounds floor((shifted_base - 2 reach) / 2^k)
    and floor((shifted_base - 1) / 2^k), k = 28 + shift (4-bit halves, shift <= 4), are
    (W - radius - 1) 2^(32 - k) + (f >> k) and (W + radius + 1) 2^(32 - k) + ((f - 1) >> k), less
-   2^(32 - k) where f = 0 (f - 1 wraps to 2^32 - 1 there, where the floor of -1 / 2^k is -1). The cells
-   that pass are written to cells[p] in the window's order, as axis_cells writes them. Returns the points
-   (bit p) whose window has at most group_cells cells. */
+   2^(32 - k) where f = 0 (f - 1 wraps to 2^32 - 1 there, where the floor of -1 / 2^k is -1). Returns the
+   points (bit p) whose window has at most group_cells cells. */
 inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const int64_t *coordinates,
-                           uint32_t count, const FieldLanes &lanes, AxisCells *cells) {
+                           uint32_t count, GroupAxis *cells) {
     uint32_t whole[group_points], fraction[group_points];
     for (uint32_t p = 0; p < group_points; p++) {
         const uint64_t coordinate = p < count ? static_cast<uint64_t>(coordinates[p]) : 0u;
@@ -92,9 +105,7 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
                   room_limit = broadcast_8(((1u << shift) - 1u) ^ 0x80000000u);
     const __m256i f_zero =
         _mm256_and_si256(_mm256_cmpeq_epi32(f, _mm256_setzero_si256()), broadcast_8(0u - (1u << up)));
-    uint32_t cell[group_cells][group_points], offset[group_cells][group_points],
-        first[group_cells][group_points], last[group_cells][group_points], base[group_cells][group_points],
-        passes[group_cells];
+    const __m256i bytes = broadcast_8(0x01010101u), tops = broadcast_8(0x80808080u); /* FieldLanes's */
     for (uint32_t i = 0; i < group_cells; i++) {
         const __m256i index =
             _mm256_and_si256(_mm256_add_epi32(first_cell, broadcast_8(i)), broadcast_8(0xFFFFFFFFu >> shift));
@@ -116,54 +127,53 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
         const __m256i first_half = _mm256_max_epi32(low_half, _mm256_setzero_si256());
         const __m256i pass = _mm256_andnot_si256(_mm256_cmpgt_epi32(first_half, high_half),
                                                  _mm256_cmpgt_epi32(cell_count, broadcast_8(i)));
-        passes[i] = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
-        store_8(cell[i], index), store_8(offset[i], w), store_8(first[i], first_half),
-            store_8(last[i], high_half);
-        store_8(base[i],
+        cells->passes[i] = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+        store_8(cells->cell[i], index);
+        store_8(cells->base[i],
                 _mm256_add_epi32(_mm256_slli_epi32(_mm256_add_epi32(w, broadcast_8(radius + 1u)), 16),
                                  _mm256_srli_epi32(f, 16)));
+        /* where the cell passes, 0 <= first_half <= high_half <= 15: one byte each */
+        store_8(cells->low[i], _mm256_and_si256(pass, _mm256_mullo_epi32(first_half, bytes)));
+        store_8(cells->high[i],
+                _mm256_and_si256(pass, _mm256_or_si256(_mm256_mullo_epi32(high_half, bytes), tops)));
     }
-    const int64_t reach = static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel);
-    for (uint32_t p = 0; p < count; p++) {
-        AxisCells *point = &cells[p];
-        point->count = 0;
-        store_8(point->base, _mm256_setzero_si256());
+    return fits;
+}
+
+/* group_axis along a periodic axis, point by point (axis_cells). */
+inline uint32_t group_periodic_axis(const dsn_noise_state *noise, uint32_t axis, const int64_t *coordinates,
+                                    uint32_t count, const FieldLanes &lanes, GroupAxis *cells) {
+    uint32_t fits = 0;
+    for (uint32_t i = 0; i < group_cells; i++) cells->passes[i] = 0;
+    for (uint32_t p = 0; p < group_points; p++) {
+        AxisCells point;
+        point.count = 0;
+        if (p < count &&
+            axis_cells(point_axis(static_cast<uint64_t>(coordinates[p]), noise->radius[axis],
+                                  noise->cell_shift, noise->period[axis]),
+                       lanes, &point) &&
+            point.count <= group_cells)
+            fits |= 1u << p;
+        else
+            point.count = 0;
         for (uint32_t i = 0; i < group_cells; i++) {
-            if (((passes[i] >> p) & 1u) == 0) continue;
-            const uint32_t at = point->count++;
-            point->cell[at] = cell[i][p], point->base[at] = base[i][p];
-            CellAxis *bounds = &point->axis[at];
-            bounds->shifted_base =
-                static_cast<int64_t>(dsn_signed_sum(offset[i][p])) * static_cast<int64_t>(one_texel) +
-                static_cast<int64_t>(fraction[p]) + reach;
-            bounds->low_lanes = lanes.ones * first[i][p];
-            bounds->high_lanes = (lanes.ones * last[i][p]) | lanes.tops;
+            const bool there = i < point.count;
+            cells->cell[i][p] = there ? point.cell[i] : 0u, cells->base[i][p] = there ? point.base[i] : 0u;
+            cells->low[i][p] = there ? static_cast<uint32_t>(point.axis[i].low_lanes) : 0u;
+            cells->high[i][p] = there ? static_cast<uint32_t>(point.axis[i].high_lanes) : 0u;
+            cells->passes[i] |= static_cast<uint32_t>(there) << p;
         }
     }
     return fits;
 }
 
 /* The cells of a group's points, and the keys and counts of their first group_cells x group_cells cells:
-   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p], the count 0 past the
-   point's cells (and for the points that do not fit). */
+   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p], the count 0 where
+   either cell does not pass (and for the points that do not fit). */
 struct PointGroup {
-    AxisCells columns[group_points], rows[group_points];
+    GroupAxis columns, rows;
     uint32_t keys[group_cells * group_cells * group_points], counts[group_cells * group_cells * group_points];
-    /* The sifting bounds (CellAxis's low_lanes and high_lanes) of column i and row j of point p, at 2p
-       and 2p + 1 (one lane for each of a cell's first two pairs; zero past the point's cells). */
-    uint64_t low_x[group_cells][2 * group_points], high_x[group_cells][2 * group_points];
-    uint64_t low_y[group_cells][2 * group_points], high_y[group_cells][2 * group_points];
 };
-
-/* The bounds of point p's cells along one axis into its lanes of low and high (PointGroup). */
-inline void group_bounds(const AxisCells &cells, bool fit, uint32_t p, uint64_t (*low)[2 * group_points],
-                         uint64_t (*high)[2 * group_points]) {
-    for (uint32_t i = 0; i < group_cells; i++) {
-        const bool there = fit && i < cells.count;
-        low[i][2u * p] = low[i][2u * p + 1u] = there ? cells.axis[i].low_lanes : 0u;
-        high[i][2u * p] = high[i][2u * p + 1u] = there ? cells.axis[i].high_lanes : 0u;
-    }
-}
 
 /* The impulse counts of the cells of 8 points with these keys (also in memory at keys). */
 inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i key,
@@ -178,53 +188,35 @@ inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shar
     return load_8(counts);
 }
 
+/* All ones in the lanes p of `points` (bit p). */
+inline __m256i point_lanes(uint32_t points) {
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(broadcast_8(points), bits), bits);
+}
+
 /* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
    cells fit the vectors (at most group_cells along each axis). */
 inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shared, const int64_t *xs,
                            const int64_t *ys, uint32_t count, PointGroup *group) {
-    uint32_t cell_x[group_cells][group_points], cell_y[group_cells][group_points];
-    uint32_t column_count[group_points], row_count[group_points];
-    const uint32_t shift = noise->cell_shift;
-    const uint32_t fits_x =
-        noise->period[0] == 0 ? group_axis(noise, 0, xs, count, shared.lanes, group->columns) : 0xFFu;
-    const uint32_t fits_y =
-        noise->period[1] == 0 ? group_axis(noise, 1, ys, count, shared.lanes, group->rows) : 0xFFu;
-    uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
-    for (uint32_t p = 0; p < group_points; p++) {
-        AxisCells *columns = &group->columns[p], *rows = &group->rows[p];
-        /* periodic axes point by point */
-        if (((fits >> p) & 1u) != 0 && noise->period[0] != 0 &&
-            !axis_cells(point_axis(static_cast<uint64_t>(xs[p]), noise->radius[0], shift, noise->period[0]),
-                        shared.lanes, columns))
-            fits &= ~(1u << p);
-        if (((fits >> p) & 1u) != 0 && noise->period[1] != 0 &&
-            !axis_cells(point_axis(static_cast<uint64_t>(ys[p]), noise->radius[1], shift, noise->period[1]),
-                        shared.lanes, rows))
-            fits &= ~(1u << p);
-        const bool fit =
-            ((fits >> p) & 1u) != 0 && columns->count <= group_cells && rows->count <= group_cells;
-        fits &= ~(static_cast<uint32_t>(!fit) << p);
-        for (uint32_t i = 0; i < group_cells; i++) {
-            cell_x[i][p] = fit && i < columns->count ? columns->cell[i] : 0u;
-            cell_y[i][p] = fit && i < rows->count ? rows->cell[i] : 0u;
-        }
-        column_count[p] = fit ? columns->count : 0u, row_count[p] = fit ? rows->count : 0u;
-        group_bounds(*columns, fit, p, group->low_x, group->high_x);
-        group_bounds(*rows, fit, p, group->low_y, group->high_y);
-    }
+    const uint32_t fits_x = noise->period[0] == 0
+                                ? group_axis(noise, 0, xs, count, &group->columns)
+                                : group_periodic_axis(noise, 0, xs, count, shared.lanes, &group->columns);
+    const uint32_t fits_y = noise->period[1] == 0
+                                ? group_axis(noise, 1, ys, count, &group->rows)
+                                : group_periodic_axis(noise, 1, ys, count, shared.lanes, &group->rows);
+    const uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
     const __m256i seed_row = broadcast_8(noise->seed_row), seed_column = broadcast_8(noise->seed_column);
-    const __m256i columns_there = load_8(column_count), rows_there = load_8(row_count);
     for (uint32_t j = 0; j < group_cells; j++) {
-        const __m256i row_key = mix32_8(_mm256_add_epi32(load_8(cell_y[j]), seed_row)); /* dsn_row_key */
-        const __m256i row_there = _mm256_cmpgt_epi32(rows_there, broadcast_8(j));
+        const __m256i row_key =
+            mix32_8(_mm256_add_epi32(load_8(group->rows.cell[j]), seed_row)); /* dsn_row_key */
+        const __m256i row_there = point_lanes(group->rows.passes[j] & fits);
         for (uint32_t i = 0; i < group_cells; i++) {
             uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
             uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
-            const __m256i key =
-                mix32_8(_mm256_add_epi32(_mm256_xor_si256(load_8(cell_x[i]), seed_column), row_key));
+            const __m256i key = mix32_8(
+                _mm256_add_epi32(_mm256_xor_si256(load_8(group->columns.cell[i]), seed_column), row_key));
             store_8(keys, key);
-            const __m256i there =
-                _mm256_and_si256(row_there, _mm256_cmpgt_epi32(columns_there, broadcast_8(i)));
+            const __m256i there = _mm256_and_si256(row_there, point_lanes(group->columns.passes[i]));
 #if defined(__AVX512F__) && defined(__AVX512BW__)
             if (shared.by_tables) { /* the counts below, two cells a vector */
                 store_8(counts, there);
@@ -279,6 +271,12 @@ inline __m512i mix64_8(__m512i x) {
     return _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
 }
 
+/* A sifting bound's word of each point (GroupAxis) in both of its 64-bit lanes: `four` holds the first
+   point's index 4 times, then the next's. */
+inline __m512i bound_lanes(__m512i four, const uint32_t *words) {
+    return _mm512_permutexvar_epi32(four, _mm512_castsi256_si512(load_8(words)));
+}
+
 /* add_first_pairs' pairs and sifted bits of every cell of the group (the cells past a point's, defined
    values unused): dsn_position_pair(key, 0) and (key, 1), candidate_lanes of both with the lanes' top bits
    gathered by one byte movemask for 4 points, less the impulses at or past the cell's count (each
@@ -311,14 +309,12 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
                 _mm512_cmpgt_epu8_mask(_mm512_shuffle_epi8(counts, _mm512_setzero_si512()), impulse);
             const __m512i halves_x = _mm512_and_si512(pairs, halves),
                           halves_y = _mm512_and_si512(_mm512_srli_epi64(pairs, 4), halves);
-            const __m512i in_x =
-                _mm512_and_si512(_mm512_sub_epi64(_mm512_or_si512(halves_x, tops),
-                                                  _mm512_loadu_si512(group.low_x[i] + 2u * from)),
-                                 _mm512_sub_epi64(_mm512_loadu_si512(group.high_x[i] + 2u * from), halves_x));
-            const __m512i in_y =
-                _mm512_and_si512(_mm512_sub_epi64(_mm512_or_si512(halves_y, tops),
-                                                  _mm512_loadu_si512(group.low_y[j] + 2u * from)),
-                                 _mm512_sub_epi64(_mm512_loadu_si512(group.high_y[j] + 2u * from), halves_y));
+            const __m512i in_x = _mm512_and_si512(
+                _mm512_sub_epi64(_mm512_or_si512(halves_x, tops), bound_lanes(four, group.columns.low[i])),
+                _mm512_sub_epi64(bound_lanes(four, group.columns.high[i]), halves_x));
+            const __m512i in_y = _mm512_and_si512(
+                _mm512_sub_epi64(_mm512_or_si512(halves_y, tops), bound_lanes(four, group.rows.low[j])),
+                _mm512_sub_epi64(bound_lanes(four, group.rows.high[j]), halves_y));
             const uint64_t sifted = _cvtmask64_u64(exist & _mm512_movepi8_mask(_mm512_and_si512(in_x, in_y)));
             out->sifted[cell][2u * quarter] = static_cast<uint32_t>(sifted);
             out->sifted[cell][2u * quarter + 1u] = static_cast<uint32_t>(sifted >> 32);
@@ -344,8 +340,9 @@ inline __m256i mix64_4(__m256i x) {
     return _mm256_xor_si256(x, _mm256_srli_epi64(x, 31));
 }
 
-inline __m256i load_4x64(const uint64_t *at) {
-    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
+/* bound_lanes of the AVX-512 copy on AVX2 vectors, 2 points. */
+inline __m256i bound_lanes(__m256i four, const uint32_t *words) {
+    return _mm256_permutevar8x32_epi32(load_8(words), four);
 }
 
 /* group_pairs of the AVX-512 copy on AVX2 vectors, 2 points a vector: add_pair's pairs 0 and 1 and their
@@ -375,11 +372,11 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
             const __m256i halves_x = _mm256_and_si256(pairs, halves),
                           halves_y = _mm256_and_si256(_mm256_srli_epi64(pairs, 4), halves);
             const __m256i in_x = _mm256_and_si256(
-                _mm256_sub_epi64(_mm256_or_si256(halves_x, tops), load_4x64(group.low_x[i] + 2u * from)),
-                _mm256_sub_epi64(load_4x64(group.high_x[i] + 2u * from), halves_x));
+                _mm256_sub_epi64(_mm256_or_si256(halves_x, tops), bound_lanes(four, group.columns.low[i])),
+                _mm256_sub_epi64(bound_lanes(four, group.columns.high[i]), halves_x));
             const __m256i in_y = _mm256_and_si256(
-                _mm256_sub_epi64(_mm256_or_si256(halves_y, tops), load_4x64(group.low_y[j] + 2u * from)),
-                _mm256_sub_epi64(load_4x64(group.high_y[j] + 2u * from), halves_y));
+                _mm256_sub_epi64(_mm256_or_si256(halves_y, tops), bound_lanes(four, group.rows.low[j])),
+                _mm256_sub_epi64(bound_lanes(four, group.rows.high[j]), halves_y));
             out->sifted[cell][half] = static_cast<uint32_t>(
                 _mm256_movemask_epi8(_mm256_and_si256(exist, _mm256_and_si256(in_x, in_y))));
             _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out->pairs[cell] + 2u * from)),
@@ -389,13 +386,29 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
 }
 #endif
 
-/* point_vector_sum of point p of the group, its cells' first two pairs from group_pairs. */
+/* The bases of point p's cells by their indices (point_visit_begin). */
+inline __m256i group_bases(const GroupAxis &cells, uint32_t p) {
+    return _mm256_setr_epi32(static_cast<int>(cells.base[0][p]), static_cast<int>(cells.base[1][p]),
+                             static_cast<int>(cells.base[2][p]), 0, 0, 0, 0, 0);
+}
+
+/* The sifting bounds of point p's cell i (candidate_lanes reads no shifted_base). */
+inline CellAxis group_cell_axis(const GroupAxis &cells, uint32_t i, uint32_t p) {
+    const uint64_t repeat = 0x100000001u;
+    CellAxis axis;
+    axis.shifted_base = 0;
+    axis.low_lanes = cells.low[i][p] * repeat, axis.high_lanes = cells.high[i][p] * repeat;
+    return axis;
+}
+
+/* point_vector_sum's sums of point p of the group, its cells' first two pairs from group_pairs: channel c
+   at sums[c group_points + p]. */
 template <uint32_t Channels>
 void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, const PointGroup &group,
-                     const GroupPairs &pairs, uint32_t p, const uint32_t *quads, int32_t *out) {
-    const AxisCells &columns = group.columns[p], &rows = group.rows[p];
+                     const GroupPairs &pairs, uint32_t p, const uint32_t *quads, uint64_t *sums) {
     PointVisit<Channels> visit;
-    point_visit_start<Channels>(noise, columns, rows, quads, &visit);
+    point_visit_begin<Channels>(noise, group_bases(group.columns, p), group_bases(group.rows, p), quads,
+                                &visit);
     /* The candidates are stored at any 4-byte offset, and a store that crosses a page costs far more
        than one that crosses a cache line: 1024-byte alignment keeps the buffer (644 bytes) within one
        page. */
@@ -422,10 +435,11 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
         add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
 #endif
         if (count > 16u)
-            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes, columns.axis[i], rows.axis[j],
+            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes,
+                                      group_cell_axis(group.columns, i, p), group_cell_axis(group.rows, j, p),
                                       indices);
     }
-    point_visit_finish<Channels>(noise, &visit, &candidates, out);
+    point_visit_sums<Channels>(&visit, &candidates, sums + p, group_points);
 }
 
 /* The batch's points, Channels values each, into out; quads: the batch's table, or null (the texels then
@@ -436,19 +450,28 @@ void batch_groups(const dsn_noise_state *noise, const uint32_t *quads, const int
     const GroupShared shared = group_shared(noise);
     PointGroup group;
     GroupPairs pairs;
+    /* the sums of the group's points that fit, channel c of point p at c group_points + p (the others'
+       zero: defined values, their outputs written over) */
+    uint64_t sums[Channels * group_points];
     for (uint32_t first = 0; first < count; first += group_points) {
         const uint32_t points = count - first < group_points ? count - first : group_points;
         const uint32_t fits = fill_group(noise, shared, xs + first, ys + first, points, &group);
         group_pairs(group, shared.lanes, &pairs);
+        for (uint32_t k = 0; k < Channels * group_points; k++) sums[k] = 0;
+        for (uint32_t p = 0; p < points; p++)
+            if ((fits >> p) & 1u)
+                group_point_sum<Channels>(noise, shared.lanes, group, pairs, p, quads, sums);
+        /* normalize_q32 of the group's points on vectors, a point in each 64-bit lane */
+        int32_t *values = out + static_cast<size_t>(first) * Channels;
+        continuous_splat_normalize(noise, sums, group_points, points, values);
         for (uint32_t p = 0; p < points; p++) {
-            int32_t *values = out + static_cast<size_t>(first + p) * Channels;
             if ((fits >> p) & 1u) {
-                group_point_sum<Channels>(noise, shared.lanes, group, pairs, p, quads, values);
+                dsn_map_output(noise, values + p * Channels);
                 continue;
             }
             const uint64_t x = static_cast<uint64_t>(xs[first + p]), y = static_cast<uint64_t>(ys[first + p]);
-            if (!continuous_point_vector(noise, x, y, values))
-                dsn_internal_continuous_point(noise, x, y, values);
+            if (!continuous_point_vector(noise, x, y, values + p * Channels))
+                dsn_internal_continuous_point(noise, x, y, values + p * Channels);
         }
     }
 }

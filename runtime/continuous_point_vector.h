@@ -565,12 +565,11 @@ DSN_POINT_INLINE bool point_cells(const dsn_noise_state *noise, uint64_t x, uint
            axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, rows);
 }
 
-/* The visit of the point whose cells are columns x rows, its sums zero; quads: the batch's table
-   (PointVisit), or null. */
+/* The visit of a point, its sums zero, given the bases of its column and row cells by their indices
+   (AxisCells's base); quads: the batch's table (PointVisit), or null. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const AxisCells &columns,
-                                        const AxisCells &rows, const uint32_t *quads,
-                                        PointVisit<Channels> *visit) {
+DSN_POINT_INLINE void point_visit_begin(const dsn_noise_state *noise, __m256i column_bases, __m256i row_bases,
+                                        const uint32_t *quads, PointVisit<Channels> *visit) {
     visit->texton = noise->asset.texton;
     visit->quads = quads;
     visit->width = noise->asset.width, visit->height = noise->asset.height;
@@ -578,19 +577,29 @@ DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const Axis
     visit->last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
     visit->last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
     visit->shift = _mm_cvtsi32_si128(static_cast<int>(noise->cell_shift));
-    /* the bases past the axes' cells are not read (masked: defined values) */
-    visit->column_bases = _mm256_maskload_epi32(
-        static_cast<const int *>(static_cast<const void *>(columns.base)),
-        _mm256_cmpgt_epi32(broadcast_8(columns.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-    visit->row_bases = _mm256_maskload_epi32(
-        static_cast<const int *>(static_cast<const void *>(rows.base)),
-        _mm256_cmpgt_epi32(broadcast_8(rows.count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    visit->column_bases = column_bases, visit->row_bases = row_bases;
     for (uint32_t c = 0; c < Channels; c++) {
         visit->sums[c] = _mm256_setzero_si256();
 #if defined(__AVX512F__) && defined(__AVX512BW__)
         visit->wide_sums[c] = _mm512_setzero_si512();
 #endif
     }
+}
+
+/* point_visit_begin for the point whose cells are columns x rows. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const AxisCells &columns,
+                                        const AxisCells &rows, const uint32_t *quads,
+                                        PointVisit<Channels> *visit) {
+    /* the bases past the axes' cells are not read (masked: defined values) */
+    const __m256i indices = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    point_visit_begin<Channels>(
+        noise,
+        _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(columns.base)),
+                              _mm256_cmpgt_epi32(broadcast_8(columns.count), indices)),
+        _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(rows.base)),
+                              _mm256_cmpgt_epi32(broadcast_8(rows.count), indices)),
+        quads, visit);
 }
 
 /* Buffers the candidates of a cell's pairs from impulse 16 on (cells of more than 16 impulses), visiting
@@ -605,21 +614,29 @@ DSN_POINT_INLINE void add_later_pairs(PointVisit<Channels> *visit, PointCandidat
     }
 }
 
-/* Visits the candidates left and writes the point's values. */
+/* Visits the candidates left and writes the point's sums, channel c at sums[c stride]. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void point_visit_finish(const dsn_noise_state *noise, PointVisit<Channels> *visit,
-                                         PointCandidates *candidates, int32_t *out) {
+DSN_POINT_INLINE void point_visit_sums(PointVisit<Channels> *visit, PointCandidates *candidates,
+                                       uint64_t *sums, uint32_t stride) {
     visit_point_candidates<Channels>(visit, candidates);
-    uint64_t sums[DSN_MAX_CHANNELS];
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t lanes_64[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
         __builtin_memcpy(lanes_64, &visit->sums[c], 32);
 #if defined(__AVX512F__) && defined(__AVX512BW__)
         __builtin_memcpy(lanes_64 + 4, &visit->wide_sums[c], 64);
 #endif
-        sums[c] = 0;
-        for (uint32_t k = 0; k < 12; k++) sums[c] += lanes_64[k];
+        uint64_t sum = 0;
+        for (uint32_t k = 0; k < 12; k++) sum += lanes_64[k];
+        sums[c * stride] = sum;
     }
+}
+
+/* Visits the candidates left and writes the point's values. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void point_visit_finish(const dsn_noise_state *noise, PointVisit<Channels> *visit,
+                                         PointCandidates *candidates, int32_t *out) {
+    uint64_t sums[Channels];
+    point_visit_sums<Channels>(visit, candidates, sums, 1);
     normalize_q32(noise, sums, out);
 }
 
