@@ -253,6 +253,20 @@ struct GroupPairs {
 /* What group_pairs adds to (key << 32) of pairs 0 and 1: index 0x9E3779B97F4A7C15 (dsn_position_pair). */
 const long long pair_1_step = -0x61C8864680B583EB; /* 0x9E3779B97F4A7C15 */
 
+/* candidate_lanes of a pair in each 64-bit lane, given each lane's bounds (CellAxis's low_lanes and
+   high_lanes): the top bit of each 8-bit lane whose impulse may reach its point. */
+inline splat_vector sifted_lanes(splat_vector pairs, splat_vector halves, splat_vector tops,
+                                 splat_vector low_x, splat_vector high_x, splat_vector low_y,
+                                 splat_vector high_y) {
+    const splat_vector halves_x = splat_and(pairs, halves),
+                       halves_y = splat_and(splat_shift_right(pairs, 4), halves);
+    const splat_vector in_x =
+        splat_and(splat_sub(splat_or(halves_x, tops), low_x), splat_sub(high_x, halves_x));
+    const splat_vector in_y =
+        splat_and(splat_sub(splat_or(halves_y, tops), low_y), splat_sub(high_y, halves_y));
+    return splat_and(in_x, in_y);
+}
+
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products (the kernel has no
    AVX512DQ): the high halves' product only reaches bits 64 and up. */
@@ -307,15 +321,11 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
             /* every byte of a point's 128 bits: its count (below 256) */
             const __mmask64 exist =
                 _mm512_cmpgt_epu8_mask(_mm512_shuffle_epi8(counts, _mm512_setzero_si512()), impulse);
-            const __m512i halves_x = _mm512_and_si512(pairs, halves),
-                          halves_y = _mm512_and_si512(_mm512_srli_epi64(pairs, 4), halves);
-            const __m512i in_x = _mm512_and_si512(
-                _mm512_sub_epi64(_mm512_or_si512(halves_x, tops), bound_lanes(four, group.columns.low[i])),
-                _mm512_sub_epi64(bound_lanes(four, group.columns.high[i]), halves_x));
-            const __m512i in_y = _mm512_and_si512(
-                _mm512_sub_epi64(_mm512_or_si512(halves_y, tops), bound_lanes(four, group.rows.low[j])),
-                _mm512_sub_epi64(bound_lanes(four, group.rows.high[j]), halves_y));
-            const uint64_t sifted = _cvtmask64_u64(exist & _mm512_movepi8_mask(_mm512_and_si512(in_x, in_y)));
+            const __m512i in_reach =
+                sifted_lanes(pairs, halves, tops, bound_lanes(four, group.columns.low[i]),
+                             bound_lanes(four, group.columns.high[i]), bound_lanes(four, group.rows.low[j]),
+                             bound_lanes(four, group.rows.high[j]));
+            const uint64_t sifted = _cvtmask64_u64(exist & _mm512_movepi8_mask(in_reach));
             out->sifted[cell][2u * quarter] = static_cast<uint32_t>(sifted);
             out->sifted[cell][2u * quarter + 1u] = static_cast<uint32_t>(sifted >> 32);
             _mm512_storeu_si512(out->pairs[cell] + 2u * from, pairs);
@@ -369,16 +379,12 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
             /* every byte of a point's 128 bits: its count (at most 16) */
             const __m256i exist =
                 _mm256_cmpgt_epi8(_mm256_shuffle_epi8(counts, _mm256_setzero_si256()), impulse);
-            const __m256i halves_x = _mm256_and_si256(pairs, halves),
-                          halves_y = _mm256_and_si256(_mm256_srli_epi64(pairs, 4), halves);
-            const __m256i in_x = _mm256_and_si256(
-                _mm256_sub_epi64(_mm256_or_si256(halves_x, tops), bound_lanes(four, group.columns.low[i])),
-                _mm256_sub_epi64(bound_lanes(four, group.columns.high[i]), halves_x));
-            const __m256i in_y = _mm256_and_si256(
-                _mm256_sub_epi64(_mm256_or_si256(halves_y, tops), bound_lanes(four, group.rows.low[j])),
-                _mm256_sub_epi64(bound_lanes(four, group.rows.high[j]), halves_y));
-            out->sifted[cell][half] = static_cast<uint32_t>(
-                _mm256_movemask_epi8(_mm256_and_si256(exist, _mm256_and_si256(in_x, in_y))));
+            const __m256i in_reach =
+                sifted_lanes(pairs, halves, tops, bound_lanes(four, group.columns.low[i]),
+                             bound_lanes(four, group.columns.high[i]), bound_lanes(four, group.rows.low[j]),
+                             bound_lanes(four, group.rows.high[j]));
+            out->sifted[cell][half] =
+                static_cast<uint32_t>(_mm256_movemask_epi8(_mm256_and_si256(exist, in_reach)));
             _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out->pairs[cell] + 2u * from)),
                                 pairs);
         }

@@ -135,6 +135,8 @@ inline splat_vector splat_load(const uint64_t *from) {
     return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(from)));
 }
 inline splat_vector splat_sub(splat_vector a, splat_vector b) { return _mm256_sub_epi64(a, b); }
+inline splat_vector splat_and(splat_vector a, splat_vector b) { return _mm256_and_si256(a, b); }
+inline splat_vector splat_or(splat_vector a, splat_vector b) { return _mm256_or_si256(a, b); }
 inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
     return _mm256_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
 }

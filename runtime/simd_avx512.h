@@ -171,6 +171,8 @@ inline splat_vector splat_add(splat_vector a, splat_vector b) { return _mm512_ad
 inline void splat_store(uint64_t *out, splat_vector value) { _mm512_storeu_si512(out, value); }
 inline splat_vector splat_load(const uint64_t *from) { return _mm512_loadu_si512(from); }
 inline splat_vector splat_sub(splat_vector a, splat_vector b) { return _mm512_sub_epi64(a, b); }
+inline splat_vector splat_and(splat_vector a, splat_vector b) { return _mm512_and_si512(a, b); }
+inline splat_vector splat_or(splat_vector a, splat_vector b) { return _mm512_or_si512(a, b); }
 inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
     return _mm512_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
 }
