@@ -2,7 +2,8 @@
 // the same run: per point over a 512 x 512 grid, tiles rotated and axis-aligned at two zooms with every
 // copy of the tile code this CPU runs (each timed in rounds beside its own lattice tile), and random points
 // one by one and as a batch (the batch in every copy too), RGB, 31 x 31 texton, 30 impacts per pixel, one
-// thread.
+// thread; and each copy's splat kernel in its best case (splat_best_case.h) against what a tile at 1/6 of
+// the lattice tile leaves each impulse and pixel.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
 #include "painted_stack.h"
+#include "splat_best_case.h"
 
 namespace {
 
@@ -26,7 +28,8 @@ int64_t checksum = 0; // keeps the evaluations observable
 
 int main() {
     using namespace continuous_fixtures;
-    auto noise = make_noise(random_texton_asset(3, 15, 8, 1), 1, 30u << 16);
+    const uint32_t impacts = 30; // per pixel
+    auto noise = make_noise(random_texton_asset(3, 15, 8, 1), 1, impacts << 16);
     const dsn_noise *n = &noise->noise;
     const double samples = double(kSide) * kSide;
     const int64_t one = int64_t(1) << 32;
@@ -162,6 +165,11 @@ int main() {
                         grids[g].name, samples / (cost.best * cost.baseline_best) / 1e6, cost.best,
                         tile_rounds, cost.median);
         }
+        // What 1/6 of the lattice tile leaves each impulse and pixel, against the splat kernel alone.
+        std::printf(
+            "    the splat kernel at its best (splat_best_case.h): %.2f ns per impulse and pixel, where a "
+            "tile at 1/6 of the lattice tile has %.2f in all\n",
+            bench::splat_best_case(n, kernel) * 1e9, 6 * lattice_tiles[kernel] / samples / impacts * 1e9);
     }
     std::printf("  %zu random points: continuous %.0f ns/point, lattice per point %.0f ns/point: "
                 "ratio %.2f best, %.2f median of %d\n",
