@@ -30,9 +30,12 @@ inline double splat_best_case(const dsn_noise *handle, uint32_t kernel) {
     setup.texture.level = 0;
     setup.reach_x = int64_t((asset.width - 1) / 2 + 1) * one;
     setup.reach_y = int64_t((asset.height - 1) / 2 + 1) * one;
+    // The geometry below is drawn for a reach of 16 texels (a 31 x 31 texton) and scaled to the texton's.
+    const double scale_x = double(setup.reach_x) / double(16 * one),
+                 scale_y = double(setup.reach_y) / double(16 * one);
     const double step = 0.45, cosine = std::cos(M_PI / 6), sine = std::sin(M_PI / 6);
-    setup.step_x = int64_t(step * cosine * double(one));
-    setup.step_y = int64_t(step * sine * double(one));
+    setup.step_x = int64_t(step * cosine * scale_x * double(one));
+    setup.step_y = int64_t(step * sine * scale_y * double(one));
     std::vector<uint64_t> cells(splat_cell_capacity);
 #if DSN_SPLAT_CELLS
     if (make_splat_cells(setup.texture, cells.data(), splat_cell_capacity, &setup.cell_row) != 0)
@@ -42,12 +45,13 @@ inline double splat_best_case(const dsn_noise *handle, uint32_t kernel) {
     setup.plane = size_t(stride) * rows;
     setup.sums_end = sums.data() + sums.size();
     // The rows' first pixels: a run spans 64 steps, 25 texels across and 14.4 down, centred across and
-    // moving down half a texel a row, so that every pixel stays within reach of the impulse.
+    // moving down half a texel a row, so that every pixel stays within reach of the impulse (the kernel's
+    // condition: offsets in (-reach, reach)).
     dsn_splat_run runs[dsn_splat_runs_most];
-    const double span_x = step * cosine * columns;
+    const double span_x = step * cosine * scale_x * columns;
     for (uint32_t r = 0; r < rows; r++) {
         runs[r].offset_x = int64_t(-span_x / 2 * double(one));
-        runs[r].offset_y = int64_t((-15.5 + 0.5 * r) * double(one));
+        runs[r].offset_y = int64_t((-15.5 + 0.5 * r) * scale_y * double(one));
         runs[r].sums = sums.data() + size_t(r) * stride;
         runs[r].count = columns;
     }
