@@ -30,10 +30,11 @@ inline double splat_best_case(const dsn_noise *handle, uint32_t kernel) {
     setup.texture.level = 0;
     setup.reach_x = int64_t((asset.width - 1) / 2 + 1) * one;
     setup.reach_y = int64_t((asset.height - 1) / 2 + 1) * one;
-    // The geometry below is drawn for a reach of 16 texels (a 31 x 31 texton) and scaled to the texton's.
+    // The geometry below is drawn for a reach of 16 texels (a 31 x 31 texton) and blocks of 32 rows of 64
+    // pixels, and scaled to the texton's reach and the block's sides.
     const double scale_x = double(setup.reach_x) / double(16 * one),
                  scale_y = double(setup.reach_y) / double(16 * one);
-    const double step = 0.45, cosine = std::cos(M_PI / 6), sine = std::sin(M_PI / 6);
+    const double step = 0.45 * 64 / columns, cosine = std::cos(M_PI / 6), sine = std::sin(M_PI / 6);
     setup.step_x = int64_t(step * cosine * scale_x * double(one));
     setup.step_y = int64_t(step * sine * scale_y * double(one));
     std::vector<uint64_t> cells(splat_cell_capacity);
@@ -51,7 +52,7 @@ inline double splat_best_case(const dsn_noise *handle, uint32_t kernel) {
     const double span_x = step * cosine * scale_x * columns;
     for (uint32_t r = 0; r < rows; r++) {
         runs[r].offset_x = int64_t(-span_x / 2 * double(one));
-        runs[r].offset_y = int64_t((-15.5 + 0.5 * r) * scale_y * double(one));
+        runs[r].offset_y = int64_t((-15.5 + 16.0 * r / rows) * scale_y * double(one));
         runs[r].sums = sums.data() + size_t(r) * stride;
         runs[r].count = columns;
     }
