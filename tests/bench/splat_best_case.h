@@ -37,10 +37,15 @@ inline double splat_best_case(const dsn_noise *handle, uint32_t kernel) {
     const double step = 0.45 * 64 / columns, cosine = std::cos(M_PI / 6), sine = std::sin(M_PI / 6);
     setup.step_x = int64_t(step * cosine * scale_x * double(one));
     setup.step_y = int64_t(step * sine * scale_y * double(one));
-    std::vector<uint64_t> cells(splat_cell_capacity);
+    // The records on 64-byte boundaries, as the tile keeps them (continuous_tile.cpp): RGB cells whole
+    // within a cache line.
+    struct alignas(64) Records {
+        uint64_t values[splat_cell_capacity];
+    };
+    std::vector<Records> cells(1);
 #if DSN_SPLAT_CELLS
-    if (make_splat_cells(setup.texture, cells.data(), splat_cell_capacity, &setup.cell_row) != 0)
-        setup.cells = cells.data();
+    if (make_splat_cells(setup.texture, cells[0].values, splat_cell_capacity, &setup.cell_row) != 0)
+        setup.cells = cells[0].values;
 #endif
     std::vector<uint64_t> sums(size_t(asset.channels) * stride * rows);
     setup.plane = size_t(stride) * rows;
