@@ -76,6 +76,13 @@ void dsn_internal_filter_sums_walked(const dsn_noise_state *noise, uint64_t x, u
 void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums);
+
+/* The same walk as dsn_internal_filter_sums_sifted with no level read: the candidates are listed (every
+   impulse within reach of a tap's level, and those the sift could not tell apart from them), counted and
+   dropped. Returns their count. make bench's floor under a filtered point's cost: the listing alone. */
+uint64_t dsn_internal_filter_listing_only(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                          const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                          uint32_t count);
 #endif
 
 /* A filtered value, step by step (filtered_point.cpp; the filtered tile takes the same steps):

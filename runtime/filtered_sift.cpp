@@ -6,8 +6,9 @@
    2^64 do not depend on the order. Where the kernel has them, its listing (filtered_candidates_vector.h)
    lists the candidates of whole cells at once, each tap's level then tests only the runs of cells that
    may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels, on the
-   listing's 32-bit offsets (narrow_test) where the box is small enough. Compiled
-   only with DSN_FILTERING in the fast build. */
+   listing's 32-bit offsets (narrow_test) where the box is small enough. The same walk without the reads
+   (the candidates counted) is make bench's listing alone. Compiled only with DSN_FILTERING in the fast
+   build. */
 #include "bilinear_read.h"
 #include "cell_walk.h"
 #include "continuous_internal.h"
@@ -296,7 +297,9 @@ struct TapGroup {
     dsn_filter_level_reads_entry *vector_reads;   /* the kernel's (8-bit levels), or null */
     dsn_filter_candidates_entry *list_candidates; /* the kernel's (cells of side <= 16), or null */
     uint32_t shift;                               /* the noise's cell_shift */
-    bool narrow; /* the kernel's listing and reads take the narrow offsets only (narrow_test) */
+    bool narrow;      /* the kernel's listing and reads take the narrow offsets only (narrow_test) */
+    uint64_t *listed; /* null, or where the candidates are counted instead of read
+                         (dsn_internal_filter_listing_only) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -350,6 +353,11 @@ void take_splat(const SplatGrid &grid, const dsn_walked_level &level, uint64_t *
    mask's bits. */
 template <uint32_t Channels, uint32_t Bytes>
 void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
+    if (group.listed != 0) {
+        *group.listed += list->count;
+        list->count = list->cells = 0;
+        return;
+    }
     /* A single tap's kernel reads take the whole list at once (their exact tests leave out what lies
        beyond the level's reach): a call per run of cells, each with its partial vectors, costs more
        than testing the candidates of the cells beyond. (No splat grid then: sum_group.) */
@@ -561,7 +569,8 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
        level on vectors (faster). */
     SplatGrid splat_grid, *grid = 0;
     const dsn_walked_level &coarser = group.levels[group.level_count - 1u];
-    if (group.taps == 1 && splat_fits(coarser) && !(Bytes == 1 && group.vector_reads != 0)) {
+    if (group.taps == 1 && group.listed == 0 && splat_fits(coarser) &&
+        !(Bytes == 1 && group.vector_reads != 0)) {
         grid = &splat_grid;
         grid->level_index = group.level_count - 1u;
         for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
@@ -586,30 +595,32 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
+    group->listed = 0;
     group->narrow = group->vector_reads != 0 && group->list_candidates != 0 && noise->asset.bits == 8 &&
                     group->x.reach_limit < narrow_reach_limit && group->y.reach_limit < narrow_reach_limit;
     return true;
 }
 
+/* listed: null, or where the candidates are counted instead of read. */
 template <uint32_t Channels, uint32_t Bytes>
 void sum_taps(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t taps,
-              const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums) {
+              const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed) {
     TapGroup group;
     if (tap_group(noise, x, y, 0, taps, levels, count, &group)) {
+        group.listed = listed;
         sum_group<Channels, Bytes>(noise, group, sums);
         return;
     }
     for (uint32_t t = 0; t < taps; t++) {
         tap_group(noise, x, y, t, 1, levels, count, &group); /* one tap has no spread */
+        group.listed = listed;
         sum_group<Channels, Bytes>(noise, group, sums);
     }
 }
 
-} // namespace
-
-void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
-                                     const dsn_filter_plan *plan, const dsn_walked_level *levels,
-                                     uint32_t count, dsn_filter_sums sums) {
+void sum_taps_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
+                       const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums,
+                       uint64_t *listed) {
     uint64_t tap_x[DSN_FILTER_MAX_TAPS], tap_y[DSN_FILTER_MAX_TAPS];
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         tap_x[tap] = x + static_cast<uint64_t>(plan->offset_x[tap]);
@@ -620,15 +631,32 @@ void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, u
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3) {
         if (asset->bits == 8)
-            sum_taps<3, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+            sum_taps<3, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
         else
-            sum_taps<3, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+            sum_taps<3, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
     } else {
         if (asset->bits == 8)
-            sum_taps<1, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+            sum_taps<1, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
         else
-            sum_taps<1, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums);
+            sum_taps<1, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
     }
+}
+
+} // namespace
+
+void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                     const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                     uint32_t count, dsn_filter_sums sums) {
+    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, 0);
+}
+
+uint64_t dsn_internal_filter_listing_only(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                          const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                          uint32_t count) {
+    dsn_filter_sums sums;
+    uint64_t listed = 0;
+    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, &listed);
+    return listed;
 }
 
 #endif /* DSN_FILTERING && !DSN_SMALL_CODE */

@@ -5,7 +5,8 @@
 // footprints across every level of detail and anisotropic ones of every tap count and direction, at
 // ordinary points and where the taps straddle the seam of the int32 coordinates; and the levels read with
 // their all-zero margins cut (a shorter reach) against the levels as stored; cells of every side the
-// kernels' listing takes or leaves; in every kernel copy the CPU runs.
+// kernels' listing takes or leaves; in every kernel copy the CPU runs. And the listing alone (make bench's)
+// lists at least the impulses that the walk reads.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -45,6 +46,28 @@ std::vector<dsn_footprint> footprints(TestRandom &random) {
                 list.push_back(slanted(minor, ratio, angle, max_taps));
             }
     return list;
+}
+
+// The listing alone (dsn_internal_filter_listing_only, make bench's) lists every impulse within reach of
+// every tap's level: as many as the walk's reads of levels whose values are all 1, each of which adds at
+// most 2^32 (the bilinear weights of an interior read sum to 2^32; a border read's to less).
+void check_listing(const dsn_noise_state &state, uint64_t x, uint64_t y, const dsn_filter_plan &plan,
+                   const dsn_walked_level *levels, uint32_t count) {
+    const uint32_t bytes = state.asset.bits / 8;
+    dsn_walked_level ones[2];
+    std::vector<unsigned char> values[2];
+    for (uint32_t l = 0; l < count; l++) {
+        ones[l] = levels[l];
+        values[l].assign((levels[l].width * levels[l].height * state.asset.channels + 8) * bytes, 0);
+        for (size_t i = 0; i < values[l].size(); i += bytes) values[l][i] = 1; // 1 in i8 and in i16le
+        ones[l].values = values[l].data();
+        ones[l].stride = levels[l].width;
+    }
+    dsn_filter_sums reads;
+    dsn_internal_filter_sums_walked(&state, x, y, &plan, ones, count, reads);
+    const uint64_t listed = dsn_internal_filter_listing_only(&state, x, y, &plan, levels, count);
+    for (uint32_t t = 0; t < plan.taps; t++)
+        for (uint32_t l = 0; l < count; l++) REQUIRE(reads[t][l][0] <= listed << 32);
 }
 
 // Compares the sums and the values of one point under one footprint; counts the comparisons made.
@@ -88,6 +111,7 @@ void compare_point(const dsn_noise &noise, int64_t x, int64_t y, const dsn_footp
                     REQUIRE(walked_cut[t][l][c] == walked[t][l][c]);
                     REQUIRE(sifted_cut[t][l][c] == walked[t][l][c]);
                 }
+        check_listing(*state, uint64_t(x), uint64_t(y), plan, cut_levels, count);
     }
     int32_t reference[3] = {0, 0, 0}, fast[3] = {0, 0, 0};
     dsn_internal_filtered_point_walked(state, uint64_t(x), uint64_t(y), &plan, reference);

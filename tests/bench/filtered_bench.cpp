@@ -3,7 +3,8 @@
 // isotropic per level of detail, anisotropic per tap, filtered tiles (splatted) against the same pixels
 // point by point, and the asset's size with and without its pyramid.
 // Beside each ratio, the expected number of impulses within reach of a tap at the coarser level read,
-// lambda (2 (r_l + 1) 2^l)^2, against level 0's: the part of the cost that grows with the level.
+// lambda (2 (r_l + 1) 2^l)^2, against level 0's: the part of the cost that grows with the level; and, for
+// the isotropic footprints, the cost of the same walks with no level read (the impulses listed alone).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -69,6 +70,23 @@ int main() {
             }
         });
     };
+    // The same points' walks with no level read (dsn_internal_filter_listing_only): only the impulses
+    // listed, what any filtered point of that footprint pays before it reads a value.
+    auto listing_alone = [&](const dsn_footprint &f) {
+        const dsn_noise_state *state = dsn_state(n);
+        dsn_filter_plan plan;
+        dsn_internal_filter_plan(&f, state->asset.pyramid_levels, &plan);
+        dsn_walked_level walked[2];
+        const uint32_t count = dsn_internal_filter_walked_levels(state, &plan, walked);
+        return bench::paired_ratio(kRounds, continuous, [&] {
+            for (uint32_t i = 0; i < kPoints; i++) {
+                int64_t x, y;
+                point(i, &x, &y);
+                checksum += int64_t(
+                    dsn_internal_filter_listing_only(state, uint64_t(x), uint64_t(y), &plan, walked, count));
+            }
+        });
+    };
     std::printf("continuous per point: %.0f ns (the baseline, timed beside each case; ratios: median of %d "
                 "rounds, then best over best)\n",
                 best_time(3, continuous) / kPoints * 1e9, kRounds);
@@ -101,8 +119,14 @@ int main() {
         uint32_t taps;
         dsn_filter_level(n, &f, &lod_q8, &taps);
         const bench::PairedRatio cost = filtered(f);
-        std::printf("isotropic filtered, LOD %.1f: %.2fx (%.2fx) the continuous per point, %s\n", lod,
+        std::printf("isotropic filtered, LOD %.1f: %.2fx (%.2fx) the continuous per point, %s", lod,
                     cost.median, cost.best, impulse_text(lod_q8));
+        if ((uint32_t(lod_q8) >> 8) > noise->asset.pyramid_levels) {
+            std::printf("\n");
+            continue;
+        }
+        const bench::PairedRatio listing = listing_alone(f);
+        std::printf("; the listing of its impulses alone %.2fx (%.2fx)\n", listing.median, listing.best);
     }
     const double ratios[] = {2, 4, 8, 16};
     const double minors[] = {1, 2, 4};
