@@ -478,7 +478,8 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
      that texton). A fractional LOD reads both levels over one walk of the coarser one's impulses. The N
      taps of a point share one walk over the box that holds their reaches, each impulse read at every tap it
      reaches, so a tap costs less than a point of its level alone. make bench reports the ratios to the
-     continuous mode per level of detail and per tap, with the impulse counts.
+     continuous mode per level of detail and per tap, with the impulse counts and, per level of detail,
+     the cost of listing the impulses alone (no level read).
    An asset without a pyramid (format 1.0, or a 1 x 1 texton) has L = 0: the filtered evaluation then
    fades from the continuous mode (LOD 0) to the mean colour (LOD 1 and beyond).
 
