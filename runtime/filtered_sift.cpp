@@ -580,9 +580,11 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
     if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
 }
 
-/* The taps first .. first + taps - 1 of the points (x, y) in one walk; false when they lie too far apart. */
+/* The taps first .. first + taps - 1 of the points (x, y) in one walk, their candidates counted instead of
+   read where listed is not null; false when they lie too far apart. */
 bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t first,
-               uint32_t taps, const dsn_walked_level *levels, uint32_t count, TapGroup *group) {
+               uint32_t taps, const dsn_walked_level *levels, uint32_t count, uint64_t *listed,
+               TapGroup *group) {
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
@@ -592,28 +594,25 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->level_count = count;
     group->first = first;
     group->taps = taps;
+    group->listed = listed;
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
-    group->listed = 0;
     group->narrow = group->vector_reads != 0 && group->list_candidates != 0 && noise->asset.bits == 8 &&
                     group->x.reach_limit < narrow_reach_limit && group->y.reach_limit < narrow_reach_limit;
     return true;
 }
 
-/* listed: null, or where the candidates are counted instead of read. */
 template <uint32_t Channels, uint32_t Bytes>
 void sum_taps(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t taps,
               const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed) {
     TapGroup group;
-    if (tap_group(noise, x, y, 0, taps, levels, count, &group)) {
-        group.listed = listed;
+    if (tap_group(noise, x, y, 0, taps, levels, count, listed, &group)) {
         sum_group<Channels, Bytes>(noise, group, sums);
         return;
     }
     for (uint32_t t = 0; t < taps; t++) {
-        tap_group(noise, x, y, t, 1, levels, count, &group); /* one tap has no spread */
-        group.listed = listed;
+        tap_group(noise, x, y, t, 1, levels, count, listed, &group); /* one tap has no spread */
         sum_group<Channels, Bytes>(noise, group, sums);
     }
 }
