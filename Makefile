@@ -65,7 +65,8 @@ OFFLINE_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS) $(PACKAGE_LIB
 PROGRAMS :=          # built by `make all`
 TEST_PROGRAMS :=     # built by `make test`, not by `make all`
 TEST_SCRIPTS :=      # run by `make test` after the doctest runner, each counted as one test
-BENCH_PROGRAMS :=    # built and run by `make bench`
+BENCH_PROGRAMS :=    # built and run by `make bench`; built (not run) by `make test`
+WEB_BENCH_PROGRAMS := # run by `make bench` only: they need the web toolchain (`make deps-web`)
 INSTALL_PROGRAMS :=  # copied to $(PREFIX)/bin by `make install`
 
 .PHONY: all deps test demo bench install uninstall clean format format-check sanitize
@@ -144,8 +145,8 @@ sanitize: deps
 	    CXXFLAGS="-O1 -g $(SANITIZE_FLAGS)" CFLAGS="-O1 -g $(SANITIZE_FLAGS)" LDFLAGS="$(SANITIZE_FLAGS)" DSN_SANITIZE_FLAGS="$(SANITIZE_FLAGS)"
 
 bench: deps
-	@$(MAKE) --no-print-directory all $(BENCH_PROGRAMS)
-	@for program in $(BENCH_PROGRAMS); do echo "== $$program"; $$program || exit 1; done
+	@$(MAKE) --no-print-directory all $(BENCH_PROGRAMS) $(WEB_BENCH_PROGRAMS)
+	@for program in $(BENCH_PROGRAMS) $(WEB_BENCH_PROGRAMS); do echo "== $$program"; $$program || exit 1; done
 
 # What `make install` puts under $(DESTDIR)$(PREFIX), and `make uninstall` removes: the headers, the two
 # static libraries, the tools, the pkg-config files and the CMake package (lib/cmake/dsn: find_package(dsn)

@@ -82,4 +82,4 @@ $(BUILD)/obj/examples/web/%.o: examples/web/%.cpp
 	$(CXX) $(OFFLINE_FLAGS) $(CXXFLAGS) -c $< -o $@
 examples/web/bench-wasm: $(WEB_WASM) $(WEB)/demo.dsnt $(WEB)/dsn.mjs $(BUILD)/bin/dsn-web-bench-native
 bench: deps-web
-BENCH_PROGRAMS += examples/web/bench-wasm
+WEB_BENCH_PROGRAMS += examples/web/bench-wasm
