@@ -6,3 +6,4 @@ TEST_SCRIPTS += tests/scripts/check-public-header
 TEST_SCRIPTS += tests/scripts/synth-errors
 TEST_SCRIPTS += tests/scripts/image-input-valgrind
 TEST_SCRIPTS += tests/scripts/histogram-build-options
+TEST_SCRIPTS += tests/scripts/deps-without-dpkg tests/scripts/test-graph-toolchains
