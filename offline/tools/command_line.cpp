@@ -1,6 +1,8 @@
 // command_line.cpp - the shared argument parsing and exit conventions of the tools (command_line.h).
 #include "command_line.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +26,7 @@ bool CommandLine::next() {
     inline_value_.clear();
     positional_ = flags_ended_ || argument.size() < 2 || argument[0] != '-';
     name_ = argument;
+    known_flags_.clear();
     if (positional_) return true;
     if (argument == "--") {
         flags_ended_ = true;
@@ -48,7 +51,11 @@ bool CommandLine::next() {
     return true;
 }
 
-bool CommandLine::is(const char *flag) const { return !positional_ && name_ == flag; }
+bool CommandLine::is(const char *flag) const {
+    if (positional_) return false;
+    known_flags_.push_back(flag);
+    return name_ == flag;
+}
 
 std::string CommandLine::value() {
     if (has_inline_value_) return inline_value_;
@@ -62,7 +69,51 @@ void CommandLine::no_value() const {
 
 void CommandLine::unknown() const {
     if (positional_) throw UsageError("unexpected argument '" + name_ + "'");
-    throw UsageError("unknown flag " + name_);
+    std::vector<std::string> candidates = known_flags_;
+    candidates.push_back("--help"); // answered by next() itself, never tested with is()
+    candidates.push_back("--version");
+    const std::string suggestion = nearest_flag(name_, candidates);
+    throw UsageError("unknown flag " + name_ +
+                     (suggestion.empty() ? "" : ": did you mean " + suggestion + "?"));
+}
+
+namespace {
+
+std::string flag_word(const std::string &flag) {
+    std::string word = flag.substr(std::min(flag.find_first_not_of('-'), flag.size()));
+    for (char &c : word) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return word;
+}
+
+// The edit distance with adjacent transpositions counted as one edit (optimal string alignment), so
+// that "--szie" is one edit from "--size".
+size_t edit_distance(const std::string &a, const std::string &b) {
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); i++) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); j++) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); i++)
+        for (size_t j = 1; j <= b.size(); j++) {
+            d[i][j] = std::min(
+                {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+} // namespace
+
+std::string nearest_flag(const std::string &given, const std::vector<std::string> &known) {
+    const std::string word = flag_word(given);
+    std::string best;
+    size_t best_distance = 3; // farther than any suggestion
+    for (const std::string &flag : known) {
+        const std::string known_word = flag_word(flag);
+        const size_t distance = edit_distance(word, known_word);
+        if (distance < best_distance && 3 * distance <= known_word.size())
+            best = flag, best_distance = distance;
+    }
+    return best;
 }
 
 long long parse_integer(const std::string &flag, const std::string &text, long long minimum,

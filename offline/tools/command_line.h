@@ -4,9 +4,10 @@
 //   name and version ("dsn-bake 1.2.0", the version of libdsn), both on stdout, exit 0; "--" ends the
 //   flags.
 //   A usage mistake (unknown flag, missing or malformed value, missing argument) prints one line
-//   "TOOL: what is wrong (see --help)" on stderr and exits 2; a failure while running (unreadable input,
-//   bad asset, cannot write) prints one line "TOOL: what failed" and exits 1. Nothing is left half
-//   written on failure.
+//   "TOOL: what is wrong (see --help)" on stderr and exits 2 (a misspelt flag gets "did you mean
+//   --radius?": the flags the tool tested with is() before calling unknown() are the candidates); a failure
+//   while running (unreadable input, bad asset, cannot write) prints one line "TOOL: what failed" and
+//   exits 1. Nothing is left half written on failure.
 //
 //     int main(int argc, char **argv) {
 //         return dsn::run_tool("dsn-thing", kUsage, argc, argv, [](dsn::CommandLine &arguments) {
@@ -26,6 +27,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dsn {
 
@@ -45,13 +47,15 @@ class CommandLine {
     // The current argument: a flag's name (without "=value") or a positional argument.
     const std::string &current() const { return name_; }
     // Whether the current argument is the flag `flag` ("-o", "--size"), given as "--size 4" or "--size=4".
+    // Remembers `flag` as a known one, for unknown()'s suggestion.
     bool is(const char *flag) const;
     bool is_positional() const { return positional_; }
     // The flag's value: what follows '=', else the next argument. UsageError when there is none.
     std::string value();
     // For a flag that takes no value: UsageError when one was given with '='.
     void no_value() const;
-    // Throws the UsageError for an unknown flag or an extra positional argument.
+    // Throws the UsageError for an unknown flag (with "did you mean --flag?" when a flag tested by is()
+    // since next() is close: nearest_flag) or an extra positional argument.
     [[noreturn]] void unknown() const;
 
   private:
@@ -61,7 +65,14 @@ class CommandLine {
     int index_ = 0;
     bool flags_ended_ = false, positional_ = false, has_inline_value_ = false;
     std::string name_, inline_value_;
+    mutable std::vector<std::string> known_flags_; // tested by is() since the last next()
 };
+
+// Among `known` flags, the one `given` most likely misspells: the nearest by edit distance (insertions,
+// deletions, substitutions, swaps of neighbours; the leading dashes and letter case ignored) when that
+// distance is at most 2 and at most a third of the flag's length without its dashes, so that short flags
+// ("-o") are never guessed; "" when none is that close. Ties go to the first in `known`.
+std::string nearest_flag(const std::string &given, const std::vector<std::string> &known);
 
 // A whole decimal number within [minimum, maximum] from the current flag's value; UsageError naming the
 // flag otherwise.
