@@ -6,6 +6,7 @@
 #   make demo       the demo pictures            make bench     benchmarks (ratios to baselines)
 #   make install    PREFIX=/usr/local DESTDIR=   make deps      Debian packages the build needs
 #   make uninstall  the same PREFIX and DESTDIR: removes what install put there
+#   make fresh-check  as root: `make demo` and `make test` on a fresh Debian root (tests/fresh-machine/)
 # DSN_NO_DEPS=1 (make variable or environment) skips the package step of make deps and the other deps-*
 # targets: nothing is checked or installed (you provide what they would). Without dpkg (not Debian), make
 # deps installs nothing: it checks that the build's libraries are found (.ci/install-packages).
