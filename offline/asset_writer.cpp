@@ -1,6 +1,6 @@
 // asset_writer.cpp - encodes AssetFields into the .dsnt byte layout of format.h: a 1.0 file, a 1.1 file
 // with a pyramid section when the fields have pyramid levels, a 1.2 file with the histogram flag and
-// section when they have a histogram mapping.
+// section when they have a histogram mapping, a 1.3 file when they have a lattice texton.
 #include "dsn/asset_writer.h"
 #include "../runtime/format_bytes.h"
 
@@ -65,6 +65,44 @@ void validate(const AssetFields &fields) {
     }
 }
 
+// The loader's step 17 (format.h) on a lattice texton that is to be written.
+void validate_lattice_texton(const AssetFields &fields) {
+    require(fields.interpolation == DSN_INTERPOLATION_BILINEAR, "a lattice texton needs a bilinear asset");
+    require(is_valid_side(fields.lattice_width) && is_valid_side(fields.lattice_height),
+            "lattice texton width and height must be odd, 1..255");
+    require(fields.lattice_texton.size() ==
+                size_t(fields.lattice_width) * fields.lattice_height * fields.channels,
+            "lattice texton must hold lattice_width * lattice_height * channels values");
+    const int32_t limit = fields.bits == 8 ? 127 : 32767;
+    for (uint32_t c = 0; c < fields.channels; c++) {
+        int64_t sum = 0, lattice_sum = 0;
+        for (size_t i = c; i < fields.texton.size(); i += fields.channels) sum += fields.texton[i];
+        for (size_t i = c; i < fields.lattice_texton.size(); i += fields.channels) {
+            const int32_t value = fields.lattice_texton[i];
+            require(value >= -limit && value <= limit, "lattice texton value outside the quantization range");
+            lattice_sum += value;
+        }
+        require(sum == lattice_sum, "the lattice texton's sum differs from the texton's");
+    }
+}
+
+// Texton-like values (i8 or i16 little-endian as `bits`) appended to `bytes`.
+void append_values(std::vector<unsigned char> &bytes, const std::vector<int32_t> &values, uint32_t bits) {
+    for (int32_t value : values) {
+        bytes.push_back(uint8_t(value & 0xFF));
+        if (bits == 16) bytes.push_back(uint8_t((value >> 8) & 0xFF));
+    }
+}
+
+// The payload of the lattice texton section (format.h, section kind 3).
+std::vector<unsigned char> encode_lattice_texton(const AssetFields &fields) {
+    std::vector<unsigned char> payload(DSN_LATTICE_TEXTON_HEADER_SIZE, 0);
+    payload[0] = uint8_t(fields.lattice_width);
+    payload[1] = uint8_t(fields.lattice_height);
+    append_values(payload, fields.lattice_texton, fields.bits);
+    return payload;
+}
+
 // The loader's step 16 (format.h) on a mapping that is to be written (non-empty tables).
 void validate_histogram(const AssetFields &fields) {
     const HistogramMapping &mapping = fields.histogram;
@@ -121,7 +159,6 @@ void append_section(std::vector<unsigned char> &header, uint32_t kind,
 
 // The payload of the pyramid section (format.h, section kind 1).
 std::vector<unsigned char> encode_pyramid(const AssetFields &fields) {
-    const size_t value_bytes = fields.bits / 8;
     std::vector<unsigned char> payload(DSN_PYRAMID_HEADER_SIZE +
                                        DSN_PYRAMID_RECORD_SIZE * fields.pyramid.size());
     payload[0] = uint8_t(fields.pyramid.size());
@@ -131,11 +168,7 @@ std::vector<unsigned char> encode_pyramid(const AssetFields &fields) {
         record[1] = uint8_t(fields.pyramid[l].height);
         record[2] = uint8_t(fields.pyramid[l].exponent & 0xFF);
     }
-    for (const PyramidLevel &level : fields.pyramid)
-        for (int32_t value : level.values) {
-            payload.push_back(uint8_t(value & 0xFF));
-            if (value_bytes == 2) payload.push_back(uint8_t((value >> 8) & 0xFF));
-        }
+    for (const PyramidLevel &level : fields.pyramid) append_values(payload, level.values, fields.bits);
     return payload;
 }
 
@@ -152,9 +185,12 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     if (has_histogram) validate_histogram(fields);
     const size_t value_bytes = fields.bits / 8;
     const bool has_pyramid = !fields.pyramid.empty();
+    const bool has_lattice_texton = !fields.lattice_texton.empty();
+    if (has_lattice_texton) validate_lattice_texton(fields);
     std::vector<unsigned char> header(DSN_FORMAT_HEADER_SIZE, 0);
     if (has_pyramid) append_section(header, DSN_SECTION_PYRAMID, encode_pyramid(fields));
     if (has_histogram) append_section(header, DSN_SECTION_HISTOGRAM, encode_histogram(fields.histogram));
+    if (has_lattice_texton) append_section(header, DSN_SECTION_LATTICE_TEXTON, encode_lattice_texton(fields));
     const size_t header_size = header.size();
     const size_t total = header_size + fields.texton.size() * value_bytes + DSN_FORMAT_CRC_SIZE;
     std::vector<unsigned char> bytes(total, 0);
@@ -162,9 +198,10 @@ std::vector<unsigned char> encode_asset(const AssetFields &fields) {
     std::memcpy(p, header.data(), header_size);
     std::memcpy(p, DSN_FORMAT_MAGIC, DSN_FORMAT_MAGIC_SIZE);
     dsn_write_u16le(p + DSN_OFFSET_VERSION_MAJOR, DSN_FORMAT_VERSION_MAJOR);
-    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR, has_histogram ? DSN_FORMAT_HISTOGRAM_MINOR
-                                                  : has_pyramid ? DSN_FORMAT_SECTIONS_MINOR
-                                                                : DSN_FORMAT_VERSION_MINOR_PLAIN);
+    dsn_write_u16le(p + DSN_OFFSET_VERSION_MINOR, has_lattice_texton ? DSN_FORMAT_LATTICE_TEXTON_MINOR
+                                                  : has_histogram    ? DSN_FORMAT_HISTOGRAM_MINOR
+                                                  : has_pyramid      ? DSN_FORMAT_SECTIONS_MINOR
+                                                                     : DSN_FORMAT_VERSION_MINOR_PLAIN);
     dsn_write_u32le(p + DSN_OFFSET_HEADER_SIZE, uint32_t(header_size));
     dsn_write_u32le(p + DSN_OFFSET_TOTAL_SIZE, uint32_t(total));
     dsn_write_u32le(p + DSN_OFFSET_FLAGS, has_histogram ? DSN_FLAG_HISTOGRAM : 0u);

@@ -27,6 +27,11 @@ void check_options(const BakeOptions &options) {
     if (options.interpolation != DSN_INTERPOLATION_LATTICE &&
         options.interpolation != DSN_INTERPOLATION_BILINEAR)
         throw std::invalid_argument("unknown interpolation");
+    if (options.interpolation == DSN_INTERPOLATION_BILINEAR && options.radius > kMaxBilinearRadius)
+        throw std::invalid_argument("radius " + std::to_string(options.radius) +
+                                    " is for lattice bakes only: " + "a bilinear bake's radius is at most " +
+                                    std::to_string(kMaxBilinearRadius) +
+                                    " (its lattice texton is 2 texels wider, at most 255)");
     if (!(options.stop_tolerance >= 0) || !std::isfinite(options.stop_tolerance))
         throw std::invalid_argument("stop tolerance must be finite and non-negative");
 }
@@ -74,6 +79,7 @@ AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options,
     fields.exemplar_height = uint32_t(exemplar_height);
     fields.texton = quantized.values;
     if (options.pyramid) fields.pyramid = texton_pyramid(fields);
+    if (options.interpolation == DSN_INTERPOLATION_BILINEAR) set_lattice_texton(fields);
     return fields;
 }
 

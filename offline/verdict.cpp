@@ -56,12 +56,13 @@ void marginal_moments(const Image &exemplar, const ColourBasis &basis, int k, Ch
 }
 
 // Bytes of the asset a bake at `radius` writes: the bake's own fields with a texton (and, when the bake
-// has one, a pyramid) of that size.
+// has them, a pyramid and a lattice texton) of that size.
 size_t asset_bytes_at(const BakeResult &result, int radius) {
     AssetFields fields = result.fields;
     fields.width = fields.height = uint32_t(2 * radius + 1);
     fields.texton.assign(size_t(fields.width) * fields.height * fields.channels, 0);
     if (!fields.pyramid.empty()) fields.pyramid = texton_pyramid(fields);
+    if (!fields.lattice_texton.empty()) set_lattice_texton(fields);
     return encode_asset(fields).size();
 }
 

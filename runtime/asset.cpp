@@ -1,8 +1,8 @@
 /* runtime/asset.cpp - validates a .dsnt asset in place (format.h, in its documented order) and reads
    texton values and pyramid levels; also the static error messages (format.h's error table). A build
    with neither DSN_FILTERING nor DSN_HISTOGRAM leaves the sections unread (format.h: such a runtime reads
-   1.1 files as 1.0 and refuses 1.2 files with the histogram flag), which keeps the small build's code as
-   it was. */
+   1.1 files as 1.0, refuses 1.2 files with the histogram flag and reads 1.3 bilinear files in continuous
+   mode only), which keeps the small build's code as it was. */
 #include "format_bytes.h"
 #include "init_internal.h"
 
@@ -117,11 +117,14 @@ struct section {
 };
 
 /* Step 14: the sections fill [128, header_size) exactly, each padded with zeros to 4 bytes, a known kind
-   at most once (the histogram's is known from minor 2 on). Finds the pyramid's and the histogram's
-   payloads. Every comparison is made on the room left, so nothing can wrap. */
-int find_sections(const unsigned char *bytes, uint32_t header_size, section *pyramid, section *histogram) {
-    const int knows_histogram =
-        dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR) >= DSN_FORMAT_HISTOGRAM_MINOR;
+   at most once (the histogram's is known from minor 2 on, the lattice texton's from minor 3 on). Finds
+   the known kinds' payloads (known[kind - 1]). Every comparison is made on the room left, so nothing can
+   wrap. */
+int find_sections(const unsigned char *bytes, uint32_t header_size, section *known_kinds) {
+    const uint32_t minor = dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR);
+    const uint32_t kinds = minor >= DSN_FORMAT_LATTICE_TEXTON_MINOR ? 3u
+                           : minor >= DSN_FORMAT_HISTOGRAM_MINOR    ? 2u
+                                                                    : 1u;
     for (uint32_t offset = DSN_FORMAT_HEADER_SIZE; offset < header_size;) {
         uint32_t room = header_size - offset;
         if (room < DSN_SECTION_HEADER_SIZE) return DSN_ERR_SECTION;
@@ -133,10 +136,8 @@ int find_sections(const unsigned char *bytes, uint32_t header_size, section *pyr
         const unsigned char *payload = bytes + offset + DSN_SECTION_HEADER_SIZE;
         for (uint32_t i = 0; i < padding; i++)
             if (payload[size + i] != 0) return DSN_ERR_SECTION;
-        section *known = kind == DSN_SECTION_PYRAMID                        ? pyramid
-                         : kind == DSN_SECTION_HISTOGRAM && knows_histogram ? histogram
-                                                                            : 0;
-        if (known != 0) {
+        if (kind - 1u < kinds) {
+            section *known = &known_kinds[kind - 1u];
             if (known->payload != 0) return DSN_ERR_SECTION;
             known->payload = payload;
             known->size = size;
@@ -213,15 +214,50 @@ int read_histogram(dsn_asset *asset, const unsigned char *bytes, section histogr
 }
 #endif
 
-/* Steps 14 to 16, for files of minor version 1 and later (16 from minor 2 on). */
+/* The sum of a texton's values of channel c; INT32_MIN (which no sum reaches: |sum| <= 255 * 255 * 32767
+   < 2^31 - 1) when one of them is the reserved -128 / -32768. */
+int32_t channel_sum(const dsn_asset *asset, uint32_t c) {
+    int32_t sum = 0;
+    const int32_t reserved = asset->bits == 8 ? -128 : -32768;
+    for (uint32_t i = 0; i < asset->width * asset->height; i++) {
+        const int32_t value = dsn_asset_texton_value(asset, i / asset->width, i % asset->width, c);
+        if (value == reserved) return INT32_MIN;
+        sum += value;
+    }
+    return sum;
+}
+
+/* Step 17: the lattice texton's size, values and per-channel sums (equal to the texton's, so that both
+   reads share one normalization). */
+int read_lattice_texton(dsn_asset *asset, const unsigned char *payload, uint32_t size) {
+    dsn_asset lattice = *asset;
+    lattice.texton = payload + DSN_LATTICE_TEXTON_HEADER_SIZE;
+    lattice.width = payload[0];
+    lattice.height = payload[1];
+    if (asset->interpolation != DSN_INTERPOLATION_BILINEAR || size < DSN_LATTICE_TEXTON_HEADER_SIZE ||
+        (payload[2] | payload[3]) != 0 || lattice.width % 2 == 0 || lattice.height % 2 == 0 ||
+        size != DSN_LATTICE_TEXTON_HEADER_SIZE +
+                    lattice.width * lattice.height * asset->channels * (asset->bits / 8))
+        return DSN_ERR_LATTICE_TEXTON;
+    for (uint32_t c = 0; c < asset->channels; c++)
+        if (channel_sum(&lattice, c) != channel_sum(asset, c)) return DSN_ERR_LATTICE_TEXTON;
+    asset->lattice_texton = lattice.texton;
+    asset->lattice_width = lattice.width;
+    asset->lattice_height = lattice.height;
+    return DSN_OK;
+}
+
+/* Steps 14 to 17, for files of minor version 1 and later (16 from minor 2 on, 17 from minor 3 on). */
 int read_sections(dsn_asset *asset, const unsigned char *bytes) {
     if (dsn_read_u16le(bytes + DSN_OFFSET_VERSION_MINOR) < DSN_FORMAT_SECTIONS_MINOR) return DSN_OK;
-    section pyramid = {0, 0}, histogram = {0, 0};
-    int err = find_sections(bytes, dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE), &pyramid, &histogram);
-    if (err == DSN_OK && pyramid.payload != 0) err = read_pyramid(asset, pyramid.payload, pyramid.size);
+    section known[3] = {{0, 0}, {0, 0}, {0, 0}}; /* pyramid, histogram, lattice texton */
+    int err = find_sections(bytes, dsn_read_u32le(bytes + DSN_OFFSET_HEADER_SIZE), known);
+    if (err == DSN_OK && known[0].payload != 0) err = read_pyramid(asset, known[0].payload, known[0].size);
 #if DSN_HISTOGRAM
-    if (err == DSN_OK) err = read_histogram(asset, bytes, histogram);
+    if (err == DSN_OK) err = read_histogram(asset, bytes, known[1]);
 #endif
+    if (err == DSN_OK && known[2].payload != 0)
+        err = read_lattice_texton(asset, known[2].payload, known[2].size);
     return err;
 }
 #endif

@@ -40,15 +40,32 @@ const dsn_noise_state *configured(const dsn_noise *handle) {
     return noise != 0 && noise->asset.texton != 0 ? noise : 0;
 }
 
+/* Values of a texton of `asset`'s channels: width * height * channels. */
+size_t texton_words(const dsn_asset *asset, uint32_t width, uint32_t height) {
+    return size_t(width) * height * asset->channels;
+}
+
 } // namespace
 
 extern "C" size_t dsn_gpu_word_count(const dsn_noise *handle) {
     const dsn_noise_state *noise = configured(handle);
     if (noise == 0) return 0;
-    return DSN_GPU_HEADER_WORDS + size_t(noise->asset.width) * noise->asset.height * noise->asset.channels;
+    const dsn_asset *asset = &noise->asset;
+    return DSN_GPU_HEADER_WORDS + texton_words(asset, asset->width, asset->height) +
+           (asset->lattice_texton != 0 ? texton_words(asset, asset->lattice_width, asset->lattice_height)
+                                       : 0u);
 }
 
 namespace {
+
+/* A texton's values, sign-extended to whole words in uint32 arithmetic: the asset stores them in the
+   layout's order (format.h: row-major, channels interleaved, 8-bit or 16-bit little-endian two's
+   complement). */
+void put_texton(uint32_t *words, const unsigned char *texton, size_t count, uint32_t bits) {
+    const uint32_t bytes = bits / 8, sign = bytes == 1 ? 0x80u : 0x8000u;
+    for (size_t v = 0; v < count; v++, texton += bytes)
+        words[v] = ((texton[0] | (bytes == 2 ? uint32_t(texton[1]) << 8 : 0u)) ^ sign) - sign;
+}
 
 /* int64 values as pairs of words, low first (the conversion to uint64 is modulo 2^64). */
 void put_pairs(uint32_t *words, const int64_t *values, uint32_t count) {
@@ -81,14 +98,21 @@ extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t cap
     words[17] = dsn_continuous_check(handle) == DSN_OK ? 1u : 0u;
     put_pairs(words + 18, noise->gain, 9);
     put_pairs(words + 36, noise->offset, 3);
-    for (i = 42; i < cdf_first; i++) words[i] = 0;
+    /* The lattice evaluators' texton (dsn_lattice_view): the lattice texton after the texton, or the
+       texton itself. */
+    const size_t texton_count = texton_words(asset, asset->width, asset->height);
+    const int separate = asset->lattice_texton != 0;
+    words[42] = separate ? asset->lattice_width : asset->width;
+    words[43] = separate ? asset->lattice_height : asset->height;
+    words[44] = (words[42] - 1u) / 2u;
+    words[45] = (words[43] - 1u) / 2u;
+    words[46] = static_cast<uint32_t>(DSN_GPU_HEADER_WORDS + (separate ? texton_count : 0u));
+    for (i = 47; i < cdf_first; i++) words[i] = 0;
     for (i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
     for (i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
-    /* The asset stores the texton in the same order (format.h): row-major, channels interleaved, 8-bit or
-       16-bit little-endian two's complement, sign-extended here in uint32 arithmetic. */
-    const uint32_t bytes = asset->bits / 8, sign = bytes == 1 ? 0x80u : 0x8000u;
-    const unsigned char *texton = asset->texton;
-    for (size_t v = DSN_GPU_HEADER_WORDS; v < count; v++, texton += bytes)
-        words[v] = ((texton[0] | (bytes == 2 ? uint32_t(texton[1]) << 8 : 0u)) ^ sign) - sign;
+    put_texton(words + DSN_GPU_HEADER_WORDS, asset->texton, texton_count, asset->bits);
+    if (separate)
+        put_texton(words + DSN_GPU_HEADER_WORDS + texton_count, asset->lattice_texton,
+                   count - DSN_GPU_HEADER_WORDS - texton_count, asset->bits);
     return DSN_OK;
 }

@@ -49,4 +49,12 @@ inline dsn_noise_state *dsn_state(dsn_noise *noise) {
     return static_cast<dsn_noise_state *>(static_cast<void *>(noise));
 }
 
+/* The noise as the lattice evaluators read it: the noise itself, or, for an asset that carries a lattice
+   texton (format 1.3: a bilinear bake), a copy in `view` whose texton is that one (its window, a
+   rectangle, and its radius). Everything else stays: the cells, the Poisson table, the density of the
+   asset's own support and the normalization (the two textons' sums are equal, format.h). Null in a
+   build that reads no sections (the small build) for a 1.3 bilinear asset, whose lattice texton it has
+   not read: its lattice evaluators refuse such an asset (DSN_ERR_UNSUPPORTED). In noise_init.cpp. */
+const dsn_noise_state *dsn_internal_lattice_view(const dsn_noise_state *noise, dsn_noise_state *view);
+
 #endif /* DSN_NOISE_STATE_H */

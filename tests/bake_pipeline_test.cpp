@@ -95,12 +95,16 @@ void check_quantized_bake(const std::string &name, const dsn::Image &exemplar, b
           doctest::Approx(result.rme_without_zero_frequency * result.rme_without_zero_frequency +
                           zero_frequency / model_energy)
               .epsilon(1e-6));
-    dsn::AssetFields plain = result.fields; // the 1.0 asset (dsn-bake --no-pyramid)
+    dsn::AssetFields plain = result.fields; // the 1.0 asset (dsn-bake --no-pyramid --interpolation lattice)
     plain.pyramid.clear();
+    plain.lattice_texton.clear();
     CHECK(dsn::encode_asset(plain).size() == 128 + 31 * 31 * size_t(exemplar.channels) + 4);
     CHECK(dsn::encode_asset(plain).size() <= 3200);
     CHECK(result.fields.pyramid.size() == 4);
-    CHECK(result.asset.size() <= 6 * 1024);
+    // The default (bilinear) bake adds its lattice texton, 33 x 33, in a section of its own.
+    const size_t lattice_bytes = 8 + 4 + 33 * 33 * size_t(exemplar.channels);
+    CHECK(result.fields.lattice_texton.size() == 33 * 33 * size_t(exemplar.channels));
+    CHECK(result.asset.size() <= 6 * 1024 + lattice_bytes + 3);
     CHECK(result.fields.bake_iterations == 100);
     CHECK(result.fields.exemplar_width == uint32_t(exemplar.width));
     CHECK(result.fields.bake_rme_q24 == uint32_t(std::lround(result.rme_quantized * (1 << 24))));

@@ -21,7 +21,12 @@ void check_layout(const dsn_noise &noise) {
     const dsn_noise_state *state = dsn_state(&noise);
     const dsn_asset &asset = state->asset;
     const size_t count = dsn_gpu_word_count(&noise);
-    REQUIRE(count == DSN_GPU_HEADER_WORDS + size_t(asset.width) * asset.height * asset.channels);
+    const size_t texton_words = size_t(asset.width) * asset.height * asset.channels;
+    const bool separate = asset.lattice_texton != nullptr;
+    const uint32_t lattice_width = separate ? asset.lattice_width : asset.width;
+    const uint32_t lattice_height = separate ? asset.lattice_height : asset.height;
+    REQUIRE(count == DSN_GPU_HEADER_WORDS + texton_words +
+                         (separate ? size_t(lattice_width) * lattice_height * asset.channels : 0u));
     std::vector<uint32_t> words(count + 1, 0xDEADBEEFu);
     REQUIRE(dsn_gpu_pack(&noise, words.data(), count) == DSN_OK);
     CHECK(words[count] == 0xDEADBEEFu); // nothing past the count
@@ -45,7 +50,12 @@ void check_layout(const dsn_noise &noise) {
     CHECK(words[17] == (dsn_continuous_check(&noise) == DSN_OK ? 1u : 0u));
     for (size_t i = 0; i < 9; i++) CHECK(pair_at(words, 18 + 2 * i) == uint64_t(state->gain[i]));
     for (size_t i = 0; i < 3; i++) CHECK(pair_at(words, 36 + 2 * i) == uint64_t(state->offset[i]));
-    for (size_t i = 42; i < 48; i++) CHECK(words[i] == 0u);
+    CHECK(words[42] == lattice_width);
+    CHECK(words[43] == lattice_height);
+    CHECK(words[44] == (lattice_width - 1) / 2);
+    CHECK(words[45] == (lattice_height - 1) / 2);
+    CHECK(words[46] == DSN_GPU_HEADER_WORDS + (separate ? texton_words : 0u));
+    CHECK(words[47] == 0u);
     for (size_t i = 0; i < 96; i++) CHECK(words[48 + i] == state->poisson_cdf[i]);
     for (size_t i = 0; i < 64; i++) CHECK(words[144 + i] == state->poisson_guide[i]);
     size_t index = DSN_GPU_HEADER_WORDS, differences = 0;
@@ -53,6 +63,18 @@ void check_layout(const dsn_noise &noise) {
         for (uint32_t column = 0; column < asset.width; column++)
             for (uint32_t c = 0; c < asset.channels; c++)
                 differences += int32_t(words[index++]) != dsn_asset_texton_value(&asset, row, column, c);
+    if (separate) { // the lattice texton follows, read as a texton of its own size
+        dsn_asset lattice = asset;
+        lattice.texton = asset.lattice_texton;
+        lattice.width = lattice_width;
+        lattice.height = lattice_height;
+        for (uint32_t row = 0; row < lattice.height; row++)
+            for (uint32_t column = 0; column < lattice.width; column++)
+                for (uint32_t c = 0; c < asset.channels; c++)
+                    differences +=
+                        int32_t(words[index++]) != dsn_asset_texton_value(&lattice, row, column, c);
+    }
+    CHECK(index == count);
     CHECK(differences == 0);
 }
 
@@ -75,6 +97,12 @@ TEST_CASE("dsn_gpu_pack writes the documented layout") {
         LoadedNoise loaded(dsn_test::synthetic_fields(each.channels, each.side, each.bits, each.shape, 3),
                            each.config);
         check_layout(loaded.noise);
+        dsn::AssetFields bilinear =
+            dsn_test::synthetic_fields(each.channels, each.side, each.bits, each.shape, 3);
+        bilinear.interpolation = DSN_INTERPOLATION_BILINEAR; // with its lattice texton (format 1.3)
+        dsn::set_lattice_texton(bilinear);
+        LoadedNoise with_lattice(bilinear, each.config);
+        check_layout(with_lattice.noise);
     }
 }
 

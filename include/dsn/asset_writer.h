@@ -47,7 +47,7 @@ struct HistogramMapping {
 // Every header field of format 1.0, in its stored fixed-point form, plus the quantized texton values
 // (width * height * channels, row-major from the top row, channels interleaved), and the optional
 // pyramid and histogram mapping: with neither the file is a 1.0 file, with levels only a 1.1 file with
-// one pyramid section, with a mapping a 1.2 file.
+// one pyramid section, with a mapping a 1.2 file, with a lattice texton a 1.3 file.
 struct AssetFields {
     uint32_t channels = 1;
     uint32_t bits = 8;
@@ -67,11 +67,21 @@ struct AssetFields {
     std::vector<int32_t> texton;
     std::vector<PyramidLevel> pyramid; // levels 1, 2, ...: at most DSN_PYRAMID_MAX_LEVELS
     HistogramMapping histogram;        // with tables: a 1.2 file with the flag and a kind-2 section
+    // The lattice texton of a bilinear asset (format 1.3, section kind 3): lattice_width x lattice_height
+    // values per channel at the texton's scale, summing per channel to the texton's sum. Empty (the
+    // default) writes none; set_lattice_texton() fills it from the texton.
+    uint32_t lattice_width = 0;
+    uint32_t lattice_height = 0;
+    std::vector<int32_t> lattice_texton;
 };
 
 // The identity colour transform for `channels` (grey: K[0] = 1, the other entries 0).
 void set_identity_color_transform(AssetFields &fields);
 
+// Fills the lattice texton of a bilinear asset from its quantized texton (format.h, version 1.3): the
+// texton convolved with the two-tap filter whose power spectrum is the bilinear read's, one texel larger
+// on each side, rounded with the per-channel sums kept exactly.
+void set_lattice_texton(AssetFields &fields);
 // The complete file: header (with the pyramid section when there are levels), texton, CRC. Throws
 // std::invalid_argument on a field the loader rejects.
 std::vector<unsigned char> encode_asset(const AssetFields &fields);

@@ -97,6 +97,8 @@ struct GaussianModel {
 
 // The texton's support: the square of side 2r+1 or the disk dx^2 + dy^2 <= r^2 around the origin.
 constexpr int kMaxRadius = (int(DSN_FORMAT_MAX_SIDE) - 1) / 2;
+// A bilinear bake also writes its lattice texton (format 1.3), 2 texels wider than the texton.
+constexpr int kMaxBilinearRadius = kMaxRadius - 1;
 struct Support {
     int radius = 0;
     uint32_t shape = DSN_SHAPE_RECTANGLE; // DSN_SHAPE_RECTANGLE (square) or DSN_SHAPE_DISK

@@ -61,6 +61,10 @@ const uint DSN_WORD_POISSON_SIZE = 16u;
 const uint DSN_WORD_CONTINUOUS = 17u;
 const uint DSN_WORD_GAIN = 18u;
 const uint DSN_WORD_OFFSET = 36u;
+const uint DSN_WORD_LATTICE_WIDTH = 42u; /* the lattice evaluators' texton: width, height, radii, start */
+const uint DSN_WORD_LATTICE_HEIGHT = 43u;
+const uint DSN_WORD_LATTICE_RADIUS = 44u; /* x, then y */
+const uint DSN_WORD_LATTICE_TEXTON = 46u;
 const uint DSN_WORD_POISSON_CDF = 48u;
 const uint DSN_WORD_POISSON_GUIDE = 144u;
 const uint DSN_WORD_TEXTON = 208u;
@@ -304,8 +308,8 @@ ivec3 dsn_normalize(uvec3 sums) {
 
 /* ---- Lattice per point ---- */
 
-uvec3 dsn_texton_entry(uint entry, uint channels) {
-    uint at = DSN_WORD_TEXTON + entry * channels;
+uvec3 dsn_lattice_texton_entry(uint entry, uint channels) {
+    uint at = dsn_word(DSN_WORD_LATTICE_TEXTON) + entry * channels;
     if (channels != 3u) return uvec3(dsn_word(at), 0u, 0u);
     return uvec3(dsn_word(at), dsn_word(at + 1u), dsn_word(at + 2u));
 }
@@ -321,12 +325,13 @@ uvec2 dsn_lattice_cell_on_axis(dsn_span span, uint cell, uint shift) {
    the point adds its texton entry. */
 uvec3 dsn_lattice_sums(uint x, uint y) {
     uint shift = dsn_word(DSN_WORD_CELL_SHIFT), channels = dsn_word(DSN_WORD_CHANNELS);
-    uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
+    uint width = dsn_word(DSN_WORD_LATTICE_WIDTH), height = dsn_word(DSN_WORD_LATTICE_HEIGHT);
     uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
     uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
-    dsn_axis axis_x = dsn_axis_init(x, 1u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
+    dsn_axis axis_x =
+        dsn_axis_init(x, 1u, dsn_word(DSN_WORD_LATTICE_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
     dsn_axis axis_y =
-        dsn_axis_init(y, 1u, dsn_word(DSN_WORD_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
+        dsn_axis_init(y, 1u, dsn_word(DSN_WORD_LATTICE_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
     uvec3 sums = uvec3(0u);
     for (uint span_index_y = 0u; span_index_y < axis_y.span_count; span_index_y++) {
         dsn_span span_y = dsn_axis_span(axis_y, span_index_y);
@@ -348,7 +353,7 @@ uvec3 dsn_lattice_sums(uint x, uint y) {
                              offset_y = ((field >> half_bits) & half_mask) >> drop;
                         uint column = in_x.x - offset_x, row = in_y.x - offset_y;
                         if (column < width && row < height && offset_x <= in_x.y && offset_y <= in_y.y)
-                            sums += dsn_texton_entry(row * width + column, channels);
+                            sums += dsn_lattice_texton_entry(row * width + column, channels);
                     }
                 }
             }

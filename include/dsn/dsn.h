@@ -19,6 +19,11 @@
        so a window may straddle the 32-bit wrap), every float coordinate (NaN and infinities included),
        every seed, every period; invalid arguments return a negative dsn_error code (dsn/format.h lists
        them all), never undefined behaviour.
+     - On any error every evaluator's output is zeroed, never left undefined: every channel of a
+       configured noise, out[0] alone where the noise is null or not configured (its channel count is
+       unknown), and a tile's or batch's whole output (width * height or count points, of its channels or
+       of one value each), never beyond it; a tile refused for its size (DSN_ERR_TILE_SIZE) is left as it
+       is. The lattice per-point functions return no code: a null or unconfigured noise gives out[0] = 0.
      - The loader validates the asset in place and keeps pointers into the caller's buffer: the buffer
        must outlive the dsn_asset and every dsn_noise made from it.
 
@@ -121,9 +126,9 @@ extern "C" {
 #endif
 
 #define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 3
+#define DSN_VERSION_MINOR 4
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.3.0"
+#define DSN_VERSION_STRING "1.4.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);
@@ -168,6 +173,13 @@ typedef struct dsn_asset {
     int32_t histogram_rotation[9];     /* P, Q8.24, row-major */
     int32_t histogram_centre[3];       /* Q8.24 */
     int32_t histogram_expected_q16[3]; /* Q16.16: what the filtered evaluation fades to */
+    /* The lattice texton of a 1.3 bilinear asset (format.h, section kind 3): the texton convolved with
+       the two-tap filter whose power spectrum is the bilinear read's, which the lattice evaluators read
+       instead of `texton` so that a bilinear bake gives the exemplar's statistics on the lattice too.
+       Same channels, bits and scale as `texton`, rectangle shape, in the caller's buffer. Null and 0 for
+       an asset without one: lattice-baked assets, and bilinear ones written before format 1.3. */
+    const unsigned char *lattice_texton;
+    uint32_t lattice_width, lattice_height; /* odd, 1..255 */
 } dsn_asset;
 
 /* Validates `size` bytes at `bytes` as a .dsnt asset and fills `asset`. Returns DSN_OK or the first
@@ -274,7 +286,8 @@ int dsn_noise_mean_float(const dsn_noise *noise, float *out);
    DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill, its histogram
    fields out of format.h's ranges included; a build with DSN_HISTOGRAM 0 refuses any histogram table).
    Every period 1 .. 2^32 - 1 is valid. On failure `noise` is zeroed, and the evaluation functions then
-   write nothing (lattice per point) or return an error (the others).
+   refuse it: the lattice per-point functions set out[0] to 0, the others return an error and zero their
+   output as they state.
    Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen by a fixed cost model of the per-point
    call (the same choice on every platform, since the cell size is part of the output); a 31 x 31 texton
    at 30 impacts per pixel gets 16 x 16 cells (mean 8 impulses each).
@@ -282,9 +295,19 @@ int dsn_noise_mean_float(const dsn_noise *noise, float *out);
    tens of thousands of full-scale impulses hit one point. */
 int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config);
 
-/* ---- Per-point evaluation (lattice) ---- */
+/* ---- Per-point evaluation (lattice) ----
+   The lattice evaluators (these and the lattice tiles below) read the asset's lattice texton where it
+   has one (format 1.3: every bilinear bake of dsn-bake 1.4 and later), the texton itself otherwise, so
+   that a default (bilinear) bake shows the exemplar's statistics on the lattice as in continuous mode:
+   the same variance and spectrum as the continuous noise at lattice points (format.h says why). A
+   bilinear asset written before format 1.3 has none: read on the lattice, it has up to 9 times the
+   exemplar's power at the highest frequencies (re-bake it). A build that reads no sections (the small
+   build: DSN_FILTERING 0 and DSN_HISTOGRAM 0) has not read a 1.3 bilinear asset's lattice texton: its
+   lattice evaluators refuse such an asset (the tiles return DSN_ERR_UNSUPPORTED, a point is zeroed);
+   bake `--interpolation lattice` for it, or read it in continuous mode. */
 
-/* out[channels]: Q16.16 values at lattice point (x, y). A null `noise` or `out` writes nothing. */
+/* out[channels]: Q16.16 values at lattice point (x, y). A null or unconfigured `noise` sets out[0] to 0
+   (its channel count is unknown; there is no error code to return); a null `out` is ignored. */
 void dsn_lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out);
 /* out[channels]: the same value as float, exactly fixed / 65536 rounded to float. */
 void dsn_lattice_point_float(const dsn_noise *noise, int32_t x, int32_t y, float *out);
@@ -303,7 +326,9 @@ uint8_t dsn_fixed_to_u8(int32_t value);
    need a scratch buffer of at least dsn_lattice_tile_scratch_size() bytes (an integer accumulator; no
    alignment needed), else they return DSN_ERR_SCRATCH. dsn_lattice_tile_scratch_size returns 0 for an invalid
    noise or size. Width and height are 1 .. DSN_TILE_MAX_SIDE (else DSN_ERR_TILE_SIZE, also when the tile is
-   not addressable); null pointers give DSN_ERR_NULL, a noise that is not configured DSN_ERR_ARGUMENT. */
+   not addressable); null pointers give DSN_ERR_NULL, a noise that is not configured DSN_ERR_ARGUMENT. On
+   any error but DSN_ERR_TILE_SIZE a non-null `out` is zeroed: width * height * channels values, or
+   width * height for a null or unconfigured noise. */
 /* On x86, fixed and float tiles of 16 MB of output or more are written with non-temporal stores (they
    would not stay in the caches anyway), so reading them right after the call comes from memory. */
 size_t dsn_lattice_tile_scratch_size(const dsn_noise *noise, uint32_t width, uint32_t height);
@@ -364,7 +389,8 @@ typedef struct dsn_grid {
 /* Tile evaluation on a grid: width x height pixels, row-major, top row (j = 0) first, channels
    interleaved, exactly the per-point values. `scratch` as in lattice tile evaluation (at least
    dsn_continuous_tile_scratch_size() bytes, no alignment needed). Returns DSN_OK, DSN_ERR_NULL,
-   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH.
+   DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH; on an error but DSN_ERR_TILE_SIZE
+   a non-null `out` is zeroed as a lattice tile's is.
    Any grid (zoom in or out, rotation, shear, mirror, periodic noises) is evaluated by splatting: each
    impulse near the tile adds its texton to the pixels it reaches, so the cost follows the tile's area in
    texels rather than its pixel count; the scratch then holds the 64-bit sums of a block of pixels (the
@@ -405,7 +431,8 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
    dsn_continuous_batch_scratch_size() bytes (no alignment needed; it depends on the asset's texton size,
    not on count: about 32 KB for a 31 x 31 RGB texton). Returns DSN_OK (count 0
    included: nothing is read or written), DSN_ERR_NULL (a null pointer with count > 0, or a noise not
-   configured), DSN_ERR_CONTINUOUS_MISMATCH or DSN_ERR_SCRATCH; on an error nothing is written.
+   configured), DSN_ERR_CONTINUOUS_MISMATCH or DSN_ERR_SCRATCH; on an error a non-null `out` gets
+   count * channels zeros (count for a null or unconfigured noise).
    dsn_continuous_batch_scratch_size returns 0 for a noise that the continuous functions refuse. */
 #ifndef DSN_CONTINUOUS_BATCH
 #define DSN_CONTINUOUS_BATCH (!DSN_SMALL_CODE)
@@ -483,8 +510,8 @@ int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const d
    An asset without a pyramid (format 1.0, or a 1 x 1 texton) has L = 0: the filtered evaluation then
    fades from the continuous mode (LOD 0) to the mean colour (LOD 1 and beyond).
 
-   The same errors as the continuous mode (DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH), and
-   DSN_ERR_ARGUMENT for a null footprint or max_taps 0 or above DSN_FILTER_MAX_TAPS. Every other
+   The same errors as the continuous mode (DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH), DSN_ERR_NULL for
+   a null footprint, and DSN_ERR_ARGUMENT for max_taps 0 or above DSN_FILTER_MAX_TAPS. Every other
    footprint has a defined result: zero steps are LOD <= 0 (unfiltered), a negative determinant (a mirror)
    is taken by its absolute value, a zero determinant (a degenerate, line-like footprint) gets the most
    taps allowed, huge steps the mean colour. Lengths are computed without overflow for every int64
@@ -541,7 +568,8 @@ int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const d
    sparse, too large); plans past the coarsest level (the fade); every grid of the small build. `scratch`
    holds at least dsn_filtered_tile_scratch_size() bytes (no alignment needed; 0 for an invalid call or a grid
    evaluated point by point). Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_CONTINUOUS_MISMATCH, DSN_ERR_ARGUMENT
-   (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH. */
+   (max_taps), DSN_ERR_TILE_SIZE or DSN_ERR_SCRATCH; on an error but DSN_ERR_TILE_SIZE a non-null `out`
+   is zeroed as a lattice tile's is. */
 size_t dsn_filtered_tile_scratch_size(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
                                       uint32_t width, uint32_t height);
 int dsn_filtered_tile_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps, uint32_t width,

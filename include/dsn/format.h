@@ -229,6 +229,45 @@
    with the mapping but without the filtered evaluation still runs steps 14 and 15 (it reads the
    sections to find the mapping).
 
+   ==================================================================================================
+   .dsnt version 1.3: the lattice texton of a bilinear asset
+   ==================================================================================================
+
+   A texton baked for bilinear reads (interpolation 1) is compensated for the smoothing of the bilinear
+   read: the continuous noise sampled on the lattice has the texton's spectrum times
+       B(xi) = (2/3 + cos(2 pi xi1)/3) (2/3 + cos(2 pi xi2)/3),
+   so the bake divides the target spectrum by B. Read as it is on the lattice, the same texton has its
+   spectrum without that factor: up to 1/B = 9 times the exemplar's power at the highest frequencies. A
+   1.3 bilinear file therefore also carries the texton that the lattice evaluators read, in a section of
+   kind 3, so that every evaluator gives the exemplar's statistics. That texton is the texton convolved
+   with k (x) k, k the two-tap filter [a, b] at offsets 0 and +1 with
+       a = (1 + 1/sqrt(3)) / 2,   b = (1 - 1/sqrt(3)) / 2,
+   whose power spectrum a^2 + b^2 + 2ab cos(2 pi xi) = 2/3 + cos(2 pi xi)/3 is B's factor along one axis:
+   the lattice noise of (t * k * k) has exactly the covariance of the continuous noise at integer lags.
+   The writer rounds it to the texton's own scale and bits, one row and column larger on each side than
+   the texton (the filter spreads it by one texel towards +x and +y; the first row and column are zero),
+   and makes its integer sum per channel equal to the texton's (largest remainders get the rounding
+   difference), so both reads share the same expected sum and the same normalization. Kind 3 is a known
+   kind from minor 3 on; files with it are written as minor 3 (or later).
+
+   Section kind 3: lattice texton (payload offsets from the start of the payload)
+     off   size    type       field
+       0      1    u8         width: odd, 1..255
+       1      1    u8         height: odd, 1..255
+       2      2    u8[2]      reserved, must be 0
+       4      n    values     width * height * channels values (i8 or i16 as the texton's `bits`,
+                              little-endian), row-major from the top row, channels interleaved, in
+                              [-127, 127] / [-32767, 32767] (-128 / -32768 reserved), centred on the
+                              impulse as the texton is; value q of channel c stands for q scale[c] / 2^40.
+   size = 4 + width * height * channels * bits / 8, exactly.
+
+   Validation order, continued (only when version_minor >= 3, after step 16)
+    17. lattice texton: a kind-3 section in a lattice-baked file, reserved bytes non-zero, a width or
+        height even or 0, a size that differs from the formula, a value of -128 / -32768, or a channel
+        whose values do not sum to the texton's .................... DSN_ERR_LATTICE_TEXTON
+   Every runtime build reads kind 3 (the small build included: it is the lattice evaluators' texton).
+   A 1.2 reader skips the section and reads the bilinear texton on the lattice, as before 1.3.
+
    ================================================================================================== */
 #ifndef DSN_FORMAT_H
 #define DSN_FORMAT_H
@@ -240,7 +279,7 @@
 #define DSN_FORMAT_MAGIC_SIZE 8u
 #define DSN_FORMAT_VERSION_MAJOR 1u
 #define DSN_FORMAT_VERSION_MINOR                                                                             \
-    2u /* the newest minor this header describes; files without sections are                                 \
+    3u /* the newest minor this header describes; files without sections are                                 \
            written as minor 0 (DSN_FORMAT_VERSION_MINOR_PLAIN) */
 #define DSN_FORMAT_VERSION_MINOR_PLAIN 0u
 #define DSN_FORMAT_HEADER_SIZE 128u
@@ -291,6 +330,9 @@
 #define DSN_HISTOGRAM_VALUE_FRACTION_BITS 12      /* table values: Q3.12 */
 #define DSN_HISTOGRAM_VALUE_LIMIT 32767           /* |table value| <= this; -32768 is reserved */
 #define DSN_HISTOGRAM_EXPECTED_LIMIT (32767 << 4) /* |expected[k]| <= this (Q16.16) */
+#define DSN_SECTION_LATTICE_TEXTON 3u             /* version 1.3 */
+#define DSN_FORMAT_LATTICE_TEXTON_MINOR 3u        /* files with a lattice texton are written as this minor */
+#define DSN_LATTICE_TEXTON_HEADER_SIZE 4u         /* u8 width, u8 height, u8[2] reserved */
 
 /* Field values. */
 #define DSN_SHAPE_RECTANGLE 0u
@@ -338,13 +380,14 @@
     X(DSN_ERR_SECTION, -24, "a header section overruns the header, is badly padded or repeated")             \
     X(DSN_ERR_PYRAMID, -25, "invalid texton pyramid: level count, sizes, exponent or reserved field")        \
     X(DSN_ERR_HISTOGRAM, -26, "invalid histogram mapping: flag and section disagree, or a bad field")        \
-    X(DSN_ERR_UNSUPPORTED, -27, "the asset needs the histogram mapping, which this build leaves out")
+    X(DSN_ERR_UNSUPPORTED, -27, "the asset needs the histogram mapping, which this build leaves out")        \
+    X(DSN_ERR_LATTICE_TEXTON, -28, "invalid lattice texton: size, reserved field, value or sum")
 
 /* clang-format off */
 #define DSN_ERROR_ENUM_ENTRY(name, value, message) name = value,
 enum dsn_error {
     DSN_LIST_ERRORS(DSN_ERROR_ENUM_ENTRY)
-    DSN_ERR_LOWEST = DSN_ERR_UNSUPPORTED /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
+    DSN_ERR_LOWEST = DSN_ERR_LATTICE_TEXTON /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
 };
 /* clang-format on */
 #undef DSN_ERROR_ENUM_ENTRY

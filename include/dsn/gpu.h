@@ -15,7 +15,8 @@
    Upload the words as they are: the values are host integers (a GL buffer holds them in the host's byte
    order, which is what the shader reads).
 
-   Layout, version 1 (DSN_GPU_LAYOUT_VERSION). Word i of the buffer:
+   Layout, version 2 (DSN_GPU_LAYOUT_VERSION; version 1 had words 42 .. 46 zero and no lattice texton).
+   Word i of the buffer:
        0            DSN_GPU_MAGIC ("DSNG" as a little-endian word)
        1            DSN_GPU_LAYOUT_VERSION
        2            total number of words (dsn_gpu_word_count)
@@ -33,12 +34,18 @@
        18 .. 35     gain[9], row-major (output channel c, input channel k at 3 c + k): int64 as two words,
                     low word first (two's complement)
        36 .. 41     offset[3]: int64 as two words, low word first
-       42 .. 47     0 (reserved)
+       42, 43       the lattice evaluators' texton width, height (odd): the asset's lattice texton
+                    (format 1.3) where it has one, else the texton's (words 5, 6)
+       44, 45       its radius along x, y
+       46           the word where its values start: 208 + width * height * channels after the texton, or
+                    208 (the texton itself)
+       47           0 (reserved)
        48 .. 143    the Poisson table: 96 inverse-CDF thresholds (entries from poisson_size on are
                     0xFFFFFFFF)
        144 .. 207   the Poisson guide: the first candidate count for each top-6-bit bucket of a uniform
        208 ..       the texton: width * height * channels values, row-major from the top row, channels
-                    interleaved, each sign-extended to a whole word (two's complement int32)
+                    interleaved, each sign-extended to a whole word (two's complement int32); then, where
+                    the asset has one, the lattice texton in the same form
    A later layout changes DSN_GPU_LAYOUT_VERSION, and dsn.glsl checks nothing at run time: use the
    dsn.glsl installed with this header. The words are a copy: repack after dsn_noise_init. */
 #ifndef DSN_GPU_H
@@ -54,11 +61,11 @@ extern "C" {
 #endif
 
 #define DSN_GPU_MAGIC 0x474E5344u /* 'D' 'S' 'N' 'G' in the low to high bytes */
-#define DSN_GPU_LAYOUT_VERSION 1u
+#define DSN_GPU_LAYOUT_VERSION 2u
 #define DSN_GPU_HEADER_WORDS 208u /* the texton starts at this word */
-#define DSN_GPU_MAX_WORDS (DSN_GPU_HEADER_WORDS + 255u * 255u * 3u)
+#define DSN_GPU_MAX_WORDS (DSN_GPU_HEADER_WORDS + 2u * 255u * 255u * 3u)
 
-/* The number of words dsn_gpu_pack writes for `noise`: DSN_GPU_HEADER_WORDS + width * height * channels,
+/* The number of words dsn_gpu_pack writes for `noise`: DSN_GPU_HEADER_WORDS + the textons' values,
    at most DSN_GPU_MAX_WORDS; 0 for a null noise or one that dsn_noise_init did not fill. */
 size_t dsn_gpu_word_count(const dsn_noise *noise);
 
