@@ -18,9 +18,12 @@
 DSN_SHARED int32_t dsn_round_saturate(int64_t accumulated, uint32_t shift) {
     /* Shifting a negative number is implementation-defined: move to uint64 with a 2^63 bias first
        (the conversion is modulo 2^64, and the rounding half cannot overflow given the bound above). */
+    /* The difference is taken in uint64 too: with shift 0 (a histogram table of step shift 16) both
+       terms are at least 2^63, where a signed subtraction would overflow. */
     const uint64_t bias = uint64_t(1) << 63;
     uint64_t biased = uint64_t(accumulated) + bias + ((uint64_t(1) << shift) >> 1);
-    int64_t value = int64_t(biased >> shift) - int64_t(bias >> shift);
+    const uint64_t difference = (biased >> shift) - (bias >> shift);
+    int64_t value = (difference & bias) ? -int64_t(~difference) - 1 : int64_t(difference);
     if (value > INT32_MAX) return INT32_MAX;
     if (value < INT32_MIN) return INT32_MIN;
     return int32_t(value);

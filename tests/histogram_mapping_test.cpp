@@ -263,6 +263,29 @@ TEST_CASE("histogram: the mapping of hand-built tables gives the specification's
         CHECK(value == reference_map(m, 1, &c.g)[0]);
     }
 
+    // Step shift 16 (d = 0) from input 0: entries 2^-16 apart, so every rounding shift is 0 (where
+    // dsn_round_saturate's signed subtraction used to overflow, as UBSan reported in every evaluator):
+    // g = i maps to T[i] 16 exactly, clamped beyond the ends.
+    m.step_shift = 16, m.input_low_q16 = 0, m.tables = {-4096, 0, 8192};
+    bytes = dsn::encode_asset(fields);
+    REQUIRE(dsn_asset_load(&asset, bytes.data(), bytes.size()) == DSN_OK);
+    const Case unit_steps[] = {{0, -65536},        {1, 0}, {2, 131072}, {-5, -65536}, {INT32_MAX, 131072},
+                               {INT32_MIN, -65536}};
+    for (const Case &c : unit_steps) {
+        int32_t value = c.g;
+        dsn_internal_histogram_map(&asset, &value, 0, 0);
+        CAPTURE(c.g);
+        CHECK(value == c.out);
+        CHECK(value == reference_map(m, 1, &c.g)[0]);
+    }
+    dsn_test::LoadedNoise unit_noise(fields, dsn_test::make_config(3));
+    int32_t lattice_value = 1, continuous_value = 1;
+    dsn_lattice_point_fixed(&unit_noise.noise, 5, -7, &lattice_value);
+    REQUIRE(dsn_continuous_point_fixed(&unit_noise.noise, int64_t(5) << 32, -(int64_t(7) << 32),
+                                       &continuous_value) == DSN_OK);
+    for (int32_t value : {lattice_value, continuous_value})
+        CHECK((value == -65536 || value == 0 || value == 131072));
+
     // Grey, RGB and the three kinds of table over a sweep of Gaussian-space values and blends.
     for (uint32_t channels : {1u, 3u}) {
         const dsn::HistogramMapping mappings[] = {smooth_mapping(channels, 1), step_mapping(channels),
