@@ -343,7 +343,9 @@ LatticeFigures lattice_figures(const dsn::Image &exemplar) {
 TEST_CASE(
     "lattice texton: lattice tiles of a default bake have the continuous renders' deviation and a lattice "
     "bake's spectrum (generated exemplar)") {
-    const dsn::Image exemplar = random_phase_exemplar(96, 96, 3, 5);
+    // A broadband exemplar (a random spot smoothed by a 3 x 3 box, random phases): its bilinear texton
+    // carries much of its power near the Nyquist frequency, where the lattice read differs most.
+    const dsn::Image exemplar = random_phase_texture(random_spot(96, 96, 3, 12, 3), 5);
     dsn::BakeOptions options;
     const dsn::BakeResult bilinear = dsn::bake(exemplar, options);
     // Rendered: 4 seeds of 512 x 512, lattice tiles against continuous tiles of the same impulses (their
@@ -359,7 +361,7 @@ TEST_CASE(
                            << lattice[c] / continuous[c]
                            << " (the bilinear texton on the lattice: " << old[c] / continuous[c] << ")");
         CHECK(std::fabs(lattice[c] / continuous[c] - 1) <= 0.03);
-        CHECK(std::fabs(old[c] / continuous[c] - 1) > std::fabs(lattice[c] / continuous[c] - 1));
+        CHECK(std::fabs(old[c] / continuous[c] - 1) > 0.03); // what the 3% goal catches
     }
     const LatticeFigures figures = lattice_figures(exemplar);
     MESSAGE("exact: deviation of lattice reads / continuous reads within "
