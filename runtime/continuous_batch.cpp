@@ -8,6 +8,7 @@
 #include "continuous_batch.h"
 #include "continuous_internal.h"
 #include "continuous_point_vector.h"
+#include "error_output.h"
 #include "kernels.h"
 #include "normalize_fixed.h"
 
@@ -110,6 +111,7 @@ int dsn_continuous_batch_fixed(const dsn_noise *handle, const int64_t *xs, const
                                int32_t *out, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
     const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
+    if (err != DSN_OK) return dsn_output_error(err, noise, out, dsn_output_fixed, count);
     if (err != DSN_OK || count == 0) return err;
     unsigned char *aligned = aligned_scratch(scratch);
     const bool table = quad_table_used(noise, count);
@@ -123,6 +125,7 @@ int dsn_continuous_batch_float(const dsn_noise *handle, const double *xs, const 
                                float *out, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
     const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
+    if (err != DSN_OK) return dsn_output_error(err, noise, out, dsn_output_float, count);
     if (err != DSN_OK || count == 0) return err;
     unsigned char *aligned = aligned_scratch(scratch);
     const bool table = quad_table_used(noise, count);

@@ -4,6 +4,7 @@
    for that, and every grid in the small build (DSN_SMALL_CODE, dsn.h), are evaluated point by point. Both
    give the per-point bits. */
 #include "continuous_internal.h"
+#include "error_output.h"
 #include "grid_splat.h"
 #include "kernels.h"
 #include "normalize_fixed.h"
@@ -83,12 +84,13 @@ size_t splat_scratch_size(const dsn_noise_state *noise, const dsn_grid *grid, ui
 int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                   void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const int err = check_tile(noise, grid, width, height, out);
-    if (err != DSN_OK) return err;
+    if (err != DSN_OK) return dsn_output_error(err, noise, out, kind, size_t(width) * height);
 #if !DSN_SMALL_CODE
     dsn_grid_splat splat;
     const size_t needed = splat_scratch_size(noise, grid, width, height, &splat);
     if (needed != 0) {
-        if (scratch == 0 || scratch_size < needed) return DSN_ERR_SCRATCH;
+        if (scratch == 0 || scratch_size < needed)
+            return dsn_output_error(DSN_ERR_SCRATCH, noise, out, kind, size_t(width) * height);
         splat_grid(noise, splat, width, height, dsn_internal_aligned_sums(scratch), out, kind);
         return DSN_OK;
     }

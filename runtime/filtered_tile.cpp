@@ -6,6 +6,7 @@
    go point by point; an unfiltered plan (level of detail 0, one tap) is the continuous mode's tile.
    Compiled only with DSN_FILTERING. */
 #include "continuous_internal.h"
+#include "error_output.h"
 #include "filtered_internal.h"
 #include "grid_splat.h"
 #include "normalize_fixed.h"
@@ -239,7 +240,7 @@ int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_ta
     const dsn_noise_state *noise = dsn_state(handle);
     dsn_filter_plan plan;
     const int err = tile_plan(noise, grid, max_taps, width, height, out, &plan);
-    if (err != DSN_OK) return err;
+    if (err != DSN_OK) return dsn_output_error(err, noise, out, kind, size_t(width) * height);
     if (unfiltered(plan)) {
         if (kind == dsn_output_fixed)
             return dsn_continuous_tile_fixed(handle, grid, width, height, static_cast<int32_t *>(out),
@@ -254,7 +255,8 @@ int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_ta
     FilteredSplat filtered;
     const size_t needed = filtered_splat_prepare(noise, grid, width, height, plan, &filtered);
     if (needed != 0) {
-        if (scratch == 0 || scratch_size < needed) return DSN_ERR_SCRATCH;
+        if (scratch == 0 || scratch_size < needed)
+            return dsn_output_error(DSN_ERR_SCRATCH, noise, out, kind, size_t(width) * height);
         filtered_splat(noise, grid, width, height, &filtered, scratch, out, kind);
         return DSN_OK;
     }

@@ -360,17 +360,31 @@ void accumulate(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *
 
 #endif /* !DSN_SMALL_CODE */
 
-/* A noise that dsn_noise_init did not fill (zeroed on failure) has no texton and evaluates nothing. */
-int usable(const dsn_noise_state *noise, const void *out) {
-    return noise != 0 && out != 0 && noise->asset.texton != 0;
+/* Whether `noise` evaluates into `out`. A noise that dsn_noise_init did not fill (zeroed on failure) has
+   no texton: then out[0], all that the caller of an unconfigured noise is known to hold, is zeroed (the
+   per-point functions return no error code, and dsn.h promises no output left undefined). */
+template <typename Value>
+bool usable(const dsn_noise_state *noise, Value *out) {
+    if (noise != 0 && out != 0 && noise->asset.texton != 0) return true;
+    if (out != 0) out[0] = 0;
+    return false;
 }
 
 } // namespace
 
 #if DSN_SMALL_CODE
-/* The small build evaluates a point as a 1 x 1 tile: one walk over the cells for both (same bits). */
+/* The small build evaluates a point as a 1 x 1 tile: one walk over the cells for both (same bits), and
+   the tile's zeroing of out[0] for a noise not configured. */
 extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
     (void)dsn_lattice_tile_fixed(handle, x, y, 1, 1, out, 0, 0);
+}
+extern "C" void dsn_lattice_point_float(const dsn_noise *handle, int32_t x, int32_t y, float *out) {
+    uint32_t scratch[DSN_MAX_CHANNELS + 1]; /* dsn_lattice_tile_scratch_size of one point, at most */
+    (void)dsn_lattice_tile_float(handle, x, y, 1, 1, out, scratch, sizeof scratch);
+}
+extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t y, uint8_t *out) {
+    uint32_t scratch[DSN_MAX_CHANNELS + 1];
+    (void)dsn_lattice_tile_u8(handle, x, y, 1, 1, out, scratch, sizeof scratch);
 }
 #else
 extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
@@ -393,6 +407,7 @@ extern "C" uint8_t dsn_fixed_to_u8(int32_t value) {
     return uint8_t((uint32_t(value) * 255u + 32768u) >> 16);
 }
 
+#if !DSN_SMALL_CODE
 extern "C" void dsn_lattice_point_float(const dsn_noise *handle, int32_t x, int32_t y, float *out) {
     const dsn_noise_state *noise = dsn_state(handle);
     int32_t fixed[3];
@@ -408,3 +423,4 @@ extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t
     dsn_lattice_point_fixed(handle, x, y, fixed);
     for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_u8(fixed[c]);
 }
+#endif

@@ -1,6 +1,7 @@
 /* runtime/tile.cpp - the lattice tile API: argument checks and the caller's scratch; the tile itself is
    computed by the kernel init chose for this CPU (kernels.h), which gives the bits of the per-point
    path whichever it is. */
+#include "error_output.h"
 #include "kernels.h"
 
 namespace {
@@ -43,6 +44,13 @@ int render_checked(const dsn_noise_state *noise, int32_t x0, int32_t y0, uint32_
     return DSN_OK;
 }
 
+/* render_checked, with the output zeroed on an error (dsn.h): one copy for the three output types. */
+int render_or_zero(const dsn_noise_state *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                   void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
+    const int err = render_checked(noise, x0, y0, width, height, out, kind, scratch, scratch_size);
+    return dsn_output_error(err, noise, out, kind, size_t(width) * height);
+}
+
 } // namespace
 
 extern "C" size_t dsn_lattice_tile_scratch_size(const dsn_noise *handle, uint32_t width, uint32_t height) {
@@ -55,17 +63,17 @@ extern "C" size_t dsn_lattice_tile_scratch_size(const dsn_noise *handle, uint32_
 extern "C" int dsn_lattice_tile_fixed(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width,
                                       uint32_t height, int32_t *out, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
-    return render_checked(noise, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
+    return render_or_zero(noise, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 extern "C" int dsn_lattice_tile_float(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width,
                                       uint32_t height, float *out, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
-    return render_checked(noise, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
+    return render_or_zero(noise, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
 extern "C" int dsn_lattice_tile_u8(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width,
                                    uint32_t height, uint8_t *out, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
-    return render_checked(noise, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
+    return render_or_zero(noise, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
