@@ -4,10 +4,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <unistd.h>
 
+#include "../bake_internal.h"
+#include "bake_progress.h"
 #include "command_line.h"
 #include "dsn/bake.h"
 #include "file_output.h"
@@ -80,7 +83,8 @@ const char *const kUsage =
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when the bake\n"
     "fails (unreadable or unusable image, cannot write). The asset, report and preview are written\n"
-    "together: all of them or none. Numbers are decimal.\n"
+    "together: all of them or none. Numbers are decimal. The summary goes to stdout; warnings, and the\n"
+    "progress bar when stderr is a terminal, to stderr.\n"
     "\n"
     "RME, the relative model error (0 is perfect): the optimal-transport distance between the Gaussian\n"
     "model of the noise made from the texton and the exemplar's, relative to the exemplar's, summed over\n"
@@ -169,14 +173,28 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
     return arguments;
 }
 
-// Redraws one line on a terminal's stderr, about 100 times per run.
-void draw_progress(int done, int total, double rme) {
-    if (done != total && done % std::max(1, total / 100) != 0) return;
-    const int width = 40, filled = int(double(done) / total * width);
-    std::fprintf(stderr, "\r[%s%s] %d/%d  RME(xi!=0) %.4f", std::string(size_t(filled), '#').c_str(),
-                 std::string(size_t(width - filled), '.').c_str(), done, total, rme);
-    if (done == total) std::fputc('\n', stderr);
-    std::fflush(stderr);
+// The progress bar: one line on a terminal's stderr, redrawn at each percent of the run (its iterations or
+// its early stop, whichever ends it: bake_progress_fraction), and ended by a newline at 100%.
+dsn::BakeProgress progress_bar(const dsn::Image &exemplar, const dsn::BakeOptions &options) {
+    dsn::EarlyStopRule rule;
+    rule.tolerance = options.stop_tolerance;
+    rule.window = dsn::SotOptions().stop_window;
+    rule.minimum_iterations = dsn::early_stop_minimum_iterations(exemplar.width, exemplar.height);
+    auto rme_so_far = std::make_shared<std::vector<double>>();
+    auto shown = std::make_shared<double>(-1); // the fraction drawn last: the bar never moves back
+    return [rule, rme_so_far, shown](int done, int total, double rme) {
+        rme_so_far->push_back(rme);
+        const double fraction = std::max(*shown, dsn::bake_progress_fraction(*rme_so_far, total, rule));
+        const int percent = int(fraction * 100);
+        if (percent == int(*shown * 100)) return;
+        *shown = fraction;
+        const int width = 40, filled = int(fraction * width);
+        std::fprintf(stderr, "\r[%s%s] %3d%%  %d/%d  RME(xi!=0) %.4f",
+                     std::string(size_t(filled), '#').c_str(),
+                     std::string(size_t(width - filled), '.').c_str(), percent, done, total, rme);
+        if (percent == 100) std::fputc('\n', stderr);
+        std::fflush(stderr);
+    };
 }
 
 std::string json_number(double value) {
@@ -400,7 +418,7 @@ int run(const Arguments &arguments) {
             std::fprintf(stderr, "dsn-bake: warning: %s\n", warning.c_str());
     dsn::BakeOptions options = arguments.options;
     warn_if_long(arguments, exemplar);
-    if (!arguments.quiet && isatty(STDERR_FILENO)) options.progress = draw_progress;
+    if (!arguments.quiet && isatty(STDERR_FILENO)) options.progress = progress_bar(exemplar, options);
     const dsn::BakeResult result = bake_explaining_alpha(exemplar, options, !warnings.empty());
     // Everything is computed before anything is written: a failure leaves no output at all.
     const std::vector<unsigned char> preview = arguments.preview.empty()
