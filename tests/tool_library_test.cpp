@@ -1,12 +1,18 @@
 // tool_library_test.cpp - the tools' shared library (offline/tools, libdsn_tools.a) where a script cannot
-// reach it: the flag suggestion's thresholds, and the bake progress bar's fraction against the baker's own
-// early stop.
+// reach it: the flag suggestion's thresholds, the asset reader's limit and reasons, and the bake progress
+// bar's fraction against the baker's own early stop.
 #include <doctest/doctest.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "../offline/bake_internal.h"
+#include "../offline/tools/asset_file.h"
 #include "../offline/tools/bake_progress.h"
 #include "../offline/tools/command_line.h"
 #include "fixtures/bake_fixtures.h"
@@ -24,6 +30,47 @@ TEST_CASE("nearest_flag guesses a close misspelling, and nothing for short or fa
     CHECK(dsn::nearest_flag("-p", known) == "");          // one letter: never guessed
     CHECK(dsn::nearest_flag("--sz", known) == "");        // 2 edits in 4 letters: more than a third
     CHECK(dsn::nearest_flag("--radius", {}) == "");
+}
+
+TEST_CASE("the asset reader reads up to the largest asset, and names images and other files") {
+    const std::string folder = "/tmp/dsn-tool-library-test-" + std::to_string(::getpid());
+    REQUIRE(std::system(("mkdir -p " + folder).c_str()) == 0);
+    auto write = [&folder](const std::string &name, const std::vector<unsigned char> &bytes) {
+        const std::string path = folder + "/" + name;
+        std::FILE *file = std::fopen(path.c_str(), "wb");
+        REQUIRE(file != nullptr);
+        REQUIRE(std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size());
+        std::fclose(file);
+        return path;
+    };
+    // The format's largest asset: its texton and every known section at their largest, far above what
+    // dsn-bake writes (a 255 x 255 RGB 16-bit texton alone is 390 150 bytes).
+    CHECK(dsn::largest_asset_bytes() > 4 * 390150u);
+    const std::string largest = write("largest.dsnt", std::vector<unsigned char>(dsn::largest_asset_bytes()));
+    CHECK(dsn::read_asset_file(largest).size() == dsn::largest_asset_bytes());
+    const std::string larger =
+        write("larger.dsnt", std::vector<unsigned char>(dsn::largest_asset_bytes() + 1));
+    CHECK_THROWS_WITH_AS(
+        dsn::read_asset_file(larger),
+        (larger + " is larger than any dsn asset (" + std::to_string(dsn::largest_asset_bytes()) + " bytes)")
+            .c_str(),
+        std::runtime_error);
+    CHECK_THROWS_WITH_AS(dsn::read_asset_file(folder + "/missing.dsnt"),
+                         ("cannot read " + folder + "/missing.dsnt: No such file or directory").c_str(),
+                         std::runtime_error);
+    dsn_asset asset;
+    const std::string png = write("wood.png", {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13});
+    CHECK_THROWS_WITH_AS(dsn::load_asset_file(png, asset),
+                         (png + " is an image, not a dsn asset: bake it first: dsn-bake " + png + " -o " +
+                          folder + "/wood.dsnt")
+                             .c_str(),
+                         std::runtime_error);
+    const std::string text =
+        write("notes.dsnt", {'h', 'e', 'l', 'l', 'o', '\n', 'w', 'o', 'r', 'l', 'd', '\n'});
+    CHECK_THROWS_WITH_AS(dsn::load_asset_file(text, asset),
+                         (text + " is not a dsn asset: " + dsn_error_message(DSN_ERR_BAD_MAGIC)).c_str(),
+                         std::runtime_error);
+    REQUIRE(std::system(("rm -rf " + folder).c_str()) == 0);
 }
 
 TEST_CASE("the bake progress reaches 1 exactly when the early stop ends the run, and not before") {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../../offline/tools/asset_file.h"
 #include "../../offline/tools/command_line.h"
 #include "../../offline/tools/file_output.h"
 #include "../../offline/tools/png_output.h"
@@ -47,7 +48,7 @@ const char *const usage =
     "  --compare-cpu      also render with the C runtime (tiles, one thread), check that the pixels are\n"
     "                     identical and print both speeds\n"
     "  --dump-shaders DIR write the shaders to DIR (for glslangValidator) and exit\n"
-    "  --quiet            no timing line on stderr\n"
+    "  --quiet            no summary line (on stdout)\n"
     "Flags take --flag value or --flag=value; --version prints the version.\n"
     "Exit status: 0 on success; exit 2 for a usage mistake (the message ends with \"(see --help)\");\n"
     "exit 1 for a failure while running (bad asset, no OpenGL context, cannot write); no partial output.\n";
@@ -168,13 +169,6 @@ std::string vertex_shader(const headless_gl::Context &context) {
 
 std::string fragment_shader(const headless_gl::Context &context) {
     return context.shader_preamble() + dsn_glsl + fragment_main;
-}
-
-std::vector<unsigned char> read_file(const std::string &path) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-    return std::vector<unsigned char>((std::istreambuf_iterator<char>(file)),
-                                      std::istreambuf_iterator<char>());
 }
 
 void write_file(const std::string &path, const std::string &text) {
@@ -307,15 +301,13 @@ void run(const Options &options) {
         }
         return;
     }
-    const std::vector<unsigned char> bytes = read_file(options.asset_path);
     dsn_asset asset;
-    int err = dsn_asset_load(&asset, bytes.data(), bytes.size());
-    if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
+    const std::vector<unsigned char> bytes = dsn::load_asset_file(options.asset_path, asset);
     dsn_config config;
     dsn_config_defaults(&config);
     config.seed = options.seed;
     dsn_noise noise;
-    err = dsn_noise_init(&noise, &asset, &config);
+    int err = dsn_noise_init(&noise, &asset, &config);
     if (err == DSN_OK && options.mode == Mode::continuous) err = dsn_continuous_check(&noise);
     if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
 
@@ -327,8 +319,7 @@ void run(const Options &options) {
         double cpu_seconds = 0;
         const std::vector<uint8_t> cpu = render_cpu(options, noise, asset.channels, &cpu_seconds);
         if (cpu != pixels) throw std::runtime_error("the GPU's pixels differ from the C runtime's");
-        std::fprintf(
-            stderr,
+        std::printf(
             "dsn-gpu-render: identical to the C runtime; CPU tile (1 thread): %.3f s, %.2f Mpixel/s\n",
             cpu_seconds, megapixels / cpu_seconds);
     }
@@ -337,9 +328,9 @@ void run(const Options &options) {
                         static_cast<int>(asset.channels), pixels.data());
     dsn::write_file_atomically(options.output_path, png);
     if (!options.quiet)
-        std::fprintf(stderr, "dsn-gpu-render: %ux%u on %s: %.3f s, %.2f Mpixel/s -> %s\n", options.width,
-                     options.height, context.description().c_str(), gpu_seconds, megapixels / gpu_seconds,
-                     options.output_path.c_str());
+        std::printf("dsn-gpu-render: %ux%u on %s: %.3f s, %.2f Mpixel/s -> %s\n", options.width,
+                    options.height, context.description().c_str(), gpu_seconds, megapixels / gpu_seconds,
+                    options.output_path.c_str());
 }
 
 } // namespace

@@ -7,11 +7,11 @@
 // covers many texels then shows the texture filtered over its footprint, down to the exact mean colour
 // far away, instead of aliased noise.
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -61,16 +61,33 @@ struct Texture {
     double texels_per_unit;
 };
 
+// The file's bytes; the reason it cannot be read in the words the dsn tools use ("cannot read x.dsnt: No
+// such file or directory"). This program links the runtime alone, as a renderer of yours would, so it
+// reads files itself rather than through the tools' library.
+std::vector<unsigned char> read_file(const std::string &path) {
+    std::FILE *file = std::fopen(path.c_str(), "rb");
+    if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+    std::vector<unsigned char> bytes;
+    unsigned char buffer[65536];
+    size_t count;
+    errno = 0;
+    while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0)
+        bytes.insert(bytes.end(), buffer, buffer + count);
+    const int read_error = std::ferror(file) ? errno : 0;
+    std::fclose(file);
+    if (read_error != 0) throw std::runtime_error("cannot read " + path + ": " + std::strerror(read_error));
+    return bytes;
+}
+
 void load_texture(Texture &texture, const std::string &path, uint32_t seed, double texels_per_unit) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw std::runtime_error("cannot read " + path);
-    texture.bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    texture.bytes = read_file(path);
     int err = dsn_asset_load(&texture.asset, texture.bytes.data(), texture.bytes.size());
+    if (err != DSN_OK) throw std::runtime_error(path + " is not a dsn asset: " + dsn_error_message(err));
     dsn_config config;
     dsn_config_defaults(&config);
     config.seed = seed;
     config.flags = DSN_FLAG_ALLOW_LATTICE_CONTINUOUS; // a lattice-baked asset is only slightly smoother
-    if (err == DSN_OK) err = dsn_noise_init(&texture.noise, &texture.asset, &config);
+    err = dsn_noise_init(&texture.noise, &texture.asset, &config);
     if (err != DSN_OK) throw std::runtime_error(path + ": " + dsn_error_message(err));
     texture.texels_per_unit = texels_per_unit;
 }

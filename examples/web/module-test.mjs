@@ -58,7 +58,7 @@ const cases = [
         settings: { seed: 3 },
         window: [-70, 41, 100, 60],
         view: null,
-        args: ['--seed', '3', '--origin', '-70,41', '--size', '100x60']
+        args: ['--seed', '3', '--mode', 'tile', '--origin', '-70,41', '--size', '100x60']
     },
     {
         name: 'lattice tile, largest seed, density 10, period 16x8',
@@ -66,8 +66,8 @@ const cases = [
         window: [2147483600, -5, 90, 40],
         view: null,
         args: [
-            '--seed', '4294967295', '--impacts', '10', '--period', '16x8', '--origin', '2147483600,-5',
-            '--size', '90x40'
+            '--seed', '4294967295', '--mode', 'tile', '--impacts', '10', '--period', '16x8', '--origin',
+            '2147483600,-5', '--size', '90x40'
         ]
     },
     {

@@ -8,6 +8,8 @@
 //   --radius?": the flags the tool tested with is() before calling unknown() are the candidates); a failure
 //   while running (unreadable input, bad asset, cannot write) prints one line "TOOL: what failed" and
 //   exits 1. Nothing is left half written on failure.
+//   Streams: what a run was asked for (a report, a summary line, --help, --version) goes to stdout;
+//   progress, warnings and errors go to stderr, so that `tool ... > log` keeps the results alone.
 //
 //     int main(int argc, char **argv) {
 //         return dsn::run_tool("dsn-thing", kUsage, argc, argv, [](dsn::CommandLine &arguments) {

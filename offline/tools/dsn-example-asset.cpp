@@ -19,6 +19,8 @@ const char *const kUsage =
     "                         [--shape square|disk] [--interpolation bilinear|lattice] [--impacts N]\n"
     "Writes a synthetic anisotropic-spot asset (no exemplar, no FFT): for tests and examples.\n"
     "Defaults: 3 channels, radius 7, 8 bits, square, bilinear, 30 impacts per pixel.\n"
+    "A bilinear asset carries its lattice texton (format 1.3), as dsn-bake writes it, up to radius 126\n"
+    "(radius 127 writes none: an asset as an older dsn-bake wrote it).\n"
     "  -h, --help, --version   this help, the version\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr: exit 2 for a\n"
     "usage mistake (the line ends with \"(see --help)\"), exit 1 when the file cannot be written.\n";
@@ -118,6 +120,10 @@ dsn::AssetFields make_fields(const Options &options) {
         double scale = energy[c] > 0 ? 0.15 / std::sqrt(energy[c]) * 1099511627776.0 : 1.0;
         fields.scale[c] = scale >= 4294967295.0 ? 4294967295u : static_cast<uint32_t>(scale < 1 ? 1 : scale);
     }
+    // As dsn-bake writes a bilinear asset: with the lattice texton the lattice evaluators read (format
+    // 1.3), where it fits (it is 2 texels wider than the texton).
+    if (fields.interpolation == DSN_INTERPOLATION_BILINEAR && fields.width + 2 <= DSN_FORMAT_MAX_SIDE)
+        dsn::set_lattice_texton(fields);
     return fields;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../../runtime/format_bytes.h"
+#include "asset_file.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
 #include "json_output.h"
@@ -19,8 +20,12 @@ const char *const kUsage =
     "\n"
     "Validates a .dsnt asset with the runtime loader and prints its header, the levels of its texton\n"
     "pyramid (format 1.1: side, spacing, exponent and bytes of each) and its size with and without the\n"
-    "pyramid. With --json, prints the header, mean, color_transform, support, texton and pyramid levels\n"
-    "(dequantized values, row-major, channels interleaved, top-left first) as one JSON object. bake_rme\n"
+    "pyramid, and the histogram-preserving output of a format 1.2 asset (its table's entries, levels,\n"
+    "step and input range in Gaussian space, the rotation P and centre back to colours, the expected\n"
+    "value the mapping fades to and the exemplar's mean colour centre + P expected, which the filtered\n"
+    "evaluation fades to, beside the Gaussian-space mean of the header). With --json, prints the\n"
+    "header, mean, color_transform, support, texton, pyramid levels (dequantized values, row-major,\n"
+    "channels interleaved, top-left first) and histogram (null without one) as one JSON object. bake_rme\n"
     "(RME in the text) is the relative model error of the stored texton that the baker recorded, summed\n"
     "over every frequency as Galerne, Leclaire and Moisan define it (dsn-bake --help says more).\n"
     "\n"
@@ -31,33 +36,9 @@ const char *const kUsage =
     "Errors are one line on stderr: exit 2 for a usage mistake (the line ends with \"(see --help)\"),\n"
     "exit 1 for a file that cannot be read or is not a valid asset (the loader's message).\n";
 
-// Assets are at most about 3.5 MB (a 255 x 255 RGB 16-bit texton and 8 pyramid levels as large);
-// anything larger is not one.
-const long kMaxFileSize = 4 << 20;
-
 const double kQ24 = 16777216.0;
+const double kQ16 = 65536.0;
 const double kScaleOne = 1099511627776.0; // 2^40
-
-bool read_file(const char *path, std::vector<unsigned char> &bytes, std::string &problem) {
-    FILE *file = std::fopen(path, "rb");
-    if (!file) {
-        problem = std::strerror(errno);
-        return false;
-    }
-    unsigned char buffer[65536];
-    size_t count;
-    while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) {
-        bytes.insert(bytes.end(), buffer, buffer + count);
-        if (bytes.size() > size_t(kMaxFileSize)) break;
-    }
-    const bool failed = std::ferror(file) != 0;
-    std::fclose(file);
-    if (failed)
-        problem = "read error (is it a folder?)";
-    else if (bytes.size() > size_t(kMaxFileSize))
-        problem = "file too large to be an asset";
-    return problem.empty();
-}
 
 const char *shape_name(uint32_t shape) { return shape == DSN_SHAPE_DISK ? "disk" : "square"; }
 const char *interpolation_name(uint32_t mode) {
@@ -100,6 +81,63 @@ std::vector<dsn_level> pyramid_levels(const dsn_asset &asset, size_t &section_by
     return levels;
 }
 
+// The histogram-preserving output of a 1.2 asset (format.h, section kind 2), as the numbers it stands for.
+struct Histogram {
+    double step, input_low, input_high; // Gaussian space: entry i stands for input_low + i step
+    std::vector<double> rotation, centre, expected;
+    std::vector<double> mean_colour;   // centre + P expected, exactly as the runtime fades to it
+    std::vector<double> gaussian_mean; // the header's mean: the noise's mean before the mapping
+};
+
+Histogram histogram_of(const dsn_asset &asset) {
+    Histogram histogram;
+    histogram.step = std::ldexp(1.0, -int(asset.histogram_step_shift));
+    histogram.input_low = asset.histogram_input_low_q16 / kQ16;
+    histogram.input_high = histogram.input_low + (asset.histogram_entries - 1) * histogram.step;
+    const uint32_t rows = asset.channels == 3 ? 3 : 1;
+    for (uint32_t row = 0; row < rows; row++)
+        for (uint32_t column = 0; column < rows; column++)
+            histogram.rotation.push_back(asset.histogram_rotation[row * 3 + column] / kQ24);
+    // The runtime's own fade colour (dsn_noise_mean_float), rather than this program's arithmetic.
+    dsn_config config;
+    dsn_config_defaults(&config);
+    dsn_noise noise;
+    float fade[DSN_MAX_CHANNELS] = {0, 0, 0};
+    if (dsn_noise_init(&noise, &asset, &config) != DSN_OK || dsn_noise_mean_float(&noise, fade) != DSN_OK)
+        throw std::runtime_error("the runtime refuses the histogram mapping it loaded");
+    for (uint32_t c = 0; c < asset.channels; c++) {
+        histogram.centre.push_back(asset.histogram_centre[c] / kQ24);
+        histogram.expected.push_back(asset.histogram_expected_q16[c] / kQ16);
+        histogram.mean_colour.push_back(fade[c]);
+        histogram.gaussian_mean.push_back(asset.mean[c] / kQ24);
+    }
+    return histogram;
+}
+
+void print_row(const char *label, const std::vector<double> &values, size_t first, size_t count) {
+    std::printf("%s", label);
+    for (size_t i = first; i < first + count; i++) std::printf(" %9.6f", values[i]);
+    std::printf("\n");
+}
+
+void print_histogram_text(const dsn_asset &asset) {
+    if (asset.histogram_table == nullptr) {
+        std::printf("histogram       none (Gaussian output)\n");
+        return;
+    }
+    const Histogram histogram = histogram_of(asset);
+    std::printf("histogram       %u entries, %u levels, step %.6g, input %.6f .. %.6f (Gaussian space)\n",
+                asset.histogram_entries, asset.histogram_levels, histogram.step, histogram.input_low,
+                histogram.input_high);
+    const size_t rows = asset.channels == 3 ? 3 : 1;
+    for (size_t row = 0; row < rows; row++)
+        print_row(row ? "               " : "  rotation     ", histogram.rotation, row * rows, rows);
+    print_row("  centre       ", histogram.centre, 0, asset.channels);
+    print_row("  expected     ", histogram.expected, 0, asset.channels);
+    print_row("  mean colour  ", histogram.mean_colour, 0, asset.channels);
+    print_row("  gaussian mean", histogram.gaussian_mean, 0, asset.channels);
+}
+
 void print_text(const char *path, size_t size, const dsn_asset &asset) {
     std::printf("file            %s (%zu bytes)\n", path, size);
     std::printf("version         1.%u\n", asset.version_minor);
@@ -126,6 +164,7 @@ void print_text(const char *path, size_t size, const dsn_asset &asset) {
     std::printf("\nbake            %u iterations, seed %u, RME %.6f\n", asset.bake_iterations,
                 asset.bake_seed, asset.bake_rme_q24 / kQ24);
     std::printf("exemplar        %ux%u\n", asset.exemplar_width, asset.exemplar_height);
+    print_histogram_text(asset);
     size_t section_bytes;
     const std::vector<dsn_level> levels = pyramid_levels(asset, section_bytes);
     if (levels.empty()) {
@@ -143,6 +182,29 @@ void print_numbers(const std::vector<double> &values) {
     std::printf("[");
     for (size_t i = 0; i < values.size(); i++) std::printf("%s%.17g", i ? ", " : "", values[i]);
     std::printf("]");
+}
+
+void print_histogram_json(const dsn_asset &asset) {
+    if (asset.histogram_table == nullptr) {
+        std::printf("null");
+        return;
+    }
+    const Histogram histogram = histogram_of(asset);
+    std::printf(
+        "{\"entries\": %u, \"levels\": %u, \"step_shift\": %u, \"step\": %.17g, \"input_low\": %.17g, "
+        "\"input_high\": %.17g,\n    \"rotation\": ",
+        asset.histogram_entries, asset.histogram_levels, asset.histogram_step_shift, histogram.step,
+        histogram.input_low, histogram.input_high);
+    print_numbers(histogram.rotation);
+    std::printf(", \"centre\": ");
+    print_numbers(histogram.centre);
+    std::printf(",\n    \"expected\": ");
+    print_numbers(histogram.expected);
+    std::printf(", \"mean_color\": ");
+    print_numbers(histogram.mean_colour);
+    std::printf(", \"gaussian_mean\": ");
+    print_numbers(histogram.gaussian_mean);
+    std::printf("}");
 }
 
 void print_json(const char *path, size_t size, const dsn_asset &asset) {
@@ -192,7 +254,9 @@ void print_json(const char *path, size_t size, const dsn_asset &asset) {
         print_numbers(level_values(asset, levels[l]));
         std::printf("}");
     }
-    std::printf("%s]\n}\n", levels.empty() ? "" : "\n  ");
+    std::printf("%s],\n  \"histogram\": ", levels.empty() ? "" : "\n  ");
+    print_histogram_json(asset);
+    std::printf("\n}\n");
 }
 
 int inspect(dsn::CommandLine &command_line) {
@@ -211,12 +275,8 @@ int inspect(dsn::CommandLine &command_line) {
         }
     }
     if (path.empty()) throw dsn::UsageError("no asset given");
-    std::vector<unsigned char> bytes;
-    std::string problem;
-    if (!read_file(path.c_str(), bytes, problem)) throw std::runtime_error(path + ": " + problem);
     dsn_asset asset;
-    const int error = dsn_asset_load(&asset, bytes.data(), bytes.size());
-    if (error != DSN_OK) throw std::runtime_error(path + ": " + dsn_error_message(error));
+    const std::vector<unsigned char> bytes = dsn::load_asset_file(path, asset);
     if (json)
         print_json(path.c_str(), bytes.size(), asset);
     else

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "../../runtime/format_bytes.h"
+#include "asset_file.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
 #include "file_output.h"
@@ -32,7 +33,9 @@
 
 namespace {
 
-const char *const kUsage =
+// The usage, around the asset size limit, which comes from the code that applies it
+// (dsn::largest_asset_bytes) rather than from a copy of its value.
+const char *const kUsageHead =
     "usage: dsn-render A.dsnt -o OUT.png|OUT.f32 --size WxH [options]\n"
     "Renders the spot noise of asset A.dsnt over a window of W x H pixels.\n"
     "  -o, --output OUT     the image to write (atomically): OUT.png or OUT.f32\n"
@@ -44,7 +47,14 @@ const char *const kUsage =
     "  --seed S             32-bit seed (default 0)\n"
     "  --impacts N          impacts per pixel (default: the asset's, 30 if none)\n"
     "  --period PXxPY       make the output periodic with that period (0 = not periodic on that axis)\n"
-    "  --mode M             tile (default), point (per-point lattice, same bits as tile) or continuous\n"
+    "  --mode M             continuous (the noise at real points: zoom, rotation, filtering), tile\n"
+    "                       or point (the integer lattice; point: per-point calls, the same bits as\n"
+    "                       tile). Default: the asset's own, continuous for a bilinear bake (dsn-bake's\n"
+    "                       default) and tile for a lattice bake (dsn-bake --interpolation lattice);\n"
+    "                       continuous whenever --scale, --rotate, --filter or --max-taps is given.\n"
+    "                       A lattice bake is refused in continuous mode, and a bilinear bake in\n"
+    "                       tile/point mode when it carries no lattice texton (dsn-bake before\n"
+    "                       format 1.3): the line says what to do\n"
     "  --scale F|FX,FY      continuous mode: magnification, one pixel steps 1/F texels (default 1);\n"
     "                       FX,FY: 1/FX texels along the window's x, 1/FY along its y (before\n"
     "                       --rotate): a slanted view, whose footprint --filter aniso follows\n"
@@ -58,24 +68,33 @@ const char *const kUsage =
     "                       they are the unfiltered bits\n"
     "  --max-taps N         --filter aniso: at most N taps, 1..16 (default 16; rounded down to a\n"
     "                       power of two)\n"
-    "  --allow-lattice      continuous mode on a lattice-baked asset (its spectrum is then smoothed;\n"
-    "                       the fix is to bake with dsn-bake --interpolation bilinear, the default)\n"
+    "  --allow-lattice      continuous mode on a lattice-baked asset anyway (its spectrum is then\n"
+    "                       smoothed; the fix is to bake with dsn-bake --interpolation bilinear, the\n"
+    "                       default)\n"
     "  --no-color-transform use the identity colour transform\n"
     "  --threads N          worker threads, 1..256 (default: the number of cores)\n"
-    "  --quiet              no progress or timing line on stderr\n"
+    "  --quiet              no progress or summary line\n"
     "  -h, --help           this help\n"
     "  --version            the version\n"
     "OUT.png is 8-bit grey or RGB; OUT.f32 is raw little-endian float32, channels interleaved,\n"
     "row-major, top row first (values in exemplar units, 1.0 = white, not clamped).\n"
     "Numbers are decimal (no hexadecimal, no inf or nan).\n"
-    "Limits: the asset is read up to 1 MiB (a .dsnt is at most 390 KiB); the output may not be the\n"
-    "asset. Memory: about 4 bytes per pixel and channel for .f32, about 3 for .png (8192x8192 RGB:\n"
-    "768 MiB for .f32, about 600 MiB for .png).\n"
-    "Progress of a large render is redrawn on a terminal; on a file or pipe it is at most one line per\n"
-    "10%; then one timing line.\n"
+    "Limits: the asset is read up to ";
+const char *const kUsageTail =
+    " KiB), the largest a .dsnt can be (its\n"
+    "texton and every section that the format knows at their largest); the output may not be the asset.\n"
+    "Memory: about 4 bytes per pixel and channel for .f32, about 3 for .png (8192x8192 RGB: 768 MiB\n"
+    "for .f32, about 600 MiB for .png).\n"
+    "Output: the summary line (size, time, speed, file) on stdout; progress of a large render on\n"
+    "stderr, redrawn on a terminal, at most one line per 10% on a file or pipe.\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when rendering\n"
-    "fails (unreadable or invalid asset, cannot write).\n";
+    "fails (unreadable or invalid asset, an asset the mode cannot read, cannot write).\n";
+
+std::string usage() {
+    const size_t limit = dsn::largest_asset_bytes();
+    return kUsageHead + std::to_string(limit) + " bytes (" + std::to_string(limit / 1024) + kUsageTail;
+}
 
 enum class Mode { tile, point, continuous };
 enum class Filter { none, iso, aniso };
@@ -83,9 +102,6 @@ enum class Filter { none, iso, aniso };
 // The largest window rendered in one run: its pixels are held in memory, and stb's PNG writer counts
 // bytes in an int.
 const uint64_t kMaxRenderPixels = uint64_t(1) << 26;
-// The largest asset file read: far above the format's own maximum (128 + 255 * 255 * 3 * 2 + 4 bytes),
-// so a later minor version with a longer header still fits, but a device or huge file is not read whole.
-const size_t kMaxAssetBytes = size_t(1) << 20;
 
 struct Options {
     std::string asset_path, output_path;
@@ -93,9 +109,10 @@ struct Options {
     std::string origin_x = "0", origin_y = "0";
     uint32_t seed = 0, impacts_q16 = 0, period_x = 0, period_y = 0, flags = 0;
     Mode mode = Mode::tile;
+    bool mode_known = false;       // --mode given, or implied by a continuous-only flag; else the asset's own
     Filter filter = Filter::aniso; // continuous mode only
     uint32_t max_taps = 16;
-    bool filter_given = false, max_taps_given = false;
+    bool filter_given = false, max_taps_given = false, scale_given = false, rotate_given = false;
     double scale_x = 1.0, scale_y = 1.0, rotate_degrees = 0.0;
     unsigned threads = 0;
     bool quiet = false;
@@ -163,6 +180,7 @@ Options parse_options(dsn::CommandLine &command_line) {
                 options.mode = Mode::continuous;
             else
                 throw dsn::UsageError("--mode must be tile, point or continuous, not '" + mode + "'");
+            options.mode_known = true;
         } else if (command_line.is("--scale")) {
             const std::string scale = command_line.value();
             if (scale.find(',') == std::string::npos) {
@@ -175,6 +193,7 @@ Options parse_options(dsn::CommandLine &command_line) {
             for (double one_scale : {options.scale_x, options.scale_y})
                 if (!(one_scale >= 1.0 / 65536 && one_scale <= 65536))
                     throw dsn::UsageError("--scale must be within [1/65536, 65536]");
+            options.scale_given = true;
         } else if (command_line.is("--filter")) {
             const std::string filter = command_line.value();
             if (filter == "none")
@@ -191,6 +210,7 @@ Options parse_options(dsn::CommandLine &command_line) {
             options.max_taps_given = true;
         } else if (command_line.is("--rotate")) {
             options.rotate_degrees = dsn::parse_real(flag, command_line.value());
+            options.rotate_given = true;
         } else if (command_line.is("--threads")) {
             options.threads = static_cast<unsigned>(dsn::parse_integer(command_line, 1, 256));
         } else {
@@ -209,14 +229,20 @@ Options parse_options(dsn::CommandLine &command_line) {
                               " pixels (8192x8192); render it as windows with --origin");
     if (dsn::same_file(options.asset_path, options.output_path))
         throw dsn::UsageError("output " + options.output_path + " is the input asset");
-    if (options.mode != Mode::continuous &&
-        (options.scale_x != 1.0 || options.scale_y != 1.0 || options.rotate_degrees != 0.0))
-        throw dsn::UsageError("--scale and --rotate need --mode continuous");
-    if (options.mode != Mode::continuous && (options.filter_given || options.max_taps_given))
-        throw dsn::UsageError("--filter and --max-taps need --mode continuous (the lattice is not filtered)");
+    const char *continuous_flag = options.scale_given      ? "--scale"
+                                  : options.rotate_given   ? "--rotate"
+                                  : options.filter_given   ? "--filter"
+                                  : options.max_taps_given ? "--max-taps"
+                                                           : nullptr;
+    if (continuous_flag && options.mode_known && options.mode != Mode::continuous)
+        throw dsn::UsageError(std::string(continuous_flag) + " reads the continuous mode, not --mode " +
+                              (options.mode == Mode::tile ? "tile" : "point") +
+                              " (the lattice is neither scaled, rotated nor filtered): leave --mode out");
+    if (continuous_flag) options.mode = Mode::continuous, options.mode_known = true;
     if (options.max_taps_given && options.filter != Filter::aniso)
         throw dsn::UsageError("--max-taps needs --filter aniso");
-    if (options.mode == Mode::continuous) {
+    // A mode still unknown follows the asset, read later: its origin is checked again then.
+    if (!options.mode_known || options.mode == Mode::continuous) {
         dsn::parse_real("--origin", options.origin_x);
         dsn::parse_real("--origin", options.origin_y);
     } else {
@@ -226,20 +252,24 @@ Options parse_options(dsn::CommandLine &command_line) {
     return options;
 }
 
-// Reads at most kMaxAssetBytes + 1 bytes: one more than any asset is enough to refuse the file.
-std::vector<unsigned char> read_file(const std::string &path) {
-    FILE *file = std::fopen(path.c_str(), "rb");
-    if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-    std::vector<unsigned char> bytes(kMaxAssetBytes + 1);
-    const size_t read = std::fread(bytes.data(), 1, bytes.size(), file);
-    const bool failed = std::ferror(file) != 0;
-    std::fclose(file);
-    if (failed) throw std::runtime_error("cannot read " + path + " (is it a folder?)");
-    if (read > kMaxAssetBytes)
-        throw std::runtime_error(path + ": larger than " + std::to_string(kMaxAssetBytes >> 20) +
-                                 " MiB, not a .dsnt asset");
-    bytes.resize(read);
-    return bytes;
+// The mode a render reads `asset` with: the one given or implied on the command line, else the asset's
+// own (what it was baked for). Throws, with what to do, where that mode cannot read the asset.
+Mode render_mode(const Options &options, const dsn_asset &asset) {
+    const bool bilinear = asset.interpolation == DSN_INTERPOLATION_BILINEAR;
+    const Mode mode = options.mode_known ? options.mode : bilinear ? Mode::continuous : Mode::tile;
+    const std::string &path = options.asset_path;
+    if (mode == Mode::continuous && !bilinear && (options.flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
+        throw std::runtime_error(
+            path + " was baked for the lattice: re-bake it with dsn-bake --interpolation "
+                   "bilinear (the default) to read it in continuous mode, or use --mode tile|point");
+    if (mode != Mode::continuous && bilinear && asset.lattice_texton == nullptr)
+        throw std::runtime_error(path + " was baked by an older dsn-bake for bilinear reads only: re-bake it "
+                                        "to read it on the lattice, or use --mode continuous");
+    if (mode != Mode::continuous && !options.mode_known) {
+        dsn::lattice_origin(options.origin_x); // the asset chose the lattice: integers only
+        dsn::lattice_origin(options.origin_y);
+    }
+    return mode;
 }
 
 // What every worker shares: the configured noise, where the image lies, and its cut into strips.
@@ -435,10 +465,9 @@ void float32_to_little_endian(float *values, size_t count) {
 }
 
 void run(const Options &options) {
-    std::vector<unsigned char> asset_bytes = read_file(options.asset_path);
     dsn_asset asset;
-    int err = dsn_asset_load(&asset, asset_bytes.data(), asset_bytes.size());
-    if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
+    const std::vector<unsigned char> asset_bytes = dsn::load_asset_file(options.asset_path, asset);
+    const Mode mode = render_mode(options, asset);
     dsn_config config;
     dsn_config_defaults(&config);
     config.seed = options.seed;
@@ -447,18 +476,16 @@ void run(const Options &options) {
     config.period_y = options.period_y;
     config.flags = options.flags;
     dsn_noise noise;
-    err = dsn_noise_init(&noise, &asset, &config);
+    int err = dsn_noise_init(&noise, &asset, &config);
     if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
-    if (options.mode == Mode::continuous && (err = dsn_continuous_check(&noise)) != DSN_OK)
-        throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err) +
-                                 " (bake it with dsn-bake --interpolation bilinear, or render it anyway "
-                                 "with --allow-lattice)");
+    if (mode == Mode::continuous && (err = dsn_continuous_check(&noise)) != DSN_OK)
+        throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
 
-    const uint32_t max_taps = options.mode != Mode::continuous || options.filter == Filter::none ? 0
-                              : options.filter == Filter::iso                                    ? 1
-                                                              : options.max_taps;
-    Job job{&noise, options.mode, 0, 0, {}, options.width, options.height, asset.channels, 0, max_taps};
-    if (options.mode == Mode::continuous)
+    const uint32_t max_taps = mode != Mode::continuous || options.filter == Filter::none ? 0
+                              : options.filter == Filter::iso                            ? 1
+                                                                                         : options.max_taps;
+    Job job{&noise, mode, 0, 0, {}, options.width, options.height, asset.channels, 0, max_taps};
+    if (mode == Mode::continuous)
         job.grid = dsn::rotated_grid(options.origin_x, options.origin_y, options.scale_x, options.scale_y,
                                      options.rotate_degrees);
     else
@@ -495,16 +522,17 @@ void run(const Options &options) {
                                    value_count * sizeof(float));
     }
     if (!options.quiet)
-        std::fprintf(stderr, "dsn-render: %ux%u, %u channel(s), %u thread(s): %.3f s, %.1f Mpixel/s -> %s\n",
-                     options.width, options.height, asset.channels, threads, seconds,
-                     options.width * static_cast<double>(options.height) / seconds / 1e6,
-                     options.output_path.c_str());
+        std::printf("dsn-render: %ux%u, %u channel(s), %u thread(s): %.3f s, %.1f Mpixel/s -> %s\n",
+                    options.width, options.height, asset.channels, threads, seconds,
+                    options.width * static_cast<double>(options.height) / seconds / 1e6,
+                    options.output_path.c_str());
 }
 
 } // namespace
 
 int main(int argc, char **argv) {
-    return dsn::run_tool("dsn-render", kUsage, argc, argv, [](dsn::CommandLine &command_line) {
+    const std::string text = usage();
+    return dsn::run_tool("dsn-render", text.c_str(), argc, argv, [](dsn::CommandLine &command_line) {
         run(parse_options(command_line));
         return 0;
     });

@@ -49,7 +49,8 @@ const char *const kUsage =
     "per output pixel, plus the file: about 12 GiB for 16384x16384 RGB, 0.2 GiB for 2048x2048 RGB.\n"
     "OUT.png is grey or RGB, values clamped to [0, 1]; OUT.f32 is raw little-endian float32, channels\n"
     "interleaved, row-major, top row first (exemplar units, 1.0 = white, not clamped).\n"
-    "A progress bar is drawn for outputs of 4 Mpixels or more when stderr is a terminal.\n"
+    "The summary line goes to stdout; warnings, and a progress bar for outputs of 4 Mpixels or more\n"
+    "when stderr is a terminal, to stderr.\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when synthesis\n"
     "fails (unreadable or constant image, out of memory, cannot write).\n";
@@ -186,7 +187,7 @@ int run(const Arguments &arguments) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     dsn::write_file_atomically(arguments.output, encode(image, arguments.output, arguments.bits));
     if (!arguments.quiet)
-        std::fprintf(stderr, "dsn-synth: %s %dx%d from %dx%d (FFT %dx%d), %d channel(s): %.3f s -> %s\n",
+        std::printf("dsn-synth: %s %dx%d from %dx%d (FFT %dx%d), %d channel(s): %.3f s -> %s\n",
                      options.method == dsn::SynthesisMethod::rpn ? "rpn" : "adsn", image.width, image.height,
                      exemplar.width, exemplar.height, domain.width, domain.height, image.channels, seconds,
                      arguments.output.c_str());
