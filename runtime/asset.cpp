@@ -4,9 +4,7 @@
    1.1 files as 1.0, refuses 1.2 files with the histogram flag and reads 1.3 bilinear files in continuous
    mode only), which keeps the small build's code as it was. */
 #include "format_bytes.h"
-#include "init_internal.h"
-
-#define DSN_READS_SECTIONS (DSN_FILTERING || DSN_HISTOGRAM)
+#include "init_internal.h" /* DSN_READS_SECTIONS */
 
 namespace {
 

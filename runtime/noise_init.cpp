@@ -79,16 +79,8 @@ void clear_noise(dsn_noise_state *noise) {
 
 } // namespace
 
+#if DSN_READS_SECTIONS
 const dsn_noise_state *dsn_internal_lattice_view(const dsn_noise_state *noise, dsn_noise_state *view) {
-#if !DSN_FILTERING && !DSN_HISTOGRAM
-    /* This build does not read sections: a 1.3 bilinear file has a lattice texton it has not read. */
-    (void)view;
-    const dsn_asset *asset = &noise->asset;
-    return asset->interpolation == DSN_INTERPOLATION_BILINEAR &&
-                   asset->version_minor >= DSN_FORMAT_LATTICE_TEXTON_MINOR
-               ? 0
-               : noise;
-#else
     if (noise->asset.lattice_texton == 0) return noise;
     *view = *noise;
     view->asset.texton = noise->asset.lattice_texton;
@@ -98,8 +90,8 @@ const dsn_noise_state *dsn_internal_lattice_view(const dsn_noise_state *noise, d
     view->radius[0] = (view->asset.width - 1) / 2;
     view->radius[1] = (view->asset.height - 1) / 2;
     return view;
-#endif
 }
+#endif
 
 extern "C" const char *dsn_version(void) { return DSN_VERSION_STRING; }
 

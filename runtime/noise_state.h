@@ -49,12 +49,24 @@ inline dsn_noise_state *dsn_state(dsn_noise *noise) {
     return static_cast<dsn_noise_state *>(static_cast<void *>(noise));
 }
 
+/* A build with neither the filtered evaluation nor the histogram mapping (the small build) reads no
+   section of an asset (format.h), the lattice texton of format 1.3 included. */
+#define DSN_READS_SECTIONS (DSN_FILTERING || DSN_HISTOGRAM)
+
+#if DSN_READS_SECTIONS
 /* The noise as the lattice evaluators read it: the noise itself, or, for an asset that carries a lattice
    texton (format 1.3: a bilinear bake), a copy in `view` whose texton is that one (its window, a
    rectangle, and its radius). Everything else stays: the cells, the Poisson table, the density of the
-   asset's own support and the normalization (the two textons' sums are equal, format.h). Null in a
-   build that reads no sections (the small build) for a 1.3 bilinear asset, whose lattice texton it has
-   not read: its lattice evaluators refuse such an asset (DSN_ERR_UNSUPPORTED). In noise_init.cpp. */
+   asset's own support and the normalization (the two textons' sums are equal, format.h). In
+   noise_init.cpp. */
 const dsn_noise_state *dsn_internal_lattice_view(const dsn_noise_state *noise, dsn_noise_state *view);
+#else
+/* A 1.3 bilinear asset has a lattice texton that this build has not read: its lattice evaluators refuse
+   it (DSN_ERR_UNSUPPORTED) rather than read the bilinear texton. */
+inline int dsn_lattice_texton_unread(const dsn_noise_state *noise) {
+    return noise->asset.interpolation == DSN_INTERPOLATION_BILINEAR &&
+           noise->asset.version_minor >= DSN_FORMAT_LATTICE_TEXTON_MINOR;
+}
+#endif
 
 #endif /* DSN_NOISE_STATE_H */

@@ -391,7 +391,16 @@ extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int3
     const dsn_noise_state *noise = dsn_state(handle);
     if (!usable(noise, out)) return;
     uint32_t sums[3];
+#if DSN_READS_SECTIONS
+    dsn_noise_state view;
+    accumulate(dsn_internal_lattice_view(noise, &view), uint32_t(x), uint32_t(y), sums);
+#else
+    if (dsn_lattice_texton_unread(noise)) {
+        for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = 0;
+        return;
+    }
     accumulate(noise, uint32_t(x), uint32_t(y), sums);
+#endif
     dsn_normalize(noise, sums, out);
 }
 #endif

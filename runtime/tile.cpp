@@ -39,8 +39,15 @@ int render_checked(const dsn_noise_state *noise, int32_t x0, int32_t y0, uint32_
     uint32_t *accumulator = kind == dsn_output_fixed ? static_cast<uint32_t *>(out)
                                                      : scratch_accumulator(scratch, scratch_size, values);
     if (accumulator == 0) return DSN_ERR_SCRATCH;
+#if DSN_READS_SECTIONS
+    dsn_noise_state view;
+    const dsn_noise_state *lattice = dsn_internal_lattice_view(noise, &view);
+#else
+    if (dsn_lattice_texton_unread(noise)) return DSN_ERR_UNSUPPORTED;
+    const dsn_noise_state *lattice = noise;
+#endif
     dsn_kernel_entries_of(noise->tile_kernel)
-        ->lattice_tile(noise, uint32_t(x0), uint32_t(y0), width, height, out, kind, accumulator);
+        ->lattice_tile(lattice, uint32_t(x0), uint32_t(y0), width, height, out, kind, accumulator);
     return DSN_OK;
 }
 

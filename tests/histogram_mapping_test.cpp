@@ -278,7 +278,8 @@ TEST_CASE("histogram: the mapping of hand-built tables gives the specification's
         CHECK(value == c.out);
         CHECK(value == reference_map(m, 1, &c.g)[0]);
     }
-    dsn_test::LoadedNoise unit_noise(fields, dsn_test::make_config(3));
+    dsn_test::LoadedNoise unit_noise(fields,
+                                     dsn_test::make_config(3, 30, 0, 0, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS));
     int32_t lattice_value = 1, continuous_value = 1;
     dsn_lattice_point_fixed(&unit_noise.noise, 5, -7, &lattice_value);
     REQUIRE(dsn_continuous_point_fixed(&unit_noise.noise, int64_t(5) << 32, -(int64_t(7) << 32),
