@@ -2,8 +2,9 @@
 // (dsn.h, DSN_HISTOGRAM; format.h, steps 8 and 16), on the cross test's assets: a build with the mapping
 // loads the two 1.2 assets (with their pyramids, DSN_FILTERING or not) and maps their values, one
 // without it refuses them with DSN_ERR_UNSUPPORTED, skips step 16 for a file without the flag, and its
-// init refuses a hand-filled mapping. Built and run by tests/scripts/histogram-build-options. Prints
-// one line per failed check; exits 1 when any failed.
+// init refuses a hand-filled mapping; and a 1.3 bilinear asset's lattice texton, read or refused on the
+// lattice by the builds that read sections or none. Built and run by tests/scripts/histogram-build-options.
+// Prints one line per failed check; exits 1 when any failed.
 #include <stdio.h>
 #include <string.h>
 
@@ -23,6 +24,40 @@ void check(bool condition, const char *what, const char *asset) {
 }
 
 unsigned char copy[4096];
+
+/* A 1.3 bilinear asset (the loader's fuzz seed with a lattice texton): a build that reads sections reads
+   its lattice texton and evaluates it on the lattice; the small build, which reads none, refuses it on the
+   lattice with DSN_ERR_UNSUPPORTED and zeroes the output, and reads it in continuous mode. */
+void check_lattice_texton() {
+    const char *name = "asset-27-lattice-texton.dsnt";
+    FILE *file = fopen("tests/fuzz/corpus/asset_loader/asset-27-lattice-texton.dsnt", "rb");
+    const size_t size = file != 0 ? fread(copy, 1, sizeof copy, file) : 0;
+    if (file != 0) fclose(file);
+    dsn_asset asset;
+    dsn_noise noise;
+    dsn_config config;
+    dsn_config_defaults(&config);
+    check(dsn_asset_load(&asset, copy, size) == DSN_OK, "a 1.3 asset loads", name);
+    check(dsn_noise_init(&noise, &asset, &config) == DSN_OK, "init", name);
+    int32_t tile[4 * 3] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1}, point[3] = {1, 1, 1}, continuous[3];
+    const int tile_code = dsn_lattice_tile_fixed(&noise, 3, 4, 2, 2, tile, 0, 0);
+    dsn_lattice_point_fixed(&noise, 3, 4, point);
+    check(dsn_continuous_point_fixed(&noise, int64_t(3) << 32, int64_t(4) << 32, continuous) == DSN_OK,
+          "the continuous mode reads it", name);
+#if DSN_FILTERING || DSN_HISTOGRAM
+    check(asset.lattice_texton != 0 && asset.lattice_width == asset.width + 2, "its lattice texton is read",
+          name);
+    check(tile_code == DSN_OK && tile[0] == point[0] && tile[1] == point[1] && tile[2] == point[2],
+          "the lattice tile equals the lattice point", name);
+#else
+    check(asset.lattice_texton == 0, "no section is read", name);
+    check(tile_code == DSN_ERR_UNSUPPORTED, "the lattice tile is refused", name);
+    uint32_t nonzero = 0;
+    for (int32_t value : tile) nonzero += value != 0;
+    for (int32_t value : point) nonzero += value != 0;
+    check(nonzero == 0, "the refused outputs are zeroed", name);
+#endif
+}
 
 } // namespace
 
@@ -78,5 +113,6 @@ int main() {
               bytes.name);
 #endif
     }
+    check_lattice_texton();
     return failures == 0 ? 0 : 1;
 }
