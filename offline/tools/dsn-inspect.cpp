@@ -23,9 +23,11 @@ const char *const kUsage =
     "pyramid, and the histogram-preserving output of a format 1.2 asset (its table's entries, levels,\n"
     "step and input range in Gaussian space, the rotation P and centre back to colours, the expected\n"
     "value the mapping fades to and the exemplar's mean colour centre + P expected, which the filtered\n"
-    "evaluation fades to, beside the Gaussian-space mean of the header). With --json, prints the\n"
-    "header, mean, color_transform, support, texton, pyramid levels (dequantized values, row-major,\n"
-    "channels interleaved, top-left first) and histogram (null without one) as one JSON object. bake_rme\n"
+    "evaluation fades to, beside the Gaussian-space mean of the header), and the lattice texton of a\n"
+    "format 1.3 bilinear asset (what the lattice evaluators read). With --json, prints the header, mean,\n"
+    "color_transform, support, texton, lattice_texton (null without one), pyramid levels (dequantized\n"
+    "values, row-major, channels interleaved, top-left first) and histogram (null without one) as one\n"
+    "JSON object. bake_rme\n"
     "(RME in the text) is the relative model error of the stored texton that the baker recorded, summed\n"
     "over every frequency as Galerne, Leclaire and Moisan define it (dsn-bake --help says more).\n"
     "\n"
@@ -65,6 +67,38 @@ std::vector<double> level_values(const dsn_asset &asset, const dsn_level &level)
 double texton_value(const dsn_asset &asset, uint32_t row, uint32_t column, uint32_t channel) {
     return double(dsn_asset_texton_value(&asset, row, column, channel)) * double(asset.scale[channel]) /
            kScaleOne;
+}
+
+// The asset as its lattice texton (format 1.3): its values, window and bytes in place of the texton's.
+dsn_asset lattice_view(const dsn_asset &asset) {
+    dsn_asset lattice = asset;
+    lattice.texton = asset.lattice_texton;
+    lattice.width = asset.lattice_width;
+    lattice.height = asset.lattice_height;
+    lattice.shape = DSN_SHAPE_RECTANGLE;
+    return lattice;
+}
+
+// The dequantized values of a texton, row-major, channels interleaved.
+std::vector<double> texton_values(const dsn_asset &asset) {
+    std::vector<double> values;
+    for (uint32_t row = 0; row < asset.height; row++)
+        for (uint32_t column = 0; column < asset.width; column++)
+            for (uint32_t c = 0; c < asset.channels; c++)
+                values.push_back(texton_value(asset, row, column, c));
+    return values;
+}
+
+void print_lattice_texton_text(const dsn_asset &asset) {
+    if (asset.lattice_texton != nullptr)
+        std::printf("lattice texton  %ux%u, %u bytes (format 1.3: what the lattice evaluators read)\n",
+                    asset.lattice_width, asset.lattice_height,
+                    asset.lattice_width * asset.lattice_height * asset.channels * asset.bits / 8);
+    else if (asset.interpolation == DSN_INTERPOLATION_BILINEAR)
+        std::printf(
+            "lattice texton  none: written before format 1.3, too grainy on the lattice (re-bake it)\n");
+    else
+        std::printf("lattice texton  none (the lattice evaluators read the texton)\n");
 }
 
 // The levels 1 .. pyramid_levels, and the bytes the pyramid's section takes in the file (0 without one).
@@ -146,6 +180,7 @@ void print_text(const char *path, size_t size, const dsn_asset &asset) {
     std::printf("texton          %ux%u, %s support of %u points\n", asset.width, asset.height,
                 shape_name(asset.shape), asset.support_size);
     std::printf("interpolation   %s\n", interpolation_name(asset.interpolation));
+    print_lattice_texton_text(asset);
     if (asset.default_impacts_q16)
         std::printf("impacts         %.4g per pixel\n", asset.default_impacts_q16 / 65536.0);
     else
@@ -229,19 +264,24 @@ void print_json(const char *path, size_t size, const dsn_asset &asset) {
     print_numbers(mean);
     std::printf(",\n  \"color_transform\": ");
     print_numbers(transform);
-    std::vector<double> mask, texton;
+    std::vector<double> mask;
     for (uint32_t row = 0; row < asset.height; row++)
-        for (uint32_t column = 0; column < asset.width; column++) {
+        for (uint32_t column = 0; column < asset.width; column++)
             mask.push_back(dsn_in_support(asset.shape, asset.width, row, column) ? 1 : 0);
-            for (uint32_t c = 0; c < asset.channels; c++)
-                texton.push_back(texton_value(asset, row, column, c));
-        }
     std::printf(
         ",\n  \"support\": {\"shape\": \"%s\", \"width\": %u, \"height\": %u, \"points\": %u, \"mask\": ",
         shape_name(asset.shape), asset.width, asset.height, asset.support_size);
     print_numbers(mask);
     std::printf("},\n  \"texton\": ");
-    print_numbers(texton);
+    print_numbers(texton_values(asset));
+    if (asset.lattice_texton != nullptr) {
+        std::printf(",\n  \"lattice_texton\": {\"width\": %u, \"height\": %u, \"values\": ",
+                    asset.lattice_width, asset.lattice_height);
+        print_numbers(texton_values(lattice_view(asset)));
+        std::printf("}");
+    } else {
+        std::printf(",\n  \"lattice_texton\": null");
+    }
     size_t section_bytes;
     const std::vector<dsn_level> levels = pyramid_levels(asset, section_bytes);
     std::printf(",\n  \"bytes_without_pyramid\": %zu,\n  \"pyramid\": [", size - section_bytes);
