@@ -251,7 +251,7 @@ uint32_t dsn_noise_channels(const dsn_noise *noise);
 /* Loads and validates the asset (dsn_asset_load) and configures `noise` with the defaults of
    dsn_config_defaults and this seed (dsn_noise_init), in one call. `bytes` (the .dsnt file's contents)
    must stay alive and unchanged for as long as `noise` is used: the noise reads its texton there.
-   A lattice-baked asset (the usual dsn-bake output) gets DSN_FLAG_ALLOW_LATTICE_CONTINUOUS, so that
+   A lattice-baked asset (dsn-bake --interpolation lattice) gets DSN_FLAG_ALLOW_LATTICE_CONTINUOUS, so that
    dsn_sample works on every valid asset: read bilinearly, its texton gives a slightly smoother noise than
    the exemplar (its spectrum times the bilinear filter's: see the continuous mode below); an asset baked with
    `dsn-bake --interpolation bilinear` is compensated for that and matches the exemplar. The lattice
