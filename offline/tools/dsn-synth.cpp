@@ -188,9 +188,9 @@ int run(const Arguments &arguments) {
     dsn::write_file_atomically(arguments.output, encode(image, arguments.output, arguments.bits));
     if (!arguments.quiet)
         std::printf("dsn-synth: %s %dx%d from %dx%d (FFT %dx%d), %d channel(s): %.3f s -> %s\n",
-                     options.method == dsn::SynthesisMethod::rpn ? "rpn" : "adsn", image.width, image.height,
-                     exemplar.width, exemplar.height, domain.width, domain.height, image.channels, seconds,
-                     arguments.output.c_str());
+                    options.method == dsn::SynthesisMethod::rpn ? "rpn" : "adsn", image.width, image.height,
+                    exemplar.width, exemplar.height, domain.width, domain.height, image.channels, seconds,
+                    arguments.output.c_str());
     return 0;
 }
 
