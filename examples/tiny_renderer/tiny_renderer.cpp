@@ -17,7 +17,10 @@
 #include <thread>
 #include <vector>
 
+#include <fcntl.h>
 #include <stb_image_write.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "dsn/dsn.h"
 #include "ray_differentials.h"
@@ -61,26 +64,67 @@ struct Texture {
     double texels_per_unit;
 };
 
-// The file's bytes; the reason it cannot be read in the words the dsn tools use ("cannot read x.dsnt: No
-// such file or directory"). This program links the runtime alone, as a renderer of yours would, so it
-// reads files itself rather than through the tools' library.
-std::vector<unsigned char> read_file(const std::string &path) {
-    std::FILE *file = std::fopen(path.c_str(), "rb");
-    if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-    std::vector<unsigned char> bytes;
-    unsigned char buffer[65536];
-    size_t count;
-    errno = 0;
-    while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0)
-        bytes.insert(bytes.end(), buffer, buffer + count);
-    const int read_error = std::ferror(file) ? errno : 0;
-    std::fclose(file);
-    if (read_error != 0) throw std::runtime_error("cannot read " + path + ": " + std::strerror(read_error));
+// The largest .dsnt file of the format this runtime reads (dsn/format.h): the header, the texton, every
+// section of a known kind at its largest, the CRC (the same number as the dsn tools' limit). A larger file
+// is not an asset, so a renderer need never read more.
+size_t largest_asset_bytes() {
+    const auto section = [](size_t payload) {
+        return DSN_SECTION_HEADER_SIZE +
+               (payload + DSN_SECTION_ALIGNMENT - 1) / DSN_SECTION_ALIGNMENT * DSN_SECTION_ALIGNMENT;
+    };
+    const size_t texton = size_t(DSN_FORMAT_MAX_SIDE) * DSN_FORMAT_MAX_SIDE * DSN_MAX_CHANNELS * 2;
+    const size_t pyramid =
+        section(DSN_PYRAMID_HEADER_SIZE + DSN_PYRAMID_MAX_LEVELS * (DSN_PYRAMID_RECORD_SIZE + texton));
+    const size_t histogram =
+        section(DSN_HISTOGRAM_HEADER_SIZE +
+                size_t(2) * DSN_HISTOGRAM_MAX_LEVELS * DSN_HISTOGRAM_MAX_ENTRIES * DSN_MAX_CHANNELS);
+    const size_t lattice_texton = section(DSN_LATTICE_TEXTON_HEADER_SIZE + texton);
+    return DSN_FORMAT_HEADER_SIZE + pyramid + histogram + lattice_texton + texton + DSN_FORMAT_CRC_SIZE;
+}
+
+// The file's bytes, in the words the dsn tools use when it cannot be read ("cannot read x.dsnt: No such
+// file or directory"). This program links the runtime alone, as a renderer of yours would, so it reads
+// files itself rather than through the tools' library, and as carefully: only a regular file (opened
+// without blocking, so a FIFO is refused instead of waiting for a writer forever), and never more than
+// the largest asset (so /dev/zero or a huge file is refused instead of filling the memory).
+std::vector<unsigned char> read_asset_file(const std::string &path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+    struct stat status;
+    if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
+        ::close(fd);
+        throw std::runtime_error("cannot read " + path + ": not a regular file");
+    }
+    const size_t limit = largest_asset_bytes();
+    const std::runtime_error too_large(path + " is too large: larger than the limit of " +
+                                       std::to_string(limit) + " bytes for a dsn asset");
+    if (uint64_t(status.st_size) > limit) {
+        ::close(fd);
+        throw too_large;
+    }
+    std::vector<unsigned char> bytes(limit + 1); // one byte past the limit tells a file grown since fstat
+    size_t size = 0;
+    while (size < bytes.size()) {
+        const ssize_t count = ::read(fd, bytes.data() + size, bytes.size() - size);
+        if (count < 0 && errno == EINTR) continue;
+        if (count <= 0) {
+            if (count < 0) {
+                const int error = errno;
+                ::close(fd);
+                throw std::runtime_error("cannot read " + path + ": " + std::strerror(error));
+            }
+            break;
+        }
+        size += size_t(count);
+    }
+    ::close(fd);
+    if (size > limit) throw too_large;
+    bytes.resize(size);
     return bytes;
 }
 
 void load_texture(Texture &texture, const std::string &path, uint32_t seed, double texels_per_unit) {
-    texture.bytes = read_file(path);
+    texture.bytes = read_asset_file(path);
     int err = dsn_asset_load(&texture.asset, texture.bytes.data(), texture.bytes.size());
     if (err != DSN_OK) throw std::runtime_error(path + " is not a dsn asset: " + dsn_error_message(err));
     dsn_config config;
