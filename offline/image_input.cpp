@@ -7,15 +7,14 @@
 // size needs, so a small file cannot inflate to gigabytes. PGM/PPM is read here: a short file is an
 // error and samples are divided by the file's own maxval.
 #include "dsn/bake.h"
+#include "file_input.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
-#include <sys/stat.h>
 #include <vector>
 
 namespace dsn {
@@ -119,24 +118,6 @@ struct StbFree {
 
 [[noreturn]] void fail(const std::string &name, const std::string &problem) {
     throw std::runtime_error(name + ": " + problem);
-}
-
-// Reads the whole file, refusing what is not a regular file or is larger than any image we accept.
-std::vector<unsigned char> read_regular_file(const std::string &path) {
-    struct stat status;
-    if (stat(path.c_str(), &status) != 0) fail(path, std::strerror(errno));
-    if (!S_ISREG(status.st_mode)) fail(path, "not a regular file");
-    if (uint64_t(status.st_size) > kMaxExemplarFileBytes)
-        fail(path,
-             "file is larger than the limit of " + std::to_string(kMaxExemplarFileBytes >> 20) + " MiB");
-    FILE *file = std::fopen(path.c_str(), "rb");
-    if (!file) fail(path, std::strerror(errno));
-    std::vector<unsigned char> bytes(size_t(status.st_size));
-    const size_t read = std::fread(bytes.data(), 1, bytes.size(), file);
-    const bool failed = std::ferror(file) != 0;
-    std::fclose(file);
-    if (failed || read != bytes.size()) fail(path, "read error");
-    return bytes;
 }
 
 enum class Format { png, jpeg, pnm, unknown };
@@ -413,7 +394,7 @@ Image decode_exemplar(const unsigned char *bytes, size_t size, const std::string
 }
 
 Image load_exemplar(const std::string &path, std::vector<std::string> *warnings) {
-    const std::vector<unsigned char> bytes = read_regular_file(path);
+    const std::vector<unsigned char> bytes = read_input_file(path, kMaxExemplarFileBytes, "an image");
     return decode_exemplar(bytes.data(), bytes.size(), path, warnings);
 }
 

@@ -50,11 +50,11 @@ TEST_CASE("the asset reader reads up to the largest asset, and names images and 
     CHECK(dsn::read_asset_file(largest).size() == dsn::largest_asset_bytes());
     const std::string larger =
         write("larger.dsnt", std::vector<unsigned char>(dsn::largest_asset_bytes() + 1));
-    CHECK_THROWS_WITH_AS(
-        dsn::read_asset_file(larger),
-        (larger + " is larger than any dsn asset (" + std::to_string(dsn::largest_asset_bytes()) + " bytes)")
-            .c_str(),
-        std::runtime_error);
+    CHECK_THROWS_WITH_AS(dsn::read_asset_file(larger),
+                         (larger + " is too large: larger than the limit of " +
+                          std::to_string(dsn::largest_asset_bytes()) + " bytes for a dsn asset")
+                             .c_str(),
+                         std::runtime_error);
     CHECK_THROWS_WITH_AS(dsn::read_asset_file(folder + "/missing.dsnt"),
                          ("cannot read " + folder + "/missing.dsnt: No such file or directory").c_str(),
                          std::runtime_error);

@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,7 +13,9 @@
 #include <stb_image.h>
 
 #include "../../offline/bake_internal.h"
+#include "../../offline/file_input.h"
 #include "../../offline/label.h"
+#include "../../offline/tools/asset_file.h"
 #include "../../offline/tools/command_line.h"
 #include "../../offline/tools/file_output.h"
 #include "../../offline/tools/png_output.h"
@@ -53,9 +53,17 @@ Picture blank(int width, int height, unsigned char grey) {
     return picture;
 }
 
+// The PNGs this program reads are the demo's own renders, read as carefully as every input (a regular
+// file, bounded like an exemplar).
+std::vector<unsigned char> read_image_file(const std::string &path) {
+    return dsn::read_input_file(path, dsn::kMaxExemplarFileBytes, "an image");
+}
+
 Picture load_png(const std::string &path) {
+    const std::vector<unsigned char> bytes = read_image_file(path);
     int width, height, channels;
-    unsigned char *data = stbi_load(path.c_str(), &width, &height, &channels, 3);
+    unsigned char *data =
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 3);
     if (!data) throw std::runtime_error("cannot read image " + path + ": " + stbi_failure_reason());
     Picture picture;
     picture.width = width;
@@ -123,12 +131,8 @@ Picture gaussian_reference(const dsn::Image &exemplar, uint32_t seed) {
 // The texton after the colour transform (what one impulse adds), mid-grey = 0, enlarged by an integer
 // factor to fill the panel.
 Picture texton_picture(const std::string &asset_path) {
-    std::ifstream file(asset_path, std::ios::binary);
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                     std::istreambuf_iterator<char>());
     dsn_asset asset;
-    const int err = dsn_asset_load(&asset, bytes.data(), bytes.size());
-    if (err != DSN_OK) throw std::runtime_error(asset_path + ": " + dsn_error_message(err));
+    const std::vector<unsigned char> bytes = dsn::load_asset_file(asset_path, asset); // asset points into it
     const int w = int(asset.width), h = int(asset.height), channels = int(asset.channels);
     std::vector<double> values(size_t(w * h * 3), 0.0);
     double peak = 1e-30;
@@ -160,8 +164,9 @@ int run(dsn::CommandLine &command_line) {
     while (command_line.next()) {
         if (command_line.is("--print-size")) {
             const std::string image = command_line.value();
+            const std::vector<unsigned char> bytes = read_image_file(image);
             int width, height, channels;
-            if (!stbi_info(image.c_str(), &width, &height, &channels))
+            if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels))
                 throw std::runtime_error("cannot read image " + image);
             std::printf("%d %d\n", width, height);
             return 0;

@@ -1,8 +1,8 @@
 // asset_file.cpp - reads and validates the tools' asset files, with one-line reasons (asset_file.h).
 #include "asset_file.h"
 
-#include <cerrno>
-#include <cstdio>
+#include "../file_input.h"
+
 #include <cstring>
 #include <stdexcept>
 
@@ -47,20 +47,7 @@ size_t largest_asset_bytes() {
 }
 
 std::vector<unsigned char> read_asset_file(const std::string &path) {
-    FILE *file = std::fopen(path.c_str(), "rb");
-    if (!file) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-    // One byte more than any asset is enough to refuse the file.
-    std::vector<unsigned char> bytes(largest_asset_bytes() + 1);
-    errno = 0;
-    const size_t read = std::fread(bytes.data(), 1, bytes.size(), file);
-    const int read_error = std::ferror(file) ? errno : 0;
-    std::fclose(file);
-    if (read_error != 0) throw std::runtime_error("cannot read " + path + ": " + std::strerror(read_error));
-    if (read > largest_asset_bytes())
-        throw std::runtime_error(path + " is larger than any dsn asset (" +
-                                 std::to_string(largest_asset_bytes()) + " bytes)");
-    bytes.resize(read);
-    return bytes;
+    return read_input_file(path, largest_asset_bytes(), "a dsn asset");
 }
 
 std::string asset_problem(const std::string &path, const std::vector<unsigned char> &bytes, int error) {

@@ -1,6 +1,7 @@
 // asset_file.h - reads a .dsnt file for a tool and says in one line why one cannot be used (part of
-// libdsn_tools.a): every tool that reads assets (dsn-inspect, dsn-render, dsn-gpu-render) reads them here,
-// so they refuse the same files with the same words.
+// libdsn_tools.a): every tool that reads assets (dsn-inspect, dsn-render, dsn-gpu-render, dsn-contact-sheet)
+// reads them here, so they refuse the same files with the same words (dsn-tiny-renderer, which links the
+// runtime alone, has a reader of its own with the same limit).
 //
 //     dsn_asset asset;
 //     const std::vector<unsigned char> bytes = dsn::load_asset_file("wood.dsnt", asset);
@@ -20,8 +21,10 @@ namespace dsn {
 // texton, every section of a known kind at its largest, the CRC. A larger file is not an asset.
 size_t largest_asset_bytes();
 
-// The file's bytes, at most largest_asset_bytes(). Throws std::runtime_error: "cannot read PATH: No such
-// file or directory" (the system's reason), or "PATH is larger than any dsn asset (N bytes)".
+// The file's bytes, at most largest_asset_bytes(), read by read_input_file (offline/file_input.h): throws
+// std::runtime_error: "cannot read PATH: No such file or directory" (the system's reason), "cannot read
+// PATH: not a regular file" (a FIFO, a device, a folder), or "PATH is too large: larger than the limit of
+// N bytes for a dsn asset".
 std::vector<unsigned char> read_asset_file(const std::string &path);
 
 // The line that says why `bytes` (read from `path`) failed dsn_asset_load with `error`: for an image
