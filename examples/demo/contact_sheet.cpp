@@ -187,7 +187,7 @@ int run(dsn::CommandLine &command_line) {
         } else if (command_line.is("--horizon-note")) {
             horizon_note = command_line.value();
         } else if (command_line.is("-o") || command_line.is("--output")) {
-            output = command_line.value();
+            output = command_line.path_value();
         } else if (command_line.is("--seed")) {
             seed = uint32_t(dsn::parse_integer(command_line, 0, 4294967295ll));
         } else {
@@ -202,6 +202,14 @@ int run(dsn::CommandLine &command_line) {
     if (horizon_given != 0 && horizon_given != 3)
         throw dsn::UsageError(
             "--horizon-unfiltered, --horizon-filtered and --horizon-supersampled go together");
+
+    std::vector<dsn::NamedPath> inputs = {{"the --exemplar input", exemplar_path},
+                                          {"the --asset input", asset_path},
+                                          {"the --synthesis input", synthesis_path},
+                                          {"the --scene input", scene_path}};
+    for (const std::string &horizon : horizon_paths)
+        if (!horizon.empty()) inputs.push_back({"a --horizon-* input", horizon});
+    dsn::check_outputs(inputs, {{"-o", output}});
 
     const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
     const Picture scene = load_png(scene_path);

@@ -298,6 +298,22 @@ int run(int argc, char **argv) {
     if (assets.empty() || assets.size() > 2) throw UsageError("give one or two assets");
     if (output.size() < 5 || output.compare(output.size() - 4, 4, ".png") != 0)
         throw UsageError("the output must be a .png: -o OUT.png");
+    // Checked before the render, not found when the picture is written: an output that would replace an
+    // input, or that has no folder to go to.
+    struct stat output_status, folder_status;
+    const bool output_exists = ::stat(output.c_str(), &output_status) == 0;
+    for (const std::string &asset : assets) {
+        struct stat asset_status;
+        if (asset == output ||
+            (output_exists && ::stat(asset.c_str(), &asset_status) == 0 &&
+             asset_status.st_dev == output_status.st_dev && asset_status.st_ino == output_status.st_ino))
+            throw UsageError("output " + output + " is the input asset");
+    }
+    const size_t slash = output.find_last_of('/');
+    const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : output.substr(0, slash);
+    if (::stat(folder.c_str(), &folder_status) != 0 || !S_ISDIR(folder_status.st_mode) ||
+        ::access(folder.c_str(), W_OK | X_OK) != 0)
+        throw UsageError("-o " + output + ": cannot write in its folder " + folder);
     if (supersample > 1 && filter_given && filter != Filter::none)
         throw UsageError("--supersample averages unfiltered samples: it takes --filter none or no --filter");
     if (supersample > 1) filter = Filter::none;

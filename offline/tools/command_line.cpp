@@ -63,6 +63,12 @@ std::string CommandLine::value() {
     return argv_[++index_];
 }
 
+std::string CommandLine::path_value() {
+    const std::string path = value();
+    if (path.empty()) throw UsageError(name_ + " needs a file name, not an empty one");
+    return path;
+}
+
 void CommandLine::no_value() const {
     if (has_inline_value_) throw UsageError(name_ + " takes no value");
 }

@@ -54,6 +54,9 @@ class CommandLine {
     bool is_positional() const { return positional_; }
     // The flag's value: what follows '=', else the next argument. UsageError when there is none.
     std::string value();
+    // The value of a flag that names a file: UsageError when it is empty (`--report ""` would otherwise
+    // quietly write nothing).
+    std::string path_value();
     // For a flag that takes no value: UsageError when one was given with '='.
     void no_value() const;
     // Throws the UsageError for an unknown flag (with "did you mean --flag?" when a flag tested by is()

@@ -82,8 +82,12 @@ const char *const kUsage =
     "\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when the bake\n"
-    "fails (unreadable or unusable image, cannot write). The asset, report and preview are written\n"
-    "together: all of them or none. Numbers are decimal. The summary goes to stdout; warnings, and the\n"
+    "fails (unreadable or unusable image, cannot write). The outputs are checked before the bake (each\n"
+    "a different file, none the input, each in a folder that exists and can be written). The asset,\n"
+    "report and preview are written together: all of them or none; two bakes to the same files leave\n"
+    "one bake's whole set (they commit one after the other, under a lock on the folder), so the\n"
+    "report's asset_crc32 is the asset's; a signal that ends the bake (SIGTERM, SIGINT, SIGHUP...)\n"
+    "leaves no temporary file. Numbers are decimal. The summary goes to stdout; warnings, and the\n"
     "progress bar when stderr is a terminal, to stderr.\n"
     "\n"
     "RME, the relative model error (0 is perfect): the optimal-transport distance between the Gaussian\n"
@@ -104,7 +108,7 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
     Arguments arguments;
     while (command_line.next()) {
         if (command_line.is("-o") || command_line.is("--output")) {
-            arguments.output = command_line.value();
+            arguments.output = command_line.path_value();
         } else if (command_line.is("--radius")) {
             arguments.options.radius = int(dsn::parse_integer(command_line, 1, dsn::kMaxRadius));
         } else if (command_line.is("--shape")) {
@@ -146,9 +150,9 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
             command_line.no_value();
             arguments.options.histogram = true;
         } else if (command_line.is("--report")) {
-            arguments.report = command_line.value();
+            arguments.report = command_line.path_value();
         } else if (command_line.is("--preview")) {
-            arguments.preview = command_line.value();
+            arguments.preview = command_line.path_value();
         } else if (command_line.is("--quiet")) {
             command_line.no_value();
             arguments.quiet = true;
@@ -163,9 +167,11 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
     }
     if (arguments.input.empty()) throw dsn::UsageError("no input image given");
     if (arguments.output.empty()) throw dsn::UsageError("no output given (-o OUT.dsnt)");
-    for (const std::string *output : {&arguments.output, &arguments.report, &arguments.preview})
-        if (!output->empty() && dsn::same_file(arguments.input, *output))
-            throw dsn::UsageError("output " + *output + " is the input image");
+    // Every output is checked now, not after minutes of baking.
+    std::vector<dsn::NamedPath> outputs = {{"-o", arguments.output}};
+    if (!arguments.report.empty()) outputs.push_back({"--report", arguments.report});
+    if (!arguments.preview.empty()) outputs.push_back({"--preview", arguments.preview});
+    dsn::check_outputs({{"the input image", arguments.input}}, outputs);
     // An asset written as out.png is a mistake that shows only when the file is opened: refuse it.
     if (!dsn::ends_with(arguments.output, ".dsnt"))
         throw dsn::UsageError("the output " + arguments.output +

@@ -146,7 +146,7 @@ Options parse_options(dsn::CommandLine &command_line) {
             if (!options.asset_path.empty()) throw dsn::UsageError("more than one asset given: " + flag);
             options.asset_path = flag;
         } else if (command_line.is("-o") || command_line.is("--output")) {
-            options.output_path = command_line.value();
+            options.output_path = command_line.path_value();
         } else if (command_line.is("--size")) {
             auto sides = split_pair(flag, command_line.value(), 'x');
             options.width =
@@ -227,8 +227,7 @@ Options parse_options(dsn::CommandLine &command_line) {
                               std::to_string(options.height) + " is more than the limit of " +
                               std::to_string(kMaxRenderPixels) +
                               " pixels (8192x8192); render it as windows with --origin");
-    if (dsn::same_file(options.asset_path, options.output_path))
-        throw dsn::UsageError("output " + options.output_path + " is the input asset");
+    dsn::check_outputs({{"the input asset", options.asset_path}}, {{"-o", options.output_path}});
     const char *continuous_flag = options.scale_given      ? "--scale"
                                   : options.rotate_given   ? "--rotate"
                                   : options.filter_given   ? "--filter"

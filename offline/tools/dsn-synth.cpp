@@ -74,7 +74,7 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
             if (!arguments.input.empty()) throw dsn::UsageError("more than one input image: " + flag);
             arguments.input = flag;
         } else if (command_line.is("-o") || command_line.is("--output")) {
-            arguments.output = command_line.value();
+            arguments.output = command_line.path_value();
         } else if (command_line.is("--size")) {
             const std::string text = command_line.value();
             const size_t at = text.find('x');
@@ -115,8 +115,7 @@ Arguments parse_arguments(dsn::CommandLine &command_line) {
     if (arguments.bits == 16 && !dsn::ends_with(arguments.output, ".png"))
         throw dsn::UsageError("--bits is for a .png output");
     if (!size_given) throw dsn::UsageError("no size given (--size WxH)");
-    if (dsn::same_file(arguments.input, arguments.output))
-        throw dsn::UsageError(arguments.output + " is the input image");
+    dsn::check_outputs({{"the input image", arguments.input}}, {{"-o", arguments.output}});
     return arguments;
 }
 
