@@ -70,8 +70,10 @@ AssetFields assemble_asset(const BakeResult &result, const BakeOptions &options,
         fields.mean[c] = to_q24(result.model.mean[size_t(c)]);
     }
     set_identity_color_transform(fields);
-    if (channels == 3)
-        for (int i = 0; i < 9; i++) fields.color_transform[i] = to_q24(result.color_transform[size_t(i)]);
+    for (int row = 0; row < channels; row++)
+        for (int column = 0; column < channels; column++)
+            fields.color_transform[row * 3 + column] =
+                to_q24(result.color_transform[size_t(row * 3 + column)]);
     fields.bake_iterations = uint32_t(result.sot.rme_per_iteration.size());
     fields.bake_seed = options.seed;
     fields.bake_rme_q24 = uint32_t(to_q24(std::min(result.rme_quantized, 127.0)));

@@ -123,7 +123,8 @@ Matrix3 model_covariance(const GaussianModel &model);
 // eigenvectors in the columns of V.
 void symmetric_eigen(const Matrix3 &matrix, std::array<double, 3> &values, Matrix3 &vectors);
 
-// K = B^(1/2) A^(-1/2) (symmetric square roots), so that K A K^T = B. Identity for grey and when A is 0.
+// K = B^(1/2) A^(-1/2) (symmetric square roots), so that K A K^T = B: for grey, the gain sqrt(b / a)
+// (K[0]; 1 when a is 0). Identity when A is 0.
 // Guard: eigenvalues of B below 0 are taken as 0, eigenvalues of A below kColorEigenFloor * max eig(A)
 // are raised to that floor, so a (near-)singular A gives a bounded K and never NaN; entries are then
 // clamped to +-kColorTransformLimit (what Q8.24 stores).

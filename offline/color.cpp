@@ -105,7 +105,10 @@ void symmetric_eigen(const Matrix3 &matrix, std::array<double, 3> &values, Matri
 
 Matrix3 color_transform(const Matrix3 &a, const Matrix3 &b, int channels) {
     const Matrix3 identity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    if (channels != 3) return {1, 0, 0, 0, 0, 0, 0, 0, 0};
+    if (channels != 3) { // the same K on 1 x 1 matrices: the gain sqrt(b / a)
+        const double gain = a[0] > 0 && std::isfinite(a[0]) ? std::sqrt(std::max(b[0], 0.0) / a[0]) : 1.0;
+        return {std::isfinite(gain) ? std::min(gain, kColorTransformLimit) : 1.0, 0, 0, 0, 0, 0, 0, 0, 0};
+    }
     std::array<double, 3> a_values, b_values;
     Matrix3 a_vectors, b_vectors;
     symmetric_eigen(a, a_values, a_vectors);

@@ -130,11 +130,15 @@ TEST_CASE("symmetric_eigen reconstructs the matrix with orthonormal eigenvectors
     }
 }
 
-TEST_CASE("color_transform: K A K^T = B, identity for grey, bounded and finite for a singular A") {
+TEST_CASE(
+    "color_transform: K A K^T = B, the gain sqrt(b / a) for grey, bounded and finite for a singular A") {
     const dsn::Matrix3 a = {2e-4, 5e-5, 1e-5, 5e-5, 1e-4, 2e-5, 1e-5, 2e-5, 3e-4};
     const dsn::Matrix3 b = {3e-4, 1e-4, 0, 1e-4, 2e-4, 4e-5, 0, 4e-5, 4e-4};
     CHECK(relative_difference(transform_covariance(dsn::color_transform(a, b, 3), a), b) < 1e-12);
-    CHECK(dsn::color_transform(a, b, 1) == dsn::Matrix3{1, 0, 0, 0, 0, 0, 0, 0, 0});
+    const dsn::Matrix3 grey = dsn::color_transform(a, b, 1);
+    CHECK(grey[0] == doctest::Approx(std::sqrt(b[0] / a[0])).epsilon(1e-15));
+    for (size_t i = 1; i < 9; i++) CHECK(grey[i] == 0);
+    CHECK(dsn::color_transform({}, b, 1) == dsn::Matrix3{1, 0, 0, 0, 0, 0, 0, 0, 0});
     CHECK(dsn::color_transform({}, b, 3) == dsn::Matrix3{1, 0, 0, 0, 1, 0, 0, 0, 1});
     // A grey texton in an RGB asset: A has rank 1. K stays finite and within the Q8.24 range.
     const dsn::Matrix3 rank_one = {1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4};
