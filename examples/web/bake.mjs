@@ -29,8 +29,10 @@ export class Baker {
     constructor(module) { this.module = module; }
 
     /**
-       Bakes `image` (Uint8Array: a PNG, JPEG, BMP, ... file). radius 0: the largest up to 15 that the
-        image allows; iterations 0: the baker's default. Returns the asset's bytes.
+       Bakes `image` (Uint8Array: the bytes of a file in a format dsn-bake reads: PNG of 8 or 16 bits,
+        JPEG, or binary PGM/PPM; BMP, GIF, TGA, WebP and the others are refused with a BakeError naming
+        the format). radius 0: the largest up to 15 that the image allows; iterations 0: the baker's
+        default. Returns the asset's bytes.
      */
     bake(image, { radius = 0, iterations = 0, seed = 0 } = {}) {
         let memory = null, error = null, output = '';

@@ -13,7 +13,10 @@
 //
 // Each texture owns a WebAssembly instance (its own memory), so textures are independent and a texture
 // can be dropped by dropping the object. Errors from the runtime become DsnError exceptions carrying the
-// runtime's code and message (dsn_error_message).
+// runtime's code and message (dsn_error_message). Every argument is checked here, at the module's edge,
+// before it reaches the runtime: a value of the wrong type throws TypeError, one out of its range
+// RangeError, each naming the setting and its valid range (nothing is silently converted, wrapped or
+// replaced by a default).
 
 const IMPACTS_MIN_Q16 = 1 << 12; // dsn/format.h: DSN_IMPACTS_MIN_Q16 and DSN_IMPACTS_MAX_Q16
 const IMPACTS_MAX_Q16 = 1024 * 65536;
@@ -33,6 +36,9 @@ const ASSET_FIELDS = {
 };
 const PAGE = 65536;
 const Q32_ONE = 4294967296;
+const UINT32_MAX = 4294967295;
+const SCALE_MIN = 1 / 65536, SCALE_MAX = 65536; // dsn-render --scale: steps of at most 2^16 texels
+const MAX_TILE_PIXELS = 1 << 26;
 
 /** An error reported by the runtime: `code` is its dsn_error code, `message` its dsn_error_message. */
 export class DsnError extends Error {
@@ -115,27 +121,41 @@ export class Texture {
     }
 
     /**
-       Sets seed (uint32), density (impacts per pixel, 1/16 .. 1024; 0 or absent: the asset's), period
-        ([px, py], 0 = not periodic on that axis) and colorTransform (false: the identity). The continuous
-        mode is allowed on lattice-baked assets too. Throws DsnError when the runtime refuses.
+       Sets seed (an integer 0 .. 2^32 - 1), density (impacts per pixel, 1/16 .. 1024; 0 or absent: the
+        asset's), period ([px, py], integers 0 .. 2^32 - 1, 0 = not periodic on that axis) and
+        colorTransform (a boolean; false: the identity). The continuous mode is allowed on lattice-baked
+        assets too. Throws TypeError or RangeError for a setting the module refuses (an unknown name
+        included), DsnError when the runtime refuses.
      */
-    configure({ seed = 0, density = 0, period = [0, 0], colorTransform = true } = {}) {
-        const impacts = density ? Math.round(density * 65536) : 0;
-        if (impacts !== 0 && !(impacts >= IMPACTS_MIN_Q16 && impacts <= IMPACTS_MAX_Q16))
-            throw new RangeError(`dsn: density ${density} is outside [1/16, 1024] impacts per pixel`);
+    configure(settings = {}) {
+        checkNames('settings', settings, ['seed', 'density', 'period', 'colorTransform']);
+        const { seed = 0, density = 0, period = [0, 0], colorTransform = true } = settings;
+        checkInteger('seed', seed, 0, UINT32_MAX);
+        checkNumber('density', density);
+        const impacts = Math.round(density * 65536);
+        if (density !== 0 && !(density >= 1 / 16 && density <= 1024 && impacts >= IMPACTS_MIN_Q16 &&
+                               impacts <= IMPACTS_MAX_Q16))
+            throw new RangeError('dsn: density must be 0 (the asset\'s) or within [1/16, 1024] impacts per ' +
+                                 `pixel, not ${density}`);
+        if (!Array.isArray(period) || period.length !== 2)
+            throw new TypeError(`dsn: period must be an array [px, py], not ${describe(period)}`);
+        checkInteger('period[0]', period[0], 0, UINT32_MAX);
+        checkInteger('period[1]', period[1], 0, UINT32_MAX);
+        if (typeof colorTransform !== 'boolean')
+            throw new TypeError(`dsn: colorTransform must be true or false, not ${describe(colorTransform)}`);
         const words = new Uint32Array(this.exports.memory.buffer, this.configAt, CONFIG_BYTES / 4);
-        words[0] = seed >>> 0;
+        words[0] = seed;
         words[1] = impacts;
-        words[2] = period[0] >>> 0;
-        words[3] = period[1] >>> 0;
+        words[2] = period[0];
+        words[3] = period[1];
         words[4] = FLAG_ALLOW_LATTICE_CONTINUOUS | (colorTransform ? 0 : FLAG_NO_COLOR_TRANSFORM);
         const err = this.exports.dsn_noise_init(this.noiseAt, this.assetAt, this.configAt);
         if (err !== 0) this.settings = null;
         check(this.exports, err);
         this.settings = {
-            seed: seed >>> 0,
+            seed,
             density: impacts ? impacts / 65536 : this.defaultDensity,
-            period: [period[0] >>> 0, period[1] >>> 0],
+            period: [period[0], period[1]],
             colorTransform
         };
         return this;
@@ -146,21 +166,26 @@ export class Texture {
     get period() { return this.settings.period; }
 
     /**
-       The values at lattice point (x, y) (int32, wrapping): Float64Array of `channels` values, exactly
-        the runtime's Q16.16 fixed point / 65536 (1.0 = the exemplar's white).
+       The values at lattice point (x, y) (integers, taken modulo 2^32 as the runtime's int32 lattice
+        wraps): Float64Array of `channels` values, exactly the runtime's Q16.16 fixed point / 65536
+        (1.0 = the exemplar's white).
      */
     point(x, y) {
         this.checkConfigured();
+        checkLattice('x', x);
+        checkLattice('y', y);
         this.exports.dsn_lattice_point_fixed(this.noiseAt, x | 0, y | 0, this.valuesAt);
         return fromFixed(new Int32Array(this.exports.memory.buffer, this.valuesAt, this.channels));
     }
 
     /**
-       The values at the continuous point (x, y) in texels (any real number; the runtime converts it
+       The values at the continuous point (x, y) in texels (any finite number; the runtime converts it
         with dsn_coordinate_from_double): Float64Array as for point().
      */
     continuousPoint(x, y) {
         this.checkConfigured();
+        checkFinite('x', x);
+        checkFinite('y', y);
         const e = this.exports;
         check(e, e.dsn_continuous_point_fixed(this.noiseAt, e.dsn_coordinate_from_double(x),
                                               e.dsn_coordinate_from_double(y), this.valuesAt));
@@ -169,16 +194,27 @@ export class Texture {
 
     /**
        A width x height tile as RGBA bytes (alpha 255, grey repeated in R, G, B), ready for ImageData.
-        Without `view`: the lattice tile whose top-left pixel is the point (x, y) (integers). With
-        view = { scale, rotate }: the continuous grid from (x, y) in texels where one pixel steps 1/scale
-        texels, rotated by `rotate` degrees counterclockwise (as dsn-render --mode continuous).
+        Without `view`: the lattice tile whose top-left pixel is the point (x, y) (integers, as for
+        point()). With view = { scale, rotate }: the continuous grid from (x, y) in texels (finite
+        numbers) where one pixel steps 1/scale texels (scale within [1/65536, 65536], as dsn-render
+        --scale), rotated by `rotate` degrees counterclockwise (finite; as dsn-render --mode continuous).
+        width and height: integers of at least 1, width x height at most 2^26.
      */
     tile(x, y, width, height, view = null) {
         this.checkConfigured();
         const e = this.exports;
-        if (!(Number.isInteger(width) && Number.isInteger(height) && width >= 1 && height >= 1 &&
-              width * height <= 1 << 26))
-            throw new RangeError(`dsn: tile size ${width}x${height} out of range`);
+        checkInteger('width', width, 1, MAX_TILE_PIXELS);
+        checkInteger('height', height, 1, MAX_TILE_PIXELS);
+        if (width * height > MAX_TILE_PIXELS)
+            throw new RangeError(`dsn: a tile is at most ${MAX_TILE_PIXELS} pixels, not ${width}x${height}`);
+        if (view === null) {
+            checkLattice('x', x);
+            checkLattice('y', y);
+        } else {
+            checkFinite('x', x);
+            checkFinite('y', y);
+            checkView(view);
+        }
         const count = width * height * this.channels;
         let scratchSize, call;
         if (view === null) {
@@ -222,6 +258,53 @@ export class Texture {
         const memory = this.exports.memory;
         if (end > memory.buffer.byteLength) memory.grow(Math.ceil((end - memory.buffer.byteLength) / PAGE));
     }
+}
+
+// The checks of the module's edge: TypeError for a value of the wrong type, RangeError for one out of range.
+function describe(value) {
+    if (typeof value === 'string') return JSON.stringify(value);
+    return Array.isArray(value) ? 'an array' : String(value);
+}
+
+function checkNumber(name, value) {
+    if (typeof value !== 'number')
+        throw new TypeError(`dsn: ${name} must be a number, not ${describe(value)}`);
+}
+
+function checkFinite(name, value) {
+    checkNumber(name, value);
+    if (!Number.isFinite(value)) throw new RangeError(`dsn: ${name} must be a finite number, not ${value}`);
+}
+
+function checkInteger(name, value, minimum, maximum) {
+    checkNumber(name, value);
+    if (!(Number.isInteger(value) && value >= minimum && value <= maximum))
+        throw new RangeError(`dsn: ${name} must be an integer within [${minimum}, ${maximum}], not ${value}`);
+}
+
+// A lattice coordinate: any integer JavaScript holds exactly, taken modulo 2^32 by `| 0`.
+function checkLattice(name, value) {
+    checkNumber(name, value);
+    if (!Number.isSafeInteger(value))
+        throw new RangeError(`dsn: ${name} must be an integer (a lattice point), not ${value}`);
+}
+
+function checkNames(what, object, names) {
+    if (object === null || typeof object !== 'object' || Array.isArray(object))
+        throw new TypeError(`dsn: ${what} must be an object, not ${describe(object)}`);
+    for (const name of Object.keys(object))
+        if (!names.includes(name))
+            throw new TypeError(`dsn: unknown ${what === 'view' ? 'view' : 'setting'} '${name}' ` +
+                                `(known: ${names.join(', ')})`);
+}
+
+function checkView(view) {
+    checkNames('view', view, ['scale', 'rotate']);
+    const { scale = 1, rotate = 0 } = view;
+    checkNumber('view.scale', scale);
+    if (!(scale >= SCALE_MIN && scale <= SCALE_MAX))
+        throw new RangeError(`dsn: view.scale must be within [1/65536, 65536], not ${scale}`);
+    checkFinite('view.rotate', rotate);
 }
 
 function check(exports, code) {

@@ -163,6 +163,57 @@ try {
 }
 check('density out of range refused', rangeError instanceof RangeError);
 
+// Every setting is checked at the module's edge: the wrong type is a TypeError, a value out of range a
+// RangeError, each naming the setting (a scale of 0 threw an internal RangeError converting Infinity to
+// BigInt, a scale of 1e-12 wrapped its step modulo 2^64, a density of 1e-9 became the asset's 30), and
+// the texture keeps its settings.
+const refusals = [
+    ['scale 0', RangeError, /view\.scale.*\[1\/65536, 65536\]/, () => texture.tile(0, 0, 8, 8, { scale: 0 })],
+    ['scale 1e-12', RangeError, /view\.scale/, () => texture.tile(0, 0, 8, 8, { scale: 1e-12 })],
+    ['scale -1', RangeError, /view\.scale/, () => texture.tile(0, 0, 8, 8, { scale: -1 })],
+    ['scale NaN', RangeError, /view\.scale/, () => texture.tile(0, 0, 8, 8, { scale: NaN })],
+    ['scale "2"', TypeError, /view\.scale must be a number/, () => texture.tile(0, 0, 8, 8, { scale: '2' })],
+    ['rotate Infinity', RangeError, /view\.rotate/, () => texture.tile(0, 0, 8, 8, { rotate: Infinity })],
+    ['view zoom', TypeError, /unknown view 'zoom'/, () => texture.tile(0, 0, 8, 8, { zoom: 2 })],
+    ['continuous x NaN', RangeError, /\bx must be a finite number/,
+     () => texture.tile(NaN, 0, 8, 8, { scale: 1 })],
+    ['lattice x 1.5', RangeError, /\bx must be an integer/, () => texture.tile(1.5, 0, 8, 8)],
+    ['tile width 0', RangeError, /width must be an integer within \[1, /, () => texture.tile(0, 0, 0, 8)],
+    ['tile 2^14 x 2^13', RangeError, /at most 67108864 pixels/, () => texture.tile(0, 0, 1 << 14, 1 << 13)],
+    ['point y "3"', TypeError, /\by must be a number/, () => texture.point(0, '3')],
+    ['continuous point Infinity', RangeError, /\bx must be a finite/,
+     () => texture.continuousPoint(Infinity, 0)],
+    ['density 1e-9', RangeError, /density must be 0 \(the asset's\) or within \[1\/16, 1024\]/,
+     () => texture.configure({ density: 1e-9 })],
+    ['density -5', RangeError, /density/, () => texture.configure({ density: -5 })],
+    ['density NaN', RangeError, /density/, () => texture.configure({ density: NaN })],
+    ['seed -1', RangeError, /seed must be an integer within \[0, 4294967295\]/,
+     () => texture.configure({ seed: -1 })],
+    ['seed 2^32', RangeError, /seed/, () => texture.configure({ seed: 2 ** 32 })],
+    ['seed 1.5', RangeError, /seed/, () => texture.configure({ seed: 1.5 })],
+    ['seed "7"', TypeError, /seed must be a number/, () => texture.configure({ seed: '7' })],
+    ['period [1.5, 0]', RangeError, /period\[0\]/, () => texture.configure({ period: [1.5, 0] })],
+    ['period 16', TypeError, /period must be an array/, () => texture.configure({ period: 16 })],
+    ['colorTransform "no"', TypeError, /colorTransform must be true or false/,
+     () => texture.configure({ colorTransform: 'no' })],
+    ['setting seeds', TypeError, /unknown setting 'seeds'/, () => texture.configure({ seeds: 3 })],
+    ['settings null', TypeError, /settings must be an object/, () => texture.configure(null)],
+];
+texture.configure({ seed: 4, density: 12 });
+const before = rgbHash(texture.tile(0, 0, 16, 16));
+for (const [name, type, pattern, call] of refusals) {
+    let thrown = null;
+    try {
+        call();
+    } catch (error) {
+        thrown = error;
+    }
+    check(`${name} refused: ${type.name}`, thrown instanceof type && pattern.test(thrown.message),
+          thrown ? `${thrown.name}: ${thrown.message}` : 'accepted');
+}
+check('refused settings leave the texture as it was',
+      texture.seed === 4 && texture.density === 12 && rgbHash(texture.tile(0, 0, 16, 16)) === before);
+
 if (bakerPath) {
     // The baker in wasm: its asset loads and has the bake's shape (3 channels for the demo's colour
     // exemplar, a 31 x 31 texton, bilinear); what it refuses comes back as BakeError with its message.
@@ -197,6 +248,10 @@ if (bakerPath) {
     check('baker: image too small -> BakeError', tooSmall instanceof BakeError && tooSmall.message.length > 0,
           String(tooSmall));
     console.log(`module-test: the baker said: ${tooSmall && tooSmall.message}`);
+    // What bake.mjs says it reads is what the baker reads: a BMP is refused by name.
+    const bmp = bakeRefused(Uint8Array.from([0x42, 0x4d, 0x36, 0x30, 0, 0, 0, 0, 0, 0, 0x36, 0, 0, 0, 0x28]));
+    check('baker: BMP -> BakeError naming BMP', bmp instanceof BakeError && /BMP/.test(bmp.message),
+          String(bmp));
 }
 
 console.log(`module-test: ${failures} failed`);
