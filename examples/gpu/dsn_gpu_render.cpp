@@ -87,7 +87,7 @@ Options parse_options(dsn::CommandLine &arguments) {
             if (!options.asset_path.empty()) arguments.unknown();
             options.asset_path = flag;
         } else if (arguments.is("-o") || arguments.is("--output")) {
-            options.output_path = arguments.value();
+            options.output_path = arguments.path_value();
         } else if (arguments.is("--api")) {
             const std::string value = arguments.value();
             if (value != "gles30" && value != "gl45") throw dsn::UsageError("--api must be gles30 or gl45");
@@ -129,6 +129,8 @@ Options parse_options(dsn::CommandLine &arguments) {
     if (!size_given) throw dsn::UsageError("no size given: --size WxH");
     if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
         throw dsn::UsageError("--scale and --rotate need --mode continuous");
+    // Before the GPU context and the render: an output that is the asset or has no folder to go to.
+    dsn::check_outputs({{"the input asset", options.asset_path}}, {{"-o", options.output_path}});
     return options;
 }
 
