@@ -16,6 +16,18 @@ void dsn_internal_build_poisson_table(dsn_noise_state *noise, uint64_t cell_mean
 /* Fills gain_shift, gain and offset from the asset, impacts_q16 and flags. */
 void dsn_internal_compute_normalization(dsn_noise_state *noise);
 
+/* Whether dsn_noise_init bounds the work of a point (evaluation_cost.cpp): every build but the small one,
+   whose unfiltered walks its 8 KB leave unchecked (dsn.h, DSN_MAX_POINT_IMPULSES). */
+#define DSN_CHECKS_COST (DSN_FILTERING || !DSN_SMALL_CODE)
+
+#if DSN_CHECKS_COST
+/* The expected impulses that one point examines, rounded up, in the costliest evaluation of the
+   configured noise (lattice, continuous, and filtered with the widest footprint at each level of
+   detail): at most DSN_MAX_POINT_IMPULSES for a noise that init accepted. Reads the cell size, the
+   density, the periods and, with DSN_FILTERING, level_margin (evaluation_cost.cpp). */
+uint64_t dsn_internal_point_cost(const dsn_noise_state *noise);
+#endif
+
 #if DSN_FILTERING
 /* Fills level_margin from the asset's levels (filtered_point.cpp). */
 void dsn_internal_compute_level_margins(dsn_noise_state *noise);

@@ -140,5 +140,11 @@ extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const d
 #if DSN_FILTERING
     dsn_internal_compute_level_margins(noise);
 #endif
+#if DSN_CHECKS_COST
+    if (dsn_internal_point_cost(noise) > DSN_MAX_POINT_IMPULSES) {
+        clear_noise(noise);
+        return DSN_ERR_COST;
+    }
+#endif
     return DSN_OK;
 }

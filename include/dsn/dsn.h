@@ -282,10 +282,11 @@ int dsn_sample(const dsn_noise *noise, float x, float y, float *out);
 int dsn_noise_mean_float(const dsn_noise *noise, float *out);
 
 /* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
-   normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS or
+   normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS,
    DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill, its histogram
-   fields out of format.h's ranges included; a build with DSN_HISTOGRAM 0 refuses any histogram table).
-   Every period 1 .. 2^32 - 1 is valid. On failure `noise` is zeroed, and the evaluation functions then
+   fields out of format.h's ranges included; a build with DSN_HISTOGRAM 0 refuses any histogram table) or
+   DSN_ERR_COST (one point would examine more than DSN_MAX_POINT_IMPULSES impulses, below). Every period
+   1 .. 2^32 - 1 is valid, within that bound. On failure `noise` is zeroed, and the evaluation functions then
    refuse it: the lattice per-point functions set out[0] to 0, the others return an error and zero their
    output as they state.
    Cells are 2^cell_shift points wide, cell_shift in 0..8, chosen by a fixed cost model of the per-point
@@ -294,6 +295,36 @@ int dsn_noise_mean_float(const dsn_noise *noise, float *out);
    The channel sums are integers taken modulo 2^32 (identically by every path); they cannot wrap unless
    tens of thousands of full-scale impulses hit one point. */
 int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *config);
+
+/* The work of one point. The asset format bounds neither the reach of the pyramid's levels (255 values
+   at spacing 2^8 texels: 65 280 texels) nor the density (1024 impacts per pixel over a support of one
+   texel), so a valid asset of a few hundred bytes could make one filtered point examine trillions of
+   impulses. dsn_noise_init therefore computes the expected number of impulses that one point examines in
+   the costliest evaluation of the configured noise, and refuses the configuration with DSN_ERR_COST above
+   DSN_MAX_POINT_IMPULSES (every build but the small one, which checks nothing of it: its evaluations are
+   unfiltered, bounded by the density and the texton, but a period much smaller than its cells multiplies
+   them). That count is
+   lambda c^2 (the mean impulse count of a cell, c its side) times the cells each walk visits, for
+     - the lattice point: a window of the lattice texton's size;
+     - the continuous point: the texton's window plus one texel on each side;
+     - the filtered point, at each level of detail l = 0 .. L (L the pyramid's levels): the walk of levels
+       l and l + 1 (l alone at L), whose reach is (r_l + 1) 2^l texels each side (r_l the level's radius less
+       its all-zero margins), with the widest footprint the filtered evaluation accepts there:
+       DSN_FILTER_MAX_TAPS taps spread over up to DSN_FILTER_MAX_TAPS 2^(l + 1) texels diagonally, walked
+       together, or one by one where they straddle the 32-bit wrap of the coordinates (16 walks);
+   a periodic axis counting whole cells per copy of the period (the impulses beyond the period are drawn,
+   then dropped: a period much smaller than a cell costs a cell per copy). Expected means over the seeds:
+   one point's count is Poisson-like around it (tests/evaluation_cost_test.cpp's widest footprints list
+   64-94% of it). The assets of dsn-bake's geometry need at most about 22 000 at the density they
+   carry (30 impacts per pixel; --radius 126 --bits 16 about 16 000) and 34 000 with periods of 256: the
+   bound leaves a margin of 48 over that, and admits every asset without a pyramid and every one of
+   dsn-bake's geometry at any density up to 1024 without a period (at most 746 496: a 1 x 1 texton at 1024
+   impacts, 16 taps). A 1 x 1 texton at 1024 impacts under 8 levels of 5 x 5 values (377 bytes) would need
+   billions, under 8 levels of 255 x 255 (0.5 MB) trillions: both are refused.
+   Each impulse listed is read at every tap and level it reaches (up to 32 reads), so a point at the bound
+   takes about 0.1 s on a current x86-64: the bound makes every point finite, not cheap; a renderer that
+   evaluates many points of an asset it does not trust needs its own time budget. */
+#define DSN_MAX_POINT_IMPULSES 1048576u /* 2^20 */
 
 /* ---- Per-point evaluation (lattice) ----
    The lattice evaluators (these and the lattice tiles below) read the asset's lattice texton where it

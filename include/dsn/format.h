@@ -381,13 +381,14 @@
     X(DSN_ERR_PYRAMID, -25, "invalid texton pyramid: level count, sizes, exponent or reserved field")        \
     X(DSN_ERR_HISTOGRAM, -26, "invalid histogram mapping: flag and section disagree, or a bad field")        \
     X(DSN_ERR_UNSUPPORTED, -27, "the asset needs the histogram mapping, which this build leaves out")        \
-    X(DSN_ERR_LATTICE_TEXTON, -28, "invalid lattice texton: size, reserved field, value or sum")
+    X(DSN_ERR_LATTICE_TEXTON, -28, "invalid lattice texton: size, reserved field, value or sum")             \
+    X(DSN_ERR_COST, -29, "one point would examine more impulses than the runtime allows (dense, wide reach)")
 
 /* clang-format off */
 #define DSN_ERROR_ENUM_ENTRY(name, value, message) name = value,
 enum dsn_error {
     DSN_LIST_ERRORS(DSN_ERROR_ENUM_ENTRY)
-    DSN_ERR_LOWEST = DSN_ERR_LATTICE_TEXTON /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
+    DSN_ERR_LOWEST = DSN_ERR_COST /* the most negative code: every code lies in [DSN_ERR_LOWEST, 0] */
 };
 /* clang-format on */
 #undef DSN_ERROR_ENUM_ENTRY
