@@ -49,6 +49,27 @@ inline dsn_noise_state *dsn_state(dsn_noise *noise) {
     return static_cast<dsn_noise_state *>(static_cast<void *>(noise));
 }
 
+/* The texton a lattice walk reads, by itself: its values (channels and bits as the asset's), its window
+   and its radius. */
+typedef struct dsn_texton_window {
+    const unsigned char *values;
+    uint32_t width, height, radius[2];
+} dsn_texton_window;
+
+/* The lattice evaluators' texton: the asset's lattice texton (format 1.3) where it has one, else its
+   texton. The per-point walk reads it so, without a copy of the noise (dsn_internal_lattice_view). */
+inline dsn_texton_window dsn_lattice_texton_window(const dsn_noise_state *noise) {
+    const dsn_asset *asset = &noise->asset;
+    const dsn_texton_window texton = {
+        asset->texton, asset->width, asset->height, {noise->radius[0], noise->radius[1]}};
+    if (asset->lattice_texton == 0) return texton;
+    const dsn_texton_window lattice = {asset->lattice_texton,
+                                       asset->lattice_width,
+                                       asset->lattice_height,
+                                       {(asset->lattice_width - 1) / 2, (asset->lattice_height - 1) / 2}};
+    return lattice;
+}
+
 /* A build with neither the filtered evaluation nor the histogram mapping (the small build) reads no
    section of an asset (format.h), the lattice texton of format 1.3 included. */
 #define DSN_READS_SECTIONS (DSN_FILTERING || DSN_HISTOGRAM)

@@ -21,11 +21,14 @@ inline uint32_t texton_value(const unsigned char *texton, uint32_t index) {
     return (uint32_t(texton[2 * index] | (texton[2 * index + 1] << 8)) ^ 0x8000u) - 0x8000u;
 }
 
+/* The texton the walk reads (dsn_noise_lattice_texton): the asset's, or its lattice texton. */
+typedef dsn_texton_window texton_window;
+
 /* Adds texton entry `entry` of every channel to sums, modulo 2^32. */
-void add_texton_entry(const dsn_asset *asset, uint32_t entry, uint32_t *sums) {
+void add_texton_entry(const dsn_asset *asset, const texton_window *texton, uint32_t entry, uint32_t *sums) {
     for (uint32_t c = 0; c < asset->channels; c++)
-        sums[c] += asset->bits == 8 ? texton_value<8>(asset->texton, entry * asset->channels + c)
-                                    : texton_value<16>(asset->texton, entry * asset->channels + c);
+        sums[c] += asset->bits == 8 ? texton_value<8>(texton->values, entry * asset->channels + c)
+                                    : texton_value<16>(texton->values, entry * asset->channels + c);
 }
 
 /* ---- Any cell size, any period: impulse by impulse ---- */
@@ -44,12 +47,11 @@ inline axis_cell cell_on_axis(const dsn_span *span, uint32_t cell, uint32_t shif
 }
 
 /* Impulses first .. count - 1 of a cell: each one that reaches the point adds its texton entry. */
-void add_impulses(const dsn_noise_state *noise, uint32_t key, uint32_t first, uint32_t count,
-                  const axis_cell *x, const axis_cell *y, uint32_t *sums) {
+void add_impulses(const dsn_noise_state *noise, const texton_window *texton, uint32_t key, uint32_t first,
+                  uint32_t count, const axis_cell *x, const axis_cell *y, uint32_t *sums) {
     const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair = 64u >> field_shift;
     const uint32_t half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u;
-    const uint32_t drop = half_bits - noise->cell_shift, width = noise->asset.width,
-                   height = noise->asset.height;
+    const uint32_t drop = half_bits - noise->cell_shift, width = texton->width, height = texton->height;
     uint64_t pair = 0;
     for (uint32_t k = first; k < count; k++) {
         if (k == first || k % per_pair == 0) pair = dsn_position_pair(key, k / per_pair);
@@ -58,7 +60,7 @@ void add_impulses(const dsn_noise_state *noise, uint32_t key, uint32_t first, ui
                        offset_y = ((field >> half_bits) & half_mask) >> drop;
         const uint32_t column = x->reach - offset_x, row = y->reach - offset_y;
         if (column < width && row < height && offset_x <= x->last_offset && offset_y <= y->last_offset)
-            add_texton_entry(&noise->asset, row * width + column, sums);
+            add_texton_entry(&noise->asset, texton, row * width + column, sums);
     }
 }
 
@@ -66,11 +68,12 @@ void add_impulses(const dsn_noise_state *noise, uint32_t key, uint32_t first, ui
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-void accumulate_any(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+void accumulate_any(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+                    uint32_t *sums) {
     const uint32_t shift = noise->cell_shift;
     dsn_axis axis_x, axis_y;
-    dsn_axis_init(&axis_x, x, 1, noise->radius[0], shift, noise->period[0]);
-    dsn_axis_init(&axis_y, y, 1, noise->radius[1], shift, noise->period[1]);
+    dsn_axis_init(&axis_x, x, 1, texton->radius[0], shift, noise->period[0]);
+    dsn_axis_init(&axis_y, y, 1, texton->radius[1], shift, noise->period[1]);
     for (uint32_t span_index_y = 0; span_index_y < axis_y.span_count; span_index_y++) {
         const dsn_span span_y = dsn_axis_span(&axis_y, span_index_y);
         for (uint32_t i = 0; i < span_y.cell_count; i++) {
@@ -82,7 +85,8 @@ void accumulate_any(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32
                     const uint32_t cell_x = dsn_span_cell(&span_x, j, shift);
                     const axis_cell in_x = cell_on_axis(&span_x, cell_x, shift);
                     const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
-                    add_impulses(noise, key, 0, dsn_cell_impulse_count(noise, key), &in_x, &in_y, sums);
+                    add_impulses(noise, texton, key, 0, dsn_cell_impulse_count(noise, key), &in_x, &in_y,
+                                 sums);
                 }
             }
         }
@@ -275,12 +279,13 @@ inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint
 }
 
 template <uint32_t Channels, uint32_t Bits>
-void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
-    const uint32_t width = noise->asset.width, height = noise->asset.height;
-    const uint32_t low_x = x - noise->radius[0], low_y = y - noise->radius[1];
+void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+                        uint32_t *sums) {
+    const uint32_t width = texton->width, height = texton->height;
+    const uint32_t low_x = x - texton->radius[0], low_y = y - texton->radius[1];
     const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
                    rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
-    const uint32_t first_column = low_x >> 4, reach_x = x + noise->radius[0] - (first_column << 4);
+    const uint32_t first_column = low_x >> 4, reach_x = x + texton->radius[0] - (first_column << 4);
     /* width - 16 in 16-bit lanes (modulo 2^16, like the entries: the short conversion is modulo 2^16 on
        every x86 compiler) */
     const __m128i widths_less_16 = _mm_set1_epi16(static_cast<short>((width - 16) & 0xFFFFu)),
@@ -302,7 +307,7 @@ void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, ui
     hit_sums hit = {0, _mm_setzero_si128()};
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
-        const uint32_t reach_y = y + noise->radius[1] - (cell_y << 4);
+        const uint32_t reach_y = y + texton->radius[1] - (cell_y << 4);
         const lane_range row_range = y_range_of(reach_y, height);
         /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
            conversion is modulo 2^16 on every x86 compiler). */
@@ -316,7 +321,7 @@ void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, ui
                                              : j + 1 == columns ? &last_range
                                                                 : &whole_range;
             if (slot == 9) {
-                sum_buffered_hits<Channels, Bits>(noise->asset.texton, masks, 9, entries, &hit);
+                sum_buffered_hits<Channels, Bits>(texton->values, masks, 9, entries, &hit);
                 flush_hit_sums<Channels, Bits>(&hit, sums);
                 slot = 0;
             }
@@ -328,16 +333,17 @@ void accumulate_cells16(const dsn_noise_state *noise, uint32_t x, uint32_t y, ui
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
                 const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
-                add_impulses(noise, key, 16, count, &in_x, &in_y, sums);
+                add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums);
             }
         }
     }
-    sum_buffered_hits<Channels, Bits>(noise->asset.texton, masks, slot, entries, &hit);
+    sum_buffered_hits<Channels, Bits>(texton->values, masks, slot, entries, &hit);
     flush_hit_sums<Channels, Bits>(&hit, sums);
 }
 #endif
 
-void accumulate(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+void accumulate(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+                uint32_t *sums) {
     sums[0] = sums[1] = sums[2] = 0;
 #if defined(__SSE2__)
     const dsn_asset *asset = &noise->asset;
@@ -347,15 +353,15 @@ void accumulate(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *
         noise->period[1] == 0 &&
         noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0]) {
         if (asset->channels == 3)
-            asset->bits == 8 ? accumulate_cells16<3, 8>(noise, x, y, sums)
-                             : accumulate_cells16<3, 16>(noise, x, y, sums);
+            asset->bits == 8 ? accumulate_cells16<3, 8>(noise, texton, x, y, sums)
+                             : accumulate_cells16<3, 16>(noise, texton, x, y, sums);
         else
-            asset->bits == 8 ? accumulate_cells16<1, 8>(noise, x, y, sums)
-                             : accumulate_cells16<1, 16>(noise, x, y, sums);
+            asset->bits == 8 ? accumulate_cells16<1, 8>(noise, texton, x, y, sums)
+                             : accumulate_cells16<1, 16>(noise, texton, x, y, sums);
         return;
     }
 #endif
-    accumulate_any(noise, x, y, sums);
+    accumulate_any(noise, texton, x, y, sums);
 }
 
 #endif /* !DSN_SMALL_CODE */
@@ -391,16 +397,14 @@ extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int3
     const dsn_noise_state *noise = dsn_state(handle);
     if (!usable(noise, out)) return;
     uint32_t sums[3];
-#if DSN_READS_SECTIONS
-    dsn_noise_state view;
-    accumulate(dsn_internal_lattice_view(noise, &view), uint32_t(x), uint32_t(y), sums);
-#else
+#if !DSN_READS_SECTIONS
     if (dsn_lattice_texton_unread(noise)) {
         for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = 0;
         return;
     }
-    accumulate(noise, uint32_t(x), uint32_t(y), sums);
 #endif
+    const texton_window texton = dsn_lattice_texton_window(noise);
+    accumulate(noise, &texton, uint32_t(x), uint32_t(y), sums);
     dsn_normalize(noise, sums, out);
 }
 #endif
