@@ -285,6 +285,36 @@ int load(dsn_asset *asset, const unsigned char *bytes, size_t size) {
 
 } // namespace
 
+#if DSN_READS_SECTIONS
+/* An asset's pyramid and lattice texton as the loader leaves them: each pointer null with its sizes 0, or
+   pointing where the loader points it, into a section of its kind (payload after the u32 kind and u32
+   size) that steps 15 and 17 accept with those very sizes. Reads the caller's buffer around the pointers:
+   a pointer moved elsewhere cannot be told from a valid one, but its sizes are those of what it points at,
+   so no read goes past the section that the bytes there describe. */
+int dsn_internal_check_sections(const dsn_asset *asset) {
+    dsn_asset read = *asset;
+    read.pyramid = read.lattice_texton = 0;
+    read.pyramid_levels = read.lattice_width = read.lattice_height = 0;
+    if (asset->pyramid != 0) {
+        const unsigned char *payload = asset->pyramid - DSN_PYRAMID_HEADER_SIZE;
+        if (dsn_read_u32le(payload - DSN_SECTION_HEADER_SIZE) != DSN_SECTION_PYRAMID ||
+            read_pyramid(&read, payload, dsn_read_u32le(payload - 4)) != DSN_OK)
+            return DSN_ERR_ARGUMENT;
+    }
+    if (asset->lattice_texton != 0) {
+        const unsigned char *payload = asset->lattice_texton - DSN_LATTICE_TEXTON_HEADER_SIZE;
+        if (dsn_read_u32le(payload - DSN_SECTION_HEADER_SIZE) != DSN_SECTION_LATTICE_TEXTON ||
+            read_lattice_texton(&read, payload, dsn_read_u32le(payload - 4)) != DSN_OK)
+            return DSN_ERR_ARGUMENT;
+    }
+    return read.pyramid == asset->pyramid && read.pyramid_levels == asset->pyramid_levels &&
+                   read.lattice_texton == asset->lattice_texton &&
+                   read.lattice_width == asset->lattice_width && read.lattice_height == asset->lattice_height
+               ? DSN_OK
+               : DSN_ERR_ARGUMENT;
+}
+#endif
+
 int dsn_internal_check_geometry(const dsn_asset *asset, uint32_t *support_size) {
     if (asset->channels != 1 && asset->channels != 3) return DSN_ERR_CHANNELS;
     if (asset->bits != 8 && asset->bits != 16) return DSN_ERR_BITS;

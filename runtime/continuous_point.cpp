@@ -233,14 +233,12 @@ namespace {
 
 /* The number of values a call writes: the noise's channels, or, for a noise with none (null, never
    configured, failed), the one value that every caller's array has, zeroed. */
-uint32_t values_written(const dsn_noise_state *noise) {
-    return noise == 0 || noise->asset.channels == 0 ? 1u : noise->asset.channels;
-}
+uint32_t values_written(const dsn_noise_state *noise) { return dsn_values_per_point(noise); }
 
 } // namespace
 
 int dsn_internal_continuous_check(const dsn_noise_state *noise) {
-    if (noise == 0 || noise->asset.texton == 0) return DSN_ERR_NULL;
+    if (!dsn_configured(noise)) return DSN_ERR_NULL;
     if (noise->asset.interpolation != DSN_INTERPOLATION_BILINEAR &&
         (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
         return DSN_ERR_CONTINUOUS_MISMATCH;

@@ -17,7 +17,7 @@
    int32, float and uint8 alike: one memset (which compilers emit for such loops anyway). */
 DSN_SHARED int dsn_output_error(int err, const dsn_noise_state *noise, void *out, dsn_output_kind kind,
                                 size_t points) {
-    const size_t channels = noise == 0 || noise->asset.channels == 0 ? 1u : noise->asset.channels;
+    const size_t channels = dsn_values_per_point(noise);
     if (err != DSN_OK && err != DSN_ERR_TILE_SIZE && out != 0)
         __builtin_memset(out, 0, points * channels * (kind == dsn_output_u8 ? 1u : 4u));
     return err;

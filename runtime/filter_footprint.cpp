@@ -288,7 +288,7 @@ int dsn_filter_level(const dsn_noise *handle, const dsn_footprint *footprint, in
     const dsn_noise_state *noise = dsn_state(handle);
     if (lod_q8 != 0) *lod_q8 = 0;
     if (taps != 0) *taps = 0;
-    if (noise == 0 || noise->asset.texton == 0 || lod_q8 == 0 || taps == 0) return DSN_ERR_NULL;
+    if (!dsn_configured(noise) || lod_q8 == 0 || taps == 0) return DSN_ERR_NULL;
     dsn_filter_plan plan;
     const int err = dsn_internal_filter_plan(footprint, noise->asset.pyramid_levels, &plan);
     if (err != DSN_OK) return err;

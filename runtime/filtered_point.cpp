@@ -157,9 +157,7 @@ void dsn_internal_filtered_point_walked(const dsn_noise_state *noise, uint64_t x
 
 namespace {
 
-uint32_t values_written(const dsn_noise_state *noise) {
-    return noise == 0 || noise->asset.channels == 0 ? 1u : noise->asset.channels;
-}
+uint32_t values_written(const dsn_noise_state *noise) { return dsn_values_per_point(noise); }
 
 } // namespace
 

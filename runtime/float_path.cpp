@@ -30,7 +30,7 @@ extern "C" int dsn_sample(const dsn_noise *noise, float x, float y, float *out) 
 extern "C" int dsn_noise_mean_float(const dsn_noise *handle, float *out) {
     const dsn_noise_state *noise = dsn_state(handle);
     if (out == 0) return DSN_ERR_NULL;
-    if (noise == 0 || noise->asset.texton == 0) {
+    if (!dsn_configured(noise)) {
         out[0] = dsn_fixed_to_float(0);
         return DSN_ERR_NULL;
     }

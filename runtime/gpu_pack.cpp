@@ -37,7 +37,7 @@ static_assert(offsetof(dsn_noise_state, poisson_size) % 4 == 0 && offsetof(dsn_a
 /* A configured noise has a texton; dsn_noise_init zeroes the noise when it fails. */
 const dsn_noise_state *configured(const dsn_noise *handle) {
     const dsn_noise_state *noise = dsn_state(handle);
-    return noise != 0 && noise->asset.texton != 0 ? noise : 0;
+    return dsn_configured(noise) ? noise : 0;
 }
 
 /* Values of a texton of `asset`'s channels: width * height * channels. */

@@ -38,4 +38,11 @@ void dsn_internal_compute_level_margins(dsn_noise_state *noise);
    again on an asset it did not see loaded. */
 int dsn_internal_check_geometry(const dsn_asset *asset, uint32_t *support_size);
 
+#if DSN_READS_SECTIONS
+/* DSN_OK when the asset's pyramid and lattice texton fields are the loader's: null and 0, or pointing at a
+   section that the loader's steps 15 and 17 accept with exactly those sizes (asset.cpp); else
+   DSN_ERR_ARGUMENT. dsn_noise_init runs it on the asset it is given, which it did not see loaded. */
+int dsn_internal_check_sections(const dsn_asset *asset);
+#endif
+
 #endif /* DSN_INIT_INTERNAL_H */

@@ -68,8 +68,15 @@ int asset_is_usable(const dsn_asset *asset) {
 #else
     if (asset->histogram_table != 0) return 0; /* an asset this build cannot show as it should */
 #endif
-    return asset->texton != 0 && dsn_internal_check_geometry(asset, &support_size) == DSN_OK &&
-           asset->support_size == support_size;
+    if (asset->texton == 0 || dsn_internal_check_geometry(asset, &support_size) != DSN_OK ||
+        asset->support_size != support_size)
+        return 0;
+#if DSN_READS_SECTIONS
+    /* The pyramid and lattice texton as loaded: the filtered walks and the lattice view index with their
+       sizes. */
+    if (dsn_internal_check_sections(asset) != DSN_OK) return 0;
+#endif
+    return 1;
 }
 
 void clear_noise(dsn_noise_state *noise) {
@@ -93,10 +100,51 @@ const dsn_noise_state *dsn_internal_lattice_view(const dsn_noise_state *noise, d
 }
 #endif
 
+#if DSN_NOISE_CHECK
+namespace {
+
+uint32_t pointer_word(const void *pointer) {
+    const uint64_t bits = static_cast<uint64_t>(reinterpret_cast<uintptr_t>(pointer));
+    return static_cast<uint32_t>(bits ^ (bits >> 32));
+}
+
+} // namespace
+
+/* Not tile_kernel: every id gives the same bits and dsn_kernel_entries_of takes an id out of range as the
+   default kernel, so the tests choose a copy's kernel without sealing it again.
+   Fourteen words (small fields packed, as they are stored), each times its own odd constant and summed:
+   independent products, not a chain of dependent ones, so a few cycles per call; then mixed (murmur3's
+   finalizer) so that every input bit moves the result. */
+uint32_t dsn_internal_state_check(const dsn_noise_state *noise) {
+    const dsn_asset &asset = noise->asset;
+    uint32_t sum = 0x6A09E667u;
+    sum += pointer_word(asset.texton) * 0x9E3779B1u;
+    sum += pointer_word(asset.pyramid) * 0x85EBCA77u;
+    sum += pointer_word(asset.lattice_texton) * 0xC2B2AE3Du;
+    sum += pointer_word(asset.histogram_table) * 0x27D4EB2Fu;
+    sum += (asset.channels | asset.bits << 8 | asset.shape << 16 | asset.interpolation << 24) * 0x165667B1u;
+    sum += (asset.width | asset.height << 16) * 0xD3A2646Du;
+    sum += asset.support_size * 0xFD7046C5u;
+    sum += (asset.pyramid_levels | asset.histogram_levels << 8 | asset.histogram_step_shift << 16 |
+            noise->cell_shift << 24) *
+           0xB55A4F09u;
+    sum += (asset.histogram_entries | noise->gain_shift << 16) * 0x7FEB352Du;
+    sum += (asset.lattice_width | asset.lattice_height << 16) * 0x846CA68Bu;
+    sum += (noise->radius[0] | noise->radius[1] << 16) * 0x2C1B3C6Du;
+    sum += (noise->poisson_parts | noise->poisson_size << 16 | noise->flags << 24) * 0x297A2D39u;
+    sum += noise->period[0] * 0x68E31DA5u + noise->period[1] * 0xB5297A4Fu + noise->impacts_q16 * 0x1B873593u;
+    sum ^= sum >> 16;
+    sum *= 0x85EBCA6Bu;
+    sum ^= sum >> 13;
+    sum *= 0xC2B2AE35u;
+    return sum ^ (sum >> 16);
+}
+#endif
+
 extern "C" const char *dsn_version(void) { return DSN_VERSION_STRING; }
 
 extern "C" uint32_t dsn_noise_channels(const dsn_noise *handle) {
-    return handle == 0 ? 0u : dsn_state(handle)->asset.channels;
+    return dsn_configured(dsn_state(handle)) ? dsn_state(handle)->asset.channels : 0u;
 }
 
 extern "C" void dsn_config_defaults(dsn_config *config) {
@@ -145,6 +193,9 @@ extern "C" int dsn_noise_init(dsn_noise *handle, const dsn_asset *asset, const d
         clear_noise(noise);
         return DSN_ERR_COST;
     }
+#endif
+#if DSN_NOISE_CHECK
+    noise->check = dsn_internal_state_check(noise);
 #endif
     return DSN_OK;
 }

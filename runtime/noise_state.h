@@ -34,6 +34,8 @@ struct dsn_noise_state {
     /* The filtered evaluation: per level 0 .. 8, the all-zero columns (x) and rows (y) on each side of
        its window, read as if absent (the same values, a shorter reach). */
     uint8_t level_margin[9][2];
+    /* dsn_internal_state_check of the fields above, stored last by dsn_noise_init (DSN_NOISE_CHECK). */
+    uint32_t check;
 };
 
 static_assert(sizeof(dsn_noise_state) <= sizeof(dsn_noise), "dsn_noise must hold dsn_noise_state");
@@ -47,6 +49,37 @@ inline const dsn_noise_state *dsn_state(const dsn_noise *noise) {
 }
 inline dsn_noise_state *dsn_state(dsn_noise *noise) {
     return static_cast<dsn_noise_state *>(static_cast<void *>(noise));
+}
+
+/* DSN_NOISE_CHECK 1: init stores a check value over the state's key fields and every entry point
+   verifies it, so that a dsn_noise never configured (garbage bytes) is refused rather than read, unless
+   its garbage happens to match (one chance in 2^32). The small build (DSN_SMALL_CODE) leaves it out for
+   its 8 KB: there a noise is refused only when zeroed (its texton null). */
+#ifndef DSN_NOISE_CHECK
+#define DSN_NOISE_CHECK (!DSN_SMALL_CODE)
+#endif
+
+#if DSN_NOISE_CHECK
+/* A 32-bit hash of the fields the evaluators index or size with (the asset's pointers and sizes, the
+   cells, the periods, the tables' sizes), never of where the noise lies, so a memcpy of a
+   configured noise stays configured (noise_init.cpp). */
+uint32_t dsn_internal_state_check(const dsn_noise_state *noise);
+#endif
+
+/* Whether `noise` is a configured noise that the evaluators may read: not null, a texton (a zeroed noise
+   has none: init failed, or the caller zeroed it) and, with DSN_NOISE_CHECK, its check value. */
+inline bool dsn_configured(const dsn_noise_state *noise) {
+#if DSN_NOISE_CHECK
+    return noise != 0 && noise->asset.texton != 0 && noise->check == dsn_internal_state_check(noise);
+#else
+    return noise != 0 && noise->asset.texton != 0;
+#endif
+}
+
+/* The values per point that an evaluator zeroes on an error: the channels of a configured noise, else the
+   one value that every caller's array holds (a garbage channel count must not size a write). */
+inline uint32_t dsn_values_per_point(const dsn_noise_state *noise) {
+    return dsn_configured(noise) ? noise->asset.channels : 1u;
 }
 
 /* The texton a lattice walk reads, by itself: its values (channels and bits as the asset's), its window

@@ -371,7 +371,7 @@ void accumulate(const dsn_noise_state *noise, const texton_window *texton, uint3
    per-point functions return no error code, and dsn.h promises no output left undefined). */
 template <typename Value>
 bool usable(const dsn_noise_state *noise, Value *out) {
-    if (noise != 0 && out != 0 && noise->asset.texton != 0) return true;
+    if (out != 0 && dsn_configured(noise)) return true;
     if (out != 0) out[0] = 0;
     return false;
 }

@@ -11,7 +11,7 @@ namespace {
 int tile_values(const dsn_noise_state *noise, const void *out, uint32_t width, uint32_t height,
                 size_t *values) {
     if (noise == 0 || out == 0) return DSN_ERR_NULL;
-    if (noise->asset.texton == 0) return DSN_ERR_ARGUMENT;
+    if (!dsn_configured(noise)) return DSN_ERR_ARGUMENT;
     if (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE)
         return DSN_ERR_TILE_SIZE;
     uint64_t count = uint64_t(width) * height * noise->asset.channels; /* < 2^34 */

@@ -232,7 +232,15 @@ void dsn_config_defaults(dsn_config *config);
    dsn_noise_init and read by every evaluator. Its contents are private to the runtime and change between
    versions: copy it with memcpy if needed, never read or write its words. It keeps a pointer to the
    asset's texton (the caller's buffer), and init records which copy of the tile and continuous point code
-   the CPU runs (x86-64: AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it. */
+   the CPU runs (x86-64: AVX-512, AVX2 or SSE2), so use a dsn_noise on the machine that initialized it.
+   "Not configured", below, means a noise that no dsn_noise_init accepted: zeroed (init failed), or bytes
+   init never wrote (an uninitialised variable). Init stores a 32-bit check value over the noise's key
+   fields (the asset's pointers and sizes, the cells, periods and tables' sizes) and every function
+   verifies it, so such a noise is refused as documented (DSN_ERR_NULL, or the lattice tiles'
+   DSN_ERR_ARGUMENT, the output zeroed as for a null noise). That is a check, not a proof: garbage that
+   happens to hold a texton pointer and a matching check value (about one chance in 2^32) is read as a
+   noise, so initialise every dsn_noise (zeroing it is enough to be refused). The small build
+   (DSN_SMALL_CODE) keeps no check value, for its 8 KB: it refuses a zeroed noise only. */
 #define DSN_NOISE_WORDS 144 /* 64-bit words: DSN_NOISE_BYTES = 1152 */
 #define DSN_NOISE_BYTES (DSN_NOISE_WORDS * 8)
 typedef union dsn_noise {
@@ -283,9 +291,13 @@ int dsn_noise_mean_float(const dsn_noise *noise, float *out);
 
 /* Checks `config` against `asset` and precomputes the per-cell Poisson table and the fixed-point
    normalization. Integer arithmetic only. Returns DSN_OK, DSN_ERR_NULL, DSN_ERR_IMPACTS,
-   DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill, its histogram
-   fields out of format.h's ranges included; a build with DSN_HISTOGRAM 0 refuses any histogram table) or
-   DSN_ERR_COST (one point would examine more than DSN_MAX_POINT_IMPULSES impulses, below). Every period
+   DSN_ERR_ARGUMENT (unknown flag bits, or an asset that dsn_asset_load did not fill or that was altered
+   since: its geometry, its histogram fields out of format.h's ranges, and, in a build that reads sections,
+   its pyramid and lattice texton, which must be null with their sizes 0 or point where the loader points
+   them, at a section that the loader's steps 15 and 17 accept with exactly the sizes the asset gives; a
+   build with DSN_HISTOGRAM 0 refuses any histogram table) or DSN_ERR_COST (one point would examine more
+   than DSN_MAX_POINT_IMPULSES impulses, below). Init reads only what the asset's pointers point at, so
+   it cannot tell a pointer moved to other bytes that look like a section of that kind. Every period
    1 .. 2^32 - 1 is valid, within that bound. On failure `noise` is zeroed, and the evaluation functions then
    refuse it: the lattice per-point functions set out[0] to 0, the others return an error and zero their
    output as they state.
