@@ -335,9 +335,10 @@ int dsn_noise_init(dsn_noise *noise, const dsn_asset *asset, const dsn_config *c
    first, and admits every asset without a pyramid at any density up to 1024 without a period (at most
    746 496: a 1 x 1 texton at 1024 impacts, 16 taps). A 1 x 1 texton at 1024 impacts under 8 levels of 5 x 5
    values (377 bytes) would need billions, under 8 levels of 255 x 255 (0.5 MB) trillions: both are refused.
-   Each impulse listed is read at every tap and level it reaches (up to 32 reads), so a point at the bound
-   takes about 0.1 s on a current x86-64: the bound makes every point finite, not cheap; a renderer that
-   evaluates many points of an asset it does not trust needs its own time budget. */
+   Each impulse listed is read at every tap and level it reaches (up to 32 reads): the costliest accepted
+   point measured, a 1 x 1 texton at 1024 impacts under 16 taps at level of detail 0.99 (545 000 impulses
+   listed), takes 21 ms on one core of a current x86-64. The bound makes every point finite, not cheap: a
+   renderer that evaluates many points of an asset it does not trust needs its own time budget. */
 #define DSN_MAX_POINT_IMPULSES 1048576u /* 2^20 */
 
 /* ---- Per-point evaluation (lattice) ----
