@@ -73,6 +73,10 @@ const char *const kUsageHead =
     "                       default)\n"
     "  --no-color-transform use the identity colour transform\n"
     "  --threads N          worker threads, 1..256 (default: the number of cores)\n"
+    "  --time-limit S       refuse a render estimated to take more than S seconds (default 600;\n"
+    "                       0 = no limit): a few probe pixels spread over the window are rendered\n"
+    "                       first, timed, and extrapolated to the whole window and the threads (an\n"
+    "                       asset's points can cost up to ~20 ms each)\n"
     "  --quiet              no progress or summary line\n"
     "  -h, --help           this help\n"
     "  --version            the version\n"
@@ -89,7 +93,8 @@ const char *const kUsageTail =
     "stderr, redrawn on a terminal, at most one line per 10% on a file or pipe.\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr and write\n"
     "nothing: exit 2 for a usage mistake (the line ends with \"(see --help)\"), exit 1 when rendering\n"
-    "fails (unreadable or invalid asset, an asset the mode cannot read, cannot write).\n";
+    "fails (unreadable or invalid asset, an asset the mode cannot read, a configuration the runtime\n"
+    "refuses as too costly, a render estimated over --time-limit, cannot write).\n";
 
 std::string usage() {
     const size_t limit = dsn::largest_asset_bytes();
@@ -115,6 +120,7 @@ struct Options {
     bool filter_given = false, max_taps_given = false, scale_given = false, rotate_given = false;
     double scale_x = 1.0, scale_y = 1.0, rotate_degrees = 0.0;
     unsigned threads = 0;
+    double time_limit = 600; // seconds; 0: no limit
     bool quiet = false;
 };
 
@@ -211,6 +217,10 @@ Options parse_options(dsn::CommandLine &command_line) {
         } else if (command_line.is("--rotate")) {
             options.rotate_degrees = dsn::parse_real(flag, command_line.value());
             options.rotate_given = true;
+        } else if (command_line.is("--time-limit")) {
+            options.time_limit = dsn::parse_real(flag, command_line.value());
+            if (!(options.time_limit >= 0 && options.time_limit <= 1e9))
+                throw dsn::UsageError("--time-limit must be within [0, 1e9] seconds (0: no limit)");
         } else if (command_line.is("--threads")) {
             options.threads = static_cast<unsigned>(dsn::parse_integer(command_line, 1, 256));
         } else {
@@ -387,6 +397,91 @@ void render_strip(const Job &job, uint32_t first_row, uint32_t rows, Pixel *out,
     if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
 }
 
+// The time budget. The runtime bounds the work of one point (DSN_MAX_POINT_IMPULSES) but not cheaply:
+// the costliest point it accepts takes about 20 ms, so a whole window of them could take hours. Before
+// rendering, a few probe segments of one row spread over the window are rendered as the render will
+// (same job: mode, filter, taps, grid steps), each timed by the thread that renders it; their time per
+// pixel, times the window's pixels, divided by the threads that can run at once, is the estimate.
+// A first single pixel chooses the segments' width: up to 64 pixels (about 1 ms each), so that the
+// runtime's cost per call does not swell the estimate of a cheap asset, one pixel when points are costly.
+struct Estimate {
+    double seconds;       // the whole render's
+    double pixel_seconds; // one pixel's, on one thread
+    uint32_t probe_pixels;
+};
+
+Estimate estimate_render(const Job &job, unsigned thread_count) {
+    using Clock = std::chrono::steady_clock;
+    const uint32_t probe_rows = 4, probe_columns = 4;
+    auto segment = [&job](uint32_t x, uint32_t y, uint32_t width, std::vector<float> &out, Scratch &scratch) {
+        Job probe = job;
+        probe.width = width;
+        probe.height = probe.strip_rows = 1;
+        if (job.mode == Mode::continuous) {
+            probe.grid.origin_x = static_cast<int64_t>(static_cast<uint64_t>(job.grid.origin_x) +
+                                                       static_cast<uint64_t>(job.grid.column_step_x) * x +
+                                                       static_cast<uint64_t>(job.grid.row_step_x) * y);
+            probe.grid.origin_y = static_cast<int64_t>(static_cast<uint64_t>(job.grid.origin_y) +
+                                                       static_cast<uint64_t>(job.grid.column_step_y) * x +
+                                                       static_cast<uint64_t>(job.grid.row_step_y) * y);
+        } else {
+            probe.lattice_x0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_x0) + x);
+            probe.lattice_y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + y);
+        }
+        out.resize(static_cast<size_t>(width) * job.channels);
+        const auto begin = Clock::now();
+        render_strip(probe, 0, 1, out.data(), scratch);
+        return std::chrono::duration<double>(Clock::now() - begin).count();
+    };
+    std::vector<float> first;
+    Scratch first_scratch;
+    const double first_seconds = segment(job.width / 2, job.height / 2, 1, first, first_scratch);
+    const uint32_t widest = std::min(job.width, 64u);
+    const uint32_t width =
+        first_seconds * widest <= 1e-3
+            ? widest
+            : std::max(1u, static_cast<uint32_t>(std::min<double>(widest, 1e-3 / first_seconds)));
+    const uint32_t segment_count = probe_rows * probe_columns;
+    std::atomic<uint32_t> next(0);
+    std::mutex lock;
+    double busy = first_seconds; // guarded by lock
+    std::string failure;
+    auto worker = [&]() {
+        std::vector<float> out;
+        Scratch scratch;
+        for (uint32_t index; (index = next++) < segment_count;) {
+            // The centre of one of 4 x 4 equal cells of the window.
+            const uint32_t column = index % probe_columns, row = index / probe_columns;
+            const uint64_t centre_x = (2 * column + 1) * uint64_t(job.width) / (2 * probe_columns);
+            const uint32_t x = static_cast<uint32_t>(
+                std::min<uint64_t>(centre_x > width / 2 ? centre_x - width / 2 : 0, job.width - width));
+            const uint32_t y = static_cast<uint32_t>((2 * row + 1) * uint64_t(job.height) / (2 * probe_rows));
+            try {
+                const double seconds = segment(x, y, width, out, scratch);
+                std::lock_guard<std::mutex> guard(lock);
+                busy += seconds;
+            } catch (const std::exception &error) {
+                std::lock_guard<std::mutex> guard(lock);
+                failure = error.what();
+                next = segment_count;
+                return;
+            }
+        }
+    };
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned parallel = std::min(thread_count, cores); // the render's threads that run at once
+    std::vector<std::thread> threads;
+    for (unsigned t = 1; t < std::min(parallel, segment_count); t++) threads.emplace_back(worker);
+    worker();
+    for (std::thread &thread : threads) thread.join();
+    if (!failure.empty()) throw std::runtime_error(failure);
+    Estimate estimate;
+    estimate.probe_pixels = 1 + segment_count * width;
+    estimate.pixel_seconds = busy / estimate.probe_pixels;
+    estimate.seconds = estimate.pixel_seconds * job.width * static_cast<double>(job.height) / parallel;
+    return estimate;
+}
+
 // Rows per strip: about 2^18 pixels (the runtime's tiles cut themselves into 128 x 128 rectangles, so
 // 128 rows of a 2048-pixel image are whole rectangles), fewer when that leaves under 8 strips per thread
 // (the strips are shared out as the threads finish, and progress counts them).
@@ -476,7 +571,12 @@ void run(const Options &options) {
     config.flags = options.flags;
     dsn_noise noise;
     int err = dsn_noise_init(&noise, &asset, &config);
-    if (err != DSN_OK) throw std::runtime_error(dsn_error_message(err));
+    if (err == DSN_ERR_COST)
+        throw std::runtime_error(
+            options.asset_path + ": " + dsn_error_message(err) + ": more than " +
+            std::to_string(DSN_MAX_POINT_IMPULSES) + " impulses per point; use a lower --impacts" +
+            (options.period_x || options.period_y ? " or a larger --period (or none)" : ""));
+    if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
     if (mode == Mode::continuous && (err = dsn_continuous_check(&noise)) != DSN_OK)
         throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
 
@@ -499,6 +599,21 @@ void run(const Options &options) {
     const Progress progress = options.quiet || !large      ? Progress::none
                               : isatty(STDERR_FILENO) != 0 ? Progress::redrawn
                                                            : Progress::lines;
+    if (options.time_limit > 0) {
+        const Estimate estimate = estimate_render(job, threads);
+        if (estimate.seconds > options.time_limit) {
+            char line[400];
+            std::snprintf(line, sizeof line,
+                          "%s: this render would take about %.0f s (%u probe pixels: %.3g ms per pixel on "
+                          "one thread, %ux%u pixels, %u thread(s)), over --time-limit %g s: use a lower "
+                          "--impacts, a smaller --size, a larger --scale, or a higher --time-limit (0: no "
+                          "limit)",
+                          options.asset_path.c_str(), estimate.seconds, estimate.probe_pixels,
+                          estimate.pixel_seconds * 1e3, options.width, options.height, threads,
+                          options.time_limit);
+            throw std::runtime_error(line);
+        }
+    }
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&start]() {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

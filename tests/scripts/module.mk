@@ -2,6 +2,7 @@
 TEST_SCRIPTS += tests/scripts/install-and-link
 TEST_SCRIPTS += tests/scripts/check-freestanding
 TEST_SCRIPTS += tests/scripts/bake-errors tests/scripts/bake-roundtrip tests/scripts/render-smoke tests/scripts/cli-conventions
+TEST_SCRIPTS += tests/scripts/render-budget
 TEST_SCRIPTS += tests/scripts/check-public-header
 TEST_SCRIPTS += tests/scripts/synth-errors
 TEST_SCRIPTS += tests/scripts/output-signals tests/scripts/bake-concurrent
