@@ -8,6 +8,7 @@
 // far away, instead of aliased noise.
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,6 +31,7 @@ namespace {
 const char *const usage =
     "usage: dsn-tiny-renderer GROUND.dsnt [SPHERE.dsnt] -o OUT.png [--size WxH] [--seed S]\n"
     "                         [--filter none|iso|aniso] [--supersample N] [--crop X,Y,WxH]\n"
+    "                         [--time-limit S]\n"
     "Ray-casts a ground plane and a sphere textured with the continuous-mode noise of the\n"
     "assets (the ground's asset is used for both when only one is given).\n"
     "  -o, --output OUT.png   the picture to write\n"
@@ -42,10 +44,12 @@ const char *const usage =
     "  --supersample N        N x N unfiltered samples per pixel, averaged (a reference for the\n"
     "                         filters, N*N times slower; 1..16, needs --filter none)\n"
     "  --crop X,Y,WxH         render only the W x H pixels at (X, Y) of the --size picture\n"
+    "  --time-limit S         refuse a picture estimated to take more than S seconds (default 600;\n"
+    "                         0 = no limit), from 64 probe pixels spread over it, timed first\n"
     "  -h, --help, --version  this help, the version\n"
     "Flags take their value as --flag value or --flag=value. Errors are one line on stderr: exit 2 for\n"
-    "a usage mistake (the line ends with \"(see --help)\"), exit 1 when an asset cannot be used or the\n"
-    "picture cannot be written.\n";
+    "a usage mistake (the line ends with \"(see --help)\"), exit 1 when an asset cannot be used, the\n"
+    "picture is estimated over --time-limit, or it cannot be written.\n";
 
 // A mistake in the command line: exit 2.
 struct UsageError : std::runtime_error {
@@ -132,6 +136,9 @@ void load_texture(Texture &texture, const std::string &path, uint32_t seed, doub
     config.seed = seed;
     config.flags = DSN_FLAG_ALLOW_LATTICE_CONTINUOUS; // a lattice-baked asset is only slightly smoother
     err = dsn_noise_init(&texture.noise, &texture.asset, &config);
+    if (err == DSN_ERR_COST)
+        throw std::runtime_error(path + ": " + dsn_error_message(err) +
+                                 " (too dense for its texton and pyramid: bake it with fewer impacts)");
     if (err != DSN_OK) throw std::runtime_error(path + ": " + dsn_error_message(err));
     texture.texels_per_unit = texels_per_unit;
 }
@@ -230,6 +237,33 @@ uint32_t parse_seed(const std::string &text) {
     return uint32_t(value);
 }
 
+// A time budget, for assets you do not trust: the runtime bounds the work of one point, but its
+// costliest accepted point takes about 20 ms, so a whole picture of them could take hours. `pixel`
+// renders one pixel; 8 x 8 probe pixels spread over the picture are timed, each on the thread that
+// renders it, and their mean time times the picture's pixels over the threads is the estimate (seconds).
+template <typename RenderPixel>
+double estimate_seconds(int width, int height, unsigned thread_count, const RenderPixel &pixel) {
+    const int side = 8, probes = side * side;
+    std::atomic<int> next{0};
+    std::vector<double> seconds(probes);
+    auto probe = [&] {
+        for (int k; (k = next++) < probes;) {
+            const auto begin = std::chrono::steady_clock::now();
+            pixel(int((2 * (k % side) + 1) * int64_t(width) / (2 * side)),
+                  int((2 * (k / side) + 1) * int64_t(height) / (2 * side)));
+            seconds[size_t(k)] =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+        }
+    };
+    std::vector<std::thread> workers(thread_count > 1 ? thread_count - 1 : 0);
+    for (std::thread &worker : workers) worker = std::thread(probe);
+    probe();
+    for (std::thread &worker : workers) worker.join();
+    double total = 0;
+    for (double one : seconds) total += one;
+    return total / probes * double(width) * height / thread_count;
+}
+
 int run(int argc, char **argv) {
     std::vector<std::string> assets;
     std::string output;
@@ -238,6 +272,7 @@ int run(int argc, char **argv) {
     Filter filter = Filter::aniso;
     int supersample = 1, crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
     bool filter_given = false, crop_given = false;
+    double time_limit = 600; // seconds; 0: no limit
     for (int i = 1; i < argc; i++) {
         std::string flag = argv[i], value;
         const size_t equals = flag.find('=');
@@ -252,7 +287,8 @@ int run(int argc, char **argv) {
             return 0;
         }
         const bool takes_value = flag == "-o" || flag == "--output" || flag == "--size" || flag == "--seed" ||
-                                 flag == "--filter" || flag == "--supersample" || flag == "--crop";
+                                 flag == "--filter" || flag == "--supersample" || flag == "--crop" ||
+                                 flag == "--time-limit";
         if (takes_value && !inline_value) {
             if (i + 1 >= argc) throw UsageError(flag + " needs a value");
             value = argv[++i];
@@ -289,6 +325,12 @@ int run(int argc, char **argv) {
                 throw UsageError("--crop needs X,Y,WxH (whole numbers, W and H at least 1), not '" + value +
                                  "'");
             crop_given = true;
+        } else if (flag == "--time-limit") {
+            char *end = nullptr;
+            time_limit = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(time_limit >= 0 && time_limit <= 1e9))
+                throw UsageError("--time-limit needs seconds within 0..1e9 (0: no limit), not '" + value +
+                                 "'");
         } else if (flag.size() > 1 && flag[0] == '-') {
             throw UsageError("unknown flag " + flag);
         } else {
@@ -332,25 +374,40 @@ int run(int argc, char **argv) {
     // A pinhole camera looking slightly down, 60 degrees of horizontal field of view.
     const tiny::Camera camera(Vec{0, 2.2, -5.5}, Vec{0, -0.2, 1}, 60, width, height);
     std::vector<uint8_t> pixels(size_t(crop_width) * crop_height * 3);
+    // Pixel (i, j) of the crop; supersampled: the average of samples at the centres of an N x N grid of
+    // sub-pixels.
+    auto render_pixel = [&](int i, int j) {
+        Vec color{0, 0, 0};
+        for (int b = 0; b < supersample; b++)
+            for (int a = 0; a < supersample; a++)
+                color = color + trace(scene, camera, crop_x + i + (a + 0.5) / supersample,
+                                      crop_y + j + (b + 0.5) / supersample, filter);
+        color = color * (1.0 / (supersample * supersample));
+        uint8_t *pixel = &pixels[(size_t(j) * crop_width + i) * 3];
+        pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
+    };
+    const unsigned thread_count =
+        std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() : 1;
+    if (time_limit > 0) {
+        const double estimate = estimate_seconds(crop_width, crop_height, thread_count, render_pixel);
+        if (estimate > time_limit) {
+            char line[300];
+            std::snprintf(line, sizeof line,
+                          "this picture would take about %.0f s (64 probe pixels, %dx%d pixels, %u "
+                          "thread(s)), over --time-limit %g s: use assets with fewer impacts, a smaller "
+                          "--size or --crop, or a higher --time-limit (0: no limit)",
+                          estimate, crop_width, crop_height, thread_count, time_limit);
+            throw std::runtime_error(line);
+        }
+    }
     // Rows are shared out to one thread per core as they come (a configured dsn_noise may be read by
     // several threads at once); every pixel is computed alone, so the picture does not depend on it.
     std::atomic<int> next_row{0};
     auto render_rows = [&] {
         for (int j; (j = next_row++) < crop_height;)
-            for (int i = 0; i < crop_width; i++) {
-                // Supersampled: the average of samples at the centres of an N x N grid of sub-pixels.
-                Vec color{0, 0, 0};
-                for (int b = 0; b < supersample; b++)
-                    for (int a = 0; a < supersample; a++)
-                        color = color + trace(scene, camera, crop_x + i + (a + 0.5) / supersample,
-                                              crop_y + j + (b + 0.5) / supersample, filter);
-                color = color * (1.0 / (supersample * supersample));
-                uint8_t *pixel = &pixels[(size_t(j) * crop_width + i) * 3];
-                pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
-            }
+            for (int i = 0; i < crop_width; i++) render_pixel(i, j);
     };
-    std::vector<std::thread> workers(
-        std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() - 1 : 0);
+    std::vector<std::thread> workers(thread_count - 1);
     for (std::thread &worker : workers) worker = std::thread(render_rows);
     render_rows();
     for (std::thread &worker : workers) worker.join();
