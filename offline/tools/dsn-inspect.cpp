@@ -123,7 +123,7 @@ struct Histogram {
     std::vector<double> gaussian_mean; // the header's mean: the noise's mean before the mapping
 };
 
-Histogram histogram_of(const dsn_asset &asset) {
+Histogram histogram_of(const char *path, const dsn_asset &asset) {
     Histogram histogram;
     histogram.step = std::ldexp(1.0, -int(asset.histogram_step_shift));
     histogram.input_low = asset.histogram_input_low_q16 / kQ16;
@@ -137,8 +137,24 @@ Histogram histogram_of(const dsn_asset &asset) {
     dsn_config_defaults(&config);
     dsn_noise noise;
     float fade[DSN_MAX_CHANNELS] = {0, 0, 0};
-    if (dsn_noise_init(&noise, &asset, &config) != DSN_OK || dsn_noise_mean_float(&noise, fade) != DSN_OK)
-        throw std::runtime_error("the runtime refuses the histogram mapping it loaded");
+    // The default configuration: the asset's own density (30 per pixel if none), no period.
+    int err = dsn_noise_init(&noise, &asset, &config);
+    if (err == DSN_ERR_COST) {
+        char density[64];
+        std::snprintf(density, sizeof density, "%.4g impacts per pixel%s",
+                      (asset.default_impacts_q16 ? asset.default_impacts_q16 : 30u * 65536u) / 65536.0,
+                      asset.default_impacts_q16 ? "" : " (the runtime default)");
+        throw std::runtime_error(std::string(path) + ": its default configuration (" + density +
+                                 ", no period) is too costly: " + dsn_error_message(err) + " (more than " +
+                                 std::to_string(DSN_MAX_POINT_IMPULSES) +
+                                 " per point); its mean colour needs a configured noise");
+    }
+    if (err != DSN_OK) throw std::runtime_error(std::string(path) + ": " + dsn_error_message(err));
+    if ((err = dsn_noise_mean_float(&noise, fade)) != DSN_OK)
+        throw std::runtime_error(std::string(path) +
+                                 ": the runtime gives no mean colour of its histogram "
+                                 "mapping: " +
+                                 dsn_error_message(err));
     for (uint32_t c = 0; c < asset.channels; c++) {
         histogram.centre.push_back(asset.histogram_centre[c] / kQ24);
         histogram.expected.push_back(asset.histogram_expected_q16[c] / kQ16);
@@ -154,12 +170,12 @@ void print_row(const char *label, const std::vector<double> &values, size_t firs
     std::printf("\n");
 }
 
-void print_histogram_text(const dsn_asset &asset) {
+void print_histogram_text(const char *path, const dsn_asset &asset) {
     if (asset.histogram_table == nullptr) {
         std::printf("histogram       none (Gaussian output)\n");
         return;
     }
-    const Histogram histogram = histogram_of(asset);
+    const Histogram histogram = histogram_of(path, asset);
     std::printf("histogram       %u entries, %u levels, step %.6g, input %.6f .. %.6f (Gaussian space)\n",
                 asset.histogram_entries, asset.histogram_levels, histogram.step, histogram.input_low,
                 histogram.input_high);
@@ -199,7 +215,7 @@ void print_text(const char *path, size_t size, const dsn_asset &asset) {
     std::printf("\nbake            %u iterations, seed %u, RME %.6f\n", asset.bake_iterations,
                 asset.bake_seed, asset.bake_rme_q24 / kQ24);
     std::printf("exemplar        %ux%u\n", asset.exemplar_width, asset.exemplar_height);
-    print_histogram_text(asset);
+    print_histogram_text(path, asset);
     size_t section_bytes;
     const std::vector<dsn_level> levels = pyramid_levels(asset, section_bytes);
     if (levels.empty()) {
@@ -219,12 +235,12 @@ void print_numbers(const std::vector<double> &values) {
     std::printf("]");
 }
 
-void print_histogram_json(const dsn_asset &asset) {
+void print_histogram_json(const char *path, const dsn_asset &asset) {
     if (asset.histogram_table == nullptr) {
         std::printf("null");
         return;
     }
-    const Histogram histogram = histogram_of(asset);
+    const Histogram histogram = histogram_of(path, asset);
     std::printf(
         "{\"entries\": %u, \"levels\": %u, \"step_shift\": %u, \"step\": %.17g, \"input_low\": %.17g, "
         "\"input_high\": %.17g,\n    \"rotation\": ",
@@ -295,7 +311,7 @@ void print_json(const char *path, size_t size, const dsn_asset &asset) {
         std::printf("}");
     }
     std::printf("%s],\n  \"histogram\": ", levels.empty() ? "" : "\n  ");
-    print_histogram_json(asset);
+    print_histogram_json(path, asset);
     std::printf("\n}\n");
 }
 
