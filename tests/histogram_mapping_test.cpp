@@ -235,17 +235,21 @@ TEST_CASE("histogram: the mapping of hand-built tables gives the specification's
     struct Case {
         int32_t g, out;
     };
+    // Each case's value mapped by the runtime is the expected one and the reference formula's.
+    auto check_cases = [&](const auto &list) {
+        for (const Case &c : list) {
+            int32_t value = c.g;
+            dsn_internal_histogram_map(&asset, &value, 0, 0);
+            CAPTURE(c.g);
+            CHECK(value == c.out);
+            CHECK(value == reference_map(m, 1, &c.g)[0]);
+        }
+    };
     // 0.5 lies halfway from 0 to 2: 1. -0.25: three quarters from -1 to 0: -0.25. Beyond the ends:
     // clamped to -1 and 2. An exact entry: 0 at g = 0.
     const Case cases[] = {{32768, 65536}, {-16384, -16384},    {-5 * 65536, -65536}, {7 << 16, 131072},
                           {0, 0},         {INT32_MIN, -65536}, {INT32_MAX, 131072}};
-    for (const Case &c : cases) {
-        int32_t value = c.g;
-        dsn_internal_histogram_map(&asset, &value, 0, 0);
-        CAPTURE(c.g);
-        CHECK(value == c.out);
-        CHECK(value == reference_map(m, 1, &c.g)[0]);
-    }
+    check_cases(cases);
     // Rounding halves up: T = (0, 1/4096, -1/4096) with s = 16 (d = 0) is exact, so take s = 4 (d = 12):
     // the table steps of 1/4096 over 1/16 give v = 16 f / 2^12 per unit step, a half at f = 128.
     m.step_shift = 4, m.input_low_q16 = 0, m.tables = {0, 1, -1};
@@ -255,13 +259,7 @@ TEST_CASE("histogram: the mapping of hand-built tables gives the specification's
     // entry 1 (value 1/4096) toward entry 2 (-1/4096), f = 2112 gives -0.5 (up: 0) and f = 2240 gives
     // -1.5 (up: -1); the last entry is -16 exactly.
     const Case halves[] = {{128, 1}, {127, 0}, {4096 + 2112, 0}, {4096 + 2240, -1}, {4096, 16}, {8192, -16}};
-    for (const Case &c : halves) {
-        int32_t value = c.g;
-        dsn_internal_histogram_map(&asset, &value, 0, 0);
-        CAPTURE(c.g);
-        CHECK(value == c.out);
-        CHECK(value == reference_map(m, 1, &c.g)[0]);
-    }
+    check_cases(halves);
 
     // Step shift 16 (d = 0) from input 0: entries 2^-16 apart, so every rounding shift is 0 (where
     // dsn_round_saturate's signed subtraction used to overflow, as UBSan reported in every evaluator):
@@ -271,13 +269,7 @@ TEST_CASE("histogram: the mapping of hand-built tables gives the specification's
     REQUIRE(dsn_asset_load(&asset, bytes.data(), bytes.size()) == DSN_OK);
     const Case unit_steps[] = {{0, -65536},        {1, 0}, {2, 131072}, {-5, -65536}, {INT32_MAX, 131072},
                                {INT32_MIN, -65536}};
-    for (const Case &c : unit_steps) {
-        int32_t value = c.g;
-        dsn_internal_histogram_map(&asset, &value, 0, 0);
-        CAPTURE(c.g);
-        CHECK(value == c.out);
-        CHECK(value == reference_map(m, 1, &c.g)[0]);
-    }
+    check_cases(unit_steps);
     dsn_test::LoadedNoise unit_noise(fields,
                                      dsn_test::make_config(3, 30, 0, 0, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS));
     int32_t lattice_value = 1, continuous_value = 1;
