@@ -9,7 +9,7 @@
 #   make fresh-check  as root: `make demo` and `make test` on a fresh Debian root (tests/fresh-machine/)
 # DSN_NO_DEPS=1 (make variable or environment) skips the package step of make deps and the other deps-*
 # targets: nothing is checked or installed (you provide what they would). Without dpkg (not Debian), make
-# deps installs nothing: it checks that the build's libraries are found (.ci/install-packages).
+# deps installs nothing: it checks that the build's libraries are found (packaging/install-packages).
 
 BUILD ?= build
 PREFIX ?= /usr/local
@@ -126,7 +126,7 @@ $(TEST_RUNNER): $(TEST_OBJECTS) $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN)
 	$(CXX) $(CXXFLAGS) $(TEST_OBJECTS) -o $@ $(OFFLINE_LINK)
 
 deps:
-	@.ci/install-packages $(DEPS_PACKAGES)
+	@packaging/install-packages $(DEPS_PACKAGES)
 
 # Build in a second make so that package flags are read after `deps` has installed the packages. The
 # benchmarks are built too (not run), so that a change cannot leave them broken.
@@ -194,10 +194,12 @@ install: all
 	install -m 644 include/dsn/*.h include/dsn/*.glsl $(INSTALL_ROOT)/include/dsn/
 	install -m 644 $(LIBDSN) $(LIBDSN_BAKE) $(INSTALL_ROOT)/lib/
 	$(if $(INSTALLED_TOOLS),install -m 755 $(sort $(TOOLS) $(INSTALL_PROGRAMS)) $(INSTALL_ROOT)/bin/)
-	sed $(INSTALL_SUBSTITUTIONS) .ci/dsn.pc.in > $(INSTALL_ROOT)/lib/pkgconfig/dsn.pc
-	sed $(INSTALL_SUBSTITUTIONS) .ci/dsn-bake.pc.in > $(INSTALL_ROOT)/lib/pkgconfig/dsn-bake.pc
-	sed $(INSTALL_SUBSTITUTIONS) .ci/dsnConfig.cmake.in > $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfig.cmake
-	sed $(INSTALL_SUBSTITUTIONS) .ci/dsnConfigVersion.cmake.in \
+	sed $(INSTALL_SUBSTITUTIONS) packaging/pkgconfig/dsn.pc.in > $(INSTALL_ROOT)/lib/pkgconfig/dsn.pc
+	sed $(INSTALL_SUBSTITUTIONS) packaging/pkgconfig/dsn-bake.pc.in \
+	    > $(INSTALL_ROOT)/lib/pkgconfig/dsn-bake.pc
+	sed $(INSTALL_SUBSTITUTIONS) packaging/cmake/dsnConfig.cmake.in \
+	    > $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfig.cmake
+	sed $(INSTALL_SUBSTITUTIONS) packaging/cmake/dsnConfigVersion.cmake.in \
 	    > $(INSTALL_ROOT)/lib/cmake/dsn/dsnConfigVersion.cmake
 
 uninstall:

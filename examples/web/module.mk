@@ -28,9 +28,9 @@ WASM_LINK_FLAGS = -Wl,--no-entry -Wl,-z,stack-size=1048576 -Wl,--export=__heap_b
 
 .PHONY: web web-test deps-web deps-web-test
 deps-web:
-	@.ci/install-packages $(WEB_PACKAGES)
+	@packaging/install-packages $(WEB_PACKAGES)
 deps-web-test: deps-web
-	@.ci/install-packages $(WEB_TEST_PACKAGES)
+	@packaging/install-packages $(WEB_TEST_PACKAGES)
 
 $(WEB_WASM): $(WASM_SOURCES) $(wildcard runtime/*.h include/dsn/*.h examples/web/wasm/*.h)
 	@mkdir -p $(@D)

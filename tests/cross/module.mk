@@ -11,7 +11,7 @@ CROSS_ASSET_GENERATOR := $(BUILD)/cross/make-assets
 
 .PHONY: cross-test deps-cross cross-assets
 deps-cross:
-	@.ci/install-packages $(CROSS_PACKAGES)
+	@packaging/install-packages $(CROSS_PACKAGES)
 
 # Both checks run even when the first fails, so one report shows everything.
 cross-test: deps-cross

@@ -9,7 +9,7 @@ GPU_LIBS := -lEGL
 
 .PHONY: gpu-test deps-gpu
 deps-gpu: deps
-	@.ci/install-packages $(GPU_PACKAGES)
+	@packaging/install-packages $(GPU_PACKAGES)
 
 # Built in a second make, after deps-gpu has installed the headers (all: the smoke test uses dsn-render).
 gpu-test: deps-gpu
