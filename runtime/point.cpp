@@ -409,17 +409,6 @@ extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int3
 }
 #endif
 
-extern "C" float dsn_fixed_to_float(int32_t value) {
-    /* One rounding (int32 -> float), then an exact power-of-two scaling: the same on every FPU. */
-    return float(value) * (1.0f / 65536.0f);
-}
-
-extern "C" uint8_t dsn_fixed_to_u8(int32_t value) {
-    if (value <= 0) return 0;
-    if (value >= DSN_ONE) return 255;
-    return uint8_t((uint32_t(value) * 255u + 32768u) >> 16);
-}
-
 #if !DSN_SMALL_CODE
 extern "C" void dsn_lattice_point_float(const dsn_noise *handle, int32_t x, int32_t y, float *out) {
     const dsn_noise_state *noise = dsn_state(handle);
