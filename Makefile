@@ -32,7 +32,9 @@ RUNTIME_FLAGS := -std=c++11 $(WARNINGS) -Wconversion -Wsign-conversion -Wcast-al
 PACKAGE_CFLAGS = $(shell $(PKG_CONFIG) --cflags kissfft-float stb 2>/dev/null)
 STB_LIBS = $(shell $(PKG_CONFIG) --libs stb 2>/dev/null)
 PACKAGE_LIBS = $(shell $(PKG_CONFIG) --libs kissfft-float 2>/dev/null) $(STB_LIBS)
-OFFLINE_FLAGS = -std=c++17 $(WARNINGS) $(COMMON_FLAGS) $(PACKAGE_CFLAGS)
+# -I.: the offline code, the tests and the examples name a private header of another folder by its place
+# in the tree ("offline/bake_internal.h", "runtime/format_bytes.h"), never by a path relative to their own.
+OFFLINE_FLAGS = -std=c++17 $(WARNINGS) $(COMMON_FLAGS) -I. $(PACKAGE_CFLAGS)
 TEST_FLAGS = $(OFFLINE_FLAGS) -Itests
 
 # On x86-64 the kernels (runtime/kernels.h) are built three times: the default one with the runtime's

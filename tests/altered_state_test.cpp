@@ -9,11 +9,11 @@
 #include <random>
 #include <vector>
 
-#include "../runtime/noise_state.h"
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
+#include "runtime/noise_state.h"
 
 namespace {
 

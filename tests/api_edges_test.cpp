@@ -10,9 +10,9 @@
 #include <set>
 #include <string>
 
-#include "../offline/bake_internal.h"
 #include "dsn/dsn.h"
 #include "fixtures/test_assets.h"
+#include "offline/bake_internal.h"
 
 using dsn_test::LoadedNoise;
 using dsn_test::make_config;

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <vector>
 
-#include "../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

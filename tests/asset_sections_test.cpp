@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "../runtime/format_bytes.h"
 #include "fixtures/test_assets.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <unistd.h>
 
-#include "../offline/tools/file_output.h"
-#include "../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
+#include "offline/tools/file_output.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
 #include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
 
 using namespace bake_fixtures;
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "../runtime/format_bytes.h"
 #include "dsn/bake.h"
 #include "fixtures/bake_fixtures.h"
+#include "runtime/format_bytes.h"
 
 using namespace bake_fixtures;
 

@@ -7,10 +7,10 @@
 
 #include <stb_image.h>
 
-#include "../offline/bake_internal.h"
-#include "../offline/label.h"
 #include "dsn/dsn.h"
 #include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
+#include "offline/label.h"
 
 using namespace bake_fixtures;
 

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "../offline/bake_internal.h"
-#include "../runtime/format_bytes.h"
 #include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
+#include "runtime/format_bytes.h"
 
 using namespace bake_fixtures;
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "../offline/bake_internal.h"
 #include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
 #include <doctest/doctest.h>
 
 namespace {

@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "../runtime/kernels.h"
-#include "../runtime/splat_cells.h"
 #include "fixtures/continuous_fixtures.h"
+#include "runtime/kernels.h"
+#include "runtime/splat_cells.h"
 
 using namespace continuous_fixtures;
 

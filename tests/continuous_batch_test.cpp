@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "../runtime/kernels.h"
 #include "fixtures/continuous_fixtures.h"
+#include "runtime/kernels.h"
 
 using namespace continuous_fixtures;
 

@@ -14,8 +14,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "../offline/bake_internal.h"
 #include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 
 using namespace continuous_fixtures;
 

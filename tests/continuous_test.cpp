@@ -11,10 +11,10 @@
 #include <random>
 #include <vector>
 
-#include "../runtime/impulse_position.h"
-#include "../runtime/kernels.h"
-#include "../runtime/poisson_count.h"
 #include "fixtures/continuous_fixtures.h"
+#include "runtime/impulse_position.h"
+#include "runtime/kernels.h"
+#include "runtime/poisson_count.h"
 
 using namespace continuous_fixtures;
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <vector>
 
-#include "../runtime/filtered_internal.h"
-#include "../runtime/init_internal.h"
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
+#include "runtime/filtered_internal.h"
+#include "runtime/init_internal.h"
 
 namespace {
 

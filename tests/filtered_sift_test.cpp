@@ -13,10 +13,10 @@
 #include <cstring>
 #include <vector>
 
-#include "../offline/bake_internal.h"
-#include "../runtime/filtered_internal.h"
-#include "../runtime/kernels.h"
 #include "fixtures/test_assets.h"
+#include "offline/bake_internal.h"
+#include "runtime/filtered_internal.h"
+#include "runtime/kernels.h"
 
 using namespace dsn_test;
 

@@ -18,10 +18,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "../offline/bake_internal.h"
-#include "../runtime/filtered_internal.h"
 #include "fixtures/pyramid_fixture.h"
 #include "fixtures/test_assets.h"
+#include "offline/bake_internal.h"
+#include "runtime/filtered_internal.h"
 
 using namespace dsn_test;
 

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
-#include "../offline/bake_internal.h"
-#include "../runtime/kernels.h"
 #include "fixtures/continuous_fixtures.h"
 #include "fixtures/test_assets.h"
+#include "offline/bake_internal.h"
+#include "runtime/kernels.h"
 
 using namespace dsn_test;
 

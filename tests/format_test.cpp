@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "../runtime/format_bytes.h"
+#include "runtime/format_bytes.h"
 
 TEST_CASE("crc32 matches the zlib/PNG check value and continues across chunks") {
     const char *check = "123456789";

@@ -5,9 +5,9 @@
 
 #include <vector>
 
-#include "../runtime/noise_state.h"
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
+#include "runtime/noise_state.h"
 
 namespace {
 

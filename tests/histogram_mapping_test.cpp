@@ -12,11 +12,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "../offline/bake_internal.h"
-#include "../runtime/histogram_map.h"
-#include "../runtime/kernels.h"
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
+#include "offline/bake_internal.h"
+#include "runtime/histogram_map.h"
+#include "runtime/kernels.h"
 
 using dsn_test::LoadedNoise;
 using dsn_test::make_config;

@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "../offline/bake_internal.h"
-#include "../runtime/format_bytes.h"
 #include "fixtures/bake_fixtures.h"
 #include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
+#include "runtime/format_bytes.h"
 
 using namespace continuous_fixtures;
 using namespace bake_fixtures;

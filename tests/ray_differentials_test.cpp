@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "../examples/tiny_renderer/ray_differentials.h"
+#include "examples/tiny_renderer/ray_differentials.h"
 
 using namespace tiny;
 

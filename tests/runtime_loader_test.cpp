@@ -5,9 +5,9 @@
 #include <cstring>
 #include <vector>
 
-#include "../runtime/format_bytes.h"
-#include "../runtime/noise_state.h"
 #include "fixtures/test_assets.h"
+#include "runtime/format_bytes.h"
+#include "runtime/noise_state.h"
 
 namespace {
 

@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include "../runtime/poisson_count.h"
 #include "fixtures/test_assets.h"
+#include "runtime/poisson_count.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "../runtime/poisson_count.h"
 #include "fixtures/fnv1a.h"
 #include "fixtures/test_assets.h"
+#include "runtime/poisson_count.h"
 
 namespace {
 

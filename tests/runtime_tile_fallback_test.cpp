@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "../runtime/tile_render.h"
 #include "fixtures/test_assets.h"
+#include "runtime/tile_render.h"
 
 #if DSN_TILE_BLOCKS
 namespace {

@@ -14,8 +14,8 @@
 #include <cpuid.h>
 #endif
 
-#include "../runtime/kernels.h"
 #include "fixtures/test_assets.h"
+#include "runtime/kernels.h"
 
 namespace {
 

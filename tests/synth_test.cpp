@@ -6,8 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "../offline/bake_internal.h"
-#include "../offline/synth.h"
+#include "offline/bake_internal.h"
+#include "offline/synth.h"
 
 namespace {
 

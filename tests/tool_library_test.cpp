@@ -11,11 +11,11 @@
 
 #include <unistd.h>
 
-#include "../offline/bake_internal.h"
-#include "../offline/tools/asset_file.h"
-#include "../offline/tools/bake_progress.h"
-#include "../offline/tools/command_line.h"
 #include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
+#include "offline/tools/asset_file.h"
+#include "offline/tools/bake_progress.h"
+#include "offline/tools/command_line.h"
 
 TEST_CASE("nearest_flag guesses a close misspelling, and nothing for short or far ones") {
     const std::vector<std::string> known = {"-o", "--output", "--radius", "--seed", "--size", "--iterations"};

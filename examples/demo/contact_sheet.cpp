@@ -12,14 +12,14 @@
 
 #include <stb_image.h>
 
-#include "../../offline/bake_internal.h"
-#include "../../offline/file_input.h"
-#include "../../offline/label.h"
-#include "../../offline/tools/asset_file.h"
-#include "../../offline/tools/command_line.h"
-#include "../../offline/tools/file_output.h"
-#include "../../offline/tools/png_output.h"
 #include "dsn/dsn.h"
+#include "offline/bake_internal.h"
+#include "offline/file_input.h"
+#include "offline/label.h"
+#include "offline/tools/asset_file.h"
+#include "offline/tools/command_line.h"
+#include "offline/tools/file_output.h"
+#include "offline/tools/png_output.h"
 
 namespace {
 

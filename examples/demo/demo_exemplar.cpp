@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "../../offline/bake_internal.h"
-#include "../../offline/tools/command_line.h"
-#include "../../offline/tools/file_output.h"
-#include "../../offline/tools/png_output.h"
+#include "offline/bake_internal.h"
+#include "offline/tools/command_line.h"
+#include "offline/tools/file_output.h"
+#include "offline/tools/png_output.h"
 
 namespace {
 

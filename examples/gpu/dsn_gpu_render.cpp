@@ -17,14 +17,14 @@
 #include <string>
 #include <vector>
 
-#include "../../offline/tools/asset_file.h"
-#include "../../offline/tools/command_line.h"
-#include "../../offline/tools/file_output.h"
-#include "../../offline/tools/png_output.h"
-#include "../../offline/tools/render_window.h"
 #include "dsn/dsn.h"
 #include "dsn/gpu.h"
 #include "headless_gl.h"
+#include "offline/tools/asset_file.h"
+#include "offline/tools/command_line.h"
+#include "offline/tools/file_output.h"
+#include "offline/tools/png_output.h"
+#include "offline/tools/render_window.h"
 
 namespace {
 

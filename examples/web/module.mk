@@ -41,8 +41,8 @@ $(WEB_WASM): $(WASM_SOURCES) $(wildcard runtime/*.h include/dsn/*.h examples/web
 # its header-only C++ version), stb's code, a throw that reports what() and stops, and the POSIX calls
 # of the file writer that wasi-libc lacks. Objects one by one: a whole build takes minutes.
 WASI_CXX ?= clang++
-WASI_FLAGS = --target=wasm32-wasi --sysroot=/usr -std=c++17 -O2 -ffp-contract=off -Iinclude $(PACKAGE_CFLAGS) \
-    -include examples/web/bake/posix_missing.h
+WASI_FLAGS = --target=wasm32-wasi --sysroot=/usr -std=c++17 -O2 -ffp-contract=off -Iinclude -I. \
+    $(PACKAGE_CFLAGS) -include examples/web/bake/posix_missing.h
 # The baker's sources only: dsn-synth's spectral synthesis (offline/synth.cpp) runs its FFTs on threads,
 # which wasi has not, and the page does not use it.
 WASI_SOURCES = $(filter-out offline/synth.cpp,$(OFFLINE_SOURCES)) $(RUNTIME_SOURCES) \

@@ -1,7 +1,7 @@
 // asset_file.cpp - reads and validates the tools' asset files, with one-line reasons (asset_file.h).
 #include "asset_file.h"
 
-#include "../file_input.h"
+#include "offline/file_input.h"
 
 #include <cstring>
 #include <stdexcept>

@@ -9,12 +9,12 @@
 #include <string>
 #include <unistd.h>
 
-#include "../bake_internal.h"
 #include "bake_progress.h"
 #include "command_line.h"
 #include "dsn/bake.h"
 #include "file_output.h"
 #include "json_output.h"
+#include "offline/bake_internal.h"
 
 namespace {
 

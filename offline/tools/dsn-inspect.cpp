@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "../../runtime/format_bytes.h"
 #include "asset_file.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
 #include "json_output.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

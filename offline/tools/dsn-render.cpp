@@ -23,13 +23,13 @@
 #include <unistd.h>
 #include <vector>
 
-#include "../../runtime/format_bytes.h"
 #include "asset_file.h"
 #include "command_line.h"
 #include "dsn/dsn.h"
 #include "file_output.h"
 #include "png_output.h"
 #include "render_window.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

@@ -11,12 +11,12 @@
 #include <unistd.h>
 #include <vector>
 
-#include "../../runtime/format_bytes.h"
-#include "../synth.h"
 #include "command_line.h"
 #include "dsn/bake.h"
 #include "file_output.h"
+#include "offline/synth.h"
 #include "png_output.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

@@ -18,8 +18,8 @@
 
 #include <kiss_fft.h>
 
-#include "../../offline/bake_internal.h"
-#include "../fixtures/bake_fixtures.h"
+#include "fixtures/bake_fixtures.h"
+#include "offline/bake_internal.h"
 
 namespace {
 

@@ -11,10 +11,10 @@
 #include <random>
 #include <vector>
 
-#include "../../runtime/noise_state.h"
-#include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
+#include "fixtures/continuous_fixtures.h"
 #include "painted_stack.h"
+#include "runtime/noise_state.h"
 #include "splat_best_case.h"
 
 namespace {

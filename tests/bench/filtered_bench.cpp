@@ -10,11 +10,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "../../offline/bake_internal.h"
-#include "../../runtime/filtered_internal.h"
-#include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
+#include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 #include "painted_stack.h"
+#include "runtime/filtered_internal.h"
 
 namespace {
 

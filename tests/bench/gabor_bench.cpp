@@ -19,13 +19,13 @@
 #include <string>
 #include <vector>
 
-#include "../../offline/bake_internal.h"
-#include "../../offline/tools/file_output.h"
-#include "../../offline/tools/png_output.h"
-#include "../fixtures/bake_fixtures.h"
 #include "bench_timing.h"
 #include "dsn/dsn.h"
+#include "fixtures/bake_fixtures.h"
 #include "gabor_by_example.h"
+#include "offline/bake_internal.h"
+#include "offline/tools/file_output.h"
+#include "offline/tools/png_output.h"
 
 namespace {
 

@@ -37,7 +37,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "../../offline/bake_internal.h"
+#include "offline/bake_internal.h"
 
 namespace gabor {
 

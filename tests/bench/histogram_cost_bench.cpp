@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "../../offline/bake_internal.h"
-#include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
+#include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 
 #include <time.h>
 
-#include "../../runtime/noise_state.h"
-#include "../fixtures/continuous_fixtures.h"
 #include "bench_timing.h"
+#include "fixtures/continuous_fixtures.h"
+#include "runtime/noise_state.h"
 #include "texton_noise_baseline.h"
 
 namespace {

@@ -19,11 +19,11 @@
 #include <kiss_fftnd.h>
 #include <stb_perlin.h>
 
-#include "../../runtime/cell_walk.h"
-#include "../../runtime/poisson_count.h"
-#include "../fixtures/test_assets.h"
 #include "bench_timing.h"
+#include "fixtures/test_assets.h"
 #include "painted_stack.h"
+#include "runtime/cell_walk.h"
+#include "runtime/poisson_count.h"
 
 namespace {
 

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <vector>
 
-#include "../../runtime/kernels.h"
-#include "../../runtime/noise_state.h"
-#include "../../runtime/splat_cells.h"
 #include "bench_timing.h"
+#include "runtime/kernels.h"
+#include "runtime/noise_state.h"
+#include "runtime/splat_cells.h"
 
 namespace bench {
 

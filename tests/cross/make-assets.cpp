@@ -6,10 +6,10 @@
 // The committed arrays, not this program, are the source of truth: every target of the cross test reads
 // exactly those bytes. Run it (make cross-assets) only to change the assets on purpose, then update
 // tests/cross/golden.txt in the same commit.
-#include "../../offline/bake_internal.h"
-#include "../../offline/tools/file_output.h"
-#include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
+#include "offline/bake_internal.h"
+#include "offline/tools/file_output.h"
+#include "runtime/format_bytes.h"
 
 #include <cstdio>
 #include <exception>

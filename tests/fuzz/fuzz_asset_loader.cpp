@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "../../runtime/format_bytes.h"
 #include "dsn/dsn.h"
 #include "fuzz_input.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

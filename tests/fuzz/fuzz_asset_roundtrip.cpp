@@ -3,10 +3,10 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "../../runtime/format_bytes.h"
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
 #include "fuzz_input.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 

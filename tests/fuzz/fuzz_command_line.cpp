@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "../../offline/tools/command_line.h"
 #include "fuzz_input.h"
+#include "offline/tools/command_line.h"
 
 extern "C" int LLVMFuzzerInitialize(int *, char ***) {
     // --help prints the usage on stdout: keep the fuzzer's output readable.

@@ -13,7 +13,7 @@ FUZZ_CXX ?= clang++
 FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all \
     -fsanitize-ignorelist=tests/fuzz/stb_ignorelist.txt
 FUZZ_FLAGS = -std=c++17 -O1 -g $(FUZZ_SANITIZERS) -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION \
-    -ffp-contract=off -Iinclude $(PACKAGE_CFLAGS)
+    -ffp-contract=off -Iinclude -I. $(PACKAGE_CFLAGS)
 FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.cpp,%,$(wildcard tests/fuzz/fuzz_*.cpp))
 FUZZ_PROGRAMS := $(FUZZ_NAMES:%=$(BUILD)/fuzz/fuzz_%)
 FUZZ_LIBRARY_SOURCES := $(RUNTIME_SOURCES) $(OFFLINE_SOURCES) $(TOOLS_LIBRARY_SOURCES)

@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../../runtime/format_bytes.h"
-#include "../cross/golden_assets.h"
+#include "cross/golden_assets.h"
 #include "dsn/dsn.h"
+#include "runtime/format_bytes.h"
 
 namespace {
 
