@@ -40,13 +40,12 @@ inline uint64_t bilinear_channel(const unsigned char *top, const unsigned char *
     return static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
 }
 
-/* The bilinear texton of every channel, as add_bilinear computes it, for 2 x 2 texels that may leave the
-   window of width x height values (rows `stride` values apart; zero outside): the same integers, each
-   texel read with its own bounds test. */
+/* The 2 x 2 texels of every channel with their top-left at (row, column), for texels that may leave the
+   window of width x height values (rows `stride` values apart; zero outside): each texel read with its
+   own bounds test, corners[corner][channel] with corner = 2 (down) + (right). */
 template <uint32_t Channels, uint32_t Bytes>
-inline void add_border(const unsigned char *texton, uint32_t width, uint32_t height, uint32_t stride,
-                       uint32_t row, uint32_t column, int64_t across, int64_t down, uint64_t *sums) {
-    int64_t corners[4][DSN_MAX_CHANNELS];
+inline void read_corners(const unsigned char *texton, uint32_t width, uint32_t height, uint32_t stride,
+                         uint32_t row, uint32_t column, int64_t corners[4][DSN_MAX_CHANNELS]) {
     for (uint32_t corner = 0; corner < 4; corner++) {
         const uint32_t at_row = row + (corner >> 1), at_column = column + (corner & 1u);
         const bool inside = at_row < height && at_column < width; /* -1 (0xFFFFFFFF) is outside too */
@@ -56,6 +55,15 @@ inline void add_border(const unsigned char *texton, uint32_t width, uint32_t hei
                 inside ? biased_value<Bytes>(at + c * Bytes) - (static_cast<int64_t>(1) << (8u * Bytes - 1u))
                        : 0;
     }
+}
+
+/* The bilinear texton of every channel, as add_bilinear computes it, for 2 x 2 texels that may leave the
+   window (read_corners): the same integers. */
+template <uint32_t Channels, uint32_t Bytes>
+inline void add_border(const unsigned char *texton, uint32_t width, uint32_t height, uint32_t stride,
+                       uint32_t row, uint32_t column, int64_t across, int64_t down, uint64_t *sums) {
+    int64_t corners[4][DSN_MAX_CHANNELS];
+    read_corners<Channels, Bytes>(texton, width, height, stride, row, column, corners);
     for (uint32_t c = 0; c < Channels; c++) {
         const int64_t upper = (65536 - across) * corners[0][c] + across * corners[1][c];
         const int64_t lower = (65536 - across) * corners[2][c] + across * corners[3][c];

@@ -29,6 +29,18 @@ inline bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint
     return true;
 }
 
+/* The two partial derivatives of one channel's bilinear texton, with corners (a, b) above and (c, d)
+   below, at the upper weights (across, down) of add_bilinear: per 2^-16 texel of motion,
+     along x  (65536 - down) (b - a) + down (d - c),
+     along y  (65536 - across) (c - a) + across (d - b),
+   the slopes of the piece of the interpolation that holds the point (so one-sided, toward +x and +y, on
+   a texel edge). A bias added to all four corners cancels. Each is below 2^32 in magnitude. */
+inline void add_slopes(int64_t a, int64_t b, int64_t c, int64_t d, int64_t across, int64_t down,
+                       uint64_t *slope_x, uint64_t *slope_y) {
+    *slope_x += static_cast<uint64_t>((65536 - down) * (b - a) + down * (d - c));
+    *slope_y += static_cast<uint64_t>((65536 - across) * (c - a) + across * (d - b));
+}
+
 /* Quantized value of the texton at (row, column, channel); 0 outside the window (indices are unsigned,
    so -1 is out of range too). The small build calls the loader's reader; the fast one reads inline. */
 inline int32_t texel(const dsn_asset *asset, uint32_t row, uint32_t column, uint32_t channel) {

@@ -26,12 +26,13 @@ inline int64_t signed_from_bits(uint64_t bits) {
 }
 
 /* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
-   it as in lattice mode, the fractions are added once, rounded down, before the final rounding; then the
-   histogram mapping (normalize_q32), or not yet (normalize_q32_unmapped). */
-inline void normalize_q32_unmapped(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+   it as in lattice mode, the fractions are added once, rounded down, before the final rounding; from
+   `offset` (the noise's own, or zeros for a derivative, which the mean does not reach). */
+inline void normalize_q32_from(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
+                               int32_t *out) {
     const uint32_t channels = noise->asset.channels;
     for (uint32_t c = 0; c < channels; c++) {
-        int64_t accumulated = noise->offset[c], fractions = 0;
+        int64_t accumulated = offset[c], fractions = 0;
         for (uint32_t k = 0; k < channels; k++) {
             const int64_t whole = dsn_signed_sum(static_cast<uint32_t>(sums[k] >> 32)); /* floor, mod 2^32 */
             const int64_t fraction = static_cast<int64_t>(sums[k] & 0xFFFFFFFFu);
@@ -41,6 +42,11 @@ inline void normalize_q32_unmapped(const dsn_noise_state *noise, const uint64_t 
         accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
         out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
     }
+}
+
+/* The value: then the histogram mapping (normalize_q32), or not yet (normalize_q32_unmapped). */
+inline void normalize_q32_unmapped(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+    normalize_q32_from(noise, noise->offset, sums, out);
 }
 
 inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
@@ -61,5 +67,13 @@ void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uin
 /* dsn_continuous_point_float at Q32.32 coordinates: the errors and the zeroed output of
    dsn_continuous_point_fixed, the values as float (continuous_point.cpp; dsn_sample calls it too). */
 int dsn_internal_continuous_point_float(const dsn_noise *noise, int64_t x, int64_t y, float *out);
+
+#if DSN_GRADIENTS
+/* The raw sums of the point (x, y) for its gradient (continuous_point.cpp), per channel, modulo 2^64:
+   value[c] the bilinear texton's (Q.32, what dsn_internal_continuous_point normalizes), slope_x[c] and
+   slope_y[c] its partial derivatives per 2^-16 texel (bilinear_read.h's add_slopes). */
+void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                    uint64_t *slope_x, uint64_t *slope_y);
+#endif
 
 #endif /* DSN_CONTINUOUS_INTERNAL_H */

@@ -1,7 +1,7 @@
 /* runtime/continuous_point.cpp - the continuous mode at one point: the impulses of the cells around it,
    each adding its bilinear texton (bilinear_texton.h) to the channel sums. With DSN_SMALL_CODE (dsn.h) a
    point walks its impulses one by one; the fast build sifts them on their packed lattice fields first
-   (evaluate_fast) and, on SSE2, interpolates 8-bit textons on vectors; kernels built for AVX2 have their
+   (sum_point) and, on SSE2, interpolates 8-bit textons on vectors; kernels built for AVX2 have their
    own copy for the usual noises (continuous_point_vector.h). Also the API's mode check and
    per-point functions. */
 #include "bilinear_read.h"
@@ -20,34 +20,48 @@ namespace {
 
 #if DSN_SMALL_CODE
 /* Both steps along one axis: the texels that bracket the impulse (see bracket), or false when it lies
-   beyond the period or out of reach. */
+   beyond the period or out of reach. With `entry_edge` (the gradient) an impulse exactly at the edge
+   where it enters the reach, offset -(radius + 1), is kept: its value is 0, its slope is not. */
 bool impulse_bracket(const PointAxis &point, const dsn_span &span, uint32_t cell_origin, uint32_t bits16,
-                     uint32_t *lower_index, uint32_t *upper_weight) {
+                     bool entry_edge, uint32_t *lower_index, uint32_t *upper_weight) {
     int64_t offset;
-    return impulse_offset(point, span, cell_origin, bits16, &offset) &&
-           bracket(offset, point.axis.radius, lower_index, upper_weight);
+    if (!impulse_offset(point, span, cell_origin, bits16, &offset)) return false;
+    if (entry_edge &&
+        offset == -static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel)) {
+        *lower_index = 0xFFFFFFFFu;
+        *upper_weight = 0;
+        return true;
+    }
+    return bracket(offset, point.axis.radius, lower_index, upper_weight);
 }
 
-/* Sums (Q.32, per channel) of the bilinear texton over every impulse of the cell (cell_x, cell_y). */
+/* Sums (Q.32, per channel) of the bilinear texton over every impulse of the cell (cell_x, cell_y), and with
+   Slopes its partial derivatives (add_slopes) in slopes[0 .. 2] (x) and slopes[3 .. 5] (y). */
+template <bool Slopes>
 void add_cell(const dsn_noise_state *noise, const PointAxis &px, const dsn_span &span_x, uint32_t cell_x,
-              const PointAxis &py, const dsn_span &span_y, uint32_t cell_y, uint64_t *sums) {
+              const PointAxis &py, const dsn_span &span_y, uint32_t cell_y, uint64_t *sums,
+              uint64_t *slopes) {
     const uint32_t key = dsn_cell_key(noise, cell_x, cell_y);
     const uint32_t count = dsn_cell_impulse_count(noise, key);
     const uint32_t origin_x = cell_x << noise->cell_shift, origin_y = cell_y << noise->cell_shift;
     for (uint32_t k = 0; k < count; k++) {
         const uint32_t hash = dsn_impulse_hash(noise, key, k);
         uint32_t row, row_weight, column, column_weight;
-        if (impulse_bracket(py, span_y, origin_y, dsn_impulse_bits_y(hash), &row, &row_weight) &&
-            impulse_bracket(px, span_x, origin_x, dsn_impulse_bits_x(hash), &column, &column_weight))
-            add_bilinear(&noise->asset, row, row_weight, column, column_weight, sums);
+        if (!impulse_bracket(py, span_y, origin_y, dsn_impulse_bits_y(hash), Slopes, &row, &row_weight) ||
+            !impulse_bracket(px, span_x, origin_x, dsn_impulse_bits_x(hash), Slopes, &column, &column_weight))
+            continue;
+        add_bilinear(&noise->asset, row, row_weight, column, column_weight, sums);
+        for (uint32_t c = 0; Slopes && c < noise->asset.channels; c++)
+            add_slopes(texel(&noise->asset, row, column, c), texel(&noise->asset, row, column + 1u, c),
+                       texel(&noise->asset, row + 1u, column, c),
+                       texel(&noise->asset, row + 1u, column + 1u, c), column_weight, row_weight, &slopes[c],
+                       &slopes[DSN_MAX_CHANNELS + c]);
     }
 }
 
-} // namespace
-
-/* The small build: impulse by impulse, each through dsn_impulse_hash. */
-void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
-    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+/* Every impulse around the point, impulse by impulse, each through dsn_impulse_hash. */
+template <bool Slopes>
+void sum_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *sums, uint64_t *slopes) {
     const uint32_t shift = noise->cell_shift;
     const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
     const PointAxis py = point_axis(y, noise->radius[1], shift, noise->period[1]);
@@ -57,12 +71,32 @@ void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uin
             const dsn_span span_x = dsn_axis_span(&px.axis, sx);
             for (uint32_t j = 0; j < span_y.cell_count; j++)
                 for (uint32_t i = 0; i < span_x.cell_count; i++)
-                    add_cell(noise, px, span_x, dsn_span_cell(&span_x, i, shift), py, span_y,
-                             dsn_span_cell(&span_y, j, shift), sums);
+                    add_cell<Slopes>(noise, px, span_x, dsn_span_cell(&span_x, i, shift), py, span_y,
+                                     dsn_span_cell(&span_y, j, shift), sums, slopes);
         }
     }
+}
+
+} // namespace
+
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+    sum_point<false>(noise, x, y, sums, 0);
     normalize_q32(noise, sums, out);
 }
+
+#if DSN_GRADIENTS
+void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                    uint64_t *slope_x, uint64_t *slope_y) {
+    uint64_t slopes[2 * DSN_MAX_CHANNELS] = {0, 0, 0, 0, 0, 0};
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) value[c] = 0;
+    sum_point<true>(noise, x, y, value, slopes);
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+        slope_x[c] = slopes[c];
+        slope_y[c] = slopes[DSN_MAX_CHANNELS + c];
+    }
+}
+#endif
 
 namespace {
 
@@ -87,23 +121,130 @@ struct CandidateBuffer {
     uint32_t count;
 };
 
-/* Visits every buffered candidate: those in reach add their bilinear texton. Empties the buffer. */
+/* What a candidate in reach adds, one type per output: ValueRead sums the bilinear texton (the value),
+   SlopeRead the value and its two partial derivatives (the gradient). A reader lives for one visit of
+   the buffer, so that its sums stay in registers, and then takes them into the point's (`Sums`). */
+struct ValueSums {
+    uint64_t value[DSN_MAX_CHANNELS];
+};
+
 template <uint32_t Channels, uint32_t Bytes>
+struct ValueRead {
+    typedef ValueSums Sums;
+    static const uint32_t channels = Channels, bytes = Bytes;
+    static const bool entry_edge = false; /* see SlopeRead */
+    /* Interior texels go to local sums (8-bit ones in vectors on SSE2), those at the edge through
+       add_border. */
+    uint64_t interior[DSN_MAX_CHANNELS], border[DSN_MAX_CHANNELS];
+    uint64_t interior_count;
+#if defined(__SSE2__)
+    BilinearSums vector_sums;
+#endif
+
+    ValueRead() : interior_count(0) {
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) interior[c] = border[c] = 0;
+#if defined(__SSE2__)
+        vector_sums.even = vector_sums.odd = _mm_setzero_si128();
+#endif
+    }
+
+    /* 2 x 2 texels inside the window: `top` the top-left one, `bottom` the one below it. */
+    void add_interior(const unsigned char *top, const unsigned char *bottom, int64_t across, int64_t down) {
+        interior_count++;
+#if defined(__SSE2__)
+        if (Bytes == 1) {
+            add_bilinear_vector<Channels>(top, bottom, static_cast<uint32_t>(across),
+                                          static_cast<uint32_t>(down), &vector_sums);
+            return;
+        }
+#endif
+        interior[0] += bilinear_channel<Bytes, Channels * Bytes>(top, bottom, across, down);
+        if (Channels == 3) {
+            interior[1] +=
+                bilinear_channel<Bytes, Channels * Bytes>(top + Bytes, bottom + Bytes, across, down);
+            interior[2] +=
+                bilinear_channel<Bytes, Channels * Bytes>(top + 2 * Bytes, bottom + 2 * Bytes, across, down);
+        }
+    }
+
+    /* 2 x 2 texels with their top-left at (row, column), some of them outside the window. */
+    void add_edge(const dsn_asset *asset, uint32_t row, uint32_t column, int64_t across, int64_t down) {
+        add_border<Channels, Bytes>(asset->texton, asset->width, asset->height, asset->width, row, column,
+                                    across, down, border);
+    }
+
+    void take(uint64_t *sums) const {
+#if defined(__SSE2__)
+        uint64_t vector_interior[DSN_MAX_CHANNELS] = {0, 0, 0};
+        if (Bytes == 1) take_bilinear_sums<Channels>(vector_sums, vector_interior);
+#else
+        const uint64_t vector_interior[DSN_MAX_CHANNELS] = {0, 0, 0};
+#endif
+        /* The interior sums were of biased values: each bilinear texton 2^(32 + 8 Bytes - 1) too high. */
+        for (uint32_t c = 0; c < Channels; c++)
+            sums[c] += interior[c] + vector_interior[c] - (interior_count << (31u + 8u * Bytes)) + border[c];
+    }
+    void take(Sums *sums) const { take(sums->value); }
+};
+
+struct SlopeSums {
+    uint64_t value[DSN_MAX_CHANNELS], slope_x[DSN_MAX_CHANNELS], slope_y[DSN_MAX_CHANNELS];
+};
+
+template <uint32_t Channels, uint32_t Bytes>
+struct SlopeRead {
+    typedef SlopeSums Sums;
+    static const uint32_t channels = Channels, bytes = Bytes;
+    /* An impulse exactly at the edge where it enters the reach (offset -(radius + 1) texels on an axis)
+       adds nothing to the value but its slope: the value's walk leaves it out, this one reads it. */
+    static const bool entry_edge = true;
+    ValueRead<Channels, Bytes> values;
+    uint64_t slope_x[DSN_MAX_CHANNELS], slope_y[DSN_MAX_CHANNELS];
+
+    SlopeRead() {
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) slope_x[c] = slope_y[c] = 0;
+    }
+
+    void add_interior(const unsigned char *top, const unsigned char *bottom, int64_t across, int64_t down) {
+        values.add_interior(top, bottom, across, down);
+        for (uint32_t c = 0; c < Channels; c++)
+            add_slopes(
+                biased_value<Bytes>(top + c * Bytes), biased_value<Bytes>(top + (Channels + c) * Bytes),
+                biased_value<Bytes>(bottom + c * Bytes), biased_value<Bytes>(bottom + (Channels + c) * Bytes),
+                across, down, &slope_x[c], &slope_y[c]);
+    }
+
+    void add_edge(const dsn_asset *asset, uint32_t row, uint32_t column, int64_t across, int64_t down) {
+        values.add_edge(asset, row, column, across, down);
+        int64_t corners[4][DSN_MAX_CHANNELS];
+        read_corners<Channels, Bytes>(asset->texton, asset->width, asset->height, asset->width, row, column,
+                                      corners);
+        for (uint32_t c = 0; c < Channels; c++)
+            add_slopes(corners[0][c], corners[1][c], corners[2][c], corners[3][c], across, down, &slope_x[c],
+                       &slope_y[c]);
+    }
+
+    void take(Sums *sums) const {
+        values.take(sums->value);
+        for (uint32_t c = 0; c < Channels; c++) {
+            sums->slope_x[c] += slope_x[c];
+            sums->slope_y[c] += slope_y[c];
+        }
+    }
+};
+
+/* Visits every buffered candidate: those in reach go to a Read (above). Empties the buffer. */
+template <class Read>
 void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, CandidateBuffer *buffer,
-                    uint64_t *sums) {
+                    typename Read::Sums *sums) {
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, fraction_shift = lanes.half_bits;
     const uint32_t position_shift = 16u + noise->cell_shift, high_shift = 16u - lanes.half_bits;
     const uint64_t limit_x = static_cast<uint64_t>(2u * noise->radius[0] + 2u) * one_texel - 1u;
     const uint64_t limit_y = static_cast<uint64_t>(2u * noise->radius[1] + 2u) * one_texel - 1u;
     const uint32_t width = noise->asset.width, height = noise->asset.height;
+    const uint32_t texel_bytes = Read::channels * Read::bytes;
     const unsigned char *texton = noise->asset.texton;
-    /* Interior texels go to local sums (kept in registers; 8-bit ones in vectors on SSE2), those at the
-       edge through add_border. */
-    uint64_t interior[DSN_MAX_CHANNELS] = {0, 0, 0}, border[DSN_MAX_CHANNELS] = {0, 0, 0};
-    uint64_t interior_count = 0;
-#if defined(__SSE2__)
-    BilinearSums vector_sums = {_mm_setzero_si128(), _mm_setzero_si128()};
-#endif
+    Read read;
     for (uint32_t word = 0; word < 2; word++) {
         for (uint64_t bits = buffer->lanes[word]; bits != 0; bits &= bits - 1u) {
             const uint32_t bit = lowest_bit(bits), slot = 8u * word + (bit >> 3), lane = bit & 7u;
@@ -119,55 +260,33 @@ void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, Candi
                                        (static_cast<uint64_t>(bits_x) << position_shift);
             const uint64_t shifted_y = static_cast<uint64_t>(buffer->shifted_y[slot]) -
                                        (static_cast<uint64_t>(bits_y) << position_shift);
-            if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue;
+            if (Read::entry_edge ? shifted_x > limit_x || shifted_y > limit_y
+                                 : shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y)
+                continue;
             const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
                            column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
             const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu),
                           across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
             if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
-                const unsigned char *top = texton + (row * width + column) * Channels * Bytes;
-                const unsigned char *bottom = top + width * Channels * Bytes;
-                interior_count++;
-#if defined(__SSE2__)
-                if (Bytes == 1) {
-                    add_bilinear_vector<Channels>(top, bottom, static_cast<uint32_t>(across),
-                                                  static_cast<uint32_t>(down), &vector_sums);
-                    continue;
-                }
-#endif
-                interior[0] += bilinear_channel<Bytes, Channels * Bytes>(top, bottom, across, down);
-                if (Channels == 3) {
-                    interior[1] +=
-                        bilinear_channel<Bytes, Channels * Bytes>(top + Bytes, bottom + Bytes, across, down);
-                    interior[2] += bilinear_channel<Bytes, Channels * Bytes>(
-                        top + 2 * Bytes, bottom + 2 * Bytes, across, down);
-                }
+                const unsigned char *top = texton + (row * width + column) * texel_bytes;
+                read.add_interior(top, top + width * texel_bytes, across, down);
             } else {
-                add_border<Channels, Bytes>(texton, width, height, width, row, column, across, down, border);
+                read.add_edge(&noise->asset, row, column, across, down);
             }
         }
         buffer->lanes[word] = 0;
     }
     buffer->count = 0;
-#if defined(__SSE2__)
-    if (Bytes == 1) {
-        uint64_t vector_interior[DSN_MAX_CHANNELS];
-        take_bilinear_sums<Channels>(vector_sums, vector_interior);
-        for (uint32_t c = 0; c < Channels; c++) interior[c] += vector_interior[c];
-    }
-#endif
-    /* The interior sums were of biased values: each bilinear texton 2^(32 + 8 Bytes - 1) too high. */
-    for (uint32_t c = 0; c < Channels; c++)
-        sums[c] += interior[c] - (interior_count << (31u + 8u * Bytes)) + border[c];
+    read.take(sums);
 }
 
 /* Buffers the candidates of every pair of the cell with this key (visiting the buffer when full). */
-template <uint32_t Channels, uint32_t Bytes>
+template <class Read>
 void add_cell_fast(const dsn_noise_state *noise, uint32_t key, const FieldLanes &lanes, const CellAxis &x,
-                   const CellAxis &y, CandidateBuffer *buffer, uint64_t *sums) {
+                   const CellAxis &y, CandidateBuffer *buffer, typename Read::Sums *sums) {
     const uint32_t count = dsn_cell_impulse_count(noise, key);
     for (uint32_t first = 0; first < count; first += lanes.per_pair) {
-        if (buffer->count == 16) add_candidates<Channels, Bytes>(noise, lanes, buffer, sums);
+        if (buffer->count == 16) add_candidates<Read>(noise, lanes, buffer, sums);
         const uint32_t slot = buffer->count++;
         const uint64_t pair = dsn_position_pair(key, first >> (6u - lanes.field_shift));
         uint32_t candidates = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes);
@@ -181,9 +300,22 @@ void add_cell_fast(const dsn_noise_state *noise, uint32_t key, const FieldLanes 
     }
 }
 
-template <uint32_t Channels, uint32_t Bytes>
-void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
-    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+/* cell_axis, for a Read that takes the impulses at the entry edge too: 0 <= shifted < reach limit. */
+template <class Read>
+inline bool read_axis(const PointAxis &point, const dsn_span &span, uint32_t cell, const FieldLanes &lanes,
+                      CellAxis *out) {
+    if (!Read::entry_edge) return cell_axis(point, span, cell, lanes, out);
+    const int64_t reach = static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel);
+    if (!cell_axis_within(point.axis, span, cell, static_cast<int64_t>(point.fraction) + reach + 1,
+                          2 * reach + 1, lanes, out))
+        return false;
+    out->shifted_base -= 1;
+    return true;
+}
+
+/* The sums of every impulse that reaches the point (x, y), through the reader Read. */
+template <class Read>
+void sum_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, typename Read::Sums *sums) {
     const uint32_t shift = noise->cell_shift;
     const FieldLanes lanes = field_lanes(shift);
     const PointAxis px = point_axis(x, noise->radius[0], shift, noise->period[0]);
@@ -196,22 +328,33 @@ void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t
         for (uint32_t j = 0; j < span_y.cell_count; j++) {
             const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
             CellAxis in_y;
-            if (!cell_axis(py, span_y, cell_y, lanes, &in_y)) continue;
+            if (!read_axis<Read>(py, span_y, cell_y, lanes, &in_y)) continue;
             const uint32_t row_key = dsn_row_key(noise, cell_y);
             for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
                 const dsn_span span_x = dsn_axis_span(&px.axis, sx);
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
                     const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
                     CellAxis in_x;
-                    if (cell_axis(px, span_x, cell_x, lanes, &in_x))
-                        add_cell_fast<Channels, Bytes>(noise, dsn_cell_key_in_row(noise, cell_x, row_key),
-                                                       lanes, in_x, in_y, &buffer, sums);
+                    if (read_axis<Read>(px, span_x, cell_x, lanes, &in_x))
+                        add_cell_fast<Read>(noise, dsn_cell_key_in_row(noise, cell_x, row_key), lanes, in_x,
+                                            in_y, &buffer, sums);
                 }
             }
         }
     }
-    add_candidates<Channels, Bytes>(noise, lanes, &buffer, sums);
-    normalize_q32(noise, sums, out);
+    add_candidates<Read>(noise, lanes, &buffer, sums);
+}
+
+/* sum_point with the reader of the asset's channel count and value size. */
+template <template <uint32_t, uint32_t> class Read, class Sums>
+void sum_point_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, Sums *sums) {
+    const dsn_asset *asset = &noise->asset;
+    if (asset->channels == 3)
+        asset->bits == 8 ? sum_point<Read<3, 1>>(noise, x, y, sums)
+                         : sum_point<Read<3, 2>>(noise, x, y, sums);
+    else
+        asset->bits == 8 ? sum_point<Read<1, 1>>(noise, x, y, sums)
+                         : sum_point<Read<1, 2>>(noise, x, y, sums);
 }
 
 } // namespace
@@ -221,12 +364,23 @@ void evaluate_fast(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     dsn_continuous_point_entry *vector = dsn_kernel_entries_of(noise->tile_kernel)->continuous_point;
     if (vector != 0 && vector(noise, x, y, out)) return;
-    const dsn_asset *asset = &noise->asset;
-    if (asset->channels == 3)
-        asset->bits == 8 ? evaluate_fast<3, 1>(noise, x, y, out) : evaluate_fast<3, 2>(noise, x, y, out);
-    else
-        asset->bits == 8 ? evaluate_fast<1, 1>(noise, x, y, out) : evaluate_fast<1, 2>(noise, x, y, out);
+    ValueSums sums = {{0, 0, 0}};
+    sum_point_of_asset<ValueRead>(noise, x, y, &sums);
+    normalize_q32(noise, sums.value, out);
 }
+
+#if DSN_GRADIENTS
+void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                    uint64_t *slope_x, uint64_t *slope_y) {
+    SlopeSums sums = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    sum_point_of_asset<SlopeRead>(noise, x, y, &sums);
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+        value[c] = sums.value[c];
+        slope_x[c] = sums.slope_x[c];
+        slope_y[c] = sums.slope_y[c];
+    }
+}
+#endif
 
 namespace {
 #endif /* DSN_SMALL_CODE */

@@ -18,6 +18,14 @@
    The asset has a mapping whose fields passed the loader's checks (histogram_map.cpp). */
 void dsn_internal_histogram_map(const dsn_asset *asset, int32_t *values, uint32_t level, uint32_t blend);
 
+#if DSN_GRADIENTS
+/* The chain rule of the unfiltered mapping (level 0): dx and dy, a point's Gaussian-space derivatives at
+   its Gaussian-space values `values` (before the mapping), become the derivatives of its colours, in
+   place (dsn.h, "Gradients"). */
+void dsn_internal_histogram_map_gradient(const dsn_asset *asset, const int32_t *values, int32_t *dx,
+                                         int32_t *dy);
+#endif
+
 /* out[channels]: the colour the mapping gives where every table is `expected` (levels at or above
    histogram_levels): what the filtered evaluation fades to. */
 void dsn_internal_histogram_fade(const dsn_asset *asset, int32_t *out);

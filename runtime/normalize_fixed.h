@@ -44,14 +44,21 @@ static inline void dsn_map_output(const dsn_noise_state *noise, int32_t *out) {
 #endif
 }
 
-/* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */
-DSN_SHARED void dsn_normalize(const dsn_noise_state *noise, const uint32_t *sums, int32_t *out) {
+/* Q_k sums (uint32, modulo 2^32) -> Q16.16 values before the mapping, from `offset`: the noise's own, or
+   zeros for a difference of sums (a gradient), which the mean does not reach. */
+static inline void dsn_normalize_from(const dsn_noise_state *noise, const int64_t *offset,
+                                      const uint32_t *sums, int32_t *out) {
     uint32_t c, k, channels = noise->asset.channels;
     for (c = 0; c < channels; c++) {
-        int64_t accumulated = noise->offset[c];
+        int64_t accumulated = offset[c];
         for (k = 0; k < channels; k++) accumulated += noise->gain[c * 3 + k] * dsn_signed_sum(sums[k]);
         out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
     }
+}
+
+/* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */
+DSN_SHARED void dsn_normalize(const dsn_noise_state *noise, const uint32_t *sums, int32_t *out) {
+    dsn_normalize_from(noise, noise->offset, sums, out);
     dsn_map_output(noise, out);
 }
 

@@ -75,6 +75,8 @@
                         step 8) and does not check its section, and no evaluation applies a mapping.
                         That keeps the small build under its 8 KB. 1 with DSN_FILTERING 0 reads the
                         sections (and so checks a 1.1 asset's pyramid) to find the mapping.
+     DSN_GRADIENTS      default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the gradient functions out
+                        (the section "Gradients" below): a program that calls them fails to link.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
                         copies of the texton and the impulse list on the stack: 62-80 KB per tile call
@@ -119,6 +121,10 @@
 
 #ifndef DSN_HISTOGRAM /* 1: the histogram-preserving output of format 1.2; default 0 in the small build */
 #define DSN_HISTOGRAM (!DSN_SMALL_CODE)
+#endif
+
+#ifndef DSN_GRADIENTS /* 1: the gradient functions ("Gradients" below); default 0 in the small build */
+#define DSN_GRADIENTS (!DSN_SMALL_CODE)
 #endif
 
 #ifdef __cplusplus
@@ -626,6 +632,70 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
                          uint32_t height, uint8_t *out, void *scratch, size_t scratch_size);
 
 /* ==== End of the filtered evaluation ================================================================= */
+
+/* ==== Gradients (bump and normal mapping) ===========================================================
+   The noise's value and its gradient together, per channel: what a renderer needs to bump or
+   normal-map a surface with the texture (perturb the normal by -(dx, dy) scaled by a height, or take the
+   noise as a height field). Integer arithmetic, the same bits everywhere, as the values; the value `out`
+   is exactly what the evaluator of the same mode returns. Built with DSN_GRADIENTS (not the small build).
+
+   Definitions, in Q16.16 output units per texel:
+   - Continuous mode: the exact derivative of the bilinear noise. Each impulse's bilinear texton is, on
+     the 2 x 2 texels that hold the point, (1 - v)((1 - u) a + u b) + v((1 - u) c + u d) (u, v the
+     weights of the point's top 16 fraction bits, a b / c d the texels above / below); its partial
+     derivatives are (1 - v)(b - a) + v(d - c) along x and (1 - u)(c - a) + u(d - b) along y, summed over
+     the impulses exactly in integers (weights in Q0.16) and normalized once, as the value, by the colour
+     transform and the density's scale (the mean does not enter). The bilinear noise is piecewise linear
+     in each axis: where a texel edge of some impulse is crossed the derivative jumps, and the one given
+     there is the slope of the piece toward +x (or +y): one-sided. Exactness: an impulse's position has
+     16 - cell_shift fraction bits, so the sums of the noise are exactly linear between points whose top
+     16 fraction bits are multiples of 2^cell_shift; there, the sums at x + h minus those at x are h times
+     the derivative's sums, bit for bit, and over any distance the sums' change is the sum of the
+     derivative's sums at each 2^-16 texel step on the way (tests/gradient_test.cpp checks both).
+   - Lattice mode: forward differences, dx = F(x + 1, y) - F(x, y) and dy = F(x, y + 1) - F(x, y) of the
+     noise before its rounding (coordinates + 1 modulo 2^32): the spot noise of the differenced texton
+     t(p + 1) - t(p), normalized as the value without the mean and rounded once, so it differs from the
+     difference of two rounded values by at most one unit.
+   - Histogram mapping (an asset of format 1.2): the chain rule, value and gradient in Gaussian space g
+     first, then dout_c = sum_k P[c][k] T_k'(g_k) dg_k, T_k' the slope of the table's segment that holds
+     g_k (0 where the table is clamped; its upper segment at an entry), rounded once per channel after the
+     table (saturated to +-2^29) and once after the rotation.
+   Float variants: each value exactly fixed / 65536 rounded to float.
+
+   Per point: the errors of the value's function (dsn_lattice_point_fixed returns none; its gradient
+   returns DSN_ERR_NULL for a null or unconfigured noise or null outputs, and DSN_ERR_UNSUPPORTED where
+   the lattice point zeroes its output); null `dx` or `dy` is DSN_ERR_NULL. On an error every non-null
+   output is zeroed as the value's function zeroes `out`. Tiles and batches: the layout, the grid and
+   the errors of the value's functions, three arrays of width * height * channels (or count * channels)
+   values, exactly the per-point results; they take no scratch and evaluate point by point (make bench
+   reports their cost next to the value tiles'). The filtered evaluation has no gradient yet. */
+#if DSN_GRADIENTS
+int dsn_lattice_gradient_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out, int32_t *dx,
+                               int32_t *dy);
+int dsn_lattice_gradient_float(const dsn_noise *noise, int32_t x, int32_t y, float *out, float *dx,
+                               float *dy);
+int dsn_continuous_gradient_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out, int32_t *dx,
+                                  int32_t *dy);
+int dsn_continuous_gradient_float(const dsn_noise *noise, double x, double y, float *out, float *dx,
+                                  float *dy);
+/* dsn_sample with its gradient: exactly dsn_continuous_gradient_float(noise, x, y, out, dx, dy). */
+int dsn_sample_gradient(const dsn_noise *noise, float x, float y, float *out, float *dx, float *dy);
+
+int dsn_lattice_tile_gradient_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                    uint32_t height, int32_t *out, int32_t *dx, int32_t *dy);
+int dsn_lattice_tile_gradient_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                    uint32_t height, float *out, float *dx, float *dy);
+int dsn_continuous_tile_gradient_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                       uint32_t height, int32_t *out, int32_t *dx, int32_t *dy);
+int dsn_continuous_tile_gradient_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                       uint32_t height, float *out, float *dx, float *dy);
+int dsn_continuous_batch_gradient_fixed(const dsn_noise *noise, const int64_t *xs, const int64_t *ys,
+                                        uint32_t count, int32_t *out, int32_t *dx, int32_t *dy);
+int dsn_continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, const double *ys,
+                                        uint32_t count, float *out, float *dx, float *dy);
+#endif
+
+/* ==== End of the gradients =========================================================================== */
 
 /* ==== Histogram-preserving output (format 1.2) =======================================================
    A spot noise is Gaussian: it keeps an exemplar's mean, colours' covariance and spectrum, but not the

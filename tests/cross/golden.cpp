@@ -350,6 +350,77 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
     return DSN_OK;
 }
 
+#if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
+/* The gradients (dsn.h, "Gradients"): the values, then the x derivatives, then the y derivatives of a
+   window or grid, hashed as three arrays; per point and tile give the same bytes. */
+int32_t gradient_dx_values[max_window_values], gradient_dy_values[max_window_values];
+float gradient_dx_floats[max_window_values], gradient_dy_floats[max_window_values];
+
+void hash_gradient(Fnv *hash, uint32_t count) {
+    hash_fixed(hash, tile_fixed_values, count);
+    hash_fixed(hash, gradient_dx_values, count);
+    hash_fixed(hash, gradient_dy_values, count);
+}
+
+void hash_gradient_floats(Fnv *hash, uint32_t count) {
+    hash_float(hash, tile_float_values, count);
+    hash_float(hash, gradient_dx_floats, count);
+    hash_float(hash, gradient_dy_floats, count);
+}
+
+int continuous_gradient_point(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t channels = dsn_noise_channels(noise), count = grid.width * grid.height * channels;
+    if (grid.width * grid.height * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            const uint32_t at = (j * grid.width + i) * channels;
+            int64_t x, y;
+            grid_point(grid.grid, i, j, &x, &y);
+            const int err = dsn_continuous_gradient_fixed(noise, x, y, &tile_fixed_values[at],
+                                                          &gradient_dx_values[at], &gradient_dy_values[at]);
+            if (err != DSN_OK) return err;
+        }
+    hash_gradient(hash, count);
+    return DSN_OK;
+}
+
+int continuous_gradient_tile(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t count = grid.width * grid.height * dsn_noise_channels(noise);
+    if (grid.width * grid.height * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    const int err =
+        dsn_continuous_tile_gradient_fixed(noise, &grid.grid, grid.width, grid.height, tile_fixed_values,
+                                           gradient_dx_values, gradient_dy_values);
+    if (err != DSN_OK) return err;
+    hash_gradient(hash, count);
+    return DSN_OK;
+}
+
+/* The float API per point (from double coordinates), then the grid's points as one float batch. */
+int continuous_gradient_floats(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t channels = dsn_noise_channels(noise), points = grid.width * grid.height;
+    if (points * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width; i++) {
+            const uint32_t k = j * grid.width + i;
+            int64_t x, y;
+            grid_point(grid.grid, i, j, &x, &y);
+            batch_x_double[k] = grid_double(x);
+            batch_y_double[k] = grid_double(y);
+            const int err = dsn_continuous_gradient_float(
+                noise, batch_x_double[k], batch_y_double[k], &tile_float_values[k * channels],
+                &gradient_dx_floats[k * channels], &gradient_dy_floats[k * channels]);
+            if (err != DSN_OK) return err;
+        }
+    hash_gradient_floats(hash, points * channels);
+    const int err =
+        dsn_continuous_batch_gradient_float(noise, batch_x_double, batch_y_double, points, tile_float_values,
+                                            gradient_dx_floats, gradient_dy_floats);
+    if (err != DSN_OK) return err;
+    hash_gradient_floats(hash, points * channels);
+    return DSN_OK;
+}
+#endif
+
 /* The filtered evaluation: each grid's steps are the footprint, evaluated with 16 taps allowed then 1:
    a minification by 2.5 rotated, by 6 across the int32 wrap, a slanted footprint (8 taps) with a
    mirror, a degenerate one (zero determinant: the most taps), a magnification (the continuous bits), a
@@ -454,6 +525,52 @@ int filtered_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
 }
 #endif
 
+#if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
+int gradient_point(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    const uint32_t channels = dsn_noise_channels(noise);
+    if (window.width * window.height * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t j = 0; j < window.height; j++)
+        for (uint32_t i = 0; i < window.width; i++) {
+            const uint32_t at = (j * window.width + i) * channels;
+            const int err = dsn_lattice_gradient_fixed(noise, wrapped(window.x, i), wrapped(window.y, j),
+                                                       &tile_fixed_values[at], &gradient_dx_values[at],
+                                                       &gradient_dy_values[at]);
+            if (err != DSN_OK) return err;
+        }
+    hash_gradient(hash, window.width * window.height * channels);
+    return DSN_OK;
+}
+
+int gradient_tile(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    if (window.width * window.height * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    const int err =
+        dsn_lattice_tile_gradient_fixed(noise, window.x, window.y, window.width, window.height,
+                                        tile_fixed_values, gradient_dx_values, gradient_dy_values);
+    if (err == DSN_OK) hash_gradient(hash, window.width * window.height * dsn_noise_channels(noise));
+    return err;
+}
+
+/* Per point as float, then the float tile. */
+int gradient_floats(const dsn_noise *noise, const Window &window, Fnv *hash) {
+    const uint32_t channels = dsn_noise_channels(noise), count = window.width * window.height * channels;
+    if (window.width * window.height * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t j = 0; j < window.height; j++)
+        for (uint32_t i = 0; i < window.width; i++) {
+            const uint32_t at = (j * window.width + i) * channels;
+            const int err = dsn_lattice_gradient_float(noise, wrapped(window.x, i), wrapped(window.y, j),
+                                                       &tile_float_values[at], &gradient_dx_floats[at],
+                                                       &gradient_dy_floats[at]);
+            if (err != DSN_OK) return err;
+        }
+    hash_gradient_floats(hash, count);
+    const int err =
+        dsn_lattice_tile_gradient_float(noise, window.x, window.y, window.width, window.height,
+                                        tile_float_values, gradient_dx_floats, gradient_dy_floats);
+    if (err == DSN_OK) hash_gradient_floats(hash, count);
+    return err;
+}
+#endif
+
 /* IEEE bit patterns for the coordinate conversions: zeros, halves, the int32 ends, beyond 2^63, the
    smallest subnormal, the largest finite, infinities and NaNs. Built from bits so that no compiler
    option (-ffast-math) can change them. */
@@ -535,6 +652,14 @@ const Kind kinds[] = {
     {"a-tile", 0, continuous_tile_fixed, &affine_plan, false},   /* the same bytes as "a-point" */
     {"a-float", 0, continuous_conversions, &affine_plan, false}, /* per point, tile float and u8 */
     {"c-batch", 0, continuous_batch, &continuous_plan, false},   /* fixed then float, each as one batch */
+#if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
+    {"d-point", gradient_point, 0, &lattice_plan, false},
+    {"d-tile", gradient_tile, 0, &lattice_plan, false}, /* the same bytes as "d-point" */
+    {"d-float", gradient_floats, 0, &tileable_plan, false},
+    {"d-c-point", 0, continuous_gradient_point, &affine_plan, false},
+    {"d-c-tile", 0, continuous_gradient_tile, &affine_plan, false}, /* the same bytes as "d-c-point" */
+    {"d-c-float", 0, continuous_gradient_floats, &continuous_plan, false},
+#endif
 #if DSN_FILTERING
     {"f-point", 0, filtered_point_fixed, &filtered_plan, false},
     {"f-tile", 0, filtered_tile_fixed, &filtered_plan, false},   /* the same bytes as "f-point" */
@@ -547,6 +672,10 @@ const Kind kinds[] = {
     {"h-u8", u8_outputs, 0, &lattice_plan, true},
     {"h-c-point", 0, continuous_point_fixed, &affine_plan, true},
     {"h-c-tile", 0, continuous_tile_fixed, &affine_plan, true}, /* the same bytes as "h-c-point" */
+#if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
+    {"h-d-point", gradient_point, 0, &lattice_plan, true},
+    {"h-d-c-point", 0, continuous_gradient_point, &affine_plan, true},
+#endif
 #if DSN_FILTERING
     {"h-f-point", 0, filtered_point_fixed, &filtered_plan, true},
     {"h-f-tile", 0, filtered_tile_fixed, &filtered_plan, true}, /* the same bytes as "h-f-point" */

@@ -1,0 +1,50 @@
+/* runtime/gradient_output.h - what every gradient function does with a point's normalized value and
+   derivatives (dsn.h, "Gradients"): the histogram mapping's chain rule, the float conversion, and the
+   zeroing of the three outputs on an error. Internal to libdsn; not installed. */
+#ifndef DSN_GRADIENT_OUTPUT_H
+#define DSN_GRADIENT_OUTPUT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error_output.h"
+#include "histogram_map.h"
+#include "normalize_fixed.h"
+
+#if DSN_GRADIENTS
+
+/* Zeros and no mean: the offset of a derivative's normalization. */
+static const int64_t dsn_no_offset[DSN_MAX_CHANNELS] = {0, 0, 0};
+
+/* The value (Gaussian-space, before the mapping) and its derivatives to the outputs: with a histogram
+   mapping, the chain rule at the unmapped value, then the value mapped. */
+static inline void dsn_map_gradient(const dsn_noise_state *noise, int32_t *value, int32_t *dx, int32_t *dy) {
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0) {
+        dsn_internal_histogram_map_gradient(&noise->asset, value, dx, dy);
+        dsn_internal_histogram_map(&noise->asset, value, 0, 0);
+    }
+#else
+    (void)noise, (void)value, (void)dx, (void)dy;
+#endif
+}
+
+/* A gradient call's error `err`, after zeroing its three outputs (error_output.h: `points` points each). */
+static inline int dsn_gradient_error(int err, const dsn_noise_state *noise, void *out, void *dx, void *dy,
+                                     dsn_output_kind kind, size_t points) {
+    dsn_output_error(err, noise, out, kind, points);
+    dsn_output_error(err, noise, dx, kind, points);
+    return dsn_output_error(err, noise, dy, kind, points);
+}
+
+/* The fixed-point results of one point stored as the call's type at value index `first`. */
+static inline void dsn_store_gradient(void *out, void *dx, void *dy, dsn_output_kind kind, size_t first,
+                                      const int32_t *values, uint32_t channels) {
+    dsn_store_pixel(out, kind, first, values, channels);
+    dsn_store_pixel(dx, kind, first, values + DSN_MAX_CHANNELS, channels);
+    dsn_store_pixel(dy, kind, first, values + 2 * DSN_MAX_CHANNELS, channels);
+}
+
+#endif /* DSN_GRADIENTS */
+
+#endif /* DSN_GRADIENT_OUTPUT_H */

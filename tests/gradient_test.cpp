@@ -1,0 +1,429 @@
+// gradient_test.cpp - the gradient functions (dsn.h, "Gradients") against the values they differentiate:
+// the continuous noise's exact derivative (its sums step by the slopes, bit for bit; normalized, finite
+// differences within the rounding), the lattice noise's forward differences (the spot noise of the
+// differenced texton, from a reference walk over the impulses), the histogram mapping's chain rule,
+// tiles and batches against points, and the errors.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+#include "fixtures/continuous_fixtures.h"
+#include "fixtures/test_assets.h"
+#include "runtime/continuous_internal.h"
+#include "runtime/gradient_output.h"
+
+using namespace continuous_fixtures;
+
+namespace {
+
+const int64_t step = int64_t(1) << 16; // 2^-16 texel in Q32.32: one step of the bilinear weights
+
+struct RawSums {
+    uint64_t value[3], slope_x[3], slope_y[3];
+};
+
+// a + b modulo 2^64: coordinates live on the torus, and a signed overflow would be undefined.
+int64_t moved(int64_t a, int64_t b) { return int64_t(uint64_t(a) + uint64_t(b)); }
+
+RawSums raw_sums(const dsn_noise &noise, int64_t x, int64_t y) {
+    RawSums sums;
+    dsn_internal_continuous_slopes(dsn_state(&noise), uint64_t(x), uint64_t(y), sums.value, sums.slope_x,
+                                   sums.slope_y);
+    return sums;
+}
+
+// The assets every case runs on: grey and RGB, 8 and 16 bits, two texton sizes.
+std::vector<dsn::AssetFields> assets() {
+    std::vector<dsn::AssetFields> list;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u})
+            for (uint32_t radius : {3u, 9u})
+                list.push_back(random_texton_asset(channels, radius, bits, 40 + radius));
+    return list;
+}
+
+// A point whose top 16 fraction bits are a multiple of 2^cell_shift on both axes: between it and the next
+// such point no impulse's weights wrap (their positions have 16 - cell_shift fraction bits).
+int64_t aligned(int64_t coordinate, uint32_t cell_shift) {
+    const uint64_t mask = (uint64_t(1) << (16 + cell_shift)) - 1u;
+    return int64_t(uint64_t(coordinate) & ~mask) | int64_t(uint64_t(coordinate) & 0xFFFFu);
+}
+
+} // namespace
+
+TEST_CASE("continuous gradient: the value is the point's; the sums step by the slopes exactly") {
+    for (const dsn::AssetFields &fields : assets()) {
+        for (uint32_t period : {0u, 37u}) {
+            const auto made = make_noise(fields, 7, 0, period, period);
+            const dsn_noise &noise = made->noise;
+            const uint32_t shift = dsn_state(&noise)->cell_shift;
+            std::vector<int64_t> xs, ys;
+            renderer_points(91 + period, 60, &xs, &ys);
+            for (size_t p = 0; p < xs.size(); p++) {
+                int32_t value[3], dx[3], dy[3], expected[3];
+                REQUIRE(dsn_continuous_gradient_fixed(&noise, xs[p], ys[p], value, dx, dy) == DSN_OK);
+                REQUIRE(dsn_continuous_point_fixed(&noise, xs[p], ys[p], expected) == DSN_OK);
+                for (uint32_t c = 0; c < fields.channels; c++) CHECK(value[c] == expected[c]);
+
+                // One step of the weights: the sums move by the slopes, always (a weight that wraps moves
+                // to the next texel pair, where the interpolation continues).
+                const RawSums here = raw_sums(noise, xs[p], ys[p]);
+                const RawSums east = raw_sums(noise, moved(xs[p], step), ys[p]);
+                const RawSums south = raw_sums(noise, xs[p], moved(ys[p], step));
+                for (uint32_t c = 0; c < fields.channels; c++) {
+                    CHECK(east.value[c] - here.value[c] == here.slope_x[c]);
+                    CHECK(south.value[c] - here.value[c] == here.slope_y[c]);
+                }
+
+                // From an aligned point, k steps within the piece: k times the slope.
+                const int64_t x = aligned(xs[p], shift), y = aligned(ys[p], shift);
+                const RawSums start = raw_sums(noise, x, y);
+                const uint32_t k = 1u + uint32_t(p) % ((1u << shift) - 1u);
+                const RawSums moved_x = raw_sums(noise, moved(x, int64_t(k) * step), y);
+                const RawSums moved_y = raw_sums(noise, x, moved(y, int64_t(k) * step));
+                for (uint32_t c = 0; c < fields.channels; c++) {
+                    CHECK(moved_x.value[c] - start.value[c] == k * start.slope_x[c]);
+                    CHECK(moved_y.value[c] - start.value[c] == k * start.slope_y[c]);
+                    CHECK(moved_x.slope_x[c] == start.slope_x[c]);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("continuous gradient: across a whole texel the sums are the integral of the slopes") {
+    // f(x + 1) - f(x) = sum over the 2^16 steps of the slope at each: every texel edge is crossed.
+    const auto made = make_noise(random_texton_asset(3, 4, 8, 5), 3);
+    const dsn_noise &noise = made->noise;
+    const int64_t points[2][2] = {{int64_t(17) << 32 | 0x12345678, -(int64_t(5) << 32) + 0x0FEDCBA9},
+                                  {int64_t(0x7FFFFFFF) << 32 | 0x80000000, 0}};
+    for (const auto &point : points) {
+        uint64_t integral_x[3] = {0, 0, 0}, integral_y[3] = {0, 0, 0};
+        for (int64_t j = 0; j < 65536; j++) {
+            const RawSums along_x = raw_sums(noise, moved(point[0], j * step), point[1]);
+            const RawSums along_y = raw_sums(noise, point[0], moved(point[1], j * step));
+            for (int c = 0; c < 3; c++)
+                integral_x[c] += along_x.slope_x[c], integral_y[c] += along_y.slope_y[c];
+        }
+        const RawSums here = raw_sums(noise, point[0], point[1]);
+        const RawSums east = raw_sums(noise, moved(point[0], int64_t(1) << 32), point[1]);
+        const RawSums south = raw_sums(noise, point[0], moved(point[1], int64_t(1) << 32));
+        for (int c = 0; c < 3; c++) {
+            CHECK(east.value[c] - here.value[c] == integral_x[c]);
+            CHECK(south.value[c] - here.value[c] == integral_y[c]);
+        }
+    }
+}
+
+TEST_CASE("continuous gradient: finite differences agree within the rounding") {
+    // Within a piece, A(x + h) - A(x) = h D exactly for the unrounded normalized value A and derivative
+    // D; the outputs round each once (half a unit) after flooring the sums' fractions (below 2^-gain_shift
+    // each), so |f(x + h) - f(x) - h dx| <= 1 + h / 2 + 1/64 units, h in texels.
+    for (const dsn::AssetFields &fields : assets()) {
+        const auto made = make_noise(fields, 12);
+        const dsn_noise &noise = made->noise;
+        const uint32_t shift = dsn_state(&noise)->cell_shift;
+        REQUIRE(dsn_state(&noise)->gain_shift >= 6);
+        std::vector<int64_t> xs, ys;
+        renderer_points(5, 80, &xs, &ys);
+        int checked = 0;
+        for (size_t p = 0; p < xs.size(); p++) {
+            const int64_t x = aligned(xs[p], shift), y = aligned(ys[p], shift);
+            const int64_t k = int64_t((1u << shift) - 1u);
+            int32_t value[3], dx[3], dy[3], east[3], south[3];
+            REQUIRE(dsn_continuous_gradient_fixed(&noise, x, y, value, dx, dy) == DSN_OK);
+            REQUIRE(dsn_continuous_point_fixed(&noise, moved(x, k * step), y, east) == DSN_OK);
+            REQUIRE(dsn_continuous_point_fixed(&noise, x, moved(y, k * step), south) == DSN_OK);
+            const double h = double(k) / 65536.0, bound = 1.0 + h / 2 + 1.0 / 64;
+            for (uint32_t c = 0; c < fields.channels; c++) {
+                CHECK(std::fabs(double(east[c]) - value[c] - h * dx[c]) <= bound);
+                CHECK(std::fabs(double(south[c]) - value[c] - h * dy[c]) <= bound);
+                checked += dx[c] != 0;
+            }
+            float value_f[3], dx_f[3], dy_f[3];
+            const double fx = double(x) / 4294967296.0, fy = double(y) / 4294967296.0;
+            if (dsn_coordinate_from_double(fx) == x && dsn_coordinate_from_double(fy) == y) {
+                REQUIRE(dsn_continuous_gradient_float(&noise, fx, fy, value_f, dx_f, dy_f) == DSN_OK);
+                for (uint32_t c = 0; c < fields.channels; c++) {
+                    CHECK(value_f[c] == dsn_fixed_to_float(value[c]));
+                    CHECK(dx_f[c] == dsn_fixed_to_float(dx[c]));
+                    CHECK(dy_f[c] == dsn_fixed_to_float(dy[c]));
+                }
+            }
+        }
+        CHECK(checked > 20); // the slopes are not all zero
+    }
+}
+
+namespace {
+
+// The lattice noise's sums of the texton differenced along one axis, t(o + e) - t(o), over every impulse
+// whose differenced window holds (x, y): a walk of its own over the cells (no period), reading impulse
+// positions from the cell hashes.
+std::vector<uint32_t> differenced_sums(const dsn_noise &noise, uint32_t x, uint32_t y, bool along_x) {
+    const dsn_noise_state *state = dsn_state(&noise);
+    const dsn_asset &asset = state->asset;
+    const uint32_t shift = state->cell_shift, radius_x = state->radius[0], radius_y = state->radius[1];
+    const uint32_t half_bits = 1u << (dsn_field_shift(shift) - 1u), drop = half_bits - shift;
+    auto texel = [&](int64_t row, int64_t column, uint32_t c) -> int64_t {
+        if (row < 0 || column < 0 || row >= asset.height || column >= asset.width) return 0;
+        return dsn_asset_texton_value(&asset, uint32_t(row), uint32_t(column), c);
+    };
+    std::vector<uint32_t> sums(asset.channels, 0);
+    const uint32_t reach_x = radius_x + 1, reach_y = radius_y + 1;
+    const uint32_t low_x = x - reach_x, low_y = y - reach_y, in_cell = (1u << shift) - 1u;
+    const uint32_t first_x = low_x >> shift, first_y = low_y >> shift;
+    const uint32_t cells_x = (((low_x & in_cell) + 2 * reach_x) >> shift) + 1;
+    const uint32_t cells_y = (((low_y & in_cell) + 2 * reach_y) >> shift) + 1;
+    for (uint32_t j = 0; j < cells_y; j++)
+        for (uint32_t i = 0; i < cells_x; i++) {
+            const uint32_t cell_x = (first_x + i) & (0xFFFFFFFFu >> shift),
+                           cell_y = (first_y + j) & (0xFFFFFFFFu >> shift);
+            const uint32_t key = dsn_cell_key(state, cell_x, cell_y);
+            for (uint32_t k = 0; k < dsn_cell_impulse_count(state, key); k++) {
+                const uint32_t field = dsn_impulse_field(state, key, k);
+                const uint32_t px = (cell_x << shift) + ((field & ((1u << half_bits) - 1u)) >> drop);
+                const uint32_t py = (cell_y << shift) + ((field >> half_bits) >> drop);
+                const int64_t column = int64_t(int32_t(x - px)) + radius_x,
+                              row = int64_t(int32_t(y - py)) + radius_y;
+                for (uint32_t c = 0; c < asset.channels; c++) {
+                    const int64_t next = along_x ? texel(row, column + 1, c) : texel(row + 1, column, c);
+                    sums[c] += uint32_t(next - texel(row, column, c));
+                }
+            }
+        }
+    return sums;
+}
+
+} // namespace
+
+TEST_CASE("lattice gradient: the spot noise of the differenced texton, normalized once") {
+    for (const dsn::AssetFields &fields : assets()) {
+        const auto made = make_noise(fields, 21, 0, 0, 0, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS);
+        const dsn_noise &noise = made->noise;
+        std::mt19937 random(77);
+        for (int p = 0; p < 60; p++) {
+            // anywhere, and near the 32-bit wrap of the lattice
+            const uint32_t x = p % 3 == 0 ? 0xFFFFFFF0u + uint32_t(p % 32) : uint32_t(random());
+            const uint32_t y = p % 5 == 0 ? 0x7FFFFFF8u + uint32_t(p % 16) : uint32_t(random());
+            int32_t value[3], dx[3], dy[3], expected[3], east[3], south[3];
+            REQUIRE(dsn_lattice_gradient_fixed(&noise, int32_t(x), int32_t(y), value, dx, dy) == DSN_OK);
+            dsn_lattice_point_fixed(&noise, int32_t(x), int32_t(y), expected);
+            dsn_lattice_point_fixed(&noise, int32_t(x + 1u), int32_t(y), east);
+            dsn_lattice_point_fixed(&noise, int32_t(x), int32_t(y + 1u), south);
+            int32_t reference_x[3], reference_y[3];
+            dsn_normalize_from(dsn_state(&noise), dsn_no_offset, differenced_sums(noise, x, y, true).data(),
+                               reference_x);
+            dsn_normalize_from(dsn_state(&noise), dsn_no_offset, differenced_sums(noise, x, y, false).data(),
+                               reference_y);
+            for (uint32_t c = 0; c < fields.channels; c++) {
+                CHECK(value[c] == expected[c]);
+                CHECK(dx[c] == reference_x[c]);
+                CHECK(dy[c] == reference_y[c]);
+                // each of the three rounded once: the difference of two values is within one unit
+                CHECK(std::abs(int64_t(east[c]) - expected[c] - dx[c]) <= 1);
+                CHECK(std::abs(int64_t(south[c]) - expected[c] - dy[c]) <= 1);
+            }
+        }
+    }
+}
+
+TEST_CASE("lattice gradient: periodic noises, the int32 wrap of a reduced coordinate included") {
+    const auto made = make_noise(random_texton_asset(3, 5, 8, 9), 4, 0, 37, 1000);
+    const dsn_noise &noise = made->noise;
+    const int32_t xs[] = {0, 36, 37, -1, INT32_MAX, INT32_MIN, 123456};
+    for (int32_t x : xs)
+        for (int32_t y : xs) {
+            int32_t value[3], dx[3], dy[3], here[3], east[3], south[3];
+            REQUIRE(dsn_lattice_gradient_fixed(&noise, x, y, value, dx, dy) == DSN_OK);
+            dsn_lattice_point_fixed(&noise, x, y, here);
+            dsn_lattice_point_fixed(&noise, int32_t(uint32_t(x) + 1u), y, east);
+            dsn_lattice_point_fixed(&noise, x, int32_t(uint32_t(y) + 1u), south);
+            for (int c = 0; c < 3; c++) {
+                CHECK(value[c] == here[c]);
+                CHECK(std::abs(int64_t(east[c]) - here[c] - dx[c]) <= 1);
+                CHECK(std::abs(int64_t(south[c]) - here[c] - dy[c]) <= 1);
+            }
+        }
+}
+
+namespace {
+
+// A smooth increasing table over [-4, 4] per channel with a full rotation and a centre: the chain rule
+// sees every part of the mapping.
+dsn::HistogramMapping gradient_mapping(uint32_t channels) {
+    dsn::HistogramMapping m;
+    for (uint32_t k = 0; k < channels; k++)
+        for (uint32_t i = 0; i < m.entry_count; i++) {
+            const double x = -4.0 + i / 8.0;
+            m.tables.push_back(int32_t(std::lround((0.3 * x + 0.05 * x * x * x + 0.1 * k) * 4096)));
+        }
+    if (channels == 3) {
+        const double P[9] = {0.8, -0.3, 0.2, 0.35, 0.9, -0.1, -0.25, 0.15, 1.05};
+        for (int i = 0; i < 9; i++) m.rotation[i] = int32_t(std::lround(P[i] * DSN_Q24_ONE));
+    } else {
+        m.rotation[0] = int32_t(std::lround(1.3 * DSN_Q24_ONE));
+        for (int i = 1; i < 9; i++) m.rotation[i] = 0;
+    }
+    for (uint32_t c = 0; c < channels; c++)
+        m.centre[c] = int32_t(std::lround((0.45 + 0.05 * c) * DSN_Q24_ONE));
+    return m;
+}
+
+int64_t round_half_up(int64_t value, int64_t divisor) {
+    const int64_t shifted = value + divisor / 2;
+    return shifted >= 0 ? shifted / divisor : -((-shifted + divisor - 1) / divisor);
+}
+
+// dsn.h's chain rule from the mapping's fields: v_k' = round(slope_k d_k / 2^d), saturated to +-2^29, then
+// out_c' = round(sum_k P[c][k] v_k' / 2^24).
+std::vector<int32_t> reference_chain(const dsn::HistogramMapping &m, uint32_t channels, const int32_t *g,
+                                     const int32_t *d) {
+    const int64_t unit = int64_t(1) << (16 - m.step_shift), limit = int64_t(1) << 29;
+    int64_t v[3] = {0, 0, 0};
+    for (uint32_t k = 0; k < channels; k++) {
+        const int64_t u = int64_t(g[k]) - m.input_low_q16;
+        int64_t slope = 0;
+        if (u >= 0 && u < int64_t(m.entry_count - 1) * unit) {
+            const size_t i = size_t(u / unit) + k * m.entry_count;
+            slope = (int64_t(m.tables[i + 1]) - m.tables[i]) * 16;
+        }
+        v[k] = std::max(-limit, std::min(limit, round_half_up(slope * d[k], unit)));
+    }
+    std::vector<int32_t> out(channels);
+    for (uint32_t c = 0; c < channels; c++) {
+        int64_t sum = 0;
+        for (uint32_t k = 0; k < channels; k++) sum += int64_t(m.rotation[c * 3 + k]) * v[k];
+        out[c] = int32_t(round_half_up(sum, int64_t(1) << 24));
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("gradient with a histogram mapping: the chain rule at the Gaussian-space value") {
+    for (uint32_t channels : {1u, 3u}) {
+        dsn::AssetFields fields = random_texton_asset(channels, 6, 8, 13);
+        fields.histogram = gradient_mapping(channels);
+        const auto mapped = make_noise(fields, 8);
+        const auto gaussian = make_noise(fields, 8, 0, 0, 0, DSN_FLAG_NO_HISTOGRAM);
+        std::vector<int64_t> xs, ys;
+        renderer_points(17, 60, &xs, &ys);
+        int sloped = 0;
+        for (size_t p = 0; p < xs.size(); p++) {
+            int32_t value[3], dx[3], dy[3], g[3], gx[3], gy[3], expected[3];
+            REQUIRE(dsn_continuous_gradient_fixed(&mapped->noise, xs[p], ys[p], value, dx, dy) == DSN_OK);
+            REQUIRE(dsn_continuous_gradient_fixed(&gaussian->noise, xs[p], ys[p], g, gx, gy) == DSN_OK);
+            REQUIRE(dsn_continuous_point_fixed(&mapped->noise, xs[p], ys[p], expected) == DSN_OK);
+            const std::vector<int32_t> chain_x = reference_chain(fields.histogram, channels, g, gx);
+            const std::vector<int32_t> chain_y = reference_chain(fields.histogram, channels, g, gy);
+            for (uint32_t c = 0; c < channels; c++) {
+                CHECK(value[c] == expected[c]);
+                CHECK(dx[c] == chain_x[c]);
+                CHECK(dy[c] == chain_y[c]);
+                sloped += dx[c] != gx[c];
+            }
+            // lattice: the same rule on the forward differences
+            const int32_t lx = int32_t(xs[p] >> 32), ly = int32_t(ys[p] >> 32);
+            REQUIRE(dsn_lattice_gradient_fixed(&mapped->noise, lx, ly, value, dx, dy) == DSN_OK);
+            REQUIRE(dsn_lattice_gradient_fixed(&gaussian->noise, lx, ly, g, gx, gy) == DSN_OK);
+            dsn_lattice_point_fixed(&mapped->noise, lx, ly, expected);
+            const std::vector<int32_t> lattice_chain = reference_chain(fields.histogram, channels, g, gx);
+            for (uint32_t c = 0; c < channels; c++) {
+                CHECK(value[c] == expected[c]);
+                CHECK(dx[c] == lattice_chain[c]);
+            }
+        }
+        CHECK(sloped > 10); // the mapping changed the derivatives
+    }
+}
+
+TEST_CASE("gradient tiles and batches are their points") {
+    const auto made = make_noise(random_texton_asset(3, 7, 16, 2), 6, 0, 0, 19);
+    const dsn_noise &noise = made->noise;
+    const uint32_t width = 9, height = 7, values = width * height * 3;
+    // a rotated, scaled grid across the int32 wrap of x
+    const dsn_grid grid = {
+        (int64_t(INT32_MAX) - 3) << 32, int64_t(5) << 31, 3000000000, 1100000000, -1100000000, 3000000000};
+    std::vector<int32_t> out(values), dx(values), dy(values);
+    std::vector<float> out_f(values), dx_f(values), dy_f(values);
+    REQUIRE(dsn_continuous_tile_gradient_fixed(&noise, &grid, width, height, out.data(), dx.data(),
+                                               dy.data()) == DSN_OK);
+    REQUIRE(dsn_continuous_tile_gradient_float(&noise, &grid, width, height, out_f.data(), dx_f.data(),
+                                               dy_f.data()) == DSN_OK);
+    std::vector<int64_t> xs, ys;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int64_t x, y;
+            dsn_test::grid_point(grid, i, j, &x, &y);
+            xs.push_back(x), ys.push_back(y);
+            int32_t value[3], gx[3], gy[3];
+            REQUIRE(dsn_continuous_gradient_fixed(&noise, x, y, value, gx, gy) == DSN_OK);
+            for (uint32_t c = 0; c < 3; c++) {
+                const size_t at = (j * width + i) * 3 + c;
+                CHECK(out[at] == value[c]);
+                CHECK(dx[at] == gx[c]);
+                CHECK(dy[at] == gy[c]);
+                CHECK(dx_f[at] == dsn_fixed_to_float(gx[c]));
+            }
+        }
+    std::vector<int32_t> batch(values), batch_dx(values), batch_dy(values);
+    REQUIRE(dsn_continuous_batch_gradient_fixed(&noise, xs.data(), ys.data(), width * height, batch.data(),
+                                                batch_dx.data(), batch_dy.data()) == DSN_OK);
+    CHECK(batch == out);
+    CHECK(batch_dx == dx);
+    CHECK(batch_dy == dy);
+
+    // lattice: a tile across both wraps of the periodic y (period 19) and the 2^32 wrap of x
+    const int32_t x0 = -4, y0 = INT32_MAX - 2;
+    REQUIRE(dsn_lattice_tile_gradient_fixed(&noise, x0, y0, width, height, out.data(), dx.data(),
+                                            dy.data()) == DSN_OK);
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int32_t value[3], gx[3], gy[3];
+            REQUIRE(dsn_lattice_gradient_fixed(&noise, int32_t(uint32_t(x0) + i), int32_t(uint32_t(y0) + j),
+                                               value, gx, gy) == DSN_OK);
+            for (uint32_t c = 0; c < 3; c++) {
+                const size_t at = (j * width + i) * 3 + c;
+                CHECK(out[at] == value[c]);
+                CHECK(dx[at] == gx[c]);
+                CHECK(dy[at] == gy[c]);
+            }
+        }
+}
+
+TEST_CASE("gradient errors: every output zeroed, the value functions' codes") {
+    const auto made = make_noise(random_texton_asset(3, 3, 8, 1), 1);
+    const dsn_noise &noise = made->noise;
+    int32_t out[3] = {7, 7, 7}, dx[3] = {7, 7, 7}, dy[3] = {7, 7, 7};
+    CHECK(dsn_continuous_gradient_fixed(&noise, 0, 0, out, dx, nullptr) == DSN_ERR_NULL);
+    CHECK((out[0] == 0 && out[2] == 0 && dx[0] == 0 && dx[2] == 0));
+    for (int c = 0; c < 3; c++) out[c] = dx[c] = dy[c] = 7;
+    CHECK(dsn_lattice_gradient_fixed(nullptr, 0, 0, out, dx, dy) == DSN_ERR_NULL);
+    CHECK((out[0] == 0 && dx[0] == 0 && dy[0] == 0 && out[1] == 7)); // one value: the channels are unknown
+    dsn_noise zeroed{};
+    CHECK(dsn_continuous_gradient_fixed(&zeroed, 0, 0, out, dx, dy) == DSN_ERR_NULL);
+
+    dsn::AssetFields lattice_fields = random_texton_asset(1, 3, 8, 1);
+    lattice_fields.interpolation = DSN_INTERPOLATION_LATTICE;
+    const auto lattice = make_noise(lattice_fields, 1);
+    dx[0] = 7;
+    CHECK(dsn_continuous_gradient_fixed(&lattice->noise, 0, 0, out, dx, dy) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK(dx[0] == 0);
+    CHECK(dsn_lattice_gradient_fixed(&lattice->noise, 0, 0, out, dx, dy) == DSN_OK);
+
+    std::vector<int32_t> tile(12, 5);
+    CHECK(dsn_lattice_tile_gradient_fixed(&noise, 0, 0, 0, 4, tile.data(), tile.data(), tile.data()) ==
+          DSN_ERR_TILE_SIZE);
+    CHECK(tile[0] == 5); // a size refused is not written
+    const dsn_grid grid = {0, 0, 1 << 30, 0, 0, 1 << 30};
+    std::vector<float> values(12, 5.0f), slopes(12, 5.0f);
+    CHECK(dsn_continuous_tile_gradient_float(&noise, &grid, 2, 2, values.data(), slopes.data(), nullptr) ==
+          DSN_ERR_NULL);
+    CHECK((values[11] == 0.0f && slopes[11] == 0.0f));
+    CHECK(dsn_continuous_batch_gradient_fixed(&noise, nullptr, nullptr, 0, nullptr, nullptr, nullptr) ==
+          DSN_OK);
+}
