@@ -6,6 +6,12 @@
      the same fixed-point normalization. Everything is unsigned 32-bit arithmetic (64-bit values are
      uvec2(low, high)): no float on the evaluation path, so every GPU and driver gives the same bits.
      The float and 8-bit conversions of the API edge are integer too.
+     Gradients (for bump and normal mapping): dsn_lattice_gradient_fixed and
+     dsn_continuous_gradient_fixed give the value and its derivatives per texel along x and y, the bits
+     of the C functions of the same names (dsn.h, "Gradients"): the lattice noise's forward differences,
+     the continuous noise's exact derivative (one-sided, toward +x and +y, on a texel edge). A gradient
+     costs about one value's walk (a lattice one covers the two neighbours too; a continuous one reads
+     the same texels and does four more wide multiplications per impulse and channel).
 
    Versions
      GLSL 4.30 core and GLSL ES 3.10 (compute and fragment shaders) multiply 32 x 32 -> 64 bits with
@@ -22,6 +28,8 @@
          uint dsn_word(uint index) { return noise_words[index]; }
          ... this file ...
          ivec3 value = dsn_lattice_point_fixed(ivec2(x, y));   // Q16.16, 65536 is 1.0
+         ivec3 v, dx, dy;                                       // or the value with its gradient
+         dsn_continuous_gradient_fixed(x_q32, y_q32, v, dx, dy); // Q16.16 per texel
      Grey noises fill .x only (the other channels are 0). Coordinates wrap as in the C API: lattice points
      are int32, continuous points are Q32.32 texel coordinates as uvec2(low, high) per axis (see
      dsn_coordinate_from_float and dsn_coordinate_from_double_bits for conversions). A point costs
@@ -289,8 +297,8 @@ uvec2 dsn_offset(uint c) {
     return uvec2(dsn_word(DSN_WORD_OFFSET + 2u * c), dsn_word(DSN_WORD_OFFSET + 2u * c + 1u));
 }
 
-int dsn_normalize_channel(uint c, uint channels, uvec3 sums) {
-    uvec2 accumulated = dsn_offset(c);
+/* From `accumulated`: the noise's offset (the mean) for a value, zero for a difference of sums. */
+int dsn_normalize_channel_from(uint c, uint channels, uvec3 sums, uvec2 accumulated) {
     accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(dsn_gain(c, 0u), int(sums.x)));
     if (channels == 3u) {
         accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(dsn_gain(c, 1u), int(sums.y)));
@@ -299,11 +307,47 @@ int dsn_normalize_channel(uint c, uint channels, uvec3 sums) {
     return dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
 }
 
-ivec3 dsn_normalize(uvec3 sums) {
+/* with_mean: a value (the noise's offset added); else a gradient's difference of sums (no mean). */
+ivec3 dsn_normalize_from(uvec3 sums, bool with_mean) {
     uint channels = dsn_word(DSN_WORD_CHANNELS);
-    if (channels != 3u) return ivec3(dsn_normalize_channel(0u, 1u, sums), 0, 0);
-    return ivec3(dsn_normalize_channel(0u, 3u, sums), dsn_normalize_channel(1u, 3u, sums),
-                 dsn_normalize_channel(2u, 3u, sums));
+    ivec3 result = ivec3(0);
+    for (uint c = 0u; c < channels; c++) {
+        int value = dsn_normalize_channel_from(c, channels, sums, with_mean ? dsn_offset(c) : uvec2(0u));
+        if (c == 0u)
+            result.x = value;
+        else if (c == 1u)
+            result.y = value;
+        else
+            result.z = value;
+    }
+    return result;
+}
+
+ivec3 dsn_normalize(uvec3 sums) { return dsn_normalize_from(sums, true); }
+
+/* The same for sums with 32 more fraction bits (Q.32, the continuous mode's): the whole parts as above,
+   the fractions added once, rounded down, before the final rounding. */
+ivec3 dsn_normalize_q32(uvec2 sums[3], bool with_mean) {
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    ivec3 result = ivec3(0);
+    for (uint c = 0u; c < channels; c++) {
+        uvec2 accumulated = with_mean ? dsn_offset(c) : uvec2(0u), fractions = uvec2(0u);
+        for (uint k = 0u; k < channels; k++) {
+            int gain = dsn_gain(c, k);
+            accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(gain, int(sums[k].y)));
+            fractions = dsn_add64(fractions, dsn_multiply_mixed_wide(gain, sums[k].x));
+        }
+        int carried = int(fractions.y);
+        accumulated = dsn_add64(accumulated, uvec2(uint(carried), carried < 0 ? 0xFFFFFFFFu : 0u));
+        int value = dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
+        if (c == 0u)
+            result.x = value;
+        else if (c == 1u)
+            result.y = value;
+        else
+            result.z = value;
+    }
+    return result;
 }
 
 /* ---- Lattice per point ---- */
@@ -322,17 +366,21 @@ uvec2 dsn_lattice_cell_on_axis(dsn_span span, uint cell, uint shift) {
 }
 
 /* The channel sums Q_k (modulo 2^32) at lattice point (x, y): every impulse whose texton window holds
-   the point adds its texton entry. */
-uvec3 dsn_lattice_sums(uint x, uint y) {
+   the point adds its texton entry. With `east` (or `south`) the walk covers the window of the point and
+   its neighbour (x + 1, y) (or (x, y + 1)) and also gives that neighbour's sums (else 0). */
+void dsn_lattice_window_sums(uint x, uint y, bool east, bool south, out uvec3 at_point, out uvec3 at_east,
+                             out uvec3 at_south) {
     uint shift = dsn_word(DSN_WORD_CELL_SHIFT), channels = dsn_word(DSN_WORD_CHANNELS);
     uint width = dsn_word(DSN_WORD_LATTICE_WIDTH), height = dsn_word(DSN_WORD_LATTICE_HEIGHT);
     uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
     uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
-    dsn_axis axis_x =
-        dsn_axis_init(x, 1u, dsn_word(DSN_WORD_LATTICE_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
-    dsn_axis axis_y =
-        dsn_axis_init(y, 1u, dsn_word(DSN_WORD_LATTICE_RADIUS + 1u), shift, dsn_word(DSN_WORD_PERIOD + 1u));
-    uvec3 sums = uvec3(0u);
+    dsn_axis axis_x = dsn_axis_init(x, east ? 2u : 1u, dsn_word(DSN_WORD_LATTICE_RADIUS), shift,
+                                    dsn_word(DSN_WORD_PERIOD));
+    dsn_axis axis_y = dsn_axis_init(y, south ? 2u : 1u, dsn_word(DSN_WORD_LATTICE_RADIUS + 1u), shift,
+                                    dsn_word(DSN_WORD_PERIOD + 1u));
+    at_point = uvec3(0u);
+    at_east = uvec3(0u);
+    at_south = uvec3(0u);
     for (uint span_index_y = 0u; span_index_y < axis_y.span_count; span_index_y++) {
         dsn_span span_y = dsn_axis_span(axis_y, span_index_y);
         for (uint i = 0u; i < span_y.cell_count; i++) {
@@ -351,19 +399,59 @@ uvec3 dsn_lattice_sums(uint x, uint y) {
                         uint field = dsn_field_in_pair(pair, k, field_shift);
                         uint offset_x = (field & half_mask) >> drop,
                              offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        if (offset_x > in_x.y || offset_y > in_y.y) continue;
+                        /* unsigned: -1 (in reach of a neighbour only) is outside the window */
                         uint column = in_x.x - offset_x, row = in_y.x - offset_y;
-                        if (column < width && row < height && offset_x <= in_x.y && offset_y <= in_y.y)
-                            sums += dsn_lattice_texton_entry(row * width + column, channels);
+                        if (column < width && row < height)
+                            at_point += dsn_lattice_texton_entry(row * width + column, channels);
+                        if (east && column + 1u < width && row < height)
+                            at_east += dsn_lattice_texton_entry(row * width + column + 1u, channels);
+                        if (south && row + 1u < height && column < width)
+                            at_south += dsn_lattice_texton_entry((row + 1u) * width + column, channels);
                     }
                 }
             }
         }
     }
-    return sums;
+}
+
+uvec3 dsn_lattice_sums(uint x, uint y) {
+    uvec3 at_point, at_east, at_south;
+    dsn_lattice_window_sums(x, y, false, false, at_point, at_east, at_south);
+    return at_point;
 }
 
 /* Q16.16 values at lattice point p (int32 coordinates, wrapping like the C API's). */
 ivec3 dsn_lattice_point_fixed(ivec2 p) { return dsn_normalize(dsn_lattice_sums(uint(p.x), uint(p.y))); }
+
+/* The value at lattice point p and its forward differences dx = F(p + (1, 0)) - F(p) and
+   dy = F(p + (0, 1)) - F(p) of the noise before its rounding (coordinates + 1 modulo 2^32), Q16.16:
+   dsn_lattice_gradient_fixed's bits. One walk covers the point and both neighbours; on a periodic axis
+   the coordinate 0x7FFFFFFF takes its neighbour (-2^31, reduced on its own) from a walk of its own. */
+void dsn_lattice_gradient_fixed(ivec2 p, out ivec3 value, out ivec3 dx, out ivec3 dy) {
+    uint x = uint(p.x), y = uint(p.y);
+    bool east_apart = dsn_word(DSN_WORD_PERIOD) != 0u && x == 0x7FFFFFFFu;
+    bool south_apart = dsn_word(DSN_WORD_PERIOD + 1u) != 0u && y == 0x7FFFFFFFu;
+    uvec3 at_point = uvec3(0u), at_east = uvec3(0u), at_south = uvec3(0u);
+    for (uint walk = 0u; walk < 3u; walk++) {
+        if ((walk == 1u && !east_apart) || (walk == 2u && !south_apart)) continue;
+        uvec3 sums, east, south;
+        dsn_lattice_window_sums(walk == 1u ? x + 1u : x, walk == 2u ? y + 1u : y,
+                                walk == 0u && !east_apart, walk == 0u && !south_apart, sums, east, south);
+        if (walk == 0u) {
+            at_point = sums;
+            at_east = east;
+            at_south = south;
+        } else if (walk == 1u) {
+            at_east = sums;
+        } else {
+            at_south = sums;
+        }
+    }
+    value = dsn_normalize_from(at_point, true);
+    dx = dsn_normalize_from(at_east - at_point, false);
+    dy = dsn_normalize_from(at_south - at_point, false);
+}
 
 /* ---- Continuous per point ---- */
 
@@ -373,22 +461,36 @@ int dsn_texel(uint row, uint column, uint channel, uint width, uint height, uint
     return int(dsn_word(DSN_WORD_TEXTON + (row * width + column) * channels + channel));
 }
 
+/* The 2 x 2 texels of `channel` with their top-left at (row, column): (above left, above right, below
+   left, below right), 0 outside the window. */
+ivec4 dsn_corners(uint row, uint column, uint channel, uint width, uint height, uint channels) {
+    return ivec4(dsn_texel(row, column, channel, width, height, channels),
+                 dsn_texel(row, column + 1u, channel, width, height, channels),
+                 dsn_texel(row + 1u, column, channel, width, height, channels),
+                 dsn_texel(row + 1u, column + 1u, channel, width, height, channels));
+}
+
 /* weights (1 - column_weight, column_weight, 1 - row_weight, row_weight) in Q0.16. Each row's
    weighted pair is within int32 (at most 2^16 * 2^15), each term below 2^47. */
-uvec2 dsn_bilinear(uint row, uint column, uint channel, ivec4 weights, uint width, uint height,
-                   uint channels) {
-    int upper = weights.x * dsn_texel(row, column, channel, width, height, channels) +
-                weights.y * dsn_texel(row, column + 1u, channel, width, height, channels);
-    int lower = weights.x * dsn_texel(row + 1u, column, channel, width, height, channels) +
-                weights.y * dsn_texel(row + 1u, column + 1u, channel, width, height, channels);
+uvec2 dsn_bilinear(ivec4 corners, ivec4 weights) {
+    int upper = weights.x * corners.x + weights.y * corners.y;
+    int lower = weights.x * corners.z + weights.y * corners.w;
     return dsn_add64(dsn_multiply_signed_wide(weights.z, upper), dsn_multiply_signed_wide(weights.w, lower));
+}
+
+/* The bilinear texton's slope per 2^-16 texel along x, (1 - row_weight)(b - a) + row_weight (d - c)
+   (corners a b / c d), or along y with the weights and corners transposed: below 2^32 in magnitude. */
+uvec2 dsn_slope(int a, int b, int c, int d, int lower_weight, int upper_weight) {
+    return dsn_add64(dsn_multiply_signed_wide(lower_weight, b - a), dsn_multiply_signed_wide(upper_weight, d - c));
 }
 
 /* One axis of an impulse seen from the point: false when it lies beyond the period or out of reach;
    else the texton index of the lower bracketing texel (0xFFFFFFFF for -1) and the upper one's weight.
-   fraction: the low word of the point's coordinate. */
+   fraction: the low word of the point's coordinate. With entry_edge (the gradient) an impulse exactly
+   at the edge where it enters the reach (offset -(radius + 1) texels) is kept: its value is 0, its
+   slope is not. */
 bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_origin, uint bits16,
-                         out uint lower_index, out uint upper_weight) {
+                         bool entry_edge, out uint lower_index, out uint upper_weight) {
     lower_index = 0u;
     upper_weight = 0u;
     if (cell_origin + (bits16 >> (16u - axis.shift)) > span.last_position) return false;
@@ -397,14 +499,17 @@ bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_
     /* offset + (radius + 1) texels; the high word is a small signed number for any impulse in reach */
     uvec2 shifted = dsn_sub64(uvec2(fraction, whole + axis.radius + 1u), in_cell);
     int high = int(shifted.y);
-    if (high < 0 || (high == 0 && shifted.x == 0u) || high >= int(2u * axis.radius + 2u)) return false;
+    if (high < 0 || (high == 0 && shifted.x == 0u && !entry_edge) || high >= int(2u * axis.radius + 2u))
+        return false;
     lower_index = shifted.y - 1u;
     upper_weight = (shifted.x >> 16u) & 0xFFFFu;
     return true;
 }
 
-/* Sums (Q.32 per channel) of every impulse of the window around (x, y), then normalized. */
-ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
+/* The sums (Q.32 per channel, modulo 2^64) of every impulse of the window around (x, y); with `slopes`
+   also those of the partial derivatives per 2^-16 texel (and the impulses at the entry edge). */
+void dsn_continuous_sums(uvec2 x, uvec2 y, bool slopes, out uvec2 sums[3], out uvec2 slope_x[3],
+                         out uvec2 slope_y[3]) {
     uint shift = dsn_word(DSN_WORD_CELL_SHIFT), channels = dsn_word(DSN_WORD_CHANNELS);
     uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
     dsn_axis px = dsn_axis_init(x.y - 1u, 3u, dsn_word(DSN_WORD_RADIUS), shift, dsn_word(DSN_WORD_PERIOD));
@@ -413,10 +518,11 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
     uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
     uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
     uint diameter_x = 2u * px.radius + 2u, diameter_y = 2u * py.radius + 2u;
-    uvec2 sums[3];
-    sums[0] = uvec2(0u);
-    sums[1] = uvec2(0u);
-    sums[2] = uvec2(0u);
+    for (uint c = 0u; c < 3u; c++) {
+        sums[c] = uvec2(0u);
+        slope_x[c] = uvec2(0u);
+        slope_y[c] = uvec2(0u);
+    }
     for (uint sy = 0u; sy < py.span_count; sy++) {
         dsn_span span_y = dsn_axis_span(py, sy);
         for (uint sx = 0u; sx < px.span_count; sx++) {
@@ -442,50 +548,57 @@ ivec3 dsn_continuous_evaluate(uvec2 x, uvec2 y) {
                         uint hash =
                             dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
                         uint row, row_weight, column, column_weight;
-                        if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, row,
+                        if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, slopes, row,
                                                  row_weight))
                             continue;
-                        if (!dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, column,
-                                                 column_weight))
+                        if (!dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, slopes,
+                                                 column, column_weight))
                             continue;
                         ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight),
                                               int(65536u - row_weight), int(row_weight));
-                        for (uint c = 0u; c < channels; c++)
-                            sums[c] = dsn_add64(
-                                sums[c], dsn_bilinear(row, column, c, weights, width, height, channels));
+                        for (uint c = 0u; c < channels; c++) {
+                            ivec4 corners = dsn_corners(row, column, c, width, height, channels);
+                            sums[c] = dsn_add64(sums[c], dsn_bilinear(corners, weights));
+                            if (!slopes) continue;
+                            slope_x[c] = dsn_add64(slope_x[c], dsn_slope(corners.x, corners.y, corners.z,
+                                                                         corners.w, weights.z, weights.w));
+                            slope_y[c] = dsn_add64(slope_y[c], dsn_slope(corners.x, corners.z, corners.y,
+                                                                         corners.w, weights.x, weights.y));
+                        }
                     }
                 }
             }
         }
     }
-    /* The lattice normalization of sums with 32 more fraction bits: the whole parts as in lattice mode,
-       the fractions added once, rounded down, before the final rounding. */
-    ivec3 result = ivec3(0);
-    for (uint c = 0u; c < channels; c++) {
-        uvec2 accumulated = dsn_offset(c), fractions = uvec2(0u);
-        for (uint k = 0u; k < channels; k++) {
-            int gain = dsn_gain(c, k);
-            accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(gain, int(sums[k].y)));
-            fractions = dsn_add64(fractions, dsn_multiply_mixed_wide(gain, sums[k].x));
-        }
-        int carried = int(fractions.y);
-        accumulated = dsn_add64(accumulated, uvec2(uint(carried), carried < 0 ? 0xFFFFFFFFu : 0u));
-        int value = dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
-        if (c == 0u)
-            result.x = value;
-        else if (c == 1u)
-            result.y = value;
-        else
-            result.z = value;
-    }
-    return result;
 }
 
 /* Q16.16 values at the continuous point (x, y), each a Q32.32 coordinate as uvec2(low, high); all 0
    when the noise may not be used in continuous mode (dsn_continuous_check). */
 ivec3 dsn_continuous_point_fixed(uvec2 x, uvec2 y) {
     if (dsn_word(DSN_WORD_CONTINUOUS) == 0u) return ivec3(0);
-    return dsn_continuous_evaluate(x, y);
+    uvec2 sums[3], slope_x[3], slope_y[3];
+    dsn_continuous_sums(x, y, false, sums, slope_x, slope_y);
+    return dsn_normalize_q32(sums, true);
+}
+
+/* The value at the continuous point (x, y) (as dsn_continuous_point_fixed) and its exact partial
+   derivatives per texel, Q16.16: dsn_continuous_gradient_fixed's bits (one-sided, toward +x and +y, on
+   a texel edge of some impulse). All 0 when the noise may not be used in continuous mode. */
+void dsn_continuous_gradient_fixed(uvec2 x, uvec2 y, out ivec3 value, out ivec3 dx, out ivec3 dy) {
+    value = ivec3(0);
+    dx = ivec3(0);
+    dy = ivec3(0);
+    if (dsn_word(DSN_WORD_CONTINUOUS) == 0u) return;
+    uvec2 sums[3], slope_x[3], slope_y[3];
+    dsn_continuous_sums(x, y, true, sums, slope_x, slope_y);
+    /* per 2^-16 texel to per texel, with the value sums' 32 fraction bits (modulo 2^64) */
+    for (uint c = 0u; c < 3u; c++) {
+        slope_x[c] = dsn_shift_left64(slope_x[c], 16u);
+        slope_y[c] = dsn_shift_left64(slope_y[c], 16u);
+    }
+    value = dsn_normalize_q32(sums, true);
+    dx = dsn_normalize_q32(slope_x, false);
+    dy = dsn_normalize_q32(slope_y, false);
 }
 
 /* ---- Coordinates (the C API's conversions, from the IEEE bits) ---- */

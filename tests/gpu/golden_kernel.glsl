@@ -1,11 +1,13 @@
 /* golden_kernel.glsl - what one shader invocation of the GPU golden program computes: one point of a
    lattice tile, one point of a continuous grid, or one listed query (a point of any mode, a coordinate
-   conversion), with the output converted as the C API converts it. The including shader defines
-   golden_query() (where the queries are) and calls golden_evaluate(index). */
+   conversion), with the output converted as the C API converts it; for a gradient, the value and its
+   two derivatives. The including shader defines golden_query() (where the queries are) and calls
+   golden_evaluate(index, value, dx, dy) (dx and dy are 0 but for a gradient). */
 
 /* The task of this draw or dispatch. */
 uniform uint task_kind;         /* 0: listed queries, 1: a lattice tile, 2: a continuous grid */
 uniform uint task_output;       /* tiles: 0 fixed Q16.16, 1 float32 bits, 2 u8 */
+uniform uint task_gradient;     /* tiles: 1 for the value with its gradient, else 0 */
 uniform uint task_width;        /* tiles: pixels per row */
 uniform uvec4 task_origin;      /* lattice: (x, -, y, -); grid: (x low, x high, y low, y high) */
 uniform uvec4 task_column_step; /* grid: the step to the next pixel of a row, Q32.32 x then y */
@@ -14,7 +16,7 @@ uniform uvec4 task_row_step;    /* grid: the step to the next row */
 /* Query `index` as two uvec4: (mode, x low, x high, y low) and (y high, -, -, -). Modes: bits 0-7 the
    point (0 lattice (x, y) int32, 1 continuous (x, y) Q32.32, 2 continuous from the IEEE bits of two
    doubles, 3 coordinate from a double's bits (x), 4 coordinate from a float's bits (x low)), bits 8-15
-   the output conversion as task_output. */
+   the output conversion as task_output, bit 16 the gradient (points of modes 0 to 2). */
 uvec4 golden_query(uint index, uint part);
 
 uvec4 golden_convert(ivec3 value, uint conversion) {
@@ -26,28 +28,56 @@ uvec4 golden_convert(ivec3 value, uint conversion) {
     return uvec4(uvec3(value), 0u);
 }
 
-uvec4 golden_evaluate(uint index) {
+/* The lattice point p, or the continuous point (x, y): its value alone or with its gradient. */
+void golden_point(bool lattice, ivec2 p, uvec2 x, uvec2 y, bool gradient, uint conversion, out uvec4 value,
+                  out uvec4 dx, out uvec4 dy) {
+    ivec3 v = ivec3(0), gx = ivec3(0), gy = ivec3(0);
+    if (gradient) {
+        if (lattice)
+            dsn_lattice_gradient_fixed(p, v, gx, gy);
+        else
+            dsn_continuous_gradient_fixed(x, y, v, gx, gy);
+    } else {
+        v = lattice ? dsn_lattice_point_fixed(p) : dsn_continuous_point_fixed(x, y);
+    }
+    value = golden_convert(v, conversion);
+    dx = golden_convert(gx, conversion);
+    dy = golden_convert(gy, conversion);
+}
+
+/* One call of each evaluator in the shader (each is inlined where it is called). */
+void golden_evaluate(uint index, out uvec4 value, out uvec4 dx, out uvec4 dy) {
     uint i = index % task_width, j = index / task_width;
-    if (task_kind == 1u)
-        return golden_convert(dsn_lattice_point_fixed(ivec2(int(task_origin.x + i), int(task_origin.z + j))),
-                              task_output);
+    bool lattice = task_kind == 1u, gradient = task_gradient != 0u;
+    uint conversion = task_output;
+    ivec2 p = ivec2(int(task_origin.x + i), int(task_origin.z + j));
+    uvec2 x = uvec2(0u), y = uvec2(0u);
     if (task_kind == 2u) {
         /* origin + i column_step + j row_step, modulo 2^64 */
-        uvec2 x = dsn_add64(task_origin.xy, dsn_add64(dsn_multiply64(uvec2(i, 0u), task_column_step.xy),
-                                                      dsn_multiply64(uvec2(j, 0u), task_row_step.xy)));
-        uvec2 y = dsn_add64(task_origin.zw, dsn_add64(dsn_multiply64(uvec2(i, 0u), task_column_step.zw),
-                                                      dsn_multiply64(uvec2(j, 0u), task_row_step.zw)));
-        return golden_convert(dsn_continuous_point_fixed(x, y), task_output);
+        x = dsn_add64(task_origin.xy, dsn_add64(dsn_multiply64(uvec2(i, 0u), task_column_step.xy),
+                                                dsn_multiply64(uvec2(j, 0u), task_row_step.xy)));
+        y = dsn_add64(task_origin.zw, dsn_add64(dsn_multiply64(uvec2(i, 0u), task_column_step.zw),
+                                                dsn_multiply64(uvec2(j, 0u), task_row_step.zw)));
+    } else if (task_kind == 0u) {
+        uvec4 first = golden_query(index, 0u), second = golden_query(index, 1u);
+        uint point = first.x & 0xFFu;
+        x = first.yz;
+        y = uvec2(first.w, second.x);
+        if (point > 2u) {
+            dx = uvec4(0u);
+            dy = uvec4(0u);
+            value = point == 3u ? uvec4(dsn_coordinate_from_double_bits(x), 0u, 0u)
+                                : uvec4(dsn_coordinate_from_float_bits(x.x), 0u, 0u);
+            return;
+        }
+        lattice = point == 0u;
+        gradient = ((first.x >> 16u) & 1u) != 0u;
+        conversion = (first.x >> 8u) & 0xFFu;
+        p = ivec2(int(x.x), int(y.x));
+        if (point == 2u) {
+            x = dsn_coordinate_from_double_bits(x);
+            y = dsn_coordinate_from_double_bits(y);
+        }
     }
-    uvec4 first = golden_query(index, 0u), second = golden_query(index, 1u);
-    uint point = first.x & 0xFFu, conversion = (first.x >> 8u) & 0xFFu;
-    uvec2 x = first.yz, y = uvec2(first.w, second.x);
-    if (point == 0u) return golden_convert(dsn_lattice_point_fixed(ivec2(int(x.x), int(y.x))), conversion);
-    if (point == 1u) return golden_convert(dsn_continuous_point_fixed(x, y), conversion);
-    if (point == 2u)
-        return golden_convert(dsn_continuous_point_fixed(dsn_coordinate_from_double_bits(x),
-                                                         dsn_coordinate_from_double_bits(y)),
-                              conversion);
-    if (point == 3u) return uvec4(dsn_coordinate_from_double_bits(x), 0u, 0u);
-    return uvec4(dsn_coordinate_from_float_bits(x.x), 0u, 0u);
+    golden_point(lattice, p, x, y, gradient, conversion, value, dx, dy);
 }

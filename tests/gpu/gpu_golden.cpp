@@ -1,7 +1,9 @@
 // gpu_golden.cpp - the cross test's golden program evaluated on a GPU: tests/cross/golden.cpp compiled as
 // it is, with every evaluation it makes (lattice and continuous points, tiles, grids, float and 8-bit
 // conversions, coordinate conversions) done by include/dsn/dsn.glsl in a shader instead of the C runtime.
-// It must print exactly tests/cross/golden.txt.
+// It must print exactly tests/cross/golden.txt (less its h-* kinds: the shaders have no histogram
+// mapping). The gradients (d-* kinds) are dsn.glsl's too: every invocation returns a value and, for a
+// gradient, its two derivatives.
 //
 // The golden program asks for one value at a time and hashes it at once; a GPU wants batches. So it runs
 // twice: the first run records every request (answering zeros, printing nothing; nothing it does depends
@@ -48,6 +50,24 @@ int continuous_tile_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t
                           float *out, void *scratch, size_t scratch_size);
 int continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                        uint8_t *out, void *scratch, size_t scratch_size);
+int lattice_gradient_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out, int32_t *dx,
+                           int32_t *dy);
+int lattice_gradient_float(const dsn_noise *noise, int32_t x, int32_t y, float *out, float *dx, float *dy);
+int lattice_tile_gradient_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                uint32_t height, int32_t *out, int32_t *dx, int32_t *dy);
+int lattice_tile_gradient_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                uint32_t height, float *out, float *dx, float *dy);
+int continuous_gradient_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out, int32_t *dx,
+                              int32_t *dy);
+int continuous_gradient_float(const dsn_noise *noise, double x, double y, float *out, float *dx, float *dy);
+int continuous_tile_gradient_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                   uint32_t height, int32_t *out, int32_t *dx, int32_t *dy);
+int continuous_tile_gradient_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                   uint32_t height, float *out, float *dx, float *dy);
+int continuous_batch_gradient_fixed(const dsn_noise *noise, const int64_t *xs, const int64_t *ys,
+                                    uint32_t count, int32_t *out, int32_t *dx, int32_t *dy);
+int continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, const double *ys,
+                                    uint32_t count, float *out, float *dx, float *dy);
 int64_t coordinate_from_double(double value);
 int64_t coordinate_from_float(float value);
 
@@ -65,11 +85,20 @@ int64_t coordinate_from_float(float value);
 #define dsn_continuous_tile_fixed gpu_golden::continuous_tile_fixed
 #define dsn_continuous_tile_float gpu_golden::continuous_tile_float
 #define dsn_continuous_tile_u8 gpu_golden::continuous_tile_u8
+#define dsn_lattice_gradient_fixed gpu_golden::lattice_gradient_fixed
+#define dsn_lattice_gradient_float gpu_golden::lattice_gradient_float
+#define dsn_lattice_tile_gradient_fixed gpu_golden::lattice_tile_gradient_fixed
+#define dsn_lattice_tile_gradient_float gpu_golden::lattice_tile_gradient_float
+#define dsn_continuous_gradient_fixed gpu_golden::continuous_gradient_fixed
+#define dsn_continuous_gradient_float gpu_golden::continuous_gradient_float
+#define dsn_continuous_tile_gradient_fixed gpu_golden::continuous_tile_gradient_fixed
+#define dsn_continuous_tile_gradient_float gpu_golden::continuous_tile_gradient_float
+#define dsn_continuous_batch_gradient_fixed gpu_golden::continuous_batch_gradient_fixed
+#define dsn_continuous_batch_gradient_float gpu_golden::continuous_batch_gradient_float
 #define dsn_coordinate_from_double gpu_golden::coordinate_from_double
 #define dsn_coordinate_from_float gpu_golden::coordinate_from_float
 #define main golden_main
 #define GOLDEN_WITHOUT_HISTOGRAM 1 /* dsn.glsl has no histogram mapping: the h-* kinds are left out */
-#define GOLDEN_WITHOUT_GRADIENTS 1 /* dsn.glsl has no gradients yet: the d-* kinds are left out */
 #include "cross/golden.cpp"
 #undef main
 
@@ -88,6 +117,10 @@ const char *const kernel_glsl =
 
 enum TaskKind : uint32_t { task_queries = 0, task_lattice_tile = 1, task_grid = 2 };
 enum Conversion : uint32_t { as_fixed = 0, as_float = 1, as_u8 = 2 };
+const uint32_t with_gradient = 1u << 16; /* in a query's mode */
+/* Words per value of a result: the value, then the x and y derivatives (0 but for a gradient), each a
+   uvec4 of the shader. */
+const uint32_t result_words = 12;
 enum Point : uint32_t {
     point_lattice = 0,
     point_continuous = 1,
@@ -101,14 +134,14 @@ struct Request {
     size_t noise = 0; /* index into Recorder::noises */
     uint32_t kind = task_queries;
     uint32_t query[5] = {0, 0, 0, 0, 0}; /* mode (point | conversion << 8), x low, x high, y low, y high */
-    uint32_t conversion = as_fixed, width = 1, height = 1;
+    uint32_t conversion = as_fixed, gradient = 0, width = 1, height = 1;
     uint32_t origin[4] = {0, 0, 0, 0}, column_step[4] = {0, 0, 0, 0}, row_step[4] = {0, 0, 0, 0};
-    std::vector<uint32_t> result; /* 4 words per value */
+    std::vector<uint32_t> result; /* result_words per value */
 
     bool same_as(const Request &other) const {
         return noise == other.noise && kind == other.kind && !memcmp(query, other.query, sizeof query) &&
-               conversion == other.conversion && width == other.width && height == other.height &&
-               !memcmp(origin, other.origin, sizeof origin) &&
+               conversion == other.conversion && gradient == other.gradient && width == other.width &&
+               height == other.height && !memcmp(origin, other.origin, sizeof origin) &&
                !memcmp(column_step, other.column_step, sizeof column_step) &&
                !memcmp(row_step, other.row_step, sizeof row_step);
     }
@@ -140,7 +173,7 @@ size_t noise_index(const dsn_noise *noise) {
 
 /* Records the request (answering zeros) or returns the GPU's answer to it. */
 const std::vector<uint32_t> &answer(const Request &request) {
-    static const std::vector<uint32_t> zeros(4u * 65536u * 4u, 0u);
+    static const std::vector<uint32_t> zeros(result_words * 65536u, 0u);
     if (!recorder.replaying) {
         recorder.requests.push_back(request);
         return zeros;
@@ -162,11 +195,13 @@ Request query(const dsn_noise *noise, uint32_t point, uint32_t conversion, uint6
     return request;
 }
 
+/* part 0: the values; 1 and 2: the x and y derivatives of a gradient. */
 template <typename Value>
-void store(const std::vector<uint32_t> &result, uint32_t values, uint32_t channels, Value *out) {
+void store(const std::vector<uint32_t> &result, uint32_t values, uint32_t channels, Value *out,
+           uint32_t part = 0) {
     for (uint32_t v = 0; v < values; v++)
         for (uint32_t c = 0; c < channels; c++) {
-            const uint32_t word = result[4 * v + c];
+            const uint32_t word = result[result_words * v + 4 * part + c];
             if (sizeof(Value) == 1) {
                 out[v * channels + c] = static_cast<Value>(word);
             } else {
@@ -313,10 +348,164 @@ int64_t coordinate_from_float(float value) {
     return coordinate(point_coordinate_float, bits);
 }
 
+/* ---- The replacements of the runtime's gradient functions: each point's value and derivatives ---- */
+
+template <typename Value>
+void store_gradient(const std::vector<uint32_t> &result, uint32_t values, uint32_t channels, Value *out,
+                    Value *dx, Value *dy) {
+    store(result, values, channels, out, 0);
+    store(result, values, channels, dx, 1);
+    store(result, values, channels, dy, 2);
+}
+
+template <typename Value>
+int lattice_gradient(const dsn_noise *noise, int32_t x, int32_t y, Value *out, Value *dx, Value *dy,
+                     uint32_t conversion) {
+    if (noise == nullptr || out == nullptr || dx == nullptr || dy == nullptr) return DSN_ERR_NULL;
+    Request request =
+        query(noise, point_lattice, conversion, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+    request.query[0] |= with_gradient;
+    store_gradient(answer(request), 1, dsn_noise_channels(noise), out, dx, dy);
+    return DSN_OK;
+}
+
+int lattice_gradient_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out, int32_t *dx,
+                           int32_t *dy) {
+    return lattice_gradient(noise, x, y, out, dx, dy, as_fixed);
+}
+
+int lattice_gradient_float(const dsn_noise *noise, int32_t x, int32_t y, float *out, float *dx, float *dy) {
+    return lattice_gradient(noise, x, y, out, dx, dy, as_float);
+}
+
+template <typename Value>
+int lattice_tile_gradient(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                          Value *out, Value *dx, Value *dy, uint32_t conversion) {
+    if (noise == nullptr || out == nullptr || dx == nullptr || dy == nullptr) return DSN_ERR_NULL;
+    if (dsn_gpu_word_count(noise) == 0) return DSN_ERR_ARGUMENT;
+    if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
+        return DSN_ERR_TILE_SIZE;
+    Request request;
+    request.noise = noise_index(noise);
+    request.kind = task_lattice_tile;
+    request.conversion = conversion;
+    request.gradient = 1;
+    request.width = width;
+    request.height = height;
+    request.origin[0] = static_cast<uint32_t>(x0);
+    request.origin[2] = static_cast<uint32_t>(y0);
+    store_gradient(answer(request), width * height, dsn_noise_channels(noise), out, dx, dy);
+    return DSN_OK;
+}
+
+int lattice_tile_gradient_fixed(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                uint32_t height, int32_t *out, int32_t *dx, int32_t *dy) {
+    return lattice_tile_gradient(noise, x0, y0, width, height, out, dx, dy, as_fixed);
+}
+
+int lattice_tile_gradient_float(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
+                                uint32_t height, float *out, float *dx, float *dy) {
+    return lattice_tile_gradient(noise, x0, y0, width, height, out, dx, dy, as_float);
+}
+
+/* A continuous point: Q32.32 coordinates (point_continuous) or the IEEE bits of two doubles
+   (point_continuous_doubles). The argument check is the C API's. */
+template <typename Value>
+int continuous_gradient(const dsn_noise *noise, uint32_t point, uint64_t x, uint64_t y, Value *out, Value *dx,
+                        Value *dy, uint32_t conversion) {
+    const int err = dsn_continuous_check(noise);
+    if (out == nullptr || dx == nullptr || dy == nullptr) return DSN_ERR_NULL;
+    Request request = query(noise, point, conversion, x, y);
+    request.query[0] |= with_gradient;
+    store_gradient(answer(request), 1, dsn_noise_channels(noise), out, dx, dy);
+    return err;
+}
+
+uint64_t double_bits(double value) {
+    uint64_t bits;
+    memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+int continuous_gradient_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out, int32_t *dx,
+                              int32_t *dy) {
+    return continuous_gradient(noise, point_continuous, static_cast<uint64_t>(x), static_cast<uint64_t>(y),
+                               out, dx, dy, as_fixed);
+}
+
+int continuous_gradient_float(const dsn_noise *noise, double x, double y, float *out, float *dx, float *dy) {
+    return continuous_gradient(noise, point_continuous_doubles, double_bits(x), double_bits(y), out, dx, dy,
+                               as_float);
+}
+
+template <typename Value>
+int continuous_tile_gradient(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                             Value *out, Value *dx, Value *dy, uint32_t conversion) {
+    const int err = dsn_continuous_check(noise);
+    if (err != DSN_OK) return err;
+    if (grid == nullptr || out == nullptr || dx == nullptr || dy == nullptr) return DSN_ERR_NULL;
+    if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
+        return DSN_ERR_TILE_SIZE;
+    Request request;
+    request.noise = noise_index(noise);
+    request.kind = task_grid;
+    request.conversion = conversion;
+    request.gradient = 1;
+    request.width = width;
+    request.height = height;
+    put_pair(request.origin, grid->origin_x);
+    put_pair(request.origin + 2, grid->origin_y);
+    put_pair(request.column_step, grid->column_step_x);
+    put_pair(request.column_step + 2, grid->column_step_y);
+    put_pair(request.row_step, grid->row_step_x);
+    put_pair(request.row_step + 2, grid->row_step_y);
+    store_gradient(answer(request), width * height, dsn_noise_channels(noise), out, dx, dy);
+    return DSN_OK;
+}
+
+int continuous_tile_gradient_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                   uint32_t height, int32_t *out, int32_t *dx, int32_t *dy) {
+    return continuous_tile_gradient(noise, grid, width, height, out, dx, dy, as_fixed);
+}
+
+int continuous_tile_gradient_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                   uint32_t height, float *out, float *dx, float *dy) {
+    return continuous_tile_gradient(noise, grid, width, height, out, dx, dy, as_float);
+}
+
+/* A batch: its points as queries (they join the noise's batch of queries). */
+uint64_t batch_bits(int64_t value) { return static_cast<uint64_t>(value); }
+uint64_t batch_bits(double value) { return double_bits(value); }
+
+template <typename Coordinate, typename Value>
+int continuous_batch_gradient(const dsn_noise *noise, const Coordinate *xs, const Coordinate *ys,
+                              uint32_t count, Value *out, Value *dx, Value *dy, uint32_t point,
+                              uint32_t conversion) {
+    const int err = dsn_continuous_check(noise);
+    if (err != DSN_OK) return err;
+    if (count != 0 && (xs == nullptr || ys == nullptr || out == nullptr || dx == nullptr || dy == nullptr))
+        return DSN_ERR_NULL;
+    const uint32_t channels = dsn_noise_channels(noise);
+    for (uint32_t k = 0; k < count; k++)
+        continuous_gradient(noise, point, batch_bits(xs[k]), batch_bits(ys[k]), out + k * channels,
+                            dx + k * channels, dy + k * channels, conversion);
+    return DSN_OK;
+}
+
+int continuous_batch_gradient_fixed(const dsn_noise *noise, const int64_t *xs, const int64_t *ys,
+                                    uint32_t count, int32_t *out, int32_t *dx, int32_t *dy) {
+    return continuous_batch_gradient(noise, xs, ys, count, out, dx, dy, point_continuous, as_fixed);
+}
+
+int continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, const double *ys,
+                                    uint32_t count, float *out, float *dx, float *dy) {
+    return continuous_batch_gradient(noise, xs, ys, count, out, dx, dy, point_continuous_doubles, as_float);
+}
+
 /* ---- Running the requests on the GPU ---- */
 
 struct Task {
-    uint32_t kind = task_queries, conversion = as_fixed, width = 1, count = 0;
+    uint32_t kind = task_queries, conversion = as_fixed, gradient = 0, width = 1, count = 0;
     const uint32_t *origin = nullptr, *column_step = nullptr, *row_step = nullptr;
 };
 
@@ -335,11 +524,17 @@ std::string compute_shader(const headless_gl::Context &context, bool limbs) {
            dsn_glsl + kernel_glsl +
            "void main() {\n"
            "    uint index = gl_GlobalInvocationID.x;\n"
-           "    if (index < task_count) results[index] = golden_evaluate(index);\n"
+           "    if (index >= task_count) return;\n"
+           "    uvec4 value, dx, dy;\n"
+           "    golden_evaluate(index, value, dx, dy);\n"
+           "    results[3u * index] = value;\n"
+           "    results[3u * index + 1u] = dx;\n"
+           "    results[3u * index + 2u] = dy;\n"
            "}\n";
 }
 
-/* GLSL ES 3.00 (fragment): noise and queries in integer textures, one fragment per value. */
+/* GLSL ES 3.00 (fragment): noise and queries in integer textures, one fragment per value, the value and
+   the two derivatives in three RGBA32UI targets. */
 const char *const fullscreen_vertex_shader = "#version 300 es\n"
                                              "void main() {\n"
                                              "    gl_Position = vec4(float((gl_VertexID & 1) << 2) - 1.0, "
@@ -351,7 +546,9 @@ std::string fragment_shader(const headless_gl::Context &context, bool limbs) {
            "uniform highp usampler2D noise_texture;\n"
            "uniform highp usampler2D query_texture;\n"
            "uniform uint target_width;\n"
-           "layout(location = 0) out uvec4 result;\n"
+           "layout(location = 0) out uvec4 result_value;\n"
+           "layout(location = 1) out uvec4 result_dx;\n"
+           "layout(location = 2) out uvec4 result_dy;\n"
            "uint dsn_word(uint index) {\n"
            "    return texelFetch(noise_texture, ivec2(int(index & 1023u), int(index >> 10u)), 0).x;\n"
            "}\n"
@@ -362,7 +559,7 @@ std::string fragment_shader(const headless_gl::Context &context, bool limbs) {
            dsn_glsl + kernel_glsl +
            "void main() {\n"
            "    uvec2 pixel = uvec2(gl_FragCoord.xy);\n"
-           "    result = golden_evaluate(pixel.y * target_width + pixel.x);\n"
+           "    golden_evaluate(pixel.y * target_width + pixel.x, result_value, result_dx, result_dy);\n"
            "}\n";
 }
 
@@ -392,11 +589,12 @@ class Runner {
             noise_ = context_.storage_buffer(words.data(), words.size() * 4);
     }
 
-    /* 4 words per value. */
+    /* result_words per value. */
     std::vector<uint32_t> run(const Task &task, const std::vector<uint32_t> &queries) {
         gl_.glUseProgram(program_);
         gl_.glUniform1ui(location("task_kind"), task.kind);
         gl_.glUniform1ui(location("task_output"), task.conversion);
+        gl_.glUniform1ui(location("task_gradient"), task.gradient);
         gl_.glUniform1ui(location("task_width"), task.width);
         const uint32_t *origin = task.origin ? task.origin : no_words;
         const uint32_t *column = task.column_step ? task.column_step : no_words;
@@ -404,7 +602,7 @@ class Runner {
         gl_.glUniform4ui(location("task_origin"), origin[0], origin[1], origin[2], origin[3]);
         gl_.glUniform4ui(location("task_column_step"), column[0], column[1], column[2], column[3]);
         gl_.glUniform4ui(location("task_row_step"), row[0], row[1], row[2], row[3]);
-        std::vector<uint32_t> result(4u * task.count);
+        std::vector<uint32_t> result(result_words * task.count);
         if (context_.api() == Api::gles30)
             render(task, queries, result);
         else
@@ -444,18 +642,23 @@ class Runner {
         const uint32_t width = task.count < 256 ? task.count : 256, height = (task.count + width - 1) / width;
         GLuint query_texture =
             context_.word_texture(queries.empty() ? std::vector<uint32_t>(8, 0u) : queries, 4);
-        GLuint target = 0, framebuffer = 0;
-        gl_.glGenTextures(1, &target);
-        gl_.glBindTexture(GL_TEXTURE_2D, target);
-        gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, static_cast<GLsizei>(width),
-                         static_cast<GLsizei>(height), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, nullptr);
+        /* three targets: the value, dx, dy */
+        GLuint targets[3] = {0, 0, 0}, framebuffer = 0;
+        const GLenum attachments[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        gl_.glGenTextures(3, targets);
         gl_.glGenFramebuffers(1, &framebuffer);
         gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+        for (int part = 0; part < 3; part++) {
+            gl_.glBindTexture(GL_TEXTURE_2D, targets[part]);
+            gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, static_cast<GLsizei>(width),
+                             static_cast<GLsizei>(height), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, nullptr);
+            gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[part], GL_TEXTURE_2D, targets[part], 0);
+        }
+        gl_.glDrawBuffers(3, attachments);
         if (gl_.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw std::runtime_error("the RGBA32UI render target is incomplete");
+            throw std::runtime_error("the RGBA32UI render targets are incomplete");
         gl_.glActiveTexture(GL_TEXTURE0);
         gl_.glBindTexture(GL_TEXTURE_2D, noise_);
         gl_.glActiveTexture(GL_TEXTURE1);
@@ -469,14 +672,19 @@ class Runner {
         gl_.glDrawArrays(GL_TRIANGLES, 0, 3);
         std::vector<uint32_t> pixels(4u * width * height);
         gl_.glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        gl_.glReadPixels(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height), GL_RGBA_INTEGER,
-                         GL_UNSIGNED_INT, pixels.data());
-        context_.check("render");
-        std::copy(pixels.begin(), pixels.begin() + static_cast<std::ptrdiff_t>(result.size()),
-                  result.begin());
+        for (uint32_t part = 0; part < 3; part++) {
+            gl_.glReadBuffer(attachments[part]);
+            gl_.glReadPixels(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height), GL_RGBA_INTEGER,
+                             GL_UNSIGNED_INT, pixels.data());
+            context_.check("render");
+            for (uint32_t v = 0; v < task.count; v++)
+                std::copy(pixels.begin() + static_cast<std::ptrdiff_t>(4 * v),
+                          pixels.begin() + static_cast<std::ptrdiff_t>(4 * v + 4),
+                          result.begin() + static_cast<std::ptrdiff_t>(result_words * v + 4 * part));
+        }
         gl_.glBindFramebuffer(GL_FRAMEBUFFER, 0);
         gl_.glDeleteFramebuffers(1, &framebuffer);
-        gl_.glDeleteTextures(1, &target);
+        gl_.glDeleteTextures(3, targets);
         gl_.glDeleteTextures(1, &query_texture);
     }
 
@@ -504,6 +712,7 @@ void run_requests(Runner &runner) {
             Task task;
             task.kind = request.kind;
             task.conversion = request.conversion;
+            task.gradient = request.gradient;
             task.width = request.width;
             task.count = request.width * request.height;
             task.origin = request.origin;
@@ -517,9 +726,9 @@ void run_requests(Runner &runner) {
         task.width = task.count;
         const std::vector<uint32_t> results = runner.run(task, queries);
         for (size_t b = 0; b < batch.size(); b++)
-            recorder.requests[batch[b]].result.assign(results.begin() + static_cast<std::ptrdiff_t>(4 * b),
-                                                      results.begin() +
-                                                          static_cast<std::ptrdiff_t>(4 * b + 4));
+            recorder.requests[batch[b]].result.assign(
+                results.begin() + static_cast<std::ptrdiff_t>(result_words * b),
+                results.begin() + static_cast<std::ptrdiff_t>(result_words * (b + 1)));
     }
 }
 
