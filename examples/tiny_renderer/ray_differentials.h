@@ -111,6 +111,29 @@ inline TextureJacobian sphere_jacobian(const SurfaceDifferential &motion, Vec no
     return {du(motion.along_x), dv(motion.along_x), du(motion.along_y), dv(motion.along_y)};
 }
 
+// The surface gradients of the texture coordinates: the vectors, tangent to the surface, whose dot
+// product with a motion dP along it is how far u and v move (texels per scene unit). The same
+// derivatives as the Jacobians above, before the pixel's motion is put in; bump mapping carries a
+// height's texel gradient to the surface with them (the chain rule: grad H = dH/du grad u + dH/dv grad v).
+struct CoordinateGradients {
+    Vec u, v;
+};
+
+// The ground plane: u = x scale, v = z scale.
+inline CoordinateGradients plane_gradients(double scale) { return {{scale, 0, 0}, {0, 0, scale}}; }
+
+// The sphere at the unit normal n: u = atan2(n.z, n.x) R scale moves by (n.x dP.z - n.z dP.x) / ring
+// scale, so grad u = (-n.z, 0, n.x) scale / ring (ring = n.x^2 + n.z^2, kept above 1e-12 as in
+// sphere_jacobian: longitude squeezes toward the poles); v = acos(n.y) R scale moves by
+// -dP.y / sqrt(ring) scale, so grad v is -(0, 1, 0) projected on the tangent plane, (0, 1, 0) - n n.y,
+// times scale / sqrt(ring): a vector of length `scale`, along the meridian.
+inline CoordinateGradients sphere_gradients(Vec normal, double scale) {
+    const double around = normal.x * normal.x + normal.z * normal.z;
+    const double ring = around > 1e-12 ? around : 1e-12, ring_radius = std::sqrt(ring);
+    return {Vec{-normal.z, 0, normal.x} * (scale / ring),
+            (Vec{0, 1, 0} - normal * normal.y) * (-scale / ring_radius)};
+}
+
 } // namespace tiny
 
 #endif // DSN_TINY_RENDERER_RAY_DIFFERENTIALS_H

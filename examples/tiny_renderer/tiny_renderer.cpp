@@ -6,6 +6,11 @@
 // from ray differentials: ray_differentials.h), and hand both to dsn_filtered_point_float. A pixel that
 // covers many texels then shows the texture filtered over its footprint, down to the exact mean colour
 // far away, instead of aliased noise.
+//
+// With --shading bump the surfaces are also bump-mapped: the texture's luminance is a relief (a height in
+// texels), whose exact gradient per texel dsn_continuous_gradient_float gives with the value; the chain
+// rule carries it to the surface (`height_gradient`, with the coordinates' surface gradients from
+// ray_differentials.h) and the normal is bent by it (`bumped_normal`) before the light is applied.
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -29,12 +34,13 @@
 namespace {
 
 const char *const usage =
-    "usage: dsn-tiny-renderer GROUND.dsnt [SPHERE.dsnt] -o OUT.png [--size WxH] [--seed S]\n"
+    "usage: dsn-tiny-renderer GROUND.dsnt [SPHERE.dsnt] -o OUT.png|OUT.f32 [--size WxH] [--seed S]\n"
     "                         [--filter none|iso|aniso] [--supersample N] [--crop X,Y,WxH]\n"
-    "                         [--time-limit S]\n"
+    "                         [--shading flat|bump] [--bump B] [--time-limit S]\n"
     "Ray-casts a ground plane and a sphere textured with the continuous-mode noise of the\n"
     "assets (the ground's asset is used for both when only one is given).\n"
-    "  -o, --output OUT.png   the picture to write\n"
+    "  -o, --output OUT       the picture to write: .png (8-bit RGB), or .f32 (raw little-endian float32,\n"
+    "                         RGB interleaved, row-major, top row first, unclamped, as dsn-render writes)\n"
     "  --size WxH             its size, 1..8192 per side (default 800x500)\n"
     "  --seed S               the noise's seed (default 1)\n"
     "  --filter F             how a pixel reads the texture: aniso (default: filtered over the pixel's\n"
@@ -44,6 +50,15 @@ const char *const usage =
     "  --supersample N        N x N unfiltered samples per pixel, averaged (a reference for the\n"
     "                         filters, N*N times slower; 1..16, needs --filter none)\n"
     "  --crop X,Y,WxH         render only the W x H pixels at (X, Y) of the --size picture\n"
+    "  --shading S            flat (default: the texture's colour lit by the surface's own normal) or\n"
+    "                         bump (bump mapping: the texture's luminance is a relief whose exact\n"
+    "                         gradient, from dsn_continuous_gradient_float, bends the normal)\n"
+    "  --bump B               the relief's height in texels per unit of luminance (1.0 = white), 0..64\n"
+    "                         (default 8; implies --shading bump). The gradient is the unfiltered\n"
+    "                         noise's: with --filter iso or aniso the relief fades where a pixel covers\n"
+    "                         more than a texel, by 4^-LOD (LOD: log2 of the footprint's longer side in\n"
+    "                         texels), as one sample of it per pixel would alias far away; --filter none\n"
+    "                         and --supersample keep it whole (the latter averages it: the reference)\n"
     "  --time-limit S         refuse a picture estimated to take more than S seconds (default 600;\n"
     "                         0 = no limit), from 64 probe pixels spread over it, timed first\n"
     "  -h, --help, --version  this help, the version\n"
@@ -59,6 +74,14 @@ struct UsageError : std::runtime_error {
 using tiny::Vec;
 
 enum class Filter { none, iso, aniso };
+
+// How surfaces are lit: by their own normal, or by the normal of a relief made of the texture (bump).
+enum class Shading { flat, bump };
+
+struct Shade {
+    Shading shading = Shading::flat;
+    double bump = 8; // the relief's height in texels per unit of luminance
+};
 
 // A loaded asset and its configured noise (the noise points into `bytes`).
 struct Texture {
@@ -143,20 +166,82 @@ void load_texture(Texture &texture, const std::string &path, uint32_t seed, doub
     texture.texels_per_unit = texels_per_unit;
 }
 
-// RGB colour of the texture at texture coordinates (u, v) in texels, for a pixel whose footprint there
-// is `jacobian` (texels per pixel along the screen's x and y).
-Vec sample_texture(const Texture &texture, double u, double v, const tiny::TextureJacobian &jacobian,
-                   Filter filter) {
-    float value[3];
+// What a surface point reads from its texture: the RGB colour, and the slope of the relief (texels of
+// height per texel along u and v; zero in flat shading).
+struct TextureSample {
+    Vec albedo;
+    double height_du, height_dv;
+};
+
+// The relief's height per unit of a point's value: its luminance (Rec. 709 weights), or its one channel.
+double luminance(const float *value, uint32_t channels) {
+    return channels == 3 ? 0.2126 * value[0] + 0.7152 * value[1] + 0.0722 * value[2] : double(value[0]);
+}
+
+// How much of the relief's slope a filtered pixel keeps. The gradient is the unfiltered noise's (the
+// filtered evaluation has none): one sample of it per pixel aliases where the pixel covers several texels
+// (far away, toward the horizon), as the unfiltered value does. The slope of detail finer than a
+// Gaussian blur of standard deviation sigma falls as 1 / sigma^2, and the filter's level LOD blurs by
+// sigma = 2^(LOD - 1) texels, so the slope is scaled by 4^-LOD: 1 where the pixel covers at most a
+// texel (LOD 0), 1/4 at two texels, 1/64 at eight. LOD here is the isotropic one (log2 of the
+// footprint's longer side in texels, dsn_filter_level with one tap): the gradient is one sample, which
+// the anisotropic taps do not spread along the footprint.
+double bump_fade(const Texture &texture, const tiny::TextureJacobian &jacobian) {
+    dsn_footprint isotropic;
+    int32_t lod_q8 = 0;
+    uint32_t taps = 0;
+    if (dsn_footprint_from_float(&isotropic, jacobian.du_dx, jacobian.dv_dx, jacobian.du_dy, jacobian.dv_dy,
+                                 1) != DSN_OK ||
+        dsn_filter_level(&texture.noise, &isotropic, &lod_q8, &taps) != DSN_OK)
+        return 0;
+    return std::exp2(-2.0 * lod_q8 / 256);
+}
+
+// The texture at texture coordinates (u, v) in texels, for a pixel whose footprint there is `jacobian`
+// (texels per pixel along the screen's x and y).
+TextureSample sample_texture(const Texture &texture, double u, double v,
+                             const tiny::TextureJacobian &jacobian, Filter filter, const Shade &shade) {
+    float value[3], dx[3] = {0, 0, 0}, dy[3] = {0, 0, 0};
     dsn_footprint footprint;
-    if (filter == Filter::none ||
+    const bool filtered =
+        filter != Filter::none &&
         dsn_footprint_from_float(&footprint, jacobian.du_dx, jacobian.dv_dx, jacobian.du_dy, jacobian.dv_dy,
-                                 filter == Filter::aniso ? 16 : 1) != DSN_OK)
+                                 filter == Filter::aniso ? 16 : 1) == DSN_OK;
+    const bool bump = shade.shading == Shading::bump && shade.bump > 0;
+    double fade = 0;
+    if (!filtered && bump) { // the value and its gradient in one call: out is dsn_continuous_point_float's
+        dsn_continuous_gradient_float(&texture.noise, u, v, value, dx, dy);
+        fade = 1;
+    } else if (!filtered) {
         dsn_continuous_point_float(&texture.noise, u, v, value);
-    else
+    } else {
         dsn_filtered_point_float(&texture.noise, u, v, &footprint, value);
-    return texture.asset.channels == 3 ? Vec{value[0], value[1], value[2]}
-                                       : Vec{value[0], value[0], value[0]};
+        if (bump && (fade = bump_fade(texture, jacobian)) > 0) {
+            float unfiltered[3];
+            dsn_continuous_gradient_float(&texture.noise, u, v, unfiltered, dx, dy);
+        }
+    }
+    const uint32_t channels = texture.asset.channels;
+    const double height = bump ? shade.bump * fade : 0;
+    return {channels == 3 ? Vec{value[0], value[1], value[2]} : Vec{value[0], value[0], value[0]},
+            height * luminance(dx, channels), height * luminance(dy, channels)};
+}
+
+// The relief's gradient along the surface, in scene units of height per scene unit: the height is
+// h / texels_per_unit scene units (h in texels), and h moves by dh/du du + dh/dv dv, so by the chain rule
+// grad H = (dh/du grad u + dh/dv grad v) / texels_per_unit (grad u and grad v in texels per scene unit:
+// on the ground, texels_per_unit along x and z, and the factor cancels, a slope being a ratio).
+Vec height_gradient(const TextureSample &sample, const tiny::CoordinateGradients &coordinates,
+                    double texels_per_unit) {
+    return (coordinates.u * sample.height_du + coordinates.v * sample.height_dv) * (1 / texels_per_unit);
+}
+
+// The shading normal of the surface of unit normal n raised along n by a height H: to first order in
+// the slope (Blinn, "Simulation of wrinkled surfaces", SIGGRAPH 1978), n - grad H, normalized; a surface
+// rising toward +x leans its normal toward -x. No relief leaves the normal as it is, bit for bit.
+Vec bumped_normal(Vec normal, Vec height_gradient) {
+    if (height_gradient.x == 0 && height_gradient.y == 0 && height_gradient.z == 0) return normal;
+    return normalize(normal - height_gradient);
 }
 
 struct Scene {
@@ -164,6 +249,7 @@ struct Scene {
     Vec sphere_center{0.3, 1.2, 2.5};
     double sphere_radius = 1.2;
     const Texture *ground, *sphere;
+    Shade shade;
 };
 
 // Distance along the ray to the sphere, or -1.
@@ -195,18 +281,25 @@ Vec trace(const Scene &scene, const tiny::Camera &camera, double px, double py, 
         tiny::sphere_coordinates(normal, scene.sphere_radius, scene.sphere->texels_per_unit, u, v);
         const tiny::TextureJacobian jacobian = tiny::sphere_jacobian(tiny::transfer(ray, t_sphere, normal),
                                                                      normal, scene.sphere->texels_per_unit);
-        const Vec albedo = sample_texture(*scene.sphere, u, v, jacobian, filter);
-        const double light = dot(normal, scene.sun);
-        return albedo * (0.25 + 0.85 * (light > 0 ? light : 0));
+        const TextureSample sample = sample_texture(*scene.sphere, u, v, jacobian, filter, scene.shade);
+        const Vec shading_normal = bumped_normal(
+            normal, height_gradient(sample, tiny::sphere_gradients(normal, scene.sphere->texels_per_unit),
+                                    scene.sphere->texels_per_unit));
+        const double light = dot(shading_normal, scene.sun);
+        return sample.albedo * (0.25 + 0.85 * (light > 0 ? light : 0));
     }
     if (t_ground > 0) {
         const Vec point = camera.eye + direction * t_ground;
         const double scale = scene.ground->texels_per_unit;
         const tiny::TextureJacobian jacobian =
             tiny::plane_jacobian(tiny::transfer(ray, t_ground, Vec{0, 1, 0}), scale);
-        const Vec albedo = sample_texture(*scene.ground, point.x * scale, point.z * scale, jacobian, filter);
+        const TextureSample sample =
+            sample_texture(*scene.ground, point.x * scale, point.z * scale, jacobian, filter, scene.shade);
         const bool shadowed = hit_sphere(scene, point, scene.sun) > 0;
-        Vec color = albedo * (0.3 + (shadowed ? 0 : 0.75 * scene.sun.y));
+        const Vec shading_normal =
+            bumped_normal(Vec{0, 1, 0}, height_gradient(sample, tiny::plane_gradients(scale), scale));
+        const double light = dot(shading_normal, scene.sun); // scene.sun.y where the ground is flat
+        Vec color = sample.albedo * (0.3 + (shadowed ? 0 : 0.75 * (light > 0 ? light : 0)));
         // Aerial perspective: far ground melts into the sky colour at the horizon.
         const double haze = 1 - std::exp(-t_ground / 60);
         return color * (1 - haze) + sky(Vec{0, 0, 1}) * haze;
@@ -224,6 +317,25 @@ void write_png(const std::string &path, int width, int height, const std::vector
     const std::string temporary = path + ".tmp";
     if (!stbi_write_png(temporary.c_str(), width, height, 3, pixels.data(), width * 3) ||
         std::rename(temporary.c_str(), path.c_str()) != 0) {
+        std::remove(temporary.c_str());
+        throw std::runtime_error("cannot write " + path);
+    }
+}
+
+// The colours as raw little-endian float32, RGB interleaved, row-major (dsn-render's .f32), written
+// next to the destination and renamed over it as the PNG.
+void write_f32(const std::string &path, const std::vector<float> &values) {
+    std::vector<unsigned char> bytes(values.size() * 4);
+    for (size_t k = 0; k < values.size(); k++) {
+        uint32_t bits;
+        std::memcpy(&bits, &values[k], 4);
+        for (int b = 0; b < 4; b++) bytes[k * 4 + size_t(b)] = uint8_t(bits >> (8 * b));
+    }
+    const std::string temporary = path + ".tmp";
+    FILE *file = std::fopen(temporary.c_str(), "wb");
+    bool written = file && std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+    if (file && std::fclose(file) != 0) written = false;
+    if (!written || std::rename(temporary.c_str(), path.c_str()) != 0) {
         std::remove(temporary.c_str());
         throw std::runtime_error("cannot write " + path);
     }
@@ -271,7 +383,8 @@ int run(int argc, char **argv) {
     uint32_t seed = 1;
     Filter filter = Filter::aniso;
     int supersample = 1, crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
-    bool filter_given = false, crop_given = false;
+    bool filter_given = false, crop_given = false, shading_given = false, bump_given = false;
+    Shade shade;
     double time_limit = 600; // seconds; 0: no limit
     for (int i = 1; i < argc; i++) {
         std::string flag = argv[i], value;
@@ -288,7 +401,7 @@ int run(int argc, char **argv) {
         }
         const bool takes_value = flag == "-o" || flag == "--output" || flag == "--size" || flag == "--seed" ||
                                  flag == "--filter" || flag == "--supersample" || flag == "--crop" ||
-                                 flag == "--time-limit";
+                                 flag == "--time-limit" || flag == "--shading" || flag == "--bump";
         if (takes_value && !inline_value) {
             if (i + 1 >= argc) throw UsageError(flag + " needs a value");
             value = argv[++i];
@@ -325,6 +438,20 @@ int run(int argc, char **argv) {
                 throw UsageError("--crop needs X,Y,WxH (whole numbers, W and H at least 1), not '" + value +
                                  "'");
             crop_given = true;
+        } else if (flag == "--shading") {
+            shading_given = true;
+            if (value == "flat")
+                shade.shading = Shading::flat;
+            else if (value == "bump")
+                shade.shading = Shading::bump;
+            else
+                throw UsageError("--shading must be flat or bump, not '" + value + "'");
+        } else if (flag == "--bump") {
+            char *end = nullptr;
+            shade.bump = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(shade.bump >= 0 && shade.bump <= 64))
+                throw UsageError("--bump needs a height in texels within 0..64, not '" + value + "'");
+            bump_given = true;
         } else if (flag == "--time-limit") {
             char *end = nullptr;
             time_limit = std::strtod(value.c_str(), &end);
@@ -338,8 +465,12 @@ int run(int argc, char **argv) {
         }
     }
     if (assets.empty() || assets.size() > 2) throw UsageError("give one or two assets");
-    if (output.size() < 5 || output.compare(output.size() - 4, 4, ".png") != 0)
-        throw UsageError("the output must be a .png: -o OUT.png");
+    const auto ends_with = [&](const char *extension) {
+        return output.size() > 4 && output.compare(output.size() - 4, 4, extension) == 0;
+    };
+    if (!ends_with(".png") && !ends_with(".f32"))
+        throw UsageError("the output must be a .png or a .f32: -o OUT.png");
+    const bool raw_output = ends_with(".f32");
     // Checked before the render, not found when the picture is written: an output that would replace an
     // input, or that has no folder to go to.
     struct stat output_status, folder_status;
@@ -359,6 +490,9 @@ int run(int argc, char **argv) {
     if (supersample > 1 && filter_given && filter != Filter::none)
         throw UsageError("--supersample averages unfiltered samples: it takes --filter none or no --filter");
     if (supersample > 1) filter = Filter::none;
+    if (bump_given && shading_given && shade.shading == Shading::flat)
+        throw UsageError("--bump is the relief of --shading bump: not with --shading flat");
+    if (bump_given) shade.shading = Shading::bump;
     if (!crop_given) crop_width = width, crop_height = height;
     if (crop_x > width - crop_width || crop_y > height - crop_height)
         throw UsageError("--crop reaches outside the " + std::to_string(width) + "x" +
@@ -370,10 +504,12 @@ int run(int argc, char **argv) {
     Scene scene;
     scene.ground = &ground;
     scene.sphere = &sphere;
+    scene.shade = shade;
 
     // A pinhole camera looking slightly down, 60 degrees of horizontal field of view.
     const tiny::Camera camera(Vec{0, 2.2, -5.5}, Vec{0, -0.2, 1}, 60, width, height);
-    std::vector<uint8_t> pixels(size_t(crop_width) * crop_height * 3);
+    std::vector<uint8_t> pixels(raw_output ? 0 : size_t(crop_width) * crop_height * 3);
+    std::vector<float> values(raw_output ? size_t(crop_width) * crop_height * 3 : 0);
     // Pixel (i, j) of the crop; supersampled: the average of samples at the centres of an N x N grid of
     // sub-pixels.
     auto render_pixel = [&](int i, int j) {
@@ -383,8 +519,12 @@ int run(int argc, char **argv) {
                 color = color + trace(scene, camera, crop_x + i + (a + 0.5) / supersample,
                                       crop_y + j + (b + 0.5) / supersample, filter);
         color = color * (1.0 / (supersample * supersample));
-        uint8_t *pixel = &pixels[(size_t(j) * crop_width + i) * 3];
-        pixel[0] = to_byte(color.x), pixel[1] = to_byte(color.y), pixel[2] = to_byte(color.z);
+        const size_t at = (size_t(j) * size_t(crop_width) + size_t(i)) * 3;
+        if (raw_output)
+            values[at] = float(color.x), values[at + 1] = float(color.y), values[at + 2] = float(color.z);
+        else
+            pixels[at] = to_byte(color.x), pixels[at + 1] = to_byte(color.y),
+            pixels[at + 2] = to_byte(color.z);
     };
     const unsigned thread_count =
         std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() : 1;
@@ -411,7 +551,10 @@ int run(int argc, char **argv) {
     for (std::thread &worker : workers) worker = std::thread(render_rows);
     render_rows();
     for (std::thread &worker : workers) worker.join();
-    write_png(output, crop_width, crop_height, pixels);
+    if (raw_output)
+        write_f32(output, values);
+    else
+        write_png(output, crop_width, crop_height, pixels);
     return 0;
 }
 
