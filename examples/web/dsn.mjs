@@ -1,6 +1,7 @@
 // dsn.mjs - the dsn runtime in JavaScript: loads dsn.wasm (the C runtime compiled for freestanding wasm32)
 // and a .dsnt asset, and evaluates the noise with the runtime's bits: RGBA tiles for a canvas, lattice
-// and continuous points. A plain ES module with no dependencies, for browsers, workers and Node.
+// and continuous points, and the noise's gradient (for bump and normal mapping) per point and per tile.
+// A plain ES module with no dependencies, for browsers, workers and Node.
 //
 //   import { loadRuntime } from './dsn.mjs';
 //   const runtime = await loadRuntime(new URL('dsn.wasm', import.meta.url));
@@ -10,6 +11,7 @@
 //   const zoomed = texture.tile(10.5, -3, 256, 256, { scale: 4 }); // continuous grid, 4x magnified
 //   canvas.getContext('2d').putImageData(new ImageData(rgba, 256, 256), 0, 0);
 //   texture.point(12, 34);                                    // Float64Array, 1.0 = the exemplar's white
+//   const { value, dx, dy } = texture.continuousGradient(12.5, 34.25); // and its derivatives per texel
 //
 // Each texture owns a WebAssembly instance (its own memory), so textures are independent and a texture
 // can be dropped by dropping the object. Errors from the runtime become DsnError exceptions carrying the
@@ -39,6 +41,8 @@ const Q32_ONE = 4294967296;
 const UINT32_MAX = 4294967295;
 const SCALE_MIN = 1 / 65536, SCALE_MAX = 65536; // dsn-render --scale: steps of at most 2^16 texels
 const MAX_TILE_PIXELS = 1 << 26;
+const MAX_GRADIENT_TILE_PIXELS = 1 << 22; // three arrays of 32-bit values per channel
+const POINT_FORMATS = ['number', 'fixed', 'float32'], TILE_FORMATS = ['float32', 'fixed'];
 
 /** An error reported by the runtime: `code` is its dsn_error code, `message` its dsn_error_message. */
 export class DsnError extends Error {
@@ -101,6 +105,7 @@ export class Texture {
         this.configAt = reserve(CONFIG_BYTES);
         this.gridAt = reserve(GRID_BYTES);
         this.valuesAt = reserve(16);
+        this.gradientAt = reserve(3 * 16); // a point's value, dx and dy: three blocks of 16 bytes
         this.bytesAt = reserve(bytes.length);
         this.workAt = at;
         this.ensure(at);
@@ -190,6 +195,102 @@ export class Texture {
         check(e, e.dsn_continuous_point_fixed(this.noiseAt, e.dsn_coordinate_from_double(x),
                                               e.dsn_coordinate_from_double(y), this.valuesAt));
         return fromFixed(new Int32Array(e.memory.buffer, this.valuesAt, this.channels));
+    }
+
+    /**
+       The value at lattice point (x, y) (integers, as for point()) with its gradient, the forward
+        differences dx = F(x + 1, y) - F(x, y) and dy = F(x, y + 1) - F(x, y) of the noise before its
+        rounding (dsn_lattice_gradient_fixed; on a periodic axis too): { value, dx, dy }, each of
+        `channels` values. options.format: 'number' (the default: Float64Array, exactly the runtime's
+        Q16.16 / 65536; `value` is what point() gives), 'fixed' (Int32Array: the Q16.16 integers) or
+        'float32' (Float32Array: dsn_lattice_gradient_float, each fixed value rounded to float).
+     */
+    gradient(x, y, options = {}) {
+        this.checkConfigured();
+        checkLattice('x', x);
+        checkLattice('y', y);
+        const format = checkFormat(options, POINT_FORMATS);
+        const e = this.exports, [out, dx, dy] = this.gradientSlots();
+        const call = format === 'float32' ? e.dsn_lattice_gradient_float : e.dsn_lattice_gradient_fixed;
+        check(e, call(this.noiseAt, x | 0, y | 0, out, dx, dy));
+        return this.readGradient(format, out, dx, dy, this.channels);
+    }
+
+    /**
+       The value at the continuous point (x, y) in texels (finite numbers, as for continuousPoint()) with
+        its exact derivatives per texel along x and y (dsn_continuous_gradient_fixed: the bilinear noise
+        is piecewise linear, and on a texel edge of some impulse the slope given is that toward +x or
+        +y): { value, dx, dy }, each of `channels` values. options.format as for gradient() ('float32':
+        dsn_continuous_gradient_float, from the same coordinates).
+     */
+    continuousGradient(x, y, options = {}) {
+        this.checkConfigured();
+        checkFinite('x', x);
+        checkFinite('y', y);
+        const format = checkFormat(options, POINT_FORMATS);
+        const e = this.exports, [out, dx, dy] = this.gradientSlots();
+        if (format === 'float32')
+            check(e, e.dsn_continuous_gradient_float(this.noiseAt, x, y, out, dx, dy));
+        else
+            check(e, e.dsn_continuous_gradient_fixed(this.noiseAt, e.dsn_coordinate_from_double(x),
+                                                     e.dsn_coordinate_from_double(y), out, dx, dy));
+        return this.readGradient(format, out, dx, dy, this.channels);
+    }
+
+    /**
+       The values and gradients of a width x height tile, exactly the per-point results:
+        { value, dx, dy }, each of width x height x `channels` values (row by row, channels
+        interleaved). The window as for tile(): without `view` the lattice tile at the integer point
+        (x, y) (gradient()'s forward differences), with view = { scale, rotate } the continuous grid
+        (continuousGradient()'s derivatives, per texel of the noise, not per pixel of the grid).
+        width x height at most 2^22. options.format: 'float32' (the default: Float32Array, the runtime's
+        float tiles) or 'fixed' (Int32Array: the Q16.16 integers).
+     */
+    gradientTile(x, y, width, height, view = null, options = {}) {
+        this.checkConfigured();
+        const e = this.exports;
+        checkInteger('width', width, 1, MAX_GRADIENT_TILE_PIXELS);
+        checkInteger('height', height, 1, MAX_GRADIENT_TILE_PIXELS);
+        if (width * height > MAX_GRADIENT_TILE_PIXELS)
+            throw new RangeError(`dsn: a gradient tile is at most ${MAX_GRADIENT_TILE_PIXELS} pixels, not ` +
+                                 `${width}x${height}`);
+        if (view === null) {
+            checkLattice('x', x);
+            checkLattice('y', y);
+        } else {
+            checkFinite('x', x);
+            checkFinite('y', y);
+            checkView(view);
+        }
+        const format = checkFormat(options, TILE_FORMATS), float = format === 'float32';
+        const count = width * height * this.channels, stride = align(4 * count, 16);
+        const out = this.workAt, dx = out + stride, dy = dx + stride;
+        this.ensure(dy + stride);
+        let err;
+        if (view === null) {
+            const call = float ? e.dsn_lattice_tile_gradient_float : e.dsn_lattice_tile_gradient_fixed;
+            err = call(this.noiseAt, x | 0, y | 0, width, height, out, dx, dy);
+        } else {
+            this.writeGrid(x, y, view);
+            const call = float ? e.dsn_continuous_tile_gradient_float : e.dsn_continuous_tile_gradient_fixed;
+            err = call(this.noiseAt, this.gridAt, width, height, out, dx, dy);
+        }
+        check(e, err);
+        return this.readGradient(format, out, dx, dy, count);
+    }
+
+    // The three output blocks of a point's gradient.
+    gradientSlots() { return [this.gradientAt, this.gradientAt + 16, this.gradientAt + 32]; }
+
+    // { value, dx, dy } read from the three arrays of `count` values at out, dx, dy, as copies.
+    readGradient(format, out, dx, dy, count) {
+        const buffer = this.exports.memory.buffer;
+        const read = (at) => {
+            if (format === 'float32') return new Float32Array(buffer, at, count).slice();
+            const fixed = new Int32Array(buffer, at, count);
+            return format === 'fixed' ? fixed.slice() : fromFixed(fixed);
+        };
+        return { value: read(out), dx: read(dx), dy: read(dy) };
     }
 
     /**
@@ -294,8 +395,20 @@ function checkNames(what, object, names) {
         throw new TypeError(`dsn: ${what} must be an object, not ${describe(object)}`);
     for (const name of Object.keys(object))
         if (!names.includes(name))
-            throw new TypeError(`dsn: unknown ${what === 'view' ? 'view' : 'setting'} '${name}' ` +
-                                `(known: ${names.join(', ')})`);
+            throw new TypeError(`dsn: unknown ${what === 'settings' ? 'setting' : what.replace(/s$/, '')} ` +
+                                `'${name}' (known: ${names.join(', ')})`);
+}
+
+// options = { format }: one of `formats` (the first by default).
+function checkFormat(options, formats) {
+    checkNames('options', options, ['format']);
+    const { format = formats[0] } = options;
+    if (typeof format !== 'string')
+        throw new TypeError(`dsn: options.format must be a string, not ${describe(format)}`);
+    if (!formats.includes(format))
+        throw new RangeError(`dsn: options.format must be one of ` +
+                             `${formats.map((f) => `'${f}'`).join(', ')}, not ${describe(format)}`);
+    return format;
 }
 
 function checkView(view) {

@@ -1,12 +1,13 @@
 // module-test.mjs - checks of the JavaScript module (dsn.mjs) under Node against the native runtime, as
 // dsn-render writes it: lattice and continuous tiles (with a rotation, a period, a density and the largest
-// seed), lattice and continuous points, and the loader's errors. Run by examples/web/web-test.
+// seed), lattice and continuous points, gradients (against dsn-web-gradient-native, which must lie beside
+// dsn-render), and the loader's errors. Run by examples/web/web-test.
 // With the baker (dsn-bake.wasm and an exemplar image), also bake.mjs: a bake that loads, refusals.
 // Usage: node module-test.mjs dsn.wasm ASSET.dsnt DSN-RENDER OUT-FOLDER [dsn-bake.wasm EXEMPLAR]
 import {execFileSync} from 'node:child_process';
 import {createHash} from 'node:crypto';
 import {readFileSync} from 'node:fs';
-import {join} from 'node:path';
+import {dirname, join} from 'node:path';
 
 import {BakeError, loadBaker} from './bake.mjs';
 import {DsnError, loadRuntime} from './dsn.mjs';
@@ -135,6 +136,97 @@ for (let j = 0; j < 5; j++)
 check('lattice points = dsn-render --mode point', latticeSame);
 check('continuous points = dsn-render --mode continuous', continuousSame);
 
+// Gradients: the native runtime's bits per point (lattice, also across the int32 wrap of a periodic
+// axis, and continuous), the value equal to point()'s and continuousPoint()'s, the float32 format the
+// fixed values rounded, the tiles equal to the points, the lattice differences within one unit of the
+// rounded values' differences.
+const gradientNative = join(dirname(renderPath), 'dsn-web-gradient-native');
+const nativeGradients = (settings, mode, points) =>
+    execFileSync(gradientNative, [
+        assetPath, String(settings.seed), String(settings.period?.[0] ?? 0),
+        String(settings.period?.[1] ?? 0), mode, ...points.flat().map(String)
+    ])
+        .toString()
+        .trim()
+        .split('\n')
+        .map((line) => line.split(' ').map(Number));
+const sameValues = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
+const gradientCases = [
+    { name: 'lattice', settings: { seed: 21 }, mode: 'lattice',
+      points: [[-3, -2], [0, 0], [5, 7], [-1, 2147483647], [2147483647, -2147483648]] },
+    { name: 'lattice, period 16x8 (across the int32 wrap)', settings: { seed: 21, period: [16, 8] },
+      mode: 'lattice', points: [[2147483647, 2147483647], [-2147483648, 2147483647], [15, 7], [-1, -1]] },
+    { name: 'continuous', settings: { seed: 21 }, mode: 'continuous',
+      points: [[0.5, -1.75], [3.125, 2], [-7.3, 11.9], [1e6 + 0.25, -2.5e5], [0, 0]] },
+    { name: 'continuous, period 16x8', settings: { seed: 4, period: [16, 8] }, mode: 'continuous',
+      points: [[15.75, 7.5], [-0.25, 3], [2147483647.5, -2147483648.25]] },
+];
+for (const test of gradientCases) {
+    texture.configure(test.settings);
+    const lattice = test.mode === 'lattice';
+    const native = nativeGradients(test.settings, test.mode, test.points);
+    let bits = true, values = true, floats = true, differences = true;
+    for (const [k, [x, y]] of test.points.entries()) {
+        const gradient = lattice ? (p, q, o) => texture.gradient(p, q, o)
+                                 : (p, q, o) => texture.continuousGradient(p, q, o);
+        const fixed = gradient(x, y, { format: 'fixed' });
+        const n = texture.channels;
+        if (!sameValues([...fixed.value, ...fixed.dx, ...fixed.dy], native[k])) bits = false;
+        const number = gradient(x, y);
+        const point = lattice ? texture.point(x, y) : texture.continuousPoint(x, y);
+        if (!sameValues(number.value, point) ||
+            !sameValues(number.dx, Float64Array.from(fixed.dx, (v) => v / 65536)))
+            values = false;
+        const float = gradient(x, y, { format: 'float32' });
+        for (const part of ['value', 'dx', 'dy'])
+            if (!sameValues(float[part], Float32Array.from(fixed[part], (v) => v / 65536))) floats = false;
+        if (lattice) {
+            const east = texture.point(x + 1, y), south = texture.point(x, y + 1);
+            for (let c = 0; c < n; c++)
+                if (Math.abs(fixed.dx[c] - (east[c] - point[c]) * 65536) > 1 ||
+                    Math.abs(fixed.dy[c] - (south[c] - point[c]) * 65536) > 1)
+                    differences = false;
+        }
+    }
+    check(`gradient, ${test.name}: the native runtime's bits`, bits);
+    check(`gradient, ${test.name}: value = the value function, numbers = fixed / 65536`, values);
+    check(`gradient, ${test.name}: float32 = dsn_*_gradient_float`, floats);
+    if (lattice)
+        check(`gradient, ${test.name}: dx, dy within one unit of the values' differences`, differences);
+}
+{
+    texture.configure({ seed: 21 });
+    const n = texture.channels, width = 7, height = 5;
+    // A lattice tile and a continuous one (steps of half a texel, exact in doubles) against the points.
+    const latticeTile = texture.gradientTile(-3, -2, width, height, null, { format: 'fixed' });
+    const continuousTile = texture.gradientTile(0.5, -1.75, width, height, { scale: 2 }, { format: 'fixed' });
+    const floatTile = texture.gradientTile(0.5, -1.75, width, height, { scale: 2 });
+    let latticeSame = true, continuousSame = true, floatSame = true;
+    for (let j = 0; j < height; j++)
+        for (let i = 0; i < width; i++) {
+            const at = (j * width + i) * n;
+            const a = texture.gradient(-3 + i, -2 + j, { format: 'fixed' });
+            const b = texture.continuousGradient(0.5 + i / 2, -1.75 + j / 2, { format: 'fixed' });
+            for (const part of ['value', 'dx', 'dy']) {
+                if (!sameValues(latticeTile[part].subarray(at, at + n), a[part])) latticeSame = false;
+                if (!sameValues(continuousTile[part].subarray(at, at + n), b[part])) continuousSame = false;
+                const rounded = Float32Array.from(b[part], (v) => v / 65536);
+                if (!sameValues(floatTile[part].subarray(at, at + n), rounded)) floatSame = false;
+            }
+        }
+    check('gradient tile, lattice = its points', latticeSame);
+    check('gradient tile, continuous (scale 2) = its points', continuousSame);
+    check('gradient tile, float32 = the fixed points rounded', floatSame);
+    // The continuous tile's values are those the RGBA tile shows (dsn_fixed_to_u8 of the same values).
+    const rgba = texture.tile(0.5, -1.75, width, height, { scale: 2 });
+    const u8 = (v) => (v <= 0 ? 0 : v >= 65536 ? 255 : Math.floor((v * 255 + 32768) / 65536));
+    let shown = true;
+    for (let p = 0; p < width * height; p++)
+        for (let c = 0; c < 3; c++)
+            if (rgba[4 * p + c] !== u8(continuousTile.value[p * n + (n === 3 ? c : 0)])) shown = false;
+    check('gradient tile values = the RGBA tile', shown);
+}
+
 // The loader's errors: codes and messages from the runtime.
 const refused = (data) => {
     try {
@@ -198,6 +290,27 @@ const refusals = [
      () => texture.configure({ colorTransform: 'no' })],
     ['setting seeds', TypeError, /unknown setting 'seeds'/, () => texture.configure({ seeds: 3 })],
     ['settings null', TypeError, /settings must be an object/, () => texture.configure(null)],
+    ['gradient x 1.5', RangeError, /\bx must be an integer/, () => texture.gradient(1.5, 0)],
+    ['gradient y "1"', TypeError, /\by must be a number/, () => texture.gradient(0, '1')],
+    ['continuous gradient NaN', RangeError, /\by must be a finite number/,
+     () => texture.continuousGradient(0, NaN)],
+    ['gradient format "float64"', RangeError, /options\.format must be one of 'number', 'fixed', 'float32'/,
+     () => texture.gradient(0, 0, { format: 'float64' })],
+    ['gradient format 1', TypeError, /options\.format must be a string/,
+     () => texture.continuousGradient(0, 0, { format: 1 })],
+    ['gradient option fmt', TypeError, /unknown option 'fmt'/,
+     () => texture.gradient(0, 0, { fmt: 'fixed' })],
+    ['gradient options null', TypeError, /options must be an object/, () => texture.gradient(0, 0, null)],
+    ['gradient tile format "number"', RangeError, /options\.format must be one of 'float32', 'fixed'/,
+     () => texture.gradientTile(0, 0, 8, 8, null, { format: 'number' })],
+    ['gradient tile 2^12 x 2^11', RangeError, /gradient tile is at most 4194304 pixels/,
+     () => texture.gradientTile(0, 0, 1 << 12, 1 << 11)],
+    ['gradient tile height 0', RangeError, /height must be an integer within \[1, /,
+     () => texture.gradientTile(0, 0, 8, 0)],
+    ['gradient tile scale 0', RangeError, /view\.scale/,
+     () => texture.gradientTile(0, 0, 8, 8, { scale: 0 })],
+    ['gradient tile lattice x 0.5', RangeError, /\bx must be an integer/,
+     () => texture.gradientTile(0.5, 0, 8, 8)],
 ];
 texture.configure({ seed: 4, density: 12 });
 const before = rgbHash(texture.tile(0, 0, 16, 16));

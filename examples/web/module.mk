@@ -70,8 +70,15 @@ web: deps deps-web
 	@$(MAKE) --no-print-directory $(WEB_WASM) $(WEB_BAKER) $(WEB)/demo.dsnt $(WEB_PAGE_FILES:%=$(WEB)/%)
 
 web-test: deps deps-web deps-web-test
-	@$(MAKE) --no-print-directory all $(WEB_WASM) $(WEB_BAKER) $(WEB)/demo.dsnt $(WEB_PAGE_FILES:%=$(WEB)/%)
+	@$(MAKE) --no-print-directory all $(WEB_WASM) $(WEB_BAKER) $(WEB)/demo.dsnt $(WEB_PAGE_FILES:%=$(WEB)/%) \
+	    $(WEB_GRADIENT_NATIVE)
 	@BUILD="$(BUILD)" examples/web/web-test
+
+# module-test.mjs's native gradients (beside dsn-render, where it looks for them).
+WEB_GRADIENT_NATIVE := $(BUILD)/bin/dsn-web-gradient-native
+$(WEB_GRADIENT_NATIVE): $(BUILD)/obj/examples/web/gradient_native.o $(LIBDSN)
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $^ -o $@ $(LDFLAGS)
 
 # make bench: the wasm tiles under Node against the same tiles natively (examples/web/bench-wasm).
 $(BUILD)/bin/dsn-web-bench-native: $(BUILD)/obj/examples/web/bench_native.o $(LIBDSN_BAKE) $(LIBDSN)

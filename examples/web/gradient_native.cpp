@@ -1,0 +1,59 @@
+// gradient_native.cpp - the native half of module-test.mjs's gradient checks: the value and gradient of
+// an asset at the points given, from the native runtime (dsn_lattice_gradient_fixed, or
+// dsn_continuous_gradient_fixed at dsn_coordinate_from_double of each coordinate), configured as dsn.mjs
+// configures it (the asset's density, the continuous mode allowed), one line per point: the Q16.16
+// integers of the value, then of dx, then of dy.
+// Usage: dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y lattice|continuous X Y [X Y ...]
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "dsn/dsn.h"
+
+int main(int argc, char **argv) {
+    if (argc < 8 || argc % 2 != 0 ||
+        (std::strcmp(argv[5], "lattice") != 0 && std::strcmp(argv[5], "continuous") != 0)) {
+        std::fprintf(stderr, "usage: dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y "
+                             "lattice|continuous X Y [X Y ...]\n");
+        return 2;
+    }
+    std::ifstream file(argv[1], std::ios::binary);
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
+                                     std::istreambuf_iterator<char>());
+    const bool continuous = std::strcmp(argv[5], "continuous") == 0;
+    dsn_asset asset;
+    dsn_noise noise;
+    dsn_config config;
+    int err = dsn_asset_load(&asset, bytes.data(), bytes.size());
+    dsn_config_defaults(&config);
+    config.seed = static_cast<uint32_t>(std::strtoul(argv[2], nullptr, 10));
+    config.period_x = static_cast<uint32_t>(std::strtoul(argv[3], nullptr, 10));
+    config.period_y = static_cast<uint32_t>(std::strtoul(argv[4], nullptr, 10));
+    config.flags = DSN_FLAG_ALLOW_LATTICE_CONTINUOUS;
+    if (err == DSN_OK) err = dsn_noise_init(&noise, &asset, &config);
+    const uint32_t channels = err == DSN_OK ? dsn_noise_channels(&noise) : 0;
+    for (int i = 6; err == DSN_OK && i + 1 < argc; i += 2) {
+        int32_t value[DSN_MAX_CHANNELS], dx[DSN_MAX_CHANNELS], dy[DSN_MAX_CHANNELS];
+        if (continuous)
+            err = dsn_continuous_gradient_fixed(
+                &noise, dsn_coordinate_from_double(std::strtod(argv[i], nullptr)),
+                dsn_coordinate_from_double(std::strtod(argv[i + 1], nullptr)), value, dx, dy);
+        else
+            err = dsn_lattice_gradient_fixed(&noise, static_cast<int32_t>(std::strtoll(argv[i], nullptr, 10)),
+                                             static_cast<int32_t>(std::strtoll(argv[i + 1], nullptr, 10)),
+                                             value, dx, dy);
+        if (err != DSN_OK) break;
+        const int32_t *parts[3] = {value, dx, dy};
+        for (uint32_t k = 0; k < 3 * channels; k++)
+            std::printf(k == 0 ? "%d" : " %d", static_cast<int>(parts[k / channels][k % channels]));
+        std::printf("\n");
+    }
+    if (err != DSN_OK) {
+        std::fprintf(stderr, "dsn-web-gradient-native: %s\n", dsn_error_message(err));
+        return 1;
+    }
+    return 0;
+}
