@@ -481,7 +481,8 @@ uvec2 dsn_bilinear(ivec4 corners, ivec4 weights) {
 /* The bilinear texton's slope per 2^-16 texel along x, (1 - row_weight)(b - a) + row_weight (d - c)
    (corners a b / c d), or along y with the weights and corners transposed: below 2^32 in magnitude. */
 uvec2 dsn_slope(int a, int b, int c, int d, int lower_weight, int upper_weight) {
-    return dsn_add64(dsn_multiply_signed_wide(lower_weight, b - a), dsn_multiply_signed_wide(upper_weight, d - c));
+    return dsn_add64(dsn_multiply_signed_wide(lower_weight, b - a),
+                     dsn_multiply_signed_wide(upper_weight, d - c));
 }
 
 /* One axis of an impulse seen from the point: false when it lies beyond the period or out of reach;
