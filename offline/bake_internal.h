@@ -174,6 +174,20 @@ std::vector<PyramidLevel> texton_pyramid(const AssetFields &fields);
 
 // ---- Histogram mapping (format 1.2; the functions are in dsn/bake.h) ----
 
+// The Gaussianized exemplar whose noise, mapped through the exemplar's marginals, has the exemplar's
+// correlations (a translation process): each decorrelated channel of gaussianize(exemplar) keeps its phase
+// and its variance and takes the latent spectrum, the DFT of rho(tau) = R^-1(r(tau)), r the autocorrelation
+// of the exemplar's channel v_k (of its periodic component when `periodic`) and R(rho) = Cov(T(X), T(Y)) /
+// Var T for X, Y standard normal of correlation rho, T the channel's quantile function on the normal scale
+// (Mehler's expansion: 256 Hermite terms, the rest spread as a jump's); the spectrum's negative values (rho
+// need not be positive definite) are cut, then 30 iterations of S *= S_r / S_out (Yamazaki and Shinozuka,
+// 1988; S_out the DFT of R(rho_S)) bring the mapped noise's spectrum back towards the exemplar's. Pixel by
+// pixel, the Gaussianization keeps an edge's sharpness or a noise's share where the tones are compressed; a
+// noise with that spectrum has those high frequencies everywhere, and the mapping turns them into speckle
+// (a threshold of a rough field: salt-and-pepper) or a fine pixel noise. A Gaussian channel (T linear)
+// keeps its own spectrum. dsn::bake does not call it yet: its model is built on gaussianize.
+Image latent_gaussianize(const Image &exemplar, const HistogramModel &model, bool periodic);
+
 // The tables dsn-bake writes: 129 entries 1/16 apart from -4 (fine enough to keep the steps of a quantized
 // exemplar's quantile function sharp), which cover the Gaussian-space
 // values within four standard deviations of a unit-variance channel (all but 6e-5 of them; beyond, the

@@ -177,10 +177,183 @@ Image gaussianize(const Image &exemplar, const HistogramModel &model) {
         for (size_t i = 0; i < plane; i++) mean += out[i];
         mean /= double(plane);
         for (size_t i = 0; i < plane; i++) square += (out[i] - mean) * (out[i] - mean);
+        // The component keeps its share of the variance: a weak, mostly-noise component at unit variance
+        // would weigh as much as the strongest one in the shared phase of the texton, and the colour
+        // transform would mix its noise into the visible channels.
+        const double share = model.basis.variances[0] > 0
+                                 ? std::sqrt(model.basis.variances[size_t(k)] / model.basis.variances[0])
+                                 : 1.0;
         const double deviation = std::sqrt(square / double(plane));
-        for (size_t i = 0; i < plane; i++) out[i] = deviation > 0 ? (out[i] - mean) / deviation : 0.0;
+        for (size_t i = 0; i < plane; i++) out[i] = deviation > 0 ? share * (out[i] - mean) / deviation : 0.0;
     }
     return gaussian;
+}
+
+namespace {
+
+constexpr int kHermiteTerms = 256;
+constexpr int kLatentIterations = 30;
+
+// The weights w_n of R(rho) = Cov(T(X), T(Y)) / Var T = sum_n w_n rho^n (Mehler's expansion), X and Y
+// standard normal with correlation rho and T(z) the empirical quantile of `sorted` at normal_cdf(z), for
+// n = 1..kHermiteTerms: w_n = c_n^2 / Var T, c_n = E[T(Z) h_n(Z)] with the normalized Hermite polynomials,
+// from E[T h_n] = E[T' h_(n-1)] / sqrt(n) with T a step of s_(i+1) - s_i between ranks i and i + 1, at
+// z_i = normal_quantile((i + 1) / n) (the empirical quantile's ramp between them is 1/n wide). The weights
+// sum to 1 with the last one: the variance beyond the terms. Empty when T is constant.
+std::vector<double> hermite_weights(const std::vector<double> &sorted) {
+    const size_t count = sorted.size();
+    std::vector<double> coefficients(kHermiteTerms + 1, 0.0), h(kHermiteTerms + 1);
+    for (size_t i = 0; i + 1 < count; i++) {
+        const double jump = sorted[i + 1] - sorted[i];
+        if (!(jump > 0)) continue;
+        const double z = normal_quantile(double(i + 1) / double(count)), weight = jump * normal_density(z);
+        h[0] = 1, h[1] = z;
+        for (int n = 1; n < kHermiteTerms; n++)
+            h[size_t(n + 1)] =
+                (z * h[size_t(n)] - std::sqrt(double(n)) * h[size_t(n - 1)]) / std::sqrt(n + 1.0);
+        for (int n = 1; n <= kHermiteTerms; n++)
+            coefficients[size_t(n)] += weight * h[size_t(n - 1)] / std::sqrt(double(n));
+    }
+    double sum = 0, square = 0;
+    for (double value : sorted) sum += value, square += value * value;
+    const double variance = square / double(count) - (sum / double(count)) * (sum / double(count));
+    if (!(variance > 0)) return {};
+    std::vector<double> weights(kHermiteTerms + 1, 0.0);
+    double kept = 0;
+    for (int n = 1; n <= kHermiteTerms; n++)
+        kept += weights[size_t(n)] = coefficients[size_t(n)] * coefficients[size_t(n)] / variance;
+    weights[0] = std::max(0.0, 1 - kept); // the rest, beyond the terms (see correlation_function)
+    return weights;
+}
+
+// R(rho) from the weights: the terms, and the rest spread beyond them as a step's weights decay, n^(-3/2)
+// (the slowest decay of a monotone T: a jump), over the next 63 kHermiteTerms terms (`tail`: those
+// decays, summing to 1).
+double correlation_function(const std::vector<double> &weights, const std::vector<double> &tail, double rho) {
+    double sum = 0, power = 1;
+    for (size_t n = 1; n < weights.size(); n++) sum += weights[n] * (power *= rho);
+    if (weights[0] > 0) {
+        double rest = 0;
+        for (double decay : tail) {
+            rest += decay * (power *= rho);
+            if (std::fabs(power) < 1e-12) break;
+        }
+        sum += weights[0] * rest;
+    }
+    return sum;
+}
+
+std::vector<double> tail_decays() {
+    std::vector<double> tail;
+    double norm = 0;
+    for (int n = kHermiteTerms + 1; n < 64 * (kHermiteTerms + 1); n++)
+        tail.push_back(std::pow(double(n), -1.5)), norm += tail.back();
+    for (double &decay : tail) decay /= norm;
+    return tail;
+}
+
+} // namespace
+
+Image latent_gaussianize(const Image &exemplar, const HistogramModel &model, bool periodic) {
+    const Image gaussian = gaussianize(exemplar, model);
+    const int channels = exemplar.channels;
+    const size_t plane = size_t(exemplar.width) * size_t(exemplar.height);
+    // The decorrelated channels v_k of the exemplar and their correlations, and the phases of the
+    // Gaussianized ones (of the periodic components when the bake takes them, as the plain bake does).
+    Image decorrelated = gaussian;
+    for (int k = 0; k < channels; k++) {
+        double *out = &decorrelated.values[size_t(k) * plane];
+        std::fill(out, out + plane, 0.0);
+        for (int c = 0; c < channels; c++) {
+            const double weight = model.basis.vectors[size_t(c * 3 + k)], mean = model.basis.mean[size_t(c)];
+            for (size_t i = 0; i < plane; i++)
+                out[i] += weight * (exemplar.values[size_t(c) * plane + i] - mean);
+        }
+    }
+    Spectrum power = forward_dft(periodic ? periodic_component(decorrelated) : decorrelated);
+    const Spectrum phases = forward_dft(periodic ? periodic_component(gaussian) : gaussian);
+    for (std::complex<float> &value : power.values) value = std::norm(value);
+    const Image correlation = inverse_dft(power); // N times the autocovariance
+    Image latent = gaussian;
+    latent.values.assign(gaussian.values.size(), 0.0);
+    const std::vector<double> tail = tail_decays();
+    for (int k = 0; k < channels; k++) {
+        const std::vector<double> weights = hermite_weights(model.sorted[size_t(k)]);
+        const double *r = &correlation.values[size_t(k) * plane];
+        if (weights.empty() || !(r[0] > 0)) continue; // a constant channel stays 0
+        // R on a grid of rho over [-1, 1], dense towards 1 (rho = 1 - 2 (1 - j / grid)^2, where R is
+        // steepest: a jump's R is 1 - O(sqrt(1 - rho))), made non-decreasing, inverted by interpolation.
+        const int grid = 4096;
+        std::vector<double> grid_rho(grid + 1), table(grid + 1);
+        for (int j = 0; j <= grid; j++) {
+            const double from_one = 1 - double(j) / grid;
+            grid_rho[size_t(j)] = 1 - 2 * from_one * from_one;
+            const double value = j == grid ? 1.0 : correlation_function(weights, tail, grid_rho[size_t(j)]);
+            table[size_t(j)] = j > 0 ? std::max(value, table[size_t(j - 1)]) : value;
+        }
+        Image rho_image;
+        rho_image.width = exemplar.width, rho_image.height = exemplar.height, rho_image.channels = 1;
+        rho_image.values.resize(plane);
+        for (size_t i = 0; i < plane; i++) {
+            const double target = std::clamp(r[i] / r[0], table.front(), table.back());
+            const size_t above = size_t(std::lower_bound(table.begin(), table.end(), target) - table.begin());
+            double rho = grid_rho[above];
+            if (above > 0 && table[above] > table[above - 1])
+                rho -= (grid_rho[above] - grid_rho[above - 1]) * (table[above] - target) /
+                       (table[above] - table[above - 1]);
+            rho_image.values[i] = i == 0 ? 1.0 : rho;
+        }
+        // The latent spectrum: the DFT of rho, whose negative values (rho need not be positive definite) are
+        // cut, then refined by the iteration of Yamazaki and Shinozuka (1988): S *= S_target / S_out, S_out
+        // the DFT of R(rho_S), rho_S the correlation of S, so that the mapped noise's spectrum approaches
+        // the exemplar's where the cut moved it.
+        const auto mapped_correlation = [&](double rho) {
+            const size_t above =
+                size_t(std::lower_bound(grid_rho.begin(), grid_rho.end(), rho) - grid_rho.begin());
+            if (above == 0) return table[0];
+            const double fraction = (rho - grid_rho[above - 1]) / (grid_rho[above] - grid_rho[above - 1]);
+            return table[above - 1] + fraction * (table[above] - table[above - 1]);
+        };
+        Image wanted_correlation = rho_image;
+        for (size_t i = 0; i < plane; i++) wanted_correlation.values[i] = r[i] / r[0];
+        const Spectrum target_spectrum = forward_dft(wanted_correlation);
+        Spectrum latent_spectrum = forward_dft(rho_image);
+        for (std::complex<float> &value : latent_spectrum.values) value = std::max(0.0f, value.real());
+        latent_spectrum.values[0] = 0;
+        for (int iteration = 0; iteration < kLatentIterations; iteration++) {
+            const Image current = inverse_dft(latent_spectrum);
+            const double variance = current.values[0];
+            if (!(variance > 0)) break;
+            Image mapped = current;
+            for (size_t i = 0; i < plane; i++)
+                mapped.values[i] = mapped_correlation(std::clamp(current.values[i] / variance, -1.0, 1.0));
+            const Spectrum output = forward_dft(mapped);
+            for (size_t i = 1; i < plane; i++) {
+                const double out = output.values[i].real(),
+                             wanted = std::max(0.0f, target_spectrum.values[i].real());
+                const double ratio = out > 0 ? std::clamp(wanted / out, 0.1, 10.0) : 1.0;
+                latent_spectrum.values[i] = float(latent_spectrum.values[i].real() * ratio);
+            }
+        }
+        double energy = 0;
+        for (const std::complex<float> &value : latent_spectrum.values) energy += value.real();
+        double share = 0;
+        for (size_t i = 0; i < plane; i++) share += std::pow(gaussian.values[size_t(k) * plane + i], 2);
+        share = std::sqrt(share / double(plane));
+        Spectrum channel = latent_spectrum;
+        for (size_t i = 0; i < plane; i++) {
+            const std::complex<double> phase = phases.values[size_t(k) * plane + i];
+            const double modulus = std::abs(phase);
+            const double amplitude =
+                i == 0 || !(energy > 0)
+                    ? 0.0
+                    : share * double(plane) * std::sqrt(latent_spectrum.values[i].real() / energy);
+            channel.values[i] = std::complex<float>(modulus > 0 ? amplitude * phase / modulus : amplitude);
+        }
+        const Image field = inverse_dft(channel);
+        std::copy(field.values.begin(), field.values.end(), latent.values.begin() + long(size_t(k) * plane));
+    }
+    return latent;
 }
 
 std::array<double, 3> gaussian_space_deviation(const AssetFields &fields, int level) {
