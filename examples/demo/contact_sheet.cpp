@@ -1,8 +1,8 @@
 // dsn-contact-sheet: one labelled PNG that shows a bake at a glance: the exemplar, its Gaussian
 // reference (a random-phase synthesis of the exemplar's Gaussian model), the runtime synthesis, the
-// texton, the renderer scene, and (when given) the scene's ground toward the horizon read three ways:
-// unfiltered, filtered and supersampled, enlarged so the pixels show. Labels are drawn by the baker's
-// draw_label (offline/label.h).
+// texton, the renderer scene (and, when given, the same scene bump-mapped under it), and (when given) the
+// scene's ground toward the horizon read three ways: unfiltered, filtered and supersampled, enlarged so
+// the pixels show. Labels are drawn by the baker's draw_label (offline/label.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,10 +25,13 @@ namespace {
 
 const char *const usage =
     "usage: dsn-contact-sheet --exemplar E.png --asset A.dsnt --synthesis S.png --scene R.png -o SHEET.png\n"
-    "                         [--seed S] [--horizon-unfiltered U.png --horizon-filtered F.png\n"
+    "                         [--seed S] [--scene-bump B.png [--scene-bump-note TEXT]]\n"
+    "                         [--horizon-unfiltered U.png --horizon-filtered F.png\n"
     "                          --horizon-supersampled S.png [--horizon-note TEXT]]\n"
     "       dsn-contact-sheet --print-size IMAGE     (prints \"WIDTH HEIGHT\")\n"
     "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled;\n"
+    "under it, given --scene-bump, the same scene with bump mapping (dsn-tiny-renderer --shading bump),\n"
+    "under TEXT;\n"
     "then, given all three --horizon images (the same crop of the scene rendered unfiltered, filtered\n"
     "and supersampled), those side by side, enlarged by a whole factor, under TEXT.\n"
     "Flags take --flag value or --flag=value; -h, --help, --version. Errors: one line on stderr, exit 2\n"
@@ -158,8 +161,9 @@ Picture texton_picture(const std::string &asset_path) {
 }
 
 int run(dsn::CommandLine &command_line) {
-    std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
+    std::string exemplar_path, asset_path, synthesis_path, scene_path, scene_bump_path, output;
     std::string horizon_paths[3], horizon_note = "the ground toward the horizon";
+    std::string scene_bump_note = "the same scene bump-mapped (dsn-tiny-renderer --shading bump)";
     uint32_t seed = 1;
     while (command_line.next()) {
         if (command_line.is("--print-size")) {
@@ -178,6 +182,10 @@ int run(dsn::CommandLine &command_line) {
             synthesis_path = command_line.value();
         } else if (command_line.is("--scene")) {
             scene_path = command_line.value();
+        } else if (command_line.is("--scene-bump")) {
+            scene_bump_path = command_line.value();
+        } else if (command_line.is("--scene-bump-note")) {
+            scene_bump_note = command_line.value();
         } else if (command_line.is("--horizon-unfiltered")) {
             horizon_paths[0] = command_line.value();
         } else if (command_line.is("--horizon-filtered")) {
@@ -207,6 +215,7 @@ int run(dsn::CommandLine &command_line) {
                                           {"the --asset input", asset_path},
                                           {"the --synthesis input", synthesis_path},
                                           {"the --scene input", scene_path}};
+    if (!scene_bump_path.empty()) inputs.push_back({"the --scene-bump input", scene_bump_path});
     for (const std::string &horizon : horizon_paths)
         if (!horizon.empty()) inputs.push_back({"a --horizon-* input", horizon});
     dsn::check_outputs(inputs, {{"-o", output}});
@@ -214,8 +223,12 @@ int run(dsn::CommandLine &command_line) {
     const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
     const Picture scene = load_png(scene_path);
     const int scene_height = std::min(scene.height, 480);
+    Picture scene_bump;
+    if (!scene_bump_path.empty()) scene_bump = load_png(scene_bump_path);
+    const int bump_height = scene_bump_path.empty() ? 0 : kLabel + std::min(scene_bump.height, 480) + kGap;
     const int horizon_height = horizon_given ? 2 * kLabel + kHorizonHeight + kGap : 0;
-    Picture sheet = blank(kSheetWidth, 2 * kLabel + kPanel + scene_height + 3 * kGap + horizon_height, 235);
+    Picture sheet =
+        blank(kSheetWidth, 2 * kLabel + kPanel + scene_height + 3 * kGap + bump_height + horizon_height, 235);
     const Picture panels[4] = {from_image(exemplar), gaussian_reference(exemplar, seed),
                                load_png(synthesis_path), texton_picture(asset_path)};
     const char *labels[4] = {"exemplar", "Gaussian reference", "runtime synthesis", "texton (SOT)"};
@@ -227,10 +240,20 @@ int run(dsn::CommandLine &command_line) {
         paste(sheet, box, x, kGap + kLabel, kPanel, kPanel);
     }
     const int scene_top = 2 * kGap + kLabel + kPanel;
-    draw_label(sheet, kGap, scene_top, "renderer scene (continuous mode, filtered, dsn-tiny-renderer)", 2);
+    draw_label(sheet, kGap, scene_top,
+               scene_bump_path.empty()
+                   ? "renderer scene (continuous mode, filtered, dsn-tiny-renderer)"
+                   : "renderer scene, flat shading (continuous mode, filtered, dsn-tiny-renderer)",
+               2);
     paste(sheet, scene, kGap, scene_top + kLabel, kSheetWidth - 2 * kGap, scene_height);
-    if (horizon_given) {
+    if (!scene_bump_path.empty()) {
         const int top = scene_top + kLabel + scene_height + kGap;
+        draw_label(sheet, kGap, top, scene_bump_note, 2);
+        paste(sheet, scene_bump, kGap, top + kLabel, kSheetWidth - 2 * kGap,
+              std::min(scene_bump.height, 480));
+    }
+    if (horizon_given) {
+        const int top = scene_top + kLabel + scene_height + kGap + bump_height;
         Picture crops[3];
         for (int p = 0; p < 3; p++) crops[p] = load_png(horizon_paths[p]);
         const int factor =

@@ -180,12 +180,16 @@ double luminance(const float *value, uint32_t channels) {
 
 // How much of the relief's slope a filtered pixel keeps. The gradient is the unfiltered noise's (the
 // filtered evaluation has none): one sample of it per pixel aliases where the pixel covers several texels
-// (far away, toward the horizon), as the unfiltered value does. The slope of detail finer than a
-// Gaussian blur of standard deviation sigma falls as 1 / sigma^2, and the filter's level LOD blurs by
-// sigma = 2^(LOD - 1) texels, so the slope is scaled by 4^-LOD: 1 where the pixel covers at most a
-// texel (LOD 0), 1/4 at two texels, 1/64 at eight. LOD here is the isotropic one (log2 of the
-// footprint's longer side in texels, dsn_filter_level with one tap): the gradient is one sample, which
-// the anisotropic taps do not spread along the footprint.
+// (far away, toward the horizon), as the unfiltered value does. The filter's level of detail LOD blurs
+// the texture by a Gaussian of standard deviation sigma = 2^(LOD - 1) texels, and a relief of flat
+// spectrum blurred so keeps a slope of root mean square proportional to 1 / sigma^2 (its variance is the
+// integral of |w|^2 |G(w)|^2, G the Gaussian's spectrum: proportional to sigma^-4); so the slope is
+// scaled by 4^-LOD: 1 where the pixel covers at most a texel (LOD 0), 1/4 at two texels, 1/64 at eight
+// (LOD stops at the pyramid's levels plus one: a few thousandths). LOD here is the isotropic one (log2 of
+// the footprint's longer side in texels, dsn_filter_level with one tap): the gradient is one sample,
+// which the anisotropic taps do not spread along the footprint. What the fade leaves out: a bumpy surface
+// seen from afar is slightly darker than a flat one (the supersampled reference averages the tilts' 1 -
+// cos); LEAN or Toksvig mapping would keep that.
 double bump_fade(const Texture &texture, const tiny::TextureJacobian &jacobian) {
     dsn_footprint isotropic;
     int32_t lod_q8 = 0;
