@@ -1,6 +1,8 @@
 // ray_differentials.h - how far the texture coordinates move when the pixel moves by one: the 2x2
 // Jacobian a filtered texture read needs (the pixel's footprint in texels), from ray differentials
-// (H. Igehy, "Tracing Ray Differentials", SIGGRAPH 1999). Header-only, for dsn-tiny-renderer and its test.
+// (H. Igehy, "Tracing Ray Differentials", SIGGRAPH 1999), and the texture coordinates' surface gradients
+// that carry a relief's slope to the surface for bump mapping. Header-only, for dsn-tiny-renderer and its
+// test.
 //
 // A camera ray through the continuous pixel position (px, py) has the direction D = d / |d|, with
 // d = forward + right * sx(px) + up * sy(py). Its differential along a screen axis is
