@@ -2,6 +2,7 @@
    whose window holds the point, then normalizes; plus the float and 8-bit conversions. */
 #include "cell_walk.h"
 #include "impulse_position.h"
+#include "lattice_internal.h"
 #include "normalize_fixed.h"
 #include "poisson_count.h"
 
@@ -393,6 +394,13 @@ extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t
     (void)dsn_lattice_tile_u8(handle, x, y, 1, 1, out, scratch, sizeof scratch);
 }
 #else
+#if DSN_GRADIENTS
+void dsn_internal_lattice_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+    const texton_window texton = dsn_lattice_texton_window(noise);
+    accumulate(noise, &texton, x, y, sums);
+}
+#endif
+
 extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
     const dsn_noise_state *noise = dsn_state(handle);
     if (!usable(noise, out)) return;
