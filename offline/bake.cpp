@@ -126,6 +126,11 @@ BakeResult bake(const Image &exemplar, const BakeOptions &options) {
         for (uint32_t l = 0; l < result.fields.histogram.level_count; l++)
             result.gaussian_deviations.push_back(gaussian_space_deviation(result.fields, int(l)));
     }
+    Matrix3 stored_transform{};
+    for (size_t i = 0; i < stored_transform.size(); i++)
+        stored_transform[i] = double(result.fields.color_transform[i]) / double(DSN_Q24_ONE);
+    result.rme_effective = effective_model_error(result.model.spectrum, result.quantized_texton,
+                                                 stored_transform, options.interpolation);
     result.asset = encode_asset(result.fields);
     result.verdict = bake_verdict(exemplar, result, options);
     return result;

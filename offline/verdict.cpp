@@ -73,12 +73,17 @@ size_t histogram_table_bytes(const BakeResult &result) {
            2 * levels * result.fields.channels * size_t(kHistogramEntries);
 }
 
+bool has_finding(const BakeVerdict &verdict, VerdictFinding finding) {
+    return std::find(verdict.findings.begin(), verdict.findings.end(), finding) != verdict.findings.end();
+}
+
 } // namespace
 
 BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const BakeOptions &options) {
     BakeVerdict verdict;
     verdict.rme = result.rme;
     verdict.rme_luminance = result.rme_luminance;
+    verdict.rme_effective = result.rme_effective;
     const GaussianModel &model = result.model;
     const int width = model.width, height = model.height;
     const size_t plane = size_t(width) * size_t(height);
@@ -157,9 +162,37 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
         }
     // Energy beyond reach, less what sampling noise alone puts there.
     double beyond = 0;
-    for (size_t d = size_t(reach) + 1; d < ring_energy.size(); d++)
+    size_t lags_beyond = 0;
+    for (size_t d = size_t(reach) + 1; d < ring_energy.size(); d++) {
         beyond += ring_energy[d] - double(ring_count[d]) * noise_per_lag;
+        lags_beyond += ring_count[d];
+    }
     verdict.structure_beyond_reach = total_energy > 0 ? std::max(0.0, beyond) / total_energy : 0;
+    // Sampling noise alone leaves that corrected energy within about 3 of its standard deviations of 0.
+    // The energy over the lags is (1/N) sum P^2 over the frequencies (Parseval), P the periodogram, about
+    // S times an exponential variable (S the spectrum, P(xi) = P(-xi)): its noise has a standard deviation
+    // of (4/N) sqrt(sum S^4), of which the lags beyond reach hold about M / N. S is that of the null
+    // hypothesis, no correlation beyond reach: the transform of the autocorrelation cut at the reach.
+    Image within;
+    within.width = width, within.height = height, within.channels = 1;
+    within.values.assign(plane, 0.0);
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++) {
+            if (lag_distance(signed_offset(x, width), signed_offset(y, height), options.shape) > reach)
+                continue;
+            const size_t i = size_t(y) * size_t(width) + size_t(x);
+            for (int k = 0; k < basis.channels; k++)
+                within.values[i] += autocorrelation.values[size_t(k) * plane + i];
+        }
+    double fourth_powers = 0;
+    for (const std::complex<float> &value : forward_dft(within).values) {
+        const double spectrum = double(value.real());
+        fourth_powers += spectrum * spectrum * spectrum * spectrum;
+    }
+    const double noise_deviation =
+        4 / double(plane) * double(lags_beyond) / double(plane) * std::sqrt(fourth_powers);
+    const bool significant = beyond > 3 * noise_deviation;
+    verdict.structure_error = total_energy > 0 ? noise_deviation / total_energy : 0;
     // The strongest correlation beyond reach and its lag (the nearest of equal ones): a periodic
     // pattern's period, or the size of its largest features.
     double strongest = 0;
@@ -169,6 +202,52 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
     verdict.correlation_beyond_reach = strongest;
     const int fitting = std::min(kMaxRadius, (std::min(width, height) - 1) / 4);
     verdict.largest_fitting_radius = fitting;
+
+    // Shape: on the Gaussianized exemplar (each decorrelated channel through its ranks onto a Gaussian), so
+    // that a monotone change of tones, which the tones finding covers, does not count; the visible
+    // channel of the smallest total variation ratio.
+    {
+        const Image gaussian_form =
+            options.histogram
+                ? result.model.t_u
+                : gaussian_model(gaussianize(exemplar, histogram_model(exemplar)), options.periodic).t_u;
+        for (int k = 0; k < basis.channels; k++) {
+            if (basis.variances[size_t(k)] < kVisibleVariance * basis.variances[0]) continue;
+            const ShapeSignal signal = shape_signal(gaussian_form, k);
+            if (k == 0 || signal.ratio < verdict.shape_ratio)
+                verdict.shape_ratio = signal.ratio, verdict.shape_error = signal.error,
+                verdict.shape_channel = k;
+        }
+    }
+    const bool shape =
+        verdict.shape_ratio < kVerdictShapeRatio && 1 - verdict.shape_ratio > 3 * verdict.shape_error;
+
+    // The noise at the asset's density, as it renders (quantized texton, stored colour transform, read).
+    Matrix3 stored_transform{};
+    for (size_t i = 0; i < stored_transform.size(); i++)
+        stored_transform[i] = double(result.fields.color_transform[i]) / double(DSN_Q24_ONE);
+    verdict.impacts = double(result.fields.default_impacts_q16 ? result.fields.default_impacts_q16
+                                                               : DSN_IMPACTS_DEFAULT_Q16) /
+                      double(DSN_IMPACTS_ONE);
+    const NoiseMoments noise =
+        noise_moments(result.quantized_texton, stored_transform, options.interpolation, verdict.impacts);
+    verdict.noise_skewness = noise.skewness;
+    verdict.noise_excess_kurtosis = noise.excess_kurtosis;
+    // Skewness shrinks as 1/sqrt(impacts) and excess kurtosis as 1/impacts.
+    double needed = verdict.impacts;
+    size_t worst = 0;
+    double worst_excess = 0;
+    for (size_t c = 0; c < noise.skewness.size(); c++) {
+        const double skew_share = std::fabs(noise.skewness[c]) / kVerdictNoiseSkewness;
+        const double kurtosis_share = std::fabs(noise.excess_kurtosis[c]) / kVerdictNoiseKurtosis;
+        needed =
+            std::max({needed, verdict.impacts * skew_share * skew_share, verdict.impacts * kurtosis_share});
+        if (std::max(skew_share, kurtosis_share) > worst_excess)
+            worst_excess = std::max(skew_share, kurtosis_share), worst = c;
+    }
+    const double largest_impacts = double(DSN_IMPACTS_MAX_Q16) / double(DSN_IMPACTS_ONE);
+    const bool sparse = needed > verdict.impacts;
+    if (sparse) verdict.suggested_impacts = std::min(largest_impacts, std::ceil(needed));
 
     // Findings.
     // Only components that carry a visible share of the variance count.
@@ -184,8 +263,9 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
                             std::fabs(marginal.excess_kurtosis) > 3 * marginal.kurtosis_error);
         }
     }
-    const bool structure = verdict.structure_beyond_reach > kVerdictStructureShare &&
-                           verdict.correlation_beyond_reach > kVerdictCorrelation;
+    // However weak the correlation beyond reach, a large share of the energy there is structure the
+    // texton loses (large blotches, slow shading): the share decides, once sampling noise cannot explain it.
+    const bool structure = verdict.structure_beyond_reach > kVerdictStructureShare && significant;
     if (structure) {
         // A texton of radius d spans two periods of a pattern of period d: its noise keeps about half of
         // the correlation at lag d.
@@ -236,26 +316,71 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
             std::to_string(histogram_table_bytes(result)) +
             " bytes of tables, a table lookup per pixel and channel)");
     }
-    if (verdict.rme > kVerdictModelError || verdict.rme > verdict.rme_luminance) {
+    if (shape) {
+        verdict.findings.push_back(VerdictFinding::ShapeBeyondSpectrum);
+        verdict.suggestions.push_back(
+            "the exemplar has sharp shapes its spectrum does not hold (" +
+            format("total variation %.2f of a random-phase copy's", verdict.shape_ratio) +
+            format(", %.0f standard errors below it",
+                   (1 - verdict.shape_ratio) / std::max(verdict.shape_error, 1e-12)) +
+            ", in decorrelated channel " + std::to_string(verdict.shape_channel + 1) +
+            " of its Gaussianized tones: flat regions bounded by sharp edges, as flagstones, facets, stripes "
+            "or "
+            "discs have): the synthesis keeps the spectrum, not the shapes, which come out as generic grain; "
+            "neither a larger radius nor the histogram mapping brings them back");
+    }
+    if (sparse) {
+        verdict.findings.push_back(VerdictFinding::SparseNoise);
+        const bool capped = verdict.suggested_impacts < std::ceil(needed);
+        verdict.suggestions.push_back(
+            format("at %g impacts per pixel the noise is visibly non-Gaussian (", verdict.impacts) +
+            format("skewness %.2f", noise.skewness[worst]) +
+            format(", excess kurtosis %.2f in output channel ", noise.excess_kurtosis[worst]) +
+            std::to_string(worst + 1) + format("; bounds %.2f", kVerdictNoiseSkewness) +
+            format(" and %.2f", kVerdictNoiseKurtosis) + "): repeated texton-shaped marks; " +
+            format("render with %g impacts per pixel", verdict.suggested_impacts) +
+            (capped ? format(" (the most the runtime takes; %g would reach the bounds)", std::ceil(needed))
+                    : std::string()) +
+            format(" (dsn-render --impacts %g, or dsn_config.impacts_q16)", verdict.suggested_impacts) +
+            format(", about %.1fx the runtime cost per pixel", verdict.suggested_impacts / verdict.impacts));
+    }
+    // Judged on what renders; an RME below the bound is never flagged, whatever the luminance texton's.
+    if (verdict.rme_effective > kVerdictModelError) {
         verdict.findings.push_back(VerdictFinding::HighModelError);
         verdict.suggestions.push_back(
-            format("the texton's spectrum is far from the exemplar's (RME %.2f", verdict.rme) +
-            (verdict.rme > kVerdictModelError ? format(", above %.2f", kVerdictModelError) : std::string()) +
+            format("the spectrum that renders is far from the exemplar's (RME %.2f as rendered",
+                   verdict.rme_effective) +
+            format(", %.2f for the texton alone", verdict.rme) + format(", above %.2f", kVerdictModelError) +
             ")" +
             (verdict.rme > verdict.rme_luminance
-                 ? format(", and no closer than the cropped luminance texton's (%.2f)", verdict.rme_luminance)
+                 ? format(", and the texton is no closer than the cropped luminance texton (%.2f)",
+                          verdict.rme_luminance)
                  : std::string()) +
             (options.radius < fitting ? ": a larger --radius gives the texton more room" : ""));
     }
+    const bool fixable_only =
+        std::all_of(verdict.findings.begin(), verdict.findings.end(), [](VerdictFinding finding) {
+            return finding == VerdictFinding::StructureBeyondRadius || finding == VerdictFinding::SparseNoise;
+        });
     if (verdict.findings.empty()) {
         verdict.summary =
-            "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme) +
+            "good: a Gaussian model holds this exemplar (" + format("RME %.2f", verdict.rme_effective) +
+            format(" as rendered, %.2f for the texton", verdict.rme) +
             (non_gaussian ? ", non-Gaussian tones kept by the histogram mapping" : ", Gaussian tones") +
-            ", structure within the texton's reach)";
-    } else if (verdict.findings.size() == 1 && verdict.findings[0] == VerdictFinding::StructureBeyondRadius) {
-        verdict.summary = "fair: a larger radius would hold more of this exemplar";
+            ", structure within the texton's reach" +
+            format(", no sharp shapes: total variation %.2f of a random-phase copy's", verdict.shape_ratio) +
+            format(", Gaussian noise at %g impacts per pixel)", verdict.impacts);
+    } else if (fixable_only) {
+        const bool radius = has_finding(verdict, VerdictFinding::StructureBeyondRadius),
+                   density = has_finding(verdict, VerdictFinding::SparseNoise);
+        verdict.summary = std::string("fair: ") + (radius ? "a larger radius" : "") +
+                          (radius && density ? " and " : "") + (density ? "more impacts per pixel" : "") +
+                          " would hold more of this exemplar";
     } else {
         verdict.summary = "limited: this exemplar has more than a Gaussian model of this texton holds";
+    }
+    if (!verdict.findings.empty() && non_gaussian && options.histogram) {
+        verdict.summary += " (non-Gaussian tones kept by the histogram mapping)";
     }
     return verdict;
 }
@@ -270,6 +395,10 @@ const char *verdict_finding_name(VerdictFinding finding) {
         return "non_gaussian_marginal";
     case VerdictFinding::HighModelError:
         return "high_model_error";
+    case VerdictFinding::ShapeBeyondSpectrum:
+        return "shape_beyond_spectrum";
+    case VerdictFinding::SparseNoise:
+        return "sparse_noise";
     }
     return "unknown";
 }

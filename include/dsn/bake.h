@@ -217,6 +217,42 @@ double smoothed_table_value(const std::vector<double> &table, double low, double
 // rotation P and centre (the basis' mean): 129 entries over [-4, 4] (1/16 apart), Q3.12.
 HistogramMapping histogram_mapping(const HistogramModel &model, const AssetFields &fields);
 
+// ---- What renders (offline/measures.cpp) ----
+
+// The relative model error of what the runtime renders: the model's spectrum against the texton's (the
+// quantized texton, as the runtime reads it) with the colour transform K applied and, for a bilinear read,
+// multiplied by the square root of the sampled cubic B-spline b (the noise's spectrum is K T T^* K^T b),
+// over every frequency as relative_model_error. `model` is GaussianModel::spectrum (not the target).
+double effective_model_error(const Spectrum &model, const Texton &texton, const Matrix3 &color_transform,
+                             uint32_t interpolation);
+
+// Skewness and excess kurtosis of every output channel of the runtime's noise at `impacts_per_pixel`,
+// exact by Campbell's theorem: the n-th cumulant of a shot noise of intensity lambda = impacts / |S| is
+// lambda times the integral of s^n, s_c = sum_k K_ck t_k the spot the channel sees (lattice: the sum over
+// the texels; bilinear: the integral of the bilinear interpolant over the plane, impulses placed
+// uniformly), so skewness = I3 / (sqrt(lambda) I2^1.5) and excess kurtosis = I4 / (lambda I2^2): both
+// shrink as the density grows (as 1/sqrt(impacts) and 1/impacts), to 0 for a Gaussian.
+struct NoiseMoments {
+    std::vector<double> skewness, excess_kurtosis; // per output channel
+};
+NoiseMoments noise_moments(const Texton &texton, const Matrix3 &color_transform, uint32_t interpolation,
+                           double impacts_per_pixel);
+
+// The shape signal of one channel of a torus image (a periodic component): its total variation (the sum of
+// |u(p + e_x) - u(p)| + |u(p + e_y) - u(p)|) over the expected total variation of a Gaussian field with
+// the same spectrum, sqrt(2/pi) N (sigma_x + sigma_y), sigma the deviations of the two differences: 1 for
+// a Gaussian texture; below 1 when the gradient is sparse, flat regions bounded by sharp edges (the
+// global phase coherence of Blanchet, Moisan and Rouge, ICIP 2008, and the sharpness index of Leclaire
+// and Moisan, JMIV 2015: a random-phase copy of such an image has a larger total variation). `error` is
+// the ratio's standard deviation for a Gaussian field with this image's autocorrelation (the delta method:
+// (1/N) sum over the lags and the pairs of directions of w_a w_b h(c_ab), h(c) = c asin(c) +
+// sqrt(1 - c^2) - 1 - c^2 / 2, c_ab the correlation of the two differences, w_a = sigma_a / (sigma_x +
+// sigma_y)).
+struct ShapeSignal {
+    double ratio = 1, error = 0;
+};
+ShapeSignal shape_signal(const Image &image, int channel);
+
 // ---- The verdict ----
 
 // The marginal of one decorrelated channel of the exemplar (principal components of its colours,
@@ -231,7 +267,9 @@ enum class VerdictFinding {
     StructureBeyondRadius,   // correlations reach beyond the texton; a radius that fits would hold them
     StructureBeyondGaussian, // they reach beyond any radius that fits the exemplar
     NonGaussianMarginal,     // the tones are far from Gaussian: the output cannot keep the histogram
-    HighModelError,          // the texton's spectrum stays far from the exemplar's
+    HighModelError,          // the spectrum that renders stays far from the exemplar's
+    ShapeBeyondSpectrum,     // sharp shapes (flagstones, facets, stripes, discs) the spectrum does not hold
+    SparseNoise,             // at the asset's density the noise is visibly non-Gaussian: more impacts
 };
 const char *verdict_finding_name(VerdictFinding finding); // "structure_beyond_radius", ...
 
@@ -241,16 +279,29 @@ const char *verdict_finding_name(VerdictFinding finding); // "structure_beyond_r
 //    is two-level; a Laplace's 3 is speckled), each also beyond 3 of its standard errors;
 //  - structure lies beyond the texton when more than 10% of the exemplar's autocorrelation energy (sum
 //    of the squared autocorrelation over the lags, less the sampling noise Bartlett's formula puts at each
-//    lag) lies beyond lag 2r, the farthest lag the noise of a texton of radius r correlates, and the
-//    autocorrelation there reaches 0.2 of the variance;
-//  - the model error is high above an RME of 0.6: a texton that fits a photo's spectrum up to its sampling
-//    noise (the periodogram of a Gaussian field is exponentially distributed about its mean, which leaves
-//    RME = sqrt(1 - pi/4) = 0.46 to a smooth spectrum) stays below it.
+//    lag) lies beyond lag 2r, the farthest lag the noise of a texton of radius r correlates, however weak
+//    the correlation there, provided that energy is beyond 3 standard deviations of what sampling noise
+//    leaves there ((4/N) (M/N) sqrt(sum S^4), M of the N lags beyond reach, S the spectrum of the
+//    autocorrelation cut at the reach: the periodogram is about S times an exponential variable);
+//  - the model error is high above an effective RME (what renders: effective_model_error) of 0.6: a
+//    texton that fits a photo's spectrum up to its sampling noise (the periodogram of a Gaussian field is
+//    exponentially distributed about its mean, which leaves RME = sqrt(1 - pi/4) = 0.46 to a smooth
+//    spectrum) stays below it, and no RME below it is flagged, whatever the luminance texton's;
+//  - the exemplar has shapes its spectrum does not hold when, on its Gaussianized form (so that tones
+//    alone, which the tones finding covers, do not count), the shape signal of a visible decorrelated
+//    channel is below kVerdictShapeRatio and beyond 3 of its standard errors below 1;
+//  - the noise is sparse when, at the asset's density, an output channel's |skewness| exceeds
+//    kVerdictNoiseSkewness or its |excess kurtosis| kVerdictNoiseKurtosis; the verdict names the density
+//    (impacts per pixel, at most 1024) that brings both under them.
 constexpr double kVerdictSkewness = 1.0;
 constexpr double kVerdictExcessKurtosis = 1.0;
 constexpr double kVerdictStructureShare = 0.10;
-constexpr double kVerdictCorrelation = 0.2;
 constexpr double kVerdictModelError = 0.6;
+// sqrt(pi) / 2: the shape signal of a field whose differences have a Laplace distribution (E|g| / rms g =
+// 1 / sqrt 2, against sqrt(2 / pi) for a Gaussian): the sparse gradient of natural images' edges.
+constexpr double kVerdictShapeRatio = 0.886226925452758;
+constexpr double kVerdictNoiseSkewness = 0.25;
+constexpr double kVerdictNoiseKurtosis = 0.25;
 
 struct BakeVerdict {
     std::string summary;                  // one line: "good: ...", "fair: ...", "limited: ..."
@@ -258,8 +309,19 @@ struct BakeVerdict {
     std::vector<std::string> suggestions; // one per finding, each with what to do
     // The signals.
     double rme = 0, rme_luminance = 0;
+    double rme_effective = 0; // what renders (BakeResult::rme_effective): the one judged
     std::vector<ChannelMarginal> channels;
+    // The shape signal (shape_signal) of the visible decorrelated channel of the Gaussianized exemplar
+    // whose ratio is the smallest, that channel's index and the ratio's standard error.
+    double shape_ratio = 1, shape_error = 0;
+    int shape_channel = 0;
+    // The noise at the asset's density (impacts per pixel): skewness and excess kurtosis per output
+    // channel (noise_moments), and the density that brings them under the bounds (0: the asset's is enough).
+    double impacts = 0;
+    std::vector<double> noise_skewness, noise_excess_kurtosis;
+    double suggested_impacts = 0;
     double structure_beyond_reach = 0;   // share of the autocorrelation energy beyond lag 2r
+    double structure_error = 0;          // its standard deviation from sampling noise alone
     double correlation_beyond_reach = 0; // the largest autocorrelation beyond lag 2r, over the variance
     int suggested_radius = 0;            // 0: none (no structure beyond reach, or none fits)
     int largest_fitting_radius = 0;
@@ -281,7 +343,9 @@ struct BakeResult {
     // without the zero frequency (what the iterations minimize: rme_per_iteration's last value) is
     // rme_without_zero_frequency. Excess kurtosis per channel of the noise at 30 impacts per pixel (0 is
     // Gaussian).
-    double rme = 0, rme_luminance = 0, rme_quantized = 0, rme_without_zero_frequency = 0;
+    // rme_effective is that of what renders (effective_model_error: the quantized texton, the stored colour
+    // transform and the bilinear read applied), against the model's spectrum.
+    double rme = 0, rme_luminance = 0, rme_quantized = 0, rme_without_zero_frequency = 0, rme_effective = 0;
     std::vector<double> excess_kurtosis_30, excess_kurtosis_30_luminance;
     Matrix3 color_transform = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     AssetFields fields;

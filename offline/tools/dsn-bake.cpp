@@ -255,9 +255,18 @@ std::string verdict_json(const dsn::BakeVerdict &verdict) {
     return "{\"summary\": " + dsn::json_string(verdict.summary) + ", \"findings\": " + findings +
            "], \"suggestions\": " + suggestions + "], \"decorrelated_channels\": " + channels +
            "], \"structure_beyond_reach\": " + json_number(verdict.structure_beyond_reach) +
+           ", \"structure_error\": " + json_number(verdict.structure_error) +
            ", \"correlation_beyond_reach\": " + json_number(verdict.correlation_beyond_reach) +
            ", \"suggested_radius\": " + std::to_string(verdict.suggested_radius) +
-           ", \"largest_fitting_radius\": " + std::to_string(verdict.largest_fitting_radius) + "}";
+           ", \"largest_fitting_radius\": " + std::to_string(verdict.largest_fitting_radius) +
+           ", \"rme_effective\": " + json_number(verdict.rme_effective) +
+           ", \"shape_ratio\": " + json_number(verdict.shape_ratio) +
+           ", \"shape_error\": " + json_number(verdict.shape_error) +
+           ", \"shape_channel\": " + std::to_string(verdict.shape_channel) +
+           ", \"impacts\": " + json_number(verdict.impacts) +
+           ", \"noise_skewness\": " + json_array(verdict.noise_skewness) +
+           ", \"noise_excess_kurtosis\": " + json_array(verdict.noise_excess_kurtosis) +
+           ", \"suggested_impacts\": " + json_number(verdict.suggested_impacts) + "}";
 }
 
 // The histogram mapping's signals: null without --histogram, else the Gaussian-space standard deviation
@@ -307,6 +316,7 @@ std::string report_json(const Arguments &arguments, const dsn::Image &exemplar, 
     field("rme_luminance", json_number(result.rme_luminance));
     field("rme_quantized", json_number(result.rme_quantized));
     field("rme_without_zero_frequency", json_number(result.rme_without_zero_frequency));
+    field("rme_effective", json_number(result.rme_effective));
     field("excess_kurtosis_30", json_array(result.excess_kurtosis_30));
     field("excess_kurtosis_30_luminance", json_array(result.excess_kurtosis_30_luminance));
     field("mean", json_array(mean));
@@ -355,9 +365,19 @@ void print_summary(const Arguments &arguments, const dsn::Image &exemplar, const
         "  RME           SOT %.4f   luminance texton %.4f   SOT quantized %.4f   (SOT without the zero "
         "frequency %.4f)\n",
         result.rme, result.rme_luminance, result.rme_quantized, result.rme_without_zero_frequency);
+    std::printf(
+        "  RME rendered  %.4f (quantized texton, colour transform and %s read applied: the one judged)\n",
+        result.rme_effective, options.interpolation == DSN_INTERPOLATION_BILINEAR ? "bilinear" : "lattice");
     std::printf("  kurtosis @30  SOT %s   luminance texton %s\n",
                 channel_list(result.excess_kurtosis_30, "%.3f").c_str(),
                 channel_list(result.excess_kurtosis_30_luminance, "%.3f").c_str());
+    std::printf(
+        "  noise @%-5g  skewness %s   excess kurtosis %s   (as rendered, per output channel; exact)\n",
+        result.verdict.impacts, channel_list(result.verdict.noise_skewness, "%.3f").c_str(),
+        channel_list(result.verdict.noise_excess_kurtosis, "%.3f").c_str());
+    std::printf("  shape         total variation %.3f of a random-phase copy's (standard error %.3f; 1 for a "
+                "Gaussian texture, %.3f for Laplace-sparse edges)\n",
+                result.verdict.shape_ratio, result.verdict.shape_error, dsn::kVerdictShapeRatio);
     if (result.fields.pyramid.empty()) {
         std::printf("  asset         %zu bytes (format 1.0, no pyramid), %.2f s\n", result.asset.size(),
                     seconds);
