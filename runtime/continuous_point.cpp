@@ -144,7 +144,7 @@ struct ValueRead {
     ValueRead() : interior_count(0) {
         for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) interior[c] = border[c] = 0;
 #if defined(__SSE2__)
-        vector_sums.even = vector_sums.odd = _mm_setzero_si128();
+        vector_sums.even = vector_sums.odd = zero_128();
 #endif
     }
 
@@ -200,13 +200,26 @@ struct SlopeRead {
     static const bool entry_edge = true;
     ValueRead<Channels, Bytes> values;
     uint64_t slope_x[DSN_MAX_CHANNELS], slope_y[DSN_MAX_CHANNELS];
+#if defined(__SSE2__)
+    SlopeLanes lanes; /* 8-bit interior texels (bilinear_read.h) */
+#endif
 
     SlopeRead() {
         for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) slope_x[c] = slope_y[c] = 0;
+#if defined(__SSE2__)
+        lanes.along_x = lanes.along_y = zero_128();
+#endif
     }
 
     void add_interior(const unsigned char *top, const unsigned char *bottom, int64_t across, int64_t down) {
         values.add_interior(top, bottom, across, down);
+#if defined(__SSE2__)
+        if (Bytes == 1) {
+            add_slopes_vector<Channels>(top, bottom, static_cast<uint32_t>(across),
+                                        static_cast<uint32_t>(down), &lanes);
+            return;
+        }
+#endif
         for (uint32_t c = 0; c < Channels; c++)
             add_slopes(
                 biased_value<Bytes>(top + c * Bytes), biased_value<Bytes>(top + (Channels + c) * Bytes),
@@ -226,9 +239,20 @@ struct SlopeRead {
 
     void take(Sums *sums) const {
         values.take(sums->value);
+#if defined(__SSE2__)
+        int32_t along_x[4], along_y[4];
+        take_32_lanes(lanes.along_x, along_x);
+        take_32_lanes(lanes.along_y, along_y);
+#endif
         for (uint32_t c = 0; c < Channels; c++) {
             sums->slope_x[c] += slope_x[c];
             sums->slope_y[c] += slope_y[c];
+#if defined(__SSE2__)
+            if (Bytes == 1) {
+                sums->slope_x[c] += static_cast<uint64_t>(static_cast<int64_t>(along_x[c]));
+                sums->slope_y[c] += static_cast<uint64_t>(static_cast<int64_t>(along_y[c]));
+            }
+#endif
         }
     }
 };

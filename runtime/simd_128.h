@@ -1,6 +1,6 @@
 /* runtime/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
-   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, and a
-   constant of the continuous splat. Included by
+   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, a
+   constant of the continuous splat, and the pair operations of the bilinear slopes. Included by
    the ops headers (simd.h). */
 #ifndef DSN_SIMD_128_H
 #define DSN_SIMD_128_H
@@ -48,6 +48,27 @@ inline __m128i to_u8_range(__m128i value) {
 inline __m128i splat_across_order() {
     return _mm_setr_epi8(-128, -128, 2, 3, -128, -128, 2, 3, -128, -128, 10, 11, -128, -128, 10, 11);
 }
+
+/* ---- The bilinear slopes of 8-bit textons (bilinear_read.h's add_slopes_vector) ---- */
+
+typedef __m128i vector_128;
+
+/* right - left of every (left, right) pair of 16-bit lanes, in 32-bit lanes. */
+inline __m128i pair_differences(__m128i pairs) { return _mm_madd_epi16(pairs, _mm_set1_epi32(0x0001FFFF)); }
+
+/* a - b in 16-bit lanes (wrapping). */
+inline __m128i subtract_16(__m128i a, __m128i b) { return _mm_sub_epi16(a, b); }
+
+/* Pairs of 16-bit lanes (low, high) from the low 16 bits of two vectors of 32-bit lanes. */
+inline __m128i pair_up(__m128i low, __m128i high) {
+    return _mm_or_si128(_mm_and_si128(low, _mm_set1_epi32(0xFFFF)), _mm_slli_epi32(high, 16));
+}
+
+inline __m128i add_32_lanes(__m128i a, __m128i b) { return _mm_add_epi32(a, b); }
+inline __m128i zero_128() { return _mm_setzero_si128(); }
+
+/* The four 32-bit lanes, signed. */
+inline void take_32_lanes(__m128i vector, int32_t *lanes) { __builtin_memcpy(lanes, &vector, 16); }
 
 } // namespace
 
