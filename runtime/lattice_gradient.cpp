@@ -3,10 +3,10 @@
    32-bit path (tile_walk.h), then differenced and normalized as the value (the differences without the
    mean); per point (a block of one) and per tile. */
 #include "gradient_output.h"
-#include "lattice_internal.h"
-#include "tile_walk.h"
 
 #if DSN_GRADIENTS
+#include "lattice_internal.h"
+#include "tile_walk.h" /* its functions are defined where included: only where they are used */
 
 namespace {
 
