@@ -80,8 +80,8 @@ struct Look {
 
 double high_ratio(const std::vector<double> &output, int size, const std::vector<double> &target,
                   const dsn::Image &exemplar) {
-    return high_frequency_power(welch_spectrum(output, size, size)) /
-           high_frequency_power(welch_spectrum(target, exemplar.width, exemplar.height));
+    return high_frequency_ratio(welch_spectrum(output, size, size),
+                                welch_spectrum(target, exemplar.width, exemplar.height));
 }
 
 // A 512 x 512 continuous-mode render of the asset against the exemplar.
@@ -245,7 +245,7 @@ TEST_CASE("histogram spectrum: a thresholded material's latent field keeps smoot
             figures[which][2] += isolated_dark_share(mapped, size, 0.5) / 4;
         }
         figures[which][0] = log_spectrum_error(power, target);
-        figures[which][1] = high_frequency_power(power) / high_frequency_power(target);
+        figures[which][1] = high_frequency_ratio(power, target);
     }
     MESSAGE("pixel Gaussianization: log-spectrum error " << figures[0][0] << ", high-frequency ratio "
                                                          << figures[0][1] << ", isolated dark pixels "

@@ -4,8 +4,9 @@
 // continuous-mode render of each bake (tests/fixtures/histogram_measures.h) and, per texture:
 //   - spectrum: the log-spectrum error of the render against the exemplar (tests/fixtures/
 //     spectrum_measures.h), the mean over the RGB channels that vary;
-//   - high: the power above 0.25 cycles per pixel over the exemplar's, the largest over the RGB channels
-//     and in the exemplar's strongest principal component (a fine pixel noise added to a smooth material);
+//   - high: the power above 0.25 cycles per pixel over the exemplar's (each with the 8-bit rounding floor
+//     at every frequency), the largest over the RGB channels and in the exemplar's strongest principal
+//     component (a fine pixel noise added to a smooth material);
 //   - RME: the bake's relative model error (each bake against its own model: the plain one in RGB, the
 //     histogram-preserving one in the Gaussianized decorrelated channels);
 //   - W1: the Wasserstein-1 distance of the render's histogram to the exemplar's, the mean over the RGB
@@ -41,9 +42,8 @@ struct Measured {
 double high_ratio(const std::vector<double> &output, int width, const std::vector<double> &exemplar,
                   const dsn::Image &image) {
     using namespace spectrum_measures;
-    const double exemplar_high = high_frequency_power(welch_spectrum(exemplar, image.width, image.height));
-    const double output_high = high_frequency_power(welch_spectrum(output, width, width));
-    return exemplar_high > 0 ? output_high / exemplar_high : output_high > 0 ? 1e9 : 1;
+    return high_frequency_ratio(welch_spectrum(output, width, width),
+                                welch_spectrum(exemplar, image.width, image.height));
 }
 
 // A constant channel (a flat colour component) has no spectrum and counts for W1 alone.
