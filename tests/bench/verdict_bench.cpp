@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../fixtures/bake_fixtures.h"
+#include "fixtures/bake_fixtures.h"
 
 int main() {
     const std::vector<std::string> paths = bake_fixtures::texture_paths();
