@@ -1,8 +1,9 @@
 /* runtime/format_bytes.h - the byte-level helpers of the .dsnt format (dsn/format.h): little-endian
    reads and writes, the CRC-32 and the support of a texton. Shared by the loader (runtime/asset.cpp),
    the evaluators that read texton values, and the offline writer (offline/asset_writer.cpp), which
-   includes it by relative path. Internal: not installed, not part of dsn.h. Values are assembled byte by
-   byte, whatever the host's endianness; no struct is ever cast over the bytes. */
+   includes it as "runtime/format_bytes.h" (the build gives offline code -I.). Internal: not installed, not
+   part of dsn.h. Values are assembled byte by byte, whatever the host's endianness; no struct is ever cast
+   over the bytes. */
 #ifndef DSN_FORMAT_BYTES_H
 #define DSN_FORMAT_BYTES_H
 
