@@ -155,9 +155,11 @@ ShapeSignal shape_signal(const Image &image, int channel) {
     for (double value : one.values) mean += value;
     mean /= double(plane);
     for (double &value : one.values) value -= mean;
+    // Coordinates within one period of the torus (-width..2 width - 1): wrapped without a division.
     auto at = [&](const Image &field, int x, int y) {
-        return field.values[size_t((y % height + height) % height) * size_t(width) +
-                            size_t((x % width + width) % width)];
+        x = x < 0 ? x + width : (x >= width ? x - width : x);
+        y = y < 0 ? y + height : (y >= height ? y - height : y);
+        return field.values[size_t(y) * size_t(width) + size_t(x)];
     };
     double absolute[2] = {0, 0};
     for (int y = 0; y < height; y++)

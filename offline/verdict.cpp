@@ -203,25 +203,6 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
     const int fitting = std::min(kMaxRadius, (std::min(width, height) - 1) / 4);
     verdict.largest_fitting_radius = fitting;
 
-    // Shape: on the Gaussianized exemplar (each decorrelated channel through its ranks onto a Gaussian), so
-    // that a monotone change of tones, which the tones finding covers, does not count; the visible
-    // channel of the smallest total variation ratio.
-    {
-        const Image gaussian_form =
-            options.histogram
-                ? result.model.t_u
-                : gaussian_model(gaussianize(exemplar, histogram_model(exemplar)), options.periodic).t_u;
-        for (int k = 0; k < basis.channels; k++) {
-            if (basis.variances[size_t(k)] < kVisibleVariance * basis.variances[0]) continue;
-            const ShapeSignal signal = shape_signal(gaussian_form, k);
-            if (k == 0 || signal.ratio < verdict.shape_ratio)
-                verdict.shape_ratio = signal.ratio, verdict.shape_error = signal.error,
-                verdict.shape_channel = k;
-        }
-    }
-    const bool shape =
-        verdict.shape_ratio < kVerdictShapeRatio && 1 - verdict.shape_ratio > 3 * verdict.shape_error;
-
     // The noise at the asset's density, as it renders (quantized texton, stored colour transform, read).
     Matrix3 stored_transform{};
     for (size_t i = 0; i < stored_transform.size(); i++)
@@ -263,9 +244,43 @@ BakeVerdict bake_verdict(const Image &exemplar, const BakeResult &result, const 
                             std::fabs(marginal.excess_kurtosis) > 3 * marginal.kurtosis_error);
         }
     }
-    // However weak the correlation beyond reach, a large share of the energy there is structure the
-    // texton loses (large blotches, slow shading): the share decides, once sampling noise cannot explain it.
-    const bool structure = verdict.structure_beyond_reach > kVerdictStructureShare && significant;
+    // Shape: on the Gaussianized exemplar (each decorrelated channel through its ranks onto a Gaussian), so
+    // that a monotone change of tones, which the tones finding covers, does not count; the visible
+    // channel of the smallest total variation ratio. Tones that pass the tones test are Gaussian already:
+    // their decorrelated channels stand for the Gaussianized ones (and spare its sort).
+    {
+        Image gaussian_form;
+        if (options.histogram) {
+            gaussian_form = result.model.t_u;
+        } else if (non_gaussian) {
+            gaussian_form =
+                gaussian_model(gaussianize(exemplar, histogram_model(exemplar)), options.periodic).t_u;
+        } else {
+            gaussian_form = model.t_u;
+            gaussian_form.channels = basis.channels;
+            gaussian_form.values.assign(plane * size_t(basis.channels), 0.0);
+            for (int k = 0; k < basis.channels; k++)
+                for (int c = 0; c < model.channels; c++) {
+                    const double weight = basis.vectors[size_t(c * 3 + k)];
+                    for (size_t i = 0; i < plane; i++)
+                        gaussian_form.values[size_t(k) * plane + i] +=
+                            weight * model.t_u.values[size_t(c) * plane + i];
+                }
+        }
+        for (int k = 0; k < basis.channels; k++) {
+            if (basis.variances[size_t(k)] < kVisibleVariance * basis.variances[0]) continue;
+            const ShapeSignal signal = shape_signal(gaussian_form, k);
+            if (k == 0 || signal.ratio < verdict.shape_ratio)
+                verdict.shape_ratio = signal.ratio, verdict.shape_error = signal.error,
+                verdict.shape_channel = k;
+        }
+    }
+    const bool shape =
+        verdict.shape_ratio < kVerdictShapeRatio && 1 - verdict.shape_ratio > 3 * verdict.shape_error;
+    // A correlation of 0.2 of the variance beyond reach is structure; a weaker one counts when the energy
+    // it holds there is more than sampling noise explains (large blotches, slow shading, a faint grid).
+    const bool structure = verdict.structure_beyond_reach > kVerdictStructureShare &&
+                           (verdict.correlation_beyond_reach > kVerdictCorrelation || significant);
     if (structure) {
         // A texton of radius d spans two periods of a pattern of period d: its noise keeps about half of
         // the correlation at lag d.

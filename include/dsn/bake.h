@@ -279,10 +279,11 @@ const char *verdict_finding_name(VerdictFinding finding); // "structure_beyond_r
 //    is two-level; a Laplace's 3 is speckled), each also beyond 3 of its standard errors;
 //  - structure lies beyond the texton when more than 10% of the exemplar's autocorrelation energy (sum
 //    of the squared autocorrelation over the lags, less the sampling noise Bartlett's formula puts at each
-//    lag) lies beyond lag 2r, the farthest lag the noise of a texton of radius r correlates, however weak
-//    the correlation there, provided that energy is beyond 3 standard deviations of what sampling noise
-//    leaves there ((4/N) (M/N) sqrt(sum S^4), M of the N lags beyond reach, S the spectrum of the
-//    autocorrelation cut at the reach: the periodogram is about S times an exponential variable);
+//    lag) lies beyond lag 2r, the farthest lag the noise of a texton of radius r correlates, and either
+//    the autocorrelation there reaches 0.2 of the variance or, however weak it is, that energy is beyond
+//    3 standard deviations of what sampling noise leaves there ((4/N) (M/N) sqrt(sum S^4), M of the N
+//    lags beyond reach, S the spectrum of the autocorrelation cut at the reach: the periodogram is about
+//    S times an exponential variable);
 //  - the model error is high above an effective RME (what renders: effective_model_error) of 0.6: a
 //    texton that fits a photo's spectrum up to its sampling noise (the periodogram of a Gaussian field is
 //    exponentially distributed about its mean, which leaves RME = sqrt(1 - pi/4) = 0.46 to a smooth
@@ -296,6 +297,7 @@ const char *verdict_finding_name(VerdictFinding finding); // "structure_beyond_r
 constexpr double kVerdictSkewness = 1.0;
 constexpr double kVerdictExcessKurtosis = 1.0;
 constexpr double kVerdictStructureShare = 0.10;
+constexpr double kVerdictCorrelation = 0.2;
 constexpr double kVerdictModelError = 0.6;
 // sqrt(pi) / 2: the shape signal of a field whose differences have a Laplace distribution (E|g| / rms g =
 // 1 / sqrt 2, against sqrt(2 / pi) for a Gaussian): the sparse gradient of natural images' edges.

@@ -23,7 +23,7 @@ int main() {
         return 0;
     }
     std::printf("%-22s %8s %6s %6s %11s %6s %5s %6s %6s %5s  %s\n", "texture", "size", "RME", "effRME",
-                "shape(err)  ", "beyond", "corr", "skew", "kurt", "imp", "verdict: findings");
+                "shape(err)  ", "beyond(err)", "corr", "skew", "kurt", "imp", "verdict: findings");
     int good = 0, fair = 0, limited = 0, failed = 0;
     double largest_gap = 0;
     for (const std::string &path : paths) {
@@ -53,10 +53,11 @@ int main() {
         largest_gap = std::max(largest_gap, verdict.rme_effective - verdict.rme);
         char size[32];
         std::snprintf(size, sizeof size, "%dx%d", exemplar.width, exemplar.height);
-        std::printf("%-22s %8s %6.3f %6.3f %5.3f(%.3f) %6.2f %5.2f %6.2f %6.2f %5.0f  %s%s%s (r=%d)\n",
+        std::printf("%-22s %8s %6.3f %6.3f %5.3f(%.3f) %4.2f(%.2f) %5.2f %6.2f %6.2f %5.0f  %s%s%s (r=%d)\n",
                     name.c_str(), size, verdict.rme, verdict.rme_effective, verdict.shape_ratio,
-                    verdict.shape_error, verdict.structure_beyond_reach, verdict.correlation_beyond_reach,
-                    verdict.noise_skewness[worst], verdict.noise_excess_kurtosis[worst],
+                    verdict.shape_error, verdict.structure_beyond_reach, verdict.structure_error,
+                    verdict.correlation_beyond_reach, verdict.noise_skewness[worst],
+                    verdict.noise_excess_kurtosis[worst],
                     verdict.suggested_impacts > 0 ? verdict.suggested_impacts : verdict.impacts, word.c_str(),
                     findings.empty() ? "" : ": ", findings.c_str(), options.radius);
     }
