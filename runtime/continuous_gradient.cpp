@@ -6,10 +6,7 @@
 
 #if DSN_GRADIENTS
 
-namespace {
-
-/* values[0 .. 2]: the point's value, then its dx, then its dy (DSN_MAX_CHANNELS apart), Q16.16. */
-void gradient_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *values) {
+void dsn_internal_continuous_gradient(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *values) {
     uint64_t value[DSN_MAX_CHANNELS], slope_x[DSN_MAX_CHANNELS], slope_y[DSN_MAX_CHANNELS];
     dsn_internal_continuous_slopes(noise, x, y, value, slope_x, slope_y);
     /* A slope is per 2^-16 texel: times 2^16 it is per texel, with the value sums' 32 fraction bits
@@ -24,6 +21,8 @@ void gradient_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_
     dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
 }
 
+namespace {
+
 int check_call(const dsn_noise_state *noise, const void *out, const void *dx, const void *dy) {
     const int err = dsn_internal_continuous_check(noise);
     if (err != DSN_OK) return err;
@@ -36,7 +35,7 @@ int point_of_kind(const dsn_noise *handle, int64_t x, int64_t y, void *out, void
     const int err = check_call(noise, out, dx, dy);
     if (err != DSN_OK) return dsn_gradient_error(err, noise, out, dx, dy, kind, 1);
     int32_t values[3 * DSN_MAX_CHANNELS];
-    gradient_point(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), values);
+    dsn_internal_continuous_gradient(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), values);
     dsn_store_gradient(out, dx, dy, kind, 0, values, noise->asset.channels);
     return DSN_OK;
 }
@@ -59,7 +58,7 @@ int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, 
     for (uint32_t j = 0; j < height; j++) {
         uint64_t point_x = row_x, point_y = row_y;
         for (uint32_t i = 0; i < width; i++, index += channels) {
-            gradient_point(noise, point_x, point_y, values);
+            dsn_internal_continuous_gradient(noise, point_x, point_y, values);
             dsn_store_gradient(out, dx, dy, kind, index, values, channels);
             point_x += static_cast<uint64_t>(grid->column_step_x);
             point_y += static_cast<uint64_t>(grid->column_step_y);
@@ -87,7 +86,7 @@ int batch_of_kind(const dsn_noise *handle, const Coordinate *xs, const Coordinat
     const uint32_t channels = noise->asset.channels;
     int32_t values[3 * DSN_MAX_CHANNELS];
     for (uint32_t k = 0; k < count; k++) {
-        gradient_point(noise, batch_coordinate(xs[k]), batch_coordinate(ys[k]), values);
+        dsn_internal_continuous_gradient(noise, batch_coordinate(xs[k]), batch_coordinate(ys[k]), values);
         dsn_store_gradient(out, dx, dy, kind, static_cast<size_t>(k) * channels, values, channels);
     }
     return DSN_OK;

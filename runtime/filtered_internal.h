@@ -72,6 +72,14 @@ static inline void dsn_filter_walk_radii(const dsn_walked_level *levels, uint32_
 void dsn_internal_filter_sums_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums);
+#if DSN_GRADIENTS
+/* The slopes of those sums per 2^-16 texel of each level (add_slopes): [tap][level][axis x, y][channel]. */
+typedef uint64_t dsn_filter_slopes[DSN_FILTER_MAX_TAPS][2][2][DSN_MAX_CHANNELS];
+/* dsn_internal_filter_sums_walked's sums and their slopes, in one walk (filtered_walk.cpp). */
+void dsn_internal_filter_slopes_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                       const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                       uint32_t count, dsn_filter_sums sums, dsn_filter_slopes *slopes);
+#endif
 #if !DSN_SMALL_CODE
 void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
@@ -100,9 +108,18 @@ uint32_t dsn_internal_filter_walked_levels(const dsn_noise_state *noise, const d
                                            dsn_walked_level *walked);
 void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
                                       const uint64_t *level_sums, int64_t *values);
+#if DSN_GRADIENTS
+/* dsn_internal_filter_level_values of a level's slopes (dsn_filter_slopes): the derivatives per texel,
+   without the offset (the mean does not reach a derivative). */
+void dsn_internal_filter_level_slopes(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                      const uint64_t *level_slopes, int64_t *values);
+#endif
 void dsn_internal_filter_add_level(const dsn_noise_state *noise, const dsn_filter_plan *plan, uint32_t index,
                                    const int64_t *values, int64_t *totals);
 void dsn_internal_filter_add_mean(const dsn_noise_state *noise, const dsn_filter_plan *plan, int64_t *totals);
+/* dsn_internal_filter_finish without the histogram mapping: the rounding alone. */
+void dsn_internal_filter_round(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                               const int64_t *totals, int32_t *out);
 void dsn_internal_filter_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
                                 const int64_t *totals, int32_t *out);
 

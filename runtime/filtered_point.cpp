@@ -34,12 +34,13 @@ uint64_t in_texton_units(uint64_t sum, int32_t exponent) {
 
 } // namespace
 
-void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
-                                      const uint64_t *level_sums, int64_t *values) {
+namespace {
+
+/* A level's sums (level-0 units once in_texton_units has scaled them) normalized from `offset`, with
+   extra_bits more fraction bits than Q16.16, saturated to +-level_value_limit. */
+void level_values_from(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
+                       int64_t *values) {
     const uint32_t channels = noise->asset.channels;
-    const int64_t *offset = level->level == 0 ? noise->offset : noise->level_offset[level->level - 1u];
-    uint64_t sums[DSN_MAX_CHANNELS];
-    for (uint32_t k = 0; k < channels; k++) sums[k] = in_texton_units(level_sums[k], level->exponent);
     for (uint32_t c = 0; c < channels; c++) {
         /* |offset| <= 2^61 (init), |gain| < 2^29: below 2^63 as in normalize_q32. */
         int64_t accumulated = offset[c], fractions = 0;
@@ -59,6 +60,29 @@ void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_wa
                                                  : value;
     }
 }
+
+} // namespace
+
+void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                      const uint64_t *level_sums, int64_t *values) {
+    const int64_t *offset = level->level == 0 ? noise->offset : noise->level_offset[level->level - 1u];
+    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+    for (uint32_t k = 0; k < noise->asset.channels; k++)
+        sums[k] = in_texton_units(level_sums[k], level->exponent);
+    level_values_from(noise, offset, sums, values);
+}
+
+#if DSN_GRADIENTS
+void dsn_internal_filter_level_slopes(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                      const uint64_t *level_slopes, int64_t *values) {
+    static const int64_t no_offset[DSN_MAX_CHANNELS] = {0, 0, 0};
+    uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
+    /* per 2^-16 level texel, that is per 2^(level - 16) texel: times 2^(16 - level) per texel */
+    for (uint32_t k = 0; k < noise->asset.channels; k++)
+        sums[k] = in_texton_units(level_slopes[k] << (16u - level->level), level->exponent);
+    level_values_from(noise, no_offset, sums, values);
+}
+#endif
 
 int dsn_internal_filter_fade(const dsn_noise_state *noise, const dsn_filter_plan *plan, int32_t *out) {
     const uint32_t lower = static_cast<uint32_t>(plan->lod_q8) >> 8;
@@ -96,13 +120,18 @@ void dsn_internal_filter_add_mean(const dsn_noise_state *noise, const dsn_filter
         totals[c] += static_cast<int64_t>(noise->asset.mean[c]) * blend;
 }
 
-void dsn_internal_filter_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
-                                const int64_t *totals, int32_t *out) {
+void dsn_internal_filter_round(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                               const int64_t *totals, int32_t *out) {
     /* taps = 2^k: one rounding of totals / (256 2^k 2^extra_bits). */
     uint32_t tap_shift = 0;
     while ((1u << tap_shift) < plan->taps) tap_shift++;
     for (uint32_t c = 0; c < noise->asset.channels; c++)
         out[c] = dsn_round_saturate(totals[c], 8u + tap_shift + extra_bits);
+}
+
+void dsn_internal_filter_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                const int64_t *totals, int32_t *out) {
+    dsn_internal_filter_round(noise, plan, totals, out);
 #if DSN_HISTOGRAM
     if (noise->asset.histogram_table != 0)
         dsn_internal_histogram_map(&noise->asset, out, static_cast<uint32_t>(plan->lod_q8) >> 8,

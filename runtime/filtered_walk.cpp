@@ -29,28 +29,47 @@ inline int64_t level_texel(const dsn_walked_level &level, uint32_t channels, uin
     return bits == 8 ? dsn_read_i8(level.values + index) : dsn_read_i16le(level.values + 2u * index);
 }
 
+/* bracket (bilinear_texton.h) of a level offset; with `entry_edge` an offset of exactly -(radius + 1)
+   texels is kept, as index -1 with weight 0. */
+inline bool level_bracket(int64_t offset, uint32_t radius, bool entry_edge, uint32_t *lower_index,
+                          uint32_t *upper_weight) {
+    if (entry_edge && offset == -static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel)) {
+        *lower_index = 0xFFFFFFFFu;
+        *upper_weight = 0;
+        return true;
+    }
+    return bracket(offset, radius, lower_index, upper_weight);
+}
+
 /* Adds the level's bilinear texton at the impulse-to-point offset (dx, dy), Q32.32 level-0 texels, to
    the sums (Q.32, stored-value units): the offset is divided by the spacing 2^level (rounded down) and
-   read as the continuous mode reads level 0 (bracket, the same weights). */
+   read as the continuous mode reads level 0 (bracket, the same weights). With Slopes, also its partial
+   derivatives per 2^-16 level texel (add_slopes) to slopes[0] (x) and slopes[1] (y), the impulses exactly
+   at the entry edge of the level's reach included (value 0, slope not), as the continuous gradient's. */
+template <bool Slopes>
 inline void add_level(const dsn_walked_level &level, uint32_t channels, uint32_t bits, int64_t dx, int64_t dy,
-                      uint64_t *sums) {
+                      uint64_t *sums, uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
     uint32_t row, row_weight, column, column_weight;
-    if (!bracket(floor_shift_walk(dy, level.level), level.radius_y, &row, &row_weight) ||
-        !bracket(floor_shift_walk(dx, level.level), level.radius_x, &column, &column_weight))
+    if (!level_bracket(floor_shift_walk(dy, level.level), level.radius_y, Slopes, &row, &row_weight) ||
+        !level_bracket(floor_shift_walk(dx, level.level), level.radius_x, Slopes, &column, &column_weight))
         return;
     const int64_t across = column_weight, down = row_weight;
     for (uint32_t c = 0; c < channels; c++) {
-        const int64_t upper = (65536 - across) * level_texel(level, channels, bits, row, column, c) +
-                              across * level_texel(level, channels, bits, row, column + 1u, c);
-        const int64_t lower = (65536 - across) * level_texel(level, channels, bits, row + 1u, column, c) +
-                              across * level_texel(level, channels, bits, row + 1u, column + 1u, c);
+        const int64_t a = level_texel(level, channels, bits, row, column, c),
+                      b = level_texel(level, channels, bits, row, column + 1u, c),
+                      d = level_texel(level, channels, bits, row + 1u, column, c),
+                      e = level_texel(level, channels, bits, row + 1u, column + 1u, c);
+        const int64_t upper = (65536 - across) * a + across * b, lower = (65536 - across) * d + across * e;
         sums[c] += static_cast<uint64_t>((65536 - down) * upper + down * lower); /* each term < 2^47 */
+        if (Slopes) add_slopes(a, b, d, e, across, down, &slopes[0][c], &slopes[1][c]);
     }
 }
 
-/* The sums of one or two levels at the point (x, y), over every impulse within reach of either. */
+/* The sums of one or two levels at the point (x, y), over every impulse within reach of either; with
+   Slopes their slopes too (slopes[level][axis][channel]). */
+template <bool Slopes>
 void level_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_walked_level *levels,
-                uint32_t count, uint64_t (*sums)[DSN_MAX_CHANNELS]) {
+                uint32_t count, uint64_t (*sums)[DSN_MAX_CHANNELS], uint64_t (*slopes)[2][DSN_MAX_CHANNELS]) {
     const uint32_t shift = noise->cell_shift, channels = noise->asset.channels, bits = noise->asset.bits;
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
@@ -74,11 +93,29 @@ void level_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_
                             !impulse_offset(wx, span_x, origin_x, dsn_impulse_bits_x(hash), &dx))
                             continue;
                         for (uint32_t l = 0; l < count; l++)
-                            add_level(levels[l], channels, bits, dx, dy, sums[l]);
+                            add_level<Slopes>(levels[l], channels, bits, dx, dy, sums[l],
+                                              Slopes ? slopes[l] : 0);
                     }
                 }
             }
         }
+    }
+}
+
+/* Zeros, then the sums (and slopes) of every tap. */
+template <bool Slopes>
+void tap_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
+              const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums,
+              dsn_filter_slopes *slopes) {
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+                sums[tap][l][c] = 0;
+                if (Slopes) (*slopes)[tap][l][0][c] = (*slopes)[tap][l][1][c] = 0;
+            }
+        level_sums<Slopes>(noise, x + static_cast<uint64_t>(plan->offset_x[tap]),
+                           y + static_cast<uint64_t>(plan->offset_y[tap]), levels, count, sums[tap],
+                           Slopes ? (*slopes)[tap] : 0);
     }
 }
 
@@ -87,12 +124,15 @@ void level_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_
 void dsn_internal_filter_sums_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums) {
-    for (uint32_t tap = 0; tap < plan->taps; tap++) {
-        for (uint32_t l = 0; l < 2; l++)
-            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
-        level_sums(noise, x + static_cast<uint64_t>(plan->offset_x[tap]),
-                   y + static_cast<uint64_t>(plan->offset_y[tap]), levels, count, sums[tap]);
-    }
+    tap_sums<false>(noise, x, y, plan, levels, count, sums, 0);
 }
+
+#if DSN_GRADIENTS
+void dsn_internal_filter_slopes_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                       const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                       uint32_t count, dsn_filter_sums sums, dsn_filter_slopes *slopes) {
+    tap_sums<true>(noise, x, y, plan, levels, count, sums, slopes);
+}
+#endif
 
 #endif /* DSN_FILTERING */

@@ -21,7 +21,7 @@ static const int64_t dsn_no_offset[DSN_MAX_CHANNELS] = {0, 0, 0};
 static inline void dsn_map_gradient(const dsn_noise_state *noise, int32_t *value, int32_t *dx, int32_t *dy) {
 #if DSN_HISTOGRAM
     if (noise->asset.histogram_table != 0) {
-        dsn_internal_histogram_map_gradient(&noise->asset, value, dx, dy);
+        dsn_internal_histogram_map_gradient(&noise->asset, value, 0, 0, dx, dy);
         dsn_internal_histogram_map(&noise->asset, value, 0, 0);
     }
 #else

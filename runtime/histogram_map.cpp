@@ -82,23 +82,25 @@ void dsn_internal_histogram_map(const dsn_asset *asset, int32_t *values, uint32_
 #if DSN_GRADIENTS
 namespace {
 
-/* The slope of level 0's table of channel k at g: X per unit of g (X as table_read's), the segment that
-   holds g (its upper one at an entry), 0 where the read is clamped. |slope| <= 65535 16 < 2^20. */
-inline int64_t table_slope(const mapping &m, uint32_t k, int32_t g) {
+/* The slope of level `level`'s table of channel k at g: X per unit of g (X as table_read's), the segment
+   that holds g (its upper one at an entry), 0 where the read is clamped and at levels past the tables
+   (the constant `expected`). |slope| <= 65535 16 < 2^20. */
+inline int64_t table_slope(const mapping &m, uint32_t level, uint32_t k, int32_t g) {
     const int64_t u = static_cast<int64_t>(g) - m.low;
-    if (u < 0 || u >= m.top) return 0;
+    if (level >= m.levels || u < 0 || u >= m.top) return 0;
     const uint32_t i = static_cast<uint32_t>(u) >> m.d; /* u < (N - 1) 2^d: i + 1 < N */
-    const unsigned char *row = m.table + 2u * (k * m.entries);
+    const unsigned char *row = m.table + 2u * ((level * m.channels + k) * m.entries);
     return (static_cast<int64_t>(dsn_read_i16le(row + 2u * (i + 1u))) - dsn_read_i16le(row + 2u * i)) * 16;
 }
 
-/* v_k' = slope_k d_k / 2^d rounded, saturated to +-2^29 so that the rotation's sum stays below 2^63
-   (|P| < 2^31), then out_c' = sum_k P[c][k] v_k' / 2^24 rounded. */
+/* v_k' = slope_k d_k / 2^(d + 8) rounded (slope_k blended, 256 times a table's), saturated to +-2^29 so
+   that the rotation's sum stays below 2^63 (|P| < 2^31), then out_c' = sum_k P[c][k] v_k' / 2^24
+   rounded. */
 void map_derivative(const dsn_asset *asset, const mapping &m, const int64_t *slopes, int32_t *derivative) {
     const int64_t limit = int64_t(1) << 29;
     int64_t v[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t k = 0; k < m.channels; k++) {
-        const int64_t scaled = dsn_round_saturate(slopes[k] * derivative[k], m.d); /* |product| < 2^51 */
+        const int64_t scaled = dsn_round_saturate(slopes[k] * derivative[k], m.d + 8u); /* |product| < 2^59 */
         v[k] = scaled > limit ? limit : scaled < -limit ? -limit : scaled;
     }
     const int32_t *p = asset->histogram_rotation;
@@ -108,11 +110,13 @@ void map_derivative(const dsn_asset *asset, const mapping &m, const int64_t *slo
 
 } // namespace
 
-void dsn_internal_histogram_map_gradient(const dsn_asset *asset, const int32_t *values, int32_t *dx,
-                                         int32_t *dy) {
+void dsn_internal_histogram_map_gradient(const dsn_asset *asset, const int32_t *values, uint32_t level,
+                                         uint32_t blend, int32_t *dx, int32_t *dy) {
     const mapping m = mapping_of(asset);
     int64_t slopes[DSN_MAX_CHANNELS] = {0, 0, 0};
-    for (uint32_t k = 0; k < m.channels; k++) slopes[k] = table_slope(m, k, values[k]);
+    for (uint32_t k = 0; k < m.channels; k++)
+        slopes[k] = static_cast<int64_t>(256u - blend) * table_slope(m, level, k, values[k]) +
+                    (blend == 0 ? 0 : static_cast<int64_t>(blend) * table_slope(m, level + 1u, k, values[k]));
     map_derivative(asset, m, slopes, dx);
     map_derivative(asset, m, slopes, dy);
 }

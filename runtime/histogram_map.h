@@ -19,11 +19,11 @@
 void dsn_internal_histogram_map(const dsn_asset *asset, int32_t *values, uint32_t level, uint32_t blend);
 
 #if DSN_GRADIENTS
-/* The chain rule of the unfiltered mapping (level 0): dx and dy, a point's Gaussian-space derivatives at
-   its Gaussian-space values `values` (before the mapping), become the derivatives of its colours, in
-   place (dsn.h, "Gradients"). */
-void dsn_internal_histogram_map_gradient(const dsn_asset *asset, const int32_t *values, int32_t *dx,
-                                         int32_t *dy);
+/* The chain rule of the mapping of `level` blended with level + 1 (as dsn_internal_histogram_map): dx and
+   dy, a point's Gaussian-space derivatives at its Gaussian-space values `values` (before the mapping),
+   become the derivatives of its colours, in place (dsn.h, "Gradients"). */
+void dsn_internal_histogram_map_gradient(const dsn_asset *asset, const int32_t *values, uint32_t level,
+                                         uint32_t blend, int32_t *dx, int32_t *dy);
 #endif
 
 /* out[channels]: the colour the mapping gives where every table is `expected` (levels at or above

@@ -12,7 +12,9 @@
 
 #include "fixtures/continuous_fixtures.h"
 #include "fixtures/test_assets.h"
+#include "offline/bake_internal.h"
 #include "runtime/continuous_internal.h"
+#include "runtime/filtered_internal.h"
 #include "runtime/gradient_output.h"
 
 using namespace continuous_fixtures;
@@ -426,4 +428,94 @@ TEST_CASE("gradient errors: every output zeroed, the value functions' codes") {
     CHECK((values[11] == 0.0f && slopes[11] == 0.0f));
     CHECK(dsn_continuous_batch_gradient_fixed(&noise, nullptr, nullptr, 0, nullptr, nullptr, nullptr) ==
           DSN_OK);
+}
+
+namespace {
+
+// A bilinear asset with its baked pyramid (filtered evaluation).
+dsn::AssetFields pyramid_asset(uint32_t channels, uint32_t bits) {
+    dsn::AssetFields fields = random_texton_asset(channels, 8, bits, 31);
+    fields.pyramid = dsn::texton_pyramid(fields);
+    return fields;
+}
+
+dsn_footprint footprint_of(int64_t column_x, int64_t column_y, int64_t row_x, int64_t row_y, uint32_t taps) {
+    const dsn_footprint footprint = {column_x, column_y, row_x, row_y, taps};
+    return footprint;
+}
+
+} // namespace
+
+TEST_CASE("filtered gradient: the filtered value, the continuous gradient unfiltered, no slope faded") {
+    const int64_t one = int64_t(1) << 32;
+    const dsn_footprint footprints[] = {
+        footprint_of(3 * one, one / 2, -one / 2, 3 * one, 1),      // isotropic, level of detail about 1.6
+        footprint_of(2 * one, 0, 0, 2 * one, 1),                   // exactly level 1
+        footprint_of(12 * one, 5 * one, one / 2, -3 * one / 2, 8), // anisotropic, several taps
+        footprint_of(one / 2, 0, 0, one / 2, 16),                  // unfiltered
+        footprint_of(INT64_MAX / 3, 0, 0, INT64_MAX / 3, 1),       // the mean colour
+    };
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u}) {
+            const auto made = make_noise(pyramid_asset(channels, bits), 3);
+            const dsn_noise &noise = made->noise;
+            std::vector<int64_t> xs, ys;
+            renderer_points(23, 12, &xs, &ys);
+            for (const dsn_footprint &footprint : footprints)
+                for (size_t p = 0; p < xs.size(); p++) {
+                    int32_t value[3], dx[3], dy[3], expected[3], gradient[3][3];
+                    REQUIRE(dsn_filtered_gradient_fixed(&noise, xs[p], ys[p], &footprint, value, dx, dy) ==
+                            DSN_OK);
+                    REQUIRE(dsn_filtered_point_fixed(&noise, xs[p], ys[p], &footprint, expected) == DSN_OK);
+                    int32_t lod = 0;
+                    uint32_t taps = 0;
+                    REQUIRE(dsn_filter_level(&noise, &footprint, &lod, &taps) == DSN_OK);
+                    const bool faded = uint32_t(lod) >> 8 > dsn_state(&noise)->asset.pyramid_levels;
+                    if (lod == 0 && taps == 1)
+                        REQUIRE(dsn_continuous_gradient_fixed(&noise, xs[p], ys[p], gradient[0], gradient[1],
+                                                              gradient[2]) == DSN_OK);
+                    for (uint32_t c = 0; c < channels; c++) {
+                        CHECK(value[c] == expected[c]);
+                        if (faded) CHECK((dx[c] == 0 && dy[c] == 0));
+                        if (lod == 0 && taps == 1)
+                            CHECK((dx[c] == gradient[1][c] && dy[c] == gradient[2][c]));
+                    }
+                }
+        }
+}
+
+TEST_CASE("filtered gradient: each level's sums step by its slopes, one 2^-16 step of the level at a time") {
+    const int64_t one = int64_t(1) << 32;
+    const auto made = make_noise(pyramid_asset(3, 8), 5);
+    const dsn_noise_state *noise = dsn_state(&made->noise);
+    const dsn_footprint footprint = footprint_of(5 * one, one, -one, 5 * one / 2, 4);
+    dsn_filter_plan plan;
+    REQUIRE(dsn_internal_filter_plan(&footprint, noise->asset.pyramid_levels, &plan) == DSN_OK);
+    dsn_walked_level walked[2];
+    const uint32_t count = dsn_internal_filter_walked_levels(noise, &plan, walked);
+    REQUIRE(count == 2);
+    std::vector<int64_t> xs, ys;
+    renderer_points(29, 40, &xs, &ys);
+    int sloped = 0;
+    for (size_t p = 0; p < xs.size(); p++) {
+        static dsn_filter_sums sums, east, south;
+        static dsn_filter_slopes slopes, unused;
+        dsn_internal_filter_slopes_walked(noise, uint64_t(xs[p]), uint64_t(ys[p]), &plan, walked, count, sums,
+                                          &slopes);
+        for (uint32_t l = 0; l < count; l++) {
+            // a step of 2^-16 texel of level l is 2^(level + 16) in Q32.32
+            const int64_t level_step = int64_t(1) << (16 + walked[l].level);
+            dsn_internal_filter_slopes_walked(noise, uint64_t(moved(xs[p], level_step)), uint64_t(ys[p]),
+                                              &plan, walked, count, east, &unused);
+            dsn_internal_filter_slopes_walked(noise, uint64_t(xs[p]), uint64_t(moved(ys[p], level_step)),
+                                              &plan, walked, count, south, &unused);
+            for (uint32_t tap = 0; tap < plan.taps; tap++)
+                for (uint32_t c = 0; c < 3; c++) {
+                    CHECK(east[tap][l][c] - sums[tap][l][c] == slopes[tap][l][0][c]);
+                    CHECK(south[tap][l][c] - sums[tap][l][c] == slopes[tap][l][1][c]);
+                    sloped += slopes[tap][l][0][c] != 0;
+                }
+        }
+    }
+    CHECK(sloped > 100);
 }

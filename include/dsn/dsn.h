@@ -667,8 +667,16 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    the lattice point zeroes its output); null `dx` or `dy` is DSN_ERR_NULL. On an error every non-null
    output is zeroed as the value's function zeroes `out`. Tiles and batches: the layout, the grid and
    the errors of the value's functions, three arrays of width * height * channels (or count * channels)
-   values, exactly the per-point results; they take no scratch and evaluate point by point (make bench
-   reports their cost next to the value tiles'). The filtered evaluation has no gradient yet. */
+   values, exactly the per-point results; they take no scratch (make bench's gradient_bench reports their
+   cost next to the value's).
+   - Filtered evaluation (DSN_FILTERING): the derivative of the filtered noise, the same blend of the same
+     levels at the same taps as the value: each level's exact derivative (its bilinear slopes per texel of
+     the level, over 2^level per texel), normalized per level without its offset, blended with the
+     level's weight (the mean's share of a fade is constant: no slope), averaged over the taps and rounded
+     once; with a mapping, the chain rule through the blend of the two levels' tables ((1 - w) T_l' +
+     w T_(l+1)', the levels past the tables flat). Past the coarsest level (the mean colour) it is 0, and
+     an unfiltered footprint gives the continuous gradient's bits. The slopes come from the tap-by-tap
+     walk (every impulse read at every tap), which costs more than the value's sifted walk. */
 #if DSN_GRADIENTS
 int dsn_lattice_gradient_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out, int32_t *dx,
                                int32_t *dy);
@@ -693,6 +701,18 @@ int dsn_continuous_batch_gradient_fixed(const dsn_noise *noise, const int64_t *x
                                         uint32_t count, int32_t *out, int32_t *dx, int32_t *dy);
 int dsn_continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, const double *ys,
                                         uint32_t count, float *out, float *dx, float *dy);
+#if DSN_FILTERING
+/* The filtered evaluation's errors (dsn_filtered_point_fixed, dsn_filtered_tile_fixed, their scratch
+   aside), the same zeroing. */
+int dsn_filtered_gradient_fixed(const dsn_noise *noise, int64_t x, int64_t y, const dsn_footprint *footprint,
+                                int32_t *out, int32_t *dx, int32_t *dy);
+int dsn_filtered_gradient_float(const dsn_noise *noise, double x, double y, const dsn_footprint *footprint,
+                                float *out, float *dx, float *dy);
+int dsn_filtered_tile_gradient_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
+                                     uint32_t width, uint32_t height, int32_t *out, int32_t *dx, int32_t *dy);
+int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_taps,
+                                     uint32_t width, uint32_t height, float *out, float *dx, float *dy);
+#endif
 #endif
 
 /* ==== End of the gradients =========================================================================== */

@@ -2,13 +2,14 @@
 // the value alone, measured in the same run in paired rounds: per point (lattice and continuous, on a
 // rotated grid off the lattice), per tile (lattice, and a continuous grid rotated by 30 degrees at 0.7
 // texels per pixel, which the value's tile splats) and per batch; RGB, 31 x 31 texton, 30 impacts per
-// pixel, one thread. The target is 1.6x.
+// pixel, one thread; and the filtered point at a level of detail of 1.6. The target is 1.6x.
 #include <cstdio>
 #include <functional>
 #include <vector>
 
 #include "bench_timing.h"
 #include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 
 namespace {
 
@@ -27,7 +28,9 @@ void report(const char *what, const std::vector<double> &gradient, const std::ve
 
 int main() {
     using namespace continuous_fixtures;
-    auto made = make_noise(random_texton_asset(3, 15, 8, 1), 1, 30u << 16);
+    dsn::AssetFields fields = random_texton_asset(3, 15, 8, 1);
+    fields.pyramid = dsn::texton_pyramid(fields);
+    auto made = make_noise(fields, 1, 30u << 16);
     const dsn_noise *noise = &made->noise;
     const double points = double(side) * side;
     const int64_t one = int64_t(1) << 32;
@@ -100,19 +103,37 @@ int main() {
         };
     };
 
+    auto filtered_points = [&](bool gradient) {
+        return [&, gradient] {
+            // a minification by 3 (level of detail about 1.6), isotropic
+            const dsn_footprint footprint = {3 * one, 0, 0, 3 * one, 1};
+            int32_t value[3], gx[3], gy[3];
+            for (uint32_t y = 0; y < side / 4; y++)
+                for (uint32_t x = 0; x < side; x++) {
+                    const int64_t px = int64_t(x) * 3 * one + one / 3, py = int64_t(y) * 3 * one + one / 7;
+                    if (gradient)
+                        dsn_filtered_gradient_fixed(noise, px, py, &footprint, value, gx, gy);
+                    else
+                        dsn_filtered_point_fixed(noise, px, py, &footprint, value);
+                    checksum += value[0];
+                }
+        };
+    };
     const struct {
         const char *name;
         std::function<void()> gradient, value;
+        double gradient_points;
     } cases[] = {
-        {"lattice point", lattice_points(true), lattice_points(false)},
-        {"continuous point", continuous_points(true), continuous_points(false)},
-        {"lattice tile", tiles(true, true), tiles(true, false)},
-        {"continuous tile (30 deg, 0.7 texel)", tiles(false, true), tiles(false, false)},
-        {"continuous batch (random points)", batch(true), batch(false)},
+        {"lattice point", lattice_points(true), lattice_points(false), points},
+        {"continuous point", continuous_points(true), continuous_points(false), points},
+        {"lattice tile", tiles(true, true), tiles(true, false), points},
+        {"continuous tile (30 deg, 0.7 texel)", tiles(false, true), tiles(false, false), points},
+        {"continuous batch (random points)", batch(true), batch(false), points},
+        {"filtered point (level of detail 1.6)", filtered_points(true), filtered_points(false), points / 4},
     };
     for (const auto &c : cases) {
         const auto times = bench::timed_rounds(rounds, {c.gradient, c.value});
-        report(c.name, times[0], times[1], points);
+        report(c.name, times[0], times[1], c.gradient_points);
     }
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;

@@ -571,6 +571,33 @@ int gradient_floats(const dsn_noise *noise, const Window &window, Fnv *hash) {
 }
 #endif
 
+#if DSN_GRADIENTS && DSN_FILTERING && !defined(GOLDEN_WITHOUT_GRADIENTS)
+/* The filtered gradient at the grid's points with the grid's footprint, 16 taps allowed then 1, then the
+   float tile. */
+int filtered_gradient(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t channels = dsn_noise_channels(noise), count = grid.width * grid.height * channels;
+    if (grid.width * grid.height * DSN_MAX_CHANNELS > max_window_values) return DSN_ERR_SCRATCH;
+    for (uint32_t max_taps = 16; max_taps >= 1; max_taps /= 16) {
+        const dsn_footprint footprint = grid_footprint(grid, max_taps);
+        for (uint32_t j = 0; j < grid.height; j++)
+            for (uint32_t i = 0; i < grid.width; i++) {
+                const uint32_t at = (j * grid.width + i) * channels;
+                int64_t x, y;
+                grid_point(grid.grid, i, j, &x, &y);
+                const int err = dsn_filtered_gradient_fixed(noise, x, y, &footprint, &tile_fixed_values[at],
+                                                            &gradient_dx_values[at], &gradient_dy_values[at]);
+                if (err != DSN_OK) return err;
+            }
+        hash_gradient(hash, count);
+    }
+    const int err =
+        dsn_filtered_tile_gradient_float(noise, &grid.grid, 16, grid.width, grid.height, tile_float_values,
+                                         gradient_dx_floats, gradient_dy_floats);
+    if (err == DSN_OK) hash_gradient_floats(hash, count);
+    return err;
+}
+#endif
+
 /* IEEE bit patterns for the coordinate conversions: zeros, halves, the int32 ends, beyond 2^63, the
    smallest subnormal, the largest finite, infinities and NaNs. Built from bits so that no compiler
    option (-ffast-math) can change them. */
@@ -665,6 +692,9 @@ const Kind kinds[] = {
     {"f-tile", 0, filtered_tile_fixed, &filtered_plan, false},   /* the same bytes as "f-point" */
     {"f-float", 0, filtered_conversions, &filtered_plan, false}, /* per point, tile float and u8 */
 #endif
+#if DSN_GRADIENTS && DSN_FILTERING && !defined(GOLDEN_WITHOUT_GRADIENTS)
+    {"d-f-point", 0, filtered_gradient, &filtered_plan, false},
+#endif
 #ifndef GOLDEN_WITHOUT_HISTOGRAM /* the GLSL evaluator has no histogram mapping (tests/gpu leaves these out) \
                                   */
     {"h-point", point_fixed, 0, &lattice_plan, true},
@@ -675,6 +705,9 @@ const Kind kinds[] = {
 #if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
     {"h-d-point", gradient_point, 0, &lattice_plan, true},
     {"h-d-c-point", 0, continuous_gradient_point, &affine_plan, true},
+#endif
+#if DSN_GRADIENTS && DSN_FILTERING && !defined(GOLDEN_WITHOUT_GRADIENTS)
+    {"h-d-f-point", 0, filtered_gradient, &filtered_plan, true},
 #endif
 #if DSN_FILTERING
     {"h-f-point", 0, filtered_point_fixed, &filtered_plan, true},
