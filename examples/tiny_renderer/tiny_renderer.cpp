@@ -8,9 +8,10 @@
 // far away, instead of aliased noise.
 //
 // With --shading bump the surfaces are also bump-mapped: the texture's luminance is a relief (a height in
-// texels), whose exact gradient per texel dsn_continuous_gradient_float gives with the value; the chain
-// rule carries it to the surface (`height_gradient`, with the coordinates' surface gradients from
-// ray_differentials.h) and the normal is bent by it (`bumped_normal`) before the light is applied.
+// texels), whose exact gradient per texel dsn_continuous_gradient_float (or, filtered,
+// dsn_filtered_gradient_float) gives with the value; the chain rule carries it to the surface
+// (`height_gradient`, with the coordinates' surface gradients from ray_differentials.h) and the normal is
+// bent by it (`bumped_normal`) before the light is applied.
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -54,11 +55,11 @@ const char *const usage =
     "                         bump (bump mapping: the texture's luminance is a relief whose exact\n"
     "                         gradient, from dsn_continuous_gradient_float, bends the normal)\n"
     "  --bump B               the relief's height in texels per unit of luminance (1.0 = white), 0..64\n"
-    "                         (default 8; implies --shading bump). The gradient is the unfiltered\n"
-    "                         noise's: with --filter iso or aniso the relief fades where a pixel covers\n"
-    "                         more than a texel, by 4^-LOD (LOD: log2 of the footprint's longer side in\n"
-    "                         texels), as one sample of it per pixel would alias far away; --filter none\n"
-    "                         and --supersample keep it whole (the latter averages it: the reference)\n"
+    "                         (default 8; implies --shading bump). With --filter iso or aniso the\n"
+    "                         gradient is the filtered noise's (dsn_filtered_gradient_float): the relief\n"
+    "                         fades with the texture's detail far away instead of aliasing; --filter\n"
+    "                         none and --supersample keep it whole (the latter averages it: the\n"
+    "                         reference)\n"
     "  --time-limit S         refuse a picture estimated to take more than S seconds (default 600;\n"
     "                         0 = no limit), from 64 probe pixels spread over it, timed first\n"
     "  -h, --help, --version  this help, the version\n"
@@ -178,29 +179,6 @@ double luminance(const float *value, uint32_t channels) {
     return channels == 3 ? 0.2126 * value[0] + 0.7152 * value[1] + 0.0722 * value[2] : double(value[0]);
 }
 
-// How much of the relief's slope a filtered pixel keeps. The gradient is the unfiltered noise's (the
-// filtered evaluation has none): one sample of it per pixel aliases where the pixel covers several texels
-// (far away, toward the horizon), as the unfiltered value does. The filter's level of detail LOD blurs
-// the texture by a Gaussian of standard deviation sigma = 2^(LOD - 1) texels, and a relief of flat
-// spectrum blurred so keeps a slope of root mean square proportional to 1 / sigma^2 (its variance is the
-// integral of |w|^2 |G(w)|^2, G the Gaussian's spectrum: proportional to sigma^-4); so the slope is
-// scaled by 4^-LOD: 1 where the pixel covers at most a texel (LOD 0), 1/4 at two texels, 1/64 at eight
-// (LOD stops at the pyramid's levels plus one: a few thousandths). LOD here is the isotropic one (log2 of
-// the footprint's longer side in texels, dsn_filter_level with one tap): the gradient is one sample,
-// which the anisotropic taps do not spread along the footprint. What the fade leaves out: a bumpy surface
-// seen from afar is slightly darker than a flat one (the supersampled reference averages the tilts' 1 -
-// cos); LEAN or Toksvig mapping would keep that.
-double bump_fade(const Texture &texture, const tiny::TextureJacobian &jacobian) {
-    dsn_footprint isotropic;
-    int32_t lod_q8 = 0;
-    uint32_t taps = 0;
-    if (dsn_footprint_from_float(&isotropic, jacobian.du_dx, jacobian.dv_dx, jacobian.du_dy, jacobian.dv_dy,
-                                 1) != DSN_OK ||
-        dsn_filter_level(&texture.noise, &isotropic, &lod_q8, &taps) != DSN_OK)
-        return 0;
-    return std::exp2(-2.0 * lod_q8 / 256);
-}
-
 // The texture at texture coordinates (u, v) in texels, for a pixel whose footprint there is `jacobian`
 // (texels per pixel along the screen's x and y).
 TextureSample sample_texture(const Texture &texture, double u, double v,
@@ -212,21 +190,19 @@ TextureSample sample_texture(const Texture &texture, double u, double v,
         dsn_footprint_from_float(&footprint, jacobian.du_dx, jacobian.dv_dx, jacobian.du_dy, jacobian.dv_dy,
                                  filter == Filter::aniso ? 16 : 1) == DSN_OK;
     const bool bump = shade.shading == Shading::bump && shade.bump > 0;
-    double fade = 0;
-    if (!filtered && bump) { // the value and its gradient in one call: out is dsn_continuous_point_float's
-        dsn_continuous_gradient_float(&texture.noise, u, v, value, dx, dy);
-        fade = 1;
-    } else if (!filtered) {
-        dsn_continuous_point_float(&texture.noise, u, v, value);
-    } else {
+    // The value and its gradient in one call: out is the value function's. Filtered, the gradient is the
+    // filtered noise's own (dsn_filtered_gradient_float), so the relief fades with the texture's detail
+    // where a pixel covers many texels instead of aliasing.
+    if (filtered && bump)
+        dsn_filtered_gradient_float(&texture.noise, u, v, &footprint, value, dx, dy);
+    else if (filtered)
         dsn_filtered_point_float(&texture.noise, u, v, &footprint, value);
-        if (bump && (fade = bump_fade(texture, jacobian)) > 0) {
-            float unfiltered[3];
-            dsn_continuous_gradient_float(&texture.noise, u, v, unfiltered, dx, dy);
-        }
-    }
+    else if (bump)
+        dsn_continuous_gradient_float(&texture.noise, u, v, value, dx, dy);
+    else
+        dsn_continuous_point_float(&texture.noise, u, v, value);
     const uint32_t channels = texture.asset.channels;
-    const double height = bump ? shade.bump * fade : 0;
+    const double height = bump ? shade.bump : 0;
     return {channels == 3 ? Vec{value[0], value[1], value[2]} : Vec{value[0], value[0], value[0]},
             height * luminance(dx, channels), height * luminance(dy, channels)};
 }
