@@ -134,3 +134,38 @@ TEST_CASE("the camera keeps the renderer's framing") {
     CHECK(camera.screen_x(800) == doctest::Approx(std::tan(3.14159265358979323846 / 6)));
     CHECK(camera.screen_y(0) == doctest::Approx(std::tan(3.14159265358979323846 / 6) * 500 / 800));
 }
+
+TEST_CASE("sphere and plane: the coordinates' surface gradients are their derivatives along the surface") {
+    // sphere_gradients against central differences of sphere_coordinates along tangent motions, and
+    // against sphere_jacobian: dot(grad, motion) is the Jacobian's entry for that motion.
+    const double radius = 1.2, h = 1e-6;
+    int checked = 0;
+    for (int i = 0; i < 40; i++) {
+        const double theta = 0.2 + 2.7 * i / 40.0, phi = -3.0 + 0.15 * i; // away from the poles and the seam
+        const Vec normal{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+        if (normal.x < 0 && std::fabs(normal.z) < 0.05) continue;
+        const CoordinateGradients gradients = sphere_gradients(normal, kScale);
+        const Vec tangents[2] = {normalize(Vec{-normal.z, 0, normal.x}),
+                                 normalize(Vec{0, 1, 0} - normal * normal.y)};
+        for (const Vec &tangent : tangents) {
+            double u0, v0, u1, v1;
+            sphere_coordinates(normalize(normal - tangent * (h / radius)), radius, kScale, u0, v0);
+            sphere_coordinates(normalize(normal + tangent * (h / radius)), radius, kScale, u1, v1);
+            CHECK(dot(gradients.u, tangent) == doctest::Approx((u1 - u0) / (2 * h)).epsilon(1e-5));
+            CHECK(dot(gradients.v, tangent) == doctest::Approx((v1 - v0) / (2 * h)).epsilon(1e-5));
+            const SurfaceDifferential motion = {tangent, tangent * 0.5};
+            const TextureJacobian jacobian = sphere_jacobian(motion, normal, kScale);
+            CHECK(dot(gradients.u, tangent) == doctest::Approx(jacobian.du_dx).epsilon(1e-12));
+            CHECK(dot(gradients.v, tangent) == doctest::Approx(jacobian.dv_dx).epsilon(1e-12));
+            checked++;
+        }
+    }
+    CHECK(checked > 60);
+    const CoordinateGradients plane = plane_gradients(kScale);
+    const SurfaceDifferential motion = {Vec{0.3, 0, -0.7}, Vec{-1.1, 0, 0.2}};
+    const TextureJacobian jacobian = plane_jacobian(motion, kScale);
+    CHECK(dot(plane.u, motion.along_x) == doctest::Approx(jacobian.du_dx));
+    CHECK(dot(plane.v, motion.along_x) == doctest::Approx(jacobian.dv_dx));
+    CHECK(dot(plane.u, motion.along_y) == doctest::Approx(jacobian.du_dy));
+    CHECK(dot(plane.v, motion.along_y) == doctest::Approx(jacobian.dv_dy));
+}
