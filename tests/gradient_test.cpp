@@ -519,3 +519,95 @@ TEST_CASE("filtered gradient: each level's sums step by its slopes, one 2^-16 st
     }
     CHECK(sloped > 100);
 }
+
+namespace {
+
+// Sample statistics of a series: mean, variance and excess kurtosis.
+struct Moments {
+    double mean = 0, variance = 0, kurtosis = 0;
+};
+
+Moments moments_of(const std::vector<double> &values) {
+    Moments m;
+    for (double v : values) m.mean += v;
+    m.mean /= double(values.size());
+    double second = 0, fourth = 0;
+    for (double v : values) {
+        const double d = (v - m.mean) * (v - m.mean);
+        second += d, fourth += d * d;
+    }
+    m.variance = second / double(values.size());
+    m.kurtosis = fourth / double(values.size()) / (m.variance * m.variance) - 3;
+    return m;
+}
+
+// The relative standard deviation of the ratio of two sample variances of `count` points, from their
+// excess kurtoses (the variance of a sample variance is (2 + kurtosis) sigma^4 / count), taken as
+// independent: a bound, since the two are positively correlated.
+double ratio_deviation(const Moments &a, const Moments &b, size_t count) {
+    return std::sqrt((2 + a.kurtosis + 2 + b.kurtosis) / double(count));
+}
+
+} // namespace
+
+TEST_CASE("gradient statistics: the derivatives' variance over the value's is the texton's, by theory") {
+    // F = sum_i t(x - x_i) over a Poisson process: Var F = lambda integral t^2, and its derivative is the
+    // spot noise of the texton's derivative, Var dF/dx = lambda integral (dt/dx)^2; the ratio needs no gain
+    // or density. Continuous: t the bilinear interpolant, integral t^2 = sum t[a] t[b] B(bx - ax) B(by - ay)
+    // and integral (dt/dx)^2 = sum t[a] t[b] A(bx - ax) B(by - ay), B the cubic B-spline (the tent's
+    // autocorrelation: 2/3, 1/6) and A the tent derivative's (2, -1). Lattice: sum (t(p + 1) - t(p))^2 over
+    // sum t(p)^2. Points a texton apart (independent), with deterministic sub-texel offsets.
+    const uint32_t radius = 6, side = 2 * radius + 1;
+    const dsn::AssetFields fields = random_texton_asset(1, radius, 8, 77);
+    const std::vector<double> t = texton_values(fields)[0];
+    auto at = [&](int x, int y) {
+        return x < 0 || y < 0 || x >= int(side) || y >= int(side) ? 0.0 : t[size_t(y * int(side) + x)];
+    };
+    const double tent_derivative[3] = {-1, 2, -1};
+    double value_theory = 0, slope_theory = 0, slope_theory_y = 0, lattice_value = 0, lattice_slope = 0;
+    for (int ay = 0; ay < int(side); ay++)
+        for (int ax = 0; ax < int(side); ax++)
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    const double product = at(ax, ay) * at(ax + dx, ay + dy);
+                    value_theory += product * cubic_bspline(dx) * cubic_bspline(dy);
+                    slope_theory += product * tent_derivative[dx + 1] * cubic_bspline(dy);
+                    slope_theory_y += product * cubic_bspline(dx) * tent_derivative[dy + 1];
+                }
+    for (int y = -1; y <= int(side); y++)
+        for (int x = -1; x <= int(side); x++) {
+            lattice_value += at(x, y) * at(x, y);
+            lattice_slope += (at(x + 1, y) - at(x, y)) * (at(x + 1, y) - at(x, y));
+        }
+    const auto made = make_noise(fields, 2024);
+    const dsn_noise &noise = made->noise;
+    std::mt19937 random(5);
+    const size_t count = 40000;
+    std::vector<double> values, slopes_x, slopes_y, lattice_values, lattice_slopes;
+    for (size_t k = 0; k < count; k++) {
+        const int64_t cell_x = int64_t(k % 200) * (side + 2), cell_y = int64_t(k / 200) * (side + 2);
+        const int64_t x = (cell_x << 32) + int64_t(random()), y = (cell_y << 32) + int64_t(random());
+        int32_t value[1], dx[1], dy[1];
+        REQUIRE(dsn_continuous_gradient_fixed(&noise, x, y, value, dx, dy) == DSN_OK);
+        values.push_back(value[0]), slopes_x.push_back(dx[0]), slopes_y.push_back(dy[0]);
+        REQUIRE(dsn_lattice_gradient_fixed(&noise, int32_t(cell_x), int32_t(cell_y), value, dx, dy) ==
+                DSN_OK);
+        lattice_values.push_back(value[0]), lattice_slopes.push_back(dx[0]);
+    }
+    const Moments value = moments_of(values), along_x = moments_of(slopes_x), along_y = moments_of(slopes_y);
+    const Moments lattice = moments_of(lattice_values), lattice_x = moments_of(lattice_slopes);
+    const double ratio_x = along_x.variance / value.variance, ratio_y = along_y.variance / value.variance;
+    const double expected = slope_theory / value_theory, lattice_expected = lattice_slope / lattice_value;
+    const double tolerance = 5 * ratio_deviation(along_x, value, count);
+    MESSAGE("continuous: var dx / var F " << ratio_x << ", dy " << ratio_y << " (theory " << expected
+                                          << ", tolerance " << tolerance << ")");
+    CHECK(std::fabs(ratio_x / expected - 1) < tolerance);
+    CHECK(std::fabs(ratio_y / (slope_theory_y / value_theory) - 1) <
+          5 * ratio_deviation(along_y, value, count));
+    const double lattice_ratio = lattice_x.variance / lattice.variance;
+    MESSAGE("lattice: var dx / var F " << lattice_ratio << " (theory " << lattice_expected << ")");
+    CHECK(std::fabs(lattice_ratio / lattice_expected - 1) < 5 * ratio_deviation(lattice_x, lattice, count));
+    // the derivatives have mean zero: within 5 standard errors
+    CHECK(std::fabs(along_x.mean) < 5 * std::sqrt(along_x.variance / double(count)));
+    CHECK(std::fabs(along_y.mean) < 5 * std::sqrt(along_y.variance / double(count)));
+}
