@@ -1,7 +1,8 @@
 /* runtime/lattice_gradient.cpp - the lattice noise with its forward differences (dsn.h, "Gradients"): the
    sums of a block of points and of the points one step right and below it, splatted by the lattice tile's
    32-bit path (tile_walk.h), then differenced and normalized as the value (the differences without the
-   mean); per point (a block of one) and per tile. */
+   mean), per tile; per point the same from three walks of the point's own (a block of one in the small
+   build). */
 #include "gradient_output.h"
 
 #if DSN_GRADIENTS
