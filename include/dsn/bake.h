@@ -197,7 +197,9 @@ double empirical_quantile(const std::vector<double> &sorted, double probability)
 
 // The Gaussianized exemplar w: each decorrelated channel through its empirical distribution
 // function, g = normal_quantile((rank + 0.5) / n) with tied values given their average rank, then
-// scaled to zero mean and unit variance (ties leave fewer distinct values and less variance).
+// scaled to zero mean and the channel's share of the variance, sqrt(variance_k / variance_0) of the
+// strongest channel's unit deviation (ties leave fewer distinct values and less variance): weak, mostly
+// noise components then weigh by their size in the texton's shared phase.
 Image gaussianize(const Image &exemplar, const HistogramModel &model);
 
 // The standard deviation of Gaussian-space channel k (the 1.0 output of format.h) of the noise these
