@@ -40,33 +40,21 @@ int point_of_kind(const dsn_noise *handle, int64_t x, int64_t y, void *out, void
     return DSN_OK;
 }
 
-/* Pixel (i, j) is origin + i column_step + j row_step modulo 2^64, as a continuous tile's. */
+/* The continuous gradient at a point of a grid. */
+struct ContinuousPoint {
+    const dsn_noise_state *noise;
+    void operator()(uint64_t x, uint64_t y, int32_t *values) const {
+        dsn_internal_continuous_gradient(noise, x, y, values);
+    }
+};
+
 int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height, void *out,
                  void *dx, void *dy, dsn_output_kind kind) {
     const dsn_noise_state *noise = dsn_state(handle);
     int err = check_call(noise, out, dx, dy);
     if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
-    if (err == DSN_OK &&
-        (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE))
-        err = DSN_ERR_TILE_SIZE;
-    if (err != DSN_OK)
-        return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
-    const uint32_t channels = noise->asset.channels;
-    int32_t values[3 * DSN_MAX_CHANNELS];
-    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
-    size_t index = 0;
-    for (uint32_t j = 0; j < height; j++) {
-        uint64_t point_x = row_x, point_y = row_y;
-        for (uint32_t i = 0; i < width; i++, index += channels) {
-            dsn_internal_continuous_gradient(noise, point_x, point_y, values);
-            dsn_store_gradient(out, dx, dy, kind, index, values, channels);
-            point_x += static_cast<uint64_t>(grid->column_step_x);
-            point_y += static_cast<uint64_t>(grid->column_step_y);
-        }
-        row_x += static_cast<uint64_t>(grid->row_step_x);
-        row_y += static_cast<uint64_t>(grid->row_step_y);
-    }
-    return DSN_OK;
+    const ContinuousPoint point = {noise};
+    return dsn_gradient_grid(err, noise, grid, width, height, out, dx, dy, kind, point);
 }
 
 /* Point k is (xs[k], ys[k]); Coordinate is int64_t (Q32.32) or double (dsn_coordinate_from_double). */

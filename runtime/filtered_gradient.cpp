@@ -67,6 +67,15 @@ int point_of_kind(const dsn_noise *handle, int64_t x, int64_t y, const dsn_footp
     return DSN_OK;
 }
 
+/* The filtered gradient at a point of a grid, under the grid's plan. */
+struct FilteredPoint {
+    const dsn_noise_state *noise;
+    const dsn_filter_plan *plan;
+    void operator()(uint64_t x, uint64_t y, int32_t *values) const {
+        gradient_point(noise, x, y, plan, values);
+    }
+};
+
 /* A grid filtered by its own footprint, as dsn_filtered_tile_fixed's, point by point. */
 int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
                  uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind) {
@@ -79,27 +88,8 @@ int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_tap
                                          grid->row_step_y, max_taps};
         err = dsn_internal_filter_plan(&footprint, noise->asset.pyramid_levels, &plan);
     }
-    if (err == DSN_OK &&
-        (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE))
-        err = DSN_ERR_TILE_SIZE;
-    if (err != DSN_OK)
-        return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
-    const uint32_t channels = noise->asset.channels;
-    int32_t values[3 * DSN_MAX_CHANNELS];
-    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
-    size_t index = 0;
-    for (uint32_t j = 0; j < height; j++) {
-        uint64_t point_x = row_x, point_y = row_y;
-        for (uint32_t i = 0; i < width; i++, index += channels) {
-            gradient_point(noise, point_x, point_y, &plan, values);
-            dsn_store_gradient(out, dx, dy, kind, index, values, channels);
-            point_x += static_cast<uint64_t>(grid->column_step_x);
-            point_y += static_cast<uint64_t>(grid->column_step_y);
-        }
-        row_x += static_cast<uint64_t>(grid->row_step_x);
-        row_y += static_cast<uint64_t>(grid->row_step_y);
-    }
-    return DSN_OK;
+    const FilteredPoint point = {noise, &plan};
+    return dsn_gradient_grid(err, noise, grid, width, height, out, dx, dy, kind, point);
 }
 
 } // namespace

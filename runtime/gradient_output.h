@@ -45,6 +45,37 @@ static inline void dsn_store_gradient(void *out, void *dx, void *dy, dsn_output_
     dsn_store_pixel(dy, kind, first, values + 2 * DSN_MAX_CHANNELS, channels);
 }
 
+/* A gradient tile over a grid (dsn.h's dsn_grid): the tile size checked, then pixel (i, j) at origin +
+   i column_step + j row_step modulo 2^64 (stepped by additions, as a continuous tile's), its values from
+   point(x, y, values) (value, dx, dy, DSN_MAX_CHANNELS apart) stored as `kind`. `err` is the call's checks
+   so far. */
+template <typename Point>
+int dsn_gradient_grid(int err, const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                      uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
+                      const Point &point) {
+    if (err == DSN_OK &&
+        (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE))
+        err = DSN_ERR_TILE_SIZE;
+    if (err != DSN_OK)
+        return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
+    const uint32_t channels = noise->asset.channels;
+    int32_t values[3 * DSN_MAX_CHANNELS];
+    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
+    size_t index = 0;
+    for (uint32_t j = 0; j < height; j++) {
+        uint64_t point_x = row_x, point_y = row_y;
+        for (uint32_t i = 0; i < width; i++, index += channels) {
+            point(point_x, point_y, values);
+            dsn_store_gradient(out, dx, dy, kind, index, values, channels);
+            point_x += static_cast<uint64_t>(grid->column_step_x);
+            point_y += static_cast<uint64_t>(grid->column_step_y);
+        }
+        row_x += static_cast<uint64_t>(grid->row_step_x);
+        row_y += static_cast<uint64_t>(grid->row_step_y);
+    }
+    return DSN_OK;
+}
+
 #endif /* DSN_GRADIENTS */
 
 #endif /* DSN_GRADIENT_OUTPUT_H */
