@@ -24,7 +24,7 @@ VERSION := $(shell sed -n 's/^#define DSN_VERSION_STRING "\(.*\)"/\1/p' include/
 DEPS_PACKAGES := libkissfft-dev libstb-dev doctest-dev pkg-config cmake time valgrind
 
 WARNINGS := -Wall -Wextra -Werror -Wshadow
-COMMON_FLAGS := -ffp-contract=off -Iinclude -MMD -MP
+COMMON_FLAGS := -ffp-contract=off -Iinclude -Iruntime -MMD -MP
 # The runtime is a freestanding-friendly C++11 subset: no exceptions, no RTTI, no hidden guards.
 RUNTIME_FLAGS := -std=c++11 $(WARNINGS) -Wconversion -Wsign-conversion -Wcast-align -Wold-style-cast \
     -fno-exceptions -fno-rtti -fno-threadsafe-statics -fno-asynchronous-unwind-tables $(COMMON_FLAGS)
@@ -33,19 +33,19 @@ PACKAGE_CFLAGS = $(shell $(PKG_CONFIG) --cflags kissfft-float stb 2>/dev/null)
 STB_LIBS = $(shell $(PKG_CONFIG) --libs stb 2>/dev/null)
 PACKAGE_LIBS = $(shell $(PKG_CONFIG) --libs kissfft-float 2>/dev/null) $(STB_LIBS)
 # -I.: the offline code, the tests and the examples name a private header of another folder by its place
-# in the tree ("offline/bake_internal.h", "runtime/format_bytes.h"), never by a path relative to their own.
+# in the tree ("offline/bake_internal.h", "runtime/setup/format_bytes.h"), never by a path relative to their own.
 OFFLINE_FLAGS = -std=c++17 $(WARNINGS) $(COMMON_FLAGS) -I. $(PACKAGE_CFLAGS)
 TEST_FLAGS = $(OFFLINE_FLAGS) -Itests
 
-# On x86-64 the kernels (runtime/kernels.h) are built three times: the default one with the runtime's
-# flags, runtime/kernel_avx2.cpp for AVX2 and runtime/kernel_avx512.cpp for AVX-512; init picks one by
-# CPUID (runtime/kernel_table.cpp). Built without these flags the runtime has the default kernel alone.
+# On x86-64 the kernels (runtime/kernels/kernels.h) are built three times: the default one with the runtime's
+# flags, runtime/kernels/kernel_avx2.cpp for AVX2 and runtime/kernels/kernel_avx512.cpp for AVX-512; init picks one by
+# CPUID (runtime/kernels/kernel_table.cpp). Built without these flags the runtime has the default kernel alone.
 ifneq ($(filter x86_64%,$(shell $(CXX) -dumpmachine 2>/dev/null)),)
 RUNTIME_DISPATCH_FLAGS := -DDSN_X86_DISPATCH=1
 KERNEL_AVX2_FLAGS := -mavx2
 KERNEL_AVX512_FLAGS := -mavx512f -mavx512bw
 endif
-RUNTIME_SOURCES := $(wildcard runtime/*.cpp)
+RUNTIME_SOURCES := $(wildcard runtime/*/*.cpp)
 RUNTIME_OBJECTS := $(RUNTIME_SOURCES:%.cpp=$(BUILD)/obj/%.o)
 OFFLINE_SOURCES := $(wildcard offline/*.cpp)
 OFFLINE_OBJECTS := $(OFFLINE_SOURCES:%.cpp=$(BUILD)/obj/%.o)
@@ -85,8 +85,8 @@ all: $(PROGRAMS)
 $(BUILD)/obj/runtime/%.o: runtime/%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(RUNTIME_FLAGS) $(RUNTIME_DISPATCH_FLAGS) $(CXXFLAGS) $(RUNTIME_FILE_FLAGS) -c $< -o $@
-$(BUILD)/obj/runtime/kernel_avx2.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX2_FLAGS)
-$(BUILD)/obj/runtime/kernel_avx512.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX512_FLAGS)
+$(BUILD)/obj/runtime/kernels/kernel_avx2.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX2_FLAGS)
+$(BUILD)/obj/runtime/kernels/kernel_avx512.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX512_FLAGS)
 
 $(BUILD)/obj/offline/%.o: offline/%.cpp
 	@mkdir -p $(@D)

@@ -2,7 +2,7 @@
 // with a pyramid section when the fields have pyramid levels, a 1.2 file with the histogram flag and
 // section when they have a histogram mapping, a 1.3 file when they have a lattice texton.
 #include "dsn/asset_writer.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 #include <cstring>
 #include <stdexcept>

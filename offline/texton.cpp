@@ -1,6 +1,6 @@
 // texton.cpp - the support mask, textons on the torus (crop, spectrum) and the luminance-texton baseline.
 #include "bake_internal.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 #include <cmath>
 #include <stdexcept>

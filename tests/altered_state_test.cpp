@@ -13,7 +13,7 @@
 #include "dsn/dsn.h"
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
-#include "runtime/noise_state.h"
+#include "runtime/setup/noise_state.h"
 
 namespace {
 

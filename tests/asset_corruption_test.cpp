@@ -9,7 +9,7 @@
 
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

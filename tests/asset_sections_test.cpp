@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fixtures/test_assets.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 
 #include "dsn/asset_writer.h"
 #include "offline/tools/file_output.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include "dsn/bake.h"
 #include "fixtures/bake_fixtures.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 using namespace bake_fixtures;
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "fixtures/continuous_fixtures.h"
-#include "runtime/kernels.h"
-#include "runtime/splat_cells.h"
+#include "runtime/kernels/kernels.h"
+#include "runtime/kernels/splat_cells.h"
 
 using namespace continuous_fixtures;
 

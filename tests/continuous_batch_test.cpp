@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "fixtures/continuous_fixtures.h"
-#include "runtime/kernels.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
 

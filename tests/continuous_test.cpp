@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "fixtures/continuous_fixtures.h"
-#include "runtime/impulse_position.h"
-#include "runtime/kernels.h"
-#include "runtime/poisson_count.h"
+#include "runtime/core/impulse_position.h"
+#include "runtime/core/poisson_count.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
 

@@ -9,8 +9,8 @@
 
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
-#include "runtime/filtered_internal.h"
-#include "runtime/init_internal.h"
+#include "runtime/core/filtered_internal.h"
+#include "runtime/setup/init_internal.h"
 
 namespace {
 

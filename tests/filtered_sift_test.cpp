@@ -1,8 +1,8 @@
 // filtered_sift_test.cpp - the fast build's filtered sums (every tap and both levels from one sifted walk,
-// runtime/filtered_sift.cpp) against the tap-by-tap walk (runtime/filtered_walk.cpp), bit for bit: the
-// sums of every tap and level and the points' values, over 8- and 16-bit, grey and RGB assets, with and
-// without a pyramid, periodic (periods shorter than a level's reach included) or not, for isotropic
-// footprints across every level of detail and anisotropic ones of every tap count and direction, at
+// runtime/evaluators/filtered_sift.cpp) against the tap-by-tap walk (runtime/evaluators/filtered_walk.cpp),
+// bit for bit: the sums of every tap and level and the points' values, over 8- and 16-bit, grey and RGB
+// assets, with and without a pyramid, periodic (periods shorter than a level's reach included) or not, for
+// isotropic footprints across every level of detail and anisotropic ones of every tap count and direction, at
 // ordinary points and where the taps straddle the seam of the int32 coordinates; and the levels read with
 // their all-zero margins cut (a shorter reach) against the levels as stored; cells of every side the
 // kernels' listing takes or leaves; in every kernel copy the CPU runs. And the listing alone (make bench's)
@@ -15,8 +15,8 @@
 
 #include "fixtures/test_assets.h"
 #include "offline/bake_internal.h"
-#include "runtime/filtered_internal.h"
-#include "runtime/kernels.h"
+#include "runtime/core/filtered_internal.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace dsn_test;
 

@@ -22,7 +22,7 @@
 #include "fixtures/pyramid_fixture.h"
 #include "fixtures/test_assets.h"
 #include "offline/bake_internal.h"
-#include "runtime/filtered_internal.h"
+#include "runtime/core/filtered_internal.h"
 
 using namespace dsn_test;
 

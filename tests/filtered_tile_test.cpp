@@ -13,7 +13,7 @@
 #include "fixtures/continuous_fixtures.h"
 #include "fixtures/test_assets.h"
 #include "offline/bake_internal.h"
-#include "runtime/kernels.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace dsn_test;
 

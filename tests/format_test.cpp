@@ -1,10 +1,10 @@
-// format_test.cpp - the byte helpers of the .dsnt format (runtime/format_bytes.h): CRC-32 and little-endian
-// fields.
+// format_test.cpp - the byte helpers of the .dsnt format (runtime/setup/format_bytes.h): CRC-32 and
+// little-endian fields.
 #include <doctest/doctest.h>
 
 #include <cstring>
 
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 TEST_CASE("crc32 matches the zlib/PNG check value and continues across chunks") {
     const char *check = "123456789";

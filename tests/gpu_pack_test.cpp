@@ -7,7 +7,7 @@
 
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
-#include "runtime/noise_state.h"
+#include "runtime/setup/noise_state.h"
 
 namespace {
 

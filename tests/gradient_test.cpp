@@ -13,9 +13,9 @@
 #include "fixtures/continuous_fixtures.h"
 #include "fixtures/test_assets.h"
 #include "offline/bake_internal.h"
-#include "runtime/continuous_internal.h"
-#include "runtime/filtered_internal.h"
-#include "runtime/gradient_output.h"
+#include "runtime/core/continuous_internal.h"
+#include "runtime/core/filtered_internal.h"
+#include "runtime/core/gradient_output.h"
 
 using namespace continuous_fixtures;
 

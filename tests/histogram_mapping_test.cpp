@@ -15,8 +15,8 @@
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
 #include "offline/bake_internal.h"
-#include "runtime/histogram_map.h"
-#include "runtime/kernels.h"
+#include "runtime/core/histogram_map.h"
+#include "runtime/kernels/kernels.h"
 
 using dsn_test::LoadedNoise;
 using dsn_test::make_config;
@@ -350,7 +350,7 @@ TEST_CASE("histogram: per-point lattice and continuous values are the formula ap
 namespace {
 
 // Values where a lattice tile (fixed, float, u8) differs from the per-point functions, with every kernel
-// copy this CPU runs (runtime/kernels.h).
+// copy this CPU runs (runtime/kernels/kernels.h).
 size_t lattice_tile_differences(const dsn_noise &noise, int32_t x0, int32_t y0, uint32_t width,
                                 uint32_t height) {
     const uint32_t channels = dsn_noise_channels(&noise);

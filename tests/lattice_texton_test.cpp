@@ -16,7 +16,7 @@
 #include "fixtures/bake_fixtures.h"
 #include "fixtures/continuous_fixtures.h"
 #include "offline/bake_internal.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 using namespace continuous_fixtures;
 using namespace bake_fixtures;

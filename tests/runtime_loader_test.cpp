@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "fixtures/test_assets.h"
-#include "runtime/format_bytes.h"
-#include "runtime/noise_state.h"
+#include "runtime/setup/format_bytes.h"
+#include "runtime/setup/noise_state.h"
 
 namespace {
 

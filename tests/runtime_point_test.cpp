@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fixtures/test_assets.h"
-#include "runtime/poisson_count.h"
+#include "runtime/core/poisson_count.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include "fixtures/fnv1a.h"
 #include "fixtures/test_assets.h"
-#include "runtime/poisson_count.h"
+#include "runtime/core/poisson_count.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// runtime_tile_fallback_test.cpp - the strip path's safety net, white box: runtime/tile_render.h is
+// runtime_tile_fallback_test.cpp - the strip path's safety net, white box: runtime/kernels/tile_render.h is
 // compiled into this test with the test's flags (the default kernel's instruction set: SSE2 on x86) and given
 // rectangles larger than choose_rectangle would pick, so that rectangles overflow the impulse list or put
 // more than 255 impulses on a column (where 16-bit sums could wrap). Those must take the 32-bit path, their
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fixtures/test_assets.h"
-#include "runtime/tile_render.h"
+#include "runtime/kernels/tile_render.h"
 
 #if DSN_TILE_BLOCKS
 namespace {
@@ -93,6 +93,6 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
 #else
 TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take the 32-bit path, same bits") {
     MESSAGE("this target has no SSE2: tiles take the 32-bit path only, there is no strip path to fall back "
-            "from (runtime/simd.h)");
+            "from (runtime/simd/simd.h)");
 }
 #endif

@@ -1,9 +1,9 @@
 // runtime_tile_strips_test.cpp - the strip path of tiles (16-bit sums in registers, split normalization,
-// per-strip output conversion; runtime/tile_strips.h) against per-point evaluation, on windows spanning
-// many rectangles: every output type, origins at the 32-bit wrap, periods, densities and texton sizes
-// (down to those that take the 32-bit path), and textons at full scale (the largest sums the 16-bit path
-// accepts). Every check runs each kernel this CPU can run (on x86-64: the default SSE2 kernel, with AVX2
-// the AVX2 kernel, and with AVX-512 the AVX-512 kernel; runtime/kernels.h).
+// per-strip output conversion; runtime/kernels/tile_strips.h) against per-point evaluation, on windows
+// spanning many rectangles: every output type, origins at the 32-bit wrap, periods, densities and texton
+// sizes (down to those that take the 32-bit path), and textons at full scale (the largest sums the 16-bit
+// path accepts). Every check runs each kernel this CPU can run (on x86-64: the default SSE2 kernel, with AVX2
+// the AVX2 kernel, and with AVX-512 the AVX-512 kernel; runtime/kernels/kernels.h).
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -15,7 +15,7 @@
 #endif
 
 #include "fixtures/test_assets.h"
-#include "runtime/kernels.h"
+#include "runtime/kernels/kernels.h"
 
 namespace {
 
@@ -199,8 +199,8 @@ TEST_CASE("strip tiles == per point for fixed, float and u8 output on windows of
 }
 
 TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at full-scale texton values") {
-    // Denser noises get smaller rectangles (choose_rectangle in runtime/tile_strips.h): a 31 x 31 texton
-    // at 60 and 120 impacts per pixel, and at 300, where no rectangle of 4+ rows meets few enough
+    // Denser noises get smaller rectangles (choose_rectangle in runtime/kernels/tile_strips.h): a 31 x 31
+    // texton at 60 and 120 impacts per pixel, and at 300, where no rectangle of 4+ rows meets few enough
     // impulses and the whole tile takes the 32-bit path (runtime_tile_fallback_test.cpp makes single
     // rectangles fall back). The constant texton (every value +127 or -127)
     // gives the largest sums the 16-bit path meets.
@@ -218,7 +218,7 @@ TEST_CASE("strip tiles == per point at densities around the 16-bit limit and at 
 }
 
 TEST_CASE("a tile written past the caches (16 MB or more) equals the same window in smaller tiles") {
-    // 1200 x 1200 RGB is 17.3 MB of fixed or float output (streamed, runtime/tile_render.h); the same
+    // 1200 x 1200 RGB is 17.3 MB of fixed or float output (streamed, runtime/kernels/tile_render.h); the same
     // window in 8 bands of 150 rows stays under the threshold. Origins and widths keep some strips off
     // the 16-byte alignment streaming needs, so both kinds of store meet; a copy written one value further
     // on starts its rows 4 bytes past where the first does within their cache lines.

@@ -32,7 +32,7 @@ deps-web:
 deps-web-test: deps-web
 	@packaging/install-packages $(WEB_TEST_PACKAGES)
 
-$(WEB_WASM): $(WASM_SOURCES) $(wildcard runtime/*.h include/dsn/*.h examples/web/wasm/*.h)
+$(WEB_WASM): $(WASM_SOURCES) $(wildcard runtime/*/*.h include/dsn/*.h examples/web/wasm/*.h)
 	@mkdir -p $(@D)
 	$(WASM_CXX) $(WASM_FLAGS) -Iexamples/web/wasm $(WASM_SOURCES) $(WASM_LINK_FLAGS) -o $@.tmp && mv $@.tmp $@
 
@@ -41,14 +41,14 @@ $(WEB_WASM): $(WASM_SOURCES) $(wildcard runtime/*.h include/dsn/*.h examples/web
 # its header-only C++ version), stb's code, a throw that reports what() and stops, and the POSIX calls
 # of the file writer that wasi-libc lacks. Objects one by one: a whole build takes minutes.
 WASI_CXX ?= clang++
-WASI_FLAGS = --target=wasm32-wasi --sysroot=/usr -std=c++17 -O2 -ffp-contract=off -Iinclude -I. \
+WASI_FLAGS = --target=wasm32-wasi --sysroot=/usr -std=c++17 -O2 -ffp-contract=off -Iinclude -Iruntime -I. \
     $(PACKAGE_CFLAGS) -include examples/web/bake/posix_missing.h
 # The baker's sources only: dsn-synth's spectral synthesis (offline/synth.cpp) runs its FFTs on threads,
 # which wasi has not, and the page does not use it.
 WASI_SOURCES = $(filter-out offline/synth.cpp,$(OFFLINE_SOURCES)) $(RUNTIME_SOURCES) \
     $(wildcard examples/web/bake/*.cpp)
 WASI_OBJECTS = $(WASI_SOURCES:%.cpp=$(BUILD)/wasi/%.o)
-$(BUILD)/wasi/%.o: %.cpp $(wildcard include/dsn/*.h runtime/*.h offline/*.h examples/web/bake/*.h)
+$(BUILD)/wasi/%.o: %.cpp $(wildcard include/dsn/*.h runtime/*/*.h offline/*.h examples/web/bake/*.h)
 	@mkdir -p $(@D)
 	$(WASI_CXX) $(WASI_FLAGS) -c $< -o $@
 $(WEB_BAKER): $(WASI_OBJECTS)

@@ -1,8 +1,8 @@
 /* dsn/format.h - the .dsnt asset format: its specification, its constants and the error codes.
 
    This comment block is the format's specification. The writer (offline/asset_writer.cpp) and the
-   reader (runtime/asset.cpp) both follow it and read or write every field byte by byte (their shared
-   helpers are internal, runtime/format_bytes.h); neither casts a struct over the bytes. Version 1.0
+   reader (runtime/setup/asset.cpp) both follow it and read or write every field byte by byte (their shared
+   helpers are internal, runtime/setup/format_bytes.h); neither casts a struct over the bytes. Version 1.0
    comes first; version 1.1 (below it) adds sections after the 1.0 header, the first of which holds a
    pyramid of prefiltered textons.
 

@@ -11,7 +11,7 @@
 #include "command_line.h"
 #include "dsn/dsn.h"
 #include "json_output.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

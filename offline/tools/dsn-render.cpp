@@ -29,7 +29,7 @@
 #include "file_output.h"
 #include "png_output.h"
 #include "render_window.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

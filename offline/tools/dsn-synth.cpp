@@ -16,7 +16,7 @@
 #include "file_output.h"
 #include "offline/synth.h"
 #include "png_output.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

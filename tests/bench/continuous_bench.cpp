@@ -14,7 +14,7 @@
 #include "bench_timing.h"
 #include "fixtures/continuous_fixtures.h"
 #include "painted_stack.h"
-#include "runtime/noise_state.h"
+#include "runtime/setup/noise_state.h"
 #include "splat_best_case.h"
 
 namespace {

@@ -14,7 +14,7 @@
 #include "fixtures/continuous_fixtures.h"
 #include "offline/bake_internal.h"
 #include "painted_stack.h"
-#include "runtime/filtered_internal.h"
+#include "runtime/core/filtered_internal.h"
 
 namespace {
 

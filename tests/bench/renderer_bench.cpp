@@ -11,7 +11,7 @@
 
 #include "bench_timing.h"
 #include "fixtures/continuous_fixtures.h"
-#include "runtime/noise_state.h"
+#include "runtime/setup/noise_state.h"
 #include "texton_noise_baseline.h"
 
 namespace {

@@ -22,8 +22,8 @@
 #include "bench_timing.h"
 #include "fixtures/test_assets.h"
 #include "painted_stack.h"
-#include "runtime/cell_walk.h"
-#include "runtime/poisson_count.h"
+#include "runtime/core/cell_walk.h"
+#include "runtime/core/poisson_count.h"
 
 namespace {
 

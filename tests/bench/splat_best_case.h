@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "bench_timing.h"
-#include "runtime/kernels.h"
-#include "runtime/noise_state.h"
-#include "runtime/splat_cells.h"
+#include "runtime/kernels/kernels.h"
+#include "runtime/kernels/splat_cells.h"
+#include "runtime/setup/noise_state.h"
 
 namespace bench {
 

@@ -9,7 +9,7 @@
 #include "dsn/asset_writer.h"
 #include "offline/bake_internal.h"
 #include "offline/tools/file_output.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 #include <cstdio>
 #include <exception>

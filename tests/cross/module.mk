@@ -6,7 +6,7 @@
 CROSS_PACKAGES := qemu-user qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi \
     libstdc++-arm-none-eabi-newlib g++-i686-linux-gnu g++-aarch64-linux-gnu g++-arm-linux-gnueabihf \
     g++-s390x-linux-gnu clang lld libclang-rt-14-dev-wasm32 nodejs
-CROSS_ENV = BUILD="$(BUILD)" CROSS_RUNTIME_FLAGS="$(filter-out -MMD -MP -Iinclude,$(RUNTIME_FLAGS))"
+CROSS_ENV = BUILD="$(BUILD)" CROSS_RUNTIME_FLAGS="$(filter-out -MMD -MP -Iinclude -Iruntime,$(RUNTIME_FLAGS))"
 CROSS_ASSET_GENERATOR := $(BUILD)/cross/make-assets
 
 .PHONY: cross-test deps-cross cross-assets

@@ -7,7 +7,7 @@
 
 #include "dsn/dsn.h"
 #include "fuzz_input.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

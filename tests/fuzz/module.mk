@@ -13,7 +13,7 @@ FUZZ_CXX ?= clang++
 FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all \
     -fsanitize-ignorelist=tests/fuzz/stb_ignorelist.txt
 FUZZ_FLAGS = -std=c++17 -O1 -g $(FUZZ_SANITIZERS) -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION \
-    -ffp-contract=off -Iinclude -I. $(PACKAGE_CFLAGS)
+    -ffp-contract=off -Iinclude -Iruntime -I. $(PACKAGE_CFLAGS)
 FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.cpp,%,$(wildcard tests/fuzz/fuzz_*.cpp))
 FUZZ_PROGRAMS := $(FUZZ_NAMES:%=$(BUILD)/fuzz/fuzz_%)
 FUZZ_LIBRARY_SOURCES := $(RUNTIME_SOURCES) $(OFFLINE_SOURCES) $(TOOLS_LIBRARY_SOURCES)
@@ -22,8 +22,8 @@ FUZZ_LIBRARY_OBJECTS := $(FUZZ_LIBRARY_SOURCES:%.cpp=$(BUILD)/fuzz/obj/%.o)
 $(BUILD)/fuzz/obj/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_FLAGS) $(RUNTIME_DISPATCH_FLAGS) -fsanitize=fuzzer-no-link $(RUNTIME_FILE_FLAGS) -c $< -o $@
-$(BUILD)/fuzz/obj/runtime/kernel_avx2.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX2_FLAGS)
-$(BUILD)/fuzz/obj/runtime/kernel_avx512.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX512_FLAGS)
+$(BUILD)/fuzz/obj/runtime/kernels/kernel_avx2.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX2_FLAGS)
+$(BUILD)/fuzz/obj/runtime/kernels/kernel_avx512.o: RUNTIME_FILE_FLAGS = $(KERNEL_AVX512_FLAGS)
 
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.cpp $(FUZZ_LIBRARY_OBJECTS)
 	@mkdir -p $(@D)

@@ -10,7 +10,7 @@
 
 #include "cross/golden_assets.h"
 #include "dsn/dsn.h"
-#include "runtime/format_bytes.h"
+#include "runtime/setup/format_bytes.h"
 
 namespace {
 

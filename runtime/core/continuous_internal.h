@@ -1,0 +1,82 @@
+/* runtime/core/continuous_internal.h - what the files of the continuous (renderer) mode share: the Q32.32
+   texel, the normalization of sums that carry 32 fraction bits, the mode check and the per-point
+   evaluator that grid tiles fall back to. Internal to libdsn; not installed.
+
+   The mode: the impulses are those of the lattice mode read with their full 16-bit in-cell positions (so
+   each lattice impulse is the floor of its continuous twin): a continuous Poisson process of the same
+   intensity, with 16 - cell_shift fractional bits per axis. The texton is read with bilinear
+   interpolation in integer arithmetic (bilinear_texton.h). The per-channel sums carry 32 fractional bits
+   and go through the lattice mode's normalization. coordinate.cpp turns float coordinates into Q32.32,
+   continuous_point.cpp evaluates one point, continuous_tile.cpp a grid of points. */
+#ifndef DSN_CONTINUOUS_INTERNAL_H
+#define DSN_CONTINUOUS_INTERNAL_H
+
+#include "core/cell_walk.h"
+#include "core/impulse_position.h"
+#include "core/normalize_fixed.h"
+#include "core/poisson_count.h"
+
+namespace {
+
+const uint64_t one_texel = static_cast<uint64_t>(1) << 32;
+
+/* Two's-complement reinterpretation without implementation-defined conversions. */
+inline int64_t signed_from_bits(uint64_t bits) {
+    return (bits & 0x8000000000000000u) ? -static_cast<int64_t>(~bits) - 1 : static_cast<int64_t>(bits);
+}
+
+/* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
+   it as in lattice mode, the fractions are added once, rounded down, before the final rounding; from
+   `offset` (the noise's own, or zeros for a derivative, which the mean does not reach). */
+inline void normalize_q32_from(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
+                               int32_t *out) {
+    const uint32_t channels = noise->asset.channels;
+    for (uint32_t c = 0; c < channels; c++) {
+        int64_t accumulated = offset[c], fractions = 0;
+        for (uint32_t k = 0; k < channels; k++) {
+            const int64_t whole = dsn_signed_sum(static_cast<uint32_t>(sums[k] >> 32)); /* floor, mod 2^32 */
+            const int64_t fraction = static_cast<int64_t>(sums[k] & 0xFFFFFFFFu);
+            accumulated += noise->gain[c * 3 + k] * whole;
+            fractions += noise->gain[c * 3 + k] * fraction; /* |gain| < 2^29: each term below 2^61 */
+        }
+        accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
+        out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
+    }
+}
+
+/* The value: then the histogram mapping (normalize_q32), or not yet (normalize_q32_unmapped). */
+inline void normalize_q32_unmapped(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+    normalize_q32_from(noise, noise->offset, sums, out);
+}
+
+inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, int32_t *out) {
+    normalize_q32_unmapped(noise, sums, out);
+    dsn_map_output(noise, out);
+}
+
+} // namespace
+
+/* DSN_OK when the continuous functions may evaluate `noise`, else DSN_ERR_NULL (null or not configured)
+   or DSN_ERR_CONTINUOUS_MISMATCH (continuous_point.cpp). */
+int dsn_internal_continuous_check(const dsn_noise_state *noise);
+
+/* The Q16.16 values of the point (x, y), Q32.32 coordinates, on a noise that passed the check
+   (continuous_point.cpp). */
+void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
+
+/* dsn_continuous_point_float at Q32.32 coordinates: the errors and the zeroed output of
+   dsn_continuous_point_fixed, the values as float (continuous_point.cpp; dsn_sample calls it too). */
+int dsn_internal_continuous_point_float(const dsn_noise *noise, int64_t x, int64_t y, float *out);
+
+#if DSN_GRADIENTS
+/* The raw sums of the point (x, y) for its gradient (continuous_point.cpp), per channel, modulo 2^64:
+   value[c] the bilinear texton's (Q.32, what dsn_internal_continuous_point normalizes), slope_x[c] and
+   slope_y[c] its partial derivatives per 2^-16 texel (bilinear_read.h's add_slopes). */
+/* values[0 .. 2]: the continuous gradient's value, dx and dy at (x, y), DSN_MAX_CHANNELS apart, Q16.16,
+   mapped (continuous_gradient.cpp). */
+void dsn_internal_continuous_gradient(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *values);
+void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                    uint64_t *slope_x, uint64_t *slope_y);
+#endif
+
+#endif /* DSN_CONTINUOUS_INTERNAL_H */

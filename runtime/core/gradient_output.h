@@ -1,0 +1,81 @@
+/* runtime/core/gradient_output.h - what every gradient function does with a point's normalized value and
+   derivatives (dsn.h, "Gradients"): the histogram mapping's chain rule, the float conversion, and the
+   zeroing of the three outputs on an error. Internal to libdsn; not installed. */
+#ifndef DSN_GRADIENT_OUTPUT_H
+#define DSN_GRADIENT_OUTPUT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error_output.h"
+#include "core/histogram_map.h"
+#include "core/normalize_fixed.h"
+
+#if DSN_GRADIENTS
+
+/* Zeros and no mean: the offset of a derivative's normalization. */
+static const int64_t dsn_no_offset[DSN_MAX_CHANNELS] = {0, 0, 0};
+
+/* The value (Gaussian-space, before the mapping) and its derivatives to the outputs: with a histogram
+   mapping, the chain rule at the unmapped value, then the value mapped. */
+static inline void dsn_map_gradient(const dsn_noise_state *noise, int32_t *value, int32_t *dx, int32_t *dy) {
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0) {
+        dsn_internal_histogram_map_gradient(&noise->asset, value, 0, 0, dx, dy);
+        dsn_internal_histogram_map(&noise->asset, value, 0, 0);
+    }
+#else
+    (void)noise, (void)value, (void)dx, (void)dy;
+#endif
+}
+
+/* A gradient call's error `err`, after zeroing its three outputs (error_output.h: `points` points each). */
+static inline int dsn_gradient_error(int err, const dsn_noise_state *noise, void *out, void *dx, void *dy,
+                                     dsn_output_kind kind, size_t points) {
+    dsn_output_error(err, noise, out, kind, points);
+    dsn_output_error(err, noise, dx, kind, points);
+    return dsn_output_error(err, noise, dy, kind, points);
+}
+
+/* The fixed-point results of one point stored as the call's type at value index `first`. */
+static inline void dsn_store_gradient(void *out, void *dx, void *dy, dsn_output_kind kind, size_t first,
+                                      const int32_t *values, uint32_t channels) {
+    dsn_store_pixel(out, kind, first, values, channels);
+    dsn_store_pixel(dx, kind, first, values + DSN_MAX_CHANNELS, channels);
+    dsn_store_pixel(dy, kind, first, values + 2 * DSN_MAX_CHANNELS, channels);
+}
+
+/* A gradient tile over a grid (dsn.h's dsn_grid): the tile size checked, then pixel (i, j) at origin +
+   i column_step + j row_step modulo 2^64 (stepped by additions, as a continuous tile's), its values from
+   point(x, y, values) (value, dx, dy, DSN_MAX_CHANNELS apart) stored as `kind`. `err` is the call's checks
+   so far. */
+template <typename Point>
+int dsn_gradient_grid(int err, const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                      uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
+                      const Point &point) {
+    if (err == DSN_OK &&
+        (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE))
+        err = DSN_ERR_TILE_SIZE;
+    if (err != DSN_OK)
+        return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
+    const uint32_t channels = noise->asset.channels;
+    int32_t values[3 * DSN_MAX_CHANNELS];
+    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
+    size_t index = 0;
+    for (uint32_t j = 0; j < height; j++) {
+        uint64_t point_x = row_x, point_y = row_y;
+        for (uint32_t i = 0; i < width; i++, index += channels) {
+            point(point_x, point_y, values);
+            dsn_store_gradient(out, dx, dy, kind, index, values, channels);
+            point_x += static_cast<uint64_t>(grid->column_step_x);
+            point_y += static_cast<uint64_t>(grid->column_step_y);
+        }
+        row_x += static_cast<uint64_t>(grid->row_step_x);
+        row_y += static_cast<uint64_t>(grid->row_step_y);
+    }
+    return DSN_OK;
+}
+
+#endif /* DSN_GRADIENTS */
+
+#endif /* DSN_GRADIENT_OUTPUT_H */

@@ -1,0 +1,124 @@
+/* runtime/evaluators/continuous_gradient.cpp - the continuous noise with its exact derivative (dsn.h,
+   "Gradients"): the sums of the sifting walk's slope reader (continuous_point.cpp) normalized, the value as
+   the value, the slopes per texel without the mean; per point, grid tile and batch, fixed and float. */
+#include "core/continuous_internal.h"
+#include "core/gradient_output.h"
+
+#if DSN_GRADIENTS
+
+void dsn_internal_continuous_gradient(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *values) {
+    uint64_t value[DSN_MAX_CHANNELS], slope_x[DSN_MAX_CHANNELS], slope_y[DSN_MAX_CHANNELS];
+    dsn_internal_continuous_slopes(noise, x, y, value, slope_x, slope_y);
+    /* A slope is per 2^-16 texel: times 2^16 it is per texel, with the value sums' 32 fraction bits
+       (modulo 2^64, as they are). */
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+        slope_x[c] <<= 16;
+        slope_y[c] <<= 16;
+    }
+    normalize_q32_unmapped(noise, value, values);
+    normalize_q32_from(noise, dsn_no_offset, slope_x, values + DSN_MAX_CHANNELS);
+    normalize_q32_from(noise, dsn_no_offset, slope_y, values + 2 * DSN_MAX_CHANNELS);
+    dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
+}
+
+namespace {
+
+int check_call(const dsn_noise_state *noise, const void *out, const void *dx, const void *dy) {
+    const int err = dsn_internal_continuous_check(noise);
+    if (err != DSN_OK) return err;
+    return out == 0 || dx == 0 || dy == 0 ? DSN_ERR_NULL : DSN_OK;
+}
+
+int point_of_kind(const dsn_noise *handle, int64_t x, int64_t y, void *out, void *dx, void *dy,
+                  dsn_output_kind kind) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    const int err = check_call(noise, out, dx, dy);
+    if (err != DSN_OK) return dsn_gradient_error(err, noise, out, dx, dy, kind, 1);
+    int32_t values[3 * DSN_MAX_CHANNELS];
+    dsn_internal_continuous_gradient(noise, static_cast<uint64_t>(x), static_cast<uint64_t>(y), values);
+    dsn_store_gradient(out, dx, dy, kind, 0, values, noise->asset.channels);
+    return DSN_OK;
+}
+
+/* The continuous gradient at a point of a grid. */
+struct ContinuousPoint {
+    const dsn_noise_state *noise;
+    void operator()(uint64_t x, uint64_t y, int32_t *values) const {
+        dsn_internal_continuous_gradient(noise, x, y, values);
+    }
+};
+
+int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height, void *out,
+                 void *dx, void *dy, dsn_output_kind kind) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    int err = check_call(noise, out, dx, dy);
+    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
+    const ContinuousPoint point = {noise};
+    return dsn_gradient_grid(err, noise, grid, width, height, out, dx, dy, kind, point);
+}
+
+/* Point k is (xs[k], ys[k]); Coordinate is int64_t (Q32.32) or double (dsn_coordinate_from_double). */
+inline uint64_t batch_coordinate(int64_t value) { return static_cast<uint64_t>(value); }
+inline uint64_t batch_coordinate(double value) {
+    return static_cast<uint64_t>(dsn_coordinate_from_double(value));
+}
+
+template <typename Coordinate>
+int batch_of_kind(const dsn_noise *handle, const Coordinate *xs, const Coordinate *ys, uint32_t count,
+                  void *out, void *dx, void *dy, dsn_output_kind kind) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    int err = dsn_internal_continuous_check(noise);
+    if (err == DSN_OK && count != 0 && (xs == 0 || ys == 0 || out == 0 || dx == 0 || dy == 0))
+        err = DSN_ERR_NULL;
+    if (err != DSN_OK) return dsn_gradient_error(err, noise, out, dx, dy, kind, count);
+    const uint32_t channels = noise->asset.channels;
+    int32_t values[3 * DSN_MAX_CHANNELS];
+    for (uint32_t k = 0; k < count; k++) {
+        dsn_internal_continuous_gradient(noise, batch_coordinate(xs[k]), batch_coordinate(ys[k]), values);
+        dsn_store_gradient(out, dx, dy, kind, static_cast<size_t>(k) * channels, values, channels);
+    }
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+int dsn_continuous_gradient_fixed(const dsn_noise *noise, int64_t x, int64_t y, int32_t *out, int32_t *dx,
+                                  int32_t *dy) {
+    return point_of_kind(noise, x, y, out, dx, dy, dsn_output_fixed);
+}
+
+int dsn_continuous_gradient_float(const dsn_noise *noise, double x, double y, float *out, float *dx,
+                                  float *dy) {
+    return point_of_kind(noise, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), out, dx, dy,
+                         dsn_output_float);
+}
+
+int dsn_sample_gradient(const dsn_noise *noise, float x, float y, float *out, float *dx, float *dy) {
+    return dsn_continuous_gradient_float(noise, x, y, out, dx, dy);
+}
+
+int dsn_continuous_tile_gradient_fixed(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                       uint32_t height, int32_t *out, int32_t *dx, int32_t *dy) {
+    return tile_of_kind(noise, grid, width, height, out, dx, dy, dsn_output_fixed);
+}
+
+int dsn_continuous_tile_gradient_float(const dsn_noise *noise, const dsn_grid *grid, uint32_t width,
+                                       uint32_t height, float *out, float *dx, float *dy) {
+    return tile_of_kind(noise, grid, width, height, out, dx, dy, dsn_output_float);
+}
+
+int dsn_continuous_batch_gradient_fixed(const dsn_noise *noise, const int64_t *xs, const int64_t *ys,
+                                        uint32_t count, int32_t *out, int32_t *dx, int32_t *dy) {
+    return batch_of_kind(noise, xs, ys, count, out, dx, dy, dsn_output_fixed);
+}
+
+int dsn_continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, const double *ys,
+                                        uint32_t count, float *out, float *dx, float *dy) {
+    return batch_of_kind(noise, xs, ys, count, out, dx, dy, dsn_output_float);
+}
+
+} // extern "C"
+
+#endif /* DSN_GRADIENTS */

@@ -1,0 +1,436 @@
+/* runtime/evaluators/point.cpp - per-point evaluation on the lattice: sums the texton values of every impulse
+   whose window holds the point, then normalizes; plus the float and 8-bit conversions. */
+#include "core/cell_walk.h"
+#include "core/impulse_position.h"
+#include "core/lattice_internal.h"
+#include "core/normalize_fixed.h"
+#include "core/poisson_count.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace {
+
+#if !DSN_SMALL_CODE
+
+/* Texton value `index` (channels interleaved), sign-extended in uint32 arithmetic without
+   implementation-defined conversions: (b ^ 0x80) - 128 is the two's-complement byte. */
+template <uint32_t Bits>
+inline uint32_t texton_value(const unsigned char *texton, uint32_t index) {
+    if (Bits == 8) return uint32_t(texton[index] ^ 0x80u) - 0x80u;
+    return (uint32_t(texton[2 * index] | (texton[2 * index + 1] << 8)) ^ 0x8000u) - 0x8000u;
+}
+
+/* The texton the walk reads (dsn_noise_lattice_texton): the asset's, or its lattice texton. */
+typedef dsn_texton_window texton_window;
+
+/* Adds texton entry `entry` of every channel to sums, modulo 2^32. */
+void add_texton_entry(const dsn_asset *asset, const texton_window *texton, uint32_t entry, uint32_t *sums) {
+    for (uint32_t c = 0; c < asset->channels; c++)
+        sums[c] += asset->bits == 8 ? texton_value<8>(texton->values, entry * asset->channels + c)
+                                    : texton_value<16>(texton->values, entry * asset->channels + c);
+}
+
+/* ---- Any cell size, any period: impulse by impulse ---- */
+
+/* One cell of the walk along one axis: reach = span base - cell origin (the texton index of an impulse
+   at offset 0, a small signed number held in a uint32) and the last acceptable in-cell offset (the
+   period cuts the last cell). */
+typedef struct axis_cell {
+    uint32_t reach, last_offset;
+} axis_cell;
+
+inline axis_cell cell_on_axis(const dsn_span *span, uint32_t cell, uint32_t shift) {
+    const uint32_t origin = cell << shift, room = span->last_position - origin;
+    axis_cell result = {span->base - origin, room < (1u << shift) - 1u ? room : (1u << shift) - 1u};
+    return result;
+}
+
+/* Impulses first .. count - 1 of a cell: each one that reaches the point adds its texton entry. */
+void add_impulses(const dsn_noise_state *noise, const texton_window *texton, uint32_t key, uint32_t first,
+                  uint32_t count, const axis_cell *x, const axis_cell *y, uint32_t *sums) {
+    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair = 64u >> field_shift;
+    const uint32_t half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u;
+    const uint32_t drop = half_bits - noise->cell_shift, width = texton->width, height = texton->height;
+    uint64_t pair = 0;
+    for (uint32_t k = first; k < count; k++) {
+        if (k == first || k % per_pair == 0) pair = dsn_position_pair(key, k / per_pair);
+        const uint32_t field = uint32_t(pair >> ((k % per_pair) << field_shift));
+        const uint32_t offset_x = (field & half_mask) >> drop,
+                       offset_y = ((field >> half_bits) & half_mask) >> drop;
+        const uint32_t column = x->reach - offset_x, row = y->reach - offset_y;
+        if (column < width && row < height && offset_x <= x->last_offset && offset_y <= y->last_offset)
+            add_texton_entry(&noise->asset, texton, row * width + column, sums);
+    }
+}
+
+/* Kept out of line so that its frame is not on the stack of the vector walk's calls. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+void accumulate_any(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+                    uint32_t *sums) {
+    const uint32_t shift = noise->cell_shift;
+    dsn_axis axis_x, axis_y;
+    dsn_axis_init(&axis_x, x, 1, texton->radius[0], shift, noise->period[0]);
+    dsn_axis_init(&axis_y, y, 1, texton->radius[1], shift, noise->period[1]);
+    for (uint32_t span_index_y = 0; span_index_y < axis_y.span_count; span_index_y++) {
+        const dsn_span span_y = dsn_axis_span(&axis_y, span_index_y);
+        for (uint32_t i = 0; i < span_y.cell_count; i++) {
+            const uint32_t cell_y = dsn_span_cell(&span_y, i, shift), row_key = dsn_row_key(noise, cell_y);
+            const axis_cell in_y = cell_on_axis(&span_y, cell_y, shift);
+            for (uint32_t span_index_x = 0; span_index_x < axis_x.span_count; span_index_x++) {
+                const dsn_span span_x = dsn_axis_span(&axis_x, span_index_x);
+                for (uint32_t j = 0; j < span_x.cell_count; j++) {
+                    const uint32_t cell_x = dsn_span_cell(&span_x, j, shift);
+                    const axis_cell in_x = cell_on_axis(&span_x, cell_x, shift);
+                    const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
+                    add_impulses(noise, texton, key, 0, dsn_cell_impulse_count(noise, key), &in_x, &in_y,
+                                 sums);
+                }
+            }
+        }
+    }
+}
+
+#if defined(__SSE2__)
+/* ---- 16 x 16 cells without a period (the usual case), 16 impulses per SSE2 vector ----
+   Each cell's first 16 impulses are the 16 bytes of its first two pairs: all are tested at once, and
+   the texton entries of all 16 lanes computed at once; the hits of several cells are then visited
+   together, after they are all tested (see accumulate_cells16). Impulses beyond 16 (0.4% of cells at
+   the usual mean of 8) go one by one. */
+
+inline __m128i broadcast(uint32_t pattern) {
+    /* The bits go in unchanged (int conversion is modulo 2^32 on every x86 compiler). */
+    return _mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(pattern)), 0);
+}
+
+/* The in-cell offsets t of one axis that reach the point, 0 <= reach - t < size, tested on every lane's
+   byte v as an unsigned range: low <= v <= low + span exactly when min(v - low, span) == v - low. reach is
+   the texton index of offset 0; it lies in [0, size + 14] for a cell that reaches the point, so the range
+   is never empty. The x test takes the x offsets (low nibbles), the y test whole fields, 16 y + x: y lies
+   in [low, high] exactly when the field lies in [16 low, 16 high + 15] (at most 255: no wrap). */
+typedef struct lane_range {
+    __m128i low, span;
+} lane_range;
+
+inline lane_range lane_range_of(uint32_t reach, uint32_t size, uint32_t unit, uint32_t below_unit) {
+    const uint32_t low = reach >= size ? reach - size + 1u : 0u, high = reach < 15u ? reach : 15u;
+    lane_range range = {broadcast(unit * low * 0x01010101u),
+                        broadcast((unit * (high - low) + below_unit) * 0x01010101u)};
+    return range;
+}
+
+inline lane_range x_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 1u, 0u); }
+inline lane_range y_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 16u, 15u); }
+
+/* x * multiplier modulo 2^64 in both 64-bit lanes (SSE2 multiplies 32 x 32 -> 64 bits only):
+   x_lo m_lo + 2^32 (x_hi m_lo + x_lo m_hi). `multiplier` holds m_lo in the low half of each lane,
+   `multiplier_high` m_hi. */
+inline __m128i multiply64(__m128i x, __m128i multiplier, __m128i multiplier_high) {
+    const __m128i cross =
+        _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), multiplier), _mm_mul_epu32(x, multiplier_high));
+    return _mm_add_epi64(_mm_mul_epu32(x, multiplier), _mm_slli_epi64(cross, 32));
+}
+
+/* dsn_position_pair(key, 0) and (key, 1), low and high lanes, for the key in the low 32 bits of `key`:
+   dsn_mix64 on vectors, the same bits. */
+inline __m128i position_pairs(__m128i key) {
+    const __m128i m1 = _mm_set1_epi64x(static_cast<long long>(0xBF58476D1CE4E5B9u)),
+                  m1_high = _mm_set1_epi64x(0xBF58476Du),
+                  m2 = _mm_set1_epi64x(static_cast<long long>(0x94D049BB133111EBu)),
+                  m2_high = _mm_set1_epi64x(0x94D049BBu);
+    /* key 2^32 + index G, index 0 and 1 */
+    __m128i x = _mm_add_epi64(_mm_shuffle_epi32(key, 0x11),
+                              _mm_set_epi64x(static_cast<long long>(0x9E3779B97F4A7C15u), 0));
+    x = _mm_xor_si128(x, _mm_srli_epi64(x, 30));
+    x = multiply64(x, m1, m1_high);
+    x = _mm_xor_si128(x, _mm_srli_epi64(x, 27));
+    x = multiply64(x, m2, m2_high);
+    return _mm_xor_si128(x, _mm_srli_epi64(x, 31));
+}
+
+/* Lanes k >= count as all-ones bytes (the impulses that do not exist): 16 bytes of absent_window from
+   16 - min(count, 16). */
+/* clang-format off */
+const unsigned char absent_window[32] = {
+    0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,
+    255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255};
+/* clang-format on */
+
+inline __m128i absent_impulses(uint32_t count) {
+    const unsigned char *window = absent_window + 16 - (count < 16 ? count : 16u);
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(window)));
+}
+
+/* Texton entries of 8 lanes whose fields (16 offset_y + offset_x) are in 16-bit lanes: corner -
+   (offset_y width + offset_x) = corner - field - offset_y (width - 16), corner = reach_y width + reach_x.
+   Exact in 16 bits for hits. */
+inline __m128i lane_entries(__m128i fields, __m128i corner, __m128i widths_less_16) {
+    return _mm_sub_epi16(corner,
+                         _mm_add_epi16(fields, _mm_mullo_epi16(_mm_srli_epi16(fields, 4), widths_less_16)));
+}
+
+/* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
+   (garbage for lanes that miss, never read). */
+inline uint32_t cell_hits(__m128i fields, __m128i absent, const lane_range *x, const lane_range *y,
+                          __m128i corner, __m128i widths_less_16, uint16_t *entries) {
+    const __m128i offset_x = _mm_and_si128(fields, _mm_set1_epi8(0x0F));
+    const __m128i dx = _mm_sub_epi8(offset_x, x->low), dy = _mm_sub_epi8(fields, y->low);
+    const __m128i in_x = _mm_cmpeq_epi8(_mm_min_epu8(dx, x->span), dx);
+    const __m128i in_y = _mm_cmpeq_epi8(_mm_min_epu8(dy, y->span), dy);
+    const __m128i zero = _mm_setzero_si128();
+    __m128i *out = static_cast<__m128i *>(static_cast<void *>(entries));
+    _mm_storeu_si128(out, lane_entries(_mm_unpacklo_epi8(fields, zero), corner, widths_less_16));
+    _mm_storeu_si128(out + 1, lane_entries(_mm_unpackhi_epi8(fields, zero), corner, widths_less_16));
+    return uint32_t(_mm_movemask_epi8(_mm_andnot_si128(absent, _mm_and_si128(in_x, in_y))));
+}
+
+/* The hits' texton values are summed while visiting them, then added to the channel sums (flush_hit_sums).
+   Grey values go to a scalar sum through one sign-extending load each (x86 only: a little-endian
+   two's-complement host, where the stored bytes read as signed char or int16 are the values; the
+   conversions to uint32 are modulo 2^32). RGB values go to the low lanes of a vector, the scalar ALUs
+   being the busier units on this path: one unaligned load of 4 bytes (8-bit values) or 8 (16-bit)
+   reads 1 or 2 bytes past the entry, at most into the asset's 4-byte CRC, which the loader guarantees
+   is in the buffer right after the texton (format.h: total_size). 8-bit values are summed in 16-bit
+   lanes, which cannot overflow between two flushes (at most 9 x 16 hits, 144 x 127 < 2^15); 16-bit
+   values in 32-bit lanes. */
+typedef struct hit_sums {
+    uint32_t grey;
+    __m128i rgb;
+} hit_sums;
+
+template <uint32_t Bits>
+inline uint32_t grey_value(const unsigned char *entry) {
+    if (Bits == 8) return uint32_t(*static_cast<const signed char *>(static_cast<const void *>(entry)));
+    int16_t value;
+    __builtin_memcpy(&value, entry, sizeof value);
+    return uint32_t(value);
+}
+
+template <uint32_t Bits>
+inline __m128i rgb_values(const unsigned char *entry) {
+    if (Bits == 8) {
+        uint32_t bytes;
+        __builtin_memcpy(&bytes, entry, sizeof bytes);
+        const __m128i values = _mm_cvtsi32_si128(static_cast<int>(bytes)); /* the bits unchanged */
+        return _mm_srai_epi16(_mm_unpacklo_epi8(values, values), 8);
+    }
+    const __m128i values = _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(entry)));
+    return _mm_srai_epi32(_mm_unpacklo_epi16(values, values), 16);
+}
+
+/* Number of set bits (SWAR: the popcnt instruction is not in the SSE2 baseline). */
+inline uint32_t popcount64(uint64_t bits) {
+    bits -= (bits >> 1) & 0x5555555555555555u;
+    bits = (bits & 0x3333333333333333u) + ((bits >> 2) & 0x3333333333333333u);
+    bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0Fu;
+    return uint32_t((bits * 0x0101010101010101u) >> 56);
+}
+
+/* Sums the texton values of the hits of (at most) four cells: bit 16 c + k of hits is impulse k of cell
+   c, whose entries are entries[16 c ..]. The loop counts the hits down rather than testing the mask for
+   zero: its exit, hard to predict, then resolves once the count is known and one cycle per hit later,
+   not at the end of the mask's chain of two dependent instructions per hit. */
+template <uint32_t Channels, uint32_t Bits>
+inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, hit_sums *sums) {
+    for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
+        const unsigned char *entry = texton + size_t(entries[__builtin_ctzll(hits)]) * Channels * (Bits / 8);
+        if (Channels == 1)
+            sums->grey += grey_value<Bits>(entry);
+        else
+            sums->rgb = Bits == 8 ? _mm_add_epi16(sums->rgb, rgb_values<Bits>(entry))
+                                  : _mm_add_epi32(sums->rgb, rgb_values<Bits>(entry));
+    }
+}
+
+/* Adds the hit sums to the channel sums (sign-extended, modulo 2^32) and clears them. */
+template <uint32_t Channels, uint32_t Bits>
+inline void flush_hit_sums(hit_sums *hit, uint32_t *sums) {
+    if (Channels == 1) {
+        sums[0] += hit->grey;
+    } else if (Bits == 8) {
+        /* The lanes come out zero-extended: (v ^ 2^15) - 2^15 sign-extends them. */
+        sums[0] += (uint32_t(_mm_extract_epi16(hit->rgb, 0)) ^ 0x8000u) - 0x8000u;
+        sums[1] += (uint32_t(_mm_extract_epi16(hit->rgb, 1)) ^ 0x8000u) - 0x8000u;
+        sums[2] += (uint32_t(_mm_extract_epi16(hit->rgb, 2)) ^ 0x8000u) - 0x8000u;
+    } else {
+        sums[0] += uint32_t(_mm_cvtsi128_si32(hit->rgb));
+        sums[1] += uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(hit->rgb, 1)));
+        sums[2] += uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(hit->rgb, 2)));
+    }
+    hit->grey = 0;
+    hit->rgb = _mm_setzero_si128();
+}
+
+/* Sums the hits of `cells` (up to 9) cells, cell s's mask at masks[s] and its entries at entries[16 s]:
+   4 masks read at once as a 64-bit word (x86: little-endian), those past the cells cleared first. */
+template <uint32_t Channels, uint32_t Bits>
+inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint32_t cells,
+                              const uint16_t *entries, hit_sums *sums) {
+    for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
+    uint64_t hits0, hits1, hits2;
+    __builtin_memcpy(&hits0, masks, sizeof hits0);
+    __builtin_memcpy(&hits1, masks + 4, sizeof hits1);
+    __builtin_memcpy(&hits2, masks + 8, sizeof hits2);
+    sum_hits<Channels, Bits>(texton, hits0, entries, sums);
+    sum_hits<Channels, Bits>(texton, hits1, entries + 64, sums);
+    sum_hits<Channels, Bits>(texton, hits2, entries + 128, sums);
+}
+
+template <uint32_t Channels, uint32_t Bits>
+void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+                        uint32_t *sums) {
+    const uint32_t width = texton->width, height = texton->height;
+    const uint32_t low_x = x - texton->radius[0], low_y = y - texton->radius[1];
+    const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
+                   rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
+    const uint32_t first_column = low_x >> 4, reach_x = x + texton->radius[0] - (first_column << 4);
+    /* width - 16 in 16-bit lanes (modulo 2^16, like the entries: the short conversion is modulo 2^16 on
+       every x86 compiler) */
+    const __m128i widths_less_16 = _mm_set1_epi16(static_cast<short>((width - 16) & 0xFFFFu)),
+                  sixteen = _mm_set1_epi16(16);
+    /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
+       reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
+       j + 1 is reached, so its reach is at least 16. */
+    const lane_range first_range = x_range_of(reach_x, width),
+                     last_range = x_range_of(reach_x - 16 * (columns - 1), width),
+                     whole_range = {_mm_setzero_si128(), _mm_set1_epi8(15)};
+    /* The hits of up to 9 cells wait until all are tested (the 3 x 3 cells of the usual 31 x 31 texton:
+       one wait per point): cell s's mask in masks[s], its entries at entries[16 s]. Visiting hits ends
+       with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
+       long before, a misprediction resolves at once; right after its cells, it waits for their whole
+       hash-and-test chain, and the work of the next cells with it, so the fewer visits per point the
+       better. The masks are stored one by one rather than shifted into words: fewer instructions. */
+    uint16_t entries[9 * 16], masks[12];
+    uint32_t slot = 0;
+    hit_sums hit = {0, _mm_setzero_si128()};
+    for (uint32_t i = 0; i < rows; i++) {
+        const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
+        const uint32_t reach_y = y + texton->radius[1] - (cell_y << 4);
+        const lane_range row_range = y_range_of(reach_y, height);
+        /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
+           conversion is modulo 2^16 on every x86 compiler). */
+        __m128i corner = _mm_set1_epi16(static_cast<short>((reach_y * width + reach_x) & 0xFFFFu));
+        for (uint32_t j = 0; j < columns; j++) {
+            /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
+            const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
+            const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
+            const __m128i key_vector = _mm_cvtsi32_si128(static_cast<int>(key)); /* the bits unchanged */
+            const lane_range *column_range = j == 0             ? &first_range
+                                             : j + 1 == columns ? &last_range
+                                                                : &whole_range;
+            if (slot == 9) {
+                sum_buffered_hits<Channels, Bits>(texton->values, masks, 9, entries, &hit);
+                flush_hit_sums<Channels, Bits>(&hit, sums);
+                slot = 0;
+            }
+            const uint32_t count = dsn_poisson_count_two_steps(noise, key);
+            masks[slot] = uint16_t(cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
+                                             &row_range, corner, widths_less_16, entries + 16 * slot));
+            slot++;
+            corner = _mm_sub_epi16(corner, sixteen);
+            if (count > 16) {
+                /* The rare rest, through the generic cell walk's per-impulse test. */
+                const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
+                add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums);
+            }
+        }
+    }
+    sum_buffered_hits<Channels, Bits>(texton->values, masks, slot, entries, &hit);
+    flush_hit_sums<Channels, Bits>(&hit, sums);
+}
+#endif
+
+void accumulate(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+                uint32_t *sums) {
+    sums[0] = sums[1] = sums[2] = 0;
+#if defined(__SSE2__)
+    const dsn_asset *asset = &noise->asset;
+    /* dsn_poisson_count_two_steps reads up to cdf[size + 1]: always in the table for one draw (mean <= 16),
+     * checked */
+    if (noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
+        noise->period[1] == 0 &&
+        noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0]) {
+        if (asset->channels == 3)
+            asset->bits == 8 ? accumulate_cells16<3, 8>(noise, texton, x, y, sums)
+                             : accumulate_cells16<3, 16>(noise, texton, x, y, sums);
+        else
+            asset->bits == 8 ? accumulate_cells16<1, 8>(noise, texton, x, y, sums)
+                             : accumulate_cells16<1, 16>(noise, texton, x, y, sums);
+        return;
+    }
+#endif
+    accumulate_any(noise, texton, x, y, sums);
+}
+
+#endif /* !DSN_SMALL_CODE */
+
+/* Whether `noise` evaluates into `out`. A noise that dsn_noise_init did not fill (zeroed on failure) has
+   no texton: then out[0], all that the caller of an unconfigured noise is known to hold, is zeroed (the
+   per-point functions return no error code, and dsn.h promises no output left undefined). */
+template <typename Value>
+bool usable(const dsn_noise_state *noise, Value *out) {
+    if (out != 0 && dsn_configured(noise)) return true;
+    if (out != 0) out[0] = 0;
+    return false;
+}
+
+} // namespace
+
+#if DSN_SMALL_CODE
+/* The small build evaluates a point as a 1 x 1 tile: one walk over the cells for both (same bits), and
+   the tile's zeroing of out[0] for a noise not configured. */
+extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
+    (void)dsn_lattice_tile_fixed(handle, x, y, 1, 1, out, 0, 0);
+}
+extern "C" void dsn_lattice_point_float(const dsn_noise *handle, int32_t x, int32_t y, float *out) {
+    uint32_t scratch[DSN_MAX_CHANNELS + 1]; /* dsn_lattice_tile_scratch_size of one point, at most */
+    (void)dsn_lattice_tile_float(handle, x, y, 1, 1, out, scratch, sizeof scratch);
+}
+extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t y, uint8_t *out) {
+    uint32_t scratch[DSN_MAX_CHANNELS + 1];
+    (void)dsn_lattice_tile_u8(handle, x, y, 1, 1, out, scratch, sizeof scratch);
+}
+#else
+#if DSN_GRADIENTS
+void dsn_internal_lattice_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+    const texton_window texton = dsn_lattice_texton_window(noise);
+    accumulate(noise, &texton, x, y, sums);
+}
+#endif
+
+extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int32_t y, int32_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    if (!usable(noise, out)) return;
+    uint32_t sums[3];
+#if !DSN_READS_SECTIONS
+    if (dsn_lattice_texton_unread(noise)) {
+        for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = 0;
+        return;
+    }
+#endif
+    const texton_window texton = dsn_lattice_texton_window(noise);
+    accumulate(noise, &texton, uint32_t(x), uint32_t(y), sums);
+    dsn_normalize(noise, sums, out);
+}
+#endif
+
+#if !DSN_SMALL_CODE
+extern "C" void dsn_lattice_point_float(const dsn_noise *handle, int32_t x, int32_t y, float *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    int32_t fixed[3];
+    if (!usable(noise, out)) return;
+    dsn_lattice_point_fixed(handle, x, y, fixed);
+    for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_float(fixed[c]);
+}
+
+extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t y, uint8_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    int32_t fixed[3];
+    if (!usable(noise, out)) return;
+    dsn_lattice_point_fixed(handle, x, y, fixed);
+    for (uint32_t c = 0; c < noise->asset.channels; c++) out[c] = dsn_fixed_to_u8(fixed[c]);
+}
+#endif

@@ -1,0 +1,488 @@
+/* runtime/kernels/continuous_batch_group.h - the batch of continuous points for the noises the vector
+   per-point evaluator takes (continuous_point_vector.h), 8 points at a time with a point in each vector lane:
+   their cells along non-periodic axes (periodic ones point by point), and the keys and impulse counts of the
+   3 x 3 cells a usual point has (the counts by comparisons with the Poisson table, no search; AVX-512: by
+   the two-step search on 16 lanes, counts_16), and the first two pairs of those cells hashed and sifted
+   with a pair in each 64-bit lane (group_pairs), then each point's candidates packed and visited by the
+   per-point evaluator's code, its texels read from the batch's quad table where the call built it
+   (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the window's edge;
+   continuous_batch.cpp builds it for large batches only), and the group's sums normalized on vectors, a
+   point in each 64-bit lane (splat_row.h). A point with more cells along an axis goes through the
+   per-point evaluator. The same cells, keys, counts and pairs as per point, so the same bits. Internal to
+   libdsn; not installed (everything here has internal linkage). */
+#ifndef DSN_CONTINUOUS_BATCH_GROUP_H
+#define DSN_CONTINUOUS_BATCH_GROUP_H
+
+#include "kernels/continuous_point_vector.h"
+#include "kernels/splat_row.h"
+
+#if defined(__AVX2__)
+namespace {
+
+const uint32_t group_points = 8; /* points a group's vectors hold */
+const uint32_t group_cells = 3;  /* cells along each axis a group's vectors hold */
+
+/* What a group's points share: the Poisson table's thresholds with their top bits flipped (compared as
+   signed numbers). */
+struct GroupShared {
+    FieldLanes lanes;
+    uint32_t flipped_cdf[sizeof(dsn_noise_state::poisson_cdf) / sizeof(uint32_t)];
+    bool one_draw; /* a cell's count is one draw */
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    bool by_tables; /* the counts by counts_16 (count_tables_fit) */
+    CountTables tables;
+#endif
+};
+
+inline GroupShared group_shared(const dsn_noise_state *noise) {
+    GroupShared shared;
+    shared.lanes = field_lanes(noise->cell_shift);
+    for (uint32_t k = 0; k < noise->poisson_size; k++)
+        shared.flipped_cdf[k] = noise->poisson_cdf[k] ^ 0x80000000u;
+    shared.one_draw = noise->poisson_parts == 1;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    shared.by_tables = count_tables_fit(noise);
+    if (shared.by_tables) count_tables(noise, &shared.tables);
+#endif
+    return shared;
+}
+
+/* dsn_poisson_draw of 8 uniforms (the keys: a cell's count when it is one draw), without a search: the
+   thresholds cdf[0 .. size - 1] increase, so those at or below the uniform are the n below the smallest
+   with uniform < cdf[n] (the guide only skips some of them), and the count is size less those above. */
+inline __m256i group_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i keys) {
+    const __m256i flipped = _mm256_xor_si256(keys, broadcast_8(0x80000000u));
+    __m256i above = _mm256_setzero_si256(); /* minus their number */
+    for (uint32_t k = 0; k < noise->poisson_size; k++)
+        above = _mm256_add_epi32(above, _mm256_cmpgt_epi32(broadcast_8(shared.flipped_cdf[k]), flipped));
+    return _mm256_add_epi32(broadcast_8(noise->poisson_size), above);
+}
+
+/* A group's cells along one axis, cell i of point p at [i][p]: its index, floor(shifted_base / 2^16)
+   (AxisCells's base) and its sifting bounds (CellAxis's low_lanes and high_lanes: 8-bit lanes, which the
+   noises of the vector evaluator have, so that one 32-bit word holds a bound's repeating bytes); passes[i]:
+   the points (bit p) whose cell i may reach them. Along a non-periodic axis cell i is the window's first
+   cell + i, along a periodic one the i-th that axis_cells lists: a candidate's cell index means the same
+   cell at every step, and the sums do not depend on the order of the cells. */
+struct GroupAxis {
+    uint32_t cell[group_cells][group_points], base[group_cells][group_points];
+    uint32_t low[group_cells][group_points], high[group_cells][group_points];
+    uint32_t passes[group_cells];
+};
+
+/* The group's cells along a non-periodic axis (`axis`: 0 for x, 1 for y), a point in each 32-bit lane:
+   axis_cells(point_axis(...)) unpacked. The window's cells (dsn_axis_span's first cell and count), and
+   for each cell cell_axis_within's bounds on the field halves. With the cell's offset W = X - origin (X the
+   point's integer part, small: the cell is one of the point's) and the fraction f,
+   shifted_base = (W + radius + 1) 2^32 + f, and the halves' bounds floor((shifted_base - 2 reach) / 2^k)
+   and floor((shifted_base - 1) / 2^k), k = 28 + shift (4-bit halves, shift <= 4), are
+   (W - radius - 1) 2^(32 - k) + (f >> k) and (W + radius + 1) 2^(32 - k) + ((f - 1) >> k), less
+   2^(32 - k) where f = 0 (f - 1 wraps to 2^32 - 1 there, where the floor of -1 / 2^k is -1). Returns the
+   points (bit p) whose window has at most group_cells cells. */
+inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const int64_t *coordinates,
+                           uint32_t count, GroupAxis *cells) {
+    uint32_t whole[group_points], fraction[group_points];
+    for (uint32_t p = 0; p < group_points; p++) {
+        const uint64_t coordinate = p < count ? static_cast<uint64_t>(coordinates[p]) : 0u;
+        whole[p] = static_cast<uint32_t>(coordinate >> 32), fraction[p] = static_cast<uint32_t>(coordinate);
+    }
+    const uint32_t radius = noise->radius[axis], shift = noise->cell_shift, up = 4u - shift;
+    const __m128i by_shift = _mm_cvtsi32_si128(static_cast<int>(shift)),
+                  by_up = _mm_cvtsi32_si128(static_cast<int>(up));
+    const __m128i by_k = _mm_cvtsi32_si128(static_cast<int>(28u + shift));
+    const __m256i x = load_8(whole), f = load_8(fraction), one = broadcast_8(1);
+    /* dsn_axis_span of the window [X - 1, X + 1]: its low end X - 1 - radius */
+    const __m256i low = _mm256_sub_epi32(x, broadcast_8(1u + radius));
+    const __m256i first_cell = _mm256_srl_epi32(low, by_shift);
+    const __m256i cell_count = _mm256_add_epi32(
+        _mm256_srl_epi32(_mm256_add_epi32(_mm256_and_si256(low, broadcast_8((1u << shift) - 1u)),
+                                          broadcast_8(2u + 2u * radius)),
+                         by_shift),
+        one);
+    const uint32_t fits = static_cast<uint32_t>(_mm256_movemask_ps(
+        _mm256_castsi256_ps(_mm256_cmpgt_epi32(broadcast_8(group_cells + 1u), cell_count))));
+    const __m256i sign = broadcast_8(0x80000000u),
+                  room_limit = broadcast_8(((1u << shift) - 1u) ^ 0x80000000u);
+    const __m256i f_zero =
+        _mm256_and_si256(_mm256_cmpeq_epi32(f, _mm256_setzero_si256()), broadcast_8(0u - (1u << up)));
+    const __m256i bytes = broadcast_8(0x01010101u), tops = broadcast_8(0x80808080u); /* FieldLanes's */
+    for (uint32_t i = 0; i < group_cells; i++) {
+        const __m256i index =
+            _mm256_and_si256(_mm256_add_epi32(first_cell, broadcast_8(i)), broadcast_8(0xFFFFFFFFu >> shift));
+        const __m256i origin = _mm256_sll_epi32(index, by_shift), w = _mm256_sub_epi32(x, origin);
+        const __m256i low_half =
+            _mm256_add_epi32(_mm256_sll_epi32(_mm256_sub_epi32(w, broadcast_8(radius + 1u)), by_up),
+                             _mm256_srl_epi32(f, by_k));
+        __m256i high_half = _mm256_add_epi32(
+            _mm256_add_epi32(_mm256_sll_epi32(_mm256_add_epi32(w, broadcast_8(radius + 1u)), by_up),
+                             _mm256_srl_epi32(_mm256_sub_epi32(f, one), by_k)),
+            f_zero);
+        /* the period's end (none: last_position 2^32 - 1) */
+        const __m256i room = _mm256_xor_si256(origin, broadcast_8(0xFFFFFFFFu));
+        const __m256i short_room = _mm256_cmpgt_epi32(room_limit, _mm256_xor_si256(room, sign));
+        const __m256i end = _mm256_blendv_epi8(
+            broadcast_8(15), _mm256_or_si256(_mm256_sll_epi32(room, by_up), broadcast_8((1u << up) - 1u)),
+            short_room);
+        high_half = _mm256_min_epi32(high_half, end);
+        const __m256i first_half = _mm256_max_epi32(low_half, _mm256_setzero_si256());
+        const __m256i pass = _mm256_andnot_si256(_mm256_cmpgt_epi32(first_half, high_half),
+                                                 _mm256_cmpgt_epi32(cell_count, broadcast_8(i)));
+        cells->passes[i] = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+        store_8(cells->cell[i], index);
+        store_8(cells->base[i],
+                _mm256_add_epi32(_mm256_slli_epi32(_mm256_add_epi32(w, broadcast_8(radius + 1u)), 16),
+                                 _mm256_srli_epi32(f, 16)));
+        /* where the cell passes, 0 <= first_half <= high_half <= 15: one byte each */
+        store_8(cells->low[i], _mm256_and_si256(pass, _mm256_mullo_epi32(first_half, bytes)));
+        store_8(cells->high[i],
+                _mm256_and_si256(pass, _mm256_or_si256(_mm256_mullo_epi32(high_half, bytes), tops)));
+    }
+    return fits;
+}
+
+/* group_axis along a periodic axis, point by point (axis_cells). */
+inline uint32_t group_periodic_axis(const dsn_noise_state *noise, uint32_t axis, const int64_t *coordinates,
+                                    uint32_t count, const FieldLanes &lanes, GroupAxis *cells) {
+    uint32_t fits = 0;
+    for (uint32_t i = 0; i < group_cells; i++) cells->passes[i] = 0;
+    for (uint32_t p = 0; p < group_points; p++) {
+        AxisCells point;
+        point.count = 0;
+        if (p < count &&
+            axis_cells(point_axis(static_cast<uint64_t>(coordinates[p]), noise->radius[axis],
+                                  noise->cell_shift, noise->period[axis]),
+                       lanes, &point) &&
+            point.count <= group_cells)
+            fits |= 1u << p;
+        else
+            point.count = 0;
+        for (uint32_t i = 0; i < group_cells; i++) {
+            const bool there = i < point.count;
+            cells->cell[i][p] = there ? point.cell[i] : 0u, cells->base[i][p] = there ? point.base[i] : 0u;
+            cells->low[i][p] = there ? static_cast<uint32_t>(point.axis[i].low_lanes) : 0u;
+            cells->high[i][p] = there ? static_cast<uint32_t>(point.axis[i].high_lanes) : 0u;
+            cells->passes[i] |= static_cast<uint32_t>(there) << p;
+        }
+    }
+    return fits;
+}
+
+/* The cells of a group's points, and the keys and counts of their first group_cells x group_cells cells:
+   cell (column i, row j) of point p at keys[(j group_cells + i) group_points + p], the count 0 where
+   either cell does not pass (and for the points that do not fit). */
+struct PointGroup {
+    GroupAxis columns, rows;
+    uint32_t keys[group_cells * group_cells * group_points], counts[group_cells * group_cells * group_points];
+};
+
+/* The impulse counts of the cells of 8 points with these keys (also in memory at keys). */
+inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i key,
+                           const uint32_t *keys) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    if (shared.by_tables)
+        return _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key)));
+#endif
+    if (shared.one_draw) return group_counts(noise, shared, key);
+    uint32_t counts[group_points];
+    for (uint32_t p = 0; p < group_points; p++) counts[p] = dsn_cell_impulse_count(noise, keys[p]);
+    return load_8(counts);
+}
+
+/* All ones in the lanes p of `points` (bit p). */
+inline __m256i point_lanes(uint32_t points) {
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(broadcast_8(points), bits), bits);
+}
+
+/* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
+   cells fit the vectors (at most group_cells along each axis). */
+inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shared, const int64_t *xs,
+                           const int64_t *ys, uint32_t count, PointGroup *group) {
+    const uint32_t fits_x = noise->period[0] == 0
+                                ? group_axis(noise, 0, xs, count, &group->columns)
+                                : group_periodic_axis(noise, 0, xs, count, shared.lanes, &group->columns);
+    const uint32_t fits_y = noise->period[1] == 0
+                                ? group_axis(noise, 1, ys, count, &group->rows)
+                                : group_periodic_axis(noise, 1, ys, count, shared.lanes, &group->rows);
+    const uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
+    const __m256i seed_row = broadcast_8(noise->seed_row), seed_column = broadcast_8(noise->seed_column);
+    for (uint32_t j = 0; j < group_cells; j++) {
+        const __m256i row_key =
+            mix32_8(_mm256_add_epi32(load_8(group->rows.cell[j]), seed_row)); /* dsn_row_key */
+        const __m256i row_there = point_lanes(group->rows.passes[j] & fits);
+        for (uint32_t i = 0; i < group_cells; i++) {
+            uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
+            uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
+            const __m256i key = mix32_8(
+                _mm256_add_epi32(_mm256_xor_si256(load_8(group->columns.cell[i]), seed_column), row_key));
+            store_8(keys, key);
+            const __m256i there = _mm256_and_si256(row_there, point_lanes(group->columns.passes[i]));
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            if (shared.by_tables) { /* the counts below, two cells a vector */
+                store_8(counts, there);
+                continue;
+            }
+#endif
+            store_8(counts, _mm256_and_si256(cell_counts(noise, shared, key, keys), there));
+        }
+    }
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    if (shared.by_tables) {
+        const uint32_t cells = group_cells * group_cells * group_points;
+        uint32_t at = 0;
+        for (; at + 16u <= cells; at += 16u)
+            _mm512_storeu_si512(group->counts + at,
+                                _mm512_and_si512(counts_16(noise, shared.tables, load_16(group->keys + at)),
+                                                 load_16(group->counts + at)));
+        for (; at < cells; at += group_points)
+            store_8(group->counts + at,
+                    _mm256_and_si256(cell_counts(noise, shared, load_8(group->keys + at), group->keys + at),
+                                     load_8(group->counts + at)));
+    }
+#endif
+    return fits;
+}
+
+/* The first two pairs of every cell of a group's points and their candidates (add_first_pairs' sifted
+   bits), computed on vectors a pair in each 64-bit lane, the two pairs of a point side by side. */
+struct GroupPairs {
+    uint64_t pairs[group_cells * group_cells][2 * group_points];  /* point p's first two at 2p, 2p + 1 */
+    uint32_t sifted[group_cells * group_cells][group_points / 2]; /* p's 16 bits at 16 (p % 2) of [p / 2] */
+};
+
+/* What group_pairs adds to (key << 32) of pairs 0 and 1: index 0x9E3779B97F4A7C15 (dsn_position_pair). */
+const long long pair_1_step = -0x61C8864680B583EB; /* 0x9E3779B97F4A7C15 */
+
+/* candidate_lanes of a pair in each 64-bit lane, given each lane's bounds (CellAxis's low_lanes and
+   high_lanes): the top bit of each 8-bit lane whose impulse may reach its point. */
+inline splat_vector sifted_lanes(splat_vector pairs, splat_vector halves, splat_vector tops,
+                                 splat_vector low_x, splat_vector high_x, splat_vector low_y,
+                                 splat_vector high_y) {
+    const splat_vector halves_x = splat_and(pairs, halves),
+                       halves_y = splat_and(splat_shift_right(pairs, 4), halves);
+    const splat_vector in_x =
+        splat_and(splat_sub(splat_or(halves_x, tops), low_x), splat_sub(high_x, halves_x));
+    const splat_vector in_y =
+        splat_and(splat_sub(splat_or(halves_y, tops), low_y), splat_sub(high_y, halves_y));
+    return splat_and(in_x, in_y);
+}
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products (the kernel has no
+   AVX512DQ): the high halves' product only reaches bits 64 and up. */
+inline __m512i multiply_64(__m512i x, uint64_t factor) {
+    const __m512i low = _mm512_set1_epi64(static_cast<long long>(factor & 0xFFFFFFFFu)),
+                  high = _mm512_set1_epi64(static_cast<long long>(factor >> 32));
+    const __m512i cross =
+        _mm512_add_epi64(_mm512_mul_epu32(_mm512_srli_epi64(x, 32), low), _mm512_mul_epu32(x, high));
+    return _mm512_add_epi64(_mm512_mul_epu32(x, low), _mm512_slli_epi64(cross, 32));
+}
+
+/* dsn_mix64 of every 64-bit lane. */
+inline __m512i mix64_8(__m512i x) {
+    x = multiply_64(_mm512_xor_si512(x, _mm512_srli_epi64(x, 30)), 0xBF58476D1CE4E5B9u);
+    x = multiply_64(_mm512_xor_si512(x, _mm512_srli_epi64(x, 27)), 0x94D049BB133111EBu);
+    return _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
+}
+
+/* A sifting bound's word of each point (GroupAxis) in both of its 64-bit lanes: `four` holds the first
+   point's index 4 times, then the next's. */
+inline __m512i bound_lanes(__m512i four, const uint32_t *words) {
+    return _mm512_permutexvar_epi32(four, _mm512_castsi256_si512(load_8(words)));
+}
+
+/* add_first_pairs' pairs and sifted bits of every cell of the group (the cells past a point's, defined
+   values unused): dsn_position_pair(key, 0) and (key, 1), candidate_lanes of both with the lanes' top bits
+   gathered by one byte movemask for 4 points, less the impulses at or past the cell's count (each
+   byte's impulse index compared with the count). */
+inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupPairs *out) {
+    const __m512i halves = _mm512_set1_epi64(static_cast<long long>(lanes.halves)),
+                  tops = _mm512_set1_epi64(static_cast<long long>(lanes.tops));
+    const __m512i second = _mm512_setr_epi64(0, pair_1_step, 0, pair_1_step, 0, pair_1_step, 0, pair_1_step);
+    const __m512i impulse =
+        _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    const __m512i most = _mm512_set1_epi32(16);
+    for (uint32_t quarter = 0; quarter < 2; quarter++) { /* points 4 quarter .. 4 quarter + 3 */
+        const uint32_t from = 4u * quarter;
+        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), broadcast_8(from));
+        const __m512i four =
+            _mm512_add_epi32(_mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
+                             _mm512_set1_epi32(static_cast<int>(from)));
+#pragma GCC unroll 9
+        for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+            const uint32_t i = cell % group_cells, j = cell / group_cells;
+            const __m512i keys = _mm512_cvtepu32_epi64(
+                _mm256_permutevar8x32_epi32(load_8(group.keys + cell * group_points), twice));
+            const __m512i pairs = mix64_8(_mm512_add_epi64(_mm512_slli_epi64(keys, 32), second));
+            const __m512i counts = _mm512_min_epu32(
+                _mm512_permutexvar_epi32(four,
+                                         _mm512_castsi256_si512(load_8(group.counts + cell * group_points))),
+                most);
+            /* every byte of a point's 128 bits: its count (below 256) */
+            const __mmask64 exist =
+                _mm512_cmpgt_epu8_mask(_mm512_shuffle_epi8(counts, _mm512_setzero_si512()), impulse);
+            const __m512i in_reach =
+                sifted_lanes(pairs, halves, tops, bound_lanes(four, group.columns.low[i]),
+                             bound_lanes(four, group.columns.high[i]), bound_lanes(four, group.rows.low[j]),
+                             bound_lanes(four, group.rows.high[j]));
+            const uint64_t sifted = _cvtmask64_u64(exist & _mm512_movepi8_mask(in_reach));
+            out->sifted[cell][2u * quarter] = static_cast<uint32_t>(sifted);
+            out->sifted[cell][2u * quarter + 1u] = static_cast<uint32_t>(sifted >> 32);
+            _mm512_storeu_si512(out->pairs[cell] + 2u * from, pairs);
+        }
+    }
+}
+#else
+/* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products: the high halves'
+   product only reaches bits 64 and up. */
+inline __m256i multiply_64(__m256i x, uint64_t factor) {
+    const __m256i low = _mm256_set1_epi64x(static_cast<long long>(factor & 0xFFFFFFFFu)),
+                  high = _mm256_set1_epi64x(static_cast<long long>(factor >> 32));
+    const __m256i cross =
+        _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(x, 32), low), _mm256_mul_epu32(x, high));
+    return _mm256_add_epi64(_mm256_mul_epu32(x, low), _mm256_slli_epi64(cross, 32));
+}
+
+/* dsn_mix64 of every 64-bit lane. */
+inline __m256i mix64_4(__m256i x) {
+    x = multiply_64(_mm256_xor_si256(x, _mm256_srli_epi64(x, 30)), 0xBF58476D1CE4E5B9u);
+    x = multiply_64(_mm256_xor_si256(x, _mm256_srli_epi64(x, 27)), 0x94D049BB133111EBu);
+    return _mm256_xor_si256(x, _mm256_srli_epi64(x, 31));
+}
+
+/* bound_lanes of the AVX-512 copy on AVX2 vectors, 2 points. */
+inline __m256i bound_lanes(__m256i four, const uint32_t *words) {
+    return _mm256_permutevar8x32_epi32(load_8(words), four);
+}
+
+/* group_pairs of the AVX-512 copy on AVX2 vectors, 2 points a vector: add_pair's pairs 0 and 1 and their
+   sifted bits (candidate_lanes' top bits by one byte movemask, less the impulses at or past the count). */
+inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupPairs *out) {
+    const __m256i halves = _mm256_set1_epi64x(static_cast<long long>(lanes.halves)),
+                  tops = _mm256_set1_epi64x(static_cast<long long>(lanes.tops));
+    const __m256i second = _mm256_setr_epi64x(0, pair_1_step, 0, pair_1_step);
+    const __m256i impulse = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3,
+                                             4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m256i most = broadcast_8(16);
+    for (uint32_t half = 0; half < group_points / 2; half++) { /* points 2 half and 2 half + 1 */
+        const uint32_t from = 2u * half;
+        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 0, 0, 0, 0), broadcast_8(from));
+        const __m256i four = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), broadcast_8(from));
+#pragma GCC unroll 9
+        for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+            const uint32_t i = cell % group_cells, j = cell / group_cells;
+            const __m256i keys = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(
+                _mm256_permutevar8x32_epi32(load_8(group.keys + cell * group_points), twice)));
+            const __m256i pairs = mix64_4(_mm256_add_epi64(_mm256_slli_epi64(keys, 32), second));
+            const __m256i counts = _mm256_min_epu32(
+                _mm256_permutevar8x32_epi32(load_8(group.counts + cell * group_points), four), most);
+            /* every byte of a point's 128 bits: its count (at most 16) */
+            const __m256i exist =
+                _mm256_cmpgt_epi8(_mm256_shuffle_epi8(counts, _mm256_setzero_si256()), impulse);
+            const __m256i in_reach =
+                sifted_lanes(pairs, halves, tops, bound_lanes(four, group.columns.low[i]),
+                             bound_lanes(four, group.columns.high[i]), bound_lanes(four, group.rows.low[j]),
+                             bound_lanes(four, group.rows.high[j]));
+            out->sifted[cell][half] =
+                static_cast<uint32_t>(_mm256_movemask_epi8(_mm256_and_si256(exist, in_reach)));
+            _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out->pairs[cell] + 2u * from)),
+                                pairs);
+        }
+    }
+}
+#endif
+
+/* The bases of point p's cells by their indices (point_visit_begin). */
+inline __m256i group_bases(const GroupAxis &cells, uint32_t p) {
+    return _mm256_setr_epi32(static_cast<int>(cells.base[0][p]), static_cast<int>(cells.base[1][p]),
+                             static_cast<int>(cells.base[2][p]), 0, 0, 0, 0, 0);
+}
+
+/* The sifting bounds of point p's cell i (candidate_lanes reads no shifted_base). */
+inline CellAxis group_cell_axis(const GroupAxis &cells, uint32_t i, uint32_t p) {
+    const uint64_t repeat = 0x100000001u;
+    CellAxis axis;
+    axis.shifted_base = 0;
+    axis.low_lanes = cells.low[i][p] * repeat, axis.high_lanes = cells.high[i][p] * repeat;
+    return axis;
+}
+
+/* point_vector_sum's sums of point p of the group, its cells' first two pairs from group_pairs: channel c
+   at sums[c group_points + p]. */
+template <uint32_t Channels>
+void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, const PointGroup &group,
+                     const GroupPairs &pairs, uint32_t p, const uint32_t *quads, uint64_t *sums) {
+    PointVisit<Channels> visit;
+    point_visit_begin<Channels>(noise, group_bases(group.columns, p), group_bases(group.rows, p), quads,
+                                &visit);
+    /* The candidates are stored at any 4-byte offset, and a store that crosses a page costs far more
+       than one that crosses a cache line: 1024-byte alignment keeps the buffer (644 bytes) within one
+       page. */
+    alignas(1024) PointCandidates candidates;
+    static_assert(sizeof(PointCandidates) <= 1024, "the candidates must fit their alignment");
+    candidates.count = 0;
+    /* every cell of the vectors (those past the point's have no impulse): no branch on the cells' number;
+       unrolled, each cell's offsets and indices are constants */
+#pragma GCC unroll 9
+    for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
+        const uint32_t i = cell % group_cells, j = cell / group_cells, indices = cell_indices(i, j);
+        const uint32_t key = group.keys[cell * group_points + p],
+                       count = group.counts[cell * group_points + p];
+        if (candidates.count > point_vector_slots - 16u)
+            visit_point_candidates<Channels>(&visit, &candidates);
+        const uint32_t sifted = (pairs.sifted[cell][p / 2u] >> (16u * (p % 2u))) & 0xFFFFu;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        add_sifted_pairs(&candidates, key,
+                         _mm_loadu_si128(static_cast<const __m128i *>(
+                             static_cast<const void *>(pairs.pairs[cell] + 2u * p))),
+                         sifted, indices);
+#else
+        add_sifted_pair(&candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
+        add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
+#endif
+        if (count > 16u)
+            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes,
+                                      group_cell_axis(group.columns, i, p), group_cell_axis(group.rows, j, p),
+                                      indices);
+    }
+    point_visit_sums<Channels>(&visit, &candidates, sums + p, group_points);
+}
+
+/* The batch's points, Channels values each, into out; quads: the batch's table, or null (the texels then
+   read from the texton, each where it lies inside the window). */
+template <uint32_t Channels>
+void batch_groups(const dsn_noise_state *noise, const uint32_t *quads, const int64_t *xs, const int64_t *ys,
+                  uint32_t count, int32_t *out) {
+    const GroupShared shared = group_shared(noise);
+    PointGroup group;
+    GroupPairs pairs;
+    /* the sums of the group's points that fit, channel c of point p at c group_points + p (the others'
+       zero: defined values, their outputs written over) */
+    uint64_t sums[Channels * group_points];
+    for (uint32_t first = 0; first < count; first += group_points) {
+        const uint32_t points = count - first < group_points ? count - first : group_points;
+        const uint32_t fits = fill_group(noise, shared, xs + first, ys + first, points, &group);
+        group_pairs(group, shared.lanes, &pairs);
+        for (uint32_t k = 0; k < Channels * group_points; k++) sums[k] = 0;
+        for (uint32_t p = 0; p < points; p++)
+            if ((fits >> p) & 1u)
+                group_point_sum<Channels>(noise, shared.lanes, group, pairs, p, quads, sums);
+        /* normalize_q32 of the group's points on vectors, a point in each 64-bit lane */
+        int32_t *values = out + static_cast<size_t>(first) * Channels;
+        continuous_splat_normalize(noise, sums, group_points, points, values);
+        for (uint32_t p = 0; p < points; p++) {
+            if ((fits >> p) & 1u) {
+                dsn_map_output(noise, values + p * Channels);
+                continue;
+            }
+            const uint64_t x = static_cast<uint64_t>(xs[first + p]), y = static_cast<uint64_t>(ys[first + p]);
+            if (!continuous_point_vector(noise, x, y, values + p * Channels))
+                dsn_internal_continuous_point(noise, x, y, values + p * Channels);
+        }
+    }
+}
+
+} // namespace
+#endif /* __AVX2__ */
+
+#endif /* DSN_CONTINUOUS_BATCH_GROUP_H */

@@ -1,0 +1,26 @@
+/* runtime/kernels/kernel_avx2.cpp - the AVX2 kernel: the evaluation code built for AVX2 (the Makefile
+   compiles this file with -mavx2 on x86-64), 16 pixels per strip. Runs only where init found AVX2
+   (kernel_table.cpp); its bits are those of every other kernel. Empty unless DSN_KERNEL_X86_COPIES. */
+#include "kernels/kernels.h"
+
+#if DSN_KERNEL_X86_COPIES
+#if !defined(__AVX2__)
+#error "runtime/kernels/kernel_avx2.cpp must be compiled with -mavx2 when DSN_X86_DISPATCH is set"
+#endif
+
+#include "kernels/continuous_batch.h"
+#include "kernels/continuous_point_vector.h"
+#include "kernels/filtered_candidates_vector.h"
+#include "kernels/filtered_reads_vector.h"
+#include "kernels/splat_row.h"
+#include "kernels/tile_render.h"
+
+extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile,
+                                                             lattice_strips_take,
+                                                             continuous_batch,
+                                                             continuous_splat_runs,
+                                                             continuous_splat_normalize,
+                                                             continuous_point_vector,
+                                                             DSN_FILTER_READS_ENTRY,
+                                                             DSN_FILTER_CANDIDATES_ENTRY};
+#endif

@@ -1,0 +1,37 @@
+/* runtime/kernels/kernel_default.cpp - the default kernel: the evaluation code built with the runtime's own
+   flags (on x86 the widest vectors those flags allow, simd.h), the one every build has. Built for AVX2, it
+   has the vector per-point evaluator and filtered reads too. */
+#include "kernels/kernels.h"
+#include "kernels/tile_render.h"
+
+#if DSN_CONTINUOUS_BATCH
+#include "kernels/continuous_batch.h"
+#define BATCH_ENTRY continuous_batch
+#else
+#define BATCH_ENTRY 0
+#endif
+#if !DSN_SMALL_CODE
+#include "kernels/splat_row.h"
+#define SPLAT_ROW_ENTRY continuous_splat_runs
+#define SPLAT_NORMALIZE_ENTRY continuous_splat_normalize
+#else
+#define SPLAT_ROW_ENTRY 0
+#define SPLAT_NORMALIZE_ENTRY 0
+#endif
+#if !DSN_SMALL_CODE && defined(__AVX2__)
+#include "kernels/continuous_point_vector.h"
+#define POINT_ENTRY continuous_point_vector
+#else
+#define POINT_ENTRY 0
+#endif
+#include "kernels/filtered_candidates_vector.h"
+#include "kernels/filtered_reads_vector.h"
+
+extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
+                                                                lattice_strips_take,
+                                                                BATCH_ENTRY,
+                                                                SPLAT_ROW_ENTRY,
+                                                                SPLAT_NORMALIZE_ENTRY,
+                                                                POINT_ENTRY,
+                                                                DSN_FILTER_READS_ENTRY,
+                                                                DSN_FILTER_CANDIDATES_ENTRY};

@@ -1,0 +1,179 @@
+/* runtime/kernels/kernels.h - the kernels: the copies of the evaluation code built for different instruction
+   sets, each a struct of entry points, and the table init chooses one from (kernel_table.cpp). The bits
+   are the same whichever runs. Internal to libdsn; not installed.
+
+   Every build has the default kernel (kernel_default.cpp), built with the runtime's own flags. On
+   x86-64 the Makefile also builds kernel_avx2.cpp with -mavx2 and kernel_avx512.cpp with -mavx512f
+   -mavx512bw and defines DSN_X86_DISPATCH=1 for the whole runtime: init then records the last row of the
+   table whose CPU check passes: the widest kernel this CPU (and its OS) runs, or on AMD Zen 4 the
+   AVX-512 kernel with AVX2's lattice tiles of RGB noises (kernel_table.cpp says why). Built any other way
+   (other CPUs, other build systems, the small build) there is the default kernel alone and no CPU check.
+   Adding a kernel is one file defining its entries (dsn_internal_entries_NAME, built with its flags by the
+   Makefile) and one row of the table (with its id below); adding a kind of kernel is one member of
+   dsn_kernel_entries, filled by every kernel file. */
+#ifndef DSN_KERNELS_H
+#define DSN_KERNELS_H
+
+#include <stdint.h>
+
+#include "core/normalize_fixed.h"
+#include "setup/noise_state.h"
+
+/* DSN_KERNEL_X86_COPIES: kernel_avx2.cpp and kernel_avx512.cpp hold their kernels and the table
+   offers them. */
+#if defined(DSN_X86_DISPATCH) && DSN_X86_DISPATCH && defined(__x86_64__) && !DSN_SMALL_CODE
+#define DSN_KERNEL_X86_COPIES 1
+#else
+#define DSN_KERNEL_X86_COPIES 0
+#endif
+
+/* A whole lattice tile (tile_render.h's render_tile): `width` x `height` values of `kind` from (x0, y0)
+   into out, with the 32-bit accumulator of its fallback path (out itself for fixed output). */
+typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
+                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
+
+/* Whether the kernel's strip path holds the texton of `noise` (tile_render.h's lattice_strips_take): its
+   lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */
+typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
+
+/* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),
+   Q32.32, into out[k * channels], reading the texton from `quads` (continuous_batch.h's 2 x 2 texel
+   table, built by continuous_batch.cpp) and using `work` (batch_work_bytes bytes, 64-byte aligned). */
+typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint32_t *quads,
+                                        const int64_t *xs, const int64_t *ys, uint32_t count, int32_t *out,
+                                        void *work);
+
+/* The runs of pixels one impulse of the grid splat reaches (grid_splat.cpp), one per row
+   of a block: the offsets (pixel - impulse) of the run's first pixel, all `count` pixels within reach,
+   and where its channel-0 sums start (channel c at sums[c * plane]). A call has dsn_splat_runs_most runs
+   at most (a block's rows), each of dsn_splat_run_longest pixels at most (a block's columns). */
+enum { dsn_splat_runs_most = 32, dsn_splat_run_longest = 64 };
+typedef struct dsn_splat_run {
+    int64_t offset_x, offset_y;
+    uint64_t *sums;
+    uint32_t count;
+} dsn_splat_run;
+
+/* What the grid splat reads: the texton, or a level of its pyramid (the filtered tile): the window of
+   width x height texels (`channels` values of `bits` bits each) from `values`, rows `stride` texels apart.
+   An offset (pixel - impulse) is divided by 2^level, rounded down, before it is read, as the filtered
+   walk reads a level (filtered_walk.cpp's add_level); level 0 reads it as it is. */
+typedef struct dsn_splat_texture {
+    const unsigned char *values;
+    uint32_t width, height, stride, channels, bits, level;
+} dsn_splat_texture;
+
+/* What every run of a grid shares: the texture, the steps (pixel to next pixel) and reaches of both axes
+   (an impulse reaches the offsets in (-reach, reach): (radius + 1) 2^(32 + level), the radius the
+   texture's), the distance between channel planes, and the texture's bilinear cells (splat_cells.h) or 0
+   where the runs go pixel by pixel (16-bit textons, cells too large for the stack). */
+typedef struct dsn_splat_setup {
+    dsn_splat_texture texture;
+    int64_t step_x, step_y, reach_x, reach_y;
+    size_t plane;
+    const uint64_t *sums_end; /* the runs' sums lie before; vectors may add 0 to any sum up to there */
+    const uint64_t *cells;
+    uint32_t cell_row; /* cells per row of the table */
+    /* Nonzero for axis-aligned grids (the steps along a row move x alone, those to the next row y alone):
+       the runs of a call then start at the same offset_x, have the same count and a constant offset_y. */
+    int columns_shared;
+} dsn_splat_setup;
+
+/* The innermost loops of the continuous grid splat (splat_row.h's continuous_splat_runs): one impulse
+   added to its runs. */
+typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_run *runs,
+                                  uint32_t run_count);
+
+/* The normalization of the continuous grid splat's sums (splat_row.h's continuous_splat_normalize):
+   `count` pixels, channel c of pixel p at sums[c * plane + p], into out[p * channels + c] as
+   normalize_q32_unmapped gives them (continuous_internal.h). */
+typedef void dsn_splat_normalize_entry(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
+                                       uint32_t count, int32_t *out);
+
+/* One continuous point (continuous_point_vector.h's continuous_point_vector): the Q16.16 values of the
+   point (x, y), Q32.32, into out, as dsn_internal_continuous_point gives them; returns 0, writing
+   nothing, for a noise it does not take (dsn_internal_continuous_point then evaluates the point itself). */
+typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
+
+/* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
+   filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start
+   and limit along x, then along y: filtered_sift.cpp's LevelTest) keep, their bilinear reads of `level`
+   (`channels` 8-bit values a texel) added to out[0 .. channels - 1] modulo 2^64. Where narrow_xs is not
+   null the candidates are read from narrow_xs, narrow_ys instead (their offsets / 2^16 modulo 2^32, as
+   filter_candidates lists them) with narrow_tests[0 .. 5] (filtered_sift.cpp's narrow_test along x, then
+   along y). */
+struct dsn_walked_level;
+typedef void dsn_filter_level_reads_entry(const struct dsn_walked_level *level, uint32_t channels,
+                                          const int64_t *xs, const int64_t *ys, const uint32_t *narrow_xs,
+                                          const uint32_t *narrow_ys, uint32_t count, const uint64_t *tests,
+                                          const uint32_t *narrow_tests, uint64_t *out);
+
+/* One axis of one cell as the sifts see it: continuous_sift.h's CellAxis, which documents it. One cell
+   of the filtered sift's box (filtered_sift.cpp): its key, its impulse count and both axes. */
+typedef struct dsn_filter_cell_axis {
+    int64_t shifted_base;
+    uint64_t low_lanes, high_lanes;
+} dsn_filter_cell_axis;
+typedef struct dsn_filter_cell {
+    uint32_t key, count;
+    dsn_filter_cell_axis x, y;
+} dsn_filter_cell;
+
+/* The candidates of the filtered sift (filtered_candidates_vector.h's filter_candidates), for cells of
+   side 2^cell_shift <= 16: the impulses of `cell_count` cells whose lattice fields let them reach the
+   box, their shifted offsets (CellAxis's shifted_base less the 16-bit position's) stored from
+   xs[count], ys[count] on (unless xs is null), cell by cell, the same offsets / 2^16 modulo 2^32 from
+   narrow_xs[count],
+   narrow_ys[count] on, and where each cell's end in ends[0 .. cell_count - 1]; returns the new count.
+   Writes up to 16 values past the last candidate: the caller leaves room for the sum of the cells' counts
+   plus 16. */
+typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
+                                             uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
+                                             uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends);
+
+/* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
+   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and
+   continuous_splat_normalize in the small build (DSN_SMALL_CODE), which evaluates grids point by point,
+   continuous_point in kernels built without AVX2 (continuous_point.cpp's own evaluator then runs),
+   filter_level_reads and filter_candidates likewise (filtered_sift.cpp then reads, or lists, each
+   candidate itself). */
+typedef struct dsn_kernel_entries {
+    dsn_lattice_tile_entry *lattice_tile;
+    dsn_lattice_strips_take_entry *lattice_strips_take;
+    dsn_continuous_batch_entry *continuous_batch;
+    dsn_splat_runs_entry *continuous_splat_runs;
+    dsn_splat_normalize_entry *continuous_splat_normalize;
+    dsn_continuous_point_entry *continuous_point;
+    dsn_filter_level_reads_entry *filter_level_reads;
+    dsn_filter_candidates_entry *filter_candidates;
+} dsn_kernel_entries;
+
+/* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the
+   narrowest to the widest instruction set, each CPU that runs a row running those before it too. */
+typedef enum dsn_kernel_id {
+    DSN_KERNEL_DEFAULT, /* the copy built with the runtime's own flags */
+    DSN_KERNEL_AVX2,
+    DSN_KERNEL_AVX512,           /* AVX-512 F and BW */
+    DSN_KERNEL_AVX512_AVX2_TILES /* AVX-512's, but RGB lattice tiles AVX2's where its strips take them */
+} dsn_kernel_id;
+
+typedef struct dsn_kernel {
+    dsn_kernel_id id;
+    const char *name;
+    int (*cpu_runs)(void); /* whether this CPU and its OS run the kernel; 0: every CPU the build targets */
+    const dsn_kernel_entries *entries;
+} dsn_kernel;
+
+/* The table: dsn_internal_kernel_count rows (1 without the x86 copies). */
+extern const dsn_kernel dsn_internal_kernels[];
+extern const uint32_t dsn_internal_kernel_count;
+
+/* The id of the last row whose CPU check passes (init records it in tile_kernel). */
+uint32_t dsn_internal_choose_kernel(void);
+
+/* The entries of kernel `id` (the default kernel's for an id outside the table). */
+static inline const dsn_kernel_entries *dsn_kernel_entries_of(uint32_t id) {
+    return dsn_internal_kernels[id < dsn_internal_kernel_count ? id : 0u].entries;
+}
+
+#endif /* DSN_KERNELS_H */

@@ -1,0 +1,540 @@
+/* runtime/kernels/splat_row.h - the innermost loops of the grid splat (grid_splat.cpp): one
+   impulse added to its runs of pixels, one run per row of a block, and the normalization of a row of the
+   block's sums, as kernels (kernels.h: each kernel file includes it, so it is built once per instruction
+   set). On x86 8-bit textons are read from their cell records (splat_cells.h) on vectors of 64-bit lanes,
+   one pixel per lane (2, 4 or 8 by the copy), axis-aligned grids reusing each record's interpolation along
+   the row down the runs; 8-bit textons too large for the records take 8 pixels per step with gathers on
+   AVX2 and AVX-512; the rest goes pixel by pixel. The same integers every way (add_bilinear's). Internal
+   to libdsn; not installed (everything here has internal linkage). */
+#ifndef DSN_SPLAT_ROW_H
+#define DSN_SPLAT_ROW_H
+
+#include "core/bilinear_texton.h"
+#include "core/continuous_internal.h"
+#include "kernels/kernels.h"
+#include "kernels/splat_cells.h"
+#include "simd/simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
+
+namespace {
+
+/* One channel of the bilinear texton at (row, column) with the upper weights (down, across), texels
+   inside the window: add_bilinear's integer, with one product per step ((65536 - w) a + w b =
+   65536 a + w (b - a), the same integers). */
+template <uint32_t Bytes, uint32_t Stride>
+inline int64_t interior_channel(const unsigned char *top, const unsigned char *bottom, int64_t across,
+                                int64_t down) {
+    const int64_t top_left = stored_value<Bytes>(top), bottom_left = stored_value<Bytes>(bottom);
+    const int64_t upper = top_left * 65536 + across * (stored_value<Bytes>(top + Stride) - top_left);
+    const int64_t lower = bottom_left * 65536 + across * (stored_value<Bytes>(bottom + Stride) - bottom_left);
+    return upper * 65536 + down * (lower - upper);
+}
+
+/* A texel of channel c at (row, column), 0 outside the window (indices are unsigned: -1 is outside). */
+template <uint32_t Channels, uint32_t Bytes>
+inline int64_t edge_texel(const dsn_splat_texture &texture, uint32_t row, uint32_t column, uint32_t c) {
+    if (row >= texture.height || column >= texture.width) return 0;
+    return stored_value<Bytes>(texture.values + ((row * texture.stride + column) * Channels + c) * Bytes);
+}
+
+/* Adds the impulse to `count` pixels of a row, starting at the offsets (pixel - impulse) given, all in
+   reach (-reach < offset < reach on both axes, which the column bounds guarantee): bracket's shifted
+   values (offset + reach, divided by 2^level) lie in [0, 2 reach / 2^level), so its lower index and weight
+   are read off directly (0 gives index -1 and weight 0: nothing). The sums are planar: channel c of the
+   row's first pixel at pixel[c * plane]. */
+template <uint32_t Channels, uint32_t Bytes>
+void splat_row(const dsn_splat_setup *setup, int64_t offset_x, int64_t offset_y, uint32_t count,
+               uint64_t *pixel) {
+    const dsn_splat_texture &texture = setup->texture;
+    const uint32_t width = texture.width, height = texture.height, level = texture.level;
+    const uint32_t row_bytes = texture.stride * Channels * Bytes;
+    const size_t plane = setup->plane;
+    uint64_t shifted_x = static_cast<uint64_t>(offset_x + setup->reach_x);
+    uint64_t shifted_y = static_cast<uint64_t>(offset_y + setup->reach_y);
+    for (uint32_t i = 0; i < count; i++, pixel++) {
+        const uint64_t level_x = shifted_x >> level, level_y = shifted_y >> level;
+        const uint32_t column = static_cast<uint32_t>(level_x >> 32) - 1u;
+        const uint32_t row = static_cast<uint32_t>(level_y >> 32) - 1u;
+        const int64_t across = static_cast<int64_t>((level_x >> 16) & 0xFFFFu);
+        const int64_t down = static_cast<int64_t>((level_y >> 16) & 0xFFFFu);
+        if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
+            const unsigned char *top = texture.values + (row * texture.stride + column) * Channels * Bytes;
+            const unsigned char *bottom = top + row_bytes;
+            for (uint32_t c = 0; c < Channels; c++)
+                pixel[c * plane] += static_cast<uint64_t>(interior_channel<Bytes, Channels * Bytes>(
+                    top + c * Bytes, bottom + c * Bytes, across, down));
+        } else { /* at the window's edge: the same integers, texels outside read as 0 */
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int64_t top_left = edge_texel<Channels, Bytes>(texture, row, column, c);
+                const int64_t bottom_left = edge_texel<Channels, Bytes>(texture, row + 1u, column, c);
+                const int64_t upper =
+                    top_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(texture, row, column + 1u, c) - top_left);
+                const int64_t lower =
+                    bottom_left * 65536 +
+                    across * (edge_texel<Channels, Bytes>(texture, row + 1u, column + 1u, c) - bottom_left);
+                pixel[c * plane] += static_cast<uint64_t>(upper * 65536 + down * (lower - upper));
+            }
+        }
+        shifted_x += static_cast<uint64_t>(setup->step_x);
+        shifted_y += static_cast<uint64_t>(setup->step_y);
+    }
+}
+
+#if defined(__AVX2__)
+/* ---- 8 pixels at a time on AVX2, 8-bit textons (level 0) without cell records ----
+   Each pixel's 2 x 2 texels come from 4 gathers of 32-bit words at the texels' first bytes (the texel
+   and, for grey, the next one; for RGB the texel's 3 bytes and one more), each masked to the pixels whose
+   texel lies inside the window, so that the others read nothing and give 0. A word read at a texel of
+   the last row reaches at most 3 bytes past it: into the asset's 4-byte CRC, which the loader
+   guarantees lies in the buffer right after the texton (format.h: total_size). The rows' interpolation
+   runs in 32-bit lanes (below 2^25), the column's in 64-bit lanes (_mm256_mul_epi32, exact). A row's
+   last pixels take a block whose lanes past the row are masked out of the gathers and not added. */
+
+/* The low 32 bits of the 64-bit lanes of a (pixels 0-3) and b (4-7), as 8 lanes in order. */
+inline __m256i splat_low_halves(__m256i a, __m256i b) {
+    const __m256 mixed = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), 0x88);
+    return _mm256_permute4x64_epi64(_mm256_castps_si256(mixed), 0xD8);
+}
+
+/* Byte `index` of every 32-bit lane, sign-extended. */
+template <int Index>
+inline __m256i signed_byte(__m256i words) {
+    return _mm256_srai_epi32(_mm256_slli_epi32(words, 24 - 8 * Index), 24);
+}
+
+template <uint32_t Channels>
+void splat_row_vector(const dsn_splat_setup *setup, int64_t offset_x, int64_t offset_y, uint32_t count,
+                      uint64_t *pixel) {
+    const dsn_splat_texture &texture = setup->texture;
+    const int64_t step_x = setup->step_x, step_y = setup->step_y;
+    const size_t plane = setup->plane;
+    const uint32_t blocks = (count + 7u) / 8u;
+    const __m256i steps_x = _mm256_set1_epi64x(8 * step_x), steps_y = _mm256_set1_epi64x(8 * step_y);
+    const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+    /* bracket's shifted values of pixels 0-3 and 4-7 (modulo 2^64, as the scalar loop steps them) */
+    const uint64_t start_x = static_cast<uint64_t>(offset_x + setup->reach_x),
+                   start_y = static_cast<uint64_t>(offset_y + setup->reach_y);
+    const uint64_t four_x = 4u * static_cast<uint64_t>(step_x), four_y = 4u * static_cast<uint64_t>(step_y);
+    __m256i low_x = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_x)),
+                                     _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_x)));
+    __m256i low_y = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_y)),
+                                     _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_y)));
+    /* _mm256_mul_epu32 takes the low 32 bits of the step: add the high part's multiples too */
+    low_x = _mm256_add_epi64(
+        low_x, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
+                                                             static_cast<uint64_t>(step_x) >> 32))),
+                                 32));
+    low_y = _mm256_add_epi64(
+        low_y, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
+                                                             static_cast<uint64_t>(step_y) >> 32))),
+                                 32));
+    __m256i high_x = _mm256_add_epi64(low_x, _mm256_set1_epi64x(static_cast<long long>(four_x)));
+    __m256i high_y = _mm256_add_epi64(low_y, _mm256_set1_epi64x(static_cast<long long>(four_y)));
+    const __m256i width = _mm256_set1_epi32(static_cast<int>(texture.width)),
+                  height = _mm256_set1_epi32(static_cast<int>(texture.height));
+    const __m256i sign = _mm256_set1_epi32(-2147483647 - 1);
+    const __m256i width_sign = _mm256_xor_si256(width, sign), height_sign = _mm256_xor_si256(height, sign);
+    const __m256i ones = _mm256_set1_epi32(1), low_16 = _mm256_set1_epi32(0xFFFF),
+                  scale = _mm256_set1_epi32(65536);
+    const __m256i row_bytes = _mm256_set1_epi32(static_cast<int>(texture.stride * Channels));
+    const int *texton = static_cast<const int *>(static_cast<const void *>(texture.values));
+    const __m256i lane_numbers = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    for (uint32_t block = 0; block < blocks; block++, pixel += 8) {
+        /* The last block's lanes past the row read nothing and leave their memory alone (masked). */
+        const uint32_t remaining = count - 8u * block;
+        const bool full = remaining >= 8u;
+        const __m256i present =
+            _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(remaining)), lane_numbers);
+        /* The lower texel indices (column, row: -1 .. size - 1) and the upper weights. */
+        const __m256i column = _mm256_sub_epi32(
+            splat_low_halves(_mm256_srli_epi64(low_x, 32), _mm256_srli_epi64(high_x, 32)), ones);
+        const __m256i row = _mm256_sub_epi32(
+            splat_low_halves(_mm256_srli_epi64(low_y, 32), _mm256_srli_epi64(high_y, 32)), ones);
+        const __m256i across = _mm256_and_si256(
+            splat_low_halves(_mm256_srli_epi64(low_x, 16), _mm256_srli_epi64(high_x, 16)), low_16);
+        const __m256i down = _mm256_and_si256(
+            splat_low_halves(_mm256_srli_epi64(low_y, 16), _mm256_srli_epi64(high_y, 16)), low_16);
+        /* index < size as unsigned (-1 fails): signed comparisons of the values flipped by 2^31 */
+        const __m256i left_in =
+            _mm256_and_si256(present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(column, sign)));
+        const __m256i right_in = _mm256_and_si256(
+            present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(_mm256_add_epi32(column, ones), sign)));
+        const __m256i top_in = _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(row, sign));
+        const __m256i bottom_in =
+            _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(_mm256_add_epi32(row, ones), sign));
+        const __m256i at =
+            _mm256_add_epi32(_mm256_mullo_epi32(row, row_bytes),
+                             _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels))));
+        const __m256i right = _mm256_set1_epi32(static_cast<int>(Channels));
+        const __m256i zero = _mm256_setzero_si256();
+        const __m256i top_left =
+            _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top_in, left_in), 1);
+        const __m256i top_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(at, right),
+                                                              _mm256_and_si256(top_in, right_in), 1);
+        const __m256i below = _mm256_add_epi32(at, row_bytes);
+        const __m256i bottom_left =
+            _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom_in, left_in), 1);
+        const __m256i bottom_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(below, right),
+                                                                 _mm256_and_si256(bottom_in, right_in), 1);
+        for (uint32_t c = 0; c < Channels; c++) {
+            __m256i a, b, d, e; /* top-left, top-right, bottom-left, bottom-right of channel c */
+            if (c == 0)
+                a = signed_byte<0>(top_left), b = signed_byte<0>(top_right), d = signed_byte<0>(bottom_left),
+                e = signed_byte<0>(bottom_right);
+            else if (c == 1)
+                a = signed_byte<1>(top_left), b = signed_byte<1>(top_right), d = signed_byte<1>(bottom_left),
+                e = signed_byte<1>(bottom_right);
+            else
+                a = signed_byte<2>(top_left), b = signed_byte<2>(top_right), d = signed_byte<2>(bottom_left),
+                e = signed_byte<2>(bottom_right);
+            const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(a, 16),
+                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(b, a)));
+            const __m256i lower = _mm256_add_epi32(_mm256_slli_epi32(d, 16),
+                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(e, d)));
+            const __m256i difference = _mm256_sub_epi32(lower, upper);
+            const __m256i even =
+                _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
+            const __m256i odd = _mm256_add_epi64(
+                _mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
+                _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+            /* even: pixels 0, 2 | 4, 6; odd: 1, 3 | 5, 7 */
+            const __m256i first = _mm256_unpacklo_epi64(even, odd), second = _mm256_unpackhi_epi64(even, odd);
+            const __m256i pixels_low = _mm256_permute2x128_si256(first, second, 0x20);
+            const __m256i pixels_high = _mm256_permute2x128_si256(first, second, 0x31);
+            uint64_t *sums = pixel + c * plane;
+            if (full) {
+                __m256i *run = static_cast<__m256i *>(static_cast<void *>(sums));
+                _mm256_storeu_si256(run, _mm256_add_epi64(_mm256_loadu_si256(run), pixels_low));
+                _mm256_storeu_si256(run + 1, _mm256_add_epi64(_mm256_loadu_si256(run + 1), pixels_high));
+            } else {
+                uint64_t values[8];
+                _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(values)), pixels_low);
+                _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(values + 4)), pixels_high);
+                for (uint32_t i = 0; i < remaining; i++) sums[i] += values[i];
+            }
+        }
+        low_x = _mm256_add_epi64(low_x, steps_x), high_x = _mm256_add_epi64(high_x, steps_x);
+        low_y = _mm256_add_epi64(low_y, steps_y), high_y = _mm256_add_epi64(high_y, steps_y);
+    }
+}
+#endif
+
+/* One impulse on one run, pixel by pixel but for 8-bit textons (level 0) on AVX2: one copy per channel
+   count and value size. */
+inline void continuous_splat_row(const dsn_splat_setup *setup, const dsn_splat_run &run) {
+    const dsn_splat_texture &texture = setup->texture;
+#if defined(__AVX2__)
+    if (texture.bits == 8 && texture.level == 0) {
+        if (texture.channels == 3)
+            splat_row_vector<3>(setup, run.offset_x, run.offset_y, run.count, run.sums);
+        else
+            splat_row_vector<1>(setup, run.offset_x, run.offset_y, run.count, run.sums);
+        return;
+    }
+#endif
+    if (texture.channels == 3)
+        texture.bits == 8 ? splat_row<3, 1>(setup, run.offset_x, run.offset_y, run.count, run.sums)
+                          : splat_row<3, 2>(setup, run.offset_x, run.offset_y, run.count, run.sums);
+    else
+        texture.bits == 8 ? splat_row<1, 1>(setup, run.offset_x, run.offset_y, run.count, run.sums)
+                          : splat_row<1, 2>(setup, run.offset_x, run.offset_y, run.count, run.sums);
+}
+
+#if DSN_SPLAT_CELLS
+/* ---- The runs on vectors of 64-bit lanes, 8-bit textons (the x86 kernels: simd.h's splat ops) ----
+   Each lane is one pixel of the run: its shifted offsets step as the scalar loop steps them, its cell's
+   record of each channel is read from the table (splat_cells.h) at the cell index the lower texel indices
+   give, and one multiply-add of 16-bit pairs and two signed 32 x 32-bit products give interior_channel's
+   integer, edge cells included (their texels outside the window are 0 in the records). No gathers: the
+   records are loaded one by one. Lanes past a run read cell 0 and are not added. A pyramid level
+   (Leveled) divides each lane's shifted values by 2^level first. */
+/* The records' two integers (splat_rows: upper, lower - upper) and their products: 65536 upper, and
+   down (lower - upper) for a down weight in [0, 65536). SSE2 has no signed 32 x 32-bit product
+   (splat_signed_times takes several operations), so in its copy the two integers, below 2^25 in
+   magnitude (splat_cells.h), are made non-negative dwords first (upper + 2^25, lower - upper + 2^26),
+   multiplied unsigned, and the biases' products taken back: the same integers modulo 2^64. */
+#if defined(__AVX2__)
+inline splat_vector splat_row_integers(splat_vector records, splat_vector across) {
+    return splat_rows(records, across);
+}
+inline splat_vector splat_upper_scaled(splat_vector rows) {
+    return splat_signed_times(rows, splat_set(65536));
+}
+inline splat_vector splat_difference_times(splat_vector difference, splat_vector down) {
+    return splat_signed_times(difference, down);
+}
+#else
+inline splat_vector splat_row_integers(splat_vector records, splat_vector across) {
+    return _mm_add_epi32(splat_rows(records, across), _mm_set_epi32(1 << 26, 1 << 25, 1 << 26, 1 << 25));
+}
+inline splat_vector splat_upper_scaled(splat_vector rows) {
+    return splat_sub(splat_low_times(rows, splat_set(65536)), splat_set(static_cast<uint64_t>(1) << 41));
+}
+inline splat_vector splat_difference_times(splat_vector difference, splat_vector down) {
+    return splat_sub(splat_low_times(difference, down), _mm_slli_epi64(down, 26));
+}
+#endif
+
+/* The records' bilinear values: 65536 upper + down (lower - upper). */
+inline splat_vector splat_bilinear(splat_vector records, splat_vector across, splat_vector down) {
+    const splat_vector rows = splat_row_integers(records, across);
+    return splat_add(splat_upper_scaled(rows), splat_difference_times(splat_shift_right(rows, 32), down));
+}
+
+/* bracket's shifted values of a level: the lanes' (offset + reach) / 2^level. */
+template <bool Leveled>
+inline splat_vector splat_level(splat_vector shifted, uint32_t level) {
+    return Leveled ? splat_shift_right(shifted, level) : shifted;
+}
+
+template <uint32_t Channels, bool Leveled>
+void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
+                   step_y = static_cast<uint64_t>(setup->step_y);
+    const splat_vector lanes_x = splat_lane_steps(0, step_x), lanes_y = splat_lane_steps(0, step_y);
+    const splat_vector next_x = splat_set(step_x * splat_lanes), next_y = splat_set(step_y * splat_lanes);
+    const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
+    const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
+    const uint32_t level = setup->texture.level;
+    /* First every lane's cell (where its records start), then the sums: the loads of the records do not
+       wait on the vector stores of their indices. */
+    uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
+    uint64_t *at = cell;
+    for (uint32_t r = 0; r < run_count; r++) {
+        /* bracket's shifted values: the cell is (shifted_y >> 32) rows and (shifted_x >> 32) columns into
+           the table, whose row and column 0 are the texel indices -1 */
+        splat_vector shifted_x =
+            splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_x + setup->reach_x)), lanes_x);
+        splat_vector shifted_y =
+            splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_y + setup->reach_y)), lanes_y);
+        for (uint32_t done = 0; done < runs[r].count; done += splat_lanes, at += splat_lanes) {
+            /* lanes past the run read cell 0 */
+            splat_store(
+                at, splat_first_lanes(
+                        splat_add(splat_whole_times(splat_level<Leveled>(shifted_y, level), row_records),
+                                  splat_whole_times(splat_level<Leveled>(shifted_x, level), cell_records)),
+                        runs[r].count - done));
+            shifted_x = splat_add(shifted_x, next_x);
+            shifted_y = splat_add(shifted_y, next_y);
+        }
+    }
+    at = cell;
+    for (uint32_t r = 0; r < run_count; r++) {
+        const dsn_splat_run &run = runs[r];
+        splat_vector shifted_x =
+            splat_add(splat_set(static_cast<uint64_t>(run.offset_x + setup->reach_x)), lanes_x);
+        splat_vector shifted_y =
+            splat_add(splat_set(static_cast<uint64_t>(run.offset_y + setup->reach_y)), lanes_y);
+        uint64_t *sums = run.sums;
+        for (uint32_t done = 0; done < run.count;
+             done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
+            const uint32_t remaining = run.count - done;
+            const splat_vector across = splat_across_weights(splat_level<Leveled>(shifted_x, level)),
+                               down = splat_fraction(splat_level<Leveled>(shifted_y, level));
+            splat_vector records[3];
+            splat_load_cells<Channels>(setup->cells, at, records);
+            splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
+            if (Channels == 3) {
+                splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining, end);
+                splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining, end);
+            }
+            shifted_x = splat_add(shifted_x, next_x);
+            shifted_y = splat_add(shifted_y, next_y);
+        }
+    }
+}
+#endif
+
+#if DSN_SPLAT_CELLS
+/* ---- Axis-aligned grids: the runs share their columns (dsn_splat_setup.columns_shared) ----
+   A pixel's cell column and across weights then depend on its column alone, its cell row and down weight
+   on its row alone. Going down the runs one vector of columns at a time, the interpolation along the row
+   (splat_rows: both dwords of each record) stays in registers while the cell row does not change, and
+   each pixel adds 65536 upper + down (lower - upper) from it: the same integers. Lanes past the runs read
+   the row's first cell and are not added. */
+template <uint32_t Channels, bool Leveled>
+void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
+    const uint32_t count = runs[0].count;
+    const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
+    const uint32_t level = setup->texture.level;
+    /* Each run's first record in the table and down weight. */
+    uint64_t row_start[dsn_splat_runs_most], down[dsn_splat_runs_most];
+    for (uint32_t r = 0; r < run_count; r++) {
+        const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y) >> level;
+        row_start[r] = (shifted_y >> 32) * row_records;
+        down[r] = (shifted_y >> 16) & 0xFFFFu;
+    }
+    const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
+    splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),
+                                       splat_lane_steps(0, step_x));
+    const splat_vector next_x = splat_set(step_x * splat_lanes);
+    for (uint32_t done = 0; done < count; done += splat_lanes) {
+        const uint32_t remaining = count - done;
+        uint64_t column[splat_lanes]; /* each lane's first record in a row of the table */
+        const splat_vector level_x = splat_level<Leveled>(shifted_x, level);
+        splat_store(column, splat_first_lanes(splat_whole_times(level_x, cell_records), remaining));
+        const splat_vector across = splat_across_weights(level_x);
+        /* The current cell row's 65536 upper and lower - upper, channel by channel (kept in registers). */
+        splat_vector scaled_0 = splat_set(0), scaled_1 = scaled_0, scaled_2 = scaled_0;
+        splat_vector difference_0 = scaled_0, difference_1 = scaled_0, difference_2 = scaled_0;
+        uint64_t current = ~static_cast<uint64_t>(0);
+        for (uint32_t r = 0; r < run_count; r++) {
+            if (row_start[r] != current) {
+                current = row_start[r];
+                splat_vector records[3];
+                splat_load_cells<Channels>(setup->cells + current, column, records);
+                const splat_vector rows_0 = splat_row_integers(records[0], across);
+                scaled_0 = splat_upper_scaled(rows_0);
+                difference_0 = splat_shift_right(rows_0, 32);
+                if (Channels == 3) {
+                    const splat_vector rows_1 = splat_row_integers(records[1], across);
+                    const splat_vector rows_2 = splat_row_integers(records[2], across);
+                    scaled_1 = splat_upper_scaled(rows_1);
+                    difference_1 = splat_shift_right(rows_1, 32);
+                    scaled_2 = splat_upper_scaled(rows_2);
+                    difference_2 = splat_shift_right(rows_2, 32);
+                }
+            }
+            const splat_vector weight = splat_set(down[r]);
+            uint64_t *sums = runs[r].sums + done;
+            splat_accumulate(sums, splat_add(scaled_0, splat_difference_times(difference_0, weight)),
+                             remaining, end);
+            if (Channels == 3) {
+                splat_accumulate(sums + plane,
+                                 splat_add(scaled_1, splat_difference_times(difference_1, weight)), remaining,
+                                 end);
+                splat_accumulate(sums + 2 * plane,
+                                 splat_add(scaled_2, splat_difference_times(difference_2, weight)), remaining,
+                                 end);
+            }
+        }
+        shifted_x = splat_add(shifted_x, next_x);
+    }
+}
+#endif
+
+#if DSN_SPLAT_CELLS
+/* The runs on vectors of records, axis-aligned grids or not, of a level or of the texton. */
+template <uint32_t Channels, bool Leveled>
+inline void splat_runs_cells(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    if (setup->columns_shared)
+        splat_runs_aligned<Channels, Leveled>(setup, runs, run_count);
+    else
+        splat_runs_vector<Channels, Leveled>(setup, runs, run_count);
+}
+#endif
+
+/* The kernel entry: the runs on vectors where the texture has records, else pixel by pixel. */
+inline void continuous_splat_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
+                                  uint32_t run_count) {
+#if DSN_SPLAT_CELLS
+    if (setup->cells != 0) {
+        const bool leveled = setup->texture.level != 0;
+        if (setup->texture.channels == 3)
+            leveled ? splat_runs_cells<3, true>(setup, runs, run_count)
+                    : splat_runs_cells<3, false>(setup, runs, run_count);
+        else
+            leveled ? splat_runs_cells<1, true>(setup, runs, run_count)
+                    : splat_runs_cells<1, false>(setup, runs, run_count);
+        return;
+    }
+#endif
+    for (uint32_t r = 0; r < run_count; r++) continuous_splat_row(setup, runs[r]);
+}
+
+#if DSN_SPLAT_CELLS
+/* The high dword of each lane, signed, times the low dword of factor's (below 2^31). SSE2's copy flips
+   the dword's sign bit (adding 2^31: non-negative), multiplies unsigned and takes 2^31 factor back. */
+inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
+#if defined(__AVX2__)
+    return splat_signed_times(splat_shift_right(value, 32), factor);
+#else
+    return splat_sub(
+        splat_low_times(_mm_xor_si128(splat_shift_right(value, 32), splat_set(0x80000000u)), factor),
+        _mm_slli_epi64(factor, 31));
+#endif
+}
+
+/* ---- The normalization on vectors of 64-bit lanes, one pixel each ----
+   normalize_q32_unmapped's integers, modulo 2^64 as they never wrap: the offset plus the gains times the
+   signed whole parts, plus the floor of the gains times the fractions over 2^32 (the gains' magnitudes
+   multiplied, then added or subtracted), then the biased rounding shift; the int32 saturation per value (on
+   vectors, interleaved by permutes, where the ops header has splat_store_pixels). Pixels past the last whole
+   vector go one by one. */
+template <uint32_t Channels>
+void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, size_t plane, uint32_t count,
+                            int32_t *out) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    const uint32_t shift = noise->gain_shift;
+    const splat_vector rounding = splat_set(bias + ((static_cast<uint64_t>(1) << shift) >> 1));
+    const splat_vector rounding_bias = splat_set(bias >> shift), floor_bias = splat_set(bias),
+                       floor_unbias = splat_set(bias >> 32);
+    uint32_t done = 0;
+    for (; done + splat_lanes <= count; done += splat_lanes) {
+        splat_vector pixel_sums[Channels];
+        for (uint32_t k = 0; k < Channels; k++) pixel_sums[k] = splat_load(sums + k * plane + done);
+        splat_vector values[Channels];
+        for (uint32_t c = 0; c < Channels; c++) {
+            splat_vector accumulated = splat_set(static_cast<uint64_t>(noise->offset[c]));
+            splat_vector fractions = splat_set(0);
+            for (uint32_t k = 0; k < Channels; k++) {
+                const int64_t gain = noise->gain[c * 3 + k];
+                const splat_vector size =
+                    splat_set(gain < 0 ? 0u - static_cast<uint64_t>(gain) : static_cast<uint64_t>(gain));
+                const splat_vector whole = splat_high_times(pixel_sums[k], size),
+                                   fraction = splat_low_times(pixel_sums[k], size);
+                accumulated = gain < 0 ? splat_sub(accumulated, whole) : splat_add(accumulated, whole);
+                fractions = gain < 0 ? splat_sub(fractions, fraction) : splat_add(fractions, fraction);
+            }
+            /* floor(fractions / 2^32) and the rounding shift, as unsigned shifts of biased values */
+            accumulated =
+                splat_add(accumulated,
+                          splat_sub(splat_shift_right(splat_add(fractions, floor_bias), 32), floor_unbias));
+            values[c] = splat_sub(splat_shift_right(splat_add(accumulated, rounding), shift), rounding_bias);
+        }
+#if defined(DSN_SPLAT_STORE_PIXELS)
+        splat_store_pixels<Channels>(out + done * Channels, values);
+#else
+        uint64_t lanes[Channels][splat_lanes];
+        for (uint32_t c = 0; c < Channels; c++) splat_store(lanes[c], values[c]);
+        for (uint32_t k = 0; k < splat_lanes; k++)
+            for (uint32_t c = 0; c < Channels; c++) {
+                const int64_t value = signed_from_bits(lanes[c][k]);
+                out[(done + k) * Channels + c] = value > INT32_MAX   ? INT32_MAX
+                                                 : value < INT32_MIN ? INT32_MIN
+                                                                     : static_cast<int32_t>(value);
+            }
+#endif
+    }
+    for (; done < count; done++) {
+        uint64_t pixel_sums[Channels];
+        for (uint32_t c = 0; c < Channels; c++) pixel_sums[c] = sums[c * plane + done];
+        normalize_q32_unmapped(noise, pixel_sums, out + done * Channels);
+    }
+}
+#endif
+
+/* The normalization entry: on vectors on x86, else pixel by pixel. */
+inline void continuous_splat_normalize(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
+                                       uint32_t count, int32_t *out) {
+#if DSN_SPLAT_CELLS
+    if (noise->asset.channels == 3)
+        splat_normalize_vector<3>(noise, sums, plane, count, out);
+    else
+        splat_normalize_vector<1>(noise, sums, plane, count, out);
+#else
+    const uint32_t channels = noise->asset.channels;
+    for (uint32_t p = 0; p < count; p++) {
+        uint64_t pixel_sums[DSN_MAX_CHANNELS];
+        for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * plane + p];
+        normalize_q32_unmapped(noise, pixel_sums, out + p * channels);
+    }
+#endif
+}
+
+} // namespace
+
+#endif /* DSN_SPLAT_ROW_H */

@@ -1,0 +1,118 @@
+/* runtime/setup/gpu_pack.cpp - dsn_gpu_pack: a configured noise as the 32-bit words that dsn/dsn.glsl reads
+   (the layout is documented in dsn/gpu.h). */
+#include <stddef.h>
+
+#include "dsn/gpu.h"
+#include "setup/noise_state.h"
+
+namespace {
+
+const uint32_t cdf_words = 96, guide_words = 64;
+const uint32_t cdf_first = 48, guide_first = cdf_first + cdf_words;
+
+static_assert(sizeof(dsn_noise_state::poisson_cdf) == cdf_words * sizeof(uint32_t),
+              "the layout holds the whole Poisson table");
+static_assert(sizeof(dsn_noise_state::poisson_guide) == guide_words,
+              "the layout holds the whole Poisson guide");
+static_assert(guide_first + guide_words == DSN_GPU_HEADER_WORDS, "the texton follows the guide");
+
+/* Words 3 .. 16 of the layout: where each is in the configured noise (every one a uint32_t field), in
+   words from its start. A table and one loop rather than fourteen assignments: the runtime's whole code
+   must stay small on microcontrollers (the cross test's footprint counts this file too). */
+#define DSN_ASSET_FIELD(name) (offsetof(dsn_noise_state, asset) + offsetof(dsn_asset, name)) / 4
+#define DSN_STATE_FIELD(name) offsetof(dsn_noise_state, name) / 4
+const unsigned char header_fields[14] = {
+    DSN_ASSET_FIELD(channels),      DSN_ASSET_FIELD(bits),        DSN_ASSET_FIELD(width),
+    DSN_ASSET_FIELD(height),        DSN_STATE_FIELD(radius[0]),   DSN_STATE_FIELD(radius[1]),
+    DSN_STATE_FIELD(cell_shift),    DSN_STATE_FIELD(period[0]),   DSN_STATE_FIELD(period[1]),
+    DSN_STATE_FIELD(seed_column),   DSN_STATE_FIELD(seed_row),    DSN_STATE_FIELD(gain_shift),
+    DSN_STATE_FIELD(poisson_parts), DSN_STATE_FIELD(poisson_size)};
+#undef DSN_ASSET_FIELD
+#undef DSN_STATE_FIELD
+static_assert(offsetof(dsn_noise_state, poisson_size) / 4 <= 255,
+              "header_fields holds word indexes in bytes");
+static_assert(offsetof(dsn_noise_state, poisson_size) % 4 == 0 && offsetof(dsn_asset, height) % 4 == 0,
+              "the header fields are whole words");
+
+/* A configured noise has a texton; dsn_noise_init zeroes the noise when it fails. */
+const dsn_noise_state *configured(const dsn_noise *handle) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    return dsn_configured(noise) ? noise : 0;
+}
+
+/* Values of a texton of `asset`'s channels: width * height * channels. */
+size_t texton_words(const dsn_asset *asset, uint32_t width, uint32_t height) {
+    return size_t(width) * height * asset->channels;
+}
+
+} // namespace
+
+extern "C" size_t dsn_gpu_word_count(const dsn_noise *handle) {
+    const dsn_noise_state *noise = configured(handle);
+    if (noise == 0) return 0;
+    const dsn_asset *asset = &noise->asset;
+    return DSN_GPU_HEADER_WORDS + texton_words(asset, asset->width, asset->height) +
+           (asset->lattice_texton != 0 ? texton_words(asset, asset->lattice_width, asset->lattice_height)
+                                       : 0u);
+}
+
+namespace {
+
+/* A texton's values, sign-extended to whole words in uint32 arithmetic: the asset stores them in the
+   layout's order (format.h: row-major, channels interleaved, 8-bit or 16-bit little-endian two's
+   complement). */
+void put_texton(uint32_t *words, const unsigned char *texton, size_t count, uint32_t bits) {
+    const uint32_t bytes = bits / 8, sign = bytes == 1 ? 0x80u : 0x8000u;
+    for (size_t v = 0; v < count; v++, texton += bytes)
+        words[v] = ((texton[0] | (bytes == 2 ? uint32_t(texton[1]) << 8 : 0u)) ^ sign) - sign;
+}
+
+/* int64 values as pairs of words, low first (the conversion to uint64 is modulo 2^64). */
+void put_pairs(uint32_t *words, const int64_t *values, uint32_t count) {
+    for (uint32_t i = 0; i < count; i++) {
+        const uint64_t bits = static_cast<uint64_t>(values[i]);
+        words[2 * i] = static_cast<uint32_t>(bits);
+        words[2 * i + 1] = static_cast<uint32_t>(bits >> 32);
+    }
+}
+
+} // namespace
+
+extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t capacity) {
+    if (handle == 0 || words == 0) return DSN_ERR_NULL;
+    const size_t count = dsn_gpu_word_count(handle);
+    if (count == 0 || capacity < count) return DSN_ERR_ARGUMENT;
+    const dsn_noise_state *noise = dsn_state(handle);
+    const dsn_asset *asset = &noise->asset;
+    /* dsn.glsl evaluates the Gaussian-space noise only (a noise made with DSN_FLAG_NO_HISTOGRAM has no
+       mapping left). */
+    if (asset->histogram_table != 0) return DSN_ERR_UNSUPPORTED;
+    const unsigned char *state = static_cast<const unsigned char *>(static_cast<const void *>(noise));
+    uint32_t i;
+    words[0] = DSN_GPU_MAGIC;
+    words[1] = DSN_GPU_LAYOUT_VERSION;
+    words[2] = static_cast<uint32_t>(count);
+    for (i = 0; i < 14; i++)
+        words[3 + i] =
+            *static_cast<const uint32_t *>(static_cast<const void *>(state + 4u * header_fields[i]));
+    words[17] = dsn_continuous_check(handle) == DSN_OK ? 1u : 0u;
+    put_pairs(words + 18, noise->gain, 9);
+    put_pairs(words + 36, noise->offset, 3);
+    /* The lattice evaluators' texton (dsn_lattice_view): the lattice texton after the texton, or the
+       texton itself. */
+    const size_t texton_count = texton_words(asset, asset->width, asset->height);
+    const int separate = asset->lattice_texton != 0;
+    words[42] = separate ? asset->lattice_width : asset->width;
+    words[43] = separate ? asset->lattice_height : asset->height;
+    words[44] = (words[42] - 1u) / 2u;
+    words[45] = (words[43] - 1u) / 2u;
+    words[46] = static_cast<uint32_t>(DSN_GPU_HEADER_WORDS + (separate ? texton_count : 0u));
+    for (i = 47; i < cdf_first; i++) words[i] = 0;
+    for (i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
+    for (i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
+    put_texton(words + DSN_GPU_HEADER_WORDS, asset->texton, texton_count, asset->bits);
+    if (separate)
+        put_texton(words + DSN_GPU_HEADER_WORDS + texton_count, asset->lattice_texton,
+                   count - DSN_GPU_HEADER_WORDS - texton_count, asset->bits);
+    return DSN_OK;
+}

@@ -1,0 +1,75 @@
+/* runtime/simd/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
+   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, a
+   constant of the continuous splat, and the pair operations of the bilinear slopes. Included by
+   the ops headers (simd.h). */
+#ifndef DSN_SIMD_128_H
+#define DSN_SIMD_128_H
+
+#include <emmintrin.h>
+#include <stdint.h>
+
+#include "dsn/dsn.h"
+
+namespace {
+
+/* 4 output values. `stream` (for outputs far larger than the caches): past the caches, with
+   non-temporal stores, where out is 16-byte aligned (the tile call ends with a store fence). */
+inline void put_4(int32_t *out, __m128i values, int stream) {
+    __m128i *destination = static_cast<__m128i *>(static_cast<void *>(out));
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0)
+        _mm_stream_si128(destination, values);
+    else
+        _mm_storeu_si128(destination, values);
+}
+inline void put_4(float *out, __m128 values, int stream) {
+    if (stream && (reinterpret_cast<uintptr_t>(out) & 15u) == 0)
+        _mm_stream_ps(out, values);
+    else
+        _mm_storeu_ps(out, values);
+}
+
+/* float(value) * 2^-16: the conversion rounds once to nearest, like dsn_fixed_to_float. */
+inline __m128 to_float_4(__m128i fixed) {
+    return _mm_mul_ps(_mm_cvtepi32_ps(fixed), _mm_set1_ps(1.0f / 65536.0f));
+}
+
+/* dsn_fixed_to_u8 before packing: clamp to [0, 2^16], then (255 v + 2^15) >> 16. */
+inline __m128i to_u8_range(__m128i value) {
+    const __m128i one = _mm_set1_epi32(DSN_ONE);
+    value = _mm_and_si128(value, _mm_cmpgt_epi32(value, _mm_setzero_si128()));
+    __m128i above = _mm_cmpgt_epi32(value, one);
+    value = _mm_or_si128(_mm_and_si128(above, one), _mm_andnot_si128(above, value));
+    return _mm_srli_epi32(
+        _mm_add_epi32(_mm_sub_epi32(_mm_slli_epi32(value, 8), value), _mm_set1_epi32(32768)), 16);
+}
+
+/* The continuous splat's byte order for the across weights (simd_avx2.h, simd_avx512.h): bytes 2 and 3 of
+   each 64-bit lane into its words 1 and 3, zeros elsewhere. */
+inline __m128i splat_across_order() {
+    return _mm_setr_epi8(-128, -128, 2, 3, -128, -128, 2, 3, -128, -128, 10, 11, -128, -128, 10, 11);
+}
+
+/* ---- The bilinear slopes of 8-bit textons (bilinear_read.h's add_slopes_vector) ---- */
+
+typedef __m128i vector_128;
+
+/* right - left of every (left, right) pair of 16-bit lanes, in 32-bit lanes. */
+inline __m128i pair_differences(__m128i pairs) { return _mm_madd_epi16(pairs, _mm_set1_epi32(0x0001FFFF)); }
+
+/* a - b in 16-bit lanes (wrapping). */
+inline __m128i subtract_16(__m128i a, __m128i b) { return _mm_sub_epi16(a, b); }
+
+/* Pairs of 16-bit lanes (low, high) from the low 16 bits of two vectors of 32-bit lanes. */
+inline __m128i pair_up(__m128i low, __m128i high) {
+    return _mm_or_si128(_mm_and_si128(low, _mm_set1_epi32(0xFFFF)), _mm_slli_epi32(high, 16));
+}
+
+inline __m128i add_32_lanes(__m128i a, __m128i b) { return _mm_add_epi32(a, b); }
+inline __m128i zero_128() { return _mm_setzero_si128(); }
+
+/* The four 32-bit lanes, signed. */
+inline void take_32_lanes(__m128i vector, int32_t *lanes) { __builtin_memcpy(lanes, &vector, 16); }
+
+} // namespace
+
+#endif /* DSN_SIMD_128_H */
