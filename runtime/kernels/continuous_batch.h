@@ -204,7 +204,8 @@ inline void flush_vector_sums(VectorSums *running, const BatchArrays &arrays) {
 template <uint32_t Channels>
 void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays, uint32_t first,
                    VectorSums *running) {
-    const __m256i fraction = mix32_8(load_8(arrays.stream + first)), packed = load_8(arrays.packed + first);
+    const __m256i fraction = mix32_8(load_8x32(arrays.stream + first)),
+                  packed = load_8x32(arrays.packed + first);
     const __m256i cells = _mm256_srli_epi32(packed, 16);
     const __m128i half_shift = _mm_cvtsi32_si128(static_cast<int>(k.half_shift));
     const __m128i high_shift = _mm_cvtsi32_si128(static_cast<int>(k.high_shift));

@@ -51,11 +51,11 @@ inline GroupShared group_shared(const dsn_noise_state *noise) {
    thresholds cdf[0 .. size - 1] increase, so those at or below the uniform are the n below the smallest
    with uniform < cdf[n] (the guide only skips some of them), and the count is size less those above. */
 inline __m256i group_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i keys) {
-    const __m256i flipped = _mm256_xor_si256(keys, broadcast_8(0x80000000u));
+    const __m256i flipped = _mm256_xor_si256(keys, set_8x32(0x80000000u));
     __m256i above = _mm256_setzero_si256(); /* minus their number */
     for (uint32_t k = 0; k < noise->poisson_size; k++)
-        above = _mm256_add_epi32(above, _mm256_cmpgt_epi32(broadcast_8(shared.flipped_cdf[k]), flipped));
-    return _mm256_add_epi32(broadcast_8(noise->poisson_size), above);
+        above = _mm256_add_epi32(above, _mm256_cmpgt_epi32(set_8x32(shared.flipped_cdf[k]), flipped));
+    return _mm256_add_epi32(set_8x32(noise->poisson_size), above);
 }
 
 /* A group's cells along one axis, cell i of point p at [i][p]: its index, floor(shifted_base / 2^16)
@@ -90,52 +90,50 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
     const __m128i by_shift = _mm_cvtsi32_si128(static_cast<int>(shift)),
                   by_up = _mm_cvtsi32_si128(static_cast<int>(up));
     const __m128i by_k = _mm_cvtsi32_si128(static_cast<int>(28u + shift));
-    const __m256i x = load_8(whole), f = load_8(fraction), one = broadcast_8(1);
+    const __m256i x = load_8x32(whole), f = load_8x32(fraction), one = set_8x32(1);
     /* dsn_axis_span of the window [X - 1, X + 1]: its low end X - 1 - radius */
-    const __m256i low = _mm256_sub_epi32(x, broadcast_8(1u + radius));
+    const __m256i low = _mm256_sub_epi32(x, set_8x32(1u + radius));
     const __m256i first_cell = _mm256_srl_epi32(low, by_shift);
     const __m256i cell_count = _mm256_add_epi32(
-        _mm256_srl_epi32(_mm256_add_epi32(_mm256_and_si256(low, broadcast_8((1u << shift) - 1u)),
-                                          broadcast_8(2u + 2u * radius)),
-                         by_shift),
+        _mm256_srl_epi32(
+            _mm256_add_epi32(_mm256_and_si256(low, set_8x32((1u << shift) - 1u)), set_8x32(2u + 2u * radius)),
+            by_shift),
         one);
-    const uint32_t fits = static_cast<uint32_t>(_mm256_movemask_ps(
-        _mm256_castsi256_ps(_mm256_cmpgt_epi32(broadcast_8(group_cells + 1u), cell_count))));
-    const __m256i sign = broadcast_8(0x80000000u),
-                  room_limit = broadcast_8(((1u << shift) - 1u) ^ 0x80000000u);
+    const uint32_t fits = static_cast<uint32_t>(
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(set_8x32(group_cells + 1u), cell_count))));
+    const __m256i sign = set_8x32(0x80000000u), room_limit = set_8x32(((1u << shift) - 1u) ^ 0x80000000u);
     const __m256i f_zero =
-        _mm256_and_si256(_mm256_cmpeq_epi32(f, _mm256_setzero_si256()), broadcast_8(0u - (1u << up)));
-    const __m256i bytes = broadcast_8(0x01010101u), tops = broadcast_8(0x80808080u); /* FieldLanes's */
+        _mm256_and_si256(_mm256_cmpeq_epi32(f, _mm256_setzero_si256()), set_8x32(0u - (1u << up)));
+    const __m256i bytes = set_8x32(0x01010101u), tops = set_8x32(0x80808080u); /* FieldLanes's */
     for (uint32_t i = 0; i < group_cells; i++) {
         const __m256i index =
-            _mm256_and_si256(_mm256_add_epi32(first_cell, broadcast_8(i)), broadcast_8(0xFFFFFFFFu >> shift));
+            _mm256_and_si256(_mm256_add_epi32(first_cell, set_8x32(i)), set_8x32(0xFFFFFFFFu >> shift));
         const __m256i origin = _mm256_sll_epi32(index, by_shift), w = _mm256_sub_epi32(x, origin);
-        const __m256i low_half =
-            _mm256_add_epi32(_mm256_sll_epi32(_mm256_sub_epi32(w, broadcast_8(radius + 1u)), by_up),
-                             _mm256_srl_epi32(f, by_k));
+        const __m256i low_half = _mm256_add_epi32(
+            _mm256_sll_epi32(_mm256_sub_epi32(w, set_8x32(radius + 1u)), by_up), _mm256_srl_epi32(f, by_k));
         __m256i high_half = _mm256_add_epi32(
-            _mm256_add_epi32(_mm256_sll_epi32(_mm256_add_epi32(w, broadcast_8(radius + 1u)), by_up),
+            _mm256_add_epi32(_mm256_sll_epi32(_mm256_add_epi32(w, set_8x32(radius + 1u)), by_up),
                              _mm256_srl_epi32(_mm256_sub_epi32(f, one), by_k)),
             f_zero);
         /* the period's end (none: last_position 2^32 - 1) */
-        const __m256i room = _mm256_xor_si256(origin, broadcast_8(0xFFFFFFFFu));
+        const __m256i room = _mm256_xor_si256(origin, set_8x32(0xFFFFFFFFu));
         const __m256i short_room = _mm256_cmpgt_epi32(room_limit, _mm256_xor_si256(room, sign));
         const __m256i end = _mm256_blendv_epi8(
-            broadcast_8(15), _mm256_or_si256(_mm256_sll_epi32(room, by_up), broadcast_8((1u << up) - 1u)),
+            set_8x32(15), _mm256_or_si256(_mm256_sll_epi32(room, by_up), set_8x32((1u << up) - 1u)),
             short_room);
         high_half = _mm256_min_epi32(high_half, end);
         const __m256i first_half = _mm256_max_epi32(low_half, _mm256_setzero_si256());
         const __m256i pass = _mm256_andnot_si256(_mm256_cmpgt_epi32(first_half, high_half),
-                                                 _mm256_cmpgt_epi32(cell_count, broadcast_8(i)));
+                                                 _mm256_cmpgt_epi32(cell_count, set_8x32(i)));
         cells->passes[i] = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
-        store_8(cells->cell[i], index);
-        store_8(cells->base[i],
-                _mm256_add_epi32(_mm256_slli_epi32(_mm256_add_epi32(w, broadcast_8(radius + 1u)), 16),
-                                 _mm256_srli_epi32(f, 16)));
+        store_8x32(cells->cell[i], index);
+        store_8x32(cells->base[i],
+                   _mm256_add_epi32(_mm256_slli_epi32(_mm256_add_epi32(w, set_8x32(radius + 1u)), 16),
+                                    _mm256_srli_epi32(f, 16)));
         /* where the cell passes, 0 <= first_half <= high_half <= 15: one byte each */
-        store_8(cells->low[i], _mm256_and_si256(pass, _mm256_mullo_epi32(first_half, bytes)));
-        store_8(cells->high[i],
-                _mm256_and_si256(pass, _mm256_or_si256(_mm256_mullo_epi32(high_half, bytes), tops)));
+        store_8x32(cells->low[i], _mm256_and_si256(pass, _mm256_mullo_epi32(first_half, bytes)));
+        store_8x32(cells->high[i],
+                   _mm256_and_si256(pass, _mm256_or_si256(_mm256_mullo_epi32(high_half, bytes), tops)));
     }
     return fits;
 }
@@ -185,13 +183,13 @@ inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shar
     if (shared.one_draw) return group_counts(noise, shared, key);
     uint32_t counts[group_points];
     for (uint32_t p = 0; p < group_points; p++) counts[p] = dsn_cell_impulse_count(noise, keys[p]);
-    return load_8(counts);
+    return load_8x32(counts);
 }
 
 /* All ones in the lanes p of `points` (bit p). */
 inline __m256i point_lanes(uint32_t points) {
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    return _mm256_cmpeq_epi32(_mm256_and_si256(broadcast_8(points), bits), bits);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(set_8x32(points), bits), bits);
 }
 
 /* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
@@ -205,25 +203,25 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
                                 ? group_axis(noise, 1, ys, count, &group->rows)
                                 : group_periodic_axis(noise, 1, ys, count, shared.lanes, &group->rows);
     const uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
-    const __m256i seed_row = broadcast_8(noise->seed_row), seed_column = broadcast_8(noise->seed_column);
+    const __m256i seed_row = set_8x32(noise->seed_row), seed_column = set_8x32(noise->seed_column);
     for (uint32_t j = 0; j < group_cells; j++) {
         const __m256i row_key =
-            mix32_8(_mm256_add_epi32(load_8(group->rows.cell[j]), seed_row)); /* dsn_row_key */
+            mix32_8(_mm256_add_epi32(load_8x32(group->rows.cell[j]), seed_row)); /* dsn_row_key */
         const __m256i row_there = point_lanes(group->rows.passes[j] & fits);
         for (uint32_t i = 0; i < group_cells; i++) {
             uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
             uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
             const __m256i key = mix32_8(
-                _mm256_add_epi32(_mm256_xor_si256(load_8(group->columns.cell[i]), seed_column), row_key));
-            store_8(keys, key);
+                _mm256_add_epi32(_mm256_xor_si256(load_8x32(group->columns.cell[i]), seed_column), row_key));
+            store_8x32(keys, key);
             const __m256i there = _mm256_and_si256(row_there, point_lanes(group->columns.passes[i]));
 #if defined(__AVX512F__) && defined(__AVX512BW__)
             if (shared.by_tables) { /* the counts below, two cells a vector */
-                store_8(counts, there);
+                store_8x32(counts, there);
                 continue;
             }
 #endif
-            store_8(counts, _mm256_and_si256(cell_counts(noise, shared, key, keys), there));
+            store_8x32(counts, _mm256_and_si256(cell_counts(noise, shared, key, keys), there));
         }
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -231,13 +229,14 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
         const uint32_t cells = group_cells * group_cells * group_points;
         uint32_t at = 0;
         for (; at + 16u <= cells; at += 16u)
-            _mm512_storeu_si512(group->counts + at,
-                                _mm512_and_si512(counts_16(noise, shared.tables, load_16(group->keys + at)),
-                                                 load_16(group->counts + at)));
+            _mm512_storeu_si512(group->counts + at, _mm512_and_si512(counts_16(noise, shared.tables,
+                                                                               load_16x32(group->keys + at)),
+                                                                     load_16x32(group->counts + at)));
         for (; at < cells; at += group_points)
-            store_8(group->counts + at,
-                    _mm256_and_si256(cell_counts(noise, shared, load_8(group->keys + at), group->keys + at),
-                                     load_8(group->counts + at)));
+            store_8x32(
+                group->counts + at,
+                _mm256_and_si256(cell_counts(noise, shared, load_8x32(group->keys + at), group->keys + at),
+                                 load_8x32(group->counts + at)));
     }
 #endif
     return fits;
@@ -288,7 +287,7 @@ inline __m512i mix64_8(__m512i x) {
 /* A sifting bound's word of each point (GroupAxis) in both of its 64-bit lanes: `four` holds the first
    point's index 4 times, then the next's. */
 inline __m512i bound_lanes(__m512i four, const uint32_t *words) {
-    return _mm512_permutexvar_epi32(four, _mm512_castsi256_si512(load_8(words)));
+    return _mm512_permutexvar_epi32(four, _mm512_castsi256_si512(load_8x32(words)));
 }
 
 /* add_first_pairs' pairs and sifted bits of every cell of the group (the cells past a point's, defined
@@ -304,7 +303,7 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
     const __m512i most = _mm512_set1_epi32(16);
     for (uint32_t quarter = 0; quarter < 2; quarter++) { /* points 4 quarter .. 4 quarter + 3 */
         const uint32_t from = 4u * quarter;
-        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), broadcast_8(from));
+        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), set_8x32(from));
         const __m512i four =
             _mm512_add_epi32(_mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
                              _mm512_set1_epi32(static_cast<int>(from)));
@@ -312,11 +311,11 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
         for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
             const uint32_t i = cell % group_cells, j = cell / group_cells;
             const __m512i keys = _mm512_cvtepu32_epi64(
-                _mm256_permutevar8x32_epi32(load_8(group.keys + cell * group_points), twice));
+                _mm256_permutevar8x32_epi32(load_8x32(group.keys + cell * group_points), twice));
             const __m512i pairs = mix64_8(_mm512_add_epi64(_mm512_slli_epi64(keys, 32), second));
             const __m512i counts = _mm512_min_epu32(
-                _mm512_permutexvar_epi32(four,
-                                         _mm512_castsi256_si512(load_8(group.counts + cell * group_points))),
+                _mm512_permutexvar_epi32(
+                    four, _mm512_castsi256_si512(load_8x32(group.counts + cell * group_points))),
                 most);
             /* every byte of a point's 128 bits: its count (below 256) */
             const __mmask64 exist =
@@ -352,7 +351,7 @@ inline __m256i mix64_4(__m256i x) {
 
 /* bound_lanes of the AVX-512 copy on AVX2 vectors, 2 points. */
 inline __m256i bound_lanes(__m256i four, const uint32_t *words) {
-    return _mm256_permutevar8x32_epi32(load_8(words), four);
+    return _mm256_permutevar8x32_epi32(load_8x32(words), four);
 }
 
 /* group_pairs of the AVX-512 copy on AVX2 vectors, 2 points a vector: add_pair's pairs 0 and 1 and their
@@ -363,19 +362,19 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
     const __m256i second = _mm256_setr_epi64x(0, pair_1_step, 0, pair_1_step);
     const __m256i impulse = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3,
                                              4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m256i most = broadcast_8(16);
+    const __m256i most = set_8x32(16);
     for (uint32_t half = 0; half < group_points / 2; half++) { /* points 2 half and 2 half + 1 */
         const uint32_t from = 2u * half;
-        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 0, 0, 0, 0), broadcast_8(from));
-        const __m256i four = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), broadcast_8(from));
+        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 0, 0, 0, 0), set_8x32(from));
+        const __m256i four = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), set_8x32(from));
 #pragma GCC unroll 9
         for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
             const uint32_t i = cell % group_cells, j = cell / group_cells;
             const __m256i keys = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(
-                _mm256_permutevar8x32_epi32(load_8(group.keys + cell * group_points), twice)));
+                _mm256_permutevar8x32_epi32(load_8x32(group.keys + cell * group_points), twice)));
             const __m256i pairs = mix64_4(_mm256_add_epi64(_mm256_slli_epi64(keys, 32), second));
             const __m256i counts = _mm256_min_epu32(
-                _mm256_permutevar8x32_epi32(load_8(group.counts + cell * group_points), four), most);
+                _mm256_permutevar8x32_epi32(load_8x32(group.counts + cell * group_points), four), most);
             /* every byte of a point's 128 bits: its count (at most 16) */
             const __m256i exist =
                 _mm256_cmpgt_epi8(_mm256_shuffle_epi8(counts, _mm256_setzero_si256()), impulse);

@@ -8,62 +8,56 @@
 
 #include <stdint.h>
 
-#include "simd/simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
+#include "simd/simd.h" /* the 256-bit operations (simd_256.h) on AVX2 and AVX-512 */
 
 #if defined(__AVX2__)
 namespace {
 
-/* 8 lanes from memory, unaligned. */
-inline __m256i load_8(const uint32_t *at) {
-    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
-}
-
 /* The low 32 bits of the 64-bit lanes of a (candidates 0-3) and b (4-7), as 8 lanes in order. */
-inline __m256i low_halves(__m256i a, __m256i b) {
-    const __m256 mixed = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), 0x88);
-    return _mm256_permute4x64_epi64(_mm256_castps_si256(mixed), 0xD8);
+inline vector_256 low_halves(vector_256 a, vector_256 b) {
+    return permute_64<0xD8>(as_integers(shuffle<0x88>(as_floats(a), as_floats(b))));
 }
 
 /* a < b as unsigned 64-bit lanes (AVX2 compares signed: both flipped by 2^63). */
-inline __m256i below_64(__m256i a, __m256i b) {
-    const __m256i sign = _mm256_set1_epi64x(static_cast<long long>(0x8000000000000000u));
-    return _mm256_cmpgt_epi64(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
+inline vector_256 below_64(vector_256 a, vector_256 b) {
+    const vector_256 sign = set_4x64(0x8000000000000000u);
+    return greater_64(bitwise_xor(b, sign), bitwise_xor(a, sign));
 }
 
 /* dsn_mix32 of every lane. */
-inline __m256i mix32_8(__m256i x) {
-    x = _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
-    x = _mm256_mullo_epi32(x, _mm256_set1_epi32(0x7FEB352D));
-    x = _mm256_xor_si256(x, _mm256_srli_epi32(x, 15));
-    x = _mm256_mullo_epi32(x, _mm256_set1_epi32(-0x7B935975 /* 0x846CA68B */));
-    return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
+inline vector_256 mix32_8(vector_256 x) {
+    x = bitwise_xor(x, shift_right_logical_32(x, 16));
+    x = multiply_32(x, set_8x32(0x7FEB352Du));
+    x = bitwise_xor(x, shift_right_logical_32(x, 15));
+    x = multiply_32(x, set_8x32(0x846CA68Bu));
+    return bitwise_xor(x, shift_right_logical_32(x, 16));
 }
 
 /* dsn_impulse_hash's 16-bit positions of 8 impulses with 8-bit fields (cells of side <= 16): each 4-bit
    half of the field above 12 bits of the impulse's fraction hash. */
-inline void impulse_bits_8(__m256i fields, __m256i fraction, __m256i *bits_x, __m256i *bits_y) {
-    *bits_x = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(fields, _mm256_set1_epi32(15)), 12),
-                              _mm256_srli_epi32(_mm256_and_si256(fraction, _mm256_set1_epi32(0xFFFF)), 4));
-    *bits_y =
-        _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(fields, 4), 12), _mm256_srli_epi32(fraction, 20));
+inline void impulse_bits_8(vector_256 fields, vector_256 fraction, vector_256 *bits_x, vector_256 *bits_y) {
+    *bits_x = bitwise_or(shift_left_32(bitwise_and(fields, set_8x32(15)), 12),
+                         shift_right_logical_32(bitwise_and(fraction, set_8x32(0xFFFF)), 4));
+    *bits_y = bitwise_or(shift_left_32(shift_right_logical_32(fields, 4), 12),
+                         shift_right_logical_32(fraction, 20));
 }
 
 /* The bilinear texton of 8 candidates from their texels' values (32-bit lanes) and weights (0 .. 65535):
    add_bilinear's integer with one product per step, (65536 - w) a + w b = 65536 a + w (b - a), the rows
-   in 32-bit lanes (below 2^25), the column in 64-bit lanes (_mm256_mul_epi32, signed 32 x 32 -> 64 bits,
+   in 32-bit lanes (below 2^25), the column in 64-bit lanes (multiply_even_32, signed 32 x 32 -> 64 bits,
    exact): candidates 0, 2, 4, 6 in `even`, 1, 3, 5, 7 in `odd`. */
-inline void bilinear_8(__m256i top_left, __m256i top_right, __m256i bottom_left, __m256i bottom_right,
-                       __m256i across, __m256i down, __m256i *even, __m256i *odd) {
-    const __m256i scale = _mm256_set1_epi32(65536);
-    const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(top_left, 16),
-                                           _mm256_mullo_epi32(across, _mm256_sub_epi32(top_right, top_left)));
-    const __m256i lower =
-        _mm256_add_epi32(_mm256_slli_epi32(bottom_left, 16),
-                         _mm256_mullo_epi32(across, _mm256_sub_epi32(bottom_right, bottom_left)));
-    const __m256i difference = _mm256_sub_epi32(lower, upper);
-    *even = _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
-    *odd = _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
-                            _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+inline void bilinear_8(vector_256 top_left, vector_256 top_right, vector_256 bottom_left,
+                       vector_256 bottom_right, vector_256 across, vector_256 down, vector_256 *even,
+                       vector_256 *odd) {
+    const vector_256 scale = set_8x32(65536);
+    const vector_256 upper =
+        add_32(shift_left_32(top_left, 16), multiply_32(across, subtract_32(top_right, top_left)));
+    const vector_256 lower =
+        add_32(shift_left_32(bottom_left, 16), multiply_32(across, subtract_32(bottom_right, bottom_left)));
+    const vector_256 difference = subtract_32(lower, upper);
+    *even = add_64(multiply_even_32(upper, scale), multiply_even_32(down, difference));
+    *odd = add_64(multiply_even_32(shift_right_logical_64(upper, 32), scale),
+                  multiply_even_32(shift_right_logical_64(down, 32), shift_right_logical_64(difference, 32)));
 }
 
 /* For each set of lanes (bit i: lane i) the lanes in order, 3 bits each from bit 0, and their count at
@@ -105,27 +99,25 @@ const uint32_t packing_table[256] = {
 };
 /* clang-format on */
 
-/* The lane indices of a packing_table entry, in 32-bit lanes (for _mm256_permutevar8x32_epi32). */
-inline __m256i packing_order(uint32_t entry) {
-    return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(entry)),
-                                              _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
-                            _mm256_set1_epi32(7));
+/* The lane indices of a packing_table entry, in 32-bit lanes (for permute_32). */
+inline vector_256 packing_order(uint32_t entry) {
+    return bitwise_and(
+        shift_right_logical_32_per_lane(set_8x32(entry), set_lanes_8x32(0, 3, 6, 9, 12, 15, 18, 21)),
+        set_8x32(7));
 }
 
 /* The 8 lanes of a pair of 8-bit fields packed, candidates first (bit i of `candidates`: lane i): their
    fraction hash inputs (stream + lane G) and their fields, in 32-bit lanes. Returns the candidates'
    count. */
-inline uint32_t pack_pair_8(uint64_t pair, uint32_t candidates, uint32_t stream, __m256i *streams,
-                            __m256i *fields) {
+inline uint32_t pack_pair_8(uint64_t pair, uint32_t candidates, uint32_t stream, vector_256 *streams,
+                            vector_256 *fields) {
     const uint32_t entry = packing_table[candidates & 0xFFu];
-    const __m256i order = packing_order(entry);
+    const vector_256 order = packing_order(entry);
     /* lane * 0x9E3779B9 modulo 2^32, as int32 bit patterns */
-    const __m256i weyl = _mm256_setr_epi32(0, -0x61C88647, 0x3C6EF372, -0x255992D5, 0x78DDE6E4, 0x1715609D,
+    const vector_256 weyl = set_lanes_8x32(0, -0x61C88647, 0x3C6EF372, -0x255992D5, 0x78DDE6E4, 0x1715609D,
                                            -0x4AB325AA, 0x5384540F);
-    *streams = _mm256_permutevar8x32_epi32(
-        _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(stream)), weyl), order);
-    *fields = _mm256_permutevar8x32_epi32(
-        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(pair))), order);
+    *streams = permute_32(add_32(set_8x32(stream), weyl), order);
+    *fields = permute_32(widen_bytes_8x32(set_low_64(pair)), order);
     return entry >> 24;
 }
 

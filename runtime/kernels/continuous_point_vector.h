@@ -64,14 +64,10 @@ struct PointCandidates {
 /* A candidate's column and row index above its field (PointCandidates). */
 inline uint32_t cell_indices(uint32_t i, uint32_t j) { return i << 8 | j << 11; }
 
-inline __m256i broadcast_8(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
-
-inline void store_8(uint32_t *at, __m256i value) {
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
-}
-
 /* a <= limit as unsigned 32-bit lanes. */
-inline __m256i at_most(__m256i a, __m256i limit) { return _mm256_cmpeq_epi32(_mm256_min_epu32(a, limit), a); }
+inline vector_256 at_most(vector_256 a, vector_256 limit) {
+    return equal_32(minimum_unsigned_32(a, limit), a);
+}
 
 /* What the visits of one point share, and its sums (64-bit lanes per channel). */
 template <uint32_t Channels>
@@ -83,18 +79,18 @@ struct PointVisit {
     uint32_t width, height;
     uint32_t quad_row;       /* quads per row of the table: (width + 1) Channels */
     uint32_t last_x, last_y; /* the largest S in reach */
-    __m128i shift;
+    vector_128 shift;
     /* floor(shifted_base / 2^16) of the point's column and row cells (AxisCells's base) */
-    __m256i column_bases, row_bases;
-    __m256i sums[Channels];
+    vector_256 column_bases, row_bases;
+    vector_256 sums[Channels];
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    __m512i wide_sums[Channels];
+    vector_512 wide_sums[Channels];
 #endif
 };
 
 /* Byte `index` of every 32-bit lane, sign-extended. */
-inline __m256i lane_byte(__m256i words, int index) {
-    return _mm256_srai_epi32(_mm256_sll_epi32(words, _mm_cvtsi32_si128(24 - 8 * index)), 24);
+inline vector_256 lane_byte(vector_256 words, int index) {
+    return shift_right_arithmetic_32(shift_left_32_by(words, shift_count(24 - 8 * index)), 24);
 }
 
 /* The bilinear reads of 8 candidates in reach (`reach`) of a window of width x height 8-bit texels,
@@ -107,36 +103,31 @@ inline __m256i lane_byte(__m256i words, int index) {
    pyramid. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t width, uint32_t height,
-                                         uint32_t stride, __m256i s_x, __m256i s_y, __m256i reach,
-                                         __m256i *sums) {
-    const __m256i low_16 = _mm256_set1_epi32(0xFFFF), one = _mm256_set1_epi32(1);
-    const __m256i column = _mm256_sub_epi32(_mm256_srli_epi32(s_x, 16), one),
-                  row = _mm256_sub_epi32(_mm256_srli_epi32(s_y, 16), one);
-    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
-    const __m256i last_column = broadcast_8(width - 1u), last_row = broadcast_8(height - 1u);
-    const __m256i left = at_most(column, last_column),
-                  right = at_most(_mm256_add_epi32(column, one), last_column);
-    const __m256i top = _mm256_and_si256(reach, at_most(row, last_row)),
-                  bottom = _mm256_and_si256(reach, at_most(_mm256_add_epi32(row, one), last_row));
+                                         uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
+                                         vector_256 *sums) {
+    const vector_256 low_16 = set_8x32(0xFFFF), one = set_8x32(1);
+    const vector_256 column = subtract_32(shift_right_logical_32(s_x, 16), one),
+                     row = subtract_32(shift_right_logical_32(s_y, 16), one);
+    const vector_256 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_256 last_column = set_8x32(width - 1u), last_row = set_8x32(height - 1u);
+    const vector_256 left = at_most(column, last_column), right = at_most(add_32(column, one), last_column);
+    const vector_256 top = bitwise_and(reach, at_most(row, last_row)),
+                     bottom = bitwise_and(reach, at_most(add_32(row, one), last_row));
     /* Byte offset of the top-left texel (unread where it is outside). */
-    const __m256i entry = _mm256_add_epi32(_mm256_mullo_epi32(row, broadcast_8(stride)), column);
-    const __m256i at = Channels == 3 ? _mm256_add_epi32(_mm256_slli_epi32(entry, 1), entry) : entry;
-    const __m256i below = _mm256_add_epi32(at, broadcast_8(stride * Channels));
-    const int *texels = static_cast<const int *>(static_cast<const void *>(values));
-    const int *next = static_cast<const int *>(static_cast<const void *>(values + Channels));
-    const __m256i zero = _mm256_setzero_si256();
-    const __m256i top_left = _mm256_mask_i32gather_epi32(zero, texels, at, _mm256_and_si256(top, left), 1),
-                  top_right = _mm256_mask_i32gather_epi32(zero, next, at, _mm256_and_si256(top, right), 1),
-                  bottom_left =
-                      _mm256_mask_i32gather_epi32(zero, texels, below, _mm256_and_si256(bottom, left), 1),
-                  bottom_right =
-                      _mm256_mask_i32gather_epi32(zero, next, below, _mm256_and_si256(bottom, right), 1);
+    const vector_256 entry = add_32(multiply_32(row, set_8x32(stride)), column);
+    const vector_256 at = Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry;
+    const vector_256 below = add_32(at, set_8x32(stride * Channels));
+    const unsigned char *next = values + Channels;
+    const vector_256 top_left = gather_masked_32<1>(values, at, bitwise_and(top, left)),
+                     top_right = gather_masked_32<1>(next, at, bitwise_and(top, right)),
+                     bottom_left = gather_masked_32<1>(values, below, bitwise_and(bottom, left)),
+                     bottom_right = gather_masked_32<1>(next, below, bitwise_and(bottom, right));
     for (uint32_t c = 0; c < Channels; c++) {
         const int byte = static_cast<int>(c);
-        __m256i even, odd;
+        vector_256 even, odd;
         bilinear_8(lane_byte(top_left, byte), lane_byte(top_right, byte), lane_byte(bottom_left, byte),
                    lane_byte(bottom_right, byte), across, down, &even, &odd);
-        sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(even, odd));
+        sums[c] = add_64(sums[c], add_64(even, odd));
     }
 }
 
@@ -149,19 +140,18 @@ inline uint32_t quad_index_factors(uint32_t quad_row, uint32_t channels) { retur
 /* add_window_reads_8 from the quad table: the bordered position of the top-left texel is the lower index
    plus 1, (S >> 16) along each axis; a lane out of reach reads nothing and adds zero. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row, __m256i s_x, __m256i s_y,
-                                       __m256i reach, __m256i *sums) {
-    const __m256i low_16 = _mm256_set1_epi32(0xFFFF);
-    const __m256i across = _mm256_and_si256(s_x, low_16), down = _mm256_and_si256(s_y, low_16);
-    const __m256i at = _mm256_madd_epi16(_mm256_blend_epi16(_mm256_srli_epi32(s_x, 16), s_y, 0xAA),
-                                         broadcast_8(quad_index_factors(quad_row, Channels)));
+DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row, vector_256 s_x,
+                                       vector_256 s_y, vector_256 reach, vector_256 *sums) {
+    const vector_256 low_16 = set_8x32(0xFFFF);
+    const vector_256 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_256 at = madd_16(blend_odd_16(shift_right_logical_32(s_x, 16), s_y),
+                                  set_8x32(quad_index_factors(quad_row, Channels)));
     for (uint32_t c = 0; c < Channels; c++) {
-        const int *table = static_cast<const int *>(static_cast<const void *>(quads + c));
-        const __m256i quad = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), table, at, reach, 4);
-        __m256i even, odd;
+        const vector_256 quad = gather_masked_32<4>(quads + c, at, reach);
+        vector_256 even, odd;
         bilinear_8(lane_byte(quad, 0), lane_byte(quad, 1), lane_byte(quad, 2), lane_byte(quad, 3), across,
                    down, &even, &odd);
-        sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(even, odd));
+        sums[c] = add_64(sums[c], add_64(even, odd));
     }
 }
 
@@ -169,19 +159,18 @@ DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row,
 template <uint32_t Channels>
 inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
                           uint32_t valid) {
-    const __m256i fraction = mix32_8(load_8(candidates.stream + first)),
-                  packed = load_8(candidates.field + first);
-    __m256i bits_x, bits_y;
-    impulse_bits_8(_mm256_and_si256(packed, broadcast_8(0xFF)), fraction, &bits_x, &bits_y);
+    const vector_256 fraction = mix32_8(load_8x32(candidates.stream + first)),
+                     packed = load_8x32(candidates.field + first);
+    vector_256 bits_x, bits_y;
+    impulse_bits_8(bitwise_and(packed, set_8x32(0xFF)), fraction, &bits_x, &bits_y);
     /* the cells' bases by their indices (the permutes read the low 3 bits) */
-    const __m256i base_x = _mm256_permutevar8x32_epi32(visit->column_bases, _mm256_srli_epi32(packed, 8)),
-                  base_y = _mm256_permutevar8x32_epi32(visit->row_bases, _mm256_srli_epi32(packed, 11));
-    const __m256i s_x = _mm256_sub_epi32(base_x, _mm256_sll_epi32(bits_x, visit->shift));
-    const __m256i s_y = _mm256_sub_epi32(base_y, _mm256_sll_epi32(bits_y, visit->shift));
-    const __m256i exists = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    const __m256i reach =
-        _mm256_and_si256(exists, _mm256_and_si256(at_most(s_x, broadcast_8(visit->last_x)),
-                                                  at_most(s_y, broadcast_8(visit->last_y))));
+    const vector_256 base_x = permute_32(visit->column_bases, shift_right_logical_32(packed, 8)),
+                     base_y = permute_32(visit->row_bases, shift_right_logical_32(packed, 11));
+    const vector_256 s_x = subtract_32(base_x, shift_left_32_by(bits_x, visit->shift));
+    const vector_256 s_y = subtract_32(base_y, shift_left_32_by(bits_y, visit->shift));
+    const vector_256 exists = greater_32(set_8x32(valid), set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7));
+    const vector_256 reach = bitwise_and(
+        exists, bitwise_and(at_most(s_x, set_8x32(visit->last_x)), at_most(s_y, set_8x32(visit->last_y))));
     if (visit->quads != 0)
         add_quad_reads_8<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->sums);
     else
@@ -191,103 +180,95 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* visit_point_8 on 512-bit vectors: candidates first .. first + 15 of which the first `valid` exist. */
-inline __m512i load_16(const uint32_t *at) { return _mm512_loadu_si512(at); }
-inline __m512i broadcast_16(uint32_t value) { return _mm512_set1_epi32(static_cast<int>(value)); }
-inline __m512i lane_byte_16(__m512i words, unsigned int index) {
-    return _mm512_srai_epi32(_mm512_slli_epi32(words, 24 - 8 * index), 24);
+inline vector_512 lane_byte_16(vector_512 words, unsigned int index) {
+    return shift_right_arithmetic_32(shift_left_32(words, 24 - 8 * index), 24);
 }
 
 /* dsn_mix32 of every lane. */
-inline __m512i mix32_16(__m512i x) {
-    x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
-    x = _mm512_mullo_epi32(x, _mm512_set1_epi32(0x7FEB352D));
-    x = _mm512_xor_si512(x, _mm512_srli_epi32(x, 15));
-    x = _mm512_mullo_epi32(x, _mm512_set1_epi32(-0x7B935975 /* 0x846CA68B */));
-    return _mm512_xor_si512(x, _mm512_srli_epi32(x, 16));
+inline vector_512 mix32_16(vector_512 x) {
+    x = bitwise_xor(x, shift_right_logical_32(x, 16));
+    x = multiply_32(x, set_16x32(0x7FEB352Du));
+    x = bitwise_xor(x, shift_right_logical_32(x, 15));
+    x = multiply_32(x, set_16x32(0x846CA68Bu));
+    return bitwise_xor(x, shift_right_logical_32(x, 16));
 }
 
 /* impulse_bits_8 on 16 lanes. */
-inline void impulse_bits_16(__m512i fields, __m512i fraction, __m512i *bits_x, __m512i *bits_y) {
-    *bits_x = _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(fields, _mm512_set1_epi32(15)), 12),
-                              _mm512_srli_epi32(_mm512_and_si512(fraction, _mm512_set1_epi32(0xFFFF)), 4));
-    *bits_y =
-        _mm512_or_si512(_mm512_slli_epi32(_mm512_srli_epi32(fields, 4), 12), _mm512_srli_epi32(fraction, 20));
+inline void impulse_bits_16(vector_512 fields, vector_512 fraction, vector_512 *bits_x, vector_512 *bits_y) {
+    *bits_x = bitwise_or(shift_left_32(bitwise_and(fields, set_16x32(15)), 12),
+                         shift_right_logical_32(bitwise_and(fraction, set_16x32(0xFFFF)), 4));
+    *bits_y = bitwise_or(shift_left_32(shift_right_logical_32(fields, 4), 12),
+                         shift_right_logical_32(fraction, 20));
 }
 
 /* candidate_lanes of two pairs of 8-bit fields at once in one 128-bit vector (the first pair low), their
    top bits gathered by one movemask: bit i for impulse i of the first pair, 8 + i of the second. */
-inline uint32_t sift_two_pairs(__m128i pairs, const FieldLanes &lanes, const CellAxis &x, const CellAxis &y) {
-    const __m128i halves = _mm_set1_epi64x(static_cast<long long>(lanes.halves)),
-                  tops = _mm_set1_epi64x(static_cast<long long>(lanes.tops));
-    const __m128i halves_x = _mm_and_si128(pairs, halves),
-                  halves_y = _mm_and_si128(_mm_srli_epi64(pairs, 4), halves);
-    const __m128i in_x = _mm_and_si128(
-        _mm_sub_epi64(_mm_or_si128(halves_x, tops), _mm_set1_epi64x(static_cast<long long>(x.low_lanes))),
-        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(x.high_lanes)), halves_x));
-    const __m128i in_y = _mm_and_si128(
-        _mm_sub_epi64(_mm_or_si128(halves_y, tops), _mm_set1_epi64x(static_cast<long long>(y.low_lanes))),
-        _mm_sub_epi64(_mm_set1_epi64x(static_cast<long long>(y.high_lanes)), halves_y));
-    return static_cast<uint32_t>(_mm_movemask_epi8(_mm_and_si128(in_x, in_y)));
+inline uint32_t sift_two_pairs(vector_128 pairs, const FieldLanes &lanes, const CellAxis &x,
+                               const CellAxis &y) {
+    const vector_128 halves = set_2x64(lanes.halves), tops = set_2x64(lanes.tops);
+    const vector_128 halves_x = bitwise_and(pairs, halves),
+                     halves_y = bitwise_and(shift_right_logical_64(pairs, 4), halves);
+    const vector_128 in_x = bitwise_and(subtract_64(bitwise_or(halves_x, tops), set_2x64(x.low_lanes)),
+                                        subtract_64(set_2x64(x.high_lanes), halves_x));
+    const vector_128 in_y = bitwise_and(subtract_64(bitwise_or(halves_y, tops), set_2x64(y.low_lanes)),
+                                        subtract_64(set_2x64(y.high_lanes), halves_y));
+    return static_cast<uint32_t>(top_bits_of_bytes(bitwise_and(in_x, in_y)));
 }
 
 /* bilinear_8 on 16 lanes, the 16 values added to sum's 64-bit lanes. */
 /* The rows' interpolations upper and lower (32-bit lanes) interpolated down the column, added to sum. */
-DSN_POINT_INLINE void add_column_16(__m512i upper, __m512i lower, __m512i down, __m512i *sum) {
-    const __m512i scale = _mm512_set1_epi32(65536);
-    const __m512i difference = _mm512_sub_epi32(lower, upper);
-    const __m512i even = _mm512_add_epi64(_mm512_mul_epi32(upper, scale), _mm512_mul_epi32(down, difference));
-    const __m512i odd =
-        _mm512_add_epi64(_mm512_mul_epi32(_mm512_srli_epi64(upper, 32), scale),
-                         _mm512_mul_epi32(_mm512_srli_epi64(down, 32), _mm512_srli_epi64(difference, 32)));
-    *sum = _mm512_add_epi64(*sum, _mm512_add_epi64(even, odd));
+DSN_POINT_INLINE void add_column_16(vector_512 upper, vector_512 lower, vector_512 down, vector_512 *sum) {
+    const vector_512 scale = set_16x32(65536);
+    const vector_512 difference = subtract_32(lower, upper);
+    const vector_512 even = add_64(multiply_even_32(upper, scale), multiply_even_32(down, difference));
+    const vector_512 odd =
+        add_64(multiply_even_32(shift_right_logical_64(upper, 32), scale),
+               multiply_even_32(shift_right_logical_64(down, 32), shift_right_logical_64(difference, 32)));
+    *sum = add_64(*sum, add_64(even, odd));
 }
 
-DSN_POINT_INLINE void add_bilinear_16(__m512i a, __m512i b, __m512i d, __m512i e, __m512i across,
-                                      __m512i down, __m512i *sum) {
-    add_column_16(
-        _mm512_add_epi32(_mm512_slli_epi32(a, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(b, a))),
-        _mm512_add_epi32(_mm512_slli_epi32(d, 16), _mm512_mullo_epi32(across, _mm512_sub_epi32(e, d))), down,
-        sum);
+DSN_POINT_INLINE void add_bilinear_16(vector_512 a, vector_512 b, vector_512 d, vector_512 e,
+                                      vector_512 across, vector_512 down, vector_512 *sum) {
+    add_column_16(add_32(shift_left_32(a, 16), multiply_32(across, subtract_32(b, a))),
+                  add_32(shift_left_32(d, 16), multiply_32(across, subtract_32(e, d))), down, sum);
 }
 
 /* add_bilinear_16 of quads (bytes a, b, d, e), the bytes taken and the rows' steps made in 16-bit halves:
    a and d, b and e sign-extended, then b - a and e - d (within int16). */
-DSN_POINT_INLINE void add_quad_bilinear_16(__m512i quad, __m512i across, __m512i down, __m512i *sum) {
-    const __m512i left = _mm512_srai_epi16(_mm512_slli_epi16(quad, 8), 8), right = _mm512_srai_epi16(quad, 8);
-    const __m512i step = _mm512_sub_epi16(right, left);
-    const __m512i upper =
-        _mm512_add_epi32(_mm512_slli_epi32(left, 16),
-                         _mm512_mullo_epi32(across, _mm512_srai_epi32(_mm512_slli_epi32(step, 16), 16)));
-    const __m512i lower = _mm512_add_epi32(_mm512_and_si512(left, broadcast_16(0xFFFF0000u)),
-                                           _mm512_mullo_epi32(across, _mm512_srai_epi32(step, 16)));
+DSN_POINT_INLINE void add_quad_bilinear_16(vector_512 quad, vector_512 across, vector_512 down,
+                                           vector_512 *sum) {
+    const vector_512 left = shift_right_arithmetic_16<8>(shift_left_16<8>(quad)),
+                     right = shift_right_arithmetic_16<8>(quad);
+    const vector_512 step = subtract_16(right, left);
+    const vector_512 upper = add_32(
+        shift_left_32(left, 16), multiply_32(across, shift_right_arithmetic_32(shift_left_32(step, 16), 16)));
+    const vector_512 lower = add_32(bitwise_and(left, set_16x32(0xFFFF0000u)),
+                                    multiply_32(across, shift_right_arithmetic_32(step, 16)));
     add_column_16(upper, lower, down, sum);
 }
 
 /* add_quad_reads_8 on 16 lanes; 3 channels: channels 0 and 1 by 8-byte reads, 8 lanes a gather, the
    words' halves taken by permutes, and channel 2 by one gather of 16 words. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, __m512i s_x, __m512i s_y,
-                                        __mmask16 reach, __m512i *sums) {
-    const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
-    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i at =
-        _mm512_madd_epi16(_mm512_mask_blend_epi16(0xAAAAAAAAu, _mm512_srli_epi32(s_x, 16), s_y),
-                          broadcast_16(quad_index_factors(quad_row, Channels)));
-    const __m512i zero = _mm512_setzero_si512();
-    __m512i quad[Channels];
+DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, vector_512 s_x,
+                                        vector_512 s_y, mask_16 reach, vector_512 *sums) {
+    const vector_512 low_16 = set_16x32(0xFFFF);
+    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 at = madd_16(blend_odd_16(shift_right_logical_32(s_x, 16), s_y),
+                                  set_16x32(quad_index_factors(quad_row, Channels)));
+    vector_512 quad[Channels];
     if (Channels == 3) {
-        const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
-                      highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+        const vector_512 lows = set_lanes_16x32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
+                         highs = set_lanes_16x32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
         /* channels 0 and 1 of candidates 0 .. 7 and 8 .. 15 */
-        const __m512i low_words = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach),
-                                                              _mm512_castsi512_si256(at), quads, 4);
-        const __m512i high_words = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(reach >> 8),
-                                                               _mm512_extracti64x4_epi64(at, 1), quads, 4);
-        quad[Channels - 1] = _mm512_mask_i32gather_epi32(zero, reach, at, quads + 2, 4);
-        quad[0] = _mm512_permutex2var_epi32(low_words, lows, high_words);
-        quad[Channels - 2] = _mm512_permutex2var_epi32(low_words, highs, high_words);
+        const vector_512 low_words = gather_masked_64<4>(quads, low_256(at), static_cast<mask_8>(reach));
+        const vector_512 high_words =
+            gather_masked_64<4>(quads, high_256(at), static_cast<mask_8>(reach >> 8));
+        quad[Channels - 1] = gather_masked_32<4>(quads + 2, at, reach);
+        quad[0] = permute_32_of_two(low_words, lows, high_words);
+        quad[Channels - 2] = permute_32_of_two(low_words, highs, high_words);
     } else {
-        quad[0] = _mm512_mask_i32gather_epi32(zero, reach, at, quads, 4);
+        quad[0] = gather_masked_32<4>(quads, at, reach);
     }
     for (uint32_t c = 0; c < Channels; c++) add_quad_bilinear_16(quad[c], across, down, &sums[c]);
 }
@@ -295,28 +276,28 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
-                                          uint32_t stride, __m512i s_x, __m512i s_y, __mmask16 reach,
-                                          __m512i *sums) {
-    const __m512i low_16 = _mm512_set1_epi32(0xFFFF);
+                                          uint32_t stride, vector_512 s_x, vector_512 s_y, mask_16 reach,
+                                          vector_512 *sums) {
+    const vector_512 low_16 = set_16x32(0xFFFF);
     /* the texton indices of the right column and the lower row, and of the left column and upper row */
-    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
-    const __m512i column = _mm512_sub_epi32(right_column, _mm512_set1_epi32(1)),
-                  row = _mm512_sub_epi32(lower_row, _mm512_set1_epi32(1));
-    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i last_column = broadcast_16(width - 1u), last_row = broadcast_16(height - 1u);
-    const __mmask16 left = _mm512_cmple_epu32_mask(column, last_column),
-                    right = _mm512_cmple_epu32_mask(right_column, last_column);
-    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach, row, last_row),
-                    bottom = _mm512_mask_cmple_epu32_mask(reach, lower_row, last_row);
-    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(stride)), column);
-    const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry;
-    const __m512i below = _mm512_add_epi32(at, broadcast_16(stride * Channels));
-    const void *texton = values, *next = values + Channels;
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i top_left = _mm512_mask_i32gather_epi32(zero, top & left, at, texton, 1),
-                  top_right = _mm512_mask_i32gather_epi32(zero, top & right, at, next, 1),
-                  bottom_left = _mm512_mask_i32gather_epi32(zero, bottom & left, below, texton, 1),
-                  bottom_right = _mm512_mask_i32gather_epi32(zero, bottom & right, below, next, 1);
+    const vector_512 right_column = shift_right_logical_32(s_x, 16),
+                     lower_row = shift_right_logical_32(s_y, 16);
+    const vector_512 column = subtract_32(right_column, set_16x32(1)),
+                     row = subtract_32(lower_row, set_16x32(1));
+    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 last_column = set_16x32(width - 1u), last_row = set_16x32(height - 1u);
+    const mask_16 left = less_equal_unsigned_32(column, last_column),
+                  right = less_equal_unsigned_32(right_column, last_column);
+    const mask_16 top = less_equal_unsigned_32(reach, row, last_row),
+                  bottom = less_equal_unsigned_32(reach, lower_row, last_row);
+    const vector_512 entry = add_32(multiply_32(row, set_16x32(stride)), column);
+    const vector_512 at = Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry;
+    const vector_512 below = add_32(at, set_16x32(stride * Channels));
+    const unsigned char *next = values + Channels;
+    const vector_512 top_left = gather_masked_32<1>(values, at, top & left),
+                     top_right = gather_masked_32<1>(next, at, top & right),
+                     bottom_left = gather_masked_32<1>(values, below, bottom & left),
+                     bottom_right = gather_masked_32<1>(next, below, bottom & right);
     for (uint32_t c = 0; c < Channels; c++)
         add_bilinear_16(lane_byte_16(top_left, c), lane_byte_16(top_right, c), lane_byte_16(bottom_left, c),
                         lane_byte_16(bottom_right, c), across, down, &sums[c]);
@@ -330,34 +311,32 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
    buffer that the loader checked (asset.cpp sets the texton there only). */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
-                                          __m512i s_x, __m512i s_y, __mmask16 reach, __m512i *sums) {
-    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), one = _mm512_set1_epi32(1);
-    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
-    const __m512i row = _mm512_sub_epi32(lower_row, one);
-    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __m512i last_column = broadcast_16(width - 1u), last_row = broadcast_16(height - 1u);
-    const __mmask16 left = _mm512_cmple_epu32_mask(_mm512_sub_epi32(right_column, one), last_column),
-                    right = _mm512_cmple_epu32_mask(right_column, last_column);
+                                          vector_512 s_x, vector_512 s_y, mask_16 reach, vector_512 *sums) {
+    const vector_512 low_16 = set_16x32(0xFFFF), one = set_16x32(1);
+    const vector_512 right_column = shift_right_logical_32(s_x, 16),
+                     lower_row = shift_right_logical_32(s_y, 16);
+    const vector_512 row = subtract_32(lower_row, one);
+    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 last_column = set_16x32(width - 1u), last_row = set_16x32(height - 1u);
+    const mask_16 left = less_equal_unsigned_32(subtract_32(right_column, one), last_column),
+                  right = less_equal_unsigned_32(right_column, last_column);
     /* a row is read where one of its texels is inside */
-    const __mmask16 top = _mm512_mask_cmple_epu32_mask(reach & (left | right), row, last_row),
-                    bottom = _mm512_mask_cmple_epu32_mask(reach & (left | right), lower_row, last_row);
-    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(width)), right_column);
-    const __m512i at = _mm512_sub_epi32(
-        Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry) : entry, _mm512_set1_epi32(4));
-    const __m512i below = _mm512_add_epi32(at, broadcast_16(width * Channels));
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i lows = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
-                  highs = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
-    __m512i texels[4]; /* top left, top right, bottom left, bottom right */
+    const mask_16 top = less_equal_unsigned_32(reach & (left | right), row, last_row),
+                  bottom = less_equal_unsigned_32(reach & (left | right), lower_row, last_row);
+    const vector_512 entry = add_32(multiply_32(row, set_16x32(width)), right_column);
+    const vector_512 at =
+        subtract_32(Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry, set_16x32(4));
+    const vector_512 below = add_32(at, set_16x32(width * Channels));
+    const vector_512 lows = set_lanes_16x32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
+                     highs = set_lanes_16x32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+    vector_512 texels[4]; /* top left, top right, bottom left, bottom right */
     for (uint32_t pass = 0; pass < 2; pass++) {
-        const __mmask16 rows = pass == 0 ? top : bottom;
-        const __m512i from = pass == 0 ? at : below;
-        const __m512i first = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(rows),
-                                                          _mm512_castsi512_si256(from), texton, 1),
-                      second = _mm512_mask_i32gather_epi64(zero, static_cast<__mmask8>(rows >> 8),
-                                                           _mm512_extracti64x4_epi64(from, 1), texton, 1);
-        texels[2 * pass] = _mm512_maskz_permutex2var_epi32(left, first, lows, second);
-        texels[2 * pass + 1] = _mm512_maskz_permutex2var_epi32(right, first, highs, second);
+        const mask_16 rows = pass == 0 ? top : bottom;
+        const vector_512 from = pass == 0 ? at : below;
+        const vector_512 first = gather_masked_64<1>(texton, low_256(from), static_cast<mask_8>(rows)),
+                         second = gather_masked_64<1>(texton, high_256(from), static_cast<mask_8>(rows >> 8));
+        texels[2 * pass] = permute_32_of_two_or_zero(left, first, lows, second);
+        texels[2 * pass + 1] = permute_32_of_two_or_zero(right, first, highs, second);
     }
     for (uint32_t c = 0; c < Channels; c++)
         add_bilinear_16(lane_byte_16(texels[0], 4u - Channels + c), lane_byte_16(texels[1], c),
@@ -368,26 +347,24 @@ DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t 
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
                                      uint32_t first, uint32_t valid) {
-    const __m512i fraction = mix32_16(load_16(candidates.stream + first));
-    const __m512i packed = load_16(candidates.field + first);
-    /* impulse_bits_16, each axis's field bits selected into bits 12 .. 15 (0xEC: A & C | B) */
-    const __m512i field_bits = broadcast_16(0xF000);
-    const __m512i bits_x =
-        _mm512_ternarylogic_epi32(_mm512_slli_epi32(packed, 12),
-                                  _mm512_srli_epi32(_mm512_slli_epi32(fraction, 16), 20), field_bits, 0xEC);
-    const __m512i bits_y = _mm512_ternarylogic_epi32(_mm512_slli_epi32(packed, 8),
-                                                     _mm512_srli_epi32(fraction, 20), field_bits, 0xEC);
+    const vector_512 fraction = mix32_16(load_16x32(candidates.stream + first));
+    const vector_512 packed = load_16x32(candidates.field + first);
+    /* impulse_bits_16, each axis's field bits selected into bits 12 .. 15 */
+    const vector_512 field_bits = set_16x32(0xF000);
+    const vector_512 bits_x = masked_or(shift_left_32(packed, 12),
+                                        shift_right_logical_32(shift_left_32(fraction, 16), 20), field_bits);
+    const vector_512 bits_y =
+        masked_or(shift_left_32(packed, 8), shift_right_logical_32(fraction, 20), field_bits);
     /* the cells' bases by their indices (the permutes read the low 4 bits: the bases twice) */
-    const __m512i column_bases = _mm512_broadcast_i64x4(visit->column_bases),
-                  row_bases = _mm512_broadcast_i64x4(visit->row_bases);
-    const __m512i base_x = _mm512_permutexvar_epi32(_mm512_srli_epi32(packed, 8), column_bases),
-                  base_y = _mm512_permutexvar_epi32(_mm512_srli_epi32(packed, 11), row_bases);
-    const __m512i s_x = _mm512_sub_epi32(base_x, _mm512_sll_epi32(bits_x, visit->shift));
-    const __m512i s_y = _mm512_sub_epi32(base_y, _mm512_sll_epi32(bits_y, visit->shift));
-    const __mmask16 exists = static_cast<__mmask16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
-    const __mmask16 reach =
-        _mm512_mask_cmple_epu32_mask(_mm512_mask_cmple_epu32_mask(exists, s_x, broadcast_16(visit->last_x)),
-                                     s_y, broadcast_16(visit->last_y));
+    const vector_512 column_bases = broadcast_256(visit->column_bases),
+                     row_bases = broadcast_256(visit->row_bases);
+    const vector_512 base_x = permute_32(column_bases, shift_right_logical_32(packed, 8)),
+                     base_y = permute_32(row_bases, shift_right_logical_32(packed, 11));
+    const vector_512 s_x = subtract_32(base_x, shift_left_32_by(bits_x, visit->shift));
+    const vector_512 s_y = subtract_32(base_y, shift_left_32_by(bits_y, visit->shift));
+    const mask_16 exists = static_cast<mask_16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
+    const mask_16 reach = less_equal_unsigned_32(
+        less_equal_unsigned_32(exists, s_x, set_16x32(visit->last_x)), s_y, set_16x32(visit->last_y));
     if (visit->quads != 0)
         add_quad_reads_16<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->wide_sums);
     else
@@ -401,9 +378,9 @@ template <uint32_t Channels>
 inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
     const uint32_t count = candidates->count;
     /* The lanes past the last candidate hold zeros (defined values; the count leaves them out). */
-    const __m256i zero = _mm256_setzero_si256();
+    const vector_256 zero = zero_256();
     for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u) {
-        store_8(candidates->stream + pad, zero), store_8(candidates->field + pad, zero);
+        store_8x32(candidates->stream + pad, zero), store_8x32(candidates->field + pad, zero);
     }
     uint32_t first = 0;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -418,13 +395,13 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
    of the cell with this key; indices: the cell's (cell_indices). */
 inline void add_sifted_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint64_t pair,
                             uint32_t sifted, uint32_t indices) {
-    __m256i streams, fields;
+    vector_256 streams, fields;
     /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
     const uint32_t packed =
         pack_pair_8(pair, sifted, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
     const uint32_t slot = candidates->count;
-    store_8(candidates->stream + slot, streams);
-    store_8(candidates->field + slot, _mm256_or_si256(fields, broadcast_8(indices)));
+    store_8x32(candidates->stream + slot, streams);
+    store_8x32(candidates->field + slot, bitwise_or(fields, set_8x32(indices)));
     candidates->count = slot + packed;
 }
 
@@ -455,7 +432,7 @@ inline uint32_t mask_count(uint32_t mask) {
    and cdf[0 .. 31]. dsn_poisson_count_two_steps then reads no threshold past cdf[31] when the guide's
    counts are at most 29 (count_tables_fit). */
 struct CountTables {
-    __m512i guide[4], cdf[2];
+    vector_512 guide[4], cdf[2];
 };
 
 inline bool count_tables_fit(const dsn_noise_state *noise) {
@@ -465,51 +442,47 @@ inline bool count_tables_fit(const dsn_noise_state *noise) {
 
 inline void count_tables(const dsn_noise_state *noise, CountTables *tables) {
     for (uint32_t q = 0; q < 4; q++)
-        tables->guide[q] = _mm512_cvtepu8_epi32(_mm_loadu_si128(
-            static_cast<const __m128i *>(static_cast<const void *>(noise->poisson_guide + 16 * q))));
-    tables->cdf[0] = _mm512_loadu_si512(noise->poisson_cdf);
-    tables->cdf[1] = _mm512_loadu_si512(noise->poisson_cdf + 16);
+        tables->guide[q] = widen_bytes_16x32(load_16x8(noise->poisson_guide + 16 * q));
+    tables->cdf[0] = load_16x32(noise->poisson_cdf);
+    tables->cdf[1] = load_16x32(noise->poisson_cdf + 16);
 }
 
 /* dsn_poisson_count_two_steps of 16 keys (count_tables_fit), the guide and thresholds read by permutes;
    the rare lanes that need the exact search take dsn_poisson_draw. */
-inline __m512i counts_16(const dsn_noise_state *noise, const CountTables &tables, __m512i keys) {
-    const __m512i bucket = _mm512_srli_epi32(keys, 26), one = _mm512_set1_epi32(1);
-    __m512i n = _mm512_mask_blend_epi32(_mm512_cmpge_epu32_mask(bucket, _mm512_set1_epi32(32)),
-                                        _mm512_permutex2var_epi32(tables.guide[0], bucket, tables.guide[1]),
-                                        _mm512_permutex2var_epi32(tables.guide[2], bucket, tables.guide[3]));
+inline vector_512 counts_16(const dsn_noise_state *noise, const CountTables &tables, vector_512 keys) {
+    const vector_512 bucket = shift_right_logical_32(keys, 26), one = set_16x32(1);
+    vector_512 n = blend_32(greater_equal_unsigned_32(bucket, set_16x32(32)),
+                            permute_32_of_two(tables.guide[0], bucket, tables.guide[1]),
+                            permute_32_of_two(tables.guide[2], bucket, tables.guide[3]));
     for (uint32_t step = 0; step < 2; step++)
-        n = _mm512_mask_add_epi32(
-            n, _mm512_cmpge_epu32_mask(keys, _mm512_permutex2var_epi32(tables.cdf[0], n, tables.cdf[1])), n,
-            one);
-    const __m512i size = broadcast_16(noise->poisson_size);
-    const __mmask16 search =
-        _mm512_cmpgt_epu32_mask(n, size) |
-        _mm512_mask_cmpge_epu32_mask(_mm512_cmplt_epu32_mask(n, size), keys,
-                                     _mm512_permutex2var_epi32(tables.cdf[0], n, tables.cdf[1]));
+        n = add_32_where(greater_equal_unsigned_32(keys, permute_32_of_two(tables.cdf[0], n, tables.cdf[1])),
+                         n, one);
+    const vector_512 size = set_16x32(noise->poisson_size);
+    const mask_16 search = greater_unsigned_32(n, size) |
+                           greater_equal_unsigned_32(less_unsigned_32(n, size), keys,
+                                                     permute_32_of_two(tables.cdf[0], n, tables.cdf[1]));
     if (search == 0) return n;
     uint32_t lanes[16], uniforms[16];
-    _mm512_storeu_si512(lanes, n), _mm512_storeu_si512(uniforms, keys);
+    store_16x32(lanes, n), store_16x32(uniforms, keys);
     for (uint32_t k = 0; k < 16; k++)
         if ((search >> k) & 1u) lanes[k] = dsn_poisson_draw(noise, uniforms[k]);
-    return _mm512_loadu_si512(lanes);
+    return load_16x32(lanes);
 }
 
 /* The candidates `sifted` (bit k: impulse k) of a cell's first two pairs (`pairs`, the first low)
    compressed into place; indices: the cell's (cell_indices). */
-inline void add_sifted_pairs(PointCandidates *candidates, uint32_t key, __m128i pairs, uint32_t sifted,
+inline void add_sifted_pairs(PointCandidates *candidates, uint32_t key, vector_128 pairs, uint32_t sifted,
                              uint32_t indices) {
     /* dsn_cell_stream(key, 2^31 + k) of impulse k */
-    const __m512i streams = _mm512_add_epi32(
-        _mm512_set1_epi32(static_cast<int>(key + 0x80000000u * 0x9E3779B9u)),
-        _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-                           _mm512_set1_epi32(-0x61C88647 /* 0x9E3779B9 */)));
-    const __mmask16 keep = static_cast<__mmask16>(sifted);
+    const vector_512 streams =
+        add_32(set_16x32(key + 0x80000000u * 0x9E3779B9u),
+               multiply_32(set_lanes_16x32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                           set_16x32(0x9E3779B9u)));
+    const mask_16 keep = static_cast<mask_16>(sifted);
     const uint32_t slot = candidates->count;
-    _mm512_storeu_si512(candidates->stream + slot, _mm512_maskz_compress_epi32(keep, streams));
-    _mm512_storeu_si512(candidates->field + slot,
-                        _mm512_maskz_compress_epi32(
-                            keep, _mm512_or_si512(_mm512_cvtepu8_epi32(pairs), broadcast_16(indices))));
+    store_16x32(candidates->stream + slot, compress_32(keep, streams));
+    store_16x32(candidates->field + slot,
+                compress_32(keep, bitwise_or(widen_bytes_16x32(pairs), set_16x32(indices))));
     candidates->count = slot + mask_count(sifted);
 }
 
@@ -518,8 +491,8 @@ inline void add_sifted_pairs(PointCandidates *candidates, uint32_t key, __m128i 
    compressed into place. */
 inline void add_first_pairs(PointCandidates *candidates, uint32_t key, uint32_t count,
                             const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
-    const __m128i pairs = _mm_set_epi64x(static_cast<long long>(dsn_position_pair(key, 1)),
-                                         static_cast<long long>(dsn_position_pair(key, 0)));
+    const uint64_t first = dsn_position_pair(key, 0), second = dsn_position_pair(key, 1);
+    const vector_128 pairs = set_lanes_2x64(first, second);
     uint32_t sifted = sift_two_pairs(pairs, lanes, x, y);
     if (count < 16u) sifted &= (1u << count) - 1u; /* impulses that do not exist */
     add_sifted_pairs(candidates, key, pairs, sifted, indices);
@@ -568,20 +541,21 @@ DSN_POINT_INLINE bool point_cells(const dsn_noise_state *noise, uint64_t x, uint
 /* The visit of a point, its sums zero, given the bases of its column and row cells by their indices
    (AxisCells's base); quads: the batch's table (PointVisit), or null. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void point_visit_begin(const dsn_noise_state *noise, __m256i column_bases, __m256i row_bases,
-                                        const uint32_t *quads, PointVisit<Channels> *visit) {
+DSN_POINT_INLINE void point_visit_begin(const dsn_noise_state *noise, vector_256 column_bases,
+                                        vector_256 row_bases, const uint32_t *quads,
+                                        PointVisit<Channels> *visit) {
     visit->texton = noise->asset.texton;
     visit->quads = quads;
     visit->width = noise->asset.width, visit->height = noise->asset.height;
     visit->quad_row = (noise->asset.width + 1u) * Channels;
     visit->last_x = ((2u * noise->radius[0] + 2u) << 16) - 1u;
     visit->last_y = ((2u * noise->radius[1] + 2u) << 16) - 1u;
-    visit->shift = _mm_cvtsi32_si128(static_cast<int>(noise->cell_shift));
+    visit->shift = shift_count(static_cast<int>(noise->cell_shift));
     visit->column_bases = column_bases, visit->row_bases = row_bases;
     for (uint32_t c = 0; c < Channels; c++) {
-        visit->sums[c] = _mm256_setzero_si256();
+        visit->sums[c] = zero_256();
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-        visit->wide_sums[c] = _mm512_setzero_si512();
+        visit->wide_sums[c] = zero_512();
 #endif
     }
 }
@@ -592,14 +566,10 @@ DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const Axis
                                         const AxisCells &rows, const uint32_t *quads,
                                         PointVisit<Channels> *visit) {
     /* the bases past the axes' cells are not read (masked: defined values) */
-    const __m256i indices = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const vector_256 indices = set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7);
     point_visit_begin<Channels>(
-        noise,
-        _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(columns.base)),
-                              _mm256_cmpgt_epi32(broadcast_8(columns.count), indices)),
-        _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(rows.base)),
-                              _mm256_cmpgt_epi32(broadcast_8(rows.count), indices)),
-        quads, visit);
+        noise, load_masked_8x32(columns.base, greater_32(set_8x32(columns.count), indices)),
+        load_masked_8x32(rows.base, greater_32(set_8x32(rows.count), indices)), quads, visit);
 }
 
 /* Buffers the candidates of a cell's pairs from impulse 16 on (cells of more than 16 impulses), visiting

@@ -139,10 +139,10 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
                 store_shifted(xs + count, base_x, bits_x, position_shift);
                 store_shifted(ys + count, base_y, bits_y, position_shift);
             }
-            store_8(narrow_xs + count,
-                    _mm256_sub_epi32(narrow_base_x, _mm256_sll_epi32(bits_x, cell_shift_vector)));
-            store_8(narrow_ys + count,
-                    _mm256_sub_epi32(narrow_base_y, _mm256_sll_epi32(bits_y, cell_shift_vector)));
+            store_8x32(narrow_xs + count,
+                       _mm256_sub_epi32(narrow_base_x, _mm256_sll_epi32(bits_x, cell_shift_vector)));
+            store_8x32(narrow_ys + count,
+                       _mm256_sub_epi32(narrow_base_y, _mm256_sll_epi32(bits_y, cell_shift_vector)));
             count += packed;
         }
         ends[k] = count;

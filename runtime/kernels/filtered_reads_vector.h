@@ -99,16 +99,15 @@ DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t wi
     const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
     /* right_column 0: the left texel is out; width: the right one; beyond: both (never in reach). */
     const __mmask16 left_out = _mm512_cmpeq_epi32_mask(right_column, _mm512_setzero_si512()),
-                    right_out = _mm512_cmpeq_epi32_mask(right_column, broadcast_16(width)),
-                    inside = _mm512_mask_cmple_epu32_mask(reach, right_column, broadcast_16(width));
-    const __mmask16 top = _mm512_mask_cmple_epu32_mask(inside, row, broadcast_16(height - 1u)),
-                    bottom = _mm512_mask_cmple_epu32_mask(inside, lower_row, broadcast_16(height - 1u));
-    const __m512i first =
-        _mm512_min_epu32(_mm512_max_epi32(_mm512_sub_epi32(right_column, one), _mm512_setzero_si512()),
-                         broadcast_16(width - 2u));
-    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(stride)), first);
+                    right_out = _mm512_cmpeq_epi32_mask(right_column, set_16x32(width)),
+                    inside = _mm512_mask_cmple_epu32_mask(reach, right_column, set_16x32(width));
+    const __mmask16 top = _mm512_mask_cmple_epu32_mask(inside, row, set_16x32(height - 1u)),
+                    bottom = _mm512_mask_cmple_epu32_mask(inside, lower_row, set_16x32(height - 1u));
+    const __m512i first = _mm512_min_epu32(
+        _mm512_max_epi32(_mm512_sub_epi32(right_column, one), _mm512_setzero_si512()), set_16x32(width - 2u));
+    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, set_16x32(stride)), first);
     const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry);
-    const __m512i below = _mm512_add_epi32(at, broadcast_16(stride * 3u));
+    const __m512i below = _mm512_add_epi32(at, set_16x32(stride * 3u));
     __m512i top_left, top_right, bottom_left, bottom_right;
     texel_pairs_16(values, at, top, left_out, right_out, &top_left, &top_right);
     texel_pairs_16(values, below, bottom, left_out, right_out, &bottom_left, &bottom_right);
@@ -162,13 +161,13 @@ inline void register_level(const dsn_walked_level *level, RegisterLevel<Channels
     const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     __m512i texels[Vectors + 1u];
     for (uint32_t v = 0; v < Vectors; v++) {
-        const __m512i entry = _mm512_add_epi32(lanes, broadcast_16(16u * v));
+        const __m512i entry = _mm512_add_epi32(lanes, set_16x32(16u * v));
         const __m512i row = _mm512_sub_epi32(_mm512_srli_epi32(entry, 3), one),
                       column = _mm512_sub_epi32(_mm512_and_si512(entry, _mm512_set1_epi32(7)), one);
         const __mmask16 inside =
-            _mm512_mask_cmple_epu32_mask(_mm512_cmple_epu32_mask(row, broadcast_16(level->height - 1u)),
-                                         column, broadcast_16(level->width - 1u));
-        const __m512i index = _mm512_add_epi32(_mm512_mullo_epi32(row, broadcast_16(level->stride)), column);
+            _mm512_mask_cmple_epu32_mask(_mm512_cmple_epu32_mask(row, set_16x32(level->height - 1u)), column,
+                                         set_16x32(level->width - 1u));
+        const __m512i index = _mm512_add_epi32(_mm512_mullo_epi32(row, set_16x32(level->stride)), column);
         const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(index, 1), index) : index;
         texels[v] = _mm512_mask_i32gather_epi32(zero, inside, at, level->values, 1);
     }
@@ -185,8 +184,8 @@ inline void register_level(const dsn_walked_level *level, RegisterLevel<Channels
                                          _mm512_add_epi32(b, d));
         }
     }
-    out->last_column = broadcast_16(level->width);
-    out->last_row = broadcast_16(level->height);
+    out->last_column = set_16x32(level->width);
+    out->last_row = set_16x32(level->height);
 }
 
 /* Entry `index` of a table of 64 (4 vectors), zero outside `inside`. */
@@ -231,7 +230,7 @@ DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vector
     __mmask16 part[Vectors / 2u];
     const __m512i which = _mm512_srli_epi32(index, 5);
     for (uint32_t k = 0; k < Vectors / 2u; k++)
-        part[k] = _mm512_mask_cmpeq_epi32_mask(inside, which, broadcast_16(k));
+        part[k] = _mm512_mask_cmpeq_epi32_mask(inside, which, set_16x32(k));
     /* (a - 2^15, d - 2^15) as 16-bit pairs; a d, below 2^32 */
     const __m512i weights = _mm512_xor_si512(_mm512_or_si512(across, _mm512_slli_epi32(down, 16)),
                                              _mm512_or_si512(half, _mm512_slli_epi32(half, 16)));
@@ -282,14 +281,14 @@ inline uint32_t pack_offsets_8(const int64_t *xs, const int64_t *ys, uint32_t va
         static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(low_halves(reach_low, reach_high))));
     const uint32_t entry = packing_table[reach];
     const __m256i order = packing_order(entry);
-    store_8(packed_x, _mm256_permutevar8x32_epi32(s_x, order));
-    store_8(packed_y, _mm256_permutevar8x32_epi32(s_y, order));
+    store_8x32(packed_x, _mm256_permutevar8x32_epi32(s_x, order));
+    store_8x32(packed_y, _mm256_permutevar8x32_epi32(s_y, order));
     return entry >> 24;
 }
 
 /* a < b as unsigned 32-bit lanes (AVX2 compares signed: both flipped by 2^31). */
 inline __m256i below_32(__m256i a, __m256i b) {
-    const __m256i sign = broadcast_8(0x80000000u);
+    const __m256i sign = set_8x32(0x80000000u);
     return _mm256_cmpgt_epi32(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
 }
 
@@ -313,21 +312,21 @@ inline uint32_t pack_narrow_16(const uint32_t *xs, const uint32_t *ys, __mmask16
 /* pack_narrow_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
 inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t valid, const __m256i *tests,
                               __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
-    const __m256i present = _mm256_cmpgt_epi32(broadcast_8(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256i present = _mm256_cmpgt_epi32(set_8x32(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     const int *from_x = static_cast<const int *>(static_cast<const void *>(xs)),
               *from_y = static_cast<const int *>(static_cast<const void *>(ys));
-    const __m256i c_x = valid >= 8u ? load_8(xs) : _mm256_maskload_epi32(from_x, present),
-                  c_y = valid >= 8u ? load_8(ys) : _mm256_maskload_epi32(from_y, present);
+    const __m256i c_x = valid >= 8u ? load_8x32(xs) : _mm256_maskload_epi32(from_x, present),
+                  c_y = valid >= 8u ? load_8x32(ys) : _mm256_maskload_epi32(from_y, present);
     const __m256i in_x = below_32(_mm256_add_epi32(c_x, tests[0]), tests[1]),
                   in_y = below_32(_mm256_add_epi32(c_y, tests[3]), tests[4]);
     const uint32_t reach = static_cast<uint32_t>(
         _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_and_si256(present, _mm256_and_si256(in_x, in_y)))));
     const uint32_t entry = packing_table[reach];
     const __m256i order = packing_order(entry);
-    store_8(packed_x,
-            _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_x, tests[2]), shift), order));
-    store_8(packed_y,
-            _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_y, tests[5]), shift), order));
+    store_8x32(packed_x,
+               _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_x, tests[2]), shift), order));
+    store_8x32(packed_y,
+               _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_y, tests[5]), shift), order));
     return entry >> 24;
 }
 
@@ -361,11 +360,11 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
 #endif
     __m256i narrow_tests_8[6];
-    for (uint32_t i = 0; i < 6; i++) narrow_tests_8[i] = broadcast_8(narrow_tests[i]);
+    for (uint32_t i = 0; i < 6; i++) narrow_tests_8[i] = set_8x32(narrow_tests[i]);
     const __m128i narrow_shift = _mm_cvtsi32_si128(static_cast<int>(level->level));
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     __m512i narrow_tests_16[6];
-    for (uint32_t i = 0; i < 6; i++) narrow_tests_16[i] = broadcast_16(narrow_tests[i]);
+    for (uint32_t i = 0; i < 6; i++) narrow_tests_16[i] = set_16x32(narrow_tests[i]);
 #endif
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     const bool in_registers = Vectors != 0;
@@ -403,8 +402,8 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
                                          packed_x + packed, packed_y + packed);
         }
         /* The lanes past the last packed offset read zeros (defined values; the masks leave them out). */
-        store_8(packed_x + packed, zero), store_8(packed_x + packed + 8, zero);
-        store_8(packed_y + packed, zero), store_8(packed_y + packed + 8, zero);
+        store_8x32(packed_x + packed, zero), store_8x32(packed_x + packed + 8, zero);
+        store_8x32(packed_y + packed, zero), store_8x32(packed_y + packed + 8, zero);
         uint32_t next = 0;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
         if (in_registers) {
@@ -432,9 +431,9 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
 #endif
         for (; next < packed; next += 8u) {
             const __m256i reach =
-                _mm256_cmpgt_epi32(broadcast_8(packed - next), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+                _mm256_cmpgt_epi32(set_8x32(packed - next), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
             add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride,
-                                         load_8(packed_x + next), load_8(packed_y + next), reach, sums);
+                                         load_8x32(packed_x + next), load_8x32(packed_y + next), reach, sums);
         }
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)

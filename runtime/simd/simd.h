@@ -1,7 +1,8 @@
 /* runtime/simd/simd.h - the one place that picks the vector operations of a translation unit: the ops header
    (simd_sse2.h, simd_avx2.h or simd_avx512.h, each defining the same names) of the widest instruction
-   set the file is compiled for. DSN_SIMD is 1 when there is one, 0 on targets without SSE2 (which then
-   take the 32-bit tile path). */
+   set the file is compiled for; the operations of a width that several share are in simd_128.h (all of
+   them) and simd_256.h (AVX2 and AVX-512). DSN_SIMD is 1 when there is one, 0 on targets without SSE2 (which
+   then take the 32-bit tile path). */
 #ifndef DSN_SIMD_H
 #define DSN_SIMD_H
 

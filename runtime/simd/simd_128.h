@@ -1,7 +1,7 @@
 /* runtime/simd/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
    output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, a
-   constant of the continuous splat, and the pair operations of the bilinear slopes. Included by
-   the ops headers (simd.h). */
+   constant of the continuous splat, the pair operations of the bilinear slopes, and the 128-bit
+   pieces of the wider kernels. Included by the ops headers (simd.h). */
 #ifndef DSN_SIMD_128_H
 #define DSN_SIMD_128_H
 
@@ -9,6 +9,14 @@
 #include <stdint.h>
 
 #include "dsn/dsn.h"
+
+/* The operations are forced inline, as the intrinsics are: through plain inline wrappers GCC sees the
+   operations in another order, and allocates registers and schedules differently. */
+#if defined(__GNUC__)
+#define DSN_SIMD_INLINE inline __attribute__((always_inline))
+#else
+#define DSN_SIMD_INLINE inline
+#endif
 
 namespace {
 
@@ -69,6 +77,33 @@ inline __m128i zero_128() { return _mm_setzero_si128(); }
 
 /* The four 32-bit lanes, signed. */
 inline void take_32_lanes(__m128i vector, int32_t *lanes) { __builtin_memcpy(lanes, &vector, 16); }
+
+/* ---- The 128-bit operations of the wider kernels (continuous_lanes.h, continuous_point_vector.h) ---- */
+
+/* A shift count for every lane of a vector (shift_left_32_by). */
+DSN_SIMD_INLINE vector_128 shift_count(int count) { return _mm_cvtsi32_si128(count); }
+/* value in the low 64 bits, zeros above. */
+DSN_SIMD_INLINE vector_128 set_low_64(uint64_t value) {
+    return _mm_cvtsi64_si128(static_cast<long long>(value));
+}
+DSN_SIMD_INLINE vector_128 set_2x64(uint64_t value) { return _mm_set1_epi64x(static_cast<long long>(value)); }
+/* The lanes in order, lane 0 first. */
+DSN_SIMD_INLINE vector_128 set_lanes_2x64(uint64_t lane_0, uint64_t lane_1) {
+    return _mm_set_epi64x(static_cast<long long>(lane_1), static_cast<long long>(lane_0));
+}
+DSN_SIMD_INLINE vector_128 load_16x8(const uint8_t *at) {
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(at)));
+}
+DSN_SIMD_INLINE vector_128 bitwise_and(vector_128 a, vector_128 b) { return _mm_and_si128(a, b); }
+DSN_SIMD_INLINE vector_128 bitwise_or(vector_128 a, vector_128 b) { return _mm_or_si128(a, b); }
+DSN_SIMD_INLINE vector_128 subtract_64(vector_128 a, vector_128 b) { return _mm_sub_epi64(a, b); }
+DSN_SIMD_INLINE vector_128 shift_right_logical_64(vector_128 a, uint32_t count) {
+    return _mm_srli_epi64(a, static_cast<int>(count));
+}
+/* The top bit of byte k in bit k. */
+DSN_SIMD_INLINE uint32_t top_bits_of_bytes(vector_128 a) {
+    return static_cast<uint32_t>(_mm_movemask_epi8(a));
+}
 
 } // namespace
 

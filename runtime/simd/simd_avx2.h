@@ -4,14 +4,12 @@
 #ifndef DSN_SIMD_AVX2_H
 #define DSN_SIMD_AVX2_H
 
-#include <immintrin.h>
-
-#include "simd/simd_128.h"
+#include "simd/simd_256.h"
 
 namespace {
 
-typedef __m256i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
-typedef __m256 simd_floats;
+typedef vector_256 simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
+typedef floats_256 simd_floats;
 const uint32_t simd_int16_count = 16;
 
 /* ---- Sums ---- */
@@ -41,10 +39,9 @@ inline void finish_pair(simd_vector *row_0, simd_vector row_1) {
     *row_0 = _mm256_sub_epi16(*row_0, _mm256_slli_epi16(row_1, 8));
 }
 
-/* ---- Normalization, per 128-bit lane (AVX2 unpacks and shuffles each lane on its own) ---- */
+/* ---- Normalization, per 128-bit lane (AVX2 unpacks and shuffles each lane on its own; madd_16, add_32,
+   as_floats, as_integers and shuffle: simd_256.h) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm256_broadcastsi128_si256(value); }
-inline simd_vector madd_16(simd_vector a, simd_vector b) { return _mm256_madd_epi16(a, b); }
-inline simd_vector add_32(simd_vector a, simd_vector b) { return _mm256_add_epi32(a, b); }
 inline simd_vector shift_right_15(simd_vector a) { return _mm256_srai_epi32(a, 15); }
 inline simd_vector shift_right(simd_vector a, __m128i count) { return _mm256_sra_epi32(a, count); }
 inline simd_vector unpack_low_16(simd_vector a, simd_vector b) { return _mm256_unpacklo_epi16(a, b); }
@@ -52,12 +49,6 @@ inline simd_vector unpack_high_16(simd_vector a, simd_vector b) { return _mm256_
 inline simd_vector unpack_low_32(simd_vector a, simd_vector b) { return _mm256_unpacklo_epi32(a, b); }
 inline simd_vector unpack_high_32(simd_vector a, simd_vector b) { return _mm256_unpackhi_epi32(a, b); }
 inline simd_vector set_16(int16_t value) { return _mm256_set1_epi16(value); }
-inline simd_floats as_floats(simd_vector a) { return _mm256_castsi256_ps(a); }
-inline simd_vector as_integers(simd_floats a) { return _mm256_castps_si256(a); }
-template <int Order>
-inline simd_floats shuffle(simd_floats a, simd_floats b) {
-    return _mm256_shuffle_ps(a, b, Order);
-}
 
 /* ---- Output ---- */
 /* 128-bit lane `part` of a vector: pixels 8 part .. 8 part + 7 of a normalized strip. */

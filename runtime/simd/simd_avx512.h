@@ -17,7 +17,7 @@
 #include <immintrin.h>
 #endif
 
-#include "simd/simd_128.h"
+#include "simd/simd_256.h"
 
 namespace {
 
@@ -273,6 +273,130 @@ inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count
     _mm512_mask_storeu_epi64(sums, present,
                              _mm512_add_epi64(_mm512_maskz_loadu_epi64(present, sums), values));
 }
+
+/* ---- The 512-bit operations of the continuous kernels (continuous_point_vector.h): 16 lanes of 32 bits,
+   8 of 64 bits or 32 of 16 bits; the comparisons give one mask bit per lane ---- */
+typedef __m512i vector_512;
+typedef __mmask16 mask_16;
+typedef __mmask8 mask_8;
+
+inline vector_512 load_16x32(const uint32_t *at) { return _mm512_loadu_si512(at); }
+DSN_SIMD_INLINE void store_16x32(uint32_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
+/* Lane k: the 32 bits at base + Scale offsets[k] bytes where mask bit k is set, else 0. */
+template <int Scale>
+DSN_SIMD_INLINE vector_512 gather_masked_32(const void *base, vector_512 offsets, mask_16 mask) {
+    return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), mask, offsets, base, Scale);
+}
+/* 64-bit lane k: the 64 bits at base + Scale offsets[k] bytes where mask bit k is set, else 0. */
+template <int Scale>
+DSN_SIMD_INLINE vector_512 gather_masked_64(const void *base, vector_256 offsets, mask_8 mask) {
+    return _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), mask, offsets, base, Scale);
+}
+
+DSN_SIMD_INLINE vector_512 zero_512() { return _mm512_setzero_si512(); }
+inline vector_512 set_16x32(uint32_t value) { return _mm512_set1_epi32(static_cast<int>(value)); }
+/* The lanes in order, lane 0 first. */
+DSN_SIMD_INLINE vector_512 set_lanes_16x32(int32_t lane_0, int32_t lane_1, int32_t lane_2, int32_t lane_3,
+                                           int32_t lane_4, int32_t lane_5, int32_t lane_6, int32_t lane_7,
+                                           int32_t lane_8, int32_t lane_9, int32_t lane_10, int32_t lane_11,
+                                           int32_t lane_12, int32_t lane_13, int32_t lane_14,
+                                           int32_t lane_15) {
+    return _mm512_setr_epi32(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7, lane_8, lane_9,
+                             lane_10, lane_11, lane_12, lane_13, lane_14, lane_15);
+}
+/* The 256 bits in both halves. */
+DSN_SIMD_INLINE vector_512 broadcast_256(vector_256 value) { return _mm512_broadcast_i64x4(value); }
+DSN_SIMD_INLINE vector_256 low_256(vector_512 a) { return _mm512_castsi512_si256(a); }
+DSN_SIMD_INLINE vector_256 high_256(vector_512 a) { return _mm512_extracti64x4_epi64(a, 1); }
+
+DSN_SIMD_INLINE vector_512 bitwise_and(vector_512 a, vector_512 b) { return _mm512_and_si512(a, b); }
+DSN_SIMD_INLINE vector_512 bitwise_or(vector_512 a, vector_512 b) { return _mm512_or_si512(a, b); }
+DSN_SIMD_INLINE vector_512 bitwise_xor(vector_512 a, vector_512 b) { return _mm512_xor_si512(a, b); }
+/* (a & mask) | b, in one instruction. */
+DSN_SIMD_INLINE vector_512 masked_or(vector_512 a, vector_512 b, vector_512 mask) {
+    return _mm512_ternarylogic_epi32(a, b, mask, 0xEC);
+}
+/* The 16-bit shifts take their count as a constant (GCC and Clang disagree on the count's signedness). */
+template <int Count>
+DSN_SIMD_INLINE vector_512 shift_left_16(vector_512 a) {
+    return _mm512_slli_epi16(a, Count);
+}
+template <int Count>
+DSN_SIMD_INLINE vector_512 shift_right_arithmetic_16(vector_512 a) {
+    return _mm512_srai_epi16(a, Count);
+}
+DSN_SIMD_INLINE vector_512 shift_left_32(vector_512 a, uint32_t count) { return _mm512_slli_epi32(a, count); }
+/* Every lane by the same count, the low 64 bits of `count` (shift_count). */
+DSN_SIMD_INLINE vector_512 shift_left_32_by(vector_512 a, vector_128 count) {
+    return _mm512_sll_epi32(a, count);
+}
+DSN_SIMD_INLINE vector_512 shift_right_logical_32(vector_512 a, uint32_t count) {
+    return _mm512_srli_epi32(a, count);
+}
+DSN_SIMD_INLINE vector_512 shift_right_arithmetic_32(vector_512 a, uint32_t count) {
+    return _mm512_srai_epi32(a, count);
+}
+DSN_SIMD_INLINE vector_512 shift_right_logical_64(vector_512 a, uint32_t count) {
+    return _mm512_srli_epi64(a, count);
+}
+
+/* Arithmetic modulo 2^16, 2^32 or 2^64. */
+DSN_SIMD_INLINE vector_512 subtract_16(vector_512 a, vector_512 b) { return _mm512_sub_epi16(a, b); }
+DSN_SIMD_INLINE vector_512 subtract_32(vector_512 a, vector_512 b) { return _mm512_sub_epi32(a, b); }
+DSN_SIMD_INLINE vector_512 multiply_32(vector_512 a, vector_512 b) { return _mm512_mullo_epi32(a, b); }
+/* a + b in the lanes of mask, a in the others. */
+DSN_SIMD_INLINE vector_512 add_32_where(mask_16 mask, vector_512 a, vector_512 b) {
+    return _mm512_mask_add_epi32(a, mask, a, b);
+}
+DSN_SIMD_INLINE vector_512 add_64(vector_512 a, vector_512 b) { return _mm512_add_epi64(a, b); }
+/* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
+DSN_SIMD_INLINE vector_512 multiply_even_32(vector_512 a, vector_512 b) { return _mm512_mul_epi32(a, b); }
+
+/* Comparisons of unsigned 32-bit lanes; `within`: only the lanes of that mask, the others 0. */
+DSN_SIMD_INLINE mask_16 less_unsigned_32(vector_512 a, vector_512 b) { return _mm512_cmplt_epu32_mask(a, b); }
+DSN_SIMD_INLINE mask_16 less_equal_unsigned_32(vector_512 a, vector_512 b) {
+    return _mm512_cmple_epu32_mask(a, b);
+}
+DSN_SIMD_INLINE mask_16 less_equal_unsigned_32(mask_16 within, vector_512 a, vector_512 b) {
+    return _mm512_mask_cmple_epu32_mask(within, a, b);
+}
+DSN_SIMD_INLINE mask_16 greater_unsigned_32(vector_512 a, vector_512 b) {
+    return _mm512_cmpgt_epu32_mask(a, b);
+}
+DSN_SIMD_INLINE mask_16 greater_equal_unsigned_32(vector_512 a, vector_512 b) {
+    return _mm512_cmpge_epu32_mask(a, b);
+}
+DSN_SIMD_INLINE mask_16 greater_equal_unsigned_32(mask_16 within, vector_512 a, vector_512 b) {
+    return _mm512_mask_cmpge_epu32_mask(within, a, b);
+}
+
+/* b in the 32-bit lanes of mask, a in the others. */
+DSN_SIMD_INLINE vector_512 blend_32(mask_16 mask, vector_512 a, vector_512 b) {
+    return _mm512_mask_blend_epi32(mask, a, b);
+}
+/* The even 16-bit lanes of a, the odd ones of b. */
+DSN_SIMD_INLINE vector_512 blend_odd_16(vector_512 a, vector_512 b) {
+    return _mm512_mask_blend_epi16(0xAAAAAAAAu, a, b);
+}
+/* Lane k: lane order[k] (its low 4 bits) of a. */
+DSN_SIMD_INLINE vector_512 permute_32(vector_512 a, vector_512 order) {
+    return _mm512_permutexvar_epi32(order, a);
+}
+/* Lane k: lane order[k] (its low 5 bits) of first's lanes followed by second's. */
+DSN_SIMD_INLINE vector_512 permute_32_of_two(vector_512 first, vector_512 order, vector_512 second) {
+    return _mm512_permutex2var_epi32(first, order, second);
+}
+/* permute_32_of_two in the lanes of mask, 0 in the others. */
+DSN_SIMD_INLINE vector_512 permute_32_of_two_or_zero(mask_16 mask, vector_512 first, vector_512 order,
+                                                     vector_512 second) {
+    return _mm512_maskz_permutex2var_epi32(mask, first, order, second);
+}
+/* The lanes of mask packed to the front, in order, zeros after. */
+DSN_SIMD_INLINE vector_512 compress_32(mask_16 mask, vector_512 a) {
+    return _mm512_maskz_compress_epi32(mask, a);
+}
+/* 16 bytes, unsigned, widened into 32-bit lanes. */
+DSN_SIMD_INLINE vector_512 widen_bytes_16x32(vector_128 bytes) { return _mm512_cvtepu8_epi32(bytes); }
 
 } // namespace
 

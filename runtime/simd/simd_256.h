@@ -1,0 +1,112 @@
+/* runtime/simd/simd_256.h - the 256-bit operations the AVX2 and the AVX-512 copies share: the strip path's
+   AVX2 vectors (simd_avx2.h), and the 8 lanes of the vector continuous and filtered kernels
+   (continuous_lanes.h, continuous_point_vector.h), which the AVX-512 copy runs too, for the last 8 candidates
+   of a visit. Included by simd_avx2.h and simd_avx512.h. */
+#ifndef DSN_SIMD_256_H
+#define DSN_SIMD_256_H
+
+#include <immintrin.h>
+
+#include "simd/simd_128.h"
+
+namespace {
+
+typedef __m256i vector_256; /* 8 lanes of 32 bits, 4 of 64 bits or 16 of 16 bits */
+typedef __m256 floats_256;
+
+/* ---- Memory ---- */
+inline vector_256 load_8x32(const uint32_t *at) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
+}
+inline void store_8x32(uint32_t *at, vector_256 value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
+}
+/* The lanes whose mask lane has its top bit set, the others 0 (and not read). */
+DSN_SIMD_INLINE vector_256 load_masked_8x32(const uint32_t *at, vector_256 mask) {
+    return _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(at)), mask);
+}
+/* Lane k: the 32 bits at base + Scale offsets[k] bytes where mask's lane k has its top bit set, else 0. */
+template <int Scale>
+DSN_SIMD_INLINE vector_256 gather_masked_32(const void *base, vector_256 offsets, vector_256 mask) {
+    return _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), static_cast<const int *>(base), offsets, mask,
+                                       Scale);
+}
+
+/* ---- Constants ---- */
+DSN_SIMD_INLINE vector_256 zero_256() { return _mm256_setzero_si256(); }
+inline vector_256 set_8x32(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
+DSN_SIMD_INLINE vector_256 set_4x64(uint64_t value) {
+    return _mm256_set1_epi64x(static_cast<long long>(value));
+}
+/* The lanes in order, lane 0 first. */
+DSN_SIMD_INLINE vector_256 set_lanes_8x32(int32_t lane_0, int32_t lane_1, int32_t lane_2, int32_t lane_3,
+                                          int32_t lane_4, int32_t lane_5, int32_t lane_6, int32_t lane_7) {
+    return _mm256_setr_epi32(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7);
+}
+
+/* ---- Bits ---- */
+DSN_SIMD_INLINE vector_256 bitwise_and(vector_256 a, vector_256 b) { return _mm256_and_si256(a, b); }
+DSN_SIMD_INLINE vector_256 bitwise_or(vector_256 a, vector_256 b) { return _mm256_or_si256(a, b); }
+DSN_SIMD_INLINE vector_256 bitwise_xor(vector_256 a, vector_256 b) { return _mm256_xor_si256(a, b); }
+DSN_SIMD_INLINE vector_256 shift_left_32(vector_256 a, uint32_t count) {
+    return _mm256_slli_epi32(a, static_cast<int>(count));
+}
+/* Every lane by the same count, the low 64 bits of `count` (shift_count). */
+DSN_SIMD_INLINE vector_256 shift_left_32_by(vector_256 a, vector_128 count) {
+    return _mm256_sll_epi32(a, count);
+}
+DSN_SIMD_INLINE vector_256 shift_right_logical_32(vector_256 a, uint32_t count) {
+    return _mm256_srli_epi32(a, static_cast<int>(count));
+}
+/* Lane k by counts' lane k. */
+DSN_SIMD_INLINE vector_256 shift_right_logical_32_per_lane(vector_256 a, vector_256 counts) {
+    return _mm256_srlv_epi32(a, counts);
+}
+DSN_SIMD_INLINE vector_256 shift_right_arithmetic_32(vector_256 a, uint32_t count) {
+    return _mm256_srai_epi32(a, static_cast<int>(count));
+}
+DSN_SIMD_INLINE vector_256 shift_right_logical_64(vector_256 a, uint32_t count) {
+    return _mm256_srli_epi64(a, static_cast<int>(count));
+}
+
+/* ---- Arithmetic (modulo 2^32 or 2^64) ---- */
+DSN_SIMD_INLINE vector_256 add_32(vector_256 a, vector_256 b) { return _mm256_add_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 subtract_32(vector_256 a, vector_256 b) { return _mm256_sub_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 multiply_32(vector_256 a, vector_256 b) { return _mm256_mullo_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 add_64(vector_256 a, vector_256 b) { return _mm256_add_epi64(a, b); }
+/* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
+DSN_SIMD_INLINE vector_256 multiply_even_32(vector_256 a, vector_256 b) { return _mm256_mul_epi32(a, b); }
+/* Pairs of 16-bit lanes multiplied (signed) and summed into 32-bit lanes. */
+DSN_SIMD_INLINE vector_256 madd_16(vector_256 a, vector_256 b) { return _mm256_madd_epi16(a, b); }
+DSN_SIMD_INLINE vector_256 minimum_unsigned_32(vector_256 a, vector_256 b) { return _mm256_min_epu32(a, b); }
+
+/* ---- Comparisons: all ones where true ---- */
+DSN_SIMD_INLINE vector_256 equal_32(vector_256 a, vector_256 b) { return _mm256_cmpeq_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 greater_32(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 greater_64(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi64(a, b); }
+
+/* ---- Lanes ---- */
+/* The even 16-bit lanes of a, the odd ones of b. */
+DSN_SIMD_INLINE vector_256 blend_odd_16(vector_256 a, vector_256 b) { return _mm256_blend_epi16(a, b, 0xAA); }
+/* Lane k: lane order[k] (its low 3 bits) of a, across the whole vector. */
+DSN_SIMD_INLINE vector_256 permute_32(vector_256 a, vector_256 order) {
+    return _mm256_permutevar8x32_epi32(a, order);
+}
+/* 64-bit lane k: lane (Order >> 2 k) & 3 of a. */
+template <int Order>
+DSN_SIMD_INLINE vector_256 permute_64(vector_256 a) {
+    return _mm256_permute4x64_epi64(a, Order);
+}
+/* 8 bytes (the low 64 bits of bytes), unsigned, widened into 32-bit lanes. */
+DSN_SIMD_INLINE vector_256 widen_bytes_8x32(vector_128 bytes) { return _mm256_cvtepu8_epi32(bytes); }
+DSN_SIMD_INLINE floats_256 as_floats(vector_256 a) { return _mm256_castsi256_ps(a); }
+DSN_SIMD_INLINE vector_256 as_integers(floats_256 a) { return _mm256_castps_si256(a); }
+/* Per 128-bit lane: two 32-bit lanes of a, then two of b, by Order as _MM_SHUFFLE's. */
+template <int Order>
+DSN_SIMD_INLINE floats_256 shuffle(floats_256 a, floats_256 b) {
+    return _mm256_shuffle_ps(a, b, Order);
+}
+
+} // namespace
+
+#endif /* DSN_SIMD_256_H */
