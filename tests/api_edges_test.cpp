@@ -243,7 +243,11 @@ TEST_CASE("every continuous and filtered point evaluator zeroes its output on ev
         CAPTURE(refused.name);
         Guarded<int32_t> fixed(refused.channels), filtered_fixed(refused.channels);
         Guarded<float> real(refused.channels), sample(refused.channels), filtered_real(refused.channels);
+        Guarded<uint8_t> bytes(refused.channels), filtered_bytes(refused.channels);
         CHECK(dsn_continuous_point_fixed(refused.noise, 7, -9, fixed.data()) == refused.error);
+        CHECK(dsn_continuous_point_u8(refused.noise, 7, -9, bytes.data()) == refused.error);
+        CHECK(dsn_filtered_point_u8(refused.noise, 7, -9, &footprint, filtered_bytes.data()) ==
+              refused.error);
         CHECK(dsn_continuous_point_float(refused.noise, 0.5, 2.5, real.data()) == refused.error);
         CHECK(dsn_sample(refused.noise, 0.5f, 2.5f, sample.data()) == refused.error);
         CHECK(dsn_filtered_point_fixed(refused.noise, 7, -9, &footprint, filtered_fixed.data()) ==
@@ -255,6 +259,8 @@ TEST_CASE("every continuous and filtered point evaluator zeroes its output on ev
         CHECK(sample.zeroed_exactly(refused.channels));
         CHECK(filtered_fixed.zeroed_exactly(refused.channels));
         CHECK(filtered_real.zeroed_exactly(refused.channels));
+        CHECK(bytes.zeroed_exactly(refused.channels));
+        CHECK(filtered_bytes.zeroed_exactly(refused.channels));
     }
     // A footprint missing or refused: every channel of a configured noise.
     const dsn_noise *noise = &refusals.bilinear.noise;
@@ -355,12 +361,16 @@ TEST_CASE("the batches zero their count points on every error, and no further") 
                              void *batch_scratch, size_t scratch_size, int expected, size_t zeroed) {
         Guarded<int32_t> fixed(zeroed);
         Guarded<float> real(zeroed);
+        Guarded<uint8_t> bytes(zeroed);
         CHECK(dsn_continuous_batch_fixed(noise, batch_xs, ys, count, fixed.data(), batch_scratch,
                                          scratch_size) == expected);
         CHECK(dsn_continuous_batch_float(noise, batch_real_xs, real_ys, count, real.data(), batch_scratch,
                                          scratch_size) == expected);
+        CHECK(dsn_continuous_batch_u8(noise, batch_xs, ys, count, bytes.data(), batch_scratch,
+                                      scratch_size) == expected);
         CHECK(fixed.zeroed_exactly(zeroed));
         CHECK(real.zeroed_exactly(zeroed));
+        CHECK(bytes.zeroed_exactly(zeroed));
     };
     for (const Refusals::Case &refused : refusals.continuous_cases()) {
         CAPTURE(refused.name);

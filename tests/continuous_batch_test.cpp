@@ -21,15 +21,15 @@ namespace {
 
 const int64_t one = int64_t(1) << 32;
 
-// The batch (fixed and float), in every kernel this CPU runs, against the per-point functions of the default
-// kernel; returns
-// the number of values that differ.
+// The batch (fixed, float and u8), in every kernel this CPU runs, against the per-point functions of the
+// default kernel; returns the number of values that differ.
 size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
                          const std::vector<int64_t> &ys) {
     const uint32_t channels = dsn_noise_channels(&noise);
     const uint32_t count = uint32_t(xs.size());
     std::vector<int32_t> expected(size_t(count) * channels);
     std::vector<float> expected_float(expected.size());
+    std::vector<uint8_t> expected_u8(expected.size());
     std::vector<double> xs_double(count), ys_double(count);
     dsn_noise reference = noise; // the default kernel's per-point evaluator
     dsn_state(&reference)->tile_kernel = DSN_KERNEL_DEFAULT;
@@ -41,6 +41,11 @@ size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
         ys_double[k] = double(ys[k] >> 12) / double(1 << 20);
         REQUIRE(dsn_continuous_point_float(&reference, xs_double[k], ys_double[k],
                                            &expected_float[size_t(k) * channels]) == DSN_OK);
+        REQUIRE(dsn_continuous_point_u8(&reference, xs[k], ys[k], &expected_u8[size_t(k) * channels]) ==
+                DSN_OK);
+        for (uint32_t c = 0; c < channels; c++)
+            REQUIRE(expected_u8[size_t(k) * channels + c] ==
+                    dsn_fixed_to_u8(expected[size_t(k) * channels + c]));
     }
     const size_t scratch_size = dsn_continuous_batch_scratch_size(&noise);
     REQUIRE(scratch_size > 0);
@@ -53,13 +58,17 @@ size_t batch_differences(const dsn_noise &noise, const std::vector<int64_t> &xs,
         CAPTURE(kernel);
         std::vector<int32_t> batch(expected.size(), 0x5A5A5A5A);
         std::vector<float> batch_float(expected.size(), -1.0f);
+        std::vector<uint8_t> batch_u8(expected.size(), 0x5A);
         REQUIRE(dsn_continuous_batch_fixed(&copy, xs.data(), ys.data(), count, batch.data(), scratch,
                                            scratch_size) == DSN_OK);
         REQUIRE(dsn_continuous_batch_float(&copy, xs_double.data(), ys_double.data(), count,
                                            batch_float.data(), scratch, scratch_size) == DSN_OK);
+        REQUIRE(dsn_continuous_batch_u8(&copy, xs.data(), ys.data(), count, batch_u8.data(), scratch,
+                                        scratch_size) == DSN_OK);
         for (size_t i = 0; i < expected.size(); i++) {
             differences += batch[i] != expected[i];
             differences += std::memcmp(&batch_float[i], &expected_float[i], sizeof(float)) != 0;
+            differences += batch_u8[i] != expected_u8[i];
         }
     }
     return differences;
@@ -162,6 +171,7 @@ TEST_CASE("continuous batch: errors, and the output zeroed on an error") {
     const double xs_double[2] = {0.0, 1.0}, ys_double[2] = {0.5, -1.0};
     int32_t out[6] = {7, 7, 7, 7, 7, 7};
     float out_float[6] = {7, 7, 7, 7, 7, 7};
+    uint8_t out_u8[6] = {7, 7, 7, 7, 7, 7};
     CHECK(dsn_continuous_batch_fixed(n, xs, ys, 0, nullptr, nullptr, 0) == DSN_OK);
     CHECK(dsn_continuous_batch_fixed(n, nullptr, ys, 2, out, scratch.data(), scratch_size) == DSN_ERR_NULL);
     CHECK(dsn_continuous_batch_fixed(n, xs, nullptr, 2, out, scratch.data(), scratch_size) == DSN_ERR_NULL);
@@ -170,6 +180,7 @@ TEST_CASE("continuous batch: errors, and the output zeroed on an error") {
     CHECK(dsn_continuous_batch_fixed(n, xs, ys, 2, out, scratch.data(), scratch_size - 1) == DSN_ERR_SCRATCH);
     CHECK(dsn_continuous_batch_float(n, xs_double, ys_double, 2, out_float, scratch.data(),
                                      scratch_size - 1) == DSN_ERR_SCRATCH);
+    CHECK(dsn_continuous_batch_u8(n, xs, ys, 2, out_u8, scratch.data(), scratch_size - 1) == DSN_ERR_SCRATCH);
     CHECK(dsn_continuous_batch_fixed(nullptr, xs, ys, 2, out, scratch.data(), scratch_size) == DSN_ERR_NULL);
     dsn_noise zeroed;
     std::memset(&zeroed, 0, sizeof zeroed);
@@ -180,6 +191,12 @@ TEST_CASE("continuous batch: errors, and the output zeroed on an error") {
     // Zeroed, not left as it was (api_edges_test.cpp checks how far, error by error).
     for (int i = 0; i < 6; i++) CHECK(out[i] == 0);
     for (int i = 0; i < 6; i++) CHECK(out_float[i] == 0.0f);
+    for (int i = 0; i < 6; i++) CHECK(out_u8[i] == 0);
+    // The per-point u8 function's errors zero its output likewise.
+    uint8_t point_u8[3] = {7, 7, 7};
+    CHECK(dsn_continuous_point_u8(n, xs[0], ys[0], nullptr) == DSN_ERR_NULL);
+    CHECK(dsn_continuous_point_u8(&zeroed, xs[0], ys[0], point_u8) == DSN_ERR_NULL);
+    CHECK(point_u8[0] == 0);
     // A lattice-baked asset is refused as by the per-point functions.
     dsn::AssetFields lattice = random_texton_asset(1, 3, 8, 2);
     lattice.interpolation = DSN_INTERPOLATION_LATTICE;

@@ -322,12 +322,15 @@ TEST_CASE("filtered: a tile is its points, the fade ends on the exact mean, erro
                         const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
                                                   j * uint64_t(grid.row_step_y));
                         int32_t point[3];
+                        uint8_t point_u8[3];
                         REQUIRE(dsn_filtered_point_fixed(&loaded.noise, x, y, &f, point) == DSN_OK);
+                        REQUIRE(dsn_filtered_point_u8(&loaded.noise, x, y, &f, point_u8) == DSN_OK);
                         for (uint32_t c = 0; c < channels; c++) {
                             const size_t at = (j * width + i) * channels + c;
                             differences += tile[at] != point[c];
                             differences += tile_float[at] != dsn_fixed_to_float(point[c]);
                             differences += tile_u8[at] != dsn_fixed_to_u8(point[c]);
+                            differences += point_u8[c] != dsn_fixed_to_u8(point[c]);
                         }
                     }
                 CHECK(differences == 0);
@@ -349,6 +352,10 @@ TEST_CASE("filtered: a tile is its points, the fade ends on the exact mean, erro
     float value = 1;
     CHECK(dsn_filtered_point_float(&strict.noise, 0, 0, &f, &value) == DSN_ERR_CONTINUOUS_MISMATCH);
     CHECK(value == 0);
+    uint8_t value_u8 = 1;
+    CHECK(dsn_filtered_point_u8(&strict.noise, 0, 0, &f, &value_u8) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK(value_u8 == 0);
+    CHECK(dsn_filtered_point_u8(&strict.noise, 0, 0, &f, nullptr) == DSN_ERR_NULL);
     LoadedNoise allowed(lattice, make_config(1, 30, 0, 0, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS));
     CHECK(dsn_filtered_point_fixed(&allowed.noise, 0, 0, &f, out) == DSN_OK);
     const dsn_grid grid{0, 0, q32(3), 0, 0, q32(3)};

@@ -427,6 +427,12 @@ int dsn_continuous_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, int
 /* The same from float64 coordinates (converted by dsn_coordinate_from_double), output as float
    (exactly fixed / 65536 rounded to float); the same errors. */
 int dsn_continuous_point_float(const dsn_noise *noise, double x, double y, float *out);
+/* The same at Q32.32 coordinates as 8-bit values (dsn_fixed_to_u8 of each fixed value); the same errors,
+   the same zeroed output. Not in the small build (DSN_SMALL_CODE), which has no byte of its 8 KB left for
+   it: convert dsn_continuous_point_fixed's values with dsn_fixed_to_u8 there. */
+#if !DSN_SMALL_CODE
+int dsn_continuous_point_u8(const dsn_noise *noise, int64_t x, int64_t y, uint8_t *out);
+#endif
 
 /* A regular grid of continuous points: pixel (i, j) is the point
    (origin_x + i * column_step_x + j * row_step_x, origin_y + i * column_step_y + j * row_step_y),
@@ -468,12 +474,13 @@ int dsn_continuous_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_
 
 /* ---- Batches of continuous points (a renderer's ray hits) ----
    DSN_CONTINUOUS_BATCH   default: 0 in the small build (DSN_SMALL_CODE), else 1. Like the configuration
-                          macros at the top, read when the runtime is compiled: 0 leaves the three batch
+                          macros at the top, read when the runtime is compiled: 0 leaves the four batch
                           functions below out of the runtime (and out of this header), so the small
                           build keeps its code size; call dsn_continuous_point_* in a loop there.
    Point k of a batch is (xs[k], ys[k]); out receives count * channels values, point k's channels at
    out[k * channels], exactly what the per-point function of the same type returns there (the float
-   variant: dsn_continuous_point_float, coordinates converted by dsn_coordinate_from_double). The points
+   variant: dsn_continuous_point_float, coordinates converted by dsn_coordinate_from_double; the u8
+   variant: dsn_continuous_point_u8, Q32.32 coordinates). The points
    may lie anywhere, in any order; where the CPU runs AVX2 (the copy init chose, as for tiles) the batch
    evaluates them on vectors: 8-bit textons with cells of side <= 16 (the usual densities) 8 points at a
    time (their cells, cell hashes, impulse counts and the first 16 impulses' positions of each cell across
@@ -495,6 +502,8 @@ int dsn_continuous_batch_fixed(const dsn_noise *noise, const int64_t *xs, const 
                                int32_t *out, void *scratch, size_t scratch_size);
 int dsn_continuous_batch_float(const dsn_noise *noise, const double *xs, const double *ys, uint32_t count,
                                float *out, void *scratch, size_t scratch_size);
+int dsn_continuous_batch_u8(const dsn_noise *noise, const int64_t *xs, const int64_t *ys, uint32_t count,
+                            uint8_t *out, void *scratch, size_t scratch_size);
 #endif
 
 /* ==== End of the continuous mode ===================================================================== */
@@ -604,6 +613,10 @@ int dsn_filtered_point_fixed(const dsn_noise *noise, int64_t x, int64_t y, const
    65536 rounded to float); the same errors. */
 int dsn_filtered_point_float(const dsn_noise *noise, double x, double y, const dsn_footprint *footprint,
                              float *out);
+/* The same at Q32.32 coordinates as 8-bit values (dsn_fixed_to_u8 of each fixed value); the same errors,
+   the same zeroed output. */
+int dsn_filtered_point_u8(const dsn_noise *noise, int64_t x, int64_t y, const dsn_footprint *footprint,
+                          uint8_t *out);
 
 /* A grid tile (dsn_grid, as dsn_continuous_tile_fixed) filtered by the grid's own footprint: its column
    and row steps, with max_taps as in dsn_footprint. Exactly the per-point values of

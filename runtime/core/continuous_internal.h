@@ -64,17 +64,18 @@ int dsn_internal_continuous_check(const dsn_noise_state *noise);
    (continuous_point.cpp). */
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
 
-/* dsn_continuous_point_float at Q32.32 coordinates: the errors and the zeroed output of
-   dsn_continuous_point_fixed, the values as float (continuous_point.cpp; dsn_sample calls it too). */
-int dsn_internal_continuous_point_float(const dsn_noise *noise, int64_t x, int64_t y, float *out);
+/* The continuous point at Q32.32 coordinates as `kind` (float or u8): the errors and the zeroed output of
+   dsn_continuous_point_fixed, the values converted (continuous_point.cpp; dsn_sample calls it too). */
+int dsn_internal_continuous_point_as(const dsn_noise *noise, int64_t x, int64_t y, void *out,
+                                     dsn_output_kind kind);
 
 #if DSN_GRADIENTS
-/* The raw sums of the point (x, y) for its gradient (continuous_point.cpp), per channel, modulo 2^64:
-   value[c] the bilinear texton's (Q.32, what dsn_internal_continuous_point normalizes), slope_x[c] and
-   slope_y[c] its partial derivatives per 2^-16 texel (bilinear_read.h's add_slopes). */
 /* values[0 .. 2]: the continuous gradient's value, dx and dy at (x, y), DSN_MAX_CHANNELS apart, Q16.16,
    mapped (continuous_gradient.cpp). */
 void dsn_internal_continuous_gradient(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *values);
+/* The raw sums of the point (x, y) for its gradient (continuous_point.cpp), per channel, modulo 2^64:
+   value[c] the bilinear texton's (Q.32, what dsn_internal_continuous_point normalizes), slope_x[c] and
+   slope_y[c] its partial derivatives per 2^-16 texel (bilinear_read.h's add_slopes). */
 void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                     uint64_t *slope_x, uint64_t *slope_y);
 #endif

@@ -98,6 +98,55 @@ int check_batch(const dsn_noise_state *noise, const void *xs, const void *ys, ui
     return DSN_OK;
 }
 
+/* A chunk's coordinates as the kernels read them: Q32.32 ones where they are, float64 ones converted into
+   `chunk` (dsn_coordinate_from_double). */
+const int64_t *chunk_coordinates(const int64_t *values, uint32_t first, uint32_t, int64_t *) {
+    return values + first;
+}
+const int64_t *chunk_coordinates(const double *values, uint32_t first, uint32_t points, int64_t *chunk) {
+    for (uint32_t k = 0; k < points; k++) chunk[k] = dsn_coordinate_from_double(values[first + k]);
+    return chunk;
+}
+/* The points of a chunk: all of them at once where neither the coordinates nor the output are converted. */
+uint32_t chunk_points(const int64_t *, uint32_t count, dsn_output_kind kind) {
+    return kind == dsn_output_fixed ? count : batch_chunk_points;
+}
+uint32_t chunk_points(const double *, uint32_t, dsn_output_kind) { return batch_chunk_points; }
+
+/* Every batch function: the checks, the scratch, then the kernel; fixed output straight into `out`, the
+   other kinds (and float64 coordinates) a chunk at a time through the stack (under 2 KB). */
+template <typename Coordinate>
+int batch_as(const dsn_noise_state *noise, const Coordinate *xs, const Coordinate *ys, uint32_t count,
+             void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
+    const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
+    if (err != DSN_OK) return dsn_output_error(err, noise, out, kind, count);
+    if (count == 0) return DSN_OK;
+    unsigned char *aligned = aligned_scratch(scratch);
+    const bool table = quad_table_used(noise, count);
+    void *work = prepare_scratch(noise, aligned, table);
+    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
+    dsn_continuous_batch_entry *batch = dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch;
+    const uint32_t channels = noise->asset.channels;
+    int64_t chunk_x[batch_chunk_points], chunk_y[batch_chunk_points];
+    int32_t fixed[batch_chunk_points * DSN_MAX_CHANNELS];
+    const uint32_t chunk = chunk_points(xs, count, kind);
+    for (uint32_t first = 0; first < count; first += chunk) {
+        const uint32_t points = count - first < chunk ? count - first : chunk;
+        const int64_t *point_xs = chunk_coordinates(xs, first, points, chunk_x);
+        const int64_t *point_ys = chunk_coordinates(ys, first, points, chunk_y);
+        if (kind == dsn_output_fixed) {
+            batch(noise, quads, point_xs, point_ys, points,
+                  static_cast<int32_t *>(out) + size_t(first) * channels, work);
+            continue;
+        }
+        batch(noise, quads, point_xs, point_ys, points, fixed, work);
+        for (uint32_t k = 0; k < points; k++)
+            dsn_store_pixel(out, kind, static_cast<size_t>(first + k) * channels, fixed + k * channels,
+                            channels);
+    }
+    return DSN_OK;
+}
+
 } // namespace
 
 extern "C" {
@@ -109,45 +158,17 @@ size_t dsn_continuous_batch_scratch_size(const dsn_noise *handle) {
 
 int dsn_continuous_batch_fixed(const dsn_noise *handle, const int64_t *xs, const int64_t *ys, uint32_t count,
                                int32_t *out, void *scratch, size_t scratch_size) {
-    const dsn_noise_state *noise = dsn_state(handle);
-    const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
-    if (err != DSN_OK) return dsn_output_error(err, noise, out, dsn_output_fixed, count);
-    if (err != DSN_OK || count == 0) return err;
-    unsigned char *aligned = aligned_scratch(scratch);
-    const bool table = quad_table_used(noise, count);
-    void *work = prepare_scratch(noise, aligned, table);
-    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
-    dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch(noise, quads, xs, ys, count, out, work);
-    return DSN_OK;
+    return batch_as(dsn_state(handle), xs, ys, count, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 int dsn_continuous_batch_float(const dsn_noise *handle, const double *xs, const double *ys, uint32_t count,
                                float *out, void *scratch, size_t scratch_size) {
-    const dsn_noise_state *noise = dsn_state(handle);
-    const int err = check_batch(noise, xs, ys, count, out, scratch, scratch_size);
-    if (err != DSN_OK) return dsn_output_error(err, noise, out, dsn_output_float, count);
-    if (err != DSN_OK || count == 0) return err;
-    unsigned char *aligned = aligned_scratch(scratch);
-    const bool table = quad_table_used(noise, count);
-    void *work = prepare_scratch(noise, aligned, table);
-    const uint32_t *quads = table ? static_cast<const uint32_t *>(static_cast<void *>(aligned)) : 0;
-    dsn_continuous_batch_entry *batch = dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch;
-    const uint32_t channels = noise->asset.channels;
-    /* Converted a chunk at a time on the stack (under 2 KB). */
-    int64_t chunk_x[batch_chunk_points], chunk_y[batch_chunk_points];
-    int32_t fixed[batch_chunk_points * DSN_MAX_CHANNELS];
-    for (uint32_t first = 0; first < count; first += batch_chunk_points) {
-        const uint32_t points = count - first < batch_chunk_points ? count - first : batch_chunk_points;
-        for (uint32_t k = 0; k < points; k++) {
-            chunk_x[k] = dsn_coordinate_from_double(xs[first + k]);
-            chunk_y[k] = dsn_coordinate_from_double(ys[first + k]);
-        }
-        batch(noise, quads, chunk_x, chunk_y, points, fixed, work);
-        for (uint32_t k = 0; k < points; k++)
-            dsn_store_pixel(out, dsn_output_float, static_cast<size_t>(first + k) * channels,
-                            fixed + k * channels, channels);
-    }
-    return DSN_OK;
+    return batch_as(dsn_state(handle), xs, ys, count, out, dsn_output_float, scratch, scratch_size);
+}
+
+int dsn_continuous_batch_u8(const dsn_noise *handle, const int64_t *xs, const int64_t *ys, uint32_t count,
+                            uint8_t *out, void *scratch, size_t scratch_size) {
+    return batch_as(dsn_state(handle), xs, ys, count, out, dsn_output_u8, scratch, scratch_size);
 }
 
 } // extern "C"

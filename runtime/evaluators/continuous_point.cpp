@@ -423,11 +423,12 @@ int dsn_internal_continuous_check(const dsn_noise_state *noise) {
     return DSN_OK;
 }
 
-int dsn_internal_continuous_point_float(const dsn_noise *handle, int64_t x, int64_t y, float *out) {
+int dsn_internal_continuous_point_as(const dsn_noise *handle, int64_t x, int64_t y, void *out,
+                                     dsn_output_kind kind) {
     int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
     if (out == 0) return DSN_ERR_NULL;
     const int err = dsn_continuous_point_fixed(handle, x, y, fixed);
-    dsn_store_pixel(out, dsn_output_float, 0, fixed, values_written(dsn_state(handle)));
+    dsn_store_pixel(out, kind, 0, fixed, values_written(dsn_state(handle)));
     return err;
 }
 
@@ -448,8 +449,14 @@ int dsn_continuous_point_fixed(const dsn_noise *handle, int64_t x, int64_t y, in
 }
 
 int dsn_continuous_point_float(const dsn_noise *handle, double x, double y, float *out) {
-    return dsn_internal_continuous_point_float(handle, dsn_coordinate_from_double(x),
-                                               dsn_coordinate_from_double(y), out);
+    return dsn_internal_continuous_point_as(handle, dsn_coordinate_from_double(x),
+                                            dsn_coordinate_from_double(y), out, dsn_output_float);
 }
+
+#if !DSN_SMALL_CODE
+int dsn_continuous_point_u8(const dsn_noise *handle, int64_t x, int64_t y, uint8_t *out) {
+    return dsn_internal_continuous_point_as(handle, x, y, out, dsn_output_u8);
+}
+#endif
 
 } // extern "C"

@@ -188,6 +188,16 @@ namespace {
 
 uint32_t values_written(const dsn_noise_state *noise) { return dsn_values_per_point(noise); }
 
+/* dsn_filtered_point_fixed's values, errors and zeroed output as `kind` (float or u8). */
+int filtered_point_as(const dsn_noise *handle, int64_t x, int64_t y, const dsn_footprint *footprint,
+                      void *out, dsn_output_kind kind) {
+    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = dsn_filtered_point_fixed(handle, x, y, footprint, fixed);
+    dsn_store_pixel(out, kind, 0, fixed, values_written(dsn_state(handle)));
+    return err;
+}
+
 } // namespace
 
 int dsn_internal_filtered_check(const dsn_noise_state *noise) { return dsn_internal_continuous_check(noise); }
@@ -265,12 +275,13 @@ int dsn_filtered_point_fixed(const dsn_noise *handle, int64_t x, int64_t y, cons
 
 int dsn_filtered_point_float(const dsn_noise *handle, double x, double y, const dsn_footprint *footprint,
                              float *out) {
-    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
-    if (out == 0) return DSN_ERR_NULL;
-    const int err = dsn_filtered_point_fixed(handle, dsn_coordinate_from_double(x),
-                                             dsn_coordinate_from_double(y), footprint, fixed);
-    dsn_store_pixel(out, dsn_output_float, 0, fixed, values_written(dsn_state(handle)));
-    return err;
+    return filtered_point_as(handle, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), footprint,
+                             out, dsn_output_float);
+}
+
+int dsn_filtered_point_u8(const dsn_noise *handle, int64_t x, int64_t y, const dsn_footprint *footprint,
+                          uint8_t *out) {
+    return filtered_point_as(handle, x, y, footprint, out, dsn_output_u8);
 }
 
 } // extern "C"

@@ -24,8 +24,8 @@ extern "C" int dsn_noise_load(dsn_noise *noise, const void *bytes, size_t size, 
 extern "C" int dsn_sample(const dsn_noise *noise, float x, float y, float *out) {
     /* dsn_continuous_point_float with the floats converted directly: dsn_coordinate_from_float(x) is
        dsn_coordinate_from_double(x) for every float, and no double arithmetic is needed. */
-    return dsn_internal_continuous_point_float(noise, dsn_coordinate_from_float(x),
-                                               dsn_coordinate_from_float(y), out);
+    return dsn_internal_continuous_point_as(noise, dsn_coordinate_from_float(x), dsn_coordinate_from_float(y),
+                                            out, dsn_output_float);
 }
 
 extern "C" int dsn_noise_mean_float(const dsn_noise *handle, float *out) {
