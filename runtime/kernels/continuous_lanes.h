@@ -20,7 +20,7 @@ inline vector_256 low_halves(vector_256 a, vector_256 b) {
 
 /* a < b as unsigned 64-bit lanes (AVX2 compares signed: both flipped by 2^63). */
 inline vector_256 below_64(vector_256 a, vector_256 b) {
-    const vector_256 sign = set_4x64(0x8000000000000000u);
+    const vector_256 sign = set_4x64(INT64_MIN);
     return greater_64(bitwise_xor(b, sign), bitwise_xor(a, sign));
 }
 

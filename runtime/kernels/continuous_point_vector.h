@@ -205,13 +205,16 @@ inline void impulse_bits_16(vector_512 fields, vector_512 fraction, vector_512 *
    top bits gathered by one movemask: bit i for impulse i of the first pair, 8 + i of the second. */
 inline uint32_t sift_two_pairs(vector_128 pairs, const FieldLanes &lanes, const CellAxis &x,
                                const CellAxis &y) {
-    const vector_128 halves = set_2x64(lanes.halves), tops = set_2x64(lanes.tops);
+    const vector_128 halves = set_2x64(static_cast<int64_t>(lanes.halves)),
+                     tops = set_2x64(static_cast<int64_t>(lanes.tops));
     const vector_128 halves_x = bitwise_and(pairs, halves),
                      halves_y = bitwise_and(shift_right_logical_64(pairs, 4), halves);
-    const vector_128 in_x = bitwise_and(subtract_64(bitwise_or(halves_x, tops), set_2x64(x.low_lanes)),
-                                        subtract_64(set_2x64(x.high_lanes), halves_x));
-    const vector_128 in_y = bitwise_and(subtract_64(bitwise_or(halves_y, tops), set_2x64(y.low_lanes)),
-                                        subtract_64(set_2x64(y.high_lanes), halves_y));
+    const vector_128 in_x =
+        bitwise_and(subtract_64(bitwise_or(halves_x, tops), set_2x64(static_cast<int64_t>(x.low_lanes))),
+                    subtract_64(set_2x64(static_cast<int64_t>(x.high_lanes)), halves_x));
+    const vector_128 in_y =
+        bitwise_and(subtract_64(bitwise_or(halves_y, tops), set_2x64(static_cast<int64_t>(y.low_lanes))),
+                    subtract_64(set_2x64(static_cast<int64_t>(y.high_lanes)), halves_y));
     return static_cast<uint32_t>(top_bits_of_bytes(bitwise_and(in_x, in_y)));
 }
 

@@ -21,45 +21,41 @@ namespace {
 
 /* 4 candidates' values; those of a group's last, partial vector where `present` (zeros elsewhere: no read
    past the list). */
-inline __m256i load_64(const int64_t *at, __m256i present, bool whole) {
-    const long long *from = static_cast<const long long *>(static_cast<const void *>(at));
-    return whole ? _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)))
-                 : _mm256_maskload_epi64(from, present);
+inline vector_256 load_64(const int64_t *at, vector_256 present, bool whole) {
+    return whole ? load_4x64(at) : load_masked_4x64(at, present);
 }
 
 /* The reach test of one axis for 4 candidates: u = c + start, in reach when u < limit, and the bracket's
    floor((u + 2^l) / 2^(l + 16)) (below 2^32 where in reach: (2 radius + 2) 2^16). */
-inline __m256i axis_offsets(__m256i c, __m256i start, __m256i limit, __m256i bias, __m128i shift,
-                            __m256i *in_reach) {
-    const __m256i u = _mm256_add_epi64(c, start);
-    *in_reach = _mm256_and_si256(*in_reach, below_64(u, limit));
-    return _mm256_srl_epi64(_mm256_add_epi64(u, bias), shift);
+inline vector_256 axis_offsets(vector_256 c, vector_256 start, vector_256 limit, vector_256 bias,
+                               vector_128 shift, vector_256 *in_reach) {
+    const vector_256 u = add_64(c, start);
+    *in_reach = bitwise_and(*in_reach, below_64(u, limit));
+    return shift_right_logical_64_by(add_64(u, bias), shift);
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* axis_offsets for 8 candidates on 512-bit vectors, all present: the offsets in 32-bit lanes. */
-inline __m256i axis_offsets_wide(const int64_t *at, __m512i start, __m512i limit, __m512i bias, __m128i shift,
-                                 __mmask8 *in_reach) {
-    const __m512i u = _mm512_add_epi64(_mm512_loadu_si512(at), start);
-    *in_reach = _mm512_mask_cmplt_epu64_mask(*in_reach, u, limit);
-    return _mm512_cvtepi64_epi32(_mm512_srl_epi64(_mm512_add_epi64(u, bias), shift));
+inline vector_256 axis_offsets_wide(const int64_t *at, vector_512 start, vector_512 limit, vector_512 bias,
+                                    vector_128 shift, mask_8 *in_reach) {
+    const vector_512 u = add_64(load_8x64(at), start);
+    *in_reach = less_unsigned_64(*in_reach, u, limit);
+    return truncate_64x32(shift_right_logical_64_by(add_64(u, bias), shift));
 }
 
 /* The offsets of candidates first .. first + 15 (all present) in reach, packed from packed_x[packed],
    packed_y[packed] on (16 values stored); returns their count. */
-inline uint32_t pack_offsets_16(const int64_t *xs, const int64_t *ys, const __m512i *tests, __m128i shift,
-                                uint32_t *packed_x, uint32_t *packed_y) {
-    __mmask8 low = 0xFF, high = 0xFF;
-    const __m256i x_low = axis_offsets_wide(xs, tests[0], tests[1], tests[4], shift, &low),
-                  x_high = axis_offsets_wide(xs + 8, tests[0], tests[1], tests[4], shift, &high),
-                  y_low = axis_offsets_wide(ys, tests[2], tests[3], tests[4], shift, &low),
-                  y_high = axis_offsets_wide(ys + 8, tests[2], tests[3], tests[4], shift, &high);
-    const __mmask16 reach =
-        static_cast<__mmask16>(static_cast<uint32_t>(low) | (static_cast<uint32_t>(high) << 8));
-    _mm512_storeu_si512(packed_x, _mm512_maskz_compress_epi32(
-                                      reach, _mm512_inserti64x4(_mm512_castsi256_si512(x_low), x_high, 1)));
-    _mm512_storeu_si512(packed_y, _mm512_maskz_compress_epi32(
-                                      reach, _mm512_inserti64x4(_mm512_castsi256_si512(y_low), y_high, 1)));
+inline uint32_t pack_offsets_16(const int64_t *xs, const int64_t *ys, const vector_512 *tests,
+                                vector_128 shift, uint32_t *packed_x, uint32_t *packed_y) {
+    mask_8 low = 0xFF, high = 0xFF;
+    const vector_256 x_low = axis_offsets_wide(xs, tests[0], tests[1], tests[4], shift, &low),
+                     x_high = axis_offsets_wide(xs + 8, tests[0], tests[1], tests[4], shift, &high),
+                     y_low = axis_offsets_wide(ys, tests[2], tests[3], tests[4], shift, &low),
+                     y_high = axis_offsets_wide(ys + 8, tests[2], tests[3], tests[4], shift, &high);
+    const mask_16 reach =
+        static_cast<mask_16>(static_cast<uint32_t>(low) | (static_cast<uint32_t>(high) << 8));
+    store_16x32(packed_x, compress_32(reach, concatenate_256(x_low, x_high)));
+    store_16x32(packed_y, compress_32(reach, concatenate_256(y_low, y_high)));
     return mask_count(reach);
 }
 
@@ -68,47 +64,48 @@ inline uint32_t pack_offsets_16(const int64_t *xs, const int64_t *ys, const __m5
    texel that left the window zeroed: left and right hold each lane's left and right texel in the low 3
    bytes, as add_window_reads_16's gathers. Lanes outside `rows` read zeros. The reads stay within the
    rows' bytes plus 2 (as the interior's). */
-inline void texel_pairs_16(const unsigned char *values, __m512i at, __mmask16 rows, __mmask16 left_out,
-                           __mmask16 right_out, __m512i *left, __m512i *right) {
-    const __m512i zero = _mm512_setzero_si512(), first_texel = _mm512_set1_epi64(0xFFFFFF);
-    const __m512i evens = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-    __m512i words[2];
+inline void texel_pairs_16(const unsigned char *values, vector_512 at, mask_16 rows, mask_16 left_out,
+                           mask_16 right_out, vector_512 *left, vector_512 *right) {
+    const vector_512 first_texel = set_8x64(0xFFFFFF);
+    const vector_512 evens = set_lanes_16x32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    vector_512 words[2];
     for (uint32_t half = 0; half < 2; half++) {
-        const __mmask8 lanes = static_cast<__mmask8>(rows >> (8u * half)),
-                       left_lanes = static_cast<__mmask8>(left_out >> (8u * half)),
-                       right_lanes = static_cast<__mmask8>(right_out >> (8u * half));
-        const __m256i index = half == 0 ? _mm512_castsi512_si256(at) : _mm512_extracti64x4_epi64(at, 1);
-        __m512i word = _mm512_mask_i32gather_epi64(zero, lanes, index, values, 1);
-        word = _mm512_mask_slli_epi64(word, left_lanes, word, 24);
-        word = _mm512_mask_and_epi64(word, right_lanes, _mm512_srli_epi64(word, 24), first_texel);
+        const mask_8 lanes = static_cast<mask_8>(rows >> (8u * half)),
+                     left_lanes = static_cast<mask_8>(left_out >> (8u * half)),
+                     right_lanes = static_cast<mask_8>(right_out >> (8u * half));
+        const vector_256 index = half == 0 ? low_256(at) : high_256(at);
+        vector_512 word = gather_masked_64<1>(values, index, lanes);
+        word = shift_left_64_where(left_lanes, word, 24);
+        word = and_64_where(word, right_lanes, shift_right_logical_64(word, 24), first_texel);
         words[half] = word;
     }
-    *left = _mm512_permutex2var_epi32(words[0], evens, words[1]);
+    *left = permute_32_of_two(words[0], evens, words[1]);
     *right =
-        _mm512_permutex2var_epi32(_mm512_srli_epi64(words[0], 24), evens, _mm512_srli_epi64(words[1], 24));
+        permute_32_of_two(shift_right_logical_64(words[0], 24), evens, shift_right_logical_64(words[1], 24));
 }
 
 /* add_window_reads_16 for 3-channel levels at least 2 texels wide: each row's two texels by one read
    (texel_pairs_16), half the gathered values; the same values, so the same sums. */
 DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
-                                        uint32_t stride, __m512i s_x, __m512i s_y, __mmask16 reach,
-                                        __m512i *sums) {
-    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), one = _mm512_set1_epi32(1);
-    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
-    const __m512i row = _mm512_sub_epi32(lower_row, one);
-    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
+                                        uint32_t stride, vector_512 s_x, vector_512 s_y, mask_16 reach,
+                                        vector_512 *sums) {
+    const vector_512 low_16 = set_16x32(0xFFFF), one = set_16x32(1);
+    const vector_512 right_column = shift_right_logical_32(s_x, 16),
+                     lower_row = shift_right_logical_32(s_y, 16);
+    const vector_512 row = subtract_32(lower_row, one);
+    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
     /* right_column 0: the left texel is out; width: the right one; beyond: both (never in reach). */
-    const __mmask16 left_out = _mm512_cmpeq_epi32_mask(right_column, _mm512_setzero_si512()),
-                    right_out = _mm512_cmpeq_epi32_mask(right_column, set_16x32(width)),
-                    inside = _mm512_mask_cmple_epu32_mask(reach, right_column, set_16x32(width));
-    const __mmask16 top = _mm512_mask_cmple_epu32_mask(inside, row, set_16x32(height - 1u)),
-                    bottom = _mm512_mask_cmple_epu32_mask(inside, lower_row, set_16x32(height - 1u));
-    const __m512i first = _mm512_min_epu32(
-        _mm512_max_epi32(_mm512_sub_epi32(right_column, one), _mm512_setzero_si512()), set_16x32(width - 2u));
-    const __m512i entry = _mm512_add_epi32(_mm512_mullo_epi32(row, set_16x32(stride)), first);
-    const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(entry, 1), entry);
-    const __m512i below = _mm512_add_epi32(at, set_16x32(stride * 3u));
-    __m512i top_left, top_right, bottom_left, bottom_right;
+    const mask_16 left_out = equal_32(right_column, zero_512()),
+                  right_out = equal_32(right_column, set_16x32(width)),
+                  inside = less_equal_unsigned_32(reach, right_column, set_16x32(width));
+    const mask_16 top = less_equal_unsigned_32(inside, row, set_16x32(height - 1u)),
+                  bottom = less_equal_unsigned_32(inside, lower_row, set_16x32(height - 1u));
+    const vector_512 first =
+        minimum_unsigned_32(maximum_32(subtract_32(right_column, one), zero_512()), set_16x32(width - 2u));
+    const vector_512 entry = add_32(multiply_32(row, set_16x32(stride)), first);
+    const vector_512 at = add_32(shift_left_32(entry, 1), entry);
+    const vector_512 below = add_32(at, set_16x32(stride * 3u));
+    vector_512 top_left, top_right, bottom_left, bottom_right;
     texel_pairs_16(values, at, top, left_out, right_out, &top_left, &top_right);
     texel_pairs_16(values, below, bottom, left_out, right_out, &bottom_left, &bottom_right);
     for (uint32_t c = 0; c < 3; c++)
@@ -129,8 +126,8 @@ const uint32_t register_level_side = 7, register_level_tallest = 11, register_le
 template <uint32_t Channels, uint32_t Vectors>
 struct RegisterLevel {
     /* (B - A, D - A), (A - B - D + E, B + D) */
-    __m512i differences[Channels][Vectors], corners[Channels][Vectors];
-    __m512i last_column, last_row; /* width, height */
+    vector_512 differences[Channels][Vectors], corners[Channels][Vectors];
+    vector_512 last_column, last_row; /* width, height */
 };
 
 /* A channel's sums of add_register_reads_16: 64-bit lanes, and the 32-bit lanes of the terms times 2^16
@@ -138,18 +135,18 @@ struct RegisterLevel {
    its product then lacks 2^32 (A - B - D + E)), which widen_register_sums adds to the 64-bit ones before
    they could overflow. */
 struct RegisterSums {
-    __m512i wide, times_16, times_31;
+    vector_512 wide, times_16, times_31;
 };
 
 /* Byte `index` of each 32-bit lane, sign-extended. */
-inline __m512i signed_byte(__m512i words, uint32_t index) {
-    return _mm512_srai_epi32(_mm512_sll_epi32(words, _mm_cvtsi32_si128(static_cast<int>(24u - 8u * index))),
-                             24);
+inline vector_512 signed_byte(vector_512 words, uint32_t index) {
+    return shift_right_arithmetic_32(shift_left_32_by(words, shift_count(static_cast<int>(24u - 8u * index))),
+                                     24);
 }
 
 /* Two 16-bit values in a 32-bit lane, low first. */
-inline __m512i pair_16(__m512i low, __m512i high) {
-    return _mm512_or_si512(_mm512_and_si512(low, _mm512_set1_epi32(0xFFFF)), _mm512_slli_epi32(high, 16));
+inline vector_512 pair_16(vector_512 low, vector_512 high) {
+    return bitwise_or(bitwise_and(low, set_16x32(0xFFFF)), shift_left_32(high, 16));
 }
 
 /* The level's texels in 32-bit lanes, texel (R - 1, C - 1) at entry 8 R + C (zero outside the window;
@@ -157,31 +154,29 @@ inline __m512i pair_16(__m512i low, __m512i high) {
    entries (next column: + 1, next row: + 8, both: + 9). */
 template <uint32_t Channels, uint32_t Vectors>
 inline void register_level(const dsn_walked_level *level, RegisterLevel<Channels, Vectors> *out) {
-    const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1);
-    const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    __m512i texels[Vectors + 1u];
+    const vector_512 zero = zero_512(), one = set_16x32(1);
+    const vector_512 lanes = set_lanes_16x32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    vector_512 texels[Vectors + 1u];
     for (uint32_t v = 0; v < Vectors; v++) {
-        const __m512i entry = _mm512_add_epi32(lanes, set_16x32(16u * v));
-        const __m512i row = _mm512_sub_epi32(_mm512_srli_epi32(entry, 3), one),
-                      column = _mm512_sub_epi32(_mm512_and_si512(entry, _mm512_set1_epi32(7)), one);
-        const __mmask16 inside =
-            _mm512_mask_cmple_epu32_mask(_mm512_cmple_epu32_mask(row, set_16x32(level->height - 1u)), column,
-                                         set_16x32(level->width - 1u));
-        const __m512i index = _mm512_add_epi32(_mm512_mullo_epi32(row, set_16x32(level->stride)), column);
-        const __m512i at = Channels == 3 ? _mm512_add_epi32(_mm512_slli_epi32(index, 1), index) : index;
-        texels[v] = _mm512_mask_i32gather_epi32(zero, inside, at, level->values, 1);
+        const vector_512 entry = add_32(lanes, set_16x32(16u * v));
+        const vector_512 row = subtract_32(shift_right_logical_32(entry, 3), one),
+                         column = subtract_32(bitwise_and(entry, set_16x32(7)), one);
+        const mask_16 inside = less_equal_unsigned_32(
+            less_equal_unsigned_32(row, set_16x32(level->height - 1u)), column, set_16x32(level->width - 1u));
+        const vector_512 index = add_32(multiply_32(row, set_16x32(level->stride)), column);
+        const vector_512 at = Channels == 3 ? add_32(shift_left_32(index, 1), index) : index;
+        texels[v] = gather_masked_32<1>(level->values, at, inside);
     }
     texels[Vectors] = zero;
     for (uint32_t v = 0; v < Vectors; v++) {
-        const __m512i right = _mm512_alignr_epi32(texels[v + 1u], texels[v], 1),
-                      below = _mm512_alignr_epi32(texels[v + 1u], texels[v], 8),
-                      below_right = _mm512_alignr_epi32(texels[v + 1u], texels[v], 9);
+        const vector_512 right = combine_shift_right_32<1>(texels[v + 1u], texels[v]),
+                         below = combine_shift_right_32<8>(texels[v + 1u], texels[v]),
+                         below_right = combine_shift_right_32<9>(texels[v + 1u], texels[v]);
         for (uint32_t c = 0; c < Channels; c++) {
-            const __m512i a = signed_byte(texels[v], c), b = signed_byte(right, c), d = signed_byte(below, c),
-                          e = signed_byte(below_right, c);
-            out->differences[c][v] = pair_16(_mm512_sub_epi32(b, a), _mm512_sub_epi32(d, a));
-            out->corners[c][v] = pair_16(_mm512_sub_epi32(_mm512_add_epi32(a, e), _mm512_add_epi32(b, d)),
-                                         _mm512_add_epi32(b, d));
+            const vector_512 a = signed_byte(texels[v], c), b = signed_byte(right, c),
+                             d = signed_byte(below, c), e = signed_byte(below_right, c);
+            out->differences[c][v] = pair_16(subtract_32(b, a), subtract_32(d, a));
+            out->corners[c][v] = pair_16(subtract_32(add_32(a, e), add_32(b, d)), add_32(b, d));
         }
     }
     out->last_column = set_16x32(level->width);
@@ -190,52 +185,50 @@ inline void register_level(const dsn_walked_level *level, RegisterLevel<Channels
 
 /* Entry `index` of a table of 64 (4 vectors), zero outside `inside`. */
 template <uint32_t Vectors>
-inline __m512i table_entry(const __m512i *table, __m512i index, const __mmask16 *part) {
-    __m512i entry = _mm512_maskz_permutex2var_epi32(part[0], table[0], index, table[1]);
+inline vector_512 table_entry(const vector_512 *table, vector_512 index, const mask_16 *part) {
+    vector_512 entry = permute_32_of_two_or_zero(part[0], table[0], index, table[1]);
     for (uint32_t k = 1; k < Vectors / 2u; k++)
-        entry = _mm512_or_si512(
-            entry, _mm512_maskz_permutex2var_epi32(part[k], table[2u * k], index, table[2u * k + 1u]));
+        entry =
+            bitwise_or(entry, permute_32_of_two_or_zero(part[k], table[2u * k], index, table[2u * k + 1u]));
     return entry;
 }
 
 /* One channel's part of add_register_reads_16. */
 template <uint32_t Vectors>
-DSN_POINT_INLINE void add_register_channel(const __m512i *difference_table, const __m512i *corner_table,
-                                           __m512i index, const __mmask16 *part, __m512i weights,
-                                           __m512i product, __m512i product_odd, __mmask16 negative,
+DSN_POINT_INLINE void add_register_channel(const vector_512 *difference_table, const vector_512 *corner_table,
+                                           vector_512 index, const mask_16 *part, vector_512 weights,
+                                           vector_512 product, vector_512 product_odd, mask_16 negative,
                                            RegisterSums *sums) {
-    const __m512i differences = table_entry<Vectors>(difference_table, index, part),
-                  corners = table_entry<Vectors>(corner_table, index, part);
-    sums->times_16 = _mm512_add_epi32(sums->times_16, _mm512_madd_epi16(weights, differences));
-    const __m512i cross = _mm512_srai_epi32(_mm512_slli_epi32(corners, 16), 16);
-    sums->times_31 = _mm512_add_epi32(sums->times_31, _mm512_srai_epi32(corners, 16));
-    sums->times_31 =
-        _mm512_mask_add_epi32(sums->times_31, negative, sums->times_31, _mm512_add_epi32(cross, cross));
-    sums->wide = _mm512_add_epi64(
-        sums->wide, _mm512_add_epi64(_mm512_mul_epi32(product, cross),
-                                     _mm512_mul_epi32(product_odd, _mm512_srli_epi64(cross, 32))));
+    const vector_512 differences = table_entry<Vectors>(difference_table, index, part),
+                     corners = table_entry<Vectors>(corner_table, index, part);
+    sums->times_16 = add_32(sums->times_16, madd_16(weights, differences));
+    const vector_512 cross = shift_right_arithmetic_32(shift_left_32(corners, 16), 16);
+    sums->times_31 = add_32(sums->times_31, shift_right_arithmetic_32(corners, 16));
+    sums->times_31 = add_32_where(negative, sums->times_31, add_32(cross, cross));
+    sums->wide = add_64(sums->wide, add_64(multiply_even_32(product, cross),
+                                           multiply_even_32(product_odd, shift_right_logical_64(cross, 32))));
 }
 
 /* add_pair_reads_16's reads (the same integers, so the same sums) from a level in registers. */
 template <uint32_t Channels, uint32_t Vectors>
-DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vectors> &level, __m512i s_x,
-                                            __m512i s_y, __mmask16 reach, RegisterSums *sums) {
-    const __m512i low_16 = _mm512_set1_epi32(0xFFFF), half = _mm512_set1_epi32(0x8000);
-    const __m512i right_column = _mm512_srli_epi32(s_x, 16), lower_row = _mm512_srli_epi32(s_y, 16);
-    const __m512i across = _mm512_and_si512(s_x, low_16), down = _mm512_and_si512(s_y, low_16);
-    const __mmask16 inside = _mm512_mask_cmple_epu32_mask(
-        _mm512_mask_cmple_epu32_mask(reach, right_column, level.last_column), lower_row, level.last_row);
-    const __m512i index = _mm512_add_epi32(_mm512_slli_epi32(lower_row, 3), right_column);
+DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vectors> &level, vector_512 s_x,
+                                            vector_512 s_y, mask_16 reach, RegisterSums *sums) {
+    const vector_512 low_16 = set_16x32(0xFFFF), half = set_16x32(0x8000);
+    const vector_512 right_column = shift_right_logical_32(s_x, 16),
+                     lower_row = shift_right_logical_32(s_y, 16);
+    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const mask_16 inside = less_equal_unsigned_32(
+        less_equal_unsigned_32(reach, right_column, level.last_column), lower_row, level.last_row);
+    const vector_512 index = add_32(shift_left_32(lower_row, 3), right_column);
     /* part k: the lanes (inside) whose entry lies in the table's k-th 32 */
-    __mmask16 part[Vectors / 2u];
-    const __m512i which = _mm512_srli_epi32(index, 5);
-    for (uint32_t k = 0; k < Vectors / 2u; k++)
-        part[k] = _mm512_mask_cmpeq_epi32_mask(inside, which, set_16x32(k));
+    mask_16 part[Vectors / 2u];
+    const vector_512 which = shift_right_logical_32(index, 5);
+    for (uint32_t k = 0; k < Vectors / 2u; k++) part[k] = equal_32(inside, which, set_16x32(k));
     /* (a - 2^15, d - 2^15) as 16-bit pairs; a d, below 2^32 */
-    const __m512i weights = _mm512_xor_si512(_mm512_or_si512(across, _mm512_slli_epi32(down, 16)),
-                                             _mm512_or_si512(half, _mm512_slli_epi32(half, 16)));
-    const __m512i product = _mm512_mullo_epi32(across, down), product_odd = _mm512_srli_epi64(product, 32);
-    const __mmask16 negative = _mm512_cmplt_epi32_mask(product, _mm512_setzero_si512());
+    const vector_512 weights =
+        bitwise_xor(bitwise_or(across, shift_left_32(down, 16)), bitwise_or(half, shift_left_32(half, 16)));
+    const vector_512 product = multiply_32(across, down), product_odd = shift_right_logical_64(product, 32);
+    const mask_16 negative = less_32(product, zero_512());
     /* the channels written out: the compiler then keeps each one's sums in registers */
     add_register_channel<Vectors>(level.differences[0], level.corners[0], index, part, weights, product,
                                   product_odd, negative, &sums[0]);
@@ -248,85 +241,76 @@ DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vector
 }
 
 /* A 32-bit lane sum times 2^shift, as two 64-bit lanes' (modulo 2^64). */
-inline __m512i widened(__m512i lanes, uint32_t shift) {
-    const __m128i count = _mm_cvtsi32_si128(static_cast<int>(shift));
-    return _mm512_add_epi64(
-        _mm512_sll_epi64(_mm512_cvtepi32_epi64(_mm512_castsi512_si256(lanes)), count),
-        _mm512_sll_epi64(_mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(lanes, 1)), count));
+inline vector_512 widened(vector_512 lanes, uint32_t shift) {
+    const vector_128 count = shift_count(static_cast<int>(shift));
+    return add_64(shift_left_64_by(widen_signed_32x64(low_256(lanes)), count),
+                  shift_left_64_by(widen_signed_32x64(high_256(lanes)), count));
 }
 
 /* The 32-bit sums added to the 64-bit ones and cleared: per 16 reads each grows by less than 2^25 (the
    multiply-add), so every block of packed_block reads or fewer keeps them exact. */
 inline void widen_register_sums(RegisterSums *sums) {
-    sums->wide = _mm512_add_epi64(sums->wide,
-                                  _mm512_add_epi64(widened(sums->times_16, 16), widened(sums->times_31, 31)));
-    sums->times_16 = sums->times_31 = _mm512_setzero_si512();
+    sums->wide = add_64(sums->wide, add_64(widened(sums->times_16, 16), widened(sums->times_31, 31)));
+    sums->times_16 = sums->times_31 = zero_512();
 }
 #endif
 
 /* pack_offsets_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
-inline uint32_t pack_offsets_8(const int64_t *xs, const int64_t *ys, uint32_t valid, const __m256i *tests,
-                               __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
-    const __m256i valid_lanes = _mm256_set1_epi64x(static_cast<long long>(valid));
-    __m256i reach_low = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(0, 1, 2, 3)),
-            reach_high = _mm256_cmpgt_epi64(valid_lanes, _mm256_setr_epi64x(4, 5, 6, 7));
+inline uint32_t pack_offsets_8(const int64_t *xs, const int64_t *ys, uint32_t valid, const vector_256 *tests,
+                               vector_128 shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const vector_256 valid_lanes = set_4x64(static_cast<int64_t>(valid));
+    vector_256 reach_low = greater_64(valid_lanes, set_lanes_4x64(0, 1, 2, 3)),
+               reach_high = greater_64(valid_lanes, set_lanes_4x64(4, 5, 6, 7));
     const bool whole = valid >= 8u;
-    const __m256i s_x = low_halves(
+    const vector_256 s_x = low_halves(
         axis_offsets(load_64(xs, reach_low, whole), tests[0], tests[1], tests[4], shift, &reach_low),
         axis_offsets(load_64(xs + 4, reach_high, whole), tests[0], tests[1], tests[4], shift, &reach_high));
-    const __m256i s_y = low_halves(
+    const vector_256 s_y = low_halves(
         axis_offsets(load_64(ys, reach_low, whole), tests[2], tests[3], tests[4], shift, &reach_low),
         axis_offsets(load_64(ys + 4, reach_high, whole), tests[2], tests[3], tests[4], shift, &reach_high));
-    const uint32_t reach =
-        static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(low_halves(reach_low, reach_high))));
+    const uint32_t reach = static_cast<uint32_t>(top_bits_of_32(low_halves(reach_low, reach_high)));
     const uint32_t entry = packing_table[reach];
-    const __m256i order = packing_order(entry);
-    store_8x32(packed_x, _mm256_permutevar8x32_epi32(s_x, order));
-    store_8x32(packed_y, _mm256_permutevar8x32_epi32(s_y, order));
+    const vector_256 order = packing_order(entry);
+    store_8x32(packed_x, permute_32(s_x, order));
+    store_8x32(packed_y, permute_32(s_y, order));
     return entry >> 24;
 }
 
 /* a < b as unsigned 32-bit lanes (AVX2 compares signed: both flipped by 2^31). */
-inline __m256i below_32(__m256i a, __m256i b) {
-    const __m256i sign = set_8x32(0x80000000u);
-    return _mm256_cmpgt_epi32(_mm256_xor_si256(b, sign), _mm256_xor_si256(a, sign));
+inline vector_256 below_32(vector_256 a, vector_256 b) {
+    const vector_256 sign = set_8x32(0x80000000u);
+    return greater_32(bitwise_xor(b, sign), bitwise_xor(a, sign));
 }
 
 /* The reach test of one axis on narrow offsets (kernels.h, filtered_sift.cpp's narrow_test): in reach
    when c + add < limit, the bracket's value (c + read) >> l. */
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-inline uint32_t pack_narrow_16(const uint32_t *xs, const uint32_t *ys, __mmask16 present,
-                               const __m512i *tests, __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
-    const __m512i c_x = _mm512_maskz_loadu_epi32(present, xs), c_y = _mm512_maskz_loadu_epi32(present, ys);
-    const __mmask16 reach = _mm512_mask_cmplt_epu32_mask(
-        _mm512_mask_cmplt_epu32_mask(present, _mm512_add_epi32(c_x, tests[0]), tests[1]),
-        _mm512_add_epi32(c_y, tests[3]), tests[4]);
-    _mm512_storeu_si512(packed_x, _mm512_maskz_compress_epi32(
-                                      reach, _mm512_srl_epi32(_mm512_add_epi32(c_x, tests[2]), shift)));
-    _mm512_storeu_si512(packed_y, _mm512_maskz_compress_epi32(
-                                      reach, _mm512_srl_epi32(_mm512_add_epi32(c_y, tests[5]), shift)));
+inline uint32_t pack_narrow_16(const uint32_t *xs, const uint32_t *ys, mask_16 present,
+                               const vector_512 *tests, vector_128 shift, uint32_t *packed_x,
+                               uint32_t *packed_y) {
+    const vector_512 c_x = load_masked_16x32(xs, present), c_y = load_masked_16x32(ys, present);
+    const mask_16 reach = less_unsigned_32(less_unsigned_32(present, add_32(c_x, tests[0]), tests[1]),
+                                           add_32(c_y, tests[3]), tests[4]);
+    store_16x32(packed_x, compress_32(reach, shift_right_logical_32_by(add_32(c_x, tests[2]), shift)));
+    store_16x32(packed_y, compress_32(reach, shift_right_logical_32_by(add_32(c_y, tests[5]), shift)));
     return mask_count(reach);
 }
 #endif
 
 /* pack_narrow_16 for candidates first .. first + 7 of which the first `valid` exist (8 values stored). */
-inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t valid, const __m256i *tests,
-                              __m128i shift, uint32_t *packed_x, uint32_t *packed_y) {
-    const __m256i present = _mm256_cmpgt_epi32(set_8x32(valid), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    const int *from_x = static_cast<const int *>(static_cast<const void *>(xs)),
-              *from_y = static_cast<const int *>(static_cast<const void *>(ys));
-    const __m256i c_x = valid >= 8u ? load_8x32(xs) : _mm256_maskload_epi32(from_x, present),
-                  c_y = valid >= 8u ? load_8x32(ys) : _mm256_maskload_epi32(from_y, present);
-    const __m256i in_x = below_32(_mm256_add_epi32(c_x, tests[0]), tests[1]),
-                  in_y = below_32(_mm256_add_epi32(c_y, tests[3]), tests[4]);
-    const uint32_t reach = static_cast<uint32_t>(
-        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_and_si256(present, _mm256_and_si256(in_x, in_y)))));
+inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t valid, const vector_256 *tests,
+                              vector_128 shift, uint32_t *packed_x, uint32_t *packed_y) {
+    const vector_256 present = greater_32(set_8x32(valid), set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7));
+    const vector_256 c_x = valid >= 8u ? load_8x32(xs) : load_masked_8x32(xs, present),
+                     c_y = valid >= 8u ? load_8x32(ys) : load_masked_8x32(ys, present);
+    const vector_256 in_x = below_32(add_32(c_x, tests[0]), tests[1]),
+                     in_y = below_32(add_32(c_y, tests[3]), tests[4]);
+    const uint32_t reach =
+        static_cast<uint32_t>(top_bits_of_32(bitwise_and(present, bitwise_and(in_x, in_y))));
     const uint32_t entry = packing_table[reach];
-    const __m256i order = packing_order(entry);
-    store_8x32(packed_x,
-               _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_x, tests[2]), shift), order));
-    store_8x32(packed_y,
-               _mm256_permutevar8x32_epi32(_mm256_srl_epi32(_mm256_add_epi32(c_y, tests[5]), shift), order));
+    const vector_256 order = packing_order(entry);
+    store_8x32(packed_x, permute_32(shift_right_logical_32_by(add_32(c_x, tests[2]), shift), order));
+    store_8x32(packed_y, permute_32(shift_right_logical_32_by(add_32(c_y, tests[5]), shift), order));
     return entry >> 24;
 }
 
@@ -340,30 +324,27 @@ template <uint32_t Channels, uint32_t Vectors>
 void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
                           const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
                           const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
-    const __m256i bias = _mm256_set1_epi64x(static_cast<long long>(static_cast<uint64_t>(1) << level->level));
-    const __m256i offset_tests_8[5] = {_mm256_set1_epi64x(static_cast<long long>(tests[0])),
-                                       _mm256_set1_epi64x(static_cast<long long>(tests[1])),
-                                       _mm256_set1_epi64x(static_cast<long long>(tests[2])),
-                                       _mm256_set1_epi64x(static_cast<long long>(tests[3])), bias};
-    const __m128i shift = _mm_cvtsi32_si128(static_cast<int>(level->level + 16u));
-    const __m256i zero = _mm256_setzero_si256();
-    __m256i sums[Channels];
+    const vector_256 bias = set_4x64(static_cast<int64_t>(static_cast<uint64_t>(1) << level->level));
+    const vector_256 offset_tests_8[5] = {
+        set_4x64(static_cast<int64_t>(tests[0])), set_4x64(static_cast<int64_t>(tests[1])),
+        set_4x64(static_cast<int64_t>(tests[2])), set_4x64(static_cast<int64_t>(tests[3])), bias};
+    const vector_128 shift = shift_count(static_cast<int>(level->level + 16u));
+    const vector_256 zero = zero_256();
+    vector_256 sums[Channels];
     for (uint32_t c = 0; c < Channels; c++) sums[c] = zero;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    const __m512i wide_tests[5] = {
-        _mm512_set1_epi64(static_cast<long long>(tests[0])),
-        _mm512_set1_epi64(static_cast<long long>(tests[1])),
-        _mm512_set1_epi64(static_cast<long long>(tests[2])),
-        _mm512_set1_epi64(static_cast<long long>(tests[3])),
-        _mm512_set1_epi64(static_cast<long long>(static_cast<uint64_t>(1) << level->level))};
-    __m512i wide_sums[Channels];
-    for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = _mm512_setzero_si512();
+    const vector_512 wide_tests[5] = {
+        set_8x64(static_cast<int64_t>(tests[0])), set_8x64(static_cast<int64_t>(tests[1])),
+        set_8x64(static_cast<int64_t>(tests[2])), set_8x64(static_cast<int64_t>(tests[3])),
+        set_8x64(static_cast<int64_t>(static_cast<uint64_t>(1) << level->level))};
+    vector_512 wide_sums[Channels];
+    for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = zero_512();
 #endif
-    __m256i narrow_tests_8[6];
+    vector_256 narrow_tests_8[6];
     for (uint32_t i = 0; i < 6; i++) narrow_tests_8[i] = set_8x32(narrow_tests[i]);
-    const __m128i narrow_shift = _mm_cvtsi32_si128(static_cast<int>(level->level));
+    const vector_128 narrow_shift = shift_count(static_cast<int>(level->level));
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    __m512i narrow_tests_16[6];
+    vector_512 narrow_tests_16[6];
     for (uint32_t i = 0; i < 6; i++) narrow_tests_16[i] = set_16x32(narrow_tests[i]);
 #endif
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -371,8 +352,7 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     RegisterLevel<Channels, Vectors == 0 ? 4u : Vectors> registers;
     RegisterSums register_sums[Channels];
     for (uint32_t c = 0; c < Channels; c++)
-        register_sums[c].wide = register_sums[c].times_16 = register_sums[c].times_31 =
-            _mm512_setzero_si512();
+        register_sums[c].wide = register_sums[c].times_16 = register_sums[c].times_31 = zero_512();
     if (in_registers) register_level<Channels, Vectors == 0 ? 4u : Vectors>(level, &registers);
 #endif
     uint32_t packed_x[packed_block + 16], packed_y[packed_block + 16];
@@ -382,8 +362,8 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         if (narrow_xs != 0) {
 #if defined(__AVX512F__) && defined(__AVX512BW__)
             for (; first < end; first += 16u) {
-                const __mmask16 present =
-                    static_cast<__mmask16>(end - first >= 16u ? 0xFFFFu : (1u << (end - first)) - 1u);
+                const mask_16 present =
+                    static_cast<mask_16>(end - first >= 16u ? 0xFFFFu : (1u << (end - first)) - 1u);
                 packed += pack_narrow_16(narrow_xs + first, narrow_ys + first, present, narrow_tests_16,
                                          narrow_shift, packed_x + packed, packed_y + packed);
             }
@@ -409,18 +389,17 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         if (in_registers) {
             for (; next < packed; next += 16u) {
                 const uint32_t left = packed - next;
-                const __mmask16 reach = static_cast<__mmask16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
+                const mask_16 reach = static_cast<mask_16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
                 add_register_reads_16<Channels, Vectors == 0 ? 4u : Vectors>(
-                    registers, _mm512_loadu_si512(packed_x + next), _mm512_loadu_si512(packed_y + next),
-                    reach, register_sums);
+                    registers, load_16x32(packed_x + next), load_16x32(packed_y + next), reach,
+                    register_sums);
             }
             for (uint32_t c = 0; c < Channels; c++) widen_register_sums(&register_sums[c]);
         }
         for (; next + 8u < packed; next += 16u) {
             const uint32_t left = packed - next;
-            const __mmask16 reach = static_cast<__mmask16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
-            const __m512i s_x = _mm512_loadu_si512(packed_x + next),
-                          s_y = _mm512_loadu_si512(packed_y + next);
+            const mask_16 reach = static_cast<mask_16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
+            const vector_512 s_x = load_16x32(packed_x + next), s_y = load_16x32(packed_y + next);
             if (Channels == 3 && level->width >= 2)
                 add_pair_reads_16(level->values, level->width, level->height, level->stride, s_x, s_y, reach,
                                   wide_sums);
@@ -430,23 +409,21 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         }
 #endif
         for (; next < packed; next += 8u) {
-            const __m256i reach =
-                _mm256_cmpgt_epi32(set_8x32(packed - next), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+            const vector_256 reach =
+                greater_32(set_8x32(packed - next), set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7));
             add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride,
                                          load_8x32(packed_x + next), load_8x32(packed_y + next), reach, sums);
         }
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     if (in_registers)
-        for (uint32_t c = 0; c < Channels; c++)
-            wide_sums[c] = _mm512_add_epi64(wide_sums[c], register_sums[c].wide);
+        for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = add_64(wide_sums[c], register_sums[c].wide);
     for (uint32_t c = 0; c < Channels; c++) /* the 64-bit lanes' sums folded into 4 lanes */
-        sums[c] = _mm256_add_epi64(sums[c], _mm256_add_epi64(_mm512_castsi512_si256(wide_sums[c]),
-                                                             _mm512_extracti64x4_epi64(wide_sums[c], 1)));
+        sums[c] = add_64(sums[c], add_64(low_256(wide_sums[c]), high_256(wide_sums[c])));
 #endif
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t lanes[4];
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes)), sums[c]);
+        store_4x64(lanes, sums[c]);
         out[c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
     }
 }

@@ -11,7 +11,9 @@
 #include "dsn/dsn.h"
 
 /* The operations are forced inline, as the intrinsics are: through plain inline wrappers GCC sees the
-   operations in another order, and allocates registers and schedules differently. */
+   operations in another order, and allocates registers and schedules differently. For the same reason they
+   take and give the instructions' own scalar types where a conversion inside would name a temporary after
+   the parameter (the 64-bit broadcasts take int64_t, the top-bit gathers give int). */
 #if defined(__GNUC__)
 #define DSN_SIMD_INLINE inline __attribute__((always_inline))
 #else
@@ -86,7 +88,7 @@ DSN_SIMD_INLINE vector_128 shift_count(int count) { return _mm_cvtsi32_si128(cou
 DSN_SIMD_INLINE vector_128 set_low_64(uint64_t value) {
     return _mm_cvtsi64_si128(static_cast<long long>(value));
 }
-DSN_SIMD_INLINE vector_128 set_2x64(uint64_t value) { return _mm_set1_epi64x(static_cast<long long>(value)); }
+DSN_SIMD_INLINE vector_128 set_2x64(int64_t value) { return _mm_set1_epi64x(value); }
 /* The lanes in order, lane 0 first. */
 DSN_SIMD_INLINE vector_128 set_lanes_2x64(uint64_t lane_0, uint64_t lane_1) {
     return _mm_set_epi64x(static_cast<long long>(lane_1), static_cast<long long>(lane_0));
@@ -100,10 +102,8 @@ DSN_SIMD_INLINE vector_128 subtract_64(vector_128 a, vector_128 b) { return _mm_
 DSN_SIMD_INLINE vector_128 shift_right_logical_64(vector_128 a, uint32_t count) {
     return _mm_srli_epi64(a, static_cast<int>(count));
 }
-/* The top bit of byte k in bit k. */
-DSN_SIMD_INLINE uint32_t top_bits_of_bytes(vector_128 a) {
-    return static_cast<uint32_t>(_mm_movemask_epi8(a));
-}
+/* The top bit of byte k in bit k (an int, as the instruction's). */
+DSN_SIMD_INLINE int top_bits_of_bytes(vector_128 a) { return _mm_movemask_epi8(a); }
 
 } // namespace
 

@@ -15,6 +15,8 @@ typedef __m256i vector_256; /* 8 lanes of 32 bits, 4 of 64 bits or 16 of 16 bits
 typedef __m256 floats_256;
 
 /* ---- Memory ---- */
+/* load_8x32, store_8x32 and set_8x32 are plain inline, as the kernels' helpers they replaced were: forced,
+   GCC allocates some of the filtered reads' registers differently. */
 inline vector_256 load_8x32(const uint32_t *at) {
     return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
 }
@@ -24,6 +26,16 @@ inline void store_8x32(uint32_t *at, vector_256 value) {
 /* The lanes whose mask lane has its top bit set, the others 0 (and not read). */
 DSN_SIMD_INLINE vector_256 load_masked_8x32(const uint32_t *at, vector_256 mask) {
     return _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(at)), mask);
+}
+DSN_SIMD_INLINE vector_256 load_4x64(const int64_t *at) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
+}
+/* The lanes whose mask lane has its top bit set, the others 0 (and not read). */
+DSN_SIMD_INLINE vector_256 load_masked_4x64(const int64_t *at, vector_256 mask) {
+    return _mm256_maskload_epi64(static_cast<const long long *>(static_cast<const void *>(at)), mask);
+}
+DSN_SIMD_INLINE void store_4x64(uint64_t *at, vector_256 value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
 }
 /* Lane k: the 32 bits at base + Scale offsets[k] bytes where mask's lane k has its top bit set, else 0. */
 template <int Scale>
@@ -35,13 +47,14 @@ DSN_SIMD_INLINE vector_256 gather_masked_32(const void *base, vector_256 offsets
 /* ---- Constants ---- */
 DSN_SIMD_INLINE vector_256 zero_256() { return _mm256_setzero_si256(); }
 inline vector_256 set_8x32(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
-DSN_SIMD_INLINE vector_256 set_4x64(uint64_t value) {
-    return _mm256_set1_epi64x(static_cast<long long>(value));
-}
+DSN_SIMD_INLINE vector_256 set_4x64(int64_t value) { return _mm256_set1_epi64x(value); }
 /* The lanes in order, lane 0 first. */
 DSN_SIMD_INLINE vector_256 set_lanes_8x32(int32_t lane_0, int32_t lane_1, int32_t lane_2, int32_t lane_3,
                                           int32_t lane_4, int32_t lane_5, int32_t lane_6, int32_t lane_7) {
     return _mm256_setr_epi32(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7);
+}
+DSN_SIMD_INLINE vector_256 set_lanes_4x64(int64_t lane_0, int64_t lane_1, int64_t lane_2, int64_t lane_3) {
+    return _mm256_setr_epi64x(lane_0, lane_1, lane_2, lane_3);
 }
 
 /* ---- Bits ---- */
@@ -58,6 +71,9 @@ DSN_SIMD_INLINE vector_256 shift_left_32_by(vector_256 a, vector_128 count) {
 DSN_SIMD_INLINE vector_256 shift_right_logical_32(vector_256 a, uint32_t count) {
     return _mm256_srli_epi32(a, static_cast<int>(count));
 }
+DSN_SIMD_INLINE vector_256 shift_right_logical_32_by(vector_256 a, vector_128 count) {
+    return _mm256_srl_epi32(a, count);
+}
 /* Lane k by counts' lane k. */
 DSN_SIMD_INLINE vector_256 shift_right_logical_32_per_lane(vector_256 a, vector_256 counts) {
     return _mm256_srlv_epi32(a, counts);
@@ -67,6 +83,9 @@ DSN_SIMD_INLINE vector_256 shift_right_arithmetic_32(vector_256 a, uint32_t coun
 }
 DSN_SIMD_INLINE vector_256 shift_right_logical_64(vector_256 a, uint32_t count) {
     return _mm256_srli_epi64(a, static_cast<int>(count));
+}
+DSN_SIMD_INLINE vector_256 shift_right_logical_64_by(vector_256 a, vector_128 count) {
+    return _mm256_srl_epi64(a, count);
 }
 
 /* ---- Arithmetic (modulo 2^32 or 2^64) ---- */
@@ -84,6 +103,8 @@ DSN_SIMD_INLINE vector_256 minimum_unsigned_32(vector_256 a, vector_256 b) { ret
 DSN_SIMD_INLINE vector_256 equal_32(vector_256 a, vector_256 b) { return _mm256_cmpeq_epi32(a, b); }
 DSN_SIMD_INLINE vector_256 greater_32(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi32(a, b); }
 DSN_SIMD_INLINE vector_256 greater_64(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi64(a, b); }
+/* The top bit of 32-bit lane k in bit k (an int, as the instruction's). */
+DSN_SIMD_INLINE int top_bits_of_32(vector_256 a) { return _mm256_movemask_ps(_mm256_castsi256_ps(a)); }
 
 /* ---- Lanes ---- */
 /* The even 16-bit lanes of a, the odd ones of b. */

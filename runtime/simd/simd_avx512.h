@@ -52,7 +52,7 @@ inline simd_vector sub_16(simd_vector a, simd_vector b) { return _mm512_sub_epi1
 /* ---- Normalization, per 128-bit lane (AVX-512 unpacks and shuffles each lane on its own) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm512_broadcast_i32x4(value); }
 inline simd_vector madd_16(simd_vector a, simd_vector b) { return _mm512_madd_epi16(a, b); }
-inline simd_vector add_32(simd_vector a, simd_vector b) { return _mm512_add_epi32(a, b); }
+DSN_SIMD_INLINE simd_vector add_32(simd_vector a, simd_vector b) { return _mm512_add_epi32(a, b); }
 inline simd_vector shift_right_15(simd_vector a) { return _mm512_srai_epi32(a, 15); }
 inline simd_vector shift_right(simd_vector a, __m128i count) { return _mm512_sra_epi32(a, count); }
 inline simd_vector unpack_low_16(simd_vector a, simd_vector b) { return _mm512_unpacklo_epi16(a, b); }
@@ -281,7 +281,13 @@ typedef __mmask16 mask_16;
 typedef __mmask8 mask_8;
 
 inline vector_512 load_16x32(const uint32_t *at) { return _mm512_loadu_si512(at); }
+/* load_16x32 and set_16x32 are plain inline, as the kernels' helpers they replaced were (simd_256.h). */
+DSN_SIMD_INLINE vector_512 load_8x64(const int64_t *at) { return _mm512_loadu_si512(at); }
 DSN_SIMD_INLINE void store_16x32(uint32_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
+/* The lanes of mask, the others 0 (and not read). */
+DSN_SIMD_INLINE vector_512 load_masked_16x32(const uint32_t *at, mask_16 mask) {
+    return _mm512_maskz_loadu_epi32(mask, at);
+}
 /* Lane k: the 32 bits at base + Scale offsets[k] bytes where mask bit k is set, else 0. */
 template <int Scale>
 DSN_SIMD_INLINE vector_512 gather_masked_32(const void *base, vector_512 offsets, mask_16 mask) {
@@ -295,6 +301,7 @@ DSN_SIMD_INLINE vector_512 gather_masked_64(const void *base, vector_256 offsets
 
 DSN_SIMD_INLINE vector_512 zero_512() { return _mm512_setzero_si512(); }
 inline vector_512 set_16x32(uint32_t value) { return _mm512_set1_epi32(static_cast<int>(value)); }
+DSN_SIMD_INLINE vector_512 set_8x64(int64_t value) { return _mm512_set1_epi64(value); }
 /* The lanes in order, lane 0 first. */
 DSN_SIMD_INLINE vector_512 set_lanes_16x32(int32_t lane_0, int32_t lane_1, int32_t lane_2, int32_t lane_3,
                                            int32_t lane_4, int32_t lane_5, int32_t lane_6, int32_t lane_7,
@@ -308,6 +315,15 @@ DSN_SIMD_INLINE vector_512 set_lanes_16x32(int32_t lane_0, int32_t lane_1, int32
 DSN_SIMD_INLINE vector_512 broadcast_256(vector_256 value) { return _mm512_broadcast_i64x4(value); }
 DSN_SIMD_INLINE vector_256 low_256(vector_512 a) { return _mm512_castsi512_si256(a); }
 DSN_SIMD_INLINE vector_256 high_256(vector_512 a) { return _mm512_extracti64x4_epi64(a, 1); }
+/* low in the low half, high in the high half. */
+DSN_SIMD_INLINE vector_512 concatenate_256(vector_256 low, vector_256 high) {
+    return _mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1);
+}
+/* Lanes Count .. 15 of low, then lanes 0 .. Count - 1 of high. */
+template <int Count>
+DSN_SIMD_INLINE vector_512 combine_shift_right_32(vector_512 high, vector_512 low) {
+    return _mm512_alignr_epi32(high, low, Count);
+}
 
 DSN_SIMD_INLINE vector_512 bitwise_and(vector_512 a, vector_512 b) { return _mm512_and_si512(a, b); }
 DSN_SIMD_INLINE vector_512 bitwise_or(vector_512 a, vector_512 b) { return _mm512_or_si512(a, b); }
@@ -333,11 +349,28 @@ DSN_SIMD_INLINE vector_512 shift_left_32_by(vector_512 a, vector_128 count) {
 DSN_SIMD_INLINE vector_512 shift_right_logical_32(vector_512 a, uint32_t count) {
     return _mm512_srli_epi32(a, count);
 }
+DSN_SIMD_INLINE vector_512 shift_right_logical_32_by(vector_512 a, vector_128 count) {
+    return _mm512_srl_epi32(a, count);
+}
 DSN_SIMD_INLINE vector_512 shift_right_arithmetic_32(vector_512 a, uint32_t count) {
     return _mm512_srai_epi32(a, count);
 }
 DSN_SIMD_INLINE vector_512 shift_right_logical_64(vector_512 a, uint32_t count) {
     return _mm512_srli_epi64(a, count);
+}
+DSN_SIMD_INLINE vector_512 shift_right_logical_64_by(vector_512 a, vector_128 count) {
+    return _mm512_srl_epi64(a, count);
+}
+DSN_SIMD_INLINE vector_512 shift_left_64_by(vector_512 a, vector_128 count) {
+    return _mm512_sll_epi64(a, count);
+}
+/* a << count in the 64-bit lanes of mask, a in the others. */
+DSN_SIMD_INLINE vector_512 shift_left_64_where(mask_8 mask, vector_512 a, uint32_t count) {
+    return _mm512_mask_slli_epi64(a, mask, a, count);
+}
+/* a & b in the 64-bit lanes of mask, otherwise's lanes in the others. */
+DSN_SIMD_INLINE vector_512 and_64_where(vector_512 otherwise, mask_8 mask, vector_512 a, vector_512 b) {
+    return _mm512_mask_and_epi64(otherwise, mask, a, b);
 }
 
 /* Arithmetic modulo 2^16, 2^32 or 2^64. */
@@ -351,7 +384,25 @@ DSN_SIMD_INLINE vector_512 add_32_where(mask_16 mask, vector_512 a, vector_512 b
 DSN_SIMD_INLINE vector_512 add_64(vector_512 a, vector_512 b) { return _mm512_add_epi64(a, b); }
 /* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
 DSN_SIMD_INLINE vector_512 multiply_even_32(vector_512 a, vector_512 b) { return _mm512_mul_epi32(a, b); }
+DSN_SIMD_INLINE vector_512 maximum_32(vector_512 a, vector_512 b) { return _mm512_max_epi32(a, b); }
+DSN_SIMD_INLINE vector_512 minimum_unsigned_32(vector_512 a, vector_512 b) { return _mm512_min_epu32(a, b); }
+/* 8 32-bit lanes, signed, widened into 64-bit lanes. */
+DSN_SIMD_INLINE vector_512 widen_signed_32x64(vector_256 a) { return _mm512_cvtepi32_epi64(a); }
+/* The low 32 bits of each 64-bit lane. */
+DSN_SIMD_INLINE vector_256 truncate_64x32(vector_512 a) { return _mm512_cvtepi64_epi32(a); }
 
+/* Comparisons; `within`: only the lanes of that mask, the others 0. */
+DSN_SIMD_INLINE mask_16 equal_32(vector_512 a, vector_512 b) { return _mm512_cmpeq_epi32_mask(a, b); }
+DSN_SIMD_INLINE mask_16 equal_32(mask_16 within, vector_512 a, vector_512 b) {
+    return _mm512_mask_cmpeq_epi32_mask(within, a, b);
+}
+DSN_SIMD_INLINE mask_16 less_32(vector_512 a, vector_512 b) { return _mm512_cmplt_epi32_mask(a, b); }
+DSN_SIMD_INLINE mask_8 less_unsigned_64(mask_8 within, vector_512 a, vector_512 b) {
+    return _mm512_mask_cmplt_epu64_mask(within, a, b);
+}
+DSN_SIMD_INLINE mask_16 less_unsigned_32(mask_16 within, vector_512 a, vector_512 b) {
+    return _mm512_mask_cmplt_epu32_mask(within, a, b);
+}
 /* Comparisons of unsigned 32-bit lanes; `within`: only the lanes of that mask, the others 0. */
 DSN_SIMD_INLINE mask_16 less_unsigned_32(vector_512 a, vector_512 b) { return _mm512_cmplt_epu32_mask(a, b); }
 DSN_SIMD_INLINE mask_16 less_equal_unsigned_32(vector_512 a, vector_512 b) {
