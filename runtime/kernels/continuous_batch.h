@@ -159,32 +159,29 @@ void batch_visit_scalar(const uint32_t *quads, const BatchConstants &k, const Ba
 /* ---- Pass 2 on AVX2 vectors (the AVX2 and AVX-512 kernels), 8-bit textons: 8 candidates at a time ----
    The same integers as batch_visit_scalar: the hash in 32-bit lanes, the shifted values in 64-bit lanes,
    the texels by one gather of quads per channel (a lane out of reach reads quad 0, its values zeroed), the
-   rows' interpolation in 32-bit lanes (below 2^25) and the column's in 64-bit lanes (_mm256_mul_epi32, signed
+   rows' interpolation in 32-bit lanes (below 2^25) and the column's in 64-bit lanes (multiply_even_32, signed
    32 x 32 -> 64 bits, exact). */
 
 /* One axis of 8 candidates: shifted = base - (bits << position_shift) in 64-bit lanes (candidates 0-3,
    4-7), whether 0 < shifted <= limit, and the 32-bit lanes of shifted >> 32 and (shifted >> 16) & 0xFFFF. */
-inline void axis_8(__m256i bits, const uint64_t *bases, __m256i cells, __m128i position_shift, __m256i limit,
-                   __m256i *reaches, __m256i *whole, __m256i *weight) {
-    const __m256i one = _mm256_set1_epi64x(1);
-    const long long *base = static_cast<const long long *>(static_cast<const void *>(bases));
-    const __m256i low = _mm256_sub_epi64(
-        _mm256_i32gather_epi64(base, _mm256_castsi256_si128(cells), 8),
-        _mm256_sll_epi64(_mm256_cvtepu32_epi64(_mm256_castsi256_si128(bits)), position_shift));
-    const __m256i high = _mm256_sub_epi64(
-        _mm256_i32gather_epi64(base, _mm256_extracti128_si256(cells, 1), 8),
-        _mm256_sll_epi64(_mm256_cvtepu32_epi64(_mm256_extracti128_si256(bits, 1)), position_shift));
-    *reaches =
-        low_halves(below_64(_mm256_sub_epi64(low, one), limit), below_64(_mm256_sub_epi64(high, one), limit));
-    *whole = low_halves(_mm256_srli_epi64(low, 32), _mm256_srli_epi64(high, 32));
-    *weight = _mm256_and_si256(low_halves(_mm256_srli_epi64(low, 16), _mm256_srli_epi64(high, 16)),
-                               _mm256_set1_epi32(0xFFFF));
+inline void axis_8(vector_256 bits, const uint64_t *bases, vector_256 cells, vector_128 position_shift,
+                   vector_256 limit, vector_256 *reaches, vector_256 *whole, vector_256 *weight) {
+    const vector_256 one = set_4x64(1);
+    const vector_256 low = subtract_64(gather_64<8>(bases, low_128(cells)),
+                                       shift_left_64_by(widen_unsigned_32x64(low_128(bits)), position_shift));
+    const vector_256 high =
+        subtract_64(gather_64<8>(bases, high_128(cells)),
+                    shift_left_64_by(widen_unsigned_32x64(high_128(bits)), position_shift));
+    *reaches = low_halves(below_64(subtract_64(low, one), limit), below_64(subtract_64(high, one), limit));
+    *whole = low_halves(shift_right_logical_64(low, 32), shift_right_logical_64(high, 32));
+    *weight = bitwise_and(low_halves(shift_right_logical_64(low, 16), shift_right_logical_64(high, 16)),
+                          set_8x32(0xFFFF));
 }
 
 /* The running sums of one point on vectors: the channels' 64-bit values of the even and odd
    candidates, summed lane by lane (modulo 2^64, so in any order). */
 struct VectorSums {
-    __m256i channel[DSN_MAX_CHANNELS];
+    vector_256 channel[DSN_MAX_CHANNELS];
     uint32_t point;
 };
 
@@ -192,9 +189,9 @@ template <uint32_t Channels>
 inline void flush_vector_sums(VectorSums *running, const BatchArrays &arrays) {
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t lanes[4];
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(lanes)), running->channel[c]);
+        store_4x64(lanes, running->channel[c]);
         arrays.sums[running->point * Channels + c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
-        running->channel[c] = _mm256_setzero_si256();
+        running->channel[c] = zero_256();
     }
 }
 
@@ -204,33 +201,30 @@ inline void flush_vector_sums(VectorSums *running, const BatchArrays &arrays) {
 template <uint32_t Channels>
 void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays, uint32_t first,
                    VectorSums *running) {
-    const __m256i fraction = mix32_8(load_8x32(arrays.stream + first)),
-                  packed = load_8x32(arrays.packed + first);
-    const __m256i cells = _mm256_srli_epi32(packed, 16);
-    const __m128i half_shift = _mm_cvtsi32_si128(static_cast<int>(k.half_shift));
-    const __m128i high_shift = _mm_cvtsi32_si128(static_cast<int>(k.high_shift));
-    const __m128i position_shift = _mm_cvtsi32_si128(static_cast<int>(k.position_shift));
-    const __m256i low_16 = _mm256_set1_epi32(0xFFFF),
-                  half_mask = _mm256_set1_epi32(static_cast<int>(k.half_mask));
-    const __m256i high_x = _mm256_sll_epi32(_mm256_and_si256(packed, half_mask), high_shift);
-    const __m256i high_y =
-        _mm256_sll_epi32(_mm256_and_si256(_mm256_srl_epi32(packed, half_shift), half_mask), high_shift);
-    const __m256i bits_x =
-        _mm256_or_si256(high_x, _mm256_srl_epi32(_mm256_and_si256(fraction, low_16), half_shift));
-    const __m256i bits_y =
-        _mm256_or_si256(high_y, _mm256_srl_epi32(_mm256_srli_epi32(fraction, 16), half_shift));
-    __m256i reaches_x, column, across, reaches_y, row, down;
-    axis_8(bits_x, arrays.base_x, cells, position_shift,
-           _mm256_set1_epi64x(static_cast<long long>(k.limit_x)), &reaches_x, &column, &across);
-    axis_8(bits_y, arrays.base_y, cells, position_shift,
-           _mm256_set1_epi64x(static_cast<long long>(k.limit_y)), &reaches_y, &row, &down);
-    const __m256i reaches = _mm256_and_si256(reaches_x, reaches_y);
-    const __m256i at = _mm256_and_si256(
-        reaches, _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(static_cast<int>(k.quad_row))),
-                                  _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels)))));
+    const vector_256 fraction = mix32_8(load_8x32(arrays.stream + first)),
+                     packed = load_8x32(arrays.packed + first);
+    const vector_256 cells = shift_right_logical_32(packed, 16);
+    const vector_128 half_shift = shift_count(static_cast<int>(k.half_shift));
+    const vector_128 high_shift = shift_count(static_cast<int>(k.high_shift));
+    const vector_128 position_shift = shift_count(static_cast<int>(k.position_shift));
+    const vector_256 low_16 = set_8x32(0xFFFF), half_mask = set_8x32(k.half_mask);
+    const vector_256 high_x = shift_left_32_by(bitwise_and(packed, half_mask), high_shift);
+    const vector_256 high_y =
+        shift_left_32_by(bitwise_and(shift_right_logical_32_by(packed, half_shift), half_mask), high_shift);
+    const vector_256 bits_x =
+        bitwise_or(high_x, shift_right_logical_32_by(bitwise_and(fraction, low_16), half_shift));
+    const vector_256 bits_y =
+        bitwise_or(high_y, shift_right_logical_32_by(shift_right_logical_32(fraction, 16), half_shift));
+    vector_256 reaches_x, column, across, reaches_y, row, down;
+    axis_8(bits_x, arrays.base_x, cells, position_shift, set_4x64(static_cast<int64_t>(k.limit_x)),
+           &reaches_x, &column, &across);
+    axis_8(bits_y, arrays.base_y, cells, position_shift, set_4x64(static_cast<int64_t>(k.limit_y)),
+           &reaches_y, &row, &down);
+    const vector_256 reaches = bitwise_and(reaches_x, reaches_y);
+    const vector_256 at = bitwise_and(
+        reaches, add_32(multiply_32(row, set_8x32(k.quad_row)), multiply_32(column, set_8x32(Channels))));
     /* The reach of the even and odd lanes as 64-bit masks. */
-    const __m256i reaches_even = _mm256_shuffle_epi32(reaches, 0xA0),
-                  reaches_odd = _mm256_shuffle_epi32(reaches, 0xF5);
+    const vector_256 reaches_even = shuffle_32<0xA0>(reaches), reaches_odd = shuffle_32<0xF5>(reaches);
     const uint32_t first_point = arrays.point[arrays.packed[first] >> 16];
     const uint32_t last_point = arrays.point[arrays.packed[first + 7u] >> 16];
     const bool one_point = first_point == last_point;
@@ -239,22 +233,21 @@ void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchAr
         running->point = one_point ? first_point : last_point;
     }
     for (uint32_t c = 0; c < Channels; c++) {
-        const __m256i quad =
-            _mm256_i32gather_epi32(static_cast<const int *>(static_cast<const void *>(quads + c)), at, 4);
-        __m256i even, odd;
-        bilinear_8(_mm256_srai_epi32(_mm256_slli_epi32(quad, 24), 24),
-                   _mm256_srai_epi32(_mm256_slli_epi32(quad, 16), 24),
-                   _mm256_srai_epi32(_mm256_slli_epi32(quad, 8), 24), _mm256_srai_epi32(quad, 24), across,
-                   down, &even, &odd);
-        even = _mm256_and_si256(reaches_even, even);
-        odd = _mm256_and_si256(reaches_odd, odd);
+        const vector_256 quad = gather_32<4>(quads + c, at);
+        vector_256 even, odd;
+        bilinear_8(shift_right_arithmetic_32(shift_left_32(quad, 24), 24),
+                   shift_right_arithmetic_32(shift_left_32(quad, 16), 24),
+                   shift_right_arithmetic_32(shift_left_32(quad, 8), 24), shift_right_arithmetic_32(quad, 24),
+                   across, down, &even, &odd);
+        even = bitwise_and(reaches_even, even);
+        odd = bitwise_and(reaches_odd, odd);
         if (one_point) {
-            running->channel[c] = _mm256_add_epi64(running->channel[c], _mm256_add_epi64(even, odd));
+            running->channel[c] = add_64(running->channel[c], add_64(even, odd));
             continue;
         }
         uint64_t even_values[4], odd_values[4]; /* candidates 0, 2, 4, 6 and 1, 3, 5, 7 */
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(even_values)), even);
-        _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(odd_values)), odd);
+        store_4x64(even_values, even);
+        store_4x64(odd_values, odd);
         for (uint32_t j = 0; j < 4; j++) {
             arrays.sums[arrays.point[arrays.packed[first + 2u * j] >> 16] * Channels + c] += even_values[j];
             arrays.sums[arrays.point[arrays.packed[first + 2u * j + 1u] >> 16] * Channels + c] +=
@@ -274,7 +267,7 @@ void batch_visit(const dsn_noise_state *noise, const uint32_t *quads, const Batc
     if (Bytes == 1 && count >= 8u) {
         VectorSums running;
         running.point = arrays.point[arrays.packed[0] >> 16];
-        for (uint32_t c = 0; c < Channels; c++) running.channel[c] = _mm256_setzero_si256();
+        for (uint32_t c = 0; c < Channels; c++) running.channel[c] = zero_256();
         for (; slot + 8u <= count; slot += 8u)
             batch_visit_8<Channels>(quads, constants, arrays, slot, &running);
         flush_vector_sums<Channels>(&running, arrays);
@@ -303,12 +296,10 @@ inline void batch_emit_pair(const BatchArrays &arrays, BatchFill *fill, uint64_t
 /* batch_emit_pair<8> on vectors: the 8 lanes' values are packed (candidates first) and stored at once. */
 inline void batch_emit_pair_8(const BatchArrays &arrays, BatchFill *fill, uint64_t pair, uint32_t candidates,
                               uint32_t stream) {
-    __m256i streams, fields;
+    vector_256 streams, fields;
     const uint32_t count = pack_pair_8(pair, candidates, stream, &streams, &fields);
-    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(arrays.stream + fill->slots)), streams);
-    _mm256_storeu_si256(
-        static_cast<__m256i *>(static_cast<void *>(arrays.packed + fill->slots)),
-        _mm256_or_si256(fields, _mm256_set1_epi32(static_cast<int>((fill->cells - 1u) << 16))));
+    store_8x32(arrays.stream + fill->slots, streams);
+    store_8x32(arrays.packed + fill->slots, bitwise_or(fields, set_8x32((fill->cells - 1u) << 16)));
     fill->slots += count;
 }
 #endif

@@ -50,12 +50,12 @@ inline GroupShared group_shared(const dsn_noise_state *noise) {
 /* dsn_poisson_draw of 8 uniforms (the keys: a cell's count when it is one draw), without a search: the
    thresholds cdf[0 .. size - 1] increase, so those at or below the uniform are the n below the smallest
    with uniform < cdf[n] (the guide only skips some of them), and the count is size less those above. */
-inline __m256i group_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i keys) {
-    const __m256i flipped = _mm256_xor_si256(keys, set_8x32(0x80000000u));
-    __m256i above = _mm256_setzero_si256(); /* minus their number */
+inline vector_256 group_counts(const dsn_noise_state *noise, const GroupShared &shared, vector_256 keys) {
+    const vector_256 flipped = bitwise_xor(keys, set_8x32(0x80000000u));
+    vector_256 above = zero_256(); /* minus their number */
     for (uint32_t k = 0; k < noise->poisson_size; k++)
-        above = _mm256_add_epi32(above, _mm256_cmpgt_epi32(set_8x32(shared.flipped_cdf[k]), flipped));
-    return _mm256_add_epi32(set_8x32(noise->poisson_size), above);
+        above = add_32(above, greater_32(set_8x32(shared.flipped_cdf[k]), flipped));
+    return add_32(set_8x32(noise->poisson_size), above);
 }
 
 /* A group's cells along one axis, cell i of point p at [i][p]: its index, floor(shifted_base / 2^16)
@@ -87,53 +87,46 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
         whole[p] = static_cast<uint32_t>(coordinate >> 32), fraction[p] = static_cast<uint32_t>(coordinate);
     }
     const uint32_t radius = noise->radius[axis], shift = noise->cell_shift, up = 4u - shift;
-    const __m128i by_shift = _mm_cvtsi32_si128(static_cast<int>(shift)),
-                  by_up = _mm_cvtsi32_si128(static_cast<int>(up));
-    const __m128i by_k = _mm_cvtsi32_si128(static_cast<int>(28u + shift));
-    const __m256i x = load_8x32(whole), f = load_8x32(fraction), one = set_8x32(1);
+    const vector_128 by_shift = shift_count(static_cast<int>(shift)),
+                     by_up = shift_count(static_cast<int>(up));
+    const vector_128 by_k = shift_count(static_cast<int>(28u + shift));
+    const vector_256 x = load_8x32(whole), f = load_8x32(fraction), one = set_8x32(1);
     /* dsn_axis_span of the window [X - 1, X + 1]: its low end X - 1 - radius */
-    const __m256i low = _mm256_sub_epi32(x, set_8x32(1u + radius));
-    const __m256i first_cell = _mm256_srl_epi32(low, by_shift);
-    const __m256i cell_count = _mm256_add_epi32(
-        _mm256_srl_epi32(
-            _mm256_add_epi32(_mm256_and_si256(low, set_8x32((1u << shift) - 1u)), set_8x32(2u + 2u * radius)),
-            by_shift),
+    const vector_256 low = subtract_32(x, set_8x32(1u + radius));
+    const vector_256 first_cell = shift_right_logical_32_by(low, by_shift);
+    const vector_256 cell_count = add_32(
+        shift_right_logical_32_by(
+            add_32(bitwise_and(low, set_8x32((1u << shift) - 1u)), set_8x32(2u + 2u * radius)), by_shift),
         one);
-    const uint32_t fits = static_cast<uint32_t>(
-        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(set_8x32(group_cells + 1u), cell_count))));
-    const __m256i sign = set_8x32(0x80000000u), room_limit = set_8x32(((1u << shift) - 1u) ^ 0x80000000u);
-    const __m256i f_zero =
-        _mm256_and_si256(_mm256_cmpeq_epi32(f, _mm256_setzero_si256()), set_8x32(0u - (1u << up)));
-    const __m256i bytes = set_8x32(0x01010101u), tops = set_8x32(0x80808080u); /* FieldLanes's */
+    const uint32_t fits =
+        static_cast<uint32_t>(top_bits_of_32(greater_32(set_8x32(group_cells + 1u), cell_count)));
+    const vector_256 sign = set_8x32(0x80000000u), room_limit = set_8x32(((1u << shift) - 1u) ^ 0x80000000u);
+    const vector_256 f_zero = bitwise_and(equal_32(f, zero_256()), set_8x32(0u - (1u << up)));
+    const vector_256 bytes = set_8x32(0x01010101u), tops = set_8x32(0x80808080u); /* FieldLanes's */
     for (uint32_t i = 0; i < group_cells; i++) {
-        const __m256i index =
-            _mm256_and_si256(_mm256_add_epi32(first_cell, set_8x32(i)), set_8x32(0xFFFFFFFFu >> shift));
-        const __m256i origin = _mm256_sll_epi32(index, by_shift), w = _mm256_sub_epi32(x, origin);
-        const __m256i low_half = _mm256_add_epi32(
-            _mm256_sll_epi32(_mm256_sub_epi32(w, set_8x32(radius + 1u)), by_up), _mm256_srl_epi32(f, by_k));
-        __m256i high_half = _mm256_add_epi32(
-            _mm256_add_epi32(_mm256_sll_epi32(_mm256_add_epi32(w, set_8x32(radius + 1u)), by_up),
-                             _mm256_srl_epi32(_mm256_sub_epi32(f, one), by_k)),
-            f_zero);
+        const vector_256 index = bitwise_and(add_32(first_cell, set_8x32(i)), set_8x32(0xFFFFFFFFu >> shift));
+        const vector_256 origin = shift_left_32_by(index, by_shift), w = subtract_32(x, origin);
+        const vector_256 low_half = add_32(shift_left_32_by(subtract_32(w, set_8x32(radius + 1u)), by_up),
+                                           shift_right_logical_32_by(f, by_k));
+        vector_256 high_half = add_32(add_32(shift_left_32_by(add_32(w, set_8x32(radius + 1u)), by_up),
+                                             shift_right_logical_32_by(subtract_32(f, one), by_k)),
+                                      f_zero);
         /* the period's end (none: last_position 2^32 - 1) */
-        const __m256i room = _mm256_xor_si256(origin, set_8x32(0xFFFFFFFFu));
-        const __m256i short_room = _mm256_cmpgt_epi32(room_limit, _mm256_xor_si256(room, sign));
-        const __m256i end = _mm256_blendv_epi8(
-            set_8x32(15), _mm256_or_si256(_mm256_sll_epi32(room, by_up), set_8x32((1u << up) - 1u)),
-            short_room);
-        high_half = _mm256_min_epi32(high_half, end);
-        const __m256i first_half = _mm256_max_epi32(low_half, _mm256_setzero_si256());
-        const __m256i pass = _mm256_andnot_si256(_mm256_cmpgt_epi32(first_half, high_half),
-                                                 _mm256_cmpgt_epi32(cell_count, set_8x32(i)));
-        cells->passes[i] = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+        const vector_256 room = bitwise_xor(origin, set_8x32(0xFFFFFFFFu));
+        const vector_256 short_room = greater_32(room_limit, bitwise_xor(room, sign));
+        const vector_256 end = blend_bytes(
+            set_8x32(15), bitwise_or(shift_left_32_by(room, by_up), set_8x32((1u << up) - 1u)), short_room);
+        high_half = minimum_32(high_half, end);
+        const vector_256 first_half = maximum_32(low_half, zero_256());
+        const vector_256 pass =
+            and_not(greater_32(first_half, high_half), greater_32(cell_count, set_8x32(i)));
+        cells->passes[i] = static_cast<uint32_t>(top_bits_of_32(pass));
         store_8x32(cells->cell[i], index);
-        store_8x32(cells->base[i],
-                   _mm256_add_epi32(_mm256_slli_epi32(_mm256_add_epi32(w, set_8x32(radius + 1u)), 16),
-                                    _mm256_srli_epi32(f, 16)));
+        store_8x32(cells->base[i], add_32(shift_left_32(add_32(w, set_8x32(radius + 1u)), 16),
+                                          shift_right_logical_32(f, 16)));
         /* where the cell passes, 0 <= first_half <= high_half <= 15: one byte each */
-        store_8x32(cells->low[i], _mm256_and_si256(pass, _mm256_mullo_epi32(first_half, bytes)));
-        store_8x32(cells->high[i],
-                   _mm256_and_si256(pass, _mm256_or_si256(_mm256_mullo_epi32(high_half, bytes), tops)));
+        store_8x32(cells->low[i], bitwise_and(pass, multiply_32(first_half, bytes)));
+        store_8x32(cells->high[i], bitwise_and(pass, bitwise_or(multiply_32(high_half, bytes), tops)));
     }
     return fits;
 }
@@ -174,11 +167,10 @@ struct PointGroup {
 };
 
 /* The impulse counts of the cells of 8 points with these keys (also in memory at keys). */
-inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shared, __m256i key,
-                           const uint32_t *keys) {
+inline vector_256 cell_counts(const dsn_noise_state *noise, const GroupShared &shared, vector_256 key,
+                              const uint32_t *keys) {
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-    if (shared.by_tables)
-        return _mm512_castsi512_si256(counts_16(noise, shared.tables, _mm512_castsi256_si512(key)));
+    if (shared.by_tables) return low_256(counts_16(noise, shared.tables, cast_to_512(key)));
 #endif
     if (shared.one_draw) return group_counts(noise, shared, key);
     uint32_t counts[group_points];
@@ -187,9 +179,9 @@ inline __m256i cell_counts(const dsn_noise_state *noise, const GroupShared &shar
 }
 
 /* All ones in the lanes p of `points` (bit p). */
-inline __m256i point_lanes(uint32_t points) {
-    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    return _mm256_cmpeq_epi32(_mm256_and_si256(set_8x32(points), bits), bits);
+inline vector_256 point_lanes(uint32_t points) {
+    const vector_256 bits = set_lanes_8x32(1, 2, 4, 8, 16, 32, 64, 128);
+    return equal_32(bitwise_and(set_8x32(points), bits), bits);
 }
 
 /* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
@@ -203,25 +195,25 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
                                 ? group_axis(noise, 1, ys, count, &group->rows)
                                 : group_periodic_axis(noise, 1, ys, count, shared.lanes, &group->rows);
     const uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
-    const __m256i seed_row = set_8x32(noise->seed_row), seed_column = set_8x32(noise->seed_column);
+    const vector_256 seed_row = set_8x32(noise->seed_row), seed_column = set_8x32(noise->seed_column);
     for (uint32_t j = 0; j < group_cells; j++) {
-        const __m256i row_key =
-            mix32_8(_mm256_add_epi32(load_8x32(group->rows.cell[j]), seed_row)); /* dsn_row_key */
-        const __m256i row_there = point_lanes(group->rows.passes[j] & fits);
+        const vector_256 row_key =
+            mix32_8(add_32(load_8x32(group->rows.cell[j]), seed_row)); /* dsn_row_key */
+        const vector_256 row_there = point_lanes(group->rows.passes[j] & fits);
         for (uint32_t i = 0; i < group_cells; i++) {
             uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
             uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
-            const __m256i key = mix32_8(
-                _mm256_add_epi32(_mm256_xor_si256(load_8x32(group->columns.cell[i]), seed_column), row_key));
+            const vector_256 key =
+                mix32_8(add_32(bitwise_xor(load_8x32(group->columns.cell[i]), seed_column), row_key));
             store_8x32(keys, key);
-            const __m256i there = _mm256_and_si256(row_there, point_lanes(group->columns.passes[i]));
+            const vector_256 there = bitwise_and(row_there, point_lanes(group->columns.passes[i]));
 #if defined(__AVX512F__) && defined(__AVX512BW__)
             if (shared.by_tables) { /* the counts below, two cells a vector */
                 store_8x32(counts, there);
                 continue;
             }
 #endif
-            store_8x32(counts, _mm256_and_si256(cell_counts(noise, shared, key, keys), there));
+            store_8x32(counts, bitwise_and(cell_counts(noise, shared, key, keys), there));
         }
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -229,14 +221,13 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
         const uint32_t cells = group_cells * group_cells * group_points;
         uint32_t at = 0;
         for (; at + 16u <= cells; at += 16u)
-            _mm512_storeu_si512(group->counts + at, _mm512_and_si512(counts_16(noise, shared.tables,
-                                                                               load_16x32(group->keys + at)),
-                                                                     load_16x32(group->counts + at)));
+            store_16x32(group->counts + at,
+                        bitwise_and(counts_16(noise, shared.tables, load_16x32(group->keys + at)),
+                                    load_16x32(group->counts + at)));
         for (; at < cells; at += group_points)
-            store_8x32(
-                group->counts + at,
-                _mm256_and_si256(cell_counts(noise, shared, load_8x32(group->keys + at), group->keys + at),
-                                 load_8x32(group->counts + at)));
+            store_8x32(group->counts + at,
+                       bitwise_and(cell_counts(noise, shared, load_8x32(group->keys + at), group->keys + at),
+                                   load_8x32(group->counts + at)));
     }
 #endif
     return fits;
@@ -269,25 +260,25 @@ inline splat_vector sifted_lanes(splat_vector pairs, splat_vector halves, splat_
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products (the kernel has no
    AVX512DQ): the high halves' product only reaches bits 64 and up. */
-inline __m512i multiply_64(__m512i x, uint64_t factor) {
-    const __m512i low = _mm512_set1_epi64(static_cast<long long>(factor & 0xFFFFFFFFu)),
-                  high = _mm512_set1_epi64(static_cast<long long>(factor >> 32));
-    const __m512i cross =
-        _mm512_add_epi64(_mm512_mul_epu32(_mm512_srli_epi64(x, 32), low), _mm512_mul_epu32(x, high));
-    return _mm512_add_epi64(_mm512_mul_epu32(x, low), _mm512_slli_epi64(cross, 32));
+inline vector_512 multiply_64(vector_512 x, uint64_t factor) {
+    const vector_512 low = set_8x64(static_cast<int64_t>(factor & 0xFFFFFFFFu)),
+                     high = set_8x64(static_cast<int64_t>(factor >> 32));
+    const vector_512 cross = add_64(multiply_even_unsigned_32(shift_right_logical_64(x, 32), low),
+                                    multiply_even_unsigned_32(x, high));
+    return add_64(multiply_even_unsigned_32(x, low), shift_left_64(cross, 32));
 }
 
 /* dsn_mix64 of every 64-bit lane. */
-inline __m512i mix64_8(__m512i x) {
-    x = multiply_64(_mm512_xor_si512(x, _mm512_srli_epi64(x, 30)), 0xBF58476D1CE4E5B9u);
-    x = multiply_64(_mm512_xor_si512(x, _mm512_srli_epi64(x, 27)), 0x94D049BB133111EBu);
-    return _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
+inline vector_512 mix64_8(vector_512 x) {
+    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 30)), 0xBF58476D1CE4E5B9u);
+    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 27)), 0x94D049BB133111EBu);
+    return bitwise_xor(x, shift_right_logical_64(x, 31));
 }
 
 /* A sifting bound's word of each point (GroupAxis) in both of its 64-bit lanes: `four` holds the first
    point's index 4 times, then the next's. */
-inline __m512i bound_lanes(__m512i four, const uint32_t *words) {
-    return _mm512_permutexvar_epi32(four, _mm512_castsi256_si512(load_8x32(words)));
+inline vector_512 bound_lanes(vector_512 four, const uint32_t *words) {
+    return permute_32(cast_to_512(load_8x32(words)), four);
 }
 
 /* add_first_pairs' pairs and sifted bits of every cell of the group (the cells past a point's, defined
@@ -295,106 +286,99 @@ inline __m512i bound_lanes(__m512i four, const uint32_t *words) {
    gathered by one byte movemask for 4 points, less the impulses at or past the cell's count (each
    byte's impulse index compared with the count). */
 inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupPairs *out) {
-    const __m512i halves = _mm512_set1_epi64(static_cast<long long>(lanes.halves)),
-                  tops = _mm512_set1_epi64(static_cast<long long>(lanes.tops));
-    const __m512i second = _mm512_setr_epi64(0, pair_1_step, 0, pair_1_step, 0, pair_1_step, 0, pair_1_step);
-    const __m512i impulse =
-        _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
-    const __m512i most = _mm512_set1_epi32(16);
+    const vector_512 halves = set_8x64(static_cast<int64_t>(lanes.halves)),
+                     tops = set_8x64(static_cast<int64_t>(lanes.tops));
+    const vector_512 second = set_lanes_8x64(0, pair_1_step, 0, pair_1_step, 0, pair_1_step, 0, pair_1_step);
+    const vector_512 impulse =
+        broadcast_lanes(set_lanes_16x8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    const vector_512 most = set_16x32(16);
     for (uint32_t quarter = 0; quarter < 2; quarter++) { /* points 4 quarter .. 4 quarter + 3 */
         const uint32_t from = 4u * quarter;
-        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), set_8x32(from));
-        const __m512i four =
-            _mm512_add_epi32(_mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
-                             _mm512_set1_epi32(static_cast<int>(from)));
+        const vector_256 twice = add_32(set_lanes_8x32(0, 0, 1, 1, 2, 2, 3, 3), set_8x32(from));
+        const vector_512 four =
+            add_32(set_lanes_16x32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3), set_16x32(from));
 #pragma GCC unroll 9
         for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
             const uint32_t i = cell % group_cells, j = cell / group_cells;
-            const __m512i keys = _mm512_cvtepu32_epi64(
-                _mm256_permutevar8x32_epi32(load_8x32(group.keys + cell * group_points), twice));
-            const __m512i pairs = mix64_8(_mm512_add_epi64(_mm512_slli_epi64(keys, 32), second));
-            const __m512i counts = _mm512_min_epu32(
-                _mm512_permutexvar_epi32(
-                    four, _mm512_castsi256_si512(load_8x32(group.counts + cell * group_points))),
-                most);
+            const vector_512 keys =
+                widen_unsigned_32x64(permute_32(load_8x32(group.keys + cell * group_points), twice));
+            const vector_512 pairs = mix64_8(add_64(shift_left_64(keys, 32), second));
+            const vector_512 counts = minimum_unsigned_32(
+                permute_32(cast_to_512(load_8x32(group.counts + cell * group_points)), four), most);
             /* every byte of a point's 128 bits: its count (below 256) */
-            const __mmask64 exist =
-                _mm512_cmpgt_epu8_mask(_mm512_shuffle_epi8(counts, _mm512_setzero_si512()), impulse);
-            const __m512i in_reach =
+            const mask_64 exist = greater_unsigned_8(shuffle_bytes(counts, zero_512()), impulse);
+            const vector_512 in_reach =
                 sifted_lanes(pairs, halves, tops, bound_lanes(four, group.columns.low[i]),
                              bound_lanes(four, group.columns.high[i]), bound_lanes(four, group.rows.low[j]),
                              bound_lanes(four, group.rows.high[j]));
-            const uint64_t sifted = _cvtmask64_u64(exist & _mm512_movepi8_mask(in_reach));
+            const uint64_t sifted = mask_bits(exist & top_bits_of_bytes(in_reach));
             out->sifted[cell][2u * quarter] = static_cast<uint32_t>(sifted);
             out->sifted[cell][2u * quarter + 1u] = static_cast<uint32_t>(sifted >> 32);
-            _mm512_storeu_si512(out->pairs[cell] + 2u * from, pairs);
+            store_8x64(out->pairs[cell] + 2u * from, pairs);
         }
     }
 }
 #else
 /* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products: the high halves'
    product only reaches bits 64 and up. */
-inline __m256i multiply_64(__m256i x, uint64_t factor) {
-    const __m256i low = _mm256_set1_epi64x(static_cast<long long>(factor & 0xFFFFFFFFu)),
-                  high = _mm256_set1_epi64x(static_cast<long long>(factor >> 32));
-    const __m256i cross =
-        _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(x, 32), low), _mm256_mul_epu32(x, high));
-    return _mm256_add_epi64(_mm256_mul_epu32(x, low), _mm256_slli_epi64(cross, 32));
+inline vector_256 multiply_64(vector_256 x, uint64_t factor) {
+    const vector_256 low = set_4x64(static_cast<int64_t>(factor & 0xFFFFFFFFu)),
+                     high = set_4x64(static_cast<int64_t>(factor >> 32));
+    const vector_256 cross = add_64(multiply_even_unsigned_32(shift_right_logical_64(x, 32), low),
+                                    multiply_even_unsigned_32(x, high));
+    return add_64(multiply_even_unsigned_32(x, low), shift_left_64(cross, 32));
 }
 
 /* dsn_mix64 of every 64-bit lane. */
-inline __m256i mix64_4(__m256i x) {
-    x = multiply_64(_mm256_xor_si256(x, _mm256_srli_epi64(x, 30)), 0xBF58476D1CE4E5B9u);
-    x = multiply_64(_mm256_xor_si256(x, _mm256_srli_epi64(x, 27)), 0x94D049BB133111EBu);
-    return _mm256_xor_si256(x, _mm256_srli_epi64(x, 31));
+inline vector_256 mix64_4(vector_256 x) {
+    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 30)), 0xBF58476D1CE4E5B9u);
+    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 27)), 0x94D049BB133111EBu);
+    return bitwise_xor(x, shift_right_logical_64(x, 31));
 }
 
 /* bound_lanes of the AVX-512 copy on AVX2 vectors, 2 points. */
-inline __m256i bound_lanes(__m256i four, const uint32_t *words) {
-    return _mm256_permutevar8x32_epi32(load_8x32(words), four);
+inline vector_256 bound_lanes(vector_256 four, const uint32_t *words) {
+    return permute_32(load_8x32(words), four);
 }
 
 /* group_pairs of the AVX-512 copy on AVX2 vectors, 2 points a vector: add_pair's pairs 0 and 1 and their
    sifted bits (candidate_lanes' top bits by one byte movemask, less the impulses at or past the count). */
 inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupPairs *out) {
-    const __m256i halves = _mm256_set1_epi64x(static_cast<long long>(lanes.halves)),
-                  tops = _mm256_set1_epi64x(static_cast<long long>(lanes.tops));
-    const __m256i second = _mm256_setr_epi64x(0, pair_1_step, 0, pair_1_step);
-    const __m256i impulse = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3,
-                                             4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m256i most = set_8x32(16);
+    const vector_256 halves = set_4x64(static_cast<int64_t>(lanes.halves)),
+                     tops = set_4x64(static_cast<int64_t>(lanes.tops));
+    const vector_256 second = set_lanes_4x64(0, pair_1_step, 0, pair_1_step);
+    const vector_256 impulse = set_lanes_32x8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2,
+                                              3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const vector_256 most = set_8x32(16);
     for (uint32_t half = 0; half < group_points / 2; half++) { /* points 2 half and 2 half + 1 */
         const uint32_t from = 2u * half;
-        const __m256i twice = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 1, 1, 0, 0, 0, 0), set_8x32(from));
-        const __m256i four = _mm256_add_epi32(_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), set_8x32(from));
+        const vector_256 twice = add_32(set_lanes_8x32(0, 0, 1, 1, 0, 0, 0, 0), set_8x32(from));
+        const vector_256 four = add_32(set_lanes_8x32(0, 0, 0, 0, 1, 1, 1, 1), set_8x32(from));
 #pragma GCC unroll 9
         for (uint32_t cell = 0; cell < group_cells * group_cells; cell++) {
             const uint32_t i = cell % group_cells, j = cell / group_cells;
-            const __m256i keys = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(
-                _mm256_permutevar8x32_epi32(load_8x32(group.keys + cell * group_points), twice)));
-            const __m256i pairs = mix64_4(_mm256_add_epi64(_mm256_slli_epi64(keys, 32), second));
-            const __m256i counts = _mm256_min_epu32(
-                _mm256_permutevar8x32_epi32(load_8x32(group.counts + cell * group_points), four), most);
+            const vector_256 keys =
+                widen_unsigned_32x64(low_128(permute_32(load_8x32(group.keys + cell * group_points), twice)));
+            const vector_256 pairs = mix64_4(add_64(shift_left_64(keys, 32), second));
+            const vector_256 counts =
+                minimum_unsigned_32(permute_32(load_8x32(group.counts + cell * group_points), four), most);
             /* every byte of a point's 128 bits: its count (at most 16) */
-            const __m256i exist =
-                _mm256_cmpgt_epi8(_mm256_shuffle_epi8(counts, _mm256_setzero_si256()), impulse);
-            const __m256i in_reach =
+            const vector_256 exist = greater_8(shuffle_bytes(counts, zero_256()), impulse);
+            const vector_256 in_reach =
                 sifted_lanes(pairs, halves, tops, bound_lanes(four, group.columns.low[i]),
                              bound_lanes(four, group.columns.high[i]), bound_lanes(four, group.rows.low[j]),
                              bound_lanes(four, group.rows.high[j]));
-            out->sifted[cell][half] =
-                static_cast<uint32_t>(_mm256_movemask_epi8(_mm256_and_si256(exist, in_reach)));
-            _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(out->pairs[cell] + 2u * from)),
-                                pairs);
+            out->sifted[cell][half] = static_cast<uint32_t>(top_bits_of_bytes(bitwise_and(exist, in_reach)));
+            store_4x64(out->pairs[cell] + 2u * from, pairs);
         }
     }
 }
 #endif
 
 /* The bases of point p's cells by their indices (point_visit_begin). */
-inline __m256i group_bases(const GroupAxis &cells, uint32_t p) {
-    return _mm256_setr_epi32(static_cast<int>(cells.base[0][p]), static_cast<int>(cells.base[1][p]),
-                             static_cast<int>(cells.base[2][p]), 0, 0, 0, 0, 0);
+inline vector_256 group_bases(const GroupAxis &cells, uint32_t p) {
+    return set_lanes_8x32(static_cast<int32_t>(cells.base[0][p]), static_cast<int32_t>(cells.base[1][p]),
+                          static_cast<int32_t>(cells.base[2][p]), 0, 0, 0, 0, 0);
 }
 
 /* The sifting bounds of point p's cell i (candidate_lanes reads no shifted_base). */
@@ -431,10 +415,7 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
             visit_point_candidates<Channels>(&visit, &candidates);
         const uint32_t sifted = (pairs.sifted[cell][p / 2u] >> (16u * (p % 2u))) & 0xFFFFu;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-        add_sifted_pairs(&candidates, key,
-                         _mm_loadu_si128(static_cast<const __m128i *>(
-                             static_cast<const void *>(pairs.pairs[cell] + 2u * p))),
-                         sifted, indices);
+        add_sifted_pairs(&candidates, key, load_2x64(pairs.pairs[cell] + 2u * p), sifted, indices);
 #else
         add_sifted_pair(&candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
         add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);

@@ -96,6 +96,17 @@ DSN_SIMD_INLINE vector_128 set_lanes_2x64(uint64_t lane_0, uint64_t lane_1) {
 DSN_SIMD_INLINE vector_128 load_16x8(const uint8_t *at) {
     return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(at)));
 }
+DSN_SIMD_INLINE vector_128 load_2x64(const uint64_t *at) {
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(at)));
+}
+/* The bytes in order, byte 0 first. */
+DSN_SIMD_INLINE vector_128 set_lanes_16x8(char lane_0, char lane_1, char lane_2, char lane_3, char lane_4,
+                                          char lane_5, char lane_6, char lane_7, char lane_8, char lane_9,
+                                          char lane_10, char lane_11, char lane_12, char lane_13,
+                                          char lane_14, char lane_15) {
+    return _mm_setr_epi8(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7, lane_8, lane_9,
+                         lane_10, lane_11, lane_12, lane_13, lane_14, lane_15);
+}
 DSN_SIMD_INLINE vector_128 bitwise_and(vector_128 a, vector_128 b) { return _mm_and_si128(a, b); }
 DSN_SIMD_INLINE vector_128 bitwise_or(vector_128 a, vector_128 b) { return _mm_or_si128(a, b); }
 DSN_SIMD_INLINE vector_128 subtract_64(vector_128 a, vector_128 b) { return _mm_sub_epi64(a, b); }

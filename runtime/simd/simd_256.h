@@ -44,6 +44,17 @@ DSN_SIMD_INLINE vector_256 gather_masked_32(const void *base, vector_256 offsets
                                        Scale);
 }
 
+/* Lane k: the 32 bits at base + Scale offsets[k] bytes. */
+template <int Scale>
+DSN_SIMD_INLINE vector_256 gather_32(const void *base, vector_256 offsets) {
+    return _mm256_i32gather_epi32(static_cast<const int *>(base), offsets, Scale);
+}
+/* 64-bit lane k: the 64 bits at base + Scale offsets[k] bytes (4 32-bit offsets). */
+template <int Scale>
+DSN_SIMD_INLINE vector_256 gather_64(const void *base, vector_128 offsets) {
+    return _mm256_i32gather_epi64(static_cast<const long long *>(base), offsets, Scale);
+}
+
 /* ---- Constants ---- */
 DSN_SIMD_INLINE vector_256 zero_256() { return _mm256_setzero_si256(); }
 inline vector_256 set_8x32(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
@@ -53,6 +64,19 @@ DSN_SIMD_INLINE vector_256 set_lanes_8x32(int32_t lane_0, int32_t lane_1, int32_
                                           int32_t lane_4, int32_t lane_5, int32_t lane_6, int32_t lane_7) {
     return _mm256_setr_epi32(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7);
 }
+DSN_SIMD_INLINE vector_256 set_lanes_32x8(char lane_0, char lane_1, char lane_2, char lane_3, char lane_4,
+                                          char lane_5, char lane_6, char lane_7, char lane_8, char lane_9,
+                                          char lane_10, char lane_11, char lane_12, char lane_13,
+                                          char lane_14, char lane_15, char lane_16, char lane_17,
+                                          char lane_18, char lane_19, char lane_20, char lane_21,
+                                          char lane_22, char lane_23, char lane_24, char lane_25,
+                                          char lane_26, char lane_27, char lane_28, char lane_29,
+                                          char lane_30, char lane_31) {
+    return _mm256_setr_epi8(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7, lane_8, lane_9,
+                            lane_10, lane_11, lane_12, lane_13, lane_14, lane_15, lane_16, lane_17, lane_18,
+                            lane_19, lane_20, lane_21, lane_22, lane_23, lane_24, lane_25, lane_26, lane_27,
+                            lane_28, lane_29, lane_30, lane_31);
+}
 DSN_SIMD_INLINE vector_256 set_lanes_4x64(int64_t lane_0, int64_t lane_1, int64_t lane_2, int64_t lane_3) {
     return _mm256_setr_epi64x(lane_0, lane_1, lane_2, lane_3);
 }
@@ -61,6 +85,8 @@ DSN_SIMD_INLINE vector_256 set_lanes_4x64(int64_t lane_0, int64_t lane_1, int64_
 DSN_SIMD_INLINE vector_256 bitwise_and(vector_256 a, vector_256 b) { return _mm256_and_si256(a, b); }
 DSN_SIMD_INLINE vector_256 bitwise_or(vector_256 a, vector_256 b) { return _mm256_or_si256(a, b); }
 DSN_SIMD_INLINE vector_256 bitwise_xor(vector_256 a, vector_256 b) { return _mm256_xor_si256(a, b); }
+/* ~a & b. */
+DSN_SIMD_INLINE vector_256 and_not(vector_256 a, vector_256 b) { return _mm256_andnot_si256(a, b); }
 DSN_SIMD_INLINE vector_256 shift_left_32(vector_256 a, uint32_t count) {
     return _mm256_slli_epi32(a, static_cast<int>(count));
 }
@@ -81,6 +107,12 @@ DSN_SIMD_INLINE vector_256 shift_right_logical_32_per_lane(vector_256 a, vector_
 DSN_SIMD_INLINE vector_256 shift_right_arithmetic_32(vector_256 a, uint32_t count) {
     return _mm256_srai_epi32(a, static_cast<int>(count));
 }
+DSN_SIMD_INLINE vector_256 shift_left_64(vector_256 a, uint32_t count) {
+    return _mm256_slli_epi64(a, static_cast<int>(count));
+}
+DSN_SIMD_INLINE vector_256 shift_left_64_by(vector_256 a, vector_128 count) {
+    return _mm256_sll_epi64(a, count);
+}
 DSN_SIMD_INLINE vector_256 shift_right_logical_64(vector_256 a, uint32_t count) {
     return _mm256_srli_epi64(a, static_cast<int>(count));
 }
@@ -93,20 +125,35 @@ DSN_SIMD_INLINE vector_256 add_32(vector_256 a, vector_256 b) { return _mm256_ad
 DSN_SIMD_INLINE vector_256 subtract_32(vector_256 a, vector_256 b) { return _mm256_sub_epi32(a, b); }
 DSN_SIMD_INLINE vector_256 multiply_32(vector_256 a, vector_256 b) { return _mm256_mullo_epi32(a, b); }
 DSN_SIMD_INLINE vector_256 add_64(vector_256 a, vector_256 b) { return _mm256_add_epi64(a, b); }
+DSN_SIMD_INLINE vector_256 subtract_64(vector_256 a, vector_256 b) { return _mm256_sub_epi64(a, b); }
 /* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
 DSN_SIMD_INLINE vector_256 multiply_even_32(vector_256 a, vector_256 b) { return _mm256_mul_epi32(a, b); }
 /* Pairs of 16-bit lanes multiplied (signed) and summed into 32-bit lanes. */
 DSN_SIMD_INLINE vector_256 madd_16(vector_256 a, vector_256 b) { return _mm256_madd_epi16(a, b); }
+/* The low 32 bits of each 64-bit lane, unsigned, multiplied into the 64-bit lane (exact). */
+DSN_SIMD_INLINE vector_256 multiply_even_unsigned_32(vector_256 a, vector_256 b) {
+    return _mm256_mul_epu32(a, b);
+}
+DSN_SIMD_INLINE vector_256 minimum_32(vector_256 a, vector_256 b) { return _mm256_min_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 maximum_32(vector_256 a, vector_256 b) { return _mm256_max_epi32(a, b); }
 DSN_SIMD_INLINE vector_256 minimum_unsigned_32(vector_256 a, vector_256 b) { return _mm256_min_epu32(a, b); }
 
 /* ---- Comparisons: all ones where true ---- */
 DSN_SIMD_INLINE vector_256 equal_32(vector_256 a, vector_256 b) { return _mm256_cmpeq_epi32(a, b); }
+DSN_SIMD_INLINE vector_256 greater_8(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi8(a, b); }
 DSN_SIMD_INLINE vector_256 greater_32(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi32(a, b); }
 DSN_SIMD_INLINE vector_256 greater_64(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi64(a, b); }
 /* The top bit of 32-bit lane k in bit k (an int, as the instruction's). */
 DSN_SIMD_INLINE int top_bits_of_32(vector_256 a) { return _mm256_movemask_ps(_mm256_castsi256_ps(a)); }
 
+/* The top bit of byte k in bit k (an int, as the instruction's). */
+DSN_SIMD_INLINE int top_bits_of_bytes(vector_256 a) { return _mm256_movemask_epi8(a); }
+
 /* ---- Lanes ---- */
+/* b's bytes where mask's byte has its top bit set, a's elsewhere. */
+DSN_SIMD_INLINE vector_256 blend_bytes(vector_256 a, vector_256 b, vector_256 mask) {
+    return _mm256_blendv_epi8(a, b, mask);
+}
 /* The even 16-bit lanes of a, the odd ones of b. */
 DSN_SIMD_INLINE vector_256 blend_odd_16(vector_256 a, vector_256 b) { return _mm256_blend_epi16(a, b, 0xAA); }
 /* Lane k: lane order[k] (its low 3 bits) of a, across the whole vector. */
@@ -118,6 +165,20 @@ template <int Order>
 DSN_SIMD_INLINE vector_256 permute_64(vector_256 a) {
     return _mm256_permute4x64_epi64(a, Order);
 }
+/* Per 128-bit lane: byte k is byte order[k] (its low 4 bits) of the lane, or 0 where order[k]'s top bit is
+ * set. */
+DSN_SIMD_INLINE vector_256 shuffle_bytes(vector_256 a, vector_256 order) {
+    return _mm256_shuffle_epi8(a, order);
+}
+DSN_SIMD_INLINE vector_128 low_128(vector_256 a) { return _mm256_castsi256_si128(a); }
+DSN_SIMD_INLINE vector_128 high_128(vector_256 a) { return _mm256_extracti128_si256(a, 1); }
+/* Per 128-bit lane: 32-bit lane k is lane (Order >> 2 k) & 3 of the lane. */
+template <int Order>
+DSN_SIMD_INLINE vector_256 shuffle_32(vector_256 a) {
+    return _mm256_shuffle_epi32(a, Order);
+}
+/* 4 32-bit lanes, unsigned, widened into 64-bit lanes. */
+DSN_SIMD_INLINE vector_256 widen_unsigned_32x64(vector_128 a) { return _mm256_cvtepu32_epi64(a); }
 /* 8 bytes (the low 64 bits of bytes), unsigned, widened into 32-bit lanes. */
 DSN_SIMD_INLINE vector_256 widen_bytes_8x32(vector_128 bytes) { return _mm256_cvtepu8_epi32(bytes); }
 DSN_SIMD_INLINE floats_256 as_floats(vector_256 a) { return _mm256_castsi256_ps(a); }

@@ -279,10 +279,12 @@ inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count
 typedef __m512i vector_512;
 typedef __mmask16 mask_16;
 typedef __mmask8 mask_8;
+typedef __mmask64 mask_64;
 
 inline vector_512 load_16x32(const uint32_t *at) { return _mm512_loadu_si512(at); }
 /* load_16x32 and set_16x32 are plain inline, as the kernels' helpers they replaced were (simd_256.h). */
 DSN_SIMD_INLINE vector_512 load_8x64(const int64_t *at) { return _mm512_loadu_si512(at); }
+DSN_SIMD_INLINE void store_8x64(uint64_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
 DSN_SIMD_INLINE void store_16x32(uint32_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
 /* The lanes of mask, the others 0 (and not read). */
 DSN_SIMD_INLINE vector_512 load_masked_16x32(const uint32_t *at, mask_16 mask) {
@@ -303,6 +305,11 @@ DSN_SIMD_INLINE vector_512 zero_512() { return _mm512_setzero_si512(); }
 inline vector_512 set_16x32(uint32_t value) { return _mm512_set1_epi32(static_cast<int>(value)); }
 DSN_SIMD_INLINE vector_512 set_8x64(int64_t value) { return _mm512_set1_epi64(value); }
 /* The lanes in order, lane 0 first. */
+DSN_SIMD_INLINE vector_512 set_lanes_8x64(int64_t lane_0, int64_t lane_1, int64_t lane_2, int64_t lane_3,
+                                          int64_t lane_4, int64_t lane_5, int64_t lane_6, int64_t lane_7) {
+    return _mm512_setr_epi64(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7);
+}
+/* The lanes in order, lane 0 first. */
 DSN_SIMD_INLINE vector_512 set_lanes_16x32(int32_t lane_0, int32_t lane_1, int32_t lane_2, int32_t lane_3,
                                            int32_t lane_4, int32_t lane_5, int32_t lane_6, int32_t lane_7,
                                            int32_t lane_8, int32_t lane_9, int32_t lane_10, int32_t lane_11,
@@ -315,6 +322,8 @@ DSN_SIMD_INLINE vector_512 set_lanes_16x32(int32_t lane_0, int32_t lane_1, int32
 DSN_SIMD_INLINE vector_512 broadcast_256(vector_256 value) { return _mm512_broadcast_i64x4(value); }
 DSN_SIMD_INLINE vector_256 low_256(vector_512 a) { return _mm512_castsi512_si256(a); }
 DSN_SIMD_INLINE vector_256 high_256(vector_512 a) { return _mm512_extracti64x4_epi64(a, 1); }
+/* a in the low half, the high half undefined. */
+DSN_SIMD_INLINE vector_512 cast_to_512(vector_256 a) { return _mm512_castsi256_si512(a); }
 /* low in the low half, high in the high half. */
 DSN_SIMD_INLINE vector_512 concatenate_256(vector_256 low, vector_256 high) {
     return _mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1);
@@ -355,6 +364,7 @@ DSN_SIMD_INLINE vector_512 shift_right_logical_32_by(vector_512 a, vector_128 co
 DSN_SIMD_INLINE vector_512 shift_right_arithmetic_32(vector_512 a, uint32_t count) {
     return _mm512_srai_epi32(a, count);
 }
+DSN_SIMD_INLINE vector_512 shift_left_64(vector_512 a, uint32_t count) { return _mm512_slli_epi64(a, count); }
 DSN_SIMD_INLINE vector_512 shift_right_logical_64(vector_512 a, uint32_t count) {
     return _mm512_srli_epi64(a, count);
 }
@@ -384,6 +394,10 @@ DSN_SIMD_INLINE vector_512 add_32_where(mask_16 mask, vector_512 a, vector_512 b
 DSN_SIMD_INLINE vector_512 add_64(vector_512 a, vector_512 b) { return _mm512_add_epi64(a, b); }
 /* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
 DSN_SIMD_INLINE vector_512 multiply_even_32(vector_512 a, vector_512 b) { return _mm512_mul_epi32(a, b); }
+/* The low 32 bits of each 64-bit lane, unsigned, multiplied into the 64-bit lane (exact). */
+DSN_SIMD_INLINE vector_512 multiply_even_unsigned_32(vector_512 a, vector_512 b) {
+    return _mm512_mul_epu32(a, b);
+}
 DSN_SIMD_INLINE vector_512 maximum_32(vector_512 a, vector_512 b) { return _mm512_max_epi32(a, b); }
 DSN_SIMD_INLINE vector_512 minimum_unsigned_32(vector_512 a, vector_512 b) { return _mm512_min_epu32(a, b); }
 /* 8 32-bit lanes, signed, widened into 64-bit lanes. */
@@ -396,6 +410,12 @@ DSN_SIMD_INLINE mask_16 equal_32(vector_512 a, vector_512 b) { return _mm512_cmp
 DSN_SIMD_INLINE mask_16 equal_32(mask_16 within, vector_512 a, vector_512 b) {
     return _mm512_mask_cmpeq_epi32_mask(within, a, b);
 }
+DSN_SIMD_INLINE mask_64 greater_unsigned_8(vector_512 a, vector_512 b) {
+    return _mm512_cmpgt_epu8_mask(a, b);
+}
+/* The top bit of byte k in bit k. */
+DSN_SIMD_INLINE mask_64 top_bits_of_bytes(vector_512 a) { return _mm512_movepi8_mask(a); }
+DSN_SIMD_INLINE uint64_t mask_bits(mask_64 mask) { return _cvtmask64_u64(mask); }
 DSN_SIMD_INLINE mask_16 less_32(vector_512 a, vector_512 b) { return _mm512_cmplt_epi32_mask(a, b); }
 DSN_SIMD_INLINE mask_8 less_unsigned_64(mask_8 within, vector_512 a, vector_512 b) {
     return _mm512_mask_cmplt_epu64_mask(within, a, b);
@@ -446,6 +466,13 @@ DSN_SIMD_INLINE vector_512 permute_32_of_two_or_zero(mask_16 mask, vector_512 fi
 DSN_SIMD_INLINE vector_512 compress_32(mask_16 mask, vector_512 a) {
     return _mm512_maskz_compress_epi32(mask, a);
 }
+/* Per 128-bit lane: byte k is byte order[k] (its low 4 bits) of the lane, or 0 where order[k]'s top bit is
+ * set. */
+DSN_SIMD_INLINE vector_512 shuffle_bytes(vector_512 a, vector_512 order) {
+    return _mm512_shuffle_epi8(a, order);
+}
+/* 8 32-bit lanes, unsigned, widened into 64-bit lanes. */
+DSN_SIMD_INLINE vector_512 widen_unsigned_32x64(vector_256 a) { return _mm512_cvtepu32_epi64(a); }
 /* 16 bytes, unsigned, widened into 32-bit lanes. */
 DSN_SIMD_INLINE vector_512 widen_bytes_16x32(vector_128 bytes) { return _mm512_cvtepu8_epi32(bytes); }
 
