@@ -34,6 +34,9 @@ DSN_SIMD_INLINE vector_256 load_4x64(const int64_t *at) {
 DSN_SIMD_INLINE vector_256 load_masked_4x64(const int64_t *at, vector_256 mask) {
     return _mm256_maskload_epi64(static_cast<const long long *>(static_cast<const void *>(at)), mask);
 }
+DSN_SIMD_INLINE void store_4x64(int64_t *at, vector_256 value) {
+    _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
+}
 DSN_SIMD_INLINE void store_4x64(uint64_t *at, vector_256 value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
 }

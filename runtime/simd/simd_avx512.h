@@ -285,6 +285,7 @@ inline vector_512 load_16x32(const uint32_t *at) { return _mm512_loadu_si512(at)
 /* load_16x32 and set_16x32 are plain inline, as the kernels' helpers they replaced were (simd_256.h). */
 DSN_SIMD_INLINE vector_512 load_8x64(const int64_t *at) { return _mm512_loadu_si512(at); }
 DSN_SIMD_INLINE void store_8x64(uint64_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
+DSN_SIMD_INLINE void store_8x64(int64_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
 DSN_SIMD_INLINE void store_16x32(uint32_t *at, vector_512 value) { _mm512_storeu_si512(at, value); }
 /* The lanes of mask, the others 0 (and not read). */
 DSN_SIMD_INLINE vector_512 load_masked_16x32(const uint32_t *at, mask_16 mask) {
@@ -392,6 +393,7 @@ DSN_SIMD_INLINE vector_512 add_32_where(mask_16 mask, vector_512 a, vector_512 b
     return _mm512_mask_add_epi32(a, mask, a, b);
 }
 DSN_SIMD_INLINE vector_512 add_64(vector_512 a, vector_512 b) { return _mm512_add_epi64(a, b); }
+DSN_SIMD_INLINE vector_512 subtract_64(vector_512 a, vector_512 b) { return _mm512_sub_epi64(a, b); }
 /* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
 DSN_SIMD_INLINE vector_512 multiply_even_32(vector_512 a, vector_512 b) { return _mm512_mul_epi32(a, b); }
 /* The low 32 bits of each 64-bit lane, unsigned, multiplied into the 64-bit lane (exact). */
