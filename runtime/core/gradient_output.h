@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "core/error_output.h"
+#include "core/grid_points.h"
 #include "core/histogram_map.h"
 #include "core/normalize_fixed.h"
 
@@ -45,10 +46,23 @@ static inline void dsn_store_gradient(void *out, void *dx, void *dy, dsn_output_
     dsn_store_pixel(dy, kind, first, values + 2 * DSN_MAX_CHANNELS, channels);
 }
 
-/* A gradient tile over a grid (dsn.h's dsn_grid): the tile size checked, then pixel (i, j) at origin +
-   i column_step + j row_step modulo 2^64 (stepped by additions, as a continuous tile's), its values from
-   point(x, y, values) (value, dx, dy, DSN_MAX_CHANNELS apart) stored as `kind`. `err` is the call's checks
-   so far. */
+/* A grid point's gradient from point(x, y, values) (value, dx, dy, DSN_MAX_CHANNELS apart), stored as
+   `kind` at value `index` of the three outputs. */
+template <typename Point>
+struct DsnGradientPixel {
+    const Point &point;
+    void *out, *dx, *dy;
+    dsn_output_kind kind;
+    uint32_t channels;
+    void operator()(size_t index, uint64_t x, uint64_t y) const {
+        int32_t values[3 * DSN_MAX_CHANNELS];
+        point(x, y, values);
+        dsn_store_gradient(out, dx, dy, kind, index, values, channels);
+    }
+};
+
+/* A gradient tile over a grid (dsn.h's dsn_grid): the tile size checked, then its points in order
+   (grid_points.h). `err` is the call's checks so far. */
 template <typename Point>
 int dsn_gradient_grid(int err, const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                       uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
@@ -58,21 +72,8 @@ int dsn_gradient_grid(int err, const dsn_noise_state *noise, const dsn_grid *gri
         err = DSN_ERR_TILE_SIZE;
     if (err != DSN_OK)
         return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
-    const uint32_t channels = noise->asset.channels;
-    int32_t values[3 * DSN_MAX_CHANNELS];
-    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
-    size_t index = 0;
-    for (uint32_t j = 0; j < height; j++) {
-        uint64_t point_x = row_x, point_y = row_y;
-        for (uint32_t i = 0; i < width; i++, index += channels) {
-            point(point_x, point_y, values);
-            dsn_store_gradient(out, dx, dy, kind, index, values, channels);
-            point_x += static_cast<uint64_t>(grid->column_step_x);
-            point_y += static_cast<uint64_t>(grid->column_step_y);
-        }
-        row_x += static_cast<uint64_t>(grid->row_step_x);
-        row_y += static_cast<uint64_t>(grid->row_step_y);
-    }
+    const DsnGradientPixel<Point> pixel = {point, out, dx, dy, kind, noise->asset.channels};
+    dsn_grid_points(grid, width, height, noise->asset.channels, pixel);
     return DSN_OK;
 }
 

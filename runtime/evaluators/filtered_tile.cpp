@@ -8,6 +8,7 @@
 #include "core/continuous_internal.h"
 #include "core/error_output.h"
 #include "core/filtered_internal.h"
+#include "core/grid_points.h"
 #include "core/normalize_fixed.h"
 #include "evaluators/grid_splat.h"
 #include "kernels/splat_cells.h"
@@ -235,6 +236,19 @@ size_t tile_scratch_size(const dsn_noise *handle, const dsn_grid *grid, uint32_t
 #endif
 }
 
+/* A grid point filtered on its own, stored as `kind` at value `index` of `out`. */
+struct FilteredPixel {
+    const dsn_noise_state *noise;
+    const dsn_filter_plan *plan;
+    void *out;
+    dsn_output_kind kind;
+    void operator()(size_t index, uint64_t x, uint64_t y) const {
+        int32_t pixel[DSN_MAX_CHANNELS];
+        dsn_internal_filtered_point(noise, x, y, plan, pixel);
+        dsn_store_pixel(out, kind, index, pixel, noise->asset.channels);
+    }
+};
+
 int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
                   uint32_t height, void *out, dsn_output_kind kind, void *scratch, size_t scratch_size) {
     const dsn_noise_state *noise = dsn_state(handle);
@@ -263,22 +277,8 @@ int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_ta
 #else
     (void)scratch, (void)scratch_size;
 #endif
-    /* Pixel (i, j) is origin + i column_step + j row_step modulo 2^64: stepping adds the same values. */
-    const uint32_t channels = noise->asset.channels;
-    int32_t pixel[DSN_MAX_CHANNELS];
-    uint64_t row_x = static_cast<uint64_t>(grid->origin_x), row_y = static_cast<uint64_t>(grid->origin_y);
-    size_t index = 0;
-    for (uint32_t j = 0; j < height; j++) {
-        uint64_t point_x = row_x, point_y = row_y;
-        for (uint32_t i = 0; i < width; i++, index += channels) {
-            dsn_internal_filtered_point(noise, point_x, point_y, &plan, pixel);
-            dsn_store_pixel(out, kind, index, pixel, channels);
-            point_x += static_cast<uint64_t>(grid->column_step_x);
-            point_y += static_cast<uint64_t>(grid->column_step_y);
-        }
-        row_x += static_cast<uint64_t>(grid->row_step_x);
-        row_y += static_cast<uint64_t>(grid->row_step_y);
-    }
+    const FilteredPixel pixel = {noise, &plan, out, kind};
+    dsn_grid_points(grid, width, height, noise->asset.channels, pixel);
     return DSN_OK;
 }
 
