@@ -80,7 +80,7 @@ inline __m128i zero_128() { return _mm_setzero_si128(); }
 /* The four 32-bit lanes, signed. */
 inline void take_32_lanes(__m128i vector, int32_t *lanes) { __builtin_memcpy(lanes, &vector, 16); }
 
-/* ---- The 128-bit operations of the wider kernels (continuous_lanes.h, continuous_point_vector.h) ---- */
+/* ---- The 128-bit operations of the wider kernels (continuous_*.h, filtered_*_vector.h) ---- */
 
 /* A shift count for every lane of a vector (shift_left_32_by). */
 DSN_SIMD_INLINE vector_128 shift_count(int count) { return _mm_cvtsi32_si128(count); }

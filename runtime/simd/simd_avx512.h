@@ -21,7 +21,12 @@
 
 namespace {
 
-typedef __m512i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
+typedef __m512i vector_512; /* 16 lanes of 32 bits, 8 of 64 bits, 32 of 16 bits or 64 of 8 bits */
+typedef __mmask8 mask_8;    /* a bit per lane of a comparison's result */
+typedef __mmask16 mask_16;
+typedef __mmask64 mask_64;
+
+typedef vector_512 simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
 typedef __m512 simd_floats;
 const uint32_t simd_int16_count = 32;
 
@@ -274,12 +279,8 @@ inline void splat_accumulate(uint64_t *sums, splat_vector values, uint32_t count
                              _mm512_add_epi64(_mm512_maskz_loadu_epi64(present, sums), values));
 }
 
-/* ---- The 512-bit operations of the continuous kernels (continuous_point_vector.h): 16 lanes of 32 bits,
-   8 of 64 bits or 32 of 16 bits; the comparisons give one mask bit per lane ---- */
-typedef __m512i vector_512;
-typedef __mmask16 mask_16;
-typedef __mmask8 mask_8;
-typedef __mmask64 mask_64;
+/* ---- The 512-bit operations of the continuous and filtered kernels (continuous_*.h, filtered_*_vector.h):
+   16 lanes of 32 bits, 8 of 64 bits or 32 of 16 bits; the comparisons give one mask bit per lane ---- */
 
 inline vector_512 load_16x32(const uint32_t *at) { return _mm512_loadu_si512(at); }
 /* load_16x32 and set_16x32 are plain inline, as the kernels' helpers they replaced were (simd_256.h). */
