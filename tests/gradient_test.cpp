@@ -16,6 +16,7 @@
 #include "runtime/core/continuous_internal.h"
 #include "runtime/core/filtered_internal.h"
 #include "runtime/core/gradient_output.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
 
@@ -94,6 +95,47 @@ TEST_CASE("continuous gradient: the value is the point's; the sums step by the s
             }
         }
     }
+}
+
+TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, the vector ones included") {
+    // Points on the 2^-16 grid (so that some impulses lie exactly at a reach's entry edge, where only the
+    // slope is non-zero), at densities whose cells have up to 16 impulses and more, periodic too.
+    std::mt19937_64 random(17);
+    size_t vector_points = 0, differences = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t impacts : {0u, 160u << 16}) // the default density, and cells past 16 impulses
+            for (uint32_t period : {0u, 45u}) {
+                const auto made =
+                    make_noise(random_texton_asset(channels, 9, 8, 7), 3, impacts, period, period);
+                dsn_noise_state *state = dsn_state(&made->noise);
+                const uint32_t chosen = state->tile_kernel;
+                for (int k = 0; k < 400; k++) {
+                    const int64_t x = int64_t(random() & ~uint64_t(0xFFFF)) >> 8,
+                                  y = int64_t(random() & ~uint64_t(0xFFFF)) >> 8;
+                    state->tile_kernel = DSN_KERNEL_DEFAULT;
+                    const RawSums expected = raw_sums(made->noise, x, y);
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= chosen; kernel++) {
+                        dsn_continuous_slopes_entry *entry = dsn_kernel_entries_of(kernel)->continuous_slopes;
+                        if (entry == nullptr) continue;
+                        RawSums sums;
+                        if (!entry(state, uint64_t(x), uint64_t(y), sums.value, sums.slope_x, sums.slope_y))
+                            continue;
+                        vector_points++;
+                        for (uint32_t c = 0; c < 3; c++)
+                            differences += (sums.value[c] != expected.value[c]) +
+                                           (sums.slope_x[c] != expected.slope_x[c]) +
+                                           (sums.slope_y[c] != expected.slope_y[c]);
+                    }
+                }
+                state->tile_kernel = chosen;
+            }
+    CHECK(differences == 0);
+    // Where this CPU runs a kernel with the vector sums, they were compared.
+    bool has_vector = false;
+    for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel < dsn_internal_kernel_count; kernel++)
+        has_vector = has_vector || dsn_kernel_entries_of(kernel)->continuous_slopes != nullptr;
+    if (has_vector && dsn_internal_choose_kernel() > DSN_KERNEL_DEFAULT) CHECK(vector_points > 0);
+    MESSAGE("points through the kernels' vector sums: " << vector_points);
 }
 
 TEST_CASE("continuous gradient: across a whole texel the sums are the integral of the slopes") {

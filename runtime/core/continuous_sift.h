@@ -113,6 +113,18 @@ inline bool cell_axis(const PointAxis &point, const dsn_span &span, uint32_t cel
                             lanes, out);
 }
 
+/* cell_axis for the gradient's walks, which take the impulses at the entry edge too (offset -(radius + 1)
+   texels: value 0, slope not): 0 <= shifted < reach limit. */
+inline bool cell_axis_with_entry_edge(const PointAxis &point, const dsn_span &span, uint32_t cell,
+                                      const FieldLanes &lanes, CellAxis *out) {
+    const int64_t reach = static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel);
+    if (!cell_axis_within(point.axis, span, cell, static_cast<int64_t>(point.fraction) + reach + 1,
+                          2 * reach + 1, lanes, out))
+        return false;
+    out->shifted_base -= 1;
+    return true;
+}
+
 /* The lanes of a pair whose halves (x low, y high) may reach the point: their top bits. */
 inline uint64_t candidate_lanes(uint64_t pair, const FieldLanes &lanes, const CellAxis &x,
                                 const CellAxis &y) {

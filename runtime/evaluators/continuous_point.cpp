@@ -324,17 +324,12 @@ void add_cell_fast(const dsn_noise_state *noise, uint32_t key, const FieldLanes 
     }
 }
 
-/* cell_axis, for a Read that takes the impulses at the entry edge too: 0 <= shifted < reach limit. */
+/* The sifting of one axis for Read: with the entry edge where Read takes it (continuous_sift.h). */
 template <class Read>
 inline bool read_axis(const PointAxis &point, const dsn_span &span, uint32_t cell, const FieldLanes &lanes,
                       CellAxis *out) {
-    if (!Read::entry_edge) return cell_axis(point, span, cell, lanes, out);
-    const int64_t reach = static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel);
-    if (!cell_axis_within(point.axis, span, cell, static_cast<int64_t>(point.fraction) + reach + 1,
-                          2 * reach + 1, lanes, out))
-        return false;
-    out->shifted_base -= 1;
-    return true;
+    return Read::entry_edge ? cell_axis_with_entry_edge(point, span, cell, lanes, out)
+                            : cell_axis(point, span, cell, lanes, out);
 }
 
 /* The sums of every impulse that reaches the point (x, y), through the reader Read. */
@@ -396,6 +391,8 @@ void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uin
 #if DSN_GRADIENTS
 void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                     uint64_t *slope_x, uint64_t *slope_y) {
+    dsn_continuous_slopes_entry *vector = dsn_kernel_entries_of(noise->tile_kernel)->continuous_slopes;
+    if (vector != 0 && vector(noise, x, y, value, slope_x, slope_y)) return;
     SlopeSums sums = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     sum_point_of_asset<SlopeRead>(noise, x, y, &sums);
     for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {

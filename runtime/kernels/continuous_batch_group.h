@@ -421,9 +421,8 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
         add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
 #endif
         if (count > 16u)
-            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes,
-                                      group_cell_axis(group.columns, i, p), group_cell_axis(group.rows, j, p),
-                                      indices);
+            add_later_pairs(&visit, &candidates, key, count, lanes, group_cell_axis(group.columns, i, p),
+                            group_cell_axis(group.rows, j, p), indices);
     }
     point_visit_sums<Channels>(&visit, &candidates, sums + p, group_points);
 }

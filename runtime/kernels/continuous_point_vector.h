@@ -101,14 +101,19 @@ inline vector_256 lane_byte(vector_256 words, int index) {
    channels first). Reads reach at most 3 bytes past the window's last texel: into the asset's 4-byte CRC
    (format.h: total_size), which the loader guarantees lies in the buffer after the texton and the
    pyramid. */
+struct WindowTexels {
+    vector_256 top_left, top_right, bottom_left, bottom_right; /* 4 bytes each, channels first */
+    vector_256 across, down;
+};
+
 template <uint32_t Channels>
-DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t width, uint32_t height,
-                                         uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
-                                         vector_256 *sums) {
+DSN_POINT_INLINE void window_texels_8(const unsigned char *values, uint32_t width, uint32_t height,
+                                      uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
+                                      WindowTexels *texels) {
     const vector_256 low_16 = set_8x32(0xFFFF), one = set_8x32(1);
     const vector_256 column = subtract_32(shift_right_logical_32(s_x, 16), one),
                      row = subtract_32(shift_right_logical_32(s_y, 16), one);
-    const vector_256 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    texels->across = bitwise_and(s_x, low_16), texels->down = bitwise_and(s_y, low_16);
     const vector_256 last_column = set_8x32(width - 1u), last_row = set_8x32(height - 1u);
     const vector_256 left = at_most(column, last_column), right = at_most(add_32(column, one), last_column);
     const vector_256 top = bitwise_and(reach, at_most(row, last_row)),
@@ -118,15 +123,24 @@ DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t w
     const vector_256 at = Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry;
     const vector_256 below = add_32(at, set_8x32(stride * Channels));
     const unsigned char *next = values + Channels;
-    const vector_256 top_left = gather_masked_32<1>(values, at, bitwise_and(top, left)),
-                     top_right = gather_masked_32<1>(next, at, bitwise_and(top, right)),
-                     bottom_left = gather_masked_32<1>(values, below, bitwise_and(bottom, left)),
-                     bottom_right = gather_masked_32<1>(next, below, bitwise_and(bottom, right));
+    texels->top_left = gather_masked_32<1>(values, at, bitwise_and(top, left));
+    texels->top_right = gather_masked_32<1>(next, at, bitwise_and(top, right));
+    texels->bottom_left = gather_masked_32<1>(values, below, bitwise_and(bottom, left));
+    texels->bottom_right = gather_masked_32<1>(next, below, bitwise_and(bottom, right));
+}
+
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t width, uint32_t height,
+                                         uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
+                                         vector_256 *sums) {
+    WindowTexels texels;
+    window_texels_8<Channels>(values, width, height, stride, s_x, s_y, reach, &texels);
     for (uint32_t c = 0; c < Channels; c++) {
         const int byte = static_cast<int>(c);
         vector_256 even, odd;
-        bilinear_8(lane_byte(top_left, byte), lane_byte(top_right, byte), lane_byte(bottom_left, byte),
-                   lane_byte(bottom_right, byte), across, down, &even, &odd);
+        bilinear_8(lane_byte(texels.top_left, byte), lane_byte(texels.top_right, byte),
+                   lane_byte(texels.bottom_left, byte), lane_byte(texels.bottom_right, byte), texels.across,
+                   texels.down, &even, &odd);
         sums[c] = add_64(sums[c], add_64(even, odd));
     }
 }
@@ -155,10 +169,12 @@ DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row,
     }
 }
 
-/* Candidates first .. first + 7 of which the first `valid` exist. */
+/* The offsets S (bracket's floor(shifted / 2^16)) of candidates first .. first + 7, of which the first
+   `valid` exist; returns the lanes in reach. */
 template <uint32_t Channels>
-inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
-                          uint32_t valid) {
+DSN_POINT_INLINE vector_256 candidate_offsets_8(const PointVisit<Channels> *visit,
+                                                const PointCandidates &candidates, uint32_t first,
+                                                uint32_t valid, vector_256 *offset_x, vector_256 *offset_y) {
     const vector_256 fraction = mix32_8(load_8x32(candidates.stream + first)),
                      packed = load_8x32(candidates.field + first);
     vector_256 bits_x, bits_y;
@@ -169,8 +185,17 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
     const vector_256 s_x = subtract_32(base_x, shift_left_32_by(bits_x, visit->shift));
     const vector_256 s_y = subtract_32(base_y, shift_left_32_by(bits_y, visit->shift));
     const vector_256 exists = greater_32(set_8x32(valid), set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7));
-    const vector_256 reach = bitwise_and(
+    *offset_x = s_x, *offset_y = s_y;
+    return bitwise_and(
         exists, bitwise_and(at_most(s_x, set_8x32(visit->last_x)), at_most(s_y, set_8x32(visit->last_y))));
+}
+
+/* Candidates first .. first + 7 of which the first `valid` exist. */
+template <uint32_t Channels>
+inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &candidates, uint32_t first,
+                          uint32_t valid) {
+    vector_256 s_x, s_y;
+    const vector_256 reach = candidate_offsets_8(visit, candidates, first, valid, &s_x, &s_y);
     if (visit->quads != 0)
         add_quad_reads_8<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->sums);
     else
@@ -394,6 +419,71 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
     candidates->count = 0;
 }
 
+#if DSN_GRADIENTS
+/* A visit that sums the slopes too (the gradient, dsn.h "Gradients"): 64-bit lanes per channel and axis,
+   beside the values' sums. Always 8 candidates at a time. */
+template <uint32_t Channels>
+struct SlopeVisit {
+    PointVisit<Channels> values;
+    vector_256 slope_x[Channels], slope_y[Channels];
+};
+
+/* Sign-extended 32-bit lanes added to 64-bit lanes: the even lanes, then the odd ones. */
+DSN_POINT_INLINE vector_256 add_widened_32(vector_256 sums, vector_256 values) {
+    const vector_256 one = set_8x32(1);
+    return add_64(sums, add_64(multiply_even_32(values, one),
+                               multiply_even_32(shift_right_logical_64(values, 32), one)));
+}
+
+/* add_window_reads_8 with bilinear_texton.h's add_slopes of each candidate: along x
+   (65536 - down) (b - a) + down (d - c), along y (65536 - across) (c - a) + across (d - b), each below
+   2^26 in magnitude for 8-bit texels (exact in 32-bit lanes), added to the slopes' 64-bit lanes. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_window_slopes_8(const unsigned char *values, uint32_t width, uint32_t height,
+                                          vector_256 s_x, vector_256 s_y, vector_256 reach,
+                                          SlopeVisit<Channels> *visit) {
+    WindowTexels texels;
+    window_texels_8<Channels>(values, width, height, width, s_x, s_y, reach, &texels);
+    const vector_256 full = set_8x32(65536);
+    const vector_256 above = subtract_32(full, texels.down), before = subtract_32(full, texels.across);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const int byte = static_cast<int>(c);
+        const vector_256 a = lane_byte(texels.top_left, byte), b = lane_byte(texels.top_right, byte),
+                         d = lane_byte(texels.bottom_left, byte), e = lane_byte(texels.bottom_right, byte);
+        vector_256 even, odd;
+        bilinear_8(a, b, d, e, texels.across, texels.down, &even, &odd);
+        visit->values.sums[c] = add_64(visit->values.sums[c], add_64(even, odd));
+        const vector_256 along_x =
+            add_32(multiply_32(above, subtract_32(b, a)), multiply_32(texels.down, subtract_32(e, d)));
+        const vector_256 along_y =
+            add_32(multiply_32(before, subtract_32(d, a)), multiply_32(texels.across, subtract_32(e, b)));
+        visit->slope_x[c] = add_widened_32(visit->slope_x[c], along_x);
+        visit->slope_y[c] = add_widened_32(visit->slope_y[c], along_y);
+    }
+}
+
+/* Visits the buffered candidates with their slopes and empties the buffer. */
+template <uint32_t Channels>
+inline void visit_candidates(SlopeVisit<Channels> *visit, PointCandidates *candidates) {
+    const uint32_t count = candidates->count;
+    const vector_256 zero = zero_256();
+    store_8x32(candidates->stream + count, zero), store_8x32(candidates->field + count, zero);
+    const PointVisit<Channels> &values = visit->values;
+    for (uint32_t first = 0; first < count; first += 8u) {
+        vector_256 s_x, s_y;
+        const vector_256 reach = candidate_offsets_8(&values, *candidates, first, count - first, &s_x, &s_y);
+        add_window_slopes_8<Channels>(values.texton, values.width, values.height, s_x, s_y, reach, visit);
+    }
+    candidates->count = 0;
+}
+#endif
+
+/* The visit of the value alone (visit_point_candidates), by the name the walks below call. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
+    visit_point_candidates<Channels>(visit, candidates);
+}
+
 /* Buffers the candidates `sifted` (bit i: lane i) of the pair `pair` that holds impulses first .. first + 7
    of the cell with this key; indices: the cell's (cell_indices). */
 inline void add_sifted_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint64_t pair,
@@ -514,7 +604,9 @@ struct AxisCells {
     uint32_t count;
 };
 
-/* False when there are more than point_vector_cells. */
+/* False when there are more than point_vector_cells. EntryEdge: the gradient's sifting
+   (cell_axis_with_entry_edge). */
+template <bool EntryEdge = false>
 DSN_POINT_INLINE bool axis_cells(const PointAxis &point, const FieldLanes &lanes, AxisCells *cells) {
     cells->count = 0;
     for (uint32_t s = 0; s < point.axis.span_count; s++) {
@@ -522,7 +614,9 @@ DSN_POINT_INLINE bool axis_cells(const PointAxis &point, const FieldLanes &lanes
         for (uint32_t i = 0; i < span.cell_count; i++) {
             const uint32_t cell = dsn_span_cell(&span, i, point.axis.shift), at = cells->count;
             CellAxis axis;
-            if (!cell_axis(point, span, cell, lanes, &axis)) continue;
+            if (!(EntryEdge ? cell_axis_with_entry_edge(point, span, cell, lanes, &axis)
+                            : cell_axis(point, span, cell, lanes, &axis)))
+                continue;
             if (at == point_vector_cells) return false;
             cells->axis[at] = axis;
             cells->cell[at] = cell;
@@ -534,11 +628,12 @@ DSN_POINT_INLINE bool axis_cells(const PointAxis &point, const FieldLanes &lanes
 }
 
 /* The cells of the point (x, y) along both axes; false when an axis has more than point_vector_cells. */
+template <bool EntryEdge>
 DSN_POINT_INLINE bool point_cells(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                   const FieldLanes &lanes, AxisCells *columns, AxisCells *rows) {
     const uint32_t shift = noise->cell_shift;
-    return axis_cells(point_axis(x, noise->radius[0], shift, noise->period[0]), lanes, columns) &&
-           axis_cells(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, rows);
+    return axis_cells<EntryEdge>(point_axis(x, noise->radius[0], shift, noise->period[0]), lanes, columns) &&
+           axis_cells<EntryEdge>(point_axis(y, noise->radius[1], shift, noise->period[1]), lanes, rows);
 }
 
 /* The visit of a point, its sums zero, given the bases of its column and row cells by their indices
@@ -577,12 +672,12 @@ DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const Axis
 
 /* Buffers the candidates of a cell's pairs from impulse 16 on (cells of more than 16 impulses), visiting
    the buffer whenever a pair might not fit. */
-template <uint32_t Channels>
-DSN_POINT_INLINE void add_later_pairs(PointVisit<Channels> *visit, PointCandidates *candidates, uint32_t key,
-                                      uint32_t count, const FieldLanes &lanes, const CellAxis &x,
-                                      const CellAxis &y, uint32_t indices) {
+template <class Visit>
+DSN_POINT_INLINE void add_later_pairs(Visit *visit, PointCandidates *candidates, uint32_t key, uint32_t count,
+                                      const FieldLanes &lanes, const CellAxis &x, const CellAxis &y,
+                                      uint32_t indices) {
     for (uint32_t first = 16; first < count; first += 8u) {
-        if (candidates->count > point_vector_slots - 8u) visit_point_candidates<Channels>(visit, candidates);
+        if (candidates->count > point_vector_slots - 8u) visit_candidates(visit, candidates);
         add_pair(candidates, key, first, count, lanes, x, y, indices);
     }
 }
@@ -613,8 +708,33 @@ DSN_POINT_INLINE void point_visit_finish(const dsn_noise_state *noise, PointVisi
     normalize_q32(noise, sums, out);
 }
 
-/* The point's values from its cells, with the key and impulse count of the cell (columns i, rows j) at
-   index j row_step + i column_step of keys and counts; quads: the batch's table (PointVisit), or null. */
+/* Buffers the candidates of the point's cells, visiting the buffer whenever it might not hold a cell's
+   next pairs (the last visit is the caller's): the key and impulse count of the cell (columns i, rows j)
+   at index j row_step + i column_step of keys and counts. */
+template <class Visit>
+DSN_POINT_INLINE void visit_cells(const FieldLanes &lanes, const AxisCells &columns, const AxisCells &rows,
+                                  const uint32_t *keys, const uint32_t *counts, uint32_t row_step,
+                                  uint32_t column_step, Visit *visit, PointCandidates *candidates) {
+    for (uint32_t j = 0; j < rows.count; j++) {
+        for (uint32_t i = 0; i < columns.count; i++) {
+            const uint32_t key = keys[j * row_step + i * column_step],
+                           count = counts[j * row_step + i * column_step];
+            /* The first two pairs whether the cell has impulses there or not: a branch on the count
+               would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
+            if (candidates->count > point_vector_slots - 16u) visit_candidates(visit, candidates);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+            add_first_pairs(candidates, key, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
+#else
+            add_pair(candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
+            add_pair(candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
+#endif
+            add_later_pairs(visit, candidates, key, count, lanes, columns.axis[i], rows.axis[j],
+                            cell_indices(i, j));
+        }
+    }
+}
+
+/* The point's values from its cells (visit_cells); quads: the batch's table (PointVisit), or null. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const FieldLanes &lanes,
                                        const AxisCells &columns, const AxisCells &rows, const uint32_t *keys,
@@ -624,35 +744,14 @@ DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const Field
     point_visit_start<Channels>(noise, columns, rows, quads, &visit);
     PointCandidates candidates;
     candidates.count = 0;
-    for (uint32_t j = 0; j < rows.count; j++) {
-        for (uint32_t i = 0; i < columns.count; i++) {
-            const uint32_t key = keys[j * row_step + i * column_step],
-                           count = counts[j * row_step + i * column_step];
-            /* The first two pairs whether the cell has impulses there or not: a branch on the count
-               would often be mispredicted. The rest (cells of more than 16 impulses) one by one. */
-            if (candidates.count > point_vector_slots - 16u)
-                visit_point_candidates<Channels>(&visit, &candidates);
-#if defined(__AVX512F__) && defined(__AVX512BW__)
-            add_first_pairs(&candidates, key, count, lanes, columns.axis[i], rows.axis[j],
-                            cell_indices(i, j));
-#else
-            add_pair(&candidates, key, 0, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
-            add_pair(&candidates, key, 8, count, lanes, columns.axis[i], rows.axis[j], cell_indices(i, j));
-#endif
-            add_later_pairs<Channels>(&visit, &candidates, key, count, lanes, columns.axis[i], rows.axis[j],
-                                      cell_indices(i, j));
-        }
-    }
+    visit_cells(lanes, columns, rows, keys, counts, row_step, column_step, &visit, &candidates);
     point_visit_finish<Channels>(noise, &visit, &candidates, out);
 }
 
-template <uint32_t Channels>
-int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
-    const FieldLanes lanes = field_lanes(noise->cell_shift);
-    AxisCells columns, rows;
-    if (!point_cells(noise, x, y, lanes, &columns, &rows)) return 0;
-    /* The keys and counts of all the cells first: the counts' chains of dependent loads then overlap. */
-    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+/* The keys and impulse counts of the point's cells, row by row, all of them first: the counts' chains of
+   dependent loads then overlap. */
+DSN_POINT_INLINE void cell_keys_and_counts(const dsn_noise_state *noise, const AxisCells &columns,
+                                           const AxisCells &rows, uint32_t *keys, uint32_t *counts) {
     const uint32_t cells = rows.count * columns.count;
     for (uint32_t j = 0, k = 0; j < rows.count; j++) {
         const uint32_t row_key = dsn_row_key(noise, rows.cell[j]);
@@ -663,9 +762,53 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *
         for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_poisson_count_two_steps(noise, keys[k]);
     else
         for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_cell_impulse_count(noise, keys[k]);
+}
+
+template <uint32_t Channels>
+int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    const FieldLanes lanes = field_lanes(noise->cell_shift);
+    AxisCells columns, rows;
+    if (!point_cells<false>(noise, x, y, lanes, &columns, &rows)) return 0;
+    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+    cell_keys_and_counts(noise, columns, rows, keys, counts);
     point_vector_sum<Channels>(noise, lanes, columns, rows, keys, counts, columns.count, 1, 0, out);
     return 1;
 }
+
+#if DSN_GRADIENTS
+/* The sum of a vector's 64-bit lanes, modulo 2^64. */
+inline uint64_t lane_total(vector_256 lanes) {
+    uint64_t values[4];
+    __builtin_memcpy(values, &lanes, sizeof values);
+    return values[0] + values[1] + values[2] + values[3];
+}
+
+/* dsn_internal_continuous_slopes's sums (continuous_internal.h), the impulses at the entry edge included;
+   0 for a point with more than point_vector_cells cells along an axis. */
+template <uint32_t Channels>
+int point_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value, uint64_t *slope_x,
+                 uint64_t *slope_y) {
+    const FieldLanes lanes = field_lanes(noise->cell_shift);
+    AxisCells columns, rows;
+    if (!point_cells<true>(noise, x, y, lanes, &columns, &rows)) return 0;
+    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+    cell_keys_and_counts(noise, columns, rows, keys, counts);
+    SlopeVisit<Channels> visit;
+    point_visit_start<Channels>(noise, columns, rows, 0, &visit.values);
+    for (uint32_t c = 0; c < Channels; c++) visit.slope_x[c] = visit.slope_y[c] = zero_256();
+    PointCandidates candidates;
+    candidates.count = 0;
+    visit_cells(lanes, columns, rows, keys, counts, columns.count, 1, &visit, &candidates);
+    visit_candidates(&visit, &candidates);
+    for (uint32_t c = 0; c < Channels; c++) {
+        value[c] = lane_total(visit.values.sums[c]);
+        slope_x[c] = lane_total(visit.slope_x[c]);
+        slope_y[c] = lane_total(visit.slope_y[c]);
+    }
+    for (uint32_t c = Channels; c < DSN_MAX_CHANNELS; c++) value[c] = slope_x[c] = slope_y[c] = 0;
+    return 1;
+}
+#endif
 
 /* The kernel entry, one copy per channel count; 0 for a noise it does not take, or a point with more
    than point_vector_cells cells along an axis. */
@@ -673,6 +816,17 @@ inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uin
     if (!point_vector_takes(noise)) return 0;
     return noise->asset.channels == 3 ? point_vector<3>(noise, x, y, out) : point_vector<1>(noise, x, y, out);
 }
+
+#if DSN_GRADIENTS
+/* The kernel entry of the gradient's sums, as continuous_point_vector's. */
+inline int continuous_slopes_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                    uint64_t *slope_x, uint64_t *slope_y) {
+    if (!point_vector_takes(noise)) return 0;
+    return noise->asset.channels == 3 ? point_slopes<3>(noise, x, y, value, slope_x, slope_y)
+                                      : point_slopes<1>(noise, x, y, value, slope_x, slope_y);
+}
+#define DSN_CONTINUOUS_SLOPES_ENTRY continuous_slopes_vector
+#endif
 
 } // namespace
 #endif /* __AVX2__ */

@@ -95,6 +95,12 @@ typedef void dsn_splat_normalize_entry(const dsn_noise_state *noise, const uint6
    nothing, for a noise it does not take (dsn_internal_continuous_point then evaluates the point itself). */
 typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
 
+/* The gradient's sums of one continuous point (continuous_point_vector.h's continuous_slopes_vector):
+   value[c], slope_x[c] and slope_y[c] as dsn_internal_continuous_slopes gives them (continuous_internal.h);
+   returns 0, writing nothing, for a noise it does not take. */
+typedef int dsn_continuous_slopes_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                        uint64_t *slope_x, uint64_t *slope_y);
+
 /* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
    filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start
    and limit along x, then along y: filtered_sift.cpp's LevelTest) keep, their bilinear reads of `level`
@@ -135,6 +141,7 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and
    continuous_splat_normalize in the small build (DSN_SMALL_CODE), which evaluates grids point by point,
    continuous_point in kernels built without AVX2 (continuous_point.cpp's own evaluator then runs),
+   continuous_slopes likewise and without the gradients (DSN_GRADIENTS),
    filter_level_reads and filter_candidates likewise (filtered_sift.cpp then reads, or lists, each
    candidate itself). */
 typedef struct dsn_kernel_entries {
@@ -144,6 +151,7 @@ typedef struct dsn_kernel_entries {
     dsn_splat_runs_entry *continuous_splat_runs;
     dsn_splat_normalize_entry *continuous_splat_normalize;
     dsn_continuous_point_entry *continuous_point;
+    dsn_continuous_slopes_entry *continuous_slopes;
     dsn_filter_level_reads_entry *filter_level_reads;
     dsn_filter_candidates_entry *filter_candidates;
 } dsn_kernel_entries;
