@@ -26,7 +26,7 @@ inline bool point_vector_takes(const dsn_noise_state *noise) {
 }
 } // namespace
 
-#if defined(__AVX2__)
+#if defined(__AVX2__) && !DSN_SMALL_CODE /* the small build evaluates point by point */
 /* Forced into the walk (the compiler left them out of line, measurably slower). */
 #if defined(__GNUC__)
 #define DSN_POINT_INLINE inline __attribute__((always_inline))

@@ -11,3 +11,4 @@ TEST_SCRIPTS += tests/scripts/histogram-build-options
 TEST_SCRIPTS += tests/scripts/deps-without-dpkg tests/scripts/test-graph-toolchains
 TEST_SCRIPTS += tests/scripts/readme-quick-start
 TEST_SCRIPTS += tests/scripts/runtime-structure
+TEST_SCRIPTS += tests/scripts/build-variants
