@@ -94,7 +94,7 @@ void normalize_strip_scalar(const dsn_noise_state *noise, const simd_vector *sum
 /* The split normalization's constants, repeated in every 128-bit lane. */
 typedef struct split_vectors {
     simd_vector high_pair[3], high_third[3], low_pair[3], low_third[3], p_q[3], p_m[3];
-    __m128i shift;
+    vector_128 shift;
 } split_vectors;
 
 void make_split_vectors(const split_normalization *split, uint32_t channels, split_vectors *v) {
@@ -102,15 +102,15 @@ void make_split_vectors(const split_normalization *split, uint32_t channels, spl
         const int16_t *high = split->high + 3 * c, *low = split->low + 3 * c;
         const int16_t p_l = int16_t(split->p_l[c]);
         v->high_pair[c] = broadcast_lanes(
-            _mm_setr_epi16(high[0], high[1], high[0], high[1], high[0], high[1], high[0], high[1]));
-        v->high_third[c] = broadcast_lanes(_mm_setr_epi16(high[2], 0, high[2], 0, high[2], 0, high[2], 0));
+            set_lanes_8x16(high[0], high[1], high[0], high[1], high[0], high[1], high[0], high[1]));
+        v->high_third[c] = broadcast_lanes(set_lanes_8x16(high[2], 0, high[2], 0, high[2], 0, high[2], 0));
         v->low_pair[c] =
-            broadcast_lanes(_mm_setr_epi16(low[0], low[1], low[0], low[1], low[0], low[1], low[0], low[1]));
-        v->low_third[c] = broadcast_lanes(_mm_setr_epi16(low[2], p_l, low[2], p_l, low[2], p_l, low[2], p_l));
-        v->p_q[c] = broadcast_lanes(_mm_set1_epi32(split->p_q[c]));
-        v->p_m[c] = broadcast_lanes(_mm_set1_epi32(split->p_m[c]));
+            broadcast_lanes(set_lanes_8x16(low[0], low[1], low[0], low[1], low[0], low[1], low[0], low[1]));
+        v->low_third[c] = broadcast_lanes(set_lanes_8x16(low[2], p_l, low[2], p_l, low[2], p_l, low[2], p_l));
+        v->p_q[c] = broadcast_lanes(set_4x32(split->p_q[c]));
+        v->p_m[c] = broadcast_lanes(set_4x32(split->p_m[c]));
     }
-    v->shift = _mm_cvtsi32_si128(int32_t(split->shift));
+    v->shift = shift_count(int32_t(split->shift));
 }
 
 /* Output channel c of 4 pixels per 128-bit lane: `pair` holds (Q_0, Q_1) and `third` (Q_2, 1) per pixel. */

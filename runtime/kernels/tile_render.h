@@ -197,7 +197,7 @@ void render_strip_tile(const dsn_noise_state *noise, rectangle_size rectangle, c
             else
                 render_region<1, Value>(noise, &setup, &runs_x[rx], &runs_y[ry], target);
         }
-    if (setup.stream) _mm_sfence(); /* the streamed stores are ordered before whatever follows */
+    if (setup.stream) store_fence(); /* the streamed stores are ordered before whatever follows */
 }
 #endif /* DSN_TILE_BLOCKS */
 

@@ -23,19 +23,18 @@ inline void store_value(uint8_t *out, int32_t value) { *out = dsn_fixed_to_u8(va
 
 /* Stores `vectors` interleaved output vectors (4 values each) of which the first `values` are wanted;
    `stream`: put_4. */
-inline void store_vectors(int32_t *out, const __m128i *v, uint32_t vectors, uint32_t values, int stream) {
+inline void store_vectors(int32_t *out, const vector_128 *v, uint32_t vectors, uint32_t values, int stream) {
     if (values == 4 * vectors) {
 #pragma GCC unroll 6
         for (uint32_t i = 0; i < vectors; i++) put_4(out + 4 * i, v[i], stream);
         return;
     }
     int32_t buffer[24];
-    for (uint32_t i = 0; i < vectors; i++)
-        _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer + 4 * i)), v[i]);
+    for (uint32_t i = 0; i < vectors; i++) store_4x32(buffer + 4 * i, v[i]);
     for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
 
-inline void store_vectors(float *out, const __m128i *v, uint32_t vectors, uint32_t values, int stream) {
+inline void store_vectors(float *out, const vector_128 *v, uint32_t vectors, uint32_t values, int stream) {
     float buffer[24];
     float *dst = values == 4 * vectors ? out : buffer;
 #pragma GCC unroll 6
@@ -44,26 +43,27 @@ inline void store_vectors(float *out, const __m128i *v, uint32_t vectors, uint32
         for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
 
-inline void store_vectors(uint8_t *out, const __m128i *v, uint32_t vectors, uint32_t values, int) {
+inline void store_vectors(uint8_t *out, const vector_128 *v, uint32_t vectors, uint32_t values, int) {
     /* Zeroed because gcc -Os cannot see that vectors is 2 or 6 (the stores below are free at -O2). */
-    __m128i words[3] = {_mm_setzero_si128(), _mm_setzero_si128(), _mm_setzero_si128()};
+    vector_128 words[3] = {zero_128(), zero_128(), zero_128()};
 #pragma GCC unroll 3
     for (uint32_t i = 0; i < vectors; i += 2)
-        words[i / 2] = _mm_packs_epi32(to_u8_range(v[i]), to_u8_range(v[i + 1]));
-    __m128i first = _mm_packus_epi16(words[0], vectors > 2 ? words[1] : words[0]);
-    __m128i second = _mm_packus_epi16(vectors > 2 ? words[2] : words[0], vectors > 2 ? words[2] : words[0]);
+        words[i / 2] = pack_saturated_32x16(to_u8_range(v[i]), to_u8_range(v[i + 1]));
+    vector_128 first = pack_saturated_unsigned_16x8(words[0], vectors > 2 ? words[1] : words[0]);
+    vector_128 second =
+        pack_saturated_unsigned_16x8(vectors > 2 ? words[2] : words[0], vectors > 2 ? words[2] : words[0]);
     if (values == 4 * vectors) { /* 24 bytes (3 channels) or 8 (1 channel) */
         if (vectors > 2) {
-            _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(out)), first);
-            _mm_storel_epi64(static_cast<__m128i *>(static_cast<void *>(out + 16)), second);
+            store_16x8(out, first);
+            store_low_8x8(out + 16, second);
         } else {
-            _mm_storel_epi64(static_cast<__m128i *>(static_cast<void *>(out)), first);
+            store_low_8x8(out, first);
         }
         return;
     }
     uint8_t buffer[32];
-    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer)), first);
-    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(buffer + 16)), second);
+    store_16x8(buffer, first);
+    store_16x8(buffer + 16, second);
     for (uint32_t i = 0; i < values; i++) out[i] = buffer[i];
 }
 
@@ -73,8 +73,8 @@ inline simd_floats output_vector(simd_vector fixed, float *) { return to_output_
 /* A vector of normalized values as the bits of the output's 32-bit values. */
 inline simd_vector output_bits(simd_vector fixed, int32_t *) { return fixed; }
 inline simd_vector output_bits(simd_vector fixed, float *) { return as_integers(to_output_floats(fixed)); }
-inline void stream_4(int32_t *out, __m128i bits) { put_4(out, bits, 1); }
-inline void stream_4(float *out, __m128i bits) { put_4(out, _mm_castsi128_ps(bits), 1); }
+inline void stream_4(int32_t *out, vector_128 bits) { put_4(out, bits, 1); }
+inline void stream_4(float *out, vector_128 bits) { put_4(out, as_floats(bits), 1); }
 
 /* A whole strip of fixed or float output in full-width stores, in output order. The streaming decision
    (16-byte alignment) is taken once per strip: every store of the strip has the same alignment. Streamed,
@@ -110,7 +110,7 @@ inline void store_strip(const simd_vector *values, uint32_t pixels, Value *out, 
     const uint32_t vectors = 2 * Channels;
     if (pixels == lane && store_whole_strip<Channels>(values, out, stream)) return;
     for (uint32_t part = 0; part * 8 < pixels; part++) {
-        __m128i group[6];
+        vector_128 group[6];
         for (uint32_t i = 0; i < vectors; i++) group[i] = lane_128(values[i], part);
         const uint32_t rest = pixels - 8 * part;
         store_vectors(out + 8 * Channels * part, group, vectors, (rest < 8 ? rest : 8) * Channels, stream);

@@ -9,7 +9,7 @@
 #include "core/poisson_count.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include "simd/simd_128.h"
 #endif
 
 namespace {
@@ -44,26 +44,26 @@ inline void add_row(uint32_t *dst, const unsigned char *src, uint32_t count) {
 #if defined(__SSE2__)
     if (Bits == 8) {
         for (; i + 16 <= count; i += 16) {
-            __m128i bytes = _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + i)));
-            __m128i low16 = _mm_srai_epi16(_mm_unpacklo_epi8(bytes, bytes), 8);
-            __m128i high16 = _mm_srai_epi16(_mm_unpackhi_epi8(bytes, bytes), 8);
-            __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
-            __m128i values[4] = {_mm_srai_epi32(_mm_unpacklo_epi16(low16, low16), 16),
-                                 _mm_srai_epi32(_mm_unpackhi_epi16(low16, low16), 16),
-                                 _mm_srai_epi32(_mm_unpacklo_epi16(high16, high16), 16),
-                                 _mm_srai_epi32(_mm_unpackhi_epi16(high16, high16), 16)};
+            vector_128 bytes = load_16x8(src + i);
+            vector_128 low16 = shift_right_arithmetic_16(unpack_low_8(bytes, bytes), 8);
+            vector_128 high16 = shift_right_arithmetic_16(unpack_high_8(bytes, bytes), 8);
+            uint32_t *out = dst + i;
+            vector_128 values[4] = {shift_right_arithmetic_32(unpack_low_16(low16, low16), 16),
+                                    shift_right_arithmetic_32(unpack_high_16(low16, low16), 16),
+                                    shift_right_arithmetic_32(unpack_low_16(high16, high16), 16),
+                                    shift_right_arithmetic_32(unpack_high_16(high16, high16), 16)};
+            /* A size_t offset, as a vector pointer's steps were: an int one changes GCC's code. */
             for (int part = 0; part < 4; part++)
-                _mm_storeu_si128(out + part, _mm_add_epi32(_mm_loadu_si128(out + part), values[part]));
+                store_4x32(out + size_t(part) * 4, add_32(load_4x32(out + size_t(part) * 4), values[part]));
         }
     } else {
         for (; i + 8 <= count; i += 8) {
-            __m128i words =
-                _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src + 2 * i)));
-            __m128i *out = static_cast<__m128i *>(static_cast<void *>(dst + i));
-            __m128i low = _mm_srai_epi32(_mm_unpacklo_epi16(words, words), 16);
-            __m128i high = _mm_srai_epi32(_mm_unpackhi_epi16(words, words), 16);
-            _mm_storeu_si128(out, _mm_add_epi32(_mm_loadu_si128(out), low));
-            _mm_storeu_si128(out + 1, _mm_add_epi32(_mm_loadu_si128(out + 1), high));
+            vector_128 words = load_16x8(src + 2 * i);
+            uint32_t *out = dst + i;
+            vector_128 low = shift_right_arithmetic_32(unpack_low_16(words, words), 16);
+            vector_128 high = shift_right_arithmetic_32(unpack_high_16(words, words), 16);
+            store_4x32(out, add_32(load_4x32(out), low));
+            store_4x32(out + 4, add_32(load_4x32(out + 4), high));
         }
     }
 #endif

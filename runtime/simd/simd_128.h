@@ -1,7 +1,9 @@
 /* runtime/simd/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
-   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, a
-   constant of the continuous splat, the pair operations of the bilinear slopes, and the 128-bit
-   pieces of the wider kernels. Included by the ops headers (simd.h). */
+   output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, the SSE2
+   strip path's own operations (simd_sse2.h's vectors are these), the tile walk's widening sums
+   (tile_walk.h), a constant of the continuous splat, the pair operations of the bilinear slopes, and the
+   128-bit pieces of the wider kernels. Included by the ops headers (simd.h), and on its own where only
+   SSE2 is sure (tile_walk.h, which lattice_gradient.cpp includes). */
 #ifndef DSN_SIMD_128_H
 #define DSN_SIMD_128_H
 
@@ -21,6 +23,9 @@
 #endif
 
 namespace {
+
+typedef __m128i vector_128; /* 4 lanes of 32 bits, 8 of 16 bits or 16 of 8 bits */
+typedef __m128 floats_128;
 
 /* 4 output values. `stream` (for outputs far larger than the caches): past the caches, with
    non-temporal stores, where out is 16-byte aligned (the tile call ends with a store fence). */
@@ -60,8 +65,6 @@ inline __m128i splat_across_order() {
 }
 
 /* ---- The bilinear slopes of 8-bit textons (bilinear_read.h's add_slopes_vector) ---- */
-
-typedef __m128i vector_128;
 
 /* right - left of every (left, right) pair of 16-bit lanes, in 32-bit lanes. */
 inline __m128i pair_differences(__m128i pairs) { return _mm_madd_epi16(pairs, _mm_set1_epi32(0x0001FFFF)); }
@@ -115,6 +118,57 @@ DSN_SIMD_INLINE vector_128 shift_right_logical_64(vector_128 a, uint32_t count) 
 }
 /* The top bit of byte k in bit k (an int, as the instruction's). */
 DSN_SIMD_INLINE int top_bits_of_bytes(vector_128 a) { return _mm_movemask_epi8(a); }
+
+/* ---- The strip path's 128-bit operations (simd_sse2.h's strip vectors are these; tile_normalize.h,
+   tile_store.h), and the tile walk's widening sums (tile_walk.h) ---- */
+
+DSN_SIMD_INLINE vector_128 add_32(vector_128 a, vector_128 b) { return _mm_add_epi32(a, b); }
+DSN_SIMD_INLINE vector_128 unpack_low_16(vector_128 a, vector_128 b) { return _mm_unpacklo_epi16(a, b); }
+DSN_SIMD_INLINE vector_128 unpack_high_16(vector_128 a, vector_128 b) { return _mm_unpackhi_epi16(a, b); }
+DSN_SIMD_INLINE vector_128 unpack_low_32(vector_128 a, vector_128 b) { return _mm_unpacklo_epi32(a, b); }
+DSN_SIMD_INLINE vector_128 unpack_high_32(vector_128 a, vector_128 b) { return _mm_unpackhi_epi32(a, b); }
+DSN_SIMD_INLINE floats_128 as_floats(vector_128 a) { return _mm_castsi128_ps(a); }
+DSN_SIMD_INLINE vector_128 as_integers(floats_128 a) { return _mm_castps_si128(a); }
+
+DSN_SIMD_INLINE vector_128 load_4x32(const uint32_t *at) {
+    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(at)));
+}
+DSN_SIMD_INLINE void store_4x32(uint32_t *at, vector_128 value) {
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(at)), value);
+}
+DSN_SIMD_INLINE void store_4x32(int32_t *at, vector_128 value) {
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(at)), value);
+}
+DSN_SIMD_INLINE void store_16x8(uint8_t *at, vector_128 value) {
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(at)), value);
+}
+/* The low 8 bytes. */
+DSN_SIMD_INLINE void store_low_8x8(uint8_t *at, vector_128 value) {
+    _mm_storel_epi64(static_cast<__m128i *>(static_cast<void *>(at)), value);
+}
+/* Orders the streaming (non-temporal) stores before every later store. */
+DSN_SIMD_INLINE void store_fence() { _mm_sfence(); }
+
+DSN_SIMD_INLINE vector_128 set_4x32(int32_t value) { return _mm_set1_epi32(value); }
+/* The lanes in order, lane 0 first. */
+DSN_SIMD_INLINE vector_128 set_lanes_8x16(int16_t lane_0, int16_t lane_1, int16_t lane_2, int16_t lane_3,
+                                          int16_t lane_4, int16_t lane_5, int16_t lane_6, int16_t lane_7) {
+    return _mm_setr_epi16(lane_0, lane_1, lane_2, lane_3, lane_4, lane_5, lane_6, lane_7);
+}
+
+DSN_SIMD_INLINE vector_128 unpack_low_8(vector_128 a, vector_128 b) { return _mm_unpacklo_epi8(a, b); }
+DSN_SIMD_INLINE vector_128 unpack_high_8(vector_128 a, vector_128 b) { return _mm_unpackhi_epi8(a, b); }
+DSN_SIMD_INLINE vector_128 shift_right_arithmetic_16(vector_128 a, uint32_t count) {
+    return _mm_srai_epi16(a, static_cast<int>(count));
+}
+DSN_SIMD_INLINE vector_128 shift_right_arithmetic_32(vector_128 a, uint32_t count) {
+    return _mm_srai_epi32(a, static_cast<int>(count));
+}
+/* 32-bit lanes to 16 bits, and 16-bit lanes to 8 bits unsigned, saturating: a's lanes first, then b's. */
+DSN_SIMD_INLINE vector_128 pack_saturated_32x16(vector_128 a, vector_128 b) { return _mm_packs_epi32(a, b); }
+DSN_SIMD_INLINE vector_128 pack_saturated_unsigned_16x8(vector_128 a, vector_128 b) {
+    return _mm_packus_epi16(a, b);
+}
 
 } // namespace
 

@@ -8,8 +8,8 @@
 
 namespace {
 
-typedef __m128i simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
-typedef __m128 simd_floats;
+typedef vector_128 simd_vector; /* 16-bit sums, or 32-bit values, of the strip's pixels */
+typedef floats_128 simd_floats;
 const uint32_t simd_int16_count = 8;
 
 /* ---- Sums ---- */
@@ -22,19 +22,12 @@ inline void store_16(uint16_t *dst, simd_vector value) {
     _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(dst)), value);
 }
 
-/* ---- Normalization, per 128-bit lane ---- */
+/* ---- Normalization, per 128-bit lane (add_32, the unpacks, as_floats and as_integers: simd_128.h) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return value; }
 inline simd_vector madd_16(simd_vector a, simd_vector b) { return _mm_madd_epi16(a, b); }
-inline simd_vector add_32(simd_vector a, simd_vector b) { return _mm_add_epi32(a, b); }
 inline simd_vector shift_right_15(simd_vector a) { return _mm_srai_epi32(a, 15); }
 inline simd_vector shift_right(simd_vector a, __m128i count) { return _mm_sra_epi32(a, count); }
-inline simd_vector unpack_low_16(simd_vector a, simd_vector b) { return _mm_unpacklo_epi16(a, b); }
-inline simd_vector unpack_high_16(simd_vector a, simd_vector b) { return _mm_unpackhi_epi16(a, b); }
-inline simd_vector unpack_low_32(simd_vector a, simd_vector b) { return _mm_unpacklo_epi32(a, b); }
-inline simd_vector unpack_high_32(simd_vector a, simd_vector b) { return _mm_unpackhi_epi32(a, b); }
 inline simd_vector set_16(int16_t value) { return _mm_set1_epi16(value); }
-inline simd_floats as_floats(simd_vector a) { return _mm_castsi128_ps(a); }
-inline simd_vector as_integers(simd_floats a) { return _mm_castps_si128(a); }
 template <int Order>
 inline simd_floats shuffle(simd_floats a, simd_floats b) {
     return _mm_shuffle_ps(a, b, Order);
