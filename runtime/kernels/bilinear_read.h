@@ -13,8 +13,6 @@
 #if !DSN_SMALL_CODE
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
-
 #include "simd/simd_128.h"
 #endif
 
@@ -79,69 +77,70 @@ inline void add_border(const unsigned char *texton, uint32_t width, uint32_t hei
    (0..255) of the two texels of a row sit in 16-bit lanes as pairs (left, right), one pair per
    channel; the row's interpolation (65536 - across) left + across right is a dot product with the
    weight pair, each weight w split as 128 (w >> 7) + (w & 127) so that both parts fit signed 16-bit
-   lanes (w >> 7 <= 512): two _mm_madd_epi16, exact in 32 bits (below 2^24). The column's interpolation
-   (65536 - down) upper + down lower, below 2^41, takes 64-bit lanes (_mm_mul_epu32, unsigned: every
+   lanes (w >> 7 <= 512): two madd_16, exact in 32 bits (below 2^24). The column's interpolation
+   (65536 - down) upper + down lower, below 2^41, takes 64-bit lanes (multiply_even_unsigned_32: every
    term is non-negative). Reads: 8 bytes from a row's first texel (RGB: the 6 needed and 2 more) or 4
    (grey: 2 and 2 more); past the texton's last row they reach at most 2 bytes into the asset's 4-byte
    CRC, which the loader guarantees lies in the buffer right after the texton (format.h: total_size). */
 struct BilinearSums {
-    __m128i even, odd; /* 64-bit lanes: channels 0 and 2; channel 1 (RGB) or the lower row (grey) */
+    vector_128 even, odd; /* 64-bit lanes: channels 0 and 2; channel 1 (RGB) or the lower row (grey) */
 };
 
 /* The bytes of a row's two texels, from its first: 8 of them (RGB: the 6 needed and 2 more) or 4 (grey:
    2 and 2 more). */
 template <uint32_t Channels>
-inline __m128i row_bytes(const unsigned char *row) {
-    if (Channels == 3) return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(row)));
+inline vector_128 row_bytes(const unsigned char *row) {
+    if (Channels == 3) return load_low_8x8(row);
     uint32_t word;
     __builtin_memcpy(&word, row, sizeof word);
-    return _mm_cvtsi32_si128(static_cast<int>(word)); /* the bits unchanged */
+    return set_low_32(static_cast<int>(word)); /* the bits unchanged */
 }
 
 /* A row's texels (its bytes as row_bytes loads them) as (left, right) 16-bit pairs of biased values, one
    pair per channel (lanes past the channels hold garbage, never used). */
 template <uint32_t Channels>
-inline __m128i row_pairs(__m128i bytes) {
-    const __m128i values = _mm_unpacklo_epi8(_mm_xor_si128(bytes, _mm_set1_epi8(-128)), _mm_setzero_si128());
+inline vector_128 row_pairs(vector_128 bytes) {
+    const vector_128 values = unpack_low_8(bitwise_xor(bytes, set_16x8(-128)), zero_128());
     /* grey: (left, right) already; RGB: left channels in lanes 0-2, right ones in lanes 3-5 */
-    return Channels == 3 ? _mm_unpacklo_epi16(values, _mm_srli_si128(values, 6)) : values;
+    return Channels == 3 ? unpack_low_16(values, shift_right_bytes<6>(values)) : values;
 }
 
 /* A weight pair (65536 - w, w) as its two parts: high parts (w >> 7) and low parts (w & 127), each
    broadcast as a (left, right) pair of 16-bit lanes. */
-inline void weight_parts(uint32_t weight, __m128i *high, __m128i *low) {
+inline void weight_parts(uint32_t weight, vector_128 *high, vector_128 *low) {
     const uint32_t left = 65536u - weight;
-    *high = _mm_set1_epi32(static_cast<int>((left >> 7) | ((weight >> 7) << 16)));
-    *low = _mm_set1_epi32(static_cast<int>((left & 127u) | ((weight & 127u) << 16)));
+    *high = set_4x32(static_cast<int32_t>((left >> 7) | ((weight >> 7) << 16)));
+    *low = set_4x32(static_cast<int32_t>((left & 127u) | ((weight & 127u) << 16)));
 }
 
 /* (65536 - w) left + w right of every pair, in 32-bit lanes. */
-inline __m128i interpolate_pairs(__m128i pairs, __m128i high, __m128i low) {
-    return _mm_add_epi32(_mm_slli_epi32(_mm_madd_epi16(pairs, high), 7), _mm_madd_epi16(pairs, low));
+inline vector_128 interpolate_pairs(vector_128 pairs, vector_128 high, vector_128 low) {
+    return add_32(shift_left_32(madd_16(pairs, high), 7), madd_16(pairs, low));
 }
 
 /* The bilinear texton of the two rows' texels (their bytes as row_bytes loads them). */
 template <uint32_t Channels>
-inline void add_bilinear_bytes(__m128i top, __m128i bottom, uint32_t across, uint32_t down,
+inline void add_bilinear_bytes(vector_128 top, vector_128 bottom, uint32_t across, uint32_t down,
                                BilinearSums *sums) {
-    __m128i high, low;
+    vector_128 high, low;
     weight_parts(across, &high, &low);
-    const __m128i down_weights = _mm_set_epi32(0, static_cast<int>(down), 0, static_cast<int>(65536u - down));
+    const vector_128 down_weights =
+        set_lanes_4x32(static_cast<int32_t>(65536u - down), 0, static_cast<int32_t>(down), 0);
     if (Channels == 3) {
-        const __m128i upper = interpolate_pairs(row_pairs<3>(top), high, low);
-        const __m128i lower = interpolate_pairs(row_pairs<3>(bottom), high, low);
-        const __m128i up_weight = _mm_shuffle_epi32(down_weights, 0x00),
-                      down_weight = _mm_shuffle_epi32(down_weights, 0xAA);
-        sums->even = _mm_add_epi64(
-            sums->even, _mm_add_epi64(_mm_mul_epu32(upper, up_weight), _mm_mul_epu32(lower, down_weight)));
-        sums->odd =
-            _mm_add_epi64(sums->odd, _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(upper, 32), up_weight),
-                                                   _mm_mul_epu32(_mm_srli_epi64(lower, 32), down_weight)));
+        const vector_128 upper = interpolate_pairs(row_pairs<3>(top), high, low);
+        const vector_128 lower = interpolate_pairs(row_pairs<3>(bottom), high, low);
+        const vector_128 up_weight = shuffle_32<0x00>(down_weights),
+                         down_weight = shuffle_32<0xAA>(down_weights);
+        sums->even = add_64(sums->even, add_64(multiply_even_unsigned_32(upper, up_weight),
+                                               multiply_even_unsigned_32(lower, down_weight)));
+        sums->odd = add_64(sums->odd,
+                           add_64(multiply_even_unsigned_32(shift_right_logical_64(upper, 32), up_weight),
+                                  multiply_even_unsigned_32(shift_right_logical_64(lower, 32), down_weight)));
     } else {
         /* lanes: upper, lower; spread to 64-bit lanes, each times its weight */
-        const __m128i rows =
-            interpolate_pairs(_mm_unpacklo_epi32(row_pairs<1>(top), row_pairs<1>(bottom)), high, low);
-        sums->even = _mm_add_epi64(sums->even, _mm_mul_epu32(_mm_shuffle_epi32(rows, 0x10), down_weights));
+        const vector_128 rows =
+            interpolate_pairs(unpack_low_32(row_pairs<1>(top), row_pairs<1>(bottom)), high, low);
+        sums->even = add_64(sums->even, multiply_even_unsigned_32(shuffle_32<0x10>(rows), down_weights));
     }
 }
 
@@ -167,10 +166,10 @@ inline void add_slopes_vector(const unsigned char *top, const unsigned char *bot
     const vector_128 lower = row_pairs<Channels>(row_bytes<Channels>(bottom));
     vector_128 high, low;
     weight_parts(across, &high, &low);
-    sums->along_y = add_32_lanes(sums->along_y, interpolate_pairs(subtract_16(lower, upper), high, low));
+    sums->along_y = add_32(sums->along_y, interpolate_pairs(subtract_16(lower, upper), high, low));
     weight_parts(down, &high, &low);
     const vector_128 rows = pair_up(pair_differences(upper), pair_differences(lower));
-    sums->along_x = add_32_lanes(sums->along_x, interpolate_pairs(rows, high, low));
+    sums->along_x = add_32(sums->along_x, interpolate_pairs(rows, high, low));
 }
 
 /* The channel sums of the vector's lanes (modulo 2^64). */

@@ -1,9 +1,9 @@
 /* runtime/simd/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
    output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, the SSE2
    strip path's own operations (simd_sse2.h's vectors are these), the tile walk's widening sums
-   (tile_walk.h), a constant of the continuous splat, the pair operations of the bilinear slopes, and the
-   128-bit pieces of the wider kernels. Included by the ops headers (simd.h), and on its own where only
-   SSE2 is sure (tile_walk.h, which lattice_gradient.cpp includes). */
+   (tile_walk.h), a constant of the continuous splat, the bilinear reads and slopes of 8-bit textons, and
+   the 128-bit pieces of the wider kernels. Included by the ops headers (simd.h), and on its own where
+   only SSE2 is sure (tile_walk.h and bilinear_read.h, which the evaluators include). */
 #ifndef DSN_SIMD_128_H
 #define DSN_SIMD_128_H
 
@@ -77,7 +77,6 @@ inline __m128i pair_up(__m128i low, __m128i high) {
     return _mm_or_si128(_mm_and_si128(low, _mm_set1_epi32(0xFFFF)), _mm_slli_epi32(high, 16));
 }
 
-inline __m128i add_32_lanes(__m128i a, __m128i b) { return _mm_add_epi32(a, b); }
 inline __m128i zero_128() { return _mm_setzero_si128(); }
 
 /* The four 32-bit lanes, signed. */
@@ -122,6 +121,7 @@ DSN_SIMD_INLINE int top_bits_of_bytes(vector_128 a) { return _mm_movemask_epi8(a
 /* ---- The strip path's 128-bit operations (simd_sse2.h's strip vectors are these; tile_normalize.h,
    tile_store.h), and the tile walk's widening sums (tile_walk.h) ---- */
 
+DSN_SIMD_INLINE vector_128 madd_16(vector_128 a, vector_128 b) { return _mm_madd_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 add_32(vector_128 a, vector_128 b) { return _mm_add_epi32(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_low_16(vector_128 a, vector_128 b) { return _mm_unpacklo_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_high_16(vector_128 a, vector_128 b) { return _mm_unpackhi_epi16(a, b); }
@@ -168,6 +168,41 @@ DSN_SIMD_INLINE vector_128 shift_right_arithmetic_32(vector_128 a, uint32_t coun
 DSN_SIMD_INLINE vector_128 pack_saturated_32x16(vector_128 a, vector_128 b) { return _mm_packs_epi32(a, b); }
 DSN_SIMD_INLINE vector_128 pack_saturated_unsigned_16x8(vector_128 a, vector_128 b) {
     return _mm_packus_epi16(a, b);
+}
+
+/* ---- The bilinear texton of 8-bit values (bilinear_read.h, filtered_sift.cpp) ---- */
+
+/* The 8 bytes at `at` in the low half, zeros above. */
+DSN_SIMD_INLINE vector_128 load_low_8x8(const uint8_t *at) {
+    return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(at)));
+}
+DSN_SIMD_INLINE vector_128 load_low_64(const uint64_t *at) {
+    return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(at)));
+}
+/* value in the low 32 bits, zeros above (an int, as the instruction's). */
+DSN_SIMD_INLINE vector_128 set_low_32(int value) { return _mm_cvtsi32_si128(value); }
+DSN_SIMD_INLINE vector_128 set_16x8(char value) { return _mm_set1_epi8(value); }
+/* The lanes in order, lane 0 first. */
+DSN_SIMD_INLINE vector_128 set_lanes_4x32(int32_t lane_0, int32_t lane_1, int32_t lane_2, int32_t lane_3) {
+    return _mm_set_epi32(lane_3, lane_2, lane_1, lane_0);
+}
+DSN_SIMD_INLINE vector_128 bitwise_xor(vector_128 a, vector_128 b) { return _mm_xor_si128(a, b); }
+/* The whole vector shifted down by Count bytes, zeros in. */
+template <int Count>
+DSN_SIMD_INLINE vector_128 shift_right_bytes(vector_128 a) {
+    return _mm_srli_si128(a, Count);
+}
+DSN_SIMD_INLINE vector_128 shift_left_32(vector_128 a, uint32_t count) {
+    return _mm_slli_epi32(a, static_cast<int>(count));
+}
+template <int Order>
+DSN_SIMD_INLINE vector_128 shuffle_32(vector_128 a) {
+    return _mm_shuffle_epi32(a, Order);
+}
+DSN_SIMD_INLINE vector_128 add_64(vector_128 a, vector_128 b) { return _mm_add_epi64(a, b); }
+/* The unsigned products of the even (low) 32-bit lanes, in 64-bit lanes. */
+DSN_SIMD_INLINE vector_128 multiply_even_unsigned_32(vector_128 a, vector_128 b) {
+    return _mm_mul_epu32(a, b);
 }
 
 } // namespace

@@ -22,9 +22,9 @@ inline void store_16(uint16_t *dst, simd_vector value) {
     _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(dst)), value);
 }
 
-/* ---- Normalization, per 128-bit lane (add_32, the unpacks, as_floats and as_integers: simd_128.h) ---- */
+/* ---- Normalization, per 128-bit lane (madd_16, add_32, the unpacks, as_floats and as_integers:
+   simd_128.h) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return value; }
-inline simd_vector madd_16(simd_vector a, simd_vector b) { return _mm_madd_epi16(a, b); }
 inline simd_vector shift_right_15(simd_vector a) { return _mm_srai_epi32(a, 15); }
 inline simd_vector shift_right(simd_vector a, __m128i count) { return _mm_sra_epi32(a, count); }
 inline simd_vector set_16(int16_t value) { return _mm_set1_epi16(value); }
