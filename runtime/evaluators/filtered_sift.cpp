@@ -201,7 +201,7 @@ struct LevelAccumulator {
 
 void clear(LevelAccumulator *sums) {
 #if defined(__SSE2__)
-    sums->vector.even = sums->vector.odd = _mm_setzero_si128();
+    sums->vector.even = sums->vector.odd = zero_128();
 #endif
     for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums->interior[c] = sums->border[c] = 0;
     sums->interior_count = 0;
@@ -216,8 +216,8 @@ const unsigned char zero_row[8] = {0, 0, 0, 0, 0, 0, 0, 0};
    is read from the column clamped into [0, width - 2] and moved by one texel where it was clamped, the
    texel that left the window zeroed. The reads stay within the rows' bytes plus 2 (as the interior's). */
 template <uint32_t Channels>
-inline __m128i bordered_row(const unsigned char *values, uint32_t offset, bool inside, bool left_out,
-                            bool right_out) {
+inline vector_128 bordered_row(const unsigned char *values, uint32_t offset, bool inside, bool left_out,
+                               bool right_out) {
     const uint32_t texel_bits = 8u * Channels;
     const unsigned char *from = inside ? values + offset : zero_row;
     uint64_t word;
@@ -231,8 +231,8 @@ inline __m128i bordered_row(const unsigned char *values, uint32_t offset, bool i
     const uint64_t right_mask =
         right_out ? (static_cast<uint64_t>(1) << texel_bits) - 1u : ~static_cast<uint64_t>(0);
     word = ((word << (left_out ? texel_bits : 0u)) >> (right_out ? texel_bits : 0u)) & right_mask;
-    if (Channels == 3) return _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(&word)));
-    return _mm_cvtsi32_si128(static_cast<int>(static_cast<uint32_t>(word))); /* the bits unchanged */
+    if (Channels == 3) return load_low_64(&word);
+    return set_low_32(static_cast<int>(static_cast<uint32_t>(word))); /* the bits unchanged */
 }
 #endif
 
