@@ -13,7 +13,7 @@
 #include "core/continuous_internal.h"
 #include "kernels/kernels.h"
 #include "kernels/splat_cells.h"
-#include "simd/simd.h" /* <immintrin.h> on AVX2 and AVX-512 (simd_avx512.h includes it past a GCC 12 false warning) */
+#include "simd/simd.h" /* the splat operations; the 256-bit ones (simd_256.h) on AVX2 and AVX-512 */
 
 namespace {
 
@@ -87,19 +87,19 @@ void splat_row(const dsn_splat_setup *setup, int64_t offset_x, int64_t offset_y,
    texel lies inside the window, so that the others read nothing and give 0. A word read at a texel of
    the last row reaches at most 3 bytes past it: into the asset's 4-byte CRC, which the loader
    guarantees lies in the buffer right after the texton (format.h: total_size). The rows' interpolation
-   runs in 32-bit lanes (below 2^25), the column's in 64-bit lanes (_mm256_mul_epi32, exact). A row's
+   runs in 32-bit lanes (below 2^25), the column's in 64-bit lanes (multiply_even_32, exact). A row's
    last pixels take a block whose lanes past the row are masked out of the gathers and not added. */
 
 /* The low 32 bits of the 64-bit lanes of a (pixels 0-3) and b (4-7), as 8 lanes in order. */
-inline __m256i splat_low_halves(__m256i a, __m256i b) {
-    const __m256 mixed = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), 0x88);
-    return _mm256_permute4x64_epi64(_mm256_castps_si256(mixed), 0xD8);
+inline vector_256 splat_low_halves(vector_256 a, vector_256 b) {
+    const floats_256 mixed = shuffle<0x88>(as_floats(a), as_floats(b));
+    return permute_64<0xD8>(as_integers(mixed));
 }
 
 /* Byte `index` of every 32-bit lane, sign-extended. */
 template <int Index>
-inline __m256i signed_byte(__m256i words) {
-    return _mm256_srai_epi32(_mm256_slli_epi32(words, 24 - 8 * Index), 24);
+inline vector_256 signed_byte(vector_256 words) {
+    return shift_right_arithmetic_32(shift_left_32(words, 24 - 8 * Index), 24);
 }
 
 template <uint32_t Channels>
@@ -109,75 +109,65 @@ void splat_row_vector(const dsn_splat_setup *setup, int64_t offset_x, int64_t of
     const int64_t step_x = setup->step_x, step_y = setup->step_y;
     const size_t plane = setup->plane;
     const uint32_t blocks = (count + 7u) / 8u;
-    const __m256i steps_x = _mm256_set1_epi64x(8 * step_x), steps_y = _mm256_set1_epi64x(8 * step_y);
-    const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+    const vector_256 steps_x = set_4x64(8 * step_x), steps_y = set_4x64(8 * step_y);
+    const vector_256 lanes = set_lanes_4x64(0, 1, 2, 3);
     /* bracket's shifted values of pixels 0-3 and 4-7 (modulo 2^64, as the scalar loop steps them) */
     const uint64_t start_x = static_cast<uint64_t>(offset_x + setup->reach_x),
                    start_y = static_cast<uint64_t>(offset_y + setup->reach_y);
     const uint64_t four_x = 4u * static_cast<uint64_t>(step_x), four_y = 4u * static_cast<uint64_t>(step_y);
-    __m256i low_x = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_x)),
-                                     _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_x)));
-    __m256i low_y = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(start_y)),
-                                     _mm256_mul_epu32(lanes, _mm256_set1_epi64x(step_y)));
-    /* _mm256_mul_epu32 takes the low 32 bits of the step: add the high part's multiples too */
-    low_x = _mm256_add_epi64(
-        low_x, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
-                                                             static_cast<uint64_t>(step_x) >> 32))),
-                                 32));
-    low_y = _mm256_add_epi64(
-        low_y, _mm256_slli_epi64(_mm256_mul_epu32(lanes, _mm256_set1_epi64x(static_cast<long long>(
-                                                             static_cast<uint64_t>(step_y) >> 32))),
-                                 32));
-    __m256i high_x = _mm256_add_epi64(low_x, _mm256_set1_epi64x(static_cast<long long>(four_x)));
-    __m256i high_y = _mm256_add_epi64(low_y, _mm256_set1_epi64x(static_cast<long long>(four_y)));
-    const __m256i width = _mm256_set1_epi32(static_cast<int>(texture.width)),
-                  height = _mm256_set1_epi32(static_cast<int>(texture.height));
-    const __m256i sign = _mm256_set1_epi32(-2147483647 - 1);
-    const __m256i width_sign = _mm256_xor_si256(width, sign), height_sign = _mm256_xor_si256(height, sign);
-    const __m256i ones = _mm256_set1_epi32(1), low_16 = _mm256_set1_epi32(0xFFFF),
-                  scale = _mm256_set1_epi32(65536);
-    const __m256i row_bytes = _mm256_set1_epi32(static_cast<int>(texture.stride * Channels));
-    const int *texton = static_cast<const int *>(static_cast<const void *>(texture.values));
-    const __m256i lane_numbers = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    vector_256 low_x =
+        add_64(set_4x64(static_cast<int64_t>(start_x)), multiply_even_unsigned_32(lanes, set_4x64(step_x)));
+    vector_256 low_y =
+        add_64(set_4x64(static_cast<int64_t>(start_y)), multiply_even_unsigned_32(lanes, set_4x64(step_y)));
+    /* multiply_even_unsigned_32 takes the low 32 bits of the step: add the high part's multiples too */
+    low_x = add_64(
+        low_x, shift_left_64(multiply_even_unsigned_32(
+                                 lanes, set_4x64(static_cast<int64_t>(static_cast<uint64_t>(step_x) >> 32))),
+                             32));
+    low_y = add_64(
+        low_y, shift_left_64(multiply_even_unsigned_32(
+                                 lanes, set_4x64(static_cast<int64_t>(static_cast<uint64_t>(step_y) >> 32))),
+                             32));
+    vector_256 high_x = add_64(low_x, set_4x64(static_cast<int64_t>(four_x)));
+    vector_256 high_y = add_64(low_y, set_4x64(static_cast<int64_t>(four_y)));
+    const vector_256 width = set_8x32(texture.width), height = set_8x32(texture.height);
+    const vector_256 sign = set_8x32(0x80000000u);
+    const vector_256 width_sign = bitwise_xor(width, sign), height_sign = bitwise_xor(height, sign);
+    const vector_256 ones = set_8x32(1), low_16 = set_8x32(0xFFFF), scale = set_8x32(65536);
+    const vector_256 row_bytes = set_8x32(texture.stride * Channels);
+    const void *texton = texture.values;
+    const vector_256 lane_numbers = set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7);
     for (uint32_t block = 0; block < blocks; block++, pixel += 8) {
         /* The last block's lanes past the row read nothing and leave their memory alone (masked). */
         const uint32_t remaining = count - 8u * block;
         const bool full = remaining >= 8u;
-        const __m256i present =
-            _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(remaining)), lane_numbers);
+        const vector_256 present = greater_32(set_8x32(remaining), lane_numbers);
         /* The lower texel indices (column, row: -1 .. size - 1) and the upper weights. */
-        const __m256i column = _mm256_sub_epi32(
-            splat_low_halves(_mm256_srli_epi64(low_x, 32), _mm256_srli_epi64(high_x, 32)), ones);
-        const __m256i row = _mm256_sub_epi32(
-            splat_low_halves(_mm256_srli_epi64(low_y, 32), _mm256_srli_epi64(high_y, 32)), ones);
-        const __m256i across = _mm256_and_si256(
-            splat_low_halves(_mm256_srli_epi64(low_x, 16), _mm256_srli_epi64(high_x, 16)), low_16);
-        const __m256i down = _mm256_and_si256(
-            splat_low_halves(_mm256_srli_epi64(low_y, 16), _mm256_srli_epi64(high_y, 16)), low_16);
+        const vector_256 column = subtract_32(
+            splat_low_halves(shift_right_logical_64(low_x, 32), shift_right_logical_64(high_x, 32)), ones);
+        const vector_256 row = subtract_32(
+            splat_low_halves(shift_right_logical_64(low_y, 32), shift_right_logical_64(high_y, 32)), ones);
+        const vector_256 across = bitwise_and(
+            splat_low_halves(shift_right_logical_64(low_x, 16), shift_right_logical_64(high_x, 16)), low_16);
+        const vector_256 down = bitwise_and(
+            splat_low_halves(shift_right_logical_64(low_y, 16), shift_right_logical_64(high_y, 16)), low_16);
         /* index < size as unsigned (-1 fails): signed comparisons of the values flipped by 2^31 */
-        const __m256i left_in =
-            _mm256_and_si256(present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(column, sign)));
-        const __m256i right_in = _mm256_and_si256(
-            present, _mm256_cmpgt_epi32(width_sign, _mm256_xor_si256(_mm256_add_epi32(column, ones), sign)));
-        const __m256i top_in = _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(row, sign));
-        const __m256i bottom_in =
-            _mm256_cmpgt_epi32(height_sign, _mm256_xor_si256(_mm256_add_epi32(row, ones), sign));
-        const __m256i at =
-            _mm256_add_epi32(_mm256_mullo_epi32(row, row_bytes),
-                             _mm256_mullo_epi32(column, _mm256_set1_epi32(static_cast<int>(Channels))));
-        const __m256i right = _mm256_set1_epi32(static_cast<int>(Channels));
-        const __m256i zero = _mm256_setzero_si256();
-        const __m256i top_left =
-            _mm256_mask_i32gather_epi32(zero, texton, at, _mm256_and_si256(top_in, left_in), 1);
-        const __m256i top_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(at, right),
-                                                              _mm256_and_si256(top_in, right_in), 1);
-        const __m256i below = _mm256_add_epi32(at, row_bytes);
-        const __m256i bottom_left =
-            _mm256_mask_i32gather_epi32(zero, texton, below, _mm256_and_si256(bottom_in, left_in), 1);
-        const __m256i bottom_right = _mm256_mask_i32gather_epi32(zero, texton, _mm256_add_epi32(below, right),
-                                                                 _mm256_and_si256(bottom_in, right_in), 1);
+        const vector_256 left_in = bitwise_and(present, greater_32(width_sign, bitwise_xor(column, sign)));
+        const vector_256 right_in =
+            bitwise_and(present, greater_32(width_sign, bitwise_xor(add_32(column, ones), sign)));
+        const vector_256 top_in = greater_32(height_sign, bitwise_xor(row, sign));
+        const vector_256 bottom_in = greater_32(height_sign, bitwise_xor(add_32(row, ones), sign));
+        const vector_256 at = add_32(multiply_32(row, row_bytes), multiply_32(column, set_8x32(Channels)));
+        const vector_256 right = set_8x32(Channels);
+        const vector_256 top_left = gather_masked_32<1>(texton, at, bitwise_and(top_in, left_in));
+        const vector_256 top_right =
+            gather_masked_32<1>(texton, add_32(at, right), bitwise_and(top_in, right_in));
+        const vector_256 below = add_32(at, row_bytes);
+        const vector_256 bottom_left = gather_masked_32<1>(texton, below, bitwise_and(bottom_in, left_in));
+        const vector_256 bottom_right =
+            gather_masked_32<1>(texton, add_32(below, right), bitwise_and(bottom_in, right_in));
         for (uint32_t c = 0; c < Channels; c++) {
-            __m256i a, b, d, e; /* top-left, top-right, bottom-left, bottom-right of channel c */
+            vector_256 a, b, d, e; /* top-left, top-right, bottom-left, bottom-right of channel c */
             if (c == 0)
                 a = signed_byte<0>(top_left), b = signed_byte<0>(top_right), d = signed_byte<0>(bottom_left),
                 e = signed_byte<0>(bottom_right);
@@ -187,34 +177,31 @@ void splat_row_vector(const dsn_splat_setup *setup, int64_t offset_x, int64_t of
             else
                 a = signed_byte<2>(top_left), b = signed_byte<2>(top_right), d = signed_byte<2>(bottom_left),
                 e = signed_byte<2>(bottom_right);
-            const __m256i upper = _mm256_add_epi32(_mm256_slli_epi32(a, 16),
-                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(b, a)));
-            const __m256i lower = _mm256_add_epi32(_mm256_slli_epi32(d, 16),
-                                                   _mm256_mullo_epi32(across, _mm256_sub_epi32(e, d)));
-            const __m256i difference = _mm256_sub_epi32(lower, upper);
-            const __m256i even =
-                _mm256_add_epi64(_mm256_mul_epi32(upper, scale), _mm256_mul_epi32(down, difference));
-            const __m256i odd = _mm256_add_epi64(
-                _mm256_mul_epi32(_mm256_srli_epi64(upper, 32), scale),
-                _mm256_mul_epi32(_mm256_srli_epi64(down, 32), _mm256_srli_epi64(difference, 32)));
+            const vector_256 upper = add_32(shift_left_32(a, 16), multiply_32(across, subtract_32(b, a)));
+            const vector_256 lower = add_32(shift_left_32(d, 16), multiply_32(across, subtract_32(e, d)));
+            const vector_256 difference = subtract_32(lower, upper);
+            const vector_256 even =
+                add_64(multiply_even_32(upper, scale), multiply_even_32(down, difference));
+            const vector_256 odd = add_64(
+                multiply_even_32(shift_right_logical_64(upper, 32), scale),
+                multiply_even_32(shift_right_logical_64(down, 32), shift_right_logical_64(difference, 32)));
             /* even: pixels 0, 2 | 4, 6; odd: 1, 3 | 5, 7 */
-            const __m256i first = _mm256_unpacklo_epi64(even, odd), second = _mm256_unpackhi_epi64(even, odd);
-            const __m256i pixels_low = _mm256_permute2x128_si256(first, second, 0x20);
-            const __m256i pixels_high = _mm256_permute2x128_si256(first, second, 0x31);
+            const vector_256 first = unpack_low_64(even, odd), second = unpack_high_64(even, odd);
+            const vector_256 pixels_low = permute_128_of_two<0x20>(first, second);
+            const vector_256 pixels_high = permute_128_of_two<0x31>(first, second);
             uint64_t *sums = pixel + c * plane;
             if (full) {
-                __m256i *run = static_cast<__m256i *>(static_cast<void *>(sums));
-                _mm256_storeu_si256(run, _mm256_add_epi64(_mm256_loadu_si256(run), pixels_low));
-                _mm256_storeu_si256(run + 1, _mm256_add_epi64(_mm256_loadu_si256(run + 1), pixels_high));
+                store_4x64(sums, add_64(load_4x64(sums), pixels_low));
+                store_4x64(sums + 4, add_64(load_4x64(sums + 4), pixels_high));
             } else {
                 uint64_t values[8];
-                _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(values)), pixels_low);
-                _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(values + 4)), pixels_high);
+                store_4x64(values, pixels_low);
+                store_4x64(values + 4, pixels_high);
                 for (uint32_t i = 0; i < remaining; i++) sums[i] += values[i];
             }
         }
-        low_x = _mm256_add_epi64(low_x, steps_x), high_x = _mm256_add_epi64(high_x, steps_x);
-        low_y = _mm256_add_epi64(low_y, steps_y), high_y = _mm256_add_epi64(high_y, steps_y);
+        low_x = add_64(low_x, steps_x), high_x = add_64(high_x, steps_x);
+        low_y = add_64(low_y, steps_y), high_y = add_64(high_y, steps_y);
     }
 }
 #endif
@@ -265,13 +252,13 @@ inline splat_vector splat_difference_times(splat_vector difference, splat_vector
 }
 #else
 inline splat_vector splat_row_integers(splat_vector records, splat_vector across) {
-    return _mm_add_epi32(splat_rows(records, across), _mm_set_epi32(1 << 26, 1 << 25, 1 << 26, 1 << 25));
+    return add_32(splat_rows(records, across), set_lanes_4x32(1 << 25, 1 << 26, 1 << 25, 1 << 26));
 }
 inline splat_vector splat_upper_scaled(splat_vector rows) {
     return splat_sub(splat_low_times(rows, splat_set(65536)), splat_set(static_cast<uint64_t>(1) << 41));
 }
 inline splat_vector splat_difference_times(splat_vector difference, splat_vector down) {
-    return splat_sub(splat_low_times(difference, down), _mm_slli_epi64(down, 26));
+    return splat_sub(splat_low_times(difference, down), shift_left_64(down, 26));
 }
 #endif
 
@@ -453,8 +440,8 @@ inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
     return splat_signed_times(splat_shift_right(value, 32), factor);
 #else
     return splat_sub(
-        splat_low_times(_mm_xor_si128(splat_shift_right(value, 32), splat_set(0x80000000u)), factor),
-        _mm_slli_epi64(factor, 31));
+        splat_low_times(bitwise_xor(splat_shift_right(value, 32), splat_set(0x80000000u)), factor),
+        shift_left_64(factor, 31));
 #endif
 }
 

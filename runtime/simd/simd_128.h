@@ -200,6 +200,9 @@ DSN_SIMD_INLINE vector_128 shuffle_32(vector_128 a) {
     return _mm_shuffle_epi32(a, Order);
 }
 DSN_SIMD_INLINE vector_128 add_64(vector_128 a, vector_128 b) { return _mm_add_epi64(a, b); }
+DSN_SIMD_INLINE vector_128 shift_left_64(vector_128 a, uint32_t count) {
+    return _mm_slli_epi64(a, static_cast<int>(count));
+}
 /* The unsigned products of the even (low) 32-bit lanes, in 64-bit lanes. */
 DSN_SIMD_INLINE vector_128 multiply_even_unsigned_32(vector_128 a, vector_128 b) {
     return _mm_mul_epu32(a, b);

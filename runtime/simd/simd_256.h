@@ -1,7 +1,8 @@
 /* runtime/simd/simd_256.h - the 256-bit operations the AVX2 and the AVX-512 copies share: the strip path's
    AVX2 vectors (simd_avx2.h), and the 8 lanes of the vector continuous and filtered kernels
-   (continuous_lanes.h, continuous_point_vector.h, continuous_batch*.h, filtered_*_vector.h), which the
-   AVX-512 copy runs too, for the last 8 candidates of a visit and where its algorithm keeps 256-bit steps.
+   (continuous_lanes.h, continuous_point_vector.h, continuous_batch*.h, filtered_*_vector.h) and of the
+   gathered splat rows (splat_row.h), which the AVX-512 copy runs too, for the last 8 candidates of a visit
+   and where its algorithm keeps 256-bit steps.
    Included by simd_avx2.h and simd_avx512.h. */
 #ifndef DSN_SIMD_256_H
 #define DSN_SIMD_256_H
@@ -29,6 +30,9 @@ DSN_SIMD_INLINE vector_256 load_masked_8x32(const uint32_t *at, vector_256 mask)
     return _mm256_maskload_epi32(static_cast<const int *>(static_cast<const void *>(at)), mask);
 }
 DSN_SIMD_INLINE vector_256 load_4x64(const int64_t *at) {
+    return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
+}
+DSN_SIMD_INLINE vector_256 load_4x64(const uint64_t *at) {
     return _mm256_loadu_si256(static_cast<const __m256i *>(static_cast<const void *>(at)));
 }
 /* The lanes whose mask lane has its top bit set, the others 0 (and not read). */
@@ -173,6 +177,14 @@ DSN_SIMD_INLINE vector_256 permute_64(vector_256 a) {
  * set. */
 DSN_SIMD_INLINE vector_256 shuffle_bytes(vector_256 a, vector_256 order) {
     return _mm256_shuffle_epi8(a, order);
+}
+/* Per 128-bit lane: the low (high) 64-bit lane of a, then of b. */
+DSN_SIMD_INLINE vector_256 unpack_low_64(vector_256 a, vector_256 b) { return _mm256_unpacklo_epi64(a, b); }
+DSN_SIMD_INLINE vector_256 unpack_high_64(vector_256 a, vector_256 b) { return _mm256_unpackhi_epi64(a, b); }
+/* The low 128 bits: 128-bit lane Order & 3 of (a, b); the high ones: lane (Order >> 4) & 3. */
+template <int Order>
+DSN_SIMD_INLINE vector_256 permute_128_of_two(vector_256 a, vector_256 b) {
+    return _mm256_permute2x128_si256(a, b, Order);
 }
 DSN_SIMD_INLINE vector_128 low_128(vector_256 a) { return _mm256_castsi256_si128(a); }
 DSN_SIMD_INLINE vector_128 high_128(vector_256 a) { return _mm256_extracti128_si256(a, 1); }
