@@ -7,7 +7,7 @@
 #include "core/poisson_count.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include "simd/simd_128.h"
 #endif
 
 namespace {
@@ -101,9 +101,9 @@ void accumulate_any(const dsn_noise_state *noise, const texton_window *texton, u
    together, after they are all tested (see accumulate_cells16). Impulses beyond 16 (0.4% of cells at
    the usual mean of 8) go one by one. */
 
-inline __m128i broadcast(uint32_t pattern) {
+inline vector_128 broadcast(uint32_t pattern) {
     /* The bits go in unchanged (int conversion is modulo 2^32 on every x86 compiler). */
-    return _mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(pattern)), 0);
+    return shuffle_32<0>(set_low_32(static_cast<int>(pattern)));
 }
 
 /* The in-cell offsets t of one axis that reach the point, 0 <= reach - t < size, tested on every lane's
@@ -112,7 +112,7 @@ inline __m128i broadcast(uint32_t pattern) {
    is never empty. The x test takes the x offsets (low nibbles), the y test whole fields, 16 y + x: y lies
    in [low, high] exactly when the field lies in [16 low, 16 high + 15] (at most 255: no wrap). */
 typedef struct lane_range {
-    __m128i low, span;
+    vector_128 low, span;
 } lane_range;
 
 inline lane_range lane_range_of(uint32_t reach, uint32_t size, uint32_t unit, uint32_t below_unit) {
@@ -128,27 +128,26 @@ inline lane_range y_range_of(uint32_t reach, uint32_t size) { return lane_range_
 /* x * multiplier modulo 2^64 in both 64-bit lanes (SSE2 multiplies 32 x 32 -> 64 bits only):
    x_lo m_lo + 2^32 (x_hi m_lo + x_lo m_hi). `multiplier` holds m_lo in the low half of each lane,
    `multiplier_high` m_hi. */
-inline __m128i multiply64(__m128i x, __m128i multiplier, __m128i multiplier_high) {
-    const __m128i cross =
-        _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), multiplier), _mm_mul_epu32(x, multiplier_high));
-    return _mm_add_epi64(_mm_mul_epu32(x, multiplier), _mm_slli_epi64(cross, 32));
+inline vector_128 multiply64(vector_128 x, vector_128 multiplier, vector_128 multiplier_high) {
+    const vector_128 cross = add_64(multiply_even_unsigned_32(shift_right_logical_64(x, 32), multiplier),
+                                    multiply_even_unsigned_32(x, multiplier_high));
+    return add_64(multiply_even_unsigned_32(x, multiplier), shift_left_64(cross, 32));
 }
 
 /* dsn_position_pair(key, 0) and (key, 1), low and high lanes, for the key in the low 32 bits of `key`:
    dsn_mix64 on vectors, the same bits. */
-inline __m128i position_pairs(__m128i key) {
-    const __m128i m1 = _mm_set1_epi64x(static_cast<long long>(0xBF58476D1CE4E5B9u)),
-                  m1_high = _mm_set1_epi64x(0xBF58476Du),
-                  m2 = _mm_set1_epi64x(static_cast<long long>(0x94D049BB133111EBu)),
-                  m2_high = _mm_set1_epi64x(0x94D049BBu);
+inline vector_128 position_pairs(vector_128 key) {
+    const vector_128 m1 = set_2x64(static_cast<int64_t>(0xBF58476D1CE4E5B9u)),
+                     m1_high = set_2x64(0xBF58476Du),
+                     m2 = set_2x64(static_cast<int64_t>(0x94D049BB133111EBu)),
+                     m2_high = set_2x64(0x94D049BBu);
     /* key 2^32 + index G, index 0 and 1 */
-    __m128i x = _mm_add_epi64(_mm_shuffle_epi32(key, 0x11),
-                              _mm_set_epi64x(static_cast<long long>(0x9E3779B97F4A7C15u), 0));
-    x = _mm_xor_si128(x, _mm_srli_epi64(x, 30));
+    vector_128 x = add_64(shuffle_32<0x11>(key), set_lanes_2x64(0, 0x9E3779B97F4A7C15u));
+    x = bitwise_xor(x, shift_right_logical_64(x, 30));
     x = multiply64(x, m1, m1_high);
-    x = _mm_xor_si128(x, _mm_srli_epi64(x, 27));
+    x = bitwise_xor(x, shift_right_logical_64(x, 27));
     x = multiply64(x, m2, m2_high);
-    return _mm_xor_si128(x, _mm_srli_epi64(x, 31));
+    return bitwise_xor(x, shift_right_logical_64(x, 31));
 }
 
 /* Lanes k >= count as all-ones bytes (the impulses that do not exist): 16 bytes of absent_window from
@@ -159,32 +158,31 @@ const unsigned char absent_window[32] = {
     255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255};
 /* clang-format on */
 
-inline __m128i absent_impulses(uint32_t count) {
+inline vector_128 absent_impulses(uint32_t count) {
     const unsigned char *window = absent_window + 16 - (count < 16 ? count : 16u);
-    return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(window)));
+    return load_16x8(window);
 }
 
 /* Texton entries of 8 lanes whose fields (16 offset_y + offset_x) are in 16-bit lanes: corner -
    (offset_y width + offset_x) = corner - field - offset_y (width - 16), corner = reach_y width + reach_x.
    Exact in 16 bits for hits. */
-inline __m128i lane_entries(__m128i fields, __m128i corner, __m128i widths_less_16) {
-    return _mm_sub_epi16(corner,
-                         _mm_add_epi16(fields, _mm_mullo_epi16(_mm_srli_epi16(fields, 4), widths_less_16)));
+inline vector_128 lane_entries(vector_128 fields, vector_128 corner, vector_128 widths_less_16) {
+    return subtract_16(corner,
+                       add_16(fields, multiply_16(shift_right_logical_16(fields, 4), widths_less_16)));
 }
 
 /* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
    (garbage for lanes that miss, never read). */
-inline uint32_t cell_hits(__m128i fields, __m128i absent, const lane_range *x, const lane_range *y,
-                          __m128i corner, __m128i widths_less_16, uint16_t *entries) {
-    const __m128i offset_x = _mm_and_si128(fields, _mm_set1_epi8(0x0F));
-    const __m128i dx = _mm_sub_epi8(offset_x, x->low), dy = _mm_sub_epi8(fields, y->low);
-    const __m128i in_x = _mm_cmpeq_epi8(_mm_min_epu8(dx, x->span), dx);
-    const __m128i in_y = _mm_cmpeq_epi8(_mm_min_epu8(dy, y->span), dy);
-    const __m128i zero = _mm_setzero_si128();
-    __m128i *out = static_cast<__m128i *>(static_cast<void *>(entries));
-    _mm_storeu_si128(out, lane_entries(_mm_unpacklo_epi8(fields, zero), corner, widths_less_16));
-    _mm_storeu_si128(out + 1, lane_entries(_mm_unpackhi_epi8(fields, zero), corner, widths_less_16));
-    return uint32_t(_mm_movemask_epi8(_mm_andnot_si128(absent, _mm_and_si128(in_x, in_y))));
+inline uint32_t cell_hits(vector_128 fields, vector_128 absent, const lane_range *x, const lane_range *y,
+                          vector_128 corner, vector_128 widths_less_16, uint16_t *entries) {
+    const vector_128 offset_x = bitwise_and(fields, set_16x8(0x0F));
+    const vector_128 dx = subtract_8(offset_x, x->low), dy = subtract_8(fields, y->low);
+    const vector_128 in_x = equal_8(minimum_unsigned_8(dx, x->span), dx);
+    const vector_128 in_y = equal_8(minimum_unsigned_8(dy, y->span), dy);
+    const vector_128 zero = zero_128();
+    store_8x16(entries, lane_entries(unpack_low_8(fields, zero), corner, widths_less_16));
+    store_8x16(entries + 8, lane_entries(unpack_high_8(fields, zero), corner, widths_less_16));
+    return uint32_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x, in_y))));
 }
 
 /* The hits' texton values are summed while visiting them, then added to the channel sums (flush_hit_sums).
@@ -198,7 +196,7 @@ inline uint32_t cell_hits(__m128i fields, __m128i absent, const lane_range *x, c
    values in 32-bit lanes. */
 typedef struct hit_sums {
     uint32_t grey;
-    __m128i rgb;
+    vector_128 rgb;
 } hit_sums;
 
 template <uint32_t Bits>
@@ -210,15 +208,15 @@ inline uint32_t grey_value(const unsigned char *entry) {
 }
 
 template <uint32_t Bits>
-inline __m128i rgb_values(const unsigned char *entry) {
+inline vector_128 rgb_values(const unsigned char *entry) {
     if (Bits == 8) {
         uint32_t bytes;
         __builtin_memcpy(&bytes, entry, sizeof bytes);
-        const __m128i values = _mm_cvtsi32_si128(static_cast<int>(bytes)); /* the bits unchanged */
-        return _mm_srai_epi16(_mm_unpacklo_epi8(values, values), 8);
+        const vector_128 values = set_low_32(static_cast<int>(bytes)); /* the bits unchanged */
+        return shift_right_arithmetic_16(unpack_low_8(values, values), 8);
     }
-    const __m128i values = _mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(entry)));
-    return _mm_srai_epi32(_mm_unpacklo_epi16(values, values), 16);
+    const vector_128 values = load_low_8x8(entry);
+    return shift_right_arithmetic_32(unpack_low_16(values, values), 16);
 }
 
 /* Number of set bits (SWAR: the popcnt instruction is not in the SSE2 baseline). */
@@ -240,8 +238,8 @@ inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t 
         if (Channels == 1)
             sums->grey += grey_value<Bits>(entry);
         else
-            sums->rgb = Bits == 8 ? _mm_add_epi16(sums->rgb, rgb_values<Bits>(entry))
-                                  : _mm_add_epi32(sums->rgb, rgb_values<Bits>(entry));
+            sums->rgb = Bits == 8 ? add_16(sums->rgb, rgb_values<Bits>(entry))
+                                  : add_32(sums->rgb, rgb_values<Bits>(entry));
     }
 }
 
@@ -252,16 +250,16 @@ inline void flush_hit_sums(hit_sums *hit, uint32_t *sums) {
         sums[0] += hit->grey;
     } else if (Bits == 8) {
         /* The lanes come out zero-extended: (v ^ 2^15) - 2^15 sign-extends them. */
-        sums[0] += (uint32_t(_mm_extract_epi16(hit->rgb, 0)) ^ 0x8000u) - 0x8000u;
-        sums[1] += (uint32_t(_mm_extract_epi16(hit->rgb, 1)) ^ 0x8000u) - 0x8000u;
-        sums[2] += (uint32_t(_mm_extract_epi16(hit->rgb, 2)) ^ 0x8000u) - 0x8000u;
+        sums[0] += (uint32_t(lane_16<0>(hit->rgb)) ^ 0x8000u) - 0x8000u;
+        sums[1] += (uint32_t(lane_16<1>(hit->rgb)) ^ 0x8000u) - 0x8000u;
+        sums[2] += (uint32_t(lane_16<2>(hit->rgb)) ^ 0x8000u) - 0x8000u;
     } else {
-        sums[0] += uint32_t(_mm_cvtsi128_si32(hit->rgb));
-        sums[1] += uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(hit->rgb, 1)));
-        sums[2] += uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(hit->rgb, 2)));
+        sums[0] += uint32_t(low_32(hit->rgb));
+        sums[1] += uint32_t(low_32(shuffle_32<1>(hit->rgb)));
+        sums[2] += uint32_t(low_32(shuffle_32<2>(hit->rgb)));
     }
     hit->grey = 0;
-    hit->rgb = _mm_setzero_si128();
+    hit->rgb = zero_128();
 }
 
 /* Sums the hits of `cells` (up to 9) cells, cell s's mask at masks[s] and its entries at entries[16 s]:
@@ -289,14 +287,14 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
     const uint32_t first_column = low_x >> 4, reach_x = x + texton->radius[0] - (first_column << 4);
     /* width - 16 in 16-bit lanes (modulo 2^16, like the entries: the short conversion is modulo 2^16 on
        every x86 compiler) */
-    const __m128i widths_less_16 = _mm_set1_epi16(static_cast<short>((width - 16) & 0xFFFFu)),
-                  sixteen = _mm_set1_epi16(16);
+    const vector_128 widths_less_16 = set_8x16(static_cast<int16_t>((width - 16) & 0xFFFFu)),
+                     sixteen = set_8x16(16);
     /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
        reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
        j + 1 is reached, so its reach is at least 16. */
     const lane_range first_range = x_range_of(reach_x, width),
                      last_range = x_range_of(reach_x - 16 * (columns - 1), width),
-                     whole_range = {_mm_setzero_si128(), _mm_set1_epi8(15)};
+                     whole_range = {zero_128(), set_16x8(15)};
     /* The hits of up to 9 cells wait until all are tested (the 3 x 3 cells of the usual 31 x 31 texton:
        one wait per point): cell s's mask in masks[s], its entries at entries[16 s]. Visiting hits ends
        with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
@@ -305,19 +303,19 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
        better. The masks are stored one by one rather than shifted into words: fewer instructions. */
     uint16_t entries[9 * 16], masks[12];
     uint32_t slot = 0;
-    hit_sums hit = {0, _mm_setzero_si128()};
+    hit_sums hit = {0, zero_128()};
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
         const uint32_t reach_y = y + texton->radius[1] - (cell_y << 4);
         const lane_range row_range = y_range_of(reach_y, height);
         /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
            conversion is modulo 2^16 on every x86 compiler). */
-        __m128i corner = _mm_set1_epi16(static_cast<short>((reach_y * width + reach_x) & 0xFFFFu));
+        vector_128 corner = set_8x16(static_cast<int16_t>((reach_y * width + reach_x) & 0xFFFFu));
         for (uint32_t j = 0; j < columns; j++) {
             /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
             const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
             const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
-            const __m128i key_vector = _mm_cvtsi32_si128(static_cast<int>(key)); /* the bits unchanged */
+            const vector_128 key_vector = set_low_32(static_cast<int>(key)); /* the bits unchanged */
             const lane_range *column_range = j == 0             ? &first_range
                                              : j + 1 == columns ? &last_range
                                                                 : &whole_range;
@@ -330,7 +328,7 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
             masks[slot] = uint16_t(cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
                                              &row_range, corner, widths_less_16, entries + 16 * slot));
             slot++;
-            corner = _mm_sub_epi16(corner, sixteen);
+            corner = subtract_16(corner, sixteen);
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
                 const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};

@@ -1,9 +1,10 @@
 /* runtime/simd/simd_128.h - the 128-bit operations every x86 copy of the strip path shares (SSE2): the
    output stores that work one 128-bit lane (4 values) at a time, whatever the vector width, the SSE2
    strip path's own operations (simd_sse2.h's vectors are these), the tile walk's widening sums
-   (tile_walk.h), a constant of the continuous splat, the bilinear reads and slopes of 8-bit textons, and
-   the 128-bit pieces of the wider kernels. Included by the ops headers (simd.h), and on its own where
-   only SSE2 is sure (tile_walk.h and bilinear_read.h, which the evaluators include). */
+   (tile_walk.h), a constant of the continuous splat, the bilinear reads and slopes of 8-bit textons, the
+   lattice per-point walk's impulse tests (point.cpp), and the 128-bit pieces of the wider kernels.
+   Included by the ops headers (simd.h), and on its own where only SSE2 is sure (tile_walk.h,
+   bilinear_read.h and point.cpp, built with the runtime's own flags). */
 #ifndef DSN_SIMD_128_H
 #define DSN_SIMD_128_H
 
@@ -122,6 +123,7 @@ DSN_SIMD_INLINE int top_bits_of_bytes(vector_128 a) { return _mm_movemask_epi8(a
    tile_store.h), and the tile walk's widening sums (tile_walk.h) ---- */
 
 DSN_SIMD_INLINE vector_128 madd_16(vector_128 a, vector_128 b) { return _mm_madd_epi16(a, b); }
+DSN_SIMD_INLINE vector_128 add_16(vector_128 a, vector_128 b) { return _mm_add_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 add_32(vector_128 a, vector_128 b) { return _mm_add_epi32(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_low_16(vector_128 a, vector_128 b) { return _mm_unpacklo_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_high_16(vector_128 a, vector_128 b) { return _mm_unpackhi_epi16(a, b); }
@@ -149,6 +151,7 @@ DSN_SIMD_INLINE void store_low_8x8(uint8_t *at, vector_128 value) {
 /* Orders the streaming (non-temporal) stores before every later store. */
 DSN_SIMD_INLINE void store_fence() { _mm_sfence(); }
 
+DSN_SIMD_INLINE vector_128 set_8x16(int16_t value) { return _mm_set1_epi16(value); }
 DSN_SIMD_INLINE vector_128 set_4x32(int32_t value) { return _mm_set1_epi32(value); }
 /* The lanes in order, lane 0 first. */
 DSN_SIMD_INLINE vector_128 set_lanes_8x16(int16_t lane_0, int16_t lane_1, int16_t lane_2, int16_t lane_3,
@@ -207,6 +210,30 @@ DSN_SIMD_INLINE vector_128 shift_left_64(vector_128 a, uint32_t count) {
 DSN_SIMD_INLINE vector_128 multiply_even_unsigned_32(vector_128 a, vector_128 b) {
     return _mm_mul_epu32(a, b);
 }
+
+/* ---- The lattice per-point walk's 16 impulses a vector (point.cpp) ---- */
+
+DSN_SIMD_INLINE void store_8x16(uint16_t *at, vector_128 value) {
+    _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(at)), value);
+}
+/* ~a & b. */
+DSN_SIMD_INLINE vector_128 and_not(vector_128 a, vector_128 b) { return _mm_andnot_si128(a, b); }
+DSN_SIMD_INLINE vector_128 subtract_8(vector_128 a, vector_128 b) { return _mm_sub_epi8(a, b); }
+/* The low 16 bits of the products. */
+DSN_SIMD_INLINE vector_128 multiply_16(vector_128 a, vector_128 b) { return _mm_mullo_epi16(a, b); }
+DSN_SIMD_INLINE vector_128 minimum_unsigned_8(vector_128 a, vector_128 b) { return _mm_min_epu8(a, b); }
+/* All ones where equal. */
+DSN_SIMD_INLINE vector_128 equal_8(vector_128 a, vector_128 b) { return _mm_cmpeq_epi8(a, b); }
+DSN_SIMD_INLINE vector_128 shift_right_logical_16(vector_128 a, uint32_t count) {
+    return _mm_srli_epi16(a, static_cast<int>(count));
+}
+/* 16-bit lane Index, zero-extended (an int, as the instruction's). */
+template <int Index>
+DSN_SIMD_INLINE int lane_16(vector_128 a) {
+    return _mm_extract_epi16(a, Index);
+}
+/* The low 32-bit lane (an int, as the instruction's). */
+DSN_SIMD_INLINE int low_32(vector_128 a) { return _mm_cvtsi128_si32(a); }
 
 } // namespace
 

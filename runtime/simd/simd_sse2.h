@@ -12,11 +12,10 @@ typedef vector_128 simd_vector; /* 16-bit sums, or 32-bit values, of the strip's
 typedef floats_128 simd_floats;
 const uint32_t simd_int16_count = 8;
 
-/* ---- Sums ---- */
+/* ---- Sums (add_16: simd_128.h) ---- */
 inline simd_vector load_texels(const uint16_t *src) {
     return _mm_loadu_si128(static_cast<const __m128i *>(static_cast<const void *>(src)));
 }
-inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm_add_epi16(a, b); }
 inline simd_vector zero_vector() { return _mm_setzero_si128(); }
 inline void store_16(uint16_t *dst, simd_vector value) {
     _mm_storeu_si128(static_cast<__m128i *>(static_cast<void *>(dst)), value);
