@@ -1,8 +1,8 @@
 /* runtime/simd/simd_256.h - the 256-bit operations the AVX2 and the AVX-512 copies share: the strip path's
    AVX2 vectors (simd_avx2.h), and the 8 lanes of the vector continuous and filtered kernels
-   (continuous_lanes.h, continuous_point_vector.h, continuous_batch*.h, filtered_*_vector.h) and of the
-   gathered splat rows (splat_row.h), which the AVX-512 copy runs too, for the last 8 candidates of a visit
-   and where its algorithm keeps 256-bit steps.
+   (continuous_lanes.h, continuous_point_vector.h, continuous_batch*.h, filtered_*_vector.h), which the
+   AVX-512 copy runs too, for the last 8 candidates of a visit and where its algorithm keeps 256-bit steps,
+   and the gathered splat rows of both copies (splat_row.h).
    Included by simd_avx2.h and simd_avx512.h. */
 #ifndef DSN_SIMD_256_H
 #define DSN_SIMD_256_H
