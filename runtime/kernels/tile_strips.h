@@ -314,8 +314,8 @@ inline void add_rows(const strip_texel *texels, uint32_t stride, simd_vector *ro
 /* A paired plane's two sums finished, less `total`, the entries' bias. */
 inline void finish_rows(simd_vector *row_0, simd_vector *row_1, simd_vector total) {
     finish_pair(row_0, *row_1);
-    *row_0 = sub_16(*row_0, total);
-    *row_1 = sub_16(*row_1, total);
+    *row_0 = subtract_16(*row_0, total);
+    *row_1 = subtract_16(*row_1, total);
 }
 #endif
 

@@ -21,7 +21,7 @@ inline simd_vector zero_vector() { return _mm256_setzero_si256(); }
 inline void store_16(uint16_t *dst, simd_vector value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(dst)), value);
 }
-inline simd_vector sub_16(simd_vector a, simd_vector b) { return _mm256_sub_epi16(a, b); }
+inline simd_vector subtract_16(simd_vector a, simd_vector b) { return _mm256_sub_epi16(a, b); }
 /* Every channel's two rows from one load, as in simd_avx512.h (tile_strips.h): each 16-bit texel of a
    paired plane holds row t in its low byte and row t + 1 in its high byte, both biased by 128
    (unsigned); row_0 adds the texels as they are, row_1 their high bytes shifted down, and finish_pair

@@ -52,7 +52,6 @@ inline void finish_pair(simd_vector *row_0, simd_vector row_1) {
 inline simd_vector add_16(simd_vector a, simd_vector b) { return _mm512_add_epi16(a, b); }
 inline simd_vector zero_vector() { return _mm512_setzero_si512(); }
 inline void store_16(uint16_t *dst, simd_vector value) { _mm512_storeu_si512(dst, value); }
-inline simd_vector sub_16(simd_vector a, simd_vector b) { return _mm512_sub_epi16(a, b); }
 
 /* ---- Normalization, per 128-bit lane (AVX-512 unpacks and shuffles each lane on its own) ---- */
 inline simd_vector broadcast_lanes(__m128i value) { return _mm512_broadcast_i32x4(value); }
