@@ -7,9 +7,10 @@
    at a time: the fraction hash, the 16-bit positions, the exact reach test and the bilinear texton, all
    in 32-bit lanes (64-bit for the column's interpolation), the texels gathered straight from the texton,
    each where it lies inside the window (no branch at the window's edge; AVX-512: both texels of a row by
-   one 8-byte read). The same impulses, offsets,
-   weights and integers as the evaluator, so the same bits. Internal to libdsn; not installed (everything
-   here has internal linkage). */
+   one 8-byte read). The same impulses, offsets, weights and integers as the evaluator, so the same bits.
+   The gradient's sums (the value and both slopes, continuous_internal.h) take the same walk with the
+   entry edge in its sifting, 8 candidates at a time. Internal to libdsn; not installed (everything here
+   has internal linkage). */
 #ifndef DSN_CONTINUOUS_POINT_VECTOR_H
 #define DSN_CONTINUOUS_POINT_VECTOR_H
 
