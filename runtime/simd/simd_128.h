@@ -89,7 +89,11 @@ inline void take_32_lanes(__m128i vector, int32_t *lanes) { __builtin_memcpy(lan
 DSN_SIMD_INLINE vector_128 shift_count(int count) { return _mm_cvtsi32_si128(count); }
 /* value in the low 64 bits, zeros above. */
 DSN_SIMD_INLINE vector_128 set_low_64(uint64_t value) {
+#if defined(__x86_64__)
     return _mm_cvtsi64_si128(static_cast<long long>(value));
+#else
+    return _mm_set_epi64x(0, static_cast<long long>(value)); /* 32-bit x86: no 64-bit register to move */
+#endif
 }
 DSN_SIMD_INLINE vector_128 set_2x64(int64_t value) { return _mm_set1_epi64x(value); }
 /* The lanes in order, lane 0 first. */
