@@ -439,6 +439,60 @@ TEST_CASE("gradient tiles and batches are their points") {
         }
 }
 
+TEST_CASE("lattice gradient tiles: every kernel's, by strips or 32-bit sums, are their points") {
+    // Tiles of several rectangles (the strips' rectangles are at most 128 x 128 sums), grey and RGB, a
+    // histogram mapping (its chain rule point by point), a dense noise (short rectangles), and periods
+    // whose int32 wrap cuts rectangles (those take the 32-bit path).
+    size_t compared = 0, differences = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (bool mapped : {false, true})
+            for (uint32_t impacts : {0u, 100u << 16})
+                for (uint32_t period : {0u, 37u}) {
+                    dsn::AssetFields fields = random_texton_asset(channels, 9, 8, 50 + channels);
+                    if (mapped) fields.histogram = gradient_mapping(channels);
+                    const auto made =
+                        make_noise(fields, 5, impacts, period, period, DSN_FLAG_ALLOW_LATTICE_CONTINUOUS);
+                    dsn_noise_state *state = dsn_state(&made->noise);
+                    const uint32_t width = 260, height = 130, values = width * height * channels;
+                    const int32_t x0 = period ? INT32_MAX - 200 : -150, y0 = period ? INT32_MAX - 60 : 7;
+                    std::vector<int32_t> expected(3 * values);
+                    size_t failed = 0;
+                    for (uint32_t j = 0; j < height; j++)
+                        for (uint32_t i = 0; i < width; i++) {
+                            int32_t value[3], gx[3], gy[3];
+                            failed += dsn_lattice_gradient_fixed(&made->noise, int32_t(uint32_t(x0) + i),
+                                                                 int32_t(uint32_t(y0) + j), value, gx,
+                                                                 gy) != DSN_OK;
+                            for (uint32_t c = 0; c < channels; c++) {
+                                const size_t at = (j * width + i) * channels + c;
+                                expected[at] = value[c];
+                                expected[values + at] = gx[c];
+                                expected[2 * values + at] = gy[c];
+                            }
+                        }
+                    REQUIRE(failed == 0);
+                    const uint32_t chosen = state->tile_kernel;
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= chosen; kernel++) {
+                        state->tile_kernel = kernel;
+                        std::vector<int32_t> fixed(3 * values);
+                        std::vector<float> floats(3 * values);
+                        REQUIRE(dsn_lattice_tile_gradient_fixed(&made->noise, x0, y0, width, height,
+                                                                fixed.data(), fixed.data() + values,
+                                                                fixed.data() + 2 * values) == DSN_OK);
+                        REQUIRE(dsn_lattice_tile_gradient_float(&made->noise, x0, y0, width, height,
+                                                                floats.data(), floats.data() + values,
+                                                                floats.data() + 2 * values) == DSN_OK);
+                        for (size_t k = 0; k < fixed.size(); k++)
+                            differences +=
+                                (fixed[k] != expected[k]) + (floats[k] != dsn_fixed_to_float(expected[k]));
+                        compared += fixed.size();
+                    }
+                    state->tile_kernel = chosen;
+                }
+    CHECK(compared > 0);
+    CHECK(differences == 0);
+}
+
 TEST_CASE("gradient errors: every output zeroed, the value functions' codes") {
     const auto made = make_noise(random_texton_asset(3, 3, 8, 1), 1);
     const dsn_noise &noise = made->noise;

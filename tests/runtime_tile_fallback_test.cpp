@@ -73,8 +73,8 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
             render_region<1, int32_t>(&noise, &setup, &run_x, &run_y, &target);
         // And the same window as this copy of the tile code cuts it by itself (choose_rectangle).
         std::vector<int32_t> chosen(tile.size());
-        render_tile(&noise, uint32_t(x0), uint32_t(y0), width, height, chosen.data(), dsn_output_fixed,
-                    static_cast<uint32_t *>(static_cast<void *>(chosen.data())));
+        render_tile(&noise, uint32_t(x0), uint32_t(y0), width, height, chosen.data(), nullptr, nullptr,
+                    dsn_output_fixed, static_cast<uint32_t *>(static_cast<void *>(chosen.data())));
         size_t differences = 0, chosen_differences = 0;
         for (uint32_t j = 0; j < height; j++)
             for (uint32_t i = 0; i < width; i++) {

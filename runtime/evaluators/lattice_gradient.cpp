@@ -1,58 +1,14 @@
 /* runtime/evaluators/lattice_gradient.cpp - the lattice noise with its forward differences (dsn.h,
-   "Gradients"): the sums of a block of points and of the points one step right and below it, splatted by the
-   lattice tile's 32-bit path (tile_walk.h), then differenced and normalized as the value (the differences
-   without the mean), per tile; per point the same from three walks of the point's own (a block of one in the
-   small build). */
+   "Gradients"): per tile the kernel's lattice tile with its differences (tile_gradient.h); per point the
+   sums of three walks of the point's own (the point, and one step right and below it), differenced and
+   normalized as the value (the differences without the mean); a tile of one in the small build. */
 #include "core/gradient_output.h"
 
 #if DSN_GRADIENTS
 #include "core/lattice_internal.h"
-#include "kernels/tile_walk.h" /* its functions are defined where included: only where they are used */
+#include "kernels/kernels.h"
 
 namespace {
-
-/* Blocks of a gradient tile: their sums, one more column and row, stay on the stack (about 7 KB). */
-const uint32_t block_width = 32, block_height = 16;
-
-/* The sums of the (width + 1) x (height + 1) points from (x0, y0) (coordinates modulo 2^32, as a lattice
-   tile's pixels: the point right of x is x + 1 even where a period's reduction cuts the run at INT32_MAX,
-   split_runs), into `sums`, row-major, channels interleaved. */
-void extended_sums(const dsn_noise_state *lattice, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
-                   uint32_t *sums) {
-    const uint32_t channels = lattice->asset.channels, row_stride = (width + 1u) * channels;
-    for (uint32_t i = 0; i < row_stride * (height + 1u); i++) sums[i] = 0;
-    tile_run runs_x[2], runs_y[2];
-    const uint32_t count_x = split_runs(x0, width + 1u, lattice->period[0], runs_x);
-    const uint32_t count_y = split_runs(y0, height + 1u, lattice->period[1], runs_y);
-    for (uint32_t j = 0; j < count_y; j++)
-        for (uint32_t i = 0; i < count_x; i++)
-            splat_region(lattice, &runs_x[i], &runs_y[j], sums, row_stride);
-}
-
-/* A block of width x height points (at most block_width x block_height) from (x0, y0): each point's
-   value and differences, normalized (values[0 .. 2]: value, dx, dy, DSN_MAX_CHANNELS apart), to store(). */
-template <typename Store>
-void gradient_block(const dsn_noise_state *noise, const dsn_noise_state *lattice, uint32_t x0, uint32_t y0,
-                    uint32_t width, uint32_t height, Store &store) {
-    uint32_t sums[(block_width + 1) * (block_height + 1) * DSN_MAX_CHANNELS];
-    extended_sums(lattice, x0, y0, width, height, sums);
-    const uint32_t channels = noise->asset.channels, row_stride = (width + 1u) * channels;
-    for (uint32_t j = 0; j < height; j++)
-        for (uint32_t i = 0; i < width; i++) {
-            const uint32_t *here = sums + j * row_stride + i * channels;
-            uint32_t differences[2][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}};
-            for (uint32_t c = 0; c < channels; c++) {
-                differences[0][c] = here[channels + c] - here[c];
-                differences[1][c] = here[row_stride + c] - here[c];
-            }
-            int32_t values[3 * DSN_MAX_CHANNELS];
-            dsn_normalize_from(noise, noise->offset, here, values);
-            dsn_normalize_from(noise, dsn_no_offset, differences[0], values + DSN_MAX_CHANNELS);
-            dsn_normalize_from(noise, dsn_no_offset, differences[1], values + 2 * DSN_MAX_CHANNELS);
-            dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
-            store(i, j, values);
-        }
-}
 
 /* The noise the lattice evaluators read (its lattice texton, format 1.3), or an error. */
 int lattice_noise(const dsn_noise_state *noise, dsn_noise_state *view, const dsn_noise_state **lattice) {
@@ -65,18 +21,6 @@ int lattice_noise(const dsn_noise_state *noise, dsn_noise_state *view, const dsn
 #endif
     return DSN_OK;
 }
-
-/* Stores a block's points at their place in a tile of `tile_width` points, as `kind`. */
-struct TileStore {
-    void *out, *dx, *dy;
-    dsn_output_kind kind;
-    uint32_t channels, tile_width, left, top;
-
-    void operator()(uint32_t i, uint32_t j, const int32_t *values) const {
-        const size_t first = (static_cast<size_t>(top + j) * tile_width + left + i) * channels;
-        dsn_store_gradient(out, dx, dy, kind, first, values, channels);
-    }
-};
 
 int check_noise(const dsn_noise_state *noise, const void *out, const void *dx, const void *dy) {
     if (out == 0 || dx == 0 || dy == 0 || !dsn_configured(noise)) return DSN_ERR_NULL;
@@ -97,14 +41,9 @@ int tile_of_kind(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width
     if (err == DSN_OK) err = lattice_noise(noise, &view, &lattice);
     if (err != DSN_OK)
         return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
-    TileStore store = {out, dx, dy, kind, noise->asset.channels, width, 0, 0};
-    for (store.top = 0; store.top < height; store.top += block_height)
-        for (store.left = 0; store.left < width; store.left += block_width) {
-            const uint32_t block_w = width - store.left < block_width ? width - store.left : block_width;
-            const uint32_t block_h = height - store.top < block_height ? height - store.top : block_height;
-            gradient_block(noise, lattice, static_cast<uint32_t>(x0) + store.left,
-                           static_cast<uint32_t>(y0) + store.top, block_w, block_h, store);
-        }
+    dsn_kernel_entries_of(noise->tile_kernel)
+        ->lattice_tile(lattice, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width, height, out, dx,
+                       dy, kind, 0);
     return DSN_OK;
 }
 

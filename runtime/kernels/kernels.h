@@ -28,9 +28,12 @@
 #endif
 
 /* A whole lattice tile (tile_render.h's render_tile): `width` x `height` values of `kind` from (x0, y0)
-   into out, with the 32-bit accumulator of its fallback path (out itself for fixed output). */
+   into out, with the 32-bit accumulator of its fallback path (out itself for fixed output); where dx is
+   not null (DSN_GRADIENTS; fixed or float), the forward differences too, into dx and dy, and no
+   accumulator. */
 typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
-                                    uint32_t height, void *out, dsn_output_kind kind, uint32_t *accumulator);
+                                    uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
+                                    uint32_t *accumulator);
 
 /* Whether the kernel's strip path holds the texton of `noise` (tile_render.h's lattice_strips_take): its
    lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */

@@ -114,11 +114,19 @@ void make_split_vectors(const split_normalization *split, uint32_t channels, spl
 }
 
 /* Output channel c of 4 pixels per 128-bit lane: `pair` holds (Q_0, Q_1) and `third` (Q_2, 1) per pixel. */
-inline simd_vector normalize_lanes(const split_vectors *v, uint32_t c, simd_vector pair, simd_vector third) {
-    simd_vector a = add_32(madd_16(pair, v->high_pair[c]), madd_16(third, v->high_third[c]));
-    simd_vector b = add_32(madd_16(pair, v->low_pair[c]), madd_16(third, v->low_third[c]));
+inline simd_vector high_part(const split_vectors *v, uint32_t c, simd_vector pair, simd_vector third) {
+    return add_32(madd_16(pair, v->high_pair[c]), madd_16(third, v->high_third[c]));
+}
+inline simd_vector low_part(const split_vectors *v, uint32_t c, simd_vector pair, simd_vector third) {
+    return add_32(madd_16(pair, v->low_pair[c]), madd_16(third, v->low_third[c]));
+}
+/* Output channel c from the parts a = A and b = B + P_l. */
+inline simd_vector value_lanes(const split_vectors *v, uint32_t c, simd_vector a, simd_vector b) {
     simd_vector x = add_32(add_32(v->p_m[c], a), shift_right_15(b));
     return add_32(shift_right(x, v->shift), v->p_q[c]);
+}
+inline simd_vector normalize_lanes(const split_vectors *v, uint32_t c, simd_vector pair, simd_vector third) {
+    return value_lanes(v, c, high_part(v, c, pair, third), low_part(v, c, pair, third));
 }
 
 /* Per 128-bit lane: (r0 r1 r2 r3), (g0 ..), (b0 ..) -> r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3. shufps

@@ -211,9 +211,23 @@ int lattice_strips_take(const dsn_noise_state *noise) {
 #endif
 }
 
-/* The whole tile: strips of 16-bit sums when the texton allows, else 32-bit sums run by run. */
+#if DSN_GRADIENTS
+void render_gradient_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
+                          uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind);
+#endif
+
+/* The whole tile (the lattice kernel entry, kernels.h): strips of 16-bit sums when the texton allows, else
+   32-bit sums run by run; with its differences (tile_gradient.h) where dx is not null. */
 void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
-                 void *out, dsn_output_kind kind, uint32_t *accumulator) {
+                 void *out, void *dx, void *dy, dsn_output_kind kind, uint32_t *accumulator) {
+#if DSN_GRADIENTS
+    if (dx != 0) {
+        render_gradient_tile(noise, x0, y0, width, height, out, dx, dy, kind);
+        return;
+    }
+#else
+    (void)dx, (void)dy;
+#endif
     tile_run runs_x[2], runs_y[2];
     uint32_t run_count_x = split_runs(x0, width, noise->period[0], runs_x);
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
@@ -242,5 +256,7 @@ void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_
 }
 
 } // namespace
+
+#include "kernels/tile_gradient.h"
 
 #endif /* DSN_TILE_RENDER_H */

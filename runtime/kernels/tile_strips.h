@@ -39,6 +39,8 @@ const uint32_t line_texels = 64 / sizeof(strip_texel);
 const uint32_t copies_limit = lane < line_texels ? 2 : 1;
 const uint32_t rectangle_width = 128, rectangle_height = 128; /* the largest rectangle */
 const uint32_t strip_count = rectangle_width / lane;
+/* A gradient's sums are one column wider than its rectangle (tile_gradient.h): one strip more. */
+const uint32_t strip_capacity = strip_count + 1;
 const uint32_t coverage_limit = 255;
 /* Rectangles are chosen to meet at most rectangle_impulses impulses on average (at 30 impacts per pixel
    a 31 x 31 texton gets 128 x 128 rectangles, meeting lambda (128 + 30)^2 = 779); the list holds 1024,
@@ -213,7 +215,7 @@ struct impulse_list {
        all are listed): no column is reached by more. */
     int prepare(uint32_t texton_width, uint32_t texton_height) {
         if (count > list_capacity) return 0;
-        int32_t column_change[rectangle_width + 1]; /* impulses starting minus ending at each column */
+        int32_t column_change[rectangle_width + 2]; /* impulses starting minus ending at each column */
         for (uint32_t i = 0; i <= length_x; i++) column_change[i] = 0;
         for (uint32_t n = 0; n < count; n++) {
             listed_impulse *impulse = &impulses[n];
@@ -241,9 +243,9 @@ struct impulse_list {
    texton row on rectangle row y when y <= key <= y + height - 1, so the entries of strip s active on
    row y are [key_start[s][y], key_start[s][y + height]). */
 typedef struct strip_entries {
-    /* First entry of strip s with key >= k; the rows past strip_count let every impulse update
+    /* First entry of strip s with key >= k; the rows past strip_capacity let every impulse update
        strips_per_impulse_limit rows (unconditionally: the branch would be unpredictable). */
-    uint16_t key_start[strip_count + strips_per_impulse_limit - 1][key_limit + 1];
+    uint16_t key_start[strip_capacity + strips_per_impulse_limit - 1][key_limit + 1];
     int32_t base[strip_entry_capacity + 1]; /* the last one takes the writes of those rows */
 } strip_entries;
 

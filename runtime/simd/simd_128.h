@@ -129,6 +129,7 @@ DSN_SIMD_INLINE int top_bits_of_bytes(vector_128 a) { return _mm_movemask_epi8(a
 DSN_SIMD_INLINE vector_128 madd_16(vector_128 a, vector_128 b) { return _mm_madd_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 add_16(vector_128 a, vector_128 b) { return _mm_add_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 add_32(vector_128 a, vector_128 b) { return _mm_add_epi32(a, b); }
+DSN_SIMD_INLINE vector_128 subtract_32(vector_128 a, vector_128 b) { return _mm_sub_epi32(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_low_16(vector_128 a, vector_128 b) { return _mm_unpacklo_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_high_16(vector_128 a, vector_128 b) { return _mm_unpackhi_epi16(a, b); }
 DSN_SIMD_INLINE vector_128 unpack_low_32(vector_128 a, vector_128 b) { return _mm_unpacklo_epi32(a, b); }
