@@ -493,6 +493,73 @@ TEST_CASE("lattice gradient tiles: every kernel's, by strips or 32-bit sums, are
     CHECK(differences == 0);
 }
 
+TEST_CASE("continuous gradient tiles: every kernel's, splatted or point by point, are their points") {
+    // Rotated, magnified (axis-aligned: the runs share their columns), minified and mirrored grids, across
+    // the 2^32 wrap of the torus and a periodic axis's int32 wrap, over several blocks; grey and RGB, 8
+    // and 16 bits, a histogram mapping (the chain rule).
+    const int64_t one = int64_t(1) << 32;
+    const dsn_grid grids[] = {
+        {one / 3, one / 7, int64_t(0.6062 * double(one)), int64_t(0.35 * double(one)),
+         -int64_t(0.35 * double(one)), int64_t(0.6062 * double(one))},
+        {(int64_t(5) << 32) + 12345, -(int64_t(9) << 32), one / 8, 0, 0, one / 8},
+        {-(int64_t(40) << 32) + 777, one / 5, -int64_t(1.7 * double(one)), 0, 0, int64_t(1.7 * double(one))},
+        {(int64_t(INT32_MAX) - 20) << 32, (int64_t(INT32_MAX) - 2) << 32, one / 2 + 3, one / 9, -one / 9,
+         one / 2 + 3},
+    };
+    size_t compared = 0, differences = 0, splatted = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u})
+            for (bool mapped : {false, true})
+                for (uint32_t period : {0u, 37u}) {
+                    dsn::AssetFields fields = random_texton_asset(channels, 9, bits, 60 + channels);
+                    if (mapped) fields.histogram = gradient_mapping(channels);
+                    const auto made = make_noise(fields, 9, 0, period, period);
+                    dsn_noise_state *state = dsn_state(&made->noise);
+                    for (const dsn_grid &grid : grids) {
+                        const uint32_t width = 150, height = 21, values = width * height * channels;
+                        std::vector<int32_t> expected(3 * values);
+                        size_t failed = 0;
+                        for (uint32_t j = 0; j < height; j++)
+                            for (uint32_t i = 0; i < width; i++) {
+                                int64_t x, y;
+                                dsn_test::grid_point(grid, i, j, &x, &y);
+                                int32_t value[3], gx[3], gy[3];
+                                failed += dsn_continuous_gradient_fixed(&made->noise, x, y, value, gx, gy) !=
+                                          DSN_OK;
+                                for (uint32_t c = 0; c < channels; c++) {
+                                    const size_t at = (j * width + i) * channels + c;
+                                    expected[at] = value[c];
+                                    expected[values + at] = gx[c];
+                                    expected[2 * values + at] = gy[c];
+                                }
+                            }
+                        REQUIRE(failed == 0);
+                        splatted += dsn_continuous_tile_scratch_size(&made->noise, &grid, width, height) != 0;
+                        const uint32_t chosen = state->tile_kernel;
+                        for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= chosen; kernel++) {
+                            state->tile_kernel = kernel;
+                            std::vector<int32_t> fixed(3 * values);
+                            std::vector<float> floats(3 * values);
+                            REQUIRE(dsn_continuous_tile_gradient_fixed(&made->noise, &grid, width, height,
+                                                                       fixed.data(), fixed.data() + values,
+                                                                       fixed.data() + 2 * values) == DSN_OK);
+                            REQUIRE(dsn_continuous_tile_gradient_float(&made->noise, &grid, width, height,
+                                                                       floats.data(), floats.data() + values,
+                                                                       floats.data() + 2 * values) == DSN_OK);
+                            for (size_t k = 0; k < fixed.size(); k++)
+                                differences += (fixed[k] != expected[k]) +
+                                               (floats[k] != dsn_fixed_to_float(expected[k]));
+                            compared += fixed.size();
+                        }
+                        state->tile_kernel = chosen;
+                    }
+                }
+    MESSAGE("continuous gradient tiles: " << compared << " values compared, " << splatted
+                                          << " grids of 64 splatted");
+    CHECK(splatted >= 32);
+    CHECK(differences == 0);
+}
+
 TEST_CASE("gradient errors: every output zeroed, the value functions' codes") {
     const auto made = make_noise(random_texton_asset(3, 3, 8, 1), 1);
     const dsn_noise &noise = made->noise;

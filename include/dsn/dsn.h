@@ -97,7 +97,8 @@
    impulses of every tap, and the coarse levels' tables of the AVX-512 copy), a lattice tile call under
    1 KB unless DSN_TILE_BLOCKS (see above), a continuous or filtered tile up to about 88 KB where it is
    splatted (the texture's records, see dsn_continuous_tile_fixed), and what its points take where it goes
-   point by point.
+   point by point; a continuous gradient tile splatted up to about 128 KB (three blocks of sums more, see
+   "Gradients").
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H
@@ -681,7 +682,11 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    output is zeroed as the value's function zeroes `out`. Tiles and batches: the layout, the grid and
    the errors of the value's functions, three arrays of width * height * channels (or count * channels)
    values, exactly the per-point results; they take no scratch (make bench's gradient_bench reports their
-   cost next to the value's).
+   cost next to the value's, and their stack). A lattice tile sums one more column and row than it has
+   (the differences' neighbours) by the value's strips; a continuous tile that the value's function would
+   splat is splatted three times, in blocks of 64 x 8 pixels whose sums stay on the stack: at the grid,
+   and at the grid moved 2^-16 texel along x and along y, the differences being the derivative's sums
+   exactly (see the continuous mode above).
    - Filtered evaluation (DSN_FILTERING): the derivative of the filtered noise, the same blend of the same
      levels at the same taps as the value: each level's exact derivative (its bilinear slopes per texel of
      the level, over 2^level per texel), normalized per level without its offset, blended with the

@@ -78,6 +78,12 @@ void dsn_internal_continuous_gradient(const dsn_noise_state *noise, uint64_t x, 
    slope_y[c] its partial derivatives per 2^-16 texel (bilinear_read.h's add_slopes). */
 void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                     uint64_t *slope_x, uint64_t *slope_y);
+/* The gradient tile of a grid (dsn.h's dsn_continuous_tile_gradient_fixed) by splatting, with the
+   per-point bits (continuous_tile.cpp); 0, writing nothing, for a grid it does not splat (the small build:
+   none) and on error-free arguments only. */
+int dsn_internal_continuous_gradient_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                                           uint32_t height, void *out, void *dx, void *dy,
+                                           dsn_output_kind kind);
 #endif
 
 #endif /* DSN_CONTINUOUS_INTERNAL_H */

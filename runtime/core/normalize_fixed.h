@@ -33,6 +33,16 @@ static inline int32_t dsn_signed_sum(uint32_t sum) {
     return (sum & 0x80000000u) ? -int32_t(~sum) - 1 : int32_t(sum);
 }
 
+/* Whether the noise's outputs go through a histogram mapping (dsn_map_output). */
+static inline int dsn_has_mapping(const dsn_noise_state *noise) {
+#if DSN_HISTOGRAM
+    return noise->asset.histogram_table != 0;
+#else
+    (void)noise;
+    return 0;
+#endif
+}
+
 /* The last step of every unfiltered evaluation: the histogram mapping's level 0, where the noise has
    one (dsn_noise_init leaves it out of the noise with DSN_FLAG_NO_HISTOGRAM). */
 static inline void dsn_map_output(const dsn_noise_state *noise, int32_t *out) {

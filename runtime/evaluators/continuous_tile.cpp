@@ -5,6 +5,7 @@
    give the per-point bits. */
 #include "core/continuous_internal.h"
 #include "core/error_output.h"
+#include "core/gradient_output.h"
 #include "core/grid_points.h"
 #include "core/normalize_fixed.h"
 #include "evaluators/grid_splat.h"
@@ -70,6 +71,98 @@ void splat_grid(const dsn_noise_state *noise, const dsn_grid_splat &prepared, ui
         }
 }
 
+#if DSN_GRADIENTS
+/* Gradient blocks: at most gradient_block_columns x gradient_block_rows pixels, whose three blocks of
+   sums stay on the stack (36 KB with RGB). */
+const uint32_t gradient_block_columns = dsn_splat_block_columns, gradient_block_rows = 8;
+const size_t gradient_block_sums = gradient_block_columns * gradient_block_rows * DSN_MAX_CHANNELS;
+
+/* The grid moved by 2^-16 texel along x (axis 0) or y (axis 1). */
+dsn_grid moved_grid(const dsn_grid *grid, int axis) {
+    dsn_grid moved = *grid;
+    int64_t *origin = axis == 0 ? &moved.origin_x : &moved.origin_y;
+    *origin = static_cast<int64_t>(static_cast<uint64_t>(*origin) + (static_cast<uint64_t>(1) << 16));
+    return moved;
+}
+
+/* Row j of a gradient block: the value from the grid's sums (sums[0]), each derivative from the moved
+   grid's sums less the grid's, per texel (times 2^16), normalized as the value without the mean (`slopes`,
+   the noise with a zero offset); then the mapping's chain rule and the stores. */
+void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, const dsn_splat_block &block,
+                  uint32_t j, uint32_t width, uint64_t (*sums)[gradient_block_sums], void *out, void *dx,
+                  void *dy, dsn_output_kind kind) {
+    const dsn_kernel_entries *kernel = dsn_kernel_entries_of(noise->tile_kernel);
+    const uint32_t channels = noise->asset.channels;
+    const size_t row = static_cast<size_t>(j) * block.stride;
+    int32_t values[3][gradient_block_columns * DSN_MAX_CHANNELS];
+    kernel->continuous_splat_normalize(noise, sums[0] + row, block.plane, block.columns, values[0]);
+    for (uint32_t k = 1; k < 3; k++) {
+        for (uint32_t c = 0; c < channels; c++)
+            for (uint32_t i = 0; i < block.columns; i++) {
+                const size_t at = c * block.plane + row + i;
+                sums[k][at] = (sums[k][at] - sums[0][at]) << 16;
+            }
+        kernel->continuous_splat_normalize(slopes, sums[k] + row, block.plane, block.columns, values[k]);
+    }
+    const size_t first = (static_cast<size_t>(block.top + j) * width + block.left) * channels;
+    if (kind == dsn_output_fixed && !dsn_has_mapping(noise)) {
+        int32_t *const outputs[3] = {static_cast<int32_t *>(out), static_cast<int32_t *>(dx),
+                                     static_cast<int32_t *>(dy)};
+        for (uint32_t k = 0; k < 3; k++)
+            for (uint32_t i = 0; i < block.columns * channels; i++) outputs[k][first + i] = values[k][i];
+        return;
+    }
+    for (uint32_t i = 0; i < block.columns; i++) {
+        int32_t point[3 * DSN_MAX_CHANNELS];
+        for (uint32_t k = 0; k < 3; k++)
+            for (uint32_t c = 0; c < channels; c++)
+                point[k * DSN_MAX_CHANNELS + c] = values[k][i * channels + c];
+        dsn_map_gradient(noise, point, point + DSN_MAX_CHANNELS, point + 2 * DSN_MAX_CHANNELS);
+        dsn_store_gradient(out, dx, dy, kind, first + i * channels, point, channels);
+    }
+}
+
+/* The gradient tile by splatting three grids: the tile's and the tile's moved 2^-16 texel right and down.
+   Their sums differ by the slope sums exactly (continuous_internal.h: the bilinear weights step by one, and
+   the impulses a move brings within reach add their slope, those it takes out remove their value), so the
+   bits are the per-point gradient's. Returns 0 where a grid is not splatted (point by point instead). */
+int splat_gradient_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                        void *out, void *dx, void *dy, dsn_output_kind kind) {
+    const dsn_grid grids[3] = {*grid, moved_grid(grid, 0), moved_grid(grid, 1)};
+    const dsn_splat_texture texture = texton_texture(&noise->asset);
+    dsn_grid_splat splats[3];
+    for (uint32_t k = 0; k < 3; k++)
+        if (!dsn_internal_grid_splat_init(noise, &grids[k], width, height, &texture, &splats[k])) return 0;
+#if DSN_SPLAT_CELLS
+    alignas(64) uint64_t cells[splat_cell_capacity];
+    uint32_t cell_row = 0;
+    if (make_splat_cells(texture, cells, splat_cell_capacity, &cell_row) != 0)
+        for (uint32_t k = 0; k < 3; k++) {
+            splats[k].setup.cells = cells;
+            splats[k].setup.cell_row = cell_row;
+        }
+#endif
+    dsn_noise_state slopes = *noise;
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) slopes.offset[c] = 0;
+    uint64_t sums[3][gradient_block_sums];
+    for (uint32_t top = 0; top < height; top += gradient_block_rows)
+        for (uint32_t left = 0; left < width; left += gradient_block_columns) {
+            dsn_splat_block block;
+            block.left = left;
+            block.top = top;
+            block.columns = width - left < gradient_block_columns ? width - left : gradient_block_columns;
+            block.rows = height - top < gradient_block_rows ? height - top : gradient_block_rows;
+            block.stride = block.columns;
+            block.plane = static_cast<size_t>(block.columns) * block.rows;
+            for (uint32_t k = 0; k < 3; k++)
+                dsn_internal_grid_splat_block(noise, &splats[k], &block, sums[k]);
+            for (uint32_t j = 0; j < block.rows; j++)
+                gradient_row(noise, &slopes, block, j, width, sums, out, dx, dy, kind);
+        }
+    return 1;
+}
+#endif /* DSN_GRADIENTS */
+
 /* The scratch the grid asks for: the sums when it is splatted, else 0 (point by point). */
 size_t splat_scratch_size(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                           dsn_grid_splat *splat) {
@@ -117,6 +210,19 @@ int evaluate_grid(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t w
 }
 
 } // namespace
+
+#if DSN_GRADIENTS
+int dsn_internal_continuous_gradient_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                                           uint32_t height, void *out, void *dx, void *dy,
+                                           dsn_output_kind kind) {
+#if !DSN_SMALL_CODE
+    return splat_gradient_tile(noise, grid, width, height, out, dx, dy, kind);
+#else
+    (void)noise, (void)grid, (void)width, (void)height, (void)out, (void)dx, (void)dy, (void)kind;
+    return 0;
+#endif
+}
+#endif
 
 extern "C" {
 

@@ -272,9 +272,7 @@ void render_gradient_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0
         split_normalization split;
         setup.lanes =
             make_split_normalization(noise, &split) && difference_fits(&split, noise->asset.channels);
-#if DSN_HISTOGRAM
-        if (noise->asset.histogram_table != 0) setup.lanes = 0; /* the chain rule, point by point */
-#endif
+        if (dsn_has_mapping(noise)) setup.lanes = 0; /* the chain rule, point by point */
         if (setup.lanes) {
             setup.difference.half = broadcast_lanes(set_4x32(int32_t(1) << (split.shift - 1u)));
             setup.difference.low_mask = broadcast_lanes(set_4x32(0x7FFF));

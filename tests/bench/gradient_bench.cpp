@@ -10,6 +10,7 @@
 #include "bench_timing.h"
 #include "fixtures/continuous_fixtures.h"
 #include "offline/bake_internal.h"
+#include "painted_stack.h"
 
 namespace {
 
@@ -135,6 +136,11 @@ int main() {
         const auto times = bench::timed_rounds(rounds, {c.gradient, c.value});
         report(c.name, times[0], times[1], c.gradient_points);
     }
+    std::printf(
+        "  stack (painted) of a gradient tile call: lattice %zu bytes, continuous %zu bytes (the value's: "
+        "%zu bytes)\n",
+        bench::painted_stack(cases[2].gradient), bench::painted_stack(cases[3].gradient),
+        bench::painted_stack(cases[3].value));
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }

@@ -7,11 +7,11 @@
 
 namespace bench {
 
-// Fill the 128 KB below this frame (still inside the thread's stack), make the call, and find the deepest
+// Fill the 256 KB below this frame (still inside the thread's stack), make the call, and find the deepest
 // byte it changed.
 template <typename Call>
 __attribute__((noinline)) size_t painted_stack(Call call) {
-    const size_t region_size = 1 << 17, guard = 128; // guard: this frame's own locals and spills
+    const size_t region_size = 1 << 18, guard = 128; // guard: this frame's own locals and spills
     volatile unsigned char *top = static_cast<unsigned char *>(__builtin_frame_address(0)) - guard;
     for (size_t i = 1; i <= region_size; i++) top[-std::ptrdiff_t(i)] = 0xA5;
     call();
