@@ -1,6 +1,6 @@
 /* runtime/evaluators/lattice_gradient.cpp - the lattice noise with its forward differences (dsn.h,
    "Gradients"): per tile the kernel's lattice tile with its differences (tile_gradient.h); per point the
-   sums of three walks of the point's own (the point, and one step right and below it), differenced and
+   sums of the point's own walk at the point and one step right and below it, differenced and
    normalized as the value (the differences without the mean); a tile of one in the small build. */
 #include "core/gradient_output.h"
 
@@ -48,7 +48,7 @@ int tile_of_kind(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width
 }
 
 /* A point: in the small build a tile of one; else the per-point walk's sums at the point and its two
-   neighbours (three fast walks cost less than one through the tile's general path). */
+   neighbours (one walk of the fast path costs less than one through the tile's general path). */
 int point_of_kind(const dsn_noise *handle, int32_t x, int32_t y, void *out, void *dx, void *dy,
                   dsn_output_kind kind) {
 #if DSN_SMALL_CODE
@@ -60,15 +60,13 @@ int point_of_kind(const dsn_noise *handle, int32_t x, int32_t y, void *out, void
     if (err == DSN_OK && dsn_lattice_texton_unread(noise)) err = DSN_ERR_UNSUPPORTED;
 #endif
     if (err != DSN_OK) return dsn_gradient_error(err, noise, out, dx, dy, kind, 1);
-    const uint32_t px = static_cast<uint32_t>(x), py = static_cast<uint32_t>(y);
-    uint32_t here[DSN_MAX_CHANNELS] = {0, 0, 0}, east[DSN_MAX_CHANNELS] = {0, 0, 0},
-             south[DSN_MAX_CHANNELS] = {0, 0, 0};
-    dsn_internal_lattice_sums(noise, px, py, here);
-    dsn_internal_lattice_sums(noise, px + 1u, py, east);
-    dsn_internal_lattice_sums(noise, px, py + 1u, south);
+    uint32_t sums[3 * DSN_MAX_CHANNELS];
+    dsn_internal_lattice_neighbour_sums(noise, static_cast<uint32_t>(x), static_cast<uint32_t>(y), sums);
+    const uint32_t *here = sums;
+    uint32_t east[DSN_MAX_CHANNELS], south[DSN_MAX_CHANNELS];
     for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
-        east[c] -= here[c];
-        south[c] -= here[c];
+        east[c] = sums[DSN_MAX_CHANNELS + c] - here[c];
+        south[c] = sums[2 * DSN_MAX_CHANNELS + c] - here[c];
     }
     int32_t values[3 * DSN_MAX_CHANNELS];
     dsn_normalize_from(noise, noise->offset, here, values);

@@ -171,18 +171,34 @@ inline vector_128 lane_entries(vector_128 fields, vector_128 corner, vector_128 
                        add_16(fields, multiply_16(shift_right_logical_16(fields, 4), widths_less_16)));
 }
 
-/* Hit mask (bit k for impulse k) of the cell's first 16 impulses, and all 16 lanes' texton entries
-   (garbage for lanes that miss, never read). */
-inline uint32_t cell_hits(vector_128 fields, vector_128 absent, const lane_range *x, const lane_range *y,
-                          vector_128 corner, vector_128 widths_less_16, uint16_t *entries) {
+/* Hit masks of the cell's first 16 impulses (bit k for impulse k), for the point in masks[0] and, where
+   the walk sums its neighbours too (Points 3), for the point right of it in masks[12] and the point below
+   it in masks[24] (x[1] and y[1] their moved ranges; `live`, 0 or all ones per point, clears the masks of
+   a point this cell cannot reach); and all 16 lanes' texton entries for the point (garbage for lanes that
+   miss, never read; a neighbour's entry is the point's plus 1 or plus the width, modulo 2^16). */
+template <uint32_t Points>
+inline void cell_hits(vector_128 fields, vector_128 absent, const lane_range *x, const lane_range *y,
+                      vector_128 corner, vector_128 widths_less_16, uint16_t *entries, uint16_t *masks,
+                      const uint32_t *live) {
+    const uint32_t ranges = Points == 1 ? 1u : 2u;
     const vector_128 offset_x = bitwise_and(fields, set_16x8(0x0F));
-    const vector_128 dx = subtract_8(offset_x, x->low), dy = subtract_8(fields, y->low);
-    const vector_128 in_x = equal_8(minimum_unsigned_8(dx, x->span), dx);
-    const vector_128 in_y = equal_8(minimum_unsigned_8(dy, y->span), dy);
+    vector_128 in_x[2], in_y[2];
+    for (uint32_t r = 0; r < ranges; r++) {
+        const vector_128 dx = subtract_8(offset_x, x[r].low), dy = subtract_8(fields, y[r].low);
+        in_x[r] = equal_8(minimum_unsigned_8(dx, x[r].span), dx);
+        in_y[r] = equal_8(minimum_unsigned_8(dy, y[r].span), dy);
+    }
     const vector_128 zero = zero_128();
     store_8x16(entries, lane_entries(unpack_low_8(fields, zero), corner, widths_less_16));
     store_8x16(entries + 8, lane_entries(unpack_high_8(fields, zero), corner, widths_less_16));
-    return uint32_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x, in_y))));
+    masks[0] = uint16_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x[0], in_y[0]))));
+    if (Points == 3) {
+        masks[0] = uint16_t(masks[0] & live[0]);
+        masks[12] =
+            uint16_t(uint32_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x[1], in_y[0])))) & live[1]);
+        masks[24] =
+            uint16_t(uint32_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x[0], in_y[1])))) & live[2]);
+    }
 }
 
 /* The hits' texton values are summed while visiting them, then added to the channel sums (flush_hit_sums).
@@ -232,9 +248,11 @@ inline uint32_t popcount64(uint64_t bits) {
    zero: its exit, hard to predict, then resolves once the count is known and one cycle per hit later,
    not at the end of the mask's chain of two dependent instructions per hit. */
 template <uint32_t Channels, uint32_t Bits>
-inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, hit_sums *sums) {
+inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, uint32_t moved,
+                     hit_sums *sums) {
     for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
-        const unsigned char *entry = texton + size_t(entries[__builtin_ctzll(hits)]) * Channels * (Bits / 8);
+        const uint16_t index = uint16_t(entries[__builtin_ctzll(hits)] + moved);
+        const unsigned char *entry = texton + size_t(index) * Channels * (Bits / 8);
         if (Channels == 1)
             sums->grey += grey_value<Bits>(entry);
         else
@@ -262,28 +280,49 @@ inline void flush_hit_sums(hit_sums *hit, uint32_t *sums) {
     hit->rgb = zero_128();
 }
 
-/* Sums the hits of `cells` (up to 9) cells, cell s's mask at masks[s] and its entries at entries[16 s]:
-   4 masks read at once as a 64-bit word (x86: little-endian), those past the cells cleared first. */
+/* Sums the hits of `cells` (up to 9) cells, cell s's mask at masks[s] and its entries (plus `moved`) at
+   entries[16 s]: 4 masks read at once as a 64-bit word (x86: little-endian), those past the cells cleared
+   first. */
 template <uint32_t Channels, uint32_t Bits>
 inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint32_t cells,
-                              const uint16_t *entries, hit_sums *sums) {
+                              const uint16_t *entries, uint32_t moved, hit_sums *sums) {
     for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
     uint64_t hits0, hits1, hits2;
     __builtin_memcpy(&hits0, masks, sizeof hits0);
     __builtin_memcpy(&hits1, masks + 4, sizeof hits1);
     __builtin_memcpy(&hits2, masks + 8, sizeof hits2);
-    sum_hits<Channels, Bits>(texton, hits0, entries, sums);
-    sum_hits<Channels, Bits>(texton, hits1, entries + 64, sums);
-    sum_hits<Channels, Bits>(texton, hits2, entries + 128, sums);
+    sum_hits<Channels, Bits>(texton, hits0, entries, moved, sums);
+    sum_hits<Channels, Bits>(texton, hits1, entries + 64, moved, sums);
+    sum_hits<Channels, Bits>(texton, hits2, entries + 128, moved, sums);
 }
 
-template <uint32_t Channels, uint32_t Bits>
+/* The buffered hits of every point summed into its channel sums (sums + 3 p), the point's entries moved
+   by 0, 1 (the point right of it) and the width (the point below it). */
+template <uint32_t Channels, uint32_t Bits, uint32_t Points>
+inline void flush_cells(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
+                        const uint16_t *entries, hit_sums *hit, uint32_t *sums) {
+    const uint32_t moved[3] = {0u, 1u, width};
+    for (uint32_t p = 0; p < Points; p++) {
+        sum_buffered_hits<Channels, Bits>(texton, masks + 12 * p, cells, entries, moved[p], hit);
+        flush_hit_sums<Channels, Bits>(hit, sums + 3 * p);
+    }
+}
+
+/* The x range of one column of cells for a point whose reach there is `reach`, and whether the column
+   reaches it at all (all ones) or not (0: a column of the walk over a point and its right neighbour may
+   reach only one of them). */
+inline uint32_t live_range(uint32_t reach, uint32_t size) { return reach < size + 15u ? 0xFFFFu : 0u; }
+
+/* The sums of the point (x, y), and where Points is 3 of the points (x + 1, y) and (x, y + 1) too (sums +
+   3, sums + 6: the lattice gradient's neighbours), from one walk over the cells that reach any of them. */
+template <uint32_t Channels, uint32_t Bits, uint32_t Points>
 void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
                         uint32_t *sums) {
+    const uint32_t reached = Points == 1 ? 0u : 1u; /* the window grows by one column and one row */
     const uint32_t width = texton->width, height = texton->height;
     const uint32_t low_x = x - texton->radius[0], low_y = y - texton->radius[1];
-    const uint32_t columns = (((low_x & 15u) + width - 1u) >> 4) + 1u,
-                   rows = (((low_y & 15u) + height - 1u) >> 4) + 1u;
+    const uint32_t columns = (((low_x & 15u) + width + reached - 1u) >> 4) + 1u,
+                   rows = (((low_y & 15u) + height + reached - 1u) >> 4) + 1u;
     const uint32_t first_column = low_x >> 4, reach_x = x + texton->radius[0] - (first_column << 4);
     /* width - 16 in 16-bit lanes (modulo 2^16, like the entries: the short conversion is modulo 2^16 on
        every x86 compiler) */
@@ -291,7 +330,8 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
                      sixteen = set_8x16(16);
     /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
        reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
-       j + 1 is reached, so its reach is at least 16. */
+       j + 1 is reached, so its reach is at least 16. (With the neighbours every column's ranges are
+       computed: the walk's columns may reach one point and not the other.) */
     const lane_range first_range = x_range_of(reach_x, width),
                      last_range = x_range_of(reach_x - 16 * (columns - 1), width),
                      whole_range = {zero_128(), set_16x8(15)};
@@ -300,14 +340,16 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
        with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
        long before, a misprediction resolves at once; right after its cells, it waits for their whole
        hash-and-test chain, and the work of the next cells with it, so the fewer visits per point the
-       better. The masks are stored one by one rather than shifted into words: fewer instructions. */
-    uint16_t entries[9 * 16], masks[12];
+       better. The masks are stored one by one rather than shifted into words: fewer instructions. A
+       neighbour's masks follow, 12 apart. */
+    uint16_t entries[9 * 16], masks[12 * Points];
     uint32_t slot = 0;
     hit_sums hit = {0, zero_128()};
     for (uint32_t i = 0; i < rows; i++) {
         const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
         const uint32_t reach_y = y + texton->radius[1] - (cell_y << 4);
-        const lane_range row_range = y_range_of(reach_y, height);
+        const lane_range row_range[2] = {y_range_of(reach_y, height), y_range_of(reach_y + reached, height)};
+        const uint32_t row_live[2] = {live_range(reach_y, height), live_range(reach_y + reached, height)};
         /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
            conversion is modulo 2^16 on every x86 compiler). */
         vector_128 corner = set_8x16(static_cast<int16_t>((reach_y * width + reach_x) & 0xFFFFu));
@@ -316,51 +358,75 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
             const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
             const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
             const vector_128 key_vector = set_low_32(static_cast<int>(key)); /* the bits unchanged */
-            const lane_range *column_range = j == 0             ? &first_range
-                                             : j + 1 == columns ? &last_range
-                                                                : &whole_range;
+            const uint32_t column_reach = reach_x - 16 * j;
+            lane_range column_range[2] = {j == 0             ? first_range
+                                          : j + 1 == columns ? last_range
+                                                             : whole_range,
+                                          whole_range};
+            uint32_t live[3] = {0, 0, 0};
+            if (Points == 3) {
+                column_range[0] = x_range_of(column_reach, width);
+                column_range[1] = x_range_of(column_reach + 1u, width);
+                const uint32_t column_live[2] = {live_range(column_reach, width),
+                                                 live_range(column_reach + 1u, width)};
+                live[0] = column_live[0] & row_live[0];
+                live[1] = column_live[1] & row_live[0];
+                live[2] = column_live[0] & row_live[1];
+            }
             if (slot == 9) {
-                sum_buffered_hits<Channels, Bits>(texton->values, masks, 9, entries, &hit);
-                flush_hit_sums<Channels, Bits>(&hit, sums);
+                flush_cells<Channels, Bits, Points>(texton->values, width, masks, 9, entries, &hit, sums);
                 slot = 0;
             }
             const uint32_t count = dsn_poisson_count_two_steps(noise, key);
-            masks[slot] = uint16_t(cell_hits(position_pairs(key_vector), absent_impulses(count), column_range,
-                                             &row_range, corner, widths_less_16, entries + 16 * slot));
+            cell_hits<Points>(position_pairs(key_vector), absent_impulses(count), column_range, row_range,
+                              corner, widths_less_16, entries + 16 * slot, masks + slot, live);
             slot++;
             corner = subtract_16(corner, sixteen);
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
-                const axis_cell in_x = {reach_x - 16 * j, 15u}, in_y = {reach_y, 15u};
-                add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums);
+                for (uint32_t p = 0; p < Points; p++) {
+                    const axis_cell in_x = {column_reach + (p == 1), 15u}, in_y = {reach_y + (p == 2), 15u};
+                    add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums + 3 * p);
+                }
             }
         }
     }
-    sum_buffered_hits<Channels, Bits>(texton->values, masks, slot, entries, &hit);
-    flush_hit_sums<Channels, Bits>(&hit, sums);
+    flush_cells<Channels, Bits, Points>(texton->values, width, masks, slot, entries, &hit, sums);
 }
 #endif
 
+/* Whether the 16 x 16 cells' vector walk takes the noise. dsn_poisson_count_two_steps reads up to
+   cdf[size + 1]: always in the table for one draw (mean <= 16), checked. */
+bool cells16_walk(const dsn_noise_state *noise) {
+#if defined(__SSE2__)
+    return noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
+           noise->period[1] == 0 &&
+           noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0];
+#else
+    (void)noise;
+    return false;
+#endif
+}
+
+/* The sums of the point (x, y), and where Points is 3 of its neighbours (accumulate_cells16). */
+template <uint32_t Points>
 void accumulate(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
                 uint32_t *sums) {
-    sums[0] = sums[1] = sums[2] = 0;
+    for (uint32_t i = 0; i < 3 * Points; i++) sums[i] = 0;
 #if defined(__SSE2__)
     const dsn_asset *asset = &noise->asset;
-    /* dsn_poisson_count_two_steps reads up to cdf[size + 1]: always in the table for one draw (mean <= 16),
-     * checked */
-    if (noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
-        noise->period[1] == 0 &&
-        noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0]) {
+    if (cells16_walk(noise)) {
         if (asset->channels == 3)
-            asset->bits == 8 ? accumulate_cells16<3, 8>(noise, texton, x, y, sums)
-                             : accumulate_cells16<3, 16>(noise, texton, x, y, sums);
+            asset->bits == 8 ? accumulate_cells16<3, 8, Points>(noise, texton, x, y, sums)
+                             : accumulate_cells16<3, 16, Points>(noise, texton, x, y, sums);
         else
-            asset->bits == 8 ? accumulate_cells16<1, 8>(noise, texton, x, y, sums)
-                             : accumulate_cells16<1, 16>(noise, texton, x, y, sums);
+            asset->bits == 8 ? accumulate_cells16<1, 8, Points>(noise, texton, x, y, sums)
+                             : accumulate_cells16<1, 16, Points>(noise, texton, x, y, sums);
         return;
     }
 #endif
-    accumulate_any(noise, texton, x, y, sums);
+    for (uint32_t p = 0; p < Points; p++)
+        accumulate_any(noise, texton, x + (p == 1), y + (p == 2), sums + 3 * p);
 }
 
 #endif /* !DSN_SMALL_CODE */
@@ -393,9 +459,10 @@ extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t
 }
 #else
 #if DSN_GRADIENTS
-void dsn_internal_lattice_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_t *sums) {
+void dsn_internal_lattice_neighbour_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y,
+                                         uint32_t *sums) {
     const texton_window texton = dsn_lattice_texton_window(noise);
-    accumulate(noise, &texton, x, y, sums);
+    accumulate<3>(noise, &texton, x, y, sums);
 }
 #endif
 
@@ -410,7 +477,7 @@ extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int3
     }
 #endif
     const texton_window texton = dsn_lattice_texton_window(noise);
-    accumulate(noise, &texton, uint32_t(x), uint32_t(y), sums);
+    accumulate<1>(noise, &texton, uint32_t(x), uint32_t(y), sums);
     dsn_normalize(noise, sums, out);
 }
 #endif
