@@ -7,7 +7,7 @@
 #include "core/poisson_count.h"
 
 #if defined(__SSE2__)
-#include "simd/simd_128.h"
+#include "simd/simd_mix64.h"
 #endif
 
 namespace {
@@ -125,29 +125,11 @@ inline lane_range lane_range_of(uint32_t reach, uint32_t size, uint32_t unit, ui
 inline lane_range x_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 1u, 0u); }
 inline lane_range y_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 16u, 15u); }
 
-/* x * multiplier modulo 2^64 in both 64-bit lanes (SSE2 multiplies 32 x 32 -> 64 bits only):
-   x_lo m_lo + 2^32 (x_hi m_lo + x_lo m_hi). `multiplier` holds m_lo in the low half of each lane,
-   `multiplier_high` m_hi. */
-inline vector_128 multiply64(vector_128 x, vector_128 multiplier, vector_128 multiplier_high) {
-    const vector_128 cross = add_64(multiply_even_unsigned_32(shift_right_logical_64(x, 32), multiplier),
-                                    multiply_even_unsigned_32(x, multiplier_high));
-    return add_64(multiply_even_unsigned_32(x, multiplier), shift_left_64(cross, 32));
-}
-
 /* dsn_position_pair(key, 0) and (key, 1), low and high lanes, for the key in the low 32 bits of `key`:
    dsn_mix64 on vectors, the same bits. */
 inline vector_128 position_pairs(vector_128 key) {
-    const vector_128 m1 = set_2x64(static_cast<int64_t>(0xBF58476D1CE4E5B9u)),
-                     m1_high = set_2x64(0xBF58476Du),
-                     m2 = set_2x64(static_cast<int64_t>(0x94D049BB133111EBu)),
-                     m2_high = set_2x64(0x94D049BBu);
     /* key 2^32 + index G, index 0 and 1 */
-    vector_128 x = add_64(shuffle_32<0x11>(key), set_lanes_2x64(0, 0x9E3779B97F4A7C15u));
-    x = bitwise_xor(x, shift_right_logical_64(x, 30));
-    x = multiply64(x, m1, m1_high);
-    x = bitwise_xor(x, shift_right_logical_64(x, 27));
-    x = multiply64(x, m2, m2_high);
-    return bitwise_xor(x, shift_right_logical_64(x, 31));
+    return mix64_lanes(add_64(shuffle_32<0x11>(key), set_lanes_2x64(0, 0x9E3779B97F4A7C15u)));
 }
 
 /* Lanes k >= count as all-ones bytes (the impulses that do not exist): 16 bytes of absent_window from

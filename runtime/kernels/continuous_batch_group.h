@@ -15,6 +15,7 @@
 
 #include "kernels/continuous_point_vector.h"
 #include "kernels/splat_row.h"
+#include "simd/simd_mix64.h"
 
 #if defined(__AVX2__)
 namespace {
@@ -258,23 +259,6 @@ inline splat_vector sifted_lanes(splat_vector pairs, splat_vector halves, splat_
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-/* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products (the kernel has no
-   AVX512DQ): the high halves' product only reaches bits 64 and up. */
-inline vector_512 multiply_64(vector_512 x, uint64_t factor) {
-    const vector_512 low = set_8x64(static_cast<int64_t>(factor & 0xFFFFFFFFu)),
-                     high = set_8x64(static_cast<int64_t>(factor >> 32));
-    const vector_512 cross = add_64(multiply_even_unsigned_32(shift_right_logical_64(x, 32), low),
-                                    multiply_even_unsigned_32(x, high));
-    return add_64(multiply_even_unsigned_32(x, low), shift_left_64(cross, 32));
-}
-
-/* dsn_mix64 of every 64-bit lane. */
-inline vector_512 mix64_8(vector_512 x) {
-    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 30)), 0xBF58476D1CE4E5B9u);
-    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 27)), 0x94D049BB133111EBu);
-    return bitwise_xor(x, shift_right_logical_64(x, 31));
-}
-
 /* A sifting bound's word of each point (GroupAxis) in both of its 64-bit lanes: `four` holds the first
    point's index 4 times, then the next's. */
 inline vector_512 bound_lanes(vector_512 four, const uint32_t *words) {
@@ -302,7 +286,7 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
             const uint32_t i = cell % group_cells, j = cell / group_cells;
             const vector_512 keys =
                 widen_unsigned_32x64(permute_32(load_8x32(group.keys + cell * group_points), twice));
-            const vector_512 pairs = mix64_8(add_64(shift_left_64(keys, 32), second));
+            const vector_512 pairs = mix64_lanes(add_64(shift_left_64(keys, 32), second));
             const vector_512 counts = minimum_unsigned_32(
                 permute_32(cast_to_512(load_8x32(group.counts + cell * group_points)), four), most);
             /* every byte of a point's 128 bits: its count (below 256) */
@@ -319,23 +303,6 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
     }
 }
 #else
-/* x * factor modulo 2^64 in every 64-bit lane, by three 32 x 32 -> 64-bit products: the high halves'
-   product only reaches bits 64 and up. */
-inline vector_256 multiply_64(vector_256 x, uint64_t factor) {
-    const vector_256 low = set_4x64(static_cast<int64_t>(factor & 0xFFFFFFFFu)),
-                     high = set_4x64(static_cast<int64_t>(factor >> 32));
-    const vector_256 cross = add_64(multiply_even_unsigned_32(shift_right_logical_64(x, 32), low),
-                                    multiply_even_unsigned_32(x, high));
-    return add_64(multiply_even_unsigned_32(x, low), shift_left_64(cross, 32));
-}
-
-/* dsn_mix64 of every 64-bit lane. */
-inline vector_256 mix64_4(vector_256 x) {
-    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 30)), 0xBF58476D1CE4E5B9u);
-    x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 27)), 0x94D049BB133111EBu);
-    return bitwise_xor(x, shift_right_logical_64(x, 31));
-}
-
 /* bound_lanes of the AVX-512 copy on AVX2 vectors, 2 points. */
 inline vector_256 bound_lanes(vector_256 four, const uint32_t *words) {
     return permute_32(load_8x32(words), four);
@@ -359,7 +326,7 @@ inline void group_pairs(const PointGroup &group, const FieldLanes &lanes, GroupP
             const uint32_t i = cell % group_cells, j = cell / group_cells;
             const vector_256 keys =
                 widen_unsigned_32x64(low_128(permute_32(load_8x32(group.keys + cell * group_points), twice)));
-            const vector_256 pairs = mix64_4(add_64(shift_left_64(keys, 32), second));
+            const vector_256 pairs = mix64_lanes(add_64(shift_left_64(keys, 32), second));
             const vector_256 counts =
                 minimum_unsigned_32(permute_32(load_8x32(group.counts + cell * group_points), four), most);
             /* every byte of a point's 128 bits: its count (at most 16) */
