@@ -115,7 +115,7 @@ TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, th
                     state->tile_kernel = DSN_KERNEL_DEFAULT;
                     const RawSums expected = raw_sums(made->noise, x, y);
                     for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= chosen; kernel++) {
-                        dsn_continuous_slopes_entry *entry = dsn_kernel_entries_of(kernel)->continuous_slopes;
+                        dsn_continuous_point_entry *entry = dsn_kernel_entries_of(kernel)->continuous_point;
                         if (entry == nullptr) continue;
                         RawSums sums;
                         if (!entry(state, uint64_t(x), uint64_t(y), sums.value, sums.slope_x, sums.slope_y))
@@ -133,7 +133,7 @@ TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, th
     // Where this CPU runs a kernel with the vector sums, they were compared.
     bool has_vector = false;
     for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel < dsn_internal_kernel_count; kernel++)
-        has_vector = has_vector || dsn_kernel_entries_of(kernel)->continuous_slopes != nullptr;
+        has_vector = has_vector || dsn_kernel_entries_of(kernel)->continuous_point != nullptr;
     if (has_vector && dsn_internal_choose_kernel() > DSN_KERNEL_DEFAULT) CHECK(vector_points > 0);
     MESSAGE("points through the kernels' vector sums: " << vector_points);
 }

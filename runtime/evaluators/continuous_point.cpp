@@ -382,16 +382,16 @@ void sum_point_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, Su
    (continuous_point_vector.h), else through the sifting walk, one copy per channel count and value size. */
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     dsn_continuous_point_entry *vector = dsn_kernel_entries_of(noise->tile_kernel)->continuous_point;
-    if (vector != 0 && vector(noise, x, y, out)) return;
     ValueSums sums = {{0, 0, 0}};
-    sum_point_of_asset<ValueRead>(noise, x, y, &sums);
+    if (vector == 0 || !vector(noise, x, y, sums.value, 0, 0))
+        sum_point_of_asset<ValueRead>(noise, x, y, &sums);
     normalize_q32(noise, sums.value, out);
 }
 
 #if DSN_GRADIENTS
 void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                     uint64_t *slope_x, uint64_t *slope_y) {
-    dsn_continuous_slopes_entry *vector = dsn_kernel_entries_of(noise->tile_kernel)->continuous_slopes;
+    dsn_continuous_point_entry *vector = dsn_kernel_entries_of(noise->tile_kernel)->continuous_point;
     if (vector != 0 && vector(noise, x, y, value, slope_x, slope_y)) return;
     SlopeSums sums = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     sum_point_of_asset<SlopeRead>(noise, x, y, &sums);

@@ -700,15 +700,6 @@ DSN_POINT_INLINE void point_visit_sums(PointVisit<Channels> *visit, PointCandida
     }
 }
 
-/* Visits the candidates left and writes the point's values. */
-template <uint32_t Channels>
-DSN_POINT_INLINE void point_visit_finish(const dsn_noise_state *noise, PointVisit<Channels> *visit,
-                                         PointCandidates *candidates, int32_t *out) {
-    uint64_t sums[Channels];
-    point_visit_sums<Channels>(visit, candidates, sums, 1);
-    normalize_q32(noise, sums, out);
-}
-
 /* Buffers the candidates of the point's cells, visiting the buffer whenever it might not hold a cell's
    next pairs (the last visit is the caller's): the key and impulse count of the cell (columns i, rows j)
    at index j row_step + i column_step of keys and counts. */
@@ -735,18 +726,20 @@ DSN_POINT_INLINE void visit_cells(const FieldLanes &lanes, const AxisCells &colu
     }
 }
 
-/* The point's values from its cells (visit_cells); quads: the batch's table (PointVisit), or null. */
+/* The point's sums from its cells (visit_cells), channel c at value[c] (0 past the channels); quads: the
+   batch's table (PointVisit), or null. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void point_vector_sum(const dsn_noise_state *noise, const FieldLanes &lanes,
                                        const AxisCells &columns, const AxisCells &rows, const uint32_t *keys,
                                        const uint32_t *counts, uint32_t row_step, uint32_t column_step,
-                                       const uint32_t *quads, int32_t *out) {
+                                       const uint32_t *quads, uint64_t *value) {
     PointVisit<Channels> visit;
     point_visit_start<Channels>(noise, columns, rows, quads, &visit);
     PointCandidates candidates;
     candidates.count = 0;
     visit_cells(lanes, columns, rows, keys, counts, row_step, column_step, &visit, &candidates);
-    point_visit_finish<Channels>(noise, &visit, &candidates, out);
+    point_visit_sums<Channels>(&visit, &candidates, value, 1);
+    for (uint32_t c = Channels; c < DSN_MAX_CHANNELS; c++) value[c] = 0;
 }
 
 /* The keys and impulse counts of the point's cells, row by row, all of them first: the counts' chains of
@@ -765,14 +758,16 @@ DSN_POINT_INLINE void cell_keys_and_counts(const dsn_noise_state *noise, const A
         for (uint32_t k = 0; k < cells; k++) counts[k] = dsn_cell_impulse_count(noise, keys[k]);
 }
 
+/* The point's sums (what dsn_internal_continuous_point normalizes); 0 for a point with more than
+   point_vector_cells cells along an axis. */
 template <uint32_t Channels>
-int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value) {
     const FieldLanes lanes = field_lanes(noise->cell_shift);
     AxisCells columns, rows;
     if (!point_cells<false>(noise, x, y, lanes, &columns, &rows)) return 0;
     uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
     cell_keys_and_counts(noise, columns, rows, keys, counts);
-    point_vector_sum<Channels>(noise, lanes, columns, rows, keys, counts, columns.count, 1, 0, out);
+    point_vector_sum<Channels>(noise, lanes, columns, rows, keys, counts, columns.count, 1, 0, value);
     return 1;
 }
 
@@ -811,23 +806,31 @@ int point_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t 
 }
 #endif
 
-/* The kernel entry, one copy per channel count; 0 for a noise it does not take, or a point with more
-   than point_vector_cells cells along an axis. */
-inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+/* The kernel entry (kernels.h's dsn_continuous_point_entry), one copy per channel count: the point's sums,
+   and where slope_x is not null its derivative's (point_slopes); 0 for a noise it does not take, or a
+   point with more than point_vector_cells cells along an axis. */
+inline int continuous_point_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                 uint64_t *slope_x, uint64_t *slope_y) {
     if (!point_vector_takes(noise)) return 0;
-    return noise->asset.channels == 3 ? point_vector<3>(noise, x, y, out) : point_vector<1>(noise, x, y, out);
+    const bool rgb = noise->asset.channels == 3;
+#if DSN_GRADIENTS
+    if (slope_x != 0)
+        return rgb ? point_slopes<3>(noise, x, y, value, slope_x, slope_y)
+                   : point_slopes<1>(noise, x, y, value, slope_x, slope_y);
+#else
+    (void)slope_x, (void)slope_y;
+#endif
+    return rgb ? point_vector<3>(noise, x, y, value) : point_vector<1>(noise, x, y, value);
 }
 
-#if DSN_GRADIENTS
-/* The kernel entry of the gradient's sums, as continuous_point_vector's. */
-inline int continuous_slopes_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
-                                    uint64_t *slope_x, uint64_t *slope_y) {
-    if (!point_vector_takes(noise)) return 0;
-    return noise->asset.channels == 3 ? point_slopes<3>(noise, x, y, value, slope_x, slope_y)
-                                      : point_slopes<1>(noise, x, y, value, slope_x, slope_y);
+/* The point's values (normalize_q32 of its sums), as dsn_internal_continuous_point gives them; 0 where
+   continuous_point_sums is. */
+inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
+    uint64_t value[DSN_MAX_CHANNELS];
+    if (!continuous_point_sums(noise, x, y, value, 0, 0)) return 0;
+    normalize_q32(noise, value, out);
+    return 1;
 }
-#define DSN_CONTINUOUS_SLOPES_ENTRY continuous_slopes_vector
-#endif
 
 } // namespace
 #endif /* __AVX2__ */

@@ -15,17 +15,12 @@
 #include "kernels/splat_row.h"
 #include "kernels/tile_render.h"
 
-#ifndef DSN_CONTINUOUS_SLOPES_ENTRY
-#define DSN_CONTINUOUS_SLOPES_ENTRY 0 /* built without the gradients */
-#endif
-
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile,
                                                              lattice_strips_take,
                                                              continuous_batch,
                                                              continuous_splat_runs,
                                                              continuous_splat_normalize,
-                                                             continuous_point_vector,
-                                                             DSN_CONTINUOUS_SLOPES_ENTRY,
+                                                             continuous_point_sums,
                                                              DSN_FILTER_READS_ENTRY,
                                                              DSN_FILTER_CANDIDATES_ENTRY};
 #endif

@@ -17,17 +17,12 @@
 #include "kernels/splat_row.h"
 #include "kernels/tile_render.h"
 
-#ifndef DSN_CONTINUOUS_SLOPES_ENTRY
-#define DSN_CONTINUOUS_SLOPES_ENTRY 0 /* built without the gradients */
-#endif
-
 extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
                                                                lattice_strips_take,
                                                                continuous_batch,
                                                                continuous_splat_runs,
                                                                continuous_splat_normalize,
-                                                               continuous_point_vector,
-                                                               DSN_CONTINUOUS_SLOPES_ENTRY,
+                                                               continuous_point_sums,
                                                                DSN_FILTER_READS_ENTRY,
                                                                DSN_FILTER_CANDIDATES_ENTRY};
 
@@ -58,7 +53,7 @@ int lattice_strips_take_avx2_if_rgb(const dsn_noise_state *noise) {
 
 /* This kernel but for the lattice tiles of RGB noises, which take the AVX2 kernel's. */
 extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
-    lattice_tile_avx2_if_rgb,    lattice_strips_take_avx2_if_rgb, continuous_batch,
-    continuous_splat_runs,       continuous_splat_normalize,      continuous_point_vector,
-    DSN_CONTINUOUS_SLOPES_ENTRY, DSN_FILTER_READS_ENTRY,          DSN_FILTER_CANDIDATES_ENTRY};
+    lattice_tile_avx2_if_rgb, lattice_strips_take_avx2_if_rgb, continuous_batch,
+    continuous_splat_runs,    continuous_splat_normalize,      continuous_point_sums,
+    DSN_FILTER_READS_ENTRY,   DSN_FILTER_CANDIDATES_ENTRY};
 #endif

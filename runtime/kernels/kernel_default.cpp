@@ -20,12 +20,9 @@
 #endif
 #if !DSN_SMALL_CODE && defined(__AVX2__)
 #include "kernels/continuous_point_vector.h"
-#define POINT_ENTRY continuous_point_vector
+#define POINT_ENTRY continuous_point_sums
 #else
 #define POINT_ENTRY 0
-#endif
-#ifndef DSN_CONTINUOUS_SLOPES_ENTRY
-#define DSN_CONTINUOUS_SLOPES_ENTRY 0
 #endif
 #include "kernels/filtered_candidates_vector.h"
 #include "kernels/filtered_reads_vector.h"
@@ -36,6 +33,5 @@ extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
                                                                 SPLAT_ROW_ENTRY,
                                                                 SPLAT_NORMALIZE_ENTRY,
                                                                 POINT_ENTRY,
-                                                                DSN_CONTINUOUS_SLOPES_ENTRY,
                                                                 DSN_FILTER_READS_ENTRY,
                                                                 DSN_FILTER_CANDIDATES_ENTRY};

@@ -93,16 +93,13 @@ typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_
 typedef void dsn_splat_normalize_entry(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
                                        uint32_t count, int32_t *out);
 
-/* One continuous point (continuous_point_vector.h's continuous_point_vector): the Q16.16 values of the
-   point (x, y), Q32.32, into out, as dsn_internal_continuous_point gives them; returns 0, writing
-   nothing, for a noise it does not take (dsn_internal_continuous_point then evaluates the point itself). */
-typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);
-
-/* The gradient's sums of one continuous point (continuous_point_vector.h's continuous_slopes_vector):
-   value[c], slope_x[c] and slope_y[c] as dsn_internal_continuous_slopes gives them (continuous_internal.h);
-   returns 0, writing nothing, for a noise it does not take. */
-typedef int dsn_continuous_slopes_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
-                                        uint64_t *slope_x, uint64_t *slope_y);
+/* One continuous point (continuous_point_vector.h's continuous_point_sums): the raw sums of the point (x, y),
+   Q32.32, per channel modulo 2^64, into value (what dsn_internal_continuous_point normalizes), and where
+   slope_x is not null (DSN_GRADIENTS) the derivative's sums too, value, slope_x and slope_y as
+   dsn_internal_continuous_slopes gives them (continuous_internal.h); returns 0, writing nothing, for a noise
+   it does not take (the evaluators then sum the point themselves). */
+typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                                       uint64_t *slope_x, uint64_t *slope_y);
 
 /* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
    filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start
@@ -144,7 +141,6 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and
    continuous_splat_normalize in the small build (DSN_SMALL_CODE), which evaluates grids point by point,
    continuous_point in kernels built without AVX2 (continuous_point.cpp's own evaluator then runs),
-   continuous_slopes likewise and without the gradients (DSN_GRADIENTS),
    filter_level_reads and filter_candidates likewise (filtered_sift.cpp then reads, or lists, each
    candidate itself). */
 typedef struct dsn_kernel_entries {
@@ -154,7 +150,6 @@ typedef struct dsn_kernel_entries {
     dsn_splat_runs_entry *continuous_splat_runs;
     dsn_splat_normalize_entry *continuous_splat_normalize;
     dsn_continuous_point_entry *continuous_point;
-    dsn_continuous_slopes_entry *continuous_slopes;
     dsn_filter_level_reads_entry *filter_level_reads;
     dsn_filter_candidates_entry *filter_candidates;
 } dsn_kernel_entries;
