@@ -72,9 +72,10 @@ static inline void dsn_filter_walk_radii(const dsn_walked_level *levels, uint32_
 void dsn_internal_filter_sums_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums);
-#if DSN_GRADIENTS
-/* The slopes of those sums per 2^-16 texel of each level (add_slopes): [tap][level][axis x, y][channel]. */
+/* The slopes of those sums per 2^-16 texel of each level (add_slopes): [tap][level][axis x, y][channel]
+   (the walk's shared code names the type in every build, DSN_GRADIENTS or not). */
 typedef uint64_t dsn_filter_slopes[DSN_FILTER_MAX_TAPS][2][2][DSN_MAX_CHANNELS];
+#if DSN_GRADIENTS
 /* dsn_internal_filter_sums_walked's sums and their slopes, in one walk (filtered_walk.cpp). */
 void dsn_internal_filter_slopes_walked(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                        const dsn_filter_plan *plan, const dsn_walked_level *levels,
