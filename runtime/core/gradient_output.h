@@ -30,6 +30,22 @@ static inline void dsn_map_gradient(const dsn_noise_state *noise, int32_t *value
 #endif
 }
 
+/* A lattice point's value and forward differences (values[0 .. 2]: value, dx, dy, DSN_MAX_CHANNELS apart)
+   from its sums and those of the points right of it and below it (modulo 2^32): the differences normalized
+   as the value without the mean, then the mapping's chain rule. */
+static inline void dsn_lattice_gradient_values(const dsn_noise_state *noise, const uint32_t *here,
+                                               const uint32_t *east, const uint32_t *south, int32_t *values) {
+    uint32_t differences[2][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}};
+    for (uint32_t c = 0; c < noise->asset.channels; c++) {
+        differences[0][c] = east[c] - here[c];
+        differences[1][c] = south[c] - here[c];
+    }
+    dsn_normalize_from(noise, noise->offset, here, values);
+    dsn_normalize_from(noise, dsn_no_offset, differences[0], values + DSN_MAX_CHANNELS);
+    dsn_normalize_from(noise, dsn_no_offset, differences[1], values + 2 * DSN_MAX_CHANNELS);
+    dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
+}
+
 /* A gradient call's error `err`, after zeroing its three outputs (error_output.h: `points` points each). */
 static inline int dsn_gradient_error(int err, const dsn_noise_state *noise, void *out, void *dx, void *dy,
                                      dsn_output_kind kind, size_t points) {

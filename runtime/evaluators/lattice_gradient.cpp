@@ -62,17 +62,8 @@ int point_of_kind(const dsn_noise *handle, int32_t x, int32_t y, void *out, void
     if (err != DSN_OK) return dsn_gradient_error(err, noise, out, dx, dy, kind, 1);
     uint32_t sums[3 * DSN_MAX_CHANNELS];
     dsn_internal_lattice_neighbour_sums(noise, static_cast<uint32_t>(x), static_cast<uint32_t>(y), sums);
-    const uint32_t *here = sums;
-    uint32_t east[DSN_MAX_CHANNELS], south[DSN_MAX_CHANNELS];
-    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
-        east[c] = sums[DSN_MAX_CHANNELS + c] - here[c];
-        south[c] = sums[2 * DSN_MAX_CHANNELS + c] - here[c];
-    }
     int32_t values[3 * DSN_MAX_CHANNELS];
-    dsn_normalize_from(noise, noise->offset, here, values);
-    dsn_normalize_from(noise, dsn_no_offset, east, values + DSN_MAX_CHANNELS);
-    dsn_normalize_from(noise, dsn_no_offset, south, values + 2 * DSN_MAX_CHANNELS);
-    dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
+    dsn_lattice_gradient_values(noise, sums, sums + DSN_MAX_CHANNELS, sums + 2 * DSN_MAX_CHANNELS, values);
     dsn_store_gradient(out, dx, dy, kind, 0, values, noise->asset.channels);
     return DSN_OK;
 #endif

@@ -43,16 +43,8 @@ void extended_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_
    point `index` of the target. */
 void store_gradient_point(const dsn_noise_state *noise, const uint32_t *here, const uint32_t *east,
                           const uint32_t *south, const gradient_target *target, size_t index) {
-    uint32_t differences[2][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}};
-    for (uint32_t c = 0; c < target->channels; c++) {
-        differences[0][c] = east[c] - here[c];
-        differences[1][c] = south[c] - here[c];
-    }
     int32_t values[3 * DSN_MAX_CHANNELS];
-    dsn_normalize_from(noise, noise->offset, here, values);
-    dsn_normalize_from(noise, dsn_no_offset, differences[0], values + DSN_MAX_CHANNELS);
-    dsn_normalize_from(noise, dsn_no_offset, differences[1], values + 2 * DSN_MAX_CHANNELS);
-    dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
+    dsn_lattice_gradient_values(noise, here, east, south, values);
     dsn_store_gradient(target->out, target->dx, target->dy, target->kind, index * target->channels, values,
                        target->channels);
 }
