@@ -6,7 +6,8 @@
 // ordinary points and where the taps straddle the seam of the int32 coordinates; and the levels read with
 // their all-zero margins cut (a shorter reach) against the levels as stored; cells of every side the
 // kernels' listing takes or leaves; in every kernel copy the CPU runs. And the listing alone (make bench's)
-// lists at least the impulses that the walk reads.
+// lists at least the impulses that the walk reads. And the gradient's sums and slopes from the sifted
+// walks of moved taps against the walk's.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -112,6 +113,30 @@ void compare_point(const dsn_noise &noise, int64_t x, int64_t y, const dsn_footp
                     REQUIRE(sifted_cut[t][l][c] == walked[t][l][c]);
                 }
         check_listing(*state, uint64_t(x), uint64_t(y), plan, cut_levels, count);
+#if DSN_GRADIENTS
+        // The gradient's sums and slopes: each tap's moved copies summed by the sift against the walk's
+        // slopes, on the levels as stored and as read.
+        for (const dsn_walked_level *levels : {&stored_levels[0], &cut_levels[0]}) {
+            static dsn_filter_sums walked_sums, sifted_sums;
+            static dsn_filter_slopes walked_slopes, sifted_slopes;
+            std::memset(sifted_sums, 0xA5, sizeof sifted_sums);
+            std::memset(sifted_slopes, 0xA5, sizeof sifted_slopes);
+            dsn_internal_filter_slopes_walked(state, uint64_t(x), uint64_t(y), &plan, levels, count,
+                                              walked_sums, &walked_slopes);
+            dsn_internal_filter_slopes_sifted(state, uint64_t(x), uint64_t(y), &plan, levels, count,
+                                              sifted_sums, &sifted_slopes);
+            for (uint32_t t = 0; t < plan.taps; t++)
+                for (uint32_t l = 0; l < count; l++)
+                    for (uint32_t c = 0; c < state->asset.channels; c++) {
+                        INFO("slopes: tap " << t << " level " << levels[l].level << " channel " << c
+                                            << " LOD q8 " << plan.lod_q8 << " taps " << plan.taps << " at "
+                                            << x << ", " << y);
+                        REQUIRE(sifted_sums[t][l][c] == walked_sums[t][l][c]);
+                        REQUIRE(sifted_slopes[t][l][0][c] == walked_slopes[t][l][0][c]);
+                        REQUIRE(sifted_slopes[t][l][1][c] == walked_slopes[t][l][1][c]);
+                    }
+        }
+#endif
     }
     int32_t reference[3] = {0, 0, 0}, fast[3] = {0, 0, 0};
     dsn_internal_filtered_point_walked(state, uint64_t(x), uint64_t(y), &plan, reference);

@@ -16,6 +16,7 @@
 #include "runtime/core/continuous_internal.h"
 #include "runtime/core/filtered_internal.h"
 #include "runtime/core/gradient_output.h"
+#include "runtime/core/histogram_map.h"
 #include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
@@ -735,6 +736,121 @@ TEST_CASE("filtered gradient: each level's sums step by its slopes, one 2^-16 st
         }
     }
     CHECK(sloped > 100);
+}
+
+namespace {
+
+// The filtered gradient as first defined (the fast build's before it took its slopes from sifted walks of
+// moved taps): the tap-by-tap walk's sums and slopes, normalized per level, blended, rounded, and the
+// histogram mapping's chain rule.
+void walked_filtered_gradient(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                              const dsn_filter_plan *plan, int32_t *values) {
+    int32_t *dx = values + DSN_MAX_CHANNELS, *dy = values + 2 * DSN_MAX_CHANNELS;
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) dx[c] = dy[c] = 0;
+    if (dsn_internal_filter_fade(noise, plan, values)) return;
+    if (plan->lod_q8 == 0 && plan->taps == 1) {
+        dsn_internal_continuous_gradient(noise, x, y, values);
+        return;
+    }
+    dsn_walked_level walked[2];
+    const uint32_t count = dsn_internal_filter_walked_levels(noise, plan, walked);
+    static dsn_filter_sums sums;
+    static dsn_filter_slopes slopes;
+    dsn_internal_filter_slopes_walked(noise, x, y, plan, walked, count, sums, &slopes);
+    int64_t totals[3][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        for (uint32_t l = 0; l < count; l++) {
+            int64_t level[3][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+            dsn_internal_filter_level_values(noise, &walked[l], sums[tap][l], level[0]);
+            dsn_internal_filter_level_slopes(noise, &walked[l], slopes[tap][l][0], level[1]);
+            dsn_internal_filter_level_slopes(noise, &walked[l], slopes[tap][l][1], level[2]);
+            for (uint32_t output = 0; output < 3; output++)
+                dsn_internal_filter_add_level(noise, plan, l, level[output], totals[output]);
+        }
+        if (count == 1) dsn_internal_filter_add_mean(noise, plan, totals[0]);
+    }
+    for (uint32_t output = 0; output < 3; output++)
+        dsn_internal_filter_round(noise, plan, totals[output], values + output * DSN_MAX_CHANNELS);
+    if (noise->asset.histogram_table != 0) {
+        const uint32_t level = uint32_t(plan->lod_q8) >> 8, blend = plan->lod_q8 & 255;
+        dsn_internal_histogram_map_gradient(&noise->asset, values, level, blend, dx, dy);
+        dsn_internal_histogram_map(&noise->asset, values, level, blend);
+    }
+}
+
+// A mapping of two levels (the filtered evaluation blends their tables), the second moved up.
+dsn::HistogramMapping two_level_mapping(uint32_t channels) {
+    dsn::HistogramMapping m = gradient_mapping(channels);
+    const size_t one_level = m.tables.size();
+    m.level_count = 2;
+    for (size_t i = 0; i < one_level; i++) m.tables.push_back(m.tables[i] + 300);
+    return m;
+}
+
+} // namespace
+
+TEST_CASE("filtered gradient: every kernel's equals the tap-by-tap walk's definition, bit for bit") {
+    // Isotropic footprints from unfiltered past the coarsest level (the fade), rotated and anisotropic ones
+    // of 2 .. 16 taps, at points across the torus and the int32 wraps (where the sift's moved taps cross
+    // the walk's seam); grey and RGB, 8 and 16 bits, a
+    // two-level histogram mapping, periods (one shorter than a coarse level's reach).
+    const int64_t one = int64_t(1) << 32;
+    std::vector<dsn_footprint> footprints;
+    for (int eighth = 0; eighth <= 8 * 6; eighth += 3) {
+        const double side = std::pow(2.0, eighth / 8.0), angle = 0.37 * eighth;
+        footprints.push_back(footprint_of(int64_t(side * std::cos(angle) * double(one)),
+                                          int64_t(side * std::sin(angle) * double(one)),
+                                          -int64_t(side * std::sin(angle) * double(one)),
+                                          int64_t(side * std::cos(angle) * double(one)), 1));
+    }
+    footprints.push_back(footprint_of(12 * one, 5 * one, one / 2, -3 * one / 2, 8));
+    footprints.push_back(footprint_of(3 * one, -one, one / 3, one, 2));
+    footprints.push_back(footprint_of(-20 * one, 9 * one, one, 2 * one, 16));
+    footprints.push_back(footprint_of(2 * one, 7 * one, -one / 2, one / 7, 4));
+    footprints.push_back(footprint_of(40 * one, 0, 0, 3 * one, 16));
+    size_t compared = 0, sloped = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u})
+            for (bool mapped : {false, true})
+                for (uint32_t period : {0u, 13u, 300u}) {
+                    dsn::AssetFields fields = pyramid_asset(channels, bits);
+                    if (mapped) fields.histogram = two_level_mapping(channels);
+                    const auto made = make_noise(fields, 7 + period, 0, period, period == 13 ? 0 : period);
+                    const dsn_noise_state *state = dsn_state(&made->noise);
+                    std::vector<int64_t> xs, ys;
+                    renderer_points(41 + period, 10, &xs, &ys);
+                    // A step of a level from the point moves the walk's int32 start, X - 1, across its wrap.
+                    const int64_t seam = int64_t((uint64_t(0x80000000u) << 32) | 0xFFFFFF00u);
+                    xs.push_back(seam), ys.push_back(int64_t(777) << 30);
+                    xs.push_back(-(int64_t(5) << 29)), ys.push_back(seam);
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= state->tile_kernel; kernel++) {
+                        dsn_noise copy = made->noise;
+                        dsn_state(&copy)->tile_kernel = kernel;
+                        for (const dsn_footprint &footprint : footprints)
+                            for (size_t p = 0; p < xs.size(); p++) {
+                                INFO("channels " << channels << " bits " << bits << " mapped " << mapped
+                                                 << " period " << period << " kernel " << kernel << " at "
+                                                 << xs[p] << ", " << ys[p]);
+                                dsn_filter_plan plan;
+                                REQUIRE(dsn_internal_filter_plan(&footprint, state->asset.pyramid_levels,
+                                                                 &plan) == DSN_OK);
+                                int32_t value[3], dx[3], dy[3], expected[3 * DSN_MAX_CHANNELS];
+                                REQUIRE(dsn_filtered_gradient_fixed(&copy, xs[p], ys[p], &footprint, value,
+                                                                    dx, dy) == DSN_OK);
+                                walked_filtered_gradient(dsn_state(&copy), uint64_t(xs[p]), uint64_t(ys[p]),
+                                                         &plan, expected);
+                                for (uint32_t c = 0; c < channels; c++) {
+                                    CHECK(value[c] == expected[c]);
+                                    CHECK(dx[c] == expected[DSN_MAX_CHANNELS + c]);
+                                    CHECK(dy[c] == expected[2 * DSN_MAX_CHANNELS + c]);
+                                    sloped += dx[c] != 0 && dy[c] != 0;
+                                }
+                                compared++;
+                            }
+                    }
+                }
+    CHECK(compared >= 24 * footprints.size() * 12);
+    CHECK(sloped > compared / 2);
 }
 
 namespace {

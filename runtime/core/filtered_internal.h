@@ -85,6 +85,13 @@ void dsn_internal_filter_slopes_walked(const dsn_noise_state *noise, uint64_t x,
 void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums);
+#if DSN_GRADIENTS
+/* dsn_internal_filter_slopes_walked's sums and slopes from sifted walks: each tap with its copies moved by
+   one 2^-16 texel step of each level along x and y, whose level sums less the tap's are the slopes. */
+void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                       const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                       uint32_t count, dsn_filter_sums sums, dsn_filter_slopes *slopes);
+#endif
 
 /* The same walk as dsn_internal_filter_sums_sifted with no level read: the candidates are listed (every
    impulse within reach of a tap's level, and those the sift could not tell apart from them), counted and

@@ -24,7 +24,11 @@ void gradient_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, const 
     const uint32_t count = dsn_internal_filter_walked_levels(noise, plan, walked);
     dsn_filter_sums sums;
     dsn_filter_slopes slopes;
+#if DSN_SMALL_CODE
     dsn_internal_filter_slopes_walked(noise, x, y, plan, walked, count, sums, &slopes);
+#else
+    dsn_internal_filter_slopes_sifted(noise, x, y, plan, walked, count, sums, &slopes);
+#endif
     int64_t totals[3][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         for (uint32_t l = 0; l < count; l++) {

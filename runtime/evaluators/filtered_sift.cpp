@@ -300,6 +300,8 @@ struct TapGroup {
     bool narrow;      /* the kernel's listing and reads take the narrow offsets only (narrow_test) */
     uint64_t *listed; /* null, or where the candidates are counted instead of read
                          (dsn_internal_filter_listing_only) */
+    const uint32_t *tap_levels; /* null (every tap reads every level), or per tap the bits of the levels
+                                   it reads (the gradient's moved taps read one) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -365,6 +367,7 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
     const CellBounds bounds = whole_list ? CellBounds() : cell_bounds(*list);
     for (uint32_t t = 0; t < group.taps; t++) {
         for (uint32_t l = 0; l < group.level_count; l++) {
+            if (group.tap_levels != 0 && ((group.tap_levels[group.first + t] >> l) & 1u) == 0) continue;
             const dsn_walked_level &level = group.levels[l];
             const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
             const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
@@ -584,7 +587,7 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
    read where listed is not null; false when they lie too far apart. */
 bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t first,
                uint32_t taps, const dsn_walked_level *levels, uint32_t count, uint64_t *listed,
-               TapGroup *group) {
+               const uint32_t *tap_levels, TapGroup *group) {
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
@@ -595,6 +598,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->first = first;
     group->taps = taps;
     group->listed = listed;
+    group->tap_levels = tap_levels;
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
@@ -605,15 +609,37 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
 
 template <uint32_t Channels, uint32_t Bytes>
 void sum_taps(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t taps,
-              const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed) {
+              const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
+              const uint32_t *tap_levels) {
     TapGroup group;
-    if (tap_group(noise, x, y, 0, taps, levels, count, listed, &group)) {
+    if (tap_group(noise, x, y, 0, taps, levels, count, listed, tap_levels, &group)) {
         sum_group<Channels, Bytes>(noise, group, sums);
         return;
     }
     for (uint32_t t = 0; t < taps; t++) {
-        tap_group(noise, x, y, t, 1, levels, count, listed, &group); /* one tap has no spread */
+        tap_group(noise, x, y, t, 1, levels, count, listed, tap_levels, &group); /* one tap has no spread */
         sum_group<Channels, Bytes>(noise, group, sums);
+    }
+}
+
+/* The sums at the points (tap_x, tap_y), zeroed first. */
+void sum_points(const dsn_noise_state *noise, const uint64_t *tap_x, const uint64_t *tap_y, uint32_t taps,
+                const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
+                const uint32_t *tap_levels) {
+    for (uint32_t tap = 0; tap < taps; tap++)
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
+    const dsn_asset *asset = &noise->asset;
+    if (asset->channels == 3) {
+        if (asset->bits == 8)
+            sum_taps<3, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+        else
+            sum_taps<3, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+    } else {
+        if (asset->bits == 8)
+            sum_taps<1, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+        else
+            sum_taps<1, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
     }
 }
 
@@ -624,22 +650,19 @@ void sum_taps_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, con
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         tap_x[tap] = x + static_cast<uint64_t>(plan->offset_x[tap]);
         tap_y[tap] = y + static_cast<uint64_t>(plan->offset_y[tap]);
-        for (uint32_t l = 0; l < 2; l++)
-            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
     }
-    const dsn_asset *asset = &noise->asset;
-    if (asset->channels == 3) {
-        if (asset->bits == 8)
-            sum_taps<3, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
-        else
-            sum_taps<3, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
-    } else {
-        if (asset->bits == 8)
-            sum_taps<1, 1>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
-        else
-            sum_taps<1, 2>(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed);
-    }
+    sum_points(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed, 0);
 }
+
+#if DSN_GRADIENTS
+/* Whether the walk's start along an axis, int32(X - 1), wraps from 2^31 - 1 to -2^31 when the coordinate
+   moves by `step` (below a texel). */
+bool start_wraps(uint64_t coordinate, uint64_t step) {
+    const uint32_t start = static_cast<uint32_t>(coordinate >> 32) - 1u,
+                   moved = static_cast<uint32_t>((coordinate + step) >> 32) - 1u;
+    return start != moved && moved == 0x80000000u;
+}
+#endif
 
 } // namespace
 
@@ -648,6 +671,61 @@ void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, u
                                      uint32_t count, dsn_filter_sums sums) {
     sum_taps_of_asset(noise, x, y, plan, levels, count, sums, 0);
 }
+
+#if DSN_GRADIENTS
+void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                       const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                       uint32_t count, dsn_filter_sums sums, dsn_filter_slopes *slopes) {
+    /* Each tap with its copies moved by one step of each level along x and along y, in one walk with
+       as many taps as fit: a copy reads its level only. Where a copy's int32 integer part less 1 (the
+       walk's start, reduced modulo a period) wraps, a period that does not divide 2^32 makes the sums
+       jump there: the walk's slopes (one-sided, of the tap's side) then. */
+    for (uint32_t tap = 0; tap < plan->taps; tap++)
+        for (uint32_t l = 0; l < count; l++) {
+            const uint64_t step = static_cast<uint64_t>(1) << (16u + levels[l].level);
+            if (start_wraps(x + static_cast<uint64_t>(plan->offset_x[tap]), step) ||
+                start_wraps(y + static_cast<uint64_t>(plan->offset_y[tap]), step)) {
+                dsn_internal_filter_slopes_walked(noise, x, y, plan, levels, count, sums, slopes);
+                return;
+            }
+        }
+    const uint32_t points_per_tap = 1u + 2u * count, taps_per_walk = DSN_FILTER_MAX_TAPS / points_per_tap;
+    for (uint32_t first = 0; first < plan->taps; first += taps_per_walk) {
+        const uint32_t taps = plan->taps - first < taps_per_walk ? plan->taps - first : taps_per_walk;
+        uint64_t point_x[DSN_FILTER_MAX_TAPS], point_y[DSN_FILTER_MAX_TAPS];
+        uint32_t point_levels[DSN_FILTER_MAX_TAPS];
+        for (uint32_t t = 0; t < taps; t++) {
+            const uint64_t tap_x = x + static_cast<uint64_t>(plan->offset_x[first + t]),
+                           tap_y = y + static_cast<uint64_t>(plan->offset_y[first + t]);
+            uint64_t *at_x = point_x + t * points_per_tap, *at_y = point_y + t * points_per_tap;
+            uint32_t *at_levels = point_levels + t * points_per_tap;
+            at_x[0] = tap_x, at_y[0] = tap_y, at_levels[0] = (1u << count) - 1u;
+            for (uint32_t l = 0; l < count; l++) {
+                /* one step of 2^-16 level-l texel (the offset is divided by 2^l before the read) */
+                const uint64_t step = static_cast<uint64_t>(1) << (16u + levels[l].level);
+                at_x[1u + 2u * l] = tap_x + step, at_y[1u + 2u * l] = tap_y;
+                at_x[2u + 2u * l] = tap_x, at_y[2u + 2u * l] = tap_y + step;
+                at_levels[1u + 2u * l] = at_levels[2u + 2u * l] = 1u << l;
+            }
+        }
+        dsn_filter_sums point_sums;
+        sum_points(noise, point_x, point_y, taps * points_per_tap, levels, count, point_sums, 0,
+                   point_levels);
+        /* The sums step by exactly the slopes over one step (the bilinear read is linear in its weights
+           and the reach's edge reads 0): the walk's slopes, modulo 2^64. */
+        for (uint32_t t = 0; t < taps; t++) {
+            const uint64_t(*at)[2][DSN_MAX_CHANNELS] = point_sums + t * points_per_tap;
+            for (uint32_t l = 0; l < 2; l++)
+                for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+                    const bool read = l < count;
+                    sums[first + t][l][c] = at[0][l][c];
+                    (*slopes)[first + t][l][0][c] = read ? at[1u + 2u * l][l][c] - at[0][l][c] : 0;
+                    (*slopes)[first + t][l][1][c] = read ? at[2u + 2u * l][l][c] - at[0][l][c] : 0;
+                }
+        }
+    }
+}
+#endif
 
 uint64_t dsn_internal_filter_listing_only(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                           const dsn_filter_plan *plan, const dsn_walked_level *levels,
