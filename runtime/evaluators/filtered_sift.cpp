@@ -302,6 +302,7 @@ struct TapGroup {
                          (dsn_internal_filter_listing_only) */
     const uint32_t *tap_levels; /* null (every tap reads every level), or per tap the bits of the levels
                                    it reads (the gradient's moved taps read one) */
+    bool one_spot;              /* the taps are one tap and its moved copies */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -362,8 +363,9 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
     }
     /* A single tap's kernel reads take the whole list at once (their exact tests leave out what lies
        beyond the level's reach): a call per run of cells, each with its partial vectors, costs more
-       than testing the candidates of the cells beyond. (No splat grid then: sum_group.) */
-    const bool whole_list = Bytes == 1 && group.vector_reads != 0 && group.taps == 1;
+       than testing the candidates of the cells beyond. (No splat grid then: sum_group.) So do one tap's
+       moved copies, whose reaches are the tap's within a texel. */
+    const bool whole_list = Bytes == 1 && group.vector_reads != 0 && (group.taps == 1 || group.one_spot);
     const CellBounds bounds = whole_list ? CellBounds() : cell_bounds(*list);
     for (uint32_t t = 0; t < group.taps; t++) {
         for (uint32_t l = 0; l < group.level_count; l++) {
@@ -587,7 +589,7 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
    read where listed is not null; false when they lie too far apart. */
 bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t first,
                uint32_t taps, const dsn_walked_level *levels, uint32_t count, uint64_t *listed,
-               const uint32_t *tap_levels, TapGroup *group) {
+               const uint32_t *tap_levels, bool one_spot, TapGroup *group) {
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
     group->levels = levels;
@@ -599,6 +601,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->taps = taps;
     group->listed = listed;
     group->tap_levels = tap_levels;
+    group->one_spot = one_spot;
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
@@ -610,36 +613,36 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
 template <uint32_t Channels, uint32_t Bytes>
 void sum_taps(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t taps,
               const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
-              const uint32_t *tap_levels) {
+              const uint32_t *tap_levels, bool one_spot) {
     TapGroup group;
-    if (tap_group(noise, x, y, 0, taps, levels, count, listed, tap_levels, &group)) {
+    if (tap_group(noise, x, y, 0, taps, levels, count, listed, tap_levels, one_spot, &group)) {
         sum_group<Channels, Bytes>(noise, group, sums);
         return;
     }
     for (uint32_t t = 0; t < taps; t++) {
-        tap_group(noise, x, y, t, 1, levels, count, listed, tap_levels, &group); /* one tap has no spread */
+        tap_group(noise, x, y, t, 1, levels, count, listed, tap_levels, false, &group); /* no spread */
         sum_group<Channels, Bytes>(noise, group, sums);
     }
 }
 
-/* The sums at the points (tap_x, tap_y), zeroed first. */
+/* The sums at the points (tap_x, tap_y), zeroed first; one_spot: TapGroup's. */
 void sum_points(const dsn_noise_state *noise, const uint64_t *tap_x, const uint64_t *tap_y, uint32_t taps,
                 const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
-                const uint32_t *tap_levels) {
+                const uint32_t *tap_levels, bool one_spot) {
     for (uint32_t tap = 0; tap < taps; tap++)
         for (uint32_t l = 0; l < 2; l++)
             for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3) {
         if (asset->bits == 8)
-            sum_taps<3, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+            sum_taps<3, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
         else
-            sum_taps<3, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+            sum_taps<3, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
     } else {
         if (asset->bits == 8)
-            sum_taps<1, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+            sum_taps<1, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
         else
-            sum_taps<1, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels);
+            sum_taps<1, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
     }
 }
 
@@ -651,7 +654,7 @@ void sum_taps_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, con
         tap_x[tap] = x + static_cast<uint64_t>(plan->offset_x[tap]);
         tap_y[tap] = y + static_cast<uint64_t>(plan->offset_y[tap]);
     }
-    sum_points(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed, 0);
+    sum_points(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed, 0, false);
 }
 
 #if DSN_GRADIENTS
@@ -709,8 +712,8 @@ void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x,
             }
         }
         dsn_filter_sums point_sums;
-        sum_points(noise, point_x, point_y, taps * points_per_tap, levels, count, point_sums, 0,
-                   point_levels);
+        sum_points(noise, point_x, point_y, taps * points_per_tap, levels, count, point_sums, 0, point_levels,
+                   taps == 1);
         /* The sums step by exactly the slopes over one step (the bilinear read is linear in its weights
            and the reach's edge reads 0): the walk's slopes, modulo 2^64. */
         for (uint32_t t = 0; t < taps; t++) {
