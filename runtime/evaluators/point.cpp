@@ -377,18 +377,15 @@ void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texto
 }
 #endif
 
+#if defined(__SSE2__)
 /* Whether the 16 x 16 cells' vector walk takes the noise. dsn_poisson_count_two_steps reads up to
    cdf[size + 1]: always in the table for one draw (mean <= 16), checked. */
 bool cells16_walk(const dsn_noise_state *noise) {
-#if defined(__SSE2__)
     return noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
            noise->period[1] == 0 &&
            noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0];
-#else
-    (void)noise;
-    return false;
-#endif
 }
+#endif
 
 /* The sums of the point (x, y), and where Points is 3 of its neighbours (accumulate_cells16). */
 template <uint32_t Points>

@@ -2,12 +2,13 @@
    for every width against its operations (their overloads by vector type): the cell walks that hash
    impulse pairs on vectors (the lattice point's on 128 bits, the continuous batch's on 256 or 512) share
    it. Included after the ops header of the translation unit's width (simd.h), so that each width's
-   overloads are declared before these templates. */
+   overloads are declared before these templates; empty where simd.h has no ops header. */
 #ifndef DSN_SIMD_MIX64_H
 #define DSN_SIMD_MIX64_H
 
 #include "simd/simd.h"
 
+#if DSN_SIMD
 namespace {
 
 /* Every 64-bit lane set to `value` (the bits unchanged): set_2x64, set_4x64 or set_8x64 by type. */
@@ -50,5 +51,6 @@ DSN_SIMD_INLINE Vector mix64_lanes(Vector x) {
 }
 
 } // namespace
+#endif /* DSN_SIMD */
 
 #endif /* DSN_SIMD_MIX64_H */
