@@ -546,6 +546,20 @@ struct ContinuousGradientTile {
     }
 };
 
+#if DSN_FILTERING
+struct FilteredGradientTile {
+    const dsn_noise &noise;
+    const dsn_grid &grid;
+    uint32_t max_taps, width, height;
+    int operator()(int32_t *out, int32_t *dx, int32_t *dy) const {
+        return dsn_filtered_tile_gradient_fixed(&noise, &grid, max_taps, width, height, out, dx, dy);
+    }
+    int operator()(float *out, float *dx, float *dy) const {
+        return dsn_filtered_tile_gradient_float(&noise, &grid, max_taps, width, height, out, dx, dy);
+    }
+};
+#endif
+
 } // namespace
 
 TEST_CASE("lattice gradient tiles: every kernel's, by strips or 32-bit sums, are their points") {
@@ -614,6 +628,48 @@ TEST_CASE("continuous gradient tiles: every kernel's, splatted or point by point
     CHECK(splatted >= 32);
     CHECK(differences == 0);
 }
+
+#if DSN_FILTERING
+TEST_CASE("filtered gradient tiles: every kernel's are their points, the unfiltered ones splatted") {
+    // Magnified and axis-aligned grids (level of detail 0, one tap: the continuous gradient's splat),
+    // a minified and a rotated one (filtered, point by point), with and without a mapping.
+    const int64_t one = int64_t(1) << 32;
+    const dsn_grid grids[] = {
+        {one / 3, one / 7, one / 4, one / 16, -one / 16, one / 4},
+        {(int64_t(7) << 32) + 99, -(int64_t(3) << 32), one / 2, 0, 0, one / 2},
+        {one / 5, one / 9, 3 * one, 0, 0, 3 * one},
+        {one / 3, one / 7, int64_t(1.3 * double(one)), int64_t(0.75 * double(one)),
+         -int64_t(0.75 * double(one)), int64_t(1.3 * double(one))},
+    };
+    size_t differences = 0, unfiltered = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (bool mapped : {false, true}) {
+            dsn::AssetFields fields = random_texton_asset(channels, 9, 8, 80 + channels);
+            fields.pyramid = dsn::texton_pyramid(fields);
+            if (mapped) fields.histogram = gradient_mapping(channels);
+            const auto made = make_noise(fields, 4, 0, 0, 0);
+            for (const dsn_grid &grid : grids) {
+                const uint32_t width = 90, height = 20, max_taps = 16;
+                const dsn_footprint footprint = {grid.column_step_x, grid.column_step_y, grid.row_step_x,
+                                                 grid.row_step_y, max_taps};
+                const std::vector<int32_t> expected = gradient_planes(
+                    width, height, channels,
+                    [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
+                        int64_t x, y;
+                        dsn_test::grid_point(grid, i, j, &x, &y);
+                        return dsn_filtered_gradient_fixed(&made->noise, x, y, &footprint, v, gx, gy);
+                    });
+                dsn_filter_plan plan;
+                REQUIRE(dsn_internal_filter_plan(&footprint, made->asset.pyramid_levels, &plan) == DSN_OK);
+                unfiltered += plan.lod_q8 == 0 && plan.taps == 1;
+                const FilteredGradientTile tile = {made->noise, grid, max_taps, width, height};
+                differences += kernel_tile_differences(made->noise, expected, tile);
+            }
+        }
+    CHECK(unfiltered == 8); // the two magnified grids, four noises each
+    CHECK(differences == 0);
+}
+#endif
 
 TEST_CASE("gradient errors: every output zeroed, the value functions' codes") {
     const auto made = make_noise(random_texton_asset(3, 3, 8, 1), 1);

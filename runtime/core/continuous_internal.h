@@ -79,8 +79,8 @@ void dsn_internal_continuous_gradient(const dsn_noise_state *noise, uint64_t x, 
 void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                     uint64_t *slope_x, uint64_t *slope_y);
 /* The gradient tile of a grid (dsn.h's dsn_continuous_tile_gradient_fixed) by splatting, with the
-   per-point bits (continuous_tile.cpp); 0, writing nothing, for a grid it does not splat (the small build:
-   none) and on error-free arguments only. */
+   per-point bits (continuous_tile.cpp), for a noise and outputs that passed the call's checks; 0, writing
+   nothing, for a tile size the call refuses or a grid it does not splat (the small build: none). */
 int dsn_internal_continuous_gradient_splat(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                                            uint32_t height, void *out, void *dx, void *dy,
                                            dsn_output_kind kind);

@@ -53,8 +53,7 @@ int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, 
     const dsn_noise_state *noise = dsn_state(handle);
     int err = check_call(noise, out, dx, dy);
     if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
-    if (err == DSN_OK && width != 0 && height != 0 && width <= DSN_TILE_MAX_SIDE &&
-        height <= DSN_TILE_MAX_SIDE &&
+    if (err == DSN_OK &&
         dsn_internal_continuous_gradient_splat(noise, grid, width, height, out, dx, dy, kind))
         return DSN_OK;
     const ContinuousPoint point = {noise};

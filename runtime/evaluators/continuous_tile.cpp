@@ -216,6 +216,7 @@ int dsn_internal_continuous_gradient_splat(const dsn_noise_state *noise, const d
                                            uint32_t height, void *out, void *dx, void *dy,
                                            dsn_output_kind kind) {
 #if !DSN_SMALL_CODE
+    if (width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE) return 0;
     return splat_gradient_tile(noise, grid, width, height, out, dx, dy, kind);
 #else
     (void)noise, (void)grid, (void)width, (void)height, (void)out, (void)dx, (void)dy, (void)kind;

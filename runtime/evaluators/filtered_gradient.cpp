@@ -80,7 +80,8 @@ struct FilteredPoint {
     }
 };
 
-/* A grid filtered by its own footprint, as dsn_filtered_tile_fixed's, point by point. */
+/* A grid filtered by its own footprint, as dsn_filtered_tile_fixed's: point by point, but an unfiltered
+   one as the continuous gradient's tile. */
 int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
                  uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind) {
     const dsn_noise_state *noise = dsn_state(handle);
@@ -92,6 +93,10 @@ int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_tap
                                          grid->row_step_y, max_taps};
         err = dsn_internal_filter_plan(&footprint, noise->asset.pyramid_levels, &plan);
     }
+    /* Unfiltered (level of detail 0, one tap): the continuous gradient, whose grids splat. */
+    if (err == DSN_OK && plan.lod_q8 == 0 && plan.taps == 1 &&
+        dsn_internal_continuous_gradient_splat(noise, grid, width, height, out, dx, dy, kind))
+        return DSN_OK;
     const FilteredPoint point = {noise, &plan};
     return dsn_gradient_grid(err, noise, grid, width, height, out, dx, dy, kind, point);
 }
