@@ -693,8 +693,10 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
      level's weight (the mean's share of a fade is constant: no slope), averaged over the taps and rounded
      once; with a mapping, the chain rule through the blend of the two levels' tables ((1 - w) T_l' +
      w T_(l+1)', the levels past the tables flat). Past the coarsest level (the mean colour) it is 0, and
-     an unfiltered footprint gives the continuous gradient's bits. The slopes come from the tap-by-tap
-     walk (every impulse read at every tap), which costs more than the value's sifted walk. */
+     an unfiltered footprint gives the continuous gradient's bits. The slopes come from the value's sifted
+     walk over each tap and its copies moved by one weight step of each level along x and along y (a
+     level's sums step by exactly its slopes there; a tap whose move crosses the int32 wrap of a periodic
+     axis takes the tap-by-tap walk instead). */
 #if DSN_GRADIENTS
 int dsn_lattice_gradient_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out, int32_t *dx,
                                int32_t *dy);
