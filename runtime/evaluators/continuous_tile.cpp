@@ -77,6 +77,17 @@ void splat_grid(const dsn_noise_state *noise, const dsn_grid_splat &prepared, ui
 const uint32_t gradient_block_columns = dsn_splat_block_columns, gradient_block_rows = 8;
 const size_t gradient_block_sums = gradient_block_columns * gradient_block_rows * DSN_MAX_CHANNELS;
 
+/* Whether a coordinate's int32 start, X - 1 (X its integer part), wraps from 2^31 - 1 to -2^31 when it
+   moves by 2^-16 texel: where a period reduces it (and does not divide 2^32) the sums jump there, so the
+   moved grid's sums less the grid's are not the slopes. A grid and its moved copy each lie on one side
+   (the splat's frames), so only the origin can cross. */
+bool start_wraps(int64_t coordinate) {
+    const uint64_t point = static_cast<uint64_t>(coordinate);
+    const uint32_t start = static_cast<uint32_t>(point >> 32) - 1u,
+                   moved = static_cast<uint32_t>((point + (static_cast<uint64_t>(1) << 16)) >> 32) - 1u;
+    return start != moved && moved == 0x80000000u;
+}
+
 /* The grid moved by 2^-16 texel along x (axis 0) or y (axis 1). */
 dsn_grid moved_grid(const dsn_grid *grid, int axis) {
     dsn_grid moved = *grid;
@@ -125,9 +136,13 @@ void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, c
 /* The gradient tile by splatting three grids: the tile's and the tile's moved 2^-16 texel right and down.
    Their sums differ by the slope sums exactly (continuous_internal.h: the bilinear weights step by one, and
    the impulses a move brings within reach add their slope, those it takes out remove their value), so the
-   bits are the per-point gradient's. Returns 0 where a grid is not splatted (point by point instead). */
+   bits are the per-point gradient's. Returns 0 where a grid is not splatted or its move wraps a periodic
+   axis's start (point by point instead). */
 int splat_gradient_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                         void *out, void *dx, void *dy, dsn_output_kind kind) {
+    if ((noise->period[0] != 0 && start_wraps(grid->origin_x)) ||
+        (noise->period[1] != 0 && start_wraps(grid->origin_y)))
+        return 0;
     const dsn_grid grids[3] = {*grid, moved_grid(grid, 0), moved_grid(grid, 1)};
     const dsn_splat_texture texture = texton_texture(&noise->asset);
     dsn_grid_splat splats[3];
