@@ -56,6 +56,38 @@ int64_t aligned(int64_t coordinate, uint32_t cell_shift) {
     return int64_t(uint64_t(coordinate) & ~mask) | int64_t(uint64_t(coordinate) & 0xFFFFu);
 }
 
+// Points with an impulse of the noise exactly at their reach's entry edge along x (even k) or y (odd k),
+// where its value is 0 and its slope is not: the impulse's position less radius + 1 texels along that
+// axis, within reach along the other; non-periodic noises. Every second one's position along the edge's
+// axis is a multiple of a sifting step (the low 16 - half bits of its 16-bit position zero), where the
+// sift's bound on the field halves is tight: the fast walks' cell bounds must keep it.
+void add_entry_edge_points(const dsn_noise &noise, std::mt19937_64 &random, uint32_t count,
+                           std::vector<int64_t> *xs, std::vector<int64_t> *ys) {
+    const dsn_noise_state *state = dsn_state(&noise);
+    const uint32_t shift = state->cell_shift;
+    const uint32_t below_half = dsn_field_shift(shift) == 3 ? 0xFFFu : 0xFFu;
+    for (uint32_t k = 0; k < count;) {
+        const uint32_t cell_x = uint32_t(random() % 4096), cell_y = uint32_t(random() % 4096);
+        const uint32_t key = dsn_cell_key(state, cell_x, cell_y);
+        const uint32_t impulses = dsn_cell_impulse_count(state, key);
+        if (impulses == 0) continue;
+        const uint32_t hash = dsn_impulse_hash(state, key, uint32_t(random() % impulses));
+        const uint32_t edge = k % 2, across = 1 - edge;
+        const uint32_t bits[2] = {dsn_impulse_bits_x(hash), dsn_impulse_bits_y(hash)};
+        if ((k / 2) % 2 == 1 && (bits[edge] & below_half) != 0) continue;
+        // the impulse at (cell << shift) texels plus its 16-bit position in units of 2^(shift - 16)
+        const int64_t impulse[2] = {(int64_t(cell_x) << (32 + shift)) + (int64_t(bits[0]) << (16 + shift)),
+                                    (int64_t(cell_y) << (32 + shift)) + (int64_t(bits[1]) << (16 + shift))};
+        int64_t point[2];
+        point[edge] = impulse[edge] - (int64_t(state->radius[edge]) + 1) * (int64_t(1) << 32);
+        // within radius + 1 texels along the other axis, on the 2^-16 grid
+        const int64_t span = (2 * int64_t(state->radius[across]) + 1) * 65536;
+        point[across] = impulse[across] + (int64_t(random() % uint64_t(span)) - span / 2) * step;
+        xs->push_back(point[0]), ys->push_back(point[1]);
+        k++;
+    }
+}
+
 } // namespace
 
 TEST_CASE("continuous gradient: the value is the point's; the sums step by the slopes exactly") {
@@ -99,8 +131,8 @@ TEST_CASE("continuous gradient: the value is the point's; the sums step by the s
 }
 
 TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, the vector ones included") {
-    // Points on the 2^-16 grid (so that some impulses lie exactly at a reach's entry edge, where only the
-    // slope is non-zero), at densities whose cells have up to 16 impulses and more, periodic too.
+    // Random points, and points with an impulse exactly at their reach's entry edge (where only the slope
+    // is non-zero), at densities whose cells have up to 16 impulses and more, periodic too.
     std::mt19937_64 random(17);
     size_t vector_points = 0, differences = 0;
     for (uint32_t channels : {1u, 3u})
@@ -110,9 +142,13 @@ TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, th
                     make_noise(random_texton_asset(channels, 9, 8, 7), 3, impacts, period, period);
                 dsn_noise_state *state = dsn_state(&made->noise);
                 const uint32_t chosen = state->tile_kernel;
-                for (int k = 0; k < 400; k++) {
-                    const int64_t x = int64_t(random() & ~uint64_t(0xFFFF)) >> 8,
-                                  y = int64_t(random() & ~uint64_t(0xFFFF)) >> 8;
+                std::vector<int64_t> xs, ys;
+                for (int k = 0; k < 400; k++)
+                    xs.push_back(int64_t(random() & ~uint64_t(0xFFFF)) >> 8),
+                        ys.push_back(int64_t(random() & ~uint64_t(0xFFFF)) >> 8);
+                if (period == 0) add_entry_edge_points(made->noise, random, 600, &xs, &ys);
+                for (size_t k = 0; k < xs.size(); k++) {
+                    const int64_t x = xs[k], y = ys[k];
                     state->tile_kernel = DSN_KERNEL_DEFAULT;
                     const RawSums expected = raw_sums(made->noise, x, y);
                     for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= chosen; kernel++) {
@@ -546,6 +582,23 @@ struct ContinuousGradientTile {
     }
 };
 
+// dsn_continuous_batch_gradient_fixed or _float (float64 coordinates, exact here) by the outputs' type.
+struct ContinuousGradientBatch {
+    const dsn_noise &noise;
+    const std::vector<int64_t> &xs, &ys;
+    int operator()(int32_t *out, int32_t *dx, int32_t *dy) const {
+        return dsn_continuous_batch_gradient_fixed(&noise, xs.data(), ys.data(), uint32_t(xs.size()), out, dx,
+                                                   dy);
+    }
+    int operator()(float *out, float *dx, float *dy) const {
+        std::vector<double> real_xs, real_ys;
+        for (size_t k = 0; k < xs.size(); k++)
+            real_xs.push_back(std::ldexp(double(xs[k]), -32)), real_ys.push_back(std::ldexp(double(ys[k]), -32));
+        return dsn_continuous_batch_gradient_float(&noise, real_xs.data(), real_ys.data(), uint32_t(xs.size()),
+                                                   out, dx, dy);
+    }
+};
+
 #if DSN_FILTERING
 struct FilteredGradientTile {
     const dsn_noise &noise;
@@ -630,6 +683,43 @@ TEST_CASE("continuous gradient tiles: every kernel's, splatted or point by point
                 }
     MESSAGE("continuous gradient tiles: " << splatted << " grids of 96 splatted");
     CHECK(splatted >= 48);
+    CHECK(differences == 0);
+}
+
+TEST_CASE("continuous gradient batches: every kernel's, 8 points a group or one by one, are their points") {
+    // Points on the 2^-16 grid, a sixth of them beside the int32 wrap of x or y, and (non-periodic noises)
+    // as many with an impulse exactly at their reach's entry edge (only its slope is non-zero); the default density and cells past 16
+    // impulses; periodic axes; grey and RGB, 8 bits (the groups) and 16 (one by one); a histogram mapping;
+    // a large radius (points with more cells than a group holds, one by one).
+    std::mt19937_64 random(29);
+    size_t differences = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u})
+            for (uint32_t impacts : {0u, 160u << 16})
+                for (uint32_t period : {0u, 45u})
+                    for (uint32_t radius : {4u, 40u}) {
+                        if (bits == 16 && (impacts != 0 || radius != 4)) continue;
+                        dsn::AssetFields fields = random_texton_asset(channels, radius, bits, 70 + channels);
+                        if (period != 0 && impacts == 0) fields.histogram = gradient_mapping(channels);
+                        const auto made = make_noise(fields, 3, impacts, period, period);
+                        std::vector<int64_t> xs, ys;
+                        for (int k = 0; k < 203; k++) {
+                            // within 128 texels of 0, on the 2^-16 grid (float64 holds them exactly)
+                            int64_t x = (int64_t(random()) >> 40) * 65536,
+                                    y = (int64_t(random()) >> 40) * 65536;
+                            if (k % 6 == 1) x += (int64_t(INT32_MAX) - 2) << 32;
+                            if (k % 6 == 4) y -= (int64_t(INT32_MAX) - 2) << 32;
+                            xs.push_back(x), ys.push_back(y);
+                        }
+                        if (period == 0) add_entry_edge_points(made->noise, random, 406, &xs, &ys);
+                        const std::vector<int32_t> expected = gradient_planes(
+                            uint32_t(xs.size()), 1, channels,
+                            [&](uint32_t i, uint32_t, int32_t *v, int32_t *gx, int32_t *gy) {
+                                return dsn_continuous_gradient_fixed(&made->noise, xs[i], ys[i], v, gx, gy);
+                            });
+                        const ContinuousGradientBatch batch = {made->noise, xs, ys};
+                        differences += kernel_tile_differences(made->noise, expected, batch);
+                    }
     CHECK(differences == 0);
 }
 

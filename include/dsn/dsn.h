@@ -687,8 +687,10 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    splat is splatted three times, in blocks of 64 x 8 pixels whose sums stay on the stack: at the grid,
    and at the grid moved 2^-16 texel along x and along y, the differences being the derivative's sums
    exactly (see the continuous mode above); but a grid whose move carries a periodic axis's int32 start
-   (X - 1) across its wrap, where the sums jump, goes point by point. An unfiltered filtered gradient tile
-   (level of detail 0, one tap) is the continuous one; the others go point by point.
+   (X - 1) across its wrap, where the sums jump, goes point by point. A batch goes 8 points at a time
+   through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its texels read
+   from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered filtered
+   gradient tile (level of detail 0, one tap) is the continuous one; the others go point by point.
    - Filtered evaluation (DSN_FILTERING): the derivative of the filtered noise, the same blend of the same
      levels at the same taps as the value: each level's exact derivative (its bilinear slopes per texel of
      the level, over 2^level per texel), normalized per level without its offset, blended with the

@@ -60,6 +60,17 @@ inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, in
    or DSN_ERR_CONTINUOUS_MISMATCH (continuous_point.cpp). */
 int dsn_internal_continuous_check(const dsn_noise_state *noise);
 
+/* A batch chunk's coordinates as the kernels read them: Q32.32 ones where they are, float64 ones converted
+   into `chunk` (dsn_coordinate_from_double). */
+inline const int64_t *dsn_chunk_coordinates(const int64_t *values, uint32_t first, uint32_t, int64_t *) {
+    return values + first;
+}
+inline const int64_t *dsn_chunk_coordinates(const double *values, uint32_t first, uint32_t points,
+                                            int64_t *chunk) {
+    for (uint32_t k = 0; k < points; k++) chunk[k] = dsn_coordinate_from_double(values[first + k]);
+    return chunk;
+}
+
 /* The Q16.16 values of the point (x, y), Q32.32 coordinates, on a noise that passed the check
    (continuous_point.cpp). */
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out);

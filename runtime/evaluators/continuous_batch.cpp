@@ -98,15 +98,6 @@ int check_batch(const dsn_noise_state *noise, const void *xs, const void *ys, ui
     return DSN_OK;
 }
 
-/* A chunk's coordinates as the kernels read them: Q32.32 ones where they are, float64 ones converted into
-   `chunk` (dsn_coordinate_from_double). */
-const int64_t *chunk_coordinates(const int64_t *values, uint32_t first, uint32_t, int64_t *) {
-    return values + first;
-}
-const int64_t *chunk_coordinates(const double *values, uint32_t first, uint32_t points, int64_t *chunk) {
-    for (uint32_t k = 0; k < points; k++) chunk[k] = dsn_coordinate_from_double(values[first + k]);
-    return chunk;
-}
 /* The points of a chunk: all of them at once where neither the coordinates nor the output are converted. */
 uint32_t chunk_points(const int64_t *, uint32_t count, dsn_output_kind kind) {
     return kind == dsn_output_fixed ? count : batch_chunk_points;
@@ -132,14 +123,14 @@ int batch_as(const dsn_noise_state *noise, const Coordinate *xs, const Coordinat
     const uint32_t chunk = chunk_points(xs, count, kind);
     for (uint32_t first = 0; first < count; first += chunk) {
         const uint32_t points = count - first < chunk ? count - first : chunk;
-        const int64_t *point_xs = chunk_coordinates(xs, first, points, chunk_x);
-        const int64_t *point_ys = chunk_coordinates(ys, first, points, chunk_y);
+        const int64_t *point_xs = dsn_chunk_coordinates(xs, first, points, chunk_x);
+        const int64_t *point_ys = dsn_chunk_coordinates(ys, first, points, chunk_y);
         if (kind == dsn_output_fixed) {
             batch(noise, quads, point_xs, point_ys, points,
-                  static_cast<int32_t *>(out) + size_t(first) * channels, work);
+                  static_cast<int32_t *>(out) + size_t(first) * channels, 0, 0, work);
             continue;
         }
-        batch(noise, quads, point_xs, point_ys, points, fixed, work);
+        batch(noise, quads, point_xs, point_ys, points, fixed, 0, 0, work);
         for (uint32_t k = 0; k < points; k++)
             dsn_store_pixel(out, kind, static_cast<size_t>(first + k) * channels, fixed + k * channels,
                             channels);

@@ -3,6 +3,7 @@
    the value, the slopes per texel without the mean; per point, grid tile and batch, fixed and float. */
 #include "core/continuous_internal.h"
 #include "core/gradient_output.h"
+#include "kernels/kernels.h"
 
 #if DSN_GRADIENTS
 
@@ -60,12 +61,24 @@ int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, 
     return dsn_gradient_grid(err, noise, grid, width, height, out, dx, dy, kind, point);
 }
 
-/* Point k is (xs[k], ys[k]); Coordinate is int64_t (Q32.32) or double (dsn_coordinate_from_double). */
-inline uint64_t batch_coordinate(int64_t value) { return static_cast<uint64_t>(value); }
-inline uint64_t batch_coordinate(double value) {
-    return static_cast<uint64_t>(dsn_coordinate_from_double(value));
+/* The batch kernel's gradients of the whole batch at once where nothing is converted (Q32.32 coordinates,
+   fixed output); 0 otherwise. */
+int whole_batch(dsn_continuous_batch_entry *batch, const dsn_noise_state *noise, const int64_t *xs,
+                const int64_t *ys, uint32_t count, void *out, void *dx, void *dy, dsn_output_kind kind) {
+    if (batch == 0 || kind != dsn_output_fixed) return 0;
+    batch(noise, 0, xs, ys, count, static_cast<int32_t *>(out), static_cast<int32_t *>(dx),
+          static_cast<int32_t *>(dy), 0);
+    return 1;
+}
+int whole_batch(dsn_continuous_batch_entry *, const dsn_noise_state *, const double *, const double *,
+                uint32_t, void *, void *, void *, dsn_output_kind) {
+    return 0;
 }
 
+const uint32_t batch_chunk = 32; /* points converted and stored at a time (2.5 KB of stack) */
+
+/* Point k is (xs[k], ys[k]); Coordinate is int64_t (Q32.32) or double. A chunk at a time through the
+   batch kernel (kernels.h), else point by point (builds without batches). */
 template <typename Coordinate>
 int batch_of_kind(const dsn_noise *handle, const Coordinate *xs, const Coordinate *ys, uint32_t count,
                   void *out, void *dx, void *dy, dsn_output_kind kind) {
@@ -74,11 +87,26 @@ int batch_of_kind(const dsn_noise *handle, const Coordinate *xs, const Coordinat
     if (err == DSN_OK && count != 0 && (xs == 0 || ys == 0 || out == 0 || dx == 0 || dy == 0))
         err = DSN_ERR_NULL;
     if (err != DSN_OK) return dsn_gradient_error(err, noise, out, dx, dy, kind, count);
+    dsn_continuous_batch_entry *batch = dsn_kernel_entries_of(noise->tile_kernel)->continuous_batch;
     const uint32_t channels = noise->asset.channels;
-    int32_t values[3 * DSN_MAX_CHANNELS];
-    for (uint32_t k = 0; k < count; k++) {
-        dsn_internal_continuous_gradient(noise, batch_coordinate(xs[k]), batch_coordinate(ys[k]), values);
-        dsn_store_gradient(out, dx, dy, kind, static_cast<size_t>(k) * channels, values, channels);
+    if (whole_batch(batch, noise, xs, ys, count, out, dx, dy, kind)) return DSN_OK;
+    int64_t chunk_x[batch_chunk], chunk_y[batch_chunk];
+    int32_t fixed[3][batch_chunk * DSN_MAX_CHANNELS], values[3 * DSN_MAX_CHANNELS];
+    for (uint32_t first = 0; first < count; first += batch_chunk) {
+        const uint32_t points = count - first < batch_chunk ? count - first : batch_chunk;
+        const int64_t *point_xs = dsn_chunk_coordinates(xs, first, points, chunk_x);
+        const int64_t *point_ys = dsn_chunk_coordinates(ys, first, points, chunk_y);
+        if (batch != 0) batch(noise, 0, point_xs, point_ys, points, fixed[0], fixed[1], fixed[2], 0);
+        for (uint32_t k = 0; k < points; k++) {
+            if (batch == 0)
+                dsn_internal_continuous_gradient(noise, static_cast<uint64_t>(point_xs[k]),
+                                                 static_cast<uint64_t>(point_ys[k]), values);
+            else
+                for (uint32_t c = 0; c < channels; c++)
+                    for (uint32_t part = 0; part < 3; part++)
+                        values[part * DSN_MAX_CHANNELS + c] = fixed[part][k * channels + c];
+            dsn_store_gradient(out, dx, dy, kind, static_cast<size_t>(first + k) * channels, values, channels);
+        }
     }
     return DSN_OK;
 }

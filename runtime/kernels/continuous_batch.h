@@ -15,7 +15,8 @@
         bordered by zeros (so that texels outside the window need no test), added to the point's 64-bit
         sums; 8 candidates at a time on AVX2 vectors (8-bit textons), else one by one.
    The sums are then normalized (normalize_q32). The same impulses, offsets, weights and integers as per
-   point; integer sums modulo 2^64 do not depend on the order, so the bits are the per-point ones. */
+   point; integer sums modulo 2^64 do not depend on the order, so the bits are the per-point ones.
+   The batch's gradients (batch_gradients) take the groups where the values do, else go point by point. */
 #ifndef DSN_CONTINUOUS_BATCH_H
 #define DSN_CONTINUOUS_BATCH_H
 
@@ -390,13 +391,44 @@ void batch_points(const dsn_noise_state *noise, const uint32_t *quads, const int
     }
 }
 
+#if DSN_GRADIENTS
+/* The batch's gradients (the entry's dx): with AVX2, the groups of continuous_batch_group.h for the noises
+   the vector per-point evaluator takes; else point by point. */
+inline void batch_gradients(const dsn_noise_state *noise, const int64_t *xs, const int64_t *ys,
+                            uint32_t count, int32_t *out, int32_t *dx, int32_t *dy) {
+    const uint32_t channels = noise->asset.channels;
+#if defined(__AVX2__)
+    if (point_vector_takes(noise)) {
+        channels == 3 ? batch_group_gradients<3>(noise, xs, ys, count, out, dx, dy)
+                      : batch_group_gradients<1>(noise, xs, ys, count, out, dx, dy);
+        return;
+    }
+#endif
+    for (uint32_t k = 0; k < count; k++) {
+        int32_t values[3 * DSN_MAX_CHANNELS];
+        dsn_internal_continuous_gradient(noise, static_cast<uint64_t>(xs[k]), static_cast<uint64_t>(ys[k]),
+                                         values);
+        store_gradient_point(values, channels, static_cast<size_t>(k) * channels, out, dx, dy);
+    }
+}
+#endif
+
 /* The kernel entry. With AVX2 (the AVX2 and AVX-512 kernels, or a default kernel built for AVX2) the
    groups of continuous_batch_group.h for the noises the vector per-point evaluator takes (faster than the
    passes above there), else the passes above, one copy per channel count and value size. Without,
    those (pass 2 one candidate at a time) measured slower than the per-point evaluator with its SSE2 bilinear
    reads, which the entry then calls point by point (work and quads unused). */
 inline void continuous_batch(const dsn_noise_state *noise, const uint32_t *quads, const int64_t *xs,
-                             const int64_t *ys, uint32_t count, int32_t *out, void *work) {
+                             const int64_t *ys, uint32_t count, int32_t *out, int32_t *dx, int32_t *dy,
+                             void *work) {
+#if DSN_GRADIENTS
+    if (dx != 0) {
+        batch_gradients(noise, xs, ys, count, out, dx, dy);
+        return;
+    }
+#else
+    (void)dx, (void)dy;
+#endif
 #if defined(__AVX2__)
     if (point_vector_takes(noise)) { /* faster there */
         noise->asset.channels == 3 ? batch_groups<3>(noise, quads, xs, ys, count, out)

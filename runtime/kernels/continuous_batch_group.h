@@ -8,14 +8,32 @@
    (continuous_batch.h: one gather per channel, AVX-512 two channels a read; no test at the window's edge;
    continuous_batch.cpp builds it for large batches only), and the group's sums normalized on vectors, a
    point in each 64-bit lane (splat_row.h). A point with more cells along an axis goes through the
-   per-point evaluator. The same cells, keys, counts and pairs as per point, so the same bits. Internal to
-   libdsn; not installed (everything here has internal linkage). */
+   per-point evaluator. The same cells, keys, counts and pairs as per point, so the same bits. The
+   gradient (batch_group_gradients) takes the same groups, sifted with the entry edge, each point's
+   candidates visited with their slopes (continuous_point_vector.h's SlopeVisit). Internal to libdsn; not
+   installed (everything here has internal linkage). */
 #ifndef DSN_CONTINUOUS_BATCH_GROUP_H
 #define DSN_CONTINUOUS_BATCH_GROUP_H
 
+#include "core/gradient_output.h"
 #include "kernels/continuous_point_vector.h"
 #include "kernels/splat_row.h"
 #include "simd/simd_mix64.h"
+
+#if DSN_GRADIENTS
+namespace {
+/* A point's gradient (dsn_internal_continuous_gradient's values: value, dx, dy, DSN_MAX_CHANNELS apart)
+   into the batch's outputs at value `first`. */
+inline void store_gradient_point(const int32_t *values, uint32_t channels, size_t first, int32_t *out,
+                                 int32_t *dx, int32_t *dy) {
+    for (uint32_t c = 0; c < channels; c++) {
+        out[first + c] = values[c];
+        dx[first + c] = values[DSN_MAX_CHANNELS + c];
+        dy[first + c] = values[2 * DSN_MAX_CHANNELS + c];
+    }
+}
+} // namespace
+#endif
 
 #if defined(__AVX2__)
 namespace {
@@ -78,8 +96,11 @@ struct GroupAxis {
    shifted_base = (W + radius + 1) 2^32 + f, and the halves' bounds floor((shifted_base - 2 reach) / 2^k)
    and floor((shifted_base - 1) / 2^k), k = 28 + shift (4-bit halves, shift <= 4), are
    (W - radius - 1) 2^(32 - k) + (f >> k) and (W + radius + 1) 2^(32 - k) + ((f - 1) >> k), less
-   2^(32 - k) where f = 0 (f - 1 wraps to 2^32 - 1 there, where the floor of -1 / 2^k is -1). Returns the
-   points (bit p) whose window has at most group_cells cells. */
+   2^(32 - k) where f = 0 (f - 1 wraps to 2^32 - 1 there, where the floor of -1 / 2^k is -1). EntryEdge
+   (the gradient's cell_axis_with_entry_edge): the high bound floor(shifted_base / 2^k),
+   (W + radius + 1) 2^(32 - k) + (f >> k). Returns the points (bit p) whose window has at most
+   group_cells cells. */
+template <bool EntryEdge>
 inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const int64_t *coordinates,
                            uint32_t count, GroupAxis *cells) {
     uint32_t whole[group_points], fraction[group_points];
@@ -102,7 +123,9 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
     const uint32_t fits =
         static_cast<uint32_t>(top_bits_of_32(greater_32(set_8x32(group_cells + 1u), cell_count)));
     const vector_256 sign = set_8x32(0x80000000u), room_limit = set_8x32(((1u << shift) - 1u) ^ 0x80000000u);
-    const vector_256 f_zero = bitwise_and(equal_32(f, zero_256()), set_8x32(0u - (1u << up)));
+    const vector_256 f_high = EntryEdge ? f : subtract_32(f, one);
+    const vector_256 f_zero =
+        EntryEdge ? zero_256() : bitwise_and(equal_32(f, zero_256()), set_8x32(0u - (1u << up)));
     const vector_256 bytes = set_8x32(0x01010101u), tops = set_8x32(0x80808080u); /* FieldLanes's */
     for (uint32_t i = 0; i < group_cells; i++) {
         const vector_256 index = bitwise_and(add_32(first_cell, set_8x32(i)), set_8x32(0xFFFFFFFFu >> shift));
@@ -110,7 +133,7 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
         const vector_256 low_half = add_32(shift_left_32_by(subtract_32(w, set_8x32(radius + 1u)), by_up),
                                            shift_right_logical_32_by(f, by_k));
         vector_256 high_half = add_32(add_32(shift_left_32_by(add_32(w, set_8x32(radius + 1u)), by_up),
-                                             shift_right_logical_32_by(subtract_32(f, one), by_k)),
+                                             shift_right_logical_32_by(f_high, by_k)),
                                       f_zero);
         /* the period's end (none: last_position 2^32 - 1) */
         const vector_256 room = bitwise_xor(origin, set_8x32(0xFFFFFFFFu));
@@ -133,6 +156,7 @@ inline uint32_t group_axis(const dsn_noise_state *noise, uint32_t axis, const in
 }
 
 /* group_axis along a periodic axis, point by point (axis_cells). */
+template <bool EntryEdge>
 inline uint32_t group_periodic_axis(const dsn_noise_state *noise, uint32_t axis, const int64_t *coordinates,
                                     uint32_t count, const FieldLanes &lanes, GroupAxis *cells) {
     uint32_t fits = 0;
@@ -141,7 +165,7 @@ inline uint32_t group_periodic_axis(const dsn_noise_state *noise, uint32_t axis,
         AxisCells point;
         point.count = 0;
         if (p < count &&
-            axis_cells(point_axis(static_cast<uint64_t>(coordinates[p]), noise->radius[axis],
+            axis_cells<EntryEdge>(point_axis(static_cast<uint64_t>(coordinates[p]), noise->radius[axis],
                                   noise->cell_shift, noise->period[axis]),
                        lanes, &point) &&
             point.count <= group_cells)
@@ -186,15 +210,16 @@ inline vector_256 point_lanes(uint32_t points) {
 }
 
 /* Fills the group for points xs[0 .. count - 1], count <= group_points; returns the points (bit p) whose
-   cells fit the vectors (at most group_cells along each axis). */
+   cells fit the vectors (at most group_cells along each axis). EntryEdge: the gradient's sifting. */
+template <bool EntryEdge>
 inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shared, const int64_t *xs,
                            const int64_t *ys, uint32_t count, PointGroup *group) {
     const uint32_t fits_x = noise->period[0] == 0
-                                ? group_axis(noise, 0, xs, count, &group->columns)
-                                : group_periodic_axis(noise, 0, xs, count, shared.lanes, &group->columns);
+                                ? group_axis<EntryEdge>(noise, 0, xs, count, &group->columns)
+                                : group_periodic_axis<EntryEdge>(noise, 0, xs, count, shared.lanes, &group->columns);
     const uint32_t fits_y = noise->period[1] == 0
-                                ? group_axis(noise, 1, ys, count, &group->rows)
-                                : group_periodic_axis(noise, 1, ys, count, shared.lanes, &group->rows);
+                                ? group_axis<EntryEdge>(noise, 1, ys, count, &group->rows)
+                                : group_periodic_axis<EntryEdge>(noise, 1, ys, count, shared.lanes, &group->rows);
     const uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
     const vector_256 seed_row = set_8x32(noise->seed_row), seed_column = set_8x32(noise->seed_column);
     for (uint32_t j = 0; j < group_cells; j++) {
@@ -357,20 +382,12 @@ inline CellAxis group_cell_axis(const GroupAxis &cells, uint32_t i, uint32_t p) 
     return axis;
 }
 
-/* point_vector_sum's sums of point p of the group, its cells' first two pairs from group_pairs: channel c
-   at sums[c group_points + p]. */
-template <uint32_t Channels>
-void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, const PointGroup &group,
-                     const GroupPairs &pairs, uint32_t p, const uint32_t *quads, uint64_t *sums) {
-    PointVisit<Channels> visit;
-    point_visit_begin<Channels>(noise, group_bases(group.columns, p), group_bases(group.rows, p), quads,
-                                &visit);
-    /* The candidates are stored at any 4-byte offset, and a store that crosses a page costs far more
-       than one that crosses a cache line: 1024-byte alignment keeps the buffer (644 bytes) within one
-       page. */
-    alignas(1024) PointCandidates candidates;
-    static_assert(sizeof(PointCandidates) <= 1024, "the candidates must fit their alignment");
-    candidates.count = 0;
+/* Buffers the candidates of point p's cells in the group, their first two pairs from group_pairs,
+   visiting the buffer whenever it might not hold a cell's next pairs (the last visit is the caller's). */
+template <class Visit>
+DSN_POINT_INLINE void group_point_cells(const FieldLanes &lanes, const PointGroup &group,
+                                        const GroupPairs &pairs, uint32_t p, Visit *visit,
+                                        PointCandidates *candidates) {
     /* every cell of the vectors (those past the point's have no impulse): no branch on the cells' number;
        unrolled, each cell's offsets and indices are constants */
 #pragma GCC unroll 9
@@ -378,19 +395,34 @@ void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, cons
         const uint32_t i = cell % group_cells, j = cell / group_cells, indices = cell_indices(i, j);
         const uint32_t key = group.keys[cell * group_points + p],
                        count = group.counts[cell * group_points + p];
-        if (candidates.count > point_vector_slots - 16u)
-            visit_point_candidates<Channels>(&visit, &candidates);
+        if (candidates->count > point_vector_slots - 16u) visit_candidates(visit, candidates);
         const uint32_t sifted = (pairs.sifted[cell][p / 2u] >> (16u * (p % 2u))) & 0xFFFFu;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-        add_sifted_pairs(&candidates, key, load_2x64(pairs.pairs[cell] + 2u * p), sifted, indices);
+        add_sifted_pairs(candidates, key, load_2x64(pairs.pairs[cell] + 2u * p), sifted, indices);
 #else
-        add_sifted_pair(&candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
-        add_sifted_pair(&candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
+        add_sifted_pair(candidates, key, 0, pairs.pairs[cell][2u * p], sifted & 0xFFu, indices);
+        add_sifted_pair(candidates, key, 8, pairs.pairs[cell][2u * p + 1u], sifted >> 8, indices);
 #endif
         if (count > 16u)
-            add_later_pairs(&visit, &candidates, key, count, lanes, group_cell_axis(group.columns, i, p),
+            add_later_pairs(visit, candidates, key, count, lanes, group_cell_axis(group.columns, i, p),
                             group_cell_axis(group.rows, j, p), indices);
     }
+}
+
+/* The candidates are stored at any 4-byte offset, and a store that crosses a page costs far more than one
+   that crosses a cache line: 1024-byte alignment keeps the buffer (644 bytes) within one page. */
+static_assert(sizeof(PointCandidates) <= 1024, "the candidates must fit their alignment");
+
+/* point_vector_sum's sums of point p of the group: channel c at sums[c group_points + p]. */
+template <uint32_t Channels>
+void group_point_sum(const dsn_noise_state *noise, const FieldLanes &lanes, const PointGroup &group,
+                     const GroupPairs &pairs, uint32_t p, const uint32_t *quads, uint64_t *sums) {
+    PointVisit<Channels> visit;
+    point_visit_begin<Channels>(noise, group_bases(group.columns, p), group_bases(group.rows, p), quads,
+                                &visit);
+    alignas(1024) PointCandidates candidates;
+    candidates.count = 0;
+    group_point_cells(lanes, group, pairs, p, &visit, &candidates);
     point_visit_sums<Channels>(&visit, &candidates, sums + p, group_points);
 }
 
@@ -407,7 +439,7 @@ void batch_groups(const dsn_noise_state *noise, const uint32_t *quads, const int
     uint64_t sums[Channels * group_points];
     for (uint32_t first = 0; first < count; first += group_points) {
         const uint32_t points = count - first < group_points ? count - first : group_points;
-        const uint32_t fits = fill_group(noise, shared, xs + first, ys + first, points, &group);
+        const uint32_t fits = fill_group<false>(noise, shared, xs + first, ys + first, points, &group);
         group_pairs(group, shared.lanes, &pairs);
         for (uint32_t k = 0; k < Channels * group_points; k++) sums[k] = 0;
         for (uint32_t p = 0; p < points; p++)
@@ -427,6 +459,67 @@ void batch_groups(const dsn_noise_state *noise, const uint32_t *quads, const int
         }
     }
 }
+
+#if DSN_GRADIENTS
+/* point_slopes's sums of point p of the group (the texels read from the texton: a gradient call builds no
+   quad table), its cells sifted with the entry edge (fill_group<true>): channel c at sums[0] (the value),
+   sums[1] and sums[2] (the slopes per texel, times 2^16), index c group_points + p. */
+template <uint32_t Channels>
+void group_point_slopes(const dsn_noise_state *noise, const FieldLanes &lanes, const PointGroup &group,
+                        const GroupPairs &pairs, uint32_t p, uint64_t (*sums)[Channels * group_points]) {
+    SlopeVisit<Channels> visit;
+    slope_visit_begin<Channels>(noise, group_bases(group.columns, p), group_bases(group.rows, p), &visit);
+    alignas(1024) PointCandidates candidates;
+    candidates.count = 0;
+    group_point_cells(lanes, group, pairs, p, &visit, &candidates);
+    visit_candidates(&visit, &candidates);
+    uint64_t value[DSN_MAX_CHANNELS], slope_x[DSN_MAX_CHANNELS], slope_y[DSN_MAX_CHANNELS];
+    slope_visit_sums(visit, value, slope_x, slope_y);
+    for (uint32_t c = 0; c < Channels; c++) {
+        sums[0][c * group_points + p] = value[c];
+        sums[1][c * group_points + p] = slope_x[c] << 16;
+        sums[2][c * group_points + p] = slope_y[c] << 16;
+    }
+}
+
+/* The batch's gradients (dsn_internal_continuous_gradient's values of each point) into out, dx and dy,
+   Channels values a point each: a group's sums normalized on vectors (the slopes without the mean), then
+   the mapping's chain rule point by point. */
+template <uint32_t Channels>
+void batch_group_gradients(const dsn_noise_state *noise, const int64_t *xs, const int64_t *ys,
+                           uint32_t count, int32_t *out, int32_t *dx, int32_t *dy) {
+    const GroupShared shared = group_shared(noise);
+    PointGroup group;
+    GroupPairs pairs;
+    /* the sums of the group's points that fit (the others' zero: defined values, written over) */
+    uint64_t sums[3][Channels * group_points];
+    int32_t normalized[3][Channels * group_points];
+    for (uint32_t first = 0; first < count; first += group_points) {
+        const uint32_t points = count - first < group_points ? count - first : group_points;
+        const uint32_t fits = fill_group<true>(noise, shared, xs + first, ys + first, points, &group);
+        group_pairs(group, shared.lanes, &pairs);
+        for (uint32_t k = 0; k < Channels * group_points; k++) sums[0][k] = sums[1][k] = sums[2][k] = 0;
+        for (uint32_t p = 0; p < points; p++)
+            if ((fits >> p) & 1u) group_point_slopes<Channels>(noise, shared.lanes, group, pairs, p, sums);
+        splat_normalize_from(noise, noise->offset, sums[0], group_points, points, normalized[0]);
+        splat_normalize_from(noise, dsn_no_offset, sums[1], group_points, points, normalized[1]);
+        splat_normalize_from(noise, dsn_no_offset, sums[2], group_points, points, normalized[2]);
+        for (uint32_t p = 0; p < points; p++) {
+            int32_t values[3 * DSN_MAX_CHANNELS];
+            if ((fits >> p) & 1u) {
+                for (uint32_t part = 0; part < 3; part++)
+                    for (uint32_t c = 0; c < Channels; c++)
+                        values[part * DSN_MAX_CHANNELS + c] = normalized[part][p * Channels + c];
+                dsn_map_gradient(noise, values, values + DSN_MAX_CHANNELS, values + 2 * DSN_MAX_CHANNELS);
+            } else {
+                dsn_internal_continuous_gradient(noise, static_cast<uint64_t>(xs[first + p]),
+                                                 static_cast<uint64_t>(ys[first + p]), values);
+            }
+            store_gradient_point(values, Channels, static_cast<size_t>(first + p) * Channels, out, dx, dy);
+        }
+    }
+}
+#endif
 
 } // namespace
 #endif /* __AVX2__ */

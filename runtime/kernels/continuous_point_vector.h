@@ -9,8 +9,9 @@
    each where it lies inside the window (no branch at the window's edge; AVX-512: both texels of a row by
    one 8-byte read). The same impulses, offsets, weights and integers as the evaluator, so the same bits.
    The gradient's sums (the value and both slopes, continuous_internal.h) take the same walk with the
-   entry edge in its sifting, 8 candidates at a time. Internal to libdsn; not installed (everything here
-   has internal linkage). */
+   entry edge in its sifting, the texels read as the value's (AVX-512: 16 candidates at a time), the
+   slopes summed beside the values. Internal to libdsn; not installed (everything here has internal
+   linkage). */
 #ifndef DSN_CONTINUOUS_POINT_VECTOR_H
 #define DSN_CONTINUOUS_POINT_VECTOR_H
 
@@ -337,15 +338,22 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
    texel's channels end at byte 3 of the read and the right one's start at byte 4: the gathered words'
    low and high halves, each zeroed where its texel is outside. The reads reach at most 4 bytes before
    the texton and 4 past it: into the asset's header (format.h: header_size >= 128) and 4-byte CRC, in the
-   buffer that the loader checked (asset.cpp sets the texton there only). */
+   buffer that the loader checked (asset.cpp sets the texton there only). texton_pairs_16 reads the
+   texels (top left, top right, bottom left, bottom right: the left ones' channels end at byte 3 of a
+   lane, the right ones' start at byte 0) and the weights, add_texton_pairs_16 adds their values. */
+struct TextonTexels16 {
+    vector_512 texel[4];
+    vector_512 across, down;
+};
+
 template <uint32_t Channels>
-DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
-                                          vector_512 s_x, vector_512 s_y, mask_16 reach, vector_512 *sums) {
+DSN_POINT_INLINE void texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
+                                      vector_512 s_x, vector_512 s_y, mask_16 reach, TextonTexels16 *texels) {
     const vector_512 low_16 = set_16x32(0xFFFF), one = set_16x32(1);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
     const vector_512 row = subtract_32(lower_row, one);
-    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    texels->across = bitwise_and(s_x, low_16), texels->down = bitwise_and(s_y, low_16);
     const vector_512 last_column = set_16x32(width - 1u), last_row = set_16x32(height - 1u);
     const mask_16 left = less_equal_unsigned_32(subtract_32(right_column, one), last_column),
                   right = less_equal_unsigned_32(right_column, last_column);
@@ -358,24 +366,32 @@ DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t 
     const vector_512 below = add_32(at, set_16x32(width * Channels));
     const vector_512 lows = set_lanes_16x32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
                      highs = set_lanes_16x32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
-    vector_512 texels[4]; /* top left, top right, bottom left, bottom right */
     for (uint32_t pass = 0; pass < 2; pass++) {
         const mask_16 rows = pass == 0 ? top : bottom;
         const vector_512 from = pass == 0 ? at : below;
         const vector_512 first = gather_masked_64<1>(texton, low_256(from), static_cast<mask_8>(rows)),
                          second = gather_masked_64<1>(texton, high_256(from), static_cast<mask_8>(rows >> 8));
-        texels[2 * pass] = permute_32_of_two_or_zero(left, first, lows, second);
-        texels[2 * pass + 1] = permute_32_of_two_or_zero(right, first, highs, second);
+        texels->texel[2 * pass] = permute_32_of_two_or_zero(left, first, lows, second);
+        texels->texel[2 * pass + 1] = permute_32_of_two_or_zero(right, first, highs, second);
     }
-    for (uint32_t c = 0; c < Channels; c++)
-        add_bilinear_16(lane_byte_16(texels[0], 4u - Channels + c), lane_byte_16(texels[1], c),
-                        lane_byte_16(texels[2], 4u - Channels + c), lane_byte_16(texels[3], c), across, down,
-                        &sums[c]);
 }
 
 template <uint32_t Channels>
-DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
-                                     uint32_t first, uint32_t valid) {
+DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
+                                          vector_512 s_x, vector_512 s_y, mask_16 reach, vector_512 *sums) {
+    TextonTexels16 texels;
+    texton_pairs_16<Channels>(texton, width, height, s_x, s_y, reach, &texels);
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(texels.texel[0], 4u - Channels + c), lane_byte_16(texels.texel[1], c),
+                        lane_byte_16(texels.texel[2], 4u - Channels + c), lane_byte_16(texels.texel[3], c),
+                        texels.across, texels.down, &sums[c]);
+}
+
+/* candidate_offsets_8 on 16 lanes: candidates first .. first + 15 of which the first `valid` exist. */
+template <uint32_t Channels>
+DSN_POINT_INLINE mask_16 candidate_offsets_16(const PointVisit<Channels> *visit,
+                                              const PointCandidates &candidates, uint32_t first,
+                                              uint32_t valid, vector_512 *offset_x, vector_512 *offset_y) {
     const vector_512 fraction = mix32_16(load_16x32(candidates.stream + first));
     const vector_512 packed = load_16x32(candidates.field + first);
     /* impulse_bits_16, each axis's field bits selected into bits 12 .. 15 */
@@ -392,8 +408,16 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
     const vector_512 s_x = subtract_32(base_x, shift_left_32_by(bits_x, visit->shift));
     const vector_512 s_y = subtract_32(base_y, shift_left_32_by(bits_y, visit->shift));
     const mask_16 exists = static_cast<mask_16>(valid >= 16u ? 0xFFFFu : (1u << valid) - 1u);
-    const mask_16 reach = less_equal_unsigned_32(
-        less_equal_unsigned_32(exists, s_x, set_16x32(visit->last_x)), s_y, set_16x32(visit->last_y));
+    *offset_x = s_x, *offset_y = s_y;
+    return less_equal_unsigned_32(less_equal_unsigned_32(exists, s_x, set_16x32(visit->last_x)), s_y,
+                                  set_16x32(visit->last_y));
+}
+
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCandidates &candidates,
+                                     uint32_t first, uint32_t valid) {
+    vector_512 s_x, s_y;
+    const mask_16 reach = candidate_offsets_16(visit, candidates, first, valid, &s_x, &s_y);
     if (visit->quads != 0)
         add_quad_reads_16<Channels>(visit->quads, visit->quad_row, s_x, s_y, reach, visit->wide_sums);
     else
@@ -422,11 +446,14 @@ inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates 
 
 #if DSN_GRADIENTS
 /* A visit that sums the slopes too (the gradient, dsn.h "Gradients"): 64-bit lanes per channel and axis,
-   beside the values' sums. Always 8 candidates at a time. */
+   beside the values' sums (AVX-512: those of 16 candidates at a time in wide_slope_x and wide_slope_y). */
 template <uint32_t Channels>
 struct SlopeVisit {
     PointVisit<Channels> values;
     vector_256 slope_x[Channels], slope_y[Channels];
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    vector_512 wide_slope_x[Channels], wide_slope_y[Channels];
+#endif
 };
 
 /* Sign-extended 32-bit lanes added to 64-bit lanes: the even lanes, then the odd ones. */
@@ -463,14 +490,57 @@ DSN_POINT_INLINE void add_window_slopes_8(const unsigned char *values, uint32_t 
     }
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* Sign-extended 32-bit lanes added to 64-bit lanes, 16 of them. */
+DSN_POINT_INLINE vector_512 add_widened_32(vector_512 sums, vector_512 values) {
+    const vector_512 one = set_16x32(1);
+    return add_64(sums, add_64(multiply_even_32(values, one),
+                               multiply_even_32(shift_right_logical_64(values, 32), one)));
+}
+
+/* add_window_slopes_8 on 16 lanes, the texels read as add_texton_pairs_16 reads them. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_texton_slopes_16(const unsigned char *texton, uint32_t width, uint32_t height,
+                                           vector_512 s_x, vector_512 s_y, mask_16 reach,
+                                           SlopeVisit<Channels> *visit) {
+    TextonTexels16 texels;
+    texton_pairs_16<Channels>(texton, width, height, s_x, s_y, reach, &texels);
+    const vector_512 full = set_16x32(65536);
+    const vector_512 above = subtract_32(full, texels.down), before = subtract_32(full, texels.across);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const vector_512 a = lane_byte_16(texels.texel[0], 4u - Channels + c),
+                         b = lane_byte_16(texels.texel[1], c),
+                         d = lane_byte_16(texels.texel[2], 4u - Channels + c),
+                         e = lane_byte_16(texels.texel[3], c);
+        add_bilinear_16(a, b, d, e, texels.across, texels.down, &visit->values.wide_sums[c]);
+        const vector_512 along_x =
+            add_32(multiply_32(above, subtract_32(b, a)), multiply_32(texels.down, subtract_32(e, d)));
+        const vector_512 along_y =
+            add_32(multiply_32(before, subtract_32(d, a)), multiply_32(texels.across, subtract_32(e, b)));
+        visit->wide_slope_x[c] = add_widened_32(visit->wide_slope_x[c], along_x);
+        visit->wide_slope_y[c] = add_widened_32(visit->wide_slope_y[c], along_y);
+    }
+}
+#endif
+
 /* Visits the buffered candidates with their slopes and empties the buffer. */
 template <uint32_t Channels>
 inline void visit_candidates(SlopeVisit<Channels> *visit, PointCandidates *candidates) {
     const uint32_t count = candidates->count;
+    /* The lanes past the last candidate hold zeros (defined values; the count leaves them out). */
     const vector_256 zero = zero_256();
-    store_8x32(candidates->stream + count, zero), store_8x32(candidates->field + count, zero);
+    for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u)
+        store_8x32(candidates->stream + pad, zero), store_8x32(candidates->field + pad, zero);
     const PointVisit<Channels> &values = visit->values;
-    for (uint32_t first = 0; first < count; first += 8u) {
+    uint32_t first = 0;
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    for (; first + 8u < count; first += 16u) {
+        vector_512 s_x, s_y;
+        const mask_16 reach = candidate_offsets_16(&values, *candidates, first, count - first, &s_x, &s_y);
+        add_texton_slopes_16<Channels>(values.texton, values.width, values.height, s_x, s_y, reach, visit);
+    }
+#endif
+    for (; first < count; first += 8u) {
         vector_256 s_x, s_y;
         const vector_256 reach = candidate_offsets_8(&values, *candidates, first, count - first, &s_x, &s_y);
         add_window_slopes_8<Channels>(values.texton, values.width, values.height, s_x, s_y, reach, visit);
@@ -659,17 +729,35 @@ DSN_POINT_INLINE void point_visit_begin(const dsn_noise_state *noise, vector_256
     }
 }
 
+/* The bases of an axis's cells by their indices (the lanes past its cells are not read: masked, defined
+   values). */
+DSN_POINT_INLINE vector_256 cell_bases(const AxisCells &cells) {
+    return load_masked_8x32(cells.base,
+                            greater_32(set_8x32(cells.count), set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7)));
+}
+
 /* point_visit_begin for the point whose cells are columns x rows. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void point_visit_start(const dsn_noise_state *noise, const AxisCells &columns,
                                         const AxisCells &rows, const uint32_t *quads,
                                         PointVisit<Channels> *visit) {
-    /* the bases past the axes' cells are not read (masked: defined values) */
-    const vector_256 indices = set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7);
-    point_visit_begin<Channels>(
-        noise, load_masked_8x32(columns.base, greater_32(set_8x32(columns.count), indices)),
-        load_masked_8x32(rows.base, greater_32(set_8x32(rows.count), indices)), quads, visit);
+    point_visit_begin<Channels>(noise, cell_bases(columns), cell_bases(rows), quads, visit);
 }
+
+#if DSN_GRADIENTS
+/* A slope visit with zero sums (point_visit_begin's, then the slopes'). */
+template <uint32_t Channels>
+DSN_POINT_INLINE void slope_visit_begin(const dsn_noise_state *noise, vector_256 column_bases,
+                                        vector_256 row_bases, SlopeVisit<Channels> *visit) {
+    point_visit_begin<Channels>(noise, column_bases, row_bases, 0, &visit->values);
+    for (uint32_t c = 0; c < Channels; c++) {
+        visit->slope_x[c] = visit->slope_y[c] = zero_256();
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        visit->wide_slope_x[c] = visit->wide_slope_y[c] = zero_512();
+#endif
+    }
+}
+#endif
 
 /* Buffers the candidates of a cell's pairs from impulse 16 on (cells of more than 16 impulses), visiting
    the buffer whenever a pair might not fit. */
@@ -778,6 +866,26 @@ inline uint64_t lane_total(vector_256 lanes) {
     __builtin_memcpy(values, &lanes, sizeof values);
     return values[0] + values[1] + values[2] + values[3];
 }
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+inline uint64_t lane_total(vector_512 lanes) { return lane_total(low_256(lanes)) + lane_total(high_256(lanes)); }
+#endif
+
+/* A slope visit's sums, channel c at value[c], slope_x[c], slope_y[c] (0 past the channels). */
+template <uint32_t Channels>
+inline void slope_visit_sums(const SlopeVisit<Channels> &visit, uint64_t *value, uint64_t *slope_x,
+                             uint64_t *slope_y) {
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) value[c] = slope_x[c] = slope_y[c] = 0;
+    for (uint32_t c = 0; c < Channels; c++) {
+        value[c] = lane_total(visit.values.sums[c]);
+        slope_x[c] = lane_total(visit.slope_x[c]);
+        slope_y[c] = lane_total(visit.slope_y[c]);
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        value[c] += lane_total(visit.values.wide_sums[c]);
+        slope_x[c] += lane_total(visit.wide_slope_x[c]);
+        slope_y[c] += lane_total(visit.wide_slope_y[c]);
+#endif
+    }
+}
 
 /* dsn_internal_continuous_slopes's sums (continuous_internal.h), the impulses at the entry edge included;
    0 for a point with more than point_vector_cells cells along an axis. */
@@ -790,18 +898,12 @@ int point_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t 
     uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
     cell_keys_and_counts(noise, columns, rows, keys, counts);
     SlopeVisit<Channels> visit;
-    point_visit_start<Channels>(noise, columns, rows, 0, &visit.values);
-    for (uint32_t c = 0; c < Channels; c++) visit.slope_x[c] = visit.slope_y[c] = zero_256();
+    slope_visit_begin<Channels>(noise, cell_bases(columns), cell_bases(rows), &visit);
     PointCandidates candidates;
     candidates.count = 0;
     visit_cells(lanes, columns, rows, keys, counts, columns.count, 1, &visit, &candidates);
     visit_candidates(&visit, &candidates);
-    for (uint32_t c = 0; c < Channels; c++) {
-        value[c] = lane_total(visit.values.sums[c]);
-        slope_x[c] = lane_total(visit.slope_x[c]);
-        slope_y[c] = lane_total(visit.slope_y[c]);
-    }
-    for (uint32_t c = Channels; c < DSN_MAX_CHANNELS; c++) value[c] = slope_x[c] = slope_y[c] = 0;
+    slope_visit_sums(visit, value, slope_x, slope_y);
     return 1;
 }
 #endif

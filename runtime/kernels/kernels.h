@@ -41,10 +41,12 @@ typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
 
 /* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),
    Q32.32, into out[k * channels], reading the texton from `quads` (continuous_batch.h's 2 x 2 texel
-   table, built by continuous_batch.cpp) and using `work` (batch_work_bytes bytes, 64-byte aligned). */
+   table, built by continuous_batch.cpp) and using `work` (batch_work_bytes bytes, 64-byte aligned).
+   Where dx is not null (DSN_GRADIENTS), the gradient instead: the values, x and y derivatives of
+   dsn_internal_continuous_gradient into out, dx and dy, with neither quads nor work (both null). */
 typedef void dsn_continuous_batch_entry(const dsn_noise_state *noise, const uint32_t *quads,
                                         const int64_t *xs, const int64_t *ys, uint32_t count, int32_t *out,
-                                        void *work);
+                                        int32_t *dx, int32_t *dy, void *work);
 
 /* The runs of pixels one impulse of the grid splat reaches (grid_splat.cpp), one per row
    of a block: the offsets (pixel - impulse) of the run's first pixel, all `count` pixels within reach,

@@ -452,8 +452,8 @@ inline splat_vector splat_high_times(splat_vector value, splat_vector factor) {
    vectors, interleaved by permutes, where the ops header has splat_store_pixels). Pixels past the last whole
    vector go one by one. */
 template <uint32_t Channels>
-void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, size_t plane, uint32_t count,
-                            int32_t *out) {
+void splat_normalize_vector(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
+                            size_t plane, uint32_t count, int32_t *out) {
     const uint64_t bias = static_cast<uint64_t>(1) << 63;
     const uint32_t shift = noise->gain_shift;
     const splat_vector rounding = splat_set(bias + ((static_cast<uint64_t>(1) << shift) >> 1));
@@ -465,7 +465,7 @@ void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, 
         for (uint32_t k = 0; k < Channels; k++) pixel_sums[k] = splat_load(sums + k * plane + done);
         splat_vector values[Channels];
         for (uint32_t c = 0; c < Channels; c++) {
-            splat_vector accumulated = splat_set(static_cast<uint64_t>(noise->offset[c]));
+            splat_vector accumulated = splat_set(static_cast<uint64_t>(offset[c]));
             splat_vector fractions = splat_set(0);
             for (uint32_t k = 0; k < Channels; k++) {
                 const int64_t gain = noise->gain[c * 3 + k];
@@ -499,27 +499,34 @@ void splat_normalize_vector(const dsn_noise_state *noise, const uint64_t *sums, 
     for (; done < count; done++) {
         uint64_t pixel_sums[Channels];
         for (uint32_t c = 0; c < Channels; c++) pixel_sums[c] = sums[c * plane + done];
-        normalize_q32_unmapped(noise, pixel_sums, out + done * Channels);
+        normalize_q32_from(noise, offset, pixel_sums, out + done * Channels);
     }
 }
 #endif
 
-/* The normalization entry: on vectors on x86, else pixel by pixel. */
-inline void continuous_splat_normalize(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
-                                       uint32_t count, int32_t *out) {
+/* normalize_q32_from of `count` pixels (channel c of pixel p at sums[c plane + p]) with this offset: on
+   vectors on x86, else pixel by pixel. */
+inline void splat_normalize_from(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
+                                 size_t plane, uint32_t count, int32_t *out) {
 #if DSN_SPLAT_CELLS
     if (noise->asset.channels == 3)
-        splat_normalize_vector<3>(noise, sums, plane, count, out);
+        splat_normalize_vector<3>(noise, offset, sums, plane, count, out);
     else
-        splat_normalize_vector<1>(noise, sums, plane, count, out);
+        splat_normalize_vector<1>(noise, offset, sums, plane, count, out);
 #else
     const uint32_t channels = noise->asset.channels;
     for (uint32_t p = 0; p < count; p++) {
         uint64_t pixel_sums[DSN_MAX_CHANNELS];
         for (uint32_t c = 0; c < channels; c++) pixel_sums[c] = sums[c * plane + p];
-        normalize_q32_unmapped(noise, pixel_sums, out + p * channels);
+        normalize_q32_from(noise, offset, pixel_sums, out + p * channels);
     }
 #endif
+}
+
+/* The normalization entry: the values' (the mean's offset). */
+inline void continuous_splat_normalize(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
+                                       uint32_t count, int32_t *out) {
+    splat_normalize_from(noise, noise->offset, sums, plane, count, out);
 }
 
 } // namespace

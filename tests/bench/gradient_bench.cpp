@@ -164,6 +164,8 @@ int main() {
         "%zu bytes)\n",
         bench::painted_stack(cases[2].gradient), bench::painted_stack(cases[3].gradient),
         bench::painted_stack(cases[3].value));
+    std::printf("  stack (painted) of a gradient batch call: %zu bytes (the value's: %zu bytes)\n",
+                bench::painted_stack(cases[4].gradient), bench::painted_stack(cases[4].value));
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }
