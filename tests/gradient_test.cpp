@@ -593,9 +593,10 @@ struct ContinuousGradientBatch {
     int operator()(float *out, float *dx, float *dy) const {
         std::vector<double> real_xs, real_ys;
         for (size_t k = 0; k < xs.size(); k++)
-            real_xs.push_back(std::ldexp(double(xs[k]), -32)), real_ys.push_back(std::ldexp(double(ys[k]), -32));
-        return dsn_continuous_batch_gradient_float(&noise, real_xs.data(), real_ys.data(), uint32_t(xs.size()),
-                                                   out, dx, dy);
+            real_xs.push_back(std::ldexp(double(xs[k]), -32)),
+                real_ys.push_back(std::ldexp(double(ys[k]), -32));
+        return dsn_continuous_batch_gradient_float(&noise, real_xs.data(), real_ys.data(),
+                                                   uint32_t(xs.size()), out, dx, dy);
     }
 };
 
@@ -688,9 +689,9 @@ TEST_CASE("continuous gradient tiles: every kernel's, splatted or point by point
 
 TEST_CASE("continuous gradient batches: every kernel's, 8 points a group or one by one, are their points") {
     // Points on the 2^-16 grid, a sixth of them beside the int32 wrap of x or y, and (non-periodic noises)
-    // as many with an impulse exactly at their reach's entry edge (only its slope is non-zero); the default density and cells past 16
-    // impulses; periodic axes; grey and RGB, 8 bits (the groups) and 16 (one by one); a histogram mapping;
-    // a large radius (points with more cells than a group holds, one by one).
+    // as many with an impulse exactly at their reach's entry edge (only its slope is non-zero); the default
+    // density and cells past 16 impulses; periodic axes; grey and RGB, 8 bits (the groups) and 16 (one by
+    // one); a histogram mapping; a large radius (points with more cells than a group holds, one by one).
     std::mt19937_64 random(29);
     size_t differences = 0;
     for (uint32_t channels : {1u, 3u})

@@ -93,9 +93,10 @@
 
    Stack, as make bench measures it on x86-64 (painted, the deepest of its cases): a per-point call uses
    under 1 KB (its fast path keeps the impulses of the nearby cells on the stack), a continuous per-point
-   call under 3 KB, a batch call under 8 KB, a filtered per-point call up to about 30 KB (the candidate
-   impulses of every tap, and the coarse levels' tables of the AVX-512 copy), a lattice tile call under
-   1 KB unless DSN_TILE_BLOCKS (see above), a continuous or filtered tile up to about 88 KB where it is
+   call under 3 KB, a batch call under 8 KB (a gradient batch about 10 KB), a filtered per-point call up
+   to about 30 KB (the candidate impulses of every tap, and the coarse levels' tables of the AVX-512
+   copy), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS (see above), a continuous or filtered
+   tile up to about 88 KB where it is
    splatted (the texture's records, see dsn_continuous_tile_fixed), and what its points take where it goes
    point by point; a continuous gradient tile splatted up to about 128 KB (three blocks of sums more, see
    "Gradients").

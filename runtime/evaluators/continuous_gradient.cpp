@@ -105,7 +105,8 @@ int batch_of_kind(const dsn_noise *handle, const Coordinate *xs, const Coordinat
                 for (uint32_t c = 0; c < channels; c++)
                     for (uint32_t part = 0; part < 3; part++)
                         values[part * DSN_MAX_CHANNELS + c] = fixed[part][k * channels + c];
-            dsn_store_gradient(out, dx, dy, kind, static_cast<size_t>(first + k) * channels, values, channels);
+            dsn_store_gradient(out, dx, dy, kind, static_cast<size_t>(first + k) * channels, values,
+                               channels);
         }
     }
     return DSN_OK;

@@ -166,8 +166,8 @@ inline uint32_t group_periodic_axis(const dsn_noise_state *noise, uint32_t axis,
         point.count = 0;
         if (p < count &&
             axis_cells<EntryEdge>(point_axis(static_cast<uint64_t>(coordinates[p]), noise->radius[axis],
-                                  noise->cell_shift, noise->period[axis]),
-                       lanes, &point) &&
+                                             noise->cell_shift, noise->period[axis]),
+                                  lanes, &point) &&
             point.count <= group_cells)
             fits |= 1u << p;
         else
@@ -214,12 +214,14 @@ inline vector_256 point_lanes(uint32_t points) {
 template <bool EntryEdge>
 inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shared, const int64_t *xs,
                            const int64_t *ys, uint32_t count, PointGroup *group) {
-    const uint32_t fits_x = noise->period[0] == 0
-                                ? group_axis<EntryEdge>(noise, 0, xs, count, &group->columns)
-                                : group_periodic_axis<EntryEdge>(noise, 0, xs, count, shared.lanes, &group->columns);
-    const uint32_t fits_y = noise->period[1] == 0
-                                ? group_axis<EntryEdge>(noise, 1, ys, count, &group->rows)
-                                : group_periodic_axis<EntryEdge>(noise, 1, ys, count, shared.lanes, &group->rows);
+    const uint32_t fits_x =
+        noise->period[0] == 0
+            ? group_axis<EntryEdge>(noise, 0, xs, count, &group->columns)
+            : group_periodic_axis<EntryEdge>(noise, 0, xs, count, shared.lanes, &group->columns);
+    const uint32_t fits_y =
+        noise->period[1] == 0
+            ? group_axis<EntryEdge>(noise, 1, ys, count, &group->rows)
+            : group_periodic_axis<EntryEdge>(noise, 1, ys, count, shared.lanes, &group->rows);
     const uint32_t fits = fits_x & fits_y & ((1u << count) - 1u);
     const vector_256 seed_row = set_8x32(noise->seed_row), seed_column = set_8x32(noise->seed_column);
     for (uint32_t j = 0; j < group_cells; j++) {
@@ -486,8 +488,8 @@ void group_point_slopes(const dsn_noise_state *noise, const FieldLanes &lanes, c
    Channels values a point each: a group's sums normalized on vectors (the slopes without the mean), then
    the mapping's chain rule point by point. */
 template <uint32_t Channels>
-void batch_group_gradients(const dsn_noise_state *noise, const int64_t *xs, const int64_t *ys,
-                           uint32_t count, int32_t *out, int32_t *dx, int32_t *dy) {
+void batch_group_gradients(const dsn_noise_state *noise, const int64_t *xs, const int64_t *ys, uint32_t count,
+                           int32_t *out, int32_t *dx, int32_t *dy) {
     const GroupShared shared = group_shared(noise);
     PointGroup group;
     GroupPairs pairs;

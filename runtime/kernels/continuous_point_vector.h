@@ -867,7 +867,9 @@ inline uint64_t lane_total(vector_256 lanes) {
     return values[0] + values[1] + values[2] + values[3];
 }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-inline uint64_t lane_total(vector_512 lanes) { return lane_total(low_256(lanes)) + lane_total(high_256(lanes)); }
+inline uint64_t lane_total(vector_512 lanes) {
+    return lane_total(low_256(lanes)) + lane_total(high_256(lanes));
+}
 #endif
 
 /* A slope visit's sums, channel c at value[c], slope_x[c], slope_y[c] (0 past the channels). */
