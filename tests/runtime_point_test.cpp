@@ -1,5 +1,5 @@
-// runtime_point_test.cpp - the per-point path for 16 x 16 cells without a period (its own fast walk on
-// SSE2 hosts: 16 impulses per vector, batched hits) against the tile path, which draws the same impulses
+// runtime_point_test.cpp - the per-point path for 16 x 16 cells without a period (each x86 kernel's fast
+// walk: 16 impulses per vector, batched hits) against the tile path, which draws the same impulses
 // through the generic helpers: every channel count and value width, several texton sizes, windows across
 // the 32-bit wrap, and cells with more than 16 impulses (the fast walk's one-by-one rest).
 #include <doctest/doctest.h>
@@ -8,6 +8,7 @@
 
 #include "fixtures/test_assets.h"
 #include "runtime/core/poisson_count.h"
+#include "runtime/kernels/kernels.h"
 
 namespace {
 
@@ -49,10 +50,18 @@ TEST_CASE("per point, 16 x 16 cells, no period: equals the tile on every channel
                 CAPTURE(bits);
                 CAPTURE(side);
                 if (dsn_state(&loaded.noise)->cell_shift != 4) continue;
+                dsn_noise_state *state = dsn_state(&loaded.noise);
+                const uint32_t chosen = state->tile_kernel;
                 for (int32_t origin : origins) {
                     const int32_t x0 = int32_t(uint32_t(origin) + random.next() % 16), y0 = origin;
                     CAPTURE(x0);
-                    CHECK(dsn_test::tile_point_differences(loaded.noise, x0, y0, 40, 24) == 0);
+                    // every kernel this CPU runs: each has its copy of the walk
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= chosen; kernel++) {
+                        CAPTURE(kernel);
+                        state->tile_kernel = kernel;
+                        CHECK(dsn_test::tile_point_differences(loaded.noise, x0, y0, 40, 24) == 0);
+                    }
+                    state->tile_kernel = chosen;
                     crowded += crowded_cells(loaded.noise, x0, y0, 40, 24);
                     windows++;
                 }

@@ -1,75 +1,22 @@
 /* runtime/evaluators/point.cpp - per-point evaluation on the lattice: sums the texton values of every impulse
-   whose window holds the point, then normalizes; plus the float and 8-bit conversions. */
+   whose window holds the point (the kernel's vector walk where it takes the noise, else cell by cell),
+   then normalizes; plus the float and 8-bit conversions. */
 #include "core/cell_walk.h"
-#include "core/impulse_position.h"
+#include "core/lattice_impulses.h"
 #include "core/lattice_internal.h"
 #include "core/normalize_fixed.h"
 #include "core/poisson_count.h"
-
-#if defined(__SSE2__)
-#include "simd/simd_mix64.h"
-#endif
+#include "kernels/kernels.h"
 
 namespace {
 
 #if !DSN_SMALL_CODE
 
-/* Texton value `index` (channels interleaved), sign-extended in uint32 arithmetic without
-   implementation-defined conversions: (b ^ 0x80) - 128 is the two's-complement byte. */
-template <uint32_t Bits>
-inline uint32_t texton_value(const unsigned char *texton, uint32_t index) {
-    if (Bits == 8) return uint32_t(texton[index] ^ 0x80u) - 0x80u;
-    return (uint32_t(texton[2 * index] | (texton[2 * index + 1] << 8)) ^ 0x8000u) - 0x8000u;
-}
-
-/* The texton the walk reads (dsn_noise_lattice_texton): the asset's, or its lattice texton. */
-typedef dsn_texton_window texton_window;
-
-/* Adds texton entry `entry` of every channel to sums, modulo 2^32. */
-void add_texton_entry(const dsn_asset *asset, const texton_window *texton, uint32_t entry, uint32_t *sums) {
-    for (uint32_t c = 0; c < asset->channels; c++)
-        sums[c] += asset->bits == 8 ? texton_value<8>(texton->values, entry * asset->channels + c)
-                                    : texton_value<16>(texton->values, entry * asset->channels + c);
-}
-
-/* ---- Any cell size, any period: impulse by impulse ---- */
-
-/* One cell of the walk along one axis: reach = span base - cell origin (the texton index of an impulse
-   at offset 0, a small signed number held in a uint32) and the last acceptable in-cell offset (the
-   period cuts the last cell). */
-typedef struct axis_cell {
-    uint32_t reach, last_offset;
-} axis_cell;
-
-inline axis_cell cell_on_axis(const dsn_span *span, uint32_t cell, uint32_t shift) {
-    const uint32_t origin = cell << shift, room = span->last_position - origin;
-    axis_cell result = {span->base - origin, room < (1u << shift) - 1u ? room : (1u << shift) - 1u};
-    return result;
-}
-
-/* Impulses first .. count - 1 of a cell: each one that reaches the point adds its texton entry. */
-void add_impulses(const dsn_noise_state *noise, const texton_window *texton, uint32_t key, uint32_t first,
-                  uint32_t count, const axis_cell *x, const axis_cell *y, uint32_t *sums) {
-    const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair = 64u >> field_shift;
-    const uint32_t half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u;
-    const uint32_t drop = half_bits - noise->cell_shift, width = texton->width, height = texton->height;
-    uint64_t pair = 0;
-    for (uint32_t k = first; k < count; k++) {
-        if (k == first || k % per_pair == 0) pair = dsn_position_pair(key, k / per_pair);
-        const uint32_t field = uint32_t(pair >> ((k % per_pair) << field_shift));
-        const uint32_t offset_x = (field & half_mask) >> drop,
-                       offset_y = ((field >> half_bits) & half_mask) >> drop;
-        const uint32_t column = x->reach - offset_x, row = y->reach - offset_y;
-        if (column < width && row < height && offset_x <= x->last_offset && offset_y <= y->last_offset)
-            add_texton_entry(&noise->asset, texton, row * width + column, sums);
-    }
-}
-
 /* Kept out of line so that its frame is not on the stack of the vector walk's calls. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-void accumulate_any(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+void accumulate_any(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
                     uint32_t *sums) {
     const uint32_t shift = noise->cell_shift;
     dsn_axis axis_x, axis_y;
@@ -94,316 +41,14 @@ void accumulate_any(const dsn_noise_state *noise, const texton_window *texton, u
     }
 }
 
-#if defined(__SSE2__)
-/* ---- 16 x 16 cells without a period (the usual case), 16 impulses per SSE2 vector ----
-   Each cell's first 16 impulses are the 16 bytes of its first two pairs: all are tested at once, and
-   the texton entries of all 16 lanes computed at once; the hits of several cells are then visited
-   together, after they are all tested (see accumulate_cells16). Impulses beyond 16 (0.4% of cells at
-   the usual mean of 8) go one by one. */
-
-inline vector_128 broadcast(uint32_t pattern) {
-    /* The bits go in unchanged (int conversion is modulo 2^32 on every x86 compiler). */
-    return shuffle_32<0>(set_low_32(static_cast<int>(pattern)));
-}
-
-/* The in-cell offsets t of one axis that reach the point, 0 <= reach - t < size, tested on every lane's
-   byte v as an unsigned range: low <= v <= low + span exactly when min(v - low, span) == v - low. reach is
-   the texton index of offset 0; it lies in [0, size + 14] for a cell that reaches the point, so the range
-   is never empty. The x test takes the x offsets (low nibbles), the y test whole fields, 16 y + x: y lies
-   in [low, high] exactly when the field lies in [16 low, 16 high + 15] (at most 255: no wrap). */
-typedef struct lane_range {
-    vector_128 low, span;
-} lane_range;
-
-inline lane_range lane_range_of(uint32_t reach, uint32_t size, uint32_t unit, uint32_t below_unit) {
-    const uint32_t low = reach >= size ? reach - size + 1u : 0u, high = reach < 15u ? reach : 15u;
-    lane_range range = {broadcast(unit * low * 0x01010101u),
-                        broadcast((unit * (high - low) + below_unit) * 0x01010101u)};
-    return range;
-}
-
-inline lane_range x_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 1u, 0u); }
-inline lane_range y_range_of(uint32_t reach, uint32_t size) { return lane_range_of(reach, size, 16u, 15u); }
-
-/* dsn_position_pair(key, 0) and (key, 1), low and high lanes, for the key in the low 32 bits of `key`:
-   dsn_mix64 on vectors, the same bits. */
-inline vector_128 position_pairs(vector_128 key) {
-    /* key 2^32 + index G, index 0 and 1 */
-    return mix64_lanes(add_64(shuffle_32<0x11>(key), set_lanes_2x64(0, 0x9E3779B97F4A7C15u)));
-}
-
-/* Lanes k >= count as all-ones bytes (the impulses that do not exist): 16 bytes of absent_window from
-   16 - min(count, 16). */
-/* clang-format off */
-const unsigned char absent_window[32] = {
-    0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,
-    255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255};
-/* clang-format on */
-
-inline vector_128 absent_impulses(uint32_t count) {
-    const unsigned char *window = absent_window + 16 - (count < 16 ? count : 16u);
-    return load_16x8(window);
-}
-
-/* Texton entries of 8 lanes whose fields (16 offset_y + offset_x) are in 16-bit lanes: corner -
-   (offset_y width + offset_x) = corner - field - offset_y (width - 16), corner = reach_y width + reach_x.
-   Exact in 16 bits for hits. */
-inline vector_128 lane_entries(vector_128 fields, vector_128 corner, vector_128 widths_less_16) {
-    return subtract_16(corner,
-                       add_16(fields, multiply_16(shift_right_logical_16(fields, 4), widths_less_16)));
-}
-
-/* Hit masks of the cell's first 16 impulses (bit k for impulse k), for the point in masks[0] and, where
-   the walk sums its neighbours too (Points 3), for the point right of it in masks[12] and the point below
-   it in masks[24] (x[1] and y[1] their moved ranges; `live`, 0 or all ones per point, clears the masks of
-   a point this cell cannot reach); and all 16 lanes' texton entries for the point (garbage for lanes that
-   miss, never read; a neighbour's entry is the point's plus 1 or plus the width, modulo 2^16). */
+/* The sums of the point (x, y), and where Points is 3 of its right and lower neighbours (sums + 3,
+   sums + 6), from the kernel's vector walk where it takes the noise (kernels.h), else cell by cell. */
 template <uint32_t Points>
-inline void cell_hits(vector_128 fields, vector_128 absent, const lane_range *x, const lane_range *y,
-                      vector_128 corner, vector_128 widths_less_16, uint16_t *entries, uint16_t *masks,
-                      const uint32_t *live) {
-    const uint32_t ranges = Points == 1 ? 1u : 2u;
-    const vector_128 offset_x = bitwise_and(fields, set_16x8(0x0F));
-    vector_128 in_x[2], in_y[2];
-    for (uint32_t r = 0; r < ranges; r++) {
-        const vector_128 dx = subtract_8(offset_x, x[r].low), dy = subtract_8(fields, y[r].low);
-        in_x[r] = equal_8(minimum_unsigned_8(dx, x[r].span), dx);
-        in_y[r] = equal_8(minimum_unsigned_8(dy, y[r].span), dy);
-    }
-    const vector_128 zero = zero_128();
-    store_8x16(entries, lane_entries(unpack_low_8(fields, zero), corner, widths_less_16));
-    store_8x16(entries + 8, lane_entries(unpack_high_8(fields, zero), corner, widths_less_16));
-    masks[0] = uint16_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x[0], in_y[0]))));
-    if (Points == 3) {
-        masks[0] = uint16_t(masks[0] & live[0]);
-        masks[12] =
-            uint16_t(uint32_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x[1], in_y[0])))) & live[1]);
-        masks[24] =
-            uint16_t(uint32_t(top_bits_of_bytes(and_not(absent, bitwise_and(in_x[0], in_y[1])))) & live[2]);
-    }
-}
-
-/* The hits' texton values are summed while visiting them, then added to the channel sums (flush_hit_sums).
-   Grey values go to a scalar sum through one sign-extending load each (x86 only: a little-endian
-   two's-complement host, where the stored bytes read as signed char or int16 are the values; the
-   conversions to uint32 are modulo 2^32). RGB values go to the low lanes of a vector, the scalar ALUs
-   being the busier units on this path: one unaligned load of 4 bytes (8-bit values) or 8 (16-bit)
-   reads 1 or 2 bytes past the entry, at most into the asset's 4-byte CRC, which the loader guarantees
-   is in the buffer right after the texton (format.h: total_size). 8-bit values are summed in 16-bit
-   lanes, which cannot overflow between two flushes (at most 9 x 16 hits, 144 x 127 < 2^15); 16-bit
-   values in 32-bit lanes. */
-typedef struct hit_sums {
-    uint32_t grey;
-    vector_128 rgb;
-} hit_sums;
-
-template <uint32_t Bits>
-inline uint32_t grey_value(const unsigned char *entry) {
-    if (Bits == 8) return uint32_t(*static_cast<const signed char *>(static_cast<const void *>(entry)));
-    int16_t value;
-    __builtin_memcpy(&value, entry, sizeof value);
-    return uint32_t(value);
-}
-
-template <uint32_t Bits>
-inline vector_128 rgb_values(const unsigned char *entry) {
-    if (Bits == 8) {
-        uint32_t bytes;
-        __builtin_memcpy(&bytes, entry, sizeof bytes);
-        const vector_128 values = set_low_32(static_cast<int>(bytes)); /* the bits unchanged */
-        return shift_right_arithmetic_16(unpack_low_8(values, values), 8);
-    }
-    const vector_128 values = load_low_8x8(entry);
-    return shift_right_arithmetic_32(unpack_low_16(values, values), 16);
-}
-
-/* Number of set bits (SWAR: the popcnt instruction is not in the SSE2 baseline). */
-inline uint32_t popcount64(uint64_t bits) {
-    bits -= (bits >> 1) & 0x5555555555555555u;
-    bits = (bits & 0x3333333333333333u) + ((bits >> 2) & 0x3333333333333333u);
-    bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0Fu;
-    return uint32_t((bits * 0x0101010101010101u) >> 56);
-}
-
-/* Sums the texton values of the hits of (at most) four cells: bit 16 c + k of hits is impulse k of cell
-   c, whose entries are entries[16 c ..]. The loop counts the hits down rather than testing the mask for
-   zero: its exit, hard to predict, then resolves once the count is known and one cycle per hit later,
-   not at the end of the mask's chain of two dependent instructions per hit. */
-template <uint32_t Channels, uint32_t Bits>
-inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, uint32_t moved,
-                     hit_sums *sums) {
-    for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
-        const uint16_t index = uint16_t(entries[__builtin_ctzll(hits)] + moved);
-        const unsigned char *entry = texton + size_t(index) * Channels * (Bits / 8);
-        if (Channels == 1)
-            sums->grey += grey_value<Bits>(entry);
-        else
-            sums->rgb = Bits == 8 ? add_16(sums->rgb, rgb_values<Bits>(entry))
-                                  : add_32(sums->rgb, rgb_values<Bits>(entry));
-    }
-}
-
-/* Adds the hit sums to the channel sums (sign-extended, modulo 2^32) and clears them. */
-template <uint32_t Channels, uint32_t Bits>
-inline void flush_hit_sums(hit_sums *hit, uint32_t *sums) {
-    if (Channels == 1) {
-        sums[0] += hit->grey;
-    } else if (Bits == 8) {
-        /* The lanes come out zero-extended: (v ^ 2^15) - 2^15 sign-extends them. */
-        sums[0] += (uint32_t(lane_16<0>(hit->rgb)) ^ 0x8000u) - 0x8000u;
-        sums[1] += (uint32_t(lane_16<1>(hit->rgb)) ^ 0x8000u) - 0x8000u;
-        sums[2] += (uint32_t(lane_16<2>(hit->rgb)) ^ 0x8000u) - 0x8000u;
-    } else {
-        sums[0] += uint32_t(low_32(hit->rgb));
-        sums[1] += uint32_t(low_32(shuffle_32<1>(hit->rgb)));
-        sums[2] += uint32_t(low_32(shuffle_32<2>(hit->rgb)));
-    }
-    hit->grey = 0;
-    hit->rgb = zero_128();
-}
-
-/* Sums the hits of `cells` (up to 9) cells, cell s's mask at masks[s] and its entries (plus `moved`) at
-   entries[16 s]: 4 masks read at once as a 64-bit word (x86: little-endian), those past the cells cleared
-   first. */
-template <uint32_t Channels, uint32_t Bits>
-inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint32_t cells,
-                              const uint16_t *entries, uint32_t moved, hit_sums *sums) {
-    for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
-    uint64_t hits0, hits1, hits2;
-    __builtin_memcpy(&hits0, masks, sizeof hits0);
-    __builtin_memcpy(&hits1, masks + 4, sizeof hits1);
-    __builtin_memcpy(&hits2, masks + 8, sizeof hits2);
-    sum_hits<Channels, Bits>(texton, hits0, entries, moved, sums);
-    sum_hits<Channels, Bits>(texton, hits1, entries + 64, moved, sums);
-    sum_hits<Channels, Bits>(texton, hits2, entries + 128, moved, sums);
-}
-
-/* The buffered hits of every point summed into its channel sums (sums + 3 p), the point's entries moved
-   by 0, 1 (the point right of it) and the width (the point below it). */
-template <uint32_t Channels, uint32_t Bits, uint32_t Points>
-inline void flush_cells(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
-                        const uint16_t *entries, hit_sums *hit, uint32_t *sums) {
-    const uint32_t moved[3] = {0u, 1u, width};
-    for (uint32_t p = 0; p < Points; p++) {
-        sum_buffered_hits<Channels, Bits>(texton, masks + 12 * p, cells, entries, moved[p], hit);
-        flush_hit_sums<Channels, Bits>(hit, sums + 3 * p);
-    }
-}
-
-/* The x range of one column of cells for a point whose reach there is `reach`, and whether the column
-   reaches it at all (all ones) or not (0: a column of the walk over a point and its right neighbour may
-   reach only one of them). */
-inline uint32_t live_range(uint32_t reach, uint32_t size) { return reach < size + 15u ? 0xFFFFu : 0u; }
-
-/* The sums of the point (x, y), and where Points is 3 of the points (x + 1, y) and (x, y + 1) too (sums +
-   3, sums + 6: the lattice gradient's neighbours), from one walk over the cells that reach any of them. */
-template <uint32_t Channels, uint32_t Bits, uint32_t Points>
-void accumulate_cells16(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
-                        uint32_t *sums) {
-    const uint32_t reached = Points == 1 ? 0u : 1u; /* the window grows by one column and one row */
-    const uint32_t width = texton->width, height = texton->height;
-    const uint32_t low_x = x - texton->radius[0], low_y = y - texton->radius[1];
-    const uint32_t columns = (((low_x & 15u) + width + reached - 1u) >> 4) + 1u,
-                   rows = (((low_y & 15u) + height + reached - 1u) >> 4) + 1u;
-    const uint32_t first_column = low_x >> 4, reach_x = x + texton->radius[0] - (first_column << 4);
-    /* width - 16 in 16-bit lanes (modulo 2^16, like the entries: the short conversion is modulo 2^16 on
-       every x86 compiler) */
-    const vector_128 widths_less_16 = set_8x16(static_cast<int16_t>((width - 16) & 0xFFFFu)),
-                     sixteen = set_8x16(16);
-    /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
-       reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
-       j + 1 is reached, so its reach is at least 16. (With the neighbours every column's ranges are
-       computed: the walk's columns may reach one point and not the other.) */
-    const lane_range first_range = x_range_of(reach_x, width),
-                     last_range = x_range_of(reach_x - 16 * (columns - 1), width),
-                     whole_range = {zero_128(), set_16x8(15)};
-    /* The hits of up to 9 cells wait until all are tested (the 3 x 3 cells of the usual 31 x 31 texton:
-       one wait per point): cell s's mask in masks[s], its entries at entries[16 s]. Visiting hits ends
-       with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
-       long before, a misprediction resolves at once; right after its cells, it waits for their whole
-       hash-and-test chain, and the work of the next cells with it, so the fewer visits per point the
-       better. The masks are stored one by one rather than shifted into words: fewer instructions. A
-       neighbour's masks follow, 12 apart. */
-    uint16_t entries[9 * 16], masks[12 * Points];
-    uint32_t slot = 0;
-    hit_sums hit = {0, zero_128()};
-    for (uint32_t i = 0; i < rows; i++) {
-        const uint32_t cell_y = ((low_y >> 4) + i) & 0x0FFFFFFFu, row_key = dsn_row_key(noise, cell_y);
-        const uint32_t reach_y = y + texton->radius[1] - (cell_y << 4);
-        const lane_range row_range[2] = {y_range_of(reach_y, height), y_range_of(reach_y + reached, height)};
-        const uint32_t row_live[2] = {live_range(reach_y, height), live_range(reach_y + reached, height)};
-        /* Texton index of offset 0 in cell j: corner - 16 j (16-bit lanes, modulo 2^16; the short
-           conversion is modulo 2^16 on every x86 compiler). */
-        vector_128 corner = set_8x16(static_cast<int16_t>((reach_y * width + reach_x) & 0xFFFFu));
-        for (uint32_t j = 0; j < columns; j++) {
-            /* The cell key and its count (one Poisson draw: poisson_parts is 1 on this path). */
-            const uint32_t cell_x = (first_column + j) & 0x0FFFFFFFu;
-            const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
-            const vector_128 key_vector = set_low_32(static_cast<int>(key)); /* the bits unchanged */
-            const uint32_t column_reach = reach_x - 16 * j;
-            lane_range column_range[2] = {j == 0             ? first_range
-                                          : j + 1 == columns ? last_range
-                                                             : whole_range,
-                                          whole_range};
-            uint32_t live[3] = {0, 0, 0};
-            if (Points == 3) {
-                column_range[0] = x_range_of(column_reach, width);
-                column_range[1] = x_range_of(column_reach + 1u, width);
-                const uint32_t column_live[2] = {live_range(column_reach, width),
-                                                 live_range(column_reach + 1u, width)};
-                live[0] = column_live[0] & row_live[0];
-                live[1] = column_live[1] & row_live[0];
-                live[2] = column_live[0] & row_live[1];
-            }
-            if (slot == 9) {
-                flush_cells<Channels, Bits, Points>(texton->values, width, masks, 9, entries, &hit, sums);
-                slot = 0;
-            }
-            const uint32_t count = dsn_poisson_count_two_steps(noise, key);
-            cell_hits<Points>(position_pairs(key_vector), absent_impulses(count), column_range, row_range,
-                              corner, widths_less_16, entries + 16 * slot, masks + slot, live);
-            slot++;
-            corner = subtract_16(corner, sixteen);
-            if (count > 16) {
-                /* The rare rest, through the generic cell walk's per-impulse test. */
-                for (uint32_t p = 0; p < Points; p++) {
-                    const axis_cell in_x = {column_reach + (p == 1), 15u}, in_y = {reach_y + (p == 2), 15u};
-                    add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums + 3 * p);
-                }
-            }
-        }
-    }
-    flush_cells<Channels, Bits, Points>(texton->values, width, masks, slot, entries, &hit, sums);
-}
-#endif
-
-#if defined(__SSE2__)
-/* Whether the 16 x 16 cells' vector walk takes the noise. dsn_poisson_count_two_steps reads up to
-   cdf[size + 1]: always in the table for one draw (mean <= 16), checked. */
-bool cells16_walk(const dsn_noise_state *noise) {
-    return noise->cell_shift == 4 && noise->poisson_parts == 1 && noise->period[0] == 0 &&
-           noise->period[1] == 0 &&
-           noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0];
-}
-#endif
-
-/* The sums of the point (x, y), and where Points is 3 of its neighbours (accumulate_cells16). */
-template <uint32_t Points>
-void accumulate(const dsn_noise_state *noise, const texton_window *texton, uint32_t x, uint32_t y,
+void accumulate(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
                 uint32_t *sums) {
+    dsn_lattice_point_entry *walk = dsn_kernel_entries_of(noise->tile_kernel)->lattice_point;
+    if (walk != 0 && walk(noise, texton, x, y, Points, sums)) return;
     for (uint32_t i = 0; i < 3 * Points; i++) sums[i] = 0;
-#if defined(__SSE2__)
-    const dsn_asset *asset = &noise->asset;
-    if (cells16_walk(noise)) {
-        if (asset->channels == 3)
-            asset->bits == 8 ? accumulate_cells16<3, 8, Points>(noise, texton, x, y, sums)
-                             : accumulate_cells16<3, 16, Points>(noise, texton, x, y, sums);
-        else
-            asset->bits == 8 ? accumulate_cells16<1, 8, Points>(noise, texton, x, y, sums)
-                             : accumulate_cells16<1, 16, Points>(noise, texton, x, y, sums);
-        return;
-    }
-#endif
     for (uint32_t p = 0; p < Points; p++)
         accumulate_any(noise, texton, x + (p == 1), y + (p == 2), sums + 3 * p);
 }
@@ -440,7 +85,7 @@ extern "C" void dsn_lattice_point_u8(const dsn_noise *handle, int32_t x, int32_t
 #if DSN_GRADIENTS
 void dsn_internal_lattice_neighbour_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y,
                                          uint32_t *sums) {
-    const texton_window texton = dsn_lattice_texton_window(noise);
+    const dsn_texton_window texton = dsn_lattice_texton_window(noise);
     accumulate<3>(noise, &texton, x, y, sums);
 }
 #endif
@@ -455,7 +100,7 @@ extern "C" void dsn_lattice_point_fixed(const dsn_noise *handle, int32_t x, int3
         return;
     }
 #endif
-    const texton_window texton = dsn_lattice_texton_window(noise);
+    const dsn_texton_window texton = dsn_lattice_texton_window(noise);
     accumulate<1>(noise, &texton, uint32_t(x), uint32_t(y), sums);
     dsn_normalize(noise, sums, out);
 }

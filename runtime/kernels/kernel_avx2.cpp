@@ -12,15 +12,12 @@
 #include "kernels/continuous_point_vector.h"
 #include "kernels/filtered_candidates_vector.h"
 #include "kernels/filtered_reads_vector.h"
+#include "kernels/lattice_point_walk.h"
 #include "kernels/splat_row.h"
 #include "kernels/tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_avx2 = {render_tile,
-                                                             lattice_strips_take,
-                                                             continuous_batch,
-                                                             continuous_splat_runs,
-                                                             continuous_splat_normalize,
-                                                             continuous_point_sums,
-                                                             DSN_FILTER_READS_ENTRY,
-                                                             DSN_FILTER_CANDIDATES_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_avx2 = {
+    render_tile,           lattice_strips_take,    DSN_LATTICE_POINT_ENTRY,
+    continuous_batch,      continuous_splat_runs,  continuous_splat_normalize,
+    continuous_point_sums, DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};
 #endif

@@ -14,17 +14,14 @@
 #include "kernels/continuous_point_vector.h"
 #include "kernels/filtered_candidates_vector.h"
 #include "kernels/filtered_reads_vector.h"
+#include "kernels/lattice_point_walk.h"
 #include "kernels/splat_row.h"
 #include "kernels/tile_render.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_avx512 = {render_tile,
-                                                               lattice_strips_take,
-                                                               continuous_batch,
-                                                               continuous_splat_runs,
-                                                               continuous_splat_normalize,
-                                                               continuous_point_sums,
-                                                               DSN_FILTER_READS_ENTRY,
-                                                               DSN_FILTER_CANDIDATES_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
+    render_tile,           lattice_strips_take,    DSN_LATTICE_POINT_ENTRY,
+    continuous_batch,      continuous_splat_runs,  continuous_splat_normalize,
+    continuous_point_sums, DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2;
 
@@ -53,7 +50,7 @@ int lattice_strips_take_avx2_if_rgb(const dsn_noise_state *noise) {
 
 /* This kernel but for the lattice tiles of RGB noises, which take the AVX2 kernel's. */
 extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
-    lattice_tile_avx2_if_rgb, lattice_strips_take_avx2_if_rgb, continuous_batch,
-    continuous_splat_runs,    continuous_splat_normalize,      continuous_point_sums,
-    DSN_FILTER_READS_ENTRY,   DSN_FILTER_CANDIDATES_ENTRY};
+    lattice_tile_avx2_if_rgb, lattice_strips_take_avx2_if_rgb, DSN_LATTICE_POINT_ENTRY,
+    continuous_batch,         continuous_splat_runs,           continuous_splat_normalize,
+    continuous_point_sums,    DSN_FILTER_READS_ENTRY,          DSN_FILTER_CANDIDATES_ENTRY};
 #endif

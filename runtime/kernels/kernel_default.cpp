@@ -26,12 +26,9 @@
 #endif
 #include "kernels/filtered_candidates_vector.h"
 #include "kernels/filtered_reads_vector.h"
+#include "kernels/lattice_point_walk.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
-                                                                lattice_strips_take,
-                                                                BATCH_ENTRY,
-                                                                SPLAT_ROW_ENTRY,
-                                                                SPLAT_NORMALIZE_ENTRY,
-                                                                POINT_ENTRY,
-                                                                DSN_FILTER_READS_ENTRY,
-                                                                DSN_FILTER_CANDIDATES_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_default = {
+    render_tile, lattice_strips_take,    DSN_LATTICE_POINT_ENTRY,
+    BATCH_ENTRY, SPLAT_ROW_ENTRY,        SPLAT_NORMALIZE_ENTRY,
+    POINT_ENTRY, DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};

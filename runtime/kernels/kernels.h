@@ -39,6 +39,12 @@ typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, u
    lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */
 typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
 
+/* A lattice point (lattice_point_walk.h's lattice_point_sums): the sums, modulo 2^32, of the texton values
+   of every impulse that reaches (x, y) and, where `points` is 3, (x + 1, y) and (x, y + 1) too (sums +
+   3 p); 0 (writing nothing) for a noise the kernel's walk does not take (point.cpp walks it then). */
+typedef int dsn_lattice_point_entry(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x,
+                                    uint32_t y, uint32_t points, uint32_t *sums);
+
 /* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),
    Q32.32, into out[k * channels], reading the texton from `quads` (continuous_batch.h's 2 x 2 texel
    table, built by continuous_batch.cpp) and using `work` (batch_work_bytes bytes, 64-byte aligned).
@@ -148,6 +154,7 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
+    dsn_lattice_point_entry *lattice_point;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_runs_entry *continuous_splat_runs;
     dsn_splat_normalize_entry *continuous_splat_normalize;
