@@ -136,36 +136,43 @@ TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, th
     std::mt19937_64 random(17);
     size_t vector_points = 0, differences = 0;
     for (uint32_t channels : {1u, 3u})
-        for (uint32_t impacts : {0u, 160u << 16}) // the default density, and cells past 16 impulses
-            for (uint32_t period : {0u, 45u}) {
-                const auto made =
-                    make_noise(random_texton_asset(channels, 9, 8, 7), 3, impacts, period, period);
-                dsn_noise_state *state = dsn_state(&made->noise);
-                const uint32_t chosen = state->tile_kernel;
-                std::vector<int64_t> xs, ys;
-                for (int k = 0; k < 400; k++)
-                    xs.push_back(int64_t(random() & ~uint64_t(0xFFFF)) >> 8),
-                        ys.push_back(int64_t(random() & ~uint64_t(0xFFFF)) >> 8);
-                if (period == 0) add_entry_edge_points(made->noise, random, 600, &xs, &ys);
-                for (size_t k = 0; k < xs.size(); k++) {
-                    const int64_t x = xs[k], y = ys[k];
-                    state->tile_kernel = DSN_KERNEL_DEFAULT;
-                    const RawSums expected = raw_sums(made->noise, x, y);
-                    for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= chosen; kernel++) {
-                        dsn_continuous_point_entry *entry = dsn_kernel_entries_of(kernel)->continuous_point;
-                        if (entry == nullptr) continue;
-                        RawSums sums;
-                        if (!entry(state, uint64_t(x), uint64_t(y), sums.value, sums.slope_x, sums.slope_y))
-                            continue;
-                        vector_points++;
-                        for (uint32_t c = 0; c < 3; c++)
-                            differences += (sums.value[c] != expected.value[c]) +
-                                           (sums.slope_x[c] != expected.slope_x[c]) +
-                                           (sums.slope_y[c] != expected.slope_y[c]);
+        for (uint32_t bits : {8u, 16u}) // the vector walk's, and the sifting walk's (every kernel has both)
+            for (uint32_t impacts : {0u, 160u << 16}) // the default density, and cells past 16 impulses
+                for (uint32_t period : {0u, 45u}) {
+                    const auto made =
+                        make_noise(random_texton_asset(channels, 9, bits, 7), 3, impacts, period, period);
+                    dsn_noise_state *state = dsn_state(&made->noise);
+                    const uint32_t chosen = state->tile_kernel;
+                    std::vector<int64_t> xs, ys;
+                    for (int k = 0; k < 400; k++)
+                        xs.push_back(int64_t(random() & ~uint64_t(0xFFFF)) >> 8),
+                            ys.push_back(int64_t(random() & ~uint64_t(0xFFFF)) >> 8);
+                    if (period == 0) add_entry_edge_points(made->noise, random, 600, &xs, &ys);
+                    for (size_t k = 0; k < xs.size(); k++) {
+                        const int64_t x = xs[k], y = ys[k];
+                        state->tile_kernel = DSN_KERNEL_DEFAULT;
+                        const RawSums expected = raw_sums(made->noise, x, y);
+                        for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= chosen; kernel++) {
+                            dsn_continuous_point_entry *entry =
+                                dsn_kernel_entries_of(kernel)->continuous_point;
+                            if (entry == nullptr) continue;
+                            RawSums sums;
+                            if (!entry(state, uint64_t(x), uint64_t(y), sums.value, sums.slope_x,
+                                       sums.slope_y))
+                                continue;
+                            vector_points++;
+                            // the value alone too: the entry's other walk
+                            uint64_t value[3];
+                            REQUIRE(entry(state, uint64_t(x), uint64_t(y), value, nullptr, nullptr));
+                            for (uint32_t c = 0; c < 3; c++)
+                                differences += (sums.value[c] != expected.value[c]) +
+                                               (value[c] != expected.value[c]) +
+                                               (sums.slope_x[c] != expected.slope_x[c]) +
+                                               (sums.slope_y[c] != expected.slope_y[c]);
+                        }
                     }
+                    state->tile_kernel = chosen;
                 }
-                state->tile_kernel = chosen;
-            }
     CHECK(differences == 0);
     // Where this CPU runs a kernel with the vector sums, they were compared.
     bool has_vector = false;
@@ -730,9 +737,12 @@ TEST_CASE("continuous gradient batches: every kernel's, 8 points a group or one 
 }
 
 #if DSN_FILTERING
-TEST_CASE("filtered gradient tiles: every kernel's are their points, the unfiltered ones splatted") {
-    // Magnified and axis-aligned grids (level of detail 0, one tap: the continuous gradient's splat),
-    // a minified and a rotated one (filtered, point by point), with and without a mapping.
+TEST_CASE("filtered gradient tiles: every kernel's are their points, splatted where the value's tile is") {
+    // Magnified and axis-aligned grids (level of detail 0, one tap: the continuous gradient's splat), a
+    // minified, a rotated and a stretched one (filtered: the taps' grids and their copies moved one step of
+    // each level splatted; the stretched one transposed), and on a periodic noise a grid whose move
+    // carries x's int32 start across its wrap (point by point); grey and RGB, 8 and 16 bits, with and
+    // without a mapping.
     const int64_t one = int64_t(1) << 32;
     const dsn_grid grids[] = {
         {one / 3, one / 7, one / 4, one / 16, -one / 16, one / 4},
@@ -740,33 +750,46 @@ TEST_CASE("filtered gradient tiles: every kernel's are their points, the unfilte
         {one / 5, one / 9, 3 * one, 0, 0, 3 * one},
         {one / 3, one / 7, int64_t(1.3 * double(one)), int64_t(0.75 * double(one)),
          -int64_t(0.75 * double(one)), int64_t(1.3 * double(one))},
+        {-(int64_t(11) << 32) + 12345, one / 9, 6 * one, one / 5, 0, int64_t(0.8 * double(one))},
+        // x constant, 2^-32 texel below the int32 wrap of its start X - 1 (the continuous tiles' seam)
+        {int64_t((uint64_t(0x80000000u) << 32) | 0xFFFFFFFFu), one / 3, 0, 2 * one, 0, 3 * one},
     };
-    size_t differences = 0, unfiltered = 0;
+    size_t differences = 0, unfiltered = 0, splatted = 0;
     for (uint32_t channels : {1u, 3u})
-        for (bool mapped : {false, true}) {
-            dsn::AssetFields fields = random_texton_asset(channels, 9, 8, 80 + channels);
-            fields.pyramid = dsn::texton_pyramid(fields);
-            if (mapped) fields.histogram = gradient_mapping(channels);
-            const auto made = make_noise(fields, 4, 0, 0, 0);
-            for (const dsn_grid &grid : grids) {
-                const uint32_t width = 90, height = 20, max_taps = 16;
-                const dsn_footprint footprint = {grid.column_step_x, grid.column_step_y, grid.row_step_x,
-                                                 grid.row_step_y, max_taps};
-                const std::vector<int32_t> expected = gradient_planes(
-                    width, height, channels,
-                    [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
-                        int64_t x, y;
-                        dsn_test::grid_point(grid, i, j, &x, &y);
-                        return dsn_filtered_gradient_fixed(&made->noise, x, y, &footprint, v, gx, gy);
-                    });
-                dsn_filter_plan plan;
-                REQUIRE(dsn_internal_filter_plan(&footprint, made->asset.pyramid_levels, &plan) == DSN_OK);
-                unfiltered += plan.lod_q8 == 0 && plan.taps == 1;
-                const FilteredGradientTile tile = {made->noise, grid, max_taps, width, height};
-                differences += kernel_tile_differences(made->noise, expected, tile);
-            }
-        }
-    CHECK(unfiltered == 8); // the two magnified grids, four noises each
+        for (uint32_t bits : {8u, 16u})
+            for (bool mapped : {false, true})
+                for (uint32_t period : {0u, 37u}) {
+                    if (bits == 16 && (mapped || period != 0)) continue;
+                    dsn::AssetFields fields = random_texton_asset(channels, 9, bits, 80 + channels);
+                    fields.pyramid = dsn::texton_pyramid(fields);
+                    if (mapped) fields.histogram = gradient_mapping(channels);
+                    const auto made = make_noise(fields, 4, 0, period, period);
+                    for (const dsn_grid &grid : grids) {
+                        // the seam's grid with one tap (at its origin; 16 would make short runs there)
+                        const uint32_t width = 90, height = 20, max_taps = &grid == &grids[5] ? 1 : 16;
+                        const dsn_footprint footprint = {grid.column_step_x, grid.column_step_y,
+                                                         grid.row_step_x, grid.row_step_y, max_taps};
+                        const std::vector<int32_t> expected = gradient_planes(
+                            width, height, channels,
+                            [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
+                                int64_t x, y;
+                                dsn_test::grid_point(grid, i, j, &x, &y);
+                                return dsn_filtered_gradient_fixed(&made->noise, x, y, &footprint, v, gx, gy);
+                            });
+                        dsn_filter_plan plan;
+                        REQUIRE(dsn_internal_filter_plan(&footprint, made->asset.pyramid_levels, &plan) ==
+                                DSN_OK);
+                        const bool filtered = !(plan.lod_q8 == 0 && plan.taps == 1);
+                        unfiltered += !filtered;
+                        splatted += filtered && dsn_filtered_tile_scratch_size(&made->noise, &grid, max_taps,
+                                                                               width, height) != 0;
+                        const FilteredGradientTile tile = {made->noise, grid, max_taps, width, height};
+                        differences += kernel_tile_differences(made->noise, expected, tile);
+                    }
+                }
+    MESSAGE("filtered gradient tiles: " << splatted << " filtered grids whose value tile splats");
+    CHECK(unfiltered == 20); // the two magnified grids, ten noises each
+    CHECK(splatted >= 20);
     CHECK(differences == 0);
 }
 #endif

@@ -98,8 +98,8 @@
    copy), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS (see above), a continuous or filtered
    tile up to about 88 KB where it is
    splatted (the texture's records, see dsn_continuous_tile_fixed), and what its points take where it goes
-   point by point; a continuous gradient tile splatted up to about 128 KB (three blocks of sums more, see
-   "Gradients").
+   point by point; a continuous gradient tile splatted up to about 128 KB and a filtered one up to about
+   132 KB (blocks of sums and totals more, see "Gradients").
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H
@@ -691,7 +691,10 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    (X - 1) across its wrap, where the sums jump, goes point by point. A batch goes 8 points at a time
    through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its texels read
    from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered filtered
-   gradient tile (level of detail 0, one tap) is the continuous one; the others go point by point.
+   gradient tile (level of detail 0, one tap) is the continuous one; a filtered one that the value's
+   function would splat is splatted three times per tap and level, in blocks of 64 x 8 pixels: the tap's
+   grid, and the same moved one step of the level (2^-16 level texel) along x and along y (the same
+   exception at a periodic axis's seam); the others go point by point.
    - Filtered evaluation (DSN_FILTERING): the derivative of the filtered noise, the same blend of the same
      levels at the same taps as the value: each level's exact derivative (its bilinear slopes per texel of
      the level, over 2^level per texel), normalized per level without its offset, blended with the

@@ -9,6 +9,7 @@
 
 #include <stdint.h>
 
+#include "core/normalize_fixed.h"
 #include "setup/noise_state.h"
 
 #if DSN_FILTERING
@@ -130,6 +131,22 @@ void dsn_internal_filter_round(const dsn_noise_state *noise, const dsn_filter_pl
                                const int64_t *totals, int32_t *out);
 void dsn_internal_filter_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
                                 const int64_t *totals, int32_t *out);
+#if DSN_GRADIENTS
+/* The filtered gradient's values (value, dx, dy, DSN_MAX_CHANNELS apart) from its three totals, as
+   dsn_internal_filter_finish finishes the value's: each rounded once, then the histogram mapping's chain
+   rule (filtered_gradient.cpp). */
+void dsn_internal_filter_gradient_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                         const int64_t (*totals)[DSN_MAX_CHANNELS], int32_t *values);
+#if !DSN_SMALL_CODE
+/* The filtered gradient tile of a grid under its plan (a filtered one: not the continuous tile's) by
+   splatting each tap's grid and its copies moved one step of each level along x and along y, with the
+   per-point bits (filtered_tile.cpp); 0, writing nothing, for a tile size the call refuses or a grid the
+   value's tile would not splat, or whose move wraps a periodic axis's start (point by point then). */
+int dsn_internal_filtered_gradient_splat(const dsn_noise_state *noise, const dsn_grid *grid,
+                                         const dsn_filter_plan *plan, uint32_t width, uint32_t height,
+                                         void *out, void *dx, void *dy, dsn_output_kind kind);
+#endif
+#endif
 
 /* DSN_OK when the filtered functions may evaluate `noise` (the continuous mode's check). */
 int dsn_internal_filtered_check(const dsn_noise_state *noise);

@@ -8,6 +8,20 @@
 
 #if DSN_GRADIENTS && DSN_FILTERING
 
+void dsn_internal_filter_gradient_finish(const dsn_noise_state *noise, const dsn_filter_plan *plan,
+                                         const int64_t (*totals)[DSN_MAX_CHANNELS], int32_t *values) {
+    for (uint32_t output = 0; output < 3; output++)
+        dsn_internal_filter_round(noise, plan, totals[output], values + output * DSN_MAX_CHANNELS);
+#if DSN_HISTOGRAM
+    if (noise->asset.histogram_table != 0) {
+        const uint32_t level = static_cast<uint32_t>(plan->lod_q8) >> 8, blend = plan->lod_q8 & 255;
+        dsn_internal_histogram_map_gradient(&noise->asset, values, level, blend, values + DSN_MAX_CHANNELS,
+                                            values + 2 * DSN_MAX_CHANNELS);
+        dsn_internal_histogram_map(&noise->asset, values, level, blend);
+    }
+#endif
+}
+
 namespace {
 
 /* values[0 .. 2]: the filtered value, dx and dy at (x, y), DSN_MAX_CHANNELS apart. */
@@ -41,15 +55,7 @@ void gradient_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, const 
         }
         if (count == 1) dsn_internal_filter_add_mean(noise, plan, totals[0]); /* a constant: no slope */
     }
-    for (uint32_t output = 0; output < 3; output++)
-        dsn_internal_filter_round(noise, plan, totals[output], values + output * DSN_MAX_CHANNELS);
-#if DSN_HISTOGRAM
-    if (noise->asset.histogram_table != 0) {
-        const uint32_t level = static_cast<uint32_t>(plan->lod_q8) >> 8, blend = plan->lod_q8 & 255;
-        dsn_internal_histogram_map_gradient(&noise->asset, values, level, blend, dx, dy);
-        dsn_internal_histogram_map(&noise->asset, values, level, blend);
-    }
-#endif
+    dsn_internal_filter_gradient_finish(noise, plan, totals, values);
 }
 
 int check_call(const dsn_noise_state *noise, const void *out, const void *dx, const void *dy) {
@@ -80,8 +86,8 @@ struct FilteredPoint {
     }
 };
 
-/* A grid filtered by its own footprint, as dsn_filtered_tile_fixed's: point by point, but an unfiltered
-   one as the continuous gradient's tile. */
+/* A grid filtered by its own footprint, as dsn_filtered_tile_fixed's: splatted where the value's tile
+   splats (an unfiltered one as the continuous gradient's tile), else point by point. */
 int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_taps, uint32_t width,
                  uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind) {
     const dsn_noise_state *noise = dsn_state(handle);
@@ -97,6 +103,11 @@ int tile_of_kind(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_tap
     if (err == DSN_OK && plan.lod_q8 == 0 && plan.taps == 1 &&
         dsn_internal_continuous_gradient_splat(noise, grid, width, height, out, dx, dy, kind))
         return DSN_OK;
+#if !DSN_SMALL_CODE
+    if (err == DSN_OK && !(plan.lod_q8 == 0 && plan.taps == 1) &&
+        dsn_internal_filtered_gradient_splat(noise, grid, &plan, width, height, out, dx, dy, kind))
+        return DSN_OK;
+#endif
     const FilteredPoint point = {noise, &plan};
     return dsn_gradient_grid(err, noise, grid, width, height, out, dx, dy, kind, point);
 }

@@ -8,6 +8,7 @@
 #include "core/continuous_internal.h"
 #include "core/error_output.h"
 #include "core/filtered_internal.h"
+#include "core/gradient_output.h"
 #include "core/grid_points.h"
 #include "core/normalize_fixed.h"
 #include "evaluators/grid_splat.h"
@@ -224,6 +225,110 @@ void filtered_splat(const dsn_noise_state *noise, const dsn_grid *tile_grid, uin
 }
 #endif
 
+#if DSN_GRADIENTS && !DSN_SMALL_CODE
+/* Gradient blocks: at most gradient_block_columns x gradient_block_rows pixels, whose sums (the tap's grid's
+   and a moved one's) and three outputs' totals stay on the stack (60 KB with RGB, beside the levels' 64 KB
+   of records). */
+const uint32_t gradient_block_columns = dsn_splat_block_columns, gradient_block_rows = 8;
+const size_t gradient_block_values = gradient_block_columns * gradient_block_rows * DSN_MAX_CHANNELS;
+
+/* Whether a coordinate's int32 start, X - 1, wraps from 2^31 - 1 to -2^31 when it moves by `step` (below a
+   texel): where a period reduces it the sums jump there (the continuous gradient tile's seam). A grid and
+   its moved copy each lie on one side, so only the origin can cross. */
+bool start_wraps(int64_t coordinate, uint64_t step) {
+    const uint64_t point = static_cast<uint64_t>(coordinate);
+    const uint32_t start = static_cast<uint32_t>(point >> 32) - 1u,
+                   moved = static_cast<uint32_t>((point + step) >> 32) - 1u;
+    return start != moved && moved == 0x80000000u;
+}
+
+/* The splats of one tap and level: the tap's grid, and the same moved one step of the level (2^-16 level
+   texel) along x and along y, whose sums less the tap's are the level's slope sums exactly (the filtered
+   gradient's sifted walk, filtered_sift.cpp); 0 where one does not splat or a move wraps a periodic
+   axis's start. */
+int tap_level_gradient_splats(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                              uint32_t height, const FilteredSplat &filtered, uint32_t tap, uint32_t index,
+                              dsn_grid_splat *splats) {
+    const uint64_t step = static_cast<uint64_t>(1) << (16u + filtered.walked[index].level);
+    dsn_grid grids[3] = {tap_grid(grid, filtered.plan, tap), tap_grid(grid, filtered.plan, tap),
+                         tap_grid(grid, filtered.plan, tap)};
+    if ((noise->period[0] != 0 && start_wraps(grids[0].origin_x, step)) ||
+        (noise->period[1] != 0 && start_wraps(grids[0].origin_y, step)))
+        return 0;
+    grids[1].origin_x = signed_from_bits(static_cast<uint64_t>(grids[1].origin_x) + step);
+    grids[2].origin_y = signed_from_bits(static_cast<uint64_t>(grids[2].origin_y) + step);
+    const dsn_splat_texture texture = level_texture(noise, filtered.walked[index]);
+    for (uint32_t k = 0; k < 3; k++) {
+        if (!dsn_internal_grid_splat_init(noise, &grids[k], width, height, &texture, &splats[k])) return 0;
+        splats[k].setup.cells = filtered.cells[index];
+        splats[k].setup.cell_row = filtered.cell_row[index];
+    }
+    return 1;
+}
+
+bool gradient_splats(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                     const FilteredSplat &filtered) {
+    for (uint32_t tap = 0; tap < filtered.plan.taps; tap++)
+        for (uint32_t k = 0; k < filtered.count; k++) {
+            dsn_grid_splat splats[3];
+            if (!tap_level_gradient_splats(noise, grid, width, height, filtered, tap, k, splats))
+                return false;
+        }
+    return true;
+}
+
+/* One gradient block (filter_block's, with the three grids of every tap and level, the moved ones in turn
+   in the second sums): each pixel's level values and slopes blended into the three totals, then finished
+   and stored at the tile's pixel. */
+void gradient_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
+                    const FilteredSplat &filtered, const dsn_splat_block &block,
+                    uint64_t (*sums)[gradient_block_values], int64_t (*totals)[gradient_block_values],
+                    void *out, void *dx, void *dy, dsn_output_kind kind) {
+    const uint32_t channels = noise->asset.channels, pixels = block.columns * block.rows;
+    for (uint32_t output = 0; output < 3; output++)
+        for (uint32_t i = 0; i < pixels * channels; i++) totals[output][i] = 0;
+    for (uint32_t tap = 0; tap < filtered.plan.taps; tap++) {
+        for (uint32_t k = 0; k < filtered.count; k++) {
+            const dsn_walked_level *level = &filtered.walked[k];
+            dsn_grid_splat splats[3];
+            tap_level_gradient_splats(noise, grid, width, height, filtered, tap, k, splats); /* checked */
+            dsn_internal_grid_splat_block(noise, &splats[0], &block, sums[0]);
+            for (uint32_t output = 0; output < 3; output++) {
+                if (output != 0) dsn_internal_grid_splat_block(noise, &splats[output], &block, sums[1]);
+                for (uint32_t p = 0; p < pixels; p++) {
+                    uint64_t level_sums[DSN_MAX_CHANNELS];
+                    for (uint32_t c = 0; c < channels; c++) {
+                        const size_t at = c * block.plane + p;
+                        level_sums[c] = output == 0 ? sums[0][at] : sums[1][at] - sums[0][at];
+                    }
+                    int64_t values[DSN_MAX_CHANNELS];
+                    if (output == 0)
+                        dsn_internal_filter_level_values(noise, level, level_sums, values);
+                    else
+                        dsn_internal_filter_level_slopes(noise, level, level_sums, values);
+                    dsn_internal_filter_add_level(noise, &filtered.plan, k, values,
+                                                  totals[output] + p * channels);
+                }
+            }
+        }
+        if (filtered.count == 1) /* a constant: no slope */
+            for (uint32_t p = 0; p < pixels; p++)
+                dsn_internal_filter_add_mean(noise, &filtered.plan, totals[0] + p * channels);
+    }
+    const size_t step_i = filtered.transposed ? height : 1u, step_j = filtered.transposed ? 1u : width;
+    for (uint32_t p = 0; p < pixels; p++) {
+        int64_t pixel_totals[3][DSN_MAX_CHANNELS];
+        for (uint32_t output = 0; output < 3; output++)
+            for (uint32_t c = 0; c < channels; c++)
+                pixel_totals[output][c] = totals[output][p * channels + c];
+        int32_t values[3 * DSN_MAX_CHANNELS];
+        dsn_internal_filter_gradient_finish(noise, &filtered.plan, pixel_totals, values);
+        const size_t i = block.left + p % block.columns, j = block.top + p / block.columns;
+        dsn_store_gradient(out, dx, dy, kind, (i * step_i + j * step_j) * channels, values, channels);
+    }
+}
+#endif
+
 /* The scratch the tile asks for: the continuous tile's for an unfiltered plan, the splat's, or 0. */
 size_t tile_scratch_size(const dsn_noise *handle, const dsn_grid *grid, uint32_t width, uint32_t height,
                          const dsn_filter_plan &plan) {
@@ -283,6 +388,49 @@ int evaluate_grid(const dsn_noise *handle, const dsn_grid *grid, uint32_t max_ta
 }
 
 } // namespace
+
+#if DSN_GRADIENTS && !DSN_SMALL_CODE
+int dsn_internal_filtered_gradient_splat(const dsn_noise_state *noise, const dsn_grid *tile_grid,
+                                         const dsn_filter_plan *plan, uint32_t tile_width,
+                                         uint32_t tile_height, void *out, void *dx, void *dy,
+                                         dsn_output_kind kind) {
+    if (tile_width == 0 || tile_height == 0 || tile_width > DSN_TILE_MAX_SIDE ||
+        tile_height > DSN_TILE_MAX_SIDE)
+        return 0;
+    FilteredSplat filtered;
+    if (filtered_splat_prepare(noise, tile_grid, tile_width, tile_height, *plan, &filtered) == 0) return 0;
+    const dsn_grid swapped = transposed_grid(tile_grid);
+    const dsn_grid *grid = filtered.transposed ? &swapped : tile_grid;
+    const uint32_t width = filtered.transposed ? tile_height : tile_width;
+    const uint32_t height = filtered.transposed ? tile_width : tile_height;
+    if (!gradient_splats(noise, grid, width, height, filtered)) return 0;
+#if DSN_SPLAT_CELLS
+    alignas(64) uint64_t cells[splat_cell_capacity]; /* the levels' records, one after the other */
+    uint32_t used = 0;
+    for (uint32_t k = 0; k < filtered.count; k++) {
+        const dsn_splat_texture texture = level_texture(noise, filtered.walked[k]);
+        const uint32_t records =
+            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered.cell_row[k]);
+        if (records != 0) filtered.cells[k] = cells + used;
+        used += records;
+    }
+#endif
+    uint64_t sums[2][gradient_block_values];
+    int64_t totals[3][gradient_block_values];
+    for (uint32_t top = 0; top < height; top += gradient_block_rows)
+        for (uint32_t left = 0; left < width; left += gradient_block_columns) {
+            dsn_splat_block block;
+            block.left = left;
+            block.top = top;
+            block.columns = width - left < gradient_block_columns ? width - left : gradient_block_columns;
+            block.rows = height - top < gradient_block_rows ? height - top : gradient_block_rows;
+            block.stride = block.columns;
+            block.plane = static_cast<size_t>(block.columns) * block.rows;
+            gradient_block(noise, grid, width, height, filtered, block, sums, totals, out, dx, dy, kind);
+        }
+    return 1;
+}
+#endif
 
 extern "C" {
 

@@ -927,6 +927,17 @@ inline int continuous_point_sums(const dsn_noise_state *noise, uint64_t x, uint6
     return rgb ? point_vector<3>(noise, x, y, value) : point_vector<1>(noise, x, y, value);
 }
 
+/* The continuous point entry of the x86 kernel copies (kernel_avx2.cpp, kernel_avx512.cpp): this
+   evaluator where it takes the noise, else Fallback's (the default kernel's sifting walk,
+   continuous_point_sift.h, whose copy built for the baseline runs faster than one built for AVX2 or
+   AVX-512). */
+template <const dsn_kernel_entries *Fallback>
+int continuous_point_or(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
+                        uint64_t *slope_x, uint64_t *slope_y) {
+    return continuous_point_sums(noise, x, y, value, slope_x, slope_y) ||
+           Fallback->continuous_point(noise, x, y, value, slope_x, slope_y);
+}
+
 /* The point's values (normalize_q32 of its sums), as dsn_internal_continuous_point gives them; 0 where
    continuous_point_sums is. */
 inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {

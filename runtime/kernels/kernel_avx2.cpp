@@ -16,8 +16,16 @@
 #include "kernels/splat_row.h"
 #include "kernels/tile_render.h"
 
+extern const dsn_kernel_entries dsn_internal_entries_default;
+
 extern const dsn_kernel_entries dsn_internal_entries_avx2 = {
-    render_tile,           lattice_strips_take,    DSN_LATTICE_POINT_ENTRY,
-    continuous_batch,      continuous_splat_runs,  continuous_splat_normalize,
-    continuous_point_sums, DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};
+    render_tile,
+    lattice_strips_take,
+    DSN_LATTICE_POINT_ENTRY,
+    continuous_batch,
+    continuous_splat_runs,
+    continuous_splat_normalize,
+    continuous_point_or<&dsn_internal_entries_default>,
+    DSN_FILTER_READS_ENTRY,
+    DSN_FILTER_CANDIDATES_ENTRY};
 #endif

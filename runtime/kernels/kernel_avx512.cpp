@@ -18,10 +18,18 @@
 #include "kernels/splat_row.h"
 #include "kernels/tile_render.h"
 
+extern const dsn_kernel_entries dsn_internal_entries_default;
+
 extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
-    render_tile,           lattice_strips_take,    DSN_LATTICE_POINT_ENTRY,
-    continuous_batch,      continuous_splat_runs,  continuous_splat_normalize,
-    continuous_point_sums, DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};
+    render_tile,
+    lattice_strips_take,
+    DSN_LATTICE_POINT_ENTRY,
+    continuous_batch,
+    continuous_splat_runs,
+    continuous_splat_normalize,
+    continuous_point_or<&dsn_internal_entries_default>,
+    DSN_FILTER_READS_ENTRY,
+    DSN_FILTER_CANDIDATES_ENTRY};
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2;
 
@@ -50,7 +58,13 @@ int lattice_strips_take_avx2_if_rgb(const dsn_noise_state *noise) {
 
 /* This kernel but for the lattice tiles of RGB noises, which take the AVX2 kernel's. */
 extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
-    lattice_tile_avx2_if_rgb, lattice_strips_take_avx2_if_rgb, DSN_LATTICE_POINT_ENTRY,
-    continuous_batch,         continuous_splat_runs,           continuous_splat_normalize,
-    continuous_point_sums,    DSN_FILTER_READS_ENTRY,          DSN_FILTER_CANDIDATES_ENTRY};
+    lattice_tile_avx2_if_rgb,
+    lattice_strips_take_avx2_if_rgb,
+    DSN_LATTICE_POINT_ENTRY,
+    continuous_batch,
+    continuous_splat_runs,
+    continuous_splat_normalize,
+    continuous_point_or<&dsn_internal_entries_default>,
+    DSN_FILTER_READS_ENTRY,
+    DSN_FILTER_CANDIDATES_ENTRY};
 #endif

@@ -18,17 +18,17 @@
 #define SPLAT_ROW_ENTRY 0
 #define SPLAT_NORMALIZE_ENTRY 0
 #endif
-#if !DSN_SMALL_CODE && defined(__AVX2__)
-#include "kernels/continuous_point_vector.h"
-#define POINT_ENTRY continuous_point_sums
-#else
-#define POINT_ENTRY 0
-#endif
+#include "kernels/continuous_point_sift.h"
 #include "kernels/filtered_candidates_vector.h"
 #include "kernels/filtered_reads_vector.h"
 #include "kernels/lattice_point_walk.h"
 
-extern const dsn_kernel_entries dsn_internal_entries_default = {
-    render_tile, lattice_strips_take,    DSN_LATTICE_POINT_ENTRY,
-    BATCH_ENTRY, SPLAT_ROW_ENTRY,        SPLAT_NORMALIZE_ENTRY,
-    POINT_ENTRY, DSN_FILTER_READS_ENTRY, DSN_FILTER_CANDIDATES_ENTRY};
+extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
+                                                                lattice_strips_take,
+                                                                DSN_LATTICE_POINT_ENTRY,
+                                                                BATCH_ENTRY,
+                                                                SPLAT_ROW_ENTRY,
+                                                                SPLAT_NORMALIZE_ENTRY,
+                                                                DSN_CONTINUOUS_POINT_ENTRY,
+                                                                DSN_FILTER_READS_ENTRY,
+                                                                DSN_FILTER_CANDIDATES_ENTRY};

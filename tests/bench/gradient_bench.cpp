@@ -161,9 +161,10 @@ int main() {
     }
     std::printf(
         "  stack (painted) of a gradient tile call: lattice %zu bytes, continuous %zu bytes (the value's: "
-        "%zu bytes)\n",
+        "%zu bytes), filtered %zu bytes (the value's: %zu bytes)\n",
         bench::painted_stack(cases[2].gradient), bench::painted_stack(cases[3].gradient),
-        bench::painted_stack(cases[3].value));
+        bench::painted_stack(cases[3].value), bench::painted_stack(cases[6].gradient),
+        bench::painted_stack(cases[6].value));
     std::printf("  stack (painted) of a gradient batch call: %zu bytes (the value's: %zu bytes)\n",
                 bench::painted_stack(cases[4].gradient), bench::painted_stack(cases[4].value));
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
