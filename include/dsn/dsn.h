@@ -82,8 +82,8 @@
                         copies of the texton and the impulse list on the stack: 62-80 KB per tile call
                         by the copy of the tile code (make bench's runtime_bench). 0 takes the
                         32-bit accumulator path, under 1 KB of stack per tile call, slower.
-     DSN_X86_DISPATCH   default: undefined (0); the Makefile defines it to 1 on x86-64. 1 builds the tile
-                        kernels twice more, runtime/kernels/kernel_avx2.cpp with -mavx2 and
+     DSN_X86_DISPATCH   default: undefined (0); the Makefile defines it to 1 on x86-64. 1 builds the
+                        evaluation kernels twice more, runtime/kernels/kernel_avx2.cpp with -mavx2 and
                         runtime/kernels/kernel_avx512.cpp with -mavx512f -mavx512bw (the build must pass those
                         flags to those two files), and dsn_noise_init picks from the table of kernels
                         (runtime/kernels/kernel_table.cpp) the widest copy that the CPU and the OS run; on AMD

@@ -162,13 +162,8 @@ int splat_gradient_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint
     uint64_t sums[3][gradient_block_sums];
     for (uint32_t top = 0; top < height; top += gradient_block_rows)
         for (uint32_t left = 0; left < width; left += gradient_block_columns) {
-            dsn_splat_block block;
-            block.left = left;
-            block.top = top;
-            block.columns = width - left < gradient_block_columns ? width - left : gradient_block_columns;
-            block.rows = height - top < gradient_block_rows ? height - top : gradient_block_rows;
-            block.stride = block.columns;
-            block.plane = static_cast<size_t>(block.columns) * block.rows;
+            const dsn_splat_block block = dsn_internal_splat_small_block(
+                left, top, width, height, gradient_block_columns, gradient_block_rows);
             for (uint32_t k = 0; k < 3; k++)
                 dsn_internal_grid_splat_block(noise, &splats[k], &block, sums[k]);
             for (uint32_t j = 0; j < block.rows; j++)

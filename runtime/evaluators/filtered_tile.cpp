@@ -419,13 +419,8 @@ int dsn_internal_filtered_gradient_splat(const dsn_noise_state *noise, const dsn
     int64_t totals[3][gradient_block_values];
     for (uint32_t top = 0; top < height; top += gradient_block_rows)
         for (uint32_t left = 0; left < width; left += gradient_block_columns) {
-            dsn_splat_block block;
-            block.left = left;
-            block.top = top;
-            block.columns = width - left < gradient_block_columns ? width - left : gradient_block_columns;
-            block.rows = height - top < gradient_block_rows ? height - top : gradient_block_rows;
-            block.stride = block.columns;
-            block.plane = static_cast<size_t>(block.columns) * block.rows;
+            const dsn_splat_block block = dsn_internal_splat_small_block(
+                left, top, width, height, gradient_block_columns, gradient_block_rows);
             gradient_block(noise, grid, width, height, filtered, block, sums, totals, out, dx, dy, kind);
         }
     return 1;

@@ -476,6 +476,18 @@ size_t dsn_internal_splat_block_pixels(uint32_t width, uint32_t height) {
     return static_cast<size_t>(tile < block ? tile : block);
 }
 
+dsn_splat_block dsn_internal_splat_small_block(uint32_t left, uint32_t top, uint32_t width, uint32_t height,
+                                               uint32_t columns, uint32_t rows) {
+    dsn_splat_block block;
+    block.left = left;
+    block.top = top;
+    block.columns = width - left < columns ? width - left : columns;
+    block.rows = height - top < rows ? height - top : rows;
+    block.stride = block.columns;
+    block.plane = static_cast<size_t>(block.columns) * block.rows;
+    return block;
+}
+
 dsn_splat_block dsn_internal_splat_block(uint32_t left, uint32_t top, uint32_t width, uint32_t height) {
     dsn_splat_block block;
     const uint32_t most_columns = dsn_splat_block_columns, most_rows = dsn_splat_block_rows;

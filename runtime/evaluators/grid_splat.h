@@ -67,6 +67,11 @@ size_t dsn_internal_splat_block_pixels(uint32_t width, uint32_t height);
    padded where dsn_internal_splat_block_pixels leaves room. */
 dsn_splat_block dsn_internal_splat_block(uint32_t left, uint32_t top, uint32_t width, uint32_t height);
 
+/* The block of the tile at (left, top) of at most `columns` x `rows` pixels, its rows unpadded: the
+   gradient tiles' smaller blocks, whose sums live on the stack. */
+dsn_splat_block dsn_internal_splat_small_block(uint32_t left, uint32_t top, uint32_t width, uint32_t height,
+                                               uint32_t columns, uint32_t rows);
+
 /* Zeroes the block's sums (sums[0 .. channels plane)) and adds every impulse within reach. */
 void dsn_internal_grid_splat_block(const dsn_noise_state *noise, const dsn_grid_splat *splat,
                                    const dsn_splat_block *block, uint64_t *sums);
