@@ -720,8 +720,8 @@ TEST_CASE("continuous gradient batches: every kernel's, 8 points a group or one 
                             // within 128 texels of 0, on the 2^-16 grid (float64 holds them exactly)
                             int64_t x = (int64_t(random()) >> 40) * 65536,
                                     y = (int64_t(random()) >> 40) * 65536;
-                            if (k % 6 == 1) x += (int64_t(INT32_MAX) - 2) << 32;
-                            if (k % 6 == 4) y -= (int64_t(INT32_MAX) - 2) << 32;
+                            if (k % 6 == 1) x = moved(x, (int64_t(INT32_MAX) - 2) << 32);
+                            if (k % 6 == 4) y = moved(y, -((int64_t(INT32_MAX) - 2) << 32));
                             xs.push_back(x), ys.push_back(y);
                         }
                         if (period == 0) add_entry_edge_points(made->noise, random, 406, &xs, &ys);

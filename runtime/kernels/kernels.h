@@ -101,11 +101,12 @@ typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_
 typedef void dsn_splat_normalize_entry(const dsn_noise_state *noise, const uint64_t *sums, size_t plane,
                                        uint32_t count, int32_t *out);
 
-/* One continuous point (continuous_point_vector.h's continuous_point_sums): the raw sums of the point (x, y),
-   Q32.32, per channel modulo 2^64, into value (what dsn_internal_continuous_point normalizes), and where
-   slope_x is not null (DSN_GRADIENTS) the derivative's sums too, value, slope_x and slope_y as
-   dsn_internal_continuous_slopes gives them (continuous_internal.h); returns 0, writing nothing, for a noise
-   it does not take (the evaluators then sum the point themselves). */
+/* One continuous point (continuous_point_sift.h's continuous_point_entry; the x86 copies' vector
+   evaluator first, continuous_point_vector.h): the raw sums of the point (x, y), Q32.32, per channel
+   modulo 2^64, into value (what dsn_internal_continuous_point normalizes), and where slope_x is not null
+   (DSN_GRADIENTS) the derivative's sums too, value, slope_x and slope_y as dsn_internal_continuous_slopes
+   gives them (continuous_internal.h); returns 1 (continuous_point_sums, the vector evaluator alone,
+   returns 0, writing nothing, for a noise it does not take). */
 typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                        uint64_t *slope_x, uint64_t *slope_y);
 
@@ -146,11 +147,11 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
                                              uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends);
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
-   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h), continuous_splat_runs and
-   continuous_splat_normalize in the small build (DSN_SMALL_CODE), which evaluates grids point by point,
-   continuous_point in kernels built without AVX2 (continuous_point.cpp's own evaluator then runs),
-   filter_level_reads and filter_candidates likewise (filtered_sift.cpp then reads, or lists, each
-   candidate itself). */
+   functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,
+   continuous_splat_normalize, lattice_point and continuous_point in the small build (DSN_SMALL_CODE),
+   which evaluates grids point by point and whose point.cpp and continuous_point.cpp walk the cells
+   themselves; lattice_point without SSE2 too; filter_level_reads and filter_candidates in kernels built
+   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
