@@ -77,6 +77,9 @@
                         sections (and so checks a 1.1 asset's pyramid) to find the mapping.
      DSN_GRADIENTS      default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the gradient functions out
                         (the section "Gradients" below): a program that calls them fails to link.
+     DSN_MIXING         default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the mixing of materials out
+                        (the section "Mixing" below): a program that calls it fails to link. It needs a
+                        build that reads sections (DSN_FILTERING or DSN_HISTOGRAM).
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
                         copies of the texton and the impulse list on the stack: 62-80 KB per tile call
@@ -127,6 +130,10 @@
 
 #ifndef DSN_GRADIENTS /* 1: the gradient functions ("Gradients" below); default 0 in the small build */
 #define DSN_GRADIENTS (!DSN_SMALL_CODE)
+#endif
+
+#ifndef DSN_MIXING /* 1: the mixing of materials ("Mixing" below); default 0 in the small build */
+#define DSN_MIXING (!DSN_SMALL_CODE)
 #endif
 
 #ifdef __cplusplus
@@ -744,6 +751,124 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
 #endif
 
 /* ==== End of the gradients =========================================================================== */
+
+/* ==== Mixing (several materials blended in space) ===================================================
+   Sand turning to gravel, moss over stone: up to DSN_MIX_MAX_MATERIALS noises mixed as Texton Noise
+   mixes them (Galerne, Leclaire and Moisan, "Texton Noise", Computer Graphics Forum 2017): one Poisson
+   process of impulses, each impulse carrying the texton of one material, drawn from the mixing weights
+   at the impulse's own position with a hash of its own. A point then sees a spot noise whose covariance
+   is the weights' mixture of the materials' covariances: no crossfade blur, no loss of contrast in a
+   transition (a crossfade of two independent noises w A + (1 - w) B has the variance w^2 + (1 - w)^2 of
+   theirs, half of it at w = 1/2), and one walk of impulses instead of one per material.
+
+   Definition. The materials are configured noises (dsn_noise_init, each with its asset, flags and colour
+   transform); material 0 leads: its seed, density lambda, cells and periods make the impulse process of
+   the whole mix, walked with the largest reach among the materials. Each material m is normalized for
+   that density (its gain K_m scale_m / sqrt(lambda), as dsn_noise_init computes it for its own), so that
+     out_c(x) = sum_m [ w_m(x) offset_m,c + sum_k gain_m,ck S_m,k(x) ],
+     offset_m,c = mean_m,c - sum_k gain_m,ck lambda sum_y t_m,k(y),
+   each material's term rounded to Q16.16 as a noise's value is, then summed (saturated to int32), where
+   S_m(x) is the sum of the textons t_m of the impulses that picked material m (read as the mode reads
+   them: bilinear in continuous mode, the lattice texton in lattice mode) and w_m(x) the mixing weights at
+   the evaluated point, in Q2.14, summing to exactly 1. Where the weights are those of one material m over
+   the reach of the point, the noise is exactly a noise of material m at density lambda: its mean and
+   covariance are material m's (Campbell's theorem, as for one noise); for material 0 it is bit for bit
+   material 0's own noise. Where the weights mix, the mean is the weights' mixture of the means and the
+   covariance at lag h the mixture sum_m w_m C_m(h) (with weights that vary slowly over the reach).
+   Configure material 0 at the density the mix should have: the other materials' impacts per pixel are
+   then lambda |S_m|, whatever their configuration said.
+
+   The weights. A dsn_mix_control is a grid of 8-bit weights per material (any non-negative scale: they
+   are normalized where they are read), samples 2^spacing_shift texels apart with sample (0, 0) at texel
+   (origin_x, origin_y), read bilinearly with 8-bit fractions (the precision of a GPU's texture filter):
+   at a position p, the sample coordinate u = (p - origin) / 2^spacing_shift, samples i = floor(u) and
+   i + 1 weighted by 256 - f and f, f = floor(256 (u - i)), per axis; samples past the grid's edge are
+   the edge's (clamped) unless the axis is periodic (DSN_MIX_PERIODIC_X / _Y: index modulo the grid's
+   size). That gives V_m(p) = (sum over the 4 samples of weight * (256 - f or f)(256 - g or g)) / 256,
+   an integer in [0, 65280], and T(p) = sum_m V_m(p).
+   - An impulse at lattice position p (the floor of its position: the same material in both modes, the
+     lattice impulse being the floor of its continuous twin) picks the first m with
+     floor(h T(p) / 2^32) < V_0(p) + ... + V_m(p), h a 32-bit hash of its own (probability V_m / T, to
+     2^-14). Where T(p) = 0 (no weight at all) it picks material 0.
+   - The point's weights: w_m(x) = floor(2^14 (V_0 + .. + V_m) / T) - floor(2^14 (V_0 + .. + V_m-1) / T)
+     at the point (its continuous position, its lattice point in lattice mode), so they sum to 2^14;
+     where T(x) = 0, w_0 = 2^14.
+   Positions are taken on the torus as everywhere (p - origin modulo 2^32 texels, read as signed), so a
+   clamped grid extends its edges for 2^31 texels each way; a periodic noise is evaluated with its
+   impulses at their positions seen from the point (the mix is periodic when the grid is too).
+   Making a grid from an image: one 8-bit channel per material, interleaved, sample (i, j) the pixel
+   (i, j); spacing_shift 0 puts a sample on every texel, larger shifts stretch it (2^spacing_shift texels
+   per pixel). dsn_mix_weight_from_float turns float weights into its bytes. dsn-render --mix renders a
+   mix from a PNG of weights (README).
+
+   Materials of different kinds. Grey and RGB materials mix: the mix has 3 channels if any material has,
+   and a grey material adds its one value to each. 8- and 16-bit textons, lattice and bilinear bakes, any
+   sizes mix. Materials with a histogram mapping are refused (DSN_ERR_UNSUPPORTED): configure them with
+   DSN_FLAG_NO_HISTOGRAM. The continuous functions check every material as dsn_continuous_check does.
+
+   Cost: one walk over the cells within the largest reach; each impulse within it reads its weights (four
+   samples per material; once per point where every sample around the point is the same), a hash where
+   more than one material may be picked, and one texton. make bench's mix_bench reports it against one
+   material. Stack under 1 KB per point; no scratch. Not in the small build (DSN_MIXING). */
+#if DSN_MIXING
+#define DSN_MIX_MAX_MATERIALS 4
+#define DSN_MIX_WORDS (DSN_MIX_MAX_MATERIALS * DSN_NOISE_WORDS + 4) /* 64-bit words */
+/* The configured mix: caller-owned storage filled by dsn_mix_init, private like dsn_noise's. It holds
+   copies of its materials (the noises may go after init; their assets' bytes must stay). */
+typedef union dsn_mix {
+    uint64_t words[DSN_MIX_WORDS];
+    void *align_pointer;
+} dsn_mix;
+
+#define DSN_MIX_PERIODIC_X 1u /* the grid repeats along x (index modulo width); else its edge extends */
+#define DSN_MIX_PERIODIC_Y 2u
+typedef struct dsn_mix_control {
+    const uint8_t *weights;     /* width * height samples, row-major, each `materials` bytes (one per
+                                   material, in the mix's order) */
+    uint32_t width, height;     /* samples per row and rows: 1 .. 65535 */
+    uint32_t spacing_shift;     /* samples 2^spacing_shift texels apart: 0 .. 16 */
+    int32_t origin_x, origin_y; /* the texel where sample (0, 0) lies */
+    uint32_t flags;             /* DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y; other bits are an error */
+} dsn_mix_control;
+
+/* Configures a mix of `count` (1 .. DSN_MIX_MAX_MATERIALS) configured noises, materials[0] leading (see
+   above). Returns DSN_OK, DSN_ERR_NULL (null mix or materials, or a material not configured),
+   DSN_ERR_ARGUMENT (count out of range), DSN_ERR_UNSUPPORTED (a material with a histogram mapping) or
+   DSN_ERR_COST (the walk with the largest reach at material 0's density would examine more than
+   DSN_MAX_POINT_IMPULSES impulses per point). On failure `mix` is zeroed and the functions refuse it. */
+int dsn_mix_init(dsn_mix *mix, const dsn_noise *const *materials, uint32_t count);
+/* The channels each evaluation writes per point (1 or 3); 0 for a mix not configured. */
+uint32_t dsn_mix_channels(const dsn_mix *mix);
+/* A float weight as the control's byte: round(255 w) for w in [0, 1]; 0 for negative weights and NaN,
+   255 above 1. */
+uint8_t dsn_mix_weight_from_float(float weight);
+
+/* The mix at a point, as the noise functions of the same name (coordinates, outputs). Errors: DSN_ERR_NULL
+   (null mix, control, weights or out, or a mix not configured), DSN_ERR_ARGUMENT (a control out of its
+   ranges), DSN_ERR_CONTINUOUS_MISMATCH (continuous: a material that dsn_continuous_check refuses); on
+   an error every channel of a configured mix (else out[0]) is zeroed. */
+int dsn_mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                                int32_t *out);
+int dsn_mix_lattice_point_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                                float *out);
+int dsn_mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                                   int32_t *out);
+int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
+                                   float *out);
+/* Tiles: the lattice tile's and the continuous grid's pixels and layout (width, height 1 ..
+   DSN_TILE_MAX_SIDE, else DSN_ERR_TILE_SIZE with the output untouched), each pixel exactly the point
+   function's; no scratch. The point functions' other errors, the whole output zeroed. */
+int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                               uint32_t width, uint32_t height, int32_t *out);
+int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                               uint32_t width, uint32_t height, float *out);
+int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                  uint32_t width, uint32_t height, int32_t *out);
+int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                  uint32_t width, uint32_t height, float *out);
+#endif
+
+/* ==== End of the mixing ============================================================================== */
 
 /* ==== Histogram-preserving output (format 1.2) =======================================================
    A spot noise is Gaussian: it keeps an exemplar's mean, colours' covariance and spectrum, but not the

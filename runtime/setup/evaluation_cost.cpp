@@ -80,6 +80,10 @@ uint64_t filtered_cost_q8(const dsn_noise_state *noise, uint64_t mean_q8, uint32
 
 } // namespace
 
+uint64_t dsn_internal_walk_cost(const dsn_noise_state *noise, uint32_t extent_x, uint32_t extent_y) {
+    return (walk_cost_q8(noise, cell_mean_q8(noise), extent_x, extent_y) + 255u) >> 8;
+}
+
 uint64_t dsn_internal_point_cost(const dsn_noise_state *noise) {
     const uint64_t mean_q8 = cell_mean_q8(noise);
     /* The lattice point: the window of one point, with the radius of the texton the lattice reads. */

@@ -26,6 +26,10 @@ void dsn_internal_compute_normalization(dsn_noise_state *noise);
    detail): at most DSN_MAX_POINT_IMPULSES for a noise that init accepted. Reads the cell size, the
    density, the periods and, with DSN_FILTERING, level_margin (evaluation_cost.cpp). */
 uint64_t dsn_internal_point_cost(const dsn_noise_state *noise);
+
+/* The expected impulses, rounded up, of one walk over a window of these extents (its length plus twice
+   the walk's radius, per axis) in the noise's cells: what the mix's walks cost (mix_init.cpp). */
+uint64_t dsn_internal_walk_cost(const dsn_noise_state *noise, uint32_t extent_x, uint32_t extent_y);
 #endif
 
 #if DSN_FILTERING

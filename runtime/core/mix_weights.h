@@ -1,0 +1,188 @@
+/* runtime/core/mix_weights.h - the mixing weights (dsn.h, "Mixing"): a caller's dsn_mix_control read
+   bilinearly at a position, the material an impulse picks there, and the weights of the evaluated point.
+   Internal to libdsn; not installed (everything here has internal linkage). */
+#ifndef DSN_MIX_WEIGHTS_H
+#define DSN_MIX_WEIGHTS_H
+
+#include <stdint.h>
+
+#include "core/cell_hash.h"
+#include "setup/mix_state.h"
+
+#if DSN_MIXING
+
+namespace {
+
+const uint32_t mix_weight_bits = 14; /* the point's weights are Q2.14 */
+
+/* DSN_OK for a control within dsn_mix_control's ranges; DSN_ERR_NULL or DSN_ERR_ARGUMENT. */
+inline int mix_control_check(const dsn_mix_control *control) {
+    if (control == 0 || control->weights == 0) return DSN_ERR_NULL;
+    if (control->width == 0 || control->height == 0 || control->width > 65535u || control->height > 65535u ||
+        static_cast<uint64_t>(control->width) * control->height > (static_cast<uint64_t>(1) << 24) ||
+        control->spacing_shift > 16u || (control->flags & ~(DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y)) != 0)
+        return DSN_ERR_ARGUMENT;
+    return DSN_OK;
+}
+
+/* One axis of a bilinear read of the grid: the two samples' indices and the upper one's 8-bit weight. */
+struct MixAxis {
+    uint32_t first, second, fraction;
+    int64_t index; /* the lower sample's index before clamping or wrapping: floor(u) */
+};
+
+inline uint32_t clamped_sample(int64_t index, uint32_t size) {
+    return index < 0 ? 0u : index >= static_cast<int64_t>(size) ? size - 1u : static_cast<uint32_t>(index);
+}
+
+/* Floor modulo of an index in [-2^31, 2^31) in 32-bit arithmetic (no 64-bit division on 32-bit targets). */
+inline uint32_t wrapped_sample(int64_t index, uint32_t size) {
+    const uint32_t bits = static_cast<uint32_t>(static_cast<uint64_t>(index));
+    return index < 0 ? size - 1u - ~bits % size : bits % size;
+}
+
+/* The axis at a Q32.32 position: u = (position - origin) / 2^spacing_shift in samples, the difference
+   taken modulo 2^32 texels and read as signed. */
+inline MixAxis mix_axis(uint64_t position, int32_t origin, uint32_t spacing_shift, uint32_t size,
+                        bool periodic) {
+    const uint64_t relative = position - (static_cast<uint64_t>(static_cast<uint32_t>(origin)) << 32);
+    /* floor(whole / 2^shift) of the signed whole part, through a 2^31 bias (no signed shift) */
+    const uint32_t biased = static_cast<uint32_t>(relative >> 32) ^ 0x80000000u;
+    MixAxis axis;
+    axis.index = static_cast<int64_t>(biased >> spacing_shift) -
+                 static_cast<int64_t>(static_cast<uint32_t>(0x80000000u) >> spacing_shift);
+    axis.fraction = static_cast<uint32_t>(relative >> (24u + spacing_shift)) & 0xFFu;
+    axis.first = periodic ? wrapped_sample(axis.index, size) : clamped_sample(axis.index, size);
+    axis.second = periodic ? (axis.first + 1u == size ? 0u : axis.first + 1u) : clamped_sample(axis.index + 1, size);
+    return axis;
+}
+
+/* The weights V_m at a position, in [0, 65280] (dsn.h), and their running sums: cumulative[m] =
+   V_0 + .. + V_m, so cumulative[count - 1] is T. */
+struct MixWeights {
+    uint32_t cumulative[DSN_MIX_MAX_MATERIALS];
+};
+
+inline MixWeights mix_weights_at(const dsn_mix_control *control, uint32_t count, uint64_t x, uint64_t y) {
+    const MixAxis ax = mix_axis(x, control->origin_x, control->spacing_shift, control->width,
+                                (control->flags & DSN_MIX_PERIODIC_X) != 0);
+    const MixAxis ay = mix_axis(y, control->origin_y, control->spacing_shift, control->height,
+                                (control->flags & DSN_MIX_PERIODIC_Y) != 0);
+    const uint8_t *top = control->weights + static_cast<size_t>(ay.first) * control->width * count;
+    const uint8_t *bottom = control->weights + static_cast<size_t>(ay.second) * control->width * count;
+    const uint32_t left = ax.first * count, right = ax.second * count;
+    MixWeights weights;
+    uint32_t total = 0;
+    for (uint32_t m = 0; m < count; m++) {
+        const uint32_t upper = (256u - ax.fraction) * top[left + m] + ax.fraction * top[right + m];
+        const uint32_t lower = (256u - ax.fraction) * bottom[left + m] + ax.fraction * bottom[right + m];
+        total += ((256u - ay.fraction) * upper + ay.fraction * lower) >> 8;
+        weights.cumulative[m] = total;
+    }
+    return weights;
+}
+
+/* The material an impulse with this hash picks where the weights are these: the first m with
+   floor(hash T / 2^32) < cumulative[m]; material 0 where T is 0. */
+inline uint32_t pick_material(const MixWeights &weights, uint32_t count, uint32_t hash) {
+    const uint32_t total = weights.cumulative[count - 1u];
+    const uint32_t draw = static_cast<uint32_t>((static_cast<uint64_t>(hash) * total) >> 32);
+    uint32_t m = 0;
+    if (total == 0) return 0;
+    while (m + 1u < count && draw >= weights.cumulative[m]) m++;
+    return m;
+}
+
+/* The point's weights w_m in Q2.14, summing to 2^14: differences of floor(2^14 cumulative / T) (T < 2^18,
+   so a 32-bit division); all on material 0 where T is 0. */
+inline void point_weights(const MixWeights &weights, uint32_t count, uint32_t *out) {
+    const uint32_t total = weights.cumulative[count - 1u];
+    uint32_t before = 0;
+    for (uint32_t m = 0; m < count; m++) {
+        const uint32_t upto = total == 0 ? (1u << mix_weight_bits)
+                                         : (weights.cumulative[m] << mix_weight_bits) / total;
+        out[m] = upto - before;
+        before = upto;
+    }
+}
+
+/* Where the weights are the same at every position the point's impulses can take, the walk reads them
+   once: a region of the grid. */
+struct MixRegion {
+    bool uniform;
+    MixWeights weights; /* the weights everywhere, when uniform */
+    bool single;        /* uniform with one material of non-zero weight: no impulse needs its hash */
+    uint32_t only;      /* that material */
+};
+
+/* The samples that a run of lower-sample indices first .. last (and the samples after them) reads along an
+   axis: `length` samples from `start` (wrapping modulo size where periodic); false past 16. */
+inline bool axis_samples(int64_t first, int64_t last, uint32_t size, bool periodic, uint32_t *start,
+                         uint32_t *length) {
+    const int64_t most = 16;
+    if (periodic) {
+        const int64_t count = last + 2 - first;
+        *start = wrapped_sample(first, size);
+        *length = count >= static_cast<int64_t>(size) ? size : static_cast<uint32_t>(count);
+        return *length <= most;
+    }
+    *start = clamped_sample(first, size);
+    const int64_t count = static_cast<int64_t>(clamped_sample(last + 1, size)) - *start + 1;
+    *length = static_cast<uint32_t>(count);
+    return count <= most;
+}
+
+/* The region of positions [low, high] (Q32.32 per axis, high - low below 2^31 texels): uniform when the
+   samples it reads (at most 16 per axis) all hold the same weights. */
+inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint64_t low_x, uint64_t low_y,
+                            uint64_t high_x, uint64_t high_y) {
+    MixRegion region;
+    region.uniform = false;
+    region.single = false;
+    region.only = 0;
+    const bool periodic_x = (control->flags & DSN_MIX_PERIODIC_X) != 0;
+    const bool periodic_y = (control->flags & DSN_MIX_PERIODIC_Y) != 0;
+    const uint32_t shift = control->spacing_shift, width = control->width, height = control->height;
+    const MixAxis first_x = mix_axis(low_x, control->origin_x, shift, width, periodic_x);
+    const MixAxis last_x = mix_axis(high_x, control->origin_x, shift, width, periodic_x);
+    const MixAxis first_y = mix_axis(low_y, control->origin_y, shift, height, periodic_y);
+    const MixAxis last_y = mix_axis(high_y, control->origin_y, shift, height, periodic_y);
+    uint32_t start_x, columns, start_y, rows;
+    /* A region across the 2^31 seam of the relative positions has last < first: not uniform. */
+    if (last_x.index < first_x.index || last_y.index < first_y.index ||
+        !axis_samples(first_x.index, last_x.index, width, periodic_x, &start_x, &columns) ||
+        !axis_samples(first_y.index, last_y.index, height, periodic_y, &start_y, &rows))
+        return region;
+    const uint8_t *reference = control->weights + (static_cast<size_t>(start_y) * width + start_x) * count;
+    for (uint32_t j = 0, row = start_y; j < rows; j++, row = row + 1u == height ? 0u : row + 1u)
+        for (uint32_t i = 0, column = start_x; i < columns; i++, column = column + 1u == width ? 0u : column + 1u) {
+            const uint8_t *sample = control->weights + (static_cast<size_t>(row) * width + column) * count;
+            for (uint32_t m = 0; m < count; m++)
+                if (sample[m] != reference[m]) return region;
+        }
+    region.uniform = true;
+    uint32_t total = 0, nonzero = 0;
+    for (uint32_t m = 0; m < count; m++) {
+        total += static_cast<uint32_t>(reference[m]) << 8; /* V_m = weight 65536 / 256 */
+        region.weights.cumulative[m] = total;
+        if (reference[m] != 0) nonzero++, region.only = m;
+    }
+    region.single = nonzero <= 1u; /* no weight at all: material 0, as pick_material gives */
+    return region;
+}
+
+/* The material of impulse k of the cell with this key, at Q32.32 position (x, y) (its floor is read). */
+inline uint32_t impulse_material(const dsn_mix_control *control, uint32_t count, const MixRegion &region,
+                                 uint32_t key, uint32_t k, uint64_t x, uint64_t y) {
+    if (region.single) return region.only;
+    const uint32_t hash = dsn_cell_stream(key, 0xC0000000u + k);
+    if (region.uniform) return pick_material(region.weights, count, hash);
+    const uint64_t whole = ~static_cast<uint64_t>(0xFFFFFFFFu);
+    return pick_material(mix_weights_at(control, count, x & whole, y & whole), count, hash);
+}
+
+} // namespace
+
+#endif /* DSN_MIXING */
+
+#endif /* DSN_MIX_WEIGHTS_H */

@@ -1,0 +1,330 @@
+/* runtime/evaluators/mix_point.cpp - the mixing of materials (dsn.h, "Mixing"): one walk over the impulses
+   of material 0's process within the largest reach, each impulse picking its material from the weights
+   at its position (mix_weights.h) and adding that material's texton to the material's sums; then each
+   material's sums normalized with the point's weight on its mean, and summed. Lattice and continuous,
+   per point; tiles point by point. */
+#include "core/bilinear_texton.h"
+#include "core/cell_walk.h"
+#include "core/continuous_internal.h"
+#include "core/continuous_sift.h"
+#include "core/grid_points.h"
+#include "core/impulse_position.h"
+#include "core/lattice_impulses.h"
+#include "core/mix_weights.h"
+#include "core/normalize_fixed.h"
+#include "core/poisson_count.h"
+
+#if DSN_MIXING
+
+namespace {
+
+typedef uint64_t ContinuousSums[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
+typedef uint32_t LatticeSums[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
+
+/* ---- The walks ---- */
+
+/* Whether a point-minus-impulse offset (Q32.32) lies within (-(radius + 1), radius + 1) texels. */
+inline bool within_reach(int64_t offset, uint32_t radius) {
+    const uint64_t reach = static_cast<uint64_t>(radius + 1u) << 32;
+    return static_cast<uint64_t>(offset) + reach - 1u < 2u * reach - 1u;
+}
+
+/* The region of grid samples that the impulses around the integer point (x, y) may read: their floors lie
+   within reach_x, reach_y texels. */
+MixRegion region_around(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
+                        uint32_t reach_x, uint32_t reach_y) {
+    return mix_region(control, mix->count, static_cast<uint64_t>(x - reach_x) << 32,
+                      static_cast<uint64_t>(y - reach_y) << 32, static_cast<uint64_t>(x + reach_x) << 32,
+                      static_cast<uint64_t>(y + reach_y) << 32);
+}
+
+/* The continuous sums of every material at (x, y), Q32.32: the small build's walk of
+   continuous_point.cpp, impulse by impulse, with the mix's reach. */
+void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
+                     ContinuousSums sums) {
+    const dsn_noise_state *lead = &mix->material[0];
+    const uint32_t shift = lead->cell_shift;
+    const PointAxis px = point_axis(x, mix->radius[0], shift, lead->period[0]);
+    const PointAxis py = point_axis(y, mix->radius[1], shift, lead->period[1]);
+    const MixRegion region = region_around(mix, control, static_cast<uint32_t>(x >> 32),
+                                           static_cast<uint32_t>(y >> 32), mix->radius[0] + 1u,
+                                           mix->radius[1] + 1u);
+    for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&py.axis, sy);
+        for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
+            const dsn_span span_x = dsn_axis_span(&px.axis, sx);
+            for (uint32_t j = 0; j < span_y.cell_count; j++) {
+                const uint32_t cell_y = dsn_span_cell(&span_y, j, shift), origin_y = cell_y << shift;
+                for (uint32_t i = 0; i < span_x.cell_count; i++) {
+                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift), origin_x = cell_x << shift;
+                    const uint32_t key = dsn_cell_key(lead, cell_x, cell_y);
+                    const uint32_t count = dsn_cell_impulse_count(lead, key);
+                    for (uint32_t k = 0; k < count; k++) {
+                        const uint32_t hash = dsn_impulse_hash(lead, key, k);
+                        int64_t offset_x, offset_y;
+                        if (!impulse_offset(py, span_y, origin_y, dsn_impulse_bits_y(hash), &offset_y) ||
+                            !impulse_offset(px, span_x, origin_x, dsn_impulse_bits_x(hash), &offset_x) ||
+                            !within_reach(offset_x, mix->radius[0]) || !within_reach(offset_y, mix->radius[1]))
+                            continue;
+                        const uint32_t m =
+                            impulse_material(control, mix->count, region, key, k,
+                                             x - static_cast<uint64_t>(offset_x), y - static_cast<uint64_t>(offset_y));
+                        const dsn_noise_state *material = &mix->material[m];
+                        uint32_t row, row_weight, column, column_weight;
+                        if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
+                            bracket(offset_x, material->radius[0], &column, &column_weight))
+                            add_bilinear(&material->asset, row, row_weight, column, column_weight, sums[m]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* The lattice sums of every material at the lattice point (x, y): lattice_impulses.h's walk with the
+   mix's reach, each impulse reading its material's lattice texton. */
+void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
+                  LatticeSums sums) {
+    const dsn_noise_state *lead = &mix->material[0];
+    const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
+    const uint32_t field_shift = dsn_field_shift(shift), half_bits = 1u << (field_shift - 1u);
+    const uint32_t half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    dsn_texton_window textons[DSN_MIX_MAX_MATERIALS];
+    for (uint32_t m = 0; m < mix->count; m++) textons[m] = dsn_lattice_texton_window(&mix->material[m]);
+    dsn_axis ax, ay;
+    dsn_axis_init(&ax, x, 1u, reach_x, shift, lead->period[0]);
+    dsn_axis_init(&ay, y, 1u, reach_y, shift, lead->period[1]);
+    const MixRegion region = region_around(mix, control, x, y, reach_x, reach_y);
+    for (uint32_t sy = 0; sy < ay.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&ay, sy);
+        for (uint32_t sx = 0; sx < ax.span_count; sx++) {
+            const dsn_span span_x = dsn_axis_span(&ax, sx);
+            for (uint32_t j = 0; j < span_y.cell_count; j++) {
+                const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
+                const axis_cell on_y = cell_on_axis(&span_y, cell_y, shift);
+                for (uint32_t i = 0; i < span_x.cell_count; i++) {
+                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
+                    const axis_cell on_x = cell_on_axis(&span_x, cell_x, shift);
+                    const uint32_t key = dsn_cell_key(lead, cell_x, cell_y);
+                    const uint32_t count = dsn_cell_impulse_count(lead, key);
+                    for (uint32_t k = 0; k < count; k++) {
+                        const uint32_t field = dsn_impulse_field(lead, key, k);
+                        const uint32_t offset_x = (field & half_mask) >> drop;
+                        const uint32_t offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        /* texton indices in the walk's window of radius reach: 0 .. 2 reach */
+                        const uint32_t column = on_x.reach - offset_x, row = on_y.reach - offset_y;
+                        if (column > 2u * reach_x || row > 2u * reach_y || offset_x > on_x.last_offset ||
+                            offset_y > on_y.last_offset)
+                            continue;
+                        /* the impulse as seen from the point: x + reach - column */
+                        const uint64_t at_x = static_cast<uint64_t>(x + reach_x - column) << 32;
+                        const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
+                        const uint32_t m = impulse_material(control, mix->count, region, key, k, at_x, at_y);
+                        const dsn_texton_window *texton = &textons[m];
+                        const uint32_t own_column = column - reach_x + texton->radius[0];
+                        const uint32_t own_row = row - reach_y + texton->radius[1];
+                        if (own_column < texton->width && own_row < texton->height)
+                            add_texton_entry(&mix->material[m].asset, texton, own_row * texton->width + own_column,
+                                             sums[m]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* ---- The output ---- */
+
+/* floor(offset w / 2^14), exactly, for |offset| < 2^61 and w <= 2^14. */
+int64_t weighted_offset(int64_t offset, uint32_t weight) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    const int64_t high = static_cast<int64_t>((static_cast<uint64_t>(offset) + bias) >> mix_weight_bits) -
+                         static_cast<int64_t>(bias >> mix_weight_bits);
+    const int64_t low = offset - high * (static_cast<int64_t>(1) << mix_weight_bits); /* in [0, 2^14) */
+    return high * static_cast<int64_t>(weight) + ((low * static_cast<int64_t>(weight)) >> mix_weight_bits);
+}
+
+/* A material's sums normalized from `offset`: Q.32 sums (continuous) or whole ones (lattice). */
+void normalize_material(const dsn_noise_state *material, const int64_t *offset, const uint64_t *sums,
+                        int32_t *out) {
+    normalize_q32_from(material, offset, sums, out);
+}
+void normalize_material(const dsn_noise_state *material, const int64_t *offset, const uint32_t *sums,
+                        int32_t *out) {
+    dsn_normalize_from(material, offset, sums, out);
+}
+
+/* Each material's sums normalized from its weighted offset, summed per channel (a grey material's value
+   in every channel) and saturated. */
+template <typename Sum>
+void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*sums)[DSN_MAX_CHANNELS],
+                int32_t *out) {
+    int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const dsn_noise_state *material = &mix->material[m];
+        const uint32_t channels = material->asset.channels;
+        int64_t offset[DSN_MAX_CHANNELS];
+        int32_t values[DSN_MAX_CHANNELS];
+        for (uint32_t c = 0; c < channels; c++) offset[c] = weighted_offset(material->offset[c], weights[m]);
+        normalize_material(material, offset, sums[m], values);
+        for (uint32_t c = 0; c < mix->channels; c++) totals[c] += values[channels == 1 ? 0 : c];
+    }
+    for (uint32_t c = 0; c < mix->channels; c++)
+        out[c] = totals[c] > INT32_MAX ? INT32_MAX : totals[c] < INT32_MIN ? INT32_MIN : static_cast<int32_t>(totals[c]);
+}
+
+void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
+                      int32_t *out) {
+    ContinuousSums sums = {};
+    continuous_sums(mix, control, x, y, sums);
+    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
+    mix_output(mix, weights, sums, out);
+}
+
+void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
+                   int32_t *out) {
+    LatticeSums sums = {};
+    lattice_sums(mix, control, x, y, sums);
+    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    point_weights(
+        mix_weights_at(control, mix->count, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32),
+        mix->count, weights);
+    mix_output(mix, weights, sums, out);
+}
+
+/* ---- The API ---- */
+
+uint32_t values_per_point(const dsn_mix_state *mix) { return dsn_mix_configured(mix) ? mix->channels : 1u; }
+
+int check_call(const dsn_mix_state *mix, const dsn_mix_control *control, bool continuous) {
+    if (!dsn_mix_configured(mix)) return DSN_ERR_NULL;
+    const int err = mix_control_check(control);
+    if (err != DSN_OK || !continuous) return err;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const int mode = dsn_internal_continuous_check(&mix->material[m]);
+        if (mode != DSN_OK) return mode;
+    }
+    return DSN_OK;
+}
+
+/* The `points` points of output zeroed on an error but DSN_ERR_TILE_SIZE; returns err. */
+int output_error(int err, const dsn_mix_state *mix, void *out, dsn_output_kind kind, size_t points) {
+    if (err != DSN_OK && err != DSN_ERR_TILE_SIZE && out != 0)
+        __builtin_memset(out, 0, points * values_per_point(mix) * (kind == dsn_output_u8 ? 1u : 4u));
+    return err;
+}
+
+int tile_size_check(uint32_t width, uint32_t height) {
+    return width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE
+               ? DSN_ERR_TILE_SIZE
+               : DSN_OK;
+}
+
+int lattice_point_as(const dsn_mix *handle, const dsn_mix_control *control, int32_t x, int32_t y, void *out,
+                     dsn_output_kind kind) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = check_call(mix, control, false);
+    if (err != DSN_OK) return output_error(err, mix, out, kind, 1);
+    int32_t value[DSN_MAX_CHANNELS];
+    lattice_point(mix, control, static_cast<uint32_t>(x), static_cast<uint32_t>(y), value);
+    dsn_store_pixel(out, kind, 0, value, mix->channels);
+    return DSN_OK;
+}
+
+int continuous_point_as(const dsn_mix *handle, const dsn_mix_control *control, int64_t x, int64_t y, void *out,
+                        dsn_output_kind kind) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = check_call(mix, control, true);
+    if (err != DSN_OK) return output_error(err, mix, out, kind, 1);
+    int32_t value[DSN_MAX_CHANNELS];
+    continuous_point(mix, control, static_cast<uint64_t>(x), static_cast<uint64_t>(y), value);
+    dsn_store_pixel(out, kind, 0, value, mix->channels);
+    return DSN_OK;
+}
+
+int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                    uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    const size_t points = static_cast<size_t>(width) * height;
+    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
+    if (out == 0) return DSN_ERR_NULL;
+    const int err = check_call(mix, control, false);
+    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    size_t index = 0;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++, index += mix->channels) {
+            int32_t value[DSN_MAX_CHANNELS];
+            lattice_point(mix, control, static_cast<uint32_t>(x0) + i, static_cast<uint32_t>(y0) + j, value);
+            dsn_store_pixel(out, kind, index, value, mix->channels);
+        }
+    return DSN_OK;
+}
+
+int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, const dsn_grid *grid,
+                       uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    const size_t points = static_cast<size_t>(width) * height;
+    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
+    if (out == 0) return DSN_ERR_NULL;
+    int err = check_call(mix, control, true);
+    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
+    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
+        int32_t value[DSN_MAX_CHANNELS];
+        continuous_point(mix, control, x, y, value);
+        dsn_store_pixel(out, kind, index, value, mix->channels);
+    });
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+int dsn_mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                                int32_t *out) {
+    return lattice_point_as(mix, control, x, y, out, dsn_output_fixed);
+}
+
+int dsn_mix_lattice_point_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                                float *out) {
+    return lattice_point_as(mix, control, x, y, out, dsn_output_float);
+}
+
+int dsn_mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                                   int32_t *out) {
+    return continuous_point_as(mix, control, x, y, out, dsn_output_fixed);
+}
+
+int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
+                                   float *out) {
+    return continuous_point_as(mix, control, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), out,
+                               dsn_output_float);
+}
+
+int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                               uint32_t width, uint32_t height, int32_t *out) {
+    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_fixed);
+}
+
+int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                               uint32_t width, uint32_t height, float *out) {
+    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_float);
+}
+
+int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                  uint32_t width, uint32_t height, int32_t *out) {
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_fixed);
+}
+
+int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                  uint32_t width, uint32_t height, float *out) {
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_float);
+}
+
+} // extern "C"
+
+#endif /* DSN_MIXING */

@@ -1,0 +1,104 @@
+/* runtime/setup/mix_init.cpp - dsn_mix_init: copies the materials, normalizes each for the density of
+   material 0 (whose impulses the whole mix shares), finds the walks' reach and bounds their cost; and the
+   small helpers of the mixing API. */
+#include "core/cell_hash.h"
+#include "core/normalize_fixed.h"
+#include "setup/init_internal.h"
+#include "setup/mix_state.h"
+
+#if DSN_MIXING
+
+namespace {
+
+void clear_mix(dsn_mix_state *mix) {
+    unsigned char *bytes = static_cast<unsigned char *>(static_cast<void *>(mix));
+    for (size_t i = 0; i < sizeof *mix; i++) bytes[i] = 0;
+}
+
+uint32_t larger(uint32_t a, uint32_t b) { return a > b ? a : b; }
+
+/* The material as the mix reads it: its noise, with gain, gain_shift and offset computed for the density
+   lambda of `lead` (impacts_q16 / (2^16 support_size), which the normalization reads from these two
+   fields, restored after). */
+dsn_noise_state material_at_density(const dsn_noise_state *noise, const dsn_noise_state *lead) {
+    dsn_noise_state material = *noise;
+    material.impacts_q16 = lead->impacts_q16;
+    material.asset.support_size = lead->asset.support_size;
+    dsn_internal_compute_normalization(&material);
+    material.impacts_q16 = noise->impacts_q16;
+    material.asset.support_size = noise->asset.support_size;
+#if DSN_NOISE_CHECK
+    material.check = dsn_internal_state_check(&material);
+#endif
+    return material;
+}
+
+} // namespace
+
+uint32_t dsn_internal_mix_check(const dsn_mix_state *mix) {
+    uint32_t sum = dsn_mix32(mix->count | mix->channels << 8 | 0x4D490000u);
+    sum = dsn_mix32(sum + (mix->radius[0] | mix->radius[1] << 16));
+    sum = dsn_mix32(sum + (mix->lattice_radius[0] | mix->lattice_radius[1] << 16));
+    for (uint32_t m = 0; m < mix->count && m < DSN_MIX_MAX_MATERIALS; m++)
+        sum = dsn_mix32(sum + mix->material[m].check + m);
+    return sum;
+}
+
+extern "C" {
+
+int dsn_mix_init(dsn_mix *handle, const dsn_noise *const *materials, uint32_t count) {
+    dsn_mix_state *mix = dsn_mix_state_of(handle);
+    if (mix == 0) return DSN_ERR_NULL;
+    clear_mix(mix);
+    if (materials == 0) return DSN_ERR_NULL;
+    if (count == 0 || count > DSN_MIX_MAX_MATERIALS) return DSN_ERR_ARGUMENT;
+    for (uint32_t m = 0; m < count; m++)
+        if (!dsn_configured(dsn_state(materials[m]))) return DSN_ERR_NULL;
+    for (uint32_t m = 0; m < count; m++)
+        if (dsn_has_mapping(dsn_state(materials[m]))) return DSN_ERR_UNSUPPORTED;
+
+    const dsn_noise_state *lead = dsn_state(materials[0]);
+    mix->count = count;
+    mix->channels = 1;
+    for (uint32_t m = 0; m < count; m++) {
+        const dsn_noise_state material = material_at_density(dsn_state(materials[m]), lead);
+        const dsn_texton_window lattice = dsn_lattice_texton_window(&material);
+        mix->channels = larger(mix->channels, material.asset.channels);
+        for (uint32_t axis = 0; axis < 2; axis++) {
+            mix->radius[axis] = larger(mix->radius[axis], material.radius[axis]);
+            mix->lattice_radius[axis] = larger(mix->lattice_radius[axis], lattice.radius[axis]);
+        }
+        mix->material[m] = material;
+    }
+    /* The continuous walk covers X - 1 .. X + 1 with its radius, the lattice walk the point with its own. */
+    const uint64_t continuous = dsn_internal_walk_cost(lead, 2u * mix->radius[0] + 3u, 2u * mix->radius[1] + 3u);
+    const uint64_t lattice =
+        dsn_internal_walk_cost(lead, 2u * mix->lattice_radius[0] + 1u, 2u * mix->lattice_radius[1] + 1u);
+    if (continuous > DSN_MAX_POINT_IMPULSES || lattice > DSN_MAX_POINT_IMPULSES) {
+        clear_mix(mix);
+        return DSN_ERR_COST;
+    }
+    mix->check = dsn_internal_mix_check(mix);
+    return DSN_OK;
+}
+
+uint32_t dsn_mix_channels(const dsn_mix *handle) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    return dsn_mix_configured(mix) ? mix->channels : 0u;
+}
+
+/* From the float's bits, as the coordinate conversions are, with no float arithmetic: 255 w rounded half
+   up, for w in [0, 1]. */
+uint8_t dsn_mix_weight_from_float(float weight) {
+    uint32_t bits;
+    __builtin_memcpy(&bits, &weight, sizeof bits);
+    if ((bits & 0x80000000u) != 0 || bits > 0x7F800000u) return 0; /* negative (or -0), NaN */
+    if (bits >= 0x3F800000u) return 255;                              /* 1 and above, +infinity */
+    /* 0 <= w < 1: floor(w 2^32) is below 2^32 and exact to 2^-32; then 255 w + 1/2, floored. */
+    const uint64_t fixed = static_cast<uint64_t>(dsn_coordinate_from_float(weight));
+    return static_cast<uint8_t>((fixed * 255u + (static_cast<uint64_t>(1) << 31)) >> 32);
+}
+
+} // extern "C"
+
+#endif /* DSN_MIXING */

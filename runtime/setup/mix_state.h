@@ -1,0 +1,54 @@
+/* runtime/setup/mix_state.h - what dsn_mix_init stores in the caller's dsn_mix (dsn.h, "Mixing"): each
+   material as a copy of its configured noise, normalized for the density of material 0, and the reach of
+   the mix's walks. Internal to libdsn; not installed. */
+#ifndef DSN_MIX_STATE_H
+#define DSN_MIX_STATE_H
+
+#include <stdint.h>
+
+#include "setup/noise_state.h"
+
+#if DSN_MIXING
+
+#if !DSN_READS_SECTIONS
+#error "DSN_MIXING needs a build that reads sections (DSN_FILTERING or DSN_HISTOGRAM): the lattice textons"
+#endif
+
+struct dsn_mix_state {
+    uint32_t count;             /* materials, 1 .. DSN_MIX_MAX_MATERIALS */
+    uint32_t channels;          /* 3 when any material has 3, else 1 */
+    uint32_t radius[2];         /* the continuous walk's reach: the largest texton radius per axis */
+    uint32_t lattice_radius[2]; /* the lattice walk's: the largest lattice texton radius per axis */
+    uint32_t check;             /* dsn_internal_mix_check, stored last by dsn_mix_init */
+    uint32_t unused;
+    /* Material 0 leads: its seed, cells, Poisson table and periods are the mix's impulse process. Each
+       copy keeps its own fields but gain, gain_shift and offset, which init computes for material 0's
+       density (and its check value over them). */
+    dsn_noise_state material[DSN_MIX_MAX_MATERIALS];
+};
+
+static_assert(sizeof(dsn_mix_state) <= sizeof(dsn_mix), "dsn_mix must hold dsn_mix_state");
+static_assert(alignof(dsn_mix_state) <= alignof(dsn_mix), "dsn_mix must be aligned for dsn_mix_state");
+
+inline const dsn_mix_state *dsn_mix_state_of(const dsn_mix *mix) {
+    return static_cast<const dsn_mix_state *>(static_cast<const void *>(mix));
+}
+inline dsn_mix_state *dsn_mix_state_of(dsn_mix *mix) {
+    return static_cast<dsn_mix_state *>(static_cast<void *>(mix));
+}
+
+/* A 32-bit hash of the counts, reaches and the materials' check values (mix_init.cpp). */
+uint32_t dsn_internal_mix_check(const dsn_mix_state *mix);
+
+/* Whether `mix` is a mix that dsn_mix_init configured (not null, every material configured, its check
+   value), as dsn_configured tells a noise. */
+inline bool dsn_mix_configured(const dsn_mix_state *mix) {
+    if (mix == 0 || mix->count == 0 || mix->count > DSN_MIX_MAX_MATERIALS) return false;
+    for (uint32_t m = 0; m < mix->count; m++)
+        if (!dsn_configured(&mix->material[m])) return false;
+    return mix->check == dsn_internal_mix_check(mix);
+}
+
+#endif /* DSN_MIXING */
+
+#endif /* DSN_MIX_STATE_H */

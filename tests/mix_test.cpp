@@ -1,0 +1,455 @@
+// mix_test.cpp - the mixing of materials (dsn.h, "Mixing"): where the weights are one material's, the bits of
+// that material's own noise; tiles equal to points; a constant 50/50 mix with the average mean and
+// covariance of the two materials, against the bilinear-spot theory; the variance across a transition
+// following the weights (no dip, where a crossfade dips); no seam; and every bad input.
+//
+// Theory of a constant mix. Each impulse of the Poisson process of intensity lambda picks material m with
+// probability p_m, independently: material m's impulses form a Poisson process of intensity p_m lambda
+// (thinning), independent of the others. Material m's sum, normalized by K_m / sqrt(lambda), then has
+// mean p_m (its expected sum) and covariance p_m C_m(h), C_m the material's own covariance; the offsets
+// weighted by p_m complete the means. So out has mean sum_m p_m mean_m and covariance sum_m p_m C_m(h),
+// auto- and cross-channel, C_m(h) = sum_kl K_ck K_dl integral t~_k(y) t~_l(y + h) dy as in
+// continuous_statistics_test.cpp. Samples at sites 24 texels apart (beyond the reach plus the lags) are
+// independent; covariances are estimated over 20 batches and compared within 4 standard errors.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "fixtures/continuous_fixtures.h"
+
+using namespace continuous_fixtures;
+
+namespace {
+
+const int64_t kOne = int64_t(1) << 32;
+
+// A control of width x height samples of `count` weights each, from a function of the sample.
+struct Control {
+    std::vector<uint8_t> weights;
+    dsn_mix_control control{};
+    Control(uint32_t count, uint32_t width, uint32_t height, uint32_t spacing_shift,
+            const std::function<std::vector<uint8_t>(uint32_t, uint32_t)> &sample, uint32_t flags = 0) {
+        for (uint32_t j = 0; j < height; j++)
+            for (uint32_t i = 0; i < width; i++) {
+                const auto values = sample(i, j);
+                weights.insert(weights.end(), values.begin(), values.end());
+            }
+        control.weights = weights.data();
+        control.width = width;
+        control.height = height;
+        control.spacing_shift = spacing_shift;
+        control.flags = flags;
+        (void)count;
+    }
+};
+
+// A constant control: one sample.
+Control constant(std::vector<uint8_t> weights) {
+    return Control(uint32_t(weights.size()), 1, 1, 0, [&](uint32_t, uint32_t) { return weights; });
+}
+
+dsn_mix make_mix(std::initializer_list<const dsn_noise *> materials) {
+    std::vector<const dsn_noise *> list(materials);
+    dsn_mix mix;
+    REQUIRE(dsn_mix_init(&mix, list.data(), uint32_t(list.size())) == DSN_OK);
+    return mix;
+}
+
+// Asset fields with another mean, so that a mix's mean shows which material it comes from.
+dsn::AssetFields with_means(dsn::AssetFields fields, int32_t a, int32_t b, int32_t c) {
+    fields.mean[0] = a;
+    if (fields.channels == 3) fields.mean[1] = b, fields.mean[2] = c;
+    return fields;
+}
+
+} // namespace
+
+TEST_CASE("mix: where the weights are material 0's, the bits of its own noise, lattice and continuous") {
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t period : {0u, 37u}) {
+            // material 1 is wider than material 0: the walk's reach is larger than material 0's own
+            auto lead = make_noise(random_texton_asset(channels, 5, 8, 11), 77, 30u << 16, period, period);
+            auto other = make_noise(random_texton_asset(channels, 8, 16, 12), 5, 12u << 16);
+            const dsn_mix mix = make_mix({&lead->noise, &other->noise});
+            CHECK(dsn_mix_channels(&mix) == channels);
+            const Control on_lead = constant({255, 0});
+            std::vector<int64_t> xs, ys;
+            renderer_points(3 + period, 400, &xs, &ys);
+            size_t differences = 0;
+            for (size_t k = 0; k < xs.size(); k++) {
+                int32_t own[3] = {}, mixed[3] = {};
+                REQUIRE(dsn_continuous_point_fixed(&lead->noise, xs[k], ys[k], own) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_point_fixed(&mix, &on_lead.control, xs[k], ys[k], mixed) == DSN_OK);
+                differences += std::memcmp(own, mixed, sizeof own) != 0;
+                const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)), y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+                dsn_lattice_point_fixed(&lead->noise, x, y, own);
+                REQUIRE(dsn_mix_lattice_point_fixed(&mix, &on_lead.control, x, y, mixed) == DSN_OK);
+                differences += std::memcmp(own, mixed, sizeof own) != 0;
+            }
+            CHECK(differences == 0);
+        }
+}
+
+TEST_CASE("mix: where the weights are another material's, the bits of its noise on material 0's impulses") {
+    // Same window and density as material 0, so the same cells and Poisson table: material 1's own noise
+    // with material 0's seed has exactly the mix's impulses, all picked by material 1.
+    auto lead = make_noise(random_texton_asset(3, 6, 8, 21), 9, 20u << 16);
+    auto other_fields = with_means(random_texton_asset(3, 6, 16, 22), 3 << 22, 1 << 20, 5 << 21);
+    auto other = make_noise(other_fields, 4, 20u << 16);
+    auto other_on_lead_seed = make_noise(other_fields, 9, 20u << 16);
+    const dsn_mix mix = make_mix({&lead->noise, &other->noise});
+    std::vector<int64_t> xs, ys;
+    renderer_points(8, 400, &xs, &ys);
+    // Any scale of weights: (0, 1) and (0, 200) are the same normalized weights.
+    for (uint8_t weight : {1, 200, 255}) {
+        const Control on_other = constant({0, weight});
+        size_t differences = 0;
+        for (size_t k = 0; k < xs.size(); k++) {
+            int32_t own[3] = {}, mixed[3] = {};
+            dsn_continuous_point_fixed(&other_on_lead_seed->noise, xs[k], ys[k], own);
+            dsn_mix_continuous_point_fixed(&mix, &on_other.control, xs[k], ys[k], mixed);
+            differences += std::memcmp(own, mixed, sizeof own) != 0;
+            const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)), y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+            dsn_lattice_point_fixed(&other_on_lead_seed->noise, x, y, own);
+            dsn_mix_lattice_point_fixed(&mix, &on_other.control, x, y, mixed);
+            differences += std::memcmp(own, mixed, sizeof own) != 0;
+        }
+        CHECK(differences == 0);
+    }
+    // No weight at all: material 0's noise.
+    const Control none = constant({0, 0});
+    for (size_t k = 0; k < 50; k++) {
+        int32_t own[3] = {}, mixed[3] = {};
+        dsn_continuous_point_fixed(&lead->noise, xs[k], ys[k], own);
+        dsn_mix_continuous_point_fixed(&mix, &none.control, xs[k], ys[k], mixed);
+        CHECK(std::memcmp(own, mixed, sizeof own) == 0);
+    }
+}
+
+TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points") {
+    auto a = make_noise(random_texton_asset(3, 5, 8, 31), 1);
+    auto b = make_noise(with_means(random_texton_asset(1, 7, 8, 32), 1 << 22, 0, 0), 2);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise});
+    CHECK(dsn_mix_channels(&mix) == 3); // grey with RGB: 3 channels
+    const Control low = constant({10, 10}), high = constant({200, 200});
+    // A ramp with a periodic and a clamped axis, samples 4 texels apart, origin off the grid.
+    Control ramp(2, 9, 5, 2, [](uint32_t i, uint32_t j) {
+        return std::vector<uint8_t>{uint8_t(i * 31 % 256), uint8_t((j * 50 + 7 * i) % 256)};
+    }, DSN_MIX_PERIODIC_X);
+    ramp.control.origin_x = -13;
+    ramp.control.origin_y = 2;
+    std::vector<int64_t> xs, ys;
+    renderer_points(5, 300, &xs, &ys);
+    for (size_t k = 0; k < xs.size(); k++) {
+        int32_t first[3], second[3];
+        dsn_mix_continuous_point_fixed(&mix, &low.control, xs[k], ys[k], first);
+        dsn_mix_continuous_point_fixed(&mix, &high.control, xs[k], ys[k], second);
+        CHECK(std::memcmp(first, second, sizeof first) == 0);
+    }
+    // Tiles: a rotated grid and a lattice window, fixed and float, equal to the points.
+    const dsn_grid grid = {int64_t(-20) * kOne + 12345, int64_t(7) * kOne, int64_t(0.87 * kOne), int64_t(0.5 * kOne),
+                           int64_t(-0.5 * kOne), int64_t(0.87 * kOne)};
+    const uint32_t width = 23, height = 17;
+    std::vector<int32_t> fixed(width * height * 3);
+    std::vector<float> floats(width * height * 3);
+    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &ramp.control, &grid, width, height, fixed.data()) == DSN_OK);
+    REQUIRE(dsn_mix_continuous_tile_float(&mix, &ramp.control, &grid, width, height, floats.data()) == DSN_OK);
+    size_t differences = 0;
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int32_t point[3];
+            const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) + j * uint64_t(grid.row_step_x));
+            const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) + j * uint64_t(grid.row_step_y));
+            dsn_mix_continuous_point_fixed(&mix, &ramp.control, x, y, point);
+            for (int c = 0; c < 3; c++) {
+                const size_t at = (j * width + i) * 3 + size_t(c);
+                differences += fixed[at] != point[c];
+                differences += floats[at] != dsn_fixed_to_float(point[c]);
+            }
+        }
+    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, fixed.data()) == DSN_OK);
+    REQUIRE(dsn_mix_lattice_tile_float(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, floats.data()) == DSN_OK);
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int32_t point[3];
+            dsn_mix_lattice_point_fixed(&mix, &ramp.control, int32_t(uint32_t(INT32_MAX - 9) + i), int32_t(j) - 8, point);
+            for (int c = 0; c < 3; c++) {
+                const size_t at = (j * width + i) * 3 + size_t(c);
+                differences += fixed[at] != point[c];
+                differences += floats[at] != dsn_fixed_to_float(point[c]);
+            }
+        }
+    CHECK(differences == 0);
+    float point[3];
+    REQUIRE(dsn_mix_continuous_point_float(&mix, &ramp.control, 3.25, -7.5, point) == DSN_OK);
+    int32_t fixed_point[3];
+    dsn_mix_continuous_point_fixed(&mix, &ramp.control, 13 * (kOne / 4), -30 * (kOne / 4), fixed_point);
+    for (int c = 0; c < 3; c++) CHECK(point[c] == dsn_fixed_to_float(fixed_point[c]));
+}
+
+namespace {
+
+// The covariance of one material's continuous noise at a lag, channels c and d (theory above).
+double material_covariance(const dsn::AssetFields &fields, int c, int d, double hx, double hy) {
+    const auto t = texton_values(fields);
+    const int side = int(fields.width);
+    double sum = 0;
+    for (uint32_t k = 0; k < fields.channels; k++)
+        for (uint32_t l = 0; l < fields.channels; l++)
+            sum += fields.color_transform[size_t(c) * 3 + k] / 16777216.0 *
+                   (fields.color_transform[size_t(d) * 3 + l] / 16777216.0) *
+                   bilinear_correlation(t[k], t[l], side, hx, hy);
+    return sum;
+}
+
+struct Estimate {
+    double value = 0, standard_error = 0;
+};
+
+Estimate over_batches(const std::vector<double> &per_batch) {
+    double mean = 0, square = 0;
+    for (double v : per_batch) mean += v;
+    mean /= double(per_batch.size());
+    for (double v : per_batch) square += (v - mean) * (v - mean);
+    return {mean, std::sqrt(square / double(per_batch.size() - 1) / double(per_batch.size()))};
+}
+
+} // namespace
+
+TEST_CASE("mix: a constant 50/50 mix has the average mean and covariance, auto- and cross-channel") {
+    const auto fields_a = random_texton_asset(3, 5, 8, 41);
+    const auto fields_b = with_means(random_texton_asset(3, 5, 8, 42), 3 << 21, 5 << 21, 1 << 20);
+    auto a = make_noise(fields_a, 400, 30u << 16);
+    auto b = make_noise(fields_b, 401, 30u << 16);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise});
+    const Control half = constant({128, 128});
+    const double lags[][2] = {{0, 0}, {1, 0}, {0, 1}, {3, 2}, {0.5, 0.25}};
+    const int lag_count = 5, batches = 20, sites = 600;
+    std::vector<double> means[3], covariances[5][3][3];
+    std::mt19937_64 random(42);
+    for (int batch = 0; batch < batches; batch++) {
+        std::vector<std::array<double, 3>> values[5];
+        for (int s = 0; s < sites; s++) {
+            const int64_t site = int64_t(batch) * sites + s;
+            const int64_t x = (site % 1000) * 24 * kOne + int64_t(random() >> 32);
+            const int64_t y = (site / 1000) * 24 * kOne + int64_t(random() >> 32);
+            for (int h = 0; h < lag_count; h++) {
+                int32_t out[3];
+                dsn_mix_continuous_point_fixed(&mix, &half.control, x + int64_t(lags[h][0] * double(kOne)),
+                                               y + int64_t(lags[h][1] * double(kOne)), out);
+                values[h].push_back({out[0] / 65536.0, out[1] / 65536.0, out[2] / 65536.0});
+            }
+        }
+        for (int c = 0; c < 3; c++) {
+            double sum = 0;
+            for (const auto &v : values[0]) sum += v[size_t(c)];
+            means[c].push_back(sum / sites);
+        }
+        for (int h = 0; h < lag_count; h++)
+            for (int c = 0; c < 3; c++)
+                for (int d = 0; d < 3; d++) {
+                    double sum = 0;
+                    for (int s = 0; s < sites; s++)
+                        sum += (values[0][size_t(s)][size_t(c)] - means[c].back()) *
+                               (values[h][size_t(s)][size_t(d)] - means[d].back());
+                    covariances[h][c][d].push_back(sum / (sites - 1));
+                }
+    }
+    for (int c = 0; c < 3; c++) {
+        const Estimate mean = over_batches(means[c]);
+        const double expected = 0.5 * (fields_a.mean[c] + fields_b.mean[c]) / 16777216.0;
+        CHECK(std::fabs(mean.value - expected) < 4 * mean.standard_error);
+    }
+    for (int h = 0; h < lag_count; h++)
+        for (int c = 0; c < 3; c++)
+            for (int d = 0; d < 3; d++) {
+                const Estimate covariance = over_batches(covariances[h][c][d]);
+                const double expected = 0.5 * (material_covariance(fields_a, c, d, lags[h][0], lags[h][1]) +
+                                               material_covariance(fields_b, c, d, lags[h][0], lags[h][1]));
+                INFO("lag " << h << " channels " << c << d << ": " << covariance.value << " expected " << expected
+                            << " +- " << covariance.standard_error);
+                CHECK(std::fabs(covariance.value - expected) < 4 * covariance.standard_error);
+            }
+}
+
+TEST_CASE("mix: across a transition the variance follows the weights' mixture; a crossfade's dips") {
+    // Grey materials; the weights go from all A at x = 0 to all B at x = 512 (two samples 512 texels apart).
+    const auto fields_a = random_texton_asset(1, 5, 8, 51);
+    const auto fields_b = with_means(random_texton_asset(1, 5, 8, 52), 3 << 21, 0, 0);
+    auto a = make_noise(fields_a, 500, 30u << 16);
+    auto b = make_noise(fields_b, 501, 30u << 16);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise});
+    const Control ramp(2, 2, 1, 9, [](uint32_t i, uint32_t) {
+        return i == 0 ? std::vector<uint8_t>{255, 0} : std::vector<uint8_t>{0, 255};
+    });
+    const double variance_a = material_covariance(fields_a, 0, 0, 0, 0);
+    const double variance_b = material_covariance(fields_b, 0, 0, 0, 0);
+    const int rows = 4000;
+    std::mt19937_64 random(7);
+    for (int at : {64, 256, 448}) {
+        const double w = 1.0 - at / 512.0; // material A's weight
+        std::vector<double> mixed, faded;
+        for (int row = 0; row < rows; row++) {
+            const int64_t x = int64_t(at) * kOne + int64_t(random() >> 40);
+            const int64_t y = int64_t(row) * 24 * kOne + int64_t(random() >> 32);
+            int32_t value, value_a, value_b;
+            dsn_mix_continuous_point_fixed(&mix, &ramp.control, x, y, &value);
+            dsn_continuous_point_fixed(&a->noise, x, y, &value_a);
+            dsn_continuous_point_fixed(&b->noise, x, y, &value_b);
+            mixed.push_back(value / 65536.0);
+            faded.push_back((w * value_a + (1 - w) * value_b) / 65536.0);
+        }
+        auto variance = [](const std::vector<double> &v) {
+            double mean = 0, square = 0;
+            for (double x : v) mean += x;
+            mean /= double(v.size());
+            for (double x : v) square += (x - mean) * (x - mean);
+            return square / double(v.size() - 1);
+        };
+        const double expected = w * variance_a + (1 - w) * variance_b;
+        // The sample variance of n independent values has a standard error of about sqrt(2 / n) of the
+        // variance for a near-Gaussian noise (its excess kurtosis here is about 0.1).
+        const double standard_error = expected * std::sqrt((2.0 + 0.2) / rows);
+        INFO("x " << at << ": mix " << variance(mixed) << " crossfade " << variance(faded) << " expected " << expected);
+        CHECK(std::fabs(variance(mixed) - expected) < 4 * standard_error);
+        const double crossfade = w * w * variance_a + (1 - w) * (1 - w) * variance_b;
+        CHECK(std::fabs(variance(faded) - crossfade) < 4 * crossfade * std::sqrt(2.2 / rows));
+        if (at == 256) CHECK(variance(faded) < expected - 8 * standard_error); // the crossfade's dip
+    }
+}
+
+TEST_CASE("mix: no seam: the largest jump between neighbouring pixels across a transition") {
+    const auto fields_a = random_texton_asset(1, 5, 8, 61);
+    const auto fields_b = with_means(random_texton_asset(1, 5, 8, 62), 3 << 21, 0, 0);
+    auto a = make_noise(fields_a, 600, 30u << 16);
+    auto b = make_noise(fields_b, 601, 30u << 16);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise});
+    // From all A to all B over 8 texels at x in [0, 8].
+    const Control step(2, 2, 1, 3, [](uint32_t i, uint32_t) {
+        return i == 0 ? std::vector<uint8_t>{255, 0} : std::vector<uint8_t>{0, 255};
+    });
+    // Segments of 32 texels sampled every 1/8 texel: inside A, across the transition, inside B.
+    auto largest_jump = [&](double from) {
+        int32_t largest = 0;
+        for (int row = 0; row < 200; row++) {
+            const int64_t y = int64_t(row) * 24 * kOne + (int64_t(row) * 7919 % 1000) * (kOne / 1000);
+            int32_t previous = 0;
+            for (int k = 0; k <= 256; k++) {
+                int32_t value;
+                dsn_mix_continuous_point_fixed(&mix, &step.control, int64_t(from * double(kOne)) + k * (kOne / 8), y, &value);
+                if (k > 0) largest = std::max(largest, std::abs(value - previous));
+                previous = value;
+            }
+        }
+        return largest;
+    };
+    const int32_t inside_a = largest_jump(-80), across = largest_jump(-12), inside_b = largest_jump(60);
+    INFO("largest jumps: inside A " << inside_a << ", across " << across << ", inside B " << inside_b);
+    CHECK(across <= std::max(inside_a, inside_b));
+}
+
+TEST_CASE("mix: bad input gets an error code and zeroed output, never undefined behaviour") {
+    auto a = make_noise(random_texton_asset(3, 4, 8, 71), 1);
+    auto grey = make_noise(random_texton_asset(1, 4, 8, 72), 2);
+    const dsn_noise *materials[] = {&a->noise, &grey->noise, &a->noise, &grey->noise, &a->noise};
+    dsn_mix mix;
+    CHECK(dsn_mix_init(nullptr, materials, 2) == DSN_ERR_NULL);
+    CHECK(dsn_mix_init(&mix, nullptr, 2) == DSN_ERR_NULL);
+    CHECK(dsn_mix_init(&mix, materials, 0) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_mix_init(&mix, materials, DSN_MIX_MAX_MATERIALS + 1) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_mix_channels(&mix) == 0);
+    dsn_noise unconfigured;
+    std::memset(&unconfigured, 0x5A, sizeof unconfigured);
+    const dsn_noise *with_garbage[] = {&a->noise, &unconfigured};
+    CHECK(dsn_mix_init(&mix, with_garbage, 2) == DSN_ERR_NULL);
+    const dsn_noise *with_null[] = {&a->noise, nullptr};
+    CHECK(dsn_mix_init(&mix, with_null, 2) == DSN_ERR_NULL);
+    // A material with a histogram mapping is refused; configured without it, it mixes.
+    auto mapped_fields = random_texton_asset(1, 4, 8, 73);
+    mapped_fields.histogram.entry_count = 5;
+    mapped_fields.histogram.step_shift = 1;
+    mapped_fields.histogram.input_low_q16 = -65536;
+    mapped_fields.histogram.tables = {-4000, -2000, 0, 2000, 4000};
+    for (int i = 1; i < 9; i++) mapped_fields.histogram.rotation[i] = 0;
+    auto mapped = make_noise(mapped_fields, 3);
+    const dsn_noise *with_mapping[] = {&a->noise, &mapped->noise};
+    CHECK(dsn_mix_init(&mix, with_mapping, 2) == DSN_ERR_UNSUPPORTED);
+    auto unmapped = make_noise(mapped_fields, 3, 0, 0, 0, DSN_FLAG_NO_HISTOGRAM);
+    const dsn_noise *without_mapping[] = {&a->noise, &unmapped->noise};
+    CHECK(dsn_mix_init(&mix, without_mapping, 2) == DSN_OK);
+
+    // The largest count, and refused calls on a mix that is not configured.
+    REQUIRE(dsn_mix_init(&mix, materials, DSN_MIX_MAX_MATERIALS) == DSN_OK);
+    std::vector<uint8_t> weights(4 * 3 * 2, 60);
+    dsn_mix_control control{weights.data(), 3, 2, 0, 0, 0, 0};
+    int32_t out[3] = {7, 7, 7};
+    CHECK(dsn_mix_continuous_point_fixed(&mix, &control, 0, 0, out) == DSN_OK);
+    dsn_mix zeroed;
+    std::memset(&zeroed, 0, sizeof zeroed);
+    out[0] = 7;
+    CHECK(dsn_mix_continuous_point_fixed(&zeroed, &control, 0, 0, out) == DSN_ERR_NULL);
+    CHECK(out[0] == 0);
+    dsn_mix altered = mix;
+    altered.words[0] ^= 1; // the count
+    out[0] = out[1] = out[2] = 7;
+    CHECK(dsn_mix_lattice_point_fixed(&altered, &control, 0, 0, out) == DSN_ERR_NULL);
+    CHECK(out[0] == 0);
+
+    // Controls out of their ranges.
+    auto expect_refused = [&](dsn_mix_control bad, int expected) {
+        int32_t values[3] = {7, 7, 7};
+        CHECK(dsn_mix_continuous_point_fixed(&mix, &bad, 0, 0, values) == expected);
+        CHECK((values[0] == 0 && values[1] == 0 && values[2] == 0));
+        std::vector<float> tile(2 * 2 * 3, 1.0f);
+        CHECK(dsn_mix_lattice_tile_float(&mix, &bad, 0, 0, 2, 2, tile.data()) == expected);
+        for (float v : tile) CHECK(v == 0.0f);
+    };
+    expect_refused({nullptr, 3, 2, 0, 0, 0, 0}, DSN_ERR_NULL);
+    expect_refused({weights.data(), 0, 2, 0, 0, 0, 0}, DSN_ERR_ARGUMENT);
+    expect_refused({weights.data(), 3, 0, 0, 0, 0, 0}, DSN_ERR_ARGUMENT);
+    expect_refused({weights.data(), 65536, 1, 0, 0, 0, 0}, DSN_ERR_ARGUMENT);
+    expect_refused({weights.data(), 65535, 65535, 0, 0, 0, 0}, DSN_ERR_ARGUMENT); // past 2^24 samples
+    expect_refused({weights.data(), 3, 2, 17, 0, 0, 0}, DSN_ERR_ARGUMENT);
+    expect_refused({weights.data(), 3, 2, 0, 0, 0, 4}, DSN_ERR_ARGUMENT);
+    CHECK(dsn_mix_continuous_point_fixed(&mix, nullptr, 0, 0, out) == DSN_ERR_NULL);
+    CHECK(dsn_mix_continuous_point_fixed(&mix, &control, 0, 0, nullptr) == DSN_ERR_NULL);
+    const dsn_grid grid = {0, 0, kOne, 0, 0, kOne};
+    std::vector<int32_t> tile(4 * 3, 7);
+    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, nullptr, 2, 2, tile.data()) == DSN_ERR_NULL);
+    for (int32_t v : tile) CHECK(v == 0);
+    tile.assign(4 * 3, 7);
+    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, &grid, 0, 2, tile.data()) == DSN_ERR_TILE_SIZE);
+    CHECK(dsn_mix_lattice_tile_fixed(&mix, &control, 0, 0, 2, DSN_TILE_MAX_SIDE + 1, tile.data()) == DSN_ERR_TILE_SIZE);
+    CHECK(tile[0] == 7); // a tile refused for its size is left as it is
+
+    // The continuous functions check every material's mode.
+    auto lattice_fields = random_texton_asset(3, 4, 8, 74);
+    lattice_fields.interpolation = DSN_INTERPOLATION_LATTICE;
+    auto lattice = make_noise(lattice_fields, 5);
+    const dsn_noise *with_lattice[] = {&a->noise, &lattice->noise};
+    REQUIRE(dsn_mix_init(&mix, with_lattice, 2) == DSN_OK);
+    CHECK(dsn_mix_continuous_point_fixed(&mix, &control, 0, 0, out) == DSN_ERR_CONTINUOUS_MISMATCH);
+    CHECK(dsn_mix_lattice_point_fixed(&mix, &control, 0, 0, out) == DSN_OK);
+
+    // Float weights.
+    CHECK(dsn_mix_weight_from_float(std::nanf("")) == 0);
+    CHECK(dsn_mix_weight_from_float(-1.0f) == 0);
+    CHECK(dsn_mix_weight_from_float(-0.0f) == 0);
+    CHECK(dsn_mix_weight_from_float(0.0f) == 0);
+    CHECK(dsn_mix_weight_from_float(1e-30f) == 0);
+    CHECK(dsn_mix_weight_from_float(0.5f) == 128); // 127.5 rounds half up
+    CHECK(dsn_mix_weight_from_float(0.25f) == 64);
+    CHECK(dsn_mix_weight_from_float(0.999f) == 255);
+    CHECK(dsn_mix_weight_from_float(1.0f) == 255);
+    CHECK(dsn_mix_weight_from_float(7.0f) == 255);
+    CHECK(dsn_mix_weight_from_float(INFINITY) == 255);
+    for (int i = 0; i <= 1000; i++) {
+        const float w = float(i) / 1000.0f;
+        CHECK(dsn_mix_weight_from_float(w) == uint8_t(std::floor(255.0 * double(w) + 0.5)));
+    }
+}
