@@ -13,6 +13,7 @@
 // independent; covariances are estimated over 20 batches and compared within 4 standard errors.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -157,8 +158,8 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
     const uint32_t width = 23, height = 17;
     std::vector<int32_t> fixed(width * height * 3);
     std::vector<float> floats(width * height * 3);
-    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &ramp.control, &grid, width, height, fixed.data()) == DSN_OK);
-    REQUIRE(dsn_mix_continuous_tile_float(&mix, &ramp.control, &grid, width, height, floats.data()) == DSN_OK);
+    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &ramp.control, &grid, width, height, fixed.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_mix_continuous_tile_float(&mix, &ramp.control, &grid, width, height, floats.data(), nullptr, 0) == DSN_OK);
     size_t differences = 0;
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
@@ -172,8 +173,8 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
                 differences += floats[at] != dsn_fixed_to_float(point[c]);
             }
         }
-    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, fixed.data()) == DSN_OK);
-    REQUIRE(dsn_mix_lattice_tile_float(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, floats.data()) == DSN_OK);
+    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, fixed.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_mix_lattice_tile_float(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, floats.data(), nullptr, 0) == DSN_OK);
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             int32_t point[3];
@@ -190,6 +191,88 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
     int32_t fixed_point[3];
     dsn_mix_continuous_point_fixed(&mix, &ramp.control, 13 * (kOne / 4), -30 * (kOne / 4), fixed_point);
     for (int c = 0; c < 3; c++) CHECK(point[c] == dsn_fixed_to_float(fixed_point[c]));
+}
+
+TEST_CASE("mix: one material's weights give the same bits by its own evaluators and by the mix's walk") {
+    // Material 1 differs from material 0 in size, bits and density: the mix's walk (taken where the
+    // weights differ from sample to sample, here (0, 255) and (0, 100): still material 1's alone) and
+    // material 1's own evaluators on material 0's impulses (taken where the weights are the same all
+    // around) must agree bit for bit.
+    for (uint32_t period : {0u, 29u}) {
+        auto lead = make_noise(random_texton_asset(3, 6, 8, 81), 31, 25u << 16, period, 0);
+        auto other = make_noise(with_means(random_texton_asset(3, 9, 16, 82), 1 << 23, 1 << 21, 0), 32, 7u << 16);
+        auto grey = make_noise(random_texton_asset(1, 4, 8, 83), 33);
+        const dsn_mix mix = make_mix({&lead->noise, &other->noise, &grey->noise});
+        const Control uniform = constant({0, 255, 0});
+        const Control varying(3, 5, 4, 1, [](uint32_t i, uint32_t j) {
+            return std::vector<uint8_t>{0, uint8_t((i + j) % 2 ? 255 : 100), 0};
+        }, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y);
+        std::vector<int64_t> xs, ys;
+        renderer_points(90 + period, 300, &xs, &ys);
+        size_t differences = 0;
+        for (size_t k = 0; k < xs.size(); k++) {
+            int32_t first[3], second[3];
+            dsn_mix_continuous_point_fixed(&mix, &uniform.control, xs[k], ys[k], first);
+            dsn_mix_continuous_point_fixed(&mix, &varying.control, xs[k], ys[k], second);
+            differences += std::memcmp(first, second, sizeof first) != 0;
+            const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)), y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+            dsn_mix_lattice_point_fixed(&mix, &uniform.control, x, y, first);
+            dsn_mix_lattice_point_fixed(&mix, &varying.control, x, y, second);
+            differences += std::memcmp(first, second, sizeof first) != 0;
+        }
+        CHECK(differences == 0);
+        // The grey material alone: its value in each of the mix's three channels.
+        const Control on_grey = constant({0, 0, 9});
+        const Control grey_varying(3, 3, 3, 0, [](uint32_t i, uint32_t) {
+            return std::vector<uint8_t>{0, 0, uint8_t(1 + i)};
+        });
+        for (size_t k = 0; k < 40; k++) {
+            int32_t first[3], second[3];
+            dsn_mix_continuous_point_fixed(&mix, &on_grey.control, xs[k], ys[k], first);
+            dsn_mix_continuous_point_fixed(&mix, &grey_varying.control, xs[k], ys[k], second);
+            CHECK(std::memcmp(first, second, sizeof first) == 0);
+            CHECK((first[0] == first[1] && first[1] == first[2]));
+        }
+        // Tiles: with scratch a one-material tile is that material's tile (splatted or by strips); the
+        // same pixels point by point.
+        const int64_t one = kOne;
+        const dsn_grid grid = {-40 * one + 777, 3 * one, int64_t(0.61 * double(one)), int64_t(0.35 * double(one)),
+                               -int64_t(0.35 * double(one)), int64_t(0.61 * double(one))};
+        const uint32_t width = 70, height = 40;
+        std::vector<unsigned char> scratch(std::max(dsn_mix_continuous_tile_scratch_size(&mix, &grid, width, height),
+                                                    dsn_mix_lattice_tile_scratch_size(&mix, width, height)));
+        CHECK(scratch.size() > 0);
+        std::vector<int32_t> fast(width * height * 3), slow(fast.size());
+        std::vector<float> fast_float(fast.size()), slow_float(fast.size());
+        size_t tile_differences = 0;
+        for (int lattice = 0; lattice < 2; lattice++) {
+            if (lattice) {
+                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &uniform.control, -30, 77, width, height, fast.data(),
+                                                   scratch.data(), scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &varying.control, -30, 77, width, height, slow.data(),
+                                                   nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_float(&mix, &uniform.control, -30, 77, width, height, fast_float.data(),
+                                                   scratch.data(), scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_float(&mix, &uniform.control, -30, 77, width, height, slow_float.data(),
+                                                   nullptr, 0) == DSN_OK);
+            } else {
+                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &uniform.control, &grid, width, height, fast.data(),
+                                                      scratch.data(), scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &varying.control, &grid, width, height, slow.data(),
+                                                      nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_tile_float(&mix, &uniform.control, &grid, width, height,
+                                                      fast_float.data(), scratch.data(), scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_tile_float(&mix, &uniform.control, &grid, width, height,
+                                                      slow_float.data(), nullptr, 0) == DSN_OK);
+            }
+            for (size_t i = 0; i < fast.size(); i++) {
+                tile_differences += fast[i] != slow[i];
+                tile_differences += fast_float[i] != slow_float[i];
+                tile_differences += fast_float[i] != dsn_fixed_to_float(fast[i]);
+            }
+        }
+        CHECK(tile_differences == 0);
+    }
 }
 
 namespace {
@@ -406,7 +489,7 @@ TEST_CASE("mix: bad input gets an error code and zeroed output, never undefined 
         CHECK(dsn_mix_continuous_point_fixed(&mix, &bad, 0, 0, values) == expected);
         CHECK((values[0] == 0 && values[1] == 0 && values[2] == 0));
         std::vector<float> tile(2 * 2 * 3, 1.0f);
-        CHECK(dsn_mix_lattice_tile_float(&mix, &bad, 0, 0, 2, 2, tile.data()) == expected);
+        CHECK(dsn_mix_lattice_tile_float(&mix, &bad, 0, 0, 2, 2, tile.data(), nullptr, 0) == expected);
         for (float v : tile) CHECK(v == 0.0f);
     };
     expect_refused({nullptr, 3, 2, 0, 0, 0, 0}, DSN_ERR_NULL);
@@ -420,11 +503,11 @@ TEST_CASE("mix: bad input gets an error code and zeroed output, never undefined 
     CHECK(dsn_mix_continuous_point_fixed(&mix, &control, 0, 0, nullptr) == DSN_ERR_NULL);
     const dsn_grid grid = {0, 0, kOne, 0, 0, kOne};
     std::vector<int32_t> tile(4 * 3, 7);
-    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, nullptr, 2, 2, tile.data()) == DSN_ERR_NULL);
+    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, nullptr, 2, 2, tile.data(), nullptr, 0) == DSN_ERR_NULL);
     for (int32_t v : tile) CHECK(v == 0);
     tile.assign(4 * 3, 7);
-    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, &grid, 0, 2, tile.data()) == DSN_ERR_TILE_SIZE);
-    CHECK(dsn_mix_lattice_tile_fixed(&mix, &control, 0, 0, 2, DSN_TILE_MAX_SIDE + 1, tile.data()) == DSN_ERR_TILE_SIZE);
+    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, &grid, 0, 2, tile.data(), nullptr, 0) == DSN_ERR_TILE_SIZE);
+    CHECK(dsn_mix_lattice_tile_fixed(&mix, &control, 0, 0, 2, DSN_TILE_MAX_SIDE + 1, tile.data(), nullptr, 0) == DSN_ERR_TILE_SIZE);
     CHECK(tile[0] == 7); // a tile refused for its size is left as it is
 
     // The continuous functions check every material's mode.

@@ -857,15 +857,23 @@ int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *co
                                    float *out);
 /* Tiles: the lattice tile's and the continuous grid's pixels and layout (width, height 1 ..
    DSN_TILE_MAX_SIDE, else DSN_ERR_TILE_SIZE with the output untouched), each pixel exactly the point
-   function's; no scratch. The point functions' other errors, the whole output zeroed. */
+   function's, with the point functions' other errors (the whole output zeroed). A tile whose reach has
+   one material's weights alone is that material's tile, splatted or by strips as the noise's own, when
+   `scratch` holds dsn_mix_*_tile_scratch_size() bytes (the largest of the materials' scratch sizes, 0 for
+   an invalid mix); other tiles, or with too little scratch (null, 0 is fine), go point by point. */
+size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *mix, uint32_t width, uint32_t height);
+size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t width,
+                                            uint32_t height);
 int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, int32_t *out);
+                               uint32_t width, uint32_t height, int32_t *out, void *scratch, size_t scratch_size);
 int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, float *out);
+                               uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size);
 int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, int32_t *out);
+                                  uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                                  size_t scratch_size);
 int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, float *out);
+                                  uint32_t width, uint32_t height, float *out, void *scratch,
+                                  size_t scratch_size);
 #endif
 
 /* ==== End of the mixing ============================================================================== */

@@ -116,10 +116,9 @@ struct MixRegion {
 };
 
 /* The samples that a run of lower-sample indices first .. last (and the samples after them) reads along an
-   axis: `length` samples from `start` (wrapping modulo size where periodic); false past 16. */
-inline bool axis_samples(int64_t first, int64_t last, uint32_t size, bool periodic, uint32_t *start,
-                         uint32_t *length) {
-    const int64_t most = 16;
+   axis: `length` samples from `start` (wrapping modulo size where periodic); false past `most`. */
+inline bool axis_samples(int64_t first, int64_t last, uint32_t size, bool periodic, int64_t most,
+                         uint32_t *start, uint32_t *length) {
     if (periodic) {
         const int64_t count = last + 2 - first;
         *start = wrapped_sample(first, size);
@@ -133,9 +132,9 @@ inline bool axis_samples(int64_t first, int64_t last, uint32_t size, bool period
 }
 
 /* The region of positions [low, high] (Q32.32 per axis, high - low below 2^31 texels): uniform when the
-   samples it reads (at most 16 per axis) all hold the same weights. */
+   samples it reads (at most `most` per axis) all hold the same weights. */
 inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint64_t low_x, uint64_t low_y,
-                            uint64_t high_x, uint64_t high_y) {
+                            uint64_t high_x, uint64_t high_y, uint32_t most) {
     MixRegion region;
     region.uniform = false;
     region.single = false;
@@ -150,8 +149,8 @@ inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint
     uint32_t start_x, columns, start_y, rows;
     /* A region across the 2^31 seam of the relative positions has last < first: not uniform. */
     if (last_x.index < first_x.index || last_y.index < first_y.index ||
-        !axis_samples(first_x.index, last_x.index, width, periodic_x, &start_x, &columns) ||
-        !axis_samples(first_y.index, last_y.index, height, periodic_y, &start_y, &rows))
+        !axis_samples(first_x.index, last_x.index, width, periodic_x, most, &start_x, &columns) ||
+        !axis_samples(first_y.index, last_y.index, height, periodic_y, most, &start_y, &rows))
         return region;
     const uint8_t *reference = control->weights + (static_cast<size_t>(start_y) * width + start_x) * count;
     for (uint32_t j = 0, row = start_y; j < rows; j++, row = row + 1u == height ? 0u : row + 1u)

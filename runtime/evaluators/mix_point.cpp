@@ -35,20 +35,17 @@ MixRegion region_around(const dsn_mix_state *mix, const dsn_mix_control *control
                         uint32_t reach_x, uint32_t reach_y) {
     return mix_region(control, mix->count, static_cast<uint64_t>(x - reach_x) << 32,
                       static_cast<uint64_t>(y - reach_y) << 32, static_cast<uint64_t>(x + reach_x) << 32,
-                      static_cast<uint64_t>(y + reach_y) << 32);
+                      static_cast<uint64_t>(y + reach_y) << 32, 16u);
 }
 
 /* The continuous sums of every material at (x, y), Q32.32: the small build's walk of
    continuous_point.cpp, impulse by impulse, with the mix's reach. */
-void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
-                     ContinuousSums sums) {
+void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                     uint64_t x, uint64_t y, ContinuousSums sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift;
     const PointAxis px = point_axis(x, mix->radius[0], shift, lead->period[0]);
     const PointAxis py = point_axis(y, mix->radius[1], shift, lead->period[1]);
-    const MixRegion region = region_around(mix, control, static_cast<uint32_t>(x >> 32),
-                                           static_cast<uint32_t>(y >> 32), mix->radius[0] + 1u,
-                                           mix->radius[1] + 1u);
     for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&py.axis, sy);
         for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
@@ -83,8 +80,8 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, u
 
 /* The lattice sums of every material at the lattice point (x, y): lattice_impulses.h's walk with the
    mix's reach, each impulse reading its material's lattice texton. */
-void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
-                  LatticeSums sums) {
+void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region, uint32_t x,
+                  uint32_t y, LatticeSums sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
     const uint32_t field_shift = dsn_field_shift(shift), half_bits = 1u << (field_shift - 1u);
@@ -94,7 +91,6 @@ void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, uint
     dsn_axis ax, ay;
     dsn_axis_init(&ax, x, 1u, reach_x, shift, lead->period[0]);
     dsn_axis_init(&ay, y, 1u, reach_y, shift, lead->period[1]);
-    const MixRegion region = region_around(mix, control, x, y, reach_x, reach_y);
     for (uint32_t sy = 0; sy < ay.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&ay, sy);
         for (uint32_t sx = 0; sx < ax.span_count; sx++) {
@@ -173,10 +169,30 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
         out[c] = totals[c] > INT32_MAX ? INT32_MAX : totals[c] < INT32_MIN ? INT32_MIN : static_cast<int32_t>(totals[c]);
 }
 
+/* The noise of one material (the mix where the weights are that material's alone), as the mix's channels:
+   a grey material's value in each. */
+const dsn_noise *as_noise(const dsn_noise_state *material) {
+    return static_cast<const dsn_noise *>(static_cast<const void *>(material));
+}
+
+void spread_channels(const dsn_mix_state *mix, const dsn_noise_state *material, int32_t *out) {
+    if (material->asset.channels == 1)
+        for (uint32_t c = 1; c < mix->channels; c++) out[c] = out[0];
+}
+
 void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
                       int32_t *out) {
+    const MixRegion region = region_around(mix, control, static_cast<uint32_t>(x >> 32),
+                                           static_cast<uint32_t>(y >> 32), mix->radius[0] + 1u,
+                                           mix->radius[1] + 1u);
+    if (region.single) {
+        const dsn_noise_state *material = &mix->material[region.only];
+        dsn_internal_continuous_point(material, x, y, out);
+        spread_channels(mix, material, out);
+        return;
+    }
     ContinuousSums sums = {};
-    continuous_sums(mix, control, x, y, sums);
+    continuous_sums(mix, control, region, x, y, sums);
     uint32_t weights[DSN_MIX_MAX_MATERIALS];
     point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
     mix_output(mix, weights, sums, out);
@@ -184,8 +200,15 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
 
 void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
                    int32_t *out) {
+    const MixRegion region = region_around(mix, control, x, y, mix->lattice_radius[0], mix->lattice_radius[1]);
+    if (region.single) {
+        const dsn_noise_state *material = &mix->material[region.only];
+        dsn_lattice_point_fixed(as_noise(material), static_cast<int32_t>(x), static_cast<int32_t>(y), out);
+        spread_channels(mix, material, out);
+        return;
+    }
     LatticeSums sums = {};
-    lattice_sums(mix, control, x, y, sums);
+    lattice_sums(mix, control, region, x, y, sums);
     uint32_t weights[DSN_MIX_MAX_MATERIALS];
     point_weights(
         mix_weights_at(control, mix->count, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32),
@@ -245,14 +268,37 @@ int continuous_point_as(const dsn_mix *handle, const dsn_mix_control *control, i
     return DSN_OK;
 }
 
+/* The material whose weights a tile's whole reach has alone (its own tile function then gives the mix's
+   bits), or count where the weights mix or may: positions [low, high] per axis, Q32.32. */
+uint32_t tile_material(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t low_x, uint64_t low_y,
+                       uint64_t high_x, uint64_t high_y) {
+    const MixRegion region = mix_region(control, mix->count, low_x, low_y, high_x, high_y, 1024u);
+    return region.single ? region.only : mix->count;
+}
+
 int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                    uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
+                    uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
+                    size_t scratch_size) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
     const size_t points = static_cast<size_t>(width) * height;
     if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
     if (out == 0) return DSN_ERR_NULL;
     const int err = check_call(mix, control, false);
     if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
+    const uint32_t only = tile_material(
+        mix, control, static_cast<uint64_t>(static_cast<uint32_t>(x0) - reach_x) << 32,
+        static_cast<uint64_t>(static_cast<uint32_t>(y0) - reach_y) << 32,
+        static_cast<uint64_t>(static_cast<uint32_t>(x0) + width - 1u + reach_x) << 32,
+        static_cast<uint64_t>(static_cast<uint32_t>(y0) + height - 1u + reach_y) << 32);
+    if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
+        const dsn_noise *material = as_noise(&mix->material[only]);
+        if (kind == dsn_output_fixed)
+            return dsn_lattice_tile_fixed(material, x0, y0, width, height, static_cast<int32_t *>(out), 0, 0);
+        if (scratch_size >= dsn_lattice_tile_scratch_size(material, width, height))
+            return dsn_lattice_tile_float(material, x0, y0, width, height, static_cast<float *>(out), scratch,
+                                          scratch_size);
+    }
     size_t index = 0;
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++, index += mix->channels) {
@@ -263,8 +309,29 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
     return DSN_OK;
 }
 
+/* Whether the grid's points lie within a box that a region can describe: its corners' offsets from the
+   origin, low and high per axis (Q32.32), each step under 2^46 (so a side's span stays below 2^62) and
+   the box under 2^30 texels. */
+bool grid_box(const dsn_grid *grid, uint32_t width, uint32_t height, int64_t *low_x, int64_t *low_y,
+              int64_t *high_x, int64_t *high_y) {
+    const int64_t steps[4] = {grid->column_step_x, grid->row_step_x, grid->column_step_y, grid->row_step_y};
+    const int64_t limit = static_cast<int64_t>(1) << 46;
+    for (uint32_t k = 0; k < 4; k++)
+        if (steps[k] >= limit || steps[k] <= -limit) return false;
+    const int64_t columns = static_cast<int64_t>(width) - 1, rows = static_cast<int64_t>(height) - 1;
+    int64_t *lows[2] = {low_x, low_y}, *highs[2] = {high_x, high_y};
+    for (uint32_t axis = 0; axis < 2; axis++) {
+        const int64_t along_row = steps[2 * axis] * columns, along_column = steps[2 * axis + 1] * rows;
+        *lows[axis] = (along_row < 0 ? along_row : 0) + (along_column < 0 ? along_column : 0);
+        *highs[axis] = (along_row > 0 ? along_row : 0) + (along_column > 0 ? along_column : 0);
+        if (*highs[axis] - *lows[axis] >= (static_cast<int64_t>(1) << 62)) return false;
+    }
+    return true;
+}
+
 int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, const dsn_grid *grid,
-                       uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
+                       uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
+                       size_t scratch_size) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
     const size_t points = static_cast<size_t>(width) * height;
     if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
@@ -272,6 +339,26 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
     int err = check_call(mix, control, true);
     if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
     if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    int64_t low_x, low_y, high_x, high_y;
+    if (grid_box(grid, width, height, &low_x, &low_y, &high_x, &high_y)) {
+        /* the impulses' floors lie within radius + 1 texels of the box, itself within a texel of the points */
+        const int64_t reach_x = static_cast<int64_t>(mix->radius[0] + 2u) << 32;
+        const int64_t reach_y = static_cast<int64_t>(mix->radius[1] + 2u) << 32;
+        const uint64_t origin_x = static_cast<uint64_t>(grid->origin_x), origin_y = static_cast<uint64_t>(grid->origin_y);
+        const uint32_t only = tile_material(mix, control, origin_x + static_cast<uint64_t>(low_x - reach_x),
+                                            origin_y + static_cast<uint64_t>(low_y - reach_y),
+                                            origin_x + static_cast<uint64_t>(high_x + reach_x),
+                                            origin_y + static_cast<uint64_t>(high_y + reach_y));
+        if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
+            const dsn_noise *material = as_noise(&mix->material[only]);
+            if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height))
+                return kind == dsn_output_fixed
+                           ? dsn_continuous_tile_fixed(material, grid, width, height, static_cast<int32_t *>(out),
+                                                       scratch, scratch_size)
+                           : dsn_continuous_tile_float(material, grid, width, height, static_cast<float *>(out),
+                                                       scratch, scratch_size);
+        }
+    }
     dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
         int32_t value[DSN_MAX_CHANNELS];
         continuous_point(mix, control, x, y, value);
@@ -305,24 +392,49 @@ int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *co
                                dsn_output_float);
 }
 
+size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *handle, uint32_t width, uint32_t height) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    size_t most = 0;
+    if (!dsn_mix_configured(mix)) return 0;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const size_t size = dsn_lattice_tile_scratch_size(as_noise(&mix->material[m]), width, height);
+        most = size > most ? size : most;
+    }
+    return most;
+}
+
+size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *handle, const dsn_grid *grid, uint32_t width,
+                                            uint32_t height) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    size_t most = 0;
+    if (!dsn_mix_configured(mix)) return 0;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const size_t size = dsn_continuous_tile_scratch_size(as_noise(&mix->material[m]), grid, width, height);
+        most = size > most ? size : most;
+    }
+    return most;
+}
+
 int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, int32_t *out) {
-    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_fixed);
+                               uint32_t width, uint32_t height, int32_t *out, void *scratch, size_t scratch_size) {
+    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, float *out) {
-    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_float);
+                               uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size) {
+    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
 int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, int32_t *out) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_fixed);
+                                  uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                                  size_t scratch_size) {
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, float *out) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_float);
+                                  uint32_t width, uint32_t height, float *out, void *scratch,
+                                  size_t scratch_size) {
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
 } // extern "C"

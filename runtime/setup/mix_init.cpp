@@ -1,6 +1,6 @@
-/* runtime/setup/mix_init.cpp - dsn_mix_init: copies the materials, normalizes each for the density of
-   material 0 (whose impulses the whole mix shares), finds the walks' reach and bounds their cost; and the
-   small helpers of the mixing API. */
+/* runtime/setup/mix_init.cpp - dsn_mix_init: copies the materials onto the impulse process of material 0,
+   which the whole mix shares, normalized for its density; finds the walks' reach and bounds their cost;
+   and the small helpers of the mixing API. */
 #include "core/cell_hash.h"
 #include "core/normalize_fixed.h"
 #include "setup/init_internal.h"
@@ -17,16 +17,28 @@ void clear_mix(dsn_mix_state *mix) {
 
 uint32_t larger(uint32_t a, uint32_t b) { return a > b ? a : b; }
 
-/* The material as the mix reads it: its noise, with gain, gain_shift and offset computed for the density
-   lambda of `lead` (impacts_q16 / (2^16 support_size), which the normalization reads from these two
-   fields, restored after). */
-dsn_noise_state material_at_density(const dsn_noise_state *noise, const dsn_noise_state *lead) {
+/* The material as the mix reads it: its noise on the impulse process of `lead` (its seed, cells, Poisson
+   table and periods), normalized for that process's density lambda (impacts_q16 / (2^16 support_size),
+   which the normalization reads from these two fields, restored after). Its own evaluators then give
+   the mix where its weights are this material's alone. */
+dsn_noise_state material_on_process(const dsn_noise_state *noise, const dsn_noise_state *lead) {
     dsn_noise_state material = *noise;
     material.impacts_q16 = lead->impacts_q16;
     material.asset.support_size = lead->asset.support_size;
     dsn_internal_compute_normalization(&material);
     material.impacts_q16 = noise->impacts_q16;
     material.asset.support_size = noise->asset.support_size;
+    material.seed = lead->seed;
+    material.seed_column = lead->seed_column;
+    material.seed_row = lead->seed_row;
+    material.cell_shift = lead->cell_shift;
+    material.period[0] = lead->period[0];
+    material.period[1] = lead->period[1];
+    material.poisson_parts = lead->poisson_parts;
+    material.poisson_size = lead->poisson_size;
+    for (uint32_t i = 0; i < sizeof material.poisson_cdf / sizeof material.poisson_cdf[0]; i++)
+        material.poisson_cdf[i] = lead->poisson_cdf[i];
+    for (uint32_t i = 0; i < sizeof material.poisson_guide; i++) material.poisson_guide[i] = lead->poisson_guide[i];
 #if DSN_NOISE_CHECK
     material.check = dsn_internal_state_check(&material);
 #endif
@@ -61,7 +73,7 @@ int dsn_mix_init(dsn_mix *handle, const dsn_noise *const *materials, uint32_t co
     mix->count = count;
     mix->channels = 1;
     for (uint32_t m = 0; m < count; m++) {
-        const dsn_noise_state material = material_at_density(dsn_state(materials[m]), lead);
+        const dsn_noise_state material = material_on_process(dsn_state(materials[m]), lead);
         const dsn_texton_window lattice = dsn_lattice_texton_window(&material);
         mix->channels = larger(mix->channels, material.asset.channels);
         for (uint32_t axis = 0; axis < 2; axis++) {

@@ -22,8 +22,9 @@ struct dsn_mix_state {
     uint32_t check;             /* dsn_internal_mix_check, stored last by dsn_mix_init */
     uint32_t unused;
     /* Material 0 leads: its seed, cells, Poisson table and periods are the mix's impulse process. Each
-       copy keeps its own fields but gain, gain_shift and offset, which init computes for material 0's
-       density (and its check value over them). */
+       material is a copy of its noise on that process (those fields material 0's), normalized for its
+       density (gain, gain_shift and offset), with its check value over them: a noise that the evaluators
+       take as it is where the weights are that material's alone. */
     dsn_noise_state material[DSN_MIX_MAX_MATERIALS];
 };
 
