@@ -38,39 +38,64 @@ MixRegion region_around(const dsn_mix_state *mix, const dsn_mix_control *control
                       static_cast<uint64_t>(y + reach_y) << 32, 16u);
 }
 
-/* The continuous sums of every material at (x, y), Q32.32: the small build's walk of
-   continuous_point.cpp, impulse by impulse, with the mix's reach. */
+/* The continuous sums of every material at (x, y), Q32.32: continuous_sift.h's sifting walk with the mix's
+   reach. Each position pair is hashed once for its impulses, which are tested against the point on their
+   lattice fields all at once; only the candidates get their fraction hash, the exact test, their material
+   and their read. */
 void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                      uint64_t x, uint64_t y, ContinuousSums sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift;
     const PointAxis px = point_axis(x, mix->radius[0], shift, lead->period[0]);
     const PointAxis py = point_axis(y, mix->radius[1], shift, lead->period[1]);
+    const FieldLanes lanes = field_lanes(shift);
+    const uint32_t half_mask = (1u << lanes.half_bits) - 1u, high_shift = 16u - lanes.half_bits;
+    const uint32_t position_shift = 16u + shift;
+    const int64_t reach_x = static_cast<int64_t>(mix->radius[0] + 1u) << 32;
+    const int64_t reach_y = static_cast<int64_t>(mix->radius[1] + 1u) << 32;
     for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&py.axis, sy);
         for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
             const dsn_span span_x = dsn_axis_span(&px.axis, sx);
             for (uint32_t j = 0; j < span_y.cell_count; j++) {
-                const uint32_t cell_y = dsn_span_cell(&span_y, j, shift), origin_y = cell_y << shift;
+                CellAxis cell_y;
+                if (!cell_axis(py, span_y, dsn_span_cell(&span_y, j, shift), lanes, &cell_y)) continue;
+                const uint32_t row_key = dsn_row_key(lead, dsn_span_cell(&span_y, j, shift));
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
-                    const uint32_t cell_x = dsn_span_cell(&span_x, i, shift), origin_x = cell_x << shift;
-                    const uint32_t key = dsn_cell_key(lead, cell_x, cell_y);
+                    CellAxis cell_x;
+                    const uint32_t cell = dsn_span_cell(&span_x, i, shift);
+                    if (!cell_axis(px, span_x, cell, lanes, &cell_x)) continue;
+                    const uint32_t key = dsn_cell_key_in_row(lead, cell, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
-                    for (uint32_t k = 0; k < count; k++) {
-                        const uint32_t hash = dsn_impulse_hash(lead, key, k);
-                        int64_t offset_x, offset_y;
-                        if (!impulse_offset(py, span_y, origin_y, dsn_impulse_bits_y(hash), &offset_y) ||
-                            !impulse_offset(px, span_x, origin_x, dsn_impulse_bits_x(hash), &offset_x) ||
-                            !within_reach(offset_x, mix->radius[0]) || !within_reach(offset_y, mix->radius[1]))
-                            continue;
-                        const uint32_t m =
-                            impulse_material(control, mix->count, region, key, k,
-                                             x - static_cast<uint64_t>(offset_x), y - static_cast<uint64_t>(offset_y));
-                        const dsn_noise_state *material = &mix->material[m];
-                        uint32_t row, row_weight, column, column_weight;
-                        if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
-                            bracket(offset_x, material->radius[0], &column, &column_weight))
-                            add_bilinear(&material->asset, row, row_weight, column, column_weight, sums[m]);
+                    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
+                        const uint64_t pair = dsn_position_pair(key, first / lanes.per_pair);
+                        uint64_t candidates = candidate_lanes(pair, lanes, cell_x, cell_y);
+                        if (count - first < lanes.per_pair)
+                            candidates &= (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
+                        for (; candidates != 0; candidates &= candidates - 1u) {
+                            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift, k = first + lane;
+                            const uint32_t field = dsn_pair_bits(pair, lane << lanes.field_shift);
+                            const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
+                            /* dsn_impulse_hash's 16-bit positions */
+                            const uint32_t bits_x =
+                                ((field & half_mask) << high_shift) | ((fraction & 0xFFFFu) >> lanes.half_bits);
+                            const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
+                                                    ((fraction >> 16) >> lanes.half_bits);
+                            const int64_t offset_x =
+                                cell_x.shifted_base - static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) - reach_x;
+                            const int64_t offset_y =
+                                cell_y.shifted_base - static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) - reach_y;
+                            if (!within_reach(offset_x, mix->radius[0]) || !within_reach(offset_y, mix->radius[1]))
+                                continue;
+                            const uint32_t m = impulse_material(control, mix->count, region, key, k,
+                                                                x - static_cast<uint64_t>(offset_x),
+                                                                y - static_cast<uint64_t>(offset_y));
+                            const dsn_noise_state *material = &mix->material[m];
+                            uint32_t row, row_weight, column, column_weight;
+                            if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
+                                bracket(offset_x, material->radius[0], &column, &column_weight))
+                                add_bilinear(&material->asset, row, row_weight, column, column_weight, sums[m]);
+                        }
                     }
                 }
             }

@@ -760,6 +760,166 @@ int hash_asset(const Kind &kind, const dsn_asset *asset, Fnv *hash) {
     return DSN_OK;
 }
 
+#if DSN_MIXING && !defined(GOLDEN_WITHOUT_MIXING)
+/* ---- Mixing (dsn.h, "Mixing") ----
+   Each asset as material 0 with the next asset (grey with RGB, 8 with 16 bits) as material 1, under three
+   controls: a grid of varying weights (a zero sample, a periodic x axis, samples 4 texels apart, its origin
+   off the lattice), a constant 50/50 and material 1 alone (which tiles take by its own tile function). */
+const uint8_t mix_grid_weights[] = {255, 0, 200, 55, 0, 0,  9,   3, 0,  255, 128, 128, 60, 61, 1, 250,
+                                    77,  7, 0,   1, 30, 90, 255, 255, 0, 40, 100, 0,   5,  5,  17, 200};
+const uint8_t mix_half_weights[] = {128, 128}, mix_second_weights[] = {0, 255};
+const dsn_mix_control mix_controls[] = {
+    {mix_grid_weights, 4, 4, 2, -7, 3, DSN_MIX_PERIODIC_X},
+    {mix_half_weights, 1, 1, 0, 0, 0, 0},
+    {mix_second_weights, 1, 1, 0, 0, 0, 0},
+};
+const Window mix_windows[] = {{-3, -2, 5, 4}, {INT32_MAX - 2, INT32_MAX - 1, 5, 4}, {1234567891, -987654321, 6, 3}};
+const Setting mix_settings[] = {
+    {0u, 0u, 0u, 0u, lattice_continuous},
+    {5u, DSN_IMPACTS_MIN_Q16, 16u, 13u, lattice_continuous},
+    {0x9E3779B9u, 100u << 16, 0u, 0u, lattice_continuous | DSN_FLAG_NO_COLOR_TRANSFORM},
+};
+const Grid *const mix_grids[] = {&affine_grids[0], &affine_grids[4], &continuous_grids[3]};
+
+dsn_mix golden_mix;
+
+/* The mix of assets a and a + 1 under a setting (material 1 with the next seed). */
+int make_mix(uint32_t a, const Setting &setting) {
+    dsn_asset assets[2];
+    static dsn_noise noises[2];
+    for (uint32_t m = 0; m < 2; m++) {
+        const cross_asset &bytes = cross_assets[(a + m) % CROSS_ASSET_COUNT];
+        int err = dsn_asset_load(&assets[m], bytes.bytes, bytes.size);
+        dsn_config config;
+        dsn_config_defaults(&config);
+        config.seed = setting.seed + m;
+        config.impacts_q16 = setting.impacts_q16;
+        config.period_x = setting.period_x;
+        config.period_y = setting.period_y;
+        config.flags = setting.flags;
+        if (err == DSN_OK) err = dsn_noise_init(&noises[m], &assets[m], &config);
+        if (err != DSN_OK) return err;
+    }
+    const dsn_noise *materials[2] = {&noises[0], &noises[1]};
+    return dsn_mix_init(&golden_mix, materials, 2);
+}
+
+/* One kind of mixed output over the windows or grids of one setting and control. */
+typedef int (*MixEvaluator)(const dsn_mix_control *control, Fnv *hash);
+
+int mix_lattice_points(const dsn_mix_control *control, Fnv *hash) {
+    const uint32_t channels = dsn_mix_channels(&golden_mix);
+    for (uint32_t w = 0; w < GOLDEN_COUNT(mix_windows); w++)
+        for (uint32_t j = 0; j < mix_windows[w].height; j++)
+            for (uint32_t i = 0; i < mix_windows[w].width; i++) {
+                int32_t values[DSN_MAX_CHANNELS];
+                const int err = dsn_mix_lattice_point_fixed(&golden_mix, control, wrapped(mix_windows[w].x, i),
+                                                            wrapped(mix_windows[w].y, j), values);
+                if (err != DSN_OK) return err;
+                hash_fixed(hash, values, channels);
+            }
+    return DSN_OK;
+}
+
+int mix_lattice_tiles(const dsn_mix_control *control, Fnv *hash) {
+    const uint32_t channels = dsn_mix_channels(&golden_mix);
+    for (uint32_t w = 0; w < GOLDEN_COUNT(mix_windows); w++) {
+        const Window &window = mix_windows[w];
+        const int err = dsn_mix_lattice_tile_fixed(&golden_mix, control, window.x, window.y, window.width,
+                                                   window.height, tile_fixed_values, tile_scratch, scratch_capacity);
+        if (err != DSN_OK) return err;
+        hash_fixed(hash, tile_fixed_values, window.width * window.height * channels);
+    }
+    return DSN_OK;
+}
+
+int mix_continuous_points(const dsn_mix_control *control, Fnv *hash) {
+    const uint32_t channels = dsn_mix_channels(&golden_mix);
+    for (uint32_t g = 0; g < GOLDEN_COUNT(mix_grids); g++)
+        for (uint32_t j = 0; j < mix_grids[g]->height; j++)
+            for (uint32_t i = 0; i < mix_grids[g]->width; i++) {
+                int32_t values[DSN_MAX_CHANNELS];
+                int64_t x, y;
+                grid_point(mix_grids[g]->grid, i, j, &x, &y);
+                const int err = dsn_mix_continuous_point_fixed(&golden_mix, control, x, y, values);
+                if (err != DSN_OK) return err;
+                hash_fixed(hash, values, channels);
+            }
+    return DSN_OK;
+}
+
+int mix_continuous_tiles(const dsn_mix_control *control, Fnv *hash) {
+    const uint32_t channels = dsn_mix_channels(&golden_mix);
+    for (uint32_t g = 0; g < GOLDEN_COUNT(mix_grids); g++) {
+        const Grid &grid = *mix_grids[g];
+        const int err = dsn_mix_continuous_tile_fixed(&golden_mix, control, &grid.grid, grid.width, grid.height,
+                                                      tile_fixed_values, tile_scratch, scratch_capacity);
+        if (err != DSN_OK) return err;
+        hash_fixed(hash, tile_fixed_values, grid.width * grid.height * channels);
+    }
+    return DSN_OK;
+}
+
+/* The float conversions: lattice tiles, then continuous points from float64 coordinates. */
+int mix_floats(const dsn_mix_control *control, Fnv *hash) {
+    const uint32_t channels = dsn_mix_channels(&golden_mix);
+    for (uint32_t w = 0; w < GOLDEN_COUNT(mix_windows); w++) {
+        const Window &window = mix_windows[w];
+        const int err = dsn_mix_lattice_tile_float(&golden_mix, control, window.x, window.y, window.width,
+                                                   window.height, tile_float_values, tile_scratch, scratch_capacity);
+        if (err != DSN_OK) return err;
+        hash_float(hash, tile_float_values, window.width * window.height * channels);
+    }
+    for (uint32_t i = 0; i < sizeof double_patterns / sizeof double_patterns[0]; i++) {
+        double x, y;
+        memcpy(&x, &double_patterns[i], sizeof x);
+        memcpy(&y, &double_patterns[(i + 3) % (sizeof double_patterns / sizeof double_patterns[0])], sizeof y);
+        float values[DSN_MAX_CHANNELS];
+        const int err = dsn_mix_continuous_point_float(&golden_mix, control, x, y, values);
+        if (err != DSN_OK) return err;
+        hash_float(hash, values, channels);
+    }
+    return DSN_OK;
+}
+
+const struct {
+    const char *name;
+    MixEvaluator evaluate;
+} mix_kinds[] = {
+    {"m-point", mix_lattice_points},
+    {"m-tile", mix_lattice_tiles}, /* the same bytes as "m-point" */
+    {"m-c-point", mix_continuous_points},
+    {"m-c-tile", mix_continuous_tiles}, /* the same bytes as "m-c-point" */
+    {"m-float", mix_floats},
+};
+
+/* Writes the mix kinds' lines; returns the number of assets that failed. */
+int write_mix_hashes() {
+    int failures = 0;
+    for (uint32_t k = 0; k < GOLDEN_COUNT(mix_kinds); k++) {
+        Fnv all = {fnv_offset_basis};
+        for (uint32_t a = 0; a < CROSS_ASSET_COUNT; a++) {
+            Fnv hash = {fnv_offset_basis};
+            int err = DSN_OK;
+            for (uint32_t s = 0; err == DSN_OK && s < GOLDEN_COUNT(mix_settings); s++) {
+                err = make_mix(a, mix_settings[s]);
+                for (uint32_t c = 0; err == DSN_OK && c < GOLDEN_COUNT(mix_controls); c++)
+                    err = mix_kinds[k].evaluate(&mix_controls[c], &hash);
+            }
+            if (err != DSN_OK) {
+                write_error(mix_kinds[k].name, cross_assets[a].name, err);
+                failures++;
+                continue;
+            }
+            write_hash(mix_kinds[k].name, cross_assets[a].name, hash.state);
+            hash_u64(&all, hash.state);
+        }
+        write_hash(mix_kinds[k].name, "all", all.state);
+    }
+    return failures;
+}
+#endif
+
 } // namespace
 
 int main() {
@@ -783,6 +943,9 @@ int main() {
         }
         write_hash(kinds[k].name, "all", all.state);
     }
+#if DSN_MIXING && !defined(GOLDEN_WITHOUT_MIXING)
+    failures += write_mix_hashes();
+#endif
     write_hash("coords", "all", coordinate_conversions_hash());
     return failures == 0 ? 0 : 1;
 }

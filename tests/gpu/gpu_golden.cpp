@@ -99,6 +99,7 @@ int64_t coordinate_from_float(float value);
 #define dsn_coordinate_from_float gpu_golden::coordinate_from_float
 #define main golden_main
 #define GOLDEN_WITHOUT_HISTOGRAM 1 /* dsn.glsl has no histogram mapping: the h-* kinds are left out */
+#define GOLDEN_WITHOUT_MIXING 1    /* nor mixing: the m-* kinds */
 #include "cross/golden.cpp"
 #undef main
 
