@@ -109,7 +109,7 @@ $(LIBDSN_TOOLS): $(TOOLS_LIBRARY_OBJECTS)
 	rm -f $@ && $(AR) rcs $@ $^
 
 # Each tool links what it uses: only dsn-bake and dsn-synth have the baker (and KissFFT); dsn-example-asset has the
-# asset writer of libdsn_bake.a (the linker takes no other object of it).
+# asset writer of libdsn_bake.a and dsn-render its image reader (--weights), the linker taking no other object.
 TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN) $(LDFLAGS) $(STB_LIBS) -lpthread
 $(BUILD)/bin/dsn-%: $(BUILD)/obj/offline/tools/dsn-%.o $(LIBDSN_TOOLS) $(LIBDSN)
 	@mkdir -p $(@D)
@@ -118,6 +118,8 @@ $(BUILD)/bin/dsn-bake: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-bake: TOOL_LINK = $(OFFLINE_LINK)
 $(BUILD)/bin/dsn-synth: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-synth: TOOL_LINK = $(OFFLINE_LINK)
+$(BUILD)/bin/dsn-render: $(LIBDSN_BAKE)
+$(BUILD)/bin/dsn-render: TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS) $(STB_LIBS) -lpthread
 $(BUILD)/bin/dsn-example-asset: $(LIBDSN_BAKE)
 $(BUILD)/bin/dsn-example-asset: TOOL_LINK = $(LIBDSN_TOOLS) $(LIBDSN_BAKE) $(LIBDSN) $(LDFLAGS)
 # The tools' objects are kept (not deleted as intermediate files), so a second make relinks nothing.

@@ -85,9 +85,11 @@ TEST_CASE("mix: where the weights are material 0's, the bits of its own noise, l
             for (size_t k = 0; k < xs.size(); k++) {
                 int32_t own[3] = {}, mixed[3] = {};
                 REQUIRE(dsn_continuous_point_fixed(&lead->noise, xs[k], ys[k], own) == DSN_OK);
-                REQUIRE(dsn_mix_continuous_point_fixed(&mix, &on_lead.control, xs[k], ys[k], mixed) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_point_fixed(&mix, &on_lead.control, xs[k], ys[k], mixed) ==
+                        DSN_OK);
                 differences += std::memcmp(own, mixed, sizeof own) != 0;
-                const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)), y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+                const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)),
+                              y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
                 dsn_lattice_point_fixed(&lead->noise, x, y, own);
                 REQUIRE(dsn_mix_lattice_point_fixed(&mix, &on_lead.control, x, y, mixed) == DSN_OK);
                 differences += std::memcmp(own, mixed, sizeof own) != 0;
@@ -115,7 +117,8 @@ TEST_CASE("mix: where the weights are another material's, the bits of its noise 
             dsn_continuous_point_fixed(&other_on_lead_seed->noise, xs[k], ys[k], own);
             dsn_mix_continuous_point_fixed(&mix, &on_other.control, xs[k], ys[k], mixed);
             differences += std::memcmp(own, mixed, sizeof own) != 0;
-            const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)), y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+            const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)),
+                          y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
             dsn_lattice_point_fixed(&other_on_lead_seed->noise, x, y, own);
             dsn_mix_lattice_point_fixed(&mix, &on_other.control, x, y, mixed);
             differences += std::memcmp(own, mixed, sizeof own) != 0;
@@ -139,9 +142,12 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
     CHECK(dsn_mix_channels(&mix) == 3); // grey with RGB: 3 channels
     const Control low = constant({10, 10}), high = constant({200, 200});
     // A ramp with a periodic and a clamped axis, samples 4 texels apart, origin off the grid.
-    Control ramp(2, 9, 5, 2, [](uint32_t i, uint32_t j) {
-        return std::vector<uint8_t>{uint8_t(i * 31 % 256), uint8_t((j * 50 + 7 * i) % 256)};
-    }, DSN_MIX_PERIODIC_X);
+    Control ramp(
+        2, 9, 5, 2,
+        [](uint32_t i, uint32_t j) {
+            return std::vector<uint8_t>{uint8_t(i * 31 % 256), uint8_t((j * 50 + 7 * i) % 256)};
+        },
+        DSN_MIX_PERIODIC_X);
     ramp.control.origin_x = -13;
     ramp.control.origin_y = 2;
     std::vector<int64_t> xs, ys;
@@ -153,19 +159,23 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
         CHECK(std::memcmp(first, second, sizeof first) == 0);
     }
     // Tiles: a rotated grid and a lattice window, fixed and float, equal to the points.
-    const dsn_grid grid = {int64_t(-20) * kOne + 12345, int64_t(7) * kOne, int64_t(0.87 * kOne), int64_t(0.5 * kOne),
-                           int64_t(-0.5 * kOne), int64_t(0.87 * kOne)};
+    const dsn_grid grid = {int64_t(-20) * kOne + 12345, int64_t(7) * kOne,    int64_t(0.87 * kOne),
+                           int64_t(0.5 * kOne),         int64_t(-0.5 * kOne), int64_t(0.87 * kOne)};
     const uint32_t width = 23, height = 17;
     std::vector<int32_t> fixed(width * height * 3);
     std::vector<float> floats(width * height * 3);
-    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &ramp.control, &grid, width, height, fixed.data(), nullptr, 0) == DSN_OK);
-    REQUIRE(dsn_mix_continuous_tile_float(&mix, &ramp.control, &grid, width, height, floats.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &ramp.control, &grid, width, height, fixed.data(), nullptr,
+                                          0) == DSN_OK);
+    REQUIRE(dsn_mix_continuous_tile_float(&mix, &ramp.control, &grid, width, height, floats.data(), nullptr,
+                                          0) == DSN_OK);
     size_t differences = 0;
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             int32_t point[3];
-            const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) + j * uint64_t(grid.row_step_x));
-            const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) + j * uint64_t(grid.row_step_y));
+            const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
+                                      j * uint64_t(grid.row_step_x));
+            const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
+                                      j * uint64_t(grid.row_step_y));
             dsn_mix_continuous_point_fixed(&mix, &ramp.control, x, y, point);
             for (int c = 0; c < 3; c++) {
                 const size_t at = (j * width + i) * 3 + size_t(c);
@@ -173,12 +183,15 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
                 differences += floats[at] != dsn_fixed_to_float(point[c]);
             }
         }
-    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, fixed.data(), nullptr, 0) == DSN_OK);
-    REQUIRE(dsn_mix_lattice_tile_float(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, floats.data(), nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, fixed.data(),
+                                       nullptr, 0) == DSN_OK);
+    REQUIRE(dsn_mix_lattice_tile_float(&mix, &ramp.control, INT32_MAX - 9, -8, width, height, floats.data(),
+                                       nullptr, 0) == DSN_OK);
     for (uint32_t j = 0; j < height; j++)
         for (uint32_t i = 0; i < width; i++) {
             int32_t point[3];
-            dsn_mix_lattice_point_fixed(&mix, &ramp.control, int32_t(uint32_t(INT32_MAX - 9) + i), int32_t(j) - 8, point);
+            dsn_mix_lattice_point_fixed(&mix, &ramp.control, int32_t(uint32_t(INT32_MAX - 9) + i),
+                                        int32_t(j) - 8, point);
             for (int c = 0; c < 3; c++) {
                 const size_t at = (j * width + i) * 3 + size_t(c);
                 differences += fixed[at] != point[c];
@@ -200,13 +213,17 @@ TEST_CASE("mix: one material's weights give the same bits by its own evaluators 
     // around) must agree bit for bit.
     for (uint32_t period : {0u, 29u}) {
         auto lead = make_noise(random_texton_asset(3, 6, 8, 81), 31, 25u << 16, period, 0);
-        auto other = make_noise(with_means(random_texton_asset(3, 9, 16, 82), 1 << 23, 1 << 21, 0), 32, 7u << 16);
+        auto other =
+            make_noise(with_means(random_texton_asset(3, 9, 16, 82), 1 << 23, 1 << 21, 0), 32, 7u << 16);
         auto grey = make_noise(random_texton_asset(1, 4, 8, 83), 33);
         const dsn_mix mix = make_mix({&lead->noise, &other->noise, &grey->noise});
         const Control uniform = constant({0, 255, 0});
-        const Control varying(3, 5, 4, 1, [](uint32_t i, uint32_t j) {
-            return std::vector<uint8_t>{0, uint8_t((i + j) % 2 ? 255 : 100), 0};
-        }, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y);
+        const Control varying(
+            3, 5, 4, 1,
+            [](uint32_t i, uint32_t j) {
+                return std::vector<uint8_t>{0, uint8_t((i + j) % 2 ? 255 : 100), 0};
+            },
+            DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y);
         std::vector<int64_t> xs, ys;
         renderer_points(90 + period, 300, &xs, &ys);
         size_t differences = 0;
@@ -215,7 +232,8 @@ TEST_CASE("mix: one material's weights give the same bits by its own evaluators 
             dsn_mix_continuous_point_fixed(&mix, &uniform.control, xs[k], ys[k], first);
             dsn_mix_continuous_point_fixed(&mix, &varying.control, xs[k], ys[k], second);
             differences += std::memcmp(first, second, sizeof first) != 0;
-            const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)), y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+            const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)),
+                          y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
             dsn_mix_lattice_point_fixed(&mix, &uniform.control, x, y, first);
             dsn_mix_lattice_point_fixed(&mix, &varying.control, x, y, second);
             differences += std::memcmp(first, second, sizeof first) != 0;
@@ -236,32 +254,39 @@ TEST_CASE("mix: one material's weights give the same bits by its own evaluators 
         // Tiles: with scratch a one-material tile is that material's tile (splatted or by strips); the
         // same pixels point by point.
         const int64_t one = kOne;
-        const dsn_grid grid = {-40 * one + 777, 3 * one, int64_t(0.61 * double(one)), int64_t(0.35 * double(one)),
-                               -int64_t(0.35 * double(one)), int64_t(0.61 * double(one))};
+        const dsn_grid grid = {-40 * one + 777,
+                               3 * one,
+                               int64_t(0.61 * double(one)),
+                               int64_t(0.35 * double(one)),
+                               -int64_t(0.35 * double(one)),
+                               int64_t(0.61 * double(one))};
         const uint32_t width = 70, height = 40;
-        std::vector<unsigned char> scratch(std::max(dsn_mix_continuous_tile_scratch_size(&mix, &grid, width, height),
-                                                    dsn_mix_lattice_tile_scratch_size(&mix, width, height)));
+        std::vector<unsigned char> scratch(
+            std::max(dsn_mix_continuous_tile_scratch_size(&mix, &grid, width, height),
+                     dsn_mix_lattice_tile_scratch_size(&mix, width, height)));
         CHECK(scratch.size() > 0);
         std::vector<int32_t> fast(width * height * 3), slow(fast.size());
         std::vector<float> fast_float(fast.size()), slow_float(fast.size());
         size_t tile_differences = 0;
         for (int lattice = 0; lattice < 2; lattice++) {
             if (lattice) {
-                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &uniform.control, -30, 77, width, height, fast.data(),
-                                                   scratch.data(), scratch.size()) == DSN_OK);
-                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &varying.control, -30, 77, width, height, slow.data(),
-                                                   nullptr, 0) == DSN_OK);
-                REQUIRE(dsn_mix_lattice_tile_float(&mix, &uniform.control, -30, 77, width, height, fast_float.data(),
-                                                   scratch.data(), scratch.size()) == DSN_OK);
-                REQUIRE(dsn_mix_lattice_tile_float(&mix, &uniform.control, -30, 77, width, height, slow_float.data(),
-                                                   nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &uniform.control, -30, 77, width, height,
+                                                   fast.data(), scratch.data(), scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &varying.control, -30, 77, width, height,
+                                                   slow.data(), nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_float(&mix, &uniform.control, -30, 77, width, height,
+                                                   fast_float.data(), scratch.data(),
+                                                   scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_float(&mix, &uniform.control, -30, 77, width, height,
+                                                   slow_float.data(), nullptr, 0) == DSN_OK);
             } else {
-                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &uniform.control, &grid, width, height, fast.data(),
-                                                      scratch.data(), scratch.size()) == DSN_OK);
-                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &varying.control, &grid, width, height, slow.data(),
-                                                      nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &uniform.control, &grid, width, height,
+                                                      fast.data(), scratch.data(), scratch.size()) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &varying.control, &grid, width, height,
+                                                      slow.data(), nullptr, 0) == DSN_OK);
                 REQUIRE(dsn_mix_continuous_tile_float(&mix, &uniform.control, &grid, width, height,
-                                                      fast_float.data(), scratch.data(), scratch.size()) == DSN_OK);
+                                                      fast_float.data(), scratch.data(),
+                                                      scratch.size()) == DSN_OK);
                 REQUIRE(dsn_mix_continuous_tile_float(&mix, &uniform.control, &grid, width, height,
                                                       slow_float.data(), nullptr, 0) == DSN_OK);
             }
@@ -354,8 +379,8 @@ TEST_CASE("mix: a constant 50/50 mix has the average mean and covariance, auto- 
                 const Estimate covariance = over_batches(covariances[h][c][d]);
                 const double expected = 0.5 * (material_covariance(fields_a, c, d, lags[h][0], lags[h][1]) +
                                                material_covariance(fields_b, c, d, lags[h][0], lags[h][1]));
-                INFO("lag " << h << " channels " << c << d << ": " << covariance.value << " expected " << expected
-                            << " +- " << covariance.standard_error);
+                INFO("lag " << h << " channels " << c << d << ": " << covariance.value << " expected "
+                            << expected << " +- " << covariance.standard_error);
                 CHECK(std::fabs(covariance.value - expected) < 4 * covariance.standard_error);
             }
 }
@@ -398,7 +423,8 @@ TEST_CASE("mix: across a transition the variance follows the weights' mixture; a
         // The sample variance of n independent values has a standard error of about sqrt(2 / n) of the
         // variance for a near-Gaussian noise (its excess kurtosis here is about 0.1).
         const double standard_error = expected * std::sqrt((2.0 + 0.2) / rows);
-        INFO("x " << at << ": mix " << variance(mixed) << " crossfade " << variance(faded) << " expected " << expected);
+        INFO("x " << at << ": mix " << variance(mixed) << " crossfade " << variance(faded) << " expected "
+                  << expected);
         CHECK(std::fabs(variance(mixed) - expected) < 4 * standard_error);
         const double crossfade = w * w * variance_a + (1 - w) * (1 - w) * variance_b;
         CHECK(std::fabs(variance(faded) - crossfade) < 4 * crossfade * std::sqrt(2.2 / rows));
@@ -424,7 +450,8 @@ TEST_CASE("mix: no seam: the largest jump between neighbouring pixels across a t
             int32_t previous = 0;
             for (int k = 0; k <= 256; k++) {
                 int32_t value;
-                dsn_mix_continuous_point_fixed(&mix, &step.control, int64_t(from * double(kOne)) + k * (kOne / 8), y, &value);
+                dsn_mix_continuous_point_fixed(&mix, &step.control,
+                                               int64_t(from * double(kOne)) + k * (kOne / 8), y, &value);
                 if (k > 0) largest = std::max(largest, std::abs(value - previous));
                 previous = value;
             }
@@ -503,11 +530,14 @@ TEST_CASE("mix: bad input gets an error code and zeroed output, never undefined 
     CHECK(dsn_mix_continuous_point_fixed(&mix, &control, 0, 0, nullptr) == DSN_ERR_NULL);
     const dsn_grid grid = {0, 0, kOne, 0, 0, kOne};
     std::vector<int32_t> tile(4 * 3, 7);
-    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, nullptr, 2, 2, tile.data(), nullptr, 0) == DSN_ERR_NULL);
+    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, nullptr, 2, 2, tile.data(), nullptr, 0) ==
+          DSN_ERR_NULL);
     for (int32_t v : tile) CHECK(v == 0);
     tile.assign(4 * 3, 7);
-    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, &grid, 0, 2, tile.data(), nullptr, 0) == DSN_ERR_TILE_SIZE);
-    CHECK(dsn_mix_lattice_tile_fixed(&mix, &control, 0, 0, 2, DSN_TILE_MAX_SIDE + 1, tile.data(), nullptr, 0) == DSN_ERR_TILE_SIZE);
+    CHECK(dsn_mix_continuous_tile_fixed(&mix, &control, &grid, 0, 2, tile.data(), nullptr, 0) ==
+          DSN_ERR_TILE_SIZE);
+    CHECK(dsn_mix_lattice_tile_fixed(&mix, &control, 0, 0, 2, DSN_TILE_MAX_SIDE + 1, tile.data(), nullptr,
+                                     0) == DSN_ERR_TILE_SIZE);
     CHECK(tile[0] == 7); // a tile refused for its size is left as it is
 
     // The continuous functions check every material's mode.

@@ -865,9 +865,11 @@ size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *mix, uint32_t width, uin
 size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t width,
                                             uint32_t height);
 int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, int32_t *out, void *scratch, size_t scratch_size);
+                               uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                               size_t scratch_size);
 int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size);
+                               uint32_t width, uint32_t height, float *out, void *scratch,
+                               size_t scratch_size);
 int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
                                   uint32_t width, uint32_t height, int32_t *out, void *scratch,
                                   size_t scratch_size);

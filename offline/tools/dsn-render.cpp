@@ -5,6 +5,7 @@
 // the image, so the
 // result does not depend on the strip size or the thread count: windows rendered separately stitch
 // exactly into the whole.
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -25,6 +26,7 @@
 
 #include "asset_file.h"
 #include "command_line.h"
+#include "dsn/bake.h"
 #include "dsn/dsn.h"
 #include "file_output.h"
 #include "png_output.h"
@@ -72,6 +74,17 @@ const char *const kUsageHead =
     "                       smoothed; the fix is to bake with dsn-bake --interpolation bilinear, the\n"
     "                       default)\n"
     "  --no-color-transform use the identity colour transform\n"
+    "  --mix B.dsnt[,C.dsnt,D.dsnt]\n"
+    "                       mix the asset A (material 0, whose seed, density and cells the mix\n"
+    "                       takes) with these materials, each impulse carrying one of them, drawn\n"
+    "                       from --weights at its position (the runtime's dsn_mix); the continuous\n"
+    "                       mode then reads the noise unfiltered (--filter none)\n"
+    "  --weights W.png      the mixing weights, one image pixel per weight sample: a grey image for\n"
+    "                       two materials (black: A, white: B, grey between), else one channel per\n"
+    "                       material (R: A, G: B, B: C; PNG, JPEG or PGM/PPM; alpha ignored)\n"
+    "  --weights-shift S    each weight pixel covers 2^S x 2^S texels, S in 0..16 (default 0), the\n"
+    "                       image's top-left corner at texel (0, 0)\n"
+    "  --weights-periodic   repeat the weight image (else its edge pixels extend it)\n"
     "  --threads N          worker threads, 1..256 (default: the number of cores)\n"
     "  --time-limit S       refuse a render estimated to take more than S seconds (default 600;\n"
     "                       0 = no limit): a few probe pixels spread over the window are rendered\n"
@@ -122,6 +135,10 @@ struct Options {
     unsigned threads = 0;
     double time_limit = 600; // seconds; 0: no limit
     bool quiet = false;
+    std::vector<std::string> mix_paths; // --mix: the other materials
+    std::string weights_path;
+    uint32_t weights_shift = 0;
+    bool weights_periodic = false;
 };
 
 // "AxB" or "A,B" -> the two halves.
@@ -148,6 +165,29 @@ Options parse_options(dsn::CommandLine &command_line) {
         } else if (command_line.is("--no-color-transform")) {
             command_line.no_value();
             options.flags |= DSN_FLAG_NO_COLOR_TRANSFORM;
+        } else if (command_line.is("--weights-periodic")) {
+            command_line.no_value();
+            options.weights_periodic = true;
+        } else if (command_line.is("--mix")) {
+            const std::string list = command_line.value();
+            options.mix_paths.clear();
+            for (size_t start = 0;;) {
+                const size_t comma = list.find(',', start);
+                const std::string path =
+                    list.substr(start, comma == std::string::npos ? comma : comma - start);
+                if (path.empty())
+                    throw dsn::UsageError("--mix needs asset paths separated by ',', not '" + list + "'");
+                options.mix_paths.push_back(path);
+                if (comma == std::string::npos) break;
+                start = comma + 1;
+            }
+            if (options.mix_paths.size() > DSN_MIX_MAX_MATERIALS - 1)
+                throw dsn::UsageError("--mix takes at most " + std::to_string(DSN_MIX_MAX_MATERIALS - 1) +
+                                      " assets (the asset itself is the first material)");
+        } else if (command_line.is("--weights")) {
+            options.weights_path = command_line.path_value();
+        } else if (command_line.is("--weights-shift")) {
+            options.weights_shift = static_cast<uint32_t>(dsn::parse_integer(command_line, 0, 16));
         } else if (command_line.is_positional()) {
             if (!options.asset_path.empty()) throw dsn::UsageError("more than one asset given: " + flag);
             options.asset_path = flag;
@@ -237,7 +277,18 @@ Options parse_options(dsn::CommandLine &command_line) {
                               std::to_string(options.height) + " is more than the limit of " +
                               std::to_string(kMaxRenderPixels) +
                               " pixels (8192x8192); render it as windows with --origin");
-    dsn::check_outputs({{"the input asset", options.asset_path}}, {{"-o", options.output_path}});
+    if (options.mix_paths.empty() != options.weights_path.empty())
+        throw dsn::UsageError(options.mix_paths.empty() ? "--weights needs --mix (the other materials)"
+                                                        : "--mix needs --weights (where each material lies)");
+    if (!options.mix_paths.empty() && (options.filter_given || options.max_taps_given) &&
+        (options.filter != Filter::none || options.max_taps_given))
+        throw dsn::UsageError(
+            "a mix is read unfiltered: leave --filter (or give --filter none) and --max-taps out");
+    if (!options.mix_paths.empty()) options.filter = Filter::none;
+    std::vector<dsn::NamedPath> inputs = {{"the input asset", options.asset_path}};
+    for (const std::string &path : options.mix_paths) inputs.push_back({"--mix", path});
+    if (!options.weights_path.empty()) inputs.push_back({"--weights", options.weights_path});
+    dsn::check_outputs(inputs, {{"-o", options.output_path}});
     const char *continuous_flag = options.scale_given      ? "--scale"
                                   : options.rotate_given   ? "--rotate"
                                   : options.filter_given   ? "--filter"
@@ -288,7 +339,9 @@ struct Job {
     int32_t lattice_x0, lattice_y0;
     dsn_grid grid;
     uint32_t width, height, channels, strip_rows;
-    uint32_t max_taps; // continuous mode: 0 unfiltered, else filtered with at most that many taps
+    uint32_t max_taps;            // continuous mode: 0 unfiltered, else filtered with at most that many taps
+    const dsn_mix *mix = nullptr; // --mix: the mix and its weights, read instead of `noise`
+    const dsn_mix_control *control = nullptr;
 };
 
 // Memory mapped but not touched: it is not zeroed first, and each worker faults in the pages it writes;
@@ -362,10 +415,44 @@ int filtered_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t max_tap
 
 // Rows first_row .. first_row + rows - 1 of the image, whole rows, into `out` (their place in the image:
 // a strip of whole rows is contiguous there, so the runtime writes the final pixels with no copy).
+void store_values(const std::vector<int32_t> &values, uint8_t *out) {
+    for (size_t i = 0; i < values.size(); i++) out[i] = dsn_fixed_to_u8(values[i]);
+}
+void store_values(const std::vector<int32_t> &values, float *out) {
+    for (size_t i = 0; i < values.size(); i++) out[i] = dsn_fixed_to_float(values[i]);
+}
+
+// A strip of a mix: the runtime's fixed-point tile (lattice or the continuous grid), then converted.
+template <typename Pixel>
+int render_mix_strip(const Job &job, uint32_t first_row, const dsn_grid &grid, uint32_t rows, Pixel *out,
+                     Scratch &scratch) {
+    std::vector<int32_t> values(static_cast<size_t>(job.width) * rows * job.channels);
+    int err;
+    if (job.mode == Mode::continuous) {
+        const size_t size = dsn_mix_continuous_tile_scratch_size(job.mix, &grid, job.width, rows);
+        err = dsn_mix_continuous_tile_fixed(job.mix, job.control, &grid, job.width, rows, values.data(),
+                                            scratch.reserve(size), size);
+    } else {
+        const int32_t y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + first_row);
+        const size_t size = dsn_mix_lattice_tile_scratch_size(job.mix, job.width, rows);
+        err = dsn_mix_lattice_tile_fixed(job.mix, job.control, job.lattice_x0, y0, job.width, rows,
+                                         values.data(), scratch.reserve(size), size);
+    }
+    store_values(values, out);
+    return err;
+}
+
 template <typename Pixel>
 void render_strip(const Job &job, uint32_t first_row, uint32_t rows, Pixel *out, Scratch &scratch) {
     int err = DSN_OK;
-    if (job.mode == Mode::tile) {
+    if (job.mix != nullptr) {
+        dsn_grid grid = job.grid; // the strip's own grid: moved by first_row rows, modulo 2^64
+        grid.origin_x = static_cast<int64_t>(static_cast<uint64_t>(grid.origin_x) +
+                                             static_cast<uint64_t>(grid.row_step_x) * first_row);
+        grid.origin_y = static_cast<int64_t>(static_cast<uint64_t>(grid.origin_y) +
+                                             static_cast<uint64_t>(grid.row_step_y) * first_row);
+        err = render_mix_strip(job, first_row, grid, rows, out, scratch);
+    } else if (job.mode == Mode::tile) {
         int32_t y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + first_row);
         const size_t size = dsn_lattice_tile_scratch_size(job.noise, job.width, rows);
         err = lattice_tile(job.noise, job.lattice_x0, y0, job.width, rows, out, scratch.reserve(size), size);
@@ -558,6 +645,75 @@ void float32_to_little_endian(float *values, size_t count) {
     }
 }
 
+// What a mix keeps alive while it renders: the materials' asset bytes and noises, the weights.
+struct MixInputs {
+    std::vector<std::vector<unsigned char>> bytes;
+    std::vector<dsn_asset> assets;
+    std::vector<dsn_noise> noises;
+    std::vector<uint8_t> weights;
+    dsn_mix_control control{};
+    dsn_mix mix;
+};
+
+// The weight samples of `count` materials from the image at `path`: a grey image for two (black the
+// first, white the second), else one channel per material.
+void load_weights(const Options &options, uint32_t count, MixInputs &inputs) {
+    const dsn::Image image = dsn::load_exemplar(options.weights_path, nullptr);
+    if (image.channels == 1 && count != 2)
+        throw std::runtime_error(options.weights_path + ": a grey weight image mixes two materials, not " +
+                                 std::to_string(count) + ": give one channel per material (RGB)");
+    if (image.channels != 1 && uint32_t(image.channels) < count)
+        throw std::runtime_error(options.weights_path + ": " + std::to_string(image.channels) +
+                                 " channels for " + std::to_string(count) + " materials");
+    const auto byte = [](double value) {
+        return uint8_t(std::lround(std::min(1.0, std::max(0.0, value)) * 255));
+    };
+    inputs.weights.clear();
+    for (int y = 0; y < image.height; y++)
+        for (int x = 0; x < image.width; x++)
+            for (uint32_t m = 0; m < count; m++) {
+                const uint8_t grey = byte(image.at(x, y, 0));
+                inputs.weights.push_back(image.channels == 1 ? (m == 0 ? uint8_t(255 - grey) : grey)
+                                                             : byte(image.at(x, y, int(m))));
+            }
+    inputs.control.weights = inputs.weights.data();
+    inputs.control.width = uint32_t(image.width);
+    inputs.control.height = uint32_t(image.height);
+    inputs.control.spacing_shift = options.weights_shift;
+    inputs.control.flags = options.weights_periodic ? DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y : 0u;
+}
+
+// The mix of the asset's noise (material 0) and the --mix assets, configured as it is (its flags), with
+// the --weights image.
+void configure_mix(const Options &options, Mode mode, const dsn_noise &noise, const dsn_config &config,
+                   MixInputs &inputs) {
+    const size_t count = options.mix_paths.size() + 1;
+    inputs.bytes.resize(count);
+    inputs.assets.resize(count);
+    inputs.noises.resize(count);
+    inputs.noises[0] = noise;
+    for (size_t m = 1; m < count; m++) {
+        const std::string &path = options.mix_paths[m - 1];
+        inputs.bytes[m] = dsn::load_asset_file(path, inputs.assets[m]);
+        Options material = options;
+        material.asset_path = path;
+        render_mode(material, inputs.assets[m]); // throws where the mode cannot read it
+        const int err = dsn_noise_init(&inputs.noises[m], &inputs.assets[m], &config);
+        if (err != DSN_OK) throw std::runtime_error(path + ": " + dsn_error_message(err));
+        if (mode == Mode::continuous && dsn_continuous_check(&inputs.noises[m]) != DSN_OK)
+            throw std::runtime_error(path + ": " +
+                                     dsn_error_message(dsn_continuous_check(&inputs.noises[m])));
+    }
+    std::vector<const dsn_noise *> materials;
+    for (const dsn_noise &one : inputs.noises) materials.push_back(&one);
+    const int err = dsn_mix_init(&inputs.mix, materials.data(), uint32_t(count));
+    if (err == DSN_ERR_UNSUPPORTED)
+        throw std::runtime_error(
+            "a mix applies no histogram mapping: re-bake the materials without --histogram");
+    if (err != DSN_OK) throw std::runtime_error(std::string("--mix: ") + dsn_error_message(err));
+    load_weights(options, uint32_t(count), inputs);
+}
+
 void run(const Options &options) {
     dsn_asset asset;
     const std::vector<unsigned char> asset_bytes = dsn::load_asset_file(options.asset_path, asset);
@@ -579,11 +735,18 @@ void run(const Options &options) {
     if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
     if (mode == Mode::continuous && (err = dsn_continuous_check(&noise)) != DSN_OK)
         throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
+    MixInputs mix_inputs;
+    uint32_t channels = asset.channels;
+    if (!options.mix_paths.empty()) {
+        configure_mix(options, mode, noise, config, mix_inputs);
+        channels = dsn_mix_channels(&mix_inputs.mix);
+    }
 
     const uint32_t max_taps = mode != Mode::continuous || options.filter == Filter::none ? 0
                               : options.filter == Filter::iso                            ? 1
                                                                                          : options.max_taps;
-    Job job{&noise, mode, 0, 0, {}, options.width, options.height, asset.channels, 0, max_taps};
+    Job job{&noise, mode, 0, 0, {}, options.width, options.height, channels, 0, max_taps};
+    if (!options.mix_paths.empty()) job.mix = &mix_inputs.mix, job.control = &mix_inputs.control;
     if (mode == Mode::continuous)
         job.grid = dsn::rotated_grid(options.origin_x, options.origin_y, options.scale_x, options.scale_y,
                                      options.rotate_degrees);
@@ -591,7 +754,7 @@ void run(const Options &options) {
         job.lattice_x0 = dsn::lattice_origin(options.origin_x),
         job.lattice_y0 = dsn::lattice_origin(options.origin_y);
 
-    const size_t value_count = static_cast<size_t>(options.width) * options.height * asset.channels;
+    const size_t value_count = static_cast<size_t>(options.width) * options.height * channels;
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     job.strip_rows = strip_rows_for(options.width, options.height, threads);
     // Only a large render takes long enough to need progress.
@@ -623,9 +786,9 @@ void run(const Options &options) {
         MappedMemory pixels(value_count);
         render(job, threads, progress, static_cast<uint8_t *>(pixels.data()));
         seconds = elapsed();
-        dsn::write_file_atomically(options.output_path,
-                                   encode_png(static_cast<const uint8_t *>(pixels.data()), options.width,
-                                              options.height, asset.channels));
+        dsn::write_file_atomically(
+            options.output_path,
+            encode_png(static_cast<const uint8_t *>(pixels.data()), options.width, options.height, channels));
     } else {
         MappedMemory pixels(value_count * sizeof(float));
         float *values = static_cast<float *>(pixels.data());
@@ -637,7 +800,7 @@ void run(const Options &options) {
     }
     if (!options.quiet)
         std::printf("dsn-render: %ux%u, %u channel(s), %u thread(s): %.3f s, %.1f Mpixel/s -> %s\n",
-                    options.width, options.height, asset.channels, threads, seconds,
+                    options.width, options.height, channels, threads, seconds,
                     options.width * static_cast<double>(options.height) / seconds / 1e6,
                     options.output_path.c_str());
 }

@@ -1,8 +1,9 @@
 /* runtime/core/continuous_sift.h - what the fast continuous evaluators (one point: continuous_point.cpp; a
-   batch of points: continuous_batch.h) share to find the impulses around a point: the point's cell window
-   along each axis and the sifting of a cell's impulses on their packed lattice fields, which bound the
-   16-bit positions to within one texel, so that only the candidates get their fraction hash and the
-   exact test. Internal to libdsn; not installed (everything here has internal linkage). */
+   batch of points: continuous_batch.h; a mix's point: mix_point.cpp) share to find the impulses around a
+   point: the point's cell window along each axis and the sifting of a cell's impulses on their packed lattice
+   fields, which bound the 16-bit positions to within one texel, so that only the candidates get their
+   fraction hash and the exact test. Internal to libdsn; not installed (everything here has internal linkage).
+ */
 #ifndef DSN_CONTINUOUS_SIFT_H
 #define DSN_CONTINUOUS_SIFT_H
 
@@ -42,7 +43,6 @@ inline bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_
     return true;
 }
 
-#if !DSN_SMALL_CODE
 /* Floor of value / 2^shift (1 <= shift <= 63) for a value far from the int64 limits, without shifting
    a negative number (implementation-defined): through a 2^63 bias, as dsn_round_saturate does. */
 inline int64_t floor_shift(int64_t value, uint32_t shift) {
@@ -151,8 +151,6 @@ inline uint32_t gather_lanes(uint64_t candidates, const FieldLanes &lanes) {
     if (lanes.field_shift == 3) return static_cast<uint32_t>(((candidates >> 7) * 0x0102040810204080u) >> 56);
     return static_cast<uint32_t>(((candidates >> 15) * 0x1000200040008000u) >> 60);
 }
-
-#endif /* !DSN_SMALL_CODE */
 
 } // namespace
 

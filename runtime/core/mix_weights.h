@@ -53,7 +53,8 @@ inline MixAxis mix_axis(uint64_t position, int32_t origin, uint32_t spacing_shif
                  static_cast<int64_t>(static_cast<uint32_t>(0x80000000u) >> spacing_shift);
     axis.fraction = static_cast<uint32_t>(relative >> (24u + spacing_shift)) & 0xFFu;
     axis.first = periodic ? wrapped_sample(axis.index, size) : clamped_sample(axis.index, size);
-    axis.second = periodic ? (axis.first + 1u == size ? 0u : axis.first + 1u) : clamped_sample(axis.index + 1, size);
+    axis.second =
+        periodic ? (axis.first + 1u == size ? 0u : axis.first + 1u) : clamped_sample(axis.index + 1, size);
     return axis;
 }
 
@@ -71,7 +72,7 @@ inline MixWeights mix_weights_at(const dsn_mix_control *control, uint32_t count,
     const uint8_t *top = control->weights + static_cast<size_t>(ay.first) * control->width * count;
     const uint8_t *bottom = control->weights + static_cast<size_t>(ay.second) * control->width * count;
     const uint32_t left = ax.first * count, right = ax.second * count;
-    MixWeights weights;
+    MixWeights weights = MixWeights(); /* the entries past count unused, zero */
     uint32_t total = 0;
     for (uint32_t m = 0; m < count; m++) {
         const uint32_t upper = (256u - ax.fraction) * top[left + m] + ax.fraction * top[right + m];
@@ -99,8 +100,8 @@ inline void point_weights(const MixWeights &weights, uint32_t count, uint32_t *o
     const uint32_t total = weights.cumulative[count - 1u];
     uint32_t before = 0;
     for (uint32_t m = 0; m < count; m++) {
-        const uint32_t upto = total == 0 ? (1u << mix_weight_bits)
-                                         : (weights.cumulative[m] << mix_weight_bits) / total;
+        const uint32_t upto =
+            total == 0 ? (1u << mix_weight_bits) : (weights.cumulative[m] << mix_weight_bits) / total;
         out[m] = upto - before;
         before = upto;
     }
@@ -139,6 +140,7 @@ inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint
     region.uniform = false;
     region.single = false;
     region.only = 0;
+    region.weights = MixWeights();
     const bool periodic_x = (control->flags & DSN_MIX_PERIODIC_X) != 0;
     const bool periodic_y = (control->flags & DSN_MIX_PERIODIC_Y) != 0;
     const uint32_t shift = control->spacing_shift, width = control->width, height = control->height;
@@ -154,7 +156,8 @@ inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint
         return region;
     const uint8_t *reference = control->weights + (static_cast<size_t>(start_y) * width + start_x) * count;
     for (uint32_t j = 0, row = start_y; j < rows; j++, row = row + 1u == height ? 0u : row + 1u)
-        for (uint32_t i = 0, column = start_x; i < columns; i++, column = column + 1u == width ? 0u : column + 1u) {
+        for (uint32_t i = 0, column = start_x; i < columns;
+             i++, column = column + 1u == width ? 0u : column + 1u) {
             const uint8_t *sample = control->weights + (static_cast<size_t>(row) * width + column) * count;
             for (uint32_t m = 0; m < count; m++)
                 if (sample[m] != reference[m]) return region;

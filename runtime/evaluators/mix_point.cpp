@@ -71,21 +71,28 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
                         const uint64_t pair = dsn_position_pair(key, first / lanes.per_pair);
                         uint64_t candidates = candidate_lanes(pair, lanes, cell_x, cell_y);
                         if (count - first < lanes.per_pair)
-                            candidates &= (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
+                            candidates &=
+                                (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
                         for (; candidates != 0; candidates &= candidates - 1u) {
-                            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift, k = first + lane;
+                            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift,
+                                           k = first + lane;
                             const uint32_t field = dsn_pair_bits(pair, lane << lanes.field_shift);
                             const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
                             /* dsn_impulse_hash's 16-bit positions */
-                            const uint32_t bits_x =
-                                ((field & half_mask) << high_shift) | ((fraction & 0xFFFFu) >> lanes.half_bits);
+                            const uint32_t bits_x = ((field & half_mask) << high_shift) |
+                                                    ((fraction & 0xFFFFu) >> lanes.half_bits);
                             const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
                                                     ((fraction >> 16) >> lanes.half_bits);
                             const int64_t offset_x =
-                                cell_x.shifted_base - static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) - reach_x;
+                                cell_x.shifted_base -
+                                static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) -
+                                reach_x;
                             const int64_t offset_y =
-                                cell_y.shifted_base - static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) - reach_y;
-                            if (!within_reach(offset_x, mix->radius[0]) || !within_reach(offset_y, mix->radius[1]))
+                                cell_y.shifted_base -
+                                static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) -
+                                reach_y;
+                            if (!within_reach(offset_x, mix->radius[0]) ||
+                                !within_reach(offset_y, mix->radius[1]))
                                 continue;
                             const uint32_t m = impulse_material(control, mix->count, region, key, k,
                                                                 x - static_cast<uint64_t>(offset_x),
@@ -94,7 +101,8 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
                             uint32_t row, row_weight, column, column_weight;
                             if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
                                 bracket(offset_x, material->radius[0], &column, &column_weight))
-                                add_bilinear(&material->asset, row, row_weight, column, column_weight, sums[m]);
+                                add_bilinear(&material->asset, row, row_weight, column, column_weight,
+                                             sums[m]);
                         }
                     }
                 }
@@ -105,10 +113,11 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
 
 /* The lattice sums of every material at the lattice point (x, y): lattice_impulses.h's walk with the
    mix's reach, each impulse reading its material's lattice texton. */
-void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region, uint32_t x,
-                  uint32_t y, LatticeSums sums) {
+void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                  uint32_t x, uint32_t y, LatticeSums sums) {
     const dsn_noise_state *lead = &mix->material[0];
-    const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
+    const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0],
+                   reach_y = mix->lattice_radius[1];
     const uint32_t field_shift = dsn_field_shift(shift), half_bits = 1u << (field_shift - 1u);
     const uint32_t half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
     dsn_texton_window textons[DSN_MIX_MAX_MATERIALS];
@@ -145,8 +154,8 @@ void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, cons
                         const uint32_t own_column = column - reach_x + texton->radius[0];
                         const uint32_t own_row = row - reach_y + texton->radius[1];
                         if (own_column < texton->width && own_row < texton->height)
-                            add_texton_entry(&mix->material[m].asset, texton, own_row * texton->width + own_column,
-                                             sums[m]);
+                            add_texton_entry(&mix->material[m].asset, texton,
+                                             own_row * texton->width + own_column, sums[m]);
                     }
                 }
             }
@@ -191,7 +200,9 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
         for (uint32_t c = 0; c < mix->channels; c++) totals[c] += values[channels == 1 ? 0 : c];
     }
     for (uint32_t c = 0; c < mix->channels; c++)
-        out[c] = totals[c] > INT32_MAX ? INT32_MAX : totals[c] < INT32_MIN ? INT32_MIN : static_cast<int32_t>(totals[c]);
+        out[c] = totals[c] > INT32_MAX   ? INT32_MAX
+                 : totals[c] < INT32_MIN ? INT32_MIN
+                                         : static_cast<int32_t>(totals[c]);
 }
 
 /* The noise of one material (the mix where the weights are that material's alone), as the mix's channels:
@@ -207,9 +218,9 @@ void spread_channels(const dsn_mix_state *mix, const dsn_noise_state *material, 
 
 void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
                       int32_t *out) {
-    const MixRegion region = region_around(mix, control, static_cast<uint32_t>(x >> 32),
-                                           static_cast<uint32_t>(y >> 32), mix->radius[0] + 1u,
-                                           mix->radius[1] + 1u);
+    const MixRegion region =
+        region_around(mix, control, static_cast<uint32_t>(x >> 32), static_cast<uint32_t>(y >> 32),
+                      mix->radius[0] + 1u, mix->radius[1] + 1u);
     if (region.single) {
         const dsn_noise_state *material = &mix->material[region.only];
         dsn_internal_continuous_point(material, x, y, out);
@@ -225,7 +236,8 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
 
 void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
                    int32_t *out) {
-    const MixRegion region = region_around(mix, control, x, y, mix->lattice_radius[0], mix->lattice_radius[1]);
+    const MixRegion region =
+        region_around(mix, control, x, y, mix->lattice_radius[0], mix->lattice_radius[1]);
     if (region.single) {
         const dsn_noise_state *material = &mix->material[region.only];
         dsn_lattice_point_fixed(as_noise(material), static_cast<int32_t>(x), static_cast<int32_t>(y), out);
@@ -281,8 +293,8 @@ int lattice_point_as(const dsn_mix *handle, const dsn_mix_control *control, int3
     return DSN_OK;
 }
 
-int continuous_point_as(const dsn_mix *handle, const dsn_mix_control *control, int64_t x, int64_t y, void *out,
-                        dsn_output_kind kind) {
+int continuous_point_as(const dsn_mix *handle, const dsn_mix_control *control, int64_t x, int64_t y,
+                        void *out, dsn_output_kind kind) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
     if (out == 0) return DSN_ERR_NULL;
     const int err = check_call(mix, control, true);
@@ -295,8 +307,8 @@ int continuous_point_as(const dsn_mix *handle, const dsn_mix_control *control, i
 
 /* The material whose weights a tile's whole reach has alone (its own tile function then gives the mix's
    bits), or count where the weights mix or may: positions [low, high] per axis, Q32.32. */
-uint32_t tile_material(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t low_x, uint64_t low_y,
-                       uint64_t high_x, uint64_t high_y) {
+uint32_t tile_material(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t low_x,
+                       uint64_t low_y, uint64_t high_x, uint64_t high_y) {
     const MixRegion region = mix_region(control, mix->count, low_x, low_y, high_x, high_y, 1024u);
     return region.single ? region.only : mix->count;
 }
@@ -311,11 +323,11 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
     const int err = check_call(mix, control, false);
     if (err != DSN_OK) return output_error(err, mix, out, kind, points);
     const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
-    const uint32_t only = tile_material(
-        mix, control, static_cast<uint64_t>(static_cast<uint32_t>(x0) - reach_x) << 32,
-        static_cast<uint64_t>(static_cast<uint32_t>(y0) - reach_y) << 32,
-        static_cast<uint64_t>(static_cast<uint32_t>(x0) + width - 1u + reach_x) << 32,
-        static_cast<uint64_t>(static_cast<uint32_t>(y0) + height - 1u + reach_y) << 32);
+    const uint32_t only =
+        tile_material(mix, control, static_cast<uint64_t>(static_cast<uint32_t>(x0) - reach_x) << 32,
+                      static_cast<uint64_t>(static_cast<uint32_t>(y0) - reach_y) << 32,
+                      static_cast<uint64_t>(static_cast<uint32_t>(x0) + width - 1u + reach_x) << 32,
+                      static_cast<uint64_t>(static_cast<uint32_t>(y0) + height - 1u + reach_y) << 32);
     if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
         const dsn_noise *material = as_noise(&mix->material[only]);
         if (kind == dsn_output_fixed)
@@ -366,10 +378,12 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
     if (err != DSN_OK) return output_error(err, mix, out, kind, points);
     int64_t low_x, low_y, high_x, high_y;
     if (grid_box(grid, width, height, &low_x, &low_y, &high_x, &high_y)) {
-        /* the impulses' floors lie within radius + 1 texels of the box, itself within a texel of the points */
+        /* the impulses' floors lie within radius + 1 texels of the box, itself within a texel of the points
+         */
         const int64_t reach_x = static_cast<int64_t>(mix->radius[0] + 2u) << 32;
         const int64_t reach_y = static_cast<int64_t>(mix->radius[1] + 2u) << 32;
-        const uint64_t origin_x = static_cast<uint64_t>(grid->origin_x), origin_y = static_cast<uint64_t>(grid->origin_y);
+        const uint64_t origin_x = static_cast<uint64_t>(grid->origin_x),
+                       origin_y = static_cast<uint64_t>(grid->origin_y);
         const uint32_t only = tile_material(mix, control, origin_x + static_cast<uint64_t>(low_x - reach_x),
                                             origin_y + static_cast<uint64_t>(low_y - reach_y),
                                             origin_x + static_cast<uint64_t>(high_x + reach_x),
@@ -378,10 +392,10 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
             const dsn_noise *material = as_noise(&mix->material[only]);
             if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height))
                 return kind == dsn_output_fixed
-                           ? dsn_continuous_tile_fixed(material, grid, width, height, static_cast<int32_t *>(out),
-                                                       scratch, scratch_size)
-                           : dsn_continuous_tile_float(material, grid, width, height, static_cast<float *>(out),
-                                                       scratch, scratch_size);
+                           ? dsn_continuous_tile_fixed(material, grid, width, height,
+                                                       static_cast<int32_t *>(out), scratch, scratch_size)
+                           : dsn_continuous_tile_float(material, grid, width, height,
+                                                       static_cast<float *>(out), scratch, scratch_size);
         }
     }
     dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
@@ -413,8 +427,8 @@ int dsn_mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *co
 
 int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
                                    float *out) {
-    return continuous_point_as(mix, control, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y), out,
-                               dsn_output_float);
+    return continuous_point_as(mix, control, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y),
+                               out, dsn_output_float);
 }
 
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *handle, uint32_t width, uint32_t height) {
@@ -434,32 +448,37 @@ size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *handle, const dsn_gri
     size_t most = 0;
     if (!dsn_mix_configured(mix)) return 0;
     for (uint32_t m = 0; m < mix->count; m++) {
-        const size_t size = dsn_continuous_tile_scratch_size(as_noise(&mix->material[m]), grid, width, height);
+        const size_t size =
+            dsn_continuous_tile_scratch_size(as_noise(&mix->material[m]), grid, width, height);
         most = size > most ? size : most;
     }
     return most;
 }
 
 int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, int32_t *out, void *scratch, size_t scratch_size) {
+                               uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                               size_t scratch_size) {
     return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
 }
 
 int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size) {
+                               uint32_t width, uint32_t height, float *out, void *scratch,
+                               size_t scratch_size) {
     return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
 }
 
 int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
                                   uint32_t width, uint32_t height, int32_t *out, void *scratch,
                                   size_t scratch_size) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_fixed, scratch, scratch_size);
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_fixed, scratch,
+                              scratch_size);
 }
 
 int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
                                   uint32_t width, uint32_t height, float *out, void *scratch,
                                   size_t scratch_size) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_float, scratch, scratch_size);
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_float, scratch,
+                              scratch_size);
 }
 
 } // extern "C"

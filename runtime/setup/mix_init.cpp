@@ -38,7 +38,8 @@ dsn_noise_state material_on_process(const dsn_noise_state *noise, const dsn_nois
     material.poisson_size = lead->poisson_size;
     for (uint32_t i = 0; i < sizeof material.poisson_cdf / sizeof material.poisson_cdf[0]; i++)
         material.poisson_cdf[i] = lead->poisson_cdf[i];
-    for (uint32_t i = 0; i < sizeof material.poisson_guide; i++) material.poisson_guide[i] = lead->poisson_guide[i];
+    for (uint32_t i = 0; i < sizeof material.poisson_guide; i++)
+        material.poisson_guide[i] = lead->poisson_guide[i];
 #if DSN_NOISE_CHECK
     material.check = dsn_internal_state_check(&material);
 #endif
@@ -83,7 +84,8 @@ int dsn_mix_init(dsn_mix *handle, const dsn_noise *const *materials, uint32_t co
         mix->material[m] = material;
     }
     /* The continuous walk covers X - 1 .. X + 1 with its radius, the lattice walk the point with its own. */
-    const uint64_t continuous = dsn_internal_walk_cost(lead, 2u * mix->radius[0] + 3u, 2u * mix->radius[1] + 3u);
+    const uint64_t continuous =
+        dsn_internal_walk_cost(lead, 2u * mix->radius[0] + 3u, 2u * mix->radius[1] + 3u);
     const uint64_t lattice =
         dsn_internal_walk_cost(lead, 2u * mix->lattice_radius[0] + 1u, 2u * mix->lattice_radius[1] + 1u);
     if (continuous > DSN_MAX_POINT_IMPULSES || lattice > DSN_MAX_POINT_IMPULSES) {
@@ -105,7 +107,7 @@ uint8_t dsn_mix_weight_from_float(float weight) {
     uint32_t bits;
     __builtin_memcpy(&bits, &weight, sizeof bits);
     if ((bits & 0x80000000u) != 0 || bits > 0x7F800000u) return 0; /* negative (or -0), NaN */
-    if (bits >= 0x3F800000u) return 255;                              /* 1 and above, +infinity */
+    if (bits >= 0x3F800000u) return 255;                           /* 1 and above, +infinity */
     /* 0 <= w < 1: floor(w 2^32) is below 2^32 and exact to 2^-32; then 255 w + 1/2, floored. */
     const uint64_t fixed = static_cast<uint64_t>(dsn_coordinate_from_float(weight));
     return static_cast<uint8_t>((fixed * 255u + (static_cast<uint64_t>(1) << 31)) >> 32);

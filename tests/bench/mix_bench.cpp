@@ -73,13 +73,16 @@ int main() {
     auto tiles = [&](bool lattice, const dsn_mix_control *control) {
         return [&, lattice, control] {
             if (lattice && control)
-                dsn_mix_lattice_tile_fixed(&mix, control, 5, 9, side, side, out.data(), scratch.data(), scratch.size());
+                dsn_mix_lattice_tile_fixed(&mix, control, 5, 9, side, side, out.data(), scratch.data(),
+                                           scratch.size());
             else if (lattice)
                 dsn_lattice_tile_fixed(&a->noise, 5, 9, side, side, out.data(), nullptr, 0);
             else if (control)
-                dsn_mix_continuous_tile_fixed(&mix, control, &grid, side, side, out.data(), scratch.data(), scratch.size());
+                dsn_mix_continuous_tile_fixed(&mix, control, &grid, side, side, out.data(), scratch.data(),
+                                              scratch.size());
             else
-                dsn_continuous_tile_fixed(&a->noise, &grid, side, side, out.data(), scratch.data(), scratch.size());
+                dsn_continuous_tile_fixed(&a->noise, &grid, side, side, out.data(), scratch.data(),
+                                          scratch.size());
             checksum += out[7];
         };
     };
@@ -97,9 +100,11 @@ int main() {
         std::printf(" %s:\n", control_names[c]);
         for (const auto &one_case : cases) {
             const auto times = bench::timed_rounds(rounds, {one_case.mixed, one_case.single});
-            std::printf("  %-36s one material %7.1f ns/pixel   mix %7.1f ns/pixel   ratio %.2f (median of %d rounds)\n",
+            std::printf("  %-36s one material %7.1f ns/pixel   mix %7.1f ns/pixel   ratio %.2f (median of %d "
+                        "rounds)\n",
                         one_case.name, 1e9 * bench::fastest(times[1]) / points,
-                        1e9 * bench::fastest(times[0]) / points, bench::median_ratio(times[0], times[1]), rounds);
+                        1e9 * bench::fastest(times[0]) / points, bench::median_ratio(times[0], times[1]),
+                        rounds);
         }
     }
     std::printf("  stack (painted) of a mix point call: lattice %zu bytes, continuous %zu bytes\n",

@@ -765,15 +765,16 @@ int hash_asset(const Kind &kind, const dsn_asset *asset, Fnv *hash) {
    Each asset as material 0 with the next asset (grey with RGB, 8 with 16 bits) as material 1, under three
    controls: a grid of varying weights (a zero sample, a periodic x axis, samples 4 texels apart, its origin
    off the lattice), a constant 50/50 and material 1 alone (which tiles take by its own tile function). */
-const uint8_t mix_grid_weights[] = {255, 0, 200, 55, 0, 0,  9,   3, 0,  255, 128, 128, 60, 61, 1, 250,
-                                    77,  7, 0,   1, 30, 90, 255, 255, 0, 40, 100, 0,   5,  5,  17, 200};
+const uint8_t mix_grid_weights[] = {255, 0, 200, 55, 0,  0,  9,   3,   0, 255, 128, 128, 60, 61, 1,  250,
+                                    77,  7, 0,   1,  30, 90, 255, 255, 0, 40,  100, 0,   5,  5,  17, 200};
 const uint8_t mix_half_weights[] = {128, 128}, mix_second_weights[] = {0, 255};
 const dsn_mix_control mix_controls[] = {
     {mix_grid_weights, 4, 4, 2, -7, 3, DSN_MIX_PERIODIC_X},
     {mix_half_weights, 1, 1, 0, 0, 0, 0},
     {mix_second_weights, 1, 1, 0, 0, 0, 0},
 };
-const Window mix_windows[] = {{-3, -2, 5, 4}, {INT32_MAX - 2, INT32_MAX - 1, 5, 4}, {1234567891, -987654321, 6, 3}};
+const Window mix_windows[] = {
+    {-3, -2, 5, 4}, {INT32_MAX - 2, INT32_MAX - 1, 5, 4}, {1234567891, -987654321, 6, 3}};
 const Setting mix_settings[] = {
     {0u, 0u, 0u, 0u, lattice_continuous},
     {5u, DSN_IMPACTS_MIN_Q16, 16u, 13u, lattice_continuous},
@@ -813,8 +814,8 @@ int mix_lattice_points(const dsn_mix_control *control, Fnv *hash) {
         for (uint32_t j = 0; j < mix_windows[w].height; j++)
             for (uint32_t i = 0; i < mix_windows[w].width; i++) {
                 int32_t values[DSN_MAX_CHANNELS];
-                const int err = dsn_mix_lattice_point_fixed(&golden_mix, control, wrapped(mix_windows[w].x, i),
-                                                            wrapped(mix_windows[w].y, j), values);
+                const int err = dsn_mix_lattice_point_fixed(
+                    &golden_mix, control, wrapped(mix_windows[w].x, i), wrapped(mix_windows[w].y, j), values);
                 if (err != DSN_OK) return err;
                 hash_fixed(hash, values, channels);
             }
@@ -825,8 +826,9 @@ int mix_lattice_tiles(const dsn_mix_control *control, Fnv *hash) {
     const uint32_t channels = dsn_mix_channels(&golden_mix);
     for (uint32_t w = 0; w < GOLDEN_COUNT(mix_windows); w++) {
         const Window &window = mix_windows[w];
-        const int err = dsn_mix_lattice_tile_fixed(&golden_mix, control, window.x, window.y, window.width,
-                                                   window.height, tile_fixed_values, tile_scratch, scratch_capacity);
+        const int err =
+            dsn_mix_lattice_tile_fixed(&golden_mix, control, window.x, window.y, window.width, window.height,
+                                       tile_fixed_values, tile_scratch, scratch_capacity);
         if (err != DSN_OK) return err;
         hash_fixed(hash, tile_fixed_values, window.width * window.height * channels);
     }
@@ -852,8 +854,9 @@ int mix_continuous_tiles(const dsn_mix_control *control, Fnv *hash) {
     const uint32_t channels = dsn_mix_channels(&golden_mix);
     for (uint32_t g = 0; g < GOLDEN_COUNT(mix_grids); g++) {
         const Grid &grid = *mix_grids[g];
-        const int err = dsn_mix_continuous_tile_fixed(&golden_mix, control, &grid.grid, grid.width, grid.height,
-                                                      tile_fixed_values, tile_scratch, scratch_capacity);
+        const int err =
+            dsn_mix_continuous_tile_fixed(&golden_mix, control, &grid.grid, grid.width, grid.height,
+                                          tile_fixed_values, tile_scratch, scratch_capacity);
         if (err != DSN_OK) return err;
         hash_fixed(hash, tile_fixed_values, grid.width * grid.height * channels);
     }
@@ -865,15 +868,17 @@ int mix_floats(const dsn_mix_control *control, Fnv *hash) {
     const uint32_t channels = dsn_mix_channels(&golden_mix);
     for (uint32_t w = 0; w < GOLDEN_COUNT(mix_windows); w++) {
         const Window &window = mix_windows[w];
-        const int err = dsn_mix_lattice_tile_float(&golden_mix, control, window.x, window.y, window.width,
-                                                   window.height, tile_float_values, tile_scratch, scratch_capacity);
+        const int err =
+            dsn_mix_lattice_tile_float(&golden_mix, control, window.x, window.y, window.width, window.height,
+                                       tile_float_values, tile_scratch, scratch_capacity);
         if (err != DSN_OK) return err;
         hash_float(hash, tile_float_values, window.width * window.height * channels);
     }
     for (uint32_t i = 0; i < sizeof double_patterns / sizeof double_patterns[0]; i++) {
         double x, y;
         memcpy(&x, &double_patterns[i], sizeof x);
-        memcpy(&y, &double_patterns[(i + 3) % (sizeof double_patterns / sizeof double_patterns[0])], sizeof y);
+        memcpy(&y, &double_patterns[(i + 3) % (sizeof double_patterns / sizeof double_patterns[0])],
+               sizeof y);
         float values[DSN_MAX_CHANNELS];
         const int err = dsn_mix_continuous_point_float(&golden_mix, control, x, y, values);
         if (err != DSN_OK) return err;
