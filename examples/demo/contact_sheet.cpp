@@ -28,12 +28,16 @@ const char *const usage =
     "                         [--seed S] [--scene-bump B.png [--scene-bump-note TEXT]]\n"
     "                         [--horizon-unfiltered U.png --horizon-filtered F.png\n"
     "                          --horizon-supersampled S.png [--horizon-note TEXT]]\n"
+    "                         [--mix M.png --mix-first A.png --mix-second B.png]\n"
     "       dsn-contact-sheet --print-size IMAGE     (prints \"WIDTH HEIGHT\")\n"
     "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled;\n"
     "under it, given --scene-bump, the same scene with bump mapping (dsn-tiny-renderer --shading bump),\n"
     "under TEXT;\n"
     "then, given all three --horizon images (the same crop of the scene rendered unfiltered, filtered\n"
-    "and supersampled), those side by side, enlarged by a whole factor, under TEXT.\n"
+    "and supersampled), those side by side, enlarged by a whole factor, under TEXT;\n"
+    "then, given the three --mix images (a mix of two materials whose weights go from the first at the\n"
+    "left edge to the second at the right edge, and each material alone), the mix above the crossfade\n"
+    "of the two, computed here with the same weights.\n"
     "Flags take --flag value or --flag=value; -h, --help, --version. Errors: one line on stderr, exit 2\n"
     "for a usage mistake (ending \"(see --help)\"), exit 1 when an input cannot be read or written.\n";
 
@@ -163,6 +167,7 @@ Picture texton_picture(const std::string &asset_path) {
 int run(dsn::CommandLine &command_line) {
     std::string exemplar_path, asset_path, synthesis_path, scene_path, scene_bump_path, output;
     std::string horizon_paths[3], horizon_note = "the ground toward the horizon";
+    std::string mix_paths[3]; // the mix, the first material alone, the second alone
     std::string scene_bump_note = "the same scene bump-mapped (dsn-tiny-renderer --shading bump)";
     uint32_t seed = 1;
     while (command_line.next()) {
@@ -192,6 +197,12 @@ int run(dsn::CommandLine &command_line) {
             horizon_paths[1] = command_line.value();
         } else if (command_line.is("--horizon-supersampled")) {
             horizon_paths[2] = command_line.value();
+        } else if (command_line.is("--mix")) {
+            mix_paths[0] = command_line.value();
+        } else if (command_line.is("--mix-first")) {
+            mix_paths[1] = command_line.value();
+        } else if (command_line.is("--mix-second")) {
+            mix_paths[2] = command_line.value();
         } else if (command_line.is("--horizon-note")) {
             horizon_note = command_line.value();
         } else if (command_line.is("-o") || command_line.is("--output")) {
@@ -211,6 +222,8 @@ int run(dsn::CommandLine &command_line) {
         throw dsn::UsageError(
             "--horizon-unfiltered, --horizon-filtered and --horizon-supersampled go together");
 
+    const int mix_given = int(!mix_paths[0].empty()) + int(!mix_paths[1].empty()) + int(!mix_paths[2].empty());
+    if (mix_given != 0 && mix_given != 3) throw dsn::UsageError("--mix, --mix-first and --mix-second go together");
     std::vector<dsn::NamedPath> inputs = {{"the --exemplar input", exemplar_path},
                                           {"the --asset input", asset_path},
                                           {"the --synthesis input", synthesis_path},
@@ -218,6 +231,8 @@ int run(dsn::CommandLine &command_line) {
     if (!scene_bump_path.empty()) inputs.push_back({"the --scene-bump input", scene_bump_path});
     for (const std::string &horizon : horizon_paths)
         if (!horizon.empty()) inputs.push_back({"a --horizon-* input", horizon});
+    for (const std::string &mix : mix_paths)
+        if (!mix.empty()) inputs.push_back({"a --mix input", mix});
     dsn::check_outputs(inputs, {{"-o", output}});
 
     const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
@@ -227,8 +242,16 @@ int run(dsn::CommandLine &command_line) {
     if (!scene_bump_path.empty()) scene_bump = load_png(scene_bump_path);
     const int bump_height = scene_bump_path.empty() ? 0 : kLabel + std::min(scene_bump.height, 480) + kGap;
     const int horizon_height = horizon_given ? 2 * kLabel + kHorizonHeight + kGap : 0;
-    Picture sheet =
-        blank(kSheetWidth, 2 * kLabel + kPanel + scene_height + 3 * kGap + bump_height + horizon_height, 235);
+    Picture mixes[3];
+    for (int p = 0; p < 3 && mix_given; p++) mixes[p] = load_png(mix_paths[p]);
+    if (mix_given && (mixes[1].width != mixes[0].width || mixes[2].width != mixes[0].width ||
+                      mixes[1].height != mixes[0].height || mixes[2].height != mixes[0].height))
+        throw std::runtime_error("the --mix images differ in size");
+    const int mix_rows = mix_given ? std::min(mixes[0].height, 200) : 0;
+    const int mix_height = mix_given ? 2 * (kLabel + mix_rows) + 2 * kGap : 0;
+    Picture sheet = blank(kSheetWidth,
+                          2 * kLabel + kPanel + scene_height + 3 * kGap + bump_height + horizon_height + mix_height,
+                          235);
     const Picture panels[4] = {from_image(exemplar), gaussian_reference(exemplar, seed),
                                load_png(synthesis_path), texton_picture(asset_path)};
     const char *labels[4] = {"exemplar", "Gaussian reference", "runtime synthesis", "texton (SOT)"};
@@ -269,6 +292,24 @@ int run(dsn::CommandLine &command_line) {
                   kHorizonHeight);
             paste(sheet, box, x, top + 2 * kLabel, kHorizonPanel, kHorizonHeight);
         }
+    }
+    if (mix_given) {
+        const int top = scene_top + kLabel + scene_height + kGap + bump_height + horizon_height;
+        // The crossfade of the two materials with the mix's weights: the second's w = x / width.
+        Picture crossfade = mixes[1];
+        for (int y = 0; y < crossfade.height; y++)
+            for (int x = 0; x < crossfade.width; x++)
+                for (int c = 0; c < 3; c++) {
+                    const double w = double(x) / crossfade.width;
+                    crossfade.at(x, y)[c] = static_cast<unsigned char>(
+                        std::lround((1 - w) * mixes[1].at(x, y)[c] + w * mixes[2].at(x, y)[c]));
+                }
+        draw_label(sheet, kGap, top,
+                   "two materials mixed (dsn-render --mix): each impulse carries one, full contrast across", 2);
+        paste(sheet, mixes[0], kGap, top + kLabel, kSheetWidth - 2 * kGap, mix_rows);
+        const int lower = top + kLabel + mix_rows + kGap;
+        draw_label(sheet, kGap, lower, "the crossfade of the same two noises: greyer and blurred in the middle", 2);
+        paste(sheet, crossfade, kGap, lower + kLabel, kSheetWidth - 2 * kGap, mix_rows);
     }
 
     dsn::write_file_atomically(output, dsn::encode_png(sheet.width, sheet.height, 3, sheet.rgb.data()));
