@@ -300,6 +300,82 @@ TEST_CASE("mix: one material's weights give the same bits by its own evaluators 
     }
 }
 
+TEST_CASE("mix: u8 outputs and batches are the points' values") {
+    auto a = make_noise(random_texton_asset(3, 5, 8, 91), 1);
+    auto b = make_noise(random_texton_asset(1, 6, 16, 92), 2);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise});
+    const Control ramp(2, 6, 3, 2, [](uint32_t i, uint32_t j) {
+        return std::vector<uint8_t>{uint8_t(40 * i), uint8_t(255 - 30 * j)};
+    });
+    std::vector<int64_t> xs, ys;
+    renderer_points(17, 150, &xs, &ys);
+    const uint32_t count = uint32_t(xs.size());
+    std::vector<int32_t> fixed(count * 3);
+    std::vector<float> floats(count * 3);
+    std::vector<uint8_t> bytes(count * 3);
+    std::vector<double> xd(count), yd(count);
+    for (uint32_t k = 0; k < count; k++)
+        xd[k] = double(xs[k] >> 20) / 4096.0, yd[k] = double(ys[k] >> 22) / 1024.0;
+    REQUIRE(dsn_mix_continuous_batch_fixed(&mix, &ramp.control, xs.data(), ys.data(), count, fixed.data()) ==
+            DSN_OK);
+    REQUIRE(dsn_mix_continuous_batch_u8(&mix, &ramp.control, xs.data(), ys.data(), count, bytes.data()) ==
+            DSN_OK);
+    REQUIRE(dsn_mix_continuous_batch_float(&mix, &ramp.control, xd.data(), yd.data(), count, floats.data()) ==
+            DSN_OK);
+    size_t differences = 0;
+    for (uint32_t k = 0; k < count; k++) {
+        int32_t point[3];
+        uint8_t point_bytes[3];
+        float point_floats[3];
+        dsn_mix_continuous_point_fixed(&mix, &ramp.control, xs[k], ys[k], point);
+        dsn_mix_continuous_point_u8(&mix, &ramp.control, xs[k], ys[k], point_bytes);
+        dsn_mix_continuous_point_float(&mix, &ramp.control, xd[k], yd[k], point_floats);
+        for (int c = 0; c < 3; c++) {
+            differences += fixed[k * 3 + size_t(c)] != point[c];
+            differences += bytes[k * 3 + size_t(c)] != dsn_fixed_to_u8(point[c]);
+            differences += point_bytes[c] != dsn_fixed_to_u8(point[c]);
+            differences += floats[k * 3 + size_t(c)] != point_floats[c];
+        }
+        const int32_t x = int32_t(uint32_t(uint64_t(xs[k]) >> 32)),
+                      y = int32_t(uint32_t(uint64_t(ys[k]) >> 32));
+        dsn_mix_lattice_point_fixed(&mix, &ramp.control, x, y, point);
+        dsn_mix_lattice_point_u8(&mix, &ramp.control, x, y, point_bytes);
+        for (int c = 0; c < 3; c++) differences += point_bytes[c] != dsn_fixed_to_u8(point[c]);
+    }
+    CHECK(differences == 0);
+    // Tiles in u8, with and without scratch, where the weights are one material's and where they mix.
+    const Control on_first = constant({3, 0});
+    const dsn_grid grid = {-5 * kOne, 7 * kOne + 99, kOne * 3 / 4, kOne / 8, -kOne / 8, kOne * 3 / 4};
+    const uint32_t width = 30, height = 20;
+    std::vector<unsigned char> scratch(
+        std::max(dsn_mix_continuous_tile_scratch_size(&mix, &grid, width, height),
+                 dsn_mix_lattice_tile_scratch_size(&mix, width, height)));
+    for (const Control *control : {&ramp, &on_first}) {
+        std::vector<uint8_t> tile(width * height * 3), tile_lattice(tile.size());
+        std::vector<int32_t> reference(tile.size()), reference_lattice(tile.size());
+        REQUIRE(dsn_mix_continuous_tile_u8(&mix, &control->control, &grid, width, height, tile.data(),
+                                           scratch.data(), scratch.size()) == DSN_OK);
+        REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &control->control, &grid, width, height, reference.data(),
+                                              nullptr, 0) == DSN_OK);
+        REQUIRE(dsn_mix_lattice_tile_u8(&mix, &control->control, -9, 4, width, height, tile_lattice.data(),
+                                        scratch.data(), scratch.size()) == DSN_OK);
+        REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &control->control, -9, 4, width, height,
+                                           reference_lattice.data(), nullptr, 0) == DSN_OK);
+        size_t tile_differences = 0;
+        for (size_t i = 0; i < tile.size(); i++) {
+            tile_differences += tile[i] != dsn_fixed_to_u8(reference[i]);
+            tile_differences += tile_lattice[i] != dsn_fixed_to_u8(reference_lattice[i]);
+        }
+        CHECK(tile_differences == 0);
+    }
+    // Batch errors: null coordinates with a count, all points zeroed.
+    std::vector<int32_t> zeroed(6, 7);
+    CHECK(dsn_mix_continuous_batch_fixed(&mix, &ramp.control, nullptr, ys.data(), 2, zeroed.data()) ==
+          DSN_ERR_NULL);
+    for (int32_t v : zeroed) CHECK(v == 0);
+    CHECK(dsn_mix_continuous_batch_fixed(&mix, &ramp.control, nullptr, nullptr, 0, zeroed.data()) == DSN_OK);
+}
+
 namespace {
 
 // The covariance of one material's continuous noise at a lag, channels c and d (theory above).

@@ -806,10 +806,15 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    sizes mix. Materials with a histogram mapping are refused (DSN_ERR_UNSUPPORTED): configure them with
    DSN_FLAG_NO_HISTOGRAM. The continuous functions check every material as dsn_continuous_check does.
 
-   Cost: one walk over the cells within the largest reach; each impulse within it reads its weights (four
-   samples per material; once per point where every sample around the point is the same), a hash where
-   more than one material may be picked, and one texton. make bench's mix_bench reports it against one
-   material. Stack under 1 KB per point; no scratch. Not in the small build (DSN_MIXING). */
+   Cost. Where every weight sample around a point (the samples its impulses and itself read) holds one
+   material's weights alone, the point is that material's noise on material 0's impulses, and the mix
+   calls that material's own evaluator (a tile whose reach is so: its own tile function, splatted or by
+   strips): the mix then costs what one material costs, plus the check of the samples. Elsewhere one walk
+   over the cells within the largest reach, in scalar code: each impulse within it reads its weights (four
+   samples per material, once per point where the samples around it agree), a hash, and one texton; tiles
+   and batches go point by point there. make bench's mix_bench reports both against one material. Stack
+   under 1 KB per point. The filtered evaluation and gradients have no mix yet. Not in the small build
+   (DSN_MIXING). */
 #if DSN_MIXING
 #define DSN_MIX_MAX_MATERIALS 4
 #define DSN_MIX_WORDS (DSN_MIX_MAX_MATERIALS * DSN_NOISE_WORDS + 4) /* 64-bit words */
@@ -855,6 +860,19 @@ int dsn_mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *co
                                    int32_t *out);
 int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
                                    float *out);
+int dsn_mix_lattice_point_u8(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                             uint8_t *out);
+int dsn_mix_continuous_point_u8(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                                uint8_t *out);
+/* Batches: `count` points (xs[k], ys[k]), anywhere and in any order, into out[k * channels], each exactly
+   the point function's (no scratch; point by point). The point functions' errors, null xs or ys with a
+   count DSN_ERR_NULL, all `count` points zeroed. */
+int dsn_mix_continuous_batch_fixed(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
+                                   const int64_t *ys, uint32_t count, int32_t *out);
+int dsn_mix_continuous_batch_float(const dsn_mix *mix, const dsn_mix_control *control, const double *xs,
+                                   const double *ys, uint32_t count, float *out);
+int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
+                                const int64_t *ys, uint32_t count, uint8_t *out);
 /* Tiles: the lattice tile's and the continuous grid's pixels and layout (width, height 1 ..
    DSN_TILE_MAX_SIDE, else DSN_ERR_TILE_SIZE with the output untouched), each pixel exactly the point
    function's, with the point functions' other errors (the whole output zeroed). A tile whose reach has
@@ -876,6 +894,12 @@ int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *con
 int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
                                   uint32_t width, uint32_t height, float *out, void *scratch,
                                   size_t scratch_size);
+int dsn_mix_lattice_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                            uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                            size_t scratch_size);
+int dsn_mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                               uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                               size_t scratch_size);
 #endif
 
 /* ==== End of the mixing ============================================================================== */

@@ -333,8 +333,11 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
         if (kind == dsn_output_fixed)
             return dsn_lattice_tile_fixed(material, x0, y0, width, height, static_cast<int32_t *>(out), 0, 0);
         if (scratch_size >= dsn_lattice_tile_scratch_size(material, width, height))
-            return dsn_lattice_tile_float(material, x0, y0, width, height, static_cast<float *>(out), scratch,
-                                          scratch_size);
+            return kind == dsn_output_float
+                       ? dsn_lattice_tile_float(material, x0, y0, width, height, static_cast<float *>(out),
+                                                scratch, scratch_size)
+                       : dsn_lattice_tile_u8(material, x0, y0, width, height, static_cast<uint8_t *>(out),
+                                             scratch, scratch_size);
     }
     size_t index = 0;
     for (uint32_t j = 0; j < height; j++)
@@ -390,12 +393,16 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
                                             origin_y + static_cast<uint64_t>(high_y + reach_y));
         if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
             const dsn_noise *material = as_noise(&mix->material[only]);
-            if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height))
-                return kind == dsn_output_fixed
-                           ? dsn_continuous_tile_fixed(material, grid, width, height,
-                                                       static_cast<int32_t *>(out), scratch, scratch_size)
-                           : dsn_continuous_tile_float(material, grid, width, height,
-                                                       static_cast<float *>(out), scratch, scratch_size);
+            if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height)) {
+                if (kind == dsn_output_fixed)
+                    return dsn_continuous_tile_fixed(material, grid, width, height,
+                                                     static_cast<int32_t *>(out), scratch, scratch_size);
+                if (kind == dsn_output_float)
+                    return dsn_continuous_tile_float(material, grid, width, height, static_cast<float *>(out),
+                                                     scratch, scratch_size);
+                return dsn_continuous_tile_u8(material, grid, width, height, static_cast<uint8_t *>(out),
+                                              scratch, scratch_size);
+            }
         }
     }
     dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
@@ -403,6 +410,28 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
         continuous_point(mix, control, x, y, value);
         dsn_store_pixel(out, kind, index, value, mix->channels);
     });
+    return DSN_OK;
+}
+
+template <typename Coordinate>
+int continuous_batch_as(const dsn_mix *handle, const dsn_mix_control *control, const Coordinate *xs,
+                        const Coordinate *ys, uint32_t count, void *out, dsn_output_kind kind) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    if (out == 0) return DSN_ERR_NULL;
+    int err = check_call(mix, control, true);
+    if (err == DSN_OK && count != 0 && (xs == 0 || ys == 0)) err = DSN_ERR_NULL;
+    if (err != DSN_OK) return output_error(err, mix, out, kind, count);
+    for (uint32_t k = 0; k < count; k += 32) {
+        int64_t chunk_x[32], chunk_y[32];
+        const uint32_t points = count - k < 32 ? count - k : 32u;
+        const int64_t *x = dsn_chunk_coordinates(xs, k, points, chunk_x);
+        const int64_t *y = dsn_chunk_coordinates(ys, k, points, chunk_y);
+        for (uint32_t p = 0; p < points; p++) {
+            int32_t value[DSN_MAX_CHANNELS];
+            continuous_point(mix, control, static_cast<uint64_t>(x[p]), static_cast<uint64_t>(y[p]), value);
+            dsn_store_pixel(out, kind, static_cast<size_t>(k + p) * mix->channels, value, mix->channels);
+        }
+    }
     return DSN_OK;
 }
 
@@ -418,6 +447,43 @@ int dsn_mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *contr
 int dsn_mix_lattice_point_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
                                 float *out) {
     return lattice_point_as(mix, control, x, y, out, dsn_output_float);
+}
+
+int dsn_mix_lattice_point_u8(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                             uint8_t *out) {
+    return lattice_point_as(mix, control, x, y, out, dsn_output_u8);
+}
+
+int dsn_mix_continuous_point_u8(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                                uint8_t *out) {
+    return continuous_point_as(mix, control, x, y, out, dsn_output_u8);
+}
+
+int dsn_mix_continuous_batch_fixed(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
+                                   const int64_t *ys, uint32_t count, int32_t *out) {
+    return continuous_batch_as(mix, control, xs, ys, count, out, dsn_output_fixed);
+}
+
+int dsn_mix_continuous_batch_float(const dsn_mix *mix, const dsn_mix_control *control, const double *xs,
+                                   const double *ys, uint32_t count, float *out) {
+    return continuous_batch_as(mix, control, xs, ys, count, out, dsn_output_float);
+}
+
+int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
+                                const int64_t *ys, uint32_t count, uint8_t *out) {
+    return continuous_batch_as(mix, control, xs, ys, count, out, dsn_output_u8);
+}
+
+int dsn_mix_lattice_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                            uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                            size_t scratch_size) {
+    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
+}
+
+int dsn_mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                               uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                               size_t scratch_size) {
+    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_u8, scratch, scratch_size);
 }
 
 int dsn_mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,

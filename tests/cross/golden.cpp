@@ -783,6 +783,7 @@ const Setting mix_settings[] = {
 const Grid *const mix_grids[] = {&affine_grids[0], &affine_grids[4], &continuous_grids[3]};
 
 dsn_mix golden_mix;
+int64_t mix_xs[max_window_values / DSN_MAX_CHANNELS], mix_ys[max_window_values / DSN_MAX_CHANNELS];
 
 /* The mix of assets a and a + 1 under a setting (material 1 with the next seed). */
 int make_mix(uint32_t a, const Setting &setting) {
@@ -863,7 +864,8 @@ int mix_continuous_tiles(const dsn_mix_control *control, Fnv *hash) {
     return DSN_OK;
 }
 
-/* The float conversions: lattice tiles, then continuous points from float64 coordinates. */
+/* The conversions: float lattice tiles, continuous points from float64 coordinates, u8 continuous tiles
+   and a u8 batch of the continuous grids' points. */
 int mix_floats(const dsn_mix_control *control, Fnv *hash) {
     const uint32_t channels = dsn_mix_channels(&golden_mix);
     for (uint32_t w = 0; w < GOLDEN_COUNT(mix_windows); w++) {
@@ -883,6 +885,19 @@ int mix_floats(const dsn_mix_control *control, Fnv *hash) {
         const int err = dsn_mix_continuous_point_float(&golden_mix, control, x, y, values);
         if (err != DSN_OK) return err;
         hash_float(hash, values, channels);
+    }
+    for (uint32_t g = 0; g < GOLDEN_COUNT(mix_grids); g++) {
+        const Grid &grid = *mix_grids[g];
+        const uint32_t points = grid.width * grid.height;
+        int err = dsn_mix_continuous_tile_u8(&golden_mix, control, &grid.grid, grid.width, grid.height,
+                                             tile_u8_values, tile_scratch, scratch_capacity);
+        if (err != DSN_OK) return err;
+        hash_u8(hash, tile_u8_values, points * channels);
+        for (uint32_t p = 0; p < points; p++)
+            grid_point(grid.grid, p % grid.width, p / grid.width, &mix_xs[p], &mix_ys[p]);
+        err = dsn_mix_continuous_batch_u8(&golden_mix, control, mix_xs, mix_ys, points, tile_u8_values);
+        if (err != DSN_OK) return err;
+        hash_u8(hash, tile_u8_values, points * channels);
     }
     return DSN_OK;
 }
