@@ -222,8 +222,10 @@ int run(dsn::CommandLine &command_line) {
         throw dsn::UsageError(
             "--horizon-unfiltered, --horizon-filtered and --horizon-supersampled go together");
 
-    const int mix_given = int(!mix_paths[0].empty()) + int(!mix_paths[1].empty()) + int(!mix_paths[2].empty());
-    if (mix_given != 0 && mix_given != 3) throw dsn::UsageError("--mix, --mix-first and --mix-second go together");
+    const int mix_given =
+        int(!mix_paths[0].empty()) + int(!mix_paths[1].empty()) + int(!mix_paths[2].empty());
+    if (mix_given != 0 && mix_given != 3)
+        throw dsn::UsageError("--mix, --mix-first and --mix-second go together");
     std::vector<dsn::NamedPath> inputs = {{"the --exemplar input", exemplar_path},
                                           {"the --asset input", asset_path},
                                           {"the --synthesis input", synthesis_path},
@@ -249,9 +251,9 @@ int run(dsn::CommandLine &command_line) {
         throw std::runtime_error("the --mix images differ in size");
     const int mix_rows = mix_given ? std::min(mixes[0].height, 200) : 0;
     const int mix_height = mix_given ? 2 * (kLabel + mix_rows) + 2 * kGap : 0;
-    Picture sheet = blank(kSheetWidth,
-                          2 * kLabel + kPanel + scene_height + 3 * kGap + bump_height + horizon_height + mix_height,
-                          235);
+    Picture sheet =
+        blank(kSheetWidth,
+              2 * kLabel + kPanel + scene_height + 3 * kGap + bump_height + horizon_height + mix_height, 235);
     const Picture panels[4] = {from_image(exemplar), gaussian_reference(exemplar, seed),
                                load_png(synthesis_path), texton_picture(asset_path)};
     const char *labels[4] = {"exemplar", "Gaussian reference", "runtime synthesis", "texton (SOT)"};
@@ -305,10 +307,12 @@ int run(dsn::CommandLine &command_line) {
                         std::lround((1 - w) * mixes[1].at(x, y)[c] + w * mixes[2].at(x, y)[c]));
                 }
         draw_label(sheet, kGap, top,
-                   "two materials mixed (dsn-render --mix): each impulse carries one, full contrast across", 2);
+                   "two materials mixed (dsn-render --mix): each impulse carries one, full contrast across",
+                   2);
         paste(sheet, mixes[0], kGap, top + kLabel, kSheetWidth - 2 * kGap, mix_rows);
         const int lower = top + kLabel + mix_rows + kGap;
-        draw_label(sheet, kGap, lower, "the crossfade of the same two noises: greyer and blurred in the middle", 2);
+        draw_label(sheet, kGap, lower,
+                   "the crossfade of the same two noises: greyer and blurred in the middle", 2);
         paste(sheet, crossfade, kGap, lower + kLabel, kSheetWidth - 2 * kGap, mix_rows);
     }
 
