@@ -12,6 +12,9 @@
 //   canvas.getContext('2d').putImageData(new ImageData(rgba, 256, 256), 0, 0);
 //   texture.point(12, 34);                                    // Float64Array, 1.0 = the exemplar's white
 //   const { value, dx, dy } = texture.continuousGradient(12.5, 34.25); // and its derivatives per texel
+//   const mix = runtime.mix([sand, gravel], {           // materials mixed by weights (dsn.h, "Mixing")
+//       weights: { data: bytes, width: 64, height: 64, shift: 4 } }); // 2 bytes a sample, 16 texels apart
+//   mix.tile(0, 0, 256, 256, { scale: 2 });                     // as Texture.tile
 //
 // Each texture owns a WebAssembly instance (its own memory), so textures are independent and a texture
 // can be dropped by dropping the object. Errors from the runtime become DsnError exceptions carrying the
@@ -26,6 +29,9 @@ const FLAG_NO_COLOR_TRANSFORM = 1;
 const FLAG_ALLOW_LATTICE_CONTINUOUS = 2;
 const INTERPOLATION_BILINEAR = 1; // dsn/format.h: DSN_INTERPOLATION_BILINEAR
 const NOISE_BYTES = 1152;         // DSN_NOISE_BYTES
+const MIX_BYTES = 4640;           // sizeof(dsn_mix): DSN_MIX_WORDS * 8
+const MIX_MAX_MATERIALS = 4;      // DSN_MIX_MAX_MATERIALS
+const CONTROL_BYTES = 28;         // dsn_mix_control: a pointer and six 32-bit fields
 const CONFIG_BYTES = 20;          // five uint32 (wasm/web_exports.cpp checks the layouts used here)
 const GRID_BYTES = 48;            // six int64
 const ASSET_FIELDS = {
@@ -86,6 +92,22 @@ export class Runtime {
         texture.configure(settings);
         return texture;
     }
+
+    /**
+       A mix of materials (dsn.h, "Mixing"): `assets`, 1 to 4 .dsnt files (Uint8Array or ArrayBuffer),
+        the first leading (its seed, density and cells make the impulses of them all); each impulse
+        carries one material, drawn from the weights at its position. settings: those of
+        Texture.configure (seed, density, period, colorTransform; every material is configured with
+        them), and weights (see Mix.setWeights). Throws as Texture.configure does, and DsnError where
+        the runtime refuses the mix (a material with a histogram mapping: DSN_ERR_UNSUPPORTED).
+     */
+    mix(assets, settings = {}) {
+        if (!Array.isArray(assets) || assets.length < 1 || assets.length > MIX_MAX_MATERIALS)
+            throw new RangeError(`dsn: a mix takes an array of 1 to ${MIX_MAX_MATERIALS} assets`);
+        const { weights, ...noiseSettings } = settings;
+        return new Mix(new WebAssembly.Instance(this.module, {}).exports, assets.map(toBytes), noiseSettings,
+                       weights);
+    }
 }
 
 export class Texture {
@@ -133,27 +155,7 @@ export class Texture {
         included), DsnError when the runtime refuses.
      */
     configure(settings = {}) {
-        checkNames('settings', settings, ['seed', 'density', 'period', 'colorTransform']);
-        const { seed = 0, density = 0, period = [0, 0], colorTransform = true } = settings;
-        checkInteger('seed', seed, 0, UINT32_MAX);
-        checkNumber('density', density);
-        const impacts = Math.round(density * 65536);
-        if (density !== 0 && !(density >= 1 / 16 && density <= 1024 && impacts >= IMPACTS_MIN_Q16 &&
-                               impacts <= IMPACTS_MAX_Q16))
-            throw new RangeError('dsn: density must be 0 (the asset\'s) or within [1/16, 1024] impacts per ' +
-                                 `pixel, not ${density}`);
-        if (!Array.isArray(period) || period.length !== 2)
-            throw new TypeError(`dsn: period must be an array [px, py], not ${describe(period)}`);
-        checkInteger('period[0]', period[0], 0, UINT32_MAX);
-        checkInteger('period[1]', period[1], 0, UINT32_MAX);
-        if (typeof colorTransform !== 'boolean')
-            throw new TypeError(`dsn: colorTransform must be true or false, not ${describe(colorTransform)}`);
-        const words = new Uint32Array(this.exports.memory.buffer, this.configAt, CONFIG_BYTES / 4);
-        words[0] = seed;
-        words[1] = impacts;
-        words[2] = period[0];
-        words[3] = period[1];
-        words[4] = FLAG_ALLOW_LATTICE_CONTINUOUS | (colorTransform ? 0 : FLAG_NO_COLOR_TRANSFORM);
+        const { seed, impacts, period, colorTransform } = writeConfig(this.exports, this.configAt, settings);
         const err = this.exports.dsn_noise_init(this.noiseAt, this.assetAt, this.configAt);
         if (err !== 0) this.settings = null;
         check(this.exports, err);
@@ -304,18 +306,7 @@ export class Texture {
     tile(x, y, width, height, view = null) {
         this.checkConfigured();
         const e = this.exports;
-        checkInteger('width', width, 1, MAX_TILE_PIXELS);
-        checkInteger('height', height, 1, MAX_TILE_PIXELS);
-        if (width * height > MAX_TILE_PIXELS)
-            throw new RangeError(`dsn: a tile is at most ${MAX_TILE_PIXELS} pixels, not ${width}x${height}`);
-        if (view === null) {
-            checkLattice('x', x);
-            checkLattice('y', y);
-        } else {
-            checkFinite('x', x);
-            checkFinite('y', y);
-            checkView(view);
-        }
+        checkTile(x, y, width, height, view);
         const count = width * height * this.channels;
         let scratchSize, call;
         if (view === null) {
@@ -334,21 +325,7 @@ export class Texture {
         return toRGBA(new Uint8Array(e.memory.buffer, out, count), this.channels, width * height);
     }
 
-    // The grid of tile(): Q32.32 coordinates computed as dsn-render computes them (origin by the
-    // runtime's conversion, steps rounded to the nearest 2^-32 texel).
-    writeGrid(x, y, { scale = 1, rotate = 0 }) {
-        const e = this.exports;
-        const radians = rotate * Math.PI / 180;
-        const cosine = Math.cos(radians) / scale, sine = Math.sin(radians) / scale;
-        const step = (texels) => BigInt(Math.round(texels * Q32_ONE));
-        const grid = new BigInt64Array(e.memory.buffer, this.gridAt, GRID_BYTES / 8);
-        grid[0] = e.dsn_coordinate_from_double(x);
-        grid[1] = e.dsn_coordinate_from_double(y);
-        grid[2] = step(cosine);
-        grid[3] = step(sine);
-        grid[4] = step(-sine);
-        grid[5] = step(cosine);
-    }
+    writeGrid(x, y, view) { writeGrid(this.exports, this.gridAt, x, y, view); }
 
     // After a failed dsn_noise_init the noise is zeroed and per-point calls would write nothing.
     checkConfigured() {
@@ -359,6 +336,202 @@ export class Texture {
         const memory = this.exports.memory;
         if (end > memory.buffer.byteLength) memory.grow(Math.ceil((end - memory.buffer.byteLength) / PAGE));
     }
+}
+
+/**
+   A mix of materials in one WebAssembly instance: the materials' assets and noises, the configured mix,
+    and its weights, each kept at a fixed place of the instance's memory; then one work area.
+ */
+export class Mix {
+    constructor(exports, assets, settings, weights) {
+        this.exports = exports;
+        let at = align(exports.__heap_base.value >>> 0, 16);
+        const reserve = (size) => {
+            const start = at;
+            at = align(at + size, 16);
+            return start;
+        };
+        const assetBytes = exports.dsn_web_asset_bytes() >>> 0;
+        this.materials = assets.map((bytes) => ({
+            assetAt: reserve(assetBytes), noiseAt: reserve(NOISE_BYTES), bytesAt: reserve(bytes.length), bytes
+        }));
+        this.listAt = reserve(4 * MIX_MAX_MATERIALS); // the noises' pointers
+        this.mixAt = reserve(MIX_BYTES);
+        this.controlAt = reserve(CONTROL_BYTES);
+        this.configAt = reserve(CONFIG_BYTES);
+        this.gridAt = reserve(GRID_BYTES);
+        this.valuesAt = reserve(16);
+        this.weightsAt = at;
+        this.workAt = at;
+        this.ensure(at);
+        for (const material of this.materials) {
+            new Uint8Array(exports.memory.buffer, material.bytesAt, material.bytes.length).set(material.bytes);
+            check(exports, exports.dsn_asset_load(material.assetAt, material.bytesAt, material.bytes.length));
+        }
+        this.configure(settings);
+        this.setWeights(weights);
+    }
+
+    /** As Texture.configure, for every material; the mix is made again. */
+    configure(settings = {}) {
+        const { seed, impacts, period, colorTransform } = writeConfig(this.exports, this.configAt, settings);
+        const e = this.exports, list = new Uint32Array(e.memory.buffer, this.listAt, MIX_MAX_MATERIALS);
+        this.settings = null;
+        this.materials.forEach((material, m) => {
+            check(e, e.dsn_noise_init(material.noiseAt, material.assetAt, this.configAt));
+            list[m] = material.noiseAt;
+        });
+        check(e, e.dsn_mix_init(this.mixAt, this.listAt, this.materials.length));
+        /** 3 when any material has 3 channels, else 1. */
+        this.channels = e.dsn_mix_channels(this.mixAt);
+        this.settings = { seed, density: impacts ? impacts / 65536 : null, period: [period[0], period[1]], colorTransform };
+        return this;
+    }
+
+    /**
+       The weights: { data, width, height, shift, origin, periodic }. data: a Uint8Array of width x height
+        samples (row by row, top row first), each one byte per material in the mix's order (any scale:
+        they are normalized where read; where all are 0, the first material); width and height: integers
+        1 .. 65535, their product at most 2^24; shift: samples 2^shift texels apart, 0 .. 16 (default 0);
+        origin: [x, y], the texel of sample (0, 0), integers (default [0, 0]); periodic: [px, py], whether
+        the grid repeats along x and y (default [false, false]; else its edges extend it).
+     */
+    setWeights(weights) {
+        checkNames('weights', weights, ['data', 'width', 'height', 'shift', 'origin', 'periodic']);
+        const { data, width, height, shift = 0, origin = [0, 0], periodic = [false, false] } = weights;
+        checkInteger('weights.width', width, 1, 65535);
+        checkInteger('weights.height', height, 1, 65535);
+        if (width * height > 1 << 24)
+            throw new RangeError(`dsn: weights of at most 2^24 samples, not ${width}x${height}`);
+        checkInteger('weights.shift', shift, 0, 16);
+        if (!(data instanceof Uint8Array) || data.length !== width * height * this.materials.length)
+            throw new TypeError(`dsn: weights.data must be a Uint8Array of ${width} x ${height} x ` +
+                                `${this.materials.length} bytes`);
+        if (!Array.isArray(origin) || origin.length !== 2)
+            throw new TypeError(`dsn: weights.origin must be an array [x, y], not ${describe(origin)}`);
+        checkInteger('weights.origin[0]', origin[0], -2147483648, 2147483647);
+        checkInteger('weights.origin[1]', origin[1], -2147483648, 2147483647);
+        if (!Array.isArray(periodic) || periodic.length !== 2 || periodic.some((p) => typeof p !== 'boolean'))
+            throw new TypeError('dsn: weights.periodic must be an array of two booleans');
+        this.workAt = align(this.weightsAt + data.length, 16);
+        this.ensure(this.workAt);
+        const e = this.exports;
+        new Uint8Array(e.memory.buffer, this.weightsAt, data.length).set(data);
+        const words = new DataView(e.memory.buffer, this.controlAt, CONTROL_BYTES);
+        words.setUint32(0, this.weightsAt, true);
+        words.setUint32(4, width, true);
+        words.setUint32(8, height, true);
+        words.setUint32(12, shift, true);
+        words.setInt32(16, origin[0], true);
+        words.setInt32(20, origin[1], true);
+        words.setUint32(24, (periodic[0] ? 1 : 0) | (periodic[1] ? 2 : 0), true);
+        return this;
+    }
+
+    /** The values at lattice point (x, y): Float64Array of `channels` values, as Texture.point. */
+    point(x, y) {
+        checkLattice('x', x);
+        checkLattice('y', y);
+        const e = this.exports;
+        check(e, e.dsn_mix_lattice_point_fixed(this.mixAt, this.controlAt, x | 0, y | 0, this.valuesAt));
+        return fromFixed(new Int32Array(e.memory.buffer, this.valuesAt, this.channels));
+    }
+
+    /** The values at the continuous point (x, y) in texels, as Texture.continuousPoint. */
+    continuousPoint(x, y) {
+        checkFinite('x', x);
+        checkFinite('y', y);
+        const e = this.exports;
+        check(e, e.dsn_mix_continuous_point_fixed(this.mixAt, this.controlAt, e.dsn_coordinate_from_double(x),
+                                                  e.dsn_coordinate_from_double(y), this.valuesAt));
+        return fromFixed(new Int32Array(e.memory.buffer, this.valuesAt, this.channels));
+    }
+
+    /** A width x height tile as RGBA bytes, the window as for Texture.tile (lattice, or a view). */
+    tile(x, y, width, height, view = null) {
+        const e = this.exports;
+        checkTile(x, y, width, height, view);
+        const count = width * height * this.channels;
+        let scratchSize, call;
+        if (view === null) {
+            scratchSize = e.dsn_mix_lattice_tile_scratch_size(this.mixAt, width, height) >>> 0;
+            call = (out, scratch) => e.dsn_mix_lattice_tile_u8(this.mixAt, this.controlAt, x | 0, y | 0, width,
+                                                               height, out, scratch, scratchSize);
+        } else {
+            writeGrid(e, this.gridAt, x, y, view);
+            scratchSize = e.dsn_mix_continuous_tile_scratch_size(this.mixAt, this.gridAt, width, height) >>> 0;
+            call = (out, scratch) => e.dsn_mix_continuous_tile_u8(this.mixAt, this.controlAt, this.gridAt, width,
+                                                                  height, out, scratch, scratchSize);
+        }
+        const out = this.workAt, scratch = align(out + count, 16);
+        this.ensure(scratch + scratchSize);
+        check(e, call(out, scratch));
+        return toRGBA(new Uint8Array(e.memory.buffer, out, count), this.channels, width * height);
+    }
+
+    ensure(end) {
+        const memory = this.exports.memory;
+        if (end > memory.buffer.byteLength) memory.grow(Math.ceil((end - memory.buffer.byteLength) / PAGE));
+    }
+}
+
+// The settings of Texture.configure checked and written as a dsn_config at configAt (five uint32); returns
+// them, the density as impacts_q16 (0: the asset's).
+function writeConfig(exports, configAt, settings) {
+    checkNames('settings', settings, ['seed', 'density', 'period', 'colorTransform']);
+    const { seed = 0, density = 0, period = [0, 0], colorTransform = true } = settings;
+    checkInteger('seed', seed, 0, UINT32_MAX);
+    checkNumber('density', density);
+    const impacts = Math.round(density * 65536);
+    if (density !== 0 && !(density >= 1 / 16 && density <= 1024 && impacts >= IMPACTS_MIN_Q16 &&
+                           impacts <= IMPACTS_MAX_Q16))
+        throw new RangeError('dsn: density must be 0 (the asset\'s) or within [1/16, 1024] impacts per ' +
+                             `pixel, not ${density}`);
+    if (!Array.isArray(period) || period.length !== 2)
+        throw new TypeError(`dsn: period must be an array [px, py], not ${describe(period)}`);
+    checkInteger('period[0]', period[0], 0, UINT32_MAX);
+    checkInteger('period[1]', period[1], 0, UINT32_MAX);
+    if (typeof colorTransform !== 'boolean')
+        throw new TypeError(`dsn: colorTransform must be true or false, not ${describe(colorTransform)}`);
+    const words = new Uint32Array(exports.memory.buffer, configAt, CONFIG_BYTES / 4);
+    words[0] = seed;
+    words[1] = impacts;
+    words[2] = period[0];
+    words[3] = period[1];
+    words[4] = FLAG_ALLOW_LATTICE_CONTINUOUS | (colorTransform ? 0 : FLAG_NO_COLOR_TRANSFORM);
+    return { seed, impacts, period, colorTransform };
+}
+
+// A tile's window: width and height integers of at least 1, at most 2^26 pixels in all; (x, y) a lattice
+// point without a view, finite texels with one.
+function checkTile(x, y, width, height, view) {
+    checkInteger('width', width, 1, MAX_TILE_PIXELS);
+    checkInteger('height', height, 1, MAX_TILE_PIXELS);
+    if (width * height > MAX_TILE_PIXELS)
+        throw new RangeError(`dsn: a tile is at most ${MAX_TILE_PIXELS} pixels, not ${width}x${height}`);
+    if (view === null) {
+        checkLattice('x', x);
+        checkLattice('y', y);
+    } else {
+        checkFinite('x', x);
+        checkFinite('y', y);
+        checkView(view);
+    }
+}
+
+// The grid of a tile's view at gridAt: Q32.32 coordinates computed as dsn-render computes them (origin by
+// the runtime's conversion, steps rounded to the nearest 2^-32 texel).
+function writeGrid(exports, gridAt, x, y, { scale = 1, rotate = 0 }) {
+    const radians = rotate * Math.PI / 180;
+    const cosine = Math.cos(radians) / scale, sine = Math.sin(radians) / scale;
+    const step = (texels) => BigInt(Math.round(texels * Q32_ONE));
+    const grid = new BigInt64Array(exports.memory.buffer, gridAt, GRID_BYTES / 8);
+    grid[0] = exports.dsn_coordinate_from_double(x);
+    grid[1] = exports.dsn_coordinate_from_double(y);
+    grid[2] = step(cosine);
+    grid[3] = step(sine);
+    grid[4] = step(-sine);
+    grid[5] = step(cosine);
 }
 
 // The checks of the module's edge: TypeError for a value of the wrong type, RangeError for one out of range.

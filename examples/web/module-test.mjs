@@ -1,12 +1,12 @@
 // module-test.mjs - checks of the JavaScript module (dsn.mjs) under Node against the native runtime, as
 // dsn-render writes it: lattice and continuous tiles (with a rotation, a period, a density and the largest
 // seed), lattice and continuous points, gradients (against dsn-web-gradient-native, which must lie beside
-// dsn-render), and the loader's errors. Run by examples/web/web-test.
+// dsn-render), mixes (against dsn-render --mix, with dsn-example-asset beside it), and the loader's errors. Run by examples/web/web-test.
 // With the baker (dsn-bake.wasm and an exemplar image), also bake.mjs: a bake that loads, refusals.
 // Usage: node module-test.mjs dsn.wasm ASSET.dsnt DSN-RENDER OUT-FOLDER [dsn-bake.wasm EXEMPLAR]
 import {execFileSync} from 'node:child_process';
 import {createHash} from 'node:crypto';
-import {readFileSync} from 'node:fs';
+import {readFileSync, writeFileSync} from 'node:fs';
 import {dirname, join} from 'node:path';
 
 import {BakeError, loadBaker} from './bake.mjs';
@@ -225,6 +225,55 @@ for (const test of gradientCases) {
         for (let c = 0; c < 3; c++)
             if (rgba[4 * p + c] !== u8(continuousTile.value[p * n + (n === 3 ? c : 0)])) shown = false;
     check('gradient tile values = the RGBA tile', shown);
+}
+
+// Mixing: against dsn-render --mix (PNG hashes of a lattice and a continuous window, the weights from a
+// grey PGM, 8 texels a pixel), where the weights are the first material's alone the first's own tile, and
+// the module's checks of the weights.
+{
+    const second = join(outFolder, 'second.dsnt');
+    execFileSync(join(dirname(renderPath), 'dsn-example-asset'), ['--channels', '1', second]);
+    const ramp = [0, 40, 200, 255, 128, 0];
+    const pgm = join(outFolder, 'weights.pgm');
+    writeFileSync(pgm, Buffer.concat([Buffer.from('P5\n3 2\n255\n'), Buffer.from(ramp)]));
+    const data = new Uint8Array(ramp.length * 2);
+    ramp.forEach((grey, i) => { data[2 * i] = 255 - grey; data[2 * i + 1] = grey; });
+    const weights = { data, width: 3, height: 2, shift: 3 };
+    const mix = runtime.mix([bytes, readFileSync(second)], { seed: 6, weights });
+    const mixArgs = ['--mix', second, '--weights', pgm, '--weights-shift', '3', '--seed', '6'];
+    const lattice = pngHash(render('mix-lattice.png', [...mixArgs, '--size', '40x24', '--origin', '-5,-3',
+                                                        '--mode', 'tile']));
+    check('mix lattice tile = dsn-render --mix', rgbHash(mix.tile(-5, -3, 40, 24)) === lattice);
+    const continuous = pngHash(render('mix-continuous.png', [...mixArgs, '--size', '40x24', '--origin',
+                                                             '-5.5,2.25', '--scale', '1.5', '--rotate', '30']));
+    check('mix continuous tile = dsn-render --mix',
+          rgbHash(mix.tile(-5.5, 2.25, 40, 24, { scale: 1.5, rotate: 30 })) === continuous);
+    const one = new Uint8Array(ramp.length * 2);
+    for (let i = 0; i < ramp.length; i++) one[2 * i] = 9;
+    mix.setWeights({ data: one, width: 3, height: 2, shift: 3, periodic: [true, false] });
+    texture.configure({ seed: 6 });
+    check('mix with the first material alone = its own tile',
+          rgbHash(mix.tile(3, 4, 20, 10, { scale: 0.75 })) === rgbHash(texture.tile(3, 4, 20, 10, { scale: 0.75 })));
+    check('mix point = the first material\'s point',
+          sameValues(mix.continuousPoint(3.25, -8.5), texture.continuousPoint(3.25, -8.5)) &&
+              sameValues(mix.point(-17, 2), texture.point(-17, 2)));
+    check('mix channels', mix.channels === Math.max(texture.channels, 1), String(mix.channels));
+    const thrown = (f) => {
+        try {
+            f();
+            return null;
+        } catch (error) {
+            return error;
+        }
+    };
+    check('mix weights: wrong data size -> TypeError',
+          thrown(() => mix.setWeights({ data: new Uint8Array(3), width: 3, height: 2 })) instanceof TypeError);
+    check('mix weights: shift 17 -> RangeError',
+          thrown(() => mix.setWeights({ data: one, width: 3, height: 2, shift: 17 })) instanceof RangeError);
+    check('mix weights: unknown name -> TypeError',
+          thrown(() => mix.setWeights({ data: one, width: 3, height: 2, spacing: 1 })) instanceof TypeError);
+    check('mix of no assets -> RangeError', thrown(() => runtime.mix([], { weights })) instanceof RangeError);
+    check('mix without weights -> TypeError', thrown(() => runtime.mix([bytes])) instanceof TypeError);
 }
 
 // The loader's errors: codes and messages from the runtime.
