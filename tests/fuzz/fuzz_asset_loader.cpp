@@ -1,7 +1,9 @@
 // fuzz_asset_loader.cpp - arbitrary bytes -> asset loader -> when accepted, a configuration taken from the
 // bytes after the asset -> points (extreme coordinates included) and a small tile, which must agree; then
 // filtered points and a filtered tile under a footprint from the bytes (any int64 steps, any max_taps,
-// float derivatives NaN and infinities included), the tile equal to its points.
+// float derivatives NaN and infinities included), the tile equal to its points; then a mix of the noise
+// with a second configuration of the asset under a control from the bytes (any size, spacing, origin and
+// flags, any weights), its tiles equal to its points, and material 0's own bits where its weight is all.
 #include <cstdint>
 #include <vector>
 
@@ -92,6 +94,56 @@ void check_filtered(const dsn_noise &noise, uint32_t channels, FuzzInput &input)
     }
 }
 
+void check_mix(const dsn_noise &noise, const dsn_asset &asset, FuzzInput &input) {
+    dsn_config config;
+    dsn_config_defaults(&config);
+    config.seed = input.u32();
+    config.flags = input.byte() & 7u;
+    dsn_noise second;
+    if (dsn_noise_init(&second, &asset, &config) != DSN_OK) return;
+    const dsn_noise *materials[2] = {&noise, &second};
+    dsn_mix mix;
+    const int init = dsn_mix_init(&mix, materials, 2);
+    fuzz_require(init == DSN_OK || init == DSN_ERR_UNSUPPORTED || init == DSN_ERR_COST);
+    if (init != DSN_OK) {
+        fuzz_require(dsn_mix_channels(&mix) == 0);
+        return;
+    }
+    std::vector<uint8_t> weights(2 * 6 * 6);
+    for (uint8_t &weight : weights) weight = input.byte();
+    dsn_mix_control control{weights.data(),       input.byte() % 7u,    input.byte() % 7u, input.byte() % 18u,
+                            int32_t(input.u32()), int32_t(input.u32()), input.byte() % 5u};
+    const bool valid =
+        control.width >= 1 && control.height >= 1 && control.spacing_shift <= 16 && control.flags <= 3;
+    const bool continuous = dsn_continuous_check(&noise) == DSN_OK && dsn_continuous_check(&second) == DSN_OK;
+    const uint32_t width = 3, height = 2, channels = asset.channels;
+    const int32_t x0 = input.i32(), y0 = input.i32();
+    std::vector<int32_t> tile(width * height * channels);
+    fuzz_require(dsn_mix_lattice_tile_fixed(&mix, &control, x0, y0, width, height, tile.data(), nullptr, 0) ==
+                 (valid ? DSN_OK : DSN_ERR_ARGUMENT));
+    for (uint32_t j = 0; valid && j < height; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            int32_t value[DSN_MAX_CHANNELS];
+            fuzz_require(dsn_mix_lattice_point_fixed(&mix, &control, int32_t(uint32_t(x0) + i),
+                                                     int32_t(uint32_t(y0) + j), value) == DSN_OK);
+            for (uint32_t c = 0; c < channels; c++)
+                fuzz_require(tile[(j * width + i) * channels + c] == value[c]);
+        }
+    const int64_t x = i64(input), y = i64(input);
+    int32_t mixed[DSN_MAX_CHANNELS];
+    fuzz_require(dsn_mix_continuous_point_fixed(&mix, &control, x, y, mixed) ==
+                 (!valid       ? DSN_ERR_ARGUMENT
+                  : continuous ? DSN_OK
+                               : DSN_ERR_CONTINUOUS_MISMATCH));
+    // All the weight on material 0: its own noise.
+    const uint8_t first[2] = {uint8_t(1 + input.byte() % 255u), 0};
+    const dsn_mix_control on_first{first, 1, 1, 0, 0, 0, 0};
+    int32_t own[DSN_MAX_CHANNELS];
+    dsn_lattice_point_fixed(&noise, x0, y0, own);
+    fuzz_require(dsn_mix_lattice_point_fixed(&mix, &on_first, x0, y0, mixed) == DSN_OK);
+    for (uint32_t c = 0; c < channels; c++) fuzz_require(mixed[c] == own[c]);
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -113,5 +165,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (dsn_noise_init(&noise, &asset, &config) != DSN_OK) return 0;
     check_points_and_tile(noise, asset.channels, input);
     check_filtered(noise, asset.channels, input);
+    check_mix(noise, asset, input);
     return 0;
 }
