@@ -111,15 +111,33 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
     }
 }
 
+/* The lanes of a cell's packed fields (continuous_sift.h's CellAxis, exact here) whose lattice offset o
+   reaches the point along one axis: texton index reach - o in [0, 2 radius], o <= last_offset. False when
+   none does. */
+bool lattice_axis(const axis_cell &on_axis, uint32_t radius, const FieldLanes &lanes, uint32_t drop,
+                  CellAxis *out) {
+    const int64_t reach = dsn_signed_sum(on_axis.reach);
+    const int64_t low =
+        reach - 2 * static_cast<int64_t>(radius) > 0 ? reach - 2 * static_cast<int64_t>(radius) : 0;
+    const int64_t high = reach < static_cast<int64_t>(on_axis.last_offset) ? reach : on_axis.last_offset;
+    if (high < low) return false;
+    out->shifted_base = 0;
+    out->low_lanes = lanes.ones * (static_cast<uint64_t>(low) << drop);
+    out->high_lanes =
+        (lanes.ones * ((static_cast<uint64_t>(high) << drop) | ((1u << drop) - 1u))) | lanes.tops;
+    return true;
+}
+
 /* The lattice sums of every material at the lattice point (x, y): lattice_impulses.h's walk with the
-   mix's reach, each impulse reading its material's lattice texton. */
+   mix's reach, each position pair hashed once and its impulses tested at once on their fields (exactly,
+   lattice_axis), each impulse within reach reading its material's lattice texton. */
 void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                   uint32_t x, uint32_t y, LatticeSums sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0],
                    reach_y = mix->lattice_radius[1];
-    const uint32_t field_shift = dsn_field_shift(shift), half_bits = 1u << (field_shift - 1u);
-    const uint32_t half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    const FieldLanes lanes = field_lanes(shift);
+    const uint32_t half_mask = (1u << lanes.half_bits) - 1u, drop = lanes.half_bits - shift;
     dsn_texton_window textons[DSN_MIX_MAX_MATERIALS];
     for (uint32_t m = 0; m < mix->count; m++) textons[m] = dsn_lattice_texton_window(&mix->material[m]);
     dsn_axis ax, ay;
@@ -132,30 +150,41 @@ void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, cons
             for (uint32_t j = 0; j < span_y.cell_count; j++) {
                 const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
                 const axis_cell on_y = cell_on_axis(&span_y, cell_y, shift);
+                CellAxis lanes_y;
+                if (!lattice_axis(on_y, reach_y, lanes, drop, &lanes_y)) continue;
+                const uint32_t row_key = dsn_row_key(lead, cell_y);
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
                     const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
                     const axis_cell on_x = cell_on_axis(&span_x, cell_x, shift);
-                    const uint32_t key = dsn_cell_key(lead, cell_x, cell_y);
+                    CellAxis lanes_x;
+                    if (!lattice_axis(on_x, reach_x, lanes, drop, &lanes_x)) continue;
+                    const uint32_t key = dsn_cell_key_in_row(lead, cell_x, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
-                    for (uint32_t k = 0; k < count; k++) {
-                        const uint32_t field = dsn_impulse_field(lead, key, k);
-                        const uint32_t offset_x = (field & half_mask) >> drop;
-                        const uint32_t offset_y = ((field >> half_bits) & half_mask) >> drop;
-                        /* texton indices in the walk's window of radius reach: 0 .. 2 reach */
-                        const uint32_t column = on_x.reach - offset_x, row = on_y.reach - offset_y;
-                        if (column > 2u * reach_x || row > 2u * reach_y || offset_x > on_x.last_offset ||
-                            offset_y > on_y.last_offset)
-                            continue;
-                        /* the impulse as seen from the point: x + reach - column */
-                        const uint64_t at_x = static_cast<uint64_t>(x + reach_x - column) << 32;
-                        const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
-                        const uint32_t m = impulse_material(control, mix->count, region, key, k, at_x, at_y);
-                        const dsn_texton_window *texton = &textons[m];
-                        const uint32_t own_column = column - reach_x + texton->radius[0];
-                        const uint32_t own_row = row - reach_y + texton->radius[1];
-                        if (own_column < texton->width && own_row < texton->height)
-                            add_texton_entry(&mix->material[m].asset, texton,
-                                             own_row * texton->width + own_column, sums[m]);
+                    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
+                        const uint64_t pair = dsn_position_pair(key, first / lanes.per_pair);
+                        uint64_t candidates = candidate_lanes(pair, lanes, lanes_x, lanes_y);
+                        if (count - first < lanes.per_pair)
+                            candidates &=
+                                (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
+                        for (; candidates != 0; candidates &= candidates - 1u) {
+                            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift;
+                            const uint32_t field = dsn_pair_bits(pair, lane << lanes.field_shift);
+                            /* texton indices in the walk's window of radius reach: 0 .. 2 reach */
+                            const uint32_t column = on_x.reach - ((field & half_mask) >> drop);
+                            const uint32_t row =
+                                on_y.reach - (((field >> lanes.half_bits) & half_mask) >> drop);
+                            /* the impulse as seen from the point: x + reach - column */
+                            const uint64_t at_x = static_cast<uint64_t>(x + reach_x - column) << 32;
+                            const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
+                            const uint32_t m =
+                                impulse_material(control, mix->count, region, key, first + lane, at_x, at_y);
+                            const dsn_texton_window *texton = &textons[m];
+                            const uint32_t own_column = column - reach_x + texton->radius[0];
+                            const uint32_t own_row = row - reach_y + texton->radius[1];
+                            if (own_column < texton->width && own_row < texton->height)
+                                add_texton_entry(&mix->material[m].asset, texton,
+                                                 own_row * texton->width + own_column, sums[m]);
+                        }
                     }
                 }
             }
