@@ -251,19 +251,7 @@ export class Texture {
     gradientTile(x, y, width, height, view = null, options = {}) {
         this.checkConfigured();
         const e = this.exports;
-        checkInteger('width', width, 1, MAX_GRADIENT_TILE_PIXELS);
-        checkInteger('height', height, 1, MAX_GRADIENT_TILE_PIXELS);
-        if (width * height > MAX_GRADIENT_TILE_PIXELS)
-            throw new RangeError(`dsn: a gradient tile is at most ${MAX_GRADIENT_TILE_PIXELS} pixels, not ` +
-                                 `${width}x${height}`);
-        if (view === null) {
-            checkLattice('x', x);
-            checkLattice('y', y);
-        } else {
-            checkFinite('x', x);
-            checkFinite('y', y);
-            checkView(view);
-        }
+        checkTile(x, y, width, height, view, MAX_GRADIENT_TILE_PIXELS, 'a gradient tile');
         const format = checkFormat(options, TILE_FORMATS), float = format === 'float32';
         const count = width * height * this.channels, stride = align(4 * count, 16);
         const out = this.workAt, dx = out + stride, dy = dx + stride;
@@ -502,13 +490,12 @@ function writeConfig(exports, configAt, settings) {
     return { seed, impacts, period, colorTransform };
 }
 
-// A tile's window: width and height integers of at least 1, at most 2^26 pixels in all; (x, y) a lattice
-// point without a view, finite texels with one.
-function checkTile(x, y, width, height, view) {
-    checkInteger('width', width, 1, MAX_TILE_PIXELS);
-    checkInteger('height', height, 1, MAX_TILE_PIXELS);
-    if (width * height > MAX_TILE_PIXELS)
-        throw new RangeError(`dsn: a tile is at most ${MAX_TILE_PIXELS} pixels, not ${width}x${height}`);
+// A tile's window: width and height integers of at least 1, at most `most` pixels in all (`what` names
+// the tile); (x, y) a lattice point without a view, finite texels with one.
+function checkTile(x, y, width, height, view, most = MAX_TILE_PIXELS, what = 'a tile') {
+    checkInteger('width', width, 1, most);
+    checkInteger('height', height, 1, most);
+    if (width * height > most) throw new RangeError(`dsn: ${what} is at most ${most} pixels, not ${width}x${height}`);
     if (view === null) {
         checkLattice('x', x);
         checkLattice('y', y);

@@ -38,6 +38,23 @@ MixRegion region_around(const dsn_mix_state *mix, const dsn_mix_control *control
                       static_cast<uint64_t>(y + reach_y) << 32, 16u);
 }
 
+/* visit(k, field) for impulse k of the cell (key, count), its packed field, wherever that field passes the
+   cell's axes: each position pair hashed once, its impulses tested at once (candidate_lanes). */
+template <typename Visit>
+void visit_candidates(uint32_t key, uint32_t count, const FieldLanes &lanes, const CellAxis &x,
+                      const CellAxis &y, const Visit &visit) {
+    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
+        const uint64_t pair = dsn_position_pair(key, first / lanes.per_pair);
+        uint64_t candidates = candidate_lanes(pair, lanes, x, y);
+        if (count - first < lanes.per_pair)
+            candidates &= (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
+        for (; candidates != 0; candidates &= candidates - 1u) {
+            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift;
+            visit(first + lane, dsn_pair_bits(pair, lane << lanes.field_shift));
+        }
+    }
+}
+
 /* The continuous sums of every material at (x, y), Q32.32: continuous_sift.h's sifting walk with the mix's
    reach. Each position pair is hashed once for its impulses, which are tested against the point on their
    lattice fields all at once; only the candidates get their fraction hash, the exact test, their material
@@ -67,44 +84,31 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
                     if (!cell_axis(px, span_x, cell, lanes, &cell_x)) continue;
                     const uint32_t key = dsn_cell_key_in_row(lead, cell, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
-                    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
-                        const uint64_t pair = dsn_position_pair(key, first / lanes.per_pair);
-                        uint64_t candidates = candidate_lanes(pair, lanes, cell_x, cell_y);
-                        if (count - first < lanes.per_pair)
-                            candidates &=
-                                (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
-                        for (; candidates != 0; candidates &= candidates - 1u) {
-                            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift,
-                                           k = first + lane;
-                            const uint32_t field = dsn_pair_bits(pair, lane << lanes.field_shift);
-                            const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
-                            /* dsn_impulse_hash's 16-bit positions */
-                            const uint32_t bits_x = ((field & half_mask) << high_shift) |
-                                                    ((fraction & 0xFFFFu) >> lanes.half_bits);
-                            const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
-                                                    ((fraction >> 16) >> lanes.half_bits);
-                            const int64_t offset_x =
-                                cell_x.shifted_base -
-                                static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) -
-                                reach_x;
-                            const int64_t offset_y =
-                                cell_y.shifted_base -
-                                static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) -
-                                reach_y;
-                            if (!within_reach(offset_x, mix->radius[0]) ||
-                                !within_reach(offset_y, mix->radius[1]))
-                                continue;
-                            const uint32_t m = impulse_material(control, mix->count, region, key, k,
-                                                                x - static_cast<uint64_t>(offset_x),
-                                                                y - static_cast<uint64_t>(offset_y));
-                            const dsn_noise_state *material = &mix->material[m];
-                            uint32_t row, row_weight, column, column_weight;
-                            if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
-                                bracket(offset_x, material->radius[0], &column, &column_weight))
-                                add_bilinear(&material->asset, row, row_weight, column, column_weight,
-                                             sums[m]);
-                        }
-                    }
+                    visit_candidates(key, count, lanes, cell_x, cell_y, [&](uint32_t k, uint32_t field) {
+                        const uint32_t fraction = dsn_cell_stream(key, 0x80000000u + k);
+                        /* dsn_impulse_hash's 16-bit positions */
+                        const uint32_t bits_x =
+                            ((field & half_mask) << high_shift) | ((fraction & 0xFFFFu) >> lanes.half_bits);
+                        const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
+                                                ((fraction >> 16) >> lanes.half_bits);
+                        const int64_t offset_x =
+                            cell_x.shifted_base -
+                            static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) - reach_x;
+                        const int64_t offset_y =
+                            cell_y.shifted_base -
+                            static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) - reach_y;
+                        if (!within_reach(offset_x, mix->radius[0]) ||
+                            !within_reach(offset_y, mix->radius[1]))
+                            return;
+                        const uint32_t m = impulse_material(control, mix->count, region, key, k,
+                                                            x - static_cast<uint64_t>(offset_x),
+                                                            y - static_cast<uint64_t>(offset_y));
+                        const dsn_noise_state *material = &mix->material[m];
+                        uint32_t row, row_weight, column, column_weight;
+                        if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
+                            bracket(offset_x, material->radius[0], &column, &column_weight))
+                            add_bilinear(&material->asset, row, row_weight, column, column_weight, sums[m]);
+                    });
                 }
             }
         }
@@ -160,32 +164,21 @@ void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, cons
                     if (!lattice_axis(on_x, reach_x, lanes, drop, &lanes_x)) continue;
                     const uint32_t key = dsn_cell_key_in_row(lead, cell_x, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
-                    for (uint32_t first = 0; first < count; first += lanes.per_pair) {
-                        const uint64_t pair = dsn_position_pair(key, first / lanes.per_pair);
-                        uint64_t candidates = candidate_lanes(pair, lanes, lanes_x, lanes_y);
-                        if (count - first < lanes.per_pair)
-                            candidates &=
-                                (static_cast<uint64_t>(1) << ((count - first) << lanes.field_shift)) - 1u;
-                        for (; candidates != 0; candidates &= candidates - 1u) {
-                            const uint32_t lane = lowest_bit(candidates) >> lanes.field_shift;
-                            const uint32_t field = dsn_pair_bits(pair, lane << lanes.field_shift);
-                            /* texton indices in the walk's window of radius reach: 0 .. 2 reach */
-                            const uint32_t column = on_x.reach - ((field & half_mask) >> drop);
-                            const uint32_t row =
-                                on_y.reach - (((field >> lanes.half_bits) & half_mask) >> drop);
-                            /* the impulse as seen from the point: x + reach - column */
-                            const uint64_t at_x = static_cast<uint64_t>(x + reach_x - column) << 32;
-                            const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
-                            const uint32_t m =
-                                impulse_material(control, mix->count, region, key, first + lane, at_x, at_y);
-                            const dsn_texton_window *texton = &textons[m];
-                            const uint32_t own_column = column - reach_x + texton->radius[0];
-                            const uint32_t own_row = row - reach_y + texton->radius[1];
-                            if (own_column < texton->width && own_row < texton->height)
-                                add_texton_entry(&mix->material[m].asset, texton,
-                                                 own_row * texton->width + own_column, sums[m]);
-                        }
-                    }
+                    visit_candidates(key, count, lanes, lanes_x, lanes_y, [&](uint32_t k, uint32_t field) {
+                        /* texton indices in the walk's window of radius reach: 0 .. 2 reach */
+                        const uint32_t column = on_x.reach - ((field & half_mask) >> drop);
+                        const uint32_t row = on_y.reach - (((field >> lanes.half_bits) & half_mask) >> drop);
+                        /* the impulse as seen from the point: x + reach - column */
+                        const uint64_t at_x = static_cast<uint64_t>(x + reach_x - column) << 32;
+                        const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
+                        const uint32_t m = impulse_material(control, mix->count, region, key, k, at_x, at_y);
+                        const dsn_texton_window *texton = &textons[m];
+                        const uint32_t own_column = column - reach_x + texton->radius[0];
+                        const uint32_t own_row = row - reach_y + texton->radius[1];
+                        if (own_column < texton->width && own_row < texton->height)
+                            add_texton_entry(&mix->material[m].asset, texton,
+                                             own_row * texton->width + own_column, sums[m]);
+                    });
                 }
             }
         }
