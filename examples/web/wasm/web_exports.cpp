@@ -1,7 +1,7 @@
 /* web_exports.cpp - what the JavaScript module (examples/web/dsn.mjs) needs besides the C API: the size of
    a dsn_asset, and compile-time checks of the wasm32 struct layouts that the module reads and writes
-   directly (dsn_asset fields, dsn_config, dsn_grid, dsn_mix, dsn_mix_control), so that a change to one of them fails this build
-   instead of silently garbling the page. */
+   directly (dsn_asset fields, dsn_config, dsn_grid, dsn_mix, dsn_mix_control), so that a change to one of
+   them fails this build instead of silently garbling the page. */
 #include <stddef.h>
 #include <stdint.h>
 
@@ -26,8 +26,8 @@ static_assert(sizeof(dsn_noise) == DSN_NOISE_BYTES, "dsn_noise size");
 /* dsn.mjs: MIX_BYTES and writeControl (a pointer and six uint32 or int32). */
 static_assert(sizeof(dsn_mix) == 4640, "dsn_mix size");
 static_assert(sizeof(dsn_mix_control) == 28 && offsetof(dsn_mix_control, width) == 4 &&
-                  offsetof(dsn_mix_control, spacing_shift) == 12 && offsetof(dsn_mix_control, origin_x) == 16 &&
-                  offsetof(dsn_mix_control, flags) == 24,
+                  offsetof(dsn_mix_control, spacing_shift) == 12 &&
+                  offsetof(dsn_mix_control, origin_x) == 16 && offsetof(dsn_mix_control, flags) == 24,
               "dsn_mix_control layout changed");
 
 extern "C" {
