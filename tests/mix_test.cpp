@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 
 using namespace continuous_fixtures;
 
@@ -374,6 +375,130 @@ TEST_CASE("mix: u8 outputs and batches are the points' values") {
           DSN_ERR_NULL);
     for (int32_t v : zeroed) CHECK(v == 0);
     CHECK(dsn_mix_continuous_batch_fixed(&mix, &ramp.control, nullptr, nullptr, 0, zeroed.data()) == DSN_OK);
+}
+
+TEST_CASE(
+    "mix: the filtered evaluation: one material's bits, the mix's walk, unfiltered = continuous, tiles") {
+    // Two materials with pyramids (of different depths: 16- and 8-bit textons of radius 5 and 7).
+    auto lead_fields = random_texton_asset(3, 5, 8, 101);
+    lead_fields.pyramid = dsn::texton_pyramid(lead_fields);
+    auto other_fields = with_means(random_texton_asset(3, 7, 16, 102), 1 << 23, 3 << 21, 1 << 20);
+    other_fields.pyramid = dsn::texton_pyramid(other_fields);
+    auto lead = make_noise(lead_fields, 41, 24u << 16);
+    auto other = make_noise(other_fields, 42);
+    const dsn_mix mix = make_mix({&lead->noise, &other->noise});
+    const Control on_lead = constant({200, 0}), on_other = constant({0, 255});
+    const Control other_varying(2, 4, 4, 2, [](uint32_t i, uint32_t j) {
+        return std::vector<uint8_t>{0, uint8_t((i + j) % 2 ? 255 : 90)};
+    });
+    const Control ramp(2, 4, 3, 3, [](uint32_t i, uint32_t j) {
+        return std::vector<uint8_t>{uint8_t(60 * i), uint8_t(255 - 60 * i + 3 * j)};
+    });
+    // Minifications by 1.5, 3 and 6 (levels of detail about 0.6, 1.6, 2.6), one anisotropic by 4:1.
+    const dsn_footprint footprints[] = {{kOne * 3 / 2, 0, 0, kOne * 3 / 2, 1},
+                                        {3 * kOne, kOne / 3, -kOne / 3, 3 * kOne, 4},
+                                        {6 * kOne, 0, 0, 6 * kOne, 1},
+                                        {4 * kOne, 0, 0, kOne, 8}};
+    std::vector<int64_t> xs, ys;
+    renderer_points(103, 40, &xs, &ys);
+    size_t differences = 0;
+    for (const dsn_footprint &footprint : footprints)
+        for (size_t k = 0; k < xs.size(); k++) {
+            int32_t own[3], mixed[3], varying[3];
+            REQUIRE(dsn_filtered_point_fixed(&lead->noise, xs[k], ys[k], &footprint, own) == DSN_OK);
+            REQUIRE(dsn_mix_filtered_point_fixed(&mix, &on_lead.control, xs[k], ys[k], &footprint, mixed) ==
+                    DSN_OK);
+            differences += std::memcmp(own, mixed, sizeof own) != 0;
+            // Material 1 alone, by its own filtered point (uniform weights) and by the mix's walk.
+            dsn_mix_filtered_point_fixed(&mix, &on_other.control, xs[k], ys[k], &footprint, mixed);
+            dsn_mix_filtered_point_fixed(&mix, &other_varying.control, xs[k], ys[k], &footprint, varying);
+            differences += std::memcmp(varying, mixed, sizeof mixed) != 0;
+        }
+    CHECK(differences == 0);
+    // A footprint of at most one texel: the continuous mix's bits, where the weights mix.
+    const dsn_footprint unfiltered = {kOne / 2, 0, 0, kOne / 2, 16};
+    for (size_t k = 0; k < xs.size(); k++) {
+        int32_t filtered[3], continuous[3];
+        dsn_mix_filtered_point_fixed(&mix, &ramp.control, xs[k], ys[k], &unfiltered, filtered);
+        dsn_mix_continuous_point_fixed(&mix, &ramp.control, xs[k], ys[k], continuous);
+        CHECK(std::memcmp(filtered, continuous, sizeof filtered) == 0);
+    }
+    // Slightly minified (a level of detail of a few 1/256), the filtered mix stays close to the continuous
+    // one: the level-1 blend weight b <= 4/256 times the difference of the two levels' values, which these
+    // points keep under 2^11 units (1499 measured); a filtered walk whose impulses picked other materials
+    // than the continuous walk's would differ by whole impulses' values (over 10^5 units, measured with the
+    // pick's hash moved by one impulse).
+    const dsn_footprint slight = {int64_t(1.006 * double(kOne)), 0, 0, int64_t(1.006 * double(kOne)), 1};
+    int32_t lod_q8;
+    uint32_t taps;
+    REQUIRE(dsn_filter_level(&lead->noise, &slight, &lod_q8, &taps) == DSN_OK);
+    REQUIRE((lod_q8 >= 1 && lod_q8 <= 4 && taps == 1));
+    int32_t largest = 0;
+    for (size_t k = 0; k < xs.size(); k++) {
+        int32_t filtered[3], continuous[3];
+        dsn_mix_filtered_point_fixed(&mix, &ramp.control, xs[k], ys[k], &slight, filtered);
+        dsn_mix_continuous_point_fixed(&mix, &ramp.control, xs[k], ys[k], continuous);
+        for (int c = 0; c < 3; c++) largest = std::max(largest, std::abs(filtered[c] - continuous[c]));
+    }
+    INFO("largest difference " << largest);
+    CHECK(largest < 2048);
+    // Tiles equal their points (the grid's steps are the footprint), fixed, float and u8.
+    const dsn_grid grid = {-7 * kOne + 321, 11 * kOne, 2 * kOne, kOne / 2, -kOne / 2, 2 * kOne};
+    const uint32_t width = 9, height = 6, max_taps = 2;
+    const dsn_footprint grid_footprint = {grid.column_step_x, grid.column_step_y, grid.row_step_x,
+                                          grid.row_step_y, max_taps};
+    std::vector<unsigned char> scratch(
+        dsn_mix_filtered_tile_scratch_size(&mix, &grid, max_taps, width, height));
+    for (const Control *control : {&ramp, &on_other}) {
+        std::vector<int32_t> tile(width * height * 3);
+        std::vector<float> floats(tile.size());
+        std::vector<uint8_t> bytes(tile.size());
+        REQUIRE(dsn_mix_filtered_tile_fixed(&mix, &control->control, &grid, max_taps, width, height,
+                                            tile.data(), scratch.data(), scratch.size()) == DSN_OK);
+        REQUIRE(dsn_mix_filtered_tile_float(&mix, &control->control, &grid, max_taps, width, height,
+                                            floats.data(), nullptr, 0) == DSN_OK);
+        REQUIRE(dsn_mix_filtered_tile_u8(&mix, &control->control, &grid, max_taps, width, height,
+                                         bytes.data(), scratch.data(), scratch.size()) == DSN_OK);
+        size_t tile_differences = 0;
+        for (uint32_t j = 0; j < height; j++)
+            for (uint32_t i = 0; i < width; i++) {
+                int32_t point[3];
+                const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
+                                          j * uint64_t(grid.row_step_x));
+                const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
+                                          j * uint64_t(grid.row_step_y));
+                dsn_mix_filtered_point_fixed(&mix, &control->control, x, y, &grid_footprint, point);
+                for (int c = 0; c < 3; c++) {
+                    const size_t at = (j * width + i) * 3 + size_t(c);
+                    tile_differences += tile[at] != point[c];
+                    tile_differences += floats[at] != dsn_fixed_to_float(point[c]);
+                    tile_differences += bytes[at] != dsn_fixed_to_u8(point[c]);
+                }
+            }
+        CHECK(tile_differences == 0);
+    }
+    // Far minified, a constant 50/50 mix fades to the average of the means (each material's half rounded).
+    const Control half = constant({128, 128});
+    const dsn_footprint far = {4096 * kOne, 0, 0, 4096 * kOne, 1};
+    int32_t faded[3];
+    REQUIRE(dsn_mix_filtered_point_fixed(&mix, &half.control, 5 * kOne, 9 * kOne, &far, faded) == DSN_OK);
+    for (int c = 0; c < 3; c++) {
+        const double expected = (lead_fields.mean[c] + other_fields.mean[c]) / 2.0 / 256.0;
+        CHECK(std::fabs(faded[c] - expected) <= 1.0);
+    }
+    // Errors: a bad footprint, and a lattice-baked material.
+    int32_t out[3] = {7, 7, 7};
+    dsn_footprint no_taps = footprints[0];
+    no_taps.max_taps = 0;
+    CHECK(dsn_mix_filtered_point_fixed(&mix, &half.control, 0, 0, &no_taps, out) == DSN_ERR_ARGUMENT);
+    CHECK((out[0] == 0 && out[1] == 0 && out[2] == 0));
+    CHECK(dsn_mix_filtered_point_fixed(&mix, &half.control, 0, 0, nullptr, out) == DSN_ERR_NULL);
+    auto lattice_fields = random_texton_asset(3, 4, 8, 104);
+    lattice_fields.interpolation = DSN_INTERPOLATION_LATTICE;
+    auto lattice = make_noise(lattice_fields, 5);
+    const dsn_mix with_lattice = make_mix({&lead->noise, &lattice->noise});
+    CHECK(dsn_mix_filtered_point_fixed(&with_lattice, &half.control, 0, 0, &footprints[0], out) ==
+          DSN_ERR_CONTINUOUS_MISMATCH);
 }
 
 namespace {

@@ -813,7 +813,8 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    over the cells within the largest reach, in scalar code: each impulse within it reads its weights (four
    samples per material, once per point where the samples around it agree), a hash, and one texton; tiles
    and batches go point by point there. make bench's mix_bench reports both against one material. Stack
-   under 1 KB per point. The filtered evaluation and gradients have no mix yet. Not in the small build
+   under 1 KB per point (a filtered mix point copies a material, about 2.5 KB). Gradients have no mix yet;
+   the filtered mix goes impulse by impulse, per material. Not in the small build
    (DSN_MIXING). */
 #if DSN_MIXING
 #define DSN_MIX_MAX_MATERIALS 4
@@ -900,6 +901,33 @@ int dsn_mix_lattice_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, 
 int dsn_mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
                                uint32_t width, uint32_t height, uint8_t *out, void *scratch,
                                size_t scratch_size);
+#if DSN_FILTERING
+/* The filtered evaluation of a mix (dsn.h's "Filtered evaluation" per material): each material's filtered
+   value over the impulses that picked it, its offsets and mean weighted by its weight at the point (each
+   floored to the offsets' units, as the unfiltered mix weights them), rounded as a noise's filtered value,
+   then summed; a footprint of at most one texel gives the continuous mix's bits, and where the weights are
+   one material's alone over the point's filtered reach (every tap and the reach of its levels) it is that
+   material's own filtered point (tiles: its own filtered tile, with enough scratch). The filtered
+   functions' errors (a bad footprint: DSN_ERR_NULL or DSN_ERR_ARGUMENT) and the mix's. Far minified, the
+   mix fades to the weights' mixture of the means. */
+int dsn_mix_filtered_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                                 const dsn_footprint *footprint, int32_t *out);
+int dsn_mix_filtered_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
+                                 const dsn_footprint *footprint, float *out);
+int dsn_mix_filtered_point_u8(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                              const dsn_footprint *footprint, uint8_t *out);
+size_t dsn_mix_filtered_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t max_taps,
+                                          uint32_t width, uint32_t height);
+int dsn_mix_filtered_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                uint32_t max_taps, uint32_t width, uint32_t height, int32_t *out,
+                                void *scratch, size_t scratch_size);
+int dsn_mix_filtered_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                uint32_t max_taps, uint32_t width, uint32_t height, float *out, void *scratch,
+                                size_t scratch_size);
+int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                             uint32_t max_taps, uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                             size_t scratch_size);
+#endif
 #endif
 
 /* ==== End of the mixing ============================================================================== */

@@ -1,0 +1,71 @@
+/* runtime/core/level_read.h - one pyramid level read at an impulse-to-point offset, bilinearly, as the
+   filtered walks read it (the tap-by-tap walk, filtered_walk.cpp, and a mix's filtered point,
+   mix_filtered.cpp): the offset divided by the level's spacing, then the continuous mode's read of the
+   level's values, optionally with its slopes. Compiled with DSN_FILTERING. Internal to libdsn; not
+   installed (everything here has internal linkage). */
+#ifndef DSN_LEVEL_READ_H
+#define DSN_LEVEL_READ_H
+
+#include "core/bilinear_texton.h"
+#include "core/continuous_internal.h"
+#include "core/filtered_internal.h"
+
+#if DSN_FILTERING
+
+namespace {
+
+/* floor(value / 2^shift), 0 <= shift <= 62, without shifting a negative number. */
+int64_t floor_shift_walk(int64_t value, uint32_t shift) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
+}
+
+/* The stored value of (row, column, channel), 0 outside the level's window (-1 too: unsigned). */
+inline int64_t level_texel(const dsn_walked_level &level, uint32_t channels, uint32_t bits, uint32_t row,
+                           uint32_t column, uint32_t channel) {
+    if (row >= level.height || column >= level.width) return 0;
+    const uint32_t index = (row * level.stride + column) * channels + channel;
+    return bits == 8 ? dsn_read_i8(level.values + index) : dsn_read_i16le(level.values + 2u * index);
+}
+
+/* bracket (bilinear_texton.h) of a level offset; with `entry_edge` an offset of exactly -(radius + 1)
+   texels is kept, as index -1 with weight 0. */
+inline bool level_bracket(int64_t offset, uint32_t radius, bool entry_edge, uint32_t *lower_index,
+                          uint32_t *upper_weight) {
+    if (entry_edge && offset == -static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel)) {
+        *lower_index = 0xFFFFFFFFu;
+        *upper_weight = 0;
+        return true;
+    }
+    return bracket(offset, radius, lower_index, upper_weight);
+}
+
+/* Adds the level's bilinear texton at the impulse-to-point offset (dx, dy), Q32.32 level-0 texels, to
+   the sums (Q.32, stored-value units): the offset is divided by the spacing 2^level (rounded down) and
+   read as the continuous mode reads level 0 (bracket, the same weights). With Slopes, also its partial
+   derivatives per 2^-16 level texel (add_slopes) to slopes[0] (x) and slopes[1] (y), the impulses exactly
+   at the entry edge of the level's reach included (value 0, slope not), as the continuous gradient's. */
+template <bool Slopes>
+inline void add_level(const dsn_walked_level &level, uint32_t channels, uint32_t bits, int64_t dx, int64_t dy,
+                      uint64_t *sums, uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
+    uint32_t row, row_weight, column, column_weight;
+    if (!level_bracket(floor_shift_walk(dy, level.level), level.radius_y, Slopes, &row, &row_weight) ||
+        !level_bracket(floor_shift_walk(dx, level.level), level.radius_x, Slopes, &column, &column_weight))
+        return;
+    const int64_t across = column_weight, down = row_weight;
+    for (uint32_t c = 0; c < channels; c++) {
+        const int64_t a = level_texel(level, channels, bits, row, column, c),
+                      b = level_texel(level, channels, bits, row, column + 1u, c),
+                      d = level_texel(level, channels, bits, row + 1u, column, c),
+                      e = level_texel(level, channels, bits, row + 1u, column + 1u, c);
+        const int64_t upper = (65536 - across) * a + across * b, lower = (65536 - across) * d + across * e;
+        sums[c] += static_cast<uint64_t>((65536 - down) * upper + down * lower); /* each term < 2^47 */
+        if (Slopes) add_slopes(a, b, d, e, across, down, &slopes[0][c], &slopes[1][c]);
+    }
+}
+
+} // namespace
+
+#endif /* DSN_FILTERING */
+
+#endif /* DSN_LEVEL_READ_H */

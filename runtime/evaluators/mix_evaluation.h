@@ -1,0 +1,107 @@
+/* runtime/evaluators/mix_evaluation.h - what the mix's evaluators share (mix_point.cpp: lattice and
+   continuous; mix_filtered.cpp: filtered): the checks of a call and its zeroed output, a material's own
+   evaluators where the weights are that material's alone (tile_material), its weighted offsets, and the
+   continuous point that an unfiltered footprint gives. Internal to libdsn; not installed. */
+#ifndef DSN_MIX_EVALUATION_H
+#define DSN_MIX_EVALUATION_H
+
+#include "core/continuous_internal.h"
+#include "core/mix_weights.h"
+#include "core/normalize_fixed.h"
+
+#if DSN_MIXING
+
+namespace {
+
+/* Whether a point-minus-impulse offset (Q32.32) lies within (-(radius + 1), radius + 1) texels. */
+inline bool within_reach(int64_t offset, uint32_t radius) {
+    const uint64_t reach = static_cast<uint64_t>(radius + 1u) << 32;
+    return static_cast<uint64_t>(offset) + reach - 1u < 2u * reach - 1u;
+}
+
+/* floor(offset w / 2^14), exactly, for |offset| < 2^61 and w <= 2^14. */
+inline int64_t weighted_offset(int64_t offset, uint32_t weight) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    const int64_t high = static_cast<int64_t>((static_cast<uint64_t>(offset) + bias) >> mix_weight_bits) -
+                         static_cast<int64_t>(bias >> mix_weight_bits);
+    const int64_t low = offset - high * (static_cast<int64_t>(1) << mix_weight_bits); /* in [0, 2^14) */
+    return high * static_cast<int64_t>(weight) + ((low * static_cast<int64_t>(weight)) >> mix_weight_bits);
+}
+
+/* The noise of one material (the mix where the weights are that material's alone), as the mix's channels:
+   a grey material's value in each. */
+inline const dsn_noise *as_noise(const dsn_noise_state *material) {
+    return static_cast<const dsn_noise *>(static_cast<const void *>(material));
+}
+
+inline void spread_channels(const dsn_mix_state *mix, const dsn_noise_state *material, int32_t *out) {
+    if (material->asset.channels == 1)
+        for (uint32_t c = 1; c < mix->channels; c++) out[c] = out[0];
+}
+
+inline uint32_t values_per_point(const dsn_mix_state *mix) {
+    return dsn_mix_configured(mix) ? mix->channels : 1u;
+}
+
+inline int check_call(const dsn_mix_state *mix, const dsn_mix_control *control, bool continuous) {
+    if (!dsn_mix_configured(mix)) return DSN_ERR_NULL;
+    const int err = mix_control_check(control);
+    if (err != DSN_OK || !continuous) return err;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const int mode = dsn_internal_continuous_check(&mix->material[m]);
+        if (mode != DSN_OK) return mode;
+    }
+    return DSN_OK;
+}
+
+/* The `points` points of output zeroed on an error but DSN_ERR_TILE_SIZE; returns err. */
+inline int output_error(int err, const dsn_mix_state *mix, void *out, dsn_output_kind kind, size_t points) {
+    if (err != DSN_OK && err != DSN_ERR_TILE_SIZE && out != 0)
+        __builtin_memset(out, 0, points * values_per_point(mix) * (kind == dsn_output_u8 ? 1u : 4u));
+    return err;
+}
+
+inline int tile_size_check(uint32_t width, uint32_t height) {
+    return width == 0 || height == 0 || width > DSN_TILE_MAX_SIDE || height > DSN_TILE_MAX_SIDE
+               ? DSN_ERR_TILE_SIZE
+               : DSN_OK;
+}
+
+/* The material whose weights a tile's whole reach has alone (its own tile function then gives the mix's
+   bits), or count where the weights mix or may: positions [low, high] per axis, Q32.32. */
+inline uint32_t tile_material(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t low_x,
+                              uint64_t low_y, uint64_t high_x, uint64_t high_y) {
+    const MixRegion region = mix_region(control, mix->count, low_x, low_y, high_x, high_y, 1024u);
+    return region.single ? region.only : mix->count;
+}
+
+/* Whether the grid's points lie within a box that a region can describe: its corners' offsets from the
+   origin, low and high per axis (Q32.32), each step under 2^46 (so a side's span stays below 2^62) and
+   the box under 2^30 texels. */
+inline bool grid_box(const dsn_grid *grid, uint32_t width, uint32_t height, int64_t *low_x, int64_t *low_y,
+                     int64_t *high_x, int64_t *high_y) {
+    const int64_t steps[4] = {grid->column_step_x, grid->row_step_x, grid->column_step_y, grid->row_step_y};
+    const int64_t limit = static_cast<int64_t>(1) << 46;
+    for (uint32_t k = 0; k < 4; k++)
+        if (steps[k] >= limit || steps[k] <= -limit) return false;
+    const int64_t columns = static_cast<int64_t>(width) - 1, rows = static_cast<int64_t>(height) - 1;
+    int64_t *lows[2] = {low_x, low_y}, *highs[2] = {high_x, high_y};
+    for (uint32_t axis = 0; axis < 2; axis++) {
+        const int64_t along_row = steps[2 * axis] * columns, along_column = steps[2 * axis + 1] * rows;
+        *lows[axis] = (along_row < 0 ? along_row : 0) + (along_column < 0 ? along_column : 0);
+        *highs[axis] = (along_row > 0 ? along_row : 0) + (along_column > 0 ? along_column : 0);
+        if (*highs[axis] - *lows[axis] >= (static_cast<int64_t>(1) << 62)) return false;
+    }
+    return true;
+}
+
+} // namespace
+
+/* The mix's values at the continuous point (x, y), Q32.32, for a mix and control that passed check_call
+   (mix_point.cpp). */
+void dsn_internal_mix_continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x,
+                                       uint64_t y, int32_t *out);
+
+#endif /* DSN_MIXING */
+
+#endif /* DSN_MIX_EVALUATION_H */

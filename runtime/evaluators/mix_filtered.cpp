@@ -1,0 +1,305 @@
+/* runtime/evaluators/mix_filtered.cpp - the filtered evaluation of a mix (dsn.h, "Mixing"): per material,
+   filtered_point.cpp's steps (its plan, its one or two levels, their blend over the taps, one rounding)
+   over the impulses that picked it, with its offsets and mean weighted by the point's weight of the
+   material, the materials' values then summed; where the weights are one material's alone, that
+   material's own filtered point or tile. Compiled with DSN_MIXING and DSN_FILTERING. */
+#include "core/cell_walk.h"
+#include "core/continuous_sift.h"
+#include "core/filtered_internal.h"
+#include "core/grid_points.h"
+#include "core/impulse_position.h"
+#include "core/level_read.h"
+#include "core/poisson_count.h"
+#include "evaluators/mix_evaluation.h"
+
+#if DSN_MIXING && DSN_FILTERING
+
+namespace {
+
+typedef dsn_filter_plan MixPlans[DSN_MIX_MAX_MATERIALS];
+
+/* Every material's plan of the footprint (each clamps the level of detail to its own pyramid): DSN_OK or
+   the plan's error. */
+int mix_plans(const dsn_mix_state *mix, const dsn_footprint *footprint, MixPlans plans) {
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const int err = dsn_internal_filter_plan(footprint, mix->material[m].asset.pyramid_levels, &plans[m]);
+        if (err != DSN_OK) return err;
+    }
+    return DSN_OK;
+}
+
+/* The offsets from a point (Q32.32, low and high per axis) within which lie the impulses that its
+   filtered evaluation reads, floors included: every material's taps and the reach of its levels. False
+   when they span 2^30 texels or more (a region cannot describe them). */
+bool filtered_reach(const dsn_mix_state *mix, const MixPlans plans, int64_t *low, int64_t *high) {
+    const int64_t limit = static_cast<int64_t>(1) << 62;
+    low[0] = low[1] = high[0] = high[1] = 0;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        dsn_walked_level walked[2];
+        uint32_t radius[2];
+        const uint32_t count = dsn_internal_filter_walked_levels(&mix->material[m], &plans[m], walked);
+        dsn_filter_walk_radii(walked, count, &radius[0], &radius[1]);
+        for (uint32_t tap = 0; tap < plans[m].taps; tap++)
+            for (uint32_t axis = 0; axis < 2; axis++) {
+                const int64_t offset = axis == 0 ? plans[m].offset_x[tap] : plans[m].offset_y[tap];
+                const int64_t reach = static_cast<int64_t>(radius[axis] + 2u) << 32;
+                if (offset >= limit || offset <= -limit) return false;
+                low[axis] = offset - reach < low[axis] ? offset - reach : low[axis];
+                high[axis] = offset + reach > high[axis] ? offset + reach : high[axis];
+            }
+    }
+    return high[0] - low[0] < limit && high[1] - low[1] < limit;
+}
+
+/* The weights' region around the point's filtered reach, or a region that reads them per impulse. */
+MixRegion filtered_region(const dsn_mix_state *mix, const dsn_mix_control *control, const MixPlans plans,
+                          uint64_t x, uint64_t y) {
+    int64_t low[2], high[2];
+    if (!filtered_reach(mix, plans, low, high)) {
+        MixRegion region;
+        region.uniform = region.single = false;
+        region.only = 0;
+        region.weights = MixWeights();
+        return region;
+    }
+    return mix_region(control, mix->count, x + static_cast<uint64_t>(low[0]),
+                      y + static_cast<uint64_t>(low[1]), x + static_cast<uint64_t>(high[0]),
+                      y + static_cast<uint64_t>(high[1]), 64u);
+}
+
+/* The sums of `count` levels of material m at each tap of its plan around (x, y), over the impulses of
+   material 0's process that picked m: filtered_walk.cpp's tap-by-tap walk, each impulse within reach of
+   the levels picking its material first. */
+void material_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                   uint32_t m, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
+                   const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums) {
+    const dsn_noise_state *lead = &mix->material[0];
+    const dsn_asset *asset = &mix->material[m].asset;
+    const uint32_t shift = lead->cell_shift;
+    uint32_t radius_x, radius_y;
+    dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        const uint64_t tap_x = x + static_cast<uint64_t>(plan->offset_x[tap]);
+        const uint64_t tap_y = y + static_cast<uint64_t>(plan->offset_y[tap]);
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
+        const PointAxis wx = point_axis(tap_x, radius_x, shift, lead->period[0]);
+        const PointAxis wy = point_axis(tap_y, radius_y, shift, lead->period[1]);
+        for (uint32_t sy = 0; sy < wy.axis.span_count; sy++) {
+            const dsn_span span_y = dsn_axis_span(&wy.axis, sy);
+            for (uint32_t j = 0; j < span_y.cell_count; j++) {
+                const uint32_t cell_y = dsn_span_cell(&span_y, j, shift), origin_y = cell_y << shift;
+                const uint32_t row_key = dsn_row_key(lead, cell_y);
+                for (uint32_t sx = 0; sx < wx.axis.span_count; sx++) {
+                    const dsn_span span_x = dsn_axis_span(&wx.axis, sx);
+                    for (uint32_t i = 0; i < span_x.cell_count; i++) {
+                        const uint32_t cell_x = dsn_span_cell(&span_x, i, shift), origin_x = cell_x << shift;
+                        const uint32_t key = dsn_cell_key_in_row(lead, cell_x, row_key);
+                        const uint32_t impulses = dsn_cell_impulse_count(lead, key);
+                        for (uint32_t k = 0; k < impulses; k++) {
+                            const uint32_t hash = dsn_impulse_hash(lead, key, k);
+                            int64_t dx, dy;
+                            if (!impulse_offset(wy, span_y, origin_y, dsn_impulse_bits_y(hash), &dy) ||
+                                !impulse_offset(wx, span_x, origin_x, dsn_impulse_bits_x(hash), &dx) ||
+                                !within_reach(dx, radius_x) || !within_reach(dy, radius_y) ||
+                                impulse_material(control, mix->count, region, key, k,
+                                                 tap_x - static_cast<uint64_t>(dx),
+                                                 tap_y - static_cast<uint64_t>(dy)) != m)
+                                continue;
+                            for (uint32_t l = 0; l < count; l++)
+                                add_level<false>(levels[l], asset->channels, asset->bits, dx, dy,
+                                                 sums[tap][l], 0);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* Material m's term of the filtered mix at (x, y): filtered_point.cpp's steps on a copy of the material
+   whose offsets and mean are weighted by `weight` (Q2.14), over its impulses. */
+void material_value(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                    uint32_t m, uint64_t x, uint64_t y, const dsn_filter_plan *plan, uint32_t weight,
+                    int32_t *out) {
+    dsn_noise_state weighted = mix->material[m];
+    for (uint32_t c = 0; c < weighted.asset.channels; c++) {
+        weighted.offset[c] = weighted_offset(weighted.offset[c], weight);
+        for (uint32_t l = 0; l < 8; l++)
+            weighted.level_offset[l][c] = weighted_offset(weighted.level_offset[l][c], weight);
+        weighted.asset.mean[c] = static_cast<int32_t>(weighted_offset(weighted.asset.mean[c], weight));
+    }
+    if (dsn_internal_filter_fade(&weighted, plan, out)) return;
+    dsn_walked_level walked[2];
+    const uint32_t count = dsn_internal_filter_walked_levels(&weighted, plan, walked);
+    dsn_filter_sums sums;
+    material_sums(mix, control, region, m, x, y, plan, walked, count, sums);
+    int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        for (uint32_t l = 0; l < count; l++) {
+            int64_t values[DSN_MAX_CHANNELS] = {0, 0, 0};
+            dsn_internal_filter_level_values(&weighted, &walked[l], sums[tap][l], values);
+            dsn_internal_filter_add_level(&weighted, plan, l, values, totals);
+        }
+        if (count == 1) dsn_internal_filter_add_mean(&weighted, plan, totals);
+    }
+    dsn_internal_filter_round(&weighted, plan, totals, out);
+}
+
+void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
+                    const MixPlans plans, int32_t *out) {
+    const MixRegion region = filtered_region(mix, control, plans, x, y);
+    if (region.single) {
+        const dsn_noise_state *material = &mix->material[region.only];
+        dsn_internal_filtered_point(material, x, y, &plans[region.only], out);
+        spread_channels(mix, material, out);
+        return;
+    }
+    if (plans[0].lod_q8 == 0 && plans[0].taps == 1) { /* unfiltered: the continuous mix, as a noise's */
+        dsn_internal_mix_continuous_point(mix, control, x, y, out);
+        return;
+    }
+    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
+    int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
+    for (uint32_t m = 0; m < mix->count; m++) {
+        int32_t value[DSN_MAX_CHANNELS];
+        const uint32_t channels = mix->material[m].asset.channels;
+        material_value(mix, control, region, m, x, y, &plans[m], weights[m], value);
+        for (uint32_t c = 0; c < mix->channels; c++) totals[c] += value[channels == 1 ? 0 : c];
+    }
+    for (uint32_t c = 0; c < mix->channels; c++)
+        out[c] = totals[c] > INT32_MAX   ? INT32_MAX
+                 : totals[c] < INT32_MIN ? INT32_MIN
+                                         : static_cast<int32_t>(totals[c]);
+}
+
+int filtered_point_as(const dsn_mix *handle, const dsn_mix_control *control, int64_t x, int64_t y,
+                      const dsn_footprint *footprint, void *out, dsn_output_kind kind) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    if (out == 0) return DSN_ERR_NULL;
+    MixPlans plans;
+    int err = check_call(mix, control, true);
+    if (err == DSN_OK) err = mix_plans(mix, footprint, plans);
+    if (err != DSN_OK) return output_error(err, mix, out, kind, 1);
+    int32_t value[DSN_MAX_CHANNELS];
+    filtered_point(mix, control, static_cast<uint64_t>(x), static_cast<uint64_t>(y), plans, value);
+    dsn_store_pixel(out, kind, 0, value, mix->channels);
+    return DSN_OK;
+}
+
+/* A material's own filtered tile where the tile's whole reach has its weights alone; -1 where not. */
+int single_material_tile(const dsn_mix_state *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                         uint32_t max_taps, const MixPlans plans, uint32_t width, uint32_t height, void *out,
+                         dsn_output_kind kind, void *scratch, size_t scratch_size) {
+    int64_t low_x, low_y, high_x, high_y, low[2], high[2];
+    if (!grid_box(grid, width, height, &low_x, &low_y, &high_x, &high_y) ||
+        !filtered_reach(mix, plans, low, high))
+        return -1;
+    const uint64_t origin_x = static_cast<uint64_t>(grid->origin_x),
+                   origin_y = static_cast<uint64_t>(grid->origin_y);
+    if (high_x - low_x + high[0] - low[0] >= (static_cast<int64_t>(1) << 62) ||
+        high_y - low_y + high[1] - low[1] >= (static_cast<int64_t>(1) << 62))
+        return -1;
+    const uint32_t only = tile_material(mix, control, origin_x + static_cast<uint64_t>(low_x + low[0]),
+                                        origin_y + static_cast<uint64_t>(low_y + low[1]),
+                                        origin_x + static_cast<uint64_t>(high_x + high[0]),
+                                        origin_y + static_cast<uint64_t>(high_y + high[1]));
+    if (only >= mix->count || mix->material[only].asset.channels != mix->channels) return -1;
+    const dsn_noise *material = as_noise(&mix->material[only]);
+    if (scratch_size < dsn_filtered_tile_scratch_size(material, grid, max_taps, width, height)) return -1;
+    if (kind == dsn_output_fixed)
+        return dsn_filtered_tile_fixed(material, grid, max_taps, width, height, static_cast<int32_t *>(out),
+                                       scratch, scratch_size);
+    if (kind == dsn_output_float)
+        return dsn_filtered_tile_float(material, grid, max_taps, width, height, static_cast<float *>(out),
+                                       scratch, scratch_size);
+    return dsn_filtered_tile_u8(material, grid, max_taps, width, height, static_cast<uint8_t *>(out), scratch,
+                                scratch_size);
+}
+
+int filtered_tile_as(const dsn_mix *handle, const dsn_mix_control *control, const dsn_grid *grid,
+                     uint32_t max_taps, uint32_t width, uint32_t height, void *out, dsn_output_kind kind,
+                     void *scratch, size_t scratch_size) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    const size_t points = static_cast<size_t>(width) * height;
+    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
+    if (out == 0) return DSN_ERR_NULL;
+    int err = check_call(mix, control, true);
+    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
+    MixPlans plans;
+    if (err == DSN_OK) {
+        /* the footprint of every pixel: the grid's steps */
+        const dsn_footprint footprint = {grid->column_step_x, grid->column_step_y, grid->row_step_x,
+                                         grid->row_step_y, max_taps};
+        err = mix_plans(mix, &footprint, plans);
+    }
+    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    const int single = single_material_tile(mix, control, grid, max_taps, plans, width, height, out, kind,
+                                            scratch, scratch_size);
+    if (single >= 0) return single;
+    dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
+        int32_t value[DSN_MAX_CHANNELS];
+        filtered_point(mix, control, x, y, plans, value);
+        dsn_store_pixel(out, kind, index, value, mix->channels);
+    });
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+int dsn_mix_filtered_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                                 const dsn_footprint *footprint, int32_t *out) {
+    return filtered_point_as(mix, control, x, y, footprint, out, dsn_output_fixed);
+}
+
+int dsn_mix_filtered_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
+                                 const dsn_footprint *footprint, float *out) {
+    return filtered_point_as(mix, control, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y),
+                             footprint, out, dsn_output_float);
+}
+
+int dsn_mix_filtered_point_u8(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                              const dsn_footprint *footprint, uint8_t *out) {
+    return filtered_point_as(mix, control, x, y, footprint, out, dsn_output_u8);
+}
+
+size_t dsn_mix_filtered_tile_scratch_size(const dsn_mix *handle, const dsn_grid *grid, uint32_t max_taps,
+                                          uint32_t width, uint32_t height) {
+    const dsn_mix_state *mix = dsn_mix_state_of(handle);
+    size_t most = 0;
+    if (!dsn_mix_configured(mix)) return 0;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const size_t size =
+            dsn_filtered_tile_scratch_size(as_noise(&mix->material[m]), grid, max_taps, width, height);
+        most = size > most ? size : most;
+    }
+    return most;
+}
+
+int dsn_mix_filtered_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                uint32_t max_taps, uint32_t width, uint32_t height, int32_t *out,
+                                void *scratch, size_t scratch_size) {
+    return filtered_tile_as(mix, control, grid, max_taps, width, height, out, dsn_output_fixed, scratch,
+                            scratch_size);
+}
+
+int dsn_mix_filtered_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                                uint32_t max_taps, uint32_t width, uint32_t height, float *out, void *scratch,
+                                size_t scratch_size) {
+    return filtered_tile_as(mix, control, grid, max_taps, width, height, out, dsn_output_float, scratch,
+                            scratch_size);
+}
+
+int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                             uint32_t max_taps, uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                             size_t scratch_size) {
+    return filtered_tile_as(mix, control, grid, max_taps, width, height, out, dsn_output_u8, scratch,
+                            scratch_size);
+}
+
+} // extern "C"
+
+#endif /* DSN_MIXING && DSN_FILTERING */
