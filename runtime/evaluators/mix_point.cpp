@@ -24,7 +24,6 @@ typedef uint32_t LatticeSums[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
 
 /* ---- The walks ---- */
 
-
 /* The region of grid samples that the impulses around the integer point (x, y) may read: their floors lie
    within reach_x, reach_y texels. */
 MixRegion region_around(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
