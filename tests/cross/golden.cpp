@@ -902,6 +902,37 @@ int mix_floats(const dsn_mix_control *control, Fnv *hash) {
     return DSN_OK;
 }
 
+#if DSN_FILTERING
+/* The filtered mix: a minification by 11/4 with shear, one by 3 (level of detail about 1.6) and a
+   magnification (unfiltered), per point under each grid's footprint (4 taps), then as tiles. */
+const Grid mix_filtered_grid = {
+    {5 * q32_one, -3 * q32_one, 3 * q32_one, q32_one / 2, -q32_one / 2, 3 * q32_one}, 6, 4};
+const Grid *const mix_filtered_grids[] = {&continuous_grids[2], &mix_filtered_grid, &affine_grids[4]};
+
+int mix_filtered(const dsn_mix_control *control, Fnv *hash) {
+    const uint32_t channels = dsn_mix_channels(&golden_mix);
+    for (uint32_t g = 0; g < GOLDEN_COUNT(mix_filtered_grids); g++) {
+        const Grid &grid = *mix_filtered_grids[g];
+        const dsn_footprint footprint = grid_footprint(grid, 4);
+        for (uint32_t j = 0; j < grid.height; j++)
+            for (uint32_t i = 0; i < grid.width; i++) {
+                int32_t values[DSN_MAX_CHANNELS];
+                int64_t x, y;
+                grid_point(grid.grid, i, j, &x, &y);
+                const int err = dsn_mix_filtered_point_fixed(&golden_mix, control, x, y, &footprint, values);
+                if (err != DSN_OK) return err;
+                hash_fixed(hash, values, channels);
+            }
+        const int err =
+            dsn_mix_filtered_tile_fixed(&golden_mix, control, &grid.grid, 4, grid.width, grid.height,
+                                        tile_fixed_values, tile_scratch, scratch_capacity);
+        if (err != DSN_OK) return err;
+        hash_fixed(hash, tile_fixed_values, grid.width * grid.height * channels);
+    }
+    return DSN_OK;
+}
+#endif
+
 const struct {
     const char *name;
     MixEvaluator evaluate;
@@ -911,6 +942,9 @@ const struct {
     {"m-c-point", mix_continuous_points},
     {"m-c-tile", mix_continuous_tiles}, /* the same bytes as "m-c-point" */
     {"m-float", mix_floats},
+#if DSN_FILTERING
+    {"m-f-point", mix_filtered}, /* points, then the same as tiles */
+#endif
 };
 
 /* Writes the mix kinds' lines; returns the number of assets that failed. */
