@@ -804,7 +804,8 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    Materials of different kinds. Grey and RGB materials mix: the mix has 3 channels if any material has,
    and a grey material adds its one value to each. 8- and 16-bit textons, lattice and bilinear bakes, any
    sizes mix. Materials with a histogram mapping are refused (DSN_ERR_UNSUPPORTED): configure them with
-   DSN_FLAG_NO_HISTOGRAM. The continuous functions check every material as dsn_continuous_check does.
+   DSN_FLAG_NO_HISTOGRAM. The continuous and filtered functions check every material as
+   dsn_continuous_check does.
 
    Cost. Where every weight sample around a point (the samples its impulses and itself read) holds one
    material's weights alone, the point is that material's noise on material 0's impulses, and the mix
