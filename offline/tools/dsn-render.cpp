@@ -77,8 +77,8 @@ const char *const kUsageHead =
     "  --mix B.dsnt[,C.dsnt,D.dsnt]\n"
     "                       mix the asset A (material 0, whose seed, density and cells the mix\n"
     "                       takes) with these materials, each impulse carrying one of them, drawn\n"
-    "                       from --weights at its position (the runtime's dsn_mix); the continuous\n"
-    "                       mode then reads the noise unfiltered (--filter none)\n"
+    "                       from --weights at its position (the runtime's dsn_mix), in every mode,\n"
+    "                       filtered too\n"
     "  --weights W.png      the mixing weights, one image pixel per weight sample: a grey image for\n"
     "                       two materials (black: A, white: B, grey between), else one channel per\n"
     "                       material (R: A, G: B, B: C; PNG, JPEG or PGM/PPM; alpha ignored)\n"
@@ -280,11 +280,6 @@ Options parse_options(dsn::CommandLine &command_line) {
     if (options.mix_paths.empty() != options.weights_path.empty())
         throw dsn::UsageError(options.mix_paths.empty() ? "--weights needs --mix (the other materials)"
                                                         : "--mix needs --weights (where each material lies)");
-    if (!options.mix_paths.empty() && (options.filter_given || options.max_taps_given) &&
-        (options.filter != Filter::none || options.max_taps_given))
-        throw dsn::UsageError(
-            "a mix is read unfiltered: leave --filter (or give --filter none) and --max-taps out");
-    if (!options.mix_paths.empty()) options.filter = Filter::none;
     std::vector<dsn::NamedPath> inputs = {{"the input asset", options.asset_path}};
     for (const std::string &path : options.mix_paths) inputs.push_back({"--mix", path});
     if (!options.weights_path.empty()) inputs.push_back({"--weights", options.weights_path});
@@ -428,10 +423,14 @@ int render_mix_strip(const Job &job, uint32_t first_row, const dsn_grid &grid, u
                      Scratch &scratch) {
     std::vector<int32_t> values(static_cast<size_t>(job.width) * rows * job.channels);
     int err;
-    if (job.mode == Mode::continuous) {
+    if (job.mode == Mode::continuous && job.max_taps == 0) {
         const size_t size = dsn_mix_continuous_tile_scratch_size(job.mix, &grid, job.width, rows);
         err = dsn_mix_continuous_tile_fixed(job.mix, job.control, &grid, job.width, rows, values.data(),
                                             scratch.reserve(size), size);
+    } else if (job.mode == Mode::continuous) {
+        const size_t size = dsn_mix_filtered_tile_scratch_size(job.mix, &grid, job.max_taps, job.width, rows);
+        err = dsn_mix_filtered_tile_fixed(job.mix, job.control, &grid, job.max_taps, job.width, rows,
+                                          values.data(), scratch.reserve(size), size);
     } else {
         const int32_t y0 = static_cast<int32_t>(static_cast<uint32_t>(job.lattice_y0) + first_row);
         const size_t size = dsn_mix_lattice_tile_scratch_size(job.mix, job.width, rows);
