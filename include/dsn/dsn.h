@@ -788,8 +788,10 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    an integer in [0, 65280], and T(p) = sum_m V_m(p).
    - An impulse at lattice position p (the floor of its position: the same material in both modes, the
      lattice impulse being the floor of its continuous twin) picks the first m with
-     floor(h T(p) / 2^32) < V_0(p) + ... + V_m(p), h a 32-bit hash of its own (probability V_m / T, to
-     2^-14). Where T(p) = 0 (no weight at all) it picks material 0.
+     floor(h T(p) / 2^32) < V_0(p) + ... + V_m(p), h = mix32(key + (2^31 + 2^30 + k) 0x9E3779B9) for
+     impulse k of the cell with this key (the stream its positions' fractions come from, at other
+     indices; dsn.glsl's dsn_cell_stream), so the probability is V_m / T to 2^-14. Where T(p) = 0 (no
+     weight at all) it picks material 0.
    - The point's weights: w_m(x) = floor(2^14 (V_0 + .. + V_m) / T) - floor(2^14 (V_0 + .. + V_m-1) / T)
      at the point (its continuous position, its lattice point in lattice mode), so they sum to 2^14;
      where T(x) = 0, w_0 = 2^14.
