@@ -141,9 +141,9 @@ extern "C" {
 #endif
 
 #define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 4
+#define DSN_VERSION_MINOR 5
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.4.0"
+#define DSN_VERSION_STRING "1.5.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);
