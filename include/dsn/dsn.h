@@ -773,8 +773,10 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    the evaluated point, in Q2.14, summing to exactly 1. Where the weights are those of one material m over
    the reach of the point, the noise is exactly a noise of material m at density lambda: its mean and
    covariance are material m's (Campbell's theorem, as for one noise); for material 0 it is bit for bit
-   material 0's own noise. Where the weights mix, the mean is the weights' mixture of the means and the
-   covariance at lag h the mixture sum_m w_m C_m(h) (with weights that vary slowly over the reach).
+   material 0's own noise. Where the weights mix, the impulses that pick material m form a Poisson process
+   of intensity w_m lambda, independent of the others' (thinning), so the mean is the weights' mixture of
+   the means and the covariance at lag h the mixture sum_m w_m C_m(h) (with weights that vary slowly over
+   the reach).
    Configure material 0 at the density the mix should have: the other materials' impacts per pixel are
    then lambda |S_m|, whatever their configuration said.
 
