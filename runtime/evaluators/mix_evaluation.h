@@ -95,6 +95,20 @@ inline bool grid_box(const dsn_grid *grid, uint32_t width, uint32_t height, int6
     return true;
 }
 
+/* Material m's value (its channels) added to the mix's totals: a grey material's value to each channel. */
+inline void add_material_value(const dsn_mix_state *mix, uint32_t m, const int32_t *value, int64_t *totals) {
+    const uint32_t channels = mix->material[m].asset.channels;
+    for (uint32_t c = 0; c < mix->channels; c++) totals[c] += value[channels == 1 ? 0 : c];
+}
+
+/* The totals as the mix's output, saturated to int32. */
+inline void store_totals(const dsn_mix_state *mix, const int64_t *totals, int32_t *out) {
+    for (uint32_t c = 0; c < mix->channels; c++)
+        out[c] = totals[c] > INT32_MAX   ? INT32_MAX
+                 : totals[c] < INT32_MIN ? INT32_MIN
+                                         : static_cast<int32_t>(totals[c]);
+}
+
 } // namespace
 
 /* The mix's values at the continuous point (x, y), Q32.32, for a mix and control that passed check_call

@@ -164,14 +164,10 @@ void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, ui
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t m = 0; m < mix->count; m++) {
         int32_t value[DSN_MAX_CHANNELS];
-        const uint32_t channels = mix->material[m].asset.channels;
         material_value(mix, control, region, m, x, y, &plans[m], weights[m], value);
-        for (uint32_t c = 0; c < mix->channels; c++) totals[c] += value[channels == 1 ? 0 : c];
+        add_material_value(mix, m, value, totals);
     }
-    for (uint32_t c = 0; c < mix->channels; c++)
-        out[c] = totals[c] > INT32_MAX   ? INT32_MAX
-                 : totals[c] < INT32_MIN ? INT32_MIN
-                                         : static_cast<int32_t>(totals[c]);
+    store_totals(mix, totals, out);
 }
 
 int filtered_point_as(const dsn_mix *handle, const dsn_mix_control *control, int64_t x, int64_t y,

@@ -205,12 +205,9 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
         int32_t values[DSN_MAX_CHANNELS];
         for (uint32_t c = 0; c < channels; c++) offset[c] = weighted_offset(material->offset[c], weights[m]);
         normalize_material(material, offset, sums[m], values);
-        for (uint32_t c = 0; c < mix->channels; c++) totals[c] += values[channels == 1 ? 0 : c];
+        add_material_value(mix, m, values, totals);
     }
-    for (uint32_t c = 0; c < mix->channels; c++)
-        out[c] = totals[c] > INT32_MAX   ? INT32_MAX
-                 : totals[c] < INT32_MIN ? INT32_MIN
-                                         : static_cast<int32_t>(totals[c]);
+    store_totals(mix, totals, out);
 }
 
 void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
