@@ -1,12 +1,15 @@
 // gpu_pack_test.cpp - dsn_gpu_pack: the documented layout of dsn/gpu.h word by word against the configured
-// noise (grey and RGB, 8 and 16 bits, periods, flags), and its argument errors (nothing written on an error).
+// noise (grey and RGB, 8 and 16 bits, periods, flags), and its argument errors (nothing written on an error);
+// dsn_gpu_mix_pack likewise against the configured mix and its control.
 // Whether dsn.glsl reads the words right is `make gpu-test`'s job.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "dsn/gpu.h"
 #include "fixtures/test_assets.h"
+#include "runtime/setup/mix_state.h"
 #include "runtime/setup/noise_state.h"
 
 namespace {
@@ -125,3 +128,103 @@ TEST_CASE("dsn_gpu_pack: argument errors write nothing") {
     CHECK(dsn_gpu_pack(&failed, words.data(), count) == DSN_ERR_ARGUMENT);
     for (uint32_t word : words) REQUIRE(word == 0xDEADBEEFu);
 }
+
+#if DSN_MIXING
+TEST_CASE("dsn_gpu_mix_pack writes the documented layout: the materials' packs, then the control") {
+    LoadedNoise grey(dsn_test::synthetic_fields(1, 9, 8, DSN_SHAPE_RECTANGLE, 3), dsn_test::make_config(1));
+    LoadedNoise rgb(dsn_test::synthetic_fields(3, 7, 16, DSN_SHAPE_DISK, 3),
+                    dsn_test::make_config(9, 100, 13));
+    const dsn_noise *materials[2] = {&grey.noise, &rgb.noise};
+    dsn_mix mix;
+    REQUIRE(dsn_mix_init(&mix, materials, 2) == DSN_OK);
+    const dsn_mix_state *state = dsn_mix_state_of(&mix);
+    // 3 x 2 samples of 2 bytes: 12 bytes, 3 words
+    const uint8_t weights[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 255};
+    const dsn_mix_control control = {weights, 3, 2, 5, -7, 11, DSN_MIX_PERIODIC_Y};
+    const size_t count = dsn_gpu_mix_word_count(&mix, &control);
+    const size_t first = dsn_gpu_word_count(dsn_mix_material_noise(state, 0));
+    const size_t second = dsn_gpu_word_count(dsn_mix_material_noise(state, 1));
+    REQUIRE(count == DSN_GPU_MIX_HEADER_WORDS + first + second + DSN_GPU_MIX_CONTROL_WORDS + 3);
+    std::vector<uint32_t> words(count + 1, 0xDEADBEEFu);
+    REQUIRE(dsn_gpu_mix_pack(&mix, &control, words.data(), count) == DSN_OK);
+    CHECK(words[count] == 0xDEADBEEFu);
+    CHECK(words[0] == DSN_GPU_MIX_MAGIC);
+    CHECK(words[1] == DSN_GPU_LAYOUT_VERSION);
+    CHECK(words[2] == count);
+    CHECK(words[3] == 2u);
+    CHECK(words[4] == 3u);
+    CHECK(words[5] == state->radius[0]);
+    CHECK(words[6] == state->radius[1]);
+    CHECK(words[7] == state->lattice_radius[0]);
+    CHECK(words[8] == state->lattice_radius[1]);
+    CHECK(words[9] == DSN_GPU_MIX_HEADER_WORDS);
+    CHECK(words[10] == DSN_GPU_MIX_HEADER_WORDS + first);
+    CHECK(words[11] == 0u);
+    CHECK(words[12] == 0u);
+    const size_t control_start = DSN_GPU_MIX_HEADER_WORDS + first + second;
+    CHECK(words[13] == control_start);
+    CHECK(words[14] == 0u);
+    CHECK(words[15] == 0u);
+    // Each material is its own pack: material 1 on material 0's impulse process.
+    for (uint32_t m = 0; m < 2; m++) {
+        const dsn_noise *material = dsn_mix_material_noise(state, m);
+        std::vector<uint32_t> own(dsn_gpu_word_count(material));
+        REQUIRE(dsn_gpu_pack(material, own.data(), own.size()) == DSN_OK);
+        CHECK(std::equal(own.begin(), own.end(), words.begin() + words[9 + m]));
+    }
+    CHECK(words[DSN_GPU_MIX_HEADER_WORDS + first + 12] == words[DSN_GPU_MIX_HEADER_WORDS + 12]); // seed
+    const uint32_t *packed = words.data() + control_start;
+    CHECK(packed[0] == 3u);
+    CHECK(packed[1] == 2u);
+    CHECK(packed[2] == 5u);
+    CHECK(packed[3] == uint32_t(-7));
+    CHECK(packed[4] == 11u);
+    CHECK(packed[5] == DSN_MIX_PERIODIC_Y);
+    CHECK(packed[6] == 0x04030201u);
+    CHECK(packed[7] == 0x08070605u);
+    CHECK(packed[8] == 0xFF0B0A09u);
+
+    // A weight count that is not a multiple of 4: the last word's unused bytes are 0.
+    const dsn_mix_control odd = {weights, 1, 3, 0, 0, 0, 0};
+    const size_t odd_count = dsn_gpu_mix_word_count(&mix, &odd);
+    REQUIRE(odd_count == control_start + DSN_GPU_MIX_CONTROL_WORDS + 2);
+    std::vector<uint32_t> odd_words(odd_count, 0xDEADBEEFu);
+    REQUIRE(dsn_gpu_mix_pack(&mix, &odd, odd_words.data(), odd_count) == DSN_OK);
+    CHECK(odd_words[odd_count - 1] == 0x00000605u);
+}
+
+TEST_CASE("dsn_gpu_mix_pack: argument errors write nothing") {
+    LoadedNoise loaded(dsn_test::synthetic_fields(3, 5, 8, DSN_SHAPE_RECTANGLE, 1), dsn_test::make_config(2));
+    const dsn_noise *materials[1] = {&loaded.noise};
+    dsn_mix mix;
+    REQUIRE(dsn_mix_init(&mix, materials, 1) == DSN_OK);
+    const uint8_t weights[4] = {255, 255, 255, 255};
+    const dsn_mix_control control = {weights, 2, 2, 0, 0, 0, 0};
+    const size_t count = dsn_gpu_mix_word_count(&mix, &control);
+    REQUIRE(count ==
+            DSN_GPU_MIX_HEADER_WORDS + dsn_gpu_word_count(&loaded.noise) + DSN_GPU_MIX_CONTROL_WORDS + 1);
+    std::vector<uint32_t> words(count, 0xDEADBEEFu);
+    CHECK(dsn_gpu_mix_pack(nullptr, &control, words.data(), count) == DSN_ERR_NULL);
+    CHECK(dsn_gpu_mix_pack(&mix, nullptr, words.data(), count) == DSN_ERR_NULL);
+    CHECK(dsn_gpu_mix_pack(&mix, &control, nullptr, count) == DSN_ERR_NULL);
+    CHECK(dsn_gpu_mix_pack(&mix, &control, words.data(), count - 1) == DSN_ERR_ARGUMENT);
+    dsn_mix_control no_weights = control, empty = control, wide = control, flagged = control;
+    no_weights.weights = nullptr;
+    empty.width = 0;
+    wide.spacing_shift = 17;
+    flagged.flags = 4;
+    CHECK(dsn_gpu_mix_pack(&mix, &no_weights, words.data(), count) == DSN_ERR_NULL);
+    for (const dsn_mix_control *bad : {&empty, &wide, &flagged}) {
+        CHECK(dsn_gpu_mix_word_count(&mix, bad) == 0);
+        CHECK(dsn_gpu_mix_pack(&mix, bad, words.data(), count) == DSN_ERR_ARGUMENT);
+    }
+    CHECK(dsn_gpu_mix_word_count(nullptr, &control) == 0);
+    CHECK(dsn_gpu_mix_word_count(&mix, nullptr) == 0);
+    // A mix whose init failed is zeroed: no words, and a null error (as the mix functions say).
+    dsn_mix failed;
+    CHECK(dsn_mix_init(&failed, materials, 0) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_gpu_mix_word_count(&failed, &control) == 0);
+    CHECK(dsn_gpu_mix_pack(&failed, &control, words.data(), count) == DSN_ERR_NULL);
+    for (uint32_t word : words) REQUIRE(word == 0xDEADBEEFu);
+}
+#endif

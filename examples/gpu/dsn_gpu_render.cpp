@@ -4,7 +4,8 @@
 // Headless: EGL on Mesa's surfaceless platform, an OpenGL ES 3.0 context and a GLSL ES 3.00 fragment
 // shader (the language of WebGL2), as a renderer would use it: the packed noise (dsn_gpu_pack) in an R32UI
 // texture, one fragment per pixel writing dsn_color() to an ordinary RGBA8 colour target. With no GPU (or
-// LIBGL_ALWAYS_SOFTWARE=1) Mesa runs it on llvmpipe, a software GPU.
+// LIBGL_ALWAYS_SOFTWARE=1) Mesa runs it on llvmpipe, a software GPU. With --mix, a mix of materials
+// (dsn_gpu_mix_pack, dsn.glsl's dsn_mix_* functions), as dsn-render --mix renders it.
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -23,6 +24,7 @@
 #include "offline/tools/asset_file.h"
 #include "offline/tools/command_line.h"
 #include "offline/tools/file_output.h"
+#include "offline/tools/mix_inputs.h"
 #include "offline/tools/png_output.h"
 #include "offline/tools/render_window.h"
 
@@ -32,7 +34,7 @@ const char *const dsn_glsl =
 #include "include/dsn/dsn.glsl.inc"
     ;
 
-const char *const usage =
+const char *const usage_head =
     "usage: dsn-gpu-render A.dsnt -o OUT.png --size WxH [options]\n"
     "Renders the spot noise of asset A.dsnt over a window of W x H pixels in a GLSL ES 3.00 fragment\n"
     "shader (EGL surfaceless; Mesa's llvmpipe, a software GPU, when there is no GPU). The PNG is the one\n"
@@ -46,7 +48,9 @@ const char *const usage =
     "  --api A            gles30 (default): OpenGL ES 3.0 and GLSL ES 3.00, as in WebGL2; gl45: OpenGL 4.5\n"
     "                     core and GLSL 4.30 (the same shader with umulExtended instead of 16-bit limbs)\n"
     "  --compare-cpu      also render with the C runtime (tiles, one thread), check that the pixels are\n"
-    "                     identical and print both speeds\n"
+    "                     identical and print both speeds\n";
+// then dsn::mix_usage, then
+const char *const usage_tail =
     "  --dump-shaders DIR write the shaders to DIR (for glslangValidator) and exit\n"
     "  --quiet            no summary line (on stdout)\n"
     "Flags take --flag value or --flag=value; --version prints the version.\n"
@@ -63,6 +67,7 @@ struct Options {
     double scale = 1.0, rotate_degrees = 0.0;
     bool compare_cpu = false, quiet = false;
     headless_gl::Api api = headless_gl::Api::gles30;
+    dsn::MixOptions mix;
 };
 
 std::pair<std::string, std::string> split_pair(const std::string &flag, const std::string &text,
@@ -116,6 +121,7 @@ Options parse_options(dsn::CommandLine &arguments) {
                 throw dsn::UsageError("--scale must be within [1/65536, 65536]");
         } else if (arguments.is("--rotate")) {
             options.rotate_degrees = dsn::parse_real(flag, arguments.value());
+        } else if (dsn::parse_mix_flag(arguments, options.mix)) {
         } else {
             arguments.unknown();
         }
@@ -129,8 +135,10 @@ Options parse_options(dsn::CommandLine &arguments) {
     if (!size_given) throw dsn::UsageError("no size given: --size WxH");
     if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
         throw dsn::UsageError("--scale and --rotate need --mode continuous");
-    // Before the GPU context and the render: an output that is the asset or has no folder to go to.
-    dsn::check_outputs({{"the input asset", options.asset_path}}, {{"-o", options.output_path}});
+    // Before the GPU context and the render: an output that is an input or has no folder to go to.
+    std::vector<dsn::NamedPath> inputs = {{"the input asset", options.asset_path}};
+    dsn::check_mix_options(options.mix, inputs);
+    dsn::check_outputs(inputs, {{"-o", options.output_path}});
     return options;
 }
 
@@ -138,26 +146,31 @@ Options parse_options(dsn::CommandLine &arguments) {
 const char *const fragment_main = R"glsl(
 uniform highp usampler2D noise_words;
 uniform uint continuous_mode;
+uniform uint mix_mode;     // 1: the words are a mix's (dsn_gpu_mix_pack)
 uniform uvec4 origin;      // lattice: (x, -, y, -); continuous: Q32.32 (x low, x high, y low, y high)
 uniform uvec4 column_step; // continuous: pixel (i, j) -> (i + 1, j), Q32.32 x then y
 uniform uvec4 row_step;    // continuous: pixel (i, j) -> (i, j + 1)
 layout(location = 0) out vec4 color;
 
-uint dsn_word(uint index) { return texelFetch(noise_words, ivec2(int(index & 1023u), int(index >> 10u)), 0).x; }
+uint dsn_word(uint index) {
+    uint word = dsn_word_base + index; // a mix reads each material's words in turn
+    return texelFetch(noise_words, ivec2(int(word & 1023u), int(word >> 10u)), 0).x;
+}
 
 void main() {
     uvec2 pixel = uvec2(gl_FragCoord.xy); // row 0 is the image's top row: glReadPixels returns it first
     ivec3 value;
     if (continuous_mode == 0u) {
-        value = dsn_lattice_point_fixed(ivec2(int(origin.x + pixel.x), int(origin.z + pixel.y)));
+        ivec2 p = ivec2(int(origin.x + pixel.x), int(origin.z + pixel.y));
+        value = mix_mode != 0u ? dsn_mix_lattice_point_fixed(p) : dsn_lattice_point_fixed(p);
     } else {
         uvec2 x = dsn_add64(origin.xy, dsn_add64(dsn_multiply64(uvec2(pixel.x, 0u), column_step.xy),
                                                  dsn_multiply64(uvec2(pixel.y, 0u), row_step.xy)));
         uvec2 y = dsn_add64(origin.zw, dsn_add64(dsn_multiply64(uvec2(pixel.x, 0u), column_step.zw),
                                                  dsn_multiply64(uvec2(pixel.y, 0u), row_step.zw)));
-        value = dsn_continuous_point_fixed(x, y);
+        value = mix_mode != 0u ? dsn_mix_continuous_point_fixed(x, y) : dsn_continuous_point_fixed(x, y);
     }
-    color = vec4(dsn_color(value), 1.0);
+    color = vec4(mix_mode != 0u ? dsn_mix_color(value) : dsn_color(value), 1.0);
 }
 )glsl";
 
@@ -183,13 +196,31 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// What the window shows: a noise, or a mix (with its control) where `mix` is set.
+struct Source {
+    const dsn_noise *noise;
+    const dsn_mix *mix;
+    const dsn_mix_control *control;
+    uint32_t channels;
+};
+
+// The words the shader reads.
+std::vector<uint32_t> packed_words(const Source &source) {
+    std::vector<uint32_t> words(source.mix ? dsn_gpu_mix_word_count(source.mix, source.control)
+                                           : dsn_gpu_word_count(source.noise));
+    const int err = source.mix ? dsn_gpu_mix_pack(source.mix, source.control, words.data(), words.size())
+                               : dsn_gpu_pack(source.noise, words.data(), words.size());
+    if (err != DSN_OK)
+        throw std::runtime_error(std::string("packing for the GPU: ") + dsn_error_message(err));
+    return words;
+}
+
 // Renders the window on the GPU; returns the pixels (channels per pixel) and the seconds of the draw.
-std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &options, const dsn_noise &noise,
-                                uint32_t channels, double *seconds) {
+std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &options, const Source &source,
+                                double *seconds) {
     const headless_gl::Functions &gl = context.gl;
-    std::vector<uint32_t> words(dsn_gpu_word_count(&noise));
-    const int err = dsn_gpu_pack(&noise, words.data(), words.size());
-    if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_pack: ") + dsn_error_message(err));
+    const uint32_t channels = source.channels;
+    const std::vector<uint32_t> words = packed_words(source);
 
     GLuint program = context.render_program(vertex_shader(context), fragment_shader(context));
     gl.glUseProgram(program);
@@ -224,6 +255,7 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
         origin[2] = static_cast<uint32_t>(dsn::lattice_origin(options.origin_y));
     }
     gl.glUniform1ui(gl.glGetUniformLocation(program, "continuous_mode"), options.mode == Mode::continuous);
+    gl.glUniform1ui(gl.glGetUniformLocation(program, "mix_mode"), source.mix != nullptr);
     gl.glUniform4ui(gl.glGetUniformLocation(program, "origin"), origin[0], origin[1], origin[2], origin[3]);
     gl.glUniform4ui(gl.glGetUniformLocation(program, "column_step"), column[0], column[1], column[2],
                     column[3]);
@@ -270,23 +302,29 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
 }
 
 // The same window with the C runtime's tiles (one thread), for --compare-cpu.
-std::vector<uint8_t> render_cpu(const Options &options, const dsn_noise &noise, uint32_t channels,
-                                double *seconds) {
-    std::vector<uint8_t> pixels(static_cast<size_t>(options.width) * options.height * channels);
+std::vector<uint8_t> render_cpu(const Options &options, const Source &source, double *seconds) {
+    std::vector<uint8_t> pixels(static_cast<size_t>(options.width) * options.height * source.channels);
     std::vector<unsigned char> scratch;
     const auto start = std::chrono::steady_clock::now();
+    const uint32_t width = options.width, height = options.height;
     int err;
     if (options.mode == Mode::continuous) {
         const dsn_grid grid =
             dsn::rotated_grid(options.origin_x, options.origin_y, options.scale, options.rotate_degrees);
-        scratch.resize(dsn_continuous_tile_scratch_size(&noise, &grid, options.width, options.height));
-        err = dsn_continuous_tile_u8(&noise, &grid, options.width, options.height, pixels.data(),
-                                     scratch.data(), scratch.size());
+        scratch.resize(source.mix ? dsn_mix_continuous_tile_scratch_size(source.mix, &grid, width, height)
+                                  : dsn_continuous_tile_scratch_size(source.noise, &grid, width, height));
+        err = source.mix ? dsn_mix_continuous_tile_u8(source.mix, source.control, &grid, width, height,
+                                                      pixels.data(), scratch.data(), scratch.size())
+                         : dsn_continuous_tile_u8(source.noise, &grid, width, height, pixels.data(),
+                                                  scratch.data(), scratch.size());
     } else {
-        scratch.resize(dsn_lattice_tile_scratch_size(&noise, options.width, options.height));
-        err = dsn_lattice_tile_u8(&noise, dsn::lattice_origin(options.origin_x),
-                                  dsn::lattice_origin(options.origin_y), options.width, options.height,
-                                  pixels.data(), scratch.data(), scratch.size());
+        const int32_t x0 = dsn::lattice_origin(options.origin_x), y0 = dsn::lattice_origin(options.origin_y);
+        scratch.resize(source.mix ? dsn_mix_lattice_tile_scratch_size(source.mix, width, height)
+                                  : dsn_lattice_tile_scratch_size(source.noise, width, height));
+        err = source.mix ? dsn_mix_lattice_tile_u8(source.mix, source.control, x0, y0, width, height,
+                                                   pixels.data(), scratch.data(), scratch.size())
+                         : dsn_lattice_tile_u8(source.noise, x0, y0, width, height, pixels.data(),
+                                               scratch.data(), scratch.size());
     }
     *seconds = seconds_since(start);
     if (err != DSN_OK) throw std::runtime_error(std::string("CPU tile: ") + dsn_error_message(err));
@@ -312,14 +350,22 @@ void run(const Options &options) {
     int err = dsn_noise_init(&noise, &asset, &config);
     if (err == DSN_OK && options.mode == Mode::continuous) err = dsn_continuous_check(&noise);
     if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
+    Source source = {&noise, nullptr, nullptr, asset.channels};
+    dsn::MixInputs mix_inputs;
+    if (!options.mix.paths.empty()) {
+        dsn::configure_mix(
+            options.mix, noise, config, options.mode == Mode::continuous,
+            [](const std::string &, const dsn_asset &) {}, mix_inputs);
+        source = {&noise, &mix_inputs.mix, &mix_inputs.control, dsn_mix_channels(&mix_inputs.mix)};
+    }
 
     headless_gl::Context context(options.api);
     double gpu_seconds = 0;
-    const std::vector<uint8_t> pixels = render_gpu(context, options, noise, asset.channels, &gpu_seconds);
+    const std::vector<uint8_t> pixels = render_gpu(context, options, source, &gpu_seconds);
     const double megapixels = options.width * static_cast<double>(options.height) / 1e6;
     if (options.compare_cpu) {
         double cpu_seconds = 0;
-        const std::vector<uint8_t> cpu = render_cpu(options, noise, asset.channels, &cpu_seconds);
+        const std::vector<uint8_t> cpu = render_cpu(options, source, &cpu_seconds);
         if (cpu != pixels) throw std::runtime_error("the GPU's pixels differ from the C runtime's");
         std::printf(
             "dsn-gpu-render: identical to the C runtime; CPU tile (1 thread): %.3f s, %.2f Mpixel/s\n",
@@ -327,7 +373,7 @@ void run(const Options &options) {
     }
     const std::vector<unsigned char> png =
         dsn::encode_png(static_cast<int>(options.width), static_cast<int>(options.height),
-                        static_cast<int>(asset.channels), pixels.data());
+                        static_cast<int>(source.channels), pixels.data());
     dsn::write_file_atomically(options.output_path, png);
     if (!options.quiet)
         std::printf("dsn-gpu-render: %ux%u on %s: %.3f s, %.2f Mpixel/s -> %s\n", options.width,
@@ -338,7 +384,8 @@ void run(const Options &options) {
 } // namespace
 
 int main(int argc, char **argv) {
-    return dsn::run_tool("dsn-gpu-render", usage, argc, argv, [](dsn::CommandLine &arguments) {
+    const std::string usage = std::string(usage_head) + dsn::mix_usage + usage_tail;
+    return dsn::run_tool("dsn-gpu-render", usage.c_str(), argc, argv, [](dsn::CommandLine &arguments) {
         run(parse_options(arguments));
         return 0;
     });

@@ -13,6 +13,11 @@
      gradient walks the value's impulses and reads its texels, with four more wide products per impulse
      and channel (on llvmpipe about 1.1-1.3 times the value); a lattice one walks the window of the point
      and its two neighbours and reads three texels per impulse (on llvmpipe 3-5 times the value).
+     Mixing (dsn.h, "Mixing"): dsn_mix_lattice_point_fixed and dsn_mix_continuous_point_fixed give the
+     bits of the C functions of the same names, from the words of dsn_gpu_mix_pack (a mix and its
+     control); dsn_word must then read word dsn_word_base + index of the buffer (below). One walk over
+     material 0's impulses within the largest reach, each impulse reading its weights (four samples
+     per material) and one texton: no shortcut where the weights are one material's alone.
 
    Versions
      GLSL 4.30 core and GLSL ES 3.10 (compute and fragment shaders) multiply 32 x 32 -> 64 bits with
@@ -37,7 +42,12 @@
      tens of hashes and a few hundred word reads (the README gives counts): meant for shaders that
      need the exact bits (previews matching an offline reference, data), not as the cheapest noise.
      GLSL ES: this file declares `precision highp int;`; code before it (dsn_word, say) needs its own
-     highp declarations (integer samplers too). Layout 1 of dsn/gpu.h. */
+     highp declarations (integer samplers too). The layout of dsn/gpu.h, version 2.
+     A mix: pack it with dsn_gpu_mix_pack (dsn/gpu.h) and define dsn_word after this file, so that it
+     sees dsn_word_base:
+         uint dsn_word(uint index) { return noise_words[dsn_word_base + index]; }
+         ivec3 value = dsn_mix_continuous_point_fixed(x_q32, y_q32);  // or dsn_mix_lattice_point_fixed
+         vec3 rgb = dsn_mix_color(value);                              // the mix's channels */
 
 #ifndef DSN_GLSL_LIMBS
 #if defined(GL_ES) && __VERSION__ < 310
@@ -54,6 +64,11 @@ precision highp float;
 
 /* Word `index` of the packed noise: defined by the shader that includes this file. */
 uint dsn_word(uint index);
+
+/* Where index 0 of dsn_word lies in the buffer: always 0 for one noise. The mixing functions (below) move
+   it to each material's words in turn, so a shader that mixes defines dsn_word, after this file, as
+   reading word dsn_word_base + index of its buffer. */
+uint dsn_word_base = 0u;
 
 /* ---- The layout (dsn/gpu.h) ---- */
 const uint DSN_WORD_CHANNELS = 3u;
@@ -328,19 +343,23 @@ ivec3 dsn_normalize(uvec3 sums) { return dsn_normalize_from(sums, true); }
 
 /* The same for sums with 32 more fraction bits (Q.32, the continuous mode's): the whole parts as above,
    the fractions added once, rounded down, before the final rounding. */
+int dsn_normalize_q32_channel_from(uint c, uint channels, uvec2 sums[3], uvec2 accumulated) {
+    uvec2 fractions = uvec2(0u);
+    for (uint k = 0u; k < channels; k++) {
+        int gain = dsn_gain(c, k);
+        accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(gain, int(sums[k].y)));
+        fractions = dsn_add64(fractions, dsn_multiply_mixed_wide(gain, sums[k].x));
+    }
+    int carried = int(fractions.y);
+    accumulated = dsn_add64(accumulated, uvec2(uint(carried), carried < 0 ? 0xFFFFFFFFu : 0u));
+    return dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
+}
+
 ivec3 dsn_normalize_q32(uvec2 sums[3], bool with_mean) {
     uint channels = dsn_word(DSN_WORD_CHANNELS);
     ivec3 result = ivec3(0);
     for (uint c = 0u; c < channels; c++) {
-        uvec2 accumulated = with_mean ? dsn_offset(c) : uvec2(0u), fractions = uvec2(0u);
-        for (uint k = 0u; k < channels; k++) {
-            int gain = dsn_gain(c, k);
-            accumulated = dsn_add64(accumulated, dsn_multiply_signed_wide(gain, int(sums[k].y)));
-            fractions = dsn_add64(fractions, dsn_multiply_mixed_wide(gain, sums[k].x));
-        }
-        int carried = int(fractions.y);
-        accumulated = dsn_add64(accumulated, uvec2(uint(carried), carried < 0 ? 0xFFFFFFFFu : 0u));
-        int value = dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
+        int value = dsn_normalize_q32_channel_from(c, channels, sums, with_mean ? dsn_offset(c) : uvec2(0u));
         if (c == 0u)
             result.x = value;
         else if (c == 1u)
@@ -490,16 +509,16 @@ uvec2 dsn_slope(int a, int b, int c, int d, int lower_weight, int upper_weight) 
    else the texton index of the lower bracketing texel (0xFFFFFFFF for -1) and the upper one's weight.
    fraction: the low word of the point's coordinate. With entry_edge (the gradient) an impulse exactly
    at the edge where it enters the reach (offset -(radius + 1) texels) is kept: its value is 0, its
-   slope is not. */
+   slope is not. `shifted`: the point-minus-impulse offset plus radius + 1 texels, Q32.32. */
 bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_origin, uint bits16,
-                         bool entry_edge, out uint lower_index, out uint upper_weight) {
+                         bool entry_edge, out uint lower_index, out uint upper_weight, out uvec2 shifted) {
     lower_index = 0u;
     upper_weight = 0u;
-    if (cell_origin + (bits16 >> (16u - axis.shift)) > span.last_position) return false;
     uint whole = 1u + span.base - axis.radius - cell_origin;
     uvec2 in_cell = dsn_shift_left64(uvec2(bits16, 0u), 16u + axis.shift);
     /* offset + (radius + 1) texels; the high word is a small signed number for any impulse in reach */
-    uvec2 shifted = dsn_sub64(uvec2(fraction, whole + axis.radius + 1u), in_cell);
+    shifted = dsn_sub64(uvec2(fraction, whole + axis.radius + 1u), in_cell);
+    if (cell_origin + (bits16 >> (16u - axis.shift)) > span.last_position) return false;
     int high = int(shifted.y);
     if (high < 0 || (high == 0 && shifted.x == 0u && !entry_edge) || high >= int(2u * axis.radius + 2u))
         return false;
@@ -550,11 +569,12 @@ void dsn_continuous_sums(uvec2 x, uvec2 y, bool slopes, out uvec2 sums[3], out u
                         uint hash =
                             dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
                         uint row, row_weight, column, column_weight;
+                        uvec2 shifted_x, shifted_y;
                         if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, slopes, row,
-                                                 row_weight))
+                                                 row_weight, shifted_y))
                             continue;
                         if (!dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, slopes,
-                                                 column, column_weight))
+                                                 column, column_weight, shifted_x))
                             continue;
                         ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight),
                                               int(65536u - row_weight), int(row_weight));
@@ -601,6 +621,330 @@ void dsn_continuous_gradient_fixed(uvec2 x, uvec2 y, out ivec3 value, out ivec3 
     value = dsn_normalize_q32(sums, true);
     dx = dsn_normalize_q32(slope_x, false);
     dy = dsn_normalize_q32(slope_y, false);
+}
+
+/* ---- Mixing (dsn.h, "Mixing"): the words of dsn_gpu_mix_pack (dsn/gpu.h) ---- */
+
+const uint DSN_MIX_WORD_COUNT = 3u;
+const uint DSN_MIX_WORD_CHANNELS = 4u;
+const uint DSN_MIX_WORD_RADIUS = 5u;         /* x, then y */
+const uint DSN_MIX_WORD_LATTICE_RADIUS = 7u; /* x, then y */
+const uint DSN_MIX_WORD_MATERIAL = 9u;       /* where material m's words start */
+const uint DSN_MIX_WORD_CONTROL = 13u;
+
+/* Component i < 4 of v. The mix never indexes a vector or an array by a value that may differ between
+   invocations (an impulse's material): softpipe, Mesa's reference rasterizer, gets such indexing wrong
+   where llvmpipe does not. Writes go through a loop over the four slots instead. */
+uint dsn_mix_at(uvec4 v, uint i) { return i == 0u ? v.x : i == 1u ? v.y : i == 2u ? v.z : v.w; }
+
+/* Word `index` of the whole mix buffer, whichever material's words dsn_word reads now. */
+uint dsn_mix_word(uint index) {
+    uint saved = dsn_word_base;
+    dsn_word_base = 0u;
+    uint word = dsn_word(index);
+    dsn_word_base = saved;
+    return word;
+}
+
+/* The control (dsn_mix_control) as packed: the word where it starts and its fields. */
+struct dsn_mix_grid {
+    uint start, width, height, shift, flags, count;
+    int origin_x, origin_y;
+};
+
+dsn_mix_grid dsn_mix_grid_read() {
+    uint start = dsn_mix_word(DSN_MIX_WORD_CONTROL);
+    return dsn_mix_grid(start, dsn_mix_word(start), dsn_mix_word(start + 1u), dsn_mix_word(start + 2u),
+                        dsn_mix_word(start + 5u), dsn_mix_word(DSN_MIX_WORD_COUNT),
+                        int(dsn_mix_word(start + 3u)), int(dsn_mix_word(start + 4u)));
+}
+
+/* One axis of the grid's bilinear read at a Q32.32 position: (lower sample, upper sample, the upper one's
+   8-bit weight), the lower sample floor((position - origin) / 2^shift) clamped or wrapped. */
+uvec3 dsn_mix_axis(uvec2 position, int origin, uint shift, uint size, bool periodic) {
+    uvec2 relative = uvec2(position.x, position.y - uint(origin));
+    /* floor of the signed whole part over 2^shift, through a 2^31 bias; in [-2^31, 2^31) */
+    int index = int(((relative.y ^ 0x80000000u) >> shift) - (0x80000000u >> shift));
+    uint fraction = dsn_shift_right64(relative, 24u + shift).x & 0xFFu;
+    uint first, second;
+    if (periodic) {
+        first = index < 0 ? size - 1u - (~uint(index)) % size : uint(index) % size;
+        second = first + 1u == size ? 0u : first + 1u;
+    } else {
+        first = index < 0 ? 0u : index >= int(size) ? size - 1u : uint(index);
+        second = index < -1 ? 0u : index >= int(size) - 1 ? size - 1u : uint(index + 1);
+    }
+    return uvec3(first, second, fraction);
+}
+
+/* Material m's weight byte at sample (column, row). */
+uint dsn_mix_sample(dsn_mix_grid grid, uint column, uint row, uint m) {
+    uint i = (row * grid.width + column) * grid.count + m;
+    return (dsn_mix_word(grid.start + 6u + (i >> 2u)) >> (8u * (i & 3u))) & 0xFFu;
+}
+
+/* The running sums V_0 + .. + V_m of the weights at a Q32.32 position (the last, T, in [count - 1]). */
+uvec4 dsn_mix_cumulative(dsn_mix_grid grid, uvec2 x, uvec2 y) {
+    uvec3 ax = dsn_mix_axis(x, grid.origin_x, grid.shift, grid.width, (grid.flags & 1u) != 0u);
+    uvec3 ay = dsn_mix_axis(y, grid.origin_y, grid.shift, grid.height, (grid.flags & 2u) != 0u);
+    uvec4 cumulative = uvec4(0u);
+    uint total = 0u;
+    for (uint m = 0u; m < grid.count; m++) {
+        uint upper =
+            (256u - ax.z) * dsn_mix_sample(grid, ax.x, ay.x, m) + ax.z * dsn_mix_sample(grid, ax.y, ay.x, m);
+        uint lower =
+            (256u - ax.z) * dsn_mix_sample(grid, ax.x, ay.y, m) + ax.z * dsn_mix_sample(grid, ax.y, ay.y, m);
+        total += ((256u - ay.z) * upper + ay.z * lower) >> 8u;
+        cumulative[m] = total;
+    }
+    return cumulative;
+}
+
+/* The material that impulse k of the cell with this key picks at its lattice position (x, y): the first m
+   with floor(h T / 2^32) < V_0 + .. + V_m; material 0 where T is 0. */
+uint dsn_mix_pick(dsn_mix_grid grid, uint key, uint k, uint x, uint y) {
+    uvec4 cumulative = dsn_mix_cumulative(grid, uvec2(0u, x), uvec2(0u, y));
+    uint total = dsn_mix_at(cumulative, grid.count - 1u);
+    if (total == 0u) return 0u;
+    uint draw = dsn_multiply_wide(dsn_cell_stream(key, 0xC0000000u + k), total).y;
+    uint m = 0u;
+    while (m + 1u < grid.count && draw >= dsn_mix_at(cumulative, m)) m++;
+    return m;
+}
+
+/* The point's weights in Q2.14, summing to 2^14: differences of floor(2^14 cumulative / T). */
+uvec4 dsn_mix_point_weights(dsn_mix_grid grid, uvec2 x, uvec2 y) {
+    uvec4 cumulative = dsn_mix_cumulative(grid, x, y), weights = uvec4(0u);
+    uint total = dsn_mix_at(cumulative, grid.count - 1u), before = 0u;
+    for (uint m = 0u; m < grid.count; m++) {
+        uint upto = total == 0u ? 16384u : (dsn_mix_at(cumulative, m) << 14u) / total;
+        weights[m] = upto - before;
+        before = upto;
+    }
+    return weights;
+}
+
+/* floor(offset weight / 2^14) of an int64 offset (two's complement), weight <= 2^14. */
+uvec2 dsn_mix_weighted_offset(uvec2 offset, uint weight) {
+    uvec2 high = uvec2((offset.x >> 14u) | (offset.y << 18u), uint(int(offset.y) >> 14));
+    uvec2 whole = dsn_multiply64(high, uvec2(weight, 0u));
+    return dsn_add64(whole, uvec2(((offset.x & 0x3FFFu) * weight) >> 14u, 0u));
+}
+
+/* The materials' values summed: `totals` per channel (int64 as uvec2), a grey material's value in each. */
+void dsn_mix_add_value(ivec3 value, uint channels, inout uvec2 totals[3]) {
+    for (uint c = 0u; c < 3u; c++) {
+        int v = channels == 1u ? value.x : c == 0u ? value.x : c == 1u ? value.y : value.z;
+        totals[c] = dsn_add64(totals[c], uvec2(uint(v), v < 0 ? 0xFFFFFFFFu : 0u));
+    }
+}
+
+/* The totals saturated to int32, the mix's channels (grey: .x only). */
+ivec3 dsn_mix_output(uvec2 totals[3]) {
+    ivec3 result = ivec3(0);
+    for (uint c = 0u; c < dsn_mix_word(DSN_MIX_WORD_CHANNELS); c++) {
+        int high = int(totals[c].y), low = int(totals[c].x);
+        int value = high == (low < 0 ? -1 : 0) ? low : high < 0 ? int(0x80000000u) : 0x7FFFFFFF;
+        if (c == 0u)
+            result.x = value;
+        else if (c == 1u)
+            result.y = value;
+        else
+            result.z = value;
+    }
+    return result;
+}
+
+/* The words of every material's pack, and whether each may be read in continuous mode. */
+uvec4 dsn_mix_bases(out bool continuous) {
+    uvec4 bases = uvec4(0u);
+    continuous = true;
+    for (uint m = 0u; m < dsn_mix_word(DSN_MIX_WORD_COUNT); m++) {
+        bases[m] = dsn_mix_word(DSN_MIX_WORD_MATERIAL + m);
+        continuous = continuous && dsn_mix_word(bases[m] + DSN_WORD_CONTINUOUS) != 0u;
+    }
+    return bases;
+}
+
+/* Q16.16 values of the mix at lattice point p: one walk of material 0's impulses within the largest
+   lattice reach, each impulse adding its picked material's lattice texton entry to that material's sums;
+   then each material's sums normalized from its weighted mean, and summed (dsn_mix_lattice_point_fixed's
+   bits). */
+ivec3 dsn_mix_lattice_point_fixed(ivec2 p) {
+    bool continuous;
+    uvec4 bases = dsn_mix_bases(continuous);
+    dsn_mix_grid grid = dsn_mix_grid_read();
+    uint x = uint(p.x), y = uint(p.y);
+    uint reach_x = dsn_mix_word(DSN_MIX_WORD_LATTICE_RADIUS),
+         reach_y = dsn_mix_word(DSN_MIX_WORD_LATTICE_RADIUS + 1u);
+    uvec3 sums[4];
+    for (uint m = 0u; m < 4u; m++) sums[m] = uvec3(0u);
+    dsn_word_base = bases.x;
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT);
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    dsn_axis axis_x = dsn_axis_init(x, 1u, reach_x, shift, dsn_word(DSN_WORD_PERIOD));
+    dsn_axis axis_y = dsn_axis_init(y, 1u, reach_y, shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    for (uint span_index_y = 0u; span_index_y < axis_y.span_count; span_index_y++) {
+        dsn_span span_y = dsn_axis_span(axis_y, span_index_y);
+        for (uint i = 0u; i < span_y.cell_count; i++) {
+            uint cell_y = dsn_span_cell(span_y, i, shift), row_key = dsn_row_key(cell_y);
+            uvec2 in_y = dsn_lattice_cell_on_axis(span_y, cell_y, shift);
+            for (uint span_index_x = 0u; span_index_x < axis_x.span_count; span_index_x++) {
+                dsn_span span_x = dsn_axis_span(axis_x, span_index_x);
+                for (uint j = 0u; j < span_x.cell_count; j++) {
+                    uint cell_x = dsn_span_cell(span_x, j, shift);
+                    uvec2 in_x = dsn_lattice_cell_on_axis(span_x, cell_x, shift);
+                    uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
+                    for (uint k = 0u; k < count; k++) {
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        uint offset_x = (field & half_mask) >> drop,
+                             offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        if (offset_x > in_x.y || offset_y > in_y.y) continue;
+                        /* indices in the walk's window (radius reach); the impulse at x + reach - column */
+                        uint column = in_x.x - offset_x, row = in_y.x - offset_y;
+                        if (column > 2u * reach_x || row > 2u * reach_y) continue;
+                        uint m = dsn_mix_pick(grid, key, k, x + reach_x - column, y + reach_y - row);
+                        dsn_word_base = dsn_mix_at(bases, m);
+                        uint width = dsn_word(DSN_WORD_LATTICE_WIDTH),
+                             height = dsn_word(DSN_WORD_LATTICE_HEIGHT);
+                        uint own_column = column - reach_x + dsn_word(DSN_WORD_LATTICE_RADIUS);
+                        uint own_row = row - reach_y + dsn_word(DSN_WORD_LATTICE_RADIUS + 1u);
+                        uvec3 entry = own_column < width && own_row < height
+                                          ? dsn_lattice_texton_entry(own_row * width + own_column,
+                                                                     dsn_word(DSN_WORD_CHANNELS))
+                                          : uvec3(0u);
+                        for (uint slot = 0u; slot < 4u; slot++)
+                            if (slot == m) sums[slot] += entry;
+                        dsn_word_base = bases.x;
+                    }
+                }
+            }
+        }
+    }
+    uvec4 weights = dsn_mix_point_weights(grid, uvec2(0u, x), uvec2(0u, y));
+    uvec2 totals[3];
+    for (uint c = 0u; c < 3u; c++) totals[c] = uvec2(0u);
+    for (uint m = 0u; m < grid.count; m++) {
+        dsn_word_base = dsn_mix_at(bases, m);
+        uint channels = dsn_word(DSN_WORD_CHANNELS);
+        ivec3 value = ivec3(0);
+        for (uint c = 0u; c < channels; c++) {
+            int v = dsn_normalize_channel_from(c, channels, sums[m],
+                                               dsn_mix_weighted_offset(dsn_offset(c), dsn_mix_at(weights, m)));
+            if (c == 0u)
+                value.x = v;
+            else if (c == 1u)
+                value.y = v;
+            else
+                value.z = v;
+        }
+        dsn_mix_add_value(value, channels, totals);
+    }
+    dsn_word_base = 0u;
+    return dsn_mix_output(totals);
+}
+
+/* Q16.16 values of the mix at the continuous point (x, y), Q32.32 as uvec2(low, high): one walk of material
+   0's impulses within the largest reach, each impulse reading its picked material's texton bilinearly
+   (dsn_mix_continuous_point_fixed's bits); all 0 when a material may not be used in continuous mode. */
+ivec3 dsn_mix_continuous_point_fixed(uvec2 x, uvec2 y) {
+    bool continuous;
+    uvec4 bases = dsn_mix_bases(continuous);
+    if (!continuous) return ivec3(0);
+    dsn_mix_grid grid = dsn_mix_grid_read();
+    uint reach_x = dsn_mix_word(DSN_MIX_WORD_RADIUS), reach_y = dsn_mix_word(DSN_MIX_WORD_RADIUS + 1u);
+    uvec2 sums[12];
+    for (uint s = 0u; s < 12u; s++) sums[s] = uvec2(0u);
+    dsn_word_base = bases.x;
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT);
+    dsn_axis px = dsn_axis_init(x.y - 1u, 3u, reach_x, shift, dsn_word(DSN_WORD_PERIOD));
+    dsn_axis py = dsn_axis_init(y.y - 1u, 3u, reach_y, shift, dsn_word(DSN_WORD_PERIOD + 1u));
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    uint diameter_x = 2u * reach_x + 2u, diameter_y = 2u * reach_y + 2u;
+    for (uint sy = 0u; sy < py.span_count; sy++) {
+        dsn_span span_y = dsn_axis_span(py, sy);
+        for (uint sx = 0u; sx < px.span_count; sx++) {
+            dsn_span span_x = dsn_axis_span(px, sx);
+            for (uint j = 0u; j < span_y.cell_count; j++) {
+                uint cell_y = dsn_span_cell(span_y, j, shift), row_key = dsn_row_key(cell_y);
+                uint room_y = 1u + span_y.base - (cell_y << shift) + 1u; /* as dsn_continuous_sums */
+                for (uint i = 0u; i < span_x.cell_count; i++) {
+                    uint cell_x = dsn_span_cell(span_x, i, shift),
+                         room_x = 1u + span_x.base - (cell_x << shift) + 1u;
+                    uint key = dsn_cell_key_in_row(cell_x, row_key), count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
+                    for (uint k = 0u; k < count; k++) {
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        if (room_x - ((field & half_mask) >> drop) > diameter_x ||
+                            room_y - (((field >> half_bits) & half_mask) >> drop) > diameter_y)
+                            continue;
+                        uint hash =
+                            dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
+                        uint row, row_weight, column, column_weight;
+                        uvec2 shifted_x, shifted_y;
+                        if (!dsn_impulse_bracket(y.x, py, span_y, cell_y << shift, hash >> 16u, false, row,
+                                                 row_weight, shifted_y) ||
+                            !dsn_impulse_bracket(x.x, px, span_x, cell_x << shift, hash & 0xFFFFu, false,
+                                                 column, column_weight, shifted_x))
+                            continue;
+                        /* the impulse's lattice position: the floor of point - offset, where shifted is the
+                           offset + reach + 1 texels */
+                        uint at_x = dsn_sub64(uvec2(x.x, x.y + reach_x + 1u), shifted_x).y;
+                        uint at_y = dsn_sub64(uvec2(y.x, y.y + reach_y + 1u), shifted_y).y;
+                        uint m = dsn_mix_pick(grid, key, k, at_x, at_y);
+                        dsn_word_base = dsn_mix_at(bases, m);
+                        uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
+                        uint channels = dsn_word(DSN_WORD_CHANNELS);
+                        /* the same offset in the material's own window; texels beyond it read 0 */
+                        uint own_row = row - reach_y + dsn_word(DSN_WORD_RADIUS + 1u);
+                        uint own_column = column - reach_x + dsn_word(DSN_WORD_RADIUS);
+                        ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight),
+                                              int(65536u - row_weight), int(row_weight));
+                        uvec2 added[3];
+                        for (uint c = 0u; c < 3u; c++)
+                            added[c] = c < channels ? dsn_bilinear(dsn_corners(own_row, own_column, c, width,
+                                                                               height, channels),
+                                                                   weights)
+                                                    : uvec2(0u);
+                        for (uint slot = 0u; slot < 4u; slot++)
+                            if (slot == m)
+                                for (uint c = 0u; c < 3u; c++)
+                                    sums[3u * slot + c] = dsn_add64(sums[3u * slot + c], added[c]);
+                        dsn_word_base = bases.x;
+                    }
+                }
+            }
+        }
+    }
+    uvec4 weights = dsn_mix_point_weights(grid, x, y);
+    uvec2 totals[3];
+    for (uint c = 0u; c < 3u; c++) totals[c] = uvec2(0u);
+    for (uint m = 0u; m < grid.count; m++) {
+        dsn_word_base = dsn_mix_at(bases, m);
+        uint channels = dsn_word(DSN_WORD_CHANNELS);
+        uvec2 material_sums[3] = uvec2[3](sums[3u * m], sums[3u * m + 1u], sums[3u * m + 2u]);
+        ivec3 value = ivec3(0);
+        for (uint c = 0u; c < channels; c++) {
+            int v = dsn_normalize_q32_channel_from(c, channels, material_sums,
+                                                   dsn_mix_weighted_offset(dsn_offset(c), dsn_mix_at(weights, m)));
+            if (c == 0u)
+                value.x = v;
+            else if (c == 1u)
+                value.y = v;
+            else
+                value.z = v;
+        }
+        dsn_mix_add_value(value, channels, totals);
+    }
+    dsn_word_base = 0u;
+    return dsn_mix_output(totals);
 }
 
 /* ---- Coordinates (the C API's conversions, from the IEEE bits) ---- */
@@ -681,10 +1025,16 @@ uint dsn_fixed_to_u8(int value) {
 
 /* The three channels as floats in [0, 1] (grey: the same value in all three), ready for a colour
    attachment: what dsn_lattice_point_u8 gives, divided by 255. */
-vec3 dsn_color(ivec3 fixed_value) {
-    uint channels = dsn_word(DSN_WORD_CHANNELS);
+vec3 dsn_color_of(ivec3 fixed_value, uint channels) {
     uvec3 u8 =
         uvec3(dsn_fixed_to_u8(fixed_value.x), dsn_fixed_to_u8(fixed_value.y), dsn_fixed_to_u8(fixed_value.z));
     if (channels != 3u) u8 = u8.xxx;
     return vec3(u8) / 255.0;
+}
+
+vec3 dsn_color(ivec3 fixed_value) { return dsn_color_of(fixed_value, dsn_word(DSN_WORD_CHANNELS)); }
+
+/* The mix's value as colours (dsn_color for a mix). */
+vec3 dsn_mix_color(ivec3 fixed_value) {
+    return dsn_color_of(fixed_value, dsn_mix_word(DSN_MIX_WORD_CHANNELS));
 }

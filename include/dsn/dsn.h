@@ -819,8 +819,9 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    samples per material, once per point where the samples around it agree), a hash, and one texton; tiles
    and batches go point by point there. make bench's mix_bench reports both against one material. Stack
    under 1 KB per point (a filtered mix point copies a material, about 2.5 KB). Gradients have no mix yet;
-   the filtered mix goes impulse by impulse, per material. Not in the small build
-   (DSN_MIXING). */
+   the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and
+   continuous mix per point with these bits, from the words of dsn_gpu_mix_pack (dsn/gpu.h). Not in the
+   small build (DSN_MIXING). */
 #if DSN_MIXING
 #define DSN_MIX_MAX_MATERIALS 4
 #define DSN_MIX_WORDS (DSN_MIX_MAX_MATERIALS * DSN_NOISE_WORDS + 4) /* 64-bit words */

@@ -6,6 +6,8 @@
      `uint dsn_word(uint index)`: from a shader storage buffer, a uniform buffer or an R32UI texture.
      dsn/dsn.glsl then evaluates the lattice and the continuous mode per point with exactly the bits of
      dsn_lattice_point_fixed and dsn_continuous_point_fixed (integer arithmetic only, in 32-bit words).
+     dsn_gpu_mix_pack does the same for a mix of materials and its control (below), for dsn.glsl's
+     dsn_mix_lattice_point_fixed and dsn_mix_continuous_point_fixed.
 
    How to call it
        uint32_t words[...];                                  // dsn_gpu_word_count(&noise) of them
@@ -76,6 +78,43 @@ size_t dsn_gpu_word_count(const dsn_noise *noise);
    and the shader then gives its Gaussian-space values). On an error nothing is written. Freestanding like the
    rest of the runtime: no allocation, integer arithmetic only. */
 int dsn_gpu_pack(const dsn_noise *noise, uint32_t *words, size_t capacity);
+
+#if DSN_MIXING
+/* ---- Mixing (dsn.h, "Mixing") ----
+   dsn_gpu_mix_pack copies a configured mix and a control into words for dsn.glsl's dsn_mix_* functions:
+   a header, each material as the layout above (each a whole pack, its words relative to its own start),
+   then the control. Word i of the buffer:
+       0            DSN_GPU_MIX_MAGIC ("DSNM" as a little-endian word)
+       1            DSN_GPU_LAYOUT_VERSION
+       2            total number of words (dsn_gpu_mix_word_count)
+       3            materials (1 .. DSN_MIX_MAX_MATERIALS)
+       4            channels of the mix (1 or 3)
+       5, 6         the continuous walk's reach along x, y (the largest texton radius)
+       7, 8         the lattice walk's reach along x, y (the largest lattice texton radius)
+       9 .. 12      the word where material m's pack starts (0 past the materials)
+       13           the word where the control starts (C)
+       14, 15       0 (reserved)
+       16 ..        the materials' packs, one after the other (material 0's holds the impulse process)
+       C .. C + 5   the control's width, height, spacing_shift, origin_x, origin_y (two's complement),
+                    flags
+       C + 6 ..     its weights: byte i of dsn_mix_control.weights in bits 8 (i % 4) .. 8 (i % 4) + 7 of
+                    word C + 6 + i / 4 (the last word's unused bytes 0)
+   The control is last, so a renderer that changes only the weights (not the grid's size) rewrites
+   words C .. of the buffer. */
+#define DSN_GPU_MIX_MAGIC 0x4D4E5344u /* 'D' 'S' 'N' 'M' */
+#define DSN_GPU_MIX_HEADER_WORDS 16u
+#define DSN_GPU_MIX_CONTROL_WORDS 6u /* before the weights */
+
+/* The number of words dsn_gpu_mix_pack writes for `mix` and `control`; 0 for a null or unconfigured mix,
+   or a control that the mix functions refuse. */
+size_t dsn_gpu_mix_word_count(const dsn_mix *mix, const dsn_mix_control *control);
+
+/* Writes the dsn_gpu_mix_word_count(mix, control) words of the layout above to `words`. Returns DSN_OK;
+   DSN_ERR_NULL for a null mix, control, weights or words, or a mix not configured; DSN_ERR_ARGUMENT for a
+   control out of its ranges (dsn_mix_control) or a `capacity` (in words) below the count. On an error
+   nothing is written. */
+int dsn_gpu_mix_pack(const dsn_mix *mix, const dsn_mix_control *control, uint32_t *words, size_t capacity);
+#endif
 
 #ifdef __cplusplus
 }

@@ -29,6 +29,7 @@
 #include "dsn/bake.h"
 #include "dsn/dsn.h"
 #include "file_output.h"
+#include "mix_inputs.h"
 #include "png_output.h"
 #include "render_window.h"
 #include "runtime/setup/format_bytes.h"
@@ -73,18 +74,9 @@ const char *const kUsageHead =
     "  --allow-lattice      continuous mode on a lattice-baked asset anyway (its spectrum is then\n"
     "                       smoothed; the fix is to bake with dsn-bake --interpolation bilinear, the\n"
     "                       default)\n"
-    "  --no-color-transform use the identity colour transform\n"
-    "  --mix B.dsnt[,C.dsnt,D.dsnt]\n"
-    "                       mix the asset A (material 0, whose seed, density and cells the mix\n"
-    "                       takes) with these materials, each impulse carrying one of them, drawn\n"
-    "                       from --weights at its position (the runtime's dsn_mix), in every mode,\n"
-    "                       filtered too\n"
-    "  --weights W.png      the mixing weights, one image pixel per weight sample: a grey image for\n"
-    "                       two materials (black: A, white: B, grey between), else one channel per\n"
-    "                       material (R: A, G: B, B: C; PNG, JPEG or PGM/PPM; alpha ignored)\n"
-    "  --weights-shift S    each weight pixel covers 2^S x 2^S texels, S in 0..16 (default 0), the\n"
-    "                       image's top-left corner at texel (0, 0)\n"
-    "  --weights-periodic   repeat the weight image (else its edge pixels extend it)\n"
+    "  --no-color-transform use the identity colour transform\n";
+// then dsn::mix_usage (the mix is read in every mode, filtered too), then
+const char *const kUsageOptions =
     "  --threads N          worker threads, 1..256 (default: the number of cores)\n"
     "  --time-limit S       refuse a render estimated to take more than S seconds (default 600;\n"
     "                       0 = no limit): a few probe pixels spread over the window are rendered\n"
@@ -111,7 +103,8 @@ const char *const kUsageTail =
 
 std::string usage() {
     const size_t limit = dsn::largest_asset_bytes();
-    return kUsageHead + std::to_string(limit) + " bytes (" + std::to_string(limit / 1024) + kUsageTail;
+    return kUsageHead + std::string(dsn::mix_usage) + kUsageOptions + std::to_string(limit) + " bytes (" +
+           std::to_string(limit / 1024) + kUsageTail;
 }
 
 enum class Mode { tile, point, continuous };
@@ -135,10 +128,7 @@ struct Options {
     unsigned threads = 0;
     double time_limit = 600; // seconds; 0: no limit
     bool quiet = false;
-    std::vector<std::string> mix_paths; // --mix: the other materials
-    std::string weights_path;
-    uint32_t weights_shift = 0;
-    bool weights_periodic = false;
+    dsn::MixOptions mix;
 };
 
 // "AxB" or "A,B" -> the two halves.
@@ -165,29 +155,7 @@ Options parse_options(dsn::CommandLine &command_line) {
         } else if (command_line.is("--no-color-transform")) {
             command_line.no_value();
             options.flags |= DSN_FLAG_NO_COLOR_TRANSFORM;
-        } else if (command_line.is("--weights-periodic")) {
-            command_line.no_value();
-            options.weights_periodic = true;
-        } else if (command_line.is("--mix")) {
-            const std::string list = command_line.value();
-            options.mix_paths.clear();
-            for (size_t start = 0;;) {
-                const size_t comma = list.find(',', start);
-                const std::string path =
-                    list.substr(start, comma == std::string::npos ? comma : comma - start);
-                if (path.empty())
-                    throw dsn::UsageError("--mix needs asset paths separated by ',', not '" + list + "'");
-                options.mix_paths.push_back(path);
-                if (comma == std::string::npos) break;
-                start = comma + 1;
-            }
-            if (options.mix_paths.size() > DSN_MIX_MAX_MATERIALS - 1)
-                throw dsn::UsageError("--mix takes at most " + std::to_string(DSN_MIX_MAX_MATERIALS - 1) +
-                                      " assets (the asset itself is the first material)");
-        } else if (command_line.is("--weights")) {
-            options.weights_path = command_line.path_value();
-        } else if (command_line.is("--weights-shift")) {
-            options.weights_shift = static_cast<uint32_t>(dsn::parse_integer(command_line, 0, 16));
+        } else if (dsn::parse_mix_flag(command_line, options.mix)) {
         } else if (command_line.is_positional()) {
             if (!options.asset_path.empty()) throw dsn::UsageError("more than one asset given: " + flag);
             options.asset_path = flag;
@@ -277,12 +245,8 @@ Options parse_options(dsn::CommandLine &command_line) {
                               std::to_string(options.height) + " is more than the limit of " +
                               std::to_string(kMaxRenderPixels) +
                               " pixels (8192x8192); render it as windows with --origin");
-    if (options.mix_paths.empty() != options.weights_path.empty())
-        throw dsn::UsageError(options.mix_paths.empty() ? "--weights needs --mix (the other materials)"
-                                                        : "--mix needs --weights (where each material lies)");
     std::vector<dsn::NamedPath> inputs = {{"the input asset", options.asset_path}};
-    for (const std::string &path : options.mix_paths) inputs.push_back({"--mix", path});
-    if (!options.weights_path.empty()) inputs.push_back({"--weights", options.weights_path});
+    dsn::check_mix_options(options.mix, inputs);
     dsn::check_outputs(inputs, {{"-o", options.output_path}});
     const char *continuous_flag = options.scale_given      ? "--scale"
                                   : options.rotate_given   ? "--rotate"
@@ -644,75 +608,6 @@ void float32_to_little_endian(float *values, size_t count) {
     }
 }
 
-// What a mix keeps alive while it renders: the materials' asset bytes and noises, the weights.
-struct MixInputs {
-    std::vector<std::vector<unsigned char>> bytes;
-    std::vector<dsn_asset> assets;
-    std::vector<dsn_noise> noises;
-    std::vector<uint8_t> weights;
-    dsn_mix_control control{};
-    dsn_mix mix;
-};
-
-// The weight samples of `count` materials from the image at `path`: a grey image for two (black the
-// first, white the second), else one channel per material.
-void load_weights(const Options &options, uint32_t count, MixInputs &inputs) {
-    const dsn::Image image = dsn::load_exemplar(options.weights_path, nullptr);
-    if (image.channels == 1 && count != 2)
-        throw std::runtime_error(options.weights_path + ": a grey weight image mixes two materials, not " +
-                                 std::to_string(count) + ": give one channel per material (RGB)");
-    if (image.channels != 1 && uint32_t(image.channels) < count)
-        throw std::runtime_error(options.weights_path + ": " + std::to_string(image.channels) +
-                                 " channels for " + std::to_string(count) + " materials");
-    const auto byte = [](double value) {
-        return uint8_t(std::lround(std::min(1.0, std::max(0.0, value)) * 255));
-    };
-    inputs.weights.clear();
-    for (int y = 0; y < image.height; y++)
-        for (int x = 0; x < image.width; x++)
-            for (uint32_t m = 0; m < count; m++) {
-                const uint8_t grey = byte(image.at(x, y, 0));
-                inputs.weights.push_back(image.channels == 1 ? (m == 0 ? uint8_t(255 - grey) : grey)
-                                                             : byte(image.at(x, y, int(m))));
-            }
-    inputs.control.weights = inputs.weights.data();
-    inputs.control.width = uint32_t(image.width);
-    inputs.control.height = uint32_t(image.height);
-    inputs.control.spacing_shift = options.weights_shift;
-    inputs.control.flags = options.weights_periodic ? DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y : 0u;
-}
-
-// The mix of the asset's noise (material 0) and the --mix assets, configured as it is (its flags), with
-// the --weights image.
-void configure_mix(const Options &options, Mode mode, const dsn_noise &noise, const dsn_config &config,
-                   MixInputs &inputs) {
-    const size_t count = options.mix_paths.size() + 1;
-    inputs.bytes.resize(count);
-    inputs.assets.resize(count);
-    inputs.noises.resize(count);
-    inputs.noises[0] = noise;
-    for (size_t m = 1; m < count; m++) {
-        const std::string &path = options.mix_paths[m - 1];
-        inputs.bytes[m] = dsn::load_asset_file(path, inputs.assets[m]);
-        Options material = options;
-        material.asset_path = path;
-        render_mode(material, inputs.assets[m]); // throws where the mode cannot read it
-        const int err = dsn_noise_init(&inputs.noises[m], &inputs.assets[m], &config);
-        if (err != DSN_OK) throw std::runtime_error(path + ": " + dsn_error_message(err));
-        if (mode == Mode::continuous && dsn_continuous_check(&inputs.noises[m]) != DSN_OK)
-            throw std::runtime_error(path + ": " +
-                                     dsn_error_message(dsn_continuous_check(&inputs.noises[m])));
-    }
-    std::vector<const dsn_noise *> materials;
-    for (const dsn_noise &one : inputs.noises) materials.push_back(&one);
-    const int err = dsn_mix_init(&inputs.mix, materials.data(), uint32_t(count));
-    if (err == DSN_ERR_UNSUPPORTED)
-        throw std::runtime_error(
-            "a mix applies no histogram mapping: re-bake the materials without --histogram");
-    if (err != DSN_OK) throw std::runtime_error(std::string("--mix: ") + dsn_error_message(err));
-    load_weights(options, uint32_t(count), inputs);
-}
-
 void run(const Options &options) {
     dsn_asset asset;
     const std::vector<unsigned char> asset_bytes = dsn::load_asset_file(options.asset_path, asset);
@@ -734,10 +629,17 @@ void run(const Options &options) {
     if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
     if (mode == Mode::continuous && (err = dsn_continuous_check(&noise)) != DSN_OK)
         throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
-    MixInputs mix_inputs;
+    dsn::MixInputs mix_inputs;
     uint32_t channels = asset.channels;
-    if (!options.mix_paths.empty()) {
-        configure_mix(options, mode, noise, config, mix_inputs);
+    if (!options.mix.paths.empty()) {
+        dsn::configure_mix(
+            options.mix, noise, config, mode == Mode::continuous,
+            [&options](const std::string &path, const dsn_asset &material) {
+                Options as_material = options;
+                as_material.asset_path = path;
+                render_mode(as_material, material); // throws where the mode cannot read it
+            },
+            mix_inputs);
         channels = dsn_mix_channels(&mix_inputs.mix);
     }
 
@@ -745,7 +647,7 @@ void run(const Options &options) {
                               : options.filter == Filter::iso                            ? 1
                                                                                          : options.max_taps;
     Job job{&noise, mode, 0, 0, {}, options.width, options.height, channels, 0, max_taps};
-    if (!options.mix_paths.empty()) job.mix = &mix_inputs.mix, job.control = &mix_inputs.control;
+    if (!options.mix.paths.empty()) job.mix = &mix_inputs.mix, job.control = &mix_inputs.control;
     if (mode == Mode::continuous)
         job.grid = dsn::rotated_grid(options.origin_x, options.origin_y, options.scale_x, options.scale_y,
                                      options.rotate_degrees);

@@ -28,12 +28,8 @@ inline int64_t weighted_offset(int64_t offset, uint32_t weight) {
     return high * static_cast<int64_t>(weight) + ((low * static_cast<int64_t>(weight)) >> mix_weight_bits);
 }
 
-/* The noise of one material (the mix where the weights are that material's alone), as the mix's channels:
-   a grey material's value in each. */
-inline const dsn_noise *as_noise(const dsn_noise_state *material) {
-    return static_cast<const dsn_noise *>(static_cast<const void *>(material));
-}
-
+/* The value of one material's own noise (the mix where the weights are that material's alone) as the mix's
+   channels: a grey material's value in each. */
 inline void spread_channels(const dsn_mix_state *mix, const dsn_noise_state *material, int32_t *out) {
     if (material->asset.channels == 1)
         for (uint32_t c = 1; c < mix->channels; c++) out[c] = out[0];

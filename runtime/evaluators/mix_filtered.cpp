@@ -202,7 +202,7 @@ int single_material_tile(const dsn_mix_state *mix, const dsn_mix_control *contro
                                         origin_x + static_cast<uint64_t>(high_x + high[0]),
                                         origin_y + static_cast<uint64_t>(high_y + high[1]));
     if (only >= mix->count || mix->material[only].asset.channels != mix->channels) return -1;
-    const dsn_noise *material = as_noise(&mix->material[only]);
+    const dsn_noise *material = dsn_mix_material_noise(mix, only);
     if (scratch_size < dsn_filtered_tile_scratch_size(material, grid, max_taps, width, height)) return -1;
     if (kind == dsn_output_fixed)
         return dsn_filtered_tile_fixed(material, grid, max_taps, width, height, static_cast<int32_t *>(out),
@@ -269,7 +269,7 @@ size_t dsn_mix_filtered_tile_scratch_size(const dsn_mix *handle, const dsn_grid 
     if (!dsn_mix_configured(mix)) return 0;
     for (uint32_t m = 0; m < mix->count; m++) {
         const size_t size =
-            dsn_filtered_tile_scratch_size(as_noise(&mix->material[m]), grid, max_taps, width, height);
+            dsn_filtered_tile_scratch_size(dsn_mix_material_noise(mix, m), grid, max_taps, width, height);
         most = size > most ? size : most;
     }
     return most;

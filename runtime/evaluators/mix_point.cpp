@@ -234,7 +234,8 @@ void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uin
         region_around(mix, control, x, y, mix->lattice_radius[0], mix->lattice_radius[1]);
     if (region.single) {
         const dsn_noise_state *material = &mix->material[region.only];
-        dsn_lattice_point_fixed(as_noise(material), static_cast<int32_t>(x), static_cast<int32_t>(y), out);
+        dsn_lattice_point_fixed(dsn_mix_material_noise(mix, region.only), static_cast<int32_t>(x),
+                                static_cast<int32_t>(y), out);
         spread_channels(mix, material, out);
         return;
     }
@@ -289,7 +290,7 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
                       static_cast<uint64_t>(static_cast<uint32_t>(x0) + width - 1u + reach_x) << 32,
                       static_cast<uint64_t>(static_cast<uint32_t>(y0) + height - 1u + reach_y) << 32);
     if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
-        const dsn_noise *material = as_noise(&mix->material[only]);
+        const dsn_noise *material = dsn_mix_material_noise(mix, only);
         if (kind == dsn_output_fixed)
             return dsn_lattice_tile_fixed(material, x0, y0, width, height, static_cast<int32_t *>(out), 0, 0);
         if (scratch_size >= dsn_lattice_tile_scratch_size(material, width, height))
@@ -332,7 +333,7 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
                                             origin_x + static_cast<uint64_t>(high_x + reach_x),
                                             origin_y + static_cast<uint64_t>(high_y + reach_y));
         if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
-            const dsn_noise *material = as_noise(&mix->material[only]);
+            const dsn_noise *material = dsn_mix_material_noise(mix, only);
             if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height)) {
                 if (kind == dsn_output_fixed)
                     return dsn_continuous_tile_fixed(material, grid, width, height,
@@ -447,7 +448,7 @@ size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *handle, uint32_t width, 
     size_t most = 0;
     if (!dsn_mix_configured(mix)) return 0;
     for (uint32_t m = 0; m < mix->count; m++) {
-        const size_t size = dsn_lattice_tile_scratch_size(as_noise(&mix->material[m]), width, height);
+        const size_t size = dsn_lattice_tile_scratch_size(dsn_mix_material_noise(mix, m), width, height);
         most = size > most ? size : most;
     }
     return most;
@@ -460,7 +461,7 @@ size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *handle, const dsn_gri
     if (!dsn_mix_configured(mix)) return 0;
     for (uint32_t m = 0; m < mix->count; m++) {
         const size_t size =
-            dsn_continuous_tile_scratch_size(as_noise(&mix->material[m]), grid, width, height);
+            dsn_continuous_tile_scratch_size(dsn_mix_material_noise(mix, m), grid, width, height);
         most = size > most ? size : most;
     }
     return most;

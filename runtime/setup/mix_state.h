@@ -38,6 +38,11 @@ inline dsn_mix_state *dsn_mix_state_of(dsn_mix *mix) {
     return static_cast<dsn_mix_state *>(static_cast<void *>(mix));
 }
 
+/* Material m as a noise (its own evaluators and dsn_gpu_pack take it). */
+inline const dsn_noise *dsn_mix_material_noise(const dsn_mix_state *mix, uint32_t m) {
+    return static_cast<const dsn_noise *>(static_cast<const void *>(&mix->material[m]));
+}
+
 /* A 32-bit hash of the counts, reaches and the materials' check values (mix_init.cpp). */
 uint32_t dsn_internal_mix_check(const dsn_mix_state *mix);
 

@@ -1,13 +1,14 @@
 /* golden_kernel.glsl - what one shader invocation of the GPU golden program computes: one point of a
    lattice tile, one point of a continuous grid, or one listed query (a point of any mode, a coordinate
-   conversion), with the output converted as the C API converts it; for a gradient, the value and its
-   two derivatives. The including shader defines golden_query() (where the queries are) and calls
-   golden_evaluate(index, value, dx, dy) (dx and dy are 0 but for a gradient). */
+   conversion), of a noise or of a mix, with the output converted as the C API converts it; for a
+   gradient, the value and its two derivatives. The including shader defines golden_query() (where the
+   queries are) and calls golden_evaluate(index, value, dx, dy) (dx and dy are 0 but for a gradient). */
 
 /* The task of this draw or dispatch. */
 uniform uint task_kind;         /* 0: listed queries, 1: a lattice tile, 2: a continuous grid */
 uniform uint task_output;       /* tiles: 0 fixed Q16.16, 1 float32 bits, 2 u8 */
 uniform uint task_gradient;     /* tiles: 1 for the value with its gradient, else 0 */
+uniform uint task_mix;          /* tiles: 1 when the words are a mix's (dsn_gpu_mix_pack), else 0 */
 uniform uint task_width;        /* tiles: pixels per row */
 uniform uvec4 task_origin;      /* lattice: (x, -, y, -); grid: (x low, x high, y low, y high) */
 uniform uvec4 task_column_step; /* grid: the step to the next pixel of a row, Q32.32 x then y */
@@ -16,7 +17,8 @@ uniform uvec4 task_row_step;    /* grid: the step to the next row */
 /* Query `index` as two uvec4: (mode, x low, x high, y low) and (y high, -, -, -). Modes: bits 0-7 the
    point (0 lattice (x, y) int32, 1 continuous (x, y) Q32.32, 2 continuous from the IEEE bits of two
    doubles, 3 coordinate from a double's bits (x), 4 coordinate from a float's bits (x low)), bits 8-15
-   the output conversion as task_output, bit 16 the gradient (points of modes 0 to 2). */
+   the output conversion as task_output, bit 16 the gradient (points of modes 0 to 2), bit 17 a mix's
+   point (modes 0 and 1). */
 uvec4 golden_query(uint index, uint part);
 
 uvec4 golden_convert(ivec3 value, uint conversion) {
@@ -28,11 +30,14 @@ uvec4 golden_convert(ivec3 value, uint conversion) {
     return uvec4(uvec3(value), 0u);
 }
 
-/* The lattice point p, or the continuous point (x, y): its value alone or with its gradient. */
-void golden_point(bool lattice, ivec2 p, uvec2 x, uvec2 y, bool gradient, uint conversion, out uvec4 value,
-                  out uvec4 dx, out uvec4 dy) {
+/* The lattice point p, or the continuous point (x, y): its value alone or with its gradient, or a mix's
+   value. */
+void golden_point(bool lattice, ivec2 p, uvec2 x, uvec2 y, bool gradient, bool mix, uint conversion,
+                  out uvec4 value, out uvec4 dx, out uvec4 dy) {
     ivec3 v = ivec3(0), gx = ivec3(0), gy = ivec3(0);
-    if (gradient) {
+    if (mix) {
+        v = lattice ? dsn_mix_lattice_point_fixed(p) : dsn_mix_continuous_point_fixed(x, y);
+    } else if (gradient) {
         if (lattice)
             dsn_lattice_gradient_fixed(p, v, gx, gy);
         else
@@ -48,7 +53,7 @@ void golden_point(bool lattice, ivec2 p, uvec2 x, uvec2 y, bool gradient, uint c
 /* One call of each evaluator in the shader (each is inlined where it is called). */
 void golden_evaluate(uint index, out uvec4 value, out uvec4 dx, out uvec4 dy) {
     uint i = index % task_width, j = index / task_width;
-    bool lattice = task_kind == 1u, gradient = task_gradient != 0u;
+    bool lattice = task_kind == 1u, gradient = task_gradient != 0u, mix = task_mix != 0u;
     uint conversion = task_output;
     ivec2 p = ivec2(int(task_origin.x + i), int(task_origin.z + j));
     uvec2 x = uvec2(0u), y = uvec2(0u);
@@ -72,6 +77,7 @@ void golden_evaluate(uint index, out uvec4 value, out uvec4 dx, out uvec4 dy) {
         }
         lattice = point == 0u;
         gradient = ((first.x >> 16u) & 1u) != 0u;
+        mix = ((first.x >> 17u) & 1u) != 0u;
         conversion = (first.x >> 8u) & 0xFFu;
         p = ivec2(int(x.x), int(y.x));
         if (point == 2u) {
@@ -79,5 +85,5 @@ void golden_evaluate(uint index, out uvec4 value, out uvec4 dx, out uvec4 dy) {
             y = dsn_coordinate_from_double_bits(y);
         }
     }
-    golden_point(lattice, p, x, y, gradient, conversion, value, dx, dy);
+    golden_point(lattice, p, x, y, gradient, mix, conversion, value, dx, dy);
 }

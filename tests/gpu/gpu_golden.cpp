@@ -2,8 +2,9 @@
 // it is, with every evaluation it makes (lattice and continuous points, tiles, grids, float and 8-bit
 // conversions, coordinate conversions) done by include/dsn/dsn.glsl in a shader instead of the C runtime.
 // It must print exactly tests/cross/golden.txt (less its h-* kinds: the shaders have no histogram
-// mapping). The gradients (d-* kinds) are dsn.glsl's too: every invocation returns a value and, for a
-// gradient, its two derivatives.
+// mapping). The gradients (d-* kinds) and the mixes (m-* kinds, packed by dsn_gpu_mix_pack) are dsn.glsl's
+// too: every invocation returns a value and, for a gradient, its two derivatives. The filtered kinds
+// (f-*, and the filtered mix in m-f-point) stay the C runtime's: dsn.glsl has no filtering.
 //
 // The golden program asks for one value at a time and hashes it at once; a GPU wants batches. So it runs
 // twice: the first run records every request (answering zeros, printing nothing; nothing it does depends
@@ -70,6 +71,23 @@ int continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, co
                                     uint32_t count, float *out, float *dx, float *dy);
 int64_t coordinate_from_double(double value);
 int64_t coordinate_from_float(float value);
+int mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                            int32_t *out);
+int mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                               int32_t *out);
+int mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
+                               float *out);
+int mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
+                            const int64_t *ys, uint32_t count, uint8_t *out);
+int mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                           uint32_t width, uint32_t height, int32_t *out, void *scratch, size_t scratch_size);
+int mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                           uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size);
+int mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                              uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                              size_t scratch_size);
+int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                           uint32_t width, uint32_t height, uint8_t *out, void *scratch, size_t scratch_size);
 
 } // namespace gpu_golden
 
@@ -97,11 +115,28 @@ int64_t coordinate_from_float(float value);
 #define dsn_continuous_batch_gradient_float gpu_golden::continuous_batch_gradient_float
 #define dsn_coordinate_from_double gpu_golden::coordinate_from_double
 #define dsn_coordinate_from_float gpu_golden::coordinate_from_float
+#define dsn_mix_lattice_point_fixed gpu_golden::mix_lattice_point_fixed
+#define dsn_mix_continuous_point_fixed gpu_golden::mix_continuous_point_fixed
+#define dsn_mix_continuous_point_float gpu_golden::mix_continuous_point_float
+#define dsn_mix_continuous_batch_u8 gpu_golden::mix_continuous_batch_u8
+#define dsn_mix_lattice_tile_fixed gpu_golden::mix_lattice_tile_fixed
+#define dsn_mix_lattice_tile_float gpu_golden::mix_lattice_tile_float
+#define dsn_mix_continuous_tile_fixed gpu_golden::mix_continuous_tile_fixed
+#define dsn_mix_continuous_tile_u8 gpu_golden::mix_continuous_tile_u8
 #define main golden_main
 #define GOLDEN_WITHOUT_HISTOGRAM 1 /* dsn.glsl has no histogram mapping: the h-* kinds are left out */
-#define GOLDEN_WITHOUT_MIXING 1    /* nor mixing: the m-* kinds */
 #include "cross/golden.cpp"
 #undef main
+/* The mixes' own functions again: each replacement takes its error code from the C function (the GPU
+   gives the values). */
+#undef dsn_mix_lattice_point_fixed
+#undef dsn_mix_continuous_point_fixed
+#undef dsn_mix_continuous_point_float
+#undef dsn_mix_continuous_batch_u8
+#undef dsn_mix_lattice_tile_fixed
+#undef dsn_mix_lattice_tile_float
+#undef dsn_mix_continuous_tile_fixed
+#undef dsn_mix_continuous_tile_u8
 
 namespace gpu_golden {
 
@@ -119,6 +154,7 @@ const char *const kernel_glsl =
 enum TaskKind : uint32_t { task_queries = 0, task_lattice_tile = 1, task_grid = 2 };
 enum Conversion : uint32_t { as_fixed = 0, as_float = 1, as_u8 = 2 };
 const uint32_t with_gradient = 1u << 16; /* in a query's mode */
+const uint32_t of_mix = 1u << 17;        /* in a query's mode: the words are a mix's */
 /* Words per value of a result: the value, then the x and y derivatives (0 but for a gradient), each a
    uvec4 of the shader. */
 const uint32_t result_words = 12;
@@ -135,14 +171,15 @@ struct Request {
     size_t noise = 0; /* index into Recorder::noises */
     uint32_t kind = task_queries;
     uint32_t query[5] = {0, 0, 0, 0, 0}; /* mode (point | conversion << 8), x low, x high, y low, y high */
-    uint32_t conversion = as_fixed, gradient = 0, width = 1, height = 1;
+    uint32_t conversion = as_fixed, gradient = 0, mix = 0, width = 1, height = 1;
     uint32_t origin[4] = {0, 0, 0, 0}, column_step[4] = {0, 0, 0, 0}, row_step[4] = {0, 0, 0, 0};
     std::vector<uint32_t> result; /* result_words per value */
 
     bool same_as(const Request &other) const {
         return noise == other.noise && kind == other.kind && !memcmp(query, other.query, sizeof query) &&
-               conversion == other.conversion && gradient == other.gradient && width == other.width &&
-               height == other.height && !memcmp(origin, other.origin, sizeof origin) &&
+               conversion == other.conversion && gradient == other.gradient && mix == other.mix &&
+               width == other.width && height == other.height &&
+               !memcmp(origin, other.origin, sizeof origin) &&
                !memcmp(column_step, other.column_step, sizeof column_step) &&
                !memcmp(row_step, other.row_step, sizeof row_step);
     }
@@ -158,18 +195,30 @@ struct Recorder {
 
 Recorder recorder;
 
-/* The same configuration packs to the same words (a dsn_noise's own bytes may differ: init leaves the
-   words it does not use as they were). */
-size_t noise_index(const dsn_noise *noise) {
-    std::vector<uint32_t> words(dsn_gpu_word_count(noise));
-    const int err = dsn_gpu_pack(noise, words.data(), words.size());
-    if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_pack: ") + dsn_error_message(err));
+/* The index of these packed words (a noise's or a mix's) among the recorded ones. */
+size_t words_index(const std::vector<uint32_t> &words) {
     const std::string bytes(reinterpret_cast<const char *>(words.data()), words.size() * sizeof words[0]);
     auto found = recorder.noise_by_words.find(bytes);
     if (found != recorder.noise_by_words.end()) return found->second;
     recorder.noises.push_back(words);
     recorder.noise_by_words[bytes] = recorder.noises.size() - 1;
     return recorder.noises.size() - 1;
+}
+
+/* The same configuration packs to the same words (a dsn_noise's own bytes may differ: init leaves the
+   words it does not use as they were). */
+size_t noise_index(const dsn_noise *noise) {
+    std::vector<uint32_t> words(dsn_gpu_word_count(noise));
+    const int err = dsn_gpu_pack(noise, words.data(), words.size());
+    if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_pack: ") + dsn_error_message(err));
+    return words_index(words);
+}
+
+size_t mix_index(const dsn_mix *mix, const dsn_mix_control *control) {
+    std::vector<uint32_t> words(dsn_gpu_mix_word_count(mix, control));
+    const int err = dsn_gpu_mix_pack(mix, control, words.data(), words.size());
+    if (err != DSN_OK) throw std::runtime_error(std::string("dsn_gpu_mix_pack: ") + dsn_error_message(err));
+    return words_index(words);
 }
 
 /* Records the request (answering zeros) or returns the GPU's answer to it. */
@@ -211,6 +260,43 @@ void store(const std::vector<uint32_t> &result, uint32_t values, uint32_t channe
         }
 }
 
+void put_pair(uint32_t *words, int64_t value) {
+    words[0] = static_cast<uint32_t>(static_cast<uint64_t>(value));
+    words[1] = static_cast<uint32_t>(static_cast<uint64_t>(value) >> 32);
+}
+
+/* The request of a lattice tile of the words at `index`: width x height points from (x0, y0). */
+Request lattice_tile_request(size_t index, int32_t x0, int32_t y0, uint32_t width, uint32_t height,
+                             uint32_t conversion) {
+    Request request;
+    request.noise = index;
+    request.kind = task_lattice_tile;
+    request.conversion = conversion;
+    request.width = width;
+    request.height = height;
+    request.origin[0] = static_cast<uint32_t>(x0);
+    request.origin[2] = static_cast<uint32_t>(y0);
+    return request;
+}
+
+/* The request of a continuous grid of the words at `index`. */
+Request grid_request(size_t index, const dsn_grid *grid, uint32_t width, uint32_t height,
+                     uint32_t conversion) {
+    Request request;
+    request.noise = index;
+    request.kind = task_grid;
+    request.conversion = conversion;
+    request.width = width;
+    request.height = height;
+    put_pair(request.origin, grid->origin_x);
+    put_pair(request.origin + 2, grid->origin_y);
+    put_pair(request.column_step, grid->column_step_x);
+    put_pair(request.column_step + 2, grid->column_step_y);
+    put_pair(request.row_step, grid->row_step_x);
+    put_pair(request.row_step + 2, grid->row_step_y);
+    return request;
+}
+
 /* ---- The replacements of the runtime's evaluators ---- */
 
 void lattice_point_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out) {
@@ -238,14 +324,7 @@ int lattice_tile(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t width,
     if (dsn_gpu_word_count(noise) == 0) return DSN_ERR_ARGUMENT;
     if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
         return DSN_ERR_TILE_SIZE;
-    Request request;
-    request.noise = noise_index(noise);
-    request.kind = task_lattice_tile;
-    request.conversion = conversion;
-    request.width = width;
-    request.height = height;
-    request.origin[0] = static_cast<uint32_t>(x0);
-    request.origin[2] = static_cast<uint32_t>(y0);
+    Request request = lattice_tile_request(noise_index(noise), x0, y0, width, height, conversion);
     store(answer(request), width * height, dsn_noise_channels(noise), out);
     return DSN_OK;
 }
@@ -286,11 +365,6 @@ int continuous_point_float(const dsn_noise *noise, double x, double y, float *ou
     return err;
 }
 
-void put_pair(uint32_t *words, int64_t value) {
-    words[0] = static_cast<uint32_t>(static_cast<uint64_t>(value));
-    words[1] = static_cast<uint32_t>(static_cast<uint64_t>(value) >> 32);
-}
-
 template <typename Value>
 int continuous_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width, uint32_t height, Value *out,
                     uint32_t conversion) {
@@ -299,18 +373,7 @@ int continuous_tile(const dsn_noise *noise, const dsn_grid *grid, uint32_t width
     if (grid == nullptr || out == nullptr) return DSN_ERR_NULL;
     if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
         return DSN_ERR_TILE_SIZE;
-    Request request;
-    request.noise = noise_index(noise);
-    request.kind = task_grid;
-    request.conversion = conversion;
-    request.width = width;
-    request.height = height;
-    put_pair(request.origin, grid->origin_x);
-    put_pair(request.origin + 2, grid->origin_y);
-    put_pair(request.column_step, grid->column_step_x);
-    put_pair(request.column_step + 2, grid->column_step_y);
-    put_pair(request.row_step, grid->row_step_x);
-    put_pair(request.row_step + 2, grid->row_step_y);
+    Request request = grid_request(noise_index(noise), grid, width, height, conversion);
     store(answer(request), width * height, dsn_noise_channels(noise), out);
     return DSN_OK;
 }
@@ -386,15 +449,8 @@ int lattice_tile_gradient(const dsn_noise *noise, int32_t x0, int32_t y0, uint32
     if (dsn_gpu_word_count(noise) == 0) return DSN_ERR_ARGUMENT;
     if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
         return DSN_ERR_TILE_SIZE;
-    Request request;
-    request.noise = noise_index(noise);
-    request.kind = task_lattice_tile;
-    request.conversion = conversion;
+    Request request = lattice_tile_request(noise_index(noise), x0, y0, width, height, conversion);
     request.gradient = 1;
-    request.width = width;
-    request.height = height;
-    request.origin[0] = static_cast<uint32_t>(x0);
-    request.origin[2] = static_cast<uint32_t>(y0);
     store_gradient(answer(request), width * height, dsn_noise_channels(noise), out, dx, dy);
     return DSN_OK;
 }
@@ -447,19 +503,8 @@ int continuous_tile_gradient(const dsn_noise *noise, const dsn_grid *grid, uint3
     if (grid == nullptr || out == nullptr || dx == nullptr || dy == nullptr) return DSN_ERR_NULL;
     if (width == 0 || height == 0 || width > 65536 || height > 65536 || width * height > 65536)
         return DSN_ERR_TILE_SIZE;
-    Request request;
-    request.noise = noise_index(noise);
-    request.kind = task_grid;
-    request.conversion = conversion;
+    Request request = grid_request(noise_index(noise), grid, width, height, conversion);
     request.gradient = 1;
-    request.width = width;
-    request.height = height;
-    put_pair(request.origin, grid->origin_x);
-    put_pair(request.origin + 2, grid->origin_y);
-    put_pair(request.column_step, grid->column_step_x);
-    put_pair(request.column_step + 2, grid->column_step_y);
-    put_pair(request.row_step, grid->row_step_x);
-    put_pair(request.row_step + 2, grid->row_step_y);
     store_gradient(answer(request), width * height, dsn_noise_channels(noise), out, dx, dy);
     return DSN_OK;
 }
@@ -503,10 +548,110 @@ int continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, co
     return continuous_batch_gradient(noise, xs, ys, count, out, dx, dy, point_continuous_doubles, as_float);
 }
 
+/* ---- The replacements of the mixing functions: the C function's error, the GPU's values ---- */
+
+Request mix_query(const dsn_mix *mix, const dsn_mix_control *control, uint32_t point, uint32_t conversion,
+                  uint64_t x, uint64_t y) {
+    Request request = query(nullptr, point | of_mix, conversion, x, y);
+    request.noise = mix_index(mix, control);
+    return request;
+}
+
+int mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
+                            int32_t *out) {
+    const int err = dsn_mix_lattice_point_fixed(mix, control, x, y, out);
+    if (err != DSN_OK) return err;
+    store(answer(mix_query(mix, control, point_lattice, as_fixed, static_cast<uint32_t>(x),
+                           static_cast<uint32_t>(y))),
+          1, dsn_mix_channels(mix), out);
+    return DSN_OK;
+}
+
+int mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
+                               int32_t *out) {
+    const int err = dsn_mix_continuous_point_fixed(mix, control, x, y, out);
+    if (err != DSN_OK) return err;
+    store(answer(mix_query(mix, control, point_continuous, as_fixed, static_cast<uint64_t>(x),
+                           static_cast<uint64_t>(y))),
+          1, dsn_mix_channels(mix), out);
+    return DSN_OK;
+}
+
+int mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
+                               float *out) {
+    const int err = dsn_mix_continuous_point_float(mix, control, x, y, out);
+    if (err != DSN_OK) return err;
+    store(answer(mix_query(mix, control, point_continuous_doubles, as_float, double_bits(x), double_bits(y))),
+          1, dsn_mix_channels(mix), out);
+    return DSN_OK;
+}
+
+int mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
+                            const int64_t *ys, uint32_t count, uint8_t *out) {
+    const int err = dsn_mix_continuous_batch_u8(mix, control, xs, ys, count, out);
+    if (err != DSN_OK) return err;
+    const uint32_t channels = dsn_mix_channels(mix);
+    for (uint32_t k = 0; k < count; k++)
+        store(answer(mix_query(mix, control, point_continuous, as_u8, static_cast<uint64_t>(xs[k]),
+                               static_cast<uint64_t>(ys[k]))),
+              1, channels, out + k * channels);
+    return DSN_OK;
+}
+
+template <typename Value>
+void mix_lattice_tile(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                      uint32_t width, uint32_t height, Value *out, uint32_t conversion) {
+    Request request = lattice_tile_request(mix_index(mix, control), x0, y0, width, height, conversion);
+    request.mix = 1;
+    store(answer(request), width * height, dsn_mix_channels(mix), out);
+}
+
+int mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                           uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                           size_t scratch_size) {
+    const int err =
+        dsn_mix_lattice_tile_fixed(mix, control, x0, y0, width, height, out, scratch, scratch_size);
+    if (err == DSN_OK) mix_lattice_tile(mix, control, x0, y0, width, height, out, as_fixed);
+    return err;
+}
+
+int mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
+                           uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size) {
+    const int err =
+        dsn_mix_lattice_tile_float(mix, control, x0, y0, width, height, out, scratch, scratch_size);
+    if (err == DSN_OK) mix_lattice_tile(mix, control, x0, y0, width, height, out, as_float);
+    return err;
+}
+
+template <typename Value>
+void mix_continuous_tile(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                         uint32_t width, uint32_t height, Value *out, uint32_t conversion) {
+    Request request = grid_request(mix_index(mix, control), grid, width, height, conversion);
+    request.mix = 1;
+    store(answer(request), width * height, dsn_mix_channels(mix), out);
+}
+
+int mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                              uint32_t width, uint32_t height, int32_t *out, void *scratch,
+                              size_t scratch_size) {
+    const int err =
+        dsn_mix_continuous_tile_fixed(mix, control, grid, width, height, out, scratch, scratch_size);
+    if (err == DSN_OK) mix_continuous_tile(mix, control, grid, width, height, out, as_fixed);
+    return err;
+}
+
+int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                           uint32_t width, uint32_t height, uint8_t *out, void *scratch,
+                           size_t scratch_size) {
+    const int err = dsn_mix_continuous_tile_u8(mix, control, grid, width, height, out, scratch, scratch_size);
+    if (err == DSN_OK) mix_continuous_tile(mix, control, grid, width, height, out, as_u8);
+    return err;
+}
+
 /* ---- Running the requests on the GPU ---- */
 
 struct Task {
-    uint32_t kind = task_queries, conversion = as_fixed, gradient = 0, width = 1, count = 0;
+    uint32_t kind = task_queries, conversion = as_fixed, gradient = 0, mix = 0, width = 1, count = 0;
     const uint32_t *origin = nullptr, *column_step = nullptr, *row_step = nullptr;
 };
 
@@ -520,9 +665,9 @@ std::string compute_shader(const headless_gl::Context &context, bool limbs) {
            "layout(std430, binding = 1) readonly buffer Queries { uvec4 queries[]; };\n"
            "layout(std430, binding = 2) writeonly buffer Results { uvec4 results[]; };\n"
            "uniform uint task_count;\n"
-           "uint dsn_word(uint index) { return noise_words[index]; }\n"
            "uvec4 golden_query(uint index, uint part) { return queries[2u * index + part]; }\n" +
-           dsn_glsl + kernel_glsl +
+           dsn_glsl + "uint dsn_word(uint index) { return noise_words[dsn_word_base + index]; }\n" +
+           kernel_glsl +
            "void main() {\n"
            "    uint index = gl_GlobalInvocationID.x;\n"
            "    if (index >= task_count) return;\n"
@@ -550,14 +695,16 @@ std::string fragment_shader(const headless_gl::Context &context, bool limbs) {
            "layout(location = 0) out uvec4 result_value;\n"
            "layout(location = 1) out uvec4 result_dx;\n"
            "layout(location = 2) out uvec4 result_dy;\n"
-           "uint dsn_word(uint index) {\n"
-           "    return texelFetch(noise_texture, ivec2(int(index & 1023u), int(index >> 10u)), 0).x;\n"
-           "}\n"
            "uvec4 golden_query(uint index, uint part) {\n"
            "    uint texel = 2u * index + part;\n"
            "    return texelFetch(query_texture, ivec2(int(texel & 1023u), int(texel >> 10u)), 0);\n"
            "}\n" +
-           dsn_glsl + kernel_glsl +
+           dsn_glsl +
+           "uint dsn_word(uint index) {\n"
+           "    uint word = dsn_word_base + index;\n"
+           "    return texelFetch(noise_texture, ivec2(int(word & 1023u), int(word >> 10u)), 0).x;\n"
+           "}\n" +
+           kernel_glsl +
            "void main() {\n"
            "    uvec2 pixel = uvec2(gl_FragCoord.xy);\n"
            "    golden_evaluate(pixel.y * target_width + pixel.x, result_value, result_dx, result_dy);\n"
@@ -596,6 +743,7 @@ class Runner {
         gl_.glUniform1ui(location("task_kind"), task.kind);
         gl_.glUniform1ui(location("task_output"), task.conversion);
         gl_.glUniform1ui(location("task_gradient"), task.gradient);
+        gl_.glUniform1ui(location("task_mix"), task.mix);
         gl_.glUniform1ui(location("task_width"), task.width);
         const uint32_t *origin = task.origin ? task.origin : no_words;
         const uint32_t *column = task.column_step ? task.column_step : no_words;
@@ -714,6 +862,7 @@ void run_requests(Runner &runner) {
             task.kind = request.kind;
             task.conversion = request.conversion;
             task.gradient = request.gradient;
+            task.mix = request.mix;
             task.width = request.width;
             task.count = request.width * request.height;
             task.origin = request.origin;
