@@ -207,6 +207,119 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
     for (int c = 0; c < 3; c++) CHECK(point[c] == dsn_fixed_to_float(fixed_point[c]));
 }
 
+TEST_CASE("mix: lattice tiles where the weights mix are their points: runs of every length, periods, the "
+          "int32 sign change") {
+    // A mixed lattice tile is summed in runs of up to 32 points per row, each impulse splatted over the
+    // points of the run it reaches; a period that does not divide 2^32 breaks the run at the sign change.
+    // Three materials of three sizes (grey and RGB, 8 and 16 bits), weights changing every 2 texels.
+    auto a = make_noise(random_texton_asset(3, 4, 8, 41), 11, 0, 13, 0);
+    auto b = make_noise(random_texton_asset(1, 9, 16, 42), 12);
+    auto c = make_noise(random_texton_asset(3, 2, 8, 43), 13);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise, &c->noise});
+    Control varying(
+        3, 7, 6, 1,
+        [](uint32_t i, uint32_t j) {
+            return std::vector<uint8_t>{uint8_t(i * 71 % 256), uint8_t((j * 90 + 7 * i) % 256),
+                                        uint8_t((i + j) % 3 == 0 ? 0 : 140)};
+        },
+        DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y);
+    const struct {
+        int32_t x0, y0;
+        uint32_t width, height;
+    } windows[] = {{INT32_MAX - 40, 5, 83, 3},
+                   {INT32_MAX - 3, -2, 7, 4},
+                   {-17, INT32_MIN, 33, 2},
+                   {100, 7, 1, 5},
+                   {0, 0, 32, 2},
+                   {-64, 31, 65, 1}};
+    size_t differences = 0, points = 0;
+    for (const auto &window : windows) {
+        CAPTURE(window.x0);
+        CAPTURE(window.width);
+        std::vector<int32_t> tile(size_t(window.width) * window.height * 3);
+        std::vector<uint8_t> bytes(tile.size());
+        REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &varying.control, window.x0, window.y0, window.width,
+                                           window.height, tile.data(), nullptr, 0) == DSN_OK);
+        REQUIRE(dsn_mix_lattice_tile_u8(&mix, &varying.control, window.x0, window.y0, window.width,
+                                        window.height, bytes.data(), nullptr, 0) == DSN_OK);
+        for (uint32_t j = 0; j < window.height; j++)
+            for (uint32_t i = 0; i < window.width; i++, points++) {
+                int32_t point[3];
+                REQUIRE(dsn_mix_lattice_point_fixed(&mix, &varying.control, int32_t(uint32_t(window.x0) + i),
+                                                    int32_t(uint32_t(window.y0) + j), point) == DSN_OK);
+                for (int channel = 0; channel < 3; channel++) {
+                    const size_t at = (size_t(j) * window.width + i) * 3 + size_t(channel);
+                    differences += tile[at] != point[channel];
+                    differences += bytes[at] != dsn_fixed_to_u8(point[channel]);
+                }
+            }
+    }
+    CHECK(points == 83 * 3 + 7 * 4 + 33 * 2 + 5 + 64 + 65);
+    CHECK(differences == 0);
+}
+
+TEST_CASE("mix: continuous tiles and batches of nearby points, walked in groups, are their points") {
+    // Up to 16 points within 32 texels of each other are walked at once (a tile's row, a batch's
+    // neighbours); on a periodic axis a group whose window crosses the int32 sign change goes point by
+    // point. Periods of 13 and 29 texels, which do not divide 2^32, around that change and elsewhere.
+    auto a = make_noise(random_texton_asset(3, 4, 8, 51), 21, 0, 13, 29);
+    auto b = make_noise(random_texton_asset(1, 7, 16, 52), 22);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise});
+    Control varying(
+        2, 5, 7, 1,
+        [](uint32_t i, uint32_t j) {
+            return std::vector<uint8_t>{uint8_t(i * 61 % 256), uint8_t((j * 45 + 3 * i) % 256)};
+        },
+        DSN_MIX_PERIODIC_Y);
+    std::mt19937_64 random(77);
+    size_t differences = 0, points = 0;
+    const int64_t centres[][2] = {{int64_t(INT32_MAX) * kOne, 5 * kOne},
+                                  {-3 * kOne, int64_t(INT32_MIN) * kOne},
+                                  {1000 * kOne + kOne / 3, -777 * kOne}};
+    for (const auto &centre : centres) {
+        // a batch of 40 points scattered over 20 x 20 texels around the centre
+        std::vector<int64_t> xs, ys;
+        for (int k = 0; k < 40; k++) {
+            xs.push_back(
+                int64_t(uint64_t(centre[0]) + (random() >> 32) * 20 - uint64_t(10) * uint64_t(kOne)));
+            ys.push_back(
+                int64_t(uint64_t(centre[1]) + (random() >> 32) * 20 - uint64_t(10) * uint64_t(kOne)));
+        }
+        std::vector<int32_t> batch(xs.size() * 3);
+        REQUIRE(dsn_mix_continuous_batch_fixed(&mix, &varying.control, xs.data(), ys.data(),
+                                               uint32_t(xs.size()), batch.data()) == DSN_OK);
+        for (size_t k = 0; k < xs.size(); k++, points++) {
+            int32_t point[3];
+            REQUIRE(dsn_mix_continuous_point_fixed(&mix, &varying.control, xs[k], ys[k], point) == DSN_OK);
+            for (size_t c = 0; c < 3; c++) differences += batch[k * 3 + c] != point[c];
+        }
+        // a tile rotated by 30 degrees at 0.7 texel per pixel from 12 texels before the centre
+        const dsn_grid grid = {int64_t(uint64_t(centre[0]) - uint64_t(12 * kOne)),
+                               int64_t(uint64_t(centre[1]) - uint64_t(12 * kOne)),
+                               int64_t(0.606 * double(kOne)),
+                               int64_t(0.35 * double(kOne)),
+                               int64_t(-0.35 * double(kOne)),
+                               int64_t(0.606 * double(kOne))};
+        const uint32_t width = 37, height = 9;
+        std::vector<int32_t> tile(width * height * 3);
+        REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &varying.control, &grid, width, height, tile.data(),
+                                              nullptr, 0) == DSN_OK);
+        for (uint32_t j = 0; j < height; j++)
+            for (uint32_t i = 0; i < width; i++, points++) {
+                const int64_t x = int64_t(uint64_t(grid.origin_x) + i * uint64_t(grid.column_step_x) +
+                                          j * uint64_t(grid.row_step_x));
+                const int64_t y = int64_t(uint64_t(grid.origin_y) + i * uint64_t(grid.column_step_y) +
+                                          j * uint64_t(grid.row_step_y));
+                int32_t point[3];
+                REQUIRE(dsn_mix_continuous_point_fixed(&mix, &varying.control, x, y, point) == DSN_OK);
+                for (size_t c = 0; c < 3; c++)
+                    differences += tile[(size_t(j) * width + i) * 3 + c] != point[c];
+            }
+    }
+    CHECK(points == 3 * (40 + 37 * 9));
+    CHECK(differences == 0);
+}
+
 TEST_CASE("mix: one material's weights give the same bits by its own evaluators and by the mix's walk") {
     // Material 1 differs from material 0 in size, bits and density: the mix's walk (taken where the
     // weights differ from sample to sample, here (0, 255) and (0, 100): still material 1's alone) and

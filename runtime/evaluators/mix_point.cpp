@@ -50,33 +50,80 @@ void visit_candidates(uint32_t key, uint32_t count, const FieldLanes &lanes, con
     }
 }
 
-/* The continuous sums of every material at (x, y), Q32.32: continuous_sift.h's sifting walk with the mix's
-   reach. Each position pair is hashed once for its impulses, which are tested against the point on their
-   lattice fields all at once; only the candidates get their fraction hash, the exact test, their material
-   and their read. */
-void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                     uint64_t x, uint64_t y, ContinuousSums sums) {
+/* Continuous points near each other (a run of a tile's row, neighbours in a batch), walked at once: up to
+   group_points of them, within group_extent texels of each other along each axis. */
+const uint32_t group_points = 16, group_extent = 32;
+
+/* The points of a group along one axis: their box [low, low + extent] (Q32.32) and the window of cells
+   [floor(low) - 1, floor(low + extent) + 1] with the mix's reach (a point's window, point_axis, for a
+   group of one). */
+struct GroupAxis {
+    dsn_axis axis;
+    uint64_t low;
+    int64_t extent;
+};
+
+/* False when the points are too far apart, or (on a periodic axis) when the window of several crosses the
+   int32 sign change, where the reduction modulo the period breaks its coordinates' contiguity: there each
+   point goes on its own. offsets[p]: point p's offset from low. */
+bool group_axis(const uint64_t *coordinates, uint32_t count, uint32_t radius, uint32_t shift, uint32_t period,
+                GroupAxis *out, int64_t *offsets) {
+    const int64_t limit = static_cast<int64_t>(group_extent) << 32;
+    int64_t low = 0, high = 0;
+    for (uint32_t p = 1; p < count; p++) {
+        const int64_t offset = static_cast<int64_t>(coordinates[p] - coordinates[0]);
+        if (offset >= limit || offset <= -limit) return false; /* (so that high - low cannot overflow) */
+        low = offset < low ? offset : low;
+        high = offset > high ? offset : high;
+    }
+    if (high - low >= limit) return false;
+    out->low = coordinates[0] + static_cast<uint64_t>(low);
+    out->extent = high - low;
+    const uint32_t first = static_cast<uint32_t>(out->low >> 32) - 1u;
+    const uint32_t length =
+        static_cast<uint32_t>((out->low + static_cast<uint64_t>(out->extent)) >> 32) - first + 2u;
+    const uint32_t until_sign_change = 0x80000000u - first;
+    if (count > 1 && period != 0 && until_sign_change != 0 && until_sign_change < length) return false;
+    dsn_axis_init(&out->axis, first, length, radius, shift, period);
+    for (uint32_t p = 0; p < count; p++) offsets[p] = static_cast<int64_t>(coordinates[p] - out->low);
+    return true;
+}
+
+/* The continuous sums of every material at each point of a group, Q32.32: continuous_sift.h's sifting walk
+   with the mix's reach over the group's box. Each position pair is hashed once for its impulses, which are
+   tested against the box on their lattice fields all at once; only the candidates get their fraction
+   hash, the exact test, their material and their reads, at the points they reach. */
+void continuous_group_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                           const GroupAxis &gx, const GroupAxis &gy, const int64_t *offsets_x,
+                           const int64_t *offsets_y, uint32_t points, ContinuousSums *sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift;
-    const PointAxis px = point_axis(x, mix->radius[0], shift, lead->period[0]);
-    const PointAxis py = point_axis(y, mix->radius[1], shift, lead->period[1]);
     const FieldLanes lanes = field_lanes(shift);
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, high_shift = 16u - lanes.half_bits;
     const uint32_t position_shift = 16u + shift;
     const int64_t reach_x = static_cast<int64_t>(mix->radius[0] + 1u) << 32;
     const int64_t reach_y = static_cast<int64_t>(mix->radius[1] + 1u) << 32;
-    for (uint32_t sy = 0; sy < py.axis.span_count; sy++) {
-        const dsn_span span_y = dsn_axis_span(&py.axis, sy);
-        for (uint32_t sx = 0; sx < px.axis.span_count; sx++) {
-            const dsn_span span_x = dsn_axis_span(&px.axis, sx);
+    /* cell_axis's sifting for the box: shifted = high - impulse + reach, in reach of a point of the box
+       when 0 < shifted < 2 reach + extent */
+    const int64_t extra_x = static_cast<int64_t>(static_cast<uint32_t>(gx.low)) + reach_x + gx.extent;
+    const int64_t extra_y = static_cast<int64_t>(static_cast<uint32_t>(gy.low)) + reach_y + gy.extent;
+    for (uint32_t sy = 0; sy < gy.axis.span_count; sy++) {
+        const dsn_span span_y = dsn_axis_span(&gy.axis, sy);
+        for (uint32_t sx = 0; sx < gx.axis.span_count; sx++) {
+            const dsn_span span_x = dsn_axis_span(&gx.axis, sx);
             for (uint32_t j = 0; j < span_y.cell_count; j++) {
                 CellAxis cell_y;
-                if (!cell_axis(py, span_y, dsn_span_cell(&span_y, j, shift), lanes, &cell_y)) continue;
-                const uint32_t row_key = dsn_row_key(lead, dsn_span_cell(&span_y, j, shift));
+                const uint32_t cell_row = dsn_span_cell(&span_y, j, shift);
+                if (!cell_axis_within(gy.axis, span_y, cell_row, extra_y, 2 * reach_y + gy.extent, lanes,
+                                      &cell_y))
+                    continue;
+                const uint32_t row_key = dsn_row_key(lead, cell_row);
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
                     CellAxis cell_x;
                     const uint32_t cell = dsn_span_cell(&span_x, i, shift);
-                    if (!cell_axis(px, span_x, cell, lanes, &cell_x)) continue;
+                    if (!cell_axis_within(gx.axis, span_x, cell, extra_x, 2 * reach_x + gx.extent, lanes,
+                                          &cell_x))
+                        continue;
                     const uint32_t key = dsn_cell_key_in_row(lead, cell, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
                     visit_candidates(key, count, lanes, cell_x, cell_y, [&](uint32_t k, uint32_t field) {
@@ -86,23 +133,29 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
                             ((field & half_mask) << high_shift) | ((fraction & 0xFFFFu) >> lanes.half_bits);
                         const uint32_t bits_y = (((field >> lanes.half_bits) & half_mask) << high_shift) |
                                                 ((fraction >> 16) >> lanes.half_bits);
-                        const int64_t offset_x =
+                        /* low - impulse, Q32.32 */
+                        const int64_t near_x =
                             cell_x.shifted_base -
-                            static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) - reach_x;
-                        const int64_t offset_y =
+                            static_cast<int64_t>(static_cast<uint64_t>(bits_x) << position_shift) - reach_x -
+                            gx.extent;
+                        const int64_t near_y =
                             cell_y.shifted_base -
-                            static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) - reach_y;
-                        if (!within_reach(offset_x, mix->radius[0]) ||
-                            !within_reach(offset_y, mix->radius[1]))
-                            return;
+                            static_cast<int64_t>(static_cast<uint64_t>(bits_y) << position_shift) - reach_y -
+                            gy.extent;
                         const uint32_t m = impulse_material(control, mix->count, region, key, k,
-                                                            x - static_cast<uint64_t>(offset_x),
-                                                            y - static_cast<uint64_t>(offset_y));
+                                                            gx.low - static_cast<uint64_t>(near_x),
+                                                            gy.low - static_cast<uint64_t>(near_y));
                         const dsn_noise_state *material = &mix->material[m];
-                        uint32_t row, row_weight, column, column_weight;
-                        if (bracket(offset_y, material->radius[1], &row, &row_weight) &&
-                            bracket(offset_x, material->radius[0], &column, &column_weight))
-                            add_bilinear(&material->asset, row, row_weight, column, column_weight, sums[m]);
+                        for (uint32_t p = 0; p < points; p++) {
+                            const int64_t offset_x = near_x + offsets_x[p], offset_y = near_y + offsets_y[p];
+                            uint32_t row, row_weight, column, column_weight;
+                            if (within_reach(offset_x, mix->radius[0]) &&
+                                within_reach(offset_y, mix->radius[1]) &&
+                                bracket(offset_y, material->radius[1], &row, &row_weight) &&
+                                bracket(offset_x, material->radius[0], &column, &column_weight))
+                                add_bilinear(&material->asset, row, row_weight, column, column_weight,
+                                             sums[p][m]);
+                        }
                     });
                 }
             }
@@ -111,13 +164,13 @@ void continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, c
 }
 
 /* The lanes of a cell's packed fields (continuous_sift.h's CellAxis, exact here) whose lattice offset o
-   reaches the point along one axis: texton index reach - o in [0, 2 radius], o <= last_offset. False when
-   none does. */
-bool lattice_axis(const axis_cell &on_axis, uint32_t radius, const FieldLanes &lanes, uint32_t drop,
+   reaches the points along one axis: texton index reach - o in [0, span], o <= last_offset (a point: span
+   2 radius, reach its index; a run of points: span 2 radius + length - 1, reach the last point's index).
+   False when none does. */
+bool lattice_axis(const axis_cell &on_axis, uint32_t span, const FieldLanes &lanes, uint32_t drop,
                   CellAxis *out) {
     const int64_t reach = dsn_signed_sum(on_axis.reach);
-    const int64_t low =
-        reach - 2 * static_cast<int64_t>(radius) > 0 ? reach - 2 * static_cast<int64_t>(radius) : 0;
+    const int64_t low = reach - static_cast<int64_t>(span) > 0 ? reach - static_cast<int64_t>(span) : 0;
     const int64_t high = reach < static_cast<int64_t>(on_axis.last_offset) ? reach : on_axis.last_offset;
     if (high < low) return false;
     out->shifted_base = 0;
@@ -127,20 +180,49 @@ bool lattice_axis(const axis_cell &on_axis, uint32_t radius, const FieldLanes &l
     return true;
 }
 
-/* The lattice sums of every material at the lattice point (x, y): lattice_impulses.h's walk with the
-   mix's reach, each position pair hashed once and its impulses tested at once on their fields (exactly,
-   lattice_axis), each impulse within reach reading its material's lattice texton. */
-void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                  uint32_t x, uint32_t y, LatticeSums sums) {
+/* The points of a run: a row of lattice points (x0 + i, y), 1 .. run_points of them, with contiguous
+   coordinates (on a periodic axis not across the int32 sign change, where the reduction breaks them). */
+const uint32_t run_points = 32;
+static_assert(DSN_MIX_MAX_MATERIALS == 4, "the runs' sums are listed for four materials");
+
+/* The region of grid samples that the impulses reaching a run may read: their floors lie within the
+   lattice reach of it. */
+MixRegion run_region(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t length,
+                     uint32_t y) {
+    const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
+    return mix_region(control, mix->count, static_cast<uint64_t>(x0 - reach_x) << 32,
+                      static_cast<uint64_t>(y - reach_y) << 32,
+                      static_cast<uint64_t>(x0 + length - 1u + reach_x) << 32,
+                      static_cast<uint64_t>(y + reach_y) << 32, 16u + length - 1u);
+}
+
+/* sums[v] += values first .. first + count - 1 of a lattice texton (8- or 16-bit, channels interleaved):
+   a texton row's entries added to consecutive points of a run. */
+inline void add_texton_values(const dsn_asset *asset, const dsn_texton_window *texton, uint32_t first,
+                              uint32_t count, uint32_t *sums) {
+    if (asset->bits == 8)
+        for (uint32_t v = 0; v < count; v++) sums[v] += texton_value<8>(texton->values, first + v);
+    else
+        for (uint32_t v = 0; v < count; v++) sums[v] += texton_value<16>(texton->values, first + v);
+}
+
+/* The lattice sums of every material at the `length` points of a run from (x0, y): point i's sums of
+   material m at sums[m][i * channels + c], that material's channels apart:
+   lattice_impulses.h's walk with the mix's reach over the run, each position pair hashed once and its
+   impulses tested at once on their fields (exactly, lattice_axis), each impulse that reaches the run
+   adding its material's lattice texton entries to the points it reaches (dsn_reach_at). A point is a run
+   of one. */
+void lattice_run_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                      uint32_t x0, uint32_t length, uint32_t y, uint32_t *const *sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0],
-                   reach_y = mix->lattice_radius[1];
+                   reach_y = mix->lattice_radius[1], last = length - 1u;
     const FieldLanes lanes = field_lanes(shift);
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, drop = lanes.half_bits - shift;
     dsn_texton_window textons[DSN_MIX_MAX_MATERIALS];
     for (uint32_t m = 0; m < mix->count; m++) textons[m] = dsn_lattice_texton_window(&mix->material[m]);
     dsn_axis ax, ay;
-    dsn_axis_init(&ax, x, 1u, reach_x, shift, lead->period[0]);
+    dsn_axis_init(&ax, x0, length, reach_x, shift, lead->period[0]);
     dsn_axis_init(&ay, y, 1u, reach_y, shift, lead->period[1]);
     for (uint32_t sy = 0; sy < ay.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&ay, sy);
@@ -150,29 +232,35 @@ void lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, cons
                 const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
                 const axis_cell on_y = cell_on_axis(&span_y, cell_y, shift);
                 CellAxis lanes_y;
-                if (!lattice_axis(on_y, reach_y, lanes, drop, &lanes_y)) continue;
+                if (!lattice_axis(on_y, 2u * reach_y, lanes, drop, &lanes_y)) continue;
                 const uint32_t row_key = dsn_row_key(lead, cell_y);
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
                     const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
-                    const axis_cell on_x = cell_on_axis(&span_x, cell_x, shift);
+                    axis_cell on_x = cell_on_axis(&span_x, cell_x, shift);
+                    on_x.reach += last; /* the index at the run's last point */
                     CellAxis lanes_x;
-                    if (!lattice_axis(on_x, reach_x, lanes, drop, &lanes_x)) continue;
+                    if (!lattice_axis(on_x, 2u * reach_x + last, lanes, drop, &lanes_x)) continue;
                     const uint32_t key = dsn_cell_key_in_row(lead, cell_x, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
                     visit_candidates(key, count, lanes, lanes_x, lanes_y, [&](uint32_t k, uint32_t field) {
-                        /* texton indices in the walk's window of radius reach: 0 .. 2 reach */
-                        const uint32_t column = on_x.reach - ((field & half_mask) >> drop);
+                        /* texton indices in the walk's window of radius reach: the column at the last
+                           point, 0 .. 2 reach + last, and the row, 0 .. 2 reach */
+                        const uint32_t end = on_x.reach - ((field & half_mask) >> drop);
                         const uint32_t row = on_y.reach - (((field >> lanes.half_bits) & half_mask) >> drop);
-                        /* the impulse as seen from the point: x + reach - column */
-                        const uint64_t at_x = static_cast<uint64_t>(x + reach_x - column) << 32;
+                        /* the impulse as seen from the run: its last point + reach - end */
+                        const uint64_t at_x = static_cast<uint64_t>(x0 + last + reach_x - end) << 32;
                         const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
                         const uint32_t m = impulse_material(control, mix->count, region, key, k, at_x, at_y);
                         const dsn_texton_window *texton = &textons[m];
-                        const uint32_t own_column = column - reach_x + texton->radius[0];
+                        const uint32_t own_end = end - reach_x + texton->radius[0];
                         const uint32_t own_row = row - reach_y + texton->radius[1];
-                        if (own_column < texton->width && own_row < texton->height)
-                            add_texton_entry(&mix->material[m].asset, texton,
-                                             own_row * texton->width + own_column, sums[m]);
+                        if (own_end > last + texton->width - 1u || own_row >= texton->height) return;
+                        dsn_reach reach;
+                        dsn_reach_at(own_end, length, texton->width, &reach);
+                        const dsn_asset *asset = &mix->material[m].asset;
+                        add_texton_values(
+                            asset, texton, (own_row * texton->width + reach.first_texton) * asset->channels,
+                            reach.count * asset->channels, sums[m] + reach.first_index * asset->channels);
                     });
                 }
             }
@@ -210,6 +298,24 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
     store_totals(mix, totals, out);
 }
 
+/* The mix's value at lattice point (x, y) from its materials' sums there. */
+void lattice_output(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
+                    const LatticeSums sums, int32_t *out) {
+    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    point_weights(
+        mix_weights_at(control, mix->count, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32),
+        mix->count, weights);
+    mix_output(mix, weights, sums, out);
+}
+
+/* The mix's value at continuous point (x, y) from its materials' sums there. */
+void continuous_output(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
+                       const ContinuousSums sums, int32_t *out) {
+    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
+    mix_output(mix, weights, sums, out);
+}
+
 void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
                       int32_t *out) {
     const MixRegion region =
@@ -221,17 +327,50 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
         spread_channels(mix, material, out);
         return;
     }
-    ContinuousSums sums = {};
-    continuous_sums(mix, control, region, x, y, sums);
-    uint32_t weights[DSN_MIX_MAX_MATERIALS];
-    point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
-    mix_output(mix, weights, sums, out);
+    const dsn_noise_state *lead = &mix->material[0];
+    GroupAxis gx, gy;
+    int64_t offset_x, offset_y; /* a point is a group of one */
+    group_axis(&x, 1u, mix->radius[0], lead->cell_shift, lead->period[0], &gx, &offset_x);
+    group_axis(&y, 1u, mix->radius[1], lead->cell_shift, lead->period[1], &gy, &offset_y);
+    ContinuousSums sums[1] = {};
+    continuous_group_sums(mix, control, region, gx, gy, &offset_x, &offset_y, 1u, sums);
+    continuous_output(mix, control, x, y, sums[0], out);
+}
+
+/* The values of up to group_points continuous points: as a group where they lie close together and the
+   weights mix around them, else point by point (a material's own evaluator where its weights hold alone). */
+void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control, const uint64_t *xs,
+                       const uint64_t *ys, uint32_t count, int32_t (*values)[DSN_MAX_CHANNELS]) {
+    const dsn_noise_state *lead = &mix->material[0];
+    GroupAxis gx, gy;
+    int64_t offsets_x[group_points], offsets_y[group_points];
+    MixRegion region;
+    region.single = true;
+    if (count > 1 &&
+        group_axis(xs, count, mix->radius[0], lead->cell_shift, lead->period[0], &gx, offsets_x) &&
+        group_axis(ys, count, mix->radius[1], lead->cell_shift, lead->period[1], &gy, offsets_y)) {
+        const uint32_t reach_x = mix->radius[0] + 1u, reach_y = mix->radius[1] + 1u;
+        const uint32_t low_x = static_cast<uint32_t>(gx.low >> 32),
+                       low_y = static_cast<uint32_t>(gy.low >> 32);
+        const uint32_t high_x = static_cast<uint32_t>((gx.low + static_cast<uint64_t>(gx.extent)) >> 32);
+        const uint32_t high_y = static_cast<uint32_t>((gy.low + static_cast<uint64_t>(gy.extent)) >> 32);
+        region = mix_region(control, mix->count, static_cast<uint64_t>(low_x - reach_x) << 32,
+                            static_cast<uint64_t>(low_y - reach_y) << 32,
+                            static_cast<uint64_t>(high_x + reach_x) << 32,
+                            static_cast<uint64_t>(high_y + reach_y) << 32, 16u + group_extent);
+    }
+    if (region.single) {
+        for (uint32_t p = 0; p < count; p++) continuous_point(mix, control, xs[p], ys[p], values[p]);
+        return;
+    }
+    ContinuousSums sums[group_points] = {};
+    continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
+    for (uint32_t p = 0; p < count; p++) continuous_output(mix, control, xs[p], ys[p], sums[p], values[p]);
 }
 
 void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
                    int32_t *out) {
-    const MixRegion region =
-        region_around(mix, control, x, y, mix->lattice_radius[0], mix->lattice_radius[1]);
+    const MixRegion region = run_region(mix, control, x, 1u, y);
     if (region.single) {
         const dsn_noise_state *material = &mix->material[region.only];
         dsn_lattice_point_fixed(dsn_mix_material_noise(mix, region.only), static_cast<int32_t>(x),
@@ -240,12 +379,38 @@ void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uin
         return;
     }
     LatticeSums sums = {};
-    lattice_sums(mix, control, region, x, y, sums);
-    uint32_t weights[DSN_MIX_MAX_MATERIALS];
-    point_weights(
-        mix_weights_at(control, mix->count, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32),
-        mix->count, weights);
-    mix_output(mix, weights, sums, out);
+    uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {sums[0], sums[1], sums[2], sums[3]};
+    lattice_run_sums(mix, control, region, x, 1u, y, material_sums);
+    lattice_output(mix, control, x, y, sums, out);
+}
+
+/* A lattice tile of a mix whose weights mix over its reach: row by row, in runs of up to run_points. */
+void lattice_tile_by_runs(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t y0,
+                          uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
+    for (uint32_t j = 0; j < height; j++)
+        for (uint32_t i = 0; i < width;) {
+            const uint32_t x = x0 + i, y = y0 + j, until_sign_change = 0x80000000u - x;
+            uint32_t length = width - i < run_points ? width - i : run_points;
+            if (mix->material[0].period[0] != 0 && until_sign_change != 0 && until_sign_change < length)
+                length = until_sign_change;
+            uint32_t run_sums[DSN_MIX_MAX_MATERIALS][run_points * DSN_MAX_CHANNELS] = {};
+            uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
+                                                                    run_sums[3]};
+            lattice_run_sums(mix, control, run_region(mix, control, x, length, y), x, length, y,
+                             material_sums);
+            for (uint32_t p = 0; p < length; p++) {
+                LatticeSums sums = {};
+                for (uint32_t m = 0; m < mix->count; m++) {
+                    const uint32_t channels = mix->material[m].asset.channels;
+                    for (uint32_t c = 0; c < channels; c++) sums[m][c] = run_sums[m][p * channels + c];
+                }
+                int32_t value[DSN_MAX_CHANNELS];
+                lattice_output(mix, control, x + p, y, sums, value);
+                dsn_store_pixel(out, kind, (static_cast<size_t>(j) * width + i + p) * mix->channels, value,
+                                mix->channels);
+            }
+            i += length;
+        }
 }
 
 /* ---- The API ---- */
@@ -300,13 +465,8 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
                        : dsn_lattice_tile_u8(material, x0, y0, width, height, static_cast<uint8_t *>(out),
                                              scratch, scratch_size);
     }
-    size_t index = 0;
-    for (uint32_t j = 0; j < height; j++)
-        for (uint32_t i = 0; i < width; i++, index += mix->channels) {
-            int32_t value[DSN_MAX_CHANNELS];
-            lattice_point(mix, control, static_cast<uint32_t>(x0) + i, static_cast<uint32_t>(y0) + j, value);
-            dsn_store_pixel(out, kind, index, value, mix->channels);
-        }
+    lattice_tile_by_runs(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width, height,
+                         out, kind);
     return DSN_OK;
 }
 
@@ -346,10 +506,20 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
             }
         }
     }
+    /* a row's points in groups */
+    uint64_t xs[group_points], ys[group_points];
+    uint32_t grouped = 0;
     dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
-        int32_t value[DSN_MAX_CHANNELS];
-        continuous_point(mix, control, x, y, value);
-        dsn_store_pixel(out, kind, index, value, mix->channels);
+        xs[grouped] = x;
+        ys[grouped] = y;
+        grouped++;
+        const size_t column = (index / mix->channels) % width;
+        if (grouped < group_points && column + 1u < width) return;
+        int32_t values[group_points][DSN_MAX_CHANNELS];
+        continuous_points(mix, control, xs, ys, grouped, values);
+        for (uint32_t p = 0; p < grouped; p++)
+            dsn_store_pixel(out, kind, index - (grouped - 1u - p) * mix->channels, values[p], mix->channels);
+        grouped = 0;
     });
     return DSN_OK;
 }
@@ -367,10 +537,18 @@ int continuous_batch_as(const dsn_mix *handle, const dsn_mix_control *control, c
         const uint32_t points = count - k < 32 ? count - k : 32u;
         const int64_t *x = dsn_chunk_coordinates(xs, k, points, chunk_x);
         const int64_t *y = dsn_chunk_coordinates(ys, k, points, chunk_y);
-        for (uint32_t p = 0; p < points; p++) {
-            int32_t value[DSN_MAX_CHANNELS];
-            continuous_point(mix, control, static_cast<uint64_t>(x[p]), static_cast<uint64_t>(y[p]), value);
-            dsn_store_pixel(out, kind, static_cast<size_t>(k + p) * mix->channels, value, mix->channels);
+        for (uint32_t first = 0; first < points; first += group_points) {
+            const uint32_t grouped = points - first < group_points ? points - first : group_points;
+            uint64_t group_x[group_points], group_y[group_points];
+            for (uint32_t p = 0; p < grouped; p++) {
+                group_x[p] = static_cast<uint64_t>(x[first + p]);
+                group_y[p] = static_cast<uint64_t>(y[first + p]);
+            }
+            int32_t values[group_points][DSN_MAX_CHANNELS];
+            continuous_points(mix, control, group_x, group_y, grouped, values);
+            for (uint32_t p = 0; p < grouped; p++)
+                dsn_store_pixel(out, kind, static_cast<size_t>(k + first + p) * mix->channels, values[p],
+                                mix->channels);
         }
     }
     return DSN_OK;

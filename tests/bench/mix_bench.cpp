@@ -139,6 +139,16 @@ int main() {
                     int32_t value[3];
                     dsn_mix_continuous_point_fixed(&mix, &controls[1], one / 3, one / 5, value);
                 }));
+    std::printf(
+        "  stack (painted) of a mixed tile call, 16 x 4 pixels: lattice %zu bytes, continuous %zu bytes\n",
+        bench::painted_stack([&] {
+            static int32_t values[16 * 4 * 3];
+            dsn_mix_lattice_tile_fixed(&mix, &controls[1], 3, 4, 16, 4, values, nullptr, 0);
+        }),
+        bench::painted_stack([&] {
+            static int32_t values[16 * 4 * 3];
+            dsn_mix_continuous_tile_fixed(&mix, &controls[1], &grid, 16, 4, values, nullptr, 0);
+        }));
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }
