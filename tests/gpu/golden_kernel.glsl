@@ -36,7 +36,11 @@ void golden_point(bool lattice, ivec2 p, uvec2 x, uvec2 y, bool gradient, bool m
                   out uvec4 value, out uvec4 dx, out uvec4 dy) {
     ivec3 v = ivec3(0), gx = ivec3(0), gy = ivec3(0);
     if (mix) {
+#if GOLDEN_CPU_MIXES /* dsn-gpu-golden --cpu-mixes: no mix code in the shader (the C runtime answers) */
+        v = ivec3(0);
+#else
         v = lattice ? dsn_mix_lattice_point_fixed(p) : dsn_mix_continuous_point_fixed(x, y);
+#endif
     } else if (gradient) {
         if (lattice)
             dsn_lattice_gradient_fixed(p, v, gx, gy);

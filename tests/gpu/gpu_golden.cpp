@@ -14,12 +14,14 @@
 // the one recorded. The configuration (dsn_asset_load, dsn_noise_init) stays on the CPU: dsn_gpu_pack
 // copies the configured noise into the words the shader reads.
 //
-//   dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--dump-shaders DIR]
+//   dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--cpu-mixes] [--dump-shaders DIR]
 //     gl45    OpenGL 4.5 core, GLSL 4.30 compute shader (shader storage buffers)
 //     gles31  OpenGL ES 3.1, GLSL ES 3.10 compute shader
 //     gles30  OpenGL ES 3.0, GLSL ES 3.00 fragment shader (WebGL2's language: no umulExtended, no SSBO):
 //             noise and queries in integer textures, results rendered into an RGBA32UI target
 //     --limbs         16-bit limb multiplications (the GLSL ES 3.00 code) whatever the API
+//     --cpu-mixes     the mixes (m-* kinds) from the C runtime, not the shaders: for softpipe's GLSL ES 3.00
+//                     run, which interprets a mix's fragments at about a minute and a half per mix
 //     --dump-shaders  write the shaders of every API to DIR (for glslangValidator) and exit
 #include <cstdio>
 #include <cstring>
@@ -186,7 +188,7 @@ struct Request {
 };
 
 struct Recorder {
-    bool replaying = false, printing = false;
+    bool replaying = false, printing = false, cpu_mixes = false;
     std::vector<Request> requests;
     size_t cursor = 0;
     std::vector<std::vector<uint32_t>> noises;    /* packed words */
@@ -550,6 +552,7 @@ int continuous_batch_gradient_float(const dsn_noise *noise, const double *xs, co
 
 /* ---- The replacements of the mixing functions: the C function's error, the GPU's values ---- */
 
+/* With --cpu-mixes the C function's values stand (the replacements below return them as they are). */
 Request mix_query(const dsn_mix *mix, const dsn_mix_control *control, uint32_t point, uint32_t conversion,
                   uint64_t x, uint64_t y) {
     Request request = query(nullptr, point | of_mix, conversion, x, y);
@@ -560,7 +563,7 @@ Request mix_query(const dsn_mix *mix, const dsn_mix_control *control, uint32_t p
 int mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
                             int32_t *out) {
     const int err = dsn_mix_lattice_point_fixed(mix, control, x, y, out);
-    if (err != DSN_OK) return err;
+    if (err != DSN_OK || recorder.cpu_mixes) return err;
     store(answer(mix_query(mix, control, point_lattice, as_fixed, static_cast<uint32_t>(x),
                            static_cast<uint32_t>(y))),
           1, dsn_mix_channels(mix), out);
@@ -570,7 +573,7 @@ int mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, 
 int mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
                                int32_t *out) {
     const int err = dsn_mix_continuous_point_fixed(mix, control, x, y, out);
-    if (err != DSN_OK) return err;
+    if (err != DSN_OK || recorder.cpu_mixes) return err;
     store(answer(mix_query(mix, control, point_continuous, as_fixed, static_cast<uint64_t>(x),
                            static_cast<uint64_t>(y))),
           1, dsn_mix_channels(mix), out);
@@ -580,7 +583,7 @@ int mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *contro
 int mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *control, double x, double y,
                                float *out) {
     const int err = dsn_mix_continuous_point_float(mix, control, x, y, out);
-    if (err != DSN_OK) return err;
+    if (err != DSN_OK || recorder.cpu_mixes) return err;
     store(answer(mix_query(mix, control, point_continuous_doubles, as_float, double_bits(x), double_bits(y))),
           1, dsn_mix_channels(mix), out);
     return DSN_OK;
@@ -589,7 +592,7 @@ int mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *contro
 int mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *control, const int64_t *xs,
                             const int64_t *ys, uint32_t count, uint8_t *out) {
     const int err = dsn_mix_continuous_batch_u8(mix, control, xs, ys, count, out);
-    if (err != DSN_OK) return err;
+    if (err != DSN_OK || recorder.cpu_mixes) return err;
     const uint32_t channels = dsn_mix_channels(mix);
     for (uint32_t k = 0; k < count; k++)
         store(answer(mix_query(mix, control, point_continuous, as_u8, static_cast<uint64_t>(xs[k]),
@@ -611,7 +614,8 @@ int mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, i
                            size_t scratch_size) {
     const int err =
         dsn_mix_lattice_tile_fixed(mix, control, x0, y0, width, height, out, scratch, scratch_size);
-    if (err == DSN_OK) mix_lattice_tile(mix, control, x0, y0, width, height, out, as_fixed);
+    if (err == DSN_OK && !recorder.cpu_mixes)
+        mix_lattice_tile(mix, control, x0, y0, width, height, out, as_fixed);
     return err;
 }
 
@@ -619,7 +623,8 @@ int mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, i
                            uint32_t width, uint32_t height, float *out, void *scratch, size_t scratch_size) {
     const int err =
         dsn_mix_lattice_tile_float(mix, control, x0, y0, width, height, out, scratch, scratch_size);
-    if (err == DSN_OK) mix_lattice_tile(mix, control, x0, y0, width, height, out, as_float);
+    if (err == DSN_OK && !recorder.cpu_mixes)
+        mix_lattice_tile(mix, control, x0, y0, width, height, out, as_float);
     return err;
 }
 
@@ -636,7 +641,8 @@ int mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control
                               size_t scratch_size) {
     const int err =
         dsn_mix_continuous_tile_fixed(mix, control, grid, width, height, out, scratch, scratch_size);
-    if (err == DSN_OK) mix_continuous_tile(mix, control, grid, width, height, out, as_fixed);
+    if (err == DSN_OK && !recorder.cpu_mixes)
+        mix_continuous_tile(mix, control, grid, width, height, out, as_fixed);
     return err;
 }
 
@@ -644,7 +650,8 @@ int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, c
                            uint32_t width, uint32_t height, uint8_t *out, void *scratch,
                            size_t scratch_size) {
     const int err = dsn_mix_continuous_tile_u8(mix, control, grid, width, height, out, scratch, scratch_size);
-    if (err == DSN_OK) mix_continuous_tile(mix, control, grid, width, height, out, as_u8);
+    if (err == DSN_OK && !recorder.cpu_mixes)
+        mix_continuous_tile(mix, control, grid, width, height, out, as_u8);
     return err;
 }
 
@@ -658,8 +665,14 @@ struct Task {
 const uint32_t no_words[4] = {0, 0, 0, 0};
 
 /* Compute shaders (GL 4.5, GLES 3.1): noise, queries and results in shader storage buffers. */
+/* With --cpu-mixes the shaders leave the mix functions out (a smaller program for softpipe to interpret). */
+std::string golden_defines(bool limbs) {
+    return std::string(limbs ? "#define DSN_GLSL_LIMBS 1\n" : "") +
+           (recorder.cpu_mixes ? "#define GOLDEN_CPU_MIXES 1\n" : "#define GOLDEN_CPU_MIXES 0\n");
+}
+
 std::string compute_shader(const headless_gl::Context &context, bool limbs) {
-    return context.shader_preamble() + (limbs ? "#define DSN_GLSL_LIMBS 1\n" : "") +
+    return context.shader_preamble() + golden_defines(limbs) +
            "layout(local_size_x = 64) in;\n"
            "layout(std430, binding = 0) readonly buffer NoiseWords { uint noise_words[]; };\n"
            "layout(std430, binding = 1) readonly buffer Queries { uvec4 queries[]; };\n"
@@ -688,7 +701,7 @@ const char *const fullscreen_vertex_shader = "#version 300 es\n"
                                              "}\n";
 
 std::string fragment_shader(const headless_gl::Context &context, bool limbs) {
-    return context.shader_preamble() + (limbs ? "#define DSN_GLSL_LIMBS 1\n" : "") +
+    return context.shader_preamble() + golden_defines(limbs) +
            "uniform highp usampler2D noise_texture;\n"
            "uniform highp usampler2D query_texture;\n"
            "uniform uint target_width;\n"
@@ -891,13 +904,15 @@ extern "C" void golden_write(const char *text) {
 namespace {
 
 const char *const usage =
-    "usage: dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--dump-shaders DIR] [--quiet]\n"
+    "usage: dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--cpu-mixes] [--dump-shaders DIR] "
+    "[--quiet]\n"
     "Runs the cross test's golden program with every evaluation done by include/dsn/dsn.glsl on the GPU\n"
     "(EGL surfaceless: llvmpipe when there is no GPU) and prints its lines (tests/cross/golden.txt).\n"
     "  --api gl45     OpenGL 4.5 core, GLSL 4.30 compute shader (default)\n"
     "  --api gles31   OpenGL ES 3.1, GLSL ES 3.10 compute shader\n"
     "  --api gles30   OpenGL ES 3.0, GLSL ES 3.00 fragment shader into an RGBA32UI target\n"
     "  --limbs        16-bit limb multiplications (the GLSL ES 3.00 code) on any API\n"
+    "  --cpu-mixes    the mixes (m-* lines) from the C runtime instead of the shaders\n"
     "  --dump-shaders DIR  write every API's shaders to DIR (golden-API.comp/.frag) and exit\n"
     "  --quiet        no renderer line on stderr\n";
 
@@ -932,6 +947,8 @@ int main(int argc, char **argv) {
                     throw std::runtime_error("--api: unknown API '" + name + "'");
             } else if (argument == "--limbs") {
                 limbs = true;
+            } else if (argument == "--cpu-mixes") {
+                recorder.cpu_mixes = true;
             } else if (argument == "--quiet") {
                 quiet = true;
             } else if (argument == "--dump-shaders" && i + 1 < argc) {
