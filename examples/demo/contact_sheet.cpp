@@ -26,13 +26,15 @@ namespace {
 const char *const usage =
     "usage: dsn-contact-sheet --exemplar E.png --asset A.dsnt --synthesis S.png --scene R.png -o SHEET.png\n"
     "                         [--seed S] [--scene-bump B.png [--scene-bump-note TEXT]]\n"
+    "                         [--scene-surface S.png [--scene-surface-note TEXT]]\n"
     "                         [--horizon-unfiltered U.png --horizon-filtered F.png\n"
     "                          --horizon-supersampled S.png [--horizon-note TEXT]]\n"
     "                         [--mix M.png --mix-first A.png --mix-second B.png]\n"
     "       dsn-contact-sheet --print-size IMAGE     (prints \"WIDTH HEIGHT\")\n"
     "Lays out exemplar | Gaussian reference | runtime synthesis | texton, and the scene below, labelled;\n"
     "under it, given --scene-bump, the same scene with bump mapping (dsn-tiny-renderer --shading bump),\n"
-    "under TEXT;\n"
+    "and given --scene-surface, the scene with no texture coordinates (dsn-tiny-renderer --mapping\n"
+    "surface), each under its TEXT;\n"
     "then, given all three --horizon images (the same crop of the scene rendered unfiltered, filtered\n"
     "and supersampled), those side by side, enlarged by a whole factor, under TEXT;\n"
     "then, given the three --mix images (a mix of two materials whose weights go from the first at the\n"
@@ -165,10 +167,18 @@ Picture texton_picture(const std::string &asset_path) {
 }
 
 int run(dsn::CommandLine &command_line) {
-    std::string exemplar_path, asset_path, synthesis_path, scene_path, scene_bump_path, output;
+    std::string exemplar_path, asset_path, synthesis_path, scene_path, output;
     std::string horizon_paths[3], horizon_note = "the ground toward the horizon";
     std::string mix_paths[3]; // the mix, the first material alone, the second alone
-    std::string scene_bump_note = "the same scene bump-mapped (dsn-tiny-renderer --shading bump)";
+    // The scene again, below it: bump-mapped, and with the surface noise (no texture coordinates).
+    struct ExtraScene {
+        std::string path, note;
+        Picture picture;
+    } extra[2] = {{"", "the same scene bump-mapped (dsn-tiny-renderer --shading bump)", {}},
+                  {"",
+                   "no texture coordinates: the surface noise on the ground, the sphere and a torus "
+                   "(--mapping surface)",
+                   {}}};
     uint32_t seed = 1;
     while (command_line.next()) {
         if (command_line.is("--print-size")) {
@@ -188,9 +198,13 @@ int run(dsn::CommandLine &command_line) {
         } else if (command_line.is("--scene")) {
             scene_path = command_line.value();
         } else if (command_line.is("--scene-bump")) {
-            scene_bump_path = command_line.value();
+            extra[0].path = command_line.value();
         } else if (command_line.is("--scene-bump-note")) {
-            scene_bump_note = command_line.value();
+            extra[0].note = command_line.value();
+        } else if (command_line.is("--scene-surface")) {
+            extra[1].path = command_line.value();
+        } else if (command_line.is("--scene-surface-note")) {
+            extra[1].note = command_line.value();
         } else if (command_line.is("--horizon-unfiltered")) {
             horizon_paths[0] = command_line.value();
         } else if (command_line.is("--horizon-filtered")) {
@@ -230,7 +244,8 @@ int run(dsn::CommandLine &command_line) {
                                           {"the --asset input", asset_path},
                                           {"the --synthesis input", synthesis_path},
                                           {"the --scene input", scene_path}};
-    if (!scene_bump_path.empty()) inputs.push_back({"the --scene-bump input", scene_bump_path});
+    if (!extra[0].path.empty()) inputs.push_back({"the --scene-bump input", extra[0].path});
+    if (!extra[1].path.empty()) inputs.push_back({"the --scene-surface input", extra[1].path});
     for (const std::string &horizon : horizon_paths)
         if (!horizon.empty()) inputs.push_back({"a --horizon-* input", horizon});
     for (const std::string &mix : mix_paths)
@@ -240,9 +255,12 @@ int run(dsn::CommandLine &command_line) {
     const dsn::Image exemplar = dsn::load_exemplar(exemplar_path, nullptr);
     const Picture scene = load_png(scene_path);
     const int scene_height = std::min(scene.height, 480);
-    Picture scene_bump;
-    if (!scene_bump_path.empty()) scene_bump = load_png(scene_bump_path);
-    const int bump_height = scene_bump_path.empty() ? 0 : kLabel + std::min(scene_bump.height, 480) + kGap;
+    int extra_height = 0; // the extra scenes' height, labels and gaps included
+    for (ExtraScene &scene_again : extra)
+        if (!scene_again.path.empty()) {
+            scene_again.picture = load_png(scene_again.path);
+            extra_height += kLabel + std::min(scene_again.picture.height, 480) + kGap;
+        }
     const int horizon_height = horizon_given ? 2 * kLabel + kHorizonHeight + kGap : 0;
     Picture mixes[3];
     for (int p = 0; p < 3 && mix_given; p++) mixes[p] = load_png(mix_paths[p]);
@@ -251,9 +269,9 @@ int run(dsn::CommandLine &command_line) {
         throw std::runtime_error("the --mix images differ in size");
     const int mix_rows = mix_given ? std::min(mixes[0].height, 200) : 0;
     const int mix_height = mix_given ? 2 * (kLabel + mix_rows) + 2 * kGap : 0;
-    Picture sheet =
-        blank(kSheetWidth,
-              2 * kLabel + kPanel + scene_height + 3 * kGap + bump_height + horizon_height + mix_height, 235);
+    Picture sheet = blank(
+        kSheetWidth,
+        2 * kLabel + kPanel + scene_height + 3 * kGap + extra_height + horizon_height + mix_height, 235);
     const Picture panels[4] = {from_image(exemplar), gaussian_reference(exemplar, seed),
                                load_png(synthesis_path), texton_picture(asset_path)};
     const char *labels[4] = {"exemplar", "Gaussian reference", "runtime synthesis", "texton (SOT)"};
@@ -266,19 +284,21 @@ int run(dsn::CommandLine &command_line) {
     }
     const int scene_top = 2 * kGap + kLabel + kPanel;
     draw_label(sheet, kGap, scene_top,
-               scene_bump_path.empty()
+               extra[0].path.empty()
                    ? "renderer scene (continuous mode, filtered, dsn-tiny-renderer)"
                    : "renderer scene, flat shading (continuous mode, filtered, dsn-tiny-renderer)",
                2);
     paste(sheet, scene, kGap, scene_top + kLabel, kSheetWidth - 2 * kGap, scene_height);
-    if (!scene_bump_path.empty()) {
-        const int top = scene_top + kLabel + scene_height + kGap;
-        draw_label(sheet, kGap, top, scene_bump_note, 2);
-        paste(sheet, scene_bump, kGap, top + kLabel, kSheetWidth - 2 * kGap,
-              std::min(scene_bump.height, 480));
-    }
+    int extra_top = scene_top + kLabel + scene_height + kGap;
+    for (const ExtraScene &scene_again : extra)
+        if (!scene_again.path.empty()) {
+            draw_label(sheet, kGap, extra_top, scene_again.note, 2);
+            const int height = std::min(scene_again.picture.height, 480);
+            paste(sheet, scene_again.picture, kGap, extra_top + kLabel, kSheetWidth - 2 * kGap, height);
+            extra_top += kLabel + height + kGap;
+        }
     if (horizon_given) {
-        const int top = scene_top + kLabel + scene_height + kGap + bump_height;
+        const int top = scene_top + kLabel + scene_height + kGap + extra_height;
         Picture crops[3];
         for (int p = 0; p < 3; p++) crops[p] = load_png(horizon_paths[p]);
         const int factor =
@@ -296,7 +316,7 @@ int run(dsn::CommandLine &command_line) {
         }
     }
     if (mix_given) {
-        const int top = scene_top + kLabel + scene_height + kGap + bump_height + horizon_height;
+        const int top = scene_top + kLabel + scene_height + kGap + extra_height + horizon_height;
         // The crossfade of the two materials with the mix's weights: the second's w = x / width.
         Picture crossfade = mixes[1];
         for (int y = 0; y < crossfade.height; y++)

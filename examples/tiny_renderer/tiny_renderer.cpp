@@ -12,6 +12,11 @@
 // dsn_filtered_gradient_float) gives with the value; the chain rule carries it to the surface
 // (`height_gradient`, with the coordinates' surface gradients from ray_differentials.h) and the normal is
 // bent by it (`bumped_normal`) before the light is applied.
+//
+// With --mapping surface there are no texture coordinates at all: every surface (the ground, the sphere and
+// a torus beside it) reads the surface noise at its 3-D point and normal (`sample_surface`,
+// dsn_surface_point_float), with no seam, no pinched pole, and the same look on the ground as the planar
+// noise's.
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -37,7 +42,7 @@ namespace {
 const char *const usage =
     "usage: dsn-tiny-renderer GROUND.dsnt [SPHERE.dsnt] -o OUT.png|OUT.f32 [--size WxH] [--seed S]\n"
     "                         [--filter none|iso|aniso] [--supersample N] [--crop X,Y,WxH]\n"
-    "                         [--shading flat|bump] [--bump B] [--time-limit S]\n"
+    "                         [--shading flat|bump] [--bump B] [--mapping uv|surface] [--time-limit S]\n"
     "Ray-casts a ground plane and a sphere textured with the continuous-mode noise of the\n"
     "assets (the ground's asset is used for both when only one is given).\n"
     "  -o, --output OUT       the picture to write: .png (8-bit RGB), or .f32 (raw little-endian float32,\n"
@@ -60,6 +65,10 @@ const char *const usage =
     "                         fades with the texture's detail far away instead of aliasing; --filter\n"
     "                         none and --supersample keep it whole (the latter averages it: the\n"
     "                         reference)\n"
+    "  --mapping M            uv (default: the ground's x and z and the sphere's longitude and latitude\n"
+    "                         as texture coordinates) or surface (no coordinates: the surface noise of\n"
+    "                         each 3-D point and normal, dsn_surface_point_float, on the ground, the\n"
+    "                         sphere and a torus; unfiltered, so --filter none and flat shading)\n"
     "  --time-limit S         refuse a picture estimated to take more than S seconds (default 600;\n"
     "                         0 = no limit), from 64 probe pixels spread over it, timed first\n"
     "  -h, --help, --version  this help, the version\n"
@@ -78,6 +87,9 @@ enum class Filter { none, iso, aniso };
 
 // How surfaces are lit: by their own normal, or by the normal of a relief made of the texture (bump).
 enum class Shading { flat, bump };
+
+// How surfaces find their texture: by texture coordinates, or by their 3-D point and normal.
+enum class Mapping { uv, surface };
 
 struct Shade {
     Shading shading = Shading::flat;
@@ -228,8 +240,11 @@ struct Scene {
     Vec sun = normalize(Vec{-0.6, 0.8, -0.3});
     Vec sphere_center{0.3, 1.2, 2.5};
     double sphere_radius = 1.2;
+    Vec torus_center{-1.9, 0.45, 2.2};
+    double torus_ring = 0.8, torus_tube = 0.45; // lying on the ground, its axis along y
     const Texture *ground, *sphere;
     Shade shade;
+    Mapping mapping = Mapping::uv;
 };
 
 // Distance along the ray to the sphere, or -1.
@@ -247,15 +262,64 @@ Vec sky(Vec direction) {
     return Vec{0.75, 0.82, 0.92} * (1 - up) + Vec{0.35, 0.52, 0.85} * up;
 }
 
+// Signed distance to the torus, and its normal at a point on it (the gradient of that distance).
+double torus_distance(const Scene &scene, Vec p) {
+    const Vec q = p - scene.torus_center;
+    const double ring = std::sqrt(q.x * q.x + q.z * q.z) - scene.torus_ring;
+    return std::sqrt(ring * ring + q.y * q.y) - scene.torus_tube;
+}
+
+Vec torus_normal(const Scene &scene, Vec p) {
+    const Vec q = p - scene.torus_center;
+    const double across = std::sqrt(q.x * q.x + q.z * q.z);
+    const Vec ring_point = Vec{q.x, 0, q.z} * (scene.torus_ring / across);
+    return normalize(q - ring_point);
+}
+
+// Distance along the ray to the torus (sphere tracing its distance, which never overshoots), or -1. Only
+// in the surface mapping's scene.
+double hit_torus(const Scene &scene, Vec origin, Vec direction) {
+    if (scene.mapping != Mapping::surface) return -1;
+    double t = 0;
+    for (int step = 0; step < 256 && t < 40; step++) {
+        const double distance = torus_distance(scene, origin + direction * t);
+        if (distance < 1e-5) return t > 1e-4 ? t : -1;
+        t += distance;
+    }
+    return -1;
+}
+
+// The surface noise at a scene point with its unit normal: no texture coordinates, the point in texels.
+Vec sample_surface(const Texture &texture, Vec point, Vec normal) {
+    const double position[3] = {point.x * texture.texels_per_unit, point.y * texture.texels_per_unit,
+                                point.z * texture.texels_per_unit};
+    const float n[3] = {float(normal.x), float(normal.y), float(normal.z)};
+    float value[3];
+    dsn_surface_point_float(&texture.noise, position, n, nullptr, value);
+    return texture.asset.channels == 3 ? Vec{value[0], value[1], value[2]}
+                                       : Vec{value[0], value[0], value[0]};
+}
+
 // Colour seen through the continuous pixel position (px, py); `filter` says how the texture is read.
 Vec trace(const Scene &scene, const tiny::Camera &camera, double px, double py, Filter filter) {
     const tiny::RayDifferential ray = tiny::ray_differential(camera, px, py);
     const Vec direction = ray.direction;
     const double t_sphere = hit_sphere(scene, camera.eye, direction);
     const double t_ground = direction.y < 0 ? -camera.eye.y / direction.y : -1;
+    const double t_torus = hit_torus(scene, camera.eye, direction);
+    if (t_torus > 0 && (t_sphere < 0 || t_torus < t_sphere) && (t_ground < 0 || t_torus < t_ground)) {
+        const Vec point = camera.eye + direction * t_torus;
+        const Vec normal = torus_normal(scene, point);
+        const double light = dot(normal, scene.sun);
+        return sample_surface(*scene.sphere, point, normal) * (0.25 + 0.85 * (light > 0 ? light : 0));
+    }
     if (t_sphere > 0 && (t_ground < 0 || t_sphere < t_ground)) {
         const Vec point = camera.eye + direction * t_sphere;
         const Vec normal = normalize(point - scene.sphere_center);
+        if (scene.mapping == Mapping::surface) {
+            const double light = dot(normal, scene.sun);
+            return sample_surface(*scene.sphere, point, normal) * (0.25 + 0.85 * (light > 0 ? light : 0));
+        }
         // Longitude and latitude as texture coordinates, in texels along the surface.
         double u, v;
         tiny::sphere_coordinates(normal, scene.sphere_radius, scene.sphere->texels_per_unit, u, v);
@@ -273,9 +337,13 @@ Vec trace(const Scene &scene, const tiny::Camera &camera, double px, double py, 
         const double scale = scene.ground->texels_per_unit;
         const tiny::TextureJacobian jacobian =
             tiny::plane_jacobian(tiny::transfer(ray, t_ground, Vec{0, 1, 0}), scale);
+        const bool surface = scene.mapping == Mapping::surface;
         const TextureSample sample =
-            sample_texture(*scene.ground, point.x * scale, point.z * scale, jacobian, filter, scene.shade);
-        const bool shadowed = hit_sphere(scene, point, scene.sun) > 0;
+            surface ? TextureSample{sample_surface(*scene.ground, point, Vec{0, 1, 0}), 0, 0}
+                    : sample_texture(*scene.ground, point.x * scale, point.z * scale, jacobian, filter,
+                                     scene.shade);
+        const bool shadowed =
+            hit_sphere(scene, point, scene.sun) > 0 || hit_torus(scene, point, scene.sun) > 0;
         const Vec shading_normal =
             bumped_normal(Vec{0, 1, 0}, height_gradient(sample, tiny::plane_gradients(scale), scale));
         const double light = dot(shading_normal, scene.sun); // scene.sun.y where the ground is flat
@@ -364,6 +432,7 @@ int run(int argc, char **argv) {
     Filter filter = Filter::aniso;
     int supersample = 1, crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
     bool filter_given = false, crop_given = false, shading_given = false, bump_given = false;
+    Mapping mapping = Mapping::uv;
     Shade shade;
     double time_limit = 600; // seconds; 0: no limit
     for (int i = 1; i < argc; i++) {
@@ -381,7 +450,8 @@ int run(int argc, char **argv) {
         }
         const bool takes_value = flag == "-o" || flag == "--output" || flag == "--size" || flag == "--seed" ||
                                  flag == "--filter" || flag == "--supersample" || flag == "--crop" ||
-                                 flag == "--time-limit" || flag == "--shading" || flag == "--bump";
+                                 flag == "--time-limit" || flag == "--shading" || flag == "--bump" ||
+                                 flag == "--mapping";
         if (takes_value && !inline_value) {
             if (i + 1 >= argc) throw UsageError(flag + " needs a value");
             value = argv[++i];
@@ -432,6 +502,13 @@ int run(int argc, char **argv) {
             if (value.empty() || *end != '\0' || !(shade.bump >= 0 && shade.bump <= 64))
                 throw UsageError("--bump needs a height in texels within 0..64, not '" + value + "'");
             bump_given = true;
+        } else if (flag == "--mapping") {
+            if (value == "uv")
+                mapping = Mapping::uv;
+            else if (value == "surface")
+                mapping = Mapping::surface;
+            else
+                throw UsageError("--mapping must be uv or surface, not '" + value + "'");
         } else if (flag == "--time-limit") {
             char *end = nullptr;
             time_limit = std::strtod(value.c_str(), &end);
@@ -473,6 +550,11 @@ int run(int argc, char **argv) {
     if (bump_given && shading_given && shade.shading == Shading::flat)
         throw UsageError("--bump is the relief of --shading bump: not with --shading flat");
     if (bump_given) shade.shading = Shading::bump;
+    if (mapping == Mapping::surface && filter_given && filter != Filter::none)
+        throw UsageError("--mapping surface reads the surface noise unfiltered: it takes --filter none");
+    if (mapping == Mapping::surface && shade.shading == Shading::bump)
+        throw UsageError("--mapping surface has no gradient: it takes flat shading");
+    if (mapping == Mapping::surface) filter = Filter::none;
     if (!crop_given) crop_width = width, crop_height = height;
     if (crop_x > width - crop_width || crop_y > height - crop_height)
         throw UsageError("--crop reaches outside the " + std::to_string(width) + "x" +
@@ -485,6 +567,7 @@ int run(int argc, char **argv) {
     scene.ground = &ground;
     scene.sphere = &sphere;
     scene.shade = shade;
+    scene.mapping = mapping;
 
     // A pinhole camera looking slightly down, 60 degrees of horizontal field of view.
     const tiny::Camera camera(Vec{0, 2.2, -5.5}, Vec{0, -0.2, 1}, 60, width, height);

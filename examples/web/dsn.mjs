@@ -12,6 +12,7 @@
 //   canvas.getContext('2d').putImageData(new ImageData(rgba, 256, 256), 0, 0);
 //   texture.point(12, 34);                                    // Float64Array, 1.0 = the exemplar's white
 //   const { value, dx, dy } = texture.continuousGradient(12.5, 34.25); // and its derivatives per texel
+//   texture.surfacePoint([x, y, z], [nx, ny, nz]);            // on any surface, no texture coordinates
 //   const mix = runtime.mix([sand, gravel], {           // materials mixed by weights (dsn.h, "Mixing")
 //       weights: { data: bytes, width: 64, height: 64, shift: 4 } }); // 2 bytes a sample, 16 texels apart
 //   mix.tile(0, 0, 256, 256, { scale: 2 });                     // as Texture.tile
@@ -34,6 +35,7 @@ const MIX_MAX_MATERIALS = 4;      // DSN_MIX_MAX_MATERIALS
 const CONTROL_BYTES = 28;         // dsn_mix_control: a pointer and six 32-bit fields
 const CONFIG_BYTES = 20;          // five uint32 (wasm/web_exports.cpp checks the layouts used here)
 const GRID_BYTES = 48;            // six int64
+const SURFACE_BYTES = 88;         // three int64 (24), two float[3] (24), a dsn_surface_frame (36), aligned
 const ASSET_FIELDS = {
     channels: 8,
     bits: 12,
@@ -128,6 +130,7 @@ export class Texture {
         this.gridAt = reserve(GRID_BYTES);
         this.valuesAt = reserve(16);
         this.gradientAt = reserve(3 * 16); // a point's value, dx and dy: three blocks of 16 bytes
+        this.surfaceAt = reserve(SURFACE_BYTES); // a surface point: its position, normal, tangent, frame
         this.bytesAt = reserve(bytes.length);
         this.workAt = at;
         this.ensure(at);
@@ -197,6 +200,43 @@ export class Texture {
         check(e, e.dsn_continuous_point_fixed(this.noiseAt, e.dsn_coordinate_from_double(x),
                                               e.dsn_coordinate_from_double(y), this.valuesAt));
         return fromFixed(new Int32Array(e.memory.buffer, this.valuesAt, this.channels));
+    }
+
+    /**
+       The surface noise (dsn.h, "Surface noise") at `position`, [x, y, z] in texels (finite numbers, each
+        converted by dsn_coordinate_from_double), on the surface whose normal there is `normal`, [nx, ny,
+        nz] (finite, not all zero; its direction counts), with an optional `tangent` [tx, ty, tz] (null:
+        the frame from the normal alone); the vectors are rounded to float32, as the C function takes
+        them. Returns a Float64Array as continuousPoint() (options.format 'fixed': the Q16.16 integers;
+        'float32': dsn_surface_point_float's values). Throws DsnError for a normal the runtime refuses.
+     */
+    surfacePoint(position, normal, tangent = null, options = {}) {
+        this.checkConfigured();
+        const vector = (name, value) => {
+            if (!Array.isArray(value) || value.length !== 3)
+                throw new TypeError(`dsn: ${name} must be an array of three numbers`);
+            value.forEach((component, i) => checkFinite(`${name}[${i}]`, component));
+        };
+        vector('position', position);
+        vector('normal', normal);
+        if (tangent !== null) vector('tangent', tangent);
+        const format = checkFormat(options, POINT_FORMATS);
+        const e = this.exports, buffer = e.memory.buffer;
+        const positionAt = this.surfaceAt, normalAt = positionAt + 24, tangentAt = normalAt + 12;
+        const frameAt = tangentAt + 12;
+        new Float32Array(buffer, normalAt, 3).set(normal);
+        if (tangent !== null) new Float32Array(buffer, tangentAt, 3).set(tangent);
+        if (format === 'float32') {
+            new Float64Array(buffer, positionAt, 3).set(position);
+            check(e, e.dsn_surface_point_float(this.noiseAt, positionAt, normalAt, tangent === null ? 0 : tangentAt,
+                                               this.valuesAt));
+            return new Float32Array(e.memory.buffer, this.valuesAt, this.channels).slice();
+        }
+        check(e, e.dsn_surface_frame_from_float(normalAt, tangent === null ? 0 : tangentAt, frameAt));
+        new BigInt64Array(buffer, positionAt, 3).set(position.map((value) => e.dsn_coordinate_from_double(value)));
+        check(e, e.dsn_surface_point_fixed(this.noiseAt, positionAt, frameAt, this.valuesAt));
+        const fixed = new Int32Array(e.memory.buffer, this.valuesAt, this.channels);
+        return format === 'fixed' ? fixed.slice() : fromFixed(fixed);
     }
 
     /**

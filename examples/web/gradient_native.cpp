@@ -1,9 +1,12 @@
-// gradient_native.cpp - the native half of module-test.mjs's gradient checks: the value and gradient of
-// an asset at the points given, from the native runtime (dsn_lattice_gradient_fixed, or
+// gradient_native.cpp - the native half of module-test.mjs's gradient and surface checks: the value and
+// gradient of an asset at the points given, from the native runtime (dsn_lattice_gradient_fixed, or
 // dsn_continuous_gradient_fixed at dsn_coordinate_from_double of each coordinate), configured as dsn.mjs
 // configures it (the asset's density, the continuous mode allowed), one line per point: the Q16.16
-// integers of the value, then of dx, then of dy.
+// integers of the value, then of dx, then of dy. In surface mode a point is six numbers, its position
+// and its normal, and its line the Q16.16 surface noise there (dsn_surface_point_float's conversions:
+// the position as doubles, the normal as floats, no tangent).
 // Usage: dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y lattice|continuous X Y [X Y ...]
+//        dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y surface X Y Z NX NY NZ [...]
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -14,10 +17,12 @@
 #include "dsn/dsn.h"
 
 int main(int argc, char **argv) {
-    if (argc < 8 || argc % 2 != 0 ||
-        (std::strcmp(argv[5], "lattice") != 0 && std::strcmp(argv[5], "continuous") != 0)) {
+    const bool surface = argc > 5 && std::strcmp(argv[5], "surface") == 0;
+    const int arity = surface ? 6 : 2;
+    if (argc < 6 + arity || (argc - 6) % arity != 0 ||
+        (!surface && std::strcmp(argv[5], "lattice") != 0 && std::strcmp(argv[5], "continuous") != 0)) {
         std::fprintf(stderr, "usage: dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y "
-                             "lattice|continuous X Y [X Y ...]\n");
+                             "lattice|continuous X Y [X Y ...] | surface X Y Z NX NY NZ [...]\n");
         return 2;
     }
     std::ifstream file(argv[1], std::ios::binary);
@@ -35,7 +40,21 @@ int main(int argc, char **argv) {
     config.flags = DSN_FLAG_ALLOW_LATTICE_CONTINUOUS;
     if (err == DSN_OK) err = dsn_noise_init(&noise, &asset, &config);
     const uint32_t channels = err == DSN_OK ? dsn_noise_channels(&noise) : 0;
-    for (int i = 6; err == DSN_OK && i + 1 < argc; i += 2) {
+    for (int i = 6; err == DSN_OK && surface && i + 5 < argc; i += 6) {
+        const float normal[3] = {std::strtof(argv[i + 3], nullptr), std::strtof(argv[i + 4], nullptr),
+                                 std::strtof(argv[i + 5], nullptr)};
+        dsn_surface_frame frame;
+        int32_t value[DSN_MAX_CHANNELS];
+        const int64_t position[3] = {dsn_coordinate_from_double(std::strtod(argv[i], nullptr)),
+                                     dsn_coordinate_from_double(std::strtod(argv[i + 1], nullptr)),
+                                     dsn_coordinate_from_double(std::strtod(argv[i + 2], nullptr))};
+        err = dsn_surface_frame_from_float(normal, nullptr, &frame);
+        if (err == DSN_OK) err = dsn_surface_point_fixed(&noise, position, &frame, value);
+        for (uint32_t c = 0; err == DSN_OK && c < channels; c++)
+            std::printf(c == 0 ? "%d" : " %d", static_cast<int>(value[c]));
+        if (err == DSN_OK) std::printf("\n");
+    }
+    for (int i = 6; err == DSN_OK && !surface && i + 1 < argc; i += 2) {
         int32_t value[DSN_MAX_CHANNELS], dx[DSN_MAX_CHANNELS], dy[DSN_MAX_CHANNELS];
         if (continuous)
             err = dsn_continuous_gradient_fixed(

@@ -1,7 +1,7 @@
 // module-test.mjs - checks of the JavaScript module (dsn.mjs) under Node against the native runtime, as
 // dsn-render writes it: lattice and continuous tiles (with a rotation, a period, a density and the largest
-// seed), lattice and continuous points, gradients (against dsn-web-gradient-native, which must lie beside
-// dsn-render), mixes (against dsn-render --mix, with dsn-example-asset beside it), and the loader's errors. Run by examples/web/web-test.
+// seed), lattice and continuous points, gradients and surface points (against dsn-web-gradient-native,
+// which must lie beside dsn-render), mixes (against dsn-render --mix, with dsn-example-asset beside it), and the loader's errors. Run by examples/web/web-test.
 // With the baker (dsn-bake.wasm and an exemplar image), also bake.mjs: a bake that loads, refusals.
 // Usage: node module-test.mjs dsn.wasm ASSET.dsnt DSN-RENDER OUT-FOLDER [dsn-bake.wasm EXEMPLAR]
 import {execFileSync} from 'node:child_process';
@@ -225,6 +225,36 @@ for (const test of gradientCases) {
         for (let c = 0; c < 3; c++)
             if (rgba[4 * p + c] !== u8(continuousTile.value[p * n + (n === 3 ? c : 0)])) shown = false;
     check('gradient tile values = the RGBA tile', shown);
+}
+
+// Surface noise: the native runtime's bits at points of a sphere, the tilted plane and the x axis (where the
+// frame from the normal alone turns around), the float32 format the fixed values rounded, and the errors.
+{
+    const settings = { seed: 13 };
+    texture.configure(settings);
+    const points = [[40, 0, 0, 1, 0, 0], [0, -40, 0, 0, -1, 0], [3.5, 7.25, -11, 0.3, -0.5, 0.8],
+                    [1e6 + 0.5, -2.5e5, 17.75, -1, 2, 0.5], [0.125, 0.25, 0.375, 0, 0, -2]];
+    const native = nativeGradients(settings, 'surface', points);
+    let bits = true, floats = true;
+    for (const [k, point] of points.entries()) {
+        const position = point.slice(0, 3), normal = point.slice(3);
+        const fixed = texture.surfacePoint(position, normal, null, { format: 'fixed' });
+        if (!sameValues([...fixed], native[k])) bits = false;
+        const float = texture.surfacePoint(position, normal, null, { format: 'float32' });
+        if (!sameValues(float, Float32Array.from(fixed, (v) => v / 65536))) floats = false;
+    }
+    check('surface point: the native runtime\'s bits', bits);
+    check('surface point: float32 = dsn_surface_point_float', floats);
+    const refused = (call, kind) => {
+        try { call(); } catch (error) { return error instanceof kind; }
+        return false;
+    };
+    check('surface point: a zero normal is refused (DsnError)',
+          refused(() => texture.surfacePoint([0, 0, 0], [0, 0, 0]), DsnError));
+    check('surface point: a NaN coordinate is refused (RangeError)',
+          refused(() => texture.surfacePoint([0, NaN, 0], [0, 0, 1]), RangeError));
+    check('surface point: a normal of two numbers is refused (TypeError)',
+          refused(() => texture.surfacePoint([0, 0, 0], [0, 1]), TypeError));
 }
 
 // Mixing: against dsn-render --mix (PNG hashes of a lattice and a continuous window, the weights from a

@@ -80,6 +80,8 @@
      DSN_MIXING         default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the mixing of materials out
                         (the section "Mixing" below): a program that calls it fails to link. It needs a
                         build that reads sections (DSN_FILTERING or DSN_HISTOGRAM).
+     DSN_SURFACE        default: 1, but 0 when DSN_SMALL_CODE is 1. 0 leaves the surface noise out (the
+                        section "Surface noise" below): a program that calls it fails to link.
      DSN_TILE_BLOCKS    default: 1 where SSE2 is available (x86), else 0 (forced to 0 without SSE2).
                         1 lets lattice tiles sum their impulses in 16-bit vector strips, which keeps
                         copies of the texton and the impulse list on the stack: 62-80 KB per tile call
@@ -141,9 +143,9 @@ extern "C" {
 #endif
 
 #define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 5
+#define DSN_VERSION_MINOR 6
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.5.0"
+#define DSN_VERSION_STRING "1.6.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);
@@ -941,6 +943,107 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
 #endif
 
 /* ==== End of the mixing ============================================================================== */
+
+/* ==== Surface noise (no parameterization) ==========================================================
+   The noise on any surface, with no texture coordinates: no seam where a parameterization cuts, no
+   pinch where it collapses (a sphere's poles), and meshes without an unwrap. As surface Gabor noise
+   (Lagae, Lefebvre, Drettakis and Dutre, SIGGRAPH 2009) and Texton Noise (Galerne, Leclaire and Moisan,
+   Computer Graphics Forum 2017) do, the impulses are scattered in 3-D space, and each one near the
+   shading point is projected on the surface's tangent plane there, where its texton is read.
+
+   Definition. Space is cut into cubes of side c = 2^cell_shift texels (the noise's cells: dsn_noise_init),
+   cube (i, j, k) holding an exact Poisson number of impulses with the plane's cell mean lambda c^2 (the
+   same table), at positions uniform in the cube with 16 - cell_shift fractional bits per axis, all from
+   stateless hashes of (cube, seed, index) as in the plane. That is a 3-D Poisson process of intensity
+   lambda / c per cubic texel. At a point p with a frame (tangent T, bitangent B = N x T, normal N), an
+   impulse q at d = p - q contributes
+       t(d . T, d . B) * W(|d . N| / H),
+   t the texton read bilinearly as in the continuous mode (Q32.32 offsets along T and B), and W a window
+   across the slab |d . N| < H:
+       W(s) = 1 for s <= 1/2,   1 - (3 u^2 - 2 u^3) with u = 2 s - 1 for 1/2 < s < 1,   0 for s >= 1,
+   which goes to 0 with zero slope at the slab's faces, so an impulse enters and leaves the sum smoothly
+   as the surface curves. Its integrals are I1 = integral W = 3/2 and I2 = integral W^2 = 48/35 (s over
+   [-1, 1]), and the slab's half-thickness is H = c / I2 = 35 c / 48 texels.
+   Why these. On a plane, the impulses within the slab project to a 2-D Poisson process of intensity
+   (lambda / c) 2H, each carrying the weight W of its height, uniform across the slab. Campbell's theorem
+   then gives the expected sum lambda (H I1 / c) sum t and the covariance lambda (H I2 / c) (t * t~)(h):
+   with H = c / I2 the covariance is exactly the plane noise's, lambda (t * t~)(h), so the plane
+   noise's gain normalizes it; the expected sum is (I1 / I2) = 35/32 times the plane's, which the
+   surface offset subtracts. So on any plane, in any orientation and with any tangent, the surface noise
+   has the 2-D continuous noise's mean, variance, covariance between channels and spectrum (not its
+   bits: the impulses are others). On a curved surface each point's value is still a sample of that
+   noise (the process is invariant under rotations and translations), so the variance is the same
+   everywhere, poles included; neighbours decorrelate slightly faster where the surface bends within a
+   texton's reach.
+
+   Arithmetic. Positions are Q32.32 texels per axis (every int64 a point: 3-D space is the torus of 2^32
+   texels per axis, as the plane is); the frame is Q2.30 (2^30 = 1), from float vectors by
+   dsn_surface_frame_from_float, computed from their bits with integer operations. For each impulse:
+   d's components floored to 16 fractional bits, the three dot products taken exactly in 64-bit integers
+   and floored to Q32.32 (u, v, w); the bilinear texton at (u, v) as the continuous mode reads it (its
+   sums Q.32 per channel, then floored); s = floor(floor(|w| / 2^16) 89878 / 2^(16 + cell_shift)) in
+   Q16 (89878 = 2^16 48/35 rounded); W in Q16 from s with the polynomial above (floors at each product
+   by 2^16); the contribution floor(texton sum * W / 2^16) added to the channel sums modulo 2^64. The
+   sums are normalized with the noise's gain (the continuous mode's normalization of Q.32 sums) and the
+   surface offset offset_c - floor(3 (mean_c - offset_c) / 32) in the noise's gain units (mean_c the asset
+   mean there), then mapped by the asset's histogram mapping if it has one. Periods (dsn_config) do not
+   apply on surfaces. The same bits on every target.
+
+   The frame. With a tangent, T is the tangent's part orthogonal to N, normalized (for anisotropic
+   materials: the texton's x axis follows it). Without one, or where the tangent is within 2^-12 rad of
+   the normal (zero, parallel), T is the x axis made orthogonal to N: (rho, -n_x c, -n_x s), with (c, s) the
+   direction of (n_y, n_z) and rho its length, computed from the float normal's n_y and n_z at their own
+   precision; T = (0, 0, -1) at N = (1, 0, 0) and (0, 0, 1) at N = (-1, 0, 0). On a ground whose normal is
+   y (or z) the texton's x axis is then the world's x, as on the plane, and the frame turns continuously
+   with N everywhere but next to N = (1, 0, 0) and (-1, 0, 0), around which it turns once (every frame made
+   from the normal alone must have such points: the hairy ball theorem). An isotropic-looking material
+   hides them; for an anisotropic one, pass a tangent field, or orient the scene so that they face away.
+   The normal need not be unit (any finite non-zero vector: its direction), nor the tangent.
+
+   Cost: the cubes within the reach of the point's oriented box (the texton's reach along T and B, H
+   along N) are walked, each cube first tested against that box; make bench's surface_bench reports a
+   point against the continuous per-point cost. Stack: under 1 KB. Not in the small build (DSN_SURFACE). */
+#ifndef DSN_SURFACE /* 1: the surface noise (this section); default 0 in the small build */
+#define DSN_SURFACE (!DSN_SMALL_CODE)
+#endif
+#if DSN_SURFACE
+#define DSN_FRAME_ONE (1 << 30) /* 1.0 in a frame's Q2.30 components */
+typedef struct dsn_surface_frame {
+    int32_t tangent[3], bitangent[3], normal[3]; /* Q2.30, each component in [-2^30, 2^30] */
+} dsn_surface_frame;
+
+/* The frame of a surface point from its normal (any finite non-zero vector) and an optional tangent
+   (null: the frame from the normal alone, as above). Returns DSN_OK, DSN_ERR_NULL (null normal or
+   frame) or DSN_ERR_ARGUMENT (a zero normal, or a NaN or infinite component of the normal or of the
+   tangent); on an error a non-null *frame is zeroed. A tangent at most 2^-12 rad from the normal (or
+   zero) counts as none. */
+int dsn_surface_frame_from_float(const float *normal, const float *tangent, dsn_surface_frame *frame);
+
+/* out[channels]: the surface noise at position[0 .. 2] (Q32.32 texels) in `frame`. Any frame with
+   components in [-2^30, 2^30] has a defined value (the statistics above hold for the unit frames that
+   dsn_surface_frame_from_float makes). Returns DSN_OK, DSN_ERR_NULL (null noise, position, frame or out,
+   or a noise not configured), DSN_ERR_CONTINUOUS_MISMATCH (as dsn_continuous_check), DSN_ERR_ARGUMENT
+   (a frame component out of range) or DSN_ERR_COST (the walk would examine more than
+   DSN_MAX_POINT_IMPULSES impulses on average: a dense noise that dsn_noise_init accepts for the plane
+   may be too dense for the slab); on an error every channel (out[0] for a noise not configured) is
+   zeroed. */
+int dsn_surface_point_fixed(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                            int32_t *out);
+/* The same from float64 positions (dsn_coordinate_from_double) and float vectors
+   (dsn_surface_frame_from_float; null tangent allowed), output as float (exactly fixed / 65536 rounded);
+   the errors of both. */
+int dsn_surface_point_float(const dsn_noise *noise, const double *position, const float *normal,
+                            const float *tangent, float *out);
+/* The same at a Q32.32 position and a frame, as 8-bit values (dsn_fixed_to_u8). */
+int dsn_surface_point_u8(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                         uint8_t *out);
+/* `count` points: positions[3 k .. 3 k + 2] and frames[k] into out[k * channels], each exactly the
+   point function's; null arrays with a count are DSN_ERR_NULL, and every error zeroes all count points. */
+int dsn_surface_batch_fixed(const dsn_noise *noise, const int64_t *positions, const dsn_surface_frame *frames,
+                            uint32_t count, int32_t *out);
+#endif
+
+/* ==== End of the surface noise ======================================================================= */
 
 /* ==== Histogram-preserving output (format 1.2) =======================================================
    A spot noise is Gaussian: it keeps an exemplar's mean, colours' covariance and spectrum, but not the

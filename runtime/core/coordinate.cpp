@@ -2,6 +2,7 @@
    the bits with integer operations only, so that every platform (float unit or not) gets the same
    point. */
 #include "core/continuous_internal.h"
+#include "core/float_bits.h"
 #include "setup/noise_state.h"
 
 namespace {
@@ -21,17 +22,6 @@ int64_t coordinate_from_parts(bool negative, uint64_t mantissa, int32_t exponent
     }
     /* Toward minus infinity: a negative value with dropped bits moves one unit further down. */
     return signed_from_bits(negative ? 0u - magnitude - (inexact ? 1u : 0u) : magnitude);
-}
-
-/* The object representation of a value as an unsigned integer of the same size (character copies are
-   the only aliasing-safe way without memcpy; compilers reduce this to a move). */
-template <typename Bits, typename Value>
-Bits bits_of(Value value) {
-    Bits bits = 0;
-    const unsigned char *from = reinterpret_cast<const unsigned char *>(&value);
-    unsigned char *to = reinterpret_cast<unsigned char *>(&bits);
-    for (unsigned i = 0; i < sizeof(Value); i++) to[i] = from[i];
-    return bits;
 }
 
 } // namespace

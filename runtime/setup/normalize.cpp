@@ -11,28 +11,13 @@ namespace {
 
 const uint32_t gain_limit_bits = 29; /* |gain| < 2^29 keeps a pixel's sum below 2^63 (normalize_fixed.h) */
 
-uint64_t integer_sqrt(uint64_t value) {
-    uint64_t root = 0, bit = uint64_t(1) << 62;
-    while (bit > value) bit >>= 2;
-    while (bit != 0) {
-        if (value >= root + bit) {
-            value -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    return root;
-}
-
 /* sqrt(lambda) = root / 2^root_shift with root >= 2^22: the radicand impacts << e is brought near 2^62
    first (e even), so the integer square root keeps 22+ significant bits. */
 void sqrt_lambda(uint32_t impacts_q16, uint32_t support_size, uint64_t *root, uint32_t *root_shift) {
     uint32_t e = 0;
     while ((uint64_t(impacts_q16) << (e + 2)) < (uint64_t(1) << 62)) e += 2;
     /* lambda 2^(e+16) = (impacts_q16 << e) / |S|, so the root is sqrt(lambda) 2^((e + 16) / 2). */
-    *root = integer_sqrt(dsn_divide(uint64_t(impacts_q16) << e, support_size));
+    *root = dsn_integer_sqrt(dsn_divide(uint64_t(impacts_q16) << e, support_size));
     *root_shift = (e + 16) / 2;
 }
 

@@ -350,6 +350,96 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
     return DSN_OK;
 }
 
+#if DSN_SURFACE && !defined(GOLDEN_WITHOUT_SURFACE)
+/* The surface noise (dsn.h, "Surface noise"): each grid point (x, y) lifted to the sloped plane
+   z = x / 2 - y / 4 of 3-D space, under frames made from exactly representable float vectors: a plane's,
+   a tilted normal with a tangent, the x axis (where the frame from the normal alone turns around) and a
+   normal next to it, a tangent along its normal (the frame from the normal alone), a tangent crossing a
+   non-unit normal. */
+struct SurfaceVectors {
+    float normal[3], tangent[3];
+    bool has_tangent;
+};
+
+const SurfaceVectors surface_vectors[] = {
+    {{0, 0, 1}, {0, 0, 0}, false},        {{0.3f, -0.5f, 0.8f}, {1, 0.25f, 0}, true},
+    {{-1, 0, 0}, {0, 0, 0}, false},       {{-1, 2e-3f, -1e-3f}, {0, 0, 0}, false},
+    {{-3, 6, 1.5f}, {-3, 6, 1.5f}, true}, {{1, 1, 0}, {0, 0, 5}, true},
+};
+const uint32_t surface_vector_count = sizeof surface_vectors / sizeof surface_vectors[0];
+const uint32_t surface_points_max = 32u;
+
+int64_t surface_positions[surface_points_max * 3];
+dsn_surface_frame surface_frames[surface_points_max];
+
+/* The grid's points (at most surface_points_max: the first ones) as positions, with their frame. */
+uint32_t surface_points(const Grid &grid, const dsn_surface_frame &frame) {
+    uint32_t count = 0;
+    for (uint32_t j = 0; j < grid.height; j++)
+        for (uint32_t i = 0; i < grid.width && count < surface_points_max; i++, count++) {
+            int64_t *position = &surface_positions[3 * count];
+            grid_point(grid.grid, i, j, &position[0], &position[1]);
+            position[2] = signed_from((static_cast<uint64_t>(position[0]) >> 1) -
+                                      (static_cast<uint64_t>(position[1]) >> 2));
+            surface_frames[count] = frame;
+        }
+    return count;
+}
+
+/* Each frame's bits, then the fixed values of every point of the grid. */
+int surface_point_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    for (uint32_t f = 0; f < surface_vector_count; f++) {
+        const SurfaceVectors &vectors = surface_vectors[f];
+        dsn_surface_frame frame;
+        int err =
+            dsn_surface_frame_from_float(vectors.normal, vectors.has_tangent ? vectors.tangent : 0, &frame);
+        if (err != DSN_OK) return err;
+        hash_fixed(hash, frame.tangent, 3);
+        hash_fixed(hash, frame.bitangent, 3);
+        hash_fixed(hash, frame.normal, 3);
+        const uint32_t count = surface_points(grid, frame);
+        for (uint32_t k = 0; k < count; k++) {
+            int32_t values[DSN_MAX_CHANNELS];
+            err = dsn_surface_point_fixed(noise, &surface_positions[3 * k], &frame, values);
+            if (err != DSN_OK) return err;
+            hash_fixed(hash, values, dsn_noise_channels(noise));
+        }
+    }
+    return DSN_OK;
+}
+
+/* The float API per point (double positions, float vectors), then the batch and the 8-bit values. */
+int surface_conversions(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t channels = dsn_noise_channels(noise);
+    for (uint32_t f = 0; f < surface_vector_count; f++) {
+        const SurfaceVectors &vectors = surface_vectors[f];
+        dsn_surface_frame frame;
+        int err =
+            dsn_surface_frame_from_float(vectors.normal, vectors.has_tangent ? vectors.tangent : 0, &frame);
+        const uint32_t count = surface_points(grid, frame);
+        for (uint32_t k = 0; err == DSN_OK && k < count; k++) {
+            const int64_t *position = &surface_positions[3 * k];
+            const double point[3] = {grid_double(position[0]), grid_double(position[1]),
+                                     grid_double(position[2])};
+            float values[DSN_MAX_CHANNELS];
+            err = dsn_surface_point_float(noise, point, vectors.normal,
+                                          vectors.has_tangent ? vectors.tangent : 0, values);
+            if (err == DSN_OK) hash_float(hash, values, channels);
+        }
+        if (err == DSN_OK)
+            err = dsn_surface_batch_fixed(noise, surface_positions, surface_frames, count, tile_fixed_values);
+        if (err == DSN_OK) hash_fixed(hash, tile_fixed_values, count * channels);
+        for (uint32_t k = 0; err == DSN_OK && k < count; k++) {
+            uint8_t values[DSN_MAX_CHANNELS];
+            err = dsn_surface_point_u8(noise, &surface_positions[3 * k], &frame, values);
+            if (err == DSN_OK) hash_u8(hash, values, channels);
+        }
+        if (err != DSN_OK) return err;
+    }
+    return DSN_OK;
+}
+#endif
+
 #if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
 /* The gradients (dsn.h, "Gradients"): the values, then the x derivatives, then the y derivatives of a
    window or grid, hashed as three arrays; per point and tile give the same bytes. */
@@ -653,6 +743,15 @@ const Plan continuous_plan = {continuous_settings, GOLDEN_COUNT(continuous_setti
 
 const Plan affine_plan = {affine_settings, GOLDEN_COUNT(affine_settings), 0, 0,
                           affine_grids,    GOLDEN_COUNT(affine_grids)};
+/* The surface noise's grids: the zoom, the rotation across both 32-bit wraps and the tiny steps across 0 of
+   the continuous grids. */
+const Grid surface_grids[] = {
+    {{-3 * q32_one - q32_one / 4, 7 * q32_one + q32_one / 2, 1288490189, 0, 0, 1288490189}, 6, 5},
+    {{INT64_MAX - q32_one / 2, INT64_MIN + 123, 3719550787, -2147483648, 2147483648, 3719550787}, 5, 4},
+    {{-2 * 65536, 65536 * 3 + 1, 65536, 0, -65536, 131072}, 4, 4},
+};
+const Plan surface_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
+                           surface_grids,       GOLDEN_COUNT(surface_grids)};
 const Plan filtered_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
                             filtered_grids,      GOLDEN_COUNT(filtered_grids)};
 
@@ -686,6 +785,10 @@ const Kind kinds[] = {
     {"d-c-point", 0, continuous_gradient_point, &affine_plan, false},
     {"d-c-tile", 0, continuous_gradient_tile, &affine_plan, false}, /* the same bytes as "d-c-point" */
     {"d-c-float", 0, continuous_gradient_floats, &continuous_plan, false},
+#endif
+#if DSN_SURFACE && !defined(GOLDEN_WITHOUT_SURFACE)
+    {"s-point", 0, surface_point_fixed, &surface_plan, false},
+    {"s-float", 0, surface_conversions, &surface_plan, false}, /* float per point, batch fixed, u8 */
 #endif
 #if DSN_FILTERING
     {"f-point", 0, filtered_point_fixed, &filtered_plan, false},

@@ -30,6 +30,9 @@ static_assert(sizeof(dsn_mix_control) == 28 && offsetof(dsn_mix_control, width) 
                   offsetof(dsn_mix_control, origin_x) == 16 && offsetof(dsn_mix_control, flags) == 24,
               "dsn_mix_control layout changed");
 
+/* dsn.mjs: SURFACE_BYTES (a dsn_surface_frame after three int64 and two float[3]). */
+static_assert(sizeof(dsn_surface_frame) == 36, "dsn_surface_frame size");
+
 extern "C" {
 
 uint32_t dsn_web_asset_bytes(void) { return sizeof(dsn_asset); }

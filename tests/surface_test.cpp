@@ -1,0 +1,416 @@
+// surface_test.cpp - the surface noise (dsn.h, "Surface noise"): its frames, its statistics on planes of any
+// orientation against the plane noise's theory, no pinch and no seam on a sphere, continuity over a curved
+// surface, and its API's errors.
+//
+// Theory. On a plane with frame (T, B, N), the surface noise at p + a T + b B has the continuous noise's
+// mean and covariance at lag (a, b) (dsn.h derives it from Campbell's theorem): the bilinear theory of
+// continuous_statistics_test.cpp, Cov(out_c, out_d at lag h) = sum_kl K_ck K_dl integral t~_k t~_l(. + h).
+// Samples are taken at sites 24 texels apart on the plane (farther than two reaches plus the largest lag),
+// so they are independent; covariances are averaged over 20 batches and checked within 4 standard errors,
+// which are themselves under 4% of the variances.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "fixtures/continuous_fixtures.h"
+#include "fixtures/noise_theory.h"
+
+using namespace continuous_fixtures;
+
+namespace {
+
+const int kRadius = 5, kSide = 2 * kRadius + 1;
+const double kOne = 4294967296.0; // 2^32: one texel in Q32.32
+
+struct Vector {
+    double x, y, z;
+};
+
+Vector operator+(Vector a, Vector b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vector operator*(double s, Vector a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(Vector a, Vector b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vector cross(Vector a, Vector b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Vector unit(Vector a) { return (1 / std::sqrt(dot(a, a))) * a; }
+
+Vector frame_vector(const int32_t *v) {
+    return {v[0] / 1073741824.0, v[1] / 1073741824.0, v[2] / 1073741824.0};
+}
+
+dsn_surface_frame make_frame(Vector normal, const Vector *tangent) {
+    const float n[3] = {float(normal.x), float(normal.y), float(normal.z)};
+    float t[3] = {0, 0, 0};
+    if (tangent) t[0] = float(tangent->x), t[1] = float(tangent->y), t[2] = float(tangent->z);
+    dsn_surface_frame frame;
+    REQUIRE(dsn_surface_frame_from_float(n, tangent ? t : nullptr, &frame) == DSN_OK);
+    return frame;
+}
+
+std::array<double, 3> surface_value(const dsn_noise &noise, Vector p, const dsn_surface_frame &frame) {
+    const int64_t position[3] = {dsn_coordinate_from_double(p.x), dsn_coordinate_from_double(p.y),
+                                 dsn_coordinate_from_double(p.z)};
+    int32_t out[3] = {0, 0, 0};
+    REQUIRE(dsn_surface_point_fixed(&noise, position, &frame, out) == DSN_OK);
+    return {out[0] / 65536.0, out[1] / 65536.0, out[2] / 65536.0};
+}
+
+// Cov(out_c(x), out_d(x + h)) of the continuous noise: K (t~ * t~) K^T at the real lag h.
+double theory_covariance(const dsn::AssetFields &fields, uint32_t c, uint32_t d, double hx, double hy) {
+    const auto t = texton_values(fields);
+    auto transform = [&](uint32_t row, uint32_t k) {
+        return fields.color_transform[row * 3 + k] / 16777216.0;
+    };
+    double sum = 0;
+    for (uint32_t k = 0; k < fields.channels; k++)
+        for (uint32_t l = 0; l < fields.channels; l++)
+            sum += transform(c, k) * transform(d, l) * bilinear_correlation(t[k], t[l], kSide, hx, hy);
+    return sum;
+}
+
+// Mean and standard error of per-batch values.
+void batch_mean(const std::vector<double> &values, double *mean, double *error) {
+    double sum = 0, square = 0;
+    for (double v : values) sum += v;
+    *mean = sum / double(values.size());
+    for (double v : values) square += (v - *mean) * (v - *mean);
+    *error = std::sqrt(square / double(values.size() - 1) / double(values.size()));
+}
+
+const double kLags[][2] = {{0, 0}, {1, 0}, {0, 1}, {3, 2}, {0.5, 0.25}};
+const int kLagCount = 5;
+
+// The plane through `origin` with this frame: mean and covariances at the lags against the theory.
+void check_plane(const dsn::AssetFields &fields, const dsn_noise &noise, Vector origin,
+                 const dsn_surface_frame &frame, uint64_t seed) {
+    const Vector T = frame_vector(frame.tangent), B = frame_vector(frame.bitangent);
+    const uint32_t channels = fields.channels;
+    const int batches = 20, sites = 2000;
+    std::mt19937_64 random(seed);
+    std::uniform_real_distribution<double> jitter(0.0, 1.0);
+    std::vector<double> means[3], covariances[kLagCount][3][3];
+    for (int batch = 0; batch < batches; batch++) {
+        std::vector<std::array<double, 3>> values[kLagCount];
+        for (int s = 0; s < sites; s++) {
+            const int site = batch * sites + s;
+            const double a = (site % 200) * 24.0 + jitter(random), b = (site / 200) * 24.0 + jitter(random);
+            for (int h = 0; h < kLagCount; h++)
+                values[h].push_back(
+                    surface_value(noise, origin + (a + kLags[h][0]) * T + (b + kLags[h][1]) * B, frame));
+        }
+        for (uint32_t c = 0; c < channels; c++) {
+            double sum = 0;
+            for (const auto &v : values[0]) sum += v[c];
+            means[c].push_back(sum / sites);
+        }
+        for (int h = 0; h < kLagCount; h++)
+            for (uint32_t c = 0; c < channels; c++)
+                for (uint32_t d = 0; d < channels; d++) {
+                    double mean_c = 0, mean_d = 0, sum = 0;
+                    for (int s = 0; s < sites; s++)
+                        mean_c += values[0][size_t(s)][c], mean_d += values[h][size_t(s)][d];
+                    mean_c /= sites, mean_d /= sites;
+                    for (int s = 0; s < sites; s++)
+                        sum += (values[0][size_t(s)][c] - mean_c) * (values[h][size_t(s)][d] - mean_d);
+                    covariances[h][c][d].push_back(sum / (sites - 1));
+                }
+    }
+    for (uint32_t c = 0; c < channels; c++) {
+        double mean, error;
+        batch_mean(means[c], &mean, &error);
+        CAPTURE(c);
+        CHECK(std::fabs(mean - fields.mean[c] / 16777216.0) <= 4 * error);
+    }
+    for (int h = 0; h < kLagCount; h++)
+        for (uint32_t c = 0; c < channels; c++)
+            for (uint32_t d = 0; d < channels; d++) {
+                double covariance, error;
+                batch_mean(covariances[h][c][d], &covariance, &error);
+                const double expected = theory_covariance(fields, c, d, kLags[h][0], kLags[h][1]);
+                CAPTURE(h);
+                CAPTURE(c);
+                CAPTURE(d);
+                CAPTURE(covariance);
+                CAPTURE(expected);
+                CHECK(std::fabs(covariance - expected) <= 4 * error);
+                CHECK(4 * error <= 0.04 * std::sqrt(theory_covariance(fields, c, c, 0, 0) *
+                                                    theory_covariance(fields, d, d, 0, 0)));
+            }
+}
+
+// Largest change between neighbouring samples of a path: points(k) for k = 0 .. count - 1.
+template <typename Path>
+double largest_step(const dsn_noise &noise, int count, Path path) {
+    double largest = 0;
+    std::array<double, 3> previous{};
+    for (int k = 0; k < count; k++) {
+        Vector p, normal;
+        path(k, &p, &normal);
+        const auto value = surface_value(noise, p, make_frame(normal, nullptr));
+        if (k > 0)
+            for (int c = 0; c < 3; c++)
+                largest = std::max(largest, std::fabs(value[size_t(c)] - previous[size_t(c)]));
+        previous = value;
+    }
+    return largest;
+}
+
+} // namespace
+
+TEST_CASE("surface frames: unit, orthogonal and right-handed; scale-free; the frame from the normal alone") {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> component(-1, 1);
+    for (int i = 0; i < 2000; i++) {
+        const float normal[3] = {component(random), component(random), component(random)};
+        const float tangent[3] = {component(random), component(random), component(random)};
+        dsn_surface_frame frame;
+        REQUIRE(dsn_surface_frame_from_float(normal, i % 2 ? tangent : nullptr, &frame) == DSN_OK);
+        // Each component is within a few units of 2^-30 of the exact frame's (floors, an integer square
+        // root, and the products of the frame from the normal alone).
+        const double tolerance = 16.0 / 1073741824.0;
+        const Vector T = frame_vector(frame.tangent), B = frame_vector(frame.bitangent),
+                     N = frame_vector(frame.normal);
+        CHECK(std::fabs(dot(T, T) - 1) < tolerance);
+        CHECK(std::fabs(dot(B, B) - 1) < tolerance);
+        CHECK(std::fabs(dot(N, N) - 1) < tolerance);
+        CHECK(std::fabs(dot(T, N)) < tolerance);
+        CHECK(std::fabs(dot(B, N)) < tolerance);
+        CHECK(std::fabs(dot(T, B)) < tolerance);
+        CHECK(dot(cross(T, B), N) > 1 - tolerance);
+        const Vector n = unit({normal[0], normal[1], normal[2]});
+        CHECK(dot(N, n) > 1 - tolerance);
+        if (i % 2) { // T is the tangent's part orthogonal to the normal
+            const Vector t = {tangent[0], tangent[1], tangent[2]};
+            CHECK(dot(T, unit(t + (-dot(t, n)) * n)) > 1 - tolerance);
+        }
+        // A power-of-two scale of the vectors changes no bit.
+        const float scaled[3] = {std::ldexp(normal[0], 40), std::ldexp(normal[1], 40),
+                                 std::ldexp(normal[2], 40)};
+        const float small[3] = {std::ldexp(tangent[0], -100), std::ldexp(tangent[1], -100),
+                                std::ldexp(tangent[2], -100)};
+        dsn_surface_frame again;
+        REQUIRE(dsn_surface_frame_from_float(scaled, i % 2 ? small : nullptr, &again) == DSN_OK);
+        CHECK(memcmp(&again, &frame, sizeof frame) == 0);
+    }
+    // The frame from the normal alone: x made orthogonal to the normal, and its two fixed frames on the x
+    // axis.
+    const float up[3] = {0, 0, 1}, down[3] = {0, -2, 0}, along[3] = {3, 0, 0}, against[3] = {-1, 0, 0};
+    const float tilted[3] = {0.25f, -0.5f, 1};
+    dsn_surface_frame frame, alone;
+    REQUIRE(dsn_surface_frame_from_float(up, nullptr, &frame) == DSN_OK);
+    CHECK(frame.tangent[0] == DSN_FRAME_ONE);
+    CHECK(frame.bitangent[1] == DSN_FRAME_ONE);
+    REQUIRE(dsn_surface_frame_from_float(down, nullptr, &frame) == DSN_OK);
+    CHECK(frame.tangent[0] == DSN_FRAME_ONE);
+    CHECK(frame.bitangent[2] == DSN_FRAME_ONE);
+    REQUIRE(dsn_surface_frame_from_float(along, nullptr, &frame) == DSN_OK);
+    CHECK(frame.tangent[2] == -DSN_FRAME_ONE);
+    REQUIRE(dsn_surface_frame_from_float(against, nullptr, &frame) == DSN_OK);
+    CHECK(frame.tangent[2] == DSN_FRAME_ONE);
+    REQUIRE(dsn_surface_frame_from_float(tilted, tilted, &frame) == DSN_OK);
+    REQUIRE(dsn_surface_frame_from_float(tilted, nullptr, &alone) == DSN_OK);
+    CHECK(memcmp(&frame, &alone, sizeof frame) == 0);
+    // Continuous in the normal away from the x axis: a turn of the normal by 1e-4 turns the frame by at most
+    // about 1e-4 / rho (rho = sqrt(n_y^2 + n_z^2), the rate of the direction of (n_y, n_z)).
+    for (int i = 0; i < 500; i++) {
+        Vector n = unit({component(random), component(random), component(random)});
+        const double rho = std::sqrt(n.y * n.y + n.z * n.z);
+        if (rho < 0.1) continue;
+        const Vector m = unit(n + 1e-4 * Vector{component(random), component(random), component(random)});
+        const dsn_surface_frame a = make_frame(n, nullptr), b = make_frame(m, nullptr);
+        const Vector ta = frame_vector(a.tangent), tb = frame_vector(b.tangent);
+        CHECK(std::sqrt(dot(ta + (-1) * tb, ta + (-1) * tb)) < 4e-4 / rho);
+    }
+}
+
+TEST_CASE("surface frames and points: bad inputs get an error code and zeroed outputs") {
+    const float nan = std::nanf(""), inf = INFINITY;
+    const float zero[3] = {0, 0, 0}, up[3] = {0, 0, 1}, with_nan[3] = {0, nan, 1}, with_inf[3] = {inf, 0, 1};
+    dsn_surface_frame frame;
+    memset(&frame, 0x55, sizeof frame);
+    CHECK(dsn_surface_frame_from_float(zero, nullptr, &frame) == DSN_ERR_ARGUMENT);
+    CHECK(frame.normal[2] == 0);
+    CHECK(dsn_surface_frame_from_float(with_nan, nullptr, &frame) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_surface_frame_from_float(with_inf, nullptr, &frame) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_surface_frame_from_float(up, with_nan, &frame) == DSN_ERR_ARGUMENT);
+    CHECK(dsn_surface_frame_from_float(nullptr, nullptr, &frame) == DSN_ERR_NULL);
+    CHECK(dsn_surface_frame_from_float(up, nullptr, nullptr) == DSN_ERR_NULL);
+    CHECK(dsn_surface_frame_from_float(up, zero, &frame) == DSN_OK); // a zero tangent counts as none
+
+    auto noise = make_noise(random_texton_asset(3, kRadius, 8, 42), 3);
+    const int64_t position[3] = {1, 2, 3};
+    int32_t out[3] = {7, 7, 7};
+    CHECK(dsn_surface_point_fixed(&noise->noise, nullptr, &frame, out) == DSN_ERR_NULL);
+    CHECK((out[0] == 0 && out[1] == 0 && out[2] == 0));
+    CHECK(dsn_surface_point_fixed(&noise->noise, position, nullptr, out) == DSN_ERR_NULL);
+    CHECK(dsn_surface_point_fixed(nullptr, position, &frame, out) == DSN_ERR_NULL);
+    dsn_surface_frame wide = frame;
+    wide.tangent[1] = DSN_FRAME_ONE + 1;
+    out[0] = 7;
+    CHECK(dsn_surface_point_fixed(&noise->noise, position, &wide, out) == DSN_ERR_ARGUMENT);
+    CHECK(out[0] == 0);
+    float values[3] = {7, 7, 7};
+    const double point[3] = {1, 2, 3};
+    CHECK(dsn_surface_point_float(&noise->noise, point, with_nan, nullptr, values) == DSN_ERR_ARGUMENT);
+    CHECK((values[0] == 0 && values[1] == 0 && values[2] == 0));
+    CHECK(dsn_surface_point_float(&noise->noise, nullptr, up, nullptr, values) == DSN_ERR_NULL);
+    CHECK(dsn_surface_batch_fixed(&noise->noise, nullptr, &frame, 1, out) == DSN_ERR_NULL);
+    CHECK(dsn_surface_batch_fixed(&noise->noise, nullptr, nullptr, 0, nullptr) == DSN_OK);
+
+    // A lattice-baked asset is refused as the continuous functions refuse it.
+    dsn::AssetFields lattice = random_texton_asset(1, kRadius, 8, 5);
+    lattice.interpolation = DSN_INTERPOLATION_LATTICE;
+    auto strict = make_noise(lattice, 3);
+    CHECK(dsn_surface_point_fixed(&strict->noise, position, &frame, out) == DSN_ERR_CONTINUOUS_MISMATCH);
+}
+
+TEST_CASE(
+    "surface points: the float, 8-bit and batch functions give the fixed values; huge coordinates wrap") {
+    auto noise = make_noise(random_texton_asset(3, kRadius, 16, 9), 11);
+    std::mt19937_64 random(5);
+    std::uniform_real_distribution<double> coordinate(-300, 300);
+    std::uniform_real_distribution<float> component(-1, 1);
+    std::vector<int64_t> positions;
+    std::vector<dsn_surface_frame> frames;
+    std::vector<int32_t> expected;
+    for (int k = 0; k < 300; k++) {
+        // Multiples of 2^-8 texel: plus 2^40 texels they stay exact in a double.
+        const double p[3] = {std::ldexp(std::round(std::ldexp(coordinate(random), 8)), -8),
+                             std::ldexp(std::round(std::ldexp(coordinate(random), 8)), -8),
+                             std::ldexp(std::round(std::ldexp(coordinate(random), 8)), -8)};
+        const float n[3] = {component(random), component(random), component(random)};
+        dsn_surface_frame frame;
+        if (dsn_surface_frame_from_float(n, nullptr, &frame) != DSN_OK) continue;
+        const int64_t q[3] = {dsn_coordinate_from_double(p[0]), dsn_coordinate_from_double(p[1]),
+                              dsn_coordinate_from_double(p[2])};
+        int32_t fixed[3];
+        float floats[3];
+        uint8_t bytes[3];
+        REQUIRE(dsn_surface_point_fixed(&noise->noise, q, &frame, fixed) == DSN_OK);
+        REQUIRE(dsn_surface_point_float(&noise->noise, p, n, nullptr, floats) == DSN_OK);
+        REQUIRE(dsn_surface_point_u8(&noise->noise, q, &frame, bytes) == DSN_OK);
+        // 2^40 texels is a whole number of turns of the torus: the same point.
+        const double far[3] = {p[0] + 1099511627776.0, p[1] - 1099511627776.0, p[2] + 3298534883328.0};
+        float wrapped[3];
+        REQUIRE(dsn_surface_point_float(&noise->noise, far, n, nullptr, wrapped) == DSN_OK);
+        for (int c = 0; c < 3; c++) {
+            CHECK(floats[c] == dsn_fixed_to_float(fixed[c]));
+            CHECK(bytes[c] == dsn_fixed_to_u8(fixed[c]));
+            CHECK(wrapped[c] == floats[c]);
+            expected.push_back(fixed[c]);
+        }
+        positions.insert(positions.end(), q, q + 3);
+        frames.push_back(frame);
+    }
+    std::vector<int32_t> batch(expected.size());
+    REQUIRE(dsn_surface_batch_fixed(&noise->noise, positions.data(), frames.data(), uint32_t(frames.size()),
+                                    batch.data()) == DSN_OK);
+    CHECK(batch == expected);
+}
+
+TEST_CASE("surface statistics: on planes of any orientation, the plane noise's mean and covariance") {
+    const dsn::AssetFields rgb = random_texton_asset(3, kRadius, 8, 42);
+    auto noise = make_noise(rgb, 21, 30u << 16);
+    SUBCASE("the plane z = 0, its own axes") {
+        const Vector tangent = {1, 0, 0};
+        check_plane(rgb, noise->noise, {10.25, -3.5, 0.125}, make_frame({0, 0, 1}, &tangent), 1);
+    }
+    SUBCASE("a tilted plane with a tangent") {
+        const Vector tangent = {1, 0.25, 0};
+        check_plane(rgb, noise->noise, {-1000.5, 77.25, 31.75}, make_frame({0.3, -0.5, 0.8}, &tangent), 2);
+    }
+    SUBCASE("a steep plane, the frame from its normal alone") {
+        check_plane(rgb, noise->noise, {5, 6, 7}, make_frame({-1, 2, 0.5}, nullptr), 3);
+    }
+    SUBCASE("next to the x axis, where the frame from the normal alone turns around") {
+        check_plane(rgb, noise->noise, {0, 0, 0}, make_frame({-1, 0.001, -0.002}, nullptr), 4);
+    }
+}
+
+TEST_CASE("surface statistics: a sphere has the same variance at its poles as at its equator") {
+    // Sites on spheres of radius 300 texels, their centres 40 texels apart (so samples are independent):
+    // within a degree of the north pole, of the south pole and of the equator, and of the point on the
+    // equator where the frame from the normal alone turns around (x). The variance is the plane's
+    // everywhere, within 4 standard errors.
+    const dsn::AssetFields rgb = random_texton_asset(3, kRadius, 8, 42);
+    auto noise = make_noise(rgb, 8, 30u << 16);
+    const Vector poles[4] = {{0, 0, 1}, {0, 0, -1}, {0.6, 0.8, 0}, {1, 0, 0}};
+    std::mt19937_64 random(17);
+    std::uniform_real_distribution<double> offset(-0.0087, 0.0087); // half a degree per axis
+    for (int p = 0; p < 4; p++) {
+        std::vector<double> samples[3];
+        for (int site = 0; site < 20000; site++) {
+            const Vector centre = {(site % 150) * 40.0, (site / 150) * 40.0, 0};
+            const Vector direction = unit(poles[p] + Vector{offset(random), offset(random), offset(random)});
+            const auto value =
+                surface_value(noise->noise, centre + 300.0 * direction, make_frame(direction, nullptr));
+            for (int c = 0; c < 3; c++) samples[c].push_back(value[size_t(c)]);
+        }
+        for (uint32_t c = 0; c < 3; c++) {
+            double mean = 0, square = 0, fourth = 0;
+            const double n = double(samples[c].size());
+            for (double v : samples[c]) mean += v / n;
+            for (double v : samples[c])
+                square += (v - mean) * (v - mean) / n, fourth += std::pow(v - mean, 4) / n;
+            const double error = std::sqrt((fourth - square * square) / n); // the sample variance's
+            const double expected = theory_covariance(rgb, c, c, 0, 0);
+            CAPTURE(p);
+            CAPTURE(c);
+            CAPTURE(square);
+            CAPTURE(expected);
+            CHECK(std::fabs(square - expected) <= 4 * error);
+            CHECK(4 * error <= 0.05 * expected);
+        }
+    }
+}
+
+TEST_CASE("surface noise: no seam along great circles, continuous over a curved surface") {
+    auto noise = make_noise(random_texton_asset(3, kRadius, 8, 42), 12, 30u << 16);
+    const Vector centre = {123.5, -45.25, 67.75};
+    const double radius = 60, pi = 3.14159265358979323846;
+    // Quarters of great circles through both poles (meridians), the equator and a tilted circle, the frame
+    // from the normal alone (those starting next to the x axis pass 0.1 rad from it, where the frame turns
+    // fastest); a circle at angle t is centre + radius (cos t u + sin t v).
+    const Vector circles[][2] = {{{1, 0, 0}, {0, 0, 1}},
+                                 {{0.6, 0.8, 0}, {0, 0, -1}},
+                                 {{1, 0, 0}, {0, 1, 0}},
+                                 {{0.8, 0, 0.6}, {0, 1, 0}}};
+    for (const auto &circle : circles) {
+        // Steps of about 1/16 and 1/64 texel: a seam (a jump of the value) would show as a change that
+        // does not shrink with the step; a continuous noise's largest change shrinks about 4 times.
+        double largest[2];
+        for (int fine = 0; fine < 2; fine++) {
+            const int count = fine ? 24000 : 6000; // a quarter of the circle from angle 0.1
+            const double step = (pi / 2) / count;
+            largest[fine] = largest_step(noise->noise, count, [&](int k, Vector *p, Vector *normal) {
+                const double t = 0.1 + step * k;
+                *normal = std::cos(t) * circle[0] + std::sin(t) * circle[1];
+                *p = centre + radius * *normal;
+            });
+        }
+        CAPTURE(circle[0].x);
+        CAPTURE(circle[1].z);
+        CAPTURE(largest[0]);
+        CAPTURE(largest[1]);
+        CHECK(largest[1] <= 0.5 * largest[0]);
+    }
+    // A path around the tube of a torus (tube radius 20, ring radius 50) whose axis is tilted 30 degrees
+    // from y: its normals turn through a whole great circle that passes 60 degrees from the x axis.
+    const Vector axis = {0.5, std::sqrt(0.75), 0}, radial = {0, 0, 1};
+    double largest[2];
+    for (int fine = 0; fine < 2; fine++) {
+        const int count = fine ? 24000 : 6000;
+        const double step = 2 * pi / count;
+        largest[fine] = largest_step(noise->noise, count, [&](int k, Vector *p, Vector *normal) {
+            *normal = std::cos(step * k) * radial + std::sin(step * k) * axis;
+            *p = centre + 50.0 * radial + 20.0 * *normal;
+        });
+    }
+    CAPTURE(largest[0]);
+    CAPTURE(largest[1]);
+    CHECK(largest[1] <= 0.5 * largest[0]);
+}
