@@ -14,9 +14,9 @@
 // bent by it (`bumped_normal`) before the light is applied.
 //
 // With --mapping surface there are no texture coordinates at all: every surface (the ground, the sphere and
-// a torus beside it) reads the surface noise at its 3-D point and normal (`sample_surface`,
-// dsn_surface_point_float), with no seam, no pinched pole, and the same look on the ground as the planar
-// noise's.
+// a torus beside it) reads the surface noise at its 3-D point and normal (`sample_surface`), filtered by
+// the pixel's footprint projected on the tangent plane, with no seam, no pinched pole, and the same look on
+// the ground as the planar noise's.
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -67,8 +67,9 @@ const char *const usage =
     "                         reference)\n"
     "  --mapping M            uv (default: the ground's x and z and the sphere's longitude and latitude\n"
     "                         as texture coordinates) or surface (no coordinates: the surface noise of\n"
-    "                         each 3-D point and normal, dsn_surface_point_float, on the ground, the\n"
-    "                         sphere and a torus; unfiltered, so --filter none and flat shading)\n"
+    "                         each 3-D point and normal on the ground, the sphere and a torus,\n"
+    "                         dsn_surface_filtered_point_fixed with the footprint on the tangent plane,\n"
+    "                         or dsn_surface_point_fixed with --filter none; flat shading only)\n"
     "  --time-limit S         refuse a picture estimated to take more than S seconds (default 600;\n"
     "                         0 = no limit), from 64 probe pixels spread over it, timed first\n"
     "  -h, --help, --version  this help, the version\n"
@@ -290,12 +291,35 @@ double hit_torus(const Scene &scene, Vec origin, Vec direction) {
 }
 
 // The surface noise at a scene point with its unit normal: no texture coordinates, the point in texels.
-Vec sample_surface(const Texture &texture, Vec point, Vec normal) {
-    const double position[3] = {point.x * texture.texels_per_unit, point.y * texture.texels_per_unit,
-                                point.z * texture.texels_per_unit};
+// Filtered, the pixel's footprint is its motion on the surface (ray differentials) projected on the
+// frame's tangent and bitangent, in texels per pixel.
+Vec sample_surface(const Texture &texture, Vec point, Vec normal, const tiny::SurfaceDifferential &motion,
+                   Filter filter) {
+    const double scale = texture.texels_per_unit;
+    const double position[3] = {point.x * scale, point.y * scale, point.z * scale};
     const float n[3] = {float(normal.x), float(normal.y), float(normal.z)};
-    float value[3];
-    dsn_surface_point_float(&texture.noise, position, n, nullptr, value);
+    float value[3] = {0, 0, 0};
+    dsn_surface_frame frame;
+    dsn_footprint footprint;
+    if (dsn_surface_frame_from_float(n, nullptr, &frame) == DSN_OK) {
+        const auto axis = [](const int32_t *v) {
+            return Vec{v[0] / 1073741824.0, v[1] / 1073741824.0, v[2] / 1073741824.0};
+        };
+        const Vec tangent = axis(frame.tangent), bitangent = axis(frame.bitangent);
+        const int64_t at[3] = {dsn_coordinate_from_double(position[0]),
+                               dsn_coordinate_from_double(position[1]),
+                               dsn_coordinate_from_double(position[2])};
+        int32_t fixed[3] = {0, 0, 0};
+        if (filter != Filter::none &&
+            dsn_footprint_from_float(
+                &footprint, dot(motion.along_x, tangent) * scale, dot(motion.along_x, bitangent) * scale,
+                dot(motion.along_y, tangent) * scale, dot(motion.along_y, bitangent) * scale,
+                filter == Filter::aniso ? 16 : 1) == DSN_OK)
+            dsn_surface_filtered_point_fixed(&texture.noise, at, &frame, &footprint, fixed);
+        else
+            dsn_surface_point_fixed(&texture.noise, at, &frame, fixed);
+        for (int c = 0; c < 3; c++) value[c] = dsn_fixed_to_float(fixed[c]);
+    }
     return texture.asset.channels == 3 ? Vec{value[0], value[1], value[2]}
                                        : Vec{value[0], value[0], value[0]};
 }
@@ -311,14 +335,17 @@ Vec trace(const Scene &scene, const tiny::Camera &camera, double px, double py, 
         const Vec point = camera.eye + direction * t_torus;
         const Vec normal = torus_normal(scene, point);
         const double light = dot(normal, scene.sun);
-        return sample_surface(*scene.sphere, point, normal) * (0.25 + 0.85 * (light > 0 ? light : 0));
+        return sample_surface(*scene.sphere, point, normal, tiny::transfer(ray, t_torus, normal), filter) *
+               (0.25 + 0.85 * (light > 0 ? light : 0));
     }
     if (t_sphere > 0 && (t_ground < 0 || t_sphere < t_ground)) {
         const Vec point = camera.eye + direction * t_sphere;
         const Vec normal = normalize(point - scene.sphere_center);
         if (scene.mapping == Mapping::surface) {
             const double light = dot(normal, scene.sun);
-            return sample_surface(*scene.sphere, point, normal) * (0.25 + 0.85 * (light > 0 ? light : 0));
+            return sample_surface(*scene.sphere, point, normal, tiny::transfer(ray, t_sphere, normal),
+                                  filter) *
+                   (0.25 + 0.85 * (light > 0 ? light : 0));
         }
         // Longitude and latitude as texture coordinates, in texels along the surface.
         double u, v;
@@ -339,7 +366,9 @@ Vec trace(const Scene &scene, const tiny::Camera &camera, double px, double py, 
             tiny::plane_jacobian(tiny::transfer(ray, t_ground, Vec{0, 1, 0}), scale);
         const bool surface = scene.mapping == Mapping::surface;
         const TextureSample sample =
-            surface ? TextureSample{sample_surface(*scene.ground, point, Vec{0, 1, 0}), 0, 0}
+            surface ? TextureSample{sample_surface(*scene.ground, point, Vec{0, 1, 0},
+                                                   tiny::transfer(ray, t_ground, Vec{0, 1, 0}), filter),
+                                    0, 0}
                     : sample_texture(*scene.ground, point.x * scale, point.z * scale, jacobian, filter,
                                      scene.shade);
         const bool shadowed =
@@ -550,11 +579,8 @@ int run(int argc, char **argv) {
     if (bump_given && shading_given && shade.shading == Shading::flat)
         throw UsageError("--bump is the relief of --shading bump: not with --shading flat");
     if (bump_given) shade.shading = Shading::bump;
-    if (mapping == Mapping::surface && filter_given && filter != Filter::none)
-        throw UsageError("--mapping surface reads the surface noise unfiltered: it takes --filter none");
     if (mapping == Mapping::surface && shade.shading == Shading::bump)
         throw UsageError("--mapping surface has no gradient: it takes flat shading");
-    if (mapping == Mapping::surface) filter = Filter::none;
     if (!crop_given) crop_width = width, crop_height = height;
     if (crop_x > width - crop_width || crop_y > height - crop_height)
         throw UsageError("--crop reaches outside the " + std::to_string(width) + "x" +

@@ -1001,8 +1001,10 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
    The normal need not be unit (any finite non-zero vector: its direction), nor the tangent.
 
    Cost: the cubes within the reach of the point's oriented box (the texton's reach along T and B, H
-   along N) are walked, each cube first tested against that box; make bench's surface_bench reports a
-   point against the continuous per-point cost. Stack: under 1 KB. Not in the small build (DSN_SURFACE). */
+   along N) are walked, each cube first tested against that box, in scalar code: make bench's
+   surface_bench reports a point at 10-20 times a continuous point (a filtered one at 16-27 times the
+   plane's filtered point: each tap walks its own box). Stack: under 1 KB, a filtered point under 2 KB. Not
+   in the small build (DSN_SURFACE). */
 #ifndef DSN_SURFACE /* 1: the surface noise (this section); default 0 in the small build */
 #define DSN_SURFACE (!DSN_SMALL_CODE)
 #endif
@@ -1041,6 +1043,25 @@ int dsn_surface_point_u8(const dsn_noise *noise, const int64_t *position, const 
    point function's; null arrays with a count are DSN_ERR_NULL, and every error zeroes all count points. */
 int dsn_surface_batch_fixed(const dsn_noise *noise, const int64_t *positions, const dsn_surface_frame *frames,
                             uint32_t count, int32_t *out);
+#if DSN_FILTERING
+/* The surface noise filtered by a pixel's footprint in the tangent plane (needs the asset's pyramid, as
+   dsn_filtered_point_fixed): `footprint` gives the texels per pixel along the frame's tangent (its x) and
+   bitangent (its y), for the screen's x (column_step_x, column_step_y) and y (row_step_x, row_step_y); a
+   renderer projects its position differentials (ray differentials, or ddx and ddy) on the tangent and
+   bitangent. The filtered evaluation's plan, as "Filtered evaluation" states it (level of detail, up to
+   max_taps taps along the long axis, two levels blended linearly, the mean past the pyramid), with tap k at
+   the point moved by its offset along the tangent and bitangent (each floored to Q.16, projected, floored
+   to Q32.32), each level read at the impulses of that tap's slab as the plane's filtered walk reads it,
+   weighted by the window, and normalized from the level's offset less 3/32 of its expected sum, as the
+   unfiltered surface offset. A footprint of at most a texel gives dsn_surface_point_fixed's bits. Errors:
+   the point function's, and the filtered functions' for a bad footprint (DSN_ERR_NULL, DSN_ERR_ARGUMENT);
+   DSN_ERR_COST when one tap's walk would examine more than DSN_MAX_POINT_IMPULSES impulses. */
+int dsn_surface_filtered_point_fixed(const dsn_noise *noise, const int64_t *position,
+                                     const dsn_surface_frame *frame, const dsn_footprint *footprint,
+                                     int32_t *out);
+int dsn_surface_filtered_point_float(const dsn_noise *noise, const double *position, const float *normal,
+                                     const float *tangent, const dsn_footprint *footprint, float *out);
+#endif
 #endif
 
 /* ==== End of the surface noise ======================================================================= */

@@ -117,6 +117,12 @@ uint32_t dsn_internal_filter_walked_levels(const dsn_noise_state *noise, const d
                                            dsn_walked_level *walked);
 void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
                                       const uint64_t *level_sums, int64_t *values);
+/* The same from `offset` instead of the level's own (the surface noise's offsets, surface_filtered.cpp), and
+   the level's own: noise->offset for level 0, else its level_offset. */
+void dsn_internal_filter_level_values_from(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                           const uint64_t *level_sums, const int64_t *offset,
+                                           int64_t *values);
+const int64_t *dsn_internal_level_offset(const dsn_noise_state *noise, uint32_t level);
 #if DSN_GRADIENTS
 /* dsn_internal_filter_level_values of a level's slopes (dsn_filter_slopes): the derivatives per texel,
    without the offset (the mean does not reach a derivative). */

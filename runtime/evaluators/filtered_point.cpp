@@ -63,9 +63,19 @@ void level_values_from(const dsn_noise_state *noise, const int64_t *offset, cons
 
 } // namespace
 
+const int64_t *dsn_internal_level_offset(const dsn_noise_state *noise, uint32_t level) {
+    return level == 0 ? noise->offset : noise->level_offset[level - 1u];
+}
+
 void dsn_internal_filter_level_values(const dsn_noise_state *noise, const dsn_walked_level *level,
                                       const uint64_t *level_sums, int64_t *values) {
-    const int64_t *offset = level->level == 0 ? noise->offset : noise->level_offset[level->level - 1u];
+    dsn_internal_filter_level_values_from(noise, level, level_sums,
+                                          dsn_internal_level_offset(noise, level->level), values);
+}
+
+void dsn_internal_filter_level_values_from(const dsn_noise_state *noise, const dsn_walked_level *level,
+                                           const uint64_t *level_sums, const int64_t *offset,
+                                           int64_t *values) {
     uint64_t sums[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t k = 0; k < noise->asset.channels; k++)
         sums[k] = in_texton_units(level_sums[k], level->exponent);

@@ -53,18 +53,3 @@ uint64_t dsn_multiply_divide(uint64_t a, uint64_t b, uint64_t divisor) {
     if (remainder < divisor - remainder) return quotient;
     return quotient == UINT64_MAX ? UINT64_MAX : quotient + 1u;
 }
-
-uint64_t dsn_integer_sqrt(uint64_t value) {
-    uint64_t root = 0, bit = uint64_t(1) << 62;
-    while (bit > value) bit >>= 2;
-    while (bit != 0) {
-        if (value >= root + bit) {
-            value -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    return root;
-}

@@ -1,14 +1,16 @@
 // surface_bench.cpp - the cost of a surface noise point (dsn.h, "Surface noise") over a continuous point of
 // the same noise, in the same run in paired rounds: on the plane z = 0 in its own frame, on a tilted plane
 // with a tangent, and on a sphere (a frame per point, made once; then the float function, which makes the
-// frame from the normal at each call). RGB 31 x 31 and 11 x 11 textons, 30 impacts per pixel, one thread.
-// The target is 3x.
+// frame from the normal at each call); and the filtered surface point over the plane's filtered point under
+// the same footprint (4 texels a pixel, isotropic, and 2 x 8 anisotropic). RGB 31 x 31 and 11 x 11 textons
+// (with the baker's pyramid), 30 impacts per pixel, one thread. The target is 3x for the point.
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "bench_timing.h"
 #include "fixtures/continuous_fixtures.h"
+#include "offline/bake_internal.h"
 #include "painted_stack.h"
 
 namespace {
@@ -44,7 +46,9 @@ int main() {
     const double one = 4294967296.0, pi = 3.14159265358979323846;
     std::printf("surface_bench: a surface noise point over a continuous point (3x is the target)\n");
     for (uint32_t radius : {15u, 5u}) {
-        auto noise = make_noise(random_texton_asset(3, radius, 8, 1), 1, 30u << 16);
+        dsn::AssetFields fields = random_texton_asset(3, radius, 8, 1);
+        fields.pyramid = dsn::texton_pyramid(fields);
+        auto noise = make_noise(fields, 1, 30u << 16);
         std::vector<SurfacePoint> plane, tilted, sphere;
         const float tangent[3] = {1, 0.25f, 0};
         for (int j = 0; j < side; j++)
@@ -100,10 +104,43 @@ int main() {
                 c.name, ratio.baseline_best / points * 1e9, ratio.baseline_best * ratio.best / points * 1e9,
                 ratio.median, rounds, ratio.best);
         }
+        for (const double *steps : {(const double[]){4, 0, 0, 4}, (const double[]){2, 0, 0, 8}}) {
+            dsn_footprint footprint;
+            dsn_footprint_from_float(&footprint, steps[0], steps[1], steps[2], steps[3], 16);
+            const int count = side * side / 16; // every 16th point: filtered points cost more
+            auto plane_filtered = [&] {
+                int32_t value[3];
+                for (int k = 0; k < count; k++) {
+                    dsn_filtered_point_fixed(&noise->noise, tilted[size_t(16 * k)].position[0],
+                                             tilted[size_t(16 * k)].position[1], &footprint, value);
+                    checksum += value[0];
+                }
+            };
+            auto surface_filtered = [&] {
+                int32_t value[3];
+                for (int k = 0; k < count; k++) {
+                    const SurfacePoint &p = tilted[size_t(16 * k)];
+                    dsn_surface_filtered_point_fixed(&noise->noise, p.position, &p.frame, &footprint, value);
+                    checksum += value[0];
+                }
+            };
+            const bench::PairedRatio ratio = bench::paired_ratio(rounds, plane_filtered, surface_filtered);
+            std::printf("  filtered, %g x %g texels a pixel:    plane %6.0f ns/point   surface %6.0f "
+                        "ns/point   ratio %.2f "
+                        "(median of %d rounds; best %.2f)\n",
+                        steps[0], steps[3], ratio.baseline_best / count * 1e9,
+                        ratio.baseline_best * ratio.best / count * 1e9, ratio.median, rounds, ratio.best);
+        }
         const SurfacePoint &p = sphere[size_t(side * side / 3)];
         int32_t value[3];
         std::printf("  stack (painted) of a surface point call: %zu bytes\n", bench::painted_stack([&] {
                         dsn_surface_point_fixed(&noise->noise, p.position, &p.frame, value);
+                    }));
+        dsn_footprint wide;
+        dsn_footprint_from_float(&wide, 2, 0, 0, 16, 16);
+        std::printf("  stack (painted) of a filtered surface point call (2 x 16 texels): %zu bytes\n",
+                    bench::painted_stack([&] {
+                        dsn_surface_filtered_point_fixed(&noise->noise, p.position, &p.frame, &wide, value);
                     }));
     }
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));

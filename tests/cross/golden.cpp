@@ -560,6 +560,33 @@ int filtered_point_fixed(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
     return DSN_OK;
 }
 
+#if DSN_SURFACE && !defined(GOLDEN_WITHOUT_SURFACE)
+/* The filtered surface noise: the grid's steps as the footprint in the tangent plane (4 taps at most, then
+   1), at the surface points of three of the frames (a plane's, the tilted one with a tangent, next to the
+   x axis). */
+int surface_filtered(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
+    const uint32_t frames[] = {0, 1, 3};
+    for (uint32_t max_taps = 4; max_taps >= 1; max_taps /= 4) {
+        const dsn_footprint footprint = grid_footprint(grid, max_taps);
+        for (uint32_t f = 0; f < 3; f++) {
+            const SurfaceVectors &vectors = surface_vectors[frames[f]];
+            dsn_surface_frame frame;
+            int err = dsn_surface_frame_from_float(vectors.normal, vectors.has_tangent ? vectors.tangent : 0,
+                                                   &frame);
+            const uint32_t count = surface_points(grid, frame);
+            for (uint32_t k = 0; err == DSN_OK && k < count; k++) {
+                int32_t values[DSN_MAX_CHANNELS];
+                err = dsn_surface_filtered_point_fixed(noise, &surface_positions[3 * k], &frame, &footprint,
+                                                       values);
+                if (err == DSN_OK) hash_fixed(hash, values, dsn_noise_channels(noise));
+            }
+            if (err != DSN_OK) return err;
+        }
+    }
+    return DSN_OK;
+}
+#endif
+
 int filtered_scratch_for(const dsn_noise *noise, const Grid &grid, uint32_t max_taps, size_t *size) {
     *size = dsn_filtered_tile_scratch_size(noise, &grid.grid, max_taps, grid.width, grid.height);
     return *size <= scratch_capacity && grid.width * grid.height * DSN_MAX_CHANNELS <= max_window_values
@@ -754,6 +781,15 @@ const Plan surface_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings
                            surface_grids,       GOLDEN_COUNT(surface_grids)};
 const Plan filtered_plan = {continuous_settings, GOLDEN_COUNT(continuous_settings), 0, 0,
                             filtered_grids,      GOLDEN_COUNT(filtered_grids)};
+/* The filtered surface noise's footprints: a rotated minification by about 2.4, a magnification and
+   minification by 3 with shear, and steps so large that the texture has faded to its mean. */
+const Grid surface_filtered_grids[] = {
+    {{-7 * q32_one / 3, 5 * q32_one, 10307921510, 3006477107, -3006477107, 10307921510}, 5, 4},
+    {{-q32_one, -q32_one, 3 * q32_one, 3 * q32_one, 2 * q32_one, 2 * q32_one}, 3, 3},
+    {{0, 0, INT64_MAX / 3, INT64_MIN / 5, INT64_MAX / 7, INT64_MAX / 2}, 3, 2},
+};
+const Plan surface_filtered_plan = {continuous_settings,    GOLDEN_COUNT(continuous_settings),   0, 0,
+                                    surface_filtered_grids, GOLDEN_COUNT(surface_filtered_grids)};
 
 /* One kind of output: a lattice evaluator over the plan's windows or a continuous one over its grids, on
    the four assets or (`mapped`) on the two with a histogram mapping (format 1.2). */
@@ -794,6 +830,9 @@ const Kind kinds[] = {
     {"f-point", 0, filtered_point_fixed, &filtered_plan, false},
     {"f-tile", 0, filtered_tile_fixed, &filtered_plan, false},   /* the same bytes as "f-point" */
     {"f-float", 0, filtered_conversions, &filtered_plan, false}, /* per point, tile float and u8 */
+#endif
+#if DSN_SURFACE && DSN_FILTERING && !defined(GOLDEN_WITHOUT_SURFACE)
+    {"s-filtered", 0, surface_filtered, &surface_filtered_plan, false},
 #endif
 #if DSN_GRADIENTS && DSN_FILTERING && !defined(GOLDEN_WITHOUT_GRADIENTS)
     {"d-f-point", 0, filtered_gradient, &filtered_plan, false},

@@ -1,0 +1,225 @@
+/* runtime/core/surface_walk.h - the walk of the surface noise (dsn.h, "Surface noise"): the cubes of 3-D
+   space around a point that its oriented box can reach, each cube's impulses projected on the point's
+   frame, and the slab's window across it; a visitor reads the texton (the unfiltered point,
+   surface_point.cpp) or the pyramid's levels (the filtered one, surface_filtered.cpp) at each impulse
+   that the window keeps. Also the surface offset and the float functions' inputs. Internal to libdsn; not
+   installed (everything here has internal linkage but the two functions of surface_point.cpp at its end). */
+#ifndef DSN_SURFACE_WALK_H
+#define DSN_SURFACE_WALK_H
+
+#include "core/continuous_internal.h"
+#include "core/poisson_count.h"
+
+#if DSN_SURFACE
+
+namespace {
+
+/* 2^16 I2 / 2 = 2^16 48/35, rounded: s = |w| / H in Q16 is |w| (Q.16) times this over 2^(16 + cell_shift). */
+const uint64_t window_scale = 89878;
+
+/* The signed value of `bits` (two's complement, modulo 2^64) over 2^shift, rounded toward minus infinity,
+   for shift in 1 .. 63. */
+inline int64_t floor_shift(uint64_t bits, uint32_t shift) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    return static_cast<int64_t>((bits + bias) >> shift) - static_cast<int64_t>(bias >> shift);
+}
+
+inline uint64_t magnitude(int64_t value) {
+    return value < 0 ? 0u - static_cast<uint64_t>(value) : static_cast<uint64_t>(value);
+}
+
+/* Key of cube (cx, cy, cz): the plane's key of (cx, cy) with the layer mixed into its row part, so a
+   row of cubes keeps the plane's bijection along x. */
+inline uint32_t cube_key(const dsn_noise_state *noise, uint32_t cube_x, uint32_t cube_y, uint32_t cube_z) {
+    return dsn_cell_key_in_row(noise, cube_x, dsn_mix32(dsn_row_key(noise, cube_y) + cube_z * 0x9E3779B9u));
+}
+
+/* The slab's window W(|w| / H) in Q16 (dsn.h): 65536 up to half the slab, a smoothstep down to 0 at
+   its faces. */
+inline uint32_t slab_window(int64_t across, uint32_t cell_shift) {
+    const uint64_t s = ((magnitude(across) >> 16) * window_scale) >> (16u + cell_shift);
+    if (s >= 65536u) return 0;
+    if (s <= 32768u) return 65536u;
+    const uint64_t u = 2u * s - 65536u, square = (u * u) >> 16;
+    return static_cast<uint32_t>(65536u - ((square * (196608u - 2u * u)) >> 16));
+}
+
+/* The cubes an axis of the walk crosses: those within `extent` (Q32.32) of the position. */
+struct CubeRange {
+    uint32_t first, count;
+};
+
+CubeRange cube_range(uint64_t position, uint64_t extent, uint32_t cell_shift) {
+    const uint32_t mask = 0xFFFFFFFFu >> cell_shift;
+    const uint32_t first = static_cast<uint32_t>((position - extent) >> 32) >> cell_shift;
+    const uint32_t last = static_cast<uint32_t>((position + extent) >> 32) >> cell_shift;
+    const CubeRange range = {first, ((last - first) & mask) + 1u};
+    return range;
+}
+
+/* What the walk of one point reads: its position, its frame, the oriented box of its reach and the
+   cubes around it. */
+struct SurfaceWalk {
+    uint64_t position[3];
+    int64_t frame[3][3];   /* tangent, bitangent, normal */
+    uint64_t box_bound[3]; /* Q.46: how far a cube's centre may lie along each frame vector */
+    CubeRange cubes[3];
+};
+
+/* Half the box's extent along each frame vector (texels: `reach_x` and `reach_y`, what the texton or the
+   levels read reaches along the tangent and bitangent, and 3/4 c > H along the normal) and, per space
+   axis, the box's reach: the sum of those along the axis plus a texel for the floors. */
+void surface_walk(const dsn_noise_state *noise, const int64_t *position, const dsn_surface_frame *frame,
+                  uint32_t reach_x, uint32_t reach_y, SurfaceWalk *walk) {
+    const uint32_t shift = noise->cell_shift;
+    const int32_t *vectors[3] = {frame->tangent, frame->bitangent, frame->normal};
+    /* Q32.32 over 2^30 per unit of the frame: the reaches in units of 2^2 (a texel times 2^30 is 2^32 / 4).
+     */
+    const uint64_t reach[3] = {4u * static_cast<uint64_t>(reach_x), 4u * static_cast<uint64_t>(reach_y),
+                               static_cast<uint64_t>(3u) << shift};
+    for (int i = 0; i < 3; i++) {
+        walk->position[i] = static_cast<uint64_t>(position[i]);
+        uint64_t extent = static_cast<uint64_t>(1) << 32, spread = 0;
+        for (int v = 0; v < 3; v++) {
+            walk->frame[v][i] = vectors[v][i];
+            extent += reach[v] * magnitude(vectors[v][i]);
+            spread += magnitude(vectors[i][v]);
+        }
+        walk->cubes[i] = cube_range(walk->position[i], extent, shift);
+        /* The vector's reach (Q.46), half a cube times the cube's extent along it, and a texel. */
+        walk->box_bound[i] = (reach[i] << 44) + (spread << (15u + shift)) + (static_cast<uint64_t>(1) << 46);
+    }
+}
+
+/* The impulses of one cube: each one that the slab's window keeps handed to the visitor with its offsets
+   along the tangent and bitangent (Q32.32) and its window (Q16). An impulse's offset from the point,
+   floored to Q.16, is the cube origin's less its position in the cube (a whole number of 2^-16 texels), so
+   its dot products with the frame vectors (Q.46, then floored to Q32.32) are the origin's less the
+   position's, exactly. */
+template <typename Visitor>
+void visit_cube(const dsn_noise_state *noise, const SurfaceWalk *walk, const uint32_t *cube,
+                Visitor *visitor) {
+    const uint32_t shift = noise->cell_shift;
+    const uint32_t key = cube_key(noise, cube[0], cube[1], cube[2]);
+    const uint32_t count = dsn_cell_impulse_count(noise, key);
+    int64_t origin_dot[3] = {0, 0, 0};
+    for (int i = 0; i < 3; i++) {
+        const int64_t origin =
+            floor_shift(walk->position[i] - (static_cast<uint64_t>(cube[i] << shift) << 32), 16);
+        for (int v = 0; v < 3; v++) origin_dot[v] += origin * walk->frame[v][i];
+    }
+    const int64_t *tangent = walk->frame[0], *bitangent = walk->frame[1], *normal = walk->frame[2];
+    for (uint32_t k = 0; k < count; k++) {
+        const uint64_t pair = dsn_position_pair(key, k);
+        const int64_t inside[3] = {static_cast<int64_t>((pair & 0xFFFFu) << shift),
+                                   static_cast<int64_t>(((pair >> 16) & 0xFFFFu) << shift),
+                                   static_cast<int64_t>(((pair >> 32) & 0xFFFFu) << shift)};
+        const uint64_t across =
+            static_cast<uint64_t>(origin_dot[2]) -
+            static_cast<uint64_t>(inside[0] * normal[0] + inside[1] * normal[1] + inside[2] * normal[2]);
+        const uint32_t window = slab_window(floor_shift(across, 14), shift);
+        if (window == 0) continue;
+        const uint64_t u =
+            static_cast<uint64_t>(origin_dot[0]) -
+            static_cast<uint64_t>(inside[0] * tangent[0] + inside[1] * tangent[1] + inside[2] * tangent[2]);
+        const uint64_t v = static_cast<uint64_t>(origin_dot[1]) -
+                           static_cast<uint64_t>(inside[0] * bitangent[0] + inside[1] * bitangent[1] +
+                                                 inside[2] * bitangent[2]);
+        visitor->visit(floor_shift(u, 14), floor_shift(v, 14), window);
+    }
+}
+
+/* A texton read weighted by the window: floor(sum * window / 2^16), the sum of one impulse (below 2^47 in
+   magnitude: the product fits 64 bits). */
+inline uint64_t windowed(uint64_t sum, uint32_t window) {
+    return static_cast<uint64_t>(floor_shift(sum * window, 16));
+}
+
+/* Whether the walk's cubes hold more than DSN_MAX_POINT_IMPULSES impulses on average: cubes lambda c^2,
+   lambda = impacts / |S| (products below 2^56: at most about 2^30 cubes of one texel, or fewer larger
+   ones). */
+bool walk_too_costly(const dsn_noise_state *noise, const SurfaceWalk *walk) {
+    const uint64_t cubes =
+        static_cast<uint64_t>(walk->cubes[0].count) * walk->cubes[1].count * walk->cubes[2].count;
+    const uint64_t side = static_cast<uint64_t>(1) << noise->cell_shift;
+    return cubes * side * side * noise->impacts_q16 >
+           (static_cast<uint64_t>(noise->asset.support_size) * DSN_MAX_POINT_IMPULSES) << 16;
+}
+
+/* Every impulse of the walk's cubes that the box may reach, to the visitor (visit_cube). A cube is skipped
+   when its centre lies beyond the box's bound along a frame vector: the centre's offsets from the point along
+   the three vectors (Q.46) are exact integers, so they are stepped from cube to cube by adding a cube's
+   side times the vector's component. */
+template <typename Visitor>
+void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visitor *visitor) {
+    const uint32_t shift = noise->cell_shift, mask = 0xFFFFFFFFu >> shift;
+    int64_t first_offset[3], along[3][3];
+    for (int i = 0; i < 3; i++) {
+        const uint64_t middle = (static_cast<uint64_t>(walk->cubes[i].first << shift) << 32) +
+                                (static_cast<uint64_t>(1) << (31u + shift));
+        first_offset[i] = floor_shift(walk->position[i] - middle, 16); /* Q.16, below 2^28 */
+    }
+    for (int v = 0; v < 3; v++)
+        for (int i = 0; i < 3; i++)
+            along[v][i] = walk->frame[v][i] * (static_cast<int64_t>(1) << (16u + shift));
+    int64_t plane_dot[3];
+    for (int v = 0; v < 3; v++)
+        plane_dot[v] = first_offset[0] * walk->frame[v][0] + first_offset[1] * walk->frame[v][1] +
+                       first_offset[2] * walk->frame[v][2];
+    uint32_t cube[3];
+    for (uint32_t z = 0; z < walk->cubes[2].count; z++) {
+        cube[2] = (walk->cubes[2].first + z) & mask;
+        int64_t row_dot[3] = {plane_dot[0], plane_dot[1], plane_dot[2]};
+        for (uint32_t y = 0; y < walk->cubes[1].count; y++) {
+            cube[1] = (walk->cubes[1].first + y) & mask;
+            int64_t dot[3] = {row_dot[0], row_dot[1], row_dot[2]};
+            for (uint32_t x = 0; x < walk->cubes[0].count; x++) {
+                cube[0] = (walk->cubes[0].first + x) & mask;
+                if (magnitude(dot[0]) <= walk->box_bound[0] && magnitude(dot[1]) <= walk->box_bound[1] &&
+                    magnitude(dot[2]) <= walk->box_bound[2])
+                    visit_cube(noise, walk, cube, visitor);
+                for (int v = 0; v < 3; v++) dot[v] -= along[v][0];
+            }
+            for (int v = 0; v < 3; v++) row_dot[v] -= along[v][1];
+        }
+        for (int v = 0; v < 3; v++) plane_dot[v] -= along[v][2];
+    }
+}
+
+/* The surface offset of a level's offset (dsn.h): less 3/32 of its expected sum (the mean less the
+   offset), which the slab's window makes 35/32 of the plane's. */
+void surface_offset(const dsn_noise_state *noise, const int64_t *plane_offset, int64_t *offset) {
+    const int64_t limit = static_cast<int64_t>(1) << 61;
+    for (uint32_t c = 0; c < noise->asset.channels; c++) {
+        const int64_t mean =
+            static_cast<int64_t>(noise->asset.mean[c]) * (static_cast<int64_t>(1) << (noise->gain_shift - 8));
+        int64_t expected = mean - plane_offset[c]; /* |mean| < 2^55, |offset| <= 2^61 */
+        expected = expected > limit ? limit : expected < -limit ? -limit : expected;
+        offset[c] = plane_offset[c] - floor_shift(static_cast<uint64_t>(3 * expected), 5);
+    }
+}
+
+/* The float functions' inputs: the position converted by dsn_coordinate_from_double, the frame made by
+   dsn_surface_frame_from_float (its errors; DSN_ERR_NULL for a null position). */
+inline int surface_inputs(const double *position, const float *normal, const float *tangent, int64_t *point,
+                          dsn_surface_frame *frame) {
+    if (position == 0) return DSN_ERR_NULL;
+    for (int i = 0; i < 3; i++) point[i] = dsn_coordinate_from_double(position[i]);
+    return dsn_surface_frame_from_float(normal, tangent, frame);
+}
+
+} // namespace
+
+/* DSN_OK when the surface functions may evaluate `noise` at `position` in `frame`: the continuous mode's
+   check, then DSN_ERR_NULL (null position or frame) or DSN_ERR_ARGUMENT (a frame component out of range). */
+int dsn_internal_surface_check(const dsn_noise_state *noise, const int64_t *position,
+                               const dsn_surface_frame *frame);
+
+/* The Q16.16 values of the surface point, for arguments that passed the check: DSN_OK, or DSN_ERR_COST
+   with nothing written (surface_point.cpp). */
+int dsn_internal_surface_point(const dsn_noise_state *noise, const int64_t *position,
+                               const dsn_surface_frame *frame, int32_t *out);
+
+#endif /* DSN_SURFACE */
+
+#endif /* DSN_SURFACE_WALK_H */

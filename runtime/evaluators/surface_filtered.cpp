@@ -1,0 +1,111 @@
+/* runtime/evaluators/surface_filtered.cpp - the surface noise filtered by a footprint in the tangent plane
+   (dsn.h, "Surface noise"): the filtered evaluation's plan (taps along the footprint's long axis, two
+   pyramid levels blended) with each tap moved along the frame's tangent and bitangent, and each level read
+   at the impulses of the tap's slab as the plane's filtered walk reads it (level_read.h), weighted by the
+   window; then the levels' values from their surface offsets, blended, averaged and rounded as a filtered
+   point's. Also the API's filtered surface functions. Compiled with DSN_SURFACE and DSN_FILTERING. */
+#include "core/filtered_internal.h"
+#include "core/level_read.h"
+#include "core/surface_walk.h"
+
+#if DSN_SURFACE && DSN_FILTERING
+
+namespace {
+
+/* The filtered point's visitor: the one or two levels read at the impulse's offsets (Q32.32 texels along
+   the tangent and bitangent), weighted by the window, into each level's sums (Q.32, stored-value units). */
+struct LevelSums {
+    const dsn_noise_state *noise;
+    const dsn_walked_level *levels;
+    uint32_t count;
+    uint64_t sums[2][DSN_MAX_CHANNELS];
+
+    void visit(int64_t along_tangent, int64_t along_bitangent, uint32_t window) {
+        const uint32_t channels = noise->asset.channels;
+        for (uint32_t l = 0; l < count; l++) {
+            uint64_t level[DSN_MAX_CHANNELS] = {0, 0, 0};
+            add_level<false>(levels[l], channels, noise->asset.bits, along_tangent, along_bitangent, level,
+                             0);
+            for (uint32_t c = 0; c < channels; c++) sums[l][c] += windowed(level[c], window);
+        }
+    }
+};
+
+/* The tap's position: the point moved by the plan's offset (Q32.32 texels along the tangent and
+   bitangent), each floored to Q.16 and projected in Q.46, then floored to Q32.32, modulo 2^64. */
+void tap_position(const int64_t *position, const dsn_surface_frame *frame, int64_t along_tangent,
+                  int64_t along_bitangent, int64_t *tap) {
+    const int64_t u = floor_shift(static_cast<uint64_t>(along_tangent), 16);
+    const int64_t v = floor_shift(static_cast<uint64_t>(along_bitangent), 16);
+    for (int i = 0; i < 3; i++) {
+        const uint64_t moved = static_cast<uint64_t>(u * frame->tangent[i] + v * frame->bitangent[i]);
+        tap[i] = signed_from_bits(static_cast<uint64_t>(position[i]) +
+                                  static_cast<uint64_t>(floor_shift(moved, 14)));
+    }
+}
+
+/* The filtered value under a plan whose level of detail the pyramid holds: DSN_OK, or DSN_ERR_COST when a
+   tap's walk would examine too many impulses. */
+int filtered_value(const dsn_noise_state *noise, const int64_t *position, const dsn_surface_frame *frame,
+                   const dsn_filter_plan *plan, int32_t *out) {
+    dsn_walked_level walked[2];
+    const uint32_t count = dsn_internal_filter_walked_levels(noise, plan, walked);
+    uint32_t radius_x, radius_y;
+    dsn_filter_walk_radii(walked, count, &radius_x, &radius_y);
+    int64_t offsets[2][DSN_MAX_CHANNELS], totals[DSN_MAX_CHANNELS] = {0, 0, 0};
+    for (uint32_t l = 0; l < count; l++)
+        surface_offset(noise, dsn_internal_level_offset(noise, walked[l].level), offsets[l]);
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        int64_t at[3];
+        tap_position(position, frame, plan->offset_x[tap], plan->offset_y[tap], at);
+        SurfaceWalk walk;
+        surface_walk(noise, at, frame, radius_x + 1u, radius_y + 1u, &walk);
+        if (walk_too_costly(noise, &walk)) return DSN_ERR_COST;
+        LevelSums level_sums = {noise, walked, count, {{0, 0, 0}, {0, 0, 0}}};
+        visit_impulses(noise, &walk, &level_sums);
+        for (uint32_t l = 0; l < count; l++) {
+            int64_t values[DSN_MAX_CHANNELS] = {0, 0, 0};
+            dsn_internal_filter_level_values_from(noise, &walked[l], level_sums.sums[l], offsets[l], values);
+            dsn_internal_filter_add_level(noise, plan, l, values, totals);
+        }
+        if (count == 1) dsn_internal_filter_add_mean(noise, plan, totals);
+    }
+    dsn_internal_filter_finish(noise, plan, totals, out);
+    return DSN_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+int dsn_surface_filtered_point_fixed(const dsn_noise *handle, const int64_t *position,
+                                     const dsn_surface_frame *frame, const dsn_footprint *footprint,
+                                     int32_t *out) {
+    const dsn_noise_state *noise = dsn_state(handle);
+    if (out == 0) return DSN_ERR_NULL;
+    int err = dsn_internal_surface_check(noise, position, frame);
+    dsn_filter_plan plan;
+    if (err == DSN_OK) err = dsn_internal_filter_plan(footprint, noise->asset.pyramid_levels, &plan);
+    if (err == DSN_OK && !dsn_internal_filter_fade(noise, &plan, out))
+        err = plan.lod_q8 == 0 && plan.taps == 1 ? dsn_internal_surface_point(noise, position, frame, out)
+                                                 : filtered_value(noise, position, frame, &plan, out);
+    if (err != DSN_OK)
+        for (uint32_t c = 0; c < dsn_values_per_point(noise); c++) out[c] = 0;
+    return err;
+}
+
+int dsn_surface_filtered_point_float(const dsn_noise *handle, const double *position, const float *normal,
+                                     const float *tangent, const dsn_footprint *footprint, float *out) {
+    int32_t fixed[DSN_MAX_CHANNELS] = {0, 0, 0};
+    if (out == 0) return DSN_ERR_NULL;
+    dsn_surface_frame frame;
+    int64_t point[3];
+    int err = surface_inputs(position, normal, tangent, point, &frame);
+    if (err == DSN_OK) err = dsn_surface_filtered_point_fixed(handle, point, &frame, footprint, fixed);
+    dsn_store_pixel(out, dsn_output_float, 0, fixed, dsn_values_per_point(dsn_state(handle)));
+    return err;
+}
+
+} // extern "C"
+
+#endif /* DSN_SURFACE && DSN_FILTERING */
