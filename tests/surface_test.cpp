@@ -518,3 +518,21 @@ TEST_CASE("filtered surface: a texel's footprint is the point; minified, it foll
     REQUIRE(dsn_surface_point_float(&noise->noise, position, normal, along, point) == DSN_OK);
     CHECK(floats[0] == point[0]);
 }
+
+TEST_CASE("filtered surface: a walk too costly for the slab is refused, the plane's accepted") {
+    // A 255 x 255 texton at 1024 impacts, read at a coarse level over 16 taps: the plane's filtered point
+    // stays within the bound dsn_noise_init checked, the slab's walk (its cubes, several along the normal
+    // and the tilted box's) does not.
+    dsn::AssetFields fields = random_texton_asset(1, 127, 16, 77);
+    fields.pyramid = dsn::texton_pyramid(fields);
+    auto noise = make_noise(fields, 5, 1024u << 16);
+    dsn_footprint footprint;
+    REQUIRE(dsn_footprint_from_float(&footprint, 128, 0, 0, 2048, 16) == DSN_OK);
+    const float normal[3] = {0.577f, 0.577f, 0.577f};
+    const double position[3] = {1, 2, 3};
+    float out[1] = {7}, plane[1];
+    CHECK(dsn_surface_filtered_point_float(&noise->noise, position, normal, nullptr, &footprint, out) ==
+          DSN_ERR_COST);
+    CHECK(out[0] == 0);
+    CHECK(dsn_filtered_point_float(&noise->noise, 1, 2, &footprint, plane) == DSN_OK);
+}

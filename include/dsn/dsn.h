@@ -1025,10 +1025,10 @@ int dsn_surface_frame_from_float(const float *normal, const float *tangent, dsn_
    components in [-2^30, 2^30] has a defined value (the statistics above hold for the unit frames that
    dsn_surface_frame_from_float makes). Returns DSN_OK, DSN_ERR_NULL (null noise, position, frame or out,
    or a noise not configured), DSN_ERR_CONTINUOUS_MISMATCH (as dsn_continuous_check), DSN_ERR_ARGUMENT
-   (a frame component out of range) or DSN_ERR_COST (the walk would examine more than
-   DSN_MAX_POINT_IMPULSES impulses on average: a dense noise that dsn_noise_init accepts for the plane
-   may be too dense for the slab); on an error every channel (out[0] for a noise not configured) is
-   zeroed. */
+   (a frame component out of range) or DSN_ERR_COST (the walk would visit more than
+   DSN_MAX_POINT_IMPULSES cubes, or examine more impulses than that on average: a dense noise that
+   dsn_noise_init accepts for the plane may be too dense for the slab); on an error every channel (out[0]
+   for a noise not configured) is zeroed. */
 int dsn_surface_point_fixed(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
                             int32_t *out);
 /* The same from float64 positions (dsn_coordinate_from_double) and float vectors
@@ -1055,7 +1055,8 @@ int dsn_surface_batch_fixed(const dsn_noise *noise, const int64_t *positions, co
    weighted by the window, and normalized from the level's offset less 3/32 of its expected sum, as the
    unfiltered surface offset. A footprint of at most a texel gives dsn_surface_point_fixed's bits. Errors:
    the point function's, and the filtered functions' for a bad footprint (DSN_ERR_NULL, DSN_ERR_ARGUMENT);
-   DSN_ERR_COST when one tap's walk would examine more than DSN_MAX_POINT_IMPULSES impulses. */
+   DSN_ERR_COST when one tap's walk would visit more than DSN_MAX_POINT_IMPULSES cubes or examine more
+   impulses than that (a coarse level of a dense noise). */
 int dsn_surface_filtered_point_fixed(const dsn_noise *noise, const int64_t *position,
                                      const dsn_surface_frame *frame, const dsn_footprint *footprint,
                                      int32_t *out);

@@ -135,12 +135,17 @@ inline uint64_t windowed(uint64_t sum, uint32_t window) {
     return static_cast<uint64_t>(floor_shift(sum * window, 16));
 }
 
-/* Whether the walk's cubes hold more than DSN_MAX_POINT_IMPULSES impulses on average: cubes lambda c^2,
-   lambda = impacts / |S| (products below 2^56: at most about 2^30 cubes of one texel, or fewer larger
-   ones). */
+/* Whether the walk would visit more than DSN_MAX_POINT_IMPULSES cubes, or examine more impulses than that
+   on average: its cubes times lambda c^2, lambda = impacts / |S| (products below 2^62 once the cubes are
+   bounded; a filtered walk's coarse levels can reach 2^16 texels and more, so the counts are checked one
+   axis at a time first). */
 bool walk_too_costly(const dsn_noise_state *noise, const SurfaceWalk *walk) {
-    const uint64_t cubes =
-        static_cast<uint64_t>(walk->cubes[0].count) * walk->cubes[1].count * walk->cubes[2].count;
+    uint64_t cubes = 1;
+    for (int i = 0; i < 3; i++) {
+        if (walk->cubes[i].count > DSN_MAX_POINT_IMPULSES) return true;
+        cubes *= walk->cubes[i].count; /* below 2^20 times 2^20 */
+        if (cubes > DSN_MAX_POINT_IMPULSES) return true;
+    }
     const uint64_t side = static_cast<uint64_t>(1) << noise->cell_shift;
     return cubes * side * side * noise->impacts_q16 >
            (static_cast<uint64_t>(noise->asset.support_size) * DSN_MAX_POINT_IMPULSES) << 16;
