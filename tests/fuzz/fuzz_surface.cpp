@@ -114,7 +114,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         const int err = dsn_surface_point_fixed(&noise, position, &frame, out);
         bool in_range = true;
         for (int i = 0; i < 9; i++)
-            in_range = in_range && (&frame.tangent[0])[i] >= -DSN_FRAME_ONE && (&frame.tangent[0])[i] <= DSN_FRAME_ONE;
+            in_range = in_range && (&frame.tangent[0])[i] >= -DSN_FRAME_ONE &&
+                       (&frame.tangent[0])[i] <= DSN_FRAME_ONE;
         fuzz_require((err == DSN_ERR_ARGUMENT) == !in_range);
         fuzz_require(err == DSN_OK || err == DSN_ERR_ARGUMENT || err == DSN_ERR_COST);
         if (err != DSN_OK) {
