@@ -24,8 +24,7 @@ using namespace continuous_fixtures;
 
 namespace {
 
-const int kRadius = 5, kSide = 2 * kRadius + 1;
-const double kOne = 4294967296.0; // 2^32: one texel in Q32.32
+const int kRadius = 5;
 
 struct Vector {
     double x, y, z;

@@ -49,7 +49,7 @@ struct CubeRange {
     uint32_t first, count;
 };
 
-CubeRange cube_range(uint64_t position, uint64_t extent, uint32_t cell_shift) {
+inline CubeRange cube_range(uint64_t position, uint64_t extent, uint32_t cell_shift) {
     const uint32_t mask = 0xFFFFFFFFu >> cell_shift;
     const uint32_t first = static_cast<uint32_t>((position - extent) >> 32) >> cell_shift;
     const uint32_t last = static_cast<uint32_t>((position + extent) >> 32) >> cell_shift;
@@ -69,8 +69,9 @@ struct SurfaceWalk {
 /* Half the box's extent along each frame vector (texels: `reach_x` and `reach_y`, what the texton or the
    levels read reaches along the tangent and bitangent, and 3/4 c > H along the normal) and, per space
    axis, the box's reach: the sum of those along the axis plus a texel for the floors. */
-void surface_walk(const dsn_noise_state *noise, const int64_t *position, const dsn_surface_frame *frame,
-                  uint32_t reach_x, uint32_t reach_y, SurfaceWalk *walk) {
+inline void surface_walk(const dsn_noise_state *noise, const int64_t *position,
+                         const dsn_surface_frame *frame, uint32_t reach_x, uint32_t reach_y,
+                         SurfaceWalk *walk) {
     const uint32_t shift = noise->cell_shift;
     const int32_t *vectors[3] = {frame->tangent, frame->bitangent, frame->normal};
     /* Q32.32 over 2^30 per unit of the frame: the reaches in units of 2^2 (a texel times 2^30 is 2^32 / 4).
@@ -139,7 +140,7 @@ inline uint64_t windowed(uint64_t sum, uint32_t window) {
    on average: its cubes times lambda c^2, lambda = impacts / |S| (products below 2^62 once the cubes are
    bounded; a filtered walk's coarse levels can reach 2^16 texels and more, so the counts are checked one
    axis at a time first). */
-bool walk_too_costly(const dsn_noise_state *noise, const SurfaceWalk *walk) {
+inline bool walk_too_costly(const dsn_noise_state *noise, const SurfaceWalk *walk) {
     uint64_t cubes = 1;
     for (int i = 0; i < 3; i++) {
         if (walk->cubes[i].count > DSN_MAX_POINT_IMPULSES) return true;
@@ -193,7 +194,7 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
 
 /* The surface offset of a level's offset (dsn.h): less 3/32 of its expected sum (the mean less the
    offset), which the slab's window makes 35/32 of the plane's. */
-void surface_offset(const dsn_noise_state *noise, const int64_t *plane_offset, int64_t *offset) {
+inline void surface_offset(const dsn_noise_state *noise, const int64_t *plane_offset, int64_t *offset) {
     const int64_t limit = static_cast<int64_t>(1) << 61;
     for (uint32_t c = 0; c < noise->asset.channels; c++) {
         const int64_t mean =
