@@ -175,10 +175,7 @@ int run(dsn::CommandLine &command_line) {
         std::string path, note;
         Picture picture;
     } extra[2] = {{"", "the same scene bump-mapped (dsn-tiny-renderer --shading bump)", {}},
-                  {"",
-                   "no texture coordinates: the surface noise on the ground, the sphere and a torus "
-                   "(--mapping surface)",
-                   {}}};
+                  {"", "no texture coordinates: the surface noise, a torus added (--mapping surface)", {}}};
     uint32_t seed = 1;
     while (command_line.next()) {
         if (command_line.is("--print-size")) {
