@@ -844,6 +844,9 @@ const Kind kinds[] = {
     {"h-u8", u8_outputs, 0, &lattice_plan, true},
     {"h-c-point", 0, continuous_point_fixed, &affine_plan, true},
     {"h-c-tile", 0, continuous_tile_fixed, &affine_plan, true}, /* the same bytes as "h-c-point" */
+#if DSN_SURFACE && !defined(GOLDEN_WITHOUT_SURFACE)
+    {"h-s-point", 0, surface_point_fixed, &surface_plan, true},
+#endif
 #if DSN_GRADIENTS && !defined(GOLDEN_WITHOUT_GRADIENTS)
     {"h-d-point", gradient_point, 0, &lattice_plan, true},
     {"h-d-c-point", 0, continuous_gradient_point, &affine_plan, true},
