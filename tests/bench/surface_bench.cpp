@@ -104,7 +104,8 @@ int main() {
                 c.name, ratio.baseline_best / points * 1e9, ratio.baseline_best * ratio.best / points * 1e9,
                 ratio.median, rounds, ratio.best);
         }
-        for (const double *steps : {(const double[]){4, 0, 0, 4}, (const double[]){2, 0, 0, 8}}) {
+        const double footprints[2][4] = {{4, 0, 0, 4}, {2, 0, 0, 8}}; /* texels per pixel, as dsn_footprint */
+        for (const double *steps : footprints) {
             dsn_footprint footprint;
             dsn_footprint_from_float(&footprint, steps[0], steps[1], steps[2], steps[3], 16);
             const int count = side * side / 16; // every 16th point: filtered points cost more
