@@ -20,6 +20,24 @@ uint64_t pair_at(const std::vector<uint32_t> &words, size_t index) {
     return uint64_t(words[index]) | uint64_t(words[index + 1]) << 32;
 }
 
+/* Words 208 .. 215: the surface offset, the offset less 3/32 of (mean - offset) (dsn.h, "Surface noise"),
+   and the walk's cube bound, the support times 2^36 over c^2 impacts (Q16), at most 2^20. */
+void check_surface_words(const dsn_noise_state &state, const std::vector<uint32_t> &words) {
+    for (uint32_t c = 0; c < 3; c++) {
+        int64_t expected = 0;
+        if (c < state.asset.channels) {
+            const int64_t mean = int64_t(state.asset.mean[c]) * (int64_t(1) << (state.gain_shift - 8));
+            const int64_t excess = 3 * (mean - state.offset[c]); // no clamp needed: the fixtures are small
+            expected = state.offset[c] - (excess >= 0 ? excess / 32 : -((-excess + 31) / 32));
+        }
+        CHECK(int64_t(pair_at(words, 208 + 2 * c)) == expected);
+    }
+    const uint64_t side = uint64_t(1) << state.cell_shift;
+    const uint64_t cubes = (uint64_t(state.asset.support_size) << 36) / (side * side * state.impacts_q16);
+    CHECK(words[214] == std::min<uint64_t>(cubes, DSN_MAX_POINT_IMPULSES));
+    CHECK(words[215] == 0u);
+}
+
 void check_layout(const dsn_noise &noise) {
     const dsn_noise_state *state = dsn_state(&noise);
     const dsn_asset &asset = state->asset;
@@ -61,6 +79,7 @@ void check_layout(const dsn_noise &noise) {
     CHECK(words[47] == 0u);
     for (size_t i = 0; i < 96; i++) CHECK(words[48 + i] == state->poisson_cdf[i]);
     for (size_t i = 0; i < 64; i++) CHECK(words[144 + i] == state->poisson_guide[i]);
+    check_surface_words(*state, words);
     size_t index = DSN_GPU_HEADER_WORDS, differences = 0;
     for (uint32_t row = 0; row < asset.height; row++)
         for (uint32_t column = 0; column < asset.width; column++)

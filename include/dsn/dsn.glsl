@@ -18,6 +18,10 @@
      control); dsn_word must then read word dsn_word_base + index of the buffer (below). One walk over
      material 0's impulses within the largest reach, each impulse reading its weights (four samples
      per material) and one texton: no shortcut where the weights are one material's alone.
+     Surface noise (dsn.h, "Surface noise"): dsn_surface_point (float position, normal and tangent, as a
+     fragment shader has them) and dsn_surface_point_fixed (a Q32.32 position and a Q2.30 frame) give the
+     bits of dsn_surface_point_float and dsn_surface_point_fixed; dsn_surface_frame_from_float_bits those
+     of dsn_surface_frame_from_float. A point walks the ~27 cubes around it, a few hundred impulses.
 
    Versions
      GLSL 4.30 core and GLSL ES 3.10 (compute and fragment shaders) multiply 32 x 32 -> 64 bits with
@@ -42,7 +46,7 @@
      tens of hashes and a few hundred word reads (the README gives counts): meant for shaders that
      need the exact bits (previews matching an offline reference, data), not as the cheapest noise.
      GLSL ES: this file declares `precision highp int;`; code before it (dsn_word, say) needs its own
-     highp declarations (integer samplers too). The layout of dsn/gpu.h, version 2.
+     highp declarations (integer samplers too). The layout of dsn/gpu.h, version 3.
      A mix: pack it with dsn_gpu_mix_pack (dsn/gpu.h) and define dsn_word after this file, so that it
      sees dsn_word_base:
          uint dsn_word(uint index) { return noise_words[dsn_word_base + index]; }
@@ -91,7 +95,7 @@ const uint DSN_WORD_LATTICE_RADIUS = 44u; /* x, then y */
 const uint DSN_WORD_LATTICE_TEXTON = 46u;
 const uint DSN_WORD_POISSON_CDF = 48u;
 const uint DSN_WORD_POISSON_GUIDE = 144u;
-const uint DSN_WORD_TEXTON = 208u;
+const uint DSN_WORD_TEXTON = 216u;
 
 /* ---- 64-bit arithmetic on uvec2(low, high), modulo 2^64 ---- */
 
@@ -987,6 +991,365 @@ uvec2 dsn_coordinate_from_float_bits(uint bits) {
 /* The same from a float value (a GPU may flush subnormal inputs to zero: pass the bits to keep them). */
 uvec2 dsn_coordinate_from_float(float value) {
     return dsn_coordinate_from_float_bits(floatBitsToUint(value));
+}
+
+/* ---- Surface noise (dsn.h, "Surface noise"): a 3-D point, its frame, no parameterization ---- */
+
+const uint DSN_WORD_SURFACE_OFFSET = 208u; /* offset[3], int64 pairs */
+const uint DSN_WORD_SURFACE_CUBES = 214u;  /* the most cubes a walk may visit */
+const int DSN_FRAME_ONE = 0x40000000;      /* 1.0 in a frame's Q2.30 */
+
+/* Signed 64-bit helpers (two's complement uvec2). */
+uvec2 dsn_from_int(int value) { return uvec2(uint(value), value < 0 ? 0xFFFFFFFFu : 0u); }
+uvec2 dsn_magnitude64(uvec2 value) { return int(value.y) < 0 ? dsn_sub64(uvec2(0u), value) : value; }
+bool dsn_at_most64(uvec2 a, uvec2 b) { return a.y < b.y || (a.y == b.y && a.x <= b.x); } /* unsigned */
+
+/* value / 2^n rounded toward minus infinity, n in 1 .. 31. */
+uvec2 dsn_floor_shift64(uvec2 value, uint n) {
+    return uvec2((value.x >> n) | (value.y << (32u - n)), uint(int(value.y) >> n));
+}
+
+/* The same, for a quotient known to fit an int. */
+int dsn_floor_shift_int(uvec2 value, uint n) { return int((value.x >> n) | (value.y << (32u - n))); }
+
+uint dsn_cube_key(uvec3 cube) {
+    return dsn_cell_key_in_row(cube.x, dsn_mix32(dsn_row_key(cube.y) + cube.z * 0x9E3779B9u));
+}
+
+/* The slab's window W(|w| / H) in Q16 at the distance `across` (Q32.32) from the plane. */
+uint dsn_slab_window(uvec2 across, uint shift) {
+    uvec2 texels = dsn_shift_right64(dsn_magnitude64(across), 16u); /* Q.16 */
+    if (texels.y != 0u) return 0u;
+    uvec2 s = dsn_shift_right64(dsn_multiply_wide(texels.x, 89878u), 16u + shift);
+    if (s.y != 0u || s.x >= 65536u) return 0u;
+    if (s.x <= 32768u) return 65536u;
+    uint u = 2u * s.x - 65536u, square = (u * u) >> 16u;
+    return 65536u - dsn_shift_right64(dsn_multiply_wide(square, 196608u - 2u * u), 16u).x;
+}
+
+/* The cubes (first, count) within `extent` (Q32.32) of a coordinate. */
+uvec2 dsn_cube_range(uvec2 position, uvec2 extent, uint shift) {
+    uint first = dsn_sub64(position, extent).y >> shift, last = dsn_add64(position, extent).y >> shift;
+    return uvec2(first, ((last - first) & (0xFFFFFFFFu >> shift)) + 1u);
+}
+
+/* The point, its frame (tangent, bitangent, normal) and the sums of its impulses. */
+struct dsn_surface_state {
+    uvec2 position[3];
+    ivec3 frame[3];
+    uvec2 sums[3];
+};
+
+/* One axis of an impulse's offset (Q32.32) from the point: false beyond the reach (-(radius + 1),
+   radius + 1) texels; else the offset plus radius + 1 texels, whose high word less 1 is the lower texel's
+   index and whose bits 16-31 are the upper texel's weight (bilinear_texton.h's bracket). */
+bool dsn_surface_bracket(uvec2 offset, uint radius, out uvec2 shifted) {
+    shifted = dsn_add64(offset, uvec2(0u, radius + 1u));
+    int high = int(shifted.y);
+    return high > 0 ? high < int(2u * radius + 2u) : high == 0 && shifted.x != 0u;
+}
+
+/* An impulse at offsets (Q32.32) along the tangent (columns) and bitangent (rows) with its window:
+   the texton read bilinearly there, weighted, into the sums. */
+void dsn_surface_visit(inout dsn_surface_state state, uvec2 along_x, uvec2 along_y, uint window) {
+    uvec2 shifted_x, shifted_y;
+    if (!dsn_surface_bracket(along_x, dsn_word(DSN_WORD_RADIUS), shifted_x) ||
+        !dsn_surface_bracket(along_y, dsn_word(DSN_WORD_RADIUS + 1u), shifted_y))
+        return;
+    uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    uint column_weight = (shifted_x.x >> 16u) & 0xFFFFu, row_weight = (shifted_y.x >> 16u) & 0xFFFFu;
+    ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight), int(65536u - row_weight),
+                          int(row_weight));
+    for (uint c = 0u; c < channels; c++) {
+        ivec4 corners = dsn_corners(shifted_y.y - 1u, shifted_x.y - 1u, c, width, height, channels);
+        uvec2 texton = dsn_multiply64(dsn_bilinear(corners, weights), uvec2(window, 0u));
+        state.sums[c] = dsn_add64(state.sums[c], dsn_floor_shift64(texton, 16u));
+    }
+}
+
+/* The impulses of one cube (surface_walk.h's visit_cube): each offset from the point is the cube
+   origin's less the impulse's position in the cube, so the dot products are exact. */
+void dsn_surface_cube(inout dsn_surface_state state, uvec3 cube, uint shift) {
+    uint key = dsn_cube_key(cube), count = dsn_cell_impulse_count(key);
+    uvec2 origin_dot[3];
+    for (uint v = 0u; v < 3u; v++) origin_dot[v] = uvec2(0u);
+    for (uint i = 0u; i < 3u; i++) {
+        uint cube_i = i == 0u ? cube.x : i == 1u ? cube.y : cube.z;
+        int origin = dsn_floor_shift_int(dsn_sub64(state.position[i], uvec2(0u, cube_i << shift)), 16u);
+        for (uint v = 0u; v < 3u; v++)
+            origin_dot[v] = dsn_add64(origin_dot[v], dsn_multiply_signed_wide(origin, state.frame[v][i]));
+    }
+    for (uint k = 0u; k < count; k++) {
+        uvec2 pair = dsn_position_pair(key, k);
+        ivec3 inside = ivec3(int((pair.x & 0xFFFFu) << shift), int((pair.x >> 16u) << shift),
+                             int((pair.y & 0xFFFFu) << shift));
+        uvec2 dots[3];
+        for (uint v = 0u; v < 3u; v++) {
+            ivec3 f = state.frame[v];
+            dots[v] = dsn_sub64(origin_dot[v],
+                                dsn_add64(dsn_add64(dsn_multiply_signed_wide(inside.x, f.x),
+                                                    dsn_multiply_signed_wide(inside.y, f.y)),
+                                          dsn_multiply_signed_wide(inside.z, f.z)));
+        }
+        uint window = dsn_slab_window(dsn_floor_shift64(dots[2], 14u), shift);
+        if (window == 0u) continue;
+        dsn_surface_visit(state, dsn_floor_shift64(dots[0], 14u), dsn_floor_shift64(dots[1], 14u), window);
+    }
+}
+
+/* Q16.16 values of the surface noise at `position` (Q32.32 per axis, as uvec2(low, high)) in the frame
+   (tangent, bitangent, normal: Q2.30, DSN_FRAME_ONE is 1.0): dsn_surface_point_fixed's bits, all 0 where
+   it fails (a frame component outside [-1, 1], a noise not for the continuous mode, a walk past its
+   cost bound). */
+ivec3 dsn_surface_point_fixed(uvec2 x, uvec2 y, uvec2 z, ivec3 tangent, ivec3 bitangent, ivec3 normal) {
+    if (dsn_word(DSN_WORD_CONTINUOUS) == 0u) return ivec3(0);
+    dsn_surface_state state;
+    state.position[0] = x;
+    state.position[1] = y;
+    state.position[2] = z;
+    state.frame[0] = tangent;
+    state.frame[1] = bitangent;
+    state.frame[2] = normal;
+    for (uint v = 0u; v < 3u; v++) {
+        state.sums[v] = uvec2(0u);
+        ivec3 f = state.frame[v];
+        if (any(greaterThan(f, ivec3(DSN_FRAME_ONE))) || any(lessThan(f, ivec3(-DSN_FRAME_ONE))))
+            return ivec3(0);
+    }
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT), limit = dsn_word(DSN_WORD_SURFACE_CUBES);
+    /* The walk (surface_walk.h): the reaches in units of 2^-30 texel per frame unit over 2^2. */
+    uint reach[3];
+    reach[0] = 4u * (dsn_word(DSN_WORD_RADIUS) + 1u);
+    reach[1] = 4u * (dsn_word(DSN_WORD_RADIUS + 1u) + 1u);
+    reach[2] = 3u << shift;
+    uvec2 box_bound[3], first_offset_dot[3], along[9]; /* along[3 v + i] */
+    uvec3 first = uvec3(0u), count = uvec3(0u);
+    uint cubes = 1u;
+    int first_offset[3];
+    for (uint i = 0u; i < 3u; i++) {
+        uvec2 extent = uvec2(0u, 1u);
+        uint spread = 0u;
+        for (uint v = 0u; v < 3u; v++) {
+            extent = dsn_add64(extent, dsn_multiply_wide(reach[v], uint(abs(state.frame[v][i]))));
+            spread += uint(abs(state.frame[i][v]));
+        }
+        uvec2 range = dsn_cube_range(state.position[i], extent, shift);
+        if (range.y > limit || cubes > limit / range.y) return ivec3(0);
+        cubes *= range.y;
+        box_bound[i] = dsn_add64(dsn_add64(dsn_shift_left64(uvec2(reach[i], 0u), 44u),
+                                           dsn_shift_left64(uvec2(spread, 0u), 15u + shift)),
+                                 uvec2(0u, 1u << 14u));
+        /* the offset of the first cube's centre (Q.16) */
+        uvec2 middle = uvec2(shift == 0u ? 0x80000000u : 0u,
+                             (range.x << shift) + (shift == 0u ? 0u : 1u << (shift - 1u)));
+        first_offset[i] = dsn_floor_shift_int(dsn_sub64(state.position[i], middle), 16u);
+        if (i == 0u) {
+            first.x = range.x;
+            count.x = range.y;
+        } else if (i == 1u) {
+            first.y = range.x;
+            count.y = range.y;
+        } else {
+            first.z = range.x;
+            count.z = range.y;
+        }
+    }
+    for (uint v = 0u; v < 3u; v++) {
+        first_offset_dot[v] = uvec2(0u);
+        for (uint i = 0u; i < 3u; i++) {
+            along[3u * v + i] = dsn_shift_left64(dsn_from_int(state.frame[v][i]), 16u + shift);
+            first_offset_dot[v] = dsn_add64(first_offset_dot[v],
+                                            dsn_multiply_signed_wide(first_offset[i], state.frame[v][i]));
+        }
+    }
+    uint mask = 0xFFFFFFFFu >> shift;
+    uvec2 plane_dot[3] = first_offset_dot;
+    for (uint cz = 0u; cz < count.z; cz++) {
+        uvec2 row_dot[3] = plane_dot;
+        for (uint cy = 0u; cy < count.y; cy++) {
+            uvec2 centre_dot[3] = row_dot;
+            for (uint cx = 0u; cx < count.x; cx++) {
+                if (dsn_at_most64(dsn_magnitude64(centre_dot[0]), box_bound[0]) &&
+                    dsn_at_most64(dsn_magnitude64(centre_dot[1]), box_bound[1]) &&
+                    dsn_at_most64(dsn_magnitude64(centre_dot[2]), box_bound[2]))
+                    dsn_surface_cube(state, (first + uvec3(cx, cy, cz)) & mask, shift);
+                for (uint v = 0u; v < 3u; v++) centre_dot[v] = dsn_sub64(centre_dot[v], along[3u * v]);
+            }
+            for (uint v = 0u; v < 3u; v++) row_dot[v] = dsn_sub64(row_dot[v], along[3u * v + 1u]);
+        }
+        for (uint v = 0u; v < 3u; v++) plane_dot[v] = dsn_sub64(plane_dot[v], along[3u * v + 2u]);
+    }
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    ivec3 result = ivec3(0);
+    for (uint c = 0u; c < channels; c++) {
+        uint at = DSN_WORD_SURFACE_OFFSET + 2u * c;
+        uvec2 offset = uvec2(dsn_word(at), dsn_word(at + 1u));
+        int value = dsn_normalize_q32_channel_from(c, channels, state.sums, offset);
+        if (c == 0u)
+            result.x = value;
+        else if (c == 1u)
+            result.y = value;
+        else
+            result.z = value;
+    }
+    return result;
+}
+
+/* ---- The surface frame from float vectors (surface_frame.cpp's integers) ---- */
+
+/* floor(sqrt(value)) of a 64-bit value, one result bit per step. */
+uint dsn_integer_sqrt64(uvec2 value) {
+    uvec2 root = uvec2(0u), bit = uvec2(0u, 0x40000000u);
+    while (!dsn_at_most64(bit, value)) bit = dsn_shift_right64(bit, 2u);
+    while ((bit.x | bit.y) != 0u) {
+        uvec2 trial = dsn_add64(root, bit);
+        if (dsn_at_most64(trial, value)) {
+            value = dsn_sub64(value, trial);
+            root = dsn_add64(dsn_shift_right64(root, 1u), bit);
+        } else {
+            root = dsn_shift_right64(root, 1u);
+        }
+        bit = dsn_shift_right64(bit, 2u);
+    }
+    return root.x;
+}
+
+/* a b / 2^30 rounded toward minus infinity (|a|, |b| about 2^30 at most: the quotient fits an int). */
+int dsn_multiply_q30(int a, int b) { return dsn_floor_shift_int(dsn_multiply_signed_wide(a, b), 30u); }
+
+/* |a| 2^30 / norm rounded down, with a's sign, for |a| <= norm < 2^32. */
+int dsn_ratio_q30(int a, uint norm) {
+    uint magnitude = a < 0 ? 0u - uint(a) : uint(a);
+    uint quotient = magnitude >= norm ? 1u : 0u, rest = magnitude - quotient * norm;
+    for (uint step = 0u; step < 30u; step++) {
+        bool carry = (rest >> 31u) != 0u;
+        rest <<= 1u;
+        quotient <<= 1u;
+        if (carry || rest >= norm) {
+            rest -= norm;
+            quotient |= 1u;
+        }
+    }
+    return a < 0 ? -int(quotient) : int(quotient);
+}
+
+/* The direction of a vector (each component at most about 2^31 in magnitude) in Q2.30, clamped to
+   [-1, 1]; false for the zero vector. */
+bool dsn_unit_vector(ivec3 values, out ivec3 unit) {
+    unit = ivec3(0);
+    uvec3 size = uvec3(abs(values));
+    uint largest = max(size.x, max(size.y, size.z));
+    if (largest == 0u) return false;
+    uint shift = 0u;
+    while ((largest << shift) < 0x20000000u) shift++;
+    ivec3 scaled = values * (1 << shift);
+    uvec2 length_squared = dsn_add64(dsn_add64(dsn_multiply_signed_wide(scaled.x, scaled.x),
+                                               dsn_multiply_signed_wide(scaled.y, scaled.y)),
+                                     dsn_multiply_signed_wide(scaled.z, scaled.z));
+    uint norm = dsn_integer_sqrt64(length_squared);
+    unit = clamp(ivec3(dsn_ratio_q30(scaled.x, norm), dsn_ratio_q30(scaled.y, norm),
+                       dsn_ratio_q30(scaled.z, norm)),
+                 ivec3(-DSN_FRAME_ONE), ivec3(DSN_FRAME_ONE));
+    return true;
+}
+
+/* A float's sign, mantissa (24 bits unless 0) and exponent, from its bits; false for NaN and infinities. */
+bool dsn_float_parts(uint bits, out bool negative, out uint mantissa, out int exponent) {
+    uint biased = (bits >> 23u) & 0xFFu, fraction = bits & 0x7FFFFFu;
+    negative = (bits >> 31u) != 0u;
+    mantissa = biased == 0u ? fraction : (fraction | 0x800000u);
+    exponent = (biased == 0u ? 1 : int(biased)) - 150;
+    if (biased == 0xFFu) return false;
+    for (; mantissa != 0u && mantissa < 0x800000u; mantissa <<= 1u) exponent--;
+    return true;
+}
+
+/* A float vector's direction (its IEEE bits) in Q2.30: 1, or 0 for the zero vector, -1 for a NaN or
+   infinite component. */
+int dsn_float_direction(uvec3 bits, out ivec3 unit) {
+    unit = ivec3(0);
+    bool negative[3];
+    uint mantissa[3];
+    int exponent[3], largest = -1000;
+    for (uint i = 0u; i < 3u; i++) {
+        if (!dsn_float_parts(bits[i], negative[i], mantissa[i], exponent[i])) return -1;
+        if (mantissa[i] != 0u && exponent[i] > largest) largest = exponent[i];
+    }
+    if (largest == -1000) return 0;
+    ivec3 aligned = ivec3(0);
+    for (uint i = 0u; i < 3u; i++) {
+        int right = largest - exponent[i];
+        uint value = mantissa[i] == 0u || right >= 32 ? 0u : mantissa[i] >> uint(right);
+        aligned[i] = negative[i] ? -int(value) : int(value);
+    }
+    return dsn_unit_vector(aligned, unit) ? 1 : 0;
+}
+
+/* The vector's part orthogonal to the unit normal, and the square of its length. */
+uvec2 dsn_remove_normal(ivec3 normal, ivec3 vector, out ivec3 orthogonal) {
+    int along_normal = dsn_multiply_q30(vector.x, normal.x) + dsn_multiply_q30(vector.y, normal.y) +
+              dsn_multiply_q30(vector.z, normal.z);
+    orthogonal = vector - ivec3(dsn_multiply_q30(along_normal, normal.x),
+                                dsn_multiply_q30(along_normal, normal.y),
+                                dsn_multiply_q30(along_normal, normal.z));
+    return dsn_add64(dsn_add64(dsn_multiply_signed_wide(orthogonal.x, orthogonal.x),
+                               dsn_multiply_signed_wide(orthogonal.y, orthogonal.y)),
+                     dsn_multiply_signed_wide(orthogonal.z, orthogonal.z));
+}
+
+/* The frame of a surface point from the IEEE bits of its normal and, when has_tangent, of a tangent
+   direction: dsn_surface_frame_from_float's bits (dsn.h), or false (a zero, NaN or infinite normal, a
+   NaN or infinite tangent) with a zero frame. */
+bool dsn_surface_frame_from_float_bits(uvec3 normal_bits, uvec3 tangent_bits, bool has_tangent,
+                                       out ivec3 tangent, out ivec3 bitangent, out ivec3 normal) {
+    tangent = ivec3(0);
+    bitangent = ivec3(0);
+    ivec3 n, t = ivec3(0), given = ivec3(0);
+    normal = ivec3(0);
+    if (dsn_float_direction(normal_bits, n) != 1) return false;
+    int tangent_kind = has_tangent ? dsn_float_direction(tangent_bits, given) : 0;
+    if (tangent_kind < 0) return false;
+    bool made = false;
+    if (tangent_kind == 1) {
+        ivec3 orthogonal, unit;
+        if ((dsn_remove_normal(n, given, orthogonal).y >> 4u) != 0u) { /* at least 2^36 */
+            dsn_unit_vector(orthogonal, unit);
+            dsn_remove_normal(n, unit, orthogonal);
+            made = dsn_unit_vector(orthogonal, t);
+        }
+    }
+    if (!made) { /* the x axis made orthogonal to the normal */
+        ivec3 direction;
+        if (dsn_float_direction(uvec3(0u, normal_bits.y, normal_bits.z), direction) != 1) {
+            t = ivec3(0, 0, n.x > 0 ? -DSN_FRAME_ONE : DSN_FRAME_ONE);
+        } else {
+            int cosine = direction.y, sine = direction.z;
+            t = ivec3(dsn_multiply_q30(cosine, n.y) + dsn_multiply_q30(sine, n.z),
+                      -dsn_multiply_q30(n.x, cosine), -dsn_multiply_q30(n.x, sine));
+        }
+    }
+    ivec3 b = ivec3(dsn_multiply_q30(n.y, t.z) - dsn_multiply_q30(n.z, t.y),
+                    dsn_multiply_q30(n.z, t.x) - dsn_multiply_q30(n.x, t.z),
+                    dsn_multiply_q30(n.x, t.y) - dsn_multiply_q30(n.y, t.x));
+    ivec3 one = ivec3(DSN_FRAME_ONE);
+    tangent = clamp(t, -one, one);
+    bitangent = clamp(b, -one, one);
+    normal = clamp(n, -one, one);
+    return true;
+}
+
+/* The surface noise at a float position with a float normal and optional tangent: what
+   dsn_surface_point_float gives for the same values as doubles, in Q16.16 (all 0 where it fails). A
+   GPU may flush subnormal inputs: pass bits to dsn_surface_frame_from_float_bits to keep them. */
+ivec3 dsn_surface_point(vec3 position, vec3 normal, vec3 tangent, bool has_tangent) {
+    ivec3 t, b, n;
+    if (!dsn_surface_frame_from_float_bits(floatBitsToUint(normal), floatBitsToUint(tangent), has_tangent, t,
+                                           b, n))
+        return ivec3(0);
+    return dsn_surface_point_fixed(dsn_coordinate_from_float(position.x),
+                                   dsn_coordinate_from_float(position.y),
+                                   dsn_coordinate_from_float(position.z), t, b, n);
 }
 
 /* ---- Output conversions (the C API edge), in integer arithmetic ---- */

@@ -5,7 +5,8 @@
      the asset's texton) into an array of uint32_t that a shader reads through a function it defines,
      `uint dsn_word(uint index)`: from a shader storage buffer, a uniform buffer or an R32UI texture.
      dsn/dsn.glsl then evaluates the lattice and the continuous mode per point with exactly the bits of
-     dsn_lattice_point_fixed and dsn_continuous_point_fixed (integer arithmetic only, in 32-bit words).
+     dsn_lattice_point_fixed and dsn_continuous_point_fixed, and the surface noise per point with those of
+     dsn_surface_point_fixed (integer arithmetic only, in 32-bit words).
      dsn_gpu_mix_pack does the same for a mix of materials and its control (below), for dsn.glsl's
      dsn_mix_lattice_point_fixed and dsn_mix_continuous_point_fixed.
 
@@ -17,7 +18,8 @@
    Upload the words as they are: the values are host integers (a GL buffer holds them in the host's byte
    order, which is what the shader reads).
 
-   Layout, version 2 (DSN_GPU_LAYOUT_VERSION; version 1 had words 42 .. 46 zero and no lattice texton).
+   Layout, version 3 (DSN_GPU_LAYOUT_VERSION; version 2 had no words 208 .. 215, its texton started at
+   word 208; version 1 also had words 42 .. 46 zero and no lattice texton).
    Word i of the buffer:
        0            DSN_GPU_MAGIC ("DSNG" as a little-endian word)
        1            DSN_GPU_LAYOUT_VERSION
@@ -39,13 +41,18 @@
        42, 43       the lattice evaluators' texton width, height (odd): the asset's lattice texton
                     (format 1.3) where it has one, else the texton's (words 5, 6)
        44, 45       its radius along x, y
-       46           the word where its values start: 208 + width * height * channels after the texton, or
-                    208 (the texton itself)
+       46           the word where its values start: 216 + width * height * channels after the texton, or
+                    216 (the texton itself)
        47           0 (reserved)
        48 .. 143    the Poisson table: 96 inverse-CDF thresholds (entries from poisson_size on are
                     0xFFFFFFFF)
        144 .. 207   the Poisson guide: the first candidate count for each top-6-bit bucket of a uniform
-       208 ..       the texton: width * height * channels values, row-major from the top row, channels
+       208 .. 213   the surface noise's offset[3] (dsn.h, "Surface noise": the offset less 3/32 of the
+                    expected sum): int64 as two words, low word first
+       214          the most cubes one surface point's walk may visit: a walk over more fails with
+                    DSN_ERR_COST (its impulses, on average, would pass DSN_MAX_POINT_IMPULSES)
+       215          0 (reserved); words 208 .. 215 are all 0 in a runtime built without DSN_SURFACE
+       216 ..       the texton: width * height * channels values, row-major from the top row, channels
                     interleaved, each sign-extended to a whole word (two's complement int32); then, where
                     the asset has one, the lattice texton in the same form
    A later layout changes DSN_GPU_LAYOUT_VERSION, and dsn.glsl checks nothing at run time: use the
@@ -63,8 +70,8 @@ extern "C" {
 #endif
 
 #define DSN_GPU_MAGIC 0x474E5344u /* 'D' 'S' 'N' 'G' in the low to high bytes */
-#define DSN_GPU_LAYOUT_VERSION 2u
-#define DSN_GPU_HEADER_WORDS 208u /* the texton starts at this word */
+#define DSN_GPU_LAYOUT_VERSION 3u
+#define DSN_GPU_HEADER_WORDS 216u /* the texton starts at this word */
 #define DSN_GPU_MAX_WORDS (DSN_GPU_HEADER_WORDS + 2u * 255u * 255u * 3u)
 
 /* The number of words dsn_gpu_pack writes for `noise`: DSN_GPU_HEADER_WORDS + the textons' values,

@@ -4,17 +4,22 @@
 
 #include "dsn/gpu.h"
 #include "setup/noise_state.h"
+#if DSN_SURFACE
+#include "core/surface_walk.h"
+#include "setup/wide_arithmetic.h"
+#endif
 
 namespace {
 
 const uint32_t cdf_words = 96, guide_words = 64;
 const uint32_t cdf_first = 48, guide_first = cdf_first + cdf_words;
+const uint32_t surface_first = guide_first + guide_words, surface_words = 8;
 
 static_assert(sizeof(dsn_noise_state::poisson_cdf) == cdf_words * sizeof(uint32_t),
               "the layout holds the whole Poisson table");
 static_assert(sizeof(dsn_noise_state::poisson_guide) == guide_words,
               "the layout holds the whole Poisson guide");
-static_assert(guide_first + guide_words == DSN_GPU_HEADER_WORDS, "the texton follows the guide");
+static_assert(surface_first + surface_words == DSN_GPU_HEADER_WORDS, "the texton follows the surface words");
 
 /* Words 3 .. 16 of the layout: where each is in the configured noise (every one a uint32_t field), in
    words from its start. A table and one loop rather than fourteen assignments: the runtime's whole code
@@ -76,6 +81,26 @@ void put_pairs(uint32_t *words, const int64_t *values, uint32_t count) {
     }
 }
 
+/* Words 208 .. 215: the surface noise's offset and the largest walk it evaluates (dsn/gpu.h); zeros in a
+   runtime built without it. The walk's cost test (surface_walk.h's walk_too_costly) compares its cubes
+   times c^2 impacts with the support times DSN_MAX_POINT_IMPULSES: for whole cubes, the same as comparing
+   them with the quotient. */
+void put_surface(const dsn_noise_state *noise, uint32_t *words) {
+    for (uint32_t i = 0; i < surface_words; i++) words[i] = 0;
+#if DSN_SURFACE
+    int64_t offset[DSN_MAX_CHANNELS] = {0, 0, 0};
+    surface_offset(noise, noise->offset, offset);
+    put_pairs(words, offset, 3);
+    const uint64_t side = static_cast<uint64_t>(1) << noise->cell_shift;
+    const uint64_t cost = side * side * noise->impacts_q16,
+                   budget = (static_cast<uint64_t>(noise->asset.support_size) * DSN_MAX_POINT_IMPULSES) << 16;
+    const uint64_t cubes = cost == 0 ? DSN_MAX_POINT_IMPULSES : dsn_divide(budget, cost);
+    words[6] = static_cast<uint32_t>(cubes < DSN_MAX_POINT_IMPULSES ? cubes : DSN_MAX_POINT_IMPULSES);
+#else
+    (void)noise;
+#endif
+}
+
 } // namespace
 
 extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t capacity) {
@@ -110,6 +135,7 @@ extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t cap
     for (i = 47; i < cdf_first; i++) words[i] = 0;
     for (i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
     for (i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
+    put_surface(noise, words + surface_first);
     put_texton(words + DSN_GPU_HEADER_WORDS, asset->texton, texton_count, asset->bits);
     if (separate)
         put_texton(words + DSN_GPU_HEADER_WORDS + texton_count, asset->lattice_texton,

@@ -14,9 +14,13 @@ uniform uvec4 task_origin;      /* lattice: (x, -, y, -); grid: (x low, x high, 
 uniform uvec4 task_column_step; /* grid: the step to the next pixel of a row, Q32.32 x then y */
 uniform uvec4 task_row_step;    /* grid: the step to the next row */
 
-/* Query `index` as two uvec4: (mode, x low, x high, y low) and (y high, -, -, -). Modes: bits 0-7 the
-   point (0 lattice (x, y) int32, 1 continuous (x, y) Q32.32, 2 continuous from the IEEE bits of two
-   doubles, 3 coordinate from a double's bits (x), 4 coordinate from a float's bits (x low)), bits 8-15
+/* Query `index` as four uvec4 (parts 0 to 3): (mode, x low, x high, y low), (y high, ...). Modes: bits
+   0-7 the point (0 lattice (x, y) int32, 1 continuous (x, y) Q32.32, 2 continuous from the IEEE bits of
+   two doubles, 3 coordinate from a double's bits (x), 4 coordinate from a float's bits (x low), 5 a
+   surface point (x, y, z Q32.32, then the frame's tangent, bitangent and normal), 6 a surface point from
+   the IEEE bits of three doubles and of a float normal and tangent (then 1 when there is a tangent), 7 a
+   surface frame from the float bits of a normal (words 1-3) and a tangent (4-6) with the tangent's flag
+   (word 7): its tangent, bitangent and normal as value, dx and dy, value.w 1 when it is made), bits 8-15
    the output conversion as task_output, bit 16 the gradient (points of modes 0 to 2), bit 17 a mix's
    point (modes 0 and 1). */
 uvec4 golden_query(uint index, uint part);
@@ -54,6 +58,36 @@ void golden_point(bool lattice, ivec2 p, uvec2 x, uvec2 y, bool gradient, bool m
     dy = golden_convert(gy, conversion);
 }
 
+/* A surface query (modes 5 to 7) of the words w[0 .. 15]. */
+void golden_surface(uint point, uint conversion, uvec4 w0, uvec4 w1, uvec4 w2, uvec4 w3, out uvec4 value,
+                    out uvec4 dx, out uvec4 dy) {
+    value = uvec4(0u);
+    dx = uvec4(0u);
+    dy = uvec4(0u);
+#if !GOLDEN_CPU_SURFACES /* dsn-gpu-golden --cpu-surfaces: no surface code in the shader */
+    if (point == 7u) {
+        ivec3 t, b, n;
+        bool made = dsn_surface_frame_from_float_bits(w0.yzw, w1.xyz, w1.w != 0u, t, b, n);
+        value = uvec4(uvec3(t), made ? 1u : 0u);
+        dx = uvec4(uvec3(b), 0u);
+        dy = uvec4(uvec3(n), 0u);
+        return;
+    }
+    ivec3 v = ivec3(0);
+    if (point == 5u) {
+        v = dsn_surface_point_fixed(w0.yz, uvec2(w0.w, w1.x), w1.yz, ivec3(uvec3(w1.w, w2.xy)),
+                                    ivec3(uvec3(w2.zw, w3.x)), ivec3(w3.yzw));
+    } else {
+        ivec3 t, b, n;
+        if (dsn_surface_frame_from_float_bits(uvec3(w1.w, w2.xy), uvec3(w2.zw, w3.x), w3.y != 0u, t, b, n))
+            v = dsn_surface_point_fixed(dsn_coordinate_from_double_bits(w0.yz),
+                                        dsn_coordinate_from_double_bits(uvec2(w0.w, w1.x)),
+                                        dsn_coordinate_from_double_bits(w1.yz), t, b, n);
+    }
+    value = golden_convert(v, conversion);
+#endif
+}
+
 /* One call of each evaluator in the shader (each is inlined where it is called). */
 void golden_evaluate(uint index, out uvec4 value, out uvec4 dx, out uvec4 dy) {
     uint i = index % task_width, j = index / task_width;
@@ -70,6 +104,11 @@ void golden_evaluate(uint index, out uvec4 value, out uvec4 dx, out uvec4 dy) {
     } else if (task_kind == 0u) {
         uvec4 first = golden_query(index, 0u), second = golden_query(index, 1u);
         uint point = first.x & 0xFFu;
+        if (point >= 5u) {
+            golden_surface(point, (first.x >> 8u) & 0xFFu, first, second, golden_query(index, 2u),
+                           golden_query(index, 3u), value, dx, dy);
+            return;
+        }
         x = first.yz;
         y = uvec2(first.w, second.x);
         if (point > 2u) {

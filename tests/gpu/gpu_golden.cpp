@@ -14,7 +14,7 @@
 // the one recorded. The configuration (dsn_asset_load, dsn_noise_init) stays on the CPU: dsn_gpu_pack
 // copies the configured noise into the words the shader reads.
 //
-//   dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--cpu-mixes] [--dump-shaders DIR]
+//   dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--cpu-mixes] [--cpu-surfaces] [--dump-shaders DIR]
 //     gl45    OpenGL 4.5 core, GLSL 4.30 compute shader (shader storage buffers)
 //     gles31  OpenGL ES 3.1, GLSL ES 3.10 compute shader
 //     gles30  OpenGL ES 3.0, GLSL ES 3.00 fragment shader (WebGL2's language: no umulExtended, no SSBO):
@@ -22,6 +22,7 @@
 //     --limbs         16-bit limb multiplications (the GLSL ES 3.00 code) whatever the API
 //     --cpu-mixes     the mixes (m-* kinds) from the C runtime, not the shaders: for softpipe's GLSL ES 3.00
 //                     run, which interprets a mix's fragments at about a minute and a half per mix
+//     --cpu-surfaces  the surface noise (s-* kinds) from the C runtime, not the shaders (the same reason)
 //     --dump-shaders  write the shaders of every API to DIR (for glslangValidator) and exit
 #include <cstdio>
 #include <cstring>
@@ -90,6 +91,15 @@ int mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control
                               size_t scratch_size);
 int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
                            uint32_t width, uint32_t height, uint8_t *out, void *scratch, size_t scratch_size);
+int surface_frame_from_float(const float *normal, const float *tangent, dsn_surface_frame *frame);
+int surface_point_fixed(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                        int32_t *out);
+int surface_point_float(const dsn_noise *noise, const double *position, const float *normal,
+                        const float *tangent, float *out);
+int surface_point_u8(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                     uint8_t *out);
+int surface_batch_fixed(const dsn_noise *noise, const int64_t *positions, const dsn_surface_frame *frames,
+                        uint32_t count, int32_t *out);
 
 } // namespace gpu_golden
 
@@ -125,6 +135,11 @@ int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, c
 #define dsn_mix_lattice_tile_float gpu_golden::mix_lattice_tile_float
 #define dsn_mix_continuous_tile_fixed gpu_golden::mix_continuous_tile_fixed
 #define dsn_mix_continuous_tile_u8 gpu_golden::mix_continuous_tile_u8
+#define dsn_surface_frame_from_float gpu_golden::surface_frame_from_float
+#define dsn_surface_point_fixed gpu_golden::surface_point_fixed
+#define dsn_surface_point_float gpu_golden::surface_point_float
+#define dsn_surface_point_u8 gpu_golden::surface_point_u8
+#define dsn_surface_batch_fixed gpu_golden::surface_batch_fixed
 #define main golden_main
 #define GOLDEN_WITHOUT_HISTOGRAM 1 /* dsn.glsl has no histogram mapping: the h-* kinds are left out */
 #include "cross/golden.cpp"
@@ -139,6 +154,11 @@ int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, c
 #undef dsn_mix_lattice_tile_float
 #undef dsn_mix_continuous_tile_fixed
 #undef dsn_mix_continuous_tile_u8
+#undef dsn_surface_frame_from_float
+#undef dsn_surface_point_fixed
+#undef dsn_surface_point_float
+#undef dsn_surface_point_u8
+#undef dsn_surface_batch_fixed
 
 namespace gpu_golden {
 
@@ -165,14 +185,19 @@ enum Point : uint32_t {
     point_continuous = 1,
     point_continuous_doubles = 2,
     point_coordinate_double = 3,
-    point_coordinate_float = 4
+    point_coordinate_float = 4,
+    point_surface = 5,
+    point_surface_doubles = 6,
+    surface_frame = 7
 };
+/* Words of a query: four uvec4 of the shader (golden_kernel.glsl). */
+const uint32_t query_words = 16;
 
 /* One thing the golden program asked for: a query (one value) or a tile (width x height values). */
 struct Request {
     size_t noise = 0; /* index into Recorder::noises */
     uint32_t kind = task_queries;
-    uint32_t query[5] = {0, 0, 0, 0, 0}; /* mode (point | conversion << 8), x low, x high, y low, y high */
+    uint32_t query[query_words] = {}; /* mode (point | conversion << 8), x low, x high, y low, y high, ... */
     uint32_t conversion = as_fixed, gradient = 0, mix = 0, width = 1, height = 1;
     uint32_t origin[4] = {0, 0, 0, 0}, column_step[4] = {0, 0, 0, 0}, row_step[4] = {0, 0, 0, 0};
     std::vector<uint32_t> result; /* result_words per value */
@@ -188,7 +213,7 @@ struct Request {
 };
 
 struct Recorder {
-    bool replaying = false, printing = false, cpu_mixes = false;
+    bool replaying = false, printing = false, cpu_mixes = false, cpu_surfaces = false;
     std::vector<Request> requests;
     size_t cursor = 0;
     std::vector<std::vector<uint32_t>> noises;    /* packed words */
@@ -655,6 +680,95 @@ int mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, c
     return err;
 }
 
+/* ---- The replacements of the surface functions: the C function's error, the GPU's values ---- */
+
+/* With --cpu-surfaces the C function's values stand (the replacements below return them as they are). The
+   filtered surface stays the C runtime's: dsn.glsl has no filtering. */
+uint32_t float_bits(float value) {
+    uint32_t bits;
+    memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+int surface_frame_from_float(const float *normal, const float *tangent, dsn_surface_frame *frame) {
+    const int err = dsn_surface_frame_from_float(normal, tangent, frame);
+    if (err != DSN_OK || recorder.cpu_surfaces) return err;
+    Request request = query(nullptr, surface_frame, as_fixed, 0, 0);
+    for (int i = 0; i < 3; i++) {
+        request.query[1 + i] = float_bits(normal[i]);
+        request.query[4 + i] = tangent ? float_bits(tangent[i]) : 0u;
+    }
+    request.query[7] = tangent ? 1u : 0u;
+    const std::vector<uint32_t> &result = answer(request);
+    if (!recorder.replaying) return err; /* the C frame: the recorded queries that use it are the replay's */
+    int32_t *const vectors[3] = {frame->tangent, frame->bitangent, frame->normal};
+    for (int v = 0; v < 3; v++) memcpy(vectors[v], &result[4 * v], 3 * sizeof(int32_t));
+    return result[3] == 1u ? err : DSN_ERR_ARGUMENT;
+}
+
+/* The words of a surface query: the position's (3 pairs) from word 1, then nine more from word 7. */
+Request surface_query(const dsn_noise *noise, uint32_t point, uint32_t conversion, const uint64_t *position,
+                      const uint32_t *rest) {
+    Request request = query(noise, point, conversion, position[0], position[1]);
+    request.query[5] = static_cast<uint32_t>(position[2]);
+    request.query[6] = static_cast<uint32_t>(position[2] >> 32);
+    memcpy(request.query + 7, rest, 9 * sizeof(uint32_t));
+    return request;
+}
+
+template <typename Value>
+void surface_fixed_query(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                         uint32_t conversion, Value *out) {
+    const uint64_t bits[3] = {static_cast<uint64_t>(position[0]), static_cast<uint64_t>(position[1]),
+                              static_cast<uint64_t>(position[2])};
+    uint32_t rest[9];
+    memcpy(rest, frame->tangent, 3 * sizeof(uint32_t));
+    memcpy(rest + 3, frame->bitangent, 3 * sizeof(uint32_t));
+    memcpy(rest + 6, frame->normal, 3 * sizeof(uint32_t));
+    store(answer(surface_query(noise, point_surface, conversion, bits, rest)), 1, dsn_noise_channels(noise),
+          out);
+}
+
+int surface_point_fixed(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                        int32_t *out) {
+    const int err = dsn_surface_point_fixed(noise, position, frame, out);
+    if (err == DSN_OK && !recorder.cpu_surfaces) surface_fixed_query(noise, position, frame, as_fixed, out);
+    return err;
+}
+
+int surface_point_u8(const dsn_noise *noise, const int64_t *position, const dsn_surface_frame *frame,
+                     uint8_t *out) {
+    const int err = dsn_surface_point_u8(noise, position, frame, out);
+    if (err == DSN_OK && !recorder.cpu_surfaces) surface_fixed_query(noise, position, frame, as_u8, out);
+    return err;
+}
+
+int surface_batch_fixed(const dsn_noise *noise, const int64_t *positions, const dsn_surface_frame *frames,
+                        uint32_t count, int32_t *out) {
+    const int err = dsn_surface_batch_fixed(noise, positions, frames, count, out);
+    if (err != DSN_OK || recorder.cpu_surfaces) return err;
+    const uint32_t channels = dsn_noise_channels(noise);
+    for (uint32_t k = 0; k < count; k++)
+        surface_fixed_query(noise, positions + 3 * k, frames + k, as_fixed, out + k * channels);
+    return err;
+}
+
+int surface_point_float(const dsn_noise *noise, const double *position, const float *normal,
+                        const float *tangent, float *out) {
+    const int err = dsn_surface_point_float(noise, position, normal, tangent, out);
+    if (err != DSN_OK || recorder.cpu_surfaces) return err;
+    const uint64_t bits[3] = {double_bits(position[0]), double_bits(position[1]), double_bits(position[2])};
+    uint32_t rest[9] = {};
+    for (int i = 0; i < 3; i++) {
+        rest[i] = float_bits(normal[i]);
+        rest[3 + i] = tangent ? float_bits(tangent[i]) : 0u;
+    }
+    rest[6] = tangent ? 1u : 0u;
+    store(answer(surface_query(noise, point_surface_doubles, as_float, bits, rest)), 1,
+          dsn_noise_channels(noise), out);
+    return err;
+}
+
 /* ---- Running the requests on the GPU ---- */
 
 struct Task {
@@ -668,7 +782,8 @@ const uint32_t no_words[4] = {0, 0, 0, 0};
 /* With --cpu-mixes the shaders leave the mix functions out (a smaller program for softpipe to interpret). */
 std::string golden_defines(bool limbs) {
     return std::string(limbs ? "#define DSN_GLSL_LIMBS 1\n" : "") +
-           (recorder.cpu_mixes ? "#define GOLDEN_CPU_MIXES 1\n" : "#define GOLDEN_CPU_MIXES 0\n");
+           (recorder.cpu_mixes ? "#define GOLDEN_CPU_MIXES 1\n" : "#define GOLDEN_CPU_MIXES 0\n") +
+           (recorder.cpu_surfaces ? "#define GOLDEN_CPU_SURFACES 1\n" : "#define GOLDEN_CPU_SURFACES 0\n");
 }
 
 std::string compute_shader(const headless_gl::Context &context, bool limbs) {
@@ -678,7 +793,7 @@ std::string compute_shader(const headless_gl::Context &context, bool limbs) {
            "layout(std430, binding = 1) readonly buffer Queries { uvec4 queries[]; };\n"
            "layout(std430, binding = 2) writeonly buffer Results { uvec4 results[]; };\n"
            "uniform uint task_count;\n"
-           "uvec4 golden_query(uint index, uint part) { return queries[2u * index + part]; }\n" +
+           "uvec4 golden_query(uint index, uint part) { return queries[4u * index + part]; }\n" +
            dsn_glsl + "uint dsn_word(uint index) { return noise_words[dsn_word_base + index]; }\n" +
            kernel_glsl +
            "void main() {\n"
@@ -709,7 +824,7 @@ std::string fragment_shader(const headless_gl::Context &context, bool limbs) {
            "layout(location = 1) out uvec4 result_dx;\n"
            "layout(location = 2) out uvec4 result_dy;\n"
            "uvec4 golden_query(uint index, uint part) {\n"
-           "    uint texel = 2u * index + part;\n"
+           "    uint texel = 4u * index + part;\n"
            "    return texelFetch(query_texture, ivec2(int(texel & 1023u), int(texel >> 10u)), 0);\n"
            "}\n" +
            dsn_glsl +
@@ -803,7 +918,7 @@ class Runner {
     void render(const Task &task, const std::vector<uint32_t> &queries, std::vector<uint32_t> &result) {
         const uint32_t width = task.count < 256 ? task.count : 256, height = (task.count + width - 1) / width;
         GLuint query_texture =
-            context_.word_texture(queries.empty() ? std::vector<uint32_t>(8, 0u) : queries, 4);
+            context_.word_texture(queries.empty() ? std::vector<uint32_t>(query_words, 0u) : queries, 4);
         /* three targets: the value, dx, dy */
         GLuint targets[3] = {0, 0, 0}, framebuffer = 0;
         const GLenum attachments[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -867,8 +982,7 @@ void run_requests(Runner &runner) {
             if (request.noise != noise) continue;
             if (request.kind == task_queries) {
                 batch.push_back(r);
-                queries.insert(queries.end(), request.query, request.query + 5);
-                queries.insert(queries.end(), 3, 0u);
+                queries.insert(queries.end(), request.query, request.query + query_words);
                 continue;
             }
             Task task;
@@ -904,7 +1018,8 @@ extern "C" void golden_write(const char *text) {
 namespace {
 
 const char *const usage =
-    "usage: dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--cpu-mixes] [--dump-shaders DIR] "
+    "usage: dsn-gpu-golden [--api gl45|gles31|gles30] [--limbs] [--cpu-mixes] [--cpu-surfaces]\n"
+    "                      [--dump-shaders DIR] "
     "[--quiet]\n"
     "Runs the cross test's golden program with every evaluation done by include/dsn/dsn.glsl on the GPU\n"
     "(EGL surfaceless: llvmpipe when there is no GPU) and prints its lines (tests/cross/golden.txt).\n"
@@ -913,6 +1028,7 @@ const char *const usage =
     "  --api gles30   OpenGL ES 3.0, GLSL ES 3.00 fragment shader into an RGBA32UI target\n"
     "  --limbs        16-bit limb multiplications (the GLSL ES 3.00 code) on any API\n"
     "  --cpu-mixes    the mixes (m-* lines) from the C runtime instead of the shaders\n"
+    "  --cpu-surfaces the surface noise (s-* lines) from the C runtime instead of the shaders\n"
     "  --dump-shaders DIR  write every API's shaders to DIR (golden-API.comp/.frag) and exit\n"
     "  --quiet        no renderer line on stderr\n";
 
@@ -949,6 +1065,8 @@ int main(int argc, char **argv) {
                 limbs = true;
             } else if (argument == "--cpu-mixes") {
                 recorder.cpu_mixes = true;
+            } else if (argument == "--cpu-surfaces") {
+                recorder.cpu_surfaces = true;
             } else if (argument == "--quiet") {
                 quiet = true;
             } else if (argument == "--dump-shaders" && i + 1 < argc) {
