@@ -5,7 +5,10 @@
 // shader (the language of WebGL2), as a renderer would use it: the packed noise (dsn_gpu_pack) in an R32UI
 // texture, one fragment per pixel writing dsn_color() to an ordinary RGBA8 colour target. With no GPU (or
 // LIBGL_ALWAYS_SOFTWARE=1) Mesa runs it on llvmpipe, a software GPU. With --mix, a mix of materials
-// (dsn_gpu_mix_pack, dsn.glsl's dsn_mix_* functions), as dsn-render --mix renders it.
+// (dsn_gpu_mix_pack, dsn.glsl's dsn_mix_* functions), as dsn-render --mix renders it. With --mode sphere,
+// the surface noise (dsn.glsl's dsn_surface_*) on a sphere, from a G-buffer of float positions and normals
+// as a deferred renderer has them; --compare-cpu checks it against dsn_surface_point_u8.
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -42,8 +45,10 @@ const char *const usage_head =
     "  --origin X,Y       top-left point in texels (default 0,0): integers in tile mode, reals in\n"
     "                     continuous mode; values wrap modulo 2^32\n"
     "  --seed S           32-bit seed (default 0)\n"
-    "  --mode M           tile (default: the lattice) or continuous\n"
-    "  --scale F          continuous mode: magnification (default 1)\n"
+    "  --mode M           tile (default: the lattice), continuous, or sphere: the surface noise on a\n"
+    "                     sphere filling the window (no texture coordinates: dsn_surface_point per\n"
+    "                     pixel from a G-buffer of float positions and normals; black around it)\n"
+    "  --scale F          continuous and sphere modes: magnification (default 1)\n"
     "  --rotate DEG       continuous mode: rotation of the texture, counterclockwise (default 0)\n"
     "  --api A            gles30 (default): OpenGL ES 3.0 and GLSL ES 3.00, as in WebGL2; gl45: OpenGL 4.5\n"
     "                     core and GLSL 4.30 (the same shader with umulExtended instead of 16-bit limbs)\n"
@@ -57,7 +62,7 @@ const char *const usage_tail =
     "Exit status: 0 on success; exit 2 for a usage mistake (the message ends with \"(see --help)\");\n"
     "exit 1 for a failure while running (bad asset, no OpenGL context, cannot write); no partial output.\n";
 
-enum class Mode { tile, continuous };
+enum class Mode { tile, continuous, sphere };
 
 struct Options {
     std::string asset_path, output_path, dump_directory;
@@ -112,9 +117,9 @@ Options parse_options(dsn::CommandLine &arguments) {
             options.seed = static_cast<uint32_t>(dsn::parse_integer(arguments, 0, 0xFFFFFFFFll));
         } else if (arguments.is("--mode")) {
             const std::string value = arguments.value();
-            if (value != "tile" && value != "continuous")
-                throw dsn::UsageError("--mode must be tile or continuous");
-            options.mode = value == "tile" ? Mode::tile : Mode::continuous;
+            if (value != "tile" && value != "continuous" && value != "sphere")
+                throw dsn::UsageError("--mode must be tile, continuous or sphere");
+            options.mode = value == "tile" ? Mode::tile : value == "sphere" ? Mode::sphere : Mode::continuous;
         } else if (arguments.is("--scale")) {
             options.scale = dsn::parse_real(flag, arguments.value());
             if (!(options.scale >= 1.0 / 65536 && options.scale <= 65536))
@@ -133,8 +138,13 @@ Options parse_options(dsn::CommandLine &arguments) {
         options.output_path.compare(options.output_path.size() - 4, 4, ".png"))
         throw dsn::UsageError("the output must end in .png: " + options.output_path);
     if (!size_given) throw dsn::UsageError("no size given: --size WxH");
-    if (options.mode != Mode::continuous && (options.scale != 1.0 || options.rotate_degrees != 0.0))
-        throw dsn::UsageError("--scale and --rotate need --mode continuous");
+    if (options.mode == Mode::tile && options.scale != 1.0)
+        throw dsn::UsageError("--scale needs --mode continuous or sphere");
+    if (options.mode != Mode::continuous && options.rotate_degrees != 0.0)
+        throw dsn::UsageError("--rotate needs --mode continuous");
+    if (options.mode == Mode::sphere && (!options.mix.paths.empty() || options.origin_x != "0" ||
+                                         options.origin_y != "0"))
+        throw dsn::UsageError("--mode sphere takes neither --mix nor --origin");
     // Before the GPU context and the render: an output that is an input or has no folder to go to.
     std::vector<dsn::NamedPath> inputs = {{"the input asset", options.asset_path}};
     dsn::check_mix_options(options.mix, inputs);
@@ -147,6 +157,9 @@ const char *const fragment_main = R"glsl(
 uniform highp usampler2D noise_words;
 uniform uint continuous_mode;
 uniform uint mix_mode;     // 1: the words are a mix's (dsn_gpu_mix_pack)
+uniform uint sphere_mode;  // 1: the surface noise at the G-buffer's points
+uniform highp usampler2D gbuffer; // per pixel: position bits xyz and 1 on the sphere; normal bits xyz
+uniform uint target_width;
 uniform uvec4 origin;      // lattice: (x, -, y, -); continuous: Q32.32 (x low, x high, y low, y high)
 uniform uvec4 column_step; // continuous: pixel (i, j) -> (i + 1, j), Q32.32 x then y
 uniform uvec4 row_step;    // continuous: pixel (i, j) -> (i, j + 1)
@@ -157,10 +170,20 @@ uint dsn_word(uint index) {
     return texelFetch(noise_words, ivec2(int(word & 1023u), int(word >> 10u)), 0).x;
 }
 
+uvec4 gbuffer_texel(uint texel) { return texelFetch(gbuffer, ivec2(int(texel & 1023u), int(texel >> 10u)), 0); }
+
 void main() {
     uvec2 pixel = uvec2(gl_FragCoord.xy); // row 0 is the image's top row: glReadPixels returns it first
-    ivec3 value;
-    if (continuous_mode == 0u) {
+    ivec3 value = ivec3(0);
+    if (sphere_mode != 0u) {
+        uint texel = 2u * (pixel.y * target_width + pixel.x);
+        uvec4 position = gbuffer_texel(texel), normal = gbuffer_texel(texel + 1u);
+        ivec3 t, b, n;
+        if (position.w != 0u && dsn_surface_frame_from_float_bits(normal.xyz, uvec3(0u), false, t, b, n))
+            value = dsn_surface_point_fixed(dsn_coordinate_from_float_bits(position.x),
+                                            dsn_coordinate_from_float_bits(position.y),
+                                            dsn_coordinate_from_float_bits(position.z), t, b, n);
+    } else if (continuous_mode == 0u) {
         ivec2 p = ivec2(int(origin.x + pixel.x), int(origin.z + pixel.y));
         value = mix_mode != 0u ? dsn_mix_lattice_point_fixed(p) : dsn_lattice_point_fixed(p);
     } else {
@@ -215,6 +238,30 @@ std::vector<uint32_t> packed_words(const Source &source) {
     return words;
 }
 
+// The sphere's G-buffer: per pixel, the float bits of its point's position (texels) and 1 where the pixel's
+// centre is on the sphere, then those of its normal. The sphere fills the window (radius 0.45 of its
+// smaller side), seen along -z; a pixel is 1/scale texel.
+std::vector<uint32_t> sphere_gbuffer(const Options &options) {
+    std::vector<uint32_t> words(static_cast<size_t>(options.width) * options.height * 8, 0u);
+    const double centre_x = options.width / 2.0, centre_y = options.height / 2.0;
+    const double radius = 0.45 * std::min(options.width, options.height);
+    for (uint32_t j = 0; j < options.height; j++)
+        for (uint32_t i = 0; i < options.width; i++) {
+            const double x = i + 0.5 - centre_x, y = centre_y - (j + 0.5), across = x * x + y * y;
+            if (across >= radius * radius) continue;
+            const double point[3] = {x, y, std::sqrt(radius * radius - across)};
+            uint32_t *at = &words[(static_cast<size_t>(j) * options.width + i) * 8];
+            for (int k = 0; k < 3; k++) {
+                const float position = static_cast<float>(point[k] / options.scale),
+                            normal = static_cast<float>(point[k] / radius);
+                std::memcpy(&at[k], &position, 4);
+                std::memcpy(&at[4 + k], &normal, 4);
+            }
+            at[3] = 1;
+        }
+    return words;
+}
+
 // Renders the window on the GPU; returns the pixels (channels per pixel) and the seconds of the draw.
 std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &options, const Source &source,
                                 double *seconds) {
@@ -256,6 +303,15 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
     }
     gl.glUniform1ui(gl.glGetUniformLocation(program, "continuous_mode"), options.mode == Mode::continuous);
     gl.glUniform1ui(gl.glGetUniformLocation(program, "mix_mode"), source.mix != nullptr);
+    gl.glUniform1ui(gl.glGetUniformLocation(program, "sphere_mode"), options.mode == Mode::sphere);
+    gl.glUniform1ui(gl.glGetUniformLocation(program, "target_width"), options.width);
+    GLuint gbuffer = 0;
+    if (options.mode == Mode::sphere) {
+        gl.glActiveTexture(GL_TEXTURE1);
+        gbuffer = context.word_texture(sphere_gbuffer(options), 4);
+        gl.glActiveTexture(GL_TEXTURE0);
+    }
+    gl.glUniform1i(gl.glGetUniformLocation(program, "gbuffer"), 1);
     gl.glUniform4ui(gl.glGetUniformLocation(program, "origin"), origin[0], origin[1], origin[2], origin[3]);
     gl.glUniform4ui(gl.glGetUniformLocation(program, "column_step"), column[0], column[1], column[2],
                     column[3]);
@@ -293,12 +349,33 @@ std::vector<uint8_t> render_gpu(headless_gl::Context &context, const Options &op
     gl.glDeleteFramebuffers(1, &framebuffer);
     gl.glDeleteTextures(1, &target);
     gl.glDeleteTextures(1, &texture);
+    if (gbuffer) gl.glDeleteTextures(1, &gbuffer);
     gl.glDeleteProgram(program);
 
     std::vector<uint8_t> pixels(static_cast<size_t>(options.width) * options.height * channels);
     for (size_t p = 0; p < static_cast<size_t>(options.width) * options.height; p++)
         for (uint32_t c = 0; c < channels; c++) pixels[p * channels + c] = rgba[p * 4 + c];
     return pixels;
+}
+
+// The sphere with the C runtime, point by point from the same G-buffer.
+int render_sphere_cpu(const Options &options, const dsn_noise *noise, uint8_t *pixels) {
+    const std::vector<uint32_t> words = sphere_gbuffer(options);
+    const uint32_t channels = dsn_noise_channels(noise);
+    for (size_t p = 0; p < static_cast<size_t>(options.width) * options.height; p++) {
+        const uint32_t *at = &words[p * 8];
+        if (at[3] == 0) continue;
+        float position[3], normal[3];
+        std::memcpy(position, at, sizeof position);
+        std::memcpy(normal, at + 4, sizeof normal);
+        dsn_surface_frame frame;
+        int err = dsn_surface_frame_from_float(normal, nullptr, &frame);
+        const int64_t point[3] = {dsn_coordinate_from_float(position[0]), dsn_coordinate_from_float(position[1]),
+                                  dsn_coordinate_from_float(position[2])};
+        if (err == DSN_OK) err = dsn_surface_point_u8(noise, point, &frame, pixels + p * channels);
+        if (err != DSN_OK) return err;
+    }
+    return DSN_OK;
 }
 
 // The same window with the C runtime's tiles (one thread), for --compare-cpu.
@@ -308,7 +385,9 @@ std::vector<uint8_t> render_cpu(const Options &options, const Source &source, do
     const auto start = std::chrono::steady_clock::now();
     const uint32_t width = options.width, height = options.height;
     int err;
-    if (options.mode == Mode::continuous) {
+    if (options.mode == Mode::sphere) {
+        err = render_sphere_cpu(options, source.noise, pixels.data());
+    } else if (options.mode == Mode::continuous) {
         const dsn_grid grid =
             dsn::rotated_grid(options.origin_x, options.origin_y, options.scale, options.rotate_degrees);
         scratch.resize(source.mix ? dsn_mix_continuous_tile_scratch_size(source.mix, &grid, width, height)
@@ -348,7 +427,7 @@ void run(const Options &options) {
     config.seed = options.seed;
     dsn_noise noise;
     int err = dsn_noise_init(&noise, &asset, &config);
-    if (err == DSN_OK && options.mode == Mode::continuous) err = dsn_continuous_check(&noise);
+    if (err == DSN_OK && options.mode != Mode::tile) err = dsn_continuous_check(&noise);
     if (err != DSN_OK) throw std::runtime_error(options.asset_path + ": " + dsn_error_message(err));
     Source source = {&noise, nullptr, nullptr, asset.channels};
     dsn::MixInputs mix_inputs;
@@ -368,8 +447,8 @@ void run(const Options &options) {
         const std::vector<uint8_t> cpu = render_cpu(options, source, &cpu_seconds);
         if (cpu != pixels) throw std::runtime_error("the GPU's pixels differ from the C runtime's");
         std::printf(
-            "dsn-gpu-render: identical to the C runtime; CPU tile (1 thread): %.3f s, %.2f Mpixel/s\n",
-            cpu_seconds, megapixels / cpu_seconds);
+            "dsn-gpu-render: identical to the C runtime; CPU %s (1 thread): %.3f s, %.2f Mpixel/s\n",
+            options.mode == Mode::sphere ? "points" : "tile", cpu_seconds, megapixels / cpu_seconds);
     }
     const std::vector<unsigned char> png =
         dsn::encode_png(static_cast<int>(options.width), static_cast<int>(options.height),

@@ -1053,15 +1053,14 @@ bool dsn_surface_bracket(uvec2 offset, uint radius, out uvec2 shifted) {
    the texton read bilinearly there, weighted, into the sums. */
 void dsn_surface_visit(inout dsn_surface_state state, uvec2 along_x, uvec2 along_y, uint window) {
     uvec2 shifted_x, shifted_y;
-    if (!dsn_surface_bracket(along_x, dsn_word(DSN_WORD_RADIUS), shifted_x) ||
-        !dsn_surface_bracket(along_y, dsn_word(DSN_WORD_RADIUS + 1u), shifted_y))
-        return;
+    bool in_x = dsn_surface_bracket(along_x, dsn_word(DSN_WORD_RADIUS), shifted_x);
+    bool in_y = dsn_surface_bracket(along_y, dsn_word(DSN_WORD_RADIUS + 1u), shifted_y);
     uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
     uint channels = dsn_word(DSN_WORD_CHANNELS);
     uint column_weight = (shifted_x.x >> 16u) & 0xFFFFu, row_weight = (shifted_y.x >> 16u) & 0xFFFFu;
     ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight), int(65536u - row_weight),
                           int(row_weight));
-    for (uint c = 0u; c < channels; c++) {
+    for (uint c = 0u; c < (in_x && in_y ? channels : 0u); c++) {
         ivec4 corners = dsn_corners(shifted_y.y - 1u, shifted_x.y - 1u, c, width, height, channels);
         uvec2 texton = dsn_multiply64(dsn_bilinear(corners, weights), uvec2(window, 0u));
         state.sums[c] = dsn_add64(state.sums[c], dsn_floor_shift64(texton, 16u));
@@ -1093,8 +1092,9 @@ void dsn_surface_cube(inout dsn_surface_state state, uvec3 cube, uint shift) {
                                           dsn_multiply_signed_wide(inside.z, f.z)));
         }
         uint window = dsn_slab_window(dsn_floor_shift64(dots[2], 14u), shift);
-        if (window == 0u) continue;
-        dsn_surface_visit(state, dsn_floor_shift64(dots[0], 14u), dsn_floor_shift64(dots[1], 14u), window);
+        if (window != 0u)
+            dsn_surface_visit(state, dsn_floor_shift64(dots[0], 14u), dsn_floor_shift64(dots[1], 14u),
+                              window);
     }
 }
 
@@ -1111,12 +1111,11 @@ ivec3 dsn_surface_point_fixed(uvec2 x, uvec2 y, uvec2 z, ivec3 tangent, ivec3 bi
     state.frame[0] = tangent;
     state.frame[1] = bitangent;
     state.frame[2] = normal;
-    for (uint v = 0u; v < 3u; v++) {
-        state.sums[v] = uvec2(0u);
-        ivec3 f = state.frame[v];
-        if (any(greaterThan(f, ivec3(DSN_FRAME_ONE))) || any(lessThan(f, ivec3(-DSN_FRAME_ONE))))
-            return ivec3(0);
-    }
+    ivec3 one = ivec3(DSN_FRAME_ONE);
+    if (any(greaterThan(max(max(tangent, bitangent), normal), one)) ||
+        any(lessThan(min(min(tangent, bitangent), normal), -one)))
+        return ivec3(0); /* a component outside [-1, 1] */
+    for (uint v = 0u; v < 3u; v++) state.sums[v] = uvec2(0u);
     uint shift = dsn_word(DSN_WORD_CELL_SHIFT), limit = dsn_word(DSN_WORD_SURFACE_CUBES);
     /* The walk (surface_walk.h): the reaches in units of 2^-30 texel per frame unit over 2^2. */
     uint reach[3];
@@ -1126,6 +1125,7 @@ ivec3 dsn_surface_point_fixed(uvec2 x, uvec2 y, uvec2 z, ivec3 tangent, ivec3 bi
     uvec2 box_bound[3], first_offset_dot[3], along[9]; /* along[3 v + i] */
     uvec3 first = uvec3(0u), count = uvec3(0u);
     uint cubes = 1u;
+    bool affordable = true;
     int first_offset[3];
     for (uint i = 0u; i < 3u; i++) {
         uvec2 extent = uvec2(0u, 1u);
@@ -1135,8 +1135,8 @@ ivec3 dsn_surface_point_fixed(uvec2 x, uvec2 y, uvec2 z, ivec3 tangent, ivec3 bi
             spread += uint(abs(state.frame[i][v]));
         }
         uvec2 range = dsn_cube_range(state.position[i], extent, shift);
-        if (range.y > limit || cubes > limit / range.y) return ivec3(0);
-        cubes *= range.y;
+        affordable = affordable && range.y <= limit && cubes <= limit / range.y;
+        cubes = affordable ? cubes * range.y : 1u;
         box_bound[i] = dsn_add64(dsn_add64(dsn_shift_left64(uvec2(reach[i], 0u), 44u),
                                            dsn_shift_left64(uvec2(spread, 0u), 15u + shift)),
                                  uvec2(0u, 1u << 14u));
@@ -1163,6 +1163,7 @@ ivec3 dsn_surface_point_fixed(uvec2 x, uvec2 y, uvec2 z, ivec3 tangent, ivec3 bi
                                             dsn_multiply_signed_wide(first_offset[i], state.frame[v][i]));
         }
     }
+    if (!affordable) return ivec3(0); /* the walk's impulses, on average, past DSN_MAX_POINT_IMPULSES */
     uint mask = 0xFFFFFFFFu >> shift;
     uvec2 plane_dot[3] = first_offset_dot;
     for (uint cz = 0u; cz < count.z; cz++) {
@@ -1254,35 +1255,48 @@ bool dsn_unit_vector(ivec3 values, out ivec3 unit) {
     return true;
 }
 
-/* A float's sign, mantissa (24 bits unless 0) and exponent, from its bits; false for NaN and infinities. */
-bool dsn_float_parts(uint bits, out bool negative, out uint mantissa, out int exponent) {
+/* A float from its bits: uvec3(mantissa, exponent, flags), value = mantissa 2^exponent (the exponent's
+   two's complement bits), the mantissa shifted to 24 bits (subnormals too) unless it is 0; flags: 1 for
+   a negative sign, 2 for a finite value. (No arrays or out parameters: softpipe, Mesa's reference
+   rasterizer, loses array elements written through out parameters in branches that differ between
+   invocations.) */
+uvec3 dsn_float_parts(uint bits) {
     uint biased = (bits >> 23u) & 0xFFu, fraction = bits & 0x7FFFFFu;
-    negative = (bits >> 31u) != 0u;
-    mantissa = biased == 0u ? fraction : (fraction | 0x800000u);
-    exponent = (biased == 0u ? 1 : int(biased)) - 150;
-    if (biased == 0xFFu) return false;
-    for (; mantissa != 0u && mantissa < 0x800000u; mantissa <<= 1u) exponent--;
-    return true;
+    uint mantissa = biased == 0u ? fraction : (fraction | 0x800000u);
+    int exponent = (biased == 0u ? 1 : int(biased)) - 150;
+    if (mantissa != 0u) { /* a subnormal's mantissa shifted up to 24 bits, in five steps (no loop: */
+        uint shift = mantissa < 0x100u ? 16u : 0u; /* llvmpipe's fragment compile stalls on its copies) */
+        shift += (mantissa << shift) < 0x10000u ? 8u : 0u;
+        shift += (mantissa << shift) < 0x100000u ? 4u : 0u;
+        shift += (mantissa << shift) < 0x400000u ? 2u : 0u;
+        shift += (mantissa << shift) < 0x800000u ? 1u : 0u;
+        mantissa <<= shift;
+        exponent -= int(shift);
+    }
+    return uvec3(mantissa, uint(exponent), (bits >> 31u) | (biased != 0xFFu ? 2u : 0u));
+}
+
+/* A float's value as a multiple of 2^(largest - 23): its mantissa shifted right (floored toward zero). */
+int dsn_aligned_part(uvec3 parts, int largest) {
+    int right = largest - int(parts.y);
+    uint value = parts.x == 0u || right >= 32 ? 0u : parts.x >> uint(right);
+    return (parts.z & 1u) != 0u ? -int(value) : int(value);
 }
 
 /* A float vector's direction (its IEEE bits) in Q2.30: 1, or 0 for the zero vector, -1 for a NaN or
-   infinite component. */
+   infinite component. The components are aligned on the largest one's exponent with 24 bits of
+   mantissa. */
 int dsn_float_direction(uvec3 bits, out ivec3 unit) {
     unit = ivec3(0);
-    bool negative[3];
-    uint mantissa[3];
-    int exponent[3], largest = -1000;
-    for (uint i = 0u; i < 3u; i++) {
-        if (!dsn_float_parts(bits[i], negative[i], mantissa[i], exponent[i])) return -1;
-        if (mantissa[i] != 0u && exponent[i] > largest) largest = exponent[i];
-    }
+    uvec3 x = dsn_float_parts(bits.x), y = dsn_float_parts(bits.y), z = dsn_float_parts(bits.z);
+    if ((x.z & y.z & z.z & 2u) == 0u) return -1;
+    int largest = -1000;
+    if (x.x != 0u) largest = max(largest, int(x.y));
+    if (y.x != 0u) largest = max(largest, int(y.y));
+    if (z.x != 0u) largest = max(largest, int(z.y));
     if (largest == -1000) return 0;
-    ivec3 aligned = ivec3(0);
-    for (uint i = 0u; i < 3u; i++) {
-        int right = largest - exponent[i];
-        uint value = mantissa[i] == 0u || right >= 32 ? 0u : mantissa[i] >> uint(right);
-        aligned[i] = negative[i] ? -int(value) : int(value);
-    }
+    ivec3 aligned = ivec3(dsn_aligned_part(x, largest), dsn_aligned_part(y, largest),
+                          dsn_aligned_part(z, largest));
     return dsn_unit_vector(aligned, unit) ? 1 : 0;
 }
 
@@ -1308,12 +1322,14 @@ bool dsn_surface_frame_from_float_bits(uvec3 normal_bits, uvec3 tangent_bits, bo
     ivec3 n, t = ivec3(0), given = ivec3(0);
     normal = ivec3(0);
     if (dsn_float_direction(normal_bits, n) != 1) return false;
-    int tangent_kind = has_tangent ? dsn_float_direction(tangent_bits, given) : 0;
+    int tangent_kind = 0; /* not a call in a ?: operand: softpipe loses its out parameter there */
+    if (has_tangent) tangent_kind = dsn_float_direction(tangent_bits, given);
     if (tangent_kind < 0) return false;
     bool made = false;
     if (tangent_kind == 1) {
         ivec3 orthogonal, unit;
-        if ((dsn_remove_normal(n, given, orthogonal).y >> 4u) != 0u) { /* at least 2^36 */
+        uvec2 length_squared = dsn_remove_normal(n, given, orthogonal);
+        if ((length_squared.y >> 4u) != 0u) { /* at least 2^36 */
             dsn_unit_vector(orthogonal, unit);
             dsn_remove_normal(n, unit, orthogonal);
             made = dsn_unit_vector(orthogonal, t);

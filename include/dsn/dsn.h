@@ -1004,7 +1004,9 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
    along N) are walked, each cube first tested against that box, in scalar code: make bench's
    surface_bench reports a point at 10-20 times a continuous point (a filtered one at 16-27 times the
    plane's filtered point: each tap walks its own box). Stack: under 1 KB, a filtered point under 2 KB. Not
-   in the small build (DSN_SURFACE). */
+   in the small build (DSN_SURFACE). dsn/dsn.glsl evaluates the unfiltered point and the frame in a shader
+   with the same bits (dsn_surface_point, dsn_surface_frame_from_float_bits: dsn/gpu.h packs what they
+   read). */
 #ifndef DSN_SURFACE /* 1: the surface noise (this section); default 0 in the small build */
 #define DSN_SURFACE (!DSN_SMALL_CODE)
 #endif
