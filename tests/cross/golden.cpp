@@ -355,7 +355,7 @@ int continuous_batch(const dsn_noise *noise, const Grid &grid, Fnv *hash) {
    z = x / 2 - y / 4 of 3-D space, under frames made from exactly representable float vectors: a plane's,
    a tilted normal with a tangent, the x axis (where the frame from the normal alone turns around) and a
    normal next to it, a tangent along its normal (the frame from the normal alone), a tangent crossing a
-   non-unit normal. */
+   non-unit normal, a normal and a tangent of subnormal floats only. */
 struct SurfaceVectors {
     float normal[3], tangent[3];
     bool has_tangent;
@@ -365,6 +365,7 @@ const SurfaceVectors surface_vectors[] = {
     {{0, 0, 1}, {0, 0, 0}, false},        {{0.3f, -0.5f, 0.8f}, {1, 0.25f, 0}, true},
     {{-1, 0, 0}, {0, 0, 0}, false},       {{-1, 2e-3f, -1e-3f}, {0, 0, 0}, false},
     {{-3, 6, 1.5f}, {-3, 6, 1.5f}, true}, {{1, 1, 0}, {0, 0, 5}, true},
+    {{1e-40f, -3e-39f, 2e-39f}, {3e-41f, 1e-39f, 0}, true},
 };
 const uint32_t surface_vector_count = sizeof surface_vectors / sizeof surface_vectors[0];
 const uint32_t surface_points_max = 32u;
