@@ -25,6 +25,13 @@ inline int64_t signed_from_bits(uint64_t bits) {
     return (bits & 0x8000000000000000u) ? -static_cast<int64_t>(~bits) - 1 : static_cast<int64_t>(bits);
 }
 
+/* floor(value / 2^shift), 0 <= shift <= 63, without shifting a negative number (implementation-defined):
+   through a 2^63 bias, as dsn_round_saturate does. */
+inline int64_t floor_shift(int64_t value, uint32_t shift) {
+    const uint64_t bias = static_cast<uint64_t>(1) << 63;
+    return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
+}
+
 /* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
    it as in lattice mode, the fractions are added once, rounded down, before the final rounding; from
    `offset` (the noise's own, or zeros for a derivative, which the mean does not reach). */

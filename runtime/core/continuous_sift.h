@@ -43,14 +43,6 @@ inline bool impulse_offset(const PointAxis &point, const dsn_span &span, uint32_
     return true;
 }
 
-/* Floor of value / 2^shift (1 <= shift <= 63) for a value far from the int64 limits, without shifting
-   a negative number (implementation-defined): through a 2^63 bias, as dsn_round_saturate does. */
-inline int64_t floor_shift(int64_t value, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    return static_cast<int64_t>((static_cast<uint64_t>(value) + bias) >> shift) -
-           static_cast<int64_t>(bias >> shift);
-}
-
 /* The packed fields of one pair as SWAR lanes: 8 lanes of 8 bits (halves of 4 bits) or 4 of 16 (halves
    of 8 bits). A lane's top bit is above both halves' values, so a lane-wise subtraction of values below
    it never borrows from the next lane. */

@@ -60,21 +60,15 @@ int64_t scaled(int64_t value, uint32_t shift) {
     return value < 0 ? -magnitude : magnitude;
 }
 
-/* floor(value / 2^shift), 0 <= shift <= 62, without shifting a negative number. */
-int64_t floor_shift_signed(int64_t value, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
-}
-
 /* floor(value * multiple / 2^shift) modulo 2^64 (|multiple| < 2^5, shift <= 5): value = high 2^shift +
    low, low in [0, 2^shift), so the product is high * multiple plus the floor of the small low * multiple
    / 2^shift, exactly. */
 int64_t scaled_offset(int64_t value, int32_t multiple, uint32_t shift) {
-    const int64_t high = floor_shift_signed(value, shift);
+    const int64_t high = floor_shift(value, shift);
     const int64_t low = value - high * (static_cast<int64_t>(1) << shift);
     const uint64_t product =
         static_cast<uint64_t>(high) * static_cast<uint64_t>(static_cast<int64_t>(multiple));
-    return signed_from_bits(product + static_cast<uint64_t>(floor_shift_signed(low * multiple, shift)));
+    return signed_from_bits(product + static_cast<uint64_t>(floor_shift(low * multiple, shift)));
 }
 
 /* floor((log2_q16(square) + 1) / 512) for square >= 1, log2_q16 being log2_q16_pair's: the level of
@@ -208,7 +202,7 @@ int filter_plan(const dsn_footprint *footprint, uint32_t levels, dsn_filter_plan
         if (log_minor > lod_q16) lod_q16 = log_minor;
     }
     lod_q16 += (static_cast<int32_t>(shift) - 32) * 65536;
-    const int32_t lod_q8 = static_cast<int32_t>(floor_shift_signed(lod_q16, 8));
+    const int32_t lod_q8 = static_cast<int32_t>(floor_shift(lod_q16, 8));
     plan->lod_q8 = lod_q8 < 0 ? 0 : lod_q8 > lod_limit ? lod_limit : lod_q8;
 
     /* Tap k at ((2k + 1 - N) / (2N)) along the major step vector (its exact components, modulo 2^64). */

@@ -14,12 +14,6 @@
 
 namespace {
 
-/* floor(value / 2^shift), 0 <= shift <= 62, without shifting a negative number. */
-int64_t floor_shift_walk(int64_t value, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
-}
-
 /* The stored value of (row, column, channel), 0 outside the level's window (-1 too: unsigned). */
 inline int64_t level_texel(const dsn_walked_level &level, uint32_t channels, uint32_t bits, uint32_t row,
                            uint32_t column, uint32_t channel) {
@@ -49,8 +43,8 @@ template <bool Slopes>
 inline void add_level(const dsn_walked_level &level, uint32_t channels, uint32_t bits, int64_t dx, int64_t dy,
                       uint64_t *sums, uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
     uint32_t row, row_weight, column, column_weight;
-    if (!level_bracket(floor_shift_walk(dy, level.level), level.radius_y, Slopes, &row, &row_weight) ||
-        !level_bracket(floor_shift_walk(dx, level.level), level.radius_x, Slopes, &column, &column_weight))
+    if (!level_bracket(floor_shift(dy, level.level), level.radius_y, Slopes, &row, &row_weight) ||
+        !level_bracket(floor_shift(dx, level.level), level.radius_x, Slopes, &column, &column_weight))
         return;
     const int64_t across = column_weight, down = row_weight;
     for (uint32_t c = 0; c < channels; c++) {

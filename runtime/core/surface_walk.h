@@ -17,13 +17,6 @@ namespace {
 /* 2^16 I2 / 2 = 2^16 48/35, rounded: s = |w| / H in Q16 is |w| (Q.16) times this over 2^(16 + cell_shift). */
 const uint64_t window_scale = 89878;
 
-/* The signed value of `bits` (two's complement, modulo 2^64) over 2^shift, rounded toward minus infinity,
-   for shift in 1 .. 63. */
-inline int64_t floor_shift(uint64_t bits, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    return static_cast<int64_t>((bits + bias) >> shift) - static_cast<int64_t>(bias >> shift);
-}
-
 inline uint64_t magnitude(int64_t value) {
     return value < 0 ? 0u - static_cast<uint64_t>(value) : static_cast<uint64_t>(value);
 }
@@ -105,8 +98,8 @@ void visit_cube(const dsn_noise_state *noise, const SurfaceWalk *walk, const uin
     const uint32_t count = dsn_cell_impulse_count(noise, key);
     int64_t origin_dot[3] = {0, 0, 0};
     for (int i = 0; i < 3; i++) {
-        const int64_t origin =
-            floor_shift(walk->position[i] - (static_cast<uint64_t>(cube[i] << shift) << 32), 16);
+        const int64_t origin = floor_shift(
+            signed_from_bits(walk->position[i] - (static_cast<uint64_t>(cube[i] << shift) << 32)), 16);
         for (int v = 0; v < 3; v++) origin_dot[v] += origin * walk->frame[v][i];
     }
     const int64_t *tangent = walk->frame[0], *bitangent = walk->frame[1], *normal = walk->frame[2];
@@ -118,7 +111,7 @@ void visit_cube(const dsn_noise_state *noise, const SurfaceWalk *walk, const uin
         const uint64_t across =
             static_cast<uint64_t>(origin_dot[2]) -
             static_cast<uint64_t>(inside[0] * normal[0] + inside[1] * normal[1] + inside[2] * normal[2]);
-        const uint32_t window = slab_window(floor_shift(across, 14), shift);
+        const uint32_t window = slab_window(floor_shift(signed_from_bits(across), 14), shift);
         if (window == 0) continue;
         const uint64_t u =
             static_cast<uint64_t>(origin_dot[0]) -
@@ -126,14 +119,14 @@ void visit_cube(const dsn_noise_state *noise, const SurfaceWalk *walk, const uin
         const uint64_t v = static_cast<uint64_t>(origin_dot[1]) -
                            static_cast<uint64_t>(inside[0] * bitangent[0] + inside[1] * bitangent[1] +
                                                  inside[2] * bitangent[2]);
-        visitor->visit(floor_shift(u, 14), floor_shift(v, 14), window);
+        visitor->visit(floor_shift(signed_from_bits(u), 14), floor_shift(signed_from_bits(v), 14), window);
     }
 }
 
 /* A texton read weighted by the window: floor(sum * window / 2^16), the sum of one impulse (below 2^47 in
    magnitude: the product fits 64 bits). */
 inline uint64_t windowed(uint64_t sum, uint32_t window) {
-    return static_cast<uint64_t>(floor_shift(sum * window, 16));
+    return static_cast<uint64_t>(floor_shift(signed_from_bits(sum * window), 16));
 }
 
 /* Whether the walk would visit more than DSN_MAX_POINT_IMPULSES cubes, or examine more impulses than that
@@ -163,7 +156,8 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
     for (int i = 0; i < 3; i++) {
         const uint64_t middle = (static_cast<uint64_t>(walk->cubes[i].first << shift) << 32) +
                                 (static_cast<uint64_t>(1) << (31u + shift));
-        first_offset[i] = floor_shift(walk->position[i] - middle, 16); /* Q.16, below 2^28 */
+        first_offset[i] =
+            floor_shift(signed_from_bits(walk->position[i] - middle), 16); /* Q.16, below 2^28 */
     }
     for (int v = 0; v < 3; v++)
         for (int i = 0; i < 3; i++)
@@ -201,7 +195,7 @@ inline void surface_offset(const dsn_noise_state *noise, const int64_t *plane_of
             static_cast<int64_t>(noise->asset.mean[c]) * (static_cast<int64_t>(1) << (noise->gain_shift - 8));
         int64_t expected = mean - plane_offset[c]; /* |mean| < 2^55, |offset| <= 2^61 */
         expected = expected > limit ? limit : expected < -limit ? -limit : expected;
-        offset[c] = plane_offset[c] - floor_shift(static_cast<uint64_t>(3 * expected), 5);
+        offset[c] = plane_offset[c] - floor_shift(3 * expected, 5);
     }
 }
 

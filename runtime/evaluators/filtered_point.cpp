@@ -17,12 +17,6 @@ namespace {
 const uint32_t extra_bits = 8;
 const int64_t level_value_limit = static_cast<int64_t>(1) << 46;
 
-/* floor(value / 2^shift), 0 <= shift <= 62, without shifting a negative number. */
-int64_t floor_shift(int64_t value, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
-}
-
 /* A level's sums (stored-value units, Q.32) in level-0 units: times 2^exponent, rounded to nearest
    (halves up) when that divides; modulo 2^64 as every sum. */
 uint64_t in_texton_units(uint64_t sum, int32_t exponent) {

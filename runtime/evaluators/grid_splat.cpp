@@ -26,13 +26,6 @@ const uint32_t max_reach_texels = 1u << 27;
 /* Sums past a block's row before the next (a cache line of them), where the scratch has room. */
 const uint32_t splat_row_padding = 8;
 
-/* Floor of value / 2^shift (shift < 63) without shifting a negative number. */
-int64_t floor_shift(int64_t value, uint32_t shift) {
-    const uint64_t bias = static_cast<uint64_t>(1) << 63;
-    return static_cast<int64_t>((static_cast<uint64_t>(value) + bias) >> shift) -
-           static_cast<int64_t>(bias >> shift);
-}
-
 int64_t floor_divide(int64_t numerator, int64_t denominator) { /* denominator > 0 */
     const int64_t quotient = numerator / denominator;
     return (quotient * denominator > numerator) ? quotient - 1 : quotient;

@@ -35,10 +35,10 @@ struct LevelSums {
    bitangent), each floored to Q.16 and projected in Q.46, then floored to Q32.32, modulo 2^64. */
 void tap_position(const int64_t *position, const dsn_surface_frame *frame, int64_t along_tangent,
                   int64_t along_bitangent, int64_t *tap) {
-    const int64_t u = floor_shift(static_cast<uint64_t>(along_tangent), 16);
-    const int64_t v = floor_shift(static_cast<uint64_t>(along_bitangent), 16);
+    const int64_t u = floor_shift(along_tangent, 16);
+    const int64_t v = floor_shift(along_bitangent, 16);
     for (int i = 0; i < 3; i++) {
-        const uint64_t moved = static_cast<uint64_t>(u * frame->tangent[i] + v * frame->bitangent[i]);
+        const int64_t moved = u * frame->tangent[i] + v * frame->bitangent[i];
         tap[i] = signed_from_bits(static_cast<uint64_t>(position[i]) +
                                   static_cast<uint64_t>(floor_shift(moved, 14)));
     }
