@@ -359,11 +359,14 @@ int dsn_normalize_q32_channel_from(uint c, uint channels, uvec2 sums[3], uvec2 a
     return dsn_round_saturate(accumulated, dsn_word(DSN_WORD_GAIN_SHIFT));
 }
 
-ivec3 dsn_normalize_q32(uvec2 sums[3], bool with_mean) {
+/* From the offsets (int64 pairs per channel) at word `offsets`, or from zero where it is 0. */
+ivec3 dsn_normalize_q32_from(uvec2 sums[3], uint offsets) {
     uint channels = dsn_word(DSN_WORD_CHANNELS);
     ivec3 result = ivec3(0);
     for (uint c = 0u; c < channels; c++) {
-        int value = dsn_normalize_q32_channel_from(c, channels, sums, with_mean ? dsn_offset(c) : uvec2(0u));
+        uint at = offsets + 2u * c;
+        uvec2 offset = offsets == 0u ? uvec2(0u) : uvec2(dsn_word(at), dsn_word(at + 1u));
+        int value = dsn_normalize_q32_channel_from(c, channels, sums, offset);
         if (c == 0u)
             result.x = value;
         else if (c == 1u)
@@ -372,6 +375,11 @@ ivec3 dsn_normalize_q32(uvec2 sums[3], bool with_mean) {
             result.z = value;
     }
     return result;
+}
+
+/* with_mean: a value (the noise's offset added); else a derivative's sums (no mean). */
+ivec3 dsn_normalize_q32(uvec2 sums[3], bool with_mean) {
+    return dsn_normalize_q32_from(sums, with_mean ? DSN_WORD_OFFSET : 0u);
 }
 
 /* ---- Lattice per point ---- */
@@ -1181,20 +1189,7 @@ ivec3 dsn_surface_point_fixed(uvec2 x, uvec2 y, uvec2 z, ivec3 tangent, ivec3 bi
         }
         for (uint v = 0u; v < 3u; v++) plane_dot[v] = dsn_sub64(plane_dot[v], along[3u * v + 2u]);
     }
-    uint channels = dsn_word(DSN_WORD_CHANNELS);
-    ivec3 result = ivec3(0);
-    for (uint c = 0u; c < channels; c++) {
-        uint at = DSN_WORD_SURFACE_OFFSET + 2u * c;
-        uvec2 offset = uvec2(dsn_word(at), dsn_word(at + 1u));
-        int value = dsn_normalize_q32_channel_from(c, channels, state.sums, offset);
-        if (c == 0u)
-            result.x = value;
-        else if (c == 1u)
-            result.y = value;
-        else
-            result.z = value;
-    }
-    return result;
+    return dsn_normalize_q32_from(state.sums, DSN_WORD_SURFACE_OFFSET);
 }
 
 /* ---- The surface frame from float vectors (surface_frame.cpp's integers) ---- */
