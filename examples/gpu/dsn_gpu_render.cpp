@@ -142,8 +142,8 @@ Options parse_options(dsn::CommandLine &arguments) {
         throw dsn::UsageError("--scale needs --mode continuous or sphere");
     if (options.mode != Mode::continuous && options.rotate_degrees != 0.0)
         throw dsn::UsageError("--rotate needs --mode continuous");
-    if (options.mode == Mode::sphere && (!options.mix.paths.empty() || options.origin_x != "0" ||
-                                         options.origin_y != "0"))
+    if (options.mode == Mode::sphere &&
+        (!options.mix.paths.empty() || options.origin_x != "0" || options.origin_y != "0"))
         throw dsn::UsageError("--mode sphere takes neither --mix nor --origin");
     // Before the GPU context and the render: an output that is an input or has no folder to go to.
     std::vector<dsn::NamedPath> inputs = {{"the input asset", options.asset_path}};
@@ -370,7 +370,8 @@ int render_sphere_cpu(const Options &options, const dsn_noise *noise, uint8_t *p
         std::memcpy(normal, at + 4, sizeof normal);
         dsn_surface_frame frame;
         int err = dsn_surface_frame_from_float(normal, nullptr, &frame);
-        const int64_t point[3] = {dsn_coordinate_from_float(position[0]), dsn_coordinate_from_float(position[1]),
+        const int64_t point[3] = {dsn_coordinate_from_float(position[0]),
+                                  dsn_coordinate_from_float(position[1]),
                                   dsn_coordinate_from_float(position[2])};
         if (err == DSN_OK) err = dsn_surface_point_u8(noise, point, &frame, pixels + p * channels);
         if (err != DSN_OK) return err;
@@ -446,9 +447,8 @@ void run(const Options &options) {
         double cpu_seconds = 0;
         const std::vector<uint8_t> cpu = render_cpu(options, source, &cpu_seconds);
         if (cpu != pixels) throw std::runtime_error("the GPU's pixels differ from the C runtime's");
-        std::printf(
-            "dsn-gpu-render: identical to the C runtime; CPU %s (1 thread): %.3f s, %.2f Mpixel/s\n",
-            options.mode == Mode::sphere ? "points" : "tile", cpu_seconds, megapixels / cpu_seconds);
+        std::printf("dsn-gpu-render: identical to the C runtime; CPU %s (1 thread): %.3f s, %.2f Mpixel/s\n",
+                    options.mode == Mode::sphere ? "points" : "tile", cpu_seconds, megapixels / cpu_seconds);
     }
     const std::vector<unsigned char> png =
         dsn::encode_png(static_cast<int>(options.width), static_cast<int>(options.height),

@@ -362,9 +362,12 @@ struct SurfaceVectors {
 };
 
 const SurfaceVectors surface_vectors[] = {
-    {{0, 0, 1}, {0, 0, 0}, false},        {{0.3f, -0.5f, 0.8f}, {1, 0.25f, 0}, true},
-    {{-1, 0, 0}, {0, 0, 0}, false},       {{-1, 2e-3f, -1e-3f}, {0, 0, 0}, false},
-    {{-3, 6, 1.5f}, {-3, 6, 1.5f}, true}, {{1, 1, 0}, {0, 0, 5}, true},
+    {{0, 0, 1}, {0, 0, 0}, false},
+    {{0.3f, -0.5f, 0.8f}, {1, 0.25f, 0}, true},
+    {{-1, 0, 0}, {0, 0, 0}, false},
+    {{-1, 2e-3f, -1e-3f}, {0, 0, 0}, false},
+    {{-3, 6, 1.5f}, {-3, 6, 1.5f}, true},
+    {{1, 1, 0}, {0, 0, 5}, true},
     {{1e-40f, -3e-39f, 2e-39f}, {3e-41f, 1e-39f, 0}, true},
 };
 const uint32_t surface_vector_count = sizeof surface_vectors / sizeof surface_vectors[0];
