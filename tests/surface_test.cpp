@@ -19,6 +19,8 @@
 #include "fixtures/continuous_fixtures.h"
 #include "fixtures/noise_theory.h"
 #include "offline/bake_internal.h"
+#include "runtime/core/cell_hash.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
 
@@ -311,6 +313,115 @@ TEST_CASE(
     REQUIRE(dsn_surface_batch_fixed(&noise->noise, positions.data(), frames.data(), uint32_t(frames.size()),
                                     batch.data()) == DSN_OK);
     CHECK(batch == expected);
+}
+
+// The impulses of one cube as dsn.h defines them: impulse index's 16-bit fields times 2^cell_shift, dotted
+// with each frame vector, subtracted from the origin's dot product and floored to Q32.32; those with every
+// offset within its reach, in index order.
+std::vector<std::array<int64_t, 3>> defined_impulses(const dsn_surface_cube &cube) {
+    std::vector<std::array<int64_t, 3>> kept;
+    const int64_t reaches[3] = {cube.reach_u, cube.reach_v, cube.reach_across};
+    for (uint32_t k = 0; k < cube.count; k++) {
+        const uint64_t pair = dsn_position_pair(cube.key, cube.first + k);
+        std::array<int64_t, 3> offsets;
+        bool within = true;
+        for (int v = 0; v < 3; v++) {
+            int64_t dot = 0;
+            for (int i = 0; i < 3; i++)
+                dot += int64_t(((pair >> (16 * i)) & 0xFFFFu) << cube.cell_shift) * cube.frame[v][i];
+            const int64_t offset = int64_t(uint64_t(cube.origin_dot[v]) - uint64_t(dot));
+            offsets[size_t(v)] = offset >= 0 ? offset / 16384 : -((-(offset + 1)) / 16384) - 1; // floor
+            within = within && offsets[size_t(v)] < reaches[v] && offsets[size_t(v)] > -reaches[v];
+        }
+        if (within) kept.push_back(offsets);
+    }
+    return kept;
+}
+
+TEST_CASE(
+    "surface kernels: every kernel this CPU runs lists a cube's impulses as defined, and gives the same "
+    "points") {
+    dsn::AssetFields fields = random_texton_asset(3, kRadius, 8, 4);
+    fields.pyramid = dsn::texton_pyramid(fields);
+    auto noise = make_noise(fields, 3);
+    std::mt19937_64 random(17);
+    std::uniform_int_distribution<int64_t> component(-(int64_t(1) << 30), int64_t(1) << 30);
+    size_t listed = 0, left_out = 0;
+    for (int round = 0; round < 4000; round++) {
+        dsn_surface_cube cube;
+        cube.cell_shift = uint32_t(random() % 9);
+        cube.key = uint32_t(random());
+        cube.first = uint32_t(random() % 300);
+        cube.count = 1 + uint32_t(random() % dsn_surface_impulses_most);
+        for (int v = 0; v < 3; v++) {
+            // Origins within a few cubes of the point (Q.46), some at the extremes of a frame's range.
+            cube.origin_dot[v] = int64_t(random() % (uint64_t(1) << (48 + cube.cell_shift))) -
+                                 (int64_t(1) << (47 + cube.cell_shift));
+            for (int i = 0; i < 3; i++)
+                cube.frame[v][i] =
+                    int32_t(round % 7 == 0 ? (random() & 1 ? 1 : -1) << 30 : component(random));
+        }
+        // Reaches of a texton, of a cube (3/4 across), and none (2^62).
+        const int64_t reach_choices[3] = {int64_t(1 + random() % 16) << 32,
+                                          int64_t(3) << (30 + cube.cell_shift), int64_t(1) << 62};
+        cube.reach_u = reach_choices[random() % 3];
+        cube.reach_v = reach_choices[random() % 3];
+        cube.reach_across = reach_choices[random() % 3];
+        const std::vector<std::array<int64_t, 3>> expected = defined_impulses(cube);
+        listed += expected.size();
+        left_out += cube.count - expected.size();
+        for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_state(&noise->noise)->tile_kernel;
+             kernel++) {
+            dsn_surface_impulses_entry *entry = dsn_kernel_entries_of(kernel)->surface_impulses;
+            const bool has_entry = entry != nullptr;
+            REQUIRE(has_entry);
+            dsn_surface_impulses out;
+            const uint32_t kept = entry(&cube, &out);
+            CAPTURE(kernel);
+            CAPTURE(round);
+            REQUIRE(kept == expected.size());
+            for (uint32_t k = 0; k < kept; k++) {
+                CHECK(out.along_tangent[k] == expected[k][0]);
+                CHECK(out.along_bitangent[k] == expected[k][1]);
+                CHECK(out.across[k] == expected[k][2]);
+            }
+        }
+    }
+    CHECK(listed > 4000); // both outcomes are common
+    CHECK(left_out > 4000);
+
+    // Whole points, plain and filtered, in every kernel: the default kernel's values.
+    std::uniform_real_distribution<double> coordinate(-200, 200);
+    std::uniform_real_distribution<float> direction(-1, 1);
+    dsn_footprint footprint;
+    dsn_footprint_from_float(&footprint, 3, 0.5, 0, 2, 16);
+    for (int k = 0; k < 200; k++) {
+        const double p[3] = {coordinate(random), coordinate(random), coordinate(random)};
+        const float n[3] = {direction(random), direction(random), direction(random)};
+        dsn_surface_frame frame;
+        if (dsn_surface_frame_from_float(n, nullptr, &frame) != DSN_OK) continue;
+        const int64_t q[3] = {dsn_coordinate_from_double(p[0]), dsn_coordinate_from_double(p[1]),
+                              dsn_coordinate_from_double(p[2])};
+        int32_t expected[3], expected_filtered[3];
+        dsn_noise reference = noise->noise;
+        dsn_state(&reference)->tile_kernel = DSN_KERNEL_DEFAULT;
+        REQUIRE(dsn_surface_point_fixed(&reference, q, &frame, expected) == DSN_OK);
+        REQUIRE(dsn_surface_filtered_point_fixed(&reference, q, &frame, &footprint, expected_filtered) ==
+                DSN_OK);
+        for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1; kernel <= dsn_state(&noise->noise)->tile_kernel;
+             kernel++) {
+            dsn_noise copy = noise->noise;
+            dsn_state(&copy)->tile_kernel = kernel;
+            int32_t value[3], filtered[3];
+            REQUIRE(dsn_surface_point_fixed(&copy, q, &frame, value) == DSN_OK);
+            REQUIRE(dsn_surface_filtered_point_fixed(&copy, q, &frame, &footprint, filtered) == DSN_OK);
+            CAPTURE(kernel);
+            for (int c = 0; c < 3; c++) {
+                CHECK(value[c] == expected[c]);
+                CHECK(filtered[c] == expected_filtered[c]);
+            }
+        }
+    }
 }
 
 TEST_CASE("surface statistics: on planes of any orientation, the plane noise's mean and covariance") {

@@ -9,6 +9,7 @@
 
 #include "core/continuous_internal.h"
 #include "core/poisson_count.h"
+#include "kernels/kernels.h"
 
 #if DSN_SURFACE
 
@@ -57,6 +58,7 @@ struct SurfaceWalk {
     int64_t frame[3][3];   /* tangent, bitangent, normal */
     uint64_t box_bound[3]; /* Q.46: how far a cube's centre may lie along each frame vector */
     CubeRange cubes[3];
+    int64_t reach[2]; /* Q32.32: the visitor reads nothing at offsets |u| or |v| this far or farther */
 };
 
 /* Half the box's extent along each frame vector (texels: `reach_x` and `reach_y`, what the texton or the
@@ -83,43 +85,48 @@ inline void surface_walk(const dsn_noise_state *noise, const int64_t *position,
         /* The vector's reach (Q.46), half a cube times the cube's extent along it, and a texel. */
         walk->box_bound[i] = (reach[i] << 44) + (spread << (15u + shift)) + (static_cast<uint64_t>(1) << 46);
     }
+    walk->reach[0] = walk->reach[1] = static_cast<int64_t>(1) << 62; /* the visitor's own test: none here */
 }
 
 /* The impulses of one cube: each one that the slab's window keeps handed to the visitor with its offsets
    along the tangent and bitangent (Q32.32) and its window (Q16). An impulse's offset from the point,
    floored to Q.16, is the cube origin's less its position in the cube (a whole number of 2^-16 texels), so
    its dot products with the frame vectors (Q.46, then floored to Q32.32) are the origin's less the
-   position's, exactly. */
+   position's, exactly. The kernel (surface_impulses.h) lists those within the walk's reaches and 3/4 of a
+   cube across the slab, where the window is 0 (it is 0 from 35/48 of a cube, and 2^-16 texel more for
+   the floors), up to dsn_surface_impulses_most at a time. */
 template <typename Visitor>
 void visit_cube(const dsn_noise_state *noise, const SurfaceWalk *walk, const uint32_t *cube,
-                Visitor *visitor) {
+                dsn_surface_impulses_entry *list_impulses, Visitor *visitor) {
     const uint32_t shift = noise->cell_shift;
-    const uint32_t key = cube_key(noise, cube[0], cube[1], cube[2]);
-    const uint32_t count = dsn_cell_impulse_count(noise, key);
-    int64_t origin_dot[3] = {0, 0, 0};
+    dsn_surface_cube impulses_of = {{0, 0, 0},
+                                    {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
+                                    walk->reach[0],
+                                    walk->reach[1],
+                                    static_cast<int64_t>(static_cast<uint64_t>(3) << (30u + shift)),
+                                    cube_key(noise, cube[0], cube[1], cube[2]),
+                                    0,
+                                    0,
+                                    shift};
     for (int i = 0; i < 3; i++) {
         const int64_t origin = floor_shift(
             signed_from_bits(walk->position[i] - (static_cast<uint64_t>(cube[i] << shift) << 32)), 16);
-        for (int v = 0; v < 3; v++) origin_dot[v] += origin * walk->frame[v][i];
+        for (int v = 0; v < 3; v++) {
+            impulses_of.origin_dot[v] += origin * walk->frame[v][i];
+            impulses_of.frame[v][i] = static_cast<int32_t>(walk->frame[v][i]);
+        }
     }
-    const int64_t *tangent = walk->frame[0], *bitangent = walk->frame[1], *normal = walk->frame[2];
-    for (uint32_t k = 0; k < count; k++) {
-        const uint64_t pair = dsn_position_pair(key, k);
-        const int64_t inside[3] = {static_cast<int64_t>((pair & 0xFFFFu) << shift),
-                                   static_cast<int64_t>(((pair >> 16) & 0xFFFFu) << shift),
-                                   static_cast<int64_t>(((pair >> 32) & 0xFFFFu) << shift)};
-        const uint64_t across =
-            static_cast<uint64_t>(origin_dot[2]) -
-            static_cast<uint64_t>(inside[0] * normal[0] + inside[1] * normal[1] + inside[2] * normal[2]);
-        const uint32_t window = slab_window(floor_shift(signed_from_bits(across), 14), shift);
-        if (window == 0) continue;
-        const uint64_t u =
-            static_cast<uint64_t>(origin_dot[0]) -
-            static_cast<uint64_t>(inside[0] * tangent[0] + inside[1] * tangent[1] + inside[2] * tangent[2]);
-        const uint64_t v = static_cast<uint64_t>(origin_dot[1]) -
-                           static_cast<uint64_t>(inside[0] * bitangent[0] + inside[1] * bitangent[1] +
-                                                 inside[2] * bitangent[2]);
-        visitor->visit(floor_shift(signed_from_bits(u), 14), floor_shift(signed_from_bits(v), 14), window);
+    const uint32_t count = dsn_cell_impulse_count(noise, impulses_of.key);
+    const uint32_t most = dsn_surface_impulses_most;
+    dsn_surface_impulses listed;
+    for (uint32_t first = 0; first < count; first += most) {
+        impulses_of.first = first;
+        impulses_of.count = count - first < most ? count - first : most;
+        const uint32_t kept = list_impulses(&impulses_of, &listed);
+        for (uint32_t k = 0; k < kept; k++) {
+            const uint32_t window = slab_window(listed.across[k], shift);
+            if (window != 0) visitor->visit(listed.along_tangent[k], listed.along_bitangent[k], window);
+        }
     }
 }
 
@@ -151,6 +158,8 @@ inline bool walk_too_costly(const dsn_noise_state *noise, const SurfaceWalk *wal
    side times the vector's component. */
 template <typename Visitor>
 void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visitor *visitor) {
+    dsn_surface_impulses_entry *const list_impulses =
+        dsn_kernel_entries_of(noise->tile_kernel)->surface_impulses;
     const uint32_t shift = noise->cell_shift, mask = 0xFFFFFFFFu >> shift;
     int64_t first_offset[3], along[3][3];
     for (int i = 0; i < 3; i++) {
@@ -177,7 +186,7 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
                 cube[0] = (walk->cubes[0].first + x) & mask;
                 if (magnitude(dot[0]) <= walk->box_bound[0] && magnitude(dot[1]) <= walk->box_bound[1] &&
                     magnitude(dot[2]) <= walk->box_bound[2])
-                    visit_cube(noise, walk, cube, visitor);
+                    visit_cube(noise, walk, cube, list_impulses, visitor);
                 for (int v = 0; v < 3; v++) dot[v] -= along[v][0];
             }
             for (int v = 0; v < 3; v++) row_dot[v] -= along[v][1];

@@ -49,6 +49,8 @@ int dsn_internal_surface_point(const dsn_noise_state *noise, const int64_t *posi
     SurfaceWalk walk;
     surface_walk(noise, position, frame, noise->radius[0] + 1u, noise->radius[1] + 1u, &walk);
     if (walk_too_costly(noise, &walk)) return DSN_ERR_COST;
+    for (int axis = 0; axis < 2; axis++) /* bracket's: offsets in (-(radius + 1), radius + 1) */
+        walk.reach[axis] = static_cast<int64_t>(noise->radius[axis] + 1u) * static_cast<int64_t>(one_texel);
     TextonSums texton = {noise, {0, 0, 0}};
     int64_t offset[DSN_MAX_CHANNELS];
     visit_impulses(noise, &walk, &texton);

@@ -16,6 +16,7 @@
 #include "kernels/filtered_reads_vector.h"
 #include "kernels/lattice_point_walk.h"
 #include "kernels/splat_row.h"
+#include "kernels/surface_impulses.h"
 #include "kernels/tile_render.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_default;
@@ -29,7 +30,8 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
     continuous_splat_normalize,
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,
-    DSN_FILTER_CANDIDATES_ENTRY};
+    DSN_FILTER_CANDIDATES_ENTRY,
+    DSN_SURFACE_IMPULSES_ENTRY};
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2;
 
@@ -66,5 +68,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
     continuous_splat_normalize,
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,
-    DSN_FILTER_CANDIDATES_ENTRY};
+    DSN_FILTER_CANDIDATES_ENTRY,
+    DSN_SURFACE_IMPULSES_ENTRY};
 #endif

@@ -22,6 +22,7 @@
 #include "kernels/filtered_candidates_vector.h"
 #include "kernels/filtered_reads_vector.h"
 #include "kernels/lattice_point_walk.h"
+#include "kernels/surface_impulses.h"
 
 extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
                                                                 lattice_strips_take,
@@ -31,4 +32,5 @@ extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
                                                                 SPLAT_NORMALIZE_ENTRY,
                                                                 DSN_CONTINUOUS_POINT_ENTRY,
                                                                 DSN_FILTER_READS_ENTRY,
-                                                                DSN_FILTER_CANDIDATES_ENTRY};
+                                                                DSN_FILTER_CANDIDATES_ENTRY,
+                                                                DSN_SURFACE_IMPULSES_ENTRY};

@@ -146,12 +146,37 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
                                              uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
                                              uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends);
 
+/* One cube of the surface walk (core/surface_walk.h's visit_cube), as the surface kernel reads it: its key
+   and the impulses first .. first + count - 1 of it (count <= dsn_surface_impulses_most), the offsets of
+   the cube's origin from the point along the frame's tangent, bitangent and normal (Q.46, origin_dot), the
+   frame (Q2.30), and the reaches (Q32.32) beyond which the caller reads nothing along the tangent and
+   bitangent (reach_u, reach_v; an impulse whose floored offset u has |u| >= reach_u is left out) and across
+   the slab (reach_across: likewise, the offset across the plane floored to Q32.32). */
+enum { dsn_surface_impulses_most = 32 };
+typedef struct dsn_surface_cube {
+    int64_t origin_dot[3];
+    int32_t frame[3][3];
+    int64_t reach_u, reach_v, reach_across;
+    uint32_t key, first, count, cell_shift;
+} dsn_surface_cube;
+/* The impulses a surface kernel keeps, in index order: their offsets from the point along the tangent,
+   the bitangent and the normal, each floored to Q32.32 (surface_walk.h says how). */
+typedef struct dsn_surface_impulses {
+    int64_t along_tangent[dsn_surface_impulses_most], along_bitangent[dsn_surface_impulses_most],
+        across[dsn_surface_impulses_most];
+} dsn_surface_impulses;
+
+/* The impulses of one cube of the surface walk (surface_impulses.h's surface_impulses) within the cube's
+   reaches, into out; returns how many. */
+typedef uint32_t dsn_surface_impulses_entry(const dsn_surface_cube *cube, dsn_surface_impulses *out);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,
    continuous_splat_normalize, lattice_point and continuous_point in the small build (DSN_SMALL_CODE),
    which evaluates grids point by point and whose point.cpp and continuous_point.cpp walk the cells
    themselves; lattice_point without SSE2 too; filter_level_reads and filter_candidates in kernels built
-   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself). */
+   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself); surface_impulses without
+   the surface noise (DSN_SURFACE 0). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
@@ -162,6 +187,7 @@ typedef struct dsn_kernel_entries {
     dsn_continuous_point_entry *continuous_point;
     dsn_filter_level_reads_entry *filter_level_reads;
     dsn_filter_candidates_entry *filter_candidates;
+    dsn_surface_impulses_entry *surface_impulses;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -482,6 +482,10 @@ DSN_SIMD_INLINE vector_512 compress_32(mask_16 mask, vector_512 a) {
 DSN_SIMD_INLINE vector_512 shuffle_bytes(vector_512 a, vector_512 order) {
     return _mm512_shuffle_epi8(a, order);
 }
+/* The 64-bit lanes of mask stored from `at` on, packed in order (nothing stored past them). */
+DSN_SIMD_INLINE void store_compressed_8x64(int64_t *at, mask_8 mask, vector_512 value) {
+    _mm512_mask_compressstoreu_epi64(at, mask, value);
+}
 /* 8 32-bit lanes, unsigned, widened into 64-bit lanes. */
 DSN_SIMD_INLINE vector_512 widen_unsigned_32x64(vector_256 a) { return _mm512_cvtepu32_epi64(a); }
 /* 16 bytes, unsigned, widened into 32-bit lanes. */
