@@ -13,6 +13,7 @@
 //   texture.point(12, 34);                                    // Float64Array, 1.0 = the exemplar's white
 //   const { value, dx, dy } = texture.continuousGradient(12.5, 34.25); // and its derivatives per texel
 //   texture.surfacePoint([x, y, z], [nx, ny, nz]);            // on any surface, no texture coordinates
+//   texture.surfacePoint(p, n, null, { footprint: { x: [2, 0], y: [0, 2] } }); // filtered, 2 texels a pixel
 //   const mix = runtime.mix([sand, gravel], {           // materials mixed by weights (dsn.h, "Mixing")
 //       weights: { data: bytes, width: 64, height: 64, shift: 4 } }); // 2 bytes a sample, 16 texels apart
 //   mix.tile(0, 0, 256, 256, { scale: 2 });                     // as Texture.tile
@@ -35,7 +36,9 @@ const MIX_MAX_MATERIALS = 4;      // DSN_MIX_MAX_MATERIALS
 const CONTROL_BYTES = 28;         // dsn_mix_control: a pointer and six 32-bit fields
 const CONFIG_BYTES = 20;          // five uint32 (wasm/web_exports.cpp checks the layouts used here)
 const GRID_BYTES = 48;            // six int64
-const SURFACE_BYTES = 88;         // three int64 (24), two float[3] (24), a dsn_surface_frame (36), aligned
+const SURFACE_BYTES = 128;        // three int64 (24), two float[3] (24), a dsn_surface_frame (36), aligned;
+                                  // then a dsn_footprint (four int64 and a uint32: 40)
+const FILTER_MAX_TAPS = 16;       // DSN_FILTER_MAX_TAPS
 const ASSET_FIELDS = {
     channels: 8,
     bits: 12,
@@ -208,7 +211,11 @@ export class Texture {
         nz] (finite, not all zero; its direction counts), with an optional `tangent` [tx, ty, tz] (null:
         the frame from the normal alone); the vectors are rounded to float32, as the C function takes
         them. Returns a Float64Array as continuousPoint() (options.format 'fixed': the Q16.16 integers;
-        'float32': dsn_surface_point_float's values). Throws DsnError for a normal the runtime refuses.
+        'float32': dsn_surface_point_float's values). With options.footprint, { x: [u, v], y: [u, v],
+        maxTaps } (the texels per pixel step along the screen's x and y, each [along the tangent, along
+        the bitangent], finite; maxTaps 1 .. 16, a power of two or not, default 1: isotropic), the
+        surface noise filtered by that footprint (dsn_surface_filtered_point_fixed; the asset needs its
+        pyramid). Throws DsnError for a normal, or an asset, the runtime refuses.
      */
     surfacePoint(position, normal, tangent = null, options = {}) {
         this.checkConfigured();
@@ -220,21 +227,32 @@ export class Texture {
         vector('position', position);
         vector('normal', normal);
         if (tangent !== null) vector('tangent', tangent);
-        const format = checkFormat(options, POINT_FORMATS);
+        const format = checkFormat(options, POINT_FORMATS, ['footprint']);
+        const footprint = options.footprint === undefined ? null : checkFootprint(options.footprint);
         const e = this.exports, buffer = e.memory.buffer;
         const positionAt = this.surfaceAt, normalAt = positionAt + 24, tangentAt = normalAt + 12;
-        const frameAt = tangentAt + 12;
+        const frameAt = tangentAt + 12, footprintAt = positionAt + 88;
         new Float32Array(buffer, normalAt, 3).set(normal);
         if (tangent !== null) new Float32Array(buffer, tangentAt, 3).set(tangent);
+        if (footprint !== null)
+            check(e, e.dsn_footprint_from_float(footprintAt, footprint.x[0], footprint.x[1], footprint.y[0],
+                                                footprint.y[1], footprint.maxTaps));
         if (format === 'float32') {
             new Float64Array(buffer, positionAt, 3).set(position);
-            check(e, e.dsn_surface_point_float(this.noiseAt, positionAt, normalAt, tangent === null ? 0 : tangentAt,
-                                               this.valuesAt));
+            const tangentArgument = tangent === null ? 0 : tangentAt;
+            const noise = this.noiseAt, out = this.valuesAt;
+            check(e, footprint === null
+                         ? e.dsn_surface_point_float(noise, positionAt, normalAt, tangentArgument, out)
+                         : e.dsn_surface_filtered_point_float(noise, positionAt, normalAt, tangentArgument,
+                                                              footprintAt, out));
             return new Float32Array(e.memory.buffer, this.valuesAt, this.channels).slice();
         }
         check(e, e.dsn_surface_frame_from_float(normalAt, tangent === null ? 0 : tangentAt, frameAt));
         new BigInt64Array(buffer, positionAt, 3).set(position.map((value) => e.dsn_coordinate_from_double(value)));
-        check(e, e.dsn_surface_point_fixed(this.noiseAt, positionAt, frameAt, this.valuesAt));
+        check(e, footprint === null
+                     ? e.dsn_surface_point_fixed(this.noiseAt, positionAt, frameAt, this.valuesAt)
+                     : e.dsn_surface_filtered_point_fixed(this.noiseAt, positionAt, frameAt, footprintAt,
+                                                          this.valuesAt));
         const fixed = new Int32Array(e.memory.buffer, this.valuesAt, this.channels);
         return format === 'fixed' ? fixed.slice() : fromFixed(fixed);
     }
@@ -577,6 +595,20 @@ function checkFinite(name, value) {
     if (!Number.isFinite(value)) throw new RangeError(`dsn: ${name} must be a finite number, not ${value}`);
 }
 
+// A footprint in the tangent plane (Texture.surfacePoint): { x: [u, v], y: [u, v], maxTaps }, checked.
+function checkFootprint(footprint) {
+    checkNames('options.footprint', footprint, ['x', 'y', 'maxTaps']);
+    for (const axis of ['x', 'y']) {
+        const step = footprint[axis];
+        if (!Array.isArray(step) || step.length !== 2)
+            throw new TypeError(`dsn: options.footprint.${axis} must be an array of two numbers`);
+        step.forEach((value, i) => checkFinite(`options.footprint.${axis}[${i}]`, value));
+    }
+    const { maxTaps = 1 } = footprint;
+    checkInteger('options.footprint.maxTaps', maxTaps, 1, FILTER_MAX_TAPS);
+    return { x: footprint.x, y: footprint.y, maxTaps };
+}
+
 function checkInteger(name, value, minimum, maximum) {
     checkNumber(name, value);
     if (!(Number.isInteger(value) && value >= minimum && value <= maximum))
@@ -599,9 +631,9 @@ function checkNames(what, object, names) {
                                 `'${name}' (known: ${names.join(', ')})`);
 }
 
-// options = { format }: one of `formats` (the first by default).
-function checkFormat(options, formats) {
-    checkNames('options', options, ['format']);
+// options = { format, and otherNames }: format one of `formats` (the first by default).
+function checkFormat(options, formats, otherNames = []) {
+    checkNames('options', options, ['format', ...otherNames]);
     const { format = formats[0] } = options;
     if (typeof format !== 'string')
         throw new TypeError(`dsn: options.format must be a string, not ${describe(format)}`);

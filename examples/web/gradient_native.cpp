@@ -4,9 +4,13 @@
 // configures it (the asset's density, the continuous mode allowed), one line per point: the Q16.16
 // integers of the value, then of dx, then of dy. In surface mode a point is six numbers, its position
 // and its normal, and its line the Q16.16 surface noise there (dsn_surface_point_float's conversions:
-// the position as doubles, the normal as floats, no tangent).
+// the position as doubles, the normal as floats, no tangent); in filtered-surface mode a point has five
+// numbers more, its footprint (dsn_footprint_from_float's four derivatives and max_taps), and its line is
+// dsn_surface_filtered_point_fixed's.
 // Usage: dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y lattice|continuous X Y [X Y ...]
 //        dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y surface X Y Z NX NY NZ [...]
+//        dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y filtered-surface X Y Z NX NY NZ
+//            UX VX UY VY TAPS [...]
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -17,12 +21,14 @@
 #include "dsn/dsn.h"
 
 int main(int argc, char **argv) {
-    const bool surface = argc > 5 && std::strcmp(argv[5], "surface") == 0;
-    const int arity = surface ? 6 : 2;
+    const bool filtered = argc > 5 && std::strcmp(argv[5], "filtered-surface") == 0;
+    const bool surface = filtered || (argc > 5 && std::strcmp(argv[5], "surface") == 0);
+    const int arity = filtered ? 11 : surface ? 6 : 2;
     if (argc < 6 + arity || (argc - 6) % arity != 0 ||
         (!surface && std::strcmp(argv[5], "lattice") != 0 && std::strcmp(argv[5], "continuous") != 0)) {
         std::fprintf(stderr, "usage: dsn-web-gradient-native ASSET.dsnt SEED PERIOD_X PERIOD_Y "
-                             "lattice|continuous X Y [X Y ...] | surface X Y Z NX NY NZ [...]\n");
+                             "lattice|continuous X Y [X Y ...] | surface X Y Z NX NY NZ [...] | "
+                             "filtered-surface X Y Z NX NY NZ UX VX UY VY TAPS [...]\n");
         return 2;
     }
     std::ifstream file(argv[1], std::ios::binary);
@@ -40,7 +46,7 @@ int main(int argc, char **argv) {
     config.flags = DSN_FLAG_ALLOW_LATTICE_CONTINUOUS;
     if (err == DSN_OK) err = dsn_noise_init(&noise, &asset, &config);
     const uint32_t channels = err == DSN_OK ? dsn_noise_channels(&noise) : 0;
-    for (int i = 6; err == DSN_OK && surface && i + 5 < argc; i += 6) {
+    for (int i = 6; err == DSN_OK && surface && i + arity - 1 < argc; i += arity) {
         const float normal[3] = {std::strtof(argv[i + 3], nullptr), std::strtof(argv[i + 4], nullptr),
                                  std::strtof(argv[i + 5], nullptr)};
         dsn_surface_frame frame;
@@ -49,7 +55,15 @@ int main(int argc, char **argv) {
                                      dsn_coordinate_from_double(std::strtod(argv[i + 1], nullptr)),
                                      dsn_coordinate_from_double(std::strtod(argv[i + 2], nullptr))};
         err = dsn_surface_frame_from_float(normal, nullptr, &frame);
-        if (err == DSN_OK) err = dsn_surface_point_fixed(&noise, position, &frame, value);
+        dsn_footprint footprint;
+        if (err == DSN_OK && filtered)
+            err = dsn_footprint_from_float(
+                &footprint, std::strtod(argv[i + 6], nullptr), std::strtod(argv[i + 7], nullptr),
+                std::strtod(argv[i + 8], nullptr), std::strtod(argv[i + 9], nullptr),
+                static_cast<uint32_t>(std::strtoul(argv[i + 10], nullptr, 10)));
+        if (err == DSN_OK)
+            err = filtered ? dsn_surface_filtered_point_fixed(&noise, position, &frame, &footprint, value)
+                           : dsn_surface_point_fixed(&noise, position, &frame, value);
         for (uint32_t c = 0; err == DSN_OK && c < channels; c++)
             std::printf(c == 0 ? "%d" : " %d", static_cast<int>(value[c]));
         if (err == DSN_OK) std::printf("\n");

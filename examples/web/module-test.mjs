@@ -257,6 +257,53 @@ for (const test of gradientCases) {
           refused(() => texture.surfacePoint([0, 0, 0], [0, 1]), TypeError));
 }
 
+// Filtered surface noise: the native runtime's bits under footprints in the tangent plane (isotropic,
+// anisotropic with taps, under a texel), the float32 format, a texel's footprint giving the point, and the
+// footprint's checks.
+{
+    const settings = { seed: 13 };
+    texture.configure(settings);
+    const points = [[3.5, 7.25, -11, 0.3, -0.5, 0.8, 2, 0, 0, 2, 1], [40, 0, 0, 1, 0, 0, 1.5, 0.5, -0.5, 6, 8],
+                    [0.125, 0.25, 0.375, 0, 0, -2, 0.5, 0, 0, 0.75, 1],
+                    [1e6 + 0.5, -2.5e5, 17.75, -1, 2, 0.5, 9, 1, -2, 3, 4]];
+    const native = nativeGradients(settings, 'filtered-surface', points);
+    let bits = true, floats = true, filtered = false;
+    for (const [k, point] of points.entries()) {
+        const position = point.slice(0, 3), normal = point.slice(3, 6);
+        const footprint = { x: point.slice(6, 8), y: point.slice(8, 10), maxTaps: point[10] };
+        const fixed = texture.surfacePoint(position, normal, null, { format: 'fixed', footprint });
+        if (!sameValues([...fixed], native[k])) bits = false;
+        const float = texture.surfacePoint(position, normal, null, { format: 'float32', footprint });
+        if (!sameValues(float, Float32Array.from(fixed, (v) => v / 65536))) floats = false;
+        const unfiltered = texture.surfacePoint(position, normal, null, { format: 'fixed' });
+        if (!sameValues(fixed, unfiltered)) filtered = true;
+    }
+    check('filtered surface point: the native runtime\'s bits', bits);
+    check('filtered surface point: float32 = dsn_surface_filtered_point_float', floats);
+    check('filtered surface point: footprints over a texel filter', filtered);
+    const position = [3.5, 7.25, -11], normal = [0.3, -0.5, 0.8];
+    check('filtered surface point: a texel\'s footprint gives the point',
+          sameValues(texture.surfacePoint(position, normal, null,
+                                          { format: 'fixed', footprint: { x: [1, 0], y: [0, 1] } }),
+                     texture.surfacePoint(position, normal, null, { format: 'fixed' })));
+    const refused = (footprint, kind) => {
+        try {
+            texture.surfacePoint(position, normal, null, { footprint });
+        } catch (error) {
+            return error instanceof kind;
+        }
+        return false;
+    };
+    check('filtered surface point: a footprint step of one number is refused (TypeError)',
+          refused({ x: [1], y: [0, 1] }, TypeError));
+    check('filtered surface point: a NaN step is refused (RangeError)', refused({ x: [NaN, 0], y: [0, 1] }, RangeError));
+    check('filtered surface point: maxTaps 0 and 17 are refused (RangeError)',
+          refused({ x: [1, 0], y: [0, 1], maxTaps: 0 }, RangeError) &&
+              refused({ x: [1, 0], y: [0, 1], maxTaps: 17 }, RangeError));
+    check('filtered surface point: an unknown footprint setting is refused (TypeError)',
+          refused({ x: [1, 0], y: [0, 1], z: [0, 0] }, TypeError));
+}
+
 // Mixing: against dsn-render --mix (PNG hashes of a lattice and a continuous window, the weights from a
 // grey PGM, 8 texels a pixel), where the weights are the first material's alone the first's own tile, and
 // the module's checks of the weights.

@@ -32,6 +32,8 @@ static_assert(sizeof(dsn_mix_control) == 28 && offsetof(dsn_mix_control, width) 
 
 /* dsn.mjs: SURFACE_BYTES (a dsn_surface_frame after three int64 and two float[3]). */
 static_assert(sizeof(dsn_surface_frame) == 36, "dsn_surface_frame size");
+/* dsn.mjs: the footprint after them, 88 bytes into SURFACE_BYTES. */
+static_assert(sizeof(dsn_footprint) == 40 && offsetof(dsn_footprint, max_taps) == 32, "dsn_footprint layout");
 
 extern "C" {
 
