@@ -22,10 +22,11 @@ inline uint64_t magnitude(int64_t value) {
     return value < 0 ? 0u - static_cast<uint64_t>(value) : static_cast<uint64_t>(value);
 }
 
-/* Key of cube (cx, cy, cz): the plane's key of (cx, cy) with the layer mixed into its row part, so a
-   row of cubes keeps the plane's bijection along x. */
-inline uint32_t cube_key(const dsn_noise_state *noise, uint32_t cube_x, uint32_t cube_y, uint32_t cube_z) {
-    return dsn_cell_key_in_row(noise, cube_x, dsn_mix32(dsn_row_key(noise, cube_y) + cube_z * 0x9E3779B9u));
+/* The row part of the keys of cubes (., cy, cz): the plane's row key with the layer mixed in, so that a
+   row of cubes keeps the plane's bijection along x; the key of cube (cx, cy, cz) is
+   dsn_cell_key_in_row(cx, this). */
+inline uint32_t cube_row_key(const dsn_noise_state *noise, uint32_t cube_y, uint32_t cube_z) {
+    return dsn_mix32(dsn_row_key(noise, cube_y) + cube_z * 0x9E3779B9u);
 }
 
 /* The slab's window W(|w| / H) in Q16 (dsn.h): 65536 up to half the slab, a smoothstep down to 0 at
@@ -88,41 +89,24 @@ inline void surface_walk(const dsn_noise_state *noise, const int64_t *position,
     walk->reach[0] = walk->reach[1] = static_cast<int64_t>(1) << 62; /* the visitor's own test: none here */
 }
 
-/* The impulses of one cube: each one that the slab's window keeps handed to the visitor with its offsets
-   along the tangent and bitangent (Q32.32) and its window (Q16). An impulse's offset from the point,
-   floored to Q.16, is the cube origin's less its position in the cube (a whole number of 2^-16 texels), so
-   its dot products with the frame vectors (Q.46, then floored to Q32.32) are the origin's less the
-   position's, exactly. The kernel (surface_impulses.h) lists those within the walk's reaches and 3/4 of a
-   cube across the slab, where the window is 0 (it is 0 from 35/48 of a cube, and 2^-16 texel more for
-   the floors), up to dsn_surface_impulses_most at a time. */
+/* The impulses of one cube (its key and origin set by visit_impulses): each one that the slab's window keeps
+   handed to the visitor with its offsets along the tangent and bitangent (Q32.32) and its window (Q16). An
+   impulse's offset from the point, floored to Q.16, is the cube origin's less its position in the cube (a
+   whole number of 2^-16 texels), so its dot products with the frame vectors (Q.46, then floored to Q32.32)
+   are the origin's less the position's, exactly. The kernel (surface_impulses.h) lists those within the
+   walk's reaches and 3/4 of a cube across the slab, where the window is 0 (it is 0 from 35/48 of a cube, and
+   2^-16 texel more for the floors), up to dsn_surface_impulses_most at a time. */
 template <typename Visitor>
-void visit_cube(const dsn_noise_state *noise, const SurfaceWalk *walk, const uint32_t *cube,
+void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
                 dsn_surface_impulses_entry *list_impulses, Visitor *visitor) {
     const uint32_t shift = noise->cell_shift;
-    dsn_surface_cube impulses_of = {{0, 0, 0},
-                                    {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
-                                    walk->reach[0],
-                                    walk->reach[1],
-                                    static_cast<int64_t>(static_cast<uint64_t>(3) << (30u + shift)),
-                                    cube_key(noise, cube[0], cube[1], cube[2]),
-                                    0,
-                                    0,
-                                    shift};
-    for (int i = 0; i < 3; i++) {
-        const int64_t origin = floor_shift(
-            signed_from_bits(walk->position[i] - (static_cast<uint64_t>(cube[i] << shift) << 32)), 16);
-        for (int v = 0; v < 3; v++) {
-            impulses_of.origin_dot[v] += origin * walk->frame[v][i];
-            impulses_of.frame[v][i] = static_cast<int32_t>(walk->frame[v][i]);
-        }
-    }
-    const uint32_t count = dsn_cell_impulse_count(noise, impulses_of.key);
+    const uint32_t count = dsn_cell_impulse_count(noise, impulses_of->key);
     const uint32_t most = dsn_surface_impulses_most;
     dsn_surface_impulses listed;
     for (uint32_t first = 0; first < count; first += most) {
-        impulses_of.first = first;
-        impulses_of.count = count - first < most ? count - first : most;
-        const uint32_t kept = list_impulses(&impulses_of, &listed);
+        impulses_of->first = first;
+        impulses_of->count = count - first < most ? count - first : most;
+        const uint32_t kept = list_impulses(impulses_of, &listed);
         for (uint32_t k = 0; k < kept; k++) {
             const uint32_t window = slab_window(listed.across[k], shift);
             if (window != 0) visitor->visit(listed.along_tangent[k], listed.along_bitangent[k], window);
@@ -155,13 +139,23 @@ inline bool walk_too_costly(const dsn_noise_state *noise, const SurfaceWalk *wal
 /* Every impulse of the walk's cubes that the box may reach, to the visitor (visit_cube). A cube is skipped
    when its centre lies beyond the box's bound along a frame vector: the centre's offsets from the point along
    the three vectors (Q.46) are exact integers, so they are stepped from cube to cube by adding a cube's
-   side times the vector's component. */
+   side times the vector's component; its origin's (the cube's corner, half a side from its centre along
+   each axis, a whole number of 2^-16 texels) are those plus a constant. */
 template <typename Visitor>
 void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visitor *visitor) {
     dsn_surface_impulses_entry *const list_impulses =
         dsn_kernel_entries_of(noise->tile_kernel)->surface_impulses;
     const uint32_t shift = noise->cell_shift, mask = 0xFFFFFFFFu >> shift;
-    int64_t first_offset[3], along[3][3];
+    dsn_surface_cube impulses_of = {{0, 0, 0},
+                                    {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
+                                    walk->reach[0],
+                                    walk->reach[1],
+                                    static_cast<int64_t>(static_cast<uint64_t>(3) << (30u + shift)),
+                                    0,
+                                    0,
+                                    0,
+                                    shift};
+    int64_t first_offset[3], along[3][3], corner[3] = {0, 0, 0};
     for (int i = 0; i < 3; i++) {
         const uint64_t middle = (static_cast<uint64_t>(walk->cubes[i].first << shift) << 32) +
                                 (static_cast<uint64_t>(1) << (31u + shift));
@@ -169,24 +163,28 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
             floor_shift(signed_from_bits(walk->position[i] - middle), 16); /* Q.16, below 2^28 */
     }
     for (int v = 0; v < 3; v++)
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 3; i++) {
             along[v][i] = walk->frame[v][i] * (static_cast<int64_t>(1) << (16u + shift));
+            corner[v] += walk->frame[v][i] * (static_cast<int64_t>(1) << (15u + shift));
+            impulses_of.frame[v][i] = static_cast<int32_t>(walk->frame[v][i]);
+        }
     int64_t plane_dot[3];
     for (int v = 0; v < 3; v++)
         plane_dot[v] = first_offset[0] * walk->frame[v][0] + first_offset[1] * walk->frame[v][1] +
                        first_offset[2] * walk->frame[v][2];
-    uint32_t cube[3];
     for (uint32_t z = 0; z < walk->cubes[2].count; z++) {
-        cube[2] = (walk->cubes[2].first + z) & mask;
+        const uint32_t cube_z = (walk->cubes[2].first + z) & mask;
         int64_t row_dot[3] = {plane_dot[0], plane_dot[1], plane_dot[2]};
         for (uint32_t y = 0; y < walk->cubes[1].count; y++) {
-            cube[1] = (walk->cubes[1].first + y) & mask;
+            const uint32_t row_key = cube_row_key(noise, (walk->cubes[1].first + y) & mask, cube_z);
             int64_t dot[3] = {row_dot[0], row_dot[1], row_dot[2]};
             for (uint32_t x = 0; x < walk->cubes[0].count; x++) {
-                cube[0] = (walk->cubes[0].first + x) & mask;
                 if (magnitude(dot[0]) <= walk->box_bound[0] && magnitude(dot[1]) <= walk->box_bound[1] &&
-                    magnitude(dot[2]) <= walk->box_bound[2])
-                    visit_cube(noise, walk, cube, list_impulses, visitor);
+                    magnitude(dot[2]) <= walk->box_bound[2]) {
+                    impulses_of.key = dsn_cell_key_in_row(noise, (walk->cubes[0].first + x) & mask, row_key);
+                    for (int v = 0; v < 3; v++) impulses_of.origin_dot[v] = dot[v] + corner[v];
+                    visit_cube(noise, &impulses_of, list_impulses, visitor);
+                }
                 for (int v = 0; v < 3; v++) dot[v] -= along[v][0];
             }
             for (int v = 0; v < 3; v++) row_dot[v] -= along[v][1];
