@@ -19,7 +19,9 @@
 #include "fixtures/continuous_fixtures.h"
 #include "fixtures/noise_theory.h"
 #include "offline/bake_internal.h"
+#include "runtime/core/bilinear_texton.h"
 #include "runtime/core/cell_hash.h"
+#include "runtime/core/surface_walk.h"
 #include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
@@ -422,6 +424,68 @@ TEST_CASE(
             }
         }
     }
+}
+
+TEST_CASE("surface kernels: the reads of listed impulses are the walk's windowed bilinear reads") {
+    std::mt19937_64 random(29);
+    size_t compared = 0;
+    for (const uint32_t channels : {1u, 3u})
+        for (const uint32_t bits : {8u, 16u})
+            for (const uint32_t radius : {0u, 2u, 7u, 15u}) {
+                auto noise = make_noise(random_texton_asset(channels, radius, bits, 5 + radius), 3);
+                const dsn_asset &asset = dsn_state(&noise->noise)->asset;
+                const int64_t reach = int64_t(radius + 1) << 32;
+                for (int round = 0; round < 300; round++) {
+                    const uint32_t cell_shift = uint32_t(random() % 9);
+                    const int64_t across_reach = int64_t(3) << (30 + cell_shift);
+                    dsn_surface_impulses listed;
+                    const uint32_t count = 1 + uint32_t(random() % dsn_surface_impulses_most);
+                    for (uint32_t k = 0; k < count; k++) {
+                        // Offsets anywhere within the reaches, on texel edges, and at their ends.
+                        int64_t *offsets[3] = {&listed.along_tangent[k], &listed.along_bitangent[k],
+                                               &listed.across[k]};
+                        const int64_t reaches[3] = {reach, reach, across_reach};
+                        for (int v = 0; v < 3; v++) {
+                            const int64_t span = 2 * reaches[v] - 1;
+                            int64_t offset = int64_t(random() % uint64_t(span)) - (reaches[v] - 1);
+                            if (random() % 8 == 0) offset &= ~int64_t(0xFFFFFFFF); // a texel edge
+                            if (offset <= -reaches[v]) offset += int64_t(1) << 32;
+                            if (random() % 16 == 0) offset = random() & 1 ? reaches[v] - 1 : 1 - reaches[v];
+                            *offsets[v] = offset;
+                        }
+                    }
+                    uint64_t expected[3] = {0, 0, 0};
+                    for (uint32_t k = 0; k < count; k++) {
+                        const uint32_t window = slab_window(listed.across[k], cell_shift);
+                        uint32_t row = 0, row_weight = 0, column = 0, column_weight = 0;
+                        REQUIRE(bracket(listed.along_tangent[k], radius, &column, &column_weight));
+                        REQUIRE(bracket(listed.along_bitangent[k], radius, &row, &row_weight));
+                        uint64_t texton[3] = {0, 0, 0};
+                        add_bilinear(&asset, row, row_weight, column, column_weight, texton);
+                        for (uint32_t c = 0; c < channels; c++) expected[c] += windowed(texton[c], window);
+                    }
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT;
+                         kernel <= dsn_state(&noise->noise)->tile_kernel; kernel++) {
+                        dsn_surface_reads_entry *reads = dsn_kernel_entries_of(kernel)->surface_reads;
+                        if (reads == nullptr) continue;
+                        uint64_t sums[3] = {7, 8, 9};
+                        const int taken = reads(&asset, &listed, count, cell_shift, sums);
+                        CAPTURE(kernel);
+                        CAPTURE(channels);
+                        CAPTURE(bits);
+                        CAPTURE(radius);
+                        if (bits == 16) { // not read: nothing added
+                            CHECK(taken == 0);
+                            CHECK((sums[0] == 7 && sums[1] == 8 && sums[2] == 9));
+                            continue;
+                        }
+                        REQUIRE(taken == 1);
+                        for (uint32_t c = 0; c < channels; c++) CHECK(sums[c] == 7 + c + expected[c]);
+                        compared++;
+                    }
+                }
+            }
+    MESSAGE("read batches compared with a kernel's: " << compared);
 }
 
 TEST_CASE("surface statistics: on planes of any orientation, the plane noise's mean and covariance") {

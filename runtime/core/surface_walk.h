@@ -106,11 +106,17 @@ void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
     for (uint32_t first = 0; first < count; first += most) {
         impulses_of->first = first;
         impulses_of->count = count - first < most ? count - first : most;
-        const uint32_t kept = list_impulses(impulses_of, &listed);
-        for (uint32_t k = 0; k < kept; k++) {
-            const uint32_t window = slab_window(listed.across[k], shift);
-            if (window != 0) visitor->visit(listed.along_tangent[k], listed.along_bitangent[k], window);
-        }
+        visitor->visit_listed(listed, list_impulses(impulses_of, &listed), shift);
+    }
+}
+
+/* The visitor's visit of each listed impulse that the window keeps (what a visitor's visit_listed does
+   where no kernel reads them all at once). */
+template <typename Visitor>
+void visit_each(Visitor *visitor, const dsn_surface_impulses &listed, uint32_t count, uint32_t cell_shift) {
+    for (uint32_t k = 0; k < count; k++) {
+        const uint32_t window = slab_window(listed.across[k], cell_shift);
+        if (window != 0) visitor->visit(listed.along_tangent[k], listed.along_bitangent[k], window);
     }
 }
 

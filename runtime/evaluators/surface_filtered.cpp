@@ -20,6 +20,10 @@ struct LevelSums {
     uint32_t count;
     uint64_t sums[2][DSN_MAX_CHANNELS];
 
+    void visit_listed(const dsn_surface_impulses &listed, uint32_t listed_count, uint32_t cell_shift) {
+        visit_each(this, listed, listed_count, cell_shift);
+    }
+
     void visit(int64_t along_tangent, int64_t along_bitangent, uint32_t window) {
         const uint32_t channels = noise->asset.channels;
         for (uint32_t l = 0; l < count; l++) {

@@ -12,7 +12,13 @@ namespace {
    (columns) and bitangent (rows), weighted by the window, into the channel sums (Q.32). */
 struct TextonSums {
     const dsn_noise_state *noise;
+    dsn_surface_reads_entry *reads; /* the kernel's, or null */
     uint64_t sums[DSN_MAX_CHANNELS];
+
+    void visit_listed(const dsn_surface_impulses &listed, uint32_t count, uint32_t cell_shift) {
+        if (reads == 0 || !reads(&noise->asset, &listed, count, cell_shift, sums))
+            visit_each(this, listed, count, cell_shift);
+    }
 
     void visit(int64_t along_tangent, int64_t along_bitangent, uint32_t window) {
         uint32_t row, row_weight, column, column_weight;
@@ -51,7 +57,7 @@ int dsn_internal_surface_point(const dsn_noise_state *noise, const int64_t *posi
     if (walk_too_costly(noise, &walk)) return DSN_ERR_COST;
     for (int axis = 0; axis < 2; axis++) /* bracket's: offsets in (-(radius + 1), radius + 1) */
         walk.reach[axis] = static_cast<int64_t>(noise->radius[axis] + 1u) * static_cast<int64_t>(one_texel);
-    TextonSums texton = {noise, {0, 0, 0}};
+    TextonSums texton = {noise, dsn_kernel_entries_of(noise->tile_kernel)->surface_reads, {0, 0, 0}};
     int64_t offset[DSN_MAX_CHANNELS];
     visit_impulses(noise, &walk, &texton);
     surface_offset(noise, noise->offset, offset);

@@ -29,5 +29,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx2 = {
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,
     DSN_FILTER_CANDIDATES_ENTRY,
-    DSN_SURFACE_IMPULSES_ENTRY};
+    DSN_SURFACE_IMPULSES_ENTRY,
+    DSN_SURFACE_READS_ENTRY};
 #endif

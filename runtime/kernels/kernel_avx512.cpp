@@ -31,7 +31,8 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,
     DSN_FILTER_CANDIDATES_ENTRY,
-    DSN_SURFACE_IMPULSES_ENTRY};
+    DSN_SURFACE_IMPULSES_ENTRY,
+    DSN_SURFACE_READS_ENTRY};
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2;
 
@@ -69,5 +70,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,
     DSN_FILTER_CANDIDATES_ENTRY,
-    DSN_SURFACE_IMPULSES_ENTRY};
+    DSN_SURFACE_IMPULSES_ENTRY,
+    DSN_SURFACE_READS_ENTRY};
 #endif

@@ -170,13 +170,23 @@ typedef struct dsn_surface_impulses {
    reaches, into out; returns how many. */
 typedef uint32_t dsn_surface_impulses_entry(const dsn_surface_cube *cube, dsn_surface_impulses *out);
 
+/* The unfiltered surface point's reads of `count` listed impulses (surface_impulses.h's
+   surface_texton_reads), each within the texton's reach ((radius + 1) texels along the tangent and
+   bitangent) and 3/4 of a cube across: the bilinear texton at its offsets along the tangent and
+   bitangent, times the slab's window at its offset across (core/surface_walk.h's slab_window and
+   windowed), added to sums[0 .. channels - 1] modulo 2^64. Returns 1, or 0 with nothing added for a texton
+   the kernel does not read (then the caller reads each impulse itself). */
+typedef int dsn_surface_reads_entry(const dsn_asset *asset, const dsn_surface_impulses *listed,
+                                    uint32_t count, uint32_t cell_shift, uint64_t *sums);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,
    continuous_splat_normalize, lattice_point and continuous_point in the small build (DSN_SMALL_CODE),
    which evaluates grids point by point and whose point.cpp and continuous_point.cpp walk the cells
    themselves; lattice_point without SSE2 too; filter_level_reads and filter_candidates in kernels built
-   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself); surface_impulses without
-   the surface noise (DSN_SURFACE 0). */
+   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself); surface_impulses and
+   surface_reads without the surface noise (DSN_SURFACE 0), surface_reads in kernels built without
+   AVX-512 too. */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
@@ -188,6 +198,7 @@ typedef struct dsn_kernel_entries {
     dsn_filter_level_reads_entry *filter_level_reads;
     dsn_filter_candidates_entry *filter_candidates;
     dsn_surface_impulses_entry *surface_impulses;
+    dsn_surface_reads_entry *surface_reads;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -3,8 +3,10 @@
    cube's key, its offsets from the point along the frame's three vectors taken exactly and floored to
    Q32.32, and those within the cube's reaches listed. On AVX-512, 8 impulses at once in 64-bit lanes (the
    dot products are 32 x 32-bit products: a position field has 16 bits, a frame component 31 and a sign),
-   kept ones stored compressed; on AVX2 4 at once; elsewhere one at a time; the same bits everywhere. Internal
-   to libdsn; not installed (everything here has internal linkage). */
+   kept ones stored compressed; on AVX2 4 at once; elsewhere one at a time; the same bits everywhere. Also,
+   on AVX-512, the unfiltered point's reads of the listed impulses of an 8-bit texton, 8 at a time: the
+   slab's window, the bilinear texton and their product in 64-bit lanes (elsewhere the point reads them one
+   by one, surface_point.cpp). Internal to libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_SURFACE_IMPULSES_H
 #define DSN_SURFACE_IMPULSES_H
 
@@ -90,6 +92,110 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
     return kept;
 }
 
+/* slab_window (core/surface_walk.h) on every lane: the offsets across (Q32.32, under 3/4 of a cube) to
+   the windows (Q16); the steps of the smoothstep clamped, so that 0 and 65536 come out of the same
+   polynomial. */
+DSN_SIMD_INLINE vector_512 window_lanes(vector_512 across, uint32_t cell_shift) {
+    const vector_512 sign = shift_right_arithmetic_64(across, 63);
+    const vector_512 magnitude = subtract_64(bitwise_xor(across, sign), sign);
+    const vector_512 s = shift_right_logical_64(
+        multiply_even_unsigned_32(shift_right_logical_64(magnitude, 16), set_8x64(89878)), 16u + cell_shift);
+    const vector_512 one = set_8x64(65536);
+    const vector_512 u = minimum_64(maximum_64(subtract_64(shift_left_64(s, 1), one), zero_512()), one);
+    const vector_512 square = shift_right_logical_64(multiply_even_unsigned_32(u, u), 16);
+    const vector_512 slope = subtract_64(set_8x64(196608), shift_left_64(u, 1));
+    return subtract_64(one, shift_right_logical_64(multiply_even_unsigned_32(square, slope), 16));
+}
+
+/* Byte `index` of every 64-bit lane, sign-extended, where mask has the lane, else 0. */
+DSN_SIMD_INLINE vector_512 lane_byte_64(vector_512 words, uint32_t index, mask_8 mask) {
+    const vector_512 byte = shift_right_arithmetic_64(shift_left_64(words, 56u - 8u * index), 56);
+    return and_64_where(zero_512(), mask, byte, set_8x64(-1));
+}
+
+/* floor(value * window / 2^16) on every lane (|value| < 2^47, window <= 2^16: windowed's product), from
+   the 32 x 32-bit products of the window with value's two halves. */
+DSN_SIMD_INLINE vector_512 windowed_lanes(vector_512 value, vector_512 window) {
+    const vector_512 high = multiply_even_32(shift_right_arithmetic_64(value, 32), window);
+    const vector_512 low = multiply_even_unsigned_32(value, window);
+    return shift_right_arithmetic_64(add_64(shift_left_64(high, 32), low), 16);
+}
+
+/* The reads of 8 listed impulses (those of `lanes`), added to sums[c] lane by lane. Each row's two texels
+   come from one 8-byte read from 4 bytes before the right texel, as continuous_point_vector.h's
+   texton_pairs_16 reads them (within 4 bytes before the texton and 4 past it: the asset's header and CRC,
+   in the buffer the loader checked): the left texel's channels end at byte 3, the right one's start at
+   byte 4; each is 0 outside the texton. The bilinear sum is add_bilinear's integer, in its row form. */
+template <uint32_t Channels>
+DSN_SIMD_INLINE void add_reads_8(const dsn_asset *asset, vector_512 along_tangent, vector_512 along_bitangent,
+                                 vector_512 window, mask_8 lanes, vector_512 *sums) {
+    const uint32_t width = asset->width, height = asset->height;
+    const vector_512 low_16 = set_8x64(0xFFFF), one = set_8x64(1);
+    const vector_512 shifted_x =
+        add_64(along_tangent, set_8x64(static_cast<int64_t>((width + 1u) / 2u) << 32));
+    const vector_512 shifted_y =
+        add_64(along_bitangent, set_8x64(static_cast<int64_t>((height + 1u) / 2u) << 32));
+    const vector_512 right_column = shift_right_logical_64(shifted_x, 32),
+                     lower_row = shift_right_logical_64(shifted_y, 32);
+    const vector_512 row = subtract_64(lower_row, one);
+    const vector_512 across = bitwise_and(shift_right_logical_64(shifted_x, 16), low_16),
+                     down = bitwise_and(shift_right_logical_64(shifted_y, 16), low_16);
+    const vector_512 columns = set_8x64(width), rows = set_8x64(height);
+    const mask_8 left = less_unsigned_64(lanes, subtract_64(right_column, one), columns),
+                 right = less_unsigned_64(lanes, right_column, columns);
+    const mask_8 top = less_unsigned_64(left | right, row, rows),
+                 bottom = less_unsigned_64(left | right, lower_row, rows);
+    const vector_512 entry = add_64(multiply_even_unsigned_32(row, columns), right_column);
+    const vector_512 at = subtract_64(multiply_even_unsigned_32(entry, set_8x64(Channels)), set_8x64(4));
+    const vector_512 below = add_64(at, set_8x64(width * Channels));
+    const vector_512 upper_words = gather_masked_64<1>(asset->texton, truncate_64x32(at), top),
+                     lower_words = gather_masked_64<1>(asset->texton, truncate_64x32(below), bottom);
+    const vector_512 scale = set_8x64(65536);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const vector_512 a = lane_byte_64(upper_words, 4u - Channels + c, left),
+                         b = lane_byte_64(upper_words, 4u + c, right),
+                         d = lane_byte_64(lower_words, 4u - Channels + c, left),
+                         e = lane_byte_64(lower_words, 4u + c, right);
+        const vector_512 upper =
+            add_64(multiply_even_32(a, scale), multiply_even_32(across, subtract_64(b, a)));
+        const vector_512 lower =
+            add_64(multiply_even_32(d, scale), multiply_even_32(across, subtract_64(e, d)));
+        const vector_512 value =
+            add_64(shift_left_64(upper, 16), multiply_even_32(down, subtract_64(lower, upper)));
+        sums[c] = add_64(sums[c], windowed_lanes(value, window));
+    }
+}
+
+/* The reads of the listed impulses, 8 at a time, each lane's sums added to sums at the end. */
+template <uint32_t Channels>
+void texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
+                  uint32_t cell_shift, uint64_t *sums) {
+    vector_512 lanes[Channels];
+    for (uint32_t c = 0; c < Channels; c++) lanes[c] = zero_512();
+    for (uint32_t k = 0; k < count; k += 8) {
+        const mask_8 valid = static_cast<mask_8>(count - k >= 8 ? 0xFFu : (1u << (count - k)) - 1u);
+        const vector_512 window = window_lanes(load_masked_8x64(listed->across + k, valid), cell_shift);
+        add_reads_8<Channels>(asset, load_masked_8x64(listed->along_tangent + k, valid),
+                              load_masked_8x64(listed->along_bitangent + k, valid), window, valid, lanes);
+    }
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t parts[8];
+        store_8x64(parts, lanes[c]);
+        for (uint32_t lane = 0; lane < 8; lane++) sums[c] += parts[lane];
+    }
+}
+
+int surface_texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
+                         uint32_t cell_shift, uint64_t *sums) {
+    if (asset->bits != 8) return 0;
+    if (asset->channels == 3)
+        texton_reads<3>(asset, listed, count, cell_shift, sums);
+    else
+        texton_reads<1>(asset, listed, count, cell_shift, sums);
+    return 1;
+}
+#define DSN_SURFACE_READS_ENTRY surface_texton_reads
+
 #elif defined(__AVX2__)
 
 /* All ones in the lanes whose value lies within the reach (within_reach on every lane: the unsigned
@@ -166,10 +272,14 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
 #endif
 
 } // namespace
-/* The kernel entry (kernels.h): null where there is none. */
+/* The kernel entries (kernels.h): null where there is none. */
 #define DSN_SURFACE_IMPULSES_ENTRY surface_impulses
+#ifndef DSN_SURFACE_READS_ENTRY
+#define DSN_SURFACE_READS_ENTRY 0
+#endif
 #else
 #define DSN_SURFACE_IMPULSES_ENTRY 0
+#define DSN_SURFACE_READS_ENTRY 0
 #endif
 
 #endif /* DSN_SURFACE_IMPULSES_H */

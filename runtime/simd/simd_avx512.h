@@ -291,6 +291,10 @@ DSN_SIMD_INLINE void store_16x32(uint32_t *at, vector_512 value) { _mm512_storeu
 DSN_SIMD_INLINE vector_512 load_masked_16x32(const uint32_t *at, mask_16 mask) {
     return _mm512_maskz_loadu_epi32(mask, at);
 }
+/* The 64-bit lanes of mask, the others 0 (and not read). */
+DSN_SIMD_INLINE vector_512 load_masked_8x64(const int64_t *at, mask_8 mask) {
+    return _mm512_maskz_loadu_epi64(mask, at);
+}
 /* The masked gathers: unoptimized, GCC makes them macros that hand the mask to a builtin taking a signed
    integer, which -Wsign-conversion reports at the call; the bits are the same either way. */
 #if defined(__GNUC__) && !defined(__clang__)
@@ -384,6 +388,9 @@ DSN_SIMD_INLINE vector_512 shift_right_logical_64_by(vector_512 a, vector_128 co
 DSN_SIMD_INLINE vector_512 shift_left_64_by(vector_512 a, vector_128 count) {
     return _mm512_sll_epi64(a, count);
 }
+DSN_SIMD_INLINE vector_512 shift_right_arithmetic_64(vector_512 a, uint32_t count) {
+    return _mm512_srai_epi64(a, count);
+}
 /* a << count in the 64-bit lanes of mask, a in the others. */
 DSN_SIMD_INLINE vector_512 shift_left_64_where(mask_8 mask, vector_512 a, uint32_t count) {
     return _mm512_mask_slli_epi64(a, mask, a, count);
@@ -410,6 +417,8 @@ DSN_SIMD_INLINE vector_512 multiply_even_unsigned_32(vector_512 a, vector_512 b)
     return _mm512_mul_epu32(a, b);
 }
 DSN_SIMD_INLINE vector_512 maximum_32(vector_512 a, vector_512 b) { return _mm512_max_epi32(a, b); }
+DSN_SIMD_INLINE vector_512 maximum_64(vector_512 a, vector_512 b) { return _mm512_max_epi64(a, b); }
+DSN_SIMD_INLINE vector_512 minimum_64(vector_512 a, vector_512 b) { return _mm512_min_epi64(a, b); }
 DSN_SIMD_INLINE vector_512 minimum_unsigned_32(vector_512 a, vector_512 b) { return _mm512_min_epu32(a, b); }
 /* 8 32-bit lanes, signed, widened into 64-bit lanes. */
 DSN_SIMD_INLINE vector_512 widen_signed_32x64(vector_256 a) { return _mm512_cvtepi32_epi64(a); }
