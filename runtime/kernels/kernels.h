@@ -186,7 +186,7 @@ typedef int dsn_surface_reads_entry(const dsn_asset *asset, const dsn_surface_im
    themselves; lattice_point without SSE2 too; filter_level_reads and filter_candidates in kernels built
    without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself); surface_impulses and
    surface_reads without the surface noise (DSN_SURFACE 0), surface_reads in kernels built without
-   AVX-512 too. */
+   AVX2 too. */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;

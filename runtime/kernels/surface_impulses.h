@@ -4,9 +4,10 @@
    Q32.32, and those within the cube's reaches listed. On AVX-512, 8 impulses at once in 64-bit lanes (the
    dot products are 32 x 32-bit products: a position field has 16 bits, a frame component 31 and a sign),
    kept ones stored compressed; on AVX2 4 at once; elsewhere one at a time; the same bits everywhere. Also,
-   on AVX-512, the unfiltered point's reads of the listed impulses of an 8-bit texton, 8 at a time: the
-   slab's window, the bilinear texton and their product in 64-bit lanes (elsewhere the point reads them one
-   by one, surface_point.cpp). Internal to libdsn; not installed (everything here has internal linkage). */
+   on AVX-512 and AVX2, the unfiltered point's reads of the listed impulses of an 8-bit texton, 8 or 4 at
+   a time: the slab's window, the bilinear texton and their product in 64-bit lanes (elsewhere the point
+   reads them one by one, surface_point.cpp). Internal to libdsn; not installed (everything here has internal
+   linkage). */
 #ifndef DSN_SURFACE_IMPULSES_H
 #define DSN_SURFACE_IMPULSES_H
 
@@ -181,20 +182,9 @@ void texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, ui
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t parts[8];
         store_8x64(parts, lanes[c]);
-        for (uint32_t lane = 0; lane < 8; lane++) sums[c] += parts[lane];
+        for (uint32_t part = 0; part < 8; part++) sums[c] += parts[part];
     }
 }
-
-int surface_texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
-                         uint32_t cell_shift, uint64_t *sums) {
-    if (asset->bits != 8) return 0;
-    if (asset->channels == 3)
-        texton_reads<3>(asset, listed, count, cell_shift, sums);
-    else
-        texton_reads<1>(asset, listed, count, cell_shift, sums);
-    return 1;
-}
-#define DSN_SURFACE_READS_ENTRY surface_texton_reads
 
 #elif defined(__AVX2__)
 
@@ -238,6 +228,109 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
     return kept;
 }
 
+/* The reads on AVX2 (surface_texton_reads): the AVX-512 kernel's on 4 lanes, with vector masks (all ones
+   in a lane for true); the shifts of signed 64-bit lanes that AVX2 lacks made from 32-bit ones, where only
+   a lane's low half is read after them, or through a 2^63 bias. */
+DSN_SIMD_INLINE vector_256 below_unsigned_64(vector_256 a, vector_256 b) {
+    const vector_256 top = set_4x64(INT64_MIN);
+    return greater_64(bitwise_xor(b, top), bitwise_xor(a, top));
+}
+
+/* slab_window on every lane, as the AVX-512 kernel's window_lanes. */
+DSN_SIMD_INLINE vector_256 window_lanes(vector_256 across, uint32_t cell_shift) {
+    const vector_256 sign = greater_64(zero_256(), across);
+    const vector_256 magnitude = subtract_64(bitwise_xor(across, sign), sign);
+    const vector_256 s = shift_right_logical_64(
+        multiply_even_unsigned_32(shift_right_logical_64(magnitude, 16), set_4x64(89878)), 16u + cell_shift);
+    const vector_256 one = set_4x64(65536);
+    vector_256 u = subtract_64(shift_left_64(s, 1), one);
+    u = and_not(greater_64(zero_256(), u), u);
+    const vector_256 over = greater_64(u, one);
+    u = bitwise_or(and_not(over, u), bitwise_and(over, one));
+    const vector_256 square = shift_right_logical_64(multiply_even_unsigned_32(u, u), 16);
+    const vector_256 slope = subtract_64(set_4x64(196608), shift_left_64(u, 1));
+    return subtract_64(one, shift_right_logical_64(multiply_even_unsigned_32(square, slope), 16));
+}
+
+/* Byte `index` of every 64-bit lane, sign-extended into the lane's low 32 bits (the high ones are not
+   read: the products below take the low halves), where mask is set, else 0. */
+DSN_SIMD_INLINE vector_256 lane_byte_low_32(vector_256 words, uint32_t index, vector_256 mask) {
+    const vector_256 half = index >= 4 ? shift_right_logical_64(words, 32) : words;
+    return bitwise_and(shift_right_arithmetic_32(shift_left_32(half, 24u - 8u * (index & 3u)), 24), mask);
+}
+
+/* windowed on every lane: the value's high half is its bits 32 .. 63, signed, in the low half of a lane. */
+DSN_SIMD_INLINE vector_256 windowed_lanes(vector_256 value, vector_256 window) {
+    const vector_256 high = multiply_even_32(shift_right_logical_64(value, 32), window);
+    const vector_256 product = add_64(shift_left_64(high, 32), multiply_even_unsigned_32(value, window));
+    const vector_256 bias = set_4x64(INT64_MIN);
+    return subtract_64(shift_right_logical_64(add_64(product, bias), 16), shift_right_logical_64(bias, 16));
+}
+
+/* The AVX-512 kernel's add_reads_8 on 4 lanes. */
+template <uint32_t Channels>
+DSN_SIMD_INLINE void add_reads_4(const dsn_asset *asset, vector_256 along_tangent, vector_256 along_bitangent,
+                                 vector_256 window, vector_256 lanes, vector_256 *sums) {
+    const uint32_t width = asset->width, height = asset->height;
+    const vector_256 low_16 = set_4x64(0xFFFF), one = set_4x64(1);
+    const vector_256 shifted_x =
+        add_64(along_tangent, set_4x64(static_cast<int64_t>((width + 1u) / 2u) << 32));
+    const vector_256 shifted_y =
+        add_64(along_bitangent, set_4x64(static_cast<int64_t>((height + 1u) / 2u) << 32));
+    const vector_256 right_column = shift_right_logical_64(shifted_x, 32),
+                     lower_row = shift_right_logical_64(shifted_y, 32);
+    const vector_256 row = subtract_64(lower_row, one);
+    const vector_256 across = bitwise_and(shift_right_logical_64(shifted_x, 16), low_16),
+                     down = bitwise_and(shift_right_logical_64(shifted_y, 16), low_16);
+    const vector_256 columns = set_4x64(width), rows = set_4x64(height);
+    const vector_256 left = bitwise_and(lanes, below_unsigned_64(subtract_64(right_column, one), columns)),
+                     right = bitwise_and(lanes, below_unsigned_64(right_column, columns));
+    const vector_256 top = bitwise_and(bitwise_or(left, right), below_unsigned_64(row, rows)),
+                     bottom = bitwise_and(bitwise_or(left, right), below_unsigned_64(lower_row, rows));
+    const vector_256 entry = add_64(multiply_even_unsigned_32(row, columns), right_column);
+    const vector_256 at = subtract_64(multiply_even_unsigned_32(entry, set_4x64(Channels)), set_4x64(4));
+    const vector_256 below = add_64(at, set_4x64(width * Channels));
+    const vector_256 low_halves = set_lanes_8x32(0, 2, 4, 6, 0, 2, 4, 6);
+    const vector_256 upper_words =
+                         gather_masked_64<1>(asset->texton, low_128(permute_32(at, low_halves)), top),
+                     lower_words =
+                         gather_masked_64<1>(asset->texton, low_128(permute_32(below, low_halves)), bottom);
+    const vector_256 scale = set_4x64(65536);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const vector_256 a = lane_byte_low_32(upper_words, 4u - Channels + c, left),
+                         b = lane_byte_low_32(upper_words, 4u + c, right),
+                         d = lane_byte_low_32(lower_words, 4u - Channels + c, left),
+                         e = lane_byte_low_32(lower_words, 4u + c, right);
+        const vector_256 upper =
+            add_64(multiply_even_32(a, scale), multiply_even_32(across, subtract_64(b, a)));
+        const vector_256 lower =
+            add_64(multiply_even_32(d, scale), multiply_even_32(across, subtract_64(e, d)));
+        const vector_256 value =
+            add_64(shift_left_64(upper, 16), multiply_even_32(down, subtract_64(lower, upper)));
+        sums[c] = add_64(sums[c], windowed_lanes(value, window));
+    }
+}
+
+/* The reads of the listed impulses, 4 at a time, each lane's sums added to sums at the end. */
+template <uint32_t Channels>
+void texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
+                  uint32_t cell_shift, uint64_t *sums) {
+    vector_256 lanes[Channels];
+    for (uint32_t c = 0; c < Channels; c++) lanes[c] = zero_256();
+    const vector_256 lane_numbers = set_lanes_4x64(0, 1, 2, 3);
+    for (uint32_t k = 0; k < count; k += 4) {
+        const vector_256 valid = greater_64(set_4x64(count - k), lane_numbers);
+        const vector_256 window = window_lanes(load_masked_4x64(listed->across + k, valid), cell_shift);
+        add_reads_4<Channels>(asset, load_masked_4x64(listed->along_tangent + k, valid),
+                              load_masked_4x64(listed->along_bitangent + k, valid), window, valid, lanes);
+    }
+    for (uint32_t c = 0; c < Channels; c++) {
+        uint64_t parts[4];
+        store_4x64(parts, lanes[c]);
+        for (uint32_t part = 0; part < 4; part++) sums[c] += parts[part];
+    }
+}
+
 #else
 
 /* One offset of an impulse (one frame vector's dot product with its 16-bit fields), floored to Q32.32. */
@@ -269,6 +362,20 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
     return kept;
 }
 
+#endif
+
+#if defined(__AVX2__)
+/* The kernel's surface_reads (kernels.h): 8-bit textons only. */
+int surface_texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
+                         uint32_t cell_shift, uint64_t *sums) {
+    if (asset->bits != 8) return 0;
+    if (asset->channels == 3)
+        texton_reads<3>(asset, listed, count, cell_shift, sums);
+    else
+        texton_reads<1>(asset, listed, count, cell_shift, sums);
+    return 1;
+}
+#define DSN_SURFACE_READS_ENTRY surface_texton_reads
 #endif
 
 } // namespace

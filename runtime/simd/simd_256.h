@@ -63,6 +63,14 @@ DSN_SIMD_INLINE vector_256 gather_64(const void *base, vector_128 offsets) {
     return _mm256_i32gather_epi64(static_cast<const long long *>(base), offsets, Scale);
 }
 
+/* 64-bit lane k: the 64 bits at base + Scale offsets[k] bytes where mask's lane k has its top bit set, else
+   0 (and not read). */
+template <int Scale>
+DSN_SIMD_INLINE vector_256 gather_masked_64(const void *base, vector_128 offsets, vector_256 mask) {
+    return _mm256_mask_i32gather_epi64(_mm256_setzero_si256(), static_cast<const long long *>(base), offsets,
+                                       mask, Scale);
+}
+
 /* ---- Constants ---- */
 DSN_SIMD_INLINE vector_256 zero_256() { return _mm256_setzero_si256(); }
 inline vector_256 set_8x32(uint32_t value) { return _mm256_set1_epi32(static_cast<int>(value)); }
