@@ -361,7 +361,7 @@ TEST_CASE(
                                  (int64_t(1) << (47 + cube.cell_shift));
             for (int i = 0; i < 3; i++)
                 cube.frame[v][i] =
-                    int32_t(round % 7 == 0 ? (random() & 1 ? 1 : -1) << 30 : component(random));
+                    int32_t(round % 7 == 0 ? (random() & 1 ? 1 : -1) * (1 << 30) : component(random));
         }
         // Reaches of a texton, of a cube (3/4 across), and none (2^62).
         const int64_t reach_choices[3] = {int64_t(1 + random() % 16) << 32,

@@ -21,12 +21,14 @@ namespace {
 
 /* What dsn_position_pair adds to (key << 32) per impulse index, and k times it as a lane. */
 const uint64_t impulse_index_step = 0x9E3779B97F4A7C15u;
-inline int64_t step(uint64_t k) { return static_cast<int64_t>(k * impulse_index_step); }
+inline int64_t step(uint64_t k) { return signed_from_bits(k * impulse_index_step); }
 
-/* Whether |value| < reach (reach >= 1), as one unsigned comparison. */
+/* 2 reach - 1 (reach in 1 .. 2^62), for within_reach's comparison. */
+inline uint64_t reach_span(int64_t reach) { return static_cast<uint64_t>(reach) * 2u - 1u; }
+
+/* Whether |value| < reach (reach in 1 .. 2^62), as one unsigned comparison. */
 inline bool within_reach(int64_t value, int64_t reach) {
-    return static_cast<uint64_t>(value) + static_cast<uint64_t>(reach - 1) <
-           static_cast<uint64_t>(2 * reach - 1);
+    return static_cast<uint64_t>(value) + static_cast<uint64_t>(reach - 1) < reach_span(reach);
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -132,7 +134,8 @@ DSN_SIMD_INLINE LaneVector all_lanes(int64_t value) {
 
 /* The lanes of `within` whose value lies within the reach (within_reach on every lane). */
 DSN_SIMD_INLINE LaneMask lanes_within(LaneMask within, LaneVector value, int64_t reach) {
-    return SurfaceLanes::below(within, add_64(value, all_lanes(reach - 1)), all_lanes(2 * reach - 1));
+    return SurfaceLanes::below(within, add_64(value, all_lanes(reach - 1)),
+                               all_lanes_64<LaneVector>(reach_span(reach)));
 }
 
 /* The three 16-bit position fields of the impulses whose dsn_position_pair inputs are `indices`. */
@@ -164,7 +167,7 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
     uint32_t kept = 0;
     for (uint32_t k = 0; k < cube->count; k += width, index += width * impulse_index_step) {
         LaneVector fields[3];
-        impulse_fields(add_64(all_lanes(static_cast<int64_t>(index)), index_steps), fields);
+        impulse_fields(add_64(all_lanes_64<LaneVector>(index), index_steps), fields);
         /* Across the slab first: it leaves out about half. */
         LaneVector offsets[3];
         offsets[2] = offset_lanes(fields, cube->frame[2], cube->origin_dot[2], cube->cell_shift);
