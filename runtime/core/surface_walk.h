@@ -89,13 +89,13 @@ inline void surface_walk(const dsn_noise_state *noise, const int64_t *position,
     walk->reach[0] = walk->reach[1] = static_cast<int64_t>(1) << 62; /* the visitor's own test: none here */
 }
 
-/* The impulses of one cube (its key and origin set by visit_impulses): each one that the slab's window keeps
-   handed to the visitor with its offsets along the tangent and bitangent (Q32.32) and its window (Q16). An
-   impulse's offset from the point, floored to Q.16, is the cube origin's less its position in the cube (a
-   whole number of 2^-16 texels), so its dot products with the frame vectors (Q.46, then floored to Q32.32)
-   are the origin's less the position's, exactly. The kernel (surface_impulses.h) lists those within the
-   walk's reaches and 3/4 of a cube across the slab, where the window is 0 (it is 0 from 35/48 of a cube, and
-   2^-16 texel more for the floors), up to dsn_surface_impulses_most at a time. */
+/* The impulses of one cube (its key and origin set by visit_impulses), listed by the kernel
+   (surface_impulses.h) up to dsn_surface_impulses_most at a time and handed to the visitor's visit_listed:
+   those within the walk's reaches and 3/4 of a cube across the slab, where the window is 0 (it is 0 from
+   35/48 of a cube, and 2^-16 texel more for the floors). An impulse's offset from the point, floored to
+   Q.16, is the cube origin's less its position in the cube (a whole number of 2^-16 texels), so its dot
+   products with the frame vectors (Q.46, then floored to Q32.32) are the origin's less the position's,
+   exactly. */
 template <typename Visitor>
 void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
                 dsn_surface_impulses_entry *list_impulses, Visitor *visitor) {
