@@ -91,10 +91,12 @@ inline bool grid_box(const dsn_grid *grid, uint32_t width, uint32_t height, int6
     return true;
 }
 
-/* Material m's value (its channels) added to the mix's totals: a grey material's value to each channel. */
+/* Material m's value (its channels) added to the mix's totals: a grey material's value to each channel.
+   (The bound DSN_MAX_CHANNELS, which init guarantees, keeps GCC's -O3 from warning of reads past it.) */
 inline void add_material_value(const dsn_mix_state *mix, uint32_t m, const int32_t *value, int64_t *totals) {
     const uint32_t channels = mix->material[m].asset.channels;
-    for (uint32_t c = 0; c < mix->channels; c++) totals[c] += value[channels == 1 ? 0 : c];
+    for (uint32_t c = 0; c < mix->channels && c < DSN_MAX_CHANNELS; c++)
+        totals[c] += value[channels == 1 ? 0 : c];
 }
 
 /* The totals as the mix's output, saturated to int32. */
