@@ -18,6 +18,10 @@
      control); dsn_word must then read word dsn_word_base + index of the buffer (below). One walk over
      material 0's impulses within the largest reach, each impulse reading its weights (four samples
      per material) and one texton: no shortcut where the weights are one material's alone.
+     Workgroup tiles (compute shaders that #define DSN_GLSL_TILES 1 before this file): a workgroup lists
+     the impulses that reach its window of points once, in 8 KB of shared memory, and each invocation
+     sums its point from that list (dsn_lattice_tile_point_fixed, dsn_continuous_tile_point_fixed): the
+     bits of the point functions, without their per-point hashing (see "Workgroup tiles" below).
      Surface noise (dsn.h, "Surface noise"): dsn_surface_point (float position, normal and tangent, as a
      fragment shader has them) and dsn_surface_point_fixed (a Q32.32 position and a Q2.30 frame) give the
      bits of dsn_surface_point_float and dsn_surface_point_fixed; dsn_surface_frame_from_float_bits those
@@ -105,6 +109,10 @@ uvec2 dsn_add64(uvec2 a, uvec2 b) {
 }
 
 uvec2 dsn_sub64(uvec2 a, uvec2 b) { return uvec2(a.x - b.x, a.y - b.y - (a.x < b.x ? 1u : 0u)); }
+
+/* |value| of a signed value; a <= b of unsigned ones. */
+uvec2 dsn_magnitude64(uvec2 value) { return int(value.y) < 0 ? dsn_sub64(uvec2(0u), value) : value; }
+bool dsn_at_most64(uvec2 a, uvec2 b) { return a.y < b.y || (a.y == b.y && a.x <= b.x); }
 
 /* a * b as 64 bits. Without umulExtended: four 16 x 16 -> 32-bit products, as the C runtime's
    configuration code builds its 128-bit products from 32-bit halves. */
@@ -493,6 +501,14 @@ int dsn_texel(uint row, uint column, uint channel, uint width, uint height, uint
     return int(dsn_word(DSN_WORD_TEXTON + (row * width + column) * channels + channel));
 }
 
+/* Texel (row, column) of every channel (grey: .x), 0 outside the window. */
+ivec3 dsn_texels(uint row, uint column, uint width, uint height, uint channels) {
+    if (row >= height || column >= width) return ivec3(0);
+    uint at = DSN_WORD_TEXTON + (row * width + column) * channels;
+    if (channels != 3u) return ivec3(int(dsn_word(at)), 0, 0);
+    return ivec3(int(dsn_word(at)), int(dsn_word(at + 1u)), int(dsn_word(at + 2u)));
+}
+
 /* The 2 x 2 texels of `channel` with their top-left at (row, column): (above left, above right, below
    left, below right), 0 outside the window. */
 ivec4 dsn_corners(uint row, uint column, uint channel, uint width, uint height, uint channels) {
@@ -634,6 +650,266 @@ void dsn_continuous_gradient_fixed(uvec2 x, uvec2 y, out ivec3 value, out ivec3 
     dx = dsn_normalize_q32(slope_x, false);
     dy = dsn_normalize_q32(slope_y, false);
 }
+
+/* ---- Workgroup tiles (compute shaders that #define DSN_GLSL_TILES 1 before this file) ----
+   A workgroup evaluates a window of points together: its invocations share out the cells that can reach
+   the window, list the impulses that do (their texton indices, or their positions, relative to the
+   window) in shared memory, and each invocation then sums its own point from that list. No hash is
+   computed twice, and the sums are those of the point functions (the same impulses, added modulo 2^32 or
+   2^64 in any order): the same bits. The caller places the barriers, in main():
+       dsn_tile_begin();                                  barrier();
+       dsn_lattice_tile_list(origin, size);               barrier();
+       ivec3 value = dsn_lattice_tile_point_fixed(origin, size, p);
+   and likewise dsn_continuous_tile_list and dsn_continuous_tile_point_fixed over a box of points (for a
+   grid, dsn_grid_tile_box gives the box of a workgroup's pixels). Every invocation passes the same window.
+   A point outside the window, a window on a periodic axis across the int32 sign change (where the
+   reduction modulo the period breaks the coordinates' contiguity) or a list past DSN_TILE_CAPACITY
+   impulses falls back on the point functions. */
+#ifdef DSN_GLSL_TILES
+#if DSN_GLSL_TILES
+
+const uint DSN_TILE_CAPACITY = 512u; /* 8 KB of shared memory */
+shared uint dsn_tile_count;
+shared uvec4 dsn_tile_list[DSN_TILE_CAPACITY];
+
+void dsn_tile_begin() {
+    if (gl_LocalInvocationIndex == 0u) dsn_tile_count = 0u;
+}
+
+void dsn_tile_add(uvec4 entry) {
+    uint slot = atomicAdd(dsn_tile_count, 1u);
+    if (slot < DSN_TILE_CAPACITY) dsn_tile_list[slot] = entry;
+}
+
+/* Whether this invocation lists cell `index` of the window's cells (each takes every n-th). */
+bool dsn_tile_cell_is_mine(uint index) {
+    return index % (gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z) == gl_LocalInvocationIndex;
+}
+
+/* Whether `length` coordinates from `first` on an axis of this period cross the int32 sign change. */
+bool dsn_tile_breaks(uint first, uint length, uint period) {
+    uint until_sign_change = 0x80000000u - first;
+    return period != 0u && until_sign_change != 0u && until_sign_change < length;
+}
+
+bool dsn_lattice_tile_breaks(ivec2 origin, uvec2 size) {
+    return dsn_tile_breaks(uint(origin.x), size.x, dsn_word(DSN_WORD_PERIOD)) ||
+           dsn_tile_breaks(uint(origin.y), size.y, dsn_word(DSN_WORD_PERIOD + 1u));
+}
+
+/* Lists the impulses that reach the window of size.x x size.y lattice points from `origin`: each as the
+   texton column and row that it adds at the window's first point (at point origin + (i, j), column + i
+   and row + j, when within the texton). */
+void dsn_lattice_tile_list(ivec2 origin, uvec2 size) {
+    if (dsn_lattice_tile_breaks(origin, size)) return;
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT);
+    uint width = dsn_word(DSN_WORD_LATTICE_WIDTH), height = dsn_word(DSN_WORD_LATTICE_HEIGHT);
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    dsn_axis axis_x = dsn_axis_init(uint(origin.x), size.x, dsn_word(DSN_WORD_LATTICE_RADIUS), shift,
+                                    dsn_word(DSN_WORD_PERIOD));
+    dsn_axis axis_y = dsn_axis_init(uint(origin.y), size.y, dsn_word(DSN_WORD_LATTICE_RADIUS + 1u), shift,
+                                    dsn_word(DSN_WORD_PERIOD + 1u));
+    uint cell_index = 0u;
+    for (uint span_index_y = 0u; span_index_y < axis_y.span_count; span_index_y++) {
+        dsn_span span_y = dsn_axis_span(axis_y, span_index_y);
+        for (uint i = 0u; i < span_y.cell_count; i++) {
+            uint cell_y = dsn_span_cell(span_y, i, shift);
+            uvec2 in_y = dsn_lattice_cell_on_axis(span_y, cell_y, shift);
+            for (uint span_index_x = 0u; span_index_x < axis_x.span_count; span_index_x++) {
+                dsn_span span_x = dsn_axis_span(axis_x, span_index_x);
+                for (uint j = 0u; j < span_x.cell_count; j++, cell_index++) {
+                    if (!dsn_tile_cell_is_mine(cell_index)) continue;
+                    uint cell_x = dsn_span_cell(span_x, j, shift);
+                    uvec2 in_x = dsn_lattice_cell_on_axis(span_x, cell_x, shift);
+                    uint key = dsn_cell_key_in_row(cell_x, dsn_row_key(cell_y));
+                    uint count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
+                    for (uint k = 0u; k < count; k++) {
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        uint offset_x = (field & half_mask) >> drop,
+                             offset_y = ((field >> half_bits) & half_mask) >> drop;
+                        if (offset_x > in_x.y || offset_y > in_y.y) continue;
+                        /* within the texton at some point of the window: column in [1 - size.x, width) */
+                        uint column = in_x.x - offset_x, row = in_y.x - offset_y;
+                        if (column + size.x - 1u < width + size.x - 1u &&
+                            row + size.y - 1u < height + size.y - 1u)
+                            dsn_tile_add(uvec4(column, row, 0u, 0u));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* Q16.16 values at lattice point p of the listed window: dsn_lattice_point_fixed's bits. */
+ivec3 dsn_lattice_tile_point_fixed(ivec2 origin, uvec2 size, ivec2 p) {
+    uint i = uint(p.x) - uint(origin.x), j = uint(p.y) - uint(origin.y);
+    bool listed = i < size.x && j < size.y && dsn_tile_count <= DSN_TILE_CAPACITY &&
+                  !dsn_lattice_tile_breaks(origin, size);
+    uint count = listed ? dsn_tile_count : 0u;
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    uint width = dsn_word(DSN_WORD_LATTICE_WIDTH), height = dsn_word(DSN_WORD_LATTICE_HEIGHT);
+    uvec3 sums = uvec3(0u);
+    for (uint e = 0u; e < count; e++) {
+        uint column = dsn_tile_list[e].x + i, row = dsn_tile_list[e].y + j;
+        if (column < width && row < height) sums += dsn_lattice_texton_entry(row * width + column, channels);
+    }
+    /* the fallback after the loop (see dsn_continuous_tile_point_fixed) */
+    return listed ? dsn_normalize(sums) : dsn_lattice_point_fixed(p);
+}
+
+/* The most whole texels a continuous tile's box may span per axis (beyond, the points go on their own). */
+const uint DSN_TILE_MOST_EXTENT = 256u;
+
+/* The box of the grid points origin + i column_step + j row_step (Q32.32, (x low, x high, y low,
+   y high)) for the pixels first + [0, size): its low corner and its extent in whole texels (the points'
+   integer parts lie within [low, low + extent]); extent 0xFFFFFFFF where the box is too large. */
+void dsn_grid_tile_box(uvec4 origin, uvec4 column_step, uvec4 row_step, uvec2 first, uvec2 size,
+                       out uvec2 low_x, out uvec2 low_y, out uvec2 extent) {
+    uvec2 corner[2], low[2];
+    for (uint axis = 0u; axis < 2u; axis++) {
+        uvec2 along_row = axis == 0u ? column_step.xy : column_step.zw;
+        uvec2 along_column = axis == 0u ? row_step.xy : row_step.zw;
+        corner[axis] = dsn_add64(axis == 0u ? origin.xy : origin.zw,
+                                 dsn_add64(dsn_multiply64(uvec2(first.x, 0u), along_row),
+                                           dsn_multiply64(uvec2(first.y, 0u), along_column)));
+        uvec2 a = dsn_multiply64(uvec2(size.x - 1u, 0u), along_row);
+        uvec2 b = dsn_multiply64(uvec2(size.y - 1u, 0u), along_column);
+        /* the steps' spans, each under 2^24 texels in magnitude, so that low and high stay in order */
+        bool small = dsn_at_most64(dsn_magnitude64(a), uvec2(0u, 0x1000000u)) &&
+                     dsn_at_most64(dsn_magnitude64(b), uvec2(0u, 0x1000000u));
+        uvec2 below = dsn_add64(int(a.y) < 0 ? a : uvec2(0u), int(b.y) < 0 ? b : uvec2(0u));
+        uvec2 above = dsn_add64(int(a.y) < 0 ? uvec2(0u) : a, int(b.y) < 0 ? uvec2(0u) : b);
+        low[axis] = dsn_add64(corner[axis], below);
+        uvec2 high = dsn_add64(corner[axis], above);
+        uint whole = high.y - low[axis].y;
+        extent[axis] = small && whole <= DSN_TILE_MOST_EXTENT ? whole : 0xFFFFFFFFu;
+    }
+    low_x = low[0];
+    low_y = low[1];
+}
+
+bool dsn_continuous_tile_breaks(uvec2 low_x, uvec2 low_y, uvec2 extent) {
+    return extent.x > DSN_TILE_MOST_EXTENT || extent.y > DSN_TILE_MOST_EXTENT ||
+           dsn_tile_breaks(low_x.y - 1u, extent.x + 3u, dsn_word(DSN_WORD_PERIOD)) ||
+           dsn_tile_breaks(low_y.y - 1u, extent.y + 3u, dsn_word(DSN_WORD_PERIOD + 1u));
+}
+
+/* Lists the impulses that may reach a continuous point whose integer parts lie within [low, low +
+   extent] per axis: each as its offset from the texel low (Q32.32 per axis, (x, y)), its point-to-impulse
+   offset being the point's offset from that texel plus this one (the per-point walk's windows of three
+   texels, [floor - 1, floor + 1] plus the radius, lie within the box's, [floor(low) - 1, floor(low) +
+   extent + 1] plus the radius). */
+void dsn_continuous_tile_list(uvec2 low_x, uvec2 low_y, uvec2 extent) {
+    if (dsn_word(DSN_WORD_CONTINUOUS) == 0u || dsn_continuous_tile_breaks(low_x, low_y, extent)) return;
+    uint shift = dsn_word(DSN_WORD_CELL_SHIFT);
+    dsn_axis px = dsn_axis_init(low_x.y - 1u, extent.x + 3u, dsn_word(DSN_WORD_RADIUS), shift,
+                                dsn_word(DSN_WORD_PERIOD));
+    dsn_axis py = dsn_axis_init(low_y.y - 1u, extent.y + 3u, dsn_word(DSN_WORD_RADIUS + 1u), shift,
+                                dsn_word(DSN_WORD_PERIOD + 1u));
+    uint field_shift = dsn_field_shift(shift), per_pair_shift = 6u - field_shift;
+    uint half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u, drop = half_bits - shift;
+    uint diameter_x = 2u * px.radius + 2u + extent.x, diameter_y = 2u * py.radius + 2u + extent.y;
+    uint cell_index = 0u;
+    for (uint sy = 0u; sy < py.span_count; sy++) {
+        dsn_span span_y = dsn_axis_span(py, sy);
+        for (uint j = 0u; j < span_y.cell_count; j++) {
+            uint cell_y = dsn_span_cell(span_y, j, shift);
+            /* as the point's walk's, for the farthest point of the box */
+            uint reach_y = 1u + span_y.base - (cell_y << shift) + 1u + extent.y;
+            for (uint sx = 0u; sx < px.span_count; sx++) {
+                dsn_span span_x = dsn_axis_span(px, sx);
+                for (uint i = 0u; i < span_x.cell_count; i++, cell_index++) {
+                    if (!dsn_tile_cell_is_mine(cell_index)) continue;
+                    uint cell_x = dsn_span_cell(span_x, i, shift),
+                         reach_x = 1u + span_x.base - (cell_x << shift) + 1u + extent.x;
+                    uint key = dsn_cell_key_in_row(cell_x, dsn_row_key(cell_y));
+                    uint count = dsn_cell_impulse_count(key);
+                    uvec2 pair = uvec2(0u);
+                    for (uint k = 0u; k < count; k++) {
+                        if ((k & ((1u << per_pair_shift) - 1u)) == 0u)
+                            pair = dsn_position_pair(key, k >> per_pair_shift);
+                        uint field = dsn_field_in_pair(pair, k, field_shift);
+                        if (reach_x - ((field & half_mask) >> drop) > diameter_x ||
+                            reach_y - (((field >> half_bits) & half_mask) >> drop) > diameter_y)
+                            continue;
+                        uint hash =
+                            dsn_impulse_position(field, dsn_cell_stream(key, 0x80000000u + k), half_bits);
+                        if ((cell_x << shift) + ((hash & 0xFFFFu) >> (16u - shift)) > span_x.last_position ||
+                            (cell_y << shift) + ((hash >> 16u) >> (16u - shift)) > span_y.last_position)
+                            continue;
+                        /* texel low - impulse: (1 + span base - radius - cell origin) texels less the in-cell
+                           position, as dsn_impulse_bracket's offset for a point at low */
+                        uint whole_x = 1u + span_x.base - px.radius - (cell_x << shift);
+                        uint whole_y = 1u + span_y.base - py.radius - (cell_y << shift);
+                        uvec2 offset_x = dsn_sub64(uvec2(0u, whole_x),
+                                                   dsn_shift_left64(uvec2(hash & 0xFFFFu, 0u), 16u + shift));
+                        uvec2 offset_y = dsn_sub64(uvec2(0u, whole_y),
+                                                   dsn_shift_left64(uvec2(hash >> 16u, 0u), 16u + shift));
+                        dsn_tile_add(uvec4(offset_x, offset_y));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* One axis of a listed impulse seen from the point `coordinate` (its texel `low` the box's): false out of
+   reach; else the lower texel's index and the upper one's weight, as dsn_impulse_bracket gives them. */
+bool dsn_tile_bracket(uvec2 offset, uvec2 coordinate, uint low, uint radius, out uint lower_index,
+                      out uint upper_weight) {
+    uvec2 shifted = dsn_add64(offset, uvec2(coordinate.x, coordinate.y - low + radius + 1u));
+    int high = int(shifted.y);
+    lower_index = shifted.y - 1u;
+    upper_weight = (shifted.x >> 16u) & 0xFFFFu;
+    return high > 0 ? high < int(2u * radius + 2u) : high == 0 && shifted.x != 0u;
+}
+
+/* Q16.16 values at the continuous point (x, y) of the listed box: dsn_continuous_point_fixed's bits. */
+ivec3 dsn_continuous_tile_point_fixed(uvec2 low_x, uvec2 low_y, uvec2 extent, uvec2 x, uvec2 y) {
+    bool listed = dsn_word(DSN_WORD_CONTINUOUS) != 0u && x.y - low_x.y <= extent.x &&
+                  y.y - low_y.y <= extent.y && dsn_tile_count <= DSN_TILE_CAPACITY &&
+                  !dsn_continuous_tile_breaks(low_x, low_y, extent);
+    uint count = listed ? dsn_tile_count : 0u;
+    uint channels = dsn_word(DSN_WORD_CHANNELS);
+    uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
+    uint radius_x = dsn_word(DSN_WORD_RADIUS), radius_y = dsn_word(DSN_WORD_RADIUS + 1u);
+    uvec2 sum_x = uvec2(0u), sum_y = uvec2(0u), sum_z = uvec2(0u); /* the channels' */
+    for (uint e = 0u; e < count; e++) {
+        uvec4 entry = dsn_tile_list[e];
+        uint row, row_weight, column, column_weight;
+        if (!dsn_tile_bracket(entry.zw, y, low_y.y, radius_y, row, row_weight) ||
+            !dsn_tile_bracket(entry.xy, x, low_x.y, radius_x, column, column_weight))
+            continue;
+        ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight), int(65536u - row_weight),
+                              int(row_weight));
+        /* the 2 x 2 texels of every channel (each read once, unrolled: a loop over the channels indexing
+           the sums runs several times slower on some compilers) */
+        ivec3 above_left = dsn_texels(row, column, width, height, channels);
+        ivec3 above_right = dsn_texels(row, column + 1u, width, height, channels);
+        ivec3 below_left = dsn_texels(row + 1u, column, width, height, channels);
+        ivec3 below_right = dsn_texels(row + 1u, column + 1u, width, height, channels);
+        sum_x = dsn_add64(sum_x, dsn_bilinear(ivec4(above_left.x, above_right.x, below_left.x, below_right.x),
+                                              weights));
+        if (channels != 3u) continue;
+        sum_y = dsn_add64(sum_y, dsn_bilinear(ivec4(above_left.y, above_right.y, below_left.y, below_right.y),
+                                              weights));
+        sum_z = dsn_add64(sum_z, dsn_bilinear(ivec4(above_left.z, above_right.z, below_left.z, below_right.z),
+                                              weights));
+    }
+    uvec2 sums[3];
+    sums[0] = sum_x;
+    sums[1] = sum_y;
+    sums[2] = sum_z;
+    /* The fallback after the loop: an early return before it costs llvmpipe the loop's speed (3x). */
+    return listed ? dsn_normalize_q32(sums, true) : dsn_continuous_point_fixed(x, y);
+}
+
+#endif
+#endif /* DSN_GLSL_TILES */
 
 /* ---- Mixing (dsn.h, "Mixing"): the words of dsn_gpu_mix_pack (dsn/gpu.h) ---- */
 
@@ -1009,8 +1285,6 @@ const int DSN_FRAME_ONE = 0x40000000;      /* 1.0 in a frame's Q2.30 */
 
 /* Signed 64-bit helpers (two's complement uvec2). */
 uvec2 dsn_from_int(int value) { return uvec2(uint(value), value < 0 ? 0xFFFFFFFFu : 0u); }
-uvec2 dsn_magnitude64(uvec2 value) { return int(value.y) < 0 ? dsn_sub64(uvec2(0u), value) : value; }
-bool dsn_at_most64(uvec2 a, uvec2 b) { return a.y < b.y || (a.y == b.y && a.x <= b.x); } /* unsigned */
 
 /* value / 2^n rounded toward minus infinity, n in 1 .. 31. */
 uvec2 dsn_floor_shift64(uvec2 value, uint n) {

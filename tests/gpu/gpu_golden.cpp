@@ -9,7 +9,9 @@
 // The golden program asks for one value at a time and hashes it at once; a GPU wants batches. So it runs
 // twice: the first run records every request (answering zeros, printing nothing; nothing it does depends
 // on the values), the requests then go to the GPU in one batch per configured noise (tiles and grids as
-// their own dispatch or draw, each invocation computing its point from the tile's origin and steps), and
+// their own dispatch or draw, each invocation computing its point from the tile's origin and steps; on
+// the compute APIs a noise's tiles and grids of values go through dsn.glsl's workgroup tiles, 8 x 8
+// pixels a workgroup, so the golden proves them against the C runtime too), and
 // the second run replays them in the same order with the GPU's answers, checking that each request is
 // the one recorded. The configuration (dsn_asset_load, dsn_noise_init) stays on the CPU: dsn_gpu_pack
 // copies the configured noise into the words the shader reads.
@@ -807,6 +809,55 @@ std::string compute_shader(const headless_gl::Context &context, bool limbs) {
            "}\n";
 }
 
+/* The compute APIs' lattice tiles and continuous grids (values alone, of a noise): dsn.glsl's workgroup
+   tiles, 8 x 8 pixels a workgroup, each workgroup listing the impulses that reach its pixels once. */
+const uint32_t tile_side = 8;
+
+std::string tile_shader(const headless_gl::Context &context, bool limbs) {
+    return context.shader_preamble() + golden_defines(limbs) + "#define DSN_GLSL_TILES 1\n" +
+           "layout(local_size_x = " + std::to_string(tile_side) +
+           ", local_size_y = " + std::to_string(tile_side) +
+           ") in;\n"
+           "layout(std430, binding = 0) readonly buffer NoiseWords { uint noise_words[]; };\n"
+           "layout(std430, binding = 2) writeonly buffer Results { uvec4 results[]; };\n"
+           "uniform uint task_height;\n"
+           "uvec4 golden_query(uint index, uint part) { return uvec4(0u); }\n" +
+           dsn_glsl + "uint dsn_word(uint index) { return noise_words[dsn_word_base + index]; }\n" +
+           kernel_glsl +
+           "void main() {\n"
+           "    uvec2 pixel = gl_GlobalInvocationID.xy, first = gl_WorkGroupID.xy * gl_WorkGroupSize.xy;\n"
+           "    uvec2 size = min(gl_WorkGroupSize.xy, uvec2(task_width, task_height) - first);\n"
+           "    ivec2 origin = ivec2(uvec2(task_origin.x, task_origin.z) + first);\n"
+           "    ivec2 p = ivec2(uvec2(task_origin.x, task_origin.z) + pixel);\n"
+           "    uvec2 low_x, low_y, extent;\n"
+           "    dsn_grid_tile_box(task_origin, task_column_step, task_row_step, first, size, low_x, low_y, "
+           "extent);\n"
+           "    dsn_tile_begin();\n"
+           "    barrier();\n"
+           "    if (task_kind == 1u)\n"
+           "        dsn_lattice_tile_list(origin, size);\n"
+           "    else\n"
+           "        dsn_continuous_tile_list(low_x, low_y, extent);\n"
+           "    barrier();\n"
+           "    uvec2 x = dsn_add64(task_origin.xy, dsn_add64(dsn_multiply64(uvec2(pixel.x, 0u), "
+           "task_column_step.xy),\n"
+           "                                                 dsn_multiply64(uvec2(pixel.y, 0u), "
+           "task_row_step.xy)));\n"
+           "    uvec2 y = dsn_add64(task_origin.zw, dsn_add64(dsn_multiply64(uvec2(pixel.x, 0u), "
+           "task_column_step.zw),\n"
+           "                                                 dsn_multiply64(uvec2(pixel.y, 0u), "
+           "task_row_step.zw)));\n"
+           "    ivec3 value = task_kind == 1u ? dsn_lattice_tile_point_fixed(origin, size, p)\n"
+           "                                  : dsn_continuous_tile_point_fixed(low_x, low_y, extent, x, "
+           "y);\n"
+           "    if (pixel.x >= task_width || pixel.y >= task_height) return;\n"
+           "    uint index = pixel.y * task_width + pixel.x;\n"
+           "    results[3u * index] = golden_convert(value, task_output);\n"
+           "    results[3u * index + 1u] = uvec4(0u);\n"
+           "    results[3u * index + 2u] = uvec4(0u);\n"
+           "}\n";
+}
+
 /* GLSL ES 3.00 (fragment): noise and queries in integer textures, one fragment per value, the value and
    the two derivatives in three RGBA32UI targets. */
 const char *const fullscreen_vertex_shader = "#version 300 es\n"
@@ -847,6 +898,7 @@ class Runner {
             gl_.glGenVertexArrays(1, &vertex_array_);
         } else {
             program_ = context.compute_program(compute_shader(context, limbs));
+            tile_program_ = context.compute_program(tile_shader(context, limbs));
         }
         gl_.glUseProgram(program_);
         context.check("program");
@@ -855,6 +907,7 @@ class Runner {
         release_noise();
         if (vertex_array_) gl_.glDeleteVertexArrays(1, &vertex_array_);
         gl_.glDeleteProgram(program_);
+        if (tile_program_) gl_.glDeleteProgram(tile_program_);
     }
 
     void set_noise(const std::vector<uint32_t> &words) {
@@ -867,7 +920,9 @@ class Runner {
 
     /* result_words per value. */
     std::vector<uint32_t> run(const Task &task, const std::vector<uint32_t> &queries) {
-        gl_.glUseProgram(program_);
+        const bool tiled = tile_program_ != 0 && task.kind != task_queries && !task.gradient && !task.mix;
+        current_ = tiled ? tile_program_ : program_;
+        gl_.glUseProgram(current_);
         gl_.glUniform1ui(location("task_kind"), task.kind);
         gl_.glUniform1ui(location("task_output"), task.conversion);
         gl_.glUniform1ui(location("task_gradient"), task.gradient);
@@ -883,12 +938,12 @@ class Runner {
         if (context_.api() == Api::gles30)
             render(task, queries, result);
         else
-            dispatch(task, queries, result);
+            dispatch(task, queries, result, tiled);
         return result;
     }
 
   private:
-    GLint location(const char *name) { return gl_.glGetUniformLocation(program_, name); }
+    GLint location(const char *name) { return gl_.glGetUniformLocation(current_, name); }
 
     void release_noise() {
         if (!noise_) return;
@@ -899,15 +954,23 @@ class Runner {
         noise_ = 0;
     }
 
-    void dispatch(const Task &task, const std::vector<uint32_t> &queries, std::vector<uint32_t> &result) {
+    void dispatch(const Task &task, const std::vector<uint32_t> &queries, std::vector<uint32_t> &result,
+                  bool tiled) {
         GLuint query_buffer = context_.storage_buffer(queries.empty() ? no_words : queries.data(),
                                                       queries.empty() ? sizeof no_words : queries.size() * 4);
         GLuint result_buffer = context_.storage_buffer(nullptr, result.size() * 4);
         gl_.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, noise_);
         gl_.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, query_buffer);
         gl_.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, result_buffer);
-        gl_.glUniform1ui(location("task_count"), task.count);
-        gl_.glDispatchCompute((task.count + 63) / 64, 1, 1);
+        if (tiled) {
+            const uint32_t height = task.count / task.width;
+            gl_.glUniform1ui(location("task_height"), height);
+            gl_.glDispatchCompute((task.width + tile_side - 1) / tile_side,
+                                  (height + tile_side - 1) / tile_side, 1);
+        } else {
+            gl_.glUniform1ui(location("task_count"), task.count);
+            gl_.glDispatchCompute((task.count + 63) / 64, 1, 1);
+        }
         gl_.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         context_.check("dispatch");
         context_.read_buffer(result_buffer, result.data(), result.size() * 4);
@@ -967,7 +1030,7 @@ class Runner {
 
     headless_gl::Context &context_;
     const headless_gl::Functions &gl_;
-    GLuint program_ = 0, vertex_array_ = 0, noise_ = 0;
+    GLuint program_ = 0, tile_program_ = 0, current_ = 0, vertex_array_ = 0, noise_ = 0;
 };
 
 /* Every request of each noise: its queries in one batch, each tile or grid on its own. */
@@ -1085,6 +1148,7 @@ int main(int argc, char **argv) {
                 } else {
                     write_file(name + ".comp", compute_shader(context, false));
                     write_file(name + "-limbs.comp", compute_shader(context, true));
+                    write_file(name + "-tiles.comp", tile_shader(context, false));
                 }
             }
             return 0;
