@@ -207,11 +207,14 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
     for (int c = 0; c < 3; c++) CHECK(point[c] == dsn_fixed_to_float(fixed_point[c]));
 }
 
-TEST_CASE("mix: lattice tiles where the weights mix are their points: runs of every length, periods, the "
-          "int32 sign change") {
-    // A mixed lattice tile is summed in runs of up to 32 points per row, each impulse splatted over the
-    // points of the run it reaches; a period that does not divide 2^32 breaks the run at the sign change.
-    // Three materials of three sizes (grey and RGB, 8 and 16 bits), weights changing every 2 texels.
+TEST_CASE("mix: lattice tiles where the weights mix are their points: runs of every length, bands of every "
+          "height, periods, the int32 sign change") {
+    // Without scratch a mixed lattice tile is summed in runs of up to 32 points per row, each impulse
+    // splatted over the points of the run it reaches; a period that does not divide 2^32 breaks the run at
+    // the sign change. With scratch it goes in bands of as many rows as the scratch holds (each impulse
+    // splatted over the band), but across such a sign change. Three materials of three sizes (grey and
+    // RGB, 8 and 16 bits), weights changing every 2 texels; scratch of every size that changes the bands,
+    // and misaligned.
     auto a = make_noise(random_texton_asset(3, 4, 8, 41), 11, 0, 13, 0);
     auto b = make_noise(random_texton_asset(1, 9, 16, 42), 12);
     auto c = make_noise(random_texton_asset(3, 2, 8, 43), 13);
@@ -236,23 +239,33 @@ TEST_CASE("mix: lattice tiles where the weights mix are their points: runs of ev
     for (const auto &window : windows) {
         CAPTURE(window.x0);
         CAPTURE(window.width);
-        std::vector<int32_t> tile(size_t(window.width) * window.height * 3);
-        std::vector<uint8_t> bytes(tile.size());
-        REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &varying.control, window.x0, window.y0, window.width,
-                                           window.height, tile.data(), nullptr, 0) == DSN_OK);
-        REQUIRE(dsn_mix_lattice_tile_u8(&mix, &varying.control, window.x0, window.y0, window.width,
-                                        window.height, bytes.data(), nullptr, 0) == DSN_OK);
+        std::vector<int32_t> expected(size_t(window.width) * window.height * 3);
         for (uint32_t j = 0; j < window.height; j++)
-            for (uint32_t i = 0; i < window.width; i++, points++) {
-                int32_t point[3];
+            for (uint32_t i = 0; i < window.width; i++, points++)
                 REQUIRE(dsn_mix_lattice_point_fixed(&mix, &varying.control, int32_t(uint32_t(window.x0) + i),
-                                                    int32_t(uint32_t(window.y0) + j), point) == DSN_OK);
-                for (int channel = 0; channel < 3; channel++) {
-                    const size_t at = (size_t(j) * window.width + i) * 3 + size_t(channel);
-                    differences += tile[at] != point[channel];
-                    differences += bytes[at] != dsn_fixed_to_u8(point[channel]);
+                                                    int32_t(uint32_t(window.y0) + j),
+                                                    &expected[(size_t(j) * window.width + i) * 3]) == DSN_OK);
+        // A band row holds 7 values a point (3 + 1 + 3 channels), 4 bytes each.
+        const size_t row_bytes = size_t(window.width) * 7 * 4;
+        const size_t full = dsn_mix_lattice_tile_scratch_size(&mix, window.width, window.height);
+        CHECK(full >= row_bytes * window.height);
+        std::vector<unsigned char> scratch(full + 1);
+        for (const size_t size : {size_t(0), row_bytes - 1, row_bytes, 2 * row_bytes + 3, full}) {
+            CAPTURE(size);
+            for (const size_t misaligned : {size_t(0), size_t(1)}) {
+                unsigned char *start = scratch.data() + misaligned;
+                std::vector<int32_t> tile(expected.size());
+                std::vector<uint8_t> bytes(expected.size());
+                REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &varying.control, window.x0, window.y0, window.width,
+                                                   window.height, tile.data(), start, size) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_u8(&mix, &varying.control, window.x0, window.y0, window.width,
+                                                window.height, bytes.data(), start, size) == DSN_OK);
+                for (size_t at = 0; at < expected.size(); at++) {
+                    differences += tile[at] != expected[at];
+                    differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
                 }
             }
+        }
     }
     CHECK(points == 83 * 3 + 7 * 4 + 33 * 2 + 5 + 64 + 65);
     CHECK(differences == 0);

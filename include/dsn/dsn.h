@@ -819,10 +819,12 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    strips): the mix then costs what one material costs, plus the check of the samples. Elsewhere one walk
    over the cells within the largest reach, in scalar code: each impulse within it reads its weights (four
    samples per material, once per point where the samples around it agree), a hash, and one texton. Tiles
-   and batches walk their points in groups: a lattice tile's rows in runs of up to 32 points (each impulse
-   found once per run, its texton row added to the points it reaches), a continuous tile's rows and a
-   batch's neighbours in groups of up to 16 points within 32 texels of each other (each impulse found
-   once per group, read at the points it reaches); other points go one by one. make bench's mix_bench
+   and batches walk their points in groups: a lattice tile in bands of up to 32 rows when `scratch` holds
+   dsn_mix_lattice_tile_scratch_size() bytes (each impulse found once per band, its texton added to the
+   points it reaches; less scratch, fewer rows a band), else its rows in runs of up to 32 points (each
+   impulse found once per run); a continuous tile's rows and a batch's neighbours in groups of up to 16
+   points within 32 texels of each other (each impulse found once per group, read at the points it
+   reaches); other points go one by one. make bench's mix_bench
    reports both against one material, and the stack it paints: a point call under 1.5 KB (a filtered
    mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB. Gradients have no mix yet;
    the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and
@@ -890,8 +892,10 @@ int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *contr
    DSN_TILE_MAX_SIDE, else DSN_ERR_TILE_SIZE with the output untouched), each pixel exactly the point
    function's, with the point functions' other errors (the whole output zeroed). A tile whose reach has
    one material's weights alone is that material's tile, splatted or by strips as the noise's own, when
-   `scratch` holds dsn_mix_*_tile_scratch_size() bytes (the largest of the materials' scratch sizes, 0 for
-   an invalid mix); other tiles, or with too little scratch (null, 0 is fine), go point by point. */
+   `scratch` holds dsn_mix_*_tile_scratch_size() bytes (the largest of the materials' scratch sizes and,
+   for a lattice tile, of the sums of a band of up to 32 rows: 4 bytes per channel of every material per
+   point; 0 for an invalid mix or size); other tiles go by bands or groups of points (see "Cost" above),
+   with too little scratch (null, 0 is fine) by runs or point by point. Any scratch gives the same bits. */
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *mix, uint32_t width, uint32_t height);
 size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t width,
                                             uint32_t height);

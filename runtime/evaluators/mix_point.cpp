@@ -2,7 +2,8 @@
    of material 0's process within the largest reach, each impulse picking its material from the weights
    at its position (mix_weights.h) and adding that material's texton to the material's sums; then each
    material's sums normalized with the point's weight on its mean, and summed. Lattice and continuous,
-   per point; tiles point by point. */
+   per point; tiles and batches by groups of points (a lattice tile by bands of rows or runs of a row,
+   continuous points near each other together). */
 #include "core/bilinear_texton.h"
 #include "core/cell_walk.h"
 #include "core/continuous_internal.h"
@@ -185,15 +186,16 @@ bool lattice_axis(const axis_cell &on_axis, uint32_t span, const FieldLanes &lan
 const uint32_t run_points = 32;
 static_assert(DSN_MIX_MAX_MATERIALS == 4, "the runs' sums are listed for four materials");
 
-/* The region of grid samples that the impulses reaching a run may read: their floors lie within the
-   lattice reach of it. */
-MixRegion run_region(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t length,
-                     uint32_t y) {
+/* The region of grid samples that the impulses reaching a window of `rows` rows of `length` points may
+   read: their floors lie within the lattice reach of it. */
+MixRegion window_region(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0,
+                        uint32_t length, uint32_t y0, uint32_t rows) {
     const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
+    const uint32_t longest = length > rows ? length : rows;
     return mix_region(control, mix->count, static_cast<uint64_t>(x0 - reach_x) << 32,
-                      static_cast<uint64_t>(y - reach_y) << 32,
+                      static_cast<uint64_t>(y0 - reach_y) << 32,
                       static_cast<uint64_t>(x0 + length - 1u + reach_x) << 32,
-                      static_cast<uint64_t>(y + reach_y) << 32, 16u + length - 1u);
+                      static_cast<uint64_t>(y0 + rows - 1u + reach_y) << 32, 16u + longest - 1u);
 }
 
 /* sums[v] += values first .. first + count - 1 of a lattice texton (8- or 16-bit, channels interleaved):
@@ -206,61 +208,72 @@ inline void add_texton_values(const dsn_asset *asset, const dsn_texton_window *t
         for (uint32_t v = 0; v < count; v++) sums[v] += texton_value<16>(texton->values, first + v);
 }
 
-/* The lattice sums of every material at the `length` points of a run from (x0, y): point i's sums of
-   material m at sums[m][i * channels + c], that material's channels apart:
-   lattice_impulses.h's walk with the mix's reach over the run, each position pair hashed once and its
-   impulses tested at once on their fields (exactly, lattice_axis), each impulse that reaches the run
-   adding its material's lattice texton entries to the points it reaches (dsn_reach_at). A point is a run
-   of one. */
-void lattice_run_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                      uint32_t x0, uint32_t length, uint32_t y, uint32_t *const *sums) {
+/* The lattice sums of every material over a window of `rows` rows of `length` points from (x0, y0): point
+   i of row j's sums of material m at sums[m][(j length + i) channels + c], that material's channels
+   apart: lattice_impulses.h's walk with the mix's reach over the window, each position pair hashed once
+   and its impulses tested at once on their fields (exactly, lattice_axis), each impulse that reaches the
+   window adding its material's lattice texton rows and columns to the points it reaches (dsn_reach_at
+   per axis). A run of a row is a window of one row, a point a run of one. */
+void lattice_window_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                         uint32_t x0, uint32_t length, uint32_t y0, uint32_t rows, uint32_t *const *sums) {
     const dsn_noise_state *lead = &mix->material[0];
     const uint32_t shift = lead->cell_shift, reach_x = mix->lattice_radius[0],
-                   reach_y = mix->lattice_radius[1], last = length - 1u;
+                   reach_y = mix->lattice_radius[1], last = length - 1u, last_row = rows - 1u;
     const FieldLanes lanes = field_lanes(shift);
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, drop = lanes.half_bits - shift;
     dsn_texton_window textons[DSN_MIX_MAX_MATERIALS];
     for (uint32_t m = 0; m < mix->count; m++) textons[m] = dsn_lattice_texton_window(&mix->material[m]);
     dsn_axis ax, ay;
     dsn_axis_init(&ax, x0, length, reach_x, shift, lead->period[0]);
-    dsn_axis_init(&ay, y, 1u, reach_y, shift, lead->period[1]);
+    dsn_axis_init(&ay, y0, rows, reach_y, shift, lead->period[1]);
     for (uint32_t sy = 0; sy < ay.span_count; sy++) {
         const dsn_span span_y = dsn_axis_span(&ay, sy);
         for (uint32_t sx = 0; sx < ax.span_count; sx++) {
             const dsn_span span_x = dsn_axis_span(&ax, sx);
             for (uint32_t j = 0; j < span_y.cell_count; j++) {
                 const uint32_t cell_y = dsn_span_cell(&span_y, j, shift);
-                const axis_cell on_y = cell_on_axis(&span_y, cell_y, shift);
+                axis_cell on_y = cell_on_axis(&span_y, cell_y, shift);
+                on_y.reach += last_row; /* the index at the window's last row */
                 CellAxis lanes_y;
-                if (!lattice_axis(on_y, 2u * reach_y, lanes, drop, &lanes_y)) continue;
+                if (!lattice_axis(on_y, 2u * reach_y + last_row, lanes, drop, &lanes_y)) continue;
                 const uint32_t row_key = dsn_row_key(lead, cell_y);
                 for (uint32_t i = 0; i < span_x.cell_count; i++) {
                     const uint32_t cell_x = dsn_span_cell(&span_x, i, shift);
                     axis_cell on_x = cell_on_axis(&span_x, cell_x, shift);
-                    on_x.reach += last; /* the index at the run's last point */
+                    on_x.reach += last; /* the index at the window's last point */
                     CellAxis lanes_x;
                     if (!lattice_axis(on_x, 2u * reach_x + last, lanes, drop, &lanes_x)) continue;
                     const uint32_t key = dsn_cell_key_in_row(lead, cell_x, row_key);
                     const uint32_t count = dsn_cell_impulse_count(lead, key);
                     visit_candidates(key, count, lanes, lanes_x, lanes_y, [&](uint32_t k, uint32_t field) {
-                        /* texton indices in the walk's window of radius reach: the column at the last
-                           point, 0 .. 2 reach + last, and the row, 0 .. 2 reach */
+                        /* texton indices in the walk's window of radius reach at the window's last
+                           column and row: 0 .. 2 reach + last, 0 .. 2 reach + last_row */
                         const uint32_t end = on_x.reach - ((field & half_mask) >> drop);
-                        const uint32_t row = on_y.reach - (((field >> lanes.half_bits) & half_mask) >> drop);
-                        /* the impulse as seen from the run: its last point + reach - end */
+                        const uint32_t end_row =
+                            on_y.reach - (((field >> lanes.half_bits) & half_mask) >> drop);
+                        /* the impulse as seen from the window: its last point + reach - end */
                         const uint64_t at_x = static_cast<uint64_t>(x0 + last + reach_x - end) << 32;
-                        const uint64_t at_y = static_cast<uint64_t>(y + reach_y - row) << 32;
+                        const uint64_t at_y = static_cast<uint64_t>(y0 + last_row + reach_y - end_row) << 32;
                         const uint32_t m = impulse_material(control, mix->count, region, key, k, at_x, at_y);
                         const dsn_texton_window *texton = &textons[m];
                         const uint32_t own_end = end - reach_x + texton->radius[0];
-                        const uint32_t own_row = row - reach_y + texton->radius[1];
-                        if (own_end > last + texton->width - 1u || own_row >= texton->height) return;
-                        dsn_reach reach;
+                        const uint32_t own_end_row = end_row - reach_y + texton->radius[1];
+                        if (own_end > last + texton->width - 1u ||
+                            own_end_row > last_row + texton->height - 1u)
+                            return;
+                        dsn_reach reach, reach_rows;
                         dsn_reach_at(own_end, length, texton->width, &reach);
+                        dsn_reach_at(own_end_row, rows, texton->height, &reach_rows);
                         const dsn_asset *asset = &mix->material[m].asset;
-                        add_texton_values(
-                            asset, texton, (own_row * texton->width + reach.first_texton) * asset->channels,
-                            reach.count * asset->channels, sums[m] + reach.first_index * asset->channels);
+                        for (uint32_t r = 0; r < reach_rows.count; r++) {
+                            const uint32_t texton_row = reach_rows.first_texton + r;
+                            const uint32_t window_row = reach_rows.first_index + r;
+                            add_texton_values(
+                                asset, texton,
+                                (texton_row * texton->width + reach.first_texton) * asset->channels,
+                                reach.count * asset->channels,
+                                sums[m] + (window_row * length + reach.first_index) * asset->channels);
+                        }
                     });
                 }
             }
@@ -280,22 +293,35 @@ void normalize_material(const dsn_noise_state *material, const int64_t *offset, 
     dsn_normalize_from(material, offset, sums, out);
 }
 
+typedef int64_t MixOffsets[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
+
+/* Each material's offset weighted by its weight at a point. */
+void weighted_offsets(const dsn_mix_state *mix, const uint32_t *weights, MixOffsets offsets) {
+    for (uint32_t m = 0; m < mix->count; m++)
+        for (uint32_t c = 0; c < mix->material[m].asset.channels && c < DSN_MAX_CHANNELS; c++)
+            offsets[m][c] = weighted_offset(mix->material[m].offset[c], weights[m]);
+}
+
 /* Each material's sums normalized from its weighted offset, summed per channel (a grey material's value
    in every channel) and saturated. */
 template <typename Sum>
-void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*sums)[DSN_MAX_CHANNELS],
-                int32_t *out) {
+void mix_output_from(const dsn_mix_state *mix, const MixOffsets offsets, const Sum (*sums)[DSN_MAX_CHANNELS],
+                     int32_t *out) {
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t m = 0; m < mix->count; m++) {
-        const dsn_noise_state *material = &mix->material[m];
-        const uint32_t channels = material->asset.channels;
-        int64_t offset[DSN_MAX_CHANNELS];
         int32_t values[DSN_MAX_CHANNELS];
-        for (uint32_t c = 0; c < channels; c++) offset[c] = weighted_offset(material->offset[c], weights[m]);
-        normalize_material(material, offset, sums[m], values);
+        normalize_material(&mix->material[m], offsets[m], sums[m], values);
         add_material_value(mix, m, values, totals);
     }
     store_totals(mix, totals, out);
+}
+
+template <typename Sum>
+void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*sums)[DSN_MAX_CHANNELS],
+                int32_t *out) {
+    MixOffsets offsets;
+    weighted_offsets(mix, weights, offsets);
+    mix_output_from(mix, offsets, sums, out);
 }
 
 /* The mix's value at lattice point (x, y) from its materials' sums there. */
@@ -370,7 +396,7 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
 
 void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
                    int32_t *out) {
-    const MixRegion region = run_region(mix, control, x, 1u, y);
+    const MixRegion region = window_region(mix, control, x, 1u, y, 1u);
     if (region.single) {
         const dsn_noise_state *material = &mix->material[region.only];
         dsn_lattice_point_fixed(dsn_mix_material_noise(mix, region.only), static_cast<int32_t>(x),
@@ -380,8 +406,88 @@ void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uin
     }
     LatticeSums sums = {};
     uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {sums[0], sums[1], sums[2], sums[3]};
-    lattice_run_sums(mix, control, region, x, 1u, y, material_sums);
+    lattice_window_sums(mix, control, region, x, 1u, y, 1u, material_sums);
     lattice_output(mix, control, x, y, sums, out);
+}
+
+/* Point `point`'s sums of every material from a window's (lattice_window_sums's layout), zero past a
+   material's channels. (The loops' bounds keep GCC -O3 from warning of writes past sums.) */
+void point_sums(const dsn_mix_state *mix, const uint32_t *const *planes, size_t point, LatticeSums sums) {
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+            const uint32_t channels = m < mix->count ? mix->material[m].asset.channels : 0u;
+            sums[m][c] = c < channels ? planes[m][point * channels + c] : 0u;
+        }
+}
+
+/* The rows of a band that dsn_mix_lattice_tile_scratch_size asks for: walking the impulses that reach a
+   band costs (rows + 2 reach) / rows of walking them once (about 2 for 32 rows of a 31 x 31 texton, which
+   bench measures no slower than 64). */
+const uint32_t band_most_rows = 32;
+
+/* The bytes of one row of a band's sums: every material's (lattice_window_sums's layout). */
+size_t band_row_bytes(const dsn_mix_state *mix, uint32_t width) {
+    size_t values = 0;
+    for (uint32_t m = 0; m < mix->count; m++) values += mix->material[m].asset.channels;
+    return values * width * sizeof(uint32_t);
+}
+
+/* A lattice tile of a mix whose weights mix over its reach, in bands of as many rows as the scratch holds:
+   each band's sums of every material from one walk over the impulses that reach it (each found once,
+   its texton added to the points it reaches), then each point's output. False, writing nothing, where the
+   scratch holds no row, or where an axis with a period crosses the int32 sign change within the tile
+   (the reduction modulo the period breaks the coordinates' contiguity there): the runs then go. */
+bool lattice_tile_by_bands(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t y0,
+                           uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
+                           size_t scratch_size) {
+    const uint32_t until_x = 0x80000000u - x0, until_y = 0x80000000u - y0;
+    if ((mix->material[0].period[0] != 0 && until_x != 0 && until_x < width) ||
+        (mix->material[0].period[1] != 0 && until_y != 0 && until_y < height) || scratch == 0)
+        return false;
+    /* the sums 4-byte aligned (the caller's scratch need not be) */
+    const size_t misalignment = reinterpret_cast<uintptr_t>(scratch) % sizeof(uint32_t);
+    const size_t skip = misalignment ? sizeof(uint32_t) - misalignment : 0u;
+    const size_t row_bytes = band_row_bytes(mix, width);
+    const size_t fitting = scratch_size > skip ? (scratch_size - skip) / row_bytes : 0u;
+    if (fitting == 0) return false;
+    const size_t most = fitting < band_most_rows ? fitting : band_most_rows;
+    const uint32_t band_rows = most < height ? static_cast<uint32_t>(most) : height;
+    uint32_t *const first =
+        static_cast<uint32_t *>(static_cast<void *>(static_cast<unsigned char *>(scratch) + skip));
+    for (uint32_t j0 = 0; j0 < height; j0 += band_rows) {
+        const uint32_t rows = height - j0 < band_rows ? height - j0 : band_rows, y = y0 + j0;
+        uint32_t *planes[DSN_MIX_MAX_MATERIALS] = {first, first, first, first};
+        uint32_t *next = first;
+        for (uint32_t m = 0; m < mix->count; m++) {
+            const size_t values = static_cast<size_t>(rows) * width * mix->material[m].asset.channels;
+            planes[m] = next;
+            for (size_t v = 0; v < values; v++) next[v] = 0;
+            next += values;
+        }
+        const MixRegion region = window_region(mix, control, x0, width, y, rows);
+        lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
+        /* where the region is uniform, the weighted offsets of every point of the band */
+        MixOffsets uniform_offsets;
+        if (region.uniform) {
+            uint32_t weights[DSN_MIX_MAX_MATERIALS];
+            point_weights(region.weights, mix->count, weights);
+            weighted_offsets(mix, weights, uniform_offsets);
+        }
+        for (uint32_t j = 0; j < rows; j++)
+            for (uint32_t i = 0; i < width; i++) {
+                const size_t point = static_cast<size_t>(j) * width + i;
+                LatticeSums sums;
+                point_sums(mix, planes, point, sums);
+                int32_t value[DSN_MAX_CHANNELS];
+                if (region.uniform)
+                    mix_output_from(mix, uniform_offsets, sums, value);
+                else
+                    lattice_output(mix, control, x0 + i, y + j, sums, value);
+                dsn_store_pixel(out, kind, (static_cast<size_t>(j0 + j) * width + i) * mix->channels, value,
+                                mix->channels);
+            }
+    }
+    return true;
 }
 
 /* A lattice tile of a mix whose weights mix over its reach: row by row, in runs of up to run_points. */
@@ -396,14 +502,13 @@ void lattice_tile_by_runs(const dsn_mix_state *mix, const dsn_mix_control *contr
             uint32_t run_sums[DSN_MIX_MAX_MATERIALS][run_points * DSN_MAX_CHANNELS] = {};
             uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
                                                                     run_sums[3]};
-            lattice_run_sums(mix, control, run_region(mix, control, x, length, y), x, length, y,
-                             material_sums);
+            lattice_window_sums(mix, control, window_region(mix, control, x, length, y, 1u), x, length, y, 1u,
+                                material_sums);
             for (uint32_t p = 0; p < length; p++) {
-                LatticeSums sums = {};
-                for (uint32_t m = 0; m < mix->count; m++) {
-                    const uint32_t channels = mix->material[m].asset.channels;
-                    for (uint32_t c = 0; c < channels; c++) sums[m][c] = run_sums[m][p * channels + c];
-                }
+                LatticeSums sums;
+                const uint32_t *const planes[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
+                                                                       run_sums[3]};
+                point_sums(mix, planes, p, sums);
                 int32_t value[DSN_MAX_CHANNELS];
                 lattice_output(mix, control, x + p, y, sums, value);
                 dsn_store_pixel(out, kind, (static_cast<size_t>(j) * width + i + p) * mix->channels, value,
@@ -465,8 +570,10 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
                        : dsn_lattice_tile_u8(material, x0, y0, width, height, static_cast<uint8_t *>(out),
                                              scratch, scratch_size);
     }
-    lattice_tile_by_runs(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width, height,
-                         out, kind);
+    if (!lattice_tile_by_bands(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width,
+                               height, out, kind, scratch, scratch_size))
+        lattice_tile_by_runs(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width,
+                             height, out, kind);
     return DSN_OK;
 }
 
@@ -623,8 +730,10 @@ int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *co
 
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *handle, uint32_t width, uint32_t height) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    size_t most = 0;
-    if (!dsn_mix_configured(mix)) return 0;
+    if (!dsn_mix_configured(mix) || tile_size_check(width, height) != DSN_OK) return 0;
+    /* the sums of a whole band (and 3 bytes to align them) */
+    size_t most = band_row_bytes(mix, width) * (height < band_most_rows ? height : band_most_rows) +
+                  sizeof(uint32_t) - 1u;
     for (uint32_t m = 0; m < mix->count; m++) {
         const size_t size = dsn_lattice_tile_scratch_size(dsn_mix_material_noise(mix, m), width, height);
         most = size > most ? size : most;

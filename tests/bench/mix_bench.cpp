@@ -4,6 +4,7 @@
 // 50/50 mix, a transition (weights changing every 16 texels, so that most points read the weights per
 // impulse) and all weight on one material; and the filtered point at a level of detail of 1.6. RGB, 31 x 31
 // textons, 30 impacts per pixel, one thread. The target is 1.3x for a mix of two.
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <vector>
@@ -43,7 +44,11 @@ int main() {
     const dsn_grid grid = {one / 3, one / 7, step_x, step_y, -step_y, step_x};
     const int rounds = 7;
     std::vector<int32_t> out(static_cast<size_t>(points) * 3);
-    std::vector<unsigned char> scratch(64 * 1024);
+    // As much scratch as the tile functions ask for (the mixes' and one material's).
+    std::vector<unsigned char> scratch(
+        std::max({dsn_mix_lattice_tile_scratch_size(&mix, side, side),
+                  dsn_mix_continuous_tile_scratch_size(&mix, &grid, side, side),
+                  dsn_continuous_tile_scratch_size(&a->noise, &grid, side, side)}));
 
     std::printf("mix_bench: a mix of two materials over one material's noise (1.3x is the target)\n");
     auto lattice_points = [&](const dsn_mix_control *control) {
