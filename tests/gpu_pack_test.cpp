@@ -46,8 +46,10 @@ void check_layout(const dsn_noise &noise) {
     const bool separate = asset.lattice_texton != nullptr;
     const uint32_t lattice_width = separate ? asset.lattice_width : asset.width;
     const uint32_t lattice_height = separate ? asset.lattice_height : asset.height;
+    const size_t quad_words = 2 * size_t(asset.width + 1) * (asset.height + 1) * asset.channels;
     REQUIRE(count == DSN_GPU_HEADER_WORDS + texton_words +
-                         (separate ? size_t(lattice_width) * lattice_height * asset.channels : 0u));
+                         (separate ? size_t(lattice_width) * lattice_height * asset.channels : 0u) +
+                         quad_words);
     std::vector<uint32_t> words(count + 1, 0xDEADBEEFu);
     REQUIRE(dsn_gpu_pack(&noise, words.data(), count) == DSN_OK);
     CHECK(words[count] == 0xDEADBEEFu); // nothing past the count
@@ -76,7 +78,7 @@ void check_layout(const dsn_noise &noise) {
     CHECK(words[44] == (lattice_width - 1) / 2);
     CHECK(words[45] == (lattice_height - 1) / 2);
     CHECK(words[46] == DSN_GPU_HEADER_WORDS + (separate ? texton_words : 0u));
-    CHECK(words[47] == 0u);
+    CHECK(words[47] == count - quad_words);
     for (size_t i = 0; i < 96; i++) CHECK(words[48 + i] == state->poisson_cdf[i]);
     for (size_t i = 0; i < 64; i++) CHECK(words[144 + i] == state->poisson_guide[i]);
     check_surface_words(*state, words);
@@ -96,6 +98,20 @@ void check_layout(const dsn_noise &noise) {
                     differences +=
                         int32_t(words[index++]) != dsn_asset_texton_value(&lattice, row, column, c);
     }
+    // The quads: quad (r, q) holds the texels (r - 1, q - 1), (r - 1, q) in its first word, (r, q - 1),
+    // (r, q) in its second, 16 bits each, 0 outside the texton.
+    for (uint32_t r = 0; r <= asset.height; r++)
+        for (uint32_t q = 0; q <= asset.width; q++)
+            for (uint32_t c = 0; c < asset.channels; c++)
+                for (uint32_t corner = 0; corner < 4; corner++) {
+                    const uint32_t word = words[index + corner / 2];
+                    const int64_t row = int64_t(r) - 1 + corner / 2, column = int64_t(q) - 1 + corner % 2;
+                    const bool inside = row >= 0 && row < asset.height && column >= 0 && column < asset.width;
+                    const int32_t expected =
+                        inside ? dsn_asset_texton_value(&asset, uint32_t(row), uint32_t(column), c) : 0;
+                    differences += int32_t(int16_t(uint16_t(word >> (16 * (corner % 2))))) != expected;
+                    if (corner == 3) index += 2;
+                }
     CHECK(index == count);
     CHECK(differences == 0);
 }
@@ -131,7 +147,7 @@ TEST_CASE("dsn_gpu_pack writes the documented layout") {
 TEST_CASE("dsn_gpu_pack: argument errors write nothing") {
     LoadedNoise loaded(dsn_test::synthetic_fields(3, 5, 8, DSN_SHAPE_RECTANGLE, 1), dsn_test::make_config(2));
     const size_t count = dsn_gpu_word_count(&loaded.noise);
-    REQUIRE(count == DSN_GPU_HEADER_WORDS + 5 * 5 * 3);
+    REQUIRE(count == DSN_GPU_HEADER_WORDS + 5 * 5 * 3 + 2 * 6 * 6 * 3); // the texton, its quads
     std::vector<uint32_t> words(count, 0xDEADBEEFu);
     CHECK(dsn_gpu_pack(nullptr, words.data(), count) == DSN_ERR_NULL);
     CHECK(dsn_gpu_pack(&loaded.noise, nullptr, count) == DSN_ERR_NULL);

@@ -50,7 +50,7 @@
      tens of hashes and a few hundred word reads (the README gives counts): meant for shaders that
      need the exact bits (previews matching an offline reference, data), not as the cheapest noise.
      GLSL ES: this file declares `precision highp int;`; code before it (dsn_word, say) needs its own
-     highp declarations (integer samplers too). The layout of dsn/gpu.h, version 3.
+     highp declarations (integer samplers too). The layout of dsn/gpu.h, version 4.
      A mix: pack it with dsn_gpu_mix_pack (dsn/gpu.h) and define dsn_word after this file, so that it
      sees dsn_word_base:
          uint dsn_word(uint index) { return noise_words[dsn_word_base + index]; }
@@ -97,6 +97,7 @@ const uint DSN_WORD_LATTICE_WIDTH = 42u; /* the lattice evaluators' texton: widt
 const uint DSN_WORD_LATTICE_HEIGHT = 43u;
 const uint DSN_WORD_LATTICE_RADIUS = 44u; /* x, then y */
 const uint DSN_WORD_LATTICE_TEXTON = 46u;
+const uint DSN_WORD_QUADS = 47u; /* where the texton's 2 x 2 quads start */
 const uint DSN_WORD_POISSON_CDF = 48u;
 const uint DSN_WORD_POISSON_GUIDE = 144u;
 const uint DSN_WORD_TEXTON = 216u;
@@ -495,27 +496,15 @@ void dsn_lattice_gradient_fixed(ivec2 p, out ivec3 value, out ivec3 dx, out ivec
 
 /* ---- Continuous per point ---- */
 
-/* Texton value (row, column, channel), 0 outside the window (indices are unsigned: -1 is outside). */
-int dsn_texel(uint row, uint column, uint channel, uint width, uint height, uint channels) {
-    if (row >= height || column >= width) return 0;
-    return int(dsn_word(DSN_WORD_TEXTON + (row * width + column) * channels + channel));
-}
-
-/* Texel (row, column) of every channel (grey: .x), 0 outside the window. */
-ivec3 dsn_texels(uint row, uint column, uint width, uint height, uint channels) {
-    if (row >= height || column >= width) return ivec3(0);
-    uint at = DSN_WORD_TEXTON + (row * width + column) * channels;
-    if (channels != 3u) return ivec3(int(dsn_word(at)), 0, 0);
-    return ivec3(int(dsn_word(at)), int(dsn_word(at + 1u)), int(dsn_word(at + 2u)));
-}
-
 /* The 2 x 2 texels of `channel` with their top-left at (row, column): (above left, above right, below
-   left, below right), 0 outside the window. */
+   left, below right), 0 outside the window: the texton's quad (dsn/gpu.h), two words. */
 ivec4 dsn_corners(uint row, uint column, uint channel, uint width, uint height, uint channels) {
-    return ivec4(dsn_texel(row, column, channel, width, height, channels),
-                 dsn_texel(row, column + 1u, channel, width, height, channels),
-                 dsn_texel(row + 1u, column, channel, width, height, channels),
-                 dsn_texel(row + 1u, column + 1u, channel, width, height, channels));
+    /* quads from row and column -1 (unsigned: row + 1 > height is outside, -1 included) */
+    bool inside = row + 1u <= height && column + 1u <= width;
+    uint quad = ((row + 1u) * (width + 1u) + column + 1u) * channels + channel;
+    uint at = dsn_word(DSN_WORD_QUADS) + 2u * quad;
+    uint above = inside ? dsn_word(at) : 0u, below = inside ? dsn_word(at + 1u) : 0u;
+    return ivec4(int(above << 16u) >> 16, int(above) >> 16, int(below << 16u) >> 16, int(below) >> 16);
 }
 
 /* weights (1 - column_weight, column_weight, 1 - row_weight, row_weight) in Q0.16. Each row's
@@ -890,19 +879,15 @@ ivec3 dsn_continuous_tile_point_fixed(uvec2 low_x, uvec2 low_y, uvec2 extent, uv
             continue;
         ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight), int(65536u - row_weight),
                               int(row_weight));
-        /* the 2 x 2 texels of every channel (each read once, unrolled: a loop over the channels indexing
-           the sums runs several times slower on some compilers) */
-        ivec3 above_left = dsn_texels(row, column, width, height, channels);
-        ivec3 above_right = dsn_texels(row, column + 1u, width, height, channels);
-        ivec3 below_left = dsn_texels(row + 1u, column, width, height, channels);
-        ivec3 below_right = dsn_texels(row + 1u, column + 1u, width, height, channels);
-        sum_x = dsn_add64(sum_x, dsn_bilinear(ivec4(above_left.x, above_right.x, below_left.x, below_right.x),
-                                              weights));
+        /* the channels unrolled: a loop over them indexing the sums runs several times slower on some
+           compilers */
+        ivec4 corners = dsn_corners(row, column, 0u, width, height, channels);
+        sum_x = dsn_add64(sum_x, dsn_bilinear(corners, weights));
         if (channels != 3u) continue;
-        sum_y = dsn_add64(sum_y, dsn_bilinear(ivec4(above_left.y, above_right.y, below_left.y, below_right.y),
-                                              weights));
-        sum_z = dsn_add64(sum_z, dsn_bilinear(ivec4(above_left.z, above_right.z, below_left.z, below_right.z),
-                                              weights));
+        corners = dsn_corners(row, column, 1u, width, height, channels);
+        sum_y = dsn_add64(sum_y, dsn_bilinear(corners, weights));
+        corners = dsn_corners(row, column, 2u, width, height, channels);
+        sum_z = dsn_add64(sum_z, dsn_bilinear(corners, weights));
     }
     uvec2 sums[3];
     sums[0] = sum_x;

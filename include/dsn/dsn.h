@@ -143,9 +143,9 @@ extern "C" {
 #endif
 
 #define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 7
+#define DSN_VERSION_MINOR 8
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.7.0"
+#define DSN_VERSION_STRING "1.8.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);

@@ -18,8 +18,9 @@
    Upload the words as they are: the values are host integers (a GL buffer holds them in the host's byte
    order, which is what the shader reads).
 
-   Layout, version 3 (DSN_GPU_LAYOUT_VERSION; version 2 had no words 208 .. 215, its texton started at
-   word 208; version 1 also had words 42 .. 46 zero and no lattice texton).
+   Layout, version 4 (DSN_GPU_LAYOUT_VERSION; version 3 had word 47 zero and no quads; version 2 had no
+   words 208 .. 215, its texton started at word 208; version 1 also had words 42 .. 46 zero and no
+   lattice texton).
    Word i of the buffer:
        0            DSN_GPU_MAGIC ("DSNG" as a little-endian word)
        1            DSN_GPU_LAYOUT_VERSION
@@ -43,7 +44,7 @@
        44, 45       its radius along x, y
        46           the word where its values start: 216 + width * height * channels after the texton, or
                     216 (the texton itself)
-       47           0 (reserved)
+       47           the word where the texton's quads start (below)
        48 .. 143    the Poisson table: 96 inverse-CDF thresholds (entries from poisson_size on are
                     0xFFFFFFFF)
        144 .. 207   the Poisson guide: the first candidate count for each top-6-bit bucket of a uniform
@@ -54,7 +55,12 @@
        215          0 (reserved); words 208 .. 215 are all 0 in a runtime built without DSN_SURFACE
        216 ..       the texton: width * height * channels values, row-major from the top row, channels
                     interleaved, each sign-extended to a whole word (two's complement int32); then, where
-                    the asset has one, the lattice texton in the same form
+                    the asset has one, the lattice texton in the same form; then the texton's
+                    quads: (height + 1) * (width + 1) * channels pairs of words, quad (r, q) of channel c
+                    at word (word 47) + 2 ((r (width + 1) + q) channels + c): the texels (r - 1, q - 1) and
+                    (r - 1, q) of channel c in the low and high 16 bits of its first word, (r, q - 1) and
+                    (r, q) in its second (two's complement; 0 outside the texton): a bilinear read's
+                    2 x 2 texels in two words, where the values take four
    A later layout changes DSN_GPU_LAYOUT_VERSION, and dsn.glsl checks nothing at run time: use the
    dsn.glsl installed with this header. The words are a copy: repack after dsn_noise_init. */
 #ifndef DSN_GPU_H
@@ -70,12 +76,13 @@ extern "C" {
 #endif
 
 #define DSN_GPU_MAGIC 0x474E5344u /* 'D' 'S' 'N' 'G' in the low to high bytes */
-#define DSN_GPU_LAYOUT_VERSION 3u
+#define DSN_GPU_LAYOUT_VERSION 4u
 #define DSN_GPU_HEADER_WORDS 216u /* the texton starts at this word */
-#define DSN_GPU_MAX_WORDS (DSN_GPU_HEADER_WORDS + 2u * 255u * 255u * 3u)
+#define DSN_GPU_MAX_WORDS (DSN_GPU_HEADER_WORDS + 2u * 255u * 255u * 3u + 2u * 256u * 256u * 3u)
 
-/* The number of words dsn_gpu_pack writes for `noise`: DSN_GPU_HEADER_WORDS + the textons' values,
-   at most DSN_GPU_MAX_WORDS; 0 for a null noise or one that dsn_noise_init did not fill. */
+/* The number of words dsn_gpu_pack writes for `noise`: DSN_GPU_HEADER_WORDS + the textons' values + the
+   texton's quads, at most DSN_GPU_MAX_WORDS; 0 for a null noise or one that dsn_noise_init did not
+   fill. */
 size_t dsn_gpu_word_count(const dsn_noise *noise);
 
 /* Writes the dsn_gpu_word_count(noise) words of the layout above to `words`. Returns DSN_OK;

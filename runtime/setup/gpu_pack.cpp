@@ -50,18 +50,48 @@ size_t texton_words(const dsn_asset *asset, uint32_t width, uint32_t height) {
     return size_t(width) * height * asset->channels;
 }
 
+/* The texton's quads (dsn/gpu.h): two words per texel and channel, with a row and a column more. */
+size_t quad_words(const dsn_asset *asset) {
+    return 2u * texton_words(asset, asset->width + 1u, asset->height + 1u);
+}
+
+/* The textons' values before the quads. */
+size_t value_words(const dsn_asset *asset) {
+    return texton_words(asset, asset->width, asset->height) +
+           (asset->lattice_texton != 0 ? texton_words(asset, asset->lattice_width, asset->lattice_height)
+                                       : 0u);
+}
+
 } // namespace
 
 extern "C" size_t dsn_gpu_word_count(const dsn_noise *handle) {
     const dsn_noise_state *noise = configured(handle);
     if (noise == 0) return 0;
-    const dsn_asset *asset = &noise->asset;
-    return DSN_GPU_HEADER_WORDS + texton_words(asset, asset->width, asset->height) +
-           (asset->lattice_texton != 0 ? texton_words(asset, asset->lattice_width, asset->lattice_height)
-                                       : 0u);
+    return DSN_GPU_HEADER_WORDS + value_words(&noise->asset) + quad_words(&noise->asset);
 }
 
 namespace {
+
+/* The texton's quads (dsn/gpu.h): the 2 x 2 texels whose lower right is (r, q), 16 bits each (two's
+   complement), two to a word. */
+void put_quads(uint32_t *words, const dsn_asset *asset) {
+    const uint32_t width = asset->width, height = asset->height, channels = asset->channels;
+    for (uint32_t r = 0; r <= height; r++)
+        for (uint32_t q = 0; q <= width; q++)
+            for (uint32_t c = 0; c < channels; c++)
+                for (uint32_t pair = 0; pair < 2; pair++) {
+                    uint32_t word = 0;
+                    for (uint32_t half = 0; half < 2; half++) {
+                        /* unsigned: r - 1 and q - 1 wrap past the texton for r, q = 0 */
+                        const uint32_t row = r - 1u + pair, column = q - 1u + half;
+                        if (row < height && column < width)
+                            word |= (static_cast<uint32_t>(dsn_asset_texton_value(asset, row, column, c)) &
+                                     0xFFFFu)
+                                    << (16u * half);
+                    }
+                    *words++ = word;
+                }
+}
 
 /* A texton's values, sign-extended to whole words in uint32 arithmetic: the asset stores them in the
    layout's order (format.h: row-major, channels interleaved, 8-bit or 16-bit little-endian two's
@@ -132,13 +162,15 @@ extern "C" int dsn_gpu_pack(const dsn_noise *handle, uint32_t *words, size_t cap
     words[44] = (words[42] - 1u) / 2u;
     words[45] = (words[43] - 1u) / 2u;
     words[46] = static_cast<uint32_t>(DSN_GPU_HEADER_WORDS + (separate ? texton_count : 0u));
-    for (i = 47; i < cdf_first; i++) words[i] = 0;
+    words[47] = static_cast<uint32_t>(DSN_GPU_HEADER_WORDS + value_words(asset));
+    for (i = 48; i < cdf_first; i++) words[i] = 0;
     for (i = 0; i < cdf_words; i++) words[cdf_first + i] = noise->poisson_cdf[i];
     for (i = 0; i < guide_words; i++) words[guide_first + i] = noise->poisson_guide[i];
     put_surface(noise, words + surface_first);
     put_texton(words + DSN_GPU_HEADER_WORDS, asset->texton, texton_count, asset->bits);
     if (separate)
         put_texton(words + DSN_GPU_HEADER_WORDS + texton_count, asset->lattice_texton,
-                   count - DSN_GPU_HEADER_WORDS - texton_count, asset->bits);
+                   value_words(asset) - texton_count, asset->bits);
+    put_quads(words + DSN_GPU_HEADER_WORDS + value_words(asset), asset);
     return DSN_OK;
 }
