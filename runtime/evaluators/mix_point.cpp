@@ -319,7 +319,7 @@ void mix_output_from(const dsn_mix_state *mix, const MixOffsets offsets, const S
 template <typename Sum>
 void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*sums)[DSN_MAX_CHANNELS],
                 int32_t *out) {
-    MixOffsets offsets;
+    MixOffsets offsets = {};
     weighted_offsets(mix, weights, offsets);
     mix_output_from(mix, offsets, sums, out);
 }
@@ -327,7 +327,7 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
 /* The mix's value at lattice point (x, y) from its materials' sums there. */
 void lattice_output(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
                     const LatticeSums sums, int32_t *out) {
-    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0}; /* (GCC cannot tell point_weights fills them) */
     point_weights(
         mix_weights_at(control, mix->count, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32),
         mix->count, weights);
@@ -337,7 +337,7 @@ void lattice_output(const dsn_mix_state *mix, const dsn_mix_control *control, ui
 /* The mix's value at continuous point (x, y) from its materials' sums there. */
 void continuous_output(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
                        const ContinuousSums sums, int32_t *out) {
-    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0}; /* (GCC cannot tell point_weights fills them) */
     point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
     mix_output(mix, weights, sums, out);
 }
@@ -467,9 +467,10 @@ bool lattice_tile_by_bands(const dsn_mix_state *mix, const dsn_mix_control *cont
         const MixRegion region = window_region(mix, control, x0, width, y, rows);
         lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
         /* where the region is uniform, the weighted offsets of every point of the band */
-        MixOffsets uniform_offsets;
+        MixOffsets uniform_offsets = {};
         if (region.uniform) {
-            uint32_t weights[DSN_MIX_MAX_MATERIALS];
+            /* (zeroed: GCC cannot tell point_weights fills them) */
+            uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
             point_weights(region.weights, mix->count, weights);
             weighted_offsets(mix, weights, uniform_offsets);
         }
