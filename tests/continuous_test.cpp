@@ -1,6 +1,7 @@
 // continuous_test.cpp - the continuous mode's exact behaviour: coordinate conversion from IEEE bits,
 // the lattice-asset error, the bilinear sum against a brute-force reference over every nearby cell, the
-// per-point evaluator of every kernel against the default kernel's, grid tiles against per-point calls,
+// steps between neighbouring pixels at 64x magnification against the derivative's bound, the per-point
+// evaluator of every kernel against the default kernel's, grid tiles against per-point calls,
 // and periodicity.
 #include <doctest/doctest.h>
 
@@ -24,7 +25,8 @@ const int64_t one = int64_t(1) << 32;
 
 // Brute force: the point's value from every impulse of every cell within a generous box (or, periodic,
 // of every cell of the period, with all the copies that can reach), with exact integer tent weights on
-// the point truncated to 16 fraction bits, then the normalization in long double. Independent of the
+// the point truncated to 16 fraction bits and its offset from each impulse floored to 8 (the weights'
+// bits), then the normalization in long double. Independent of the
 // runtime's cell walk and offset arithmetic; shares only the impulse process (cell_hash.h,
 // impulse_position.h).
 std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int64_t y) {
@@ -84,6 +86,7 @@ std::vector<long double> reference_value(const dsn_noise *noise, int64_t x, int6
                         int64_t dy = point[1] - py - int64_t(my) * (int64_t(period[1]) << 16);
                         if (period[0] == 0) dx = int64_t(uint64_t(dx) << 16) >> 16; // the 2^32 torus, in Q16
                         if (period[1] == 0) dy = int64_t(uint64_t(dy) << 16) >> 16;
+                        dx -= dx & 0xFF, dy -= dy & 0xFF; // floored to 2^-8 texel
                         for (int64_t b = -ry; b <= ry; b++) {
                             int64_t wy = 65536 - std::llabs(dy - b * 65536);
                             if (wy <= 0) continue;
@@ -215,6 +218,60 @@ TEST_CASE("continuous: the value is the bilinear sum over every impulse (brute-f
             }
         }
     }
+}
+
+TEST_CASE("continuous: at 64x magnification each step between neighbouring pixels is within its derivative's "
+          "bound") {
+    // Pixels 2^-6 texel apart are 4 steps of the 8-bit weights apart: the sums change by 2^8 times the
+    // slope sums at each of the 4 steps (2^-8 texel), so |f(x + h) - f(x)| <= h (max |d| over the steps +
+    // 1/2) + 1 + 1/64 units, h = 1/64 texel (the two values' roundings, the derivatives' half units, the
+    // sums' floored fractions). Along x and along y, grey and RGB, 8- and 16-bit textons.
+    std::mt19937_64 random(64);
+    const int64_t pixel = one >> 6, weight_step = one >> 8;
+    double largest_step = 0, largest_share = 0;
+    uint32_t steps = 0, flat = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u}) {
+            const auto made = make_noise(random_texton_asset(channels, 5, bits, 11 + channels + bits), 3);
+            const dsn_noise &noise = made->noise;
+            for (uint32_t axis = 0; axis < 2; axis++)
+                for (int row = 0; row < 4; row++) {
+                    int64_t start[2] = {int64_t(random()) >> 4, int64_t(random()) >> 4};
+                    int32_t previous[3];
+                    REQUIRE(dsn_continuous_point_fixed(&noise, start[0], start[1], previous) == DSN_OK);
+                    for (int i = 1; i <= 256; i++) {
+                        int64_t at[2] = {start[0], start[1]};
+                        int32_t largest_derivative[3] = {0, 0, 0};
+                        for (int k = 0; k < 4; k++) { // the derivative at each weight step on the way
+                            at[axis] =
+                                int64_t(uint64_t(start[axis]) + uint64_t((i - 1) * pixel + k * weight_step));
+                            int32_t value[3], dx[3], dy[3];
+                            REQUIRE(dsn_continuous_gradient_fixed(&noise, at[0], at[1], value, dx, dy) ==
+                                    DSN_OK);
+                            for (uint32_t c = 0; c < channels; c++)
+                                largest_derivative[c] =
+                                    std::max(largest_derivative[c], std::abs(axis ? dy[c] : dx[c]));
+                        }
+                        at[axis] = int64_t(uint64_t(start[axis]) + uint64_t(i * pixel));
+                        int32_t value[3];
+                        REQUIRE(dsn_continuous_point_fixed(&noise, at[0], at[1], value) == DSN_OK);
+                        for (uint32_t c = 0; c < channels; c++) {
+                            const double step = std::fabs(double(value[c]) - previous[c]);
+                            const double bound = (largest_derivative[c] + 0.5) / 64 + 1 + 1.0 / 64;
+                            CHECK(step <= bound);
+                            largest_step = std::max(largest_step, step);
+                            largest_share = std::max(largest_share, step / bound);
+                            steps++, flat += step == 0;
+                            previous[c] = value[c];
+                        }
+                    }
+                }
+        }
+    // No plateaus: a pixel equals its neighbour only where the noise is flat.
+    CHECK(flat * 100 <= steps);
+    MESSAGE("64x: largest step " << largest_step / 65536 << " (Q16.16 units / 65536), at most "
+                                 << largest_share << " of its bound; " << flat << " of " << steps
+                                 << " steps flat");
 }
 
 TEST_CASE("continuous: every kernel's per-point evaluator gives the default kernel's bits") {

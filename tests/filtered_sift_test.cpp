@@ -342,7 +342,8 @@ TEST_CASE("filtered sift: the kernels' level reads equal the bilinear formula on
             const uint64_t shifted_x = (uint64_t(xs[i]) + spacing) >> level_index,
                            shifted_y = (uint64_t(ys[i]) + spacing) >> level_index;
             const int64_t column = int64_t(shifted_x >> 32) - 1, row = int64_t(shifted_y >> 32) - 1;
-            const uint64_t across = (shifted_x >> 16) & 0xFFFF, down = (shifted_y >> 16) & 0xFFFF;
+            const uint64_t across = (shifted_x >> 16) & 0xFF00,
+                           down = (shifted_y >> 16) & 0xFF00; // 8-bit weights
             for (uint32_t c = 0; c < channels; c++)
                 expected[c] += uint64_t(texel(row, column, c)) * ((65536 - across) * (65536 - down)) +
                                uint64_t(texel(row, column + 1, c)) * (across * (65536 - down)) +

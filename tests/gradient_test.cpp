@@ -23,7 +23,8 @@ using namespace continuous_fixtures;
 
 namespace {
 
-const int64_t step = int64_t(1) << 16; // 2^-16 texel in Q32.32: one step of the bilinear weights
+const int64_t step = int64_t(1) << 24; // 2^-8 texel in Q32.32: one step of the 8-bit bilinear weights
+const uint64_t step_slopes = 256;      // a step in slope units (2^-16 texel)
 
 struct RawSums {
     uint64_t value[3], slope_x[3], slope_y[3];
@@ -47,13 +48,6 @@ std::vector<dsn::AssetFields> assets() {
             for (uint32_t radius : {3u, 9u})
                 list.push_back(random_texton_asset(channels, radius, bits, 40 + radius));
     return list;
-}
-
-// A point whose top 16 fraction bits are a multiple of 2^cell_shift on both axes: between it and the next
-// such point no impulse's weights wrap (their positions have 16 - cell_shift fraction bits).
-int64_t aligned(int64_t coordinate, uint32_t cell_shift) {
-    const uint64_t mask = (uint64_t(1) << (16 + cell_shift)) - 1u;
-    return int64_t(uint64_t(coordinate) & ~mask) | int64_t(uint64_t(coordinate) & 0xFFFFu);
 }
 
 // Points with an impulse of the noise exactly at their reach's entry edge along x (even k) or y (odd k),
@@ -104,27 +98,22 @@ TEST_CASE("continuous gradient: the value is the point's; the sums step by the s
                 REQUIRE(dsn_continuous_point_fixed(&noise, xs[p], ys[p], expected) == DSN_OK);
                 for (uint32_t c = 0; c < fields.channels; c++) CHECK(value[c] == expected[c]);
 
-                // One step of the weights: the sums move by the slopes, always (a weight that wraps moves
-                // to the next texel pair, where the interpolation continues).
+                // One step of the weights: the sums move by 2^8 times the slopes, always (every weight
+                // moves up one step; one that wraps moves to the next texel pair, where the interpolation
+                // continues). Again from the point moved by one step of the impulses' positions
+                // (2^(cell_shift - 16) texel), less than a weight step: some weights differ there.
                 const RawSums here = raw_sums(noise, xs[p], ys[p]);
                 const RawSums east = raw_sums(noise, moved(xs[p], step), ys[p]);
                 const RawSums south = raw_sums(noise, xs[p], moved(ys[p], step));
                 for (uint32_t c = 0; c < fields.channels; c++) {
-                    CHECK(east.value[c] - here.value[c] == here.slope_x[c]);
-                    CHECK(south.value[c] - here.value[c] == here.slope_y[c]);
+                    CHECK(east.value[c] - here.value[c] == step_slopes * here.slope_x[c]);
+                    CHECK(south.value[c] - here.value[c] == step_slopes * here.slope_y[c]);
                 }
-
-                // From an aligned point, k steps within the piece: k times the slope.
-                const int64_t x = aligned(xs[p], shift), y = aligned(ys[p], shift);
-                const RawSums start = raw_sums(noise, x, y);
-                const uint32_t k = 1u + uint32_t(p) % ((1u << shift) - 1u);
-                const RawSums moved_x = raw_sums(noise, moved(x, int64_t(k) * step), y);
-                const RawSums moved_y = raw_sums(noise, x, moved(y, int64_t(k) * step));
-                for (uint32_t c = 0; c < fields.channels; c++) {
-                    CHECK(moved_x.value[c] - start.value[c] == k * start.slope_x[c]);
-                    CHECK(moved_y.value[c] - start.value[c] == k * start.slope_y[c]);
-                    CHECK(moved_x.slope_x[c] == start.slope_x[c]);
-                }
+                const int64_t nudge = int64_t(1) << (16 + shift);
+                const RawSums nudged = raw_sums(noise, moved(xs[p], nudge), ys[p]);
+                const RawSums nudged_east = raw_sums(noise, moved(xs[p], nudge + step), ys[p]);
+                for (uint32_t c = 0; c < fields.channels; c++)
+                    CHECK(nudged_east.value[c] - nudged.value[c] == step_slopes * nudged.slope_x[c]);
             }
         }
     }
@@ -183,18 +172,19 @@ TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, th
 }
 
 TEST_CASE("continuous gradient: across a whole texel the sums are the integral of the slopes") {
-    // f(x + 1) - f(x) = sum over the 2^16 steps of the slope at each: every texel edge is crossed.
+    // f(x + 1) - f(x) = sum over the 2^8 steps of 2^8 times the slope at each: every texel edge is crossed.
     const auto made = make_noise(random_texton_asset(3, 4, 8, 5), 3);
     const dsn_noise &noise = made->noise;
     const int64_t points[2][2] = {{int64_t(17) << 32 | 0x12345678, -(int64_t(5) << 32) + 0x0FEDCBA9},
                                   {int64_t(0x7FFFFFFF) << 32 | 0x80000000, 0}};
     for (const auto &point : points) {
         uint64_t integral_x[3] = {0, 0, 0}, integral_y[3] = {0, 0, 0};
-        for (int64_t j = 0; j < 65536; j++) {
+        for (int64_t j = 0; j < 256; j++) {
             const RawSums along_x = raw_sums(noise, moved(point[0], j * step), point[1]);
             const RawSums along_y = raw_sums(noise, point[0], moved(point[1], j * step));
             for (int c = 0; c < 3; c++)
-                integral_x[c] += along_x.slope_x[c], integral_y[c] += along_y.slope_y[c];
+                integral_x[c] += step_slopes * along_x.slope_x[c],
+                    integral_y[c] += step_slopes * along_y.slope_y[c];
         }
         const RawSums here = raw_sums(noise, point[0], point[1]);
         const RawSums east = raw_sums(noise, moved(point[0], int64_t(1) << 32), point[1]);
@@ -207,25 +197,25 @@ TEST_CASE("continuous gradient: across a whole texel the sums are the integral o
 }
 
 TEST_CASE("continuous gradient: finite differences agree within the rounding") {
-    // Within a piece, A(x + h) - A(x) = h D exactly for the unrounded normalized value A and derivative
-    // D; the outputs round each once (half a unit) after flooring the sums' fractions (below 2^-gain_shift
-    // each), so |f(x + h) - f(x) - h dx| <= 1 + h / 2 + 1/64 units, h in texels.
+    // Over one step of the weights, h = 2^-8 texel, A(x + h) - A(x) = h D exactly for the unrounded
+    // normalized value A and derivative D (every weight moves one step, within its piece or onto the
+    // next, where the interpolation continues); the outputs round each once (half a unit) after flooring
+    // the sums' fractions (below 2^-gain_shift each), so |f(x + h) - f(x) - h dx| <= 1 + h / 2 + 1/64
+    // units. (A shorter move changes no weight: the read is constant between steps.)
     for (const dsn::AssetFields &fields : assets()) {
         const auto made = make_noise(fields, 12);
         const dsn_noise &noise = made->noise;
-        const uint32_t shift = dsn_state(&noise)->cell_shift;
         REQUIRE(dsn_state(&noise)->gain_shift >= 6);
         std::vector<int64_t> xs, ys;
         renderer_points(5, 80, &xs, &ys);
         int checked = 0;
         for (size_t p = 0; p < xs.size(); p++) {
-            const int64_t x = aligned(xs[p], shift), y = aligned(ys[p], shift);
-            const int64_t k = int64_t((1u << shift) - 1u);
+            const int64_t x = xs[p], y = ys[p];
             int32_t value[3], dx[3], dy[3], east[3], south[3];
             REQUIRE(dsn_continuous_gradient_fixed(&noise, x, y, value, dx, dy) == DSN_OK);
-            REQUIRE(dsn_continuous_point_fixed(&noise, moved(x, k * step), y, east) == DSN_OK);
-            REQUIRE(dsn_continuous_point_fixed(&noise, x, moved(y, k * step), south) == DSN_OK);
-            const double h = double(k) / 65536.0, bound = 1.0 + h / 2 + 1.0 / 64;
+            REQUIRE(dsn_continuous_point_fixed(&noise, moved(x, step), y, east) == DSN_OK);
+            REQUIRE(dsn_continuous_point_fixed(&noise, x, moved(y, step), south) == DSN_OK);
+            const double h = 1.0 / 256, bound = 1.0 + h / 2 + 1.0 / 64;
             for (uint32_t c = 0; c < fields.channels; c++) {
                 CHECK(std::fabs(double(east[c]) - value[c] - h * dx[c]) <= bound);
                 CHECK(std::fabs(double(south[c]) - value[c] - h * dy[c]) <= bound);
@@ -881,7 +871,7 @@ TEST_CASE("filtered gradient: the filtered value, the continuous gradient unfilt
         }
 }
 
-TEST_CASE("filtered gradient: each level's sums step by its slopes, one 2^-16 step of the level at a time") {
+TEST_CASE("filtered gradient: each level's sums step by its slopes, one weight step of the level at a time") {
     const int64_t one = int64_t(1) << 32;
     const auto made = make_noise(pyramid_asset(3, 8), 5);
     const dsn_noise_state *noise = dsn_state(&made->noise);
@@ -900,16 +890,16 @@ TEST_CASE("filtered gradient: each level's sums step by its slopes, one 2^-16 st
         dsn_internal_filter_slopes_walked(noise, uint64_t(xs[p]), uint64_t(ys[p]), &plan, walked, count, sums,
                                           &slopes);
         for (uint32_t l = 0; l < count; l++) {
-            // a step of 2^-16 texel of level l is 2^(level + 16) in Q32.32
-            const int64_t level_step = int64_t(1) << (16 + walked[l].level);
+            // a weight step of level l, 2^-8 of its texels, is 2^(level + 24) in Q32.32
+            const int64_t level_step = int64_t(1) << (24 + walked[l].level);
             dsn_internal_filter_slopes_walked(noise, uint64_t(moved(xs[p], level_step)), uint64_t(ys[p]),
                                               &plan, walked, count, east, &unused);
             dsn_internal_filter_slopes_walked(noise, uint64_t(xs[p]), uint64_t(moved(ys[p], level_step)),
                                               &plan, walked, count, south, &unused);
             for (uint32_t tap = 0; tap < plan.taps; tap++)
                 for (uint32_t c = 0; c < 3; c++) {
-                    CHECK(east[tap][l][c] - sums[tap][l][c] == slopes[tap][l][0][c]);
-                    CHECK(south[tap][l][c] - sums[tap][l][c] == slopes[tap][l][1][c]);
+                    CHECK(east[tap][l][c] - sums[tap][l][c] == step_slopes * slopes[tap][l][0][c]);
+                    CHECK(south[tap][l][c] - sums[tap][l][c] == step_slopes * slopes[tap][l][1][c]);
                     sloped += slopes[tap][l][0][c] != 0;
                 }
         }

@@ -540,7 +540,7 @@ bool dsn_impulse_bracket(uint fraction, dsn_axis axis, dsn_span span, uint cell_
     if (high < 0 || (high == 0 && shifted.x == 0u && !entry_edge) || high >= int(2u * axis.radius + 2u))
         return false;
     lower_index = shifted.y - 1u;
-    upper_weight = (shifted.x >> 16u) & 0xFFFFu;
+    upper_weight = (shifted.x >> 16u) & 0xFF00u;
     return true;
 }
 
@@ -857,7 +857,7 @@ bool dsn_tile_bracket(uvec2 offset, uvec2 coordinate, uint low, uint radius, out
     uvec2 shifted = dsn_add64(offset, uvec2(coordinate.x, coordinate.y - low + radius + 1u));
     int high = int(shifted.y);
     lower_index = shifted.y - 1u;
-    upper_weight = (shifted.x >> 16u) & 0xFFFFu;
+    upper_weight = (shifted.x >> 16u) & 0xFF00u;
     return high > 0 ? high < int(2u * radius + 2u) : high == 0 && shifted.x != 0u;
 }
 
@@ -1331,7 +1331,7 @@ void dsn_surface_visit(inout dsn_surface_state state, uvec2 along_x, uvec2 along
     bool in_y = dsn_surface_bracket(along_y, dsn_word(DSN_WORD_RADIUS + 1u), shifted_y);
     uint width = dsn_word(DSN_WORD_WIDTH), height = dsn_word(DSN_WORD_HEIGHT);
     uint channels = dsn_word(DSN_WORD_CHANNELS);
-    uint column_weight = (shifted_x.x >> 16u) & 0xFFFFu, row_weight = (shifted_y.x >> 16u) & 0xFFFFu;
+    uint column_weight = (shifted_x.x >> 16u) & 0xFF00u, row_weight = (shifted_y.x >> 16u) & 0xFF00u;
     ivec4 weights = ivec4(int(65536u - column_weight), int(column_weight), int(65536u - row_weight),
                           int(row_weight));
     for (uint c = 0u; c < (in_x && in_y ? channels : 0u); c++) {

@@ -142,10 +142,10 @@
 extern "C" {
 #endif
 
-#define DSN_VERSION_MAJOR 1
-#define DSN_VERSION_MINOR 8
+#define DSN_VERSION_MAJOR 2
+#define DSN_VERSION_MINOR 0
 #define DSN_VERSION_PATCH 0
-#define DSN_VERSION_STRING "1.8.0"
+#define DSN_VERSION_STRING "2.0.0"
 
 /* The version of the runtime linked in (DSN_VERSION_STRING when it was built): "MAJOR.MINOR.PATCH". */
 const char *dsn_version(void);
@@ -407,8 +407,23 @@ int dsn_lattice_tile_u8(const dsn_noise *noise, int32_t x0, int32_t y0, uint32_t
    The impulses form a continuous Poisson process of the same intensity (exact per-cell Poisson counts
    from the same table, positions uniform in the cell with 16 - cell_shift >= 8 fractional bits per
    axis; each lattice impulse is the floor of its continuous twin) and the texton is read with bilinear
-   interpolation (zero beyond its window; weights from the point's top 16 fraction bits), in integer
-   arithmetic only. Sampled on the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi
+   interpolation (zero beyond its window), in integer arithmetic only, with 8-bit weights as GPUs' texture
+   units filter: each impulse's texton is read at its offset from the point (point minus impulse) floored
+   to a multiple of 2^-8 texel along each axis, exactly bilinearly there. So each impulse is read as if
+   moved, for this point, by less than 2^-8 texel along each axis, and its read differs from the exact real
+   bilinear interpolation by less than 2^-8 (Lx + Ly), Lx and Ly the largest differences between the texels
+   of its 2 x 2 cell along x and along y. Between two points a whole number k of 2^-8 texel steps apart
+   along an axis every weight moves by exactly k steps (a weight past the texel edge continues on the next
+   texel pair, where the interpolation is continuous), so the value changes as the interpolation does:
+   up to 256x magnification a render has no plateaus, and the step between neighbouring pixels is at most
+   their distance times the largest derivative on the way, plus the output's rounding (tests/
+   continuous_test.cpp checks it at 64x); past 256x, each impulse's read holds over each of its steps, whose
+   phases differ from impulse to impulse (their positions have 16 - cell_shift fraction bits). Why 8 bits:
+   each term (256 - u) a + u b of an 8-bit texton fits a 16-bit lane and an impulse's whole read 24 bits, so
+   GPUs and vector units can read and sum in 32-bit lanes; the sums' definition (Q.32, modulo 2^64) is
+   unchanged, their low 16 bits zero. Runtime 2.0 made this change (1.x took the weights' 16 bits): the
+   continuous, filtered, mixed and surface values changed once, the lattice mode's did not, and every asset
+   reads as before. Sampled on the lattice, this noise has the texton's spectrum times (2/3 + cos(2 pi
    xi1)/3)(2/3 + cos(2 pi xi2)/3); a texton baked with `dsn-bake --interpolation bilinear` compensates it. The
    continuous functions return DSN_ERR_CONTINUOUS_MISMATCH for a lattice-baked asset unless the noise was
    configured with DSN_FLAG_ALLOW_LATTICE_CONTINUOUS.
@@ -542,10 +557,12 @@ int dsn_continuous_batch_u8(const dsn_noise *noise, const int64_t *xs, const int
      level does not shift the texture): t_l(x) = sum s_l[i, j] hat(x / 2^l - (i - r_l, j - r'_l)). The
      baker chooses s_l as the least-squares (L2) projection of t0 * G_l on those tents; by Campbell's
      theorem E[(F_l - F * G_l)^2] = lambda * integral (t_l - t0 * G_l)^2, so this is the best prefilter
-     of that form. The blurred texton spills past the texton's window: the spill is kept (Texton Noise,
-     Galerne, Leclaire and Moisan, Computer Graphics Forum 2017, discards impulses whose read falls
-     outside the texture, and its mean drifts). The pyramid has L = floor(log2(max(r, r'))) + 1 levels,
-     down to a few texels (a 31 x 31 RGB 8-bit asset with its pyramid is under 6 KB).
+     of that form. Every level is read as the continuous mode reads the texton, with 8-bit weights (the
+     offset divided by 2^l, then floored to 2^-8 of a level texel). The blurred texton spills past the
+   texton's window: the spill is kept (Texton Noise, Galerne, Leclaire and Moisan, Computer Graphics Forum
+   2017, discards impulses whose read falls outside the texture, and its mean drifts). The pyramid has L =
+   floor(log2(max(r, r'))) + 1 levels, down to a few texels (a 31 x 31 RGB 8-bit asset with its pyramid is
+   under 6 KB).
    - The mean stays exact at every level: E[sum_i t_l(x - x_i)] = lambda * integral t_l = lambda 4^l
      sum s_l, so each level has its own offset (the expected sum subtracted by the normalization),
      computed by dsn_noise_init from the exact integer sum of the level's stored values. Beyond the
@@ -666,16 +683,16 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    Definitions, in Q16.16 output units per texel:
    - Continuous mode: the exact derivative of the bilinear noise. Each impulse's bilinear texton is, on
      the 2 x 2 texels that hold the point, (1 - v)((1 - u) a + u b) + v((1 - u) c + u d) (u, v the
-     weights of the point's top 16 fraction bits, a b / c d the texels above / below); its partial
+     read's 8-bit weights, see the continuous mode, a b / c d the texels above / below); its partial
      derivatives are (1 - v)(b - a) + v(d - c) along x and (1 - u)(c - a) + u(d - b) along y, summed over
-     the impulses exactly in integers (weights in Q0.16) and normalized once, as the value, by the colour
+     the impulses exactly in integers (per 2^-16 texel) and normalized once, as the value, by the colour
      transform and the density's scale (the mean does not enter). The bilinear noise is piecewise linear
      in each axis: where a texel edge of some impulse is crossed the derivative jumps, and the one given
-     there is the slope of the piece toward +x (or +y): one-sided. Exactness: an impulse's position has
-     16 - cell_shift fraction bits, so the sums of the noise are exactly linear between points whose top
-     16 fraction bits are multiples of 2^cell_shift; there, the sums at x + h minus those at x are h times
-     the derivative's sums, bit for bit, and over any distance the sums' change is the sum of the
-     derivative's sums at each 2^-16 texel step on the way (tests/gradient_test.cpp checks both).
+     there is the slope of the piece toward +x (or +y): one-sided. Exactness: a point moved by one step of
+     the weights, 2^-8 texel, moves every weight by one step (a weight past its texel edge continues on the
+     next texel pair), so the sums at x + 2^-8 minus those at x are 2^8 times the derivative's sums, bit
+     for bit, and over any whole number of steps the sums' change is the sum of those at each step on the
+     way (tests/gradient_test.cpp checks both); between steps the value is constant.
    - Lattice mode: forward differences, dx = F(x + 1, y) - F(x, y) and dy = F(x, y + 1) - F(x, y) of the
      noise before its rounding (coordinates + 1 modulo 2^32): the spot noise of the differenced texton
      t(p + 1) - t(p), normalized as the value without the mean and rounded once, so it differs from the
@@ -695,14 +712,14 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    cost next to the value's, and their stack). A lattice tile sums one more column and row than it has
    (the differences' neighbours) by the value's strips; a continuous tile that the value's function would
    splat is splatted three times, in blocks of 64 x 8 pixels whose sums stay on the stack: at the grid,
-   and at the grid moved 2^-16 texel along x and along y, the differences being the derivative's sums
-   exactly (see the continuous mode above); but a grid whose move carries a periodic axis's int32 start
-   (X - 1) across its wrap, where the sums jump, goes point by point. A batch goes 8 points at a time
-   through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its texels read
-   from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered filtered
+   and at the grid moved one weight step (2^-8 texel) along x and along y, the differences being 2^8 times
+   the derivative's sums exactly (see the continuous mode above); but a grid whose move carries a periodic
+   axis's int32 start (X - 1) across its wrap, where the sums jump, goes point by point. A batch goes 8 points
+   at a time through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its texels
+   read from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered filtered
    gradient tile (level of detail 0, one tap) is the continuous one; a filtered one that the value's
    function would splat is splatted three times per tap and level, in blocks of 64 x 8 pixels: the tap's
-   grid, and the same moved one step of the level (2^-16 level texel) along x and along y (the same
+   grid, and the same moved one weight step of the level (2^-8 level texel) along x and along y (the same
    exception at a periodic axis's seam); the others go point by point.
    - Filtered evaluation (DSN_FILTERING): the derivative of the filtered noise, the same blend of the same
      levels at the same taps as the value: each level's exact derivative (its bilinear slopes per texel of

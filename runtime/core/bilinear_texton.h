@@ -1,6 +1,7 @@
 /* runtime/core/bilinear_texton.h - the texton read with bilinear interpolation, in integer arithmetic: with
-   the point-minus-impulse offset d (Q32.32) cut to 16 fractional bits, t(d) = sum over the 4 surrounding
-   texels of q * wx * wy, wx and wy in Q0.16, zero beyond the texton's window. Shared by the per-point
+   the point-minus-impulse offset d (Q32.32) floored to 8 fractional bits, t(d) = sum over the 4 surrounding
+   texels of q * wx * wy, wx and wy in Q0.16 with their low byte zero (continuous_internal.h), zero beyond
+   the texton's window. Shared by the per-point
    evaluator and the grid splat of the continuous mode (everything here has internal linkage). With
    DSN_SMALL_CODE (dsn.h) one generic reader serves 8 and 16 bits; the fast build reads interior texels
    without bounds checks, one copy per value size. */
@@ -16,7 +17,8 @@
 namespace {
 
 /* One axis of a point-minus-impulse offset d (Q32.32): the texton index of the lower of the two texels
-   that bracket d (0xFFFFFFFF for index -1) and the weight of the upper one (Q0.16). False when d is
+   that bracket d (0xFFFFFFFF for index -1) and the weight of the upper one (Q0.16, a multiple of 2^8: bits
+   24 to 31 of the fraction). False when d is
    outside (-(radius + 1), radius + 1), where both texels are zero. */
 inline bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint32_t *upper_weight) {
     /* Shifted so that the lower index is (shifted >> 32) - 1 and the shift is of a positive value. */
@@ -25,7 +27,7 @@ inline bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint
         return false;
     const uint64_t bits = static_cast<uint64_t>(shifted);
     *lower_index = static_cast<uint32_t>(bits >> 32) - 1u;
-    *upper_weight = static_cast<uint32_t>(bits >> 16) & 0xFFFFu;
+    *upper_weight = (static_cast<uint32_t>(bits) >> 24) << 8;
     return true;
 }
 
@@ -84,10 +86,14 @@ inline void add_interior(const dsn_asset *asset, uint32_t row, uint32_t column, 
    inside (the common case). */
 inline void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weight, uint32_t column,
                          uint32_t column_weight, uint64_t *sums) {
+#if DSN_SMALL_CODE
+    const int32_t weights[4] = {
+        static_cast<int32_t>((65536u - column_weight) >> 8), static_cast<int32_t>(column_weight >> 8),
+        static_cast<int32_t>((65536u - row_weight) >> 8), static_cast<int32_t>(row_weight >> 8)};
+#else
     const int64_t weights[4] = {static_cast<int64_t>(65536u - column_weight),
                                 static_cast<int64_t>(column_weight),
                                 static_cast<int64_t>(65536u - row_weight), static_cast<int64_t>(row_weight)};
-#if !DSN_SMALL_CODE
     if (row < asset->height - 1u && column < asset->width - 1u) { /* -1 (0xFFFFFFFF) fails too */
         if (asset->bits == 8)
             add_interior<1>(asset, row, column, weights, sums);
@@ -98,14 +104,15 @@ inline void add_bilinear(const dsn_asset *asset, uint32_t row, uint32_t row_weig
 #endif
     for (uint32_t c = 0; c < asset->channels; c++) {
 #if DSN_SMALL_CODE
-        /* One loop over the 4 corners (shorter code): the same integer as the row form below, each term
-           being below 2^47, so nothing wraps before the uint64 sums (which wrap as defined). */
-        int64_t sum = 0;
+        /* One loop over the 4 corners (shorter code), in units of 2^16: the same integer as the row form
+           below divided by 2^16 (the weights' low bytes are zero). A weighted mean of the texels times
+           2^16, every partial sum within int32 (-2^31 at the least, below 2^31). */
+        int32_t sum = 0;
         for (uint32_t corner = 0; corner < 4; corner++) {
             const uint32_t down = corner >> 1, right = corner & 1u;
             sum += weights[2 + down] * weights[right] * texel(asset, row + down, column + right, c);
         }
-        sums[c] += static_cast<uint64_t>(sum);
+        sums[c] += static_cast<uint64_t>(static_cast<int64_t>(sum)) << 16;
 #else
         const int64_t upper =
             weights[0] * texel(asset, row, column, c) + weights[1] * texel(asset, row, column + 1u, c);

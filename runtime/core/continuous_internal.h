@@ -20,6 +20,10 @@ namespace {
 
 const uint64_t one_texel = static_cast<uint64_t>(1) << 32;
 
+/* The bilinear weights keep 8 fractional bits, as GPUs' texture units do: an offset's fraction bits 24 to
+   31, taken in Q0.16 with the low byte zero, so every product below has 8 zero low bits. */
+const uint32_t bilinear_weight_mask = 0xFF00u;
+
 /* Two's-complement reinterpretation without implementation-defined conversions. */
 inline int64_t signed_from_bits(uint64_t bits) {
     return (bits & 0x8000000000000000u) ? -static_cast<int64_t>(~bits) - 1 : static_cast<int64_t>(bits);
@@ -30,6 +34,16 @@ inline int64_t signed_from_bits(uint64_t bits) {
 inline int64_t floor_shift(int64_t value, uint32_t shift) {
     const uint64_t bias = static_cast<uint64_t>(1) << 63;
     return signed_from_bits(((static_cast<uint64_t>(value) + bias) >> shift) - (bias >> shift));
+}
+
+/* One step of the bilinear weights, 2^-8 texel, is 2^weight_step_shift in Q32.32. A point moved by one
+   step reads every weight one step up (across a texel edge, the next texel's piece at weight 0, which
+   equals the last one's at weight 1), so its sums less the point's are 2^8 times the slopes per 2^-16
+   texel, exactly; slopes_from_step divides them back (the slope sums are far below 2^55). */
+const uint32_t weight_step_shift = 24;
+
+inline uint64_t slopes_from_step(uint64_t difference) {
+    return static_cast<uint64_t>(floor_shift(signed_from_bits(difference), 8));
 }
 
 /* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through

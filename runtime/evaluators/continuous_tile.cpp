@@ -78,27 +78,30 @@ const uint32_t gradient_block_columns = dsn_splat_block_columns, gradient_block_
 const size_t gradient_block_sums = gradient_block_columns * gradient_block_rows * DSN_MAX_CHANNELS;
 
 /* Whether a coordinate's int32 start, X - 1 (X its integer part), wraps from 2^31 - 1 to -2^31 when it
-   moves by 2^-16 texel: where a period reduces it (and does not divide 2^32) the sums jump there, so the
+   moves by a weight step: where a period reduces it (and does not divide 2^32) the sums jump there, so the
    moved grid's sums less the grid's are not the slopes. A grid and its moved copy each lie on one side
    (the splat's frames), so only the origin can cross. */
 bool start_wraps(int64_t coordinate) {
     const uint64_t point = static_cast<uint64_t>(coordinate);
     const uint32_t start = static_cast<uint32_t>(point >> 32) - 1u,
-                   moved = static_cast<uint32_t>((point + (static_cast<uint64_t>(1) << 16)) >> 32) - 1u;
+                   moved = static_cast<uint32_t>((point + (static_cast<uint64_t>(1) << weight_step_shift)) >>
+                                                 32) -
+                           1u;
     return start != moved && moved == 0x80000000u;
 }
 
-/* The grid moved by 2^-16 texel along x (axis 0) or y (axis 1). */
+/* The grid moved by a weight step (continuous_internal.h) along x (axis 0) or y (axis 1). */
 dsn_grid moved_grid(const dsn_grid *grid, int axis) {
     dsn_grid moved = *grid;
     int64_t *origin = axis == 0 ? &moved.origin_x : &moved.origin_y;
-    *origin = static_cast<int64_t>(static_cast<uint64_t>(*origin) + (static_cast<uint64_t>(1) << 16));
+    *origin = static_cast<int64_t>(static_cast<uint64_t>(*origin) +
+                                   (static_cast<uint64_t>(1) << weight_step_shift));
     return moved;
 }
 
 /* Row j of a gradient block: the value from the grid's sums (sums[0]), each derivative from the moved
-   grid's sums less the grid's, per texel (times 2^16), normalized as the value without the mean (`slopes`,
-   the noise with a zero offset); then the mapping's chain rule and the stores. */
+   grid's sums less the grid's (2^8 times the slopes), per texel (times 2^8), normalized as the value without
+   the mean (`slopes`, the noise with a zero offset); then the mapping's chain rule and the stores. */
 void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, const dsn_splat_block &block,
                   uint32_t j, uint32_t width, uint64_t (*sums)[gradient_block_sums], void *out, void *dx,
                   void *dy, dsn_output_kind kind) {
@@ -111,7 +114,7 @@ void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, c
         for (uint32_t c = 0; c < channels; c++)
             for (uint32_t i = 0; i < block.columns; i++) {
                 const size_t at = c * block.plane + row + i;
-                sums[k][at] = (sums[k][at] - sums[0][at]) << 16;
+                sums[k][at] = (sums[k][at] - sums[0][at]) << 8; /* 2^8 slopes, per texel */
             }
         kernel->continuous_splat_normalize(slopes, sums[k] + row, block.plane, block.columns, values[k]);
     }
@@ -133,8 +136,8 @@ void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, c
     }
 }
 
-/* The gradient tile by splatting three grids: the tile's and the tile's moved 2^-16 texel right and down.
-   Their sums differ by the slope sums exactly (continuous_internal.h: the bilinear weights step by one, and
+/* The gradient tile by splatting three grids: the tile's and the tile's moved one weight step right and down.
+   Their sums differ by 2^8 times the slope sums exactly (continuous_internal.h: the weights step by one, and
    the impulses a move brings within reach add their slope, those it takes out remove their value), so the
    bits are the per-point gradient's. Returns 0 where a grid is not splatted or its move wraps a periodic
    axis's start (point by point instead). */

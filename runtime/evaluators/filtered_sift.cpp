@@ -241,8 +241,8 @@ inline void read_level(const dsn_walked_level &level, uint64_t shifted_x, uint64
                        LevelAccumulator *sums) {
     const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
                    column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
-    const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu),
-                  across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+    const int64_t down = static_cast<int64_t>((shifted_y >> 16) & bilinear_weight_mask),
+                  across = static_cast<int64_t>((shifted_x >> 16) & bilinear_weight_mask);
     const uint32_t width = level.width;
 #if defined(__SSE2__)
     if (Bytes == 1 && width >= 2) {
@@ -327,7 +327,8 @@ bool splat_fits(const dsn_walked_level &level) {
 inline void splat(const dsn_walked_level &level, uint64_t shifted_x, uint64_t shifted_y, SplatGrid *grid) {
     const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
                    column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
-    const uint64_t down = (shifted_y >> 16) & 0xFFFFu, across = (shifted_x >> 16) & 0xFFFFu;
+    const uint64_t down = (shifted_y >> 16) & bilinear_weight_mask,
+                   across = (shifted_x >> 16) & bilinear_weight_mask;
     const uint32_t side = level.width + 2u;
     uint64_t *at = grid->weights + (row + 1u) * side + (column + 1u);
     at[0] += (65536u - down) * (65536u - across);
@@ -679,13 +680,13 @@ void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, u
 void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                        const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                        uint32_t count, dsn_filter_sums sums, dsn_filter_slopes *slopes) {
-    /* Each tap with its copies moved by one step of each level along x and along y, in one walk with
+    /* Each tap with its copies moved by one weight step of each level along x and along y, in one walk with
        as many taps as fit: a copy reads its level only. Where a copy's int32 integer part less 1 (the
        walk's start, reduced modulo a period) wraps, a period that does not divide 2^32 makes the sums
        jump there: the walk's slopes (one-sided, of the tap's side) then. */
     for (uint32_t tap = 0; tap < plan->taps; tap++)
         for (uint32_t l = 0; l < count; l++) {
-            const uint64_t step = static_cast<uint64_t>(1) << (16u + levels[l].level);
+            const uint64_t step = static_cast<uint64_t>(1) << (weight_step_shift + levels[l].level);
             if (start_wraps(x + static_cast<uint64_t>(plan->offset_x[tap]), step) ||
                 start_wraps(y + static_cast<uint64_t>(plan->offset_y[tap]), step)) {
                 dsn_internal_filter_slopes_walked(noise, x, y, plan, levels, count, sums, slopes);
@@ -704,8 +705,8 @@ void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x,
             uint32_t *at_levels = point_levels + t * points_per_tap;
             at_x[0] = tap_x, at_y[0] = tap_y, at_levels[0] = (1u << count) - 1u;
             for (uint32_t l = 0; l < count; l++) {
-                /* one step of 2^-16 level-l texel (the offset is divided by 2^l before the read) */
-                const uint64_t step = static_cast<uint64_t>(1) << (16u + levels[l].level);
+                /* one weight step of level l (the offset is divided by 2^l before the read) */
+                const uint64_t step = static_cast<uint64_t>(1) << (weight_step_shift + levels[l].level);
                 at_x[1u + 2u * l] = tap_x + step, at_y[1u + 2u * l] = tap_y;
                 at_x[2u + 2u * l] = tap_x, at_y[2u + 2u * l] = tap_y + step;
                 at_levels[1u + 2u * l] = at_levels[2u + 2u * l] = 1u << l;
@@ -714,16 +715,18 @@ void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x,
         dsn_filter_sums point_sums;
         sum_points(noise, point_x, point_y, taps * points_per_tap, levels, count, point_sums, 0, point_levels,
                    taps == 1);
-        /* The sums step by exactly the slopes over one step (the bilinear read is linear in its weights
-           and the reach's edge reads 0): the walk's slopes, modulo 2^64. */
+        /* The sums step by exactly 2^8 times the slopes over one weight step (the bilinear read is linear
+           in its weights and the reach's edge reads 0): the walk's slopes. */
         for (uint32_t t = 0; t < taps; t++) {
             const uint64_t(*at)[2][DSN_MAX_CHANNELS] = point_sums + t * points_per_tap;
             for (uint32_t l = 0; l < 2; l++)
                 for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
                     const bool read = l < count;
                     sums[first + t][l][c] = at[0][l][c];
-                    (*slopes)[first + t][l][0][c] = read ? at[1u + 2u * l][l][c] - at[0][l][c] : 0;
-                    (*slopes)[first + t][l][1][c] = read ? at[2u + 2u * l][l][c] - at[0][l][c] : 0;
+                    (*slopes)[first + t][l][0][c] =
+                        read ? slopes_from_step(at[1u + 2u * l][l][c] - at[0][l][c]) : 0;
+                    (*slopes)[first + t][l][1][c] =
+                        read ? slopes_from_step(at[2u + 2u * l][l][c] - at[0][l][c]) : 0;
                 }
         }
     }

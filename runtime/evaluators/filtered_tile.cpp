@@ -242,14 +242,14 @@ bool start_wraps(int64_t coordinate, uint64_t step) {
     return start != moved && moved == 0x80000000u;
 }
 
-/* The splats of one tap and level: the tap's grid, and the same moved one step of the level (2^-16 level
-   texel) along x and along y, whose sums less the tap's are the level's slope sums exactly (the filtered
-   gradient's sifted walk, filtered_sift.cpp); 0 where one does not splat or a move wraps a periodic
-   axis's start. */
+/* The splats of one tap and level: the tap's grid, and the same moved one weight step of the level (2^-8
+   level texel) along x and along y, whose sums less the tap's are 2^8 times the level's slope sums exactly
+   (the filtered gradient's sifted walk, filtered_sift.cpp); 0 where one does not splat or a move wraps a
+   periodic axis's start. */
 int tap_level_gradient_splats(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                               uint32_t height, const FilteredSplat &filtered, uint32_t tap, uint32_t index,
                               dsn_grid_splat *splats) {
-    const uint64_t step = static_cast<uint64_t>(1) << (16u + filtered.walked[index].level);
+    const uint64_t step = static_cast<uint64_t>(1) << (weight_step_shift + filtered.walked[index].level);
     dsn_grid grids[3] = {tap_grid(grid, filtered.plan, tap), tap_grid(grid, filtered.plan, tap),
                          tap_grid(grid, filtered.plan, tap)};
     if ((noise->period[0] != 0 && start_wraps(grids[0].origin_x, step)) ||
@@ -299,7 +299,8 @@ void gradient_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t
                     uint64_t level_sums[DSN_MAX_CHANNELS];
                     for (uint32_t c = 0; c < channels; c++) {
                         const size_t at = c * block.plane + p;
-                        level_sums[c] = output == 0 ? sums[0][at] : sums[1][at] - sums[0][at];
+                        level_sums[c] =
+                            output == 0 ? sums[0][at] : slopes_from_step(sums[1][at] - sums[0][at]);
                     }
                     int64_t values[DSN_MAX_CHANNELS];
                     if (output == 0)

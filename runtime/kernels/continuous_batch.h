@@ -134,8 +134,8 @@ void batch_visit_scalar(const uint32_t *quads, const BatchConstants &k, const Ba
         /* The bordered position is the texton's lower index plus 1: bracket's shifted >> 32. */
         const uint32_t at = static_cast<uint32_t>(shifted_y >> 32) * k.quad_row +
                             static_cast<uint32_t>(shifted_x >> 32) * Channels * (Bytes == 1 ? 1u : 2u);
-        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
-        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu);
+        const int64_t across = static_cast<int64_t>((shifted_x >> 16) & bilinear_weight_mask);
+        const int64_t down = static_cast<int64_t>((shifted_y >> 16) & bilinear_weight_mask);
         for (uint32_t c = 0; c < Channels; c++) {
             int64_t top_left, top_right, bottom_left, bottom_right;
             if (Bytes == 1) {
@@ -164,7 +164,8 @@ void batch_visit_scalar(const uint32_t *quads, const BatchConstants &k, const Ba
    32 x 32 -> 64 bits, exact). */
 
 /* One axis of 8 candidates: shifted = base - (bits << position_shift) in 64-bit lanes (candidates 0-3,
-   4-7), whether 0 < shifted <= limit, and the 32-bit lanes of shifted >> 32 and (shifted >> 16) & 0xFFFF. */
+   4-7), whether 0 < shifted <= limit, and the 32-bit lanes of shifted >> 32 and the bilinear weight (shifted
+   >> 16) & bilinear_weight_mask. */
 inline void axis_8(vector_256 bits, const uint64_t *bases, vector_256 cells, vector_128 position_shift,
                    vector_256 limit, vector_256 *reaches, vector_256 *whole, vector_256 *weight) {
     const vector_256 one = set_4x64(1);
@@ -176,7 +177,7 @@ inline void axis_8(vector_256 bits, const uint64_t *bases, vector_256 cells, vec
     *reaches = low_halves(below_64(subtract_64(low, one), limit), below_64(subtract_64(high, one), limit));
     *whole = low_halves(shift_right_logical_64(low, 32), shift_right_logical_64(high, 32));
     *weight = bitwise_and(low_halves(shift_right_logical_64(low, 16), shift_right_logical_64(high, 16)),
-                          set_8x32(0xFFFF));
+                          set_8x32(bilinear_weight_mask));
 }
 
 /* The running sums of one point on vectors: the channels' 64-bit values of the even and odd

@@ -206,8 +206,8 @@ void add_candidates(const dsn_noise_state *noise, const FieldLanes &lanes, Candi
                 continue;
             const uint32_t row = static_cast<uint32_t>(shifted_y >> 32) - 1u,
                            column = static_cast<uint32_t>(shifted_x >> 32) - 1u;
-            const int64_t down = static_cast<int64_t>((shifted_y >> 16) & 0xFFFFu),
-                          across = static_cast<int64_t>((shifted_x >> 16) & 0xFFFFu);
+            const int64_t down = static_cast<int64_t>((shifted_y >> 16) & bilinear_weight_mask),
+                          across = static_cast<int64_t>((shifted_x >> 16) & bilinear_weight_mask);
             if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
                 const unsigned char *top = texton + (row * width + column) * texel_bytes;
                 read.add_interior(top, top + width * texel_bytes, across, down);

@@ -112,10 +112,10 @@ template <uint32_t Channels>
 DSN_POINT_INLINE void window_texels_8(const unsigned char *values, uint32_t width, uint32_t height,
                                       uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
                                       WindowTexels *texels) {
-    const vector_256 low_16 = set_8x32(0xFFFF), one = set_8x32(1);
+    const vector_256 weight_bits = set_8x32(bilinear_weight_mask), one = set_8x32(1);
     const vector_256 column = subtract_32(shift_right_logical_32(s_x, 16), one),
                      row = subtract_32(shift_right_logical_32(s_y, 16), one);
-    texels->across = bitwise_and(s_x, low_16), texels->down = bitwise_and(s_y, low_16);
+    texels->across = bitwise_and(s_x, weight_bits), texels->down = bitwise_and(s_y, weight_bits);
     const vector_256 last_column = set_8x32(width - 1u), last_row = set_8x32(height - 1u);
     const vector_256 left = at_most(column, last_column), right = at_most(add_32(column, one), last_column);
     const vector_256 top = bitwise_and(reach, at_most(row, last_row)),
@@ -158,8 +158,8 @@ inline uint32_t quad_index_factors(uint32_t quad_row, uint32_t channels) { retur
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_quad_reads_8(const uint32_t *quads, uint32_t quad_row, vector_256 s_x,
                                        vector_256 s_y, vector_256 reach, vector_256 *sums) {
-    const vector_256 low_16 = set_8x32(0xFFFF);
-    const vector_256 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_256 weight_bits = set_8x32(bilinear_weight_mask);
+    const vector_256 across = bitwise_and(s_x, weight_bits), down = bitwise_and(s_y, weight_bits);
     const vector_256 at = madd_16(blend_odd_16(shift_right_logical_32(s_x, 16), s_y),
                                   set_8x32(quad_index_factors(quad_row, Channels)));
     for (uint32_t c = 0; c < Channels; c++) {
@@ -282,8 +282,8 @@ DSN_POINT_INLINE void add_quad_bilinear_16(vector_512 quad, vector_512 across, v
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row, vector_512 s_x,
                                         vector_512 s_y, mask_16 reach, vector_512 *sums) {
-    const vector_512 low_16 = set_16x32(0xFFFF);
-    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 weight_bits = set_16x32(bilinear_weight_mask);
+    const vector_512 across = bitwise_and(s_x, weight_bits), down = bitwise_and(s_y, weight_bits);
     const vector_512 at = madd_16(blend_odd_16(shift_right_logical_32(s_x, 16), s_y),
                                   set_16x32(quad_index_factors(quad_row, Channels)));
     vector_512 quad[Channels];
@@ -308,13 +308,13 @@ template <uint32_t Channels>
 DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
                                           uint32_t stride, vector_512 s_x, vector_512 s_y, mask_16 reach,
                                           vector_512 *sums) {
-    const vector_512 low_16 = set_16x32(0xFFFF);
+    const vector_512 weight_bits = set_16x32(bilinear_weight_mask);
     /* the texton indices of the right column and the lower row, and of the left column and upper row */
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
     const vector_512 column = subtract_32(right_column, set_16x32(1)),
                      row = subtract_32(lower_row, set_16x32(1));
-    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 across = bitwise_and(s_x, weight_bits), down = bitwise_and(s_y, weight_bits);
     const vector_512 last_column = set_16x32(width - 1u), last_row = set_16x32(height - 1u);
     const mask_16 left = less_equal_unsigned_32(column, last_column),
                   right = less_equal_unsigned_32(right_column, last_column);
@@ -349,11 +349,11 @@ struct TextonTexels16 {
 template <uint32_t Channels>
 DSN_POINT_INLINE void texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
                                       vector_512 s_x, vector_512 s_y, mask_16 reach, TextonTexels16 *texels) {
-    const vector_512 low_16 = set_16x32(0xFFFF), one = set_16x32(1);
+    const vector_512 weight_bits = set_16x32(bilinear_weight_mask), one = set_16x32(1);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
     const vector_512 row = subtract_32(lower_row, one);
-    texels->across = bitwise_and(s_x, low_16), texels->down = bitwise_and(s_y, low_16);
+    texels->across = bitwise_and(s_x, weight_bits), texels->down = bitwise_and(s_y, weight_bits);
     const vector_512 last_column = set_16x32(width - 1u), last_row = set_16x32(height - 1u);
     const mask_16 left = less_equal_unsigned_32(subtract_32(right_column, one), last_column),
                   right = less_equal_unsigned_32(right_column, last_column);

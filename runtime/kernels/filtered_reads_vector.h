@@ -89,11 +89,11 @@ inline void texel_pairs_16(const unsigned char *values, vector_512 at, mask_16 r
 DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
                                         uint32_t stride, vector_512 s_x, vector_512 s_y, mask_16 reach,
                                         vector_512 *sums) {
-    const vector_512 low_16 = set_16x32(0xFFFF), one = set_16x32(1);
+    const vector_512 weight_bits = set_16x32(bilinear_weight_mask), one = set_16x32(1);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
     const vector_512 row = subtract_32(lower_row, one);
-    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 across = bitwise_and(s_x, weight_bits), down = bitwise_and(s_y, weight_bits);
     /* right_column 0: the left texel is out; width: the right one; beyond: both (never in reach). */
     const mask_16 left_out = equal_32(right_column, zero_512()),
                   right_out = equal_32(right_column, set_16x32(width)),
@@ -213,10 +213,10 @@ DSN_POINT_INLINE void add_register_channel(const vector_512 *difference_table, c
 template <uint32_t Channels, uint32_t Vectors>
 DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vectors> &level, vector_512 s_x,
                                             vector_512 s_y, mask_16 reach, RegisterSums *sums) {
-    const vector_512 low_16 = set_16x32(0xFFFF), half = set_16x32(0x8000);
+    const vector_512 weight_bits = set_16x32(bilinear_weight_mask), half = set_16x32(0x8000);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
-    const vector_512 across = bitwise_and(s_x, low_16), down = bitwise_and(s_y, low_16);
+    const vector_512 across = bitwise_and(s_x, weight_bits), down = bitwise_and(s_y, weight_bits);
     const mask_16 inside = less_equal_unsigned_32(
         less_equal_unsigned_32(reach, right_column, level.last_column), lower_row, level.last_row);
     const vector_512 index = add_32(shift_left_32(lower_row, 3), right_column);

@@ -54,8 +54,8 @@ void splat_row(const dsn_splat_setup *setup, int64_t offset_x, int64_t offset_y,
         const uint64_t level_x = shifted_x >> level, level_y = shifted_y >> level;
         const uint32_t column = static_cast<uint32_t>(level_x >> 32) - 1u;
         const uint32_t row = static_cast<uint32_t>(level_y >> 32) - 1u;
-        const int64_t across = static_cast<int64_t>((level_x >> 16) & 0xFFFFu);
-        const int64_t down = static_cast<int64_t>((level_y >> 16) & 0xFFFFu);
+        const int64_t across = static_cast<int64_t>((level_x >> 16) & bilinear_weight_mask);
+        const int64_t down = static_cast<int64_t>((level_y >> 16) & bilinear_weight_mask);
         if (row < height - 1u && column < width - 1u) { /* -1 (0xFFFFFFFF) fails too */
             const unsigned char *top = texture.values + (row * texture.stride + column) * Channels * Bytes;
             const unsigned char *bottom = top + row_bytes;
@@ -133,7 +133,8 @@ void splat_row_vector(const dsn_splat_setup *setup, int64_t offset_x, int64_t of
     const vector_256 width = set_8x32(texture.width), height = set_8x32(texture.height);
     const vector_256 sign = set_8x32(0x80000000u);
     const vector_256 width_sign = bitwise_xor(width, sign), height_sign = bitwise_xor(height, sign);
-    const vector_256 ones = set_8x32(1), low_16 = set_8x32(0xFFFF), scale = set_8x32(65536);
+    const vector_256 ones = set_8x32(1), weight_bits = set_8x32(bilinear_weight_mask),
+                     scale = set_8x32(65536);
     const vector_256 row_bytes = set_8x32(texture.stride * Channels);
     const void *texton = texture.values;
     const vector_256 lane_numbers = set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -148,9 +149,11 @@ void splat_row_vector(const dsn_splat_setup *setup, int64_t offset_x, int64_t of
         const vector_256 row = subtract_32(
             splat_low_halves(shift_right_logical_64(low_y, 32), shift_right_logical_64(high_y, 32)), ones);
         const vector_256 across = bitwise_and(
-            splat_low_halves(shift_right_logical_64(low_x, 16), shift_right_logical_64(high_x, 16)), low_16);
+            splat_low_halves(shift_right_logical_64(low_x, 16), shift_right_logical_64(high_x, 16)),
+            weight_bits);
         const vector_256 down = bitwise_and(
-            splat_low_halves(shift_right_logical_64(low_y, 16), shift_right_logical_64(high_y, 16)), low_16);
+            splat_low_halves(shift_right_logical_64(low_y, 16), shift_right_logical_64(high_y, 16)),
+            weight_bits);
         /* index < size as unsigned (-1 fails): signed comparisons of the values flipped by 2^31 */
         const vector_256 left_in = bitwise_and(present, greater_32(width_sign, bitwise_xor(column, sign)));
         const vector_256 right_in =
@@ -318,7 +321,7 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
              done += splat_lanes, sums += splat_lanes, at += splat_lanes) {
             const uint32_t remaining = run.count - done;
             const splat_vector across = splat_across_weights(splat_level<Leveled>(shifted_x, level)),
-                               down = splat_fraction(splat_level<Leveled>(shifted_y, level));
+                               down = splat_weight(splat_level<Leveled>(shifted_y, level));
             splat_vector records[3];
             splat_load_cells<Channels>(setup->cells, at, records);
             splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
@@ -352,7 +355,7 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
     for (uint32_t r = 0; r < run_count; r++) {
         const uint64_t shifted_y = static_cast<uint64_t>(runs[r].offset_y + setup->reach_y) >> level;
         row_start[r] = (shifted_y >> 32) * row_records;
-        down[r] = (shifted_y >> 16) & 0xFFFFu;
+        down[r] = (shifted_y >> 16) & bilinear_weight_mask;
     }
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x);
     splat_vector shifted_x = splat_add(splat_set(static_cast<uint64_t>(runs[0].offset_x + setup->reach_x)),

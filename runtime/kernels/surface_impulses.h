@@ -251,7 +251,7 @@ template <uint32_t Channels>
 DSN_SIMD_INLINE void add_reads(const dsn_asset *asset, LaneVector along_tangent, LaneVector along_bitangent,
                                LaneVector window, LaneMask lanes, LaneVector *sums) {
     const uint32_t width = asset->width, height = asset->height;
-    const LaneVector low_16 = all_lanes(0xFFFF), one = all_lanes(1);
+    const LaneVector weight_bits = all_lanes(bilinear_weight_mask), one = all_lanes(1);
     const LaneVector shifted_x =
         add_64(along_tangent, all_lanes(static_cast<int64_t>((width + 1u) / 2u) << 32));
     const LaneVector shifted_y =
@@ -259,8 +259,8 @@ DSN_SIMD_INLINE void add_reads(const dsn_asset *asset, LaneVector along_tangent,
     const LaneVector right_column = shift_right_logical_64(shifted_x, 32),
                      lower_row = shift_right_logical_64(shifted_y, 32);
     const LaneVector row = subtract_64(lower_row, one);
-    const LaneVector across = bitwise_and(shift_right_logical_64(shifted_x, 16), low_16),
-                     down = bitwise_and(shift_right_logical_64(shifted_y, 16), low_16);
+    const LaneVector across = bitwise_and(shift_right_logical_64(shifted_x, 16), weight_bits),
+                     down = bitwise_and(shift_right_logical_64(shifted_y, 16), weight_bits);
     const LaneVector columns = all_lanes(width), rows = all_lanes(height);
     const LaneMask left = SurfaceLanes::below(lanes, subtract_64(right_column, one), columns),
                    right = SurfaceLanes::below(lanes, right_column, columns);

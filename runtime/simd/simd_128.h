@@ -59,10 +59,11 @@ inline __m128i to_u8_range(__m128i value) {
         _mm_add_epi32(_mm_sub_epi32(_mm_slli_epi32(value, 8), value), _mm_set1_epi32(32768)), 16);
 }
 
-/* The continuous splat's byte order for the across weights (simd_avx2.h, simd_avx512.h): bytes 2 and 3 of
-   each 64-bit lane into its words 1 and 3, zeros elsewhere. */
+/* The continuous splat's byte order for the across weights (simd_avx2.h, simd_avx512.h): byte 3 of each
+   64-bit lane (the weight's 8 bits) into the high bytes of its words 1 and 3, zeros elsewhere. */
 inline __m128i splat_across_order() {
-    return _mm_setr_epi8(-128, -128, 2, 3, -128, -128, 2, 3, -128, -128, 10, 11, -128, -128, 10, 11);
+    return _mm_setr_epi8(-128, -128, -128, 3, -128, -128, -128, 3, -128, -128, -128, 11, -128, -128, -128,
+                         11);
 }
 
 /* ---- The bilinear slopes of 8-bit textons (bilinear_read.h's add_slopes_vector) ---- */

@@ -136,12 +136,12 @@ inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return _mm256_and_si256(value,
                             _mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3)));
 }
-/* Bits 16 to 31 of each lane. */
-inline splat_vector splat_fraction(splat_vector value) {
-    return _mm256_and_si256(_mm256_srli_epi64(value, 16), _mm256_set1_epi64x(0xFFFF));
+/* The bilinear weight of each lane: its bits 24 to 31, as bits 8 to 15 (continuous_internal.h). */
+inline splat_vector splat_weight(splat_vector value) {
+    return _mm256_and_si256(_mm256_srli_epi64(value, 16), _mm256_set1_epi64x(0xFF00));
 }
-/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31: bytes 2 and 3 of
-   the lane into words 1 and 3, then the top bit of every word flipped. */
+/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a the lane's weight (bits 24 to 31, as 8 to
+   15): byte 3 of the lane into the high bytes of words 1 and 3, then the top bit of every word flipped. */
 inline splat_vector splat_across_weights(splat_vector value) {
     return _mm256_xor_si256(_mm256_shuffle_epi8(value, _mm256_broadcastsi128_si256(splat_across_order())),
                             _mm256_set1_epi16(-32768));

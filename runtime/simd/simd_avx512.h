@@ -185,12 +185,12 @@ inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return _mm512_maskz_mov_epi64(
         count >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << count) - 1u), value);
 }
-/* Bits 16 to 31 of each lane. */
-inline splat_vector splat_fraction(splat_vector value) {
-    return _mm512_and_si512(_mm512_srli_epi64(value, 16), _mm512_set1_epi64(0xFFFF));
+/* The bilinear weight of each lane: its bits 24 to 31, as bits 8 to 15 (continuous_internal.h). */
+inline splat_vector splat_weight(splat_vector value) {
+    return _mm512_and_si512(_mm512_srli_epi64(value, 16), _mm512_set1_epi64(0xFF00));
 }
-/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31: bytes 2 and 3 of
-   the lane into words 1 and 3, then the top bit of every word flipped. */
+/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a the lane's weight (bits 24 to 31, as 8 to
+   15): byte 3 of the lane into the high bytes of words 1 and 3, then the top bit of every word flipped. */
 inline splat_vector splat_across_weights(splat_vector value) {
     return _mm512_xor_si512(_mm512_shuffle_epi8(value, _mm512_broadcast_i32x4(splat_across_order())),
                             _mm512_set1_epi16(-32768));

@@ -78,14 +78,16 @@ inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
 inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return count >= 2 ? value : _mm_move_epi64(value);
 }
-/* Bits 16 to 31 of each lane. */
-inline splat_vector splat_fraction(splat_vector value) {
-    return _mm_and_si128(_mm_srli_epi64(value, 16), _mm_set1_epi64x(0xFFFF));
+/* The bilinear weight of each lane: its bits 24 to 31, as bits 8 to 15 (continuous_internal.h). */
+inline splat_vector splat_weight(splat_vector value) {
+    return _mm_and_si128(_mm_srli_epi64(value, 16), _mm_set1_epi64x(0xFF00));
 }
-/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a its bits 16 to 31. */
+/* The words (-32768, a - 32768, -32768, a - 32768) of each lane, a the lane's weight (bits 24 to 31, as 8 to
+ * 15). */
 inline splat_vector splat_across_weights(splat_vector value) {
     const splat_vector spread = _mm_shufflehi_epi16(_mm_shufflelo_epi16(value, 0x55), 0x55); /* word 1 */
-    return _mm_xor_si128(_mm_and_si128(spread, _mm_set1_epi32(-65536)), _mm_set1_epi16(-32768));
+    return _mm_xor_si128(_mm_and_si128(spread, _mm_set1_epi32(-16777216)) /* bits 24-31 */,
+                         _mm_set1_epi16(-32768));
 }
 /* (lane >> 32) times factor, modulo 2^64. */
 inline splat_vector splat_whole_times(splat_vector value, uint32_t factor) {
