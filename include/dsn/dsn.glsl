@@ -507,12 +507,16 @@ ivec4 dsn_corners(uint row, uint column, uint channel, uint width, uint height, 
     return ivec4(int(above << 16u) >> 16, int(above) >> 16, int(below << 16u) >> 16, int(below) >> 16);
 }
 
-/* weights (1 - column_weight, column_weight, 1 - row_weight, row_weight) in Q0.16. Each row's
-   weighted pair is within int32 (at most 2^16 * 2^15), each term below 2^47. */
+/* weights (1 - column_weight, column_weight, 1 - row_weight, row_weight) in Q0.16, multiples of 2^8 (the
+   8-bit weights, dsn.h's continuous mode): in 32-bit words, each row's weighted pair in units of 2^-8
+   (within 2^23) and the read, a weighted mean of the corners times 2^16 (within int32), then times 2^16
+   as the 64-bit term. */
 uvec2 dsn_bilinear(ivec4 corners, ivec4 weights) {
-    int upper = weights.x * corners.x + weights.y * corners.y;
-    int lower = weights.x * corners.z + weights.y * corners.w;
-    return dsn_add64(dsn_multiply_signed_wide(weights.z, upper), dsn_multiply_signed_wide(weights.w, lower));
+    ivec4 steps = weights >> 8;
+    int upper = steps.x * corners.x + steps.y * corners.y;
+    int lower = steps.x * corners.z + steps.y * corners.w;
+    int read = steps.z * upper + steps.w * lower;
+    return uvec2(uint(read) << 16u, uint(read >> 16));
 }
 
 /* The bilinear texton's slope per 2^-16 texel along x, (1 - row_weight)(b - a) + row_weight (d - c)
