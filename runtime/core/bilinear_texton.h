@@ -1,10 +1,9 @@
 /* runtime/core/bilinear_texton.h - the texton read with bilinear interpolation, in integer arithmetic: with
    the point-minus-impulse offset d (Q32.32) floored to 8 fractional bits, t(d) = sum over the 4 surrounding
    texels of q * wx * wy, wx and wy in Q0.16 with their low byte zero (continuous_internal.h), zero beyond
-   the texton's window. Shared by the per-point
-   evaluator and the grid splat of the continuous mode (everything here has internal linkage). With
-   DSN_SMALL_CODE (dsn.h) one generic reader serves 8 and 16 bits; the fast build reads interior texels
-   without bounds checks, one copy per value size. */
+   the texton's window. Shared by the per-point evaluator and the grid splat of the continuous mode
+   (everything here has internal linkage). With DSN_SMALL_CODE (dsn.h) one generic reader serves 8 and 16
+   bits; the fast build reads interior texels without bounds checks, one copy per value size. */
 #ifndef DSN_BILINEAR_TEXTON_H
 #define DSN_BILINEAR_TEXTON_H
 
@@ -18,8 +17,8 @@ namespace {
 
 /* One axis of a point-minus-impulse offset d (Q32.32): the texton index of the lower of the two texels
    that bracket d (0xFFFFFFFF for index -1) and the weight of the upper one (Q0.16, a multiple of 2^8: bits
-   24 to 31 of the fraction). False when d is
-   outside (-(radius + 1), radius + 1), where both texels are zero. */
+   24 to 31 of the fraction). False when d is outside (-(radius + 1), radius + 1), where both texels are
+   zero. */
 inline bool bracket(int64_t offset, uint32_t radius, uint32_t *lower_index, uint32_t *upper_weight) {
     /* Shifted so that the lower index is (shifted >> 32) - 1 and the shift is of a positive value. */
     const int64_t shifted = offset + static_cast<int64_t>(radius + 1u) * static_cast<int64_t>(one_texel);

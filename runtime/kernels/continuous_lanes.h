@@ -42,7 +42,8 @@ inline void impulse_bits_8(vector_256 fields, vector_256 fraction, vector_256 *b
                          shift_right_logical_32(fraction, 20));
 }
 
-/* The bilinear texton of 8 candidates from their texels' values (32-bit lanes) and weights (0 .. 65535):
+/* The bilinear texton of 8 candidates from their texels' values (32-bit lanes) and weights (0 .. 65280,
+   multiples of 2^8):
    add_bilinear's integer with one product per step, (65536 - w) a + w b = 65536 a + w (b - a), the rows
    in 32-bit lanes (below 2^25), the column in 64-bit lanes (multiply_even_32, signed 32 x 32 -> 64 bits,
    exact): candidates 0, 2, 4, 6 in `even`, 1, 3, 5, 7 in `odd`. */

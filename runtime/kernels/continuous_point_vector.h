@@ -41,9 +41,9 @@ namespace {
 /* The offsets in 32-bit lanes. Write S = floor(shifted / 2^16) for bracket's shifted value (CellAxis's
    shifted_base less b 2^(16 + shift) for the 16-bit position b): S = floor(shifted_base / 2^16) - b 2^shift
    exactly, as b 2^(16 + shift) is a multiple of 2^16. The lower index is (S >> 16) - 1 and the weight
-   S & 0xFFFF. bracket keeps 0 < shifted < (2 radius + 2) 2^32, that is 0 <= S <= (2 radius + 2) 2^16 - 1
-   except shifted = 0 (S = 0 with low bits zero), which the test below keeps too: its texels are those of
-   rows -1 and 0 with weight 0 on row 0, so it adds exactly zero. For a cell that passes cell_axis,
+   S & bilinear_weight_mask. bracket keeps 0 < shifted < (2 radius + 2) 2^32, that is 0 <= S <= (2 radius + 2)
+   2^16 - 1 except shifted = 0 (S = 0 with low bits zero), which the test below keeps too: its texels are
+   those of rows -1 and 0 with weight 0 on row 0, so it adds exactly zero. For a cell that passes cell_axis,
    0 < shifted_base < (2 radius + 2) 2^32 + 2^(32 + shift), so S lies within (-2^20, 2^30) for the radii
    taken (continuous_point_vector). */
 const uint32_t point_vector_slots = 64; /* candidates visited at once (a usual point has about 35) */
@@ -97,11 +97,11 @@ inline vector_256 lane_byte(vector_256 words, int index) {
 
 /* The bilinear reads of 8 candidates in reach (`reach`) of a window of width x height 8-bit texels,
    `stride` texels a row, added to sums (64-bit lanes, one per channel): bracket's floor(shifted / 2^16)
-   of each axis in 32-bit lanes, the lower index (S >> 16) - 1 and the weight S & 0xFFFF. Each texel is
-   read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is zero elsewhere, as
-   add_bilinear's, without a branch: one gather per texel column and row, 4 bytes from each texel (its
-   channels first). Reads reach at most 3 bytes past the window's last texel: into the asset's 4-byte CRC
-   (format.h: total_size), which the loader guarantees lies in the buffer after the texton and the
+   of each axis in 32-bit lanes, the lower index (S >> 16) - 1 and the weight S & bilinear_weight_mask. Each
+   texel is read where it lies inside the window (index -1, 0xFFFFFFFF, fails the tests) and is zero
+   elsewhere, as add_bilinear's, without a branch: one gather per texel column and row, 4 bytes from each
+   texel (its channels first). Reads reach at most 3 bytes past the window's last texel: into the asset's
+   4-byte CRC (format.h: total_size), which the loader guarantees lies in the buffer after the texton and the
    pyramid. */
 struct WindowTexels {
     vector_256 top_left, top_right, bottom_left, bottom_right; /* 4 bytes each, channels first */
