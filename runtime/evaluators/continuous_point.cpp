@@ -25,16 +25,12 @@ bool impulse_bracket(const PointAxis &point, const dsn_span &span, uint32_t cell
                      bool entry_edge, uint32_t *lower_index, uint32_t *upper_weight) {
     int64_t offset;
     if (!impulse_offset(point, span, cell_origin, bits16, &offset)) return false;
-#if DSN_GRADIENTS
     if (entry_edge &&
         offset == -static_cast<int64_t>(point.axis.radius + 1u) * static_cast<int64_t>(one_texel)) {
         *lower_index = 0xFFFFFFFFu;
         *upper_weight = 0;
         return true;
     }
-#else
-    (void)entry_edge; /* no gradients: never set */
-#endif
     return bracket(offset, point.axis.radius, lower_index, upper_weight);
 }
 
