@@ -1,5 +1,6 @@
 // continuous_test.cpp - the continuous mode's exact behaviour: coordinate conversion from IEEE bits,
 // the lattice-asset error, the bilinear sum against a brute-force reference over every nearby cell, the
+// read's error against exact real bilinear interpolation (exhaustive over the weights), the
 // steps between neighbouring pixels at 64x magnification against the derivative's bound, the per-point
 // evaluator of every kernel against the default kernel's, grid tiles against per-point calls,
 // and periodicity.
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "fixtures/continuous_fixtures.h"
+#include "runtime/core/bilinear_texton.h"
 #include "runtime/core/impulse_position.h"
 #include "runtime/core/poisson_count.h"
 #include "runtime/kernels/kernels.h"
@@ -218,6 +220,98 @@ TEST_CASE("continuous: the value is the bilinear sum over every impulse (brute-f
             }
         }
     }
+}
+
+// One impulse's read through the runtime's bracket and add_bilinear, on a 3 x 3 single-channel texton
+// whose top-left 2 x 2 texels are `corners` (a, b above, c, d below), at the offset (-1 + fx, -1 + fy),
+// fx and fy the Q0.32 fractions: the sum, times 2^32 (Q.32), as a signed integer.
+int64_t read_cell(const int32_t corners[4], uint32_t bits, uint32_t fx, uint32_t fy) {
+    unsigned char texton[18] = {};
+    const uint32_t at[4] = {0, 1, 3, 4};
+    for (int k = 0; k < 4; k++)
+        for (uint32_t byte = 0; byte < bits / 8; byte++)
+            texton[at[k] * (bits / 8) + byte] = (unsigned char)(uint32_t(corners[k]) >> (8 * byte));
+    dsn_asset asset{};
+    asset.texton = texton, asset.channels = 1, asset.bits = bits, asset.width = 3, asset.height = 3;
+    uint32_t row = 0, row_weight = 0, column = 0, column_weight = 0;
+    if (!bracket(-one + int64_t(fx), 1, &column, &column_weight) ||
+        !bracket(-one + int64_t(fy), 1, &row, &row_weight) || row != 0 || column != 0)
+        return std::numeric_limits<int64_t>::min(); // no read: the caller's comparison fails
+    uint64_t sum = 0;
+    add_bilinear(&asset, row, row_weight, column, column_weight, &sum);
+    return int64_t(sum);
+}
+
+// Real bilinear interpolation of the corners at the fractions (Q0.32), times 2^64: exact.
+__int128 exact_bilinear(const int32_t corners[4], uint64_t fx, uint64_t fy) {
+    const __int128 full = __int128(1) << 32;
+    return (full - fx) * (full - fy) * corners[0] + __int128(fx) * (full - fy) * corners[1] +
+           (full - fx) * __int128(fy) * corners[2] + __int128(fx) * __int128(fy) * corners[3];
+}
+
+TEST_CASE("continuous: a read is exact bilinear interpolation at 8-bit weights, within 2^-8 (Lx + Ly) of the "
+          "real one") {
+    // The definition: each offset's fraction floored to 2^-8 texel, then exact bilinear interpolation.
+    // So against the real interpolation at the unfloored offset, the error is below 2^-8 (Lx + Ly), Lx and
+    // Ly the largest texel differences of the cell along x and y (the interpolation's slopes). The
+    // offsets' low 24 bits are all ones (the farthest from the floor) or random.
+    std::mt19937_64 random(256);
+    uint64_t reads = 0, wrong = 0; // plain counts: doctest's per-assertion cost would dominate
+    auto check = [&](const int32_t corners[4], uint32_t bits, uint32_t fx, uint32_t fy) {
+        const __int128 read = __int128(read_cell(corners, bits, fx, fy)) << 32;
+        const uint32_t floor_mask = 0xFF000000u;
+        const int64_t across = std::max(std::llabs(int64_t(corners[1]) - corners[0]),
+                                        std::llabs(int64_t(corners[3]) - corners[2]));
+        const int64_t down = std::max(std::llabs(int64_t(corners[2]) - corners[0]),
+                                      std::llabs(int64_t(corners[3]) - corners[1]));
+        const __int128 error = exact_bilinear(corners, fx, fy) - read;
+        const __int128 bound = __int128(across + down) << 56; // 2^-8 (Lx + Ly), in units of 2^-64
+        const __int128 size = error < 0 ? -error : error;
+        const bool right = read == exact_bilinear(corners, fx & floor_mask, fy & floor_mask) &&
+                           (across + down ? size < bound : size == 0);
+        reads++;
+        if (!right && wrong++ == 0)
+            FAIL_CHECK("first wrong read: corners " << corners[0] << " " << corners[1] << " " << corners[2]
+                                                    << " " << corners[3] << ", " << bits << "-bit, fractions "
+                                                    << fx << " " << fy);
+    };
+    SUBCASE("every pair of 8-bit texels along x, at every weight") {
+        for (int32_t a = -128; a <= 127; a++)
+            for (int32_t b = -128; b <= 127; b++) {
+                const int32_t corners[4] = {a, b, 0, 0};
+                for (uint32_t weight = 0; weight < 256; weight++)
+                    check(corners, 8, weight << 24 | 0xFFFFFFu, 0);
+            }
+    }
+    SUBCASE("16-bit pairs along x and y: the extremes and random ones, at every weight") {
+        const int32_t extremes[] = {-32768, -32767, -1, 0, 1, 32766, 32767};
+        std::vector<std::pair<int32_t, int32_t>> pairs;
+        for (int32_t a : extremes)
+            for (int32_t b : extremes) pairs.push_back({a, b});
+        for (int k = 0; k < 1000; k++) pairs.push_back({int16_t(random()), int16_t(random())});
+        for (const auto &pair : pairs)
+            for (uint32_t weight = 0; weight < 256; weight++) {
+                const int32_t along_x[4] = {pair.first, pair.second, 0, 0};
+                const int32_t along_y[4] = {pair.first, 0, pair.second, 0};
+                check(along_x, 16, weight << 24 | uint32_t(random() >> 40), 0);
+                check(along_y, 16, 0, weight << 24 | uint32_t(random() >> 40));
+            }
+    }
+    SUBCASE("random 2 x 2 cells, 8- and 16-bit, at every pair of weights") {
+        for (uint32_t bits : {8u, 16u})
+            for (int cell = 0; cell < 24; cell++) {
+                int32_t corners[4];
+                for (int32_t &corner : corners)
+                    corner = bits == 8 ? int32_t(int8_t(random())) : int32_t(int16_t(random()));
+                if (cell == 0)
+                    corners[0] = corners[3] = -(1 << (bits - 1)), corners[1] = corners[2] = -corners[0] - 1;
+                for (uint32_t wy = 0; wy < 256; wy++)
+                    for (uint32_t wx = 0; wx < 256; wx++)
+                        check(corners, bits, wx << 24 | 0xFFFFFFu, wy << 24 | uint32_t(random() >> 40));
+            }
+    }
+    CHECK(wrong == 0);
+    CHECK(reads > 0);
 }
 
 TEST_CASE("continuous: at 64x magnification each step between neighbouring pixels is within its derivative's "
