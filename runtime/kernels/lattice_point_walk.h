@@ -137,6 +137,16 @@ inline vector_128 rgb_values(const unsigned char *entry) {
     return shift_right_arithmetic_32(unpack_low_16(values, values), 16);
 }
 
+/* Adds the texton values at `entry` to the hit sums. */
+template <uint32_t Channels, uint32_t Bits>
+inline void add_hit_value(const unsigned char *entry, hit_sums *sums) {
+    if (Channels == 1)
+        sums->grey += grey_value<Bits>(entry);
+    else
+        sums->rgb = Bits == 8 ? add_16(sums->rgb, rgb_values<Bits>(entry))
+                              : add_32(sums->rgb, rgb_values<Bits>(entry));
+}
+
 /* Number of set bits (SWAR: the popcnt instruction is not in the SSE2 baseline). */
 inline uint32_t popcount64(uint64_t bits) {
     bits -= (bits >> 1) & 0x5555555555555555u;
@@ -154,12 +164,7 @@ inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t 
                      hit_sums *sums) {
     for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
         const uint16_t index = uint16_t(entries[__builtin_ctzll(hits)] + moved);
-        const unsigned char *entry = texton + size_t(index) * Channels * (Bits / 8);
-        if (Channels == 1)
-            sums->grey += grey_value<Bits>(entry);
-        else
-            sums->rgb = Bits == 8 ? add_16(sums->rgb, rgb_values<Bits>(entry))
-                                  : add_32(sums->rgb, rgb_values<Bits>(entry));
+        add_hit_value<Channels, Bits>(texton + size_t(index) * Channels * (Bits / 8), sums);
     }
 }
 
@@ -198,11 +203,73 @@ inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint
     sum_hits<Channels, Bits>(texton, hits2, entries + 128, moved, sums);
 }
 
+/* The hits common to a point and its right and lower neighbours (the gradient's three points), each
+   visited once: its entry read for the point, the next for the right neighbour, one row down for the lower
+   one. RGB 8-bit: the point's texel and the next, adjacent, read by two 4-byte loads
+   into one vector (16-bit lanes 0-2 and 4-6) and summed by one addition, in point->rgb until the flush
+   splits them (flush_three). */
+template <uint32_t Channels, uint32_t Bits>
+inline void sum_common_hits(const unsigned char *texton, uint32_t width, uint64_t hits,
+                            const uint16_t *entries, hit_sums *point, hit_sums *right, hit_sums *lower) {
+    const size_t texel = Channels * (Bits / 8);
+    for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
+        const uint16_t index = entries[__builtin_ctzll(hits)];
+        const unsigned char *entry = texton + size_t(index) * texel;
+        if (Channels == 3 && Bits == 8) {
+            uint32_t here, next;
+            __builtin_memcpy(&here, entry, sizeof here);
+            __builtin_memcpy(&next, entry + texel, sizeof next);
+            const vector_128 pair =
+                unpack_low_32(set_low_32(static_cast<int>(here)), set_low_32(static_cast<int>(next)));
+            point->rgb = add_16(point->rgb, shift_right_arithmetic_16(unpack_low_8(pair, pair), 8));
+        } else {
+            add_hit_value<Channels, Bits>(entry, point);
+            add_hit_value<Channels, Bits>(entry + texel, right);
+        }
+        add_hit_value<Channels, Bits>(texton + size_t(uint16_t(index + width)) * texel, lower);
+    }
+}
+
+/* The buffered hits of the three points: those common to all three by sum_common_hits, the rest (a column
+   or row at a window's edge) point by point. A lane sums at most the 9 x 16 hits of one point between two
+   flushes. */
+template <uint32_t Channels, uint32_t Bits>
+inline void flush_three(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
+                        const uint16_t *entries, uint32_t *sums) {
+    for (uint32_t s = cells; s < 12; s++) masks[s] = masks[12 + s] = masks[24 + s] = 0;
+    /* Named sums, not arrays: kept in registers. */
+    hit_sums point = {0, zero_128()}, right = point, lower = point, point_edge = point, right_edge = point,
+             lower_edge = point;
+    for (uint32_t word = 0; word < 3; word++) {
+        uint64_t hits[3];
+        for (uint32_t p = 0; p < 3; p++)
+            __builtin_memcpy(&hits[p], masks + 12 * p + 4 * word, sizeof hits[p]);
+        const uint64_t common = hits[0] & hits[1] & hits[2];
+        const uint16_t *cell_entries = entries + 64 * word;
+        sum_common_hits<Channels, Bits>(texton, width, common, cell_entries, &point, &right, &lower);
+        sum_hits<Channels, Bits>(texton, hits[0] & ~common, cell_entries, 0u, &point_edge);
+        sum_hits<Channels, Bits>(texton, hits[1] & ~common, cell_entries, 1u, &right_edge);
+        sum_hits<Channels, Bits>(texton, hits[2] & ~common, cell_entries, width, &lower_edge);
+    }
+    if (Channels == 3 && Bits == 8) /* the right neighbour's common hits in lanes 4-6 of the point's */
+        right.rgb = shift_right_bytes<8>(point.rgb);
+    flush_hit_sums<Channels, Bits>(&point, sums);
+    flush_hit_sums<Channels, Bits>(&point_edge, sums);
+    flush_hit_sums<Channels, Bits>(&right, sums + 3);
+    flush_hit_sums<Channels, Bits>(&right_edge, sums + 3);
+    flush_hit_sums<Channels, Bits>(&lower, sums + 6);
+    flush_hit_sums<Channels, Bits>(&lower_edge, sums + 6);
+}
+
 /* The buffered hits of every point summed into its channel sums (sums + 3 p), the point's entries moved
    by 0, 1 (the point right of it) and the width (the point below it). */
 template <uint32_t Channels, uint32_t Bits, uint32_t Points>
 inline void flush_cells(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
                         const uint16_t *entries, hit_sums *hit, uint32_t *sums) {
+    if (Points == 3) {
+        flush_three<Channels, Bits>(texton, width, masks, cells, entries, sums);
+        return;
+    }
     const uint32_t moved[3] = {0u, 1u, width};
     for (uint32_t p = 0; p < Points; p++) {
         sum_buffered_hits<Channels, Bits>(texton, masks + 12 * p, cells, entries, moved[p], hit);
