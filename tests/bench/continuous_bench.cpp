@@ -2,7 +2,7 @@
 // the same run: per point over a 512 x 512 grid, tiles rotated and axis-aligned at two zooms with every
 // copy of the tile code this CPU runs (each timed in rounds beside its own lattice tile), and random points
 // one by one and as a batch (the batch in every copy too), RGB, 31 x 31 texton, 30 impacts per pixel, one
-// thread; and each copy's splat kernel in its best case (splat_best_case.h) against what a tile at 1/6 of
+// thread; and each copy's splat kernel in its best case (splat_best_case.h) against what a tile at 1/8 of
 // the lattice tile leaves each impulse and pixel.
 #include <algorithm>
 #include <chrono>
@@ -165,11 +165,12 @@ int main() {
                         grids[g].name, samples / (cost.best * cost.baseline_best) / 1e6, cost.best,
                         tile_rounds, cost.median);
         }
-        // What 1/6 of the lattice tile leaves each impulse and pixel, against the splat kernel alone.
+        // What 1/8 of the lattice tile (the target) leaves each impulse and pixel, against the splat kernel
+        // alone.
         std::printf(
             "    the splat kernel at its best (splat_best_case.h): %.2f ns per impulse and pixel, where a "
-            "tile at 1/6 of the lattice tile has %.2f in all\n",
-            bench::splat_best_case(n, kernel) * 1e9, 6 * lattice_tiles[kernel] / samples / impacts * 1e9);
+            "tile at 1/8 of the lattice tile has %.2f in all\n",
+            bench::splat_best_case(n, kernel) * 1e9, 8 * lattice_tiles[kernel] / samples / impacts * 1e9);
     }
     std::printf("  %zu random points: continuous %.0f ns/point, lattice per point %.0f ns/point: "
                 "ratio %.2f best, %.2f median of %d\n",
