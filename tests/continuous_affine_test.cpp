@@ -313,7 +313,7 @@ TEST_CASE("continuous affine: the vector runs of every kernel, every run length,
         const dsn_asset &asset = dsn_state(&noise->noise)->asset;
         const dsn_splat_texture texton = {
             asset.texton, asset.width, asset.height, asset.width, asset.channels, asset.bits, 0};
-        CHECK((make_splat_cells(texton, cells, splat_cell_capacity, &cell_row) != 0) == c.records);
+        CHECK((make_splat_cells(texton, cells, splat_cell_capacity, &cell_row, 0) != 0) == c.records);
 #endif
         for (double angle : {30.0, 0.0, 90.0, 163.0, 271.0})
             for (double zoom : {0.7, 1.7, 0.3, 3.1}) {

@@ -76,7 +76,7 @@ void add_entry_edge_points(const dsn_noise &noise, std::mt19937_64 &random, uint
         point[edge] = impulse[edge] - (int64_t(state->radius[edge]) + 1) * (int64_t(1) << 32);
         // within radius + 1 texels along the other axis, on the 2^-16 grid
         const int64_t span = (2 * int64_t(state->radius[across]) + 1) * 65536;
-        point[across] = impulse[across] + (int64_t(random() % uint64_t(span)) - span / 2) * step;
+        point[across] = impulse[across] + (int64_t(random() % uint64_t(span)) - span / 2) * 65536;
         xs->push_back(point[0]), ys->push_back(point[1]);
         k++;
     }
@@ -686,6 +686,57 @@ TEST_CASE("continuous gradient tiles: every kernel's, splatted or point by point
                 }
     MESSAGE("continuous gradient tiles: " << splatted << " grids of 96 splatted");
     CHECK(splatted >= 48);
+    CHECK(differences == 0);
+}
+
+TEST_CASE("continuous gradient tiles: pixels with an impulse exactly at the edges of their reach") {
+    // At the entry edge only the impulse's slope counts (its value is 0), at the other edge neither: a grid
+    // tile's runs must cover the first, as the per-point walk does, and read nothing at the second.
+    // Axis-aligned (magnified, minified) and rotated grids placed so that an inner pixel lies on an edge
+    // along x or y; grey and RGB, 8 and 16 bits.
+    const int64_t one = int64_t(1) << 32, radius = 9;
+    // column step x, y; row step x, y
+    const int64_t steps[][4] = {{one / 8, 0, 0, one / 8},
+                                {int64_t(0.6062 * double(one)), int64_t(0.35 * double(one)),
+                                 -int64_t(0.35 * double(one)), int64_t(0.6062 * double(one))},
+                                {int64_t(1.3 * double(one)), 0, 0, int64_t(1.3 * double(one))}};
+    std::mt19937_64 random(71);
+    size_t differences = 0, tiles = 0, splatted = 0;
+    for (uint32_t channels : {1u, 3u})
+        for (uint32_t bits : {8u, 16u}) {
+            const auto made =
+                make_noise(random_texton_asset(channels, radius, bits, 70 + channels + bits), 13);
+            std::vector<int64_t> xs, ys;
+            add_entry_edge_points(made->noise, random, 24, &xs, &ys);
+            for (size_t k = 0; k < xs.size(); k++)
+                for (bool exit : {false, true})
+                    for (const auto &step : steps) {
+                        // the point (even k: an edge along x, odd k: along y), or across the reach from it
+                        const int64_t across = exit ? 2 * (radius + 1) * one : 0;
+                        const int64_t x = xs[k] + (k % 2 == 0 ? across : 0), y = ys[k] + (k % 2 ? across : 0);
+                        // pixel (5, 2) on it
+                        const dsn_grid grid = {x - 5 * step[0] - 2 * step[2],
+                                               y - 5 * step[1] - 2 * step[3],
+                                               step[0],
+                                               step[1],
+                                               step[2],
+                                               step[3]};
+                        const uint32_t width = 16, height = 8;
+                        const std::vector<int32_t> expected = gradient_planes(
+                            width, height, channels,
+                            [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
+                                int64_t px, py;
+                                dsn_test::grid_point(grid, i, j, &px, &py);
+                                return dsn_continuous_gradient_fixed(&made->noise, px, py, v, gx, gy);
+                            });
+                        const ContinuousGradientTile tile = {made->noise, grid, width, height};
+                        differences += kernel_tile_differences(made->noise, expected, tile);
+                        splatted += dsn_continuous_tile_scratch_size(&made->noise, &grid, width, height) != 0;
+                        tiles++;
+                    }
+        }
+    CHECK(tiles == 4 * 24 * 2 * 3);
+    CHECK(splatted == tiles);
     CHECK(differences == 0);
 }
 

@@ -48,7 +48,7 @@ void splat_grid(const dsn_noise_state *noise, const dsn_grid_splat &prepared, ui
     dsn_grid_splat splat = prepared;
 #if DSN_SPLAT_CELLS
     alignas(64) uint64_t cells[splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
-    if (make_splat_cells(splat.setup.texture, cells, splat_cell_capacity, &splat.setup.cell_row) != 0)
+    if (make_splat_cells(splat.setup.texture, cells, splat_cell_capacity, &splat.setup.cell_row, 0) != 0)
         splat.setup.cells = cells;
 #endif
     for (uint32_t top = 0; top < height; top += dsn_splat_block_rows)
@@ -99,12 +99,14 @@ dsn_grid moved_grid(const dsn_grid *grid, int axis) {
     return moved;
 }
 
-/* Row j of a gradient block: the value from the grid's sums (sums[0]), each derivative from the moved
-   grid's sums less the grid's (2^8 times the slopes), per texel (times 2^8), normalized as the value without
-   the mean (`slopes`, the noise with a zero offset); then the mapping's chain rule and the stores. */
+/* Row j of a gradient block: the value from the grid's sums (sums[0]), each derivative from sums[1] and
+   sums[2], per 2^-16 texel: the slopes themselves (Moved false: the one-pass runs), or the moved grid's
+   sums less the grid's (Moved true: 2^8 times the slopes); times 2^16 per texel, normalized as the value
+   without the mean (`slopes`, the noise with a zero offset); then the mapping's chain rule and the stores. */
+template <bool Moved>
 void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, const dsn_splat_block &block,
-                  uint32_t j, uint32_t width, uint64_t (*sums)[gradient_block_sums], void *out, void *dx,
-                  void *dy, dsn_output_kind kind) {
+                  uint32_t j, uint32_t width, uint64_t *const *sums, void *out, void *dx, void *dy,
+                  dsn_output_kind kind) {
     const dsn_kernel_entries *kernel = dsn_kernel_entries_of(noise->tile_kernel);
     const uint32_t channels = noise->asset.channels;
     const size_t row = static_cast<size_t>(j) * block.stride;
@@ -114,7 +116,7 @@ void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, c
         for (uint32_t c = 0; c < channels; c++)
             for (uint32_t i = 0; i < block.columns; i++) {
                 const size_t at = c * block.plane + row + i;
-                sums[k][at] = (sums[k][at] - sums[0][at]) << 8; /* 2^8 slopes, per texel */
+                sums[k][at] = Moved ? (sums[k][at] - sums[0][at]) << 8 : sums[k][at] << 16;
             }
         kernel->continuous_splat_normalize(slopes, sums[k] + row, block.plane, block.columns, values[k]);
     }
@@ -136,6 +138,62 @@ void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, c
     }
 }
 
+/* The noise whose normalization the slopes take: the noise's, with a zero offset (the mean does not reach
+   a derivative). */
+dsn_noise_state slopes_noise(const dsn_noise_state *noise) {
+    dsn_noise_state slopes = *noise;
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) slopes.offset[c] = 0;
+    return slopes;
+}
+
+/* Whether a periodic axis's start wraps where the grid moves by a weight step (start_wraps). */
+bool moves_wrap(const dsn_noise_state *noise, const dsn_grid *grid) {
+    return (noise->period[0] != 0 && start_wraps(grid->origin_x)) ||
+           (noise->period[1] != 0 && start_wraps(grid->origin_y));
+}
+
+/* The gradient tile in one splat, where the kernel has the gradient's runs, the texton records (8-bit,
+   small enough) and the grid is not axis-aligned (whose three splats share each record's interpolation
+   along a row down the runs, splat_row.h, and cost less): each impulse adds its value and both slopes at once
+   (kernels.h's continuous_gradient_runs), over the closed reach (grid_splat.h), the value planes and then
+   those of the slopes along x and y in one array. The per-point gradient's bits, like the three splats'.
+   Returns 0 where the grid or the texton does not take it. */
+int splat_gradient_one_pass(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
+                            uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind) {
+#if DSN_SPLAT_CELLS
+    dsn_splat_runs_entry *runs = dsn_kernel_entries_of(noise->tile_kernel)->continuous_gradient_runs;
+    const dsn_splat_texture texture = texton_texture(&noise->asset);
+    dsn_grid_splat splat;
+    if (runs == 0 || moves_wrap(noise, grid) ||
+        !dsn_internal_grid_splat_init(noise, grid, width, height, &texture, &splat) ||
+        splat.setup.columns_shared)
+        return 0;
+    alignas(64) uint64_t cells[splat_cell_capacity];
+    if (make_splat_cells(texture, cells, splat_cell_capacity, &splat.setup.cell_row, 1) == 0) return 0;
+    splat.setup.cells = cells;
+    splat.runs = runs;
+    dsn_internal_grid_splat_closed(&splat);
+    const dsn_noise_state slopes = slopes_noise(noise);
+    const uint32_t channels = noise->asset.channels;
+    uint64_t sums[3 * gradient_block_sums];
+    for (uint32_t top = 0; top < height; top += gradient_block_rows)
+        for (uint32_t left = 0; left < width; left += gradient_block_columns) {
+            const dsn_splat_block block = dsn_internal_splat_small_block(
+                left, top, width, height, gradient_block_columns, gradient_block_rows);
+            const size_t planes = block.plane * channels;
+            uint64_t *const sets[3] = {sums, sums + planes, sums + 2 * planes};
+            for (size_t i = planes; i < 3 * planes; i++) sums[i] = 0; /* the values': the block splat */
+            dsn_internal_grid_splat_block(noise, &splat, &block, sums);
+            for (uint32_t j = 0; j < block.rows; j++)
+                gradient_row<false>(noise, &slopes, block, j, width, sets, out, dx, dy, kind);
+        }
+    return 1;
+#else
+    (void)noise, (void)grid, (void)width, (void)height, (void)out, (void)dx, (void)dy, (void)kind;
+    return 0;
+#endif
+}
+
 /* The gradient tile by splatting three grids: the tile's and the tile's moved one weight step right and down.
    Their sums differ by 2^8 times the slope sums exactly (continuous_internal.h: the weights step by one, and
    the impulses a move brings within reach add their slope, those it takes out remove their value), so the
@@ -143,9 +201,8 @@ void gradient_row(const dsn_noise_state *noise, const dsn_noise_state *slopes, c
    axis's start (point by point instead). */
 int splat_gradient_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
                         void *out, void *dx, void *dy, dsn_output_kind kind) {
-    if ((noise->period[0] != 0 && start_wraps(grid->origin_x)) ||
-        (noise->period[1] != 0 && start_wraps(grid->origin_y)))
-        return 0;
+    if (splat_gradient_one_pass(noise, grid, width, height, out, dx, dy, kind)) return 1;
+    if (moves_wrap(noise, grid)) return 0;
     const dsn_grid grids[3] = {*grid, moved_grid(grid, 0), moved_grid(grid, 1)};
     const dsn_splat_texture texture = texton_texture(&noise->asset);
     dsn_grid_splat splats[3];
@@ -154,15 +211,15 @@ int splat_gradient_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint
 #if DSN_SPLAT_CELLS
     alignas(64) uint64_t cells[splat_cell_capacity];
     uint32_t cell_row = 0;
-    if (make_splat_cells(texture, cells, splat_cell_capacity, &cell_row) != 0)
+    if (make_splat_cells(texture, cells, splat_cell_capacity, &cell_row, 0) != 0)
         for (uint32_t k = 0; k < 3; k++) {
             splats[k].setup.cells = cells;
             splats[k].setup.cell_row = cell_row;
         }
 #endif
-    dsn_noise_state slopes = *noise;
-    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) slopes.offset[c] = 0;
+    const dsn_noise_state slopes = slopes_noise(noise);
     uint64_t sums[3][gradient_block_sums];
+    uint64_t *const sets[3] = {sums[0], sums[1], sums[2]};
     for (uint32_t top = 0; top < height; top += gradient_block_rows)
         for (uint32_t left = 0; left < width; left += gradient_block_columns) {
             const dsn_splat_block block = dsn_internal_splat_small_block(
@@ -170,7 +227,7 @@ int splat_gradient_tile(const dsn_noise_state *noise, const dsn_grid *grid, uint
             for (uint32_t k = 0; k < 3; k++)
                 dsn_internal_grid_splat_block(noise, &splats[k], &block, sums[k]);
             for (uint32_t j = 0; j < block.rows; j++)
-                gradient_row(noise, &slopes, block, j, width, sums, out, dx, dy, kind);
+                gradient_row<true>(noise, &slopes, block, j, width, sets, out, dx, dy, kind);
         }
     return 1;
 }

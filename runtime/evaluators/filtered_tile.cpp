@@ -211,7 +211,7 @@ void filtered_splat(const dsn_noise_state *noise, const dsn_grid *tile_grid, uin
     for (uint32_t k = 0; k < filtered->count; k++) {
         const dsn_splat_texture texture = level_texture(noise, filtered->walked[k]);
         const uint32_t records =
-            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered->cell_row[k]);
+            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered->cell_row[k], 0);
         if (records != 0) filtered->cells[k] = cells + used;
         used += records;
     }
@@ -411,7 +411,7 @@ int dsn_internal_filtered_gradient_splat(const dsn_noise_state *noise, const dsn
     for (uint32_t k = 0; k < filtered.count; k++) {
         const dsn_splat_texture texture = level_texture(noise, filtered.walked[k]);
         const uint32_t records =
-            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered.cell_row[k]);
+            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered.cell_row[k], 0);
         if (records != 0) filtered.cells[k] = cells + used;
         used += records;
     }

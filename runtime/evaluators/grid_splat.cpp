@@ -463,6 +463,14 @@ int dsn_internal_grid_splat_init(const dsn_noise_state *noise, const dsn_grid *g
     return 1;
 }
 
+void dsn_internal_grid_splat_closed(dsn_grid_splat *splat) {
+    dsn_splat_axis *axes[2] = {&splat->x, &splat->y};
+    for (uint32_t k = 0; k < 2; k++) {
+        axes[k]->reach += 1;
+        column_steps_init(&axes[k]->columns, axes[k]->column, axes[k]->row, axes[k]->reach);
+    }
+}
+
 size_t dsn_internal_splat_block_pixels(uint32_t width, uint32_t height) {
     const uint64_t tile = static_cast<uint64_t>(width) * height;
     const uint64_t block = (dsn_splat_block_columns + splat_row_padding) * dsn_splat_block_rows;

@@ -59,6 +59,13 @@ typedef struct dsn_splat_block {
 int dsn_internal_grid_splat_init(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                                  uint32_t height, const dsn_splat_texture *texture, dsn_grid_splat *splat);
 
+/* Widens the offsets an impulse reaches from (-reach, reach) to [-reach, reach] on both axes (the kernel
+   reads them as before): the gradient's runs (kernels.h's continuous_gradient_runs), whose slopes are
+   one-sided toward +x and +y, so that an impulse exactly at the edge where it enters the reach adds its
+   slope (its value is 0), as per point; at the other edge both are 0. The texture's records then need a
+   margin (splat_cells.h). */
+void dsn_internal_grid_splat_closed(dsn_grid_splat *splat);
+
 /* The pixels whose sums a block of the tile takes at most: the tile's, or one block's with its rows
    padded by a cache line, whichever is fewer (at most 72 x 32). */
 size_t dsn_internal_splat_block_pixels(uint32_t width, uint32_t height);

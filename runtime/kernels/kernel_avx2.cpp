@@ -25,6 +25,7 @@ extern const dsn_kernel_entries dsn_internal_entries_avx2 = {
     DSN_LATTICE_POINT_ENTRY,
     continuous_batch,
     continuous_splat_runs,
+    DSN_SPLAT_GRADIENT_ENTRY,
     continuous_splat_normalize,
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,

@@ -27,6 +27,7 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
     DSN_LATTICE_POINT_ENTRY,
     continuous_batch,
     continuous_splat_runs,
+    DSN_SPLAT_GRADIENT_ENTRY,
     continuous_splat_normalize,
     continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,
@@ -61,15 +62,10 @@ int lattice_strips_take_avx2_if_rgb(const dsn_noise_state *noise) {
 
 /* This kernel but for the lattice tiles of RGB noises, which take the AVX2 kernel's. */
 extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
-    lattice_tile_avx2_if_rgb,
-    lattice_strips_take_avx2_if_rgb,
-    DSN_LATTICE_POINT_ENTRY,
-    continuous_batch,
-    continuous_splat_runs,
-    continuous_splat_normalize,
-    continuous_point_or<&dsn_internal_entries_default>,
-    DSN_FILTER_READS_ENTRY,
-    DSN_FILTER_CANDIDATES_ENTRY,
-    DSN_SURFACE_IMPULSES_ENTRY,
-    DSN_SURFACE_READS_ENTRY};
+    lattice_tile_avx2_if_rgb,   lattice_strips_take_avx2_if_rgb,
+    DSN_LATTICE_POINT_ENTRY,    continuous_batch,
+    continuous_splat_runs,      DSN_SPLAT_GRADIENT_ENTRY,
+    continuous_splat_normalize, continuous_point_or<&dsn_internal_entries_default>,
+    DSN_FILTER_READS_ENTRY,     DSN_FILTER_CANDIDATES_ENTRY,
+    DSN_SURFACE_IMPULSES_ENTRY, DSN_SURFACE_READS_ENTRY};
 #endif

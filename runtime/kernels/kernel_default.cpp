@@ -16,6 +16,7 @@
 #define SPLAT_NORMALIZE_ENTRY continuous_splat_normalize
 #else
 #define SPLAT_ROW_ENTRY 0
+#define DSN_SPLAT_GRADIENT_ENTRY 0
 #define SPLAT_NORMALIZE_ENTRY 0
 #endif
 #include "kernels/continuous_point_sift.h"
@@ -29,6 +30,7 @@ extern const dsn_kernel_entries dsn_internal_entries_default = {render_tile,
                                                                 DSN_LATTICE_POINT_ENTRY,
                                                                 BATCH_ENTRY,
                                                                 SPLAT_ROW_ENTRY,
+                                                                DSN_SPLAT_GRADIENT_ENTRY,
                                                                 SPLAT_NORMALIZE_ENTRY,
                                                                 DSN_CONTINUOUS_POINT_ENTRY,
                                                                 DSN_FILTER_READS_ENTRY,

@@ -95,6 +95,12 @@ typedef struct dsn_splat_setup {
 typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count);
 
+/* continuous_gradient_runs (splat_row.h's splat_runs_gradient): the same runs of a level-0 texture with
+   records (setup.cells), adding the value and both slopes in one pass: a run's value planes at run.sums,
+   its slopes along x and y (bilinear_texton.h's add_slopes, per 2^-16 texel) `channels` and 2 `channels`
+   planes after them, each set of planes ending `channels` planes after the last (setup.sums_end is the
+   values'). */
+
 /* The normalization of the continuous grid splat's sums (splat_row.h's continuous_splat_normalize):
    `count` pixels, channel c of pixel p at sums[c * plane + p], into out[p * channels + c] as
    normalize_q32_unmapped gives them (continuous_internal.h). */
@@ -184,7 +190,8 @@ typedef int dsn_surface_reads_entry(const dsn_asset *asset, const dsn_surface_im
    continuous_splat_normalize, lattice_point and continuous_point in the small build (DSN_SMALL_CODE),
    which evaluates grids point by point and whose point.cpp and continuous_point.cpp walk the cells
    themselves; lattice_point without SSE2 too; filter_level_reads and filter_candidates in kernels built
-   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself); surface_impulses and
+   without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself), and
+   continuous_gradient_runs too (continuous_tile.cpp then splats three grids); surface_impulses and
    surface_reads without the surface noise (DSN_SURFACE 0), surface_reads in kernels built without
    AVX2 too. */
 typedef struct dsn_kernel_entries {
@@ -193,6 +200,7 @@ typedef struct dsn_kernel_entries {
     dsn_lattice_point_entry *lattice_point;
     dsn_continuous_batch_entry *continuous_batch;
     dsn_splat_runs_entry *continuous_splat_runs;
+    dsn_splat_runs_entry *continuous_gradient_runs;
     dsn_splat_normalize_entry *continuous_splat_normalize;
     dsn_continuous_point_entry *continuous_point;
     dsn_filter_level_reads_entry *filter_level_reads;

@@ -44,12 +44,14 @@ inline int32_t texture_texel(const dsn_splat_texture &texture, uint32_t row, uin
                              : dsn_read_i16le(texture.values + 2u * index);
 }
 
-/* Fills `cells` (`capacity` records at most) and sets *cell_row (cells per row: width + 1; each cell has
-   one record per channel, in order, RGB cells padded to 4), and returns the records used, or 0 when the
-   texture has no records (16-bit, or too large). */
+/* Fills `cells` (`capacity` records at most) and sets *cell_row (cells per row: width + 1 + margin; each
+   cell has one record per channel, in order, RGB cells padded to 4), and returns the records used, or 0
+   when the texture has no records (16-bit, or too large). A margin of 1 adds a row and a column of cells
+   past the window, all zero: the gradient's runs reach offsets of exactly the reach (grid_splat.h). */
 inline uint32_t make_splat_cells(const dsn_splat_texture &texture, uint64_t *cells, uint32_t capacity,
-                                 uint32_t *cell_row) {
-    const uint32_t channels = texture.channels, columns = texture.width + 1u, rows = texture.height + 1u;
+                                 uint32_t *cell_row, uint32_t margin) {
+    const uint32_t channels = texture.channels, columns = texture.width + 1u + margin,
+                   rows = texture.height + 1u + margin;
     const uint32_t cell_records = channels == 3 ? 4u : 1u;
     if (texture.bits != 8 || static_cast<uint64_t>(columns) * rows * cell_records > capacity) return 0;
     *cell_row = columns;

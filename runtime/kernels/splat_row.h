@@ -277,19 +277,17 @@ inline splat_vector splat_level(splat_vector shifted, uint32_t level) {
     return Leveled ? splat_shift_right(shifted, level) : shifted;
 }
 
+/* First every lane's cell (where its records start: cell[]), then the sums: the loads of the records do not
+   wait on the vector stores of their indices. Lanes past a run read cell 0. */
 template <uint32_t Channels, bool Leveled>
-void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+inline void splat_cell_indices(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count,
+                               uint64_t *cell) {
     const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
                    step_y = static_cast<uint64_t>(setup->step_y);
     const splat_vector lanes_x = splat_lane_steps(0, step_x), lanes_y = splat_lane_steps(0, step_y);
     const splat_vector next_x = splat_set(step_x * splat_lanes), next_y = splat_set(step_y * splat_lanes);
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
-    const size_t plane = setup->plane;
-    const uint64_t *end = setup->sums_end;
     const uint32_t level = setup->texture.level;
-    /* First every lane's cell (where its records start), then the sums: the loads of the records do not
-       wait on the vector stores of their indices. */
-    uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
     uint64_t *at = cell;
     for (uint32_t r = 0; r < run_count; r++) {
         /* bracket's shifted values: the cell is (shifted_y >> 32) rows and (shifted_x >> 32) columns into
@@ -299,7 +297,6 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
         splat_vector shifted_y =
             splat_add(splat_set(static_cast<uint64_t>(runs[r].offset_y + setup->reach_y)), lanes_y);
         for (uint32_t done = 0; done < runs[r].count; done += splat_lanes, at += splat_lanes) {
-            /* lanes past the run read cell 0 */
             splat_store(
                 at, splat_first_lanes(
                         splat_add(splat_whole_times(splat_level<Leveled>(shifted_y, level), row_records),
@@ -309,7 +306,50 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
             shifted_y = splat_add(shifted_y, next_y);
         }
     }
-    at = cell;
+}
+
+/* ---- The gradient's runs: the value and both slopes in one pass ----
+   With the texel pieces of each lane's cell record (splat_cells.h: w1 = TR - TL, w3 = TL - TR - BL + BR),
+   add_slopes's two integers (bilinear_texton.h), per 2^-16 texel: along y, (65536 - a)(BL - TL) + a (BR -
+   TR) = lower - upper, the rows' second dword, already there; along x, (65536 - d)(TR - TL) + d (BR - BL) =
+   65536 w1 + d w3 = 256 (256 w1 + d' w3), d = 256 d' the down weight: a multiply-add of the record's words
+   with (0, 256, 0, d'). The value planes at `sums`, the slopes along x Channels planes after them, along y
+   2 Channels planes after; the runs cover the entry edge too (grid_splat.h), where the value adds 0. The
+   records' integers as AVX2 and AVX-512 take them (splat_rows: no biases). */
+template <uint32_t Channels>
+inline void splat_add_slopes(const splat_vector *records, splat_vector across, splat_vector down,
+                             uint64_t *sums, size_t plane, uint32_t remaining, const uint64_t *end) {
+    const size_t along_x = Channels * plane, along_y = 2 * Channels * plane;
+    const splat_vector slope_weights = splat_or(splat_shift_left(down, 40), splat_set(256u << 16));
+    for (uint32_t c = 0; c < Channels; c++) {
+        const splat_vector rows = splat_rows(records[c], across);
+        const splat_vector difference = splat_shift_right(rows, 32);
+        const splat_vector along = splat_rows(records[c], slope_weights);
+        uint64_t *value = sums + c * plane;
+        splat_accumulate(value, splat_add(splat_upper_scaled(rows), splat_difference_times(difference, down)),
+                         remaining, end);
+        splat_accumulate(value + along_x,
+                         splat_add(splat_signed_times(along, splat_set(256)),
+                                   splat_signed_times(splat_shift_right(along, 32), splat_set(256))),
+                         remaining, end + along_x);
+        splat_accumulate(value + along_y, splat_signed_times(difference, splat_set(1)), remaining,
+                         end + along_y);
+    }
+}
+
+/* The runs of a call, and with Slopes (AVX2 and AVX-512 only: continuous_gradient_runs) both slopes too. */
+template <uint32_t Channels, bool Leveled, bool Slopes>
+void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
+    const uint64_t step_x = static_cast<uint64_t>(setup->step_x),
+                   step_y = static_cast<uint64_t>(setup->step_y);
+    const splat_vector lanes_x = splat_lane_steps(0, step_x), lanes_y = splat_lane_steps(0, step_y);
+    const splat_vector next_x = splat_set(step_x * splat_lanes), next_y = splat_set(step_y * splat_lanes);
+    const size_t plane = setup->plane;
+    const uint64_t *end = setup->sums_end;
+    const uint32_t level = setup->texture.level;
+    uint64_t cell[dsn_splat_runs_most * (dsn_splat_run_longest + splat_lanes)];
+    splat_cell_indices<Channels, Leveled>(setup, runs, run_count, cell);
+    uint64_t *at = cell;
     for (uint32_t r = 0; r < run_count; r++) {
         const dsn_splat_run &run = runs[r];
         splat_vector shifted_x =
@@ -324,10 +364,15 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
                                down = splat_weight(splat_level<Leveled>(shifted_y, level));
             splat_vector records[3];
             splat_load_cells<Channels>(setup->cells, at, records);
-            splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
-            if (Channels == 3) {
-                splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining, end);
-                splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining, end);
+            if (Slopes) {
+                splat_add_slopes<Channels>(records, across, down, sums, plane, remaining, end);
+            } else {
+                splat_accumulate(sums, splat_bilinear(records[0], across, down), remaining, end);
+                if (Channels == 3) {
+                    splat_accumulate(sums + plane, splat_bilinear(records[1], across, down), remaining, end);
+                    splat_accumulate(sums + 2 * plane, splat_bilinear(records[2], across, down), remaining,
+                                     end);
+                }
             }
             shifted_x = splat_add(shifted_x, next_x);
             shifted_y = splat_add(shifted_y, next_y);
@@ -413,8 +458,22 @@ inline void splat_runs_cells(const dsn_splat_setup *setup, const dsn_splat_run *
     if (setup->columns_shared)
         splat_runs_aligned<Channels, Leveled>(setup, runs, run_count);
     else
-        splat_runs_vector<Channels, Leveled>(setup, runs, run_count);
+        splat_runs_vector<Channels, Leveled, false>(setup, runs, run_count);
 }
+#endif
+
+#if DSN_SPLAT_CELLS && defined(__AVX2__)
+/* The kernel entry (kernels.h's continuous_gradient_runs): a texture with records, at level 0. */
+inline void continuous_gradient_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
+                                     uint32_t run_count) {
+    if (setup->texture.channels == 3)
+        splat_runs_vector<3, false, true>(setup, runs, run_count);
+    else
+        splat_runs_vector<1, false, true>(setup, runs, run_count);
+}
+#define DSN_SPLAT_GRADIENT_ENTRY continuous_gradient_runs
+#else
+#define DSN_SPLAT_GRADIENT_ENTRY 0
 #endif
 
 /* The kernel entry: the runs on vectors where the texture has records, else pixel by pixel. */

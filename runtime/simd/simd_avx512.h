@@ -180,6 +180,9 @@ inline splat_vector splat_or(splat_vector a, splat_vector b) { return _mm512_or_
 inline splat_vector splat_shift_right(splat_vector value, uint32_t count) {
     return _mm512_srl_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
 }
+inline splat_vector splat_shift_left(splat_vector value, uint32_t count) {
+    return _mm512_sll_epi64(value, _mm_cvtsi32_si128(static_cast<int>(count)));
+}
 /* The first `count` lanes (all of them from splat_lanes up), the others 0. */
 inline splat_vector splat_first_lanes(splat_vector value, uint32_t count) {
     return _mm512_maskz_mov_epi64(

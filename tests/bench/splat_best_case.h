@@ -44,7 +44,7 @@ inline double splat_best_case(const dsn_noise *handle, uint32_t kernel) {
     };
     std::vector<Records> cells(1);
 #if DSN_SPLAT_CELLS
-    if (make_splat_cells(setup.texture, cells[0].values, splat_cell_capacity, &setup.cell_row) != 0)
+    if (make_splat_cells(setup.texture, cells[0].values, splat_cell_capacity, &setup.cell_row, 0) != 0)
         setup.cells = cells[0].values;
 #endif
     std::vector<uint64_t> sums(size_t(asset.channels) * stride * rows);
