@@ -713,14 +713,13 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    (the differences' neighbours) by the value's strips; a continuous tile that the value's function would
    splat is splatted in blocks of 64 x 8 pixels whose sums stay on the stack: once, each impulse adding its
    value and both slopes, over offsets up to and including the reach (at its entry edge an impulse's value
-   is 0, its slope is not), where the kernel can (AVX2 and AVX-512, 8-bit textons, grids not axis-aligned);
-   else three times, at the grid and at the grid moved one weight step (2^-8 texel) along x and along y,
-   the differences being 2^8 times the derivative's sums exactly (see the continuous mode above). A grid
-   whose move would carry a periodic axis's int32 start (X - 1) across its wrap, where the sums jump, goes
-   point by point. A batch goes 8 points
-   at a time through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its texels
-   read from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered filtered
-   gradient tile (level of detail 0, one tap) is the continuous one; a filtered one that the value's
+   is 0, its slope is not), where the kernel can (AVX2 and AVX-512, 8-bit textons); else three times, at the
+   grid and at the grid moved one weight step (2^-8 texel) along x and along y, the differences being 2^8
+   times the derivative's sums exactly (see the continuous mode above). A grid whose move would carry a
+   periodic axis's int32 start (X - 1) across its wrap, where the sums jump, goes point by point. A batch goes
+   8 points at a time through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its
+   texels read from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered
+   filtered gradient tile (level of detail 0, one tap) is the continuous one; a filtered one that the value's
    function would splat is splatted three times per tap and level, in blocks of 64 x 8 pixels: the tap's
    grid, and the same moved one weight step of the level (2^-8 level texel) along x and along y (the same
    exception at a periodic axis's seam); the others go point by point.

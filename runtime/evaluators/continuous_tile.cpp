@@ -152,12 +152,11 @@ bool moves_wrap(const dsn_noise_state *noise, const dsn_grid *grid) {
            (noise->period[1] != 0 && start_wraps(grid->origin_y));
 }
 
-/* The gradient tile in one splat, where the kernel has the gradient's runs, the texton records (8-bit,
-   small enough) and the grid is not axis-aligned (whose three splats share each record's interpolation
-   along a row down the runs, splat_row.h, and cost less): each impulse adds its value and both slopes at once
-   (kernels.h's continuous_gradient_runs), over the closed reach (grid_splat.h), the value planes and then
-   those of the slopes along x and y in one array. The per-point gradient's bits, like the three splats'.
-   Returns 0 where the grid or the texton does not take it. */
+/* The gradient tile in one splat, where the kernel has the gradient's runs and the texton records (8-bit,
+   small enough): each impulse adds its value and both slopes at once (kernels.h's
+   continuous_gradient_runs), over the closed reach (grid_splat.h), the value planes and then those of the
+   slopes along x and y in one array. The per-point gradient's bits, like the three splats'. Returns 0
+   where the grid or the texton does not take it. */
 int splat_gradient_one_pass(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width,
                             uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind) {
 #if DSN_SPLAT_CELLS
@@ -165,8 +164,7 @@ int splat_gradient_one_pass(const dsn_noise_state *noise, const dsn_grid *grid, 
     const dsn_splat_texture texture = texton_texture(&noise->asset);
     dsn_grid_splat splat;
     if (runs == 0 || moves_wrap(noise, grid) ||
-        !dsn_internal_grid_splat_init(noise, grid, width, height, &texture, &splat) ||
-        splat.setup.columns_shared)
+        !dsn_internal_grid_splat_init(noise, grid, width, height, &texture, &splat))
         return 0;
     alignas(64) uint64_t cells[splat_cell_capacity];
     if (make_splat_cells(texture, cells, splat_cell_capacity, &splat.setup.cell_row, 1) == 0) return 0;

@@ -388,11 +388,44 @@ void splat_runs_vector(const dsn_splat_setup *setup, const dsn_splat_run *runs, 
    (splat_rows: both dwords of each record) stays in registers while the cell row does not change, and
    each pixel adds 65536 upper + down (lower - upper) from it: the same integers. Lanes past the runs read
    the row's first cell and are not added. */
-template <uint32_t Channels, bool Leveled>
+/* One channel of the current cell row, kept in registers: 65536 upper and lower - upper (the value's), and
+   with Slopes 65536 w1, w3 and the slope along y (splat_add_slopes's pieces). */
+struct AlignedChannel {
+    splat_vector scaled, difference, base_x, cross, slope_y;
+};
+
+template <bool Slopes>
+inline void aligned_channel(splat_vector records, splat_vector across, AlignedChannel *channel) {
+    const splat_vector rows = splat_row_integers(records, across);
+    channel->scaled = splat_upper_scaled(rows);
+    channel->difference = splat_shift_right(rows, 32);
+    if (Slopes) {
+        /* the words (0, 1, 0, 1): w1 and w3 in the lane's dwords */
+        const splat_vector pieces = splat_rows(records, splat_set(0x0001000000010000u));
+        channel->base_x = splat_signed_times(pieces, splat_set(65536));
+        channel->cross = splat_shift_right(pieces, 32);
+        channel->slope_y = splat_signed_times(channel->difference, splat_set(1));
+    }
+}
+
+/* A pixel's value (and slopes) from its cell row's channel and its down weight. */
+template <bool Slopes>
+inline void aligned_add(const AlignedChannel &channel, splat_vector weight, uint64_t *sums, size_t along_x,
+                        size_t along_y, uint32_t remaining, const uint64_t *end) {
+    splat_accumulate(sums, splat_add(channel.scaled, splat_difference_times(channel.difference, weight)),
+                     remaining, end);
+    if (Slopes) {
+        splat_accumulate(sums + along_x, splat_add(channel.base_x, splat_signed_times(channel.cross, weight)),
+                         remaining, end + along_x);
+        splat_accumulate(sums + along_y, channel.slope_y, remaining, end + along_y);
+    }
+}
+
+template <uint32_t Channels, bool Leveled, bool Slopes>
 void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
     const uint32_t cell_records = Channels == 3 ? 4u : 1u, row_records = setup->cell_row * cell_records;
     const uint32_t count = runs[0].count;
-    const size_t plane = setup->plane;
+    const size_t plane = setup->plane, along_x = Channels * plane, along_y = 2 * Channels * plane;
     const uint64_t *end = setup->sums_end;
     const uint32_t level = setup->texture.level;
     /* Each run's first record in the table and down weight. */
@@ -412,38 +445,27 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
         const splat_vector level_x = splat_level<Leveled>(shifted_x, level);
         splat_store(column, splat_first_lanes(splat_whole_times(level_x, cell_records), remaining));
         const splat_vector across = splat_across_weights(level_x);
-        /* The current cell row's 65536 upper and lower - upper, channel by channel (kept in registers). */
-        splat_vector scaled_0 = splat_set(0), scaled_1 = scaled_0, scaled_2 = scaled_0;
-        splat_vector difference_0 = scaled_0, difference_1 = scaled_0, difference_2 = scaled_0;
+        const splat_vector zero = splat_set(0);
+        AlignedChannel channel_0 = {zero, zero, zero, zero, zero}, channel_1 = channel_0,
+                       channel_2 = channel_0;
         uint64_t current = ~static_cast<uint64_t>(0);
         for (uint32_t r = 0; r < run_count; r++) {
             if (row_start[r] != current) {
                 current = row_start[r];
                 splat_vector records[3];
                 splat_load_cells<Channels>(setup->cells + current, column, records);
-                const splat_vector rows_0 = splat_row_integers(records[0], across);
-                scaled_0 = splat_upper_scaled(rows_0);
-                difference_0 = splat_shift_right(rows_0, 32);
+                aligned_channel<Slopes>(records[0], across, &channel_0);
                 if (Channels == 3) {
-                    const splat_vector rows_1 = splat_row_integers(records[1], across);
-                    const splat_vector rows_2 = splat_row_integers(records[2], across);
-                    scaled_1 = splat_upper_scaled(rows_1);
-                    difference_1 = splat_shift_right(rows_1, 32);
-                    scaled_2 = splat_upper_scaled(rows_2);
-                    difference_2 = splat_shift_right(rows_2, 32);
+                    aligned_channel<Slopes>(records[1], across, &channel_1);
+                    aligned_channel<Slopes>(records[2], across, &channel_2);
                 }
             }
             const splat_vector weight = splat_set(down[r]);
             uint64_t *sums = runs[r].sums + done;
-            splat_accumulate(sums, splat_add(scaled_0, splat_difference_times(difference_0, weight)),
-                             remaining, end);
+            aligned_add<Slopes>(channel_0, weight, sums, along_x, along_y, remaining, end);
             if (Channels == 3) {
-                splat_accumulate(sums + plane,
-                                 splat_add(scaled_1, splat_difference_times(difference_1, weight)), remaining,
-                                 end);
-                splat_accumulate(sums + 2 * plane,
-                                 splat_add(scaled_2, splat_difference_times(difference_2, weight)), remaining,
-                                 end);
+                aligned_add<Slopes>(channel_1, weight, sums + plane, along_x, along_y, remaining, end);
+                aligned_add<Slopes>(channel_2, weight, sums + 2 * plane, along_x, along_y, remaining, end);
             }
         }
         shifted_x = splat_add(shifted_x, next_x);
@@ -456,7 +478,7 @@ void splat_runs_aligned(const dsn_splat_setup *setup, const dsn_splat_run *runs,
 template <uint32_t Channels, bool Leveled>
 inline void splat_runs_cells(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count) {
     if (setup->columns_shared)
-        splat_runs_aligned<Channels, Leveled>(setup, runs, run_count);
+        splat_runs_aligned<Channels, Leveled, false>(setup, runs, run_count);
     else
         splat_runs_vector<Channels, Leveled, false>(setup, runs, run_count);
 }
@@ -467,9 +489,11 @@ inline void splat_runs_cells(const dsn_splat_setup *setup, const dsn_splat_run *
 inline void continuous_gradient_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                      uint32_t run_count) {
     if (setup->texture.channels == 3)
-        splat_runs_vector<3, false, true>(setup, runs, run_count);
+        setup->columns_shared ? splat_runs_aligned<3, false, true>(setup, runs, run_count)
+                              : splat_runs_vector<3, false, true>(setup, runs, run_count);
     else
-        splat_runs_vector<1, false, true>(setup, runs, run_count);
+        setup->columns_shared ? splat_runs_aligned<1, false, true>(setup, runs, run_count)
+                              : splat_runs_vector<1, false, true>(setup, runs, run_count);
 }
 #define DSN_SPLAT_GRADIENT_ENTRY continuous_gradient_runs
 #else
