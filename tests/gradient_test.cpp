@@ -2,7 +2,7 @@
 // the continuous noise's exact derivative (its sums step by the slopes, bit for bit; normalized, finite
 // differences within the rounding), the lattice noise's forward differences (the spot noise of the
 // differenced texton, from a reference walk over the impulses), the histogram mapping's chain rule,
-// tiles and batches against points, and the errors.
+// tiles and batches against points (pixels exactly at an impulse's reach edges included), and the errors.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -50,13 +50,15 @@ std::vector<dsn::AssetFields> assets() {
     return list;
 }
 
-// Points with an impulse of the noise exactly at their reach's entry edge along x (even k) or y (odd k),
+// Points with an impulse of the noise exactly at their reach's entry edge along x (even k) or y (odd k)
+// (the texton's reach, or with `level` that of a pyramid level of radius `level_radius`),
 // where its value is 0 and its slope is not: the impulse's position less radius + 1 texels along that
 // axis, within reach along the other; non-periodic noises. Every second one's position along the edge's
 // axis is a multiple of a sifting step (the low 16 - half bits of its 16-bit position zero), where the
 // sift's bound on the field halves is tight: the fast walks' cell bounds must keep it.
 void add_entry_edge_points(const dsn_noise &noise, std::mt19937_64 &random, uint32_t count,
-                           std::vector<int64_t> *xs, std::vector<int64_t> *ys) {
+                           std::vector<int64_t> *xs, std::vector<int64_t> *ys, uint32_t level = 0,
+                           uint32_t level_radius = 0) {
     const dsn_noise_state *state = dsn_state(&noise);
     const uint32_t shift = state->cell_shift;
     const uint32_t below_half = dsn_field_shift(shift) == 3 ? 0xFFFu : 0xFFu;
@@ -73,7 +75,10 @@ void add_entry_edge_points(const dsn_noise &noise, std::mt19937_64 &random, uint
         const int64_t impulse[2] = {(int64_t(cell_x) << (32 + shift)) + (int64_t(bits[0]) << (16 + shift)),
                                     (int64_t(cell_y) << (32 + shift)) + (int64_t(bits[1]) << (16 + shift))};
         int64_t point[2];
-        point[edge] = impulse[edge] - (int64_t(state->radius[edge]) + 1) * (int64_t(1) << 32);
+        // a pyramid level's reach: its radius + 1 level texels, 2^level texels each
+        const int64_t reach = level == 0 ? (int64_t(state->radius[edge]) + 1) * (int64_t(1) << 32)
+                                         : (int64_t(level_radius) + 1) * (int64_t(1) << (32 + level));
+        point[edge] = impulse[edge] - reach;
         // within radius + 1 texels along the other axis, on the 2^-16 grid
         const int64_t span = (2 * int64_t(state->radius[across]) + 1) * 65536;
         point[across] = impulse[across] + (int64_t(random() % uint64_t(span)) - span / 2) * 65536;
@@ -616,6 +621,47 @@ struct FilteredGradientTile {
 };
 #endif
 
+// Differences between every kernel's continuous gradient tile of `grid` and its points' gradients.
+size_t continuous_tile_differences(const dsn_noise &noise, uint32_t channels, const dsn_grid &grid,
+                                   uint32_t width, uint32_t height) {
+    const std::vector<int32_t> expected = gradient_planes(
+        width, height, channels, [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
+            int64_t x, y;
+            dsn_test::grid_point(grid, i, j, &x, &y);
+            return dsn_continuous_gradient_fixed(&noise, x, y, v, gx, gy);
+        });
+    const ContinuousGradientTile tile = {noise, grid, width, height};
+    return kernel_tile_differences(noise, expected, tile);
+}
+
+#if DSN_FILTERING
+// The same for the filtered gradient tile, its footprint the grid's steps.
+size_t filtered_tile_differences(const dsn_noise &noise, uint32_t channels, const dsn_grid &grid,
+                                 uint32_t max_taps, uint32_t width, uint32_t height) {
+    const dsn_footprint footprint = {grid.column_step_x, grid.column_step_y, grid.row_step_x, grid.row_step_y,
+                                     max_taps};
+    const std::vector<int32_t> expected = gradient_planes(
+        width, height, channels, [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
+            int64_t x, y;
+            dsn_test::grid_point(grid, i, j, &x, &y);
+            return dsn_filtered_gradient_fixed(&noise, x, y, &footprint, v, gx, gy);
+        });
+    const FilteredGradientTile tile = {noise, grid, max_taps, width, height};
+    return kernel_tile_differences(noise, expected, tile);
+}
+#endif
+
+// The grid of steps (column x, column y, row x, row y) whose pixel (5, 2) lies at (x, y).
+dsn_grid grid_through(int64_t x, int64_t y, const int64_t *steps) {
+    const dsn_grid grid = {x - 5 * steps[0] - 2 * steps[2],
+                           y - 5 * steps[1] - 2 * steps[3],
+                           steps[0],
+                           steps[1],
+                           steps[2],
+                           steps[3]};
+    return grid;
+}
+
 } // namespace
 
 TEST_CASE("lattice gradient tiles: every kernel's, by strips or 32-bit sums, are their points") {
@@ -672,16 +718,9 @@ TEST_CASE("continuous gradient tiles: every kernel's, splatted or point by point
                     const auto made = make_noise(fields, 9, 0, period, period);
                     for (const dsn_grid &grid : grids) {
                         const uint32_t width = 150, height = 21;
-                        const std::vector<int32_t> expected = gradient_planes(
-                            width, height, channels,
-                            [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
-                                int64_t x, y;
-                                dsn_test::grid_point(grid, i, j, &x, &y);
-                                return dsn_continuous_gradient_fixed(&made->noise, x, y, v, gx, gy);
-                            });
                         splatted += dsn_continuous_tile_scratch_size(&made->noise, &grid, width, height) != 0;
-                        const ContinuousGradientTile tile = {made->noise, grid, width, height};
-                        differences += kernel_tile_differences(made->noise, expected, tile);
+                        differences +=
+                            continuous_tile_differences(made->noise, channels, grid, width, height);
                     }
                 }
     MESSAGE("continuous gradient tiles: " << splatted << " grids of 96 splatted");
@@ -713,25 +752,12 @@ TEST_CASE("continuous gradient tiles: pixels with an impulse exactly at the edge
                     for (const auto &step : steps) {
                         // the point (even k: an edge along x, odd k: along y), or across the reach from it
                         const int64_t across = exit ? 2 * (radius + 1) * one : 0;
-                        const int64_t x = xs[k] + (k % 2 == 0 ? across : 0), y = ys[k] + (k % 2 ? across : 0);
-                        // pixel (5, 2) on it
-                        const dsn_grid grid = {x - 5 * step[0] - 2 * step[2],
-                                               y - 5 * step[1] - 2 * step[3],
-                                               step[0],
-                                               step[1],
-                                               step[2],
-                                               step[3]};
+                        const dsn_grid grid = grid_through(xs[k] + (k % 2 == 0 ? across : 0),
+                                                           ys[k] + (k % 2 == 1 ? across : 0), step);
                         const uint32_t width = 16, height = 8;
-                        const std::vector<int32_t> expected = gradient_planes(
-                            width, height, channels,
-                            [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
-                                int64_t px, py;
-                                dsn_test::grid_point(grid, i, j, &px, &py);
-                                return dsn_continuous_gradient_fixed(&made->noise, px, py, v, gx, gy);
-                            });
-                        const ContinuousGradientTile tile = {made->noise, grid, width, height};
-                        differences += kernel_tile_differences(made->noise, expected, tile);
                         splatted += dsn_continuous_tile_scratch_size(&made->noise, &grid, width, height) != 0;
+                        differences +=
+                            continuous_tile_differences(made->noise, channels, grid, width, height);
                         tiles++;
                     }
         }
@@ -808,24 +834,17 @@ TEST_CASE("filtered gradient tiles: every kernel's are their points, splatted wh
                     for (const dsn_grid &grid : grids) {
                         // the seam's grid with one tap (at its origin; 16 would make short runs there)
                         const uint32_t width = 90, height = 20, max_taps = &grid == &grids[5] ? 1 : 16;
+                        dsn_filter_plan plan;
                         const dsn_footprint footprint = {grid.column_step_x, grid.column_step_y,
                                                          grid.row_step_x, grid.row_step_y, max_taps};
-                        const std::vector<int32_t> expected = gradient_planes(
-                            width, height, channels,
-                            [&](uint32_t i, uint32_t j, int32_t *v, int32_t *gx, int32_t *gy) {
-                                int64_t x, y;
-                                dsn_test::grid_point(grid, i, j, &x, &y);
-                                return dsn_filtered_gradient_fixed(&made->noise, x, y, &footprint, v, gx, gy);
-                            });
-                        dsn_filter_plan plan;
                         REQUIRE(dsn_internal_filter_plan(&footprint, made->asset.pyramid_levels, &plan) ==
                                 DSN_OK);
                         const bool filtered = !(plan.lod_q8 == 0 && plan.taps == 1);
                         unfiltered += !filtered;
                         splatted += filtered && dsn_filtered_tile_scratch_size(&made->noise, &grid, max_taps,
                                                                                width, height) != 0;
-                        const FilteredGradientTile tile = {made->noise, grid, max_taps, width, height};
-                        differences += kernel_tile_differences(made->noise, expected, tile);
+                        differences +=
+                            filtered_tile_differences(made->noise, channels, grid, max_taps, width, height);
                     }
                 }
     MESSAGE("filtered gradient tiles: " << splatted << " filtered grids whose value tile splats");
@@ -833,6 +852,45 @@ TEST_CASE("filtered gradient tiles: every kernel's are their points, splatted wh
     CHECK(splatted >= 20);
     CHECK(differences == 0);
 }
+
+TEST_CASE("filtered gradient tiles: pixels with an impulse exactly at the entry edge of a level's reach") {
+    // As the continuous tiles (above), at the levels a minified grid reads: one tap, an axis-aligned grid of
+    // 1.6 texels per pixel and a rotated one of 2.5, placed so that an inner pixel lies on the entry edge
+    // of level 1's or 2's reach along x or y; grey and RGB, 8 bits (whose levels have records).
+    const int64_t one = int64_t(1) << 32;
+    // column step x, y; row step x, y
+    const int64_t steps[][4] = {{int64_t(1.6 * double(one)), 0, 0, int64_t(1.6 * double(one))},
+                                {int64_t(2.2 * double(one)), int64_t(1.27 * double(one)),
+                                 -int64_t(1.27 * double(one)), int64_t(2.2 * double(one))}};
+    std::mt19937_64 random(73);
+    size_t differences = 0, splatted_by_step[2] = {0, 0}, tiles = 0;
+    for (uint32_t channels : {1u, 3u}) {
+        dsn::AssetFields fields = random_texton_asset(channels, 9, 8, 90 + channels);
+        fields.pyramid = dsn::texton_pyramid(fields);
+        const auto made = make_noise(fields, 6);
+        for (uint32_t level = 1; level <= 2; level++) {
+            dsn_level info;
+            REQUIRE(dsn_asset_level(&made->asset, level, &info) == DSN_OK);
+            std::vector<int64_t> xs, ys;
+            add_entry_edge_points(made->noise, random, 16, &xs, &ys, level, (info.width - 1) / 2);
+            for (size_t k = 0; k < xs.size(); k++)
+                for (uint32_t s = 0; s < 2; s++) {
+                    const dsn_grid grid = grid_through(xs[k], ys[k], steps[s]);
+                    const uint32_t width = 40, height = 8, max_taps = 1;
+                    splatted_by_step[s] +=
+                        dsn_filtered_tile_scratch_size(&made->noise, &grid, max_taps, width, height) != 0;
+                    differences +=
+                        filtered_tile_differences(made->noise, channels, grid, max_taps, width, height);
+                    tiles++;
+                }
+        }
+    }
+    CHECK(tiles == 2 * 2 * 16 * 2);
+    CHECK(splatted_by_step[0] == tiles / 2);
+    CHECK(splatted_by_step[1] == tiles / 2);
+    CHECK(differences == 0);
+}
+
 #endif
 
 TEST_CASE("gradient errors: every output zeroed, the value functions' codes") {

@@ -720,9 +720,10 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
    8 points at a time through the vector walk where the value's batch does (the AVX2 and AVX-512 kernels), its
    texels read from the texton (no scratch, no table), the groups' sums normalized together. An unfiltered
    filtered gradient tile (level of detail 0, one tap) is the continuous one; a filtered one that the value's
-   function would splat is splatted three times per tap and level, in blocks of 64 x 8 pixels: the tap's
-   grid, and the same moved one weight step of the level (2^-8 level texel) along x and along y (the same
-   exception at a periodic axis's seam); the others go point by point.
+   function would splat is splatted per tap and level, in blocks of 64 x 8 pixels: once, as the continuous
+   tile, where the kernel can and every level has its records; else three times, the tap's grid and the
+   same moved one weight step of the level (2^-8 level texel) along x and along y (the same exception at
+   a periodic axis's seam); the others go point by point.
    - Filtered evaluation (DSN_FILTERING): the derivative of the filtered noise, the same blend of the same
      levels at the same taps as the value: each level's exact derivative (its bilinear slopes per texel of
      the level, over 2^level per texel), normalized per level without its offset, blended with the

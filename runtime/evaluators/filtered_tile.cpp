@@ -277,14 +277,28 @@ bool gradient_splats(const dsn_noise_state *noise, const dsn_grid *grid, uint32_
     return true;
 }
 
+/* A tap's level sums in one splat (kernels.h's continuous_gradient_runs, over the closed reach:
+   grid_splat.h): the value planes, then the slopes' along x and y, each `channels` planes, at `sums`. */
+void one_pass_sums(const dsn_noise_state *noise, dsn_grid_splat *splat, const dsn_splat_block &block,
+                   uint64_t *sums) {
+    const size_t planes = block.plane * noise->asset.channels;
+    splat->runs = dsn_kernel_entries_of(noise->tile_kernel)->continuous_gradient_runs;
+    dsn_internal_grid_splat_closed(splat);
+    for (size_t i = planes; i < 3 * planes; i++) sums[i] = 0; /* the values': the block splat */
+    dsn_internal_grid_splat_block(noise, splat, &block, sums);
+}
+
 /* One gradient block (filter_block's, with the three grids of every tap and level, the moved ones in turn
-   in the second sums): each pixel's level values and slopes blended into the three totals, then finished
-   and stored at the tile's pixel. */
+   in the second sums; or with One_pass each tap and level splatted once, its value and slopes at once):
+   each pixel's level values and slopes blended into the three totals, then finished and stored at the
+   tile's pixel. */
+template <bool One_pass>
 void gradient_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t width, uint32_t height,
-                    const FilteredSplat &filtered, const dsn_splat_block &block,
-                    uint64_t (*sums)[gradient_block_values], int64_t (*totals)[gradient_block_values],
-                    void *out, void *dx, void *dy, dsn_output_kind kind) {
+                    const FilteredSplat &filtered, const dsn_splat_block &block, uint64_t *sums,
+                    int64_t (*totals)[gradient_block_values], void *out, void *dx, void *dy,
+                    dsn_output_kind kind) {
     const uint32_t channels = noise->asset.channels, pixels = block.columns * block.rows;
+    const size_t planes = block.plane * channels;
     for (uint32_t output = 0; output < 3; output++)
         for (uint32_t i = 0; i < pixels * channels; i++) totals[output][i] = 0;
     for (uint32_t tap = 0; tap < filtered.plan.taps; tap++) {
@@ -292,15 +306,22 @@ void gradient_block(const dsn_noise_state *noise, const dsn_grid *grid, uint32_t
             const dsn_walked_level *level = &filtered.walked[k];
             dsn_grid_splat splats[3];
             tap_level_gradient_splats(noise, grid, width, height, filtered, tap, k, splats); /* checked */
-            dsn_internal_grid_splat_block(noise, &splats[0], &block, sums[0]);
+            if (One_pass)
+                one_pass_sums(noise, &splats[0], block, sums);
+            else
+                dsn_internal_grid_splat_block(noise, &splats[0], &block, sums);
             for (uint32_t output = 0; output < 3; output++) {
-                if (output != 0) dsn_internal_grid_splat_block(noise, &splats[output], &block, sums[1]);
+                if (!One_pass && output != 0)
+                    dsn_internal_grid_splat_block(noise, &splats[output], &block,
+                                                  sums + gradient_block_values);
                 for (uint32_t p = 0; p < pixels; p++) {
                     uint64_t level_sums[DSN_MAX_CHANNELS];
                     for (uint32_t c = 0; c < channels; c++) {
                         const size_t at = c * block.plane + p;
-                        level_sums[c] =
-                            output == 0 ? sums[0][at] : slopes_from_step(sums[1][at] - sums[0][at]);
+                        level_sums[c] = output == 0 ? sums[at]
+                                        : One_pass
+                                            ? sums[output * planes + at]
+                                            : slopes_from_step(sums[gradient_block_values + at] - sums[at]);
                     }
                     int64_t values[DSN_MAX_CHANNELS];
                     if (output == 0)
@@ -405,24 +426,33 @@ int dsn_internal_filtered_gradient_splat(const dsn_noise_state *noise, const dsn
     const uint32_t width = filtered.transposed ? tile_height : tile_width;
     const uint32_t height = filtered.transposed ? tile_width : tile_height;
     if (!gradient_splats(noise, grid, width, height, filtered)) return 0;
+    /* One splat per tap and level where the kernel adds the slopes and every level has records, with a
+       margin (splat_cells.h); else three. */
+    bool one_pass = dsn_kernel_entries_of(noise->tile_kernel)->continuous_gradient_runs != 0;
 #if DSN_SPLAT_CELLS
     alignas(64) uint64_t cells[splat_cell_capacity]; /* the levels' records, one after the other */
     uint32_t used = 0;
     for (uint32_t k = 0; k < filtered.count; k++) {
         const dsn_splat_texture texture = level_texture(noise, filtered.walked[k]);
-        const uint32_t records =
-            make_splat_cells(texture, cells + used, splat_cell_capacity - used, &filtered.cell_row[k], 0);
+        const uint32_t records = make_splat_cells(texture, cells + used, splat_cell_capacity - used,
+                                                  &filtered.cell_row[k], one_pass ? 1u : 0u);
         if (records != 0) filtered.cells[k] = cells + used;
+        one_pass = one_pass && records != 0;
         used += records;
     }
 #endif
-    uint64_t sums[2][gradient_block_values];
+    uint64_t sums[3 * gradient_block_values];
     int64_t totals[3][gradient_block_values];
     for (uint32_t top = 0; top < height; top += gradient_block_rows)
         for (uint32_t left = 0; left < width; left += gradient_block_columns) {
             const dsn_splat_block block = dsn_internal_splat_small_block(
                 left, top, width, height, gradient_block_columns, gradient_block_rows);
-            gradient_block(noise, grid, width, height, filtered, block, sums, totals, out, dx, dy, kind);
+            if (one_pass)
+                gradient_block<true>(noise, grid, width, height, filtered, block, sums, totals, out, dx, dy,
+                                     kind);
+            else
+                gradient_block<false>(noise, grid, width, height, filtered, block, sums, totals, out, dx, dy,
+                                      kind);
         }
     return 1;
 }

@@ -95,11 +95,11 @@ typedef struct dsn_splat_setup {
 typedef void dsn_splat_runs_entry(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                   uint32_t run_count);
 
-/* continuous_gradient_runs (splat_row.h's splat_runs_gradient): the same runs of a level-0 texture with
-   records (setup.cells), adding the value and both slopes in one pass: a run's value planes at run.sums,
-   its slopes along x and y (bilinear_texton.h's add_slopes, per 2^-16 texel) `channels` and 2 `channels`
-   planes after them, each set of planes ending `channels` planes after the last (setup.sums_end is the
-   values'). */
+/* continuous_gradient_runs (splat_row.h's splat_add_slopes): the same runs of a texture with records
+   (setup.cells), adding the value and both slopes in one pass: a run's value planes at run.sums, its
+   slopes along x and y (bilinear_texton.h's add_slopes, per 2^-16 texel of the texture's level) `channels`
+   and 2 `channels` planes after them, each set of planes ending `channels` planes after the last
+   (setup.sums_end is the values'). */
 
 /* The normalization of the continuous grid splat's sums (splat_row.h's continuous_splat_normalize):
    `count` pixels, channel c of pixel p at sums[c * plane + p], into out[p * channels + c] as

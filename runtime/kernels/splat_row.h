@@ -485,15 +485,25 @@ inline void splat_runs_cells(const dsn_splat_setup *setup, const dsn_splat_run *
 #endif
 
 #if DSN_SPLAT_CELLS && defined(__AVX2__)
-/* The kernel entry (kernels.h's continuous_gradient_runs): a texture with records, at level 0. */
+template <uint32_t Channels>
+inline void gradient_runs_of(const dsn_splat_setup *setup, const dsn_splat_run *runs, uint32_t run_count,
+                             bool leveled) {
+    if (setup->columns_shared)
+        leveled ? splat_runs_aligned<Channels, true, true>(setup, runs, run_count)
+                : splat_runs_aligned<Channels, false, true>(setup, runs, run_count);
+    else
+        leveled ? splat_runs_vector<Channels, true, true>(setup, runs, run_count)
+                : splat_runs_vector<Channels, false, true>(setup, runs, run_count);
+}
+
+/* The kernel entry (kernels.h's continuous_gradient_runs): a texture with records, any level. */
 inline void continuous_gradient_runs(const dsn_splat_setup *setup, const dsn_splat_run *runs,
                                      uint32_t run_count) {
+    const bool leveled = setup->texture.level != 0;
     if (setup->texture.channels == 3)
-        setup->columns_shared ? splat_runs_aligned<3, false, true>(setup, runs, run_count)
-                              : splat_runs_vector<3, false, true>(setup, runs, run_count);
+        gradient_runs_of<3>(setup, runs, run_count, leveled);
     else
-        setup->columns_shared ? splat_runs_aligned<1, false, true>(setup, runs, run_count)
-                              : splat_runs_vector<1, false, true>(setup, runs, run_count);
+        gradient_runs_of<1>(setup, runs, run_count, leveled);
 }
 #define DSN_SPLAT_GRADIENT_ENTRY continuous_gradient_runs
 #else
