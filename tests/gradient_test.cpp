@@ -749,11 +749,11 @@ TEST_CASE("continuous gradient tiles: pixels with an impulse exactly at the edge
             add_entry_edge_points(made->noise, random, 24, &xs, &ys);
             for (size_t k = 0; k < xs.size(); k++)
                 for (bool exit : {false, true})
-                    for (const auto &step : steps) {
+                    for (const auto &grid_steps : steps) {
                         // the point (even k: an edge along x, odd k: along y), or across the reach from it
                         const int64_t across = exit ? 2 * (radius + 1) * one : 0;
                         const dsn_grid grid = grid_through(xs[k] + (k % 2 == 0 ? across : 0),
-                                                           ys[k] + (k % 2 == 1 ? across : 0), step);
+                                                           ys[k] + (k % 2 == 1 ? across : 0), grid_steps);
                         const uint32_t width = 16, height = 8;
                         splatted += dsn_continuous_tile_scratch_size(&made->noise, &grid, width, height) != 0;
                         differences +=
