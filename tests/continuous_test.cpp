@@ -258,7 +258,7 @@ TEST_CASE("continuous: a read is exact bilinear interpolation at 8-bit weights, 
     std::mt19937_64 random(256);
     uint64_t reads = 0, wrong = 0; // plain counts: doctest's per-assertion cost would dominate
     auto check = [&](const int32_t corners[4], uint32_t bits, uint32_t fx, uint32_t fy) {
-        const __int128 read = __int128(read_cell(corners, bits, fx, fy)) << 32;
+        const __int128 read = __int128(read_cell(corners, bits, fx, fy)) * (__int128(1) << 32);
         const uint32_t floor_mask = 0xFF000000u;
         const int64_t across = std::max(std::llabs(int64_t(corners[1]) - corners[0]),
                                         std::llabs(int64_t(corners[3]) - corners[2]));
