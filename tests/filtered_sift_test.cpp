@@ -304,7 +304,8 @@ TEST_CASE("filtered sift: taps thousands of texels apart") {
 // on levels of random bytes (full range, or all at an extreme) of 1 .. 13 texels a side (the AVX-512
 // kernel holds those of at most 7 across and 11 down in registers for calls of 64 candidates or more,
 // the others it gathers), with a stride wider than the window, at levels 0 .. 4, for up to 600 candidates a
-// call (several of the reads' blocks), a part of them beyond the level's reach.
+// call (several of the reads' blocks), a part of them beyond the level's reach; with the gradient's
+// closed tests (bias 0) on every other trial, and their slopes against add_slopes's formula.
 TEST_CASE("filtered sift: the kernels' level reads equal the bilinear formula on random levels") {
     dsn::AssetFields fields = synthetic_fields(3, 15, 8, DSN_SHAPE_RECTANGLE, 31);
     LoadedNoise loaded(fields, make_config(8, 30));
@@ -325,10 +326,13 @@ TEST_CASE("filtered sift: the kernels' level reads equal the bilinear formula on
             if (row < 0 || column < 0 || row >= int64_t(height) || column >= int64_t(width)) return 0;
             return int64_t(int8_t(values[(uint32_t(row) * stride + uint32_t(column)) * channels + c]));
         };
-        // The level test of level_test (filtered_sift.cpp) with start 0: u = c in reach when below limit.
+        // The level test of level_test (filtered_sift.cpp) with start 0: u = c in reach when below limit,
+        // read at (u + bias) >> level; closed (the gradient's): the limit 2^level higher and the bias 0.
         const uint64_t spacing = uint64_t(1) << level_index;
-        const uint64_t limit_x = uint64_t(2 * level.radius_x + 2) * (spacing << 32) - spacing,
-                       limit_y = uint64_t(2 * level.radius_y + 2) * (spacing << 32) - spacing;
+        const bool closed = trial % 4 >= 2;
+        const uint64_t bias = closed ? 0 : spacing;
+        const uint64_t limit_x = uint64_t(2 * level.radius_x + 2) * (spacing << 32) - bias,
+                       limit_y = uint64_t(2 * level.radius_y + 2) * (spacing << 32) - bias;
         const uint32_t count = random.next() % 601;
         std::vector<int64_t> xs(count), ys(count);
         for (uint32_t i = 0; i < count; i++) {
@@ -336,11 +340,11 @@ TEST_CASE("filtered sift: the kernels' level reads equal the bilinear formula on
             xs[i] = int64_t(uint64_t(random.next()) << 32 | random.next()) % int64_t(limit_x + limit_x / 8);
             ys[i] = int64_t(uint64_t(random.next()) << 32 | random.next()) % int64_t(limit_y + limit_y / 8);
         }
-        uint64_t expected[3] = {0, 0, 0};
+        uint64_t expected[3] = {0, 0, 0}, expected_slopes[2][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}};
         for (uint32_t i = 0; i < count; i++) {
             if (uint64_t(xs[i]) >= limit_x || uint64_t(ys[i]) >= limit_y) continue;
-            const uint64_t shifted_x = (uint64_t(xs[i]) + spacing) >> level_index,
-                           shifted_y = (uint64_t(ys[i]) + spacing) >> level_index;
+            const uint64_t shifted_x = (uint64_t(xs[i]) + bias) >> level_index,
+                           shifted_y = (uint64_t(ys[i]) + bias) >> level_index;
             const int64_t column = int64_t(shifted_x >> 32) - 1, row = int64_t(shifted_y >> 32) - 1;
             const uint64_t across = (shifted_x >> 16) & 0xFF00,
                            down = (shifted_y >> 16) & 0xFF00; // 8-bit weights
@@ -349,17 +353,35 @@ TEST_CASE("filtered sift: the kernels' level reads equal the bilinear formula on
                                uint64_t(texel(row, column + 1, c)) * (across * (65536 - down)) +
                                uint64_t(texel(row + 1, column, c)) * ((65536 - across) * down) +
                                uint64_t(texel(row + 1, column + 1, c)) * (across * down);
+            for (uint32_t c = 0; c < channels; c++) {
+                const int64_t a = texel(row, column, c), b = texel(row, column + 1, c),
+                              d = texel(row + 1, column, c), e = texel(row + 1, column + 1, c);
+                expected_slopes[0][c] +=
+                    uint64_t((65536 - int64_t(down)) * (b - a) + int64_t(down) * (e - d));
+                expected_slopes[1][c] +=
+                    uint64_t((65536 - int64_t(across)) * (d - a) + int64_t(across) * (e - b));
+            }
         }
-        const uint64_t tests[4] = {0, limit_x, 0, limit_y};
+        const uint64_t tests[5] = {0, limit_x, 0, limit_y, bias};
         const uint32_t narrow_tests[6] = {0, 0, 0, 0, 0, 0};
         for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= cpu_kernel; kernel++) {
             dsn_filter_level_reads_entry *reads = dsn_kernel_entries_of(kernel)->filter_level_reads;
             if (reads == 0) continue;
             INFO("kernel " << kernel << " channels " << channels << " window " << width << " x " << height
                            << " stride " << stride << " level " << level_index << " count " << count);
-            uint64_t sums[3] = {0, 0, 0};
-            reads(&level, channels, xs.data(), ys.data(), 0, 0, count, tests, narrow_tests, sums);
+            uint64_t sums[3] = {0, 0, 0}, slope_sums[3] = {0, 0, 0};
+            uint64_t slopes[2][DSN_MAX_CHANNELS] = {{0, 0, 0}, {0, 0, 0}};
+            reads(&level, channels, xs.data(), ys.data(), 0, 0, count, tests, narrow_tests, sums, 0);
             for (uint32_t c = 0; c < channels; c++) REQUIRE(sums[c] == expected[c]);
+#if DSN_GRADIENTS
+            reads(&level, channels, xs.data(), ys.data(), 0, 0, count, tests, narrow_tests, slope_sums,
+                  slopes);
+            for (uint32_t c = 0; c < channels; c++) {
+                REQUIRE(slope_sums[c] == expected[c]);
+                REQUIRE(slopes[0][c] == expected_slopes[0][c]);
+                REQUIRE(slopes[1][c] == expected_slopes[1][c]);
+            }
+#endif
             compared++;
             in_registers += kernel >= DSN_KERNEL_AVX512 && width <= 7 && height <= 11 && count >= 64 ? 1 : 0;
         }

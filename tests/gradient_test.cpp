@@ -1131,6 +1131,60 @@ TEST_CASE("filtered gradient: every kernel's equals the tap-by-tap walk's defini
     CHECK(sloped > compared / 2);
 }
 
+TEST_CASE(
+    "filtered gradient: points exactly at the entry edge of a level's reach, every kernel's as the walk's") {
+    // Points placed so that an impulse lies exactly at the entry edge of level 1's or 2's reach along x or y
+    // (its value there 0, its slope not), read through footprints whose levels include that level, one tap
+    // and several; grey and RGB, 8 bits (whose levels the vector kernels read with their slopes).
+    const int64_t one = int64_t(1) << 32;
+    const std::vector<dsn_footprint> footprints = {
+        footprint_of(2 * one, 0, 0, 2 * one, 1),                   // level 1 (blended with none)
+        footprint_of(3 * one, one / 2, -one / 2, 3 * one, 1),      // levels 1 and 2
+        footprint_of(5 * one, 0, 0, 5 * one, 1),                   // levels 2 and 3
+        footprint_of(12 * one, 5 * one, one / 2, -3 * one / 2, 8), // anisotropic, levels 1 and 2
+    };
+    std::mt19937_64 random(79);
+    size_t compared = 0, sloped = 0;
+    for (uint32_t channels : {1u, 3u}) {
+        dsn::AssetFields fields = random_texton_asset(channels, 9, 8, 95 + channels);
+        fields.pyramid = dsn::texton_pyramid(fields);
+        const auto made = make_noise(fields, 6);
+        const dsn_noise_state *state = dsn_state(&made->noise);
+        for (uint32_t level = 1; level <= 2; level++) {
+            dsn_level info;
+            REQUIRE(dsn_asset_level(&made->asset, level, &info) == DSN_OK);
+            std::vector<int64_t> xs, ys;
+            add_entry_edge_points(made->noise, random, 24, &xs, &ys, level, (info.width - 1) / 2);
+            for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= state->tile_kernel; kernel++) {
+                dsn_noise copy = made->noise;
+                dsn_state(&copy)->tile_kernel = kernel;
+                for (const dsn_footprint &footprint : footprints)
+                    for (size_t p = 0; p < xs.size(); p++) {
+                        INFO("channels " << channels << " level " << level << " kernel " << kernel << " at "
+                                         << xs[p] << ", " << ys[p]);
+                        dsn_filter_plan plan;
+                        REQUIRE(dsn_internal_filter_plan(&footprint, state->asset.pyramid_levels, &plan) ==
+                                DSN_OK);
+                        int32_t value[3], dx[3], dy[3], expected[3 * DSN_MAX_CHANNELS];
+                        REQUIRE(dsn_filtered_gradient_fixed(&copy, xs[p], ys[p], &footprint, value, dx, dy) ==
+                                DSN_OK);
+                        walked_filtered_gradient(dsn_state(&copy), uint64_t(xs[p]), uint64_t(ys[p]), &plan,
+                                                 expected);
+                        for (uint32_t c = 0; c < channels; c++) {
+                            CHECK(value[c] == expected[c]);
+                            CHECK(dx[c] == expected[DSN_MAX_CHANNELS + c]);
+                            CHECK(dy[c] == expected[2 * DSN_MAX_CHANNELS + c]);
+                            sloped += dx[c] != 0 || dy[c] != 0;
+                        }
+                        compared++;
+                    }
+            }
+        }
+    }
+    CHECK(compared >= 2 * 2 * 24 * footprints.size());
+    CHECK(sloped > compared / 2);
+}
+
 namespace {
 
 // Sample statistics of a series: mean, variance and excess kurtosis.

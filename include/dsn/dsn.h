@@ -104,7 +104,7 @@
    tile up to about 88 KB where it is
    splatted (the texture's records, see dsn_continuous_tile_fixed), and what its points take where it goes
    point by point; a continuous gradient tile splatted up to about 128 KB and a filtered one up to about
-   132 KB (blocks of sums and totals more, see "Gradients").
+   144 KB (blocks of sums and totals more, see "Gradients").
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H
@@ -731,9 +731,11 @@ int dsn_filtered_tile_u8(const dsn_noise *noise, const dsn_grid *grid, uint32_t 
      once; with a mapping, the chain rule through the blend of the two levels' tables ((1 - w) T_l' +
      w T_(l+1)', the levels past the tables flat). Past the coarsest level (the mean colour) it is 0, and
      an unfiltered footprint gives the continuous gradient's bits. The slopes come from the value's sifted
-     walk over each tap and its copies moved by one weight step of each level along x and along y (a
-     level's sums step by exactly its slopes there; a tap whose move crosses the int32 wrap of a periodic
-     axis takes the tap-by-tap walk instead). */
+     walk: where the AVX2 or AVX-512 copy reads 8-bit levels, each impulse's slopes are read with its value
+     (the impulses exactly at the entry edge of a level's reach, whose value is 0, included); elsewhere
+     (16-bit levels, the SSE2 copy) from each tap's copies moved by one weight step of each level along x
+     and along y (a level's sums step by exactly its slopes there; a tap whose move crosses the int32 wrap
+     of a periodic axis takes the tap-by-tap walk instead). */
 #if DSN_GRADIENTS
 int dsn_lattice_gradient_fixed(const dsn_noise *noise, int32_t x, int32_t y, int32_t *out, int32_t *dx,
                                int32_t *dy);

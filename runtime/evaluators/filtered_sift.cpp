@@ -6,9 +6,10 @@
    2^64 do not depend on the order. Where the kernel has them, its listing (filtered_candidates_vector.h)
    lists the candidates of whole cells at once, each tap's level then tests only the runs of cells that
    may reach it, and its vector reads (filtered_reads_vector.h) take the reads of 8-bit levels, on the
-   listing's 32-bit offsets (narrow_test) where the box is small enough. The same walk without the reads
-   (the candidates counted) is make bench's listing alone. Compiled only with DSN_FILTERING in the fast
-   build. */
+   listing's 32-bit offsets (narrow_test) where the box is small enough; the gradient's slopes with them,
+   where they take its levels, else through each tap's copies moved by a weight step. The same walk without
+   the reads (the candidates counted) is make bench's listing alone. Compiled only with DSN_FILTERING in the
+   fast build. */
 #include "core/cell_walk.h"
 #include "core/continuous_internal.h"
 #include "core/continuous_sift.h"
@@ -81,21 +82,24 @@ bool tap_axis(const uint64_t *coordinates, uint32_t taps, uint32_t radius, uint3
 }
 
 /* The exact test of one level along one axis for one tap, as the walk's bracket of floor(offset / 2^l):
-   with u = c + start (modulo 2^64) the impulse is in reach when u < limit, and then (u + 2^l) >> l is
-   bracket's shifted value. */
+   with u = c + start (modulo 2^64) the impulse is in reach when u < limit, and then (u + bias) >> l is
+   bracket's shifted value. Closed: the gradient's, which keeps the offsets at the entry edge of the
+   level's reach (level_read.h's add_level: floor(offset / 2^l) = -(radius + 1) texels, the 2^l values of
+   u below 0), start and limit moved up by 2^l and the bias 0. */
 struct LevelTest {
-    uint64_t start, limit;
+    uint64_t start, limit, bias;
 };
 
-LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64_t tap_shift) {
+LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64_t tap_shift, bool closed) {
     const uint32_t l = level.level;
     const int64_t spacing_texel = static_cast<int64_t>(one_texel) << l, spacing = static_cast<int64_t>(1)
                                                                                   << l;
+    const int64_t edge = closed ? 0 : spacing;
     LevelTest test;
     test.start =
-        static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - spacing - tap_shift);
-    test.limit =
-        static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - spacing);
+        static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - edge - tap_shift);
+    test.limit = static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - edge);
+    test.bias = static_cast<uint64_t>(edge);
     return test;
 }
 
@@ -105,16 +109,16 @@ LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64
    narrow_reach_limit every |c|, |start| and |u| of the group stays below 2^46, so V modulo 2^32 is V for
    u >= 0 and at least 2^32 - 2^30 (above any limit) for u < 0: an impulse is in reach when C + add
    (modulo 2^32) is below limit = ceil((test limit - A modulo 2^16) / 2^16), and the bracket's shifted
-   value (u + 2^l) >> (l + 16) is then (C + read) >> l, read = add + the carry of A modulo 2^16 + 2^l:
+   value (u + bias) >> (l + 16) is then (C + read) >> l, read = add + the carry of A modulo 2^16 + bias:
    tests[0 .. 2] = add, limit, read. */
 const int64_t narrow_reach_limit = static_cast<int64_t>(1) << 44;
 
-void narrow_test(const LevelTest &test, uint32_t level, int64_t shifted_base, uint32_t *tests) {
+void narrow_test(const LevelTest &test, int64_t shifted_base, uint32_t *tests) {
     const uint64_t a = test.start + (static_cast<uint64_t>(shifted_base) & 0xFFFFu), a_low = a & 0xFFFFu;
     const uint32_t add = static_cast<uint32_t>(a >> 16);
     tests[0] = add;
     tests[1] = static_cast<uint32_t>((test.limit - a_low + 0xFFFFu) >> 16);
-    tests[2] = add + static_cast<uint32_t>((a_low + (static_cast<uint64_t>(1) << level)) >> 16);
+    tests[2] = add + static_cast<uint32_t>((a_low + test.bias) >> 16);
 }
 
 /* The buffer; where the kernel listed it, also each listed cell's end in it and the largest offset c
@@ -301,8 +305,9 @@ struct TapGroup {
     uint64_t *listed; /* null, or where the candidates are counted instead of read
                          (dsn_internal_filter_listing_only) */
     const uint32_t *tap_levels; /* null (every tap reads every level), or per tap the bits of the levels
-                                   it reads (the gradient's moved taps read one) */
+                                   it reads (the gradient's moved taps read one or none) */
     bool one_spot;              /* the taps are one tap and its moved copies */
+    dsn_filter_slopes *slopes;  /* null, or where the kernel's reads add the taps' slopes (closed tests) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -372,31 +377,35 @@ void visit(const TapGroup &group, CandidateList *list, SplatGrid *grid, dsn_filt
         for (uint32_t l = 0; l < group.level_count; l++) {
             if (group.tap_levels != 0 && ((group.tap_levels[group.first + t] >> l) & 1u) == 0) continue;
             const dsn_walked_level &level = group.levels[l];
-            const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t]);
-            const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t]);
+            const bool closed = group.slopes != 0;
+            const LevelTest test_x = level_test(level, level.radius_x, group.x.tap_shift[t], closed);
+            const LevelTest test_y = level_test(level, level.radius_y, group.y.tap_shift[t], closed);
             const bool splat_level = grid != 0 && grid->level_index == l;
             uint32_t runs[2u * listed_cells_most + 2u];
             const uint32_t run_count = whole_list
                                            ? (runs[0] = 0, runs[1] = list->count, 1u)
                                            : reached_runs(*list, bounds, test_x, test_y, group.shift, runs);
             if (Bytes == 1 && group.vector_reads != 0 && !splat_level) {
-                const uint64_t tests[4] = {test_x.start, test_x.limit, test_y.start, test_y.limit};
+                const uint64_t tests[5] = {test_x.start, test_x.limit, test_y.start, test_y.limit,
+                                           test_x.bias};
                 uint32_t narrow_tests[6] = {0, 0, 0, 0, 0, 0};
                 const bool narrow = group.narrow && list->cells != 0;
                 if (narrow) {
-                    narrow_test(test_x, level.level, list->cell_x[0], narrow_tests);
-                    narrow_test(test_y, level.level, list->cell_y[0], narrow_tests + 3);
+                    narrow_test(test_x, list->cell_x[0], narrow_tests);
+                    narrow_test(test_y, list->cell_y[0], narrow_tests + 3);
                 }
+                uint64_t(*slopes)[DSN_MAX_CHANNELS] =
+                    group.slopes != 0 ? (*group.slopes)[group.first + t][l] : 0;
                 for (uint32_t r = 0; r < run_count; r++) {
                     const uint32_t from = runs[2u * r];
                     group.vector_reads(&level, Channels, list->x + from, list->y + from,
                                        narrow ? list->narrow_x + from : 0, narrow ? list->narrow_y + from : 0,
                                        runs[2u * r + 1u] - from, tests, narrow_tests,
-                                       sums[group.first + t][l]);
+                                       sums[group.first + t][l], slopes);
                 }
                 continue;
             }
-            const uint64_t bias = static_cast<uint64_t>(1) << level.level; /* u + 2^l: see LevelTest */
+            const uint64_t bias = test_x.bias; /* see LevelTest */
             LevelAccumulator level_sums;
             clear(&level_sums);
             for (uint32_t r = 0; r < run_count; r++)
@@ -603,6 +612,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->listed = listed;
     group->tap_levels = tap_levels;
     group->one_spot = one_spot;
+    group->slopes = 0;
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
@@ -659,6 +669,62 @@ void sum_taps_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, con
 }
 
 #if DSN_GRADIENTS
+/* The sums and slopes of the taps first .. first + taps - 1 in one walk, each tap's slopes read with its
+   values (the kernel's reads, closed tests), or false (the taps lie too far apart). Each tap has a copy
+   moved by one weight step of the coarser level along both axes, which reads nothing: the box then holds
+   the impulses at the entry edge of every level's reach too. */
+template <uint32_t Channels>
+bool slopes_in_one_pass(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
+                        const dsn_walked_level *levels, uint32_t count, uint32_t first, uint32_t taps,
+                        dsn_filter_sums sums, dsn_filter_slopes *slopes) {
+    const uint64_t step = static_cast<uint64_t>(1) << (weight_step_shift + levels[count - 1u].level);
+    uint64_t point_x[DSN_FILTER_MAX_TAPS], point_y[DSN_FILTER_MAX_TAPS];
+    uint32_t point_levels[DSN_FILTER_MAX_TAPS];
+    dsn_filter_sums point_sums;
+    dsn_filter_slopes point_slopes;
+    for (uint32_t t = 0; t < taps; t++) {
+        point_x[2u * t] = x + static_cast<uint64_t>(plan->offset_x[first + t]);
+        point_y[2u * t] = y + static_cast<uint64_t>(plan->offset_y[first + t]);
+        point_x[2u * t + 1u] = point_x[2u * t] + step, point_y[2u * t + 1u] = point_y[2u * t] + step;
+        point_levels[2u * t] = (1u << count) - 1u, point_levels[2u * t + 1u] = 0;
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+                point_sums[2u * t][l][c] = point_slopes[2u * t][l][0][c] = point_slopes[2u * t][l][1][c] = 0;
+    }
+    TapGroup group;
+    if (!tap_group(noise, point_x, point_y, 0, 2u * taps, levels, count, 0, point_levels, taps == 1, &group))
+        return false;
+    group.slopes = &point_slopes;
+    sum_group<Channels, 1>(noise, group, point_sums);
+    for (uint32_t t = 0; t < taps; t++)
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+                sums[first + t][l][c] = point_sums[2u * t][l][c];
+                (*slopes)[first + t][l][0][c] = point_slopes[2u * t][l][0][c];
+                (*slopes)[first + t][l][1][c] = point_slopes[2u * t][l][1][c];
+            }
+    return true;
+}
+
+/* The sums and slopes of every tap in one pass where the kernel reads 8-bit levels (false elsewhere, and
+   where the taps lie too far apart). */
+bool slopes_one_pass(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
+                     const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums,
+                     dsn_filter_slopes *slopes) {
+    if (noise->asset.bits != 8 || dsn_kernel_entries_of(noise->tile_kernel)->filter_level_reads == 0)
+        return false;
+    const uint32_t taps_per_walk = DSN_FILTER_MAX_TAPS / 2u;
+    for (uint32_t first = 0; first < plan->taps; first += taps_per_walk) {
+        const uint32_t taps = plan->taps - first < taps_per_walk ? plan->taps - first : taps_per_walk;
+        const bool summed =
+            noise->asset.channels == 3
+                ? slopes_in_one_pass<3>(noise, x, y, plan, levels, count, first, taps, sums, slopes)
+                : slopes_in_one_pass<1>(noise, x, y, plan, levels, count, first, taps, sums, slopes);
+        if (!summed) return false;
+    }
+    return true;
+}
+
 /* Whether the walk's start along an axis, int32(X - 1), wraps from 2^31 - 1 to -2^31 when the coordinate
    moves by `step` (below a texel). */
 bool start_wraps(uint64_t coordinate, uint64_t step) {
@@ -680,6 +746,7 @@ void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, u
 void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                        const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                        uint32_t count, dsn_filter_sums sums, dsn_filter_slopes *slopes) {
+    if (slopes_one_pass(noise, x, y, plan, levels, count, sums, slopes)) return;
     /* Each tap with its copies moved by one weight step of each level along x and along y, in one walk with
        as many taps as fit: a copy reads its level only. Where a copy's int32 integer part less 1 (the
        walk's start, reduced modulo a period) wraps, a period that does not divide 2^32 makes the sums

@@ -131,19 +131,34 @@ DSN_POINT_INLINE void window_texels_8(const unsigned char *values, uint32_t widt
     texels->bottom_right = gather_masked_32<1>(next, below, bitwise_and(bottom, right));
 }
 
-template <uint32_t Channels>
+/* bilinear_texton.h's add_slopes of reads with texels a, b (upper row), d, e (lower row), sign-extended
+   8-bit values in 32-bit lanes: along x (65536 - down) (b - a) + down (e - d), along y
+   (65536 - across) (d - a) + across (e - b), written with one product each around the cross difference
+   a - b - d + e (the same integers: each below 2^24 in magnitude, every step below 2^26), added to the
+   32-bit lanes slope_x and slope_y, which the caller widens before 2^7 reads could overflow a lane. */
+template <typename Vector>
+DSN_POINT_INLINE void add_slope_lanes(Vector a, Vector b, Vector d, Vector e, Vector across, Vector down,
+                                      Vector *slope_x, Vector *slope_y) {
+    const Vector cross = add_32(subtract_32(a, b), subtract_32(e, d));
+    *slope_x = add_32(*slope_x, add_32(shift_left_32(subtract_32(b, a), 16), multiply_32(down, cross)));
+    *slope_y = add_32(*slope_y, add_32(shift_left_32(subtract_32(d, a), 16), multiply_32(across, cross)));
+}
+
+/* With Slopes, each read's slopes added to slope_x[c] and slope_y[c] too (add_slope_lanes). */
+template <uint32_t Channels, bool Slopes = false>
 DSN_POINT_INLINE void add_window_reads_8(const unsigned char *values, uint32_t width, uint32_t height,
                                          uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
-                                         vector_256 *sums) {
+                                         vector_256 *sums, vector_256 *slope_x = 0, vector_256 *slope_y = 0) {
     WindowTexels texels;
     window_texels_8<Channels>(values, width, height, stride, s_x, s_y, reach, &texels);
     for (uint32_t c = 0; c < Channels; c++) {
         const int byte = static_cast<int>(c);
+        const vector_256 a = lane_byte(texels.top_left, byte), b = lane_byte(texels.top_right, byte),
+                         d = lane_byte(texels.bottom_left, byte), e = lane_byte(texels.bottom_right, byte);
         vector_256 even, odd;
-        bilinear_8(lane_byte(texels.top_left, byte), lane_byte(texels.top_right, byte),
-                   lane_byte(texels.bottom_left, byte), lane_byte(texels.bottom_right, byte), texels.across,
-                   texels.down, &even, &odd);
+        bilinear_8(a, b, d, e, texels.across, texels.down, &even, &odd);
         sums[c] = add_64(sums[c], add_64(even, odd));
+        if (Slopes) add_slope_lanes(a, b, d, e, texels.across, texels.down, &slope_x[c], &slope_y[c]);
     }
 }
 
@@ -304,10 +319,11 @@ DSN_POINT_INLINE void add_quad_reads_16(const uint32_t *quads, uint32_t quad_row
 }
 
 /* add_window_reads_8 on 512-bit vectors: 16 candidates, those of `reach`. */
-template <uint32_t Channels>
+template <uint32_t Channels, bool Slopes = false>
 DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
                                           uint32_t stride, vector_512 s_x, vector_512 s_y, mask_16 reach,
-                                          vector_512 *sums) {
+                                          vector_512 *sums, vector_512 *slope_x = 0,
+                                          vector_512 *slope_y = 0) {
     const vector_512 weight_bits = set_16x32(bilinear_weight_mask);
     /* the texton indices of the right column and the lower row, and of the left column and upper row */
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
@@ -328,9 +344,12 @@ DSN_POINT_INLINE void add_window_reads_16(const unsigned char *values, uint32_t 
                      top_right = gather_masked_32<1>(next, at, top & right),
                      bottom_left = gather_masked_32<1>(values, below, bottom & left),
                      bottom_right = gather_masked_32<1>(next, below, bottom & right);
-    for (uint32_t c = 0; c < Channels; c++)
-        add_bilinear_16(lane_byte_16(top_left, c), lane_byte_16(top_right, c), lane_byte_16(bottom_left, c),
-                        lane_byte_16(bottom_right, c), across, down, &sums[c]);
+    for (uint32_t c = 0; c < Channels; c++) {
+        const vector_512 a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c),
+                         d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
+        add_bilinear_16(a, b, d, e, across, down, &sums[c]);
+        if (Slopes) add_slope_lanes(a, b, d, e, across, down, &slope_x[c], &slope_y[c]);
+    }
 }
 
 /* add_window_reads_16 on the whole texton (the per-point visit's window): each row's two texels by one
@@ -463,30 +482,18 @@ DSN_POINT_INLINE vector_256 add_widened_32(vector_256 sums, vector_256 values) {
                                multiply_even_32(shift_right_logical_64(values, 32), one)));
 }
 
-/* add_window_reads_8 with bilinear_texton.h's add_slopes of each candidate: along x
-   (65536 - down) (b - a) + down (d - c), along y (65536 - across) (c - a) + across (d - b), each below
-   2^26 in magnitude for 8-bit texels (exact in 32-bit lanes), added to the slopes' 64-bit lanes. */
+/* add_window_reads_8 with each candidate's slopes (add_slope_lanes), added to the slopes' 64-bit lanes. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_window_slopes_8(const unsigned char *values, uint32_t width, uint32_t height,
                                           vector_256 s_x, vector_256 s_y, vector_256 reach,
                                           SlopeVisit<Channels> *visit) {
-    WindowTexels texels;
-    window_texels_8<Channels>(values, width, height, width, s_x, s_y, reach, &texels);
-    const vector_256 full = set_8x32(65536);
-    const vector_256 above = subtract_32(full, texels.down), before = subtract_32(full, texels.across);
+    vector_256 along_x[Channels], along_y[Channels];
+    for (uint32_t c = 0; c < Channels; c++) along_x[c] = along_y[c] = zero_256();
+    add_window_reads_8<Channels, true>(values, width, height, width, s_x, s_y, reach, visit->values.sums,
+                                       along_x, along_y);
     for (uint32_t c = 0; c < Channels; c++) {
-        const int byte = static_cast<int>(c);
-        const vector_256 a = lane_byte(texels.top_left, byte), b = lane_byte(texels.top_right, byte),
-                         d = lane_byte(texels.bottom_left, byte), e = lane_byte(texels.bottom_right, byte);
-        vector_256 even, odd;
-        bilinear_8(a, b, d, e, texels.across, texels.down, &even, &odd);
-        visit->values.sums[c] = add_64(visit->values.sums[c], add_64(even, odd));
-        const vector_256 along_x =
-            add_32(multiply_32(above, subtract_32(b, a)), multiply_32(texels.down, subtract_32(e, d)));
-        const vector_256 along_y =
-            add_32(multiply_32(before, subtract_32(d, a)), multiply_32(texels.across, subtract_32(e, b)));
-        visit->slope_x[c] = add_widened_32(visit->slope_x[c], along_x);
-        visit->slope_y[c] = add_widened_32(visit->slope_y[c], along_y);
+        visit->slope_x[c] = add_widened_32(visit->slope_x[c], along_x[c]);
+        visit->slope_y[c] = add_widened_32(visit->slope_y[c], along_y[c]);
     }
 }
 
@@ -505,18 +512,14 @@ DSN_POINT_INLINE void add_texton_slopes_16(const unsigned char *texton, uint32_t
                                            SlopeVisit<Channels> *visit) {
     TextonTexels16 texels;
     texton_pairs_16<Channels>(texton, width, height, s_x, s_y, reach, &texels);
-    const vector_512 full = set_16x32(65536);
-    const vector_512 above = subtract_32(full, texels.down), before = subtract_32(full, texels.across);
     for (uint32_t c = 0; c < Channels; c++) {
         const vector_512 a = lane_byte_16(texels.texel[0], 4u - Channels + c),
                          b = lane_byte_16(texels.texel[1], c),
                          d = lane_byte_16(texels.texel[2], 4u - Channels + c),
                          e = lane_byte_16(texels.texel[3], c);
         add_bilinear_16(a, b, d, e, texels.across, texels.down, &visit->values.wide_sums[c]);
-        const vector_512 along_x =
-            add_32(multiply_32(above, subtract_32(b, a)), multiply_32(texels.down, subtract_32(e, d)));
-        const vector_512 along_y =
-            add_32(multiply_32(before, subtract_32(d, a)), multiply_32(texels.across, subtract_32(e, b)));
+        vector_512 along_x = zero_512(), along_y = zero_512();
+        add_slope_lanes(a, b, d, e, texels.across, texels.down, &along_x, &along_y);
         visit->wide_slope_x[c] = add_widened_32(visit->wide_slope_x[c], along_x);
         visit->wide_slope_y[c] = add_widened_32(visit->wide_slope_y[c], along_y);
     }

@@ -8,7 +8,8 @@
    8-byte read, add_pair_reads_16), the last 15 or fewer 8 at a time; levels of at most 7 texels across and
    11 down (the coarse ones, whose reach holds the most impulses) it holds in registers as tables of the
    reads' texel differences instead (add_register_reads_16), read without gathers by a rearranged, equal,
-   integer. Internal to libdsn; not installed (everything here has internal linkage). */
+   integer. The gradient's reads add each read's slopes too (add_slope_lanes), from the gathered texels.
+   Internal to libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_FILTERED_READS_VECTOR_H
 #define DSN_FILTERED_READS_VECTOR_H
 
@@ -85,10 +86,11 @@ inline void texel_pairs_16(const unsigned char *values, vector_512 at, mask_16 r
 }
 
 /* add_window_reads_16 for 3-channel levels at least 2 texels wide: each row's two texels by one read
-   (texel_pairs_16), half the gathered values; the same values, so the same sums. */
+   (texel_pairs_16), half the gathered values; the same values, so the same sums (and slopes). */
+template <bool Slopes>
 DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t width, uint32_t height,
                                         uint32_t stride, vector_512 s_x, vector_512 s_y, mask_16 reach,
-                                        vector_512 *sums) {
+                                        vector_512 *sums, vector_512 *slope_x, vector_512 *slope_y) {
     const vector_512 weight_bits = set_16x32(bilinear_weight_mask), one = set_16x32(1);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
@@ -108,9 +110,12 @@ DSN_POINT_INLINE void add_pair_reads_16(const unsigned char *values, uint32_t wi
     vector_512 top_left, top_right, bottom_left, bottom_right;
     texel_pairs_16(values, at, top, left_out, right_out, &top_left, &top_right);
     texel_pairs_16(values, below, bottom, left_out, right_out, &bottom_left, &bottom_right);
-    for (uint32_t c = 0; c < 3; c++)
-        add_bilinear_16(lane_byte_16(top_left, c), lane_byte_16(top_right, c), lane_byte_16(bottom_left, c),
-                        lane_byte_16(bottom_right, c), across, down, &sums[c]);
+    for (uint32_t c = 0; c < 3; c++) {
+        const vector_512 a = lane_byte_16(top_left, c), b = lane_byte_16(top_right, c),
+                         d = lane_byte_16(bottom_left, c), e = lane_byte_16(bottom_right, c);
+        add_bilinear_16(a, b, d, e, across, down, &sums[c]);
+        if (Slopes) add_slope_lanes(a, b, d, e, across, down, &slope_x[c], &slope_y[c]);
+    }
 }
 
 /* A level of at most 7 texels across and 11 down held in registers, read without gathers: entry 8 R + C
@@ -317,14 +322,31 @@ inline uint32_t pack_narrow_8(const uint32_t *xs, const uint32_t *ys, uint32_t v
 /* Candidates are tested and their offsets packed a block at a time, then read. */
 const uint32_t packed_block = 256;
 
+#if DSN_GRADIENTS
+/* The 32-bit lanes of a block's slopes (add_slope_lanes: at most 2^5 reads a lane) added to the 64-bit
+   lanes and cleared. */
+inline void widen_slopes(vector_256 *lanes, vector_256 *sums) {
+    *sums = add_widened_32(*sums, *lanes);
+    *lanes = zero_256();
+}
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+inline void widen_slopes(vector_512 *lanes, vector_256 *sums) {
+    *sums = add_widened_32(add_widened_32(*sums, low_256(*lanes)), high_256(*lanes));
+    *lanes = zero_512();
+}
+#endif
+#endif
+
 /* Vectors 4 or 6: the level's tables built (the caller checks that it fits them) and its reads taken from
    them, in copies of their own, so that the other calls (Vectors 0) neither make room for them nor clear
-   their sums. */
-template <uint32_t Channels, uint32_t Vectors>
+   their sums. Slopes: the reads' slopes added to slopes[0] (x) and slopes[1] (y) too (Vectors 0 only). */
+template <uint32_t Channels, uint32_t Vectors, bool Slopes>
 void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
                           const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
-                          const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
-    const vector_256 bias = set_4x64(static_cast<int64_t>(static_cast<uint64_t>(1) << level->level));
+                          const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out,
+                          uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
+    const vector_256 bias = set_4x64(static_cast<int64_t>(tests[4]));
     const vector_256 offset_tests_8[5] = {
         set_4x64(static_cast<int64_t>(tests[0])), set_4x64(static_cast<int64_t>(tests[1])),
         set_4x64(static_cast<int64_t>(tests[2])), set_4x64(static_cast<int64_t>(tests[3])), bias};
@@ -336,10 +358,13 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     const vector_512 wide_tests[5] = {
         set_8x64(static_cast<int64_t>(tests[0])), set_8x64(static_cast<int64_t>(tests[1])),
         set_8x64(static_cast<int64_t>(tests[2])), set_8x64(static_cast<int64_t>(tests[3])),
-        set_8x64(static_cast<int64_t>(static_cast<uint64_t>(1) << level->level))};
-    vector_512 wide_sums[Channels];
-    for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = zero_512();
+        set_8x64(static_cast<int64_t>(tests[4]))};
+    vector_512 wide_sums[Channels], wide_slope_x[Channels], wide_slope_y[Channels];
+    for (uint32_t c = 0; c < Channels; c++) wide_sums[c] = wide_slope_x[c] = wide_slope_y[c] = zero_512();
 #endif
+    vector_256 slope_x[Channels], slope_y[Channels], slope_lanes_x[Channels], slope_lanes_y[Channels];
+    for (uint32_t c = 0; c < Channels; c++)
+        slope_x[c] = slope_y[c] = slope_lanes_x[c] = slope_lanes_y[c] = zero;
     vector_256 narrow_tests_8[6];
     for (uint32_t i = 0; i < 6; i++) narrow_tests_8[i] = set_8x32(narrow_tests[i]);
     const vector_128 narrow_shift = shift_count(static_cast<int>(level->level));
@@ -401,19 +426,35 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
             const mask_16 reach = static_cast<mask_16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
             const vector_512 s_x = load_16x32(packed_x + next), s_y = load_16x32(packed_y + next);
             if (Channels == 3 && level->width >= 2)
-                add_pair_reads_16(level->values, level->width, level->height, level->stride, s_x, s_y, reach,
-                                  wide_sums);
+                add_pair_reads_16<Slopes>(level->values, level->width, level->height, level->stride, s_x, s_y,
+                                          reach, wide_sums, wide_slope_x, wide_slope_y);
             else
-                add_window_reads_16<Channels>(level->values, level->width, level->height, level->stride, s_x,
-                                              s_y, reach, wide_sums);
+                add_window_reads_16<Channels, Slopes>(level->values, level->width, level->height,
+                                                      level->stride, s_x, s_y, reach, wide_sums, wide_slope_x,
+                                                      wide_slope_y);
         }
+#if DSN_GRADIENTS
+        if (Slopes)
+            for (uint32_t c = 0; c < Channels; c++) {
+                widen_slopes(&wide_slope_x[c], &slope_x[c]);
+                widen_slopes(&wide_slope_y[c], &slope_y[c]);
+            }
+#endif
 #endif
         for (; next < packed; next += 8u) {
             const vector_256 reach =
                 greater_32(set_8x32(packed - next), set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7));
-            add_window_reads_8<Channels>(level->values, level->width, level->height, level->stride,
-                                         load_8x32(packed_x + next), load_8x32(packed_y + next), reach, sums);
+            add_window_reads_8<Channels, Slopes>(level->values, level->width, level->height, level->stride,
+                                                 load_8x32(packed_x + next), load_8x32(packed_y + next),
+                                                 reach, sums, slope_lanes_x, slope_lanes_y);
         }
+#if DSN_GRADIENTS
+        if (Slopes)
+            for (uint32_t c = 0; c < Channels; c++) {
+                widen_slopes(&slope_lanes_x[c], &slope_x[c]);
+                widen_slopes(&slope_lanes_y[c], &slope_y[c]);
+            }
+#endif
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     if (in_registers)
@@ -422,36 +463,53 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
         sums[c] = add_64(sums[c], add_64(low_256(wide_sums[c]), high_256(wide_sums[c])));
 #endif
     for (uint32_t c = 0; c < Channels; c++) {
-        uint64_t lanes[4];
-        store_4x64(lanes, sums[c]);
-        out[c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
+        out[c] += lane_total(sums[c]);
+        if (Slopes) slopes[0][c] += lane_total(slope_x[c]), slopes[1][c] += lane_total(slope_y[c]);
     }
 }
 
 /* kernels.h's filter_level_reads. */
 void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs,
                         const int64_t *ys, const uint32_t *narrow_xs, const uint32_t *narrow_ys,
-                        uint32_t count, const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out) {
+                        uint32_t count, const uint64_t *tests, const uint32_t *narrow_tests, uint64_t *out,
+                        uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
+#if DSN_GRADIENTS
+    if (slopes != 0) {
+        if (channels == 3)
+            filter_level_reads_8<3, 0, true>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                             out, slopes);
+        else
+            filter_level_reads_8<1, 0, true>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                             out, slopes);
+        return;
+    }
+#endif
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     /* the tables cost as much to build as the reads they spare on a few dozen candidates */
     if (level->width <= register_level_side && level->height <= register_level_tallest &&
         count >= register_level_least) {
         const bool tall = level->height > register_level_side;
         if (channels == 3 && tall)
-            filter_level_reads_8<3, 6>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+            filter_level_reads_8<3, 6, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                              out, 0);
         else if (channels == 3)
-            filter_level_reads_8<3, 4>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+            filter_level_reads_8<3, 4, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                              out, 0);
         else if (tall)
-            filter_level_reads_8<1, 6>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+            filter_level_reads_8<1, 6, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                              out, 0);
         else
-            filter_level_reads_8<1, 4>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+            filter_level_reads_8<1, 4, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                              out, 0);
         return;
     }
 #endif
     if (channels == 3)
-        filter_level_reads_8<3, 0>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+        filter_level_reads_8<3, 0, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                          out, 0);
     else
-        filter_level_reads_8<1, 0>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out);
+        filter_level_reads_8<1, 0, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                          out, 0);
 }
 
 } // namespace

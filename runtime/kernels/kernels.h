@@ -119,15 +119,17 @@ typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x,
 /* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
    filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start
    and limit along x, then along y: filtered_sift.cpp's LevelTest) keep, their bilinear reads of `level`
-   (`channels` 8-bit values a texel) added to out[0 .. channels - 1] modulo 2^64. Where narrow_xs is not
-   null the candidates are read from narrow_xs, narrow_ys instead (their offsets / 2^16 modulo 2^32, as
-   filter_candidates lists them) with narrow_tests[0 .. 5] (filtered_sift.cpp's narrow_test along x, then
-   along y). */
+   (`channels` 8-bit values a texel) at the offsets (c + start + tests[4]) >> level added to
+   out[0 .. channels - 1] modulo 2^64; where slopes is not null, their slopes (the gradient's) to
+   slopes[0] (x) and slopes[1] (y) too. Where narrow_xs is not null the candidates are read from
+   narrow_xs, narrow_ys instead (their offsets / 2^16 modulo 2^32, as filter_candidates lists them) with
+   narrow_tests[0 .. 5] (filtered_sift.cpp's narrow_test along x, then along y). */
 struct dsn_walked_level;
 typedef void dsn_filter_level_reads_entry(const struct dsn_walked_level *level, uint32_t channels,
                                           const int64_t *xs, const int64_t *ys, const uint32_t *narrow_xs,
                                           const uint32_t *narrow_ys, uint32_t count, const uint64_t *tests,
-                                          const uint32_t *narrow_tests, uint64_t *out);
+                                          const uint32_t *narrow_tests, uint64_t *out,
+                                          uint64_t (*slopes)[DSN_MAX_CHANNELS]);
 
 /* One axis of one cell as the sifts see it: continuous_sift.h's CellAxis, which documents it. One cell
    of the filtered sift's box (filtered_sift.cpp): its key, its impulse count and both axes. */
