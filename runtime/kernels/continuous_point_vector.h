@@ -862,13 +862,14 @@ int point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t 
     return 1;
 }
 
-#if DSN_GRADIENTS
 /* The sum of a vector's 64-bit lanes, modulo 2^64. */
 inline uint64_t lane_total(vector_256 lanes) {
     uint64_t values[4];
     __builtin_memcpy(values, &lanes, sizeof values);
     return values[0] + values[1] + values[2] + values[3];
 }
+
+#if DSN_GRADIENTS
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 inline uint64_t lane_total(vector_512 lanes) {
     return lane_total(low_256(lanes)) + lane_total(high_256(lanes));

@@ -483,6 +483,8 @@ void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const 
                                              out, slopes);
         return;
     }
+#else
+    (void)slopes;
 #endif
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     /* the tables cost as much to build as the reads they spare on a few dozen candidates */
