@@ -100,11 +100,11 @@
    under 1 KB (its fast path keeps the impulses of the nearby cells on the stack), a continuous per-point
    call under 3 KB, a batch call under 8 KB (a gradient batch about 10 KB), a filtered per-point call up
    to about 30 KB (the candidate impulses of every tap, and the coarse levels' tables of the AVX-512
-   copy), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS (see above), a continuous or filtered
-   tile up to about 88 KB where it is
-   splatted (the texture's records, see dsn_continuous_tile_fixed), and what its points take where it goes
-   point by point; a continuous gradient tile splatted up to about 128 KB and a filtered one up to about
-   144 KB (blocks of sums and totals more, see "Gradients").
+   copy; a filtered gradient point up to about 36 KB), a lattice tile call under 1 KB unless DSN_TILE_BLOCKS
+   (see above), a continuous or filtered tile up to about 88 KB where it is splatted (the texture's records,
+   see dsn_continuous_tile_fixed), and what its points take where it goes point by point; a continuous
+   gradient tile splatted up to about 128 KB and a filtered one up to about 144 KB (blocks of sums and totals
+   more, see "Gradients").
 */
 #ifndef DSN_DSN_H
 #define DSN_DSN_H

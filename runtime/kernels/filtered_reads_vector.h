@@ -198,26 +198,41 @@ inline vector_512 table_entry(const vector_512 *table, vector_512 index, const m
     return entry;
 }
 
-/* One channel's part of add_register_reads_16. */
-template <uint32_t Vectors>
+/* The weights of a read's slopes (Slopes: add_register_reads_16's gradient) and where they go. */
+struct RegisterSlopes {
+    vector_512 across, down;
+    vector_512 *slope_x, *slope_y; /* a channel's 32-bit lanes (add_slope_lanes's) */
+};
+
+/* One channel's part of add_register_reads_16; with Slopes its slopes too, 65536 (B - A) + down (A - B - D +
+   E) along x and 65536 (D - A) + across (A - B - D + E) along y (add_slope_lanes's integers), from the same
+   entries. */
+template <uint32_t Vectors, bool Slopes>
 DSN_POINT_INLINE void add_register_channel(const vector_512 *difference_table, const vector_512 *corner_table,
                                            vector_512 index, const mask_16 *part, vector_512 weights,
                                            vector_512 product, vector_512 product_odd, mask_16 negative,
-                                           RegisterSums *sums) {
+                                           RegisterSums *sums, const RegisterSlopes &slopes) {
     const vector_512 differences = table_entry<Vectors>(difference_table, index, part),
                      corners = table_entry<Vectors>(corner_table, index, part);
     sums->times_16 = add_32(sums->times_16, madd_16(weights, differences));
     const vector_512 cross = shift_right_arithmetic_32(shift_left_32(corners, 16), 16);
+    if (Slopes) {
+        const vector_512 along_x = shift_left_32(differences, 16),
+                         along_y = bitwise_and(differences, set_16x32(0xFFFF0000u));
+        *slopes.slope_x = add_32(*slopes.slope_x, add_32(along_x, multiply_32(slopes.down, cross)));
+        *slopes.slope_y = add_32(*slopes.slope_y, add_32(along_y, multiply_32(slopes.across, cross)));
+    }
     sums->times_31 = add_32(sums->times_31, shift_right_arithmetic_32(corners, 16));
     sums->times_31 = add_32_where(negative, sums->times_31, add_32(cross, cross));
     sums->wide = add_64(sums->wide, add_64(multiply_even_32(product, cross),
                                            multiply_even_32(product_odd, shift_right_logical_64(cross, 32))));
 }
 
-/* add_pair_reads_16's reads (the same integers, so the same sums) from a level in registers. */
-template <uint32_t Channels, uint32_t Vectors>
+/* add_pair_reads_16's reads (the same integers, so the same sums, and slopes) from a level in registers. */
+template <uint32_t Channels, uint32_t Vectors, bool Slopes>
 DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vectors> &level, vector_512 s_x,
-                                            vector_512 s_y, mask_16 reach, RegisterSums *sums) {
+                                            vector_512 s_y, mask_16 reach, RegisterSums *sums,
+                                            vector_512 *slope_x, vector_512 *slope_y) {
     const vector_512 weight_bits = set_16x32(bilinear_weight_mask), half = set_16x32(0x8000);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
@@ -235,13 +250,16 @@ DSN_POINT_INLINE void add_register_reads_16(const RegisterLevel<Channels, Vector
     const vector_512 product = multiply_32(across, down), product_odd = shift_right_logical_64(product, 32);
     const mask_16 negative = less_32(product, zero_512());
     /* the channels written out: the compiler then keeps each one's sums in registers */
-    add_register_channel<Vectors>(level.differences[0], level.corners[0], index, part, weights, product,
-                                  product_odd, negative, &sums[0]);
+    const RegisterSlopes slopes_0 = {across, down, &slope_x[0], &slope_y[0]};
+    add_register_channel<Vectors, Slopes>(level.differences[0], level.corners[0], index, part, weights,
+                                          product, product_odd, negative, &sums[0], slopes_0);
     if (Channels == 3) {
-        add_register_channel<Vectors>(level.differences[1], level.corners[1], index, part, weights, product,
-                                      product_odd, negative, &sums[1]);
-        add_register_channel<Vectors>(level.differences[2], level.corners[2], index, part, weights, product,
-                                      product_odd, negative, &sums[2]);
+        const RegisterSlopes slopes_1 = {across, down, &slope_x[1], &slope_y[1]},
+                             slopes_2 = {across, down, &slope_x[2], &slope_y[2]};
+        add_register_channel<Vectors, Slopes>(level.differences[1], level.corners[1], index, part, weights,
+                                              product, product_odd, negative, &sums[1], slopes_1);
+        add_register_channel<Vectors, Slopes>(level.differences[2], level.corners[2], index, part, weights,
+                                              product, product_odd, negative, &sums[2], slopes_2);
     }
 }
 
@@ -336,11 +354,20 @@ inline void widen_slopes(vector_512 *lanes, vector_256 *sums) {
     *lanes = zero_512();
 }
 #endif
+
+/* widen_slopes of every channel's lanes along x and y. */
+template <uint32_t Channels, typename Vector>
+inline void widen_channel_slopes(Vector *lanes_x, Vector *lanes_y, vector_256 *slope_x, vector_256 *slope_y) {
+    for (uint32_t c = 0; c < Channels; c++) {
+        widen_slopes(&lanes_x[c], &slope_x[c]);
+        widen_slopes(&lanes_y[c], &slope_y[c]);
+    }
+}
 #endif
 
 /* Vectors 4 or 6: the level's tables built (the caller checks that it fits them) and its reads taken from
    them, in copies of their own, so that the other calls (Vectors 0) neither make room for them nor clear
-   their sums. Slopes: the reads' slopes added to slopes[0] (x) and slopes[1] (y) too (Vectors 0 only). */
+   their sums. Slopes: the reads' slopes added to slopes[0] (x) and slopes[1] (y) too. */
 template <uint32_t Channels, uint32_t Vectors, bool Slopes>
 void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, const int64_t *ys,
                           const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count,
@@ -415,9 +442,9 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
             for (; next < packed; next += 16u) {
                 const uint32_t left = packed - next;
                 const mask_16 reach = static_cast<mask_16>(left >= 16u ? 0xFFFFu : (1u << left) - 1u);
-                add_register_reads_16<Channels, Vectors == 0 ? 4u : Vectors>(
-                    registers, load_16x32(packed_x + next), load_16x32(packed_y + next), reach,
-                    register_sums);
+                add_register_reads_16<Channels, Vectors == 0 ? 4u : Vectors, Slopes>(
+                    registers, load_16x32(packed_x + next), load_16x32(packed_y + next), reach, register_sums,
+                    wide_slope_x, wide_slope_y);
             }
             for (uint32_t c = 0; c < Channels; c++) widen_register_sums(&register_sums[c]);
         }
@@ -434,11 +461,7 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
                                                       wide_slope_y);
         }
 #if DSN_GRADIENTS
-        if (Slopes)
-            for (uint32_t c = 0; c < Channels; c++) {
-                widen_slopes(&wide_slope_x[c], &slope_x[c]);
-                widen_slopes(&wide_slope_y[c], &slope_y[c]);
-            }
+        if (Slopes) widen_channel_slopes<Channels>(wide_slope_x, wide_slope_y, slope_x, slope_y);
 #endif
 #endif
         for (; next < packed; next += 8u) {
@@ -449,11 +472,7 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
                                                  reach, sums, slope_lanes_x, slope_lanes_y);
         }
 #if DSN_GRADIENTS
-        if (Slopes)
-            for (uint32_t c = 0; c < Channels; c++) {
-                widen_slopes(&slope_lanes_x[c], &slope_x[c]);
-                widen_slopes(&slope_lanes_y[c], &slope_y[c]);
-            }
+        if (Slopes) widen_channel_slopes<Channels>(slope_lanes_x, slope_lanes_y, slope_x, slope_y);
 #endif
     }
 #if defined(__AVX512F__) && defined(__AVX512BW__)
@@ -468,6 +487,40 @@ void filter_level_reads_8(const dsn_walked_level *level, const int64_t *xs, cons
     }
 }
 
+/* The reads of filter_level_reads with or without the slopes: a level that fits the tables (AVX-512) from
+   them. */
+template <bool Slopes>
+void level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs, const int64_t *ys,
+                 const uint32_t *narrow_xs, const uint32_t *narrow_ys, uint32_t count, const uint64_t *tests,
+                 const uint32_t *narrow_tests, uint64_t *out, uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    /* the tables cost as much to build as the reads they spare on a few dozen candidates */
+    if (level->width <= register_level_side && level->height <= register_level_tallest &&
+        count >= register_level_least) {
+        const bool tall = level->height > register_level_side;
+        if (channels == 3 && tall)
+            filter_level_reads_8<3, 6, Slopes>(level, xs, ys, narrow_xs, narrow_ys, count, tests,
+                                               narrow_tests, out, slopes);
+        else if (channels == 3)
+            filter_level_reads_8<3, 4, Slopes>(level, xs, ys, narrow_xs, narrow_ys, count, tests,
+                                               narrow_tests, out, slopes);
+        else if (tall)
+            filter_level_reads_8<1, 6, Slopes>(level, xs, ys, narrow_xs, narrow_ys, count, tests,
+                                               narrow_tests, out, slopes);
+        else
+            filter_level_reads_8<1, 4, Slopes>(level, xs, ys, narrow_xs, narrow_ys, count, tests,
+                                               narrow_tests, out, slopes);
+        return;
+    }
+#endif
+    if (channels == 3)
+        filter_level_reads_8<3, 0, Slopes>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                           out, slopes);
+    else
+        filter_level_reads_8<1, 0, Slopes>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
+                                           out, slopes);
+}
+
 /* kernels.h's filter_level_reads. */
 void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const int64_t *xs,
                         const int64_t *ys, const uint32_t *narrow_xs, const uint32_t *narrow_ys,
@@ -475,43 +528,14 @@ void filter_level_reads(const dsn_walked_level *level, uint32_t channels, const 
                         uint64_t (*slopes)[DSN_MAX_CHANNELS]) {
 #if DSN_GRADIENTS
     if (slopes != 0) {
-        if (channels == 3)
-            filter_level_reads_8<3, 0, true>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                             out, slopes);
-        else
-            filter_level_reads_8<1, 0, true>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                             out, slopes);
+        level_reads<true>(level, channels, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out,
+                          slopes);
         return;
     }
 #else
     (void)slopes;
 #endif
-#if defined(__AVX512F__) && defined(__AVX512BW__)
-    /* the tables cost as much to build as the reads they spare on a few dozen candidates */
-    if (level->width <= register_level_side && level->height <= register_level_tallest &&
-        count >= register_level_least) {
-        const bool tall = level->height > register_level_side;
-        if (channels == 3 && tall)
-            filter_level_reads_8<3, 6, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                              out, 0);
-        else if (channels == 3)
-            filter_level_reads_8<3, 4, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                              out, 0);
-        else if (tall)
-            filter_level_reads_8<1, 6, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                              out, 0);
-        else
-            filter_level_reads_8<1, 4, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                              out, 0);
-        return;
-    }
-#endif
-    if (channels == 3)
-        filter_level_reads_8<3, 0, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                          out, 0);
-    else
-        filter_level_reads_8<1, 0, false>(level, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests,
-                                          out, 0);
+    level_reads<false>(level, channels, xs, ys, narrow_xs, narrow_ys, count, tests, narrow_tests, out, 0);
 }
 
 } // namespace
