@@ -23,6 +23,8 @@
 
 #include "fixtures/continuous_fixtures.h"
 #include "offline/bake_internal.h"
+#include "runtime/core/mix_weights.h"
+#include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
 
@@ -205,6 +207,129 @@ TEST_CASE("mix: normalized weights, whatever their scale; tiles are their points
     int32_t fixed_point[3];
     dsn_mix_continuous_point_fixed(&mix, &ramp.control, 13 * (kOne / 4), -30 * (kOne / 4), fixed_point);
     for (int c = 0; c < 3; c++) CHECK(point[c] == dsn_fixed_to_float(fixed_point[c]));
+}
+
+TEST_CASE("mix: draw_threshold is the smallest hash that pick_material's draw takes past a running sum") {
+    std::mt19937_64 random(17);
+    for (int trial = 0; trial < 20000; trial++) {
+        const uint32_t total = trial < 4 ? uint32_t(1) << (trial * 6) : 1u + uint32_t(random() % 261120u);
+        const uint32_t running = trial % 5 == 0   ? total
+                                 : trial % 7 == 0 ? 0u
+                                                  : uint32_t(random() % (total + 1u));
+        const uint64_t threshold = draw_threshold(running, total);
+        CAPTURE(total);
+        CAPTURE(running);
+        REQUIRE(threshold <= (uint64_t(1) << 32));
+        // floor(hash total / 2^32) >= running exactly from the threshold on
+        if (threshold < (uint64_t(1) << 32)) CHECK(((threshold * total) >> 32) >= running);
+        if (threshold > 0) CHECK((((threshold - 1u) * total) >> 32) < running);
+    }
+}
+
+// What the kernels' mixed point asks of a pick (kernels.h's dsn_point_materials): here the uniform weights'
+// draw by pick_material itself, so that a kernel's thresholds can be checked against it.
+struct UniformPick {
+    MixWeights weights;
+    uint32_t count;
+};
+uint32_t uniform_pick(const void *context, uint32_t key, uint32_t k, uint32_t, uint32_t) {
+    const UniformPick *pick = static_cast<const UniformPick *>(context);
+    return pick_material(pick->weights, pick->count, dsn_cell_stream(key, 0xC0000000u + k));
+}
+
+TEST_CASE("mix: lattice points of materials of one texton size, through every kernel's vector walk, are the "
+          "generic walk's") {
+    struct Setting {
+        uint32_t channels, radius, bits, impacts;
+    };
+    std::mt19937_64 random(23);
+    // 50 impacts on a 31 x 31 texton: about 13 impulses a cell, many past the vector walk's 16 a cell
+    for (const Setting setting : {Setting{3, 15, 8, 30}, Setting{1, 15, 16, 50}, Setting{3, 13, 16, 40}}) {
+        CAPTURE(setting.channels);
+        CAPTURE(setting.bits);
+        std::vector<std::unique_ptr<Noise>> noises;
+        for (uint32_t m = 0; m < 4; m++)
+            noises.push_back(
+                make_noise(random_texton_asset(setting.channels, setting.radius, setting.bits, 40 + m), 7 + m,
+                           setting.impacts << 16));
+        for (uint32_t count = 2; count <= 4; count++) {
+            CAPTURE(count);
+            std::vector<const dsn_noise *> list;
+            for (uint32_t m = 0; m < count; m++) list.push_back(&noises[m]->noise);
+            dsn_mix mix;
+            REQUIRE(dsn_mix_init(&mix, list.data(), count) == DSN_OK);
+            const dsn_mix_state *state = dsn_mix_state_of(&mix);
+            const dsn_noise_state *lead = &state->material[0];
+            // the vector walk's noises (lattice_point_walk.h's cells16_walk)
+            REQUIRE(lead->cell_shift == 4);
+            REQUIRE(lead->poisson_parts == 1);
+            const std::vector<uint8_t> uneven_weights = {200, 0, 55, 9};
+            const Control even = constant(std::vector<uint8_t>(count, 128));
+            const Control uneven =
+                constant(std::vector<uint8_t>(uneven_weights.begin(), uneven_weights.begin() + count));
+            const Control varying(
+                count, 6, 5, 2,
+                [&](uint32_t i, uint32_t j) {
+                    std::vector<uint8_t> weights(count);
+                    for (uint32_t m = 0; m < count; m++)
+                        weights[m] = uint8_t((i * 53 + j * 97 + m * 71) % 256);
+                    return weights;
+                },
+                DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y);
+            // The API's point (the kernel's walk) against a 1 x 1 tile without scratch (the generic walk).
+            size_t differences = 0;
+            for (const Control *control : {&even, &uneven, &varying})
+                for (int k = 0; k < 60; k++) {
+                    const int32_t x = int32_t(uint32_t(random())), y = int32_t(uint32_t(random()));
+                    int32_t point[3] = {}, tile[3] = {};
+                    REQUIRE(dsn_mix_lattice_point_fixed(&mix, &control->control, x, y, point) == DSN_OK);
+                    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &control->control, x, y, 1, 1, tile, nullptr,
+                                                       0) == DSN_OK);
+                    differences += std::memcmp(point, tile, sizeof point) != 0;
+                }
+            CHECK(differences == 0);
+            // Every kernel this CPU runs: the even and uneven weights by thresholds and by a pick of the same
+            // draw give the default kernel's sums.
+            const dsn_texton_window texton = dsn_lattice_texton_window(lead);
+            dsn_point_materials by_thresholds = {
+                count, {nullptr, nullptr, nullptr, nullptr}, {0, 0, 0}, nullptr, nullptr};
+            for (uint32_t m = 0; m < count; m++)
+                by_thresholds.values[m] = dsn_lattice_texton_window(&state->material[m]).values;
+            size_t kernel_differences = 0, walked = 0;
+            for (const Control *control : {&even, &uneven}) {
+                UniformPick uniform = {mix_weights_at(&control->control, count, 0, 0), count};
+                const uint32_t total = uniform.weights.cumulative[count - 1];
+                for (uint32_t m = 0; m < 3; m++)
+                    by_thresholds.thresholds[m] = m + 1 < count
+                                                      ? draw_threshold(uniform.weights.cumulative[m], total)
+                                                      : uint64_t(1) << 32;
+                dsn_point_materials by_pick = by_thresholds;
+                by_pick.pick = uniform_pick;
+                by_pick.context = &uniform;
+                for (int k = 0; k < 40; k++) {
+                    const uint32_t x = uint32_t(random()), y = uint32_t(random());
+                    uint32_t expected[12] = {};
+                    dsn_lattice_point_entry *reference = dsn_internal_kernels[0].entries->lattice_point;
+                    REQUIRE(bool(reference));
+                    REQUIRE(reference(lead, &texton, x, y, 1, expected, &by_pick) == 1);
+                    for (uint32_t i = 0; i < dsn_internal_kernel_count; i++) {
+                        const dsn_kernel &kernel = dsn_internal_kernels[i];
+                        if (kernel.cpu_runs != nullptr && !kernel.cpu_runs()) continue;
+                        for (const dsn_point_materials *materials : {&by_thresholds, &by_pick}) {
+                            uint32_t sums[12] = {};
+                            REQUIRE(kernel.entries->lattice_point(lead, &texton, x, y, 1, sums, materials) ==
+                                    1);
+                            kernel_differences +=
+                                std::memcmp(sums, expected, 3 * count * sizeof sums[0]) != 0;
+                            walked++;
+                        }
+                    }
+                }
+            }
+            CHECK(kernel_differences == 0);
+            CHECK(walked >= 160);
+        }
+    }
 }
 
 TEST_CASE("mix: lattice tiles where the weights mix are their points: runs of every length, bands of every "

@@ -43,10 +43,12 @@ inline axis_cell cell_on_axis(const dsn_span *span, uint32_t cell, uint32_t shif
     return result;
 }
 
-/* Impulses first .. count - 1 of a cell: each one that reaches the point adds its texton entry. */
-inline void add_impulses(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t key,
-                         uint32_t first, uint32_t count, const axis_cell *x, const axis_cell *y,
-                         uint32_t *sums) {
+/* visit(k, offset_x, offset_y, entry) for each of impulses first .. count - 1 of a cell that reaches the
+   point: its in-cell offsets and its texton entry. */
+template <typename Visit>
+inline void visit_reaching_impulses(const dsn_noise_state *noise, const dsn_texton_window *texton,
+                                    uint32_t key, uint32_t first, uint32_t count, const axis_cell *x,
+                                    const axis_cell *y, const Visit &visit) {
     const uint32_t field_shift = dsn_field_shift(noise->cell_shift), per_pair = 64u >> field_shift;
     const uint32_t half_bits = 1u << (field_shift - 1u), half_mask = (1u << half_bits) - 1u;
     const uint32_t drop = half_bits - noise->cell_shift, width = texton->width, height = texton->height;
@@ -58,8 +60,18 @@ inline void add_impulses(const dsn_noise_state *noise, const dsn_texton_window *
                        offset_y = ((field >> half_bits) & half_mask) >> drop;
         const uint32_t column = x->reach - offset_x, row = y->reach - offset_y;
         if (column < width && row < height && offset_x <= x->last_offset && offset_y <= y->last_offset)
-            add_texton_entry(&noise->asset, texton, row * width + column, sums);
+            visit(k, offset_x, offset_y, row * width + column);
     }
+}
+
+/* Impulses first .. count - 1 of a cell: each one that reaches the point adds its texton entry. */
+inline void add_impulses(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t key,
+                         uint32_t first, uint32_t count, const axis_cell *x, const axis_cell *y,
+                         uint32_t *sums) {
+    visit_reaching_impulses(noise, texton, key, first, count, x, y,
+                            [&](uint32_t, uint32_t, uint32_t, uint32_t entry) {
+                                add_texton_entry(&noise->asset, texton, entry, sums);
+                            });
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 #include "core/normalize_fixed.h"
 #include "core/poisson_count.h"
 #include "evaluators/mix_evaluation.h"
+#include "kernels/kernels.h"
 
 #if DSN_MIXING
 
@@ -324,22 +325,22 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
     mix_output_from(mix, offsets, sums, out);
 }
 
-/* The mix's value at lattice point (x, y) from its materials' sums there. */
-void lattice_output(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
-                    const LatticeSums sums, int32_t *out) {
+/* The mix's value at continuous point (x, y) (Q32.32) from its materials' sums there, in a region of the
+   weights that holds the point (a uniform one's weights are the point's). */
+template <typename Sum>
+void point_output(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                  uint64_t x, uint64_t y, const Sum (*sums)[DSN_MAX_CHANNELS], int32_t *out) {
     uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0}; /* (GCC cannot tell point_weights fills them) */
-    point_weights(
-        mix_weights_at(control, mix->count, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32),
-        mix->count, weights);
+    point_weights(region.uniform ? region.weights : mix_weights_at(control, mix->count, x, y), mix->count,
+                  weights);
     mix_output(mix, weights, sums, out);
 }
 
-/* The mix's value at continuous point (x, y) from its materials' sums there. */
-void continuous_output(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
-                       const ContinuousSums sums, int32_t *out) {
-    uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0}; /* (GCC cannot tell point_weights fills them) */
-    point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
-    mix_output(mix, weights, sums, out);
+/* The mix's value at lattice point (x, y) from its materials' sums there. */
+void lattice_output(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                    uint32_t x, uint32_t y, const LatticeSums sums, int32_t *out) {
+    point_output(mix, control, region, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, sums,
+                 out);
 }
 
 void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
@@ -360,7 +361,7 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
     group_axis(&y, 1u, mix->radius[1], lead->cell_shift, lead->period[1], &gy, &offset_y);
     ContinuousSums sums[1] = {};
     continuous_group_sums(mix, control, region, gx, gy, &offset_x, &offset_y, 1u, sums);
-    continuous_output(mix, control, x, y, sums[0], out);
+    point_output(mix, control, region, x, y, sums[0], out);
 }
 
 /* The values of up to group_points continuous points: as a group where they lie close together and the
@@ -391,7 +392,60 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
     }
     ContinuousSums sums[group_points] = {};
     continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
-    for (uint32_t p = 0; p < count; p++) continuous_output(mix, control, xs[p], ys[p], sums[p], values[p]);
+    for (uint32_t p = 0; p < count; p++) point_output(mix, control, region, xs[p], ys[p], sums[p], values[p]);
+}
+
+static_assert(DSN_MIX_MAX_MATERIALS == dsn_point_materials_most, "the kernels' mixed point takes every mix");
+
+/* What the kernels' mixed point asks of a non-uniform region's impulses: their materials. */
+struct ImpulsePick {
+    const dsn_mix_state *mix;
+    const dsn_mix_control *control;
+    const MixRegion *region;
+};
+
+uint32_t pick_at(const void *context, uint32_t key, uint32_t k, uint32_t x, uint32_t y) {
+    const ImpulsePick *pick = static_cast<const ImpulsePick *>(context);
+    return impulse_material(pick->control, pick->mix->count, *pick->region, key, k,
+                            static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32);
+}
+
+/* The lattice sums of every material at (x, y) from the kernel's vector walk (kernels.h's
+   dsn_point_materials), where it takes the mix: materials whose lattice textons all have the lead's
+   window, channels and bits (the mix's reach is then the lead's). False, writing nothing, elsewhere. */
+bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                         uint32_t x, uint32_t y, LatticeSums sums) {
+    const dsn_noise_state *lead = &mix->material[0];
+    dsn_lattice_point_entry *walk = dsn_kernel_entries_of(lead->tile_kernel)->lattice_point;
+    if (walk == 0) return false;
+    const dsn_texton_window texton = dsn_lattice_texton_window(lead);
+    dsn_point_materials materials = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0};
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const dsn_texton_window own = dsn_lattice_texton_window(&mix->material[m]);
+        const dsn_asset *asset = &mix->material[m].asset;
+        if (own.width != texton.width || own.height != texton.height || own.radius[0] != texton.radius[0] ||
+            own.radius[1] != texton.radius[1] || asset->channels != lead->asset.channels ||
+            asset->bits != lead->asset.bits)
+            return false;
+        materials.values[m] = own.values;
+    }
+    const ImpulsePick pick = {mix, control, &region};
+    if (region.uniform) {
+        const uint32_t total = region.weights.cumulative[mix->count - 1u];
+        for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
+            materials.thresholds[m] = total != 0 && m + 1u < mix->count
+                                          ? draw_threshold(region.weights.cumulative[m], total)
+                                          : static_cast<uint64_t>(1) << 32;
+    } else {
+        materials.pick = pick_at;
+        materials.context = &pick;
+    }
+    uint32_t flat[3 * DSN_MIX_MAX_MATERIALS];
+    if (!walk(lead, &texton, x, y, 1u, flat, &materials)) return false;
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+            sums[m][c] = m < mix->count && c < lead->asset.channels ? flat[3 * m + c] : 0u;
+    return true;
 }
 
 void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,
@@ -405,9 +459,11 @@ void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uin
         return;
     }
     LatticeSums sums = {};
-    uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {sums[0], sums[1], sums[2], sums[3]};
-    lattice_window_sums(mix, control, region, x, 1u, y, 1u, material_sums);
-    lattice_output(mix, control, x, y, sums, out);
+    if (!kernel_lattice_sums(mix, control, region, x, y, sums)) {
+        uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {sums[0], sums[1], sums[2], sums[3]};
+        lattice_window_sums(mix, control, region, x, 1u, y, 1u, material_sums);
+    }
+    lattice_output(mix, control, region, x, y, sums, out);
 }
 
 /* Point `point`'s sums of every material from a window's (lattice_window_sums's layout), zero past a
@@ -483,7 +539,7 @@ bool lattice_tile_by_bands(const dsn_mix_state *mix, const dsn_mix_control *cont
                 if (region.uniform)
                     mix_output_from(mix, uniform_offsets, sums, value);
                 else
-                    lattice_output(mix, control, x0 + i, y + j, sums, value);
+                    lattice_output(mix, control, region, x0 + i, y + j, sums, value);
                 dsn_store_pixel(out, kind, (static_cast<size_t>(j0 + j) * width + i) * mix->channels, value,
                                 mix->channels);
             }
@@ -503,15 +559,15 @@ void lattice_tile_by_runs(const dsn_mix_state *mix, const dsn_mix_control *contr
             uint32_t run_sums[DSN_MIX_MAX_MATERIALS][run_points * DSN_MAX_CHANNELS] = {};
             uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
                                                                     run_sums[3]};
-            lattice_window_sums(mix, control, window_region(mix, control, x, length, y, 1u), x, length, y, 1u,
-                                material_sums);
+            const MixRegion region = window_region(mix, control, x, length, y, 1u);
+            lattice_window_sums(mix, control, region, x, length, y, 1u, material_sums);
             for (uint32_t p = 0; p < length; p++) {
                 LatticeSums sums;
                 const uint32_t *const planes[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
                                                                        run_sums[3]};
                 point_sums(mix, planes, p, sums);
                 int32_t value[DSN_MAX_CHANNELS];
-                lattice_output(mix, control, x + p, y, sums, value);
+                lattice_output(mix, control, region, x + p, y, sums, value);
                 dsn_store_pixel(out, kind, (static_cast<size_t>(j) * width + i + p) * mix->channels, value,
                                 mix->channels);
             }

@@ -47,7 +47,7 @@ template <uint32_t Points>
 void accumulate(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
                 uint32_t *sums) {
     dsn_lattice_point_entry *walk = dsn_kernel_entries_of(noise->tile_kernel)->lattice_point;
-    if (walk != 0 && walk(noise, texton, x, y, Points, sums)) return;
+    if (walk != 0 && walk(noise, texton, x, y, Points, sums, 0)) return;
     for (uint32_t i = 0; i < 3 * Points; i++) sums[i] = 0;
     for (uint32_t p = 0; p < Points; p++)
         accumulate_any(noise, texton, x + (p == 1), y + (p == 2), sums + 3 * p);

@@ -39,11 +39,29 @@ typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, u
    lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */
 typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
 
+/* The materials of a mixed lattice point (mix_point.cpp): `count` lattice textons of the same window,
+   channels and bits (the walk's texton gives those), each impulse of the lead noise's process adding its
+   material's. Where `pick` is null every impulse's weights are the same, and impulse k of the cell with
+   key `key` takes the number of thresholds[0 .. 2] at or below its hash dsn_cell_stream(key, 2^31 + 2^30 +
+   k) (mix_weights.h's pick_material by draw_threshold: the hashes that draw material m or a later one are
+   those at or above thresholds[m - 1]; 2^32, above every hash, past count - 1); else pick(context, key, k,
+   x, y) gives the material of that impulse at lattice position (x, y). */
+enum { dsn_point_materials_most = 4 }; /* DSN_MIX_MAX_MATERIALS, in builds without the mix too */
+typedef struct dsn_point_materials {
+    uint32_t count;
+    const unsigned char *values[dsn_point_materials_most];
+    uint64_t thresholds[dsn_point_materials_most - 1];
+    uint32_t (*pick)(const void *context, uint32_t key, uint32_t k, uint32_t x, uint32_t y);
+    const void *context;
+} dsn_point_materials;
+
 /* A lattice point (lattice_point_walk.h's lattice_point_sums): the sums, modulo 2^32, of the texton values
    of every impulse that reaches (x, y) and, where `points` is 3, (x + 1, y) and (x, y + 1) too (sums +
-   3 p); 0 (writing nothing) for a noise the kernel's walk does not take (point.cpp walks it then). */
+   3 p); where `materials` is not null (with `points` 1), each material's at sums + 3 m instead. 0 (writing
+   nothing) for a noise the kernel's walk does not take (point.cpp and mix_point.cpp walk it then). */
 typedef int dsn_lattice_point_entry(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x,
-                                    uint32_t y, uint32_t points, uint32_t *sums);
+                                    uint32_t y, uint32_t points, uint32_t *sums,
+                                    const dsn_point_materials *materials);
 
 /* A batch of continuous points (continuous_batch.h's continuous_batch): `count` points (xs[k], ys[k]),
    Q32.32, into out[k * channels], reading the texton from `quads` (continuous_batch.h's 2 x 2 texel

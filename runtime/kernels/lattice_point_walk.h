@@ -1,8 +1,9 @@
-/* runtime/kernels/lattice_point_walk.h - the lattice mode at one point, and at its two neighbours for the
-   gradient, on 128-bit vectors, as a kernel (kernels.h: each kernel file includes it, so it is built
-   once per instruction set): the 16 x 16 cells of a noise without a period, each cell's first 16
-   impulses tested at once. The same impulses and the same sums modulo 2^32 as point.cpp's walk, so the
-   same bits. Internal to libdsn; not installed (everything here has internal linkage). */
+/* runtime/kernels/lattice_point_walk.h - the lattice mode at one point, at its two neighbours for the
+   gradient, and at a mix's point (each impulse adding its material's texton), on 128-bit vectors, as a
+   kernel (kernels.h: each kernel file includes it, so it is built once per instruction set): the 16 x 16
+   cells of a noise without a period, each cell's first 16 impulses tested at once. The same impulses and
+   the same sums modulo 2^32 as point.cpp's and mix_point.cpp's walks, so the same bits. Internal to
+   libdsn; not installed (everything here has internal linkage). */
 #ifndef DSN_LATTICE_POINT_WALK_H
 #define DSN_LATTICE_POINT_WALK_H
 
@@ -277,16 +278,168 @@ inline void flush_cells(const unsigned char *texton, uint32_t width, uint16_t *m
     }
 }
 
+/* ---- The mixed point (mix_point.cpp): each hit adds its material's texton ---- */
+
+/* What the mixed walk keeps of each buffered cell beside its masks and entries: its key, its origin and
+   its impulses' fields (16 offset_y + offset_x), from which a hit's material comes. */
+typedef struct material_slots {
+    uint32_t keys[9], origins_x[9], origins_y[9];
+    unsigned char fields[9 * 16];
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+    /* Where the weights are uniform, the cells' impulses of material m or a later one, bit k for impulse
+       k: at_least[m - 1][slot], hashed 16 at a time as the cell is buffered (material_masks). */
+    uint16_t at_least[3][12];
+#endif
+} material_slots;
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+#define DSN_MATERIAL_MASKS 1
+/* dsn_mix32 of every 32-bit lane. */
+inline vector_512 mix32_lanes(vector_512 x) {
+    x = bitwise_xor(x, shift_right_logical_32(x, 16));
+    x = multiply_32(x, set_16x32(0x7FEB352Du));
+    x = bitwise_xor(x, shift_right_logical_32(x, 15));
+    x = multiply_32(x, set_16x32(0x846CA68Bu));
+    return bitwise_xor(x, shift_right_logical_32(x, 16));
+}
+
+/* The uniform weights' thresholds as 32-bit lanes, with the levels that no hash reaches (2^32) marked. */
+typedef struct material_thresholds {
+    vector_512 threshold[3];
+    uint32_t reached[3];   /* 0xFFFF, or 0 where no hash reaches the level */
+    vector_512 lane_steps; /* lane k: k 0x9E3779B9 (dsn_cell_stream's Weyl step) */
+} material_thresholds;
+
+inline material_thresholds thresholds_of(const dsn_point_materials *materials) {
+    material_thresholds out;
+    for (uint32_t level = 0; level < 3; level++) {
+        out.threshold[level] = set_16x32(uint32_t(materials->thresholds[level]));
+        out.reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFu;
+    }
+    out.lane_steps = multiply_32(set_lanes_16x32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                                 set_16x32(0x9E3779B9u));
+    return out;
+}
+
+/* The masks of a buffered cell's 16 impulses (at_least[.][slot]): their hashes dsn_cell_stream(key, 2^31 +
+   2^30 + k) at once against the thresholds. */
+inline void material_masks(const material_thresholds *thresholds, uint32_t levels, uint32_t key,
+                           uint32_t slot, material_slots *slots) {
+    const vector_512 hashes =
+        mix32_lanes(add_32(set_16x32(key + 0xC0000000u * 0x9E3779B9u), thresholds->lane_steps));
+    for (uint32_t level = 0; level < 3; level++)
+        slots->at_least[level][slot] =
+            level < levels ? uint16_t(greater_equal_unsigned_32(hashes, thresholds->threshold[level]) &
+                                      thresholds->reached[level])
+                           : uint16_t(0);
+}
+#else
+#define DSN_MATERIAL_MASKS 0
+#endif
+
+/* The material of impulse k of the cell with this key, at lattice position (x, y) (kernels.h's
+   dsn_point_materials). */
+inline uint32_t material_of(const dsn_point_materials *materials, uint32_t key, uint32_t k, uint32_t x,
+                            uint32_t y) {
+    if (materials->pick != 0) return materials->pick(materials->context, key, k, x, y);
+    const uint64_t hash = dsn_cell_stream(key, 0xC0000000u + k);
+    return uint32_t(hash >= materials->thresholds[0]) + uint32_t(hash >= materials->thresholds[1]) +
+           uint32_t(hash >= materials->thresholds[2]);
+}
+
+/* The hits of one word of masks (bit 16 s + k: impulse k of slot first + s) split by material: of[m] the
+   hits of material m. Built as the hits of material 1 or more, 2 or more and 3 by masks, not branches:
+   the materials of neighbouring impulses are as unpredictable as a mix's weights make them. */
+inline void split_by_material(const dsn_point_materials *materials, uint64_t hits,
+                              const material_slots *slots, uint32_t first, uint64_t *of) {
+    uint64_t one_or_more = 0, two_or_more = 0, three = 0, to_hash = hits;
+#if DSN_MATERIAL_MASKS
+    if (materials->pick == 0) {
+        __builtin_memcpy(&one_or_more, slots->at_least[0] + first, sizeof one_or_more);
+        __builtin_memcpy(&two_or_more, slots->at_least[1] + first, sizeof two_or_more);
+        __builtin_memcpy(&three, slots->at_least[2] + first, sizeof three);
+        to_hash = 0;
+    }
+#endif
+    for (uint64_t left = to_hash; left != 0; left &= left - 1) {
+        const uint32_t bit = uint32_t(__builtin_ctzll(left)), slot = first + (bit >> 4);
+        const uint32_t field = slots->fields[16 * first + bit];
+        const uint32_t m =
+            material_of(materials, slots->keys[slot], bit & 15u, slots->origins_x[slot] + (field & 15u),
+                        slots->origins_y[slot] + (field >> 4));
+        const uint64_t lowest = left & (~left + 1u);
+        one_or_more |= lowest & (0u - uint64_t(m >= 1u));
+        two_or_more |= lowest & (0u - uint64_t(m >= 2u));
+        three |= lowest & (0u - uint64_t(m >= 3u));
+    }
+    of[0] = hits & ~one_or_more;
+    of[1] = hits & one_or_more & ~two_or_more;
+    of[2] = hits & two_or_more & ~three;
+    of[3] = hits & three;
+}
+
+/* The buffered hits of the mixed point summed into each material's sums (sums + 3 m). */
+template <uint32_t Channels, uint32_t Bits>
+inline void flush_materials(const dsn_point_materials *materials, uint16_t *masks, uint32_t cells,
+                            const uint16_t *entries, material_slots *slots, uint32_t *sums) {
+    for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
+#if DSN_MATERIAL_MASKS
+    for (uint32_t s = cells; s < 12; s++)
+        slots->at_least[0][s] = slots->at_least[1][s] = slots->at_least[2][s] = 0;
+#endif
+    hit_sums hit[dsn_point_materials_most];
+    for (uint32_t m = 0; m < dsn_point_materials_most; m++) hit[m].grey = 0, hit[m].rgb = zero_128();
+    for (uint32_t word = 0; word < 3; word++) {
+        uint64_t hits, of[dsn_point_materials_most];
+        __builtin_memcpy(&hits, masks + 4 * word, sizeof hits);
+        split_by_material(materials, hits, slots, 4 * word, of);
+        for (uint32_t m = 0; m < dsn_point_materials_most; m++)
+            if (m < materials->count)
+                sum_hits<Channels, Bits>(materials->values[m], of[m], entries + 64 * word, 0u, &hit[m]);
+    }
+    for (uint32_t m = 0; m < dsn_point_materials_most; m++)
+        if (m < materials->count) flush_hit_sums<Channels, Bits>(&hit[m], sums + 3 * m);
+}
+
+/* The buffered hits flushed: into each material's sums for the mixed point (Mixed), else into each
+   point's. */
+template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed>
+inline void flush_walked(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
+                         const uint16_t *entries, hit_sums *hit, material_slots *slots,
+                         const dsn_point_materials *materials, uint32_t *sums) {
+    if (Mixed)
+        flush_materials<Channels, Bits>(materials, masks, cells, entries, slots, sums);
+    else
+        flush_cells<Channels, Bits, Points>(texton, width, masks, cells, entries, hit, sums);
+}
+
+/* A cell's rare impulses past 16 for the mixed point, each adding its material's texton entry. */
+template <uint32_t Channels, uint32_t Bits>
+inline void add_material_impulses(const dsn_noise_state *noise, const dsn_texton_window *texton,
+                                  const dsn_point_materials *materials, uint32_t key, uint32_t count,
+                                  uint32_t origin_x, uint32_t origin_y, const axis_cell *in_x,
+                                  const axis_cell *in_y, uint32_t *sums) {
+    visit_reaching_impulses(noise, texton, key, 16, count, in_x, in_y,
+                            [&](uint32_t k, uint32_t offset_x, uint32_t offset_y, uint32_t entry) {
+                                const uint32_t m =
+                                    material_of(materials, key, k, origin_x + offset_x, origin_y + offset_y);
+                                for (uint32_t c = 0; c < Channels; c++)
+                                    sums[3 * m + c] +=
+                                        texton_value<Bits>(materials->values[m], entry * Channels + c);
+                            });
+}
+
 /* The x range of one column of cells for a point whose reach there is `reach`, and whether the column
    reaches it at all (all ones) or not (0: a column of the walk over a point and its right neighbour may
    reach only one of them). */
 inline uint32_t live_range(uint32_t reach, uint32_t size) { return reach < size + 15u ? 0xFFFFu : 0u; }
 
 /* The sums of the point (x, y), and where Points is 3 of the points (x + 1, y) and (x, y + 1) too (sums +
-   3, sums + 6: the lattice gradient's neighbours), from one walk over the cells that reach any of them. */
-template <uint32_t Channels, uint32_t Bits, uint32_t Points>
+   3, sums + 6: the lattice gradient's neighbours), from one walk over the cells that reach any of them;
+   where Mixed (Points 1), each material's sums of the point (sums + 3 m). */
+template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed>
 void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
-                        uint32_t *sums) {
+                        uint32_t *sums, const dsn_point_materials *materials) {
     const uint32_t reached = Points == 1 ? 0u : 1u; /* the window grows by one column and one row */
     const uint32_t width = texton->width, height = texton->height;
     const uint32_t low_x = x - texton->radius[0], low_y = y - texton->radius[1];
@@ -312,6 +465,12 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
        better. The masks are stored one by one rather than shifted into words: fewer instructions. A
        neighbour's masks follow, 12 apart. */
     uint16_t entries[9 * 16], masks[12 * Points];
+    material_slots slots; /* (filled for the mixed point alone) */
+#if DSN_MATERIAL_MASKS
+    const bool masked = Mixed && materials->pick == 0;
+    material_thresholds thresholds;
+    if (masked) thresholds = thresholds_of(materials);
+#endif
     uint32_t slot = 0;
     hit_sums hit = {0, zero_128()};
     for (uint32_t i = 0; i < rows; i++) {
@@ -343,24 +502,40 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
                 live[2] = column_live[0] & row_live[1];
             }
             if (slot == 9) {
-                flush_cells<Channels, Bits, Points>(texton->values, width, masks, 9, entries, &hit, sums);
+                flush_walked<Channels, Bits, Points, Mixed>(texton->values, width, masks, 9, entries, &hit,
+                                                            &slots, materials, sums);
                 slot = 0;
             }
             const uint32_t count = dsn_poisson_count_two_steps(noise, key);
-            cell_hits<Points>(position_pairs(key_vector), absent_impulses(count), column_range, row_range,
-                              corner, widths_less_16, entries + 16 * slot, masks + slot, live);
+            const vector_128 fields = position_pairs(key_vector);
+            cell_hits<Points>(fields, absent_impulses(count), column_range, row_range, corner, widths_less_16,
+                              entries + 16 * slot, masks + slot, live);
+            if (Mixed) {
+                slots.keys[slot] = key;
+                slots.origins_x[slot] = cell_x << 4;
+                slots.origins_y[slot] = cell_y << 4;
+                store_16x8(slots.fields + 16 * slot, fields);
+#if DSN_MATERIAL_MASKS
+                if (masked) material_masks(&thresholds, materials->count - 1u, key, slot, &slots);
+#endif
+            }
             slot++;
             corner = subtract_16(corner, sixteen);
             if (count > 16) {
                 /* The rare rest, through the generic cell walk's per-impulse test. */
                 for (uint32_t p = 0; p < Points; p++) {
                     const axis_cell in_x = {column_reach + (p == 1), 15u}, in_y = {reach_y + (p == 2), 15u};
-                    add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums + 3 * p);
+                    if (Mixed)
+                        add_material_impulses<Channels, Bits>(noise, texton, materials, key, count,
+                                                              cell_x << 4, cell_y << 4, &in_x, &in_y, sums);
+                    else
+                        add_impulses(noise, texton, key, 16, count, &in_x, &in_y, sums + 3 * p);
                 }
             }
         }
     }
-    flush_cells<Channels, Bits, Points>(texton->values, width, masks, slot, entries, &hit, sums);
+    flush_walked<Channels, Bits, Points, Mixed>(texton->values, width, masks, slot, entries, &hit, &slots,
+                                                materials, sums);
 }
 
 /* Whether the 16 x 16 cells' vector walk takes the noise. dsn_poisson_count_two_steps reads up to
@@ -371,27 +546,36 @@ bool cells16_walk(const dsn_noise_state *noise) {
            noise->poisson_size + 2 <= sizeof noise->poisson_cdf / sizeof noise->poisson_cdf[0];
 }
 
-/* The sums of Points points (zeroed first) by the walk of the noise's channels and value size. */
-template <uint32_t Points>
+/* The sums of Points points, or of each material (zeroed first), by the walk of the noise's channels and
+   value size. */
+template <uint32_t Points, bool Mixed>
 inline void walk_points(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
-                        uint32_t *sums) {
-    for (uint32_t i = 0; i < 3 * Points; i++) sums[i] = 0;
+                        uint32_t *sums, const dsn_point_materials *materials) {
+    const uint32_t values = 3 * (Mixed ? materials->count : Points);
+    for (uint32_t i = 0; i < values; i++) sums[i] = 0;
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3)
-        asset->bits == 8 ? accumulate_cells16<3, 8, Points>(noise, texton, x, y, sums)
-                         : accumulate_cells16<3, 16, Points>(noise, texton, x, y, sums);
+        asset->bits == 8 ? accumulate_cells16<3, 8, Points, Mixed>(noise, texton, x, y, sums, materials)
+                         : accumulate_cells16<3, 16, Points, Mixed>(noise, texton, x, y, sums, materials);
     else
-        asset->bits == 8 ? accumulate_cells16<1, 8, Points>(noise, texton, x, y, sums)
-                         : accumulate_cells16<1, 16, Points>(noise, texton, x, y, sums);
+        asset->bits == 8 ? accumulate_cells16<1, 8, Points, Mixed>(noise, texton, x, y, sums, materials)
+                         : accumulate_cells16<1, 16, Points, Mixed>(noise, texton, x, y, sums, materials);
 }
 
 /* The kernel entry (kernels.h's dsn_lattice_point_entry): the sums of `points` points (1, or 3: the point
-   and its right and lower neighbours, sums + 3 p); 0 (writing nothing) where the vector walk does not
-   take the noise. */
+   and its right and lower neighbours, sums + 3 p), or of each material of a mixed point; 0 (writing
+   nothing) where the vector walk does not take the noise. */
 inline int lattice_point_sums(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x,
-                              uint32_t y, uint32_t points, uint32_t *sums) {
-    if (!cells16_walk(noise)) return 0;
-    points == 3 ? walk_points<3>(noise, texton, x, y, sums) : walk_points<1>(noise, texton, x, y, sums);
+                              uint32_t y, uint32_t points, uint32_t *sums,
+                              const dsn_point_materials *materials) {
+    if (!cells16_walk(noise) ||
+        (materials != 0 && (points != 1 || materials->count > dsn_point_materials_most)))
+        return 0;
+    if (materials != 0)
+        walk_points<1, true>(noise, texton, x, y, sums, materials);
+    else
+        points == 3 ? walk_points<3, false>(noise, texton, x, y, sums, 0)
+                    : walk_points<1, false>(noise, texton, x, y, sums, 0);
     return 1;
 }
 
