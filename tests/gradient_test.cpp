@@ -152,12 +152,12 @@ TEST_CASE("continuous gradient: every kernel's sums are the default kernel's, th
                             if (entry == nullptr) continue;
                             RawSums sums;
                             if (!entry(state, uint64_t(x), uint64_t(y), sums.value, sums.slope_x,
-                                       sums.slope_y))
+                                       sums.slope_y, nullptr))
                                 continue;
                             vector_points++;
                             // the value alone too: the entry's other walk
                             uint64_t value[3];
-                            REQUIRE(entry(state, uint64_t(x), uint64_t(y), value, nullptr, nullptr));
+                            REQUIRE(entry(state, uint64_t(x), uint64_t(y), value, nullptr, nullptr, nullptr));
                             for (uint32_t c = 0; c < 3; c++)
                                 differences += (sums.value[c] != expected.value[c]) +
                                                (value[c] != expected.value[c]) +

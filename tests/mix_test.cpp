@@ -297,7 +297,8 @@ TEST_CASE("mix: lattice points of materials of one texton size, through every ke
                 by_thresholds.values[m] = dsn_lattice_texton_window(&state->material[m]).values;
             size_t kernel_differences = 0, walked = 0;
             for (const Control *control : {&even, &uneven}) {
-                UniformPick uniform = {mix_weights_at(&control->control, count, 0, 0), count};
+                UniformPick uniform = {MixWeights(), count};
+                mix_weights_at(&control->control, count, 0, 0, &uniform.weights);
                 const uint32_t total = uniform.weights.cumulative[count - 1];
                 for (uint32_t m = 0; m < 3; m++)
                     by_thresholds.thresholds[m] = m + 1 < count
@@ -328,6 +329,43 @@ TEST_CASE("mix: lattice points of materials of one texton size, through every ke
             }
             CHECK(kernel_differences == 0);
             CHECK(walked >= 160);
+        }
+    }
+}
+
+TEST_CASE(
+    "mix: continuous points of materials of one texton size, through the kernels' vector evaluator, are "
+    "the generic walk's") {
+    std::mt19937_64 random(29);
+    for (const uint32_t channels : {3u, 1u}) {
+        CAPTURE(channels);
+        std::vector<std::unique_ptr<Noise>> noises;
+        for (uint32_t m = 0; m < 4; m++)
+            noises.push_back(make_noise(random_texton_asset(channels, 15, 8, 50 + m), 3 + m, 30u << 16));
+        for (uint32_t count = 2; count <= 4; count++) {
+            CAPTURE(count);
+            std::vector<const dsn_noise *> list;
+            for (uint32_t m = 0; m < count; m++) list.push_back(&noises[m]->noise);
+            dsn_mix mix;
+            REQUIRE(dsn_mix_init(&mix, list.data(), count) == DSN_OK);
+            const std::vector<uint8_t> uneven_weights = {30, 200, 0, 90};
+            const Control even = constant(std::vector<uint8_t>(count, 128));
+            const Control uneven =
+                constant(std::vector<uint8_t>(uneven_weights.begin(), uneven_weights.begin() + count));
+            // The API's point (the vector evaluator where the kernel has it) against the first point of a
+            // grid of two close points (a group: the generic walk).
+            size_t differences = 0;
+            for (const Control *control : {&even, &uneven})
+                for (int k = 0; k < 150; k++) {
+                    const int64_t x = int64_t(random()), y = int64_t(random());
+                    const dsn_grid pair = {x, y, kOne / 3, kOne / 5, 0, kOne};
+                    int32_t point[3] = {}, tile[6] = {};
+                    REQUIRE(dsn_mix_continuous_point_fixed(&mix, &control->control, x, y, point) == DSN_OK);
+                    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &control->control, &pair, 2, 1, tile, nullptr,
+                                                          0) == DSN_OK);
+                    differences += std::memcmp(point, tile, channels * sizeof point[0]) != 0;
+                }
+            CHECK(differences == 0);
         }
     }
 }

@@ -843,14 +843,17 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    material, once per point where the samples around it agree), a hash, and one texton. A lattice point
    whose materials' lattice textons share one size, channel count and value size takes the kernels'
    vector walk, as one noise's point does (16 impulses of a cell tested at once; where the samples agree,
-   the AVX-512 copy hashes the 16 impulses' materials at once too); other points walk in scalar code. Tiles
+   the AVX-512 copy hashes the 16 impulses' materials at once too); so does a continuous point whose
+   samples agree, with 8-bit textons of one size and channel count, in the AVX-512 copy (the continuous
+   point's vector evaluator, each of 16 candidates gathering its own material's texels: the textons must
+   lie within 2^30 bytes of material 0's); other points walk in scalar code. Tiles
    and batches walk their points in groups: a lattice tile in bands of up to 32 rows when `scratch` holds
    dsn_mix_lattice_tile_scratch_size() bytes (each impulse found once per band, its texton added to the
    points it reaches; less scratch, fewer rows a band), else its rows in runs of up to 32 points (each
    impulse found once per run); a continuous tile's rows and a batch's neighbours in groups of up to 16
    points within 32 texels of each other (each impulse found once per group, read at the points it
    reaches); other points go one by one. make bench's mix_bench
-   reports both against one material, and the stack it paints: a point call under 2.5 KB (a filtered
+   reports both against one material, and the stack it paints: a point call under 5 KB (a filtered
    mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB. Gradients have no mix yet;
    the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and
    continuous mix per point with these bits, from the words of dsn_gpu_mix_pack (dsn/gpu.h). Not in the

@@ -106,14 +106,14 @@ namespace {
    one that takes the noise, else the sifting walk. */
 void dsn_internal_continuous_point(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     uint64_t sums[DSN_MAX_CHANNELS];
-    dsn_kernel_entries_of(noise->tile_kernel)->continuous_point(noise, x, y, sums, 0, 0);
+    dsn_kernel_entries_of(noise->tile_kernel)->continuous_point(noise, x, y, sums, 0, 0, 0);
     normalize_q32(noise, sums, out);
 }
 
 #if DSN_GRADIENTS
 void dsn_internal_continuous_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                     uint64_t *slope_x, uint64_t *slope_y) {
-    dsn_kernel_entries_of(noise->tile_kernel)->continuous_point(noise, x, y, value, slope_x, slope_y);
+    dsn_kernel_entries_of(noise->tile_kernel)->continuous_point(noise, x, y, value, slope_x, slope_y, 0);
 }
 #endif
 

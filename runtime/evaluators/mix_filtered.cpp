@@ -160,7 +160,9 @@ void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, ui
         return;
     }
     uint32_t weights[DSN_MIX_MAX_MATERIALS];
-    point_weights(mix_weights_at(control, mix->count, x, y), mix->count, weights);
+    MixWeights at_point;
+    mix_weights_at(control, mix->count, x, y, &at_point);
+    point_weights(at_point, mix->count, weights);
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t m = 0; m < mix->count; m++) {
         int32_t value[DSN_MAX_CHANNELS];

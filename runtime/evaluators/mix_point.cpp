@@ -331,8 +331,9 @@ template <typename Sum>
 void point_output(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                   uint64_t x, uint64_t y, const Sum (*sums)[DSN_MAX_CHANNELS], int32_t *out) {
     uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0}; /* (GCC cannot tell point_weights fills them) */
-    point_weights(region.uniform ? region.weights : mix_weights_at(control, mix->count, x, y), mix->count,
-                  weights);
+    MixWeights at_point = region.weights;
+    if (!region.uniform) mix_weights_at(control, mix->count, x, y, &at_point);
+    point_weights(at_point, mix->count, weights);
     mix_output(mix, weights, sums, out);
 }
 
@@ -341,6 +342,98 @@ void lattice_output(const dsn_mix_state *mix, const dsn_mix_control *control, co
                     uint32_t x, uint32_t y, const LatticeSums sums, int32_t *out) {
     point_output(mix, control, region, static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, sums,
                  out);
+}
+
+/* ---- The kernels' mixed points ---- */
+
+static_assert(DSN_MIX_MAX_MATERIALS == dsn_point_materials_most, "the kernels' mixed point takes every mix");
+
+/* What the kernels' mixed lattice point asks of a non-uniform region's impulses: their materials. */
+struct ImpulsePick {
+    const dsn_mix_state *mix;
+    const dsn_mix_control *control;
+    const MixRegion *region;
+};
+
+uint32_t pick_at(const void *context, uint32_t key, uint32_t k, uint32_t x, uint32_t y) {
+    const ImpulsePick *pick = static_cast<const ImpulsePick *>(context);
+    return impulse_material(pick->control, pick->mix->count, *pick->region, key, k,
+                            static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, true);
+}
+
+/* The materials as the kernels' mixed points take them (kernels.h's dsn_point_materials): their textons
+   (the lattice ones in lattice mode), which must all have the lead's window, channels and bits (the
+   mix's reach is then the lead's), and the region's weights as the hashes' thresholds where it is
+   uniform, else `pick`. False where a texton differs. */
+bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lattice, const ImpulsePick *pick,
+                     dsn_point_materials *materials) {
+    const dsn_noise_state *lead = &mix->material[0];
+    const dsn_point_materials none = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0};
+    *materials = none;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const dsn_noise_state *material = &mix->material[m];
+        const dsn_texton_window own = lattice ? dsn_lattice_texton_window(material)
+                                              : dsn_texton_window{material->asset.texton,
+                                                                  material->asset.width,
+                                                                  material->asset.height,
+                                                                  {material->radius[0], material->radius[1]}};
+        const dsn_texton_window first = lattice ? dsn_lattice_texton_window(lead)
+                                                : dsn_texton_window{lead->asset.texton,
+                                                                    lead->asset.width,
+                                                                    lead->asset.height,
+                                                                    {lead->radius[0], lead->radius[1]}};
+        if (own.width != first.width || own.height != first.height || own.radius[0] != first.radius[0] ||
+            own.radius[1] != first.radius[1] || material->asset.channels != lead->asset.channels ||
+            material->asset.bits != lead->asset.bits)
+            return false;
+        materials->values[m] = own.values;
+    }
+    if (region.uniform) {
+        const uint32_t total = region.weights.cumulative[mix->count - 1u];
+        for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
+            materials->thresholds[m] = total != 0 && m + 1u < mix->count
+                                           ? draw_threshold(region.weights.cumulative[m], total)
+                                           : static_cast<uint64_t>(1) << 32;
+    } else {
+        materials->pick = pick_at;
+        materials->context = pick;
+    }
+    return true;
+}
+
+/* The lattice sums of every material at (x, y) from the kernel's vector walk, where it takes the mix
+   (point_materials). False, writing nothing, elsewhere. */
+bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                         uint32_t x, uint32_t y, LatticeSums sums) {
+    const dsn_noise_state *lead = &mix->material[0];
+    dsn_lattice_point_entry *walk = dsn_kernel_entries_of(lead->tile_kernel)->lattice_point;
+    const ImpulsePick pick = {mix, control, &region};
+    dsn_point_materials materials;
+    if (walk == 0 || !point_materials(mix, region, true, &pick, &materials)) return false;
+    const dsn_texton_window texton = dsn_lattice_texton_window(lead);
+    uint32_t flat[3 * DSN_MIX_MAX_MATERIALS];
+    if (!walk(lead, &texton, x, y, 1u, flat, &materials)) return false;
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+            sums[m][c] = m < mix->count && c < lead->asset.channels ? flat[3 * m + c] : 0u;
+    return true;
+}
+
+/* The continuous sums of every material at (x, y) from the kernel's vector evaluator, where the region's
+   weights are uniform and it takes the mix (point_materials; the AVX-512 copy, 8-bit textons). False,
+   writing nothing, elsewhere. */
+bool kernel_continuous_sums(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, uint64_t y,
+                            ContinuousSums sums) {
+    const dsn_noise_state *lead = &mix->material[0];
+    dsn_continuous_point_entry *point = dsn_kernel_entries_of(lead->tile_kernel)->continuous_point;
+    dsn_point_materials materials;
+    if (point == 0 || !region.uniform || !point_materials(mix, region, false, 0, &materials)) return false;
+    uint64_t flat[DSN_MAX_CHANNELS * DSN_MIX_MAX_MATERIALS];
+    if (!point(lead, x, y, flat, 0, 0, &materials)) return false;
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+            sums[m][c] = m < mix->count ? flat[DSN_MAX_CHANNELS * m + c] : 0u;
+    return true;
 }
 
 void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
@@ -354,13 +447,15 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
         spread_channels(mix, material, out);
         return;
     }
-    const dsn_noise_state *lead = &mix->material[0];
-    GroupAxis gx, gy;
-    int64_t offset_x, offset_y; /* a point is a group of one */
-    group_axis(&x, 1u, mix->radius[0], lead->cell_shift, lead->period[0], &gx, &offset_x);
-    group_axis(&y, 1u, mix->radius[1], lead->cell_shift, lead->period[1], &gy, &offset_y);
     ContinuousSums sums[1] = {};
-    continuous_group_sums(mix, control, region, gx, gy, &offset_x, &offset_y, 1u, sums);
+    if (!kernel_continuous_sums(mix, region, x, y, sums[0])) {
+        const dsn_noise_state *lead = &mix->material[0];
+        GroupAxis gx, gy;
+        int64_t offset_x, offset_y; /* a point is a group of one */
+        group_axis(&x, 1u, mix->radius[0], lead->cell_shift, lead->period[0], &gx, &offset_x);
+        group_axis(&y, 1u, mix->radius[1], lead->cell_shift, lead->period[1], &gy, &offset_y);
+        continuous_group_sums(mix, control, region, gx, gy, &offset_x, &offset_y, 1u, sums);
+    }
     point_output(mix, control, region, x, y, sums[0], out);
 }
 
@@ -393,59 +488,6 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
     ContinuousSums sums[group_points] = {};
     continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
     for (uint32_t p = 0; p < count; p++) point_output(mix, control, region, xs[p], ys[p], sums[p], values[p]);
-}
-
-static_assert(DSN_MIX_MAX_MATERIALS == dsn_point_materials_most, "the kernels' mixed point takes every mix");
-
-/* What the kernels' mixed point asks of a non-uniform region's impulses: their materials. */
-struct ImpulsePick {
-    const dsn_mix_state *mix;
-    const dsn_mix_control *control;
-    const MixRegion *region;
-};
-
-uint32_t pick_at(const void *context, uint32_t key, uint32_t k, uint32_t x, uint32_t y) {
-    const ImpulsePick *pick = static_cast<const ImpulsePick *>(context);
-    return impulse_material(pick->control, pick->mix->count, *pick->region, key, k,
-                            static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32);
-}
-
-/* The lattice sums of every material at (x, y) from the kernel's vector walk (kernels.h's
-   dsn_point_materials), where it takes the mix: materials whose lattice textons all have the lead's
-   window, channels and bits (the mix's reach is then the lead's). False, writing nothing, elsewhere. */
-bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                         uint32_t x, uint32_t y, LatticeSums sums) {
-    const dsn_noise_state *lead = &mix->material[0];
-    dsn_lattice_point_entry *walk = dsn_kernel_entries_of(lead->tile_kernel)->lattice_point;
-    if (walk == 0) return false;
-    const dsn_texton_window texton = dsn_lattice_texton_window(lead);
-    dsn_point_materials materials = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0};
-    for (uint32_t m = 0; m < mix->count; m++) {
-        const dsn_texton_window own = dsn_lattice_texton_window(&mix->material[m]);
-        const dsn_asset *asset = &mix->material[m].asset;
-        if (own.width != texton.width || own.height != texton.height || own.radius[0] != texton.radius[0] ||
-            own.radius[1] != texton.radius[1] || asset->channels != lead->asset.channels ||
-            asset->bits != lead->asset.bits)
-            return false;
-        materials.values[m] = own.values;
-    }
-    const ImpulsePick pick = {mix, control, &region};
-    if (region.uniform) {
-        const uint32_t total = region.weights.cumulative[mix->count - 1u];
-        for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
-            materials.thresholds[m] = total != 0 && m + 1u < mix->count
-                                          ? draw_threshold(region.weights.cumulative[m], total)
-                                          : static_cast<uint64_t>(1) << 32;
-    } else {
-        materials.pick = pick_at;
-        materials.context = &pick;
-    }
-    uint32_t flat[3 * DSN_MIX_MAX_MATERIALS];
-    if (!walk(lead, &texton, x, y, 1u, flat, &materials)) return false;
-    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
-        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
-            sums[m][c] = m < mix->count && c < lead->asset.channels ? flat[3 * m + c] : 0u;
-    return true;
 }
 
 void lattice_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x, uint32_t y,

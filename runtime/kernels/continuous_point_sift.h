@@ -295,12 +295,15 @@ void sum_point_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, Su
 
 /* The kernel entry (kernels.h's dsn_continuous_point_entry): the point's sums, and where slope_x is not
    null its derivative's, through the vector evaluator where the kernel has one that takes the noise, else
-   through the sifting walk; every channel past the noise's zero. */
+   through the sifting walk; every channel past the noise's zero. A mix's materials go through the vector
+   evaluator alone (0 where it does not take them). */
 inline int continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
-                                  uint64_t *slope_x, uint64_t *slope_y) {
+                                  uint64_t *slope_x, uint64_t *slope_y,
+                                  const dsn_point_materials *materials) {
 #if defined(__AVX2__)
-    if (continuous_point_sums(noise, x, y, value, slope_x, slope_y)) return 1;
+    if (continuous_point_sums(noise, x, y, value, slope_x, slope_y, materials)) return 1;
 #endif
+    if (materials != 0) return 0;
 #if DSN_GRADIENTS
     if (slope_x != 0) {
         SlopeSums sums = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};

@@ -367,7 +367,8 @@ struct TextonTexels16 {
 
 template <uint32_t Channels>
 DSN_POINT_INLINE void texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
-                                      vector_512 s_x, vector_512 s_y, mask_16 reach, TextonTexels16 *texels) {
+                                      vector_512 s_x, vector_512 s_y, mask_16 reach, TextonTexels16 *texels,
+                                      vector_512 moved = zero_512()) {
     const vector_512 weight_bits = set_16x32(bilinear_weight_mask), one = set_16x32(1);
     const vector_512 right_column = shift_right_logical_32(s_x, 16),
                      lower_row = shift_right_logical_32(s_y, 16);
@@ -380,8 +381,8 @@ DSN_POINT_INLINE void texton_pairs_16(const unsigned char *texton, uint32_t widt
     const mask_16 top = less_equal_unsigned_32(reach & (left | right), row, last_row),
                   bottom = less_equal_unsigned_32(reach & (left | right), lower_row, last_row);
     const vector_512 entry = add_32(multiply_32(row, set_16x32(width)), right_column);
-    const vector_512 at =
-        subtract_32(Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry, set_16x32(4));
+    const vector_512 at = add_32(
+        subtract_32(Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry, set_16x32(4)), moved);
     const vector_512 below = add_32(at, set_16x32(width * Channels));
     const vector_512 lows = set_lanes_16x32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30),
                      highs = set_lanes_16x32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
@@ -395,15 +396,25 @@ DSN_POINT_INLINE void texton_pairs_16(const unsigned char *texton, uint32_t widt
     }
 }
 
+/* The bilinear reads of texton_pairs_16's texels added to sums, those of the lanes `of` (the others read
+   as zeros). */
+template <uint32_t Channels>
+DSN_POINT_INLINE void add_texel_pairs_16(const TextonTexels16 &texels, vector_512 *sums,
+                                         mask_16 of = static_cast<mask_16>(0xFFFFu)) {
+    vector_512 texel[4];
+    for (uint32_t t = 0; t < 4; t++) texel[t] = blend_32(of, zero_512(), texels.texel[t]);
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(texel[0], 4u - Channels + c), lane_byte_16(texel[1], c),
+                        lane_byte_16(texel[2], 4u - Channels + c), lane_byte_16(texel[3], c), texels.across,
+                        texels.down, &sums[c]);
+}
+
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
                                           vector_512 s_x, vector_512 s_y, mask_16 reach, vector_512 *sums) {
     TextonTexels16 texels;
     texton_pairs_16<Channels>(texton, width, height, s_x, s_y, reach, &texels);
-    for (uint32_t c = 0; c < Channels; c++)
-        add_bilinear_16(lane_byte_16(texels.texel[0], 4u - Channels + c), lane_byte_16(texels.texel[1], c),
-                        lane_byte_16(texels.texel[2], 4u - Channels + c), lane_byte_16(texels.texel[3], c),
-                        texels.across, texels.down, &sums[c]);
+    add_texel_pairs_16<Channels>(texels, sums);
 }
 
 /* candidate_offsets_8 on 16 lanes: candidates first .. first + 15 of which the first `valid` exist. */
@@ -445,15 +456,20 @@ DSN_POINT_INLINE void visit_point_16(PointVisit<Channels> *visit, const PointCan
 }
 #endif
 
-/* Visits the buffered candidates and empties the buffer. */
-template <uint32_t Channels>
-inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
+/* The lanes past the last candidate set to zeros (defined values; the count leaves them out). */
+inline void clear_past_candidates(PointCandidates *candidates) {
     const uint32_t count = candidates->count;
-    /* The lanes past the last candidate hold zeros (defined values; the count leaves them out). */
     const vector_256 zero = zero_256();
     for (uint32_t pad = count; pad < count + point_vector_lanes; pad += 8u) {
         store_8x32(candidates->stream + pad, zero), store_8x32(candidates->field + pad, zero);
     }
+}
+
+/* Visits the buffered candidates and empties the buffer. */
+template <uint32_t Channels>
+inline void visit_point_candidates(PointVisit<Channels> *visit, PointCandidates *candidates) {
+    const uint32_t count = candidates->count;
+    clear_past_candidates(candidates);
     uint32_t first = 0;
 #if defined(__AVX512F__) && defined(__AVX512BW__)
     for (; first + 8u < count; first += 16u)
@@ -869,12 +885,13 @@ inline uint64_t lane_total(vector_256 lanes) {
     return values[0] + values[1] + values[2] + values[3];
 }
 
-#if DSN_GRADIENTS
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 inline uint64_t lane_total(vector_512 lanes) {
     return lane_total(low_256(lanes)) + lane_total(high_256(lanes));
 }
 #endif
+
+#if DSN_GRADIENTS
 
 /* A slope visit's sums, channel c at value[c], slope_x[c], slope_y[c] (0 past the channels). */
 template <uint32_t Channels>
@@ -914,13 +931,115 @@ int point_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t 
 }
 #endif
 
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* ---- A mix's point where its weights are uniform (mix_point.cpp): each candidate reads its material's
+   texton (kernels.h's dsn_point_materials), the materials' textons of one size, channels and bits ---- */
+
+/* The visit of a mixed point: the point's (material 0's texton, window, cell bases), the materials as
+   lanes (the thresholds their hashes meet; where each texton lies from material 0's, in bytes, which the
+   gathers' 32-bit offsets add), and each material's sums. */
+template <uint32_t Channels>
+struct MixedVisit {
+    PointVisit<Channels> point;
+    uint32_t count;
+    uint32_t threshold[3], moved[3]; /* level l: material l + 1 or a later one (broadcast where used) */
+    uint32_t reached[3];             /* 0xFFFF, or 0 where no hash meets the level's threshold */
+    vector_512 sums[dsn_point_materials_most][Channels];
+};
+
+/* The materials as lanes, the sums zero; false where a texton lies 2^30 bytes or more from material 0's. */
+template <uint32_t Channels>
+inline bool mixed_visit_begin(const dsn_point_materials *materials, MixedVisit<Channels> *visit) {
+    const uint64_t lead = reinterpret_cast<uintptr_t>(materials->values[0]);
+    visit->count = materials->count;
+    for (uint32_t level = 0; level < 3; level++) {
+        const uint32_t m = level + 1u < materials->count ? level + 1u : 0u;
+        const uint64_t moved = uint64_t(reinterpret_cast<uintptr_t>(materials->values[m])) - lead;
+        if (moved + (uint64_t(1) << 30) >= (uint64_t(1) << 31)) return false;
+        visit->moved[level] = uint32_t(moved);
+        visit->threshold[level] = uint32_t(materials->thresholds[level]);
+        visit->reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFu;
+    }
+    for (uint32_t m = 0; m < dsn_point_materials_most; m++)
+        for (uint32_t c = 0; c < Channels; c++) visit->sums[m][c] = zero_512();
+    return true;
+}
+
+/* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash
+   dsn_cell_stream(key, 2^31 + 2^30 + k) (the fraction's stream moved by 2^30 0x9E3779B9, 2^30 modulo
+   2^32), its texels read from that material's texton, and its read added to that material's sums. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_mixed_16(MixedVisit<Channels> *visit, const PointCandidates &candidates,
+                                     uint32_t first, uint32_t valid) {
+    vector_512 s_x, s_y;
+    const mask_16 reach = candidate_offsets_16(&visit->point, candidates, first, valid, &s_x, &s_y);
+    const vector_512 hashes = mix32_16(add_32(load_16x32(candidates.stream + first), set_16x32(0x40000000u)));
+    uint32_t at_least[4] = {0, 0, 0, 0};
+    vector_512 moved = zero_512();
+    for (uint32_t level = 0; level < 3; level++) {
+        at_least[level] =
+            greater_equal_unsigned_32(hashes, set_16x32(visit->threshold[level])) & visit->reached[level];
+        moved = blend_32(static_cast<mask_16>(at_least[level]), moved, set_16x32(visit->moved[level]));
+    }
+    TextonTexels16 texels;
+    texton_pairs_16<Channels>(visit->point.texton, visit->point.width, visit->point.height, s_x, s_y, reach,
+                              &texels, moved);
+    for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++)
+        add_texel_pairs_16<Channels>(
+            texels, visit->sums[m],
+            static_cast<mask_16>((m == 0 ? 0xFFFFu : at_least[m - 1]) & ~at_least[m]));
+}
+
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_candidates(MixedVisit<Channels> *visit, PointCandidates *candidates) {
+    clear_past_candidates(candidates);
+    for (uint32_t first = 0; first < candidates->count; first += 16u)
+        visit_mixed_16<Channels>(visit, *candidates, first, candidates->count - first);
+    candidates->count = 0;
+}
+
+/* Each material's sums at the point, material m's channel c at value[3 m + c] (0 past the channels); 0
+   where mixed_visit_begin is false, or for a point with more than point_vector_cells cells along an axis. */
+template <uint32_t Channels>
+int point_mixed(const dsn_noise_state *noise, const dsn_point_materials *materials, uint64_t x, uint64_t y,
+                uint64_t *value) {
+    MixedVisit<Channels> visit;
+    const FieldLanes lanes = field_lanes(noise->cell_shift);
+    AxisCells columns, rows;
+    if (!mixed_visit_begin<Channels>(materials, &visit) ||
+        !point_cells<false>(noise, x, y, lanes, &columns, &rows))
+        return 0;
+    uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
+    cell_keys_and_counts(noise, columns, rows, keys, counts);
+    point_visit_start<Channels>(noise, columns, rows, 0, &visit.point);
+    PointCandidates candidates;
+    candidates.count = 0;
+    visit_cells(lanes, columns, rows, keys, counts, columns.count, 1, &visit, &candidates);
+    visit_candidates(&visit, &candidates);
+    for (uint32_t m = 0; m < materials->count; m++)
+        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+            value[DSN_MAX_CHANNELS * m + c] = c < Channels ? lane_total(visit.sums[m][c]) : 0u;
+    return 1;
+}
+#endif
+
 /* The kernel entry (kernels.h's dsn_continuous_point_entry), one copy per channel count: the point's sums,
-   and where slope_x is not null its derivative's (point_slopes); 0 for a noise it does not take, or a
+   and where slope_x is not null its derivative's (point_slopes), or where materials is not null each
+   material's (point_mixed, the AVX-512 copy alone, weights uniform); 0 for a noise it does not take, or a
    point with more than point_vector_cells cells along an axis. */
 inline int continuous_point_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
-                                 uint64_t *slope_x, uint64_t *slope_y) {
+                                 uint64_t *slope_x, uint64_t *slope_y, const dsn_point_materials *materials) {
     if (!point_vector_takes(noise)) return 0;
     const bool rgb = noise->asset.channels == 3;
+    if (materials != 0) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+        if (slope_x != 0 || materials->pick != 0 || materials->count > dsn_point_materials_most) return 0;
+        return rgb ? point_mixed<3>(noise, materials, x, y, value)
+                   : point_mixed<1>(noise, materials, x, y, value);
+#else
+        return 0;
+#endif
+    }
 #if DSN_GRADIENTS
     if (slope_x != 0)
         return rgb ? point_slopes<3>(noise, x, y, value, slope_x, slope_y)
@@ -937,16 +1056,17 @@ inline int continuous_point_sums(const dsn_noise_state *noise, uint64_t x, uint6
    AVX-512). */
 template <const dsn_kernel_entries *Fallback>
 int continuous_point_or(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
-                        uint64_t *slope_x, uint64_t *slope_y) {
-    return continuous_point_sums(noise, x, y, value, slope_x, slope_y) ||
-           Fallback->continuous_point(noise, x, y, value, slope_x, slope_y);
+                        uint64_t *slope_x, uint64_t *slope_y, const dsn_point_materials *materials) {
+    if (materials != 0) return continuous_point_sums(noise, x, y, value, slope_x, slope_y, materials);
+    return continuous_point_sums(noise, x, y, value, slope_x, slope_y, 0) ||
+           Fallback->continuous_point(noise, x, y, value, slope_x, slope_y, 0);
 }
 
 /* The point's values (normalize_q32 of its sums), as dsn_internal_continuous_point gives them; 0 where
    continuous_point_sums is. */
 inline int continuous_point_vector(const dsn_noise_state *noise, uint64_t x, uint64_t y, int32_t *out) {
     uint64_t value[DSN_MAX_CHANNELS];
-    if (!continuous_point_sums(noise, x, y, value, 0, 0)) return 0;
+    if (!continuous_point_sums(noise, x, y, value, 0, 0, 0)) return 0;
     normalize_q32(noise, value, out);
     return 1;
 }

@@ -130,9 +130,12 @@ typedef void dsn_splat_normalize_entry(const dsn_noise_state *noise, const uint6
    modulo 2^64, into value (what dsn_internal_continuous_point normalizes), and where slope_x is not null
    (DSN_GRADIENTS) the derivative's sums too, value, slope_x and slope_y as dsn_internal_continuous_slopes
    gives them (continuous_internal.h); returns 1 (continuous_point_sums, the vector evaluator alone,
-   returns 0, writing nothing, for a noise it does not take). */
+   returns 0, writing nothing, for a noise it does not take). Where materials is not null (a mix's point,
+   slope_x null, its weights uniform: no pick), each material's sums at value + 3 m instead, from the
+   AVX-512 copy's vector evaluator; 0, writing nothing, wherever that does not take them. */
 typedef int dsn_continuous_point_entry(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
-                                       uint64_t *slope_x, uint64_t *slope_y);
+                                       uint64_t *slope_x, uint64_t *slope_y,
+                                       const dsn_point_materials *materials);
 
 /* The reads of one tap and one 8-bit level of the filtered sift (filtered_reads_vector.h's
    filter_level_reads): of the `count` candidates (xs[i], ys[i]) those the level's tests tests[0 .. 3] (start

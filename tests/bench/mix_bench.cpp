@@ -135,15 +135,21 @@ int main() {
                         bench::median_ratio(times[0], times[1]), rounds);
         }
     }
+    // The deepest of the mixing controls (50/50: the kernels' walks; the transition: each impulse's pick).
+    size_t lattice_stack = 0, continuous_stack = 0;
+    for (const dsn_mix_control *control : {&controls[0], &controls[1]}) {
+        lattice_stack = std::max(lattice_stack, bench::painted_stack([&] {
+                                     int32_t value[3];
+                                     dsn_mix_lattice_point_fixed(&mix, control, 3, 4, value);
+                                 }));
+        continuous_stack =
+            std::max(continuous_stack, bench::painted_stack([&] {
+                         int32_t value[3];
+                         dsn_mix_continuous_point_fixed(&mix, control, one / 3, one / 5, value);
+                     }));
+    }
     std::printf("  stack (painted) of a mix point call: lattice %zu bytes, continuous %zu bytes\n",
-                bench::painted_stack([&] {
-                    int32_t value[3];
-                    dsn_mix_lattice_point_fixed(&mix, &controls[1], 3, 4, value);
-                }),
-                bench::painted_stack([&] {
-                    int32_t value[3];
-                    dsn_mix_continuous_point_fixed(&mix, &controls[1], one / 3, one / 5, value);
-                }));
+                lattice_stack, continuous_stack);
     std::printf(
         "  stack (painted) of a mixed tile call, 16 x 4 pixels: lattice %zu bytes, continuous %zu bytes\n",
         bench::painted_stack([&] {
