@@ -336,35 +336,55 @@ TEST_CASE("mix: lattice points of materials of one texton size, through every ke
 TEST_CASE(
     "mix: continuous points of materials of one texton size, through the kernels' vector evaluator, are "
     "the generic walk's") {
+    // The reference: the same textons stored in 16 bits (the same values and scales: the same noise), which
+    // the vector evaluator leaves to the generic walk.
     std::mt19937_64 random(29);
     for (const uint32_t channels : {3u, 1u}) {
         CAPTURE(channels);
-        std::vector<std::unique_ptr<Noise>> noises;
-        for (uint32_t m = 0; m < 4; m++)
-            noises.push_back(make_noise(random_texton_asset(channels, 15, 8, 50 + m), 3 + m, 30u << 16));
+        std::vector<std::unique_ptr<Noise>> noises, wide;
+        for (uint32_t m = 0; m < 4; m++) {
+            dsn::AssetFields fields = random_texton_asset(channels, 15, 8, 50 + m);
+            noises.push_back(make_noise(fields, 3 + m, 30u << 16));
+            fields.bits = 16;
+            wide.push_back(make_noise(fields, 3 + m, 30u << 16));
+        }
+        // the twins are one noise
+        int32_t narrow_value[3] = {}, wide_value[3] = {};
+        dsn_continuous_point_fixed(&noises[0]->noise, kOne / 3, kOne / 7, narrow_value);
+        dsn_continuous_point_fixed(&wide[0]->noise, kOne / 3, kOne / 7, wide_value);
+        REQUIRE(std::memcmp(narrow_value, wide_value, sizeof narrow_value) == 0);
         for (uint32_t count = 2; count <= 4; count++) {
             CAPTURE(count);
-            std::vector<const dsn_noise *> list;
-            for (uint32_t m = 0; m < count; m++) list.push_back(&noises[m]->noise);
-            dsn_mix mix;
+            std::vector<const dsn_noise *> list, wide_list;
+            for (uint32_t m = 0; m < count; m++)
+                list.push_back(&noises[m]->noise), wide_list.push_back(&wide[m]->noise);
+            dsn_mix mix, wide_mix;
             REQUIRE(dsn_mix_init(&mix, list.data(), count) == DSN_OK);
+            REQUIRE(dsn_mix_init(&wide_mix, wide_list.data(), count) == DSN_OK);
             const std::vector<uint8_t> uneven_weights = {30, 200, 0, 90};
             const Control even = constant(std::vector<uint8_t>(count, 128));
             const Control uneven =
                 constant(std::vector<uint8_t>(uneven_weights.begin(), uneven_weights.begin() + count));
-            // The API's point (the vector evaluator where the kernel has it) against the first point of a
-            // grid of two close points (a group: the generic walk).
+            // Points, and tiles (their groups), against the twins'.
             size_t differences = 0;
-            for (const Control *control : {&even, &uneven})
+            for (const Control *control : {&even, &uneven}) {
                 for (int k = 0; k < 150; k++) {
                     const int64_t x = int64_t(random()), y = int64_t(random());
-                    const dsn_grid pair = {x, y, kOne / 3, kOne / 5, 0, kOne};
-                    int32_t point[3] = {}, tile[6] = {};
+                    int32_t point[3] = {}, reference[3] = {};
                     REQUIRE(dsn_mix_continuous_point_fixed(&mix, &control->control, x, y, point) == DSN_OK);
-                    REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &control->control, &pair, 2, 1, tile, nullptr,
-                                                          0) == DSN_OK);
-                    differences += std::memcmp(point, tile, channels * sizeof point[0]) != 0;
+                    REQUIRE(dsn_mix_continuous_point_fixed(&wide_mix, &control->control, x, y, reference) ==
+                            DSN_OK);
+                    differences += std::memcmp(point, reference, sizeof point) != 0;
                 }
+                const dsn_grid grid = {int64_t(random()), int64_t(random()), kOne / 3,
+                                       kOne / 5,          -kOne / 5,         kOne / 3};
+                std::vector<int32_t> tile(20 * 6 * channels), reference(tile.size());
+                REQUIRE(dsn_mix_continuous_tile_fixed(&mix, &control->control, &grid, 20, 6, tile.data(),
+                                                      nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_continuous_tile_fixed(&wide_mix, &control->control, &grid, 20, 6,
+                                                      reference.data(), nullptr, 0) == DSN_OK);
+                differences += tile != reference;
+            }
             CHECK(differences == 0);
         }
     }

@@ -852,7 +852,8 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    points it reaches; less scratch, fewer rows a band), else its rows in runs of up to 32 points (each
    impulse found once per run); a continuous tile's rows and a batch's neighbours in groups of up to 16
    points within 32 texels of each other (each impulse found once per group, read at the points it
-   reaches); other points go one by one. make bench's mix_bench
+   reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
+   instead, faster); other points go one by one. make bench's mix_bench
    reports both against one material, and the stack it paints: a point call under 5 KB (a filtered
    mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB. Gradients have no mix yet;
    the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and

@@ -485,8 +485,16 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
         for (uint32_t p = 0; p < count; p++) continuous_point(mix, control, xs[p], ys[p], values[p]);
         return;
     }
+    /* Where the weights are uniform, each point by the kernel's vector evaluator where it takes the mix
+       (faster than the group's scalar walk: make bench's mix_bench); else the group's walk. */
     ContinuousSums sums[group_points] = {};
-    continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
+    bool by_kernel = region.uniform;
+    for (uint32_t p = 0; p < count && by_kernel; p++)
+        by_kernel = kernel_continuous_sums(mix, region, xs[p], ys[p], sums[p]);
+    if (!by_kernel) {
+        for (uint32_t p = 0; p < count; p++) __builtin_memset(sums[p], 0, sizeof sums[p]);
+        continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
+    }
     for (uint32_t p = 0; p < count; p++) point_output(mix, control, region, xs[p], ys[p], sums[p], values[p]);
 }
 
