@@ -203,7 +203,7 @@ inline void flush_vector_sums(VectorSums *running, const BatchArrays &arrays) {
 template <uint32_t Channels>
 void batch_visit_8(const uint32_t *quads, const BatchConstants &k, const BatchArrays &arrays, uint32_t first,
                    VectorSums *running) {
-    const vector_256 fraction = mix32_8(load_8x32(arrays.stream + first)),
+    const vector_256 fraction = mix32_lanes(load_8x32(arrays.stream + first)),
                      packed = load_8x32(arrays.packed + first);
     const vector_256 cells = shift_right_logical_32(packed, 16);
     const vector_128 half_shift = shift_count(static_cast<int>(k.half_shift));

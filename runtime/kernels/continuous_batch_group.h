@@ -226,13 +226,13 @@ inline uint32_t fill_group(const dsn_noise_state *noise, const GroupShared &shar
     const vector_256 seed_row = set_8x32(noise->seed_row), seed_column = set_8x32(noise->seed_column);
     for (uint32_t j = 0; j < group_cells; j++) {
         const vector_256 row_key =
-            mix32_8(add_32(load_8x32(group->rows.cell[j]), seed_row)); /* dsn_row_key */
+            mix32_lanes(add_32(load_8x32(group->rows.cell[j]), seed_row)); /* dsn_row_key */
         const vector_256 row_there = point_lanes(group->rows.passes[j] & fits);
         for (uint32_t i = 0; i < group_cells; i++) {
             uint32_t *keys = group->keys + (j * group_cells + i) * group_points;
             uint32_t *counts = group->counts + (j * group_cells + i) * group_points;
             const vector_256 key =
-                mix32_8(add_32(bitwise_xor(load_8x32(group->columns.cell[i]), seed_column), row_key));
+                mix32_lanes(add_32(bitwise_xor(load_8x32(group->columns.cell[i]), seed_column), row_key));
             store_8x32(keys, key);
             const vector_256 there = bitwise_and(row_there, point_lanes(group->columns.passes[i]));
 #if defined(__AVX512F__) && defined(__AVX512BW__)

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "simd/simd.h" /* the 256-bit operations (simd_256.h) on AVX2 and AVX-512 */
+#include "simd/simd_mix64.h"
 
 #if defined(__AVX2__)
 namespace {
@@ -22,15 +23,6 @@ inline vector_256 low_halves(vector_256 a, vector_256 b) {
 inline vector_256 below_64(vector_256 a, vector_256 b) {
     const vector_256 sign = set_4x64(INT64_MIN);
     return greater_64(bitwise_xor(b, sign), bitwise_xor(a, sign));
-}
-
-/* dsn_mix32 of every lane. */
-inline vector_256 mix32_8(vector_256 x) {
-    x = bitwise_xor(x, shift_right_logical_32(x, 16));
-    x = multiply_32(x, set_8x32(0x7FEB352Du));
-    x = bitwise_xor(x, shift_right_logical_32(x, 15));
-    x = multiply_32(x, set_8x32(0x846CA68Bu));
-    return bitwise_xor(x, shift_right_logical_32(x, 16));
 }
 
 /* dsn_impulse_hash's 16-bit positions of 8 impulses with 8-bit fields (cells of side <= 16): each 4-bit

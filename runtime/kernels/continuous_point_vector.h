@@ -192,7 +192,7 @@ template <uint32_t Channels>
 DSN_POINT_INLINE vector_256 candidate_offsets_8(const PointVisit<Channels> *visit,
                                                 const PointCandidates &candidates, uint32_t first,
                                                 uint32_t valid, vector_256 *offset_x, vector_256 *offset_y) {
-    const vector_256 fraction = mix32_8(load_8x32(candidates.stream + first)),
+    const vector_256 fraction = mix32_lanes(load_8x32(candidates.stream + first)),
                      packed = load_8x32(candidates.field + first);
     vector_256 bits_x, bits_y;
     impulse_bits_8(bitwise_and(packed, set_8x32(0xFF)), fraction, &bits_x, &bits_y);
@@ -224,15 +224,6 @@ inline void visit_point_8(PointVisit<Channels> *visit, const PointCandidates &ca
 /* visit_point_8 on 512-bit vectors: candidates first .. first + 15 of which the first `valid` exist. */
 inline vector_512 lane_byte_16(vector_512 words, unsigned int index) {
     return shift_right_arithmetic_32(shift_left_32(words, 24 - 8 * index), 24);
-}
-
-/* dsn_mix32 of every lane. */
-inline vector_512 mix32_16(vector_512 x) {
-    x = bitwise_xor(x, shift_right_logical_32(x, 16));
-    x = multiply_32(x, set_16x32(0x7FEB352Du));
-    x = bitwise_xor(x, shift_right_logical_32(x, 15));
-    x = multiply_32(x, set_16x32(0x846CA68Bu));
-    return bitwise_xor(x, shift_right_logical_32(x, 16));
 }
 
 /* impulse_bits_8 on 16 lanes. */
@@ -422,7 +413,7 @@ template <uint32_t Channels>
 DSN_POINT_INLINE mask_16 candidate_offsets_16(const PointVisit<Channels> *visit,
                                               const PointCandidates &candidates, uint32_t first,
                                               uint32_t valid, vector_512 *offset_x, vector_512 *offset_y) {
-    const vector_512 fraction = mix32_16(load_16x32(candidates.stream + first));
+    const vector_512 fraction = mix32_lanes(load_16x32(candidates.stream + first));
     const vector_512 packed = load_16x32(candidates.field + first);
     /* impulse_bits_16, each axis's field bits selected into bits 12 .. 15 */
     const vector_512 field_bits = set_16x32(0xF000);
@@ -973,7 +964,8 @@ DSN_POINT_INLINE void visit_mixed_16(MixedVisit<Channels> *visit, const PointCan
                                      uint32_t first, uint32_t valid) {
     vector_512 s_x, s_y;
     const mask_16 reach = candidate_offsets_16(&visit->point, candidates, first, valid, &s_x, &s_y);
-    const vector_512 hashes = mix32_16(add_32(load_16x32(candidates.stream + first), set_16x32(0x40000000u)));
+    const vector_512 hashes =
+        mix32_lanes(add_32(load_16x32(candidates.stream + first), set_16x32(0x40000000u)));
     uint32_t at_least[4] = {0, 0, 0, 0};
     vector_512 moved = zero_512();
     for (uint32_t level = 0; level < 3; level++) {

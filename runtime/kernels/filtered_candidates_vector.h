@@ -69,7 +69,7 @@ uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             /* hashed and placed before the sift's mask is known (lanewise: the same values), off its
                chain; then only what is stored is compressed */
             vector_512 bits_x, bits_y;
-            impulse_bits_16(widen_bytes_16x32(pairs), mix32_16(streams), &bits_x, &bits_y);
+            impulse_bits_16(widen_bytes_16x32(pairs), mix32_lanes(streams), &bits_x, &bits_y);
             const vector_512 narrow_x =
                                  subtract_32(narrow_base_x, shift_left_32_by(bits_x, cell_shift_vector)),
                              narrow_y =
@@ -125,7 +125,7 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
             const uint32_t packed =
                 pack_pair_8(pair, sifted, cell.key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
-            const vector_256 fraction = mix32_8(streams);
+            const vector_256 fraction = mix32_lanes(streams);
             vector_256 bits_x, bits_y;
             impulse_bits_8(fields, fraction, &bits_x, &bits_y);
             if (xs != 0) {

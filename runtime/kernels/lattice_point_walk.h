@@ -294,15 +294,6 @@ typedef struct material_slots {
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 #define DSN_MATERIAL_MASKS 1
-/* dsn_mix32 of every 32-bit lane. */
-inline vector_512 mix32_lanes(vector_512 x) {
-    x = bitwise_xor(x, shift_right_logical_32(x, 16));
-    x = multiply_32(x, set_16x32(0x7FEB352Du));
-    x = bitwise_xor(x, shift_right_logical_32(x, 15));
-    x = multiply_32(x, set_16x32(0x846CA68Bu));
-    return bitwise_xor(x, shift_right_logical_32(x, 16));
-}
-
 /* The uniform weights' thresholds as 32-bit lanes, with the levels that no hash reaches (2^32) marked. */
 typedef struct material_thresholds {
     vector_512 threshold[3];

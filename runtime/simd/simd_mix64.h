@@ -1,8 +1,9 @@
-/* runtime/simd/simd_mix64.h - dsn_mix64 (core/cell_hash.h) on every 64-bit lane of a vector, written once
-   for every width against its operations (their overloads by vector type): the cell walks that hash
-   impulse pairs on vectors (the lattice point's on 128 bits, the continuous batch's on 256 or 512) share
-   it. Included after the ops header of the translation unit's width (simd.h), so that each width's
-   overloads are declared before these templates; empty where simd.h has no ops header. */
+/* runtime/simd/simd_mix64.h - the cell hashes (core/cell_hash.h) on every lane of a vector, written once for
+   every width against its operations (their overloads by vector type): dsn_mix64 on 64-bit lanes (the cell
+   walks that hash impulse pairs on vectors: the lattice point's on 128 bits, the continuous batch's on 256
+   or 512) and dsn_mix32 on 32-bit lanes (keys, fractions' and materials' streams, on 256 or 512 bits).
+   Included after the ops header of the translation unit's width (simd.h), so that each width's overloads
+   are declared before these templates; empty where simd.h has no ops header. */
 #ifndef DSN_SIMD_MIX64_H
 #define DSN_SIMD_MIX64_H
 
@@ -48,6 +49,32 @@ DSN_SIMD_INLINE Vector mix64_lanes(Vector x) {
     x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 30)), 0xBF58476D1CE4E5B9u);
     x = multiply_64(bitwise_xor(x, shift_right_logical_64(x, 27)), 0x94D049BB133111EBu);
     return bitwise_xor(x, shift_right_logical_64(x, 31));
+}
+
+/* Every 32-bit lane set to `value`: set_8x32 or set_16x32 by type (a 32-bit multiply needs AVX2). */
+template <typename Vector>
+Vector all_lanes_32(uint32_t value);
+#if defined(__AVX2__)
+template <>
+DSN_SIMD_INLINE vector_256 all_lanes_32<vector_256>(uint32_t value) {
+    return set_8x32(value);
+}
+#endif
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+template <>
+DSN_SIMD_INLINE vector_512 all_lanes_32<vector_512>(uint32_t value) {
+    return set_16x32(value);
+}
+#endif
+
+/* dsn_mix32 of every 32-bit lane. */
+template <typename Vector>
+DSN_SIMD_INLINE Vector mix32_lanes(Vector x) {
+    x = bitwise_xor(x, shift_right_logical_32(x, 16));
+    x = multiply_32(x, all_lanes_32<Vector>(0x7FEB352Du));
+    x = bitwise_xor(x, shift_right_logical_32(x, 15));
+    x = multiply_32(x, all_lanes_32<Vector>(0x846CA68Bu));
+    return bitwise_xor(x, shift_right_logical_32(x, 16));
 }
 
 } // namespace
