@@ -2,8 +2,9 @@
    of material 0's process within the largest reach, each impulse picking its material from the weights
    at its position (mix_weights.h) and adding that material's texton to the material's sums; then each
    material's sums normalized with the point's weight on its mean, and summed. Lattice and continuous,
-   per point; tiles and batches by groups of points (a lattice tile by bands of rows or runs of a row,
-   continuous points near each other together). */
+   per point (through the kernels' vector walks where the materials' textons share one size, kernels.h's
+   dsn_point_materials; else the scalar walks here); tiles and batches by groups of points (a lattice tile
+   by bands of rows or runs of a row, continuous points near each other together). */
 #include "core/bilinear_texton.h"
 #include "core/cell_walk.h"
 #include "core/continuous_internal.h"
@@ -361,6 +362,16 @@ uint32_t pick_at(const void *context, uint32_t key, uint32_t k, uint32_t x, uint
                             static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, true);
 }
 
+/* The texton a material's point reads: its lattice texton in lattice mode, else its texton. */
+dsn_texton_window texton_read(const dsn_noise_state *material, bool lattice) {
+    if (lattice) return dsn_lattice_texton_window(material);
+    const dsn_texton_window texton = {material->asset.texton,
+                                      material->asset.width,
+                                      material->asset.height,
+                                      {material->radius[0], material->radius[1]}};
+    return texton;
+}
+
 /* The materials as the kernels' mixed points take them (kernels.h's dsn_point_materials): their textons
    (the lattice ones in lattice mode), which must all have the lead's window, channels and bits (the
    mix's reach is then the lead's), and the region's weights as the hashes' thresholds where it is
@@ -370,18 +381,10 @@ bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lat
     const dsn_noise_state *lead = &mix->material[0];
     const dsn_point_materials none = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0};
     *materials = none;
+    const dsn_texton_window first = texton_read(lead, lattice);
     for (uint32_t m = 0; m < mix->count; m++) {
         const dsn_noise_state *material = &mix->material[m];
-        const dsn_texton_window own = lattice ? dsn_lattice_texton_window(material)
-                                              : dsn_texton_window{material->asset.texton,
-                                                                  material->asset.width,
-                                                                  material->asset.height,
-                                                                  {material->radius[0], material->radius[1]}};
-        const dsn_texton_window first = lattice ? dsn_lattice_texton_window(lead)
-                                                : dsn_texton_window{lead->asset.texton,
-                                                                    lead->asset.width,
-                                                                    lead->asset.height,
-                                                                    {lead->radius[0], lead->radius[1]}};
+        const dsn_texton_window own = texton_read(material, lattice);
         if (own.width != first.width || own.height != first.height || own.radius[0] != first.radius[0] ||
             own.radius[1] != first.radius[1] || material->asset.channels != lead->asset.channels ||
             material->asset.bits != lead->asset.bits)
