@@ -422,20 +422,22 @@ bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
     return true;
 }
 
-/* The continuous sums of every material at (x, y) from the kernel's vector evaluator, where the region's
-   weights are uniform and it takes the mix (point_materials; the AVX-512 copy, 8-bit textons). False,
-   writing nothing, elsewhere. */
-bool kernel_continuous_sums(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, uint64_t y,
-                            ContinuousSums sums) {
+/* The continuous sums of every material at `count` points (xs[p], ys[p]) from the kernel's vector
+   evaluator, the materials made once, where the region's weights are uniform and it takes the mix
+   (point_materials; the AVX-512 copy, 8-bit textons). False where it does not (sums then undefined). */
+bool kernel_continuous_sums(const dsn_mix_state *mix, const MixRegion &region, const uint64_t *xs,
+                            const uint64_t *ys, uint32_t count, ContinuousSums *sums) {
     const dsn_noise_state *lead = &mix->material[0];
     dsn_continuous_point_entry *point = dsn_kernel_entries_of(lead->tile_kernel)->continuous_point;
     dsn_point_materials materials;
     if (point == 0 || !region.uniform || !point_materials(mix, region, false, 0, &materials)) return false;
-    uint64_t flat[DSN_MAX_CHANNELS * DSN_MIX_MAX_MATERIALS];
-    if (!point(lead, x, y, flat, 0, 0, &materials)) return false;
-    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
-        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
-            sums[m][c] = m < mix->count ? flat[DSN_MAX_CHANNELS * m + c] : 0u;
+    for (uint32_t p = 0; p < count; p++) {
+        uint64_t flat[DSN_MAX_CHANNELS * DSN_MIX_MAX_MATERIALS];
+        if (!point(lead, xs[p], ys[p], flat, 0, 0, &materials)) return false;
+        for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+                sums[p][m][c] = m < mix->count ? flat[DSN_MAX_CHANNELS * m + c] : 0u;
+    }
     return true;
 }
 
@@ -451,7 +453,8 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
         return;
     }
     ContinuousSums sums[1] = {};
-    if (!kernel_continuous_sums(mix, region, x, y, sums[0])) {
+    if (!kernel_continuous_sums(mix, region, &x, &y, 1u, sums)) {
+        __builtin_memset(sums, 0, sizeof sums);
         const dsn_noise_state *lead = &mix->material[0];
         GroupAxis gx, gy;
         int64_t offset_x, offset_y; /* a point is a group of one */
@@ -491,10 +494,7 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
     /* Where the weights are uniform, each point by the kernel's vector evaluator where it takes the mix
        (faster than the group's scalar walk: make bench's mix_bench); else the group's walk. */
     ContinuousSums sums[group_points] = {};
-    bool by_kernel = region.uniform;
-    for (uint32_t p = 0; p < count && by_kernel; p++)
-        by_kernel = kernel_continuous_sums(mix, region, xs[p], ys[p], sums[p]);
-    if (!by_kernel) {
+    if (!kernel_continuous_sums(mix, region, xs, ys, count, sums)) {
         for (uint32_t p = 0; p < count; p++) __builtin_memset(sums[p], 0, sizeof sums[p]);
         continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
     }
