@@ -29,7 +29,7 @@ void count_fallbacks(const dsn_noise_state &noise, const strip_setup &setup, int
             tile_run walk_y = {uint32_t(y0) + y, y, std::min(setup.rectangle.height, height - y)};
             impulse_list list;
             list.clear(walk_x.length, walk_y.length);
-            for_each_nearby_impulse(&noise, &walk_x, &walk_y, list);
+            for_each_nearby_impulse(&noise, &walk_x, &walk_y, list, keep_every());
             (list.prepare(setup.texton.width, setup.texton.height) ? *strips : *fallbacks) += 1;
         }
 }
@@ -66,7 +66,7 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
         const tile_run run_x = {uint32_t(x0), 0, width}, run_y = {uint32_t(y0), 0, height};
         const tile_target target = {tile.data(), dsn_output_fixed,
                                     static_cast<uint32_t *>(static_cast<void *>(tile.data())),
-                                    width * c.channels};
+                                    width * c.channels, nullptr};
         if (c.channels == 3)
             render_region<3, int32_t>(&noise, &setup, &run_x, &run_y, &target);
         else
@@ -74,7 +74,7 @@ TEST_CASE("rectangles over the list's capacity or the 16-bit column limit take t
         // And the same window as this copy of the tile code cuts it by itself (choose_rectangle).
         std::vector<int32_t> chosen(tile.size());
         render_tile(&noise, uint32_t(x0), uint32_t(y0), width, height, chosen.data(), nullptr, nullptr,
-                    dsn_output_fixed, static_cast<uint32_t *>(static_cast<void *>(chosen.data())));
+                    dsn_output_fixed, static_cast<uint32_t *>(static_cast<void *>(chosen.data())), nullptr);
         size_t differences = 0, chosen_differences = 0;
         for (uint32_t j = 0; j < height; j++)
             for (uint32_t i = 0; i < width; i++) {

@@ -847,10 +847,14 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    samples agree, with 8-bit textons of one size and channel count, in the AVX-512 copy (the continuous
    point's vector evaluator, each of 16 candidates gathering its own material's texels: the textons must
    lie within 2^30 bytes of material 0's); other points walk in scalar code. Tiles
-   and batches walk their points in groups: a lattice tile in bands of up to 32 rows when `scratch` holds
-   dsn_mix_lattice_tile_scratch_size() bytes (each impulse found once per band, its texton added to the
-   points it reaches; less scratch, fewer rows a band), else its rows in runs of up to 32 points (each
-   impulse found once per run); a continuous tile's rows and a batch's neighbours in groups of up to 16
+   and batches walk their points in groups. A lattice tile goes in bands of up to 128 rows when `scratch`
+   holds dsn_mix_lattice_tile_scratch_size() bytes (less scratch, fewer rows a band): a band whose samples
+   agree over its reach is one lattice tile of each material that impulses draw, from those impulses
+   alone (a hash test per impulse), by that material's own tile code (strips or splats) normalized with
+   its weighted offset, then each value the sum of the materials'; the other bands are walked in bands of
+   up to 32 rows (each impulse found once per band, its texton added to the points it reaches). Without
+   scratch a lattice tile's rows go in runs of up to 32 points (each impulse found once per run). A
+   continuous tile's rows and a batch's neighbours in groups of up to 16
    points within 32 texels of each other (each impulse found once per group, read at the points it
    reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
    instead, faster); other points go one by one. make bench's mix_bench
@@ -922,8 +926,8 @@ int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *contr
    function's, with the point functions' other errors (the whole output zeroed). A tile whose reach has
    one material's weights alone is that material's tile, splatted or by strips as the noise's own, when
    `scratch` holds dsn_mix_*_tile_scratch_size() bytes (the largest of the materials' scratch sizes and,
-   for a lattice tile, of the sums of a band of up to 32 rows: 4 bytes per channel of every material per
-   point; 0 for an invalid mix or size); other tiles go by bands or groups of points (see "Cost" above),
+   for a lattice tile, of the values of a band of up to 128 rows: 4 bytes per channel of every material
+   per point; 0 for an invalid mix or size); other tiles go by bands or groups of points (see "Cost" above),
    with too little scratch (null, 0 is fine) by runs or point by point. Any scratch gives the same bits. */
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *mix, uint32_t width, uint32_t height);
 size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t width,

@@ -43,7 +43,7 @@ int tile_of_kind(const dsn_noise *handle, int32_t x0, int32_t y0, uint32_t width
         return dsn_gradient_error(err, noise, out, dx, dy, kind, static_cast<size_t>(width) * height);
     dsn_kernel_entries_of(noise->tile_kernel)
         ->lattice_tile(lattice, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width, height, out, dx,
-                       dy, kind, 0);
+                       dy, kind, 0, 0);
     return DSN_OK;
 }
 

@@ -372,6 +372,17 @@ dsn_texton_window texton_read(const dsn_noise_state *material, bool lattice) {
     return texton;
 }
 
+/* The smallest hash that draws past material m, for m < dsn_point_materials_most - 1, where a region's
+   weights are uniform (mix_weights.h's draw_threshold): 2^32, above every hash, past the last material and
+   where no weight is set (every impulse then draws material 0). */
+void uniform_thresholds(const dsn_mix_state *mix, const MixRegion &region, uint64_t *thresholds) {
+    const uint32_t total = region.weights.cumulative[mix->count - 1u];
+    for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
+        thresholds[m] = total != 0 && m + 1u < mix->count
+                            ? draw_threshold(region.weights.cumulative[m], total)
+                            : static_cast<uint64_t>(1) << 32;
+}
+
 /* The materials as the kernels' mixed points take them (kernels.h's dsn_point_materials): their textons
    (the lattice ones in lattice mode), which must all have the lead's window, channels and bits (the
    mix's reach is then the lead's), and the region's weights as the hashes' thresholds where it is
@@ -392,11 +403,7 @@ bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lat
         materials->values[m] = own.values;
     }
     if (region.uniform) {
-        const uint32_t total = region.weights.cumulative[mix->count - 1u];
-        for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
-            materials->thresholds[m] = total != 0 && m + 1u < mix->count
-                                           ? draw_threshold(region.weights.cumulative[m], total)
-                                           : static_cast<uint64_t>(1) << 32;
+        uniform_thresholds(mix, region, materials->thresholds);
     } else {
         materials->pick = pick_at;
         materials->context = pick;
@@ -529,23 +536,166 @@ void point_sums(const dsn_mix_state *mix, const uint32_t *const *planes, size_t 
         }
 }
 
-/* The rows of a band that dsn_mix_lattice_tile_scratch_size asks for: walking the impulses that reach a
+/* The rows of a band that dsn_mix_lattice_tile_scratch_size asks for. Walking the impulses that reach a
    band costs (rows + 2 reach) / rows of walking them once (about 2 for 32 rows of a 31 x 31 texton, which
-   bench measures no slower than 64). */
-const uint32_t band_most_rows = 32;
+   bench measures no slower than 64). A band of material passes asks for up to 128, the strip path's
+   tallest rectangle (tile_strips.h); a walked band is at most 32 rows of it. */
+const uint32_t band_most_rows = 128, walk_most_rows = 32;
 
-/* The bytes of one row of a band's sums: every material's (lattice_window_sums's layout). */
+/* The bytes of one row of a band's values: every material's (lattice_window_sums's layout: a walk's
+   sums, or each material pass's values). */
 size_t band_row_bytes(const dsn_mix_state *mix, uint32_t width) {
     size_t values = 0;
     for (uint32_t m = 0; m < mix->count; m++) values += mix->material[m].asset.channels;
     return values * width * sizeof(uint32_t);
 }
 
+/* The output of a band's points, the band's first point at index `first` of out. */
+struct BandTarget {
+    void *out;
+    dsn_output_kind kind;
+    size_t first;
+};
+
+/* A band of `rows` rows of `width` points from (x0, y): its sums of every material from one walk over the
+   impulses that reach it (each found once, its texton added to the points it reaches) into `scratch`
+   (band_row_bytes a row), then each point's output. */
+void walk_band(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t width,
+               uint32_t y, uint32_t rows, uint32_t *scratch, const BandTarget &target) {
+    uint32_t *planes[DSN_MIX_MAX_MATERIALS] = {scratch, scratch, scratch, scratch};
+    uint32_t *next = scratch;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const size_t values = static_cast<size_t>(rows) * width * mix->material[m].asset.channels;
+        planes[m] = next;
+        for (size_t v = 0; v < values; v++) next[v] = 0;
+        next += values;
+    }
+    const MixRegion region = window_region(mix, control, x0, width, y, rows);
+    lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
+    /* where the region is uniform, the weighted offsets of every point of the band */
+    MixOffsets uniform_offsets = {};
+    if (region.uniform) {
+        /* (zeroed: GCC cannot tell point_weights fills them) */
+        uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
+        point_weights(region.weights, mix->count, weights);
+        weighted_offsets(mix, weights, uniform_offsets);
+    }
+    for (uint32_t j = 0; j < rows; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            const size_t point = static_cast<size_t>(j) * width + i;
+            LatticeSums sums;
+            point_sums(mix, planes, point, sums);
+            int32_t value[DSN_MAX_CHANNELS];
+            if (region.uniform)
+                mix_output_from(mix, uniform_offsets, sums, value);
+            else
+                lattice_output(mix, control, region, x0 + i, y + j, sums, value);
+            dsn_store_pixel(target.out, target.kind, (target.first + point) * mix->channels, value,
+                            mix->channels);
+        }
+}
+
+/* Material m's values over a band into `values` (its channels per point): the kernel's lattice tile of
+   that material from the impulses of the mix's process that draw it (`filter`), normalized from its
+   offset weighted by `weight`. The strip path sizes its rectangles for the density of the impulses it
+   sums (tile_strips.h's choose_rectangle): here the material's share of the process's, rounded up (an
+   estimate only: the path counts a rectangle's impulses and takes the 32-bit sums where too many). */
+void material_pass(const dsn_mix_state *mix, uint32_t m, uint32_t weight, const dsn_impulse_filter *filter,
+                   uint32_t x0, uint32_t width, uint32_t y, uint32_t rows, int32_t *values) {
+    const dsn_noise_state *material = &mix->material[m], *lead = &mix->material[0];
+#if DSN_READS_SECTIONS
+    dsn_noise_state view;
+    dsn_noise_state pass = *dsn_internal_lattice_view(material, &view);
+#else
+    dsn_noise_state pass = *material;
+#endif
+    for (uint32_t c = 0; c < material->asset.channels && c < DSN_MAX_CHANNELS; c++)
+        pass.offset[c] = weighted_offset(material->offset[c], weight);
+    const uint64_t share =
+        (static_cast<uint64_t>(lead->impacts_q16) * weight + (1u << mix_weight_bits) - 1u) >> mix_weight_bits;
+    pass.impacts_q16 = share != 0 ? static_cast<uint32_t>(share) : 1u;
+    pass.asset.support_size = lead->asset.support_size;
+    dsn_kernel_entries_of(material->tile_kernel)
+        ->lattice_tile(&pass, x0, y, width, rows, values, 0, 0, dsn_output_fixed,
+                       static_cast<uint32_t *>(static_cast<void *>(values)), filter);
+}
+
+/* The sum of the materials' values (their planes, a grey material's value in each channel) at each
+   value of a band, saturated to int32, stored by store(index, value): summed in 64 bits chunk by chunk,
+   plane after plane (a loop over one plane runs far faster than one over the planes at each value). */
+template <typename Store>
+void sum_planes(const dsn_mix_state *mix, const int32_t *const *planes, const uint32_t *channels,
+                uint32_t count, size_t points, const Store &store) {
+    const size_t chunk_points = 64;
+    const uint32_t mix_channels = mix->channels;
+    for (size_t first = 0; first < points; first += chunk_points) {
+        const size_t chunk = points - first < chunk_points ? points - first : chunk_points;
+        const size_t values = chunk * mix_channels;
+        int64_t totals[chunk_points * DSN_MAX_CHANNELS];
+        for (size_t v = 0; v < values; v++) totals[v] = 0;
+        for (uint32_t k = 0; k < count; k++) {
+            const int32_t *plane = planes[k] + first * channels[k];
+            if (channels[k] == mix_channels) {
+                for (size_t v = 0; v < values; v++) totals[v] += plane[v];
+            } else {
+                for (size_t p = 0; p < chunk; p++)
+                    for (uint32_t c = 0; c < mix_channels; c++) totals[p * mix_channels + c] += plane[p];
+            }
+        }
+        for (size_t v = 0; v < values; v++) {
+            const int64_t low = totals[v] < INT32_MIN ? INT32_MIN : totals[v];
+            store(first * mix_channels + v, static_cast<int32_t>(low > INT32_MAX ? INT32_MAX : low));
+        }
+    }
+}
+
+/* A band whose weights are uniform over its reach: one material pass for each material that impulses
+   draw, into its plane (lattice_window_sums's layout), then each value the sum of the materials', as
+   mix_output_from sums them. */
+void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, uint32_t width, uint32_t y,
+               uint32_t rows, int32_t *scratch, const BandTarget &target) {
+    const size_t points = static_cast<size_t>(rows) * width;
+    uint64_t thresholds[dsn_point_materials_most - 1];
+    uniform_thresholds(mix, region, thresholds);
+    uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0,
+                                               0}; /* (zeroed: GCC cannot tell point_weights fills them) */
+    point_weights(region.weights, mix->count, weights);
+    const int32_t *planes[DSN_MIX_MAX_MATERIALS];
+    uint32_t channels[DSN_MIX_MAX_MATERIALS], count = 0;
+    int32_t *next = scratch;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        /* a material no hash draws has no impulse and a zero weight: its values are zero */
+        const dsn_impulse_filter filter = {
+            m == 0 ? 0u : thresholds[m - 1u],
+            m + 1u < dsn_point_materials_most ? thresholds[m] : static_cast<uint64_t>(1) << 32};
+        if (filter.low >= filter.high) continue;
+        const bool every = filter.low == 0 && filter.high == static_cast<uint64_t>(1) << 32;
+        material_pass(mix, m, weights[m], every ? 0 : &filter, x0, width, y, rows, next);
+        planes[count] = next;
+        channels[count] = mix->material[m].asset.channels;
+        next += points * channels[count];
+        count++;
+    }
+    void *const out = target.out;
+    const size_t first = target.first * mix->channels;
+    if (target.kind == dsn_output_fixed)
+        sum_planes(mix, planes, channels, count, points,
+                   [&](size_t index, int32_t value) { static_cast<int32_t *>(out)[first + index] = value; });
+    else if (target.kind == dsn_output_float)
+        sum_planes(mix, planes, channels, count, points, [&](size_t index, int32_t value) {
+            static_cast<float *>(out)[first + index] = dsn_fixed_to_float(value);
+        });
+    else
+        sum_planes(mix, planes, channels, count, points, [&](size_t index, int32_t value) {
+            static_cast<uint8_t *>(out)[first + index] = dsn_fixed_to_u8(value);
+        });
+}
+
 /* A lattice tile of a mix whose weights mix over its reach, in bands of as many rows as the scratch holds:
-   each band's sums of every material from one walk over the impulses that reach it (each found once,
-   its texton added to the points it reaches), then each point's output. False, writing nothing, where the
-   scratch holds no row, or where an axis with a period crosses the int32 sign change within the tile
-   (the reduction modulo the period breaks the coordinates' contiguity there): the runs then go. */
+   a band whose weights are uniform over its reach by material passes (pass_band), the others walked in
+   bands of up to walk_most_rows (walk_band). False, writing nothing, where the scratch holds no row, or
+   where an axis with a period crosses the int32 sign change within the tile (the reduction modulo the
+   period breaks the coordinates' contiguity there): the runs then go. */
 bool lattice_tile_by_bands(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t y0,
                            uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
                            size_t scratch_size) {
@@ -553,49 +703,27 @@ bool lattice_tile_by_bands(const dsn_mix_state *mix, const dsn_mix_control *cont
     if ((mix->material[0].period[0] != 0 && until_x != 0 && until_x < width) ||
         (mix->material[0].period[1] != 0 && until_y != 0 && until_y < height) || scratch == 0)
         return false;
-    /* the sums 4-byte aligned (the caller's scratch need not be) */
+    /* the values 4-byte aligned (the caller's scratch need not be) */
     const size_t misalignment = reinterpret_cast<uintptr_t>(scratch) % sizeof(uint32_t);
     const size_t skip = misalignment ? sizeof(uint32_t) - misalignment : 0u;
-    const size_t row_bytes = band_row_bytes(mix, width);
-    const size_t fitting = scratch_size > skip ? (scratch_size - skip) / row_bytes : 0u;
+    const size_t fitting = scratch_size > skip ? (scratch_size - skip) / band_row_bytes(mix, width) : 0u;
     if (fitting == 0) return false;
-    const size_t most = fitting < band_most_rows ? fitting : band_most_rows;
-    const uint32_t band_rows = most < height ? static_cast<uint32_t>(most) : height;
-    uint32_t *const first =
-        static_cast<uint32_t *>(static_cast<void *>(static_cast<unsigned char *>(scratch) + skip));
+    const uint32_t band_rows = static_cast<uint32_t>(fitting < band_most_rows ? fitting : band_most_rows);
+    const uint32_t walk_rows = band_rows < walk_most_rows ? band_rows : walk_most_rows;
+    void *const first = static_cast<unsigned char *>(scratch) + skip;
     for (uint32_t j0 = 0; j0 < height; j0 += band_rows) {
         const uint32_t rows = height - j0 < band_rows ? height - j0 : band_rows, y = y0 + j0;
-        uint32_t *planes[DSN_MIX_MAX_MATERIALS] = {first, first, first, first};
-        uint32_t *next = first;
-        for (uint32_t m = 0; m < mix->count; m++) {
-            const size_t values = static_cast<size_t>(rows) * width * mix->material[m].asset.channels;
-            planes[m] = next;
-            for (size_t v = 0; v < values; v++) next[v] = 0;
-            next += values;
-        }
         const MixRegion region = window_region(mix, control, x0, width, y, rows);
-        lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
-        /* where the region is uniform, the weighted offsets of every point of the band */
-        MixOffsets uniform_offsets = {};
         if (region.uniform) {
-            /* (zeroed: GCC cannot tell point_weights fills them) */
-            uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
-            point_weights(region.weights, mix->count, weights);
-            weighted_offsets(mix, weights, uniform_offsets);
+            const BandTarget target = {out, kind, static_cast<size_t>(j0) * width};
+            pass_band(mix, region, x0, width, y, rows, static_cast<int32_t *>(first), target);
+            continue;
         }
-        for (uint32_t j = 0; j < rows; j++)
-            for (uint32_t i = 0; i < width; i++) {
-                const size_t point = static_cast<size_t>(j) * width + i;
-                LatticeSums sums;
-                point_sums(mix, planes, point, sums);
-                int32_t value[DSN_MAX_CHANNELS];
-                if (region.uniform)
-                    mix_output_from(mix, uniform_offsets, sums, value);
-                else
-                    lattice_output(mix, control, region, x0 + i, y + j, sums, value);
-                dsn_store_pixel(out, kind, (static_cast<size_t>(j0 + j) * width + i) * mix->channels, value,
-                                mix->channels);
-            }
+        for (uint32_t k = 0; k < rows; k += walk_rows) {
+            const uint32_t walked = rows - k < walk_rows ? rows - k : walk_rows;
+            const BandTarget target = {out, kind, static_cast<size_t>(j0 + k) * width};
+            walk_band(mix, control, x0, width, y + k, walked, static_cast<uint32_t *>(first), target);
+        }
     }
     return true;
 }
@@ -841,7 +969,7 @@ int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *co
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *handle, uint32_t width, uint32_t height) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
     if (!dsn_mix_configured(mix) || tile_size_check(width, height) != DSN_OK) return 0;
-    /* the sums of a whole band (and 3 bytes to align them) */
+    /* the values of a whole band (and 3 bytes to align them) */
     size_t most = band_row_bytes(mix, width) * (height < band_most_rows ? height : band_most_rows) +
                   sizeof(uint32_t) - 1u;
     for (uint32_t m = 0; m < mix->count; m++) {

@@ -47,7 +47,7 @@ int render_checked(const dsn_noise_state *noise, int32_t x0, int32_t y0, uint32_
     const dsn_noise_state *lattice = noise;
 #endif
     dsn_kernel_entries_of(noise->tile_kernel)
-        ->lattice_tile(lattice, uint32_t(x0), uint32_t(y0), width, height, out, 0, 0, kind, accumulator);
+        ->lattice_tile(lattice, uint32_t(x0), uint32_t(y0), width, height, out, 0, 0, kind, accumulator, 0);
     return DSN_OK;
 }
 

@@ -48,11 +48,12 @@ int avx2_takes(const dsn_noise_state *noise) {
 }
 void lattice_tile_avx2_if_rgb(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                               uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
-                              uint32_t *accumulator) {
+                              uint32_t *accumulator, const dsn_impulse_filter *filter) {
     if (avx2_takes(noise))
-        dsn_internal_entries_avx2.lattice_tile(noise, x0, y0, width, height, out, dx, dy, kind, accumulator);
+        dsn_internal_entries_avx2.lattice_tile(noise, x0, y0, width, height, out, dx, dy, kind, accumulator,
+                                               filter);
     else
-        render_tile(noise, x0, y0, width, height, out, dx, dy, kind, accumulator);
+        render_tile(noise, x0, y0, width, height, out, dx, dy, kind, accumulator, filter);
 }
 int lattice_strips_take_avx2_if_rgb(const dsn_noise_state *noise) {
     return avx2_takes(noise) || lattice_strips_take(noise);

@@ -27,13 +27,21 @@
 #define DSN_KERNEL_X86_COPIES 0
 #endif
 
+/* The impulses one material of a mixed tile keeps (mix_point.cpp, where the weights are uniform): impulse
+   k of the cell with key `key` where its hash dsn_cell_stream(key, 2^31 + 2^30 + k) lies in [low, high)
+   (dsn_point_materials' thresholds on each side of the material). */
+typedef struct dsn_impulse_filter {
+    uint64_t low, high;
+} dsn_impulse_filter;
+
 /* A whole lattice tile (tile_render.h's render_tile): `width` x `height` values of `kind` from (x0, y0)
    into out, with the 32-bit accumulator of its fallback path (out itself for fixed output); where dx is
    not null (DSN_GRADIENTS; fixed or float), the forward differences too, into dx and dy, and no
-   accumulator. */
+   accumulator; where `filter` is not null (DSN_MIXING; no differences), from the impulses it keeps
+   alone. */
 typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width,
                                     uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
-                                    uint32_t *accumulator);
+                                    uint32_t *accumulator, const dsn_impulse_filter *filter);
 
 /* Whether the kernel's strip path holds the texton of `noise` (tile_render.h's lattice_strips_take): its
    lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */

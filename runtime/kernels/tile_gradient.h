@@ -36,7 +36,8 @@ void extended_sums(const dsn_noise_state *noise, uint32_t x, uint32_t y, uint32_
     const uint32_t count_x = split_runs(x, width + 1u, noise->period[0], runs_x);
     const uint32_t count_y = split_runs(y, height + 1u, noise->period[1], runs_y);
     for (uint32_t j = 0; j < count_y; j++)
-        for (uint32_t i = 0; i < count_x; i++) splat_region(noise, &runs_x[i], &runs_y[j], sums, row_stride);
+        for (uint32_t i = 0; i < count_x; i++)
+            splat_region(noise, &runs_x[i], &runs_y[j], sums, row_stride, 0);
 }
 
 /* One point's value and differences from its sums and its neighbours', normalized and mapped, stored at
@@ -198,7 +199,7 @@ void gradient_rectangle(const dsn_noise_state *noise, const gradient_setup *setu
     const uint32_t width = sums_x->length - 1u, height = sums_y->length - 1u;
     impulse_list list;
     list.clear(sums_x->length, sums_y->length);
-    for_each_nearby_impulse(noise, sums_x, sums_y, list);
+    for_each_nearby_impulse(noise, sums_x, sums_y, list, keep_every());
     if (!list.prepare(setup->strips.texton.width, setup->strips.texton.height)) {
         gradient_rectangle_32(noise, sums_x->start, sums_y->start, left, top, width, height, target);
         return;

@@ -63,12 +63,14 @@ void make_strip_setup(const dsn_noise_state *noise, rectangle_size rectangle, ui
 #endif /* DSN_TILE_BLOCKS */
 
 /* Where a tile's values go: `out` (width * channels values of type `kind` per row) and the 32-bit
-   accumulator of the fallback (`out` itself for fixed output, else the scratch). */
+   accumulator of the fallback (`out` itself for fixed output, else the scratch); and which impulses it
+   sums (every one where `filter` is null). */
 typedef struct tile_target {
     void *out;
     dsn_output_kind kind;
     uint32_t *accumulator;
     uint32_t row_values;
+    const dsn_impulse_filter *filter;
 } tile_target;
 
 /* The 32-bit path for a rectangle of single runs (a rectangle with too many impulses, or a whole run
@@ -81,7 +83,7 @@ void render_rectangle_32(const dsn_noise_state *noise, const tile_run *rectangle
                          rectangle_x->offset * channels;
         for (uint32_t i = 0; i < rectangle_x->length * channels; i++) sums[i] = 0;
     }
-    splat_region(noise, rectangle_x, rectangle_y, target->accumulator, row_values);
+    splat_region(noise, rectangle_x, rectangle_y, target->accumulator, row_values, target->filter);
     for (uint32_t row = 0; row < rectangle_y->length; row++) {
         size_t first = size_t(rectangle_y->offset + row) * row_values + rectangle_x->offset * channels;
         for (uint32_t i = 0; i < rectangle_x->length; i++) {
@@ -141,7 +143,7 @@ void render_rectangle(const dsn_noise_state *noise, const strip_setup *setup, co
                       const tile_run *walk_y, const tile_target *target) {
     impulse_list list;
     list.clear(walk_x->length, walk_y->length);
-    for_each_nearby_impulse(noise, walk_x, walk_y, list);
+    for_each_kept_impulse(noise, walk_x, walk_y, list, target->filter);
     if (!list.prepare(setup->texton.width, setup->texton.height)) {
         render_rectangle_32(noise, walk_x, walk_y, target);
         return;
@@ -217,9 +219,11 @@ void render_gradient_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0
 #endif
 
 /* The whole tile (the lattice kernel entry, kernels.h): strips of 16-bit sums when the texton allows, else
-   32-bit sums run by run; with its differences (tile_gradient.h) where dx is not null. */
+   32-bit sums run by run; with its differences (tile_gradient.h) where dx is not null; from the impulses
+   `filter` keeps where it is not null. */
 void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height,
-                 void *out, void *dx, void *dy, dsn_output_kind kind, uint32_t *accumulator) {
+                 void *out, void *dx, void *dy, dsn_output_kind kind, uint32_t *accumulator,
+                 const dsn_impulse_filter *filter) {
 #if DSN_GRADIENTS
     if (dx != 0) {
         render_gradient_tile(noise, x0, y0, width, height, out, dx, dy, kind);
@@ -231,7 +235,7 @@ void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_
     tile_run runs_x[2], runs_y[2];
     uint32_t run_count_x = split_runs(x0, width, noise->period[0], runs_x);
     uint32_t run_count_y = split_runs(y0, height, noise->period[1], runs_y);
-    tile_target target = {out, kind, accumulator, width * noise->asset.channels};
+    tile_target target = {out, kind, accumulator, width * noise->asset.channels, filter};
 #if DSN_TILE_BLOCKS
     /* A single point takes the 32-bit path: no padded copy of the texton for one pixel. */
     const uint64_t pixels = uint64_t(width) * height;

@@ -7,6 +7,7 @@
 #include "core/cell_walk.h"
 #include "core/impulse_position.h"
 #include "core/poisson_count.h"
+#include "kernels/kernels.h"
 
 #if defined(__SSE2__)
 #include "simd/simd_128.h"
@@ -101,14 +102,28 @@ inline walk_cell walk_cell_of(const dsn_span *span, uint32_t cell, uint32_t shif
     return result;
 }
 
+/* Which impulses a walk keeps (1) or passes over (0): every one, or, for a mixed tile, those of one
+   material (kernels.h's dsn_impulse_filter: a hash in [low, low + span)). */
+struct keep_every {
+    uint32_t operator()(uint32_t, uint32_t) const { return 1u; }
+};
+#if DSN_MIXING
+struct keep_material {
+    uint64_t low, span;
+    uint32_t operator()(uint32_t key, uint32_t k) const {
+        return uint32_t(uint64_t(dsn_cell_stream(key, 0xC0000000u + k)) - low < span);
+    }
+};
+#endif
+
 /* Calls visit(end_x, end_y, reaches) for every impulse of the cells near the rectangle run_x x run_y
    (both single runs), in the order of the hash stream: its ends (dsn_reach_at) on both axes, and 1 when
-   it reaches the rectangle, else 0 (computed without a branch: the caller may store every impulse and
-   count only those that reach). This is the only place the tile path walks cells. The impulses' packed
-   offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
-template <typename Visit>
+   it reaches the rectangle and `keep` keeps it, else 0 (computed without a branch: the caller may store
+   every impulse and count only those that reach). This is the only place the tile path walks cells. The
+   impulses' packed offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
+template <typename Visit, typename Keep>
 void for_each_nearby_impulse(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
-                             Visit &visit) {
+                             Visit &visit, const Keep &keep) {
     const dsn_asset *asset = &noise->asset;
     const uint32_t shift = noise->cell_shift, field_shift = dsn_field_shift(shift);
     const uint32_t per_pair_mask = (1u << (6u - field_shift)) - 1u, half_bits = 1u << (field_shift - 1u);
@@ -139,7 +154,7 @@ void for_each_nearby_impulse(const dsn_noise_state *noise, const tile_run *run_x
                         visit(end_x, end_y,
                               uint32_t(offset_x <= in_x.last_offset) &
                                   uint32_t(offset_y <= in_y.last_offset) & uint32_t(end_x < limit_x) &
-                                  uint32_t(end_y < limit_y));
+                                  uint32_t(end_y < limit_y) & keep(key, k));
                     }
                 }
             }
@@ -163,12 +178,28 @@ struct reaching_filter {
     }
 };
 
+/* for_each_nearby_impulse over the impulses `filter` keeps: every one where it is null. */
+template <typename Visit>
+void for_each_kept_impulse(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
+                           Visit &visit, const dsn_impulse_filter *filter) {
+#if DSN_MIXING
+    if (filter != 0) {
+        const keep_material keep = {filter->low, filter->high - filter->low};
+        for_each_nearby_impulse(noise, run_x, run_y, visit, keep);
+        return;
+    }
+#else
+    (void)filter;
+#endif
+    for_each_nearby_impulse(noise, run_x, run_y, visit, keep_every());
+}
+
 template <typename Visit>
 void for_each_reaching_impulse(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
-                               Visit &visit) {
-    reaching_filter<Visit> filter = {visit, run_x->length, run_y->length, noise->asset.width,
-                                     noise->asset.height};
-    for_each_nearby_impulse(noise, run_x, run_y, filter);
+                               Visit &visit, const dsn_impulse_filter *filter) {
+    reaching_filter<Visit> reaching = {visit, run_x->length, run_y->length, noise->asset.width,
+                                       noise->asset.height};
+    for_each_kept_impulse(noise, run_x, run_y, reaching, filter);
 }
 
 /* Adds each reaching impulse's texton into a 32-bit accumulator: `corner` is the rectangle's first
@@ -188,9 +219,10 @@ struct splat_32 {
     }
 };
 
-/* One rectangle of the tile where both axes are single runs. */
+/* One rectangle of the tile where both axes are single runs: the impulses `filter` keeps (every one where
+   it is null). */
 void splat_region(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
-                  uint32_t *accumulator, uint32_t row_stride) {
+                  uint32_t *accumulator, uint32_t row_stride, const dsn_impulse_filter *filter) {
     const dsn_asset *asset = &noise->asset;
     const uint32_t texel_bytes = asset->channels * (asset->bits / 8);
     splat_32 splat = {asset->texton,
@@ -200,7 +232,7 @@ void splat_region(const dsn_noise_state *noise, const tile_run *run_x, const til
                       asset->bits,
                       texel_bytes,
                       asset->width * texel_bytes};
-    for_each_reaching_impulse(noise, run_x, run_y, splat);
+    for_each_reaching_impulse(noise, run_x, run_y, splat, filter);
 }
 
 } // namespace
