@@ -859,7 +859,9 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
    instead, faster); other points go one by one. make bench's mix_bench
    reports both against one material, and the stack it paints: a point call under 5 KB (a filtered
-   mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB. Gradients have no mix yet;
+   mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB but where a band goes by
+   material passes (then a material's tile call's, as dsn_lattice_tile_fixed's, and a copy of the
+   material). Gradients have no mix yet;
    the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and
    continuous mix per point with these bits, from the words of dsn_gpu_mix_pack (dsn/gpu.h). Not in the
    small build (DSN_MIXING). */

@@ -620,14 +620,39 @@ void material_pass(const dsn_mix_state *mix, uint32_t m, uint32_t weight, const 
                        static_cast<uint32_t *>(static_cast<void *>(values)), filter);
 }
 
+inline int32_t saturated(int64_t total) {
+    const int64_t low = total < INT32_MIN ? INT32_MIN : total;
+    return static_cast<int32_t>(low > INT32_MAX ? INT32_MAX : low);
+}
+
+/* sum_planes where every plane has the mix's channels: value by value, the planes' count a constant. */
+template <uint32_t Count, typename Store>
+void sum_full_planes(const int32_t *const *planes, size_t values, const Store &store) {
+    for (size_t v = 0; v < values; v++) {
+        int64_t total = planes[0][v];
+        for (uint32_t k = 1; k < Count; k++) total += planes[k][v];
+        store(v, saturated(total));
+    }
+}
+
 /* The sum of the materials' values (their planes, a grey material's value in each channel) at each
-   value of a band, saturated to int32, stored by store(index, value): summed in 64 bits chunk by chunk,
-   plane after plane (a loop over one plane runs far faster than one over the planes at each value). */
+   value of a band, saturated to int32, stored by store(index, value). Where a grey material mixes with
+   RGB ones, chunk by chunk, plane after plane. */
 template <typename Store>
 void sum_planes(const dsn_mix_state *mix, const int32_t *const *planes, const uint32_t *channels,
                 uint32_t count, size_t points, const Store &store) {
-    const size_t chunk_points = 64;
     const uint32_t mix_channels = mix->channels;
+    bool full = true;
+    for (uint32_t k = 0; k < count; k++) full = full && channels[k] == mix_channels;
+    if (full) {
+        const size_t values = points * mix_channels;
+        if (count == 1) sum_full_planes<1>(planes, values, store);
+        if (count == 2) sum_full_planes<2>(planes, values, store);
+        if (count == 3) sum_full_planes<3>(planes, values, store);
+        if (count == 4) sum_full_planes<4>(planes, values, store);
+        return;
+    }
+    const size_t chunk_points = 64;
     for (size_t first = 0; first < points; first += chunk_points) {
         const size_t chunk = points - first < chunk_points ? points - first : chunk_points;
         const size_t values = chunk * mix_channels;
@@ -642,10 +667,7 @@ void sum_planes(const dsn_mix_state *mix, const int32_t *const *planes, const ui
                     for (uint32_t c = 0; c < mix_channels; c++) totals[p * mix_channels + c] += plane[p];
             }
         }
-        for (size_t v = 0; v < values; v++) {
-            const int64_t low = totals[v] < INT32_MIN ? INT32_MIN : totals[v];
-            store(first * mix_channels + v, static_cast<int32_t>(low > INT32_MAX ? INT32_MAX : low));
-        }
+        for (size_t v = 0; v < values; v++) store(first * mix_channels + v, saturated(totals[v]));
     }
 }
 
