@@ -24,6 +24,7 @@
 #include "fixtures/continuous_fixtures.h"
 #include "offline/bake_internal.h"
 #include "runtime/core/mix_weights.h"
+#include "runtime/evaluators/mix_evaluation.h"
 #include "runtime/kernels/kernels.h"
 
 using namespace continuous_fixtures;
@@ -235,6 +236,27 @@ struct UniformPick {
 uint32_t uniform_pick(const void *context, uint32_t key, uint32_t k, uint32_t, uint32_t) {
     const UniformPick *pick = static_cast<const UniformPick *>(context);
     return pick_material(pick->weights, pick->count, dsn_cell_stream(key, 0xC0000000u + k));
+}
+
+TEST_CASE("mix: saturating_add is the 64-bit sum of two int32 saturated, at the limits and anywhere") {
+    // The lattice tile's passes sum two materials' values so (mix_evaluation.h).
+    std::mt19937_64 random(31);
+    const int32_t edges[] = {INT32_MIN, INT32_MIN + 1, -(1 << 30),    -2,       -1, 0, 1,
+                             2,         1 << 30,       INT32_MAX - 1, INT32_MAX};
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    for (const int32_t a : edges)
+        for (const int32_t b : edges) pairs.push_back({a, b});
+    for (int k = 0; k < 100000; k++)
+        pairs.push_back({int32_t(uint32_t(random())), int32_t(uint32_t(random()))});
+    size_t differences = 0, saturated = 0;
+    for (const auto &pair : pairs) {
+        const int64_t sum = int64_t(pair.first) + pair.second;
+        const int32_t expected = int32_t(std::clamp<int64_t>(sum, INT32_MIN, INT32_MAX));
+        differences += saturating_add(pair.first, pair.second) != expected;
+        saturated += sum != expected;
+    }
+    CHECK(differences == 0);
+    CHECK(saturated > 20000); // about a quarter of the random pairs overflow, both ways
 }
 
 TEST_CASE("mix: lattice points of materials of one texton size, through every kernel's vector walk, are the "

@@ -1,7 +1,8 @@
 /* runtime/evaluators/mix_evaluation.h - what the mix's evaluators share (mix_point.cpp: lattice and
    continuous; mix_filtered.cpp: filtered): the checks of a call and its zeroed output, a material's own
-   evaluators where the weights are that material's alone (tile_material), its weighted offsets, and the
-   continuous point that an unfiltered footprint gives. Internal to libdsn; not installed. */
+   evaluators where the weights are that material's alone (tile_material), its weighted offsets, the
+   saturated sums of the materials' values, and the continuous point that an unfiltered footprint gives.
+   Internal to libdsn; not installed. */
 #ifndef DSN_MIX_EVALUATION_H
 #define DSN_MIX_EVALUATION_H
 
@@ -97,6 +98,15 @@ inline void add_material_value(const dsn_mix_state *mix, uint32_t m, const int32
     const uint32_t channels = mix->material[m].asset.channels;
     for (uint32_t c = 0; c < mix->channels && c < DSN_MAX_CHANNELS; c++)
         totals[c] += value[channels == 1 ? 0 : c];
+}
+
+/* a + b saturated to int32 (the 64-bit sum saturated, exactly), in 32-bit operations: the overflow where
+   both operands' signs differ from the sum's, then the limit on a's side. */
+inline int32_t saturating_add(int32_t a, int32_t b) {
+    const uint32_t sum = static_cast<uint32_t>(a) + static_cast<uint32_t>(b);
+    const uint32_t overflow = (static_cast<uint32_t>(a) ^ sum) & (static_cast<uint32_t>(b) ^ sum);
+    const uint32_t limit = (static_cast<uint32_t>(a) >> 31) + 0x7FFFFFFFu;
+    return static_cast<int32_t>((overflow >> 31) != 0 ? limit : sum);
 }
 
 /* The totals as the mix's output, saturated to int32. */
