@@ -699,6 +699,12 @@ void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, u
     const int32_t *planes[DSN_MIX_MAX_MATERIALS];
     uint32_t channels[DSN_MIX_MAX_MATERIALS], count = 0;
     int32_t *next = scratch;
+    /* Fixed output: the first material with the mix's channels goes straight into the band's output, which
+       the sum then reads and overwrites in place (each value read before it is written), one plane less
+       to write and read. */
+    int32_t *const in_place = target.kind == dsn_output_fixed
+                                  ? static_cast<int32_t *>(target.out) + target.first * mix->channels
+                                  : 0;
     for (uint32_t m = 0; m < mix->count; m++) {
         /* a material no hash draws has no impulse and a zero weight: its values are zero */
         const dsn_impulse_filter filter = {
@@ -706,12 +712,15 @@ void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, u
             m + 1u < dsn_point_materials_most ? thresholds[m] : static_cast<uint64_t>(1) << 32};
         if (filter.low >= filter.high) continue;
         const bool every = filter.low == 0 && filter.high == static_cast<uint64_t>(1) << 32;
-        material_pass(mix, m, weights[m], every ? 0 : &filter, x0, width, y, rows, next);
-        planes[count] = next;
         channels[count] = mix->material[m].asset.channels;
-        next += points * channels[count];
+        const bool direct = count == 0 && in_place != 0 && channels[count] == mix->channels;
+        int32_t *const values = direct ? in_place : next;
+        material_pass(mix, m, weights[m], every ? 0 : &filter, x0, width, y, rows, values);
+        planes[count] = values;
+        if (!direct) next += points * channels[count];
         count++;
     }
+    if (count == 1 && planes[0] == in_place) return;
     void *const out = target.out;
     const size_t first = target.first * mix->channels;
     if (target.kind == dsn_output_fixed)
