@@ -595,29 +595,78 @@ void walk_band(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_
         }
 }
 
-/* Material m's values over a band into `values` (its channels per point): the kernel's lattice tile of
-   that material from the impulses of the mix's process that draw it (`filter`), normalized from its
+/* Material m as a band's kernels render it: its lattice noise on the mix's process, normalized from its
    offset weighted by `weight`. The strip path sizes its rectangles for the density of the impulses it
    sums (tile_strips.h's choose_rectangle): here the material's share of the process's, rounded up (an
    estimate only: the path counts a rectangle's impulses and takes the 32-bit sums where too many). */
-void material_pass(const dsn_mix_state *mix, uint32_t m, uint32_t weight, const dsn_impulse_filter *filter,
-                   uint32_t x0, uint32_t width, uint32_t y, uint32_t rows, int32_t *values) {
+void pass_noise(const dsn_mix_state *mix, uint32_t m, uint32_t weight, dsn_noise_state *pass) {
     const dsn_noise_state *material = &mix->material[m], *lead = &mix->material[0];
 #if DSN_READS_SECTIONS
     dsn_noise_state view;
-    dsn_noise_state pass = *dsn_internal_lattice_view(material, &view);
+    *pass = *dsn_internal_lattice_view(material, &view);
 #else
-    dsn_noise_state pass = *material;
+    *pass = *material;
 #endif
     for (uint32_t c = 0; c < material->asset.channels && c < DSN_MAX_CHANNELS; c++)
-        pass.offset[c] = weighted_offset(material->offset[c], weight);
+        pass->offset[c] = weighted_offset(material->offset[c], weight);
     const uint64_t share =
         (static_cast<uint64_t>(lead->impacts_q16) * weight + (1u << mix_weight_bits) - 1u) >> mix_weight_bits;
-    pass.impacts_q16 = share != 0 ? static_cast<uint32_t>(share) : 1u;
-    pass.asset.support_size = lead->asset.support_size;
-    dsn_kernel_entries_of(material->tile_kernel)
+    pass->impacts_q16 = share != 0 ? static_cast<uint32_t>(share) : 1u;
+    pass->asset.support_size = lead->asset.support_size;
+}
+
+/* Material m's values over a band into `values` (its channels per point): the kernel's lattice tile of
+   pass_noise from the impulses of the mix's process that draw it (`filter`). */
+void material_pass(const dsn_mix_state *mix, uint32_t m, uint32_t weight, const dsn_impulse_filter *filter,
+                   uint32_t x0, uint32_t width, uint32_t y, uint32_t rows, int32_t *values) {
+    dsn_noise_state pass;
+    pass_noise(mix, m, weight, &pass);
+    dsn_kernel_entries_of(pass.tile_kernel)
         ->lattice_tile(&pass, x0, y, width, rows, values, 0, 0, dsn_output_fixed,
                        static_cast<uint32_t *>(static_cast<void *>(values)), filter);
+}
+
+/* The materials that impulses draw where a region's weights are uniform (a material no hash draws has no
+   impulse and a zero weight: its values are zero), the impulses each keeps, and the point weights. */
+struct DrawnMaterials {
+    uint32_t count, materials[DSN_MIX_MAX_MATERIALS], weights[DSN_MIX_MAX_MATERIALS];
+    dsn_impulse_filter filters[DSN_MIX_MAX_MATERIALS];
+};
+
+void drawn_materials(const dsn_mix_state *mix, const MixRegion &region, DrawnMaterials *drawn) {
+    uint64_t thresholds[dsn_point_materials_most - 1];
+    uniform_thresholds(mix, region, thresholds);
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) drawn->weights[m] = 0; /* (GCC cannot tell) */
+    point_weights(region.weights, mix->count, drawn->weights);
+    drawn->count = 0;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const dsn_impulse_filter filter = {
+            m == 0 ? 0u : thresholds[m - 1u],
+            m + 1u < dsn_point_materials_most ? thresholds[m] : static_cast<uint64_t>(1) << 32};
+        if (filter.low >= filter.high) continue;
+        drawn->materials[drawn->count] = m;
+        drawn->filters[drawn->count++] = filter;
+    }
+}
+
+/* Rows of two drawn materials with the mix's channels by the kernel's mixed tile (kernels.h's
+   lattice_mix_tile), where it takes them: each material's normalized values added before they are
+   stored, in one walk of the strips, with no scratch. False where it does not (having perhaps written
+   part of the rows). */
+bool mixed_band(const dsn_mix_state *mix, const DrawnMaterials &drawn, uint32_t x0, uint32_t width,
+                uint32_t y, uint32_t rows, const BandTarget &target) {
+    dsn_lattice_mix_tile_entry *tile = dsn_kernel_entries_of(mix->material[0].tile_kernel)->lattice_mix_tile;
+    if (tile == 0) return false;
+    dsn_noise_state passes[2];
+    for (uint32_t k = 0; k < 2; k++) {
+        const uint32_t m = drawn.materials[k];
+        if (mix->material[m].asset.channels != mix->channels) return false;
+        pass_noise(mix, m, drawn.weights[m], &passes[k]);
+    }
+    const dsn_noise_state *const noises[2] = {&passes[0], &passes[1]};
+    const size_t value_bytes = target.kind == dsn_output_u8 ? 1u : 4u;
+    void *const out = static_cast<unsigned char *>(target.out) + target.first * mix->channels * value_bytes;
+    return tile(noises, drawn.filters, 2u, x0, y, width, rows, out, target.kind) != 0;
 }
 
 inline int32_t saturated(int64_t total) {
@@ -691,11 +740,9 @@ void sum_planes(const dsn_mix_state *mix, const int32_t *const *planes, const ui
 void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, uint32_t width, uint32_t y,
                uint32_t rows, int32_t *scratch, const BandTarget &target) {
     const size_t points = static_cast<size_t>(rows) * width;
-    uint64_t thresholds[dsn_point_materials_most - 1];
-    uniform_thresholds(mix, region, thresholds);
-    uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0,
-                                               0}; /* (zeroed: GCC cannot tell point_weights fills them) */
-    point_weights(region.weights, mix->count, weights);
+    DrawnMaterials drawn;
+    drawn_materials(mix, region, &drawn);
+    if (drawn.count == 2 && mixed_band(mix, drawn, x0, width, y, rows, target)) return;
     const int32_t *planes[DSN_MIX_MAX_MATERIALS];
     uint32_t channels[DSN_MIX_MAX_MATERIALS], count = 0;
     int32_t *next = scratch;
@@ -705,17 +752,14 @@ void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, u
     int32_t *const in_place = target.kind == dsn_output_fixed
                                   ? static_cast<int32_t *>(target.out) + target.first * mix->channels
                                   : 0;
-    for (uint32_t m = 0; m < mix->count; m++) {
-        /* a material no hash draws has no impulse and a zero weight: its values are zero */
-        const dsn_impulse_filter filter = {
-            m == 0 ? 0u : thresholds[m - 1u],
-            m + 1u < dsn_point_materials_most ? thresholds[m] : static_cast<uint64_t>(1) << 32};
-        if (filter.low >= filter.high) continue;
+    for (uint32_t d = 0; d < drawn.count; d++) {
+        const uint32_t m = drawn.materials[d];
+        const dsn_impulse_filter &filter = drawn.filters[d];
         const bool every = filter.low == 0 && filter.high == static_cast<uint64_t>(1) << 32;
         channels[count] = mix->material[m].asset.channels;
         const bool direct = count == 0 && in_place != 0 && channels[count] == mix->channels;
         int32_t *const values = direct ? in_place : next;
-        material_pass(mix, m, weights[m], every ? 0 : &filter, x0, width, y, rows, values);
+        material_pass(mix, m, drawn.weights[m], every ? 0 : &filter, x0, width, y, rows, values);
         planes[count] = values;
         if (!direct) next += points * channels[count];
         count++;
@@ -852,6 +896,18 @@ int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32
                                                 scratch, scratch_size)
                        : dsn_lattice_tile_u8(material, x0, y0, width, height, static_cast<uint8_t *>(out),
                                              scratch, scratch_size);
+    }
+    /* weights uniform over the whole tile, two materials drawn: the kernel's mixed strips, where they take
+       them, with or without scratch */
+    const MixRegion region =
+        window_region(mix, control, static_cast<uint32_t>(x0), width, static_cast<uint32_t>(y0), height);
+    if (region.uniform) {
+        DrawnMaterials drawn;
+        drawn_materials(mix, region, &drawn);
+        const BandTarget target = {out, kind, 0};
+        if (drawn.count == 2 && mixed_band(mix, drawn, static_cast<uint32_t>(x0), width,
+                                           static_cast<uint32_t>(y0), height, target))
+            return DSN_OK;
     }
     if (!lattice_tile_by_bands(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width,
                                height, out, kind, scratch, scratch_size))

@@ -33,7 +33,8 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
     DSN_FILTER_READS_ENTRY,
     DSN_FILTER_CANDIDATES_ENTRY,
     DSN_SURFACE_IMPULSES_ENTRY,
-    DSN_SURFACE_READS_ENTRY};
+    DSN_SURFACE_READS_ENTRY,
+    DSN_LATTICE_MIX_TILE_ENTRY};
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2;
 
@@ -68,5 +69,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
     continuous_splat_runs,      DSN_SPLAT_GRADIENT_ENTRY,
     continuous_splat_normalize, continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,     DSN_FILTER_CANDIDATES_ENTRY,
-    DSN_SURFACE_IMPULSES_ENTRY, DSN_SURFACE_READS_ENTRY};
+    DSN_SURFACE_IMPULSES_ENTRY, DSN_SURFACE_READS_ENTRY,
+    DSN_LATTICE_MIX_TILE_ENTRY};
 #endif

@@ -43,6 +43,16 @@ typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, u
                                     uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
                                     uint32_t *accumulator, const dsn_impulse_filter *filter);
 
+/* A lattice tile of a mix whose weights are the same over it (mix_point.cpp; tile_mix.h's render_mix_tile):
+   `count` materials' noises (on the mix's process, each with its weighted offset), each summing the
+   impulses its filter keeps, their normalized values added before they are stored, into `width` x
+   `height` values of `kind`. 0 where the kernel does not take them (two materials of one channel count
+   on its strip path, whose values cannot add past int32), having perhaps written part of out. */
+typedef int dsn_lattice_mix_tile_entry(const dsn_noise_state *const *noises,
+                                       const dsn_impulse_filter *filters, uint32_t count, uint32_t x0,
+                                       uint32_t y0, uint32_t width, uint32_t height, void *out,
+                                       dsn_output_kind kind);
+
 /* Whether the kernel's strip path holds the texton of `noise` (tile_render.h's lattice_strips_take): its
    lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */
 typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
@@ -224,7 +234,7 @@ typedef int dsn_surface_reads_entry(const dsn_asset *asset, const dsn_surface_im
    without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself), and
    continuous_gradient_runs too (continuous_tile.cpp then splats three grids); surface_impulses and
    surface_reads without the surface noise (DSN_SURFACE 0), surface_reads in kernels built without
-   AVX2 too. */
+   AVX2 too; lattice_mix_tile without the mix (DSN_MIXING 0) or the strip path (tile_render.h). */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
@@ -238,6 +248,7 @@ typedef struct dsn_kernel_entries {
     dsn_filter_candidates_entry *filter_candidates;
     dsn_surface_impulses_entry *surface_impulses;
     dsn_surface_reads_entry *surface_reads;
+    dsn_lattice_mix_tile_entry *lattice_mix_tile;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -143,15 +143,13 @@ inline void interleave_3(simd_vector r, simd_vector g, simd_vector b, simd_vecto
     out[2] = as_integers(shuffle<_MM_SHUFFLE(2, 0, 2, 0)>(third, last));
 }
 
-/* The first `pixels` pixels of a strip row from its sums (one vector per channel); `stream`: written
-   past the caches (store_strip). */
-template <uint32_t Channels, typename Value>
-inline void normalize_strip(const split_vectors *v, const simd_vector *sums, uint32_t pixels, Value *out,
-                            int stream) {
+/* A strip row's values, normalized from its sums (one vector per channel), in the vectors store_strip
+   takes. */
+template <uint32_t Channels>
+inline void normalized_strip(const split_vectors *v, const simd_vector *sums, simd_vector *values) {
     const simd_vector ones = set_16(1);
     simd_vector pair_low = unpack_low_16(sums[0], sums[1]), pair_high = unpack_high_16(sums[0], sums[1]);
     simd_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);
-    simd_vector values[6];
     if (Channels == 3) {
         /* Channel by channel, both halves: each constant is read once (AVX2's 16 registers cannot hold
            them all, and the compiler would spill them to the stack rather than read them again). */
@@ -167,6 +165,15 @@ inline void normalize_strip(const split_vectors *v, const simd_vector *sums, uin
         values[0] = normalize_lanes(v, 0, pair_low, third_low);
         values[1] = normalize_lanes(v, 0, pair_high, third_high);
     }
+}
+
+/* The first `pixels` pixels of a strip row from its sums (one vector per channel); `stream`: written
+   past the caches (store_strip). */
+template <uint32_t Channels, typename Value>
+inline void normalize_strip(const split_vectors *v, const simd_vector *sums, uint32_t pixels, Value *out,
+                            int stream) {
+    simd_vector values[6];
+    normalized_strip<Channels>(v, sums, values);
     store_strip<Channels>(values, pixels, out, stream);
 }
 

@@ -262,5 +262,6 @@ void render_tile(const dsn_noise_state *noise, uint32_t x0, uint32_t y0, uint32_
 } // namespace
 
 #include "kernels/tile_gradient.h"
+#include "kernels/tile_mix.h"
 
 #endif /* DSN_TILE_RENDER_H */
