@@ -847,21 +847,27 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    samples agree, with 8-bit textons of one size and channel count, in the AVX-512 copy (the continuous
    point's vector evaluator, each of 16 candidates gathering its own material's texels: the textons must
    lie within 2^30 bytes of material 0's); other points walk in scalar code. Tiles
-   and batches walk their points in groups. A lattice tile goes in bands of up to 128 rows when `scratch`
-   holds dsn_mix_lattice_tile_scratch_size() bytes (less scratch, fewer rows a band): a band whose samples
-   agree over its reach is one lattice tile of each material that impulses draw, from those impulses
-   alone (a hash test per impulse), by that material's own tile code (strips or splats) normalized with
-   its weighted offset, then each value the sum of the materials'; the other bands are walked in bands of
-   up to 32 rows (each impulse found once per band, its texton added to the points it reaches). Without
-   scratch a lattice tile's rows go in runs of up to 32 points (each impulse found once per run). A
-   continuous tile's rows and a batch's neighbours in groups of up to 16
+   and batches walk their points in groups. A lattice tile whose samples agree over its reach and whose
+   impulses draw two materials of the mix's channel count, 8-bit textons that the x86 strip path holds
+   (tile_render.h), goes by that path for both at once, with or without scratch: each rectangle's impulses
+   listed per material (a hash test per impulse), each material's strips summed from its texton and
+   normalized with its gains and weighted offset, the two added before they are stored. Other lattice
+   tiles go in bands of up to 128 rows when `scratch` holds dsn_mix_lattice_tile_scratch_size() bytes
+   (less scratch, fewer rows a band): a band whose samples agree over its reach by the same two-material
+   strips where they take it, else as one lattice tile of each material that impulses draw, from those
+   impulses alone, by that material's own tile code (strips or splats) normalized with its weighted
+   offset, then each value the sum of the materials'; the other bands are walked in bands of up to 32
+   rows (each impulse found once per band, its texton added to the points it reaches). Without scratch
+   a lattice tile's rows go in runs of up to 32 points (each impulse found once per run). A continuous
+   tile's rows and a batch's neighbours in groups of up to 16
    points within 32 texels of each other (each impulse found once per group, read at the points it
    reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
    instead, faster); other points go one by one. make bench's mix_bench
    reports both against one material, and the stack it paints: a point call under 5 KB (a filtered
-   mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB but where a band goes by
+   mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB but where a tile or band goes by
    material passes (then a material's tile call's, as dsn_lattice_tile_fixed's, and a copy of the
-   material). Gradients have no mix yet;
+   material) or by the two-material strips (two materials' strip paths: about 128 KB on x86, twice one
+   material's tile call). Gradients have no mix yet;
    the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and
    continuous mix per point with these bits, from the words of dsn_gpu_mix_pack (dsn/gpu.h). Not in the
    small build (DSN_MIXING). */
