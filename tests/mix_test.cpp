@@ -544,6 +544,73 @@ TEST_CASE("mix: lattice tiles whose weights are uniform over a band go by materi
     CHECK(differences == 0);
 }
 
+TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats, every kernel, the bits "
+          "of their points") {
+    // Where the weights are the same over a continuous tile's reach, each material's impulses (those whose
+    // hashes draw it) are splatted with its texton into its own block sums, normalized from its weighted
+    // offset, and summed. Four materials (RGB and grey, 8 and 16 bits, 8-bit ones from cell records for
+    // the first two drawn) on a process with a period; two, three and four drawn; a rotated and a
+    // magnified grid; the scratch asked for (misaligned) and too little (the groups then go); every
+    // kernel this CPU runs; fixed, u8 and float outputs.
+    auto a = make_noise(random_texton_asset(3, 15, 8, 61), 41, 0, 29, 0);
+    auto b = make_noise(random_texton_asset(1, 9, 16, 62), 42, 12u << 16);
+    auto c = make_noise(with_means(random_texton_asset(3, 4, 8, 63), 1 << 22, -(1 << 21), 1 << 20), 43);
+    auto d = make_noise(random_texton_asset(3, 6, 16, 64), 44);
+    const dsn_mix mix = make_mix({&a->noise, &b->noise, &c->noise, &d->noise});
+    const Control controls[] = {constant({128, 128, 0, 0}), constant({200, 0, 55, 0}),
+                                constant({0, 90, 80, 70}), constant({60, 61, 62, 63})};
+    const int64_t one = kOne;
+    const dsn_grid grids[] = {{-40 * one + 777, 3 * one, int64_t(0.61 * double(one)),
+                               int64_t(0.35 * double(one)), -int64_t(0.35 * double(one)),
+                               int64_t(0.61 * double(one))},
+                              {5 * one + 99, -7 * one, one / 3, 0, 0, one / 3}};
+    const uint32_t width = 90, height = 70;
+    size_t differences = 0, tiles = 0;
+    for (const dsn_grid &grid : grids)
+        for (const Control &control : controls) {
+            std::vector<int32_t> expected(size_t(width) * height * 3);
+            for (uint32_t j = 0; j < height; j++)
+                for (uint32_t i = 0; i < width; i++) {
+                    const int64_t x = int64_t(uint64_t(grid.origin_x) + uint64_t(grid.column_step_x) * i +
+                                              uint64_t(grid.row_step_x) * j);
+                    const int64_t y = int64_t(uint64_t(grid.origin_y) + uint64_t(grid.column_step_y) * i +
+                                              uint64_t(grid.row_step_y) * j);
+                    REQUIRE(dsn_mix_continuous_point_fixed(&mix, &control.control, x, y,
+                                                           &expected[(size_t(j) * width + i) * 3]) == DSN_OK);
+                }
+            const size_t full = dsn_mix_continuous_tile_scratch_size(&mix, &grid, width, height);
+            REQUIRE(full > 0);
+            std::vector<unsigned char> scratch(full + 1);
+            for (uint32_t kernel = DSN_KERNEL_DEFAULT;
+                 kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
+                CAPTURE(kernel);
+                dsn_mix copy = mix;
+                dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
+                for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
+                for (const size_t size : {full, full / 2}) {
+                    std::vector<int32_t> tile(expected.size());
+                    std::vector<uint8_t> bytes(expected.size());
+                    std::vector<float> floats(expected.size());
+                    unsigned char *start = scratch.data() + 1;
+                    REQUIRE(dsn_mix_continuous_tile_fixed(&copy, &control.control, &grid, width, height,
+                                                          tile.data(), start, size) == DSN_OK);
+                    REQUIRE(dsn_mix_continuous_tile_u8(&copy, &control.control, &grid, width, height,
+                                                       bytes.data(), start, size) == DSN_OK);
+                    REQUIRE(dsn_mix_continuous_tile_float(&copy, &control.control, &grid, width, height,
+                                                          floats.data(), start, size) == DSN_OK);
+                    for (size_t at = 0; at < expected.size(); at++) {
+                        differences += tile[at] != expected[at];
+                        differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
+                        differences += floats[at] != dsn_fixed_to_float(expected[at]);
+                    }
+                    tiles++;
+                }
+            }
+        }
+    CHECK(tiles >= 16);
+    CHECK(differences == 0);
+}
+
 TEST_CASE("mix: continuous tiles and batches of nearby points, walked in groups, are their points") {
     // Up to 16 points within 32 texels of each other are walked at once (a tile's row, a batch's
     // neighbours); on a periodic axis a group whose window crosses the int32 sign change goes point by

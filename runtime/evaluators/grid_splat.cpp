@@ -384,6 +384,8 @@ void splat_block(const dsn_noise_state *noise, const dsn_grid_splat &splat, cons
     const int64_t cell_step = static_cast<int64_t>(one_texel) << shift;
     Footprint footprint;
     footprint_init(&footprint, x, y, block, high_x - low_x, high_y - low_y);
+    const dsn_impulse_filter *filter = splat.filter; /* the impulses a mixed tile's material keeps */
+    const uint64_t filter_span = filter != 0 ? filter->high - filter->low : 0u;
     for (uint32_t sy = 0; sy < spans_y.span_count; sy++) {
         const FrameSpan span_y = frame_span(y, spans_y, sy);
         for (uint32_t sx = 0; sx < spans_x.span_count; sx++) {
@@ -398,6 +400,10 @@ void splat_block(const dsn_noise_state *noise, const dsn_grid_splat &splat, cons
                     const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
                     const uint32_t count = dsn_cell_impulse_count(noise, key);
                     for (uint32_t k = 0; k < count; k++) {
+                        if (filter != 0 &&
+                            static_cast<uint64_t>(dsn_cell_stream(key, 0xC0000000u + k)) - filter->low >=
+                                filter_span)
+                            continue;
                         const uint32_t hash = dsn_impulse_hash(noise, key, k);
                         const uint32_t bits_x = dsn_impulse_bits_x(hash), bits_y = dsn_impulse_bits_y(hash);
                         /* The period: impulses past its end are discarded, as per point. */
@@ -460,6 +466,7 @@ int dsn_internal_grid_splat_init(const dsn_noise_state *noise, const dsn_grid *g
     setup->cell_row = 0;
     setup->columns_shared = splat->x.row == 0 && splat->y.column == 0;
     splat->runs = dsn_kernel_entries_of(noise->tile_kernel)->continuous_splat_runs;
+    splat->filter = 0;
     return 1;
 }
 

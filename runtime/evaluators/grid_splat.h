@@ -36,11 +36,13 @@ typedef struct dsn_splat_axis {
     dsn_splat_columns columns;
 } dsn_splat_axis;
 
-/* A grid ready to splat one texture: both frames and what the kernel's runs share. */
+/* A grid ready to splat one texture: both frames, what the kernel's runs share, and which impulses it
+   splats (every one where `filter` is null, as init leaves it; a mixed tile's material sets it). */
 typedef struct dsn_grid_splat {
     dsn_splat_axis x, y;
     dsn_splat_setup setup; /* its cells, plane and sums_end are set by whoever fills a block */
     dsn_splat_runs_entry *runs;
+    const dsn_impulse_filter *filter;
 } dsn_grid_splat;
 
 /* Blocks of the tile: at most this many columns and rows (one run per row, as long as a row). */

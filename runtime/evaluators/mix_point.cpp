@@ -15,8 +15,10 @@
 #include "core/mix_weights.h"
 #include "core/normalize_fixed.h"
 #include "core/poisson_count.h"
+#include "evaluators/grid_splat.h"
 #include "evaluators/mix_evaluation.h"
 #include "kernels/kernels.h"
+#include "kernels/splat_cells.h"
 
 #if DSN_MIXING
 
@@ -845,6 +847,95 @@ void lattice_tile_by_runs(const dsn_mix_state *mix, const dsn_mix_control *contr
         }
 }
 
+/* ---- Continuous tiles where the weights are uniform ---- */
+
+#if !DSN_SMALL_CODE
+/* The scratch of a continuous tile by materials: every material's block sums (grid_splat.h), 8-aligned. */
+size_t materials_sums_size(const dsn_mix_state *mix, uint32_t width, uint32_t height) {
+    size_t bytes = sizeof(uint64_t) - 1u;
+    for (uint32_t m = 0; m < mix->count; m++)
+        bytes += dsn_internal_splat_block_pixels(width, height) * mix->material[m].asset.channels *
+                 sizeof(uint64_t);
+    return bytes;
+}
+
+/* A continuous tile whose weights are uniform over its reach, block by block (grid_splat.h): each drawn
+   material's impulses (its hash filter) splatted with its texton into its own block sums, each row of them
+   normalized by the kernel from the material's weighted offset, and each value the materials' values
+   summed (64-bit, saturated; a grey material's in every channel). 8-bit textons are read from cell records
+   for the first two materials (64 KB of stack each, as one material's tile). False, writing nothing, where
+   a material's grid is not splatted or the scratch does not hold every material's block sums. */
+bool continuous_tile_by_materials(const dsn_mix_state *mix, const DrawnMaterials &drawn, const dsn_grid *grid,
+                                  uint32_t width, uint32_t height, void *out, dsn_output_kind kind,
+                                  void *scratch, size_t scratch_size) {
+    if (scratch == 0 || scratch_size < materials_sums_size(mix, width, height)) return false;
+    dsn_noise_state passes[DSN_MIX_MAX_MATERIALS];
+    dsn_grid_splat splats[DSN_MIX_MAX_MATERIALS];
+    uint64_t *sums[DSN_MIX_MAX_MATERIALS];
+    uint64_t *next = dsn_internal_aligned_sums(scratch);
+    const size_t block_pixels = dsn_internal_splat_block_pixels(width, height);
+#if DSN_SPLAT_CELLS
+    const uint32_t celled = 2;
+    alignas(64) uint64_t cells[celled][splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
+#endif
+    for (uint32_t d = 0; d < drawn.count; d++) {
+        const uint32_t m = drawn.materials[d];
+        const dsn_noise_state *material = &mix->material[m];
+        passes[d] = *material;
+        for (uint32_t c = 0; c < material->asset.channels && c < DSN_MAX_CHANNELS; c++)
+            passes[d].offset[c] = weighted_offset(material->offset[c], drawn.weights[m]);
+        const dsn_splat_texture texture = {material->asset.texton,
+                                           material->asset.width,
+                                           material->asset.height,
+                                           material->asset.width,
+                                           material->asset.channels,
+                                           material->asset.bits,
+                                           0};
+        if (!dsn_internal_grid_splat_init(&passes[d], grid, width, height, &texture, &splats[d]))
+            return false;
+        const bool every = drawn.filters[d].low == 0 && drawn.filters[d].high == static_cast<uint64_t>(1)
+                                                                                     << 32;
+        splats[d].filter = every ? 0 : &drawn.filters[d];
+#if DSN_SPLAT_CELLS
+        if (d < celled && make_splat_cells(splats[d].setup.texture, cells[d], splat_cell_capacity,
+                                           &splats[d].setup.cell_row, 0) != 0)
+            splats[d].setup.cells = cells[d];
+#endif
+        sums[d] = next;
+        next += block_pixels * material->asset.channels;
+    }
+    const uint32_t channels = mix->channels;
+    const dsn_kernel_entries *kernel = dsn_kernel_entries_of(mix->material[0].tile_kernel);
+    for (uint32_t top = 0; top < height; top += dsn_splat_block_rows)
+        for (uint32_t left = 0; left < width; left += dsn_splat_block_columns) {
+            const dsn_splat_block block = dsn_internal_splat_block(left, top, width, height);
+            for (uint32_t d = 0; d < drawn.count; d++)
+                dsn_internal_grid_splat_block(&passes[d], &splats[d], &block, sums[d]);
+            for (uint32_t j = 0; j < block.rows; j++) {
+                int64_t totals[dsn_splat_block_columns * DSN_MAX_CHANNELS];
+                for (uint32_t v = 0; v < block.columns * channels; v++) totals[v] = 0;
+                for (uint32_t d = 0; d < drawn.count; d++) {
+                    int32_t values[dsn_splat_block_columns * DSN_MAX_CHANNELS];
+                    kernel->continuous_splat_normalize(&passes[d],
+                                                       sums[d] + static_cast<size_t>(j) * block.stride,
+                                                       block.plane, block.columns, values);
+                    const uint32_t own = passes[d].asset.channels;
+                    for (uint32_t i = 0; i < block.columns; i++)
+                        for (uint32_t c = 0; c < channels; c++)
+                            totals[i * channels + c] += values[i * own + (own == 1 ? 0u : c)];
+                }
+                const size_t first = (static_cast<size_t>(top + j) * width + left) * channels;
+                for (uint32_t i = 0; i < block.columns; i++) {
+                    int32_t value[DSN_MAX_CHANNELS];
+                    store_totals(mix, totals + i * channels, value);
+                    dsn_store_pixel(out, kind, first + i * channels, value, channels);
+                }
+            }
+        }
+    return true;
+}
+#endif /* !DSN_SMALL_CODE */
+
 /* ---- The API ---- */
 
 int lattice_point_as(const dsn_mix *handle, const dsn_mix_control *control, int32_t x, int32_t y, void *out,
@@ -934,10 +1025,12 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
         const int64_t reach_y = static_cast<int64_t>(mix->radius[1] + 2u) << 32;
         const uint64_t origin_x = static_cast<uint64_t>(grid->origin_x),
                        origin_y = static_cast<uint64_t>(grid->origin_y);
-        const uint32_t only = tile_material(mix, control, origin_x + static_cast<uint64_t>(low_x - reach_x),
-                                            origin_y + static_cast<uint64_t>(low_y - reach_y),
-                                            origin_x + static_cast<uint64_t>(high_x + reach_x),
-                                            origin_y + static_cast<uint64_t>(high_y + reach_y));
+        const MixRegion region =
+            mix_region(control, mix->count, origin_x + static_cast<uint64_t>(low_x - reach_x),
+                       origin_y + static_cast<uint64_t>(low_y - reach_y),
+                       origin_x + static_cast<uint64_t>(high_x + reach_x),
+                       origin_y + static_cast<uint64_t>(high_y + reach_y), 1024u);
+        const uint32_t only = region.single ? region.only : mix->count;
         if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
             const dsn_noise *material = dsn_mix_material_noise(mix, only);
             if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height)) {
@@ -951,6 +1044,15 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
                                               scratch, scratch_size);
             }
         }
+#if !DSN_SMALL_CODE
+        if (region.uniform) {
+            DrawnMaterials drawn;
+            drawn_materials(mix, region, &drawn);
+            if (continuous_tile_by_materials(mix, drawn, grid, width, height, out, kind, scratch,
+                                             scratch_size))
+                return DSN_OK;
+        }
+#endif
     }
     /* a row's points in groups */
     uint64_t xs[group_points], ys[group_points];
@@ -1090,6 +1192,13 @@ size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *handle, const dsn_gri
             dsn_continuous_tile_scratch_size(dsn_mix_material_noise(mix, m), grid, width, height);
         most = size > most ? size : most;
     }
+#if !DSN_SMALL_CODE
+    /* every material's block sums, where the grid is splatted (the scratch of one material's tile) */
+    if (most != 0 && tile_size_check(width, height) == DSN_OK) {
+        const size_t materials = materials_sums_size(mix, width, height);
+        most = materials > most ? materials : most;
+    }
+#endif
     return most;
 }
 
