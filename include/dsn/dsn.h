@@ -859,7 +859,11 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    offset, then each value the sum of the materials'; the other bands are walked in bands of up to 32
    rows (each impulse found once per band, its texton added to the points it reaches). Without scratch
    a lattice tile's rows go in runs of up to 32 points (each impulse found once per run). A continuous
-   tile's rows and a batch's neighbours in groups of up to 16
+   tile whose samples agree over its reach, given dsn_mix_continuous_tile_scratch_size() bytes of
+   scratch, is splatted as one material's tile is, block by block, each material's impulses (a hash test
+   per impulse) into its own block sums with its texton, each normalized with its weighted offset, then
+   each value the sum of the materials'. Other continuous tiles' rows and a batch's neighbours go in
+   groups of up to 16
    points within 32 texels of each other (each impulse found once per group, read at the points it
    reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
    instead, faster); other points go one by one. make bench's mix_bench
@@ -867,7 +871,8 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    mix point copies a material, about 2.5 KB), a mixed tile call under 4 KB but where a tile or band goes by
    material passes (then a material's tile call's, as dsn_lattice_tile_fixed's, and a copy of the
    material) or by the two-material strips (two materials' strip paths: about 128 KB on x86, twice one
-   material's tile call). Gradients have no mix yet;
+   material's tile call), and a continuous tile splatted by materials (the cell records of two materials:
+   about 160 KB on x86, under twice one material's). Gradients have no mix yet;
    the filtered mix goes impulse by impulse, per material. dsn/dsn.glsl evaluates the lattice and
    continuous mix per point with these bits, from the words of dsn_gpu_mix_pack (dsn/gpu.h). Not in the
    small build (DSN_MIXING). */
@@ -935,7 +940,7 @@ int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *contr
    one material's weights alone is that material's tile, splatted or by strips as the noise's own, when
    `scratch` holds dsn_mix_*_tile_scratch_size() bytes (the largest of the materials' scratch sizes and,
    for a lattice tile, of the values of a band of up to 128 rows: 4 bytes per channel of every material
-   per point; 0 for an invalid mix or size); other tiles go by bands or groups of points (see "Cost" above),
+   per point; for a continuous one, of every material's block sums; 0 for an invalid mix or size); other tiles go by bands or groups of points (see "Cost" above),
    with too little scratch (null, 0 is fine) by runs or point by point. Any scratch gives the same bits. */
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *mix, uint32_t width, uint32_t height);
 size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t width,

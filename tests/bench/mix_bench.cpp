@@ -170,6 +170,17 @@ int main() {
         }),
         bench::painted_stack(
             [&] { dsn_lattice_tile_fixed(&a->noise, 3, 4, 64, 64, out.data(), nullptr, 0); }));
+    // And a 50/50 continuous tile splatted by materials (two materials' cell records).
+    std::printf(
+        "  stack (painted) of a continuous tile call, 64 x 64 pixels with scratch: 50/50 mix %zu bytes, "
+        "one material %zu bytes\n",
+        bench::painted_stack([&] {
+            dsn_mix_continuous_tile_fixed(&mix, &controls[0], &grid, 64, 64, out.data(), scratch.data(),
+                                          scratch.size());
+        }),
+        bench::painted_stack([&] {
+            dsn_continuous_tile_fixed(&a->noise, &grid, 64, 64, out.data(), scratch.data(), scratch.size());
+        }));
     std::printf("  (checksum %lld)\n", static_cast<long long>(checksum));
     return 0;
 }
