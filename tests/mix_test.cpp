@@ -516,7 +516,8 @@ TEST_CASE("mix: lattice tiles whose weights are uniform over a band go by materi
         for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel;
              kernel++) {
             CAPTURE(kernel);
-            dsn_mix copy = mix;
+            dsn_mix copy; // (copied bytewise: the state is read through another type)
+            std::memcpy(&copy, &mix, sizeof copy);
             dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
             for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
             for (const size_t size : {size_t(0), full, row + 3, 5 * row + 3, 40 * row + 3}) {
@@ -542,6 +543,49 @@ TEST_CASE("mix: lattice tiles whose weights are uniform over a band go by materi
     }
     CHECK(tiles >= 20);
     CHECK(differences == 0);
+}
+
+TEST_CASE("mix: a lattice tile of two materials of one texton size, listed from one walk, every kernel, the "
+          "bits of its points") {
+    // The mixed strips list both materials' impulses from one walk where their textons have one size
+    // (tile_mix.h); RGB and grey, 50/50 and uneven, a period crossing the tile, no scratch.
+    for (const uint32_t channels : {3u, 1u}) {
+        auto a = make_noise(random_texton_asset(channels, 12, 8, 71), 51, 0, 0, 37);
+        auto b = make_noise(with_means(random_texton_asset(channels, 12, 8, 72), 1 << 22, 0, -(1 << 22)), 52);
+        const dsn_mix mix = make_mix({&a->noise, &b->noise});
+        const int32_t x0 = 1000, y0 = -20;
+        const uint32_t width = 140, height = 90;
+        size_t differences = 0, tiles = 0;
+        const Control controls[] = {constant({128, 128}), constant({30, 225})};
+        for (const Control &control : controls) {
+            std::vector<int32_t> expected(size_t(width) * height * channels);
+            for (uint32_t j = 0; j < height; j++)
+                for (uint32_t i = 0; i < width; i++)
+                    REQUIRE(
+                        dsn_mix_lattice_point_fixed(&mix, &control.control, x0 + int32_t(i), y0 + int32_t(j),
+                                                    &expected[(size_t(j) * width + i) * channels]) == DSN_OK);
+            for (uint32_t kernel = DSN_KERNEL_DEFAULT;
+                 kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
+                dsn_mix copy; // (copied bytewise: the state is read through another type)
+                std::memcpy(&copy, &mix, sizeof copy);
+                dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
+                for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
+                std::vector<int32_t> tile(expected.size());
+                std::vector<uint8_t> bytes(expected.size());
+                REQUIRE(dsn_mix_lattice_tile_fixed(&copy, &control.control, x0, y0, width, height,
+                                                   tile.data(), nullptr, 0) == DSN_OK);
+                REQUIRE(dsn_mix_lattice_tile_u8(&copy, &control.control, x0, y0, width, height, bytes.data(),
+                                                nullptr, 0) == DSN_OK);
+                for (size_t at = 0; at < expected.size(); at++) {
+                    differences += tile[at] != expected[at];
+                    differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
+                }
+                tiles++;
+            }
+        }
+        CHECK(tiles >= 2);
+        CHECK(differences == 0);
+    }
 }
 
 TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats, every kernel, the bits "
@@ -584,7 +628,8 @@ TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats
             for (uint32_t kernel = DSN_KERNEL_DEFAULT;
                  kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
                 CAPTURE(kernel);
-                dsn_mix copy = mix;
+                dsn_mix copy; // (copied bytewise: the state is read through another type)
+                std::memcpy(&copy, &mix, sizeof copy);
                 dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
                 for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
                 for (const size_t size : {full, full / 2}) {

@@ -37,17 +37,45 @@ int64_t value_bound(const dsn_noise_state *noise) {
     return most;
 }
 
+/* Which of the two materials an impulse draws, as a bit each (both filters tested on one hash). */
+struct keep_either {
+    keep_material first, second;
+    uint32_t operator()(uint32_t key, uint32_t k) const {
+        const uint64_t hash = dsn_cell_stream(key, 0xC0000000u + k);
+        return uint32_t(hash - first.low < first.span) | uint32_t(hash - second.low < second.span) << 1;
+    }
+};
+
+/* The impulses of one walk into each material's list: every impulse stored in both, counted in the list
+   of the material it draws (keep_either's bits). */
+struct either_list {
+    impulse_list *lists;
+    void operator()(uint32_t end_x, uint32_t end_y, uint32_t drawn) {
+        lists[0](end_x, end_y, drawn & 1u);
+        lists[1](end_x, end_y, drawn >> 1);
+    }
+};
+
 /* One rectangle: 0 where a material's impulses do not fit the strips (the caller then renders the tile
-   otherwise). */
+   otherwise). Materials whose textons have one size are listed from one walk (their impulses reach the
+   same pixels; every material has the mix's cells), others from a walk each. */
 template <uint32_t Channels, typename Value>
 int mix_rectangle(mix_tile_material *materials, const tile_run *walk_x, const tile_run *walk_y,
                   const tile_target *target) {
     impulse_list lists[mix_tile_materials];
     strip_entries entries[mix_tile_materials];
+    for (uint32_t m = 0; m < mix_tile_materials; m++) lists[m].clear(walk_x->length, walk_y->length);
+    const dsn_asset *asset_0 = &materials[0].noise->asset, *asset_1 = &materials[1].noise->asset;
+    if (asset_0->width == asset_1->width && asset_0->height == asset_1->height) {
+        either_list either = {lists};
+        const keep_either keep = {materials[0].keep, materials[1].keep};
+        for_each_nearby_impulse(materials[0].noise, walk_x, walk_y, either, keep);
+    } else {
+        for (uint32_t m = 0; m < mix_tile_materials; m++)
+            for_each_nearby_impulse(materials[m].noise, walk_x, walk_y, lists[m], materials[m].keep);
+    }
     for (uint32_t m = 0; m < mix_tile_materials; m++) {
         const strip_texton *texton = &materials[m].setup.texton;
-        lists[m].clear(walk_x->length, walk_y->length);
-        for_each_nearby_impulse(materials[m].noise, walk_x, walk_y, lists[m], materials[m].keep);
         if (!lists[m].prepare(texton->width, texton->height)) return 0;
         file_strip_entries(&lists[m], texton, walk_x->length, walk_y->length, &entries[m]);
     }

@@ -117,9 +117,10 @@ struct keep_material {
 #endif
 
 /* Calls visit(end_x, end_y, reaches) for every impulse of the cells near the rectangle run_x x run_y
-   (both single runs), in the order of the hash stream: its ends (dsn_reach_at) on both axes, and 1 when
-   it reaches the rectangle and `keep` keeps it, else 0 (computed without a branch: the caller may store
-   every impulse and count only those that reach). This is the only place the tile path walks cells. The
+   (both single runs), in the order of the hash stream: its ends (dsn_reach_at) on both axes, and what
+   `keep` says of it (1 for an impulse it keeps; a mixed tile's bits, one per material) where it reaches
+   the rectangle, else 0 (computed without a branch: the caller may store every impulse and count only
+   those that reach). This is the only place the tile path walks cells. The
    impulses' packed offsets are read as in dsn_impulse_field, one position pair per pair's impulses. */
 template <typename Visit, typename Keep>
 void for_each_nearby_impulse(const dsn_noise_state *noise, const tile_run *run_x, const tile_run *run_y,
@@ -151,10 +152,10 @@ void for_each_nearby_impulse(const dsn_noise_state *noise, const tile_run *run_x
                         const uint32_t offset_x = (field & half_mask) >> drop,
                                        offset_y = ((field >> half_bits) & half_mask) >> drop;
                         const uint32_t end_x = in_x.end - offset_x, end_y = in_y.end - offset_y;
-                        visit(end_x, end_y,
-                              uint32_t(offset_x <= in_x.last_offset) &
-                                  uint32_t(offset_y <= in_y.last_offset) & uint32_t(end_x < limit_x) &
-                                  uint32_t(end_y < limit_y) & keep(key, k));
+                        const uint32_t reaches = uint32_t(offset_x <= in_x.last_offset) &
+                                                 uint32_t(offset_y <= in_y.last_offset) &
+                                                 uint32_t(end_x < limit_x) & uint32_t(end_y < limit_y);
+                        visit(end_x, end_y, (0u - reaches) & keep(key, k));
                     }
                 }
             }
