@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fixtures/continuous_fixtures.h"
+#include "fixtures/test_assets.h"
 #include "offline/bake_internal.h"
 #include "runtime/core/mix_weights.h"
 #include "runtime/evaluators/mix_evaluation.h"
@@ -70,6 +71,43 @@ dsn::AssetFields with_means(dsn::AssetFields fields, int32_t a, int32_t b, int32
     fields.mean[0] = a;
     if (fields.channels == 3) fields.mean[1] = b, fields.mean[2] = c;
     return fields;
+}
+
+// Four materials of four kinds on a process with a period: RGB 8-bit 31 x 31 (the lead, period 29 along
+// x), grey 16-bit 19 x 19 at 12 impacts (ignored: the lead's density rules), RGB 8-bit 9 x 9 with other
+// means, RGB 16-bit 13 x 13; seeds from `seed`.
+struct FourMaterials {
+    std::unique_ptr<Noise> a, b, c, d;
+    dsn_mix mix;
+    explicit FourMaterials(uint32_t seed)
+        : a(make_noise(random_texton_asset(3, 15, 8, seed), seed + 1, 0, 29, 0)),
+          b(make_noise(random_texton_asset(1, 9, 16, seed + 2), seed + 3, 12u << 16)),
+          c(make_noise(with_means(random_texton_asset(3, 4, 8, seed + 4), 1 << 22, -(1 << 21), 1 << 20),
+                       seed + 5)),
+          d(make_noise(random_texton_asset(3, 6, 16, seed + 6), seed + 7)),
+          mix(make_mix({&a->noise, &b->noise, &c->noise, &d->noise})) {}
+};
+
+// The outputs that differ from the points' values: fixed, u8 and (where given) float.
+size_t output_differences(const std::vector<int32_t> &expected, const std::vector<int32_t> &fixed,
+                          const std::vector<uint8_t> &bytes, const std::vector<float> &floats) {
+    size_t differences = 0;
+    for (size_t at = 0; at < expected.size(); at++) {
+        differences += fixed[at] != expected[at];
+        differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
+        if (!floats.empty()) differences += floats[at] != dsn_fixed_to_float(expected[at]);
+    }
+    return differences;
+}
+
+// A copy of `mix` whose materials run kernel `kernel` (copied bytewise: the state is written through
+// another type).
+dsn_mix on_kernel(const dsn_mix &mix, uint32_t kernel) {
+    dsn_mix copy;
+    std::memcpy(&copy, &mix, sizeof copy);
+    dsn_mix_state *state = dsn_mix_state_of(&copy);
+    for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
+    return copy;
 }
 
 } // namespace
@@ -488,11 +526,8 @@ TEST_CASE("mix: lattice tiles whose weights are uniform over a band go by materi
     // three mixed, two 8-bit RGB), whose tile bands are uniform or not; no scratch, scratch for whole
     // bands and for 1, 5 and 40 rows (misaligned: a walked band is at most 32 of them); every kernel this
     // CPU runs; fixed, u8 and float outputs.
-    auto a = make_noise(random_texton_asset(3, 15, 8, 51), 21, 0, 29, 0);
-    auto b = make_noise(random_texton_asset(1, 9, 16, 52), 22, 12u << 16);
-    auto c = make_noise(with_means(random_texton_asset(3, 4, 8, 53), 1 << 22, -(1 << 21), 1 << 20), 23);
-    auto d = make_noise(random_texton_asset(3, 6, 16, 54), 24);
-    const dsn_mix mix = make_mix({&a->noise, &b->noise, &c->noise, &d->noise});
+    const FourMaterials materials(51);
+    const dsn_mix &mix = materials.mix;
     const Control even = constant({128, 128, 0, 0}), one_zero = constant({200, 0, 55, 0}),
                   wide = constant({100, 0, 0, 155});
     const Control banded(4, 1, 10, 5, [](uint32_t, uint32_t j) {
@@ -516,10 +551,7 @@ TEST_CASE("mix: lattice tiles whose weights are uniform over a band go by materi
         for (uint32_t kernel = DSN_KERNEL_DEFAULT; kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel;
              kernel++) {
             CAPTURE(kernel);
-            dsn_mix copy; // (copied bytewise: the state is read through another type)
-            std::memcpy(&copy, &mix, sizeof copy);
-            dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
-            for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
+            const dsn_mix copy = on_kernel(mix, kernel);
             for (const size_t size : {size_t(0), full, row + 3, 5 * row + 3, 40 * row + 3}) {
                 CAPTURE(size);
                 unsigned char *start = scratch.data() + (size == full ? 0 : 1);
@@ -532,11 +564,7 @@ TEST_CASE("mix: lattice tiles whose weights are uniform over a band go by materi
                                                 start, size) == DSN_OK);
                 REQUIRE(dsn_mix_lattice_tile_float(&copy, &control->control, x0, y0, width, height,
                                                    floats.data(), start, size) == DSN_OK);
-                for (size_t at = 0; at < expected.size(); at++) {
-                    differences += tile[at] != expected[at];
-                    differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
-                    differences += floats[at] != dsn_fixed_to_float(expected[at]);
-                }
+                differences += output_differences(expected, tile, bytes, floats);
                 tiles++;
             }
         }
@@ -566,20 +594,14 @@ TEST_CASE("mix: a lattice tile of two materials of one texton size, listed from 
                                                     &expected[(size_t(j) * width + i) * channels]) == DSN_OK);
             for (uint32_t kernel = DSN_KERNEL_DEFAULT;
                  kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
-                dsn_mix copy; // (copied bytewise: the state is read through another type)
-                std::memcpy(&copy, &mix, sizeof copy);
-                dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
-                for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
+                const dsn_mix copy = on_kernel(mix, kernel);
                 std::vector<int32_t> tile(expected.size());
                 std::vector<uint8_t> bytes(expected.size());
                 REQUIRE(dsn_mix_lattice_tile_fixed(&copy, &control.control, x0, y0, width, height,
                                                    tile.data(), nullptr, 0) == DSN_OK);
                 REQUIRE(dsn_mix_lattice_tile_u8(&copy, &control.control, x0, y0, width, height, bytes.data(),
                                                 nullptr, 0) == DSN_OK);
-                for (size_t at = 0; at < expected.size(); at++) {
-                    differences += tile[at] != expected[at];
-                    differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
-                }
+                differences += output_differences(expected, tile, bytes, {});
                 tiles++;
             }
         }
@@ -596,11 +618,8 @@ TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats
     // the first two drawn) on a process with a period; two, three and four drawn; a rotated and a
     // magnified grid; the scratch asked for (misaligned) and too little (the groups then go); every
     // kernel this CPU runs; fixed, u8 and float outputs.
-    auto a = make_noise(random_texton_asset(3, 15, 8, 61), 41, 0, 29, 0);
-    auto b = make_noise(random_texton_asset(1, 9, 16, 62), 42, 12u << 16);
-    auto c = make_noise(with_means(random_texton_asset(3, 4, 8, 63), 1 << 22, -(1 << 21), 1 << 20), 43);
-    auto d = make_noise(random_texton_asset(3, 6, 16, 64), 44);
-    const dsn_mix mix = make_mix({&a->noise, &b->noise, &c->noise, &d->noise});
+    const FourMaterials materials(61);
+    const dsn_mix &mix = materials.mix;
     const Control controls[] = {constant({128, 128, 0, 0}), constant({200, 0, 55, 0}),
                                 constant({0, 90, 80, 70}), constant({60, 61, 62, 63})};
     const int64_t one = kOne;
@@ -615,10 +634,8 @@ TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats
             std::vector<int32_t> expected(size_t(width) * height * 3);
             for (uint32_t j = 0; j < height; j++)
                 for (uint32_t i = 0; i < width; i++) {
-                    const int64_t x = int64_t(uint64_t(grid.origin_x) + uint64_t(grid.column_step_x) * i +
-                                              uint64_t(grid.row_step_x) * j);
-                    const int64_t y = int64_t(uint64_t(grid.origin_y) + uint64_t(grid.column_step_y) * i +
-                                              uint64_t(grid.row_step_y) * j);
+                    int64_t x, y;
+                    dsn_test::grid_point(grid, i, j, &x, &y);
                     REQUIRE(dsn_mix_continuous_point_fixed(&mix, &control.control, x, y,
                                                            &expected[(size_t(j) * width + i) * 3]) == DSN_OK);
                 }
@@ -628,10 +645,7 @@ TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats
             for (uint32_t kernel = DSN_KERNEL_DEFAULT;
                  kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
                 CAPTURE(kernel);
-                dsn_mix copy; // (copied bytewise: the state is read through another type)
-                std::memcpy(&copy, &mix, sizeof copy);
-                dsn_mix_state *state = const_cast<dsn_mix_state *>(dsn_mix_state_of(&copy));
-                for (uint32_t m = 0; m < state->count; m++) state->material[m].tile_kernel = kernel;
+                const dsn_mix copy = on_kernel(mix, kernel);
                 for (const size_t size : {full, full / 2}) {
                     std::vector<int32_t> tile(expected.size());
                     std::vector<uint8_t> bytes(expected.size());
@@ -643,11 +657,7 @@ TEST_CASE("mix: continuous tiles whose weights are uniform go by material splats
                                                        bytes.data(), start, size) == DSN_OK);
                     REQUIRE(dsn_mix_continuous_tile_float(&copy, &control.control, &grid, width, height,
                                                           floats.data(), start, size) == DSN_OK);
-                    for (size_t at = 0; at < expected.size(); at++) {
-                        differences += tile[at] != expected[at];
-                        differences += bytes[at] != dsn_fixed_to_u8(expected[at]);
-                        differences += floats[at] != dsn_fixed_to_float(expected[at]);
-                    }
+                    differences += output_differences(expected, tile, bytes, floats);
                     tiles++;
                 }
             }
