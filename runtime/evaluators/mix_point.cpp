@@ -4,7 +4,10 @@
    material's sums normalized with the point's weight on its mean, and summed. Lattice and continuous,
    per point (through the kernels' vector walks where the materials' textons share one size, kernels.h's
    dsn_point_materials; else the scalar walks here); tiles and batches by groups of points (a lattice tile
-   by bands of rows or runs of a row, continuous points near each other together). */
+   by bands of rows or runs of a row, continuous points near each other together), but where the weights
+   agree over a tile's reach: there each material's own tile code sums the impulses that draw it (the
+   kernels' two-material strips, a lattice pass per material, a continuous splat per material), and
+   the materials' values are added. */
 #include "core/bilinear_texton.h"
 #include "core/cell_walk.h"
 #include "core/continuous_internal.h"
@@ -736,9 +739,10 @@ void sum_planes(const dsn_mix_state *mix, const int32_t *const *planes, const ui
     }
 }
 
-/* A band whose weights are uniform over its reach: one material pass for each material that impulses
-   draw, into its plane (lattice_window_sums's layout), then each value the sum of the materials', as
-   mix_output_from sums them. */
+/* A band whose weights are uniform over its reach: the kernel's two-material strips where they take it
+   (mixed_band), else one material pass for each material that impulses draw, into its plane
+   (lattice_window_sums's layout), then each value the sum of the materials', as mix_output_from sums
+   them. */
 void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, uint32_t width, uint32_t y,
                uint32_t rows, int32_t *scratch, const BandTarget &target) {
     const size_t points = static_cast<size_t>(rows) * width;
