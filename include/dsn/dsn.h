@@ -940,8 +940,9 @@ int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *contr
    one material's weights alone is that material's tile, splatted or by strips as the noise's own, when
    `scratch` holds dsn_mix_*_tile_scratch_size() bytes (the largest of the materials' scratch sizes and,
    for a lattice tile, of the values of a band of up to 128 rows: 4 bytes per channel of every material
-   per point; for a continuous one, of every material's block sums; 0 for an invalid mix or size); other tiles go by bands or groups of points (see "Cost" above),
-   with too little scratch (null, 0 is fine) by runs or point by point. Any scratch gives the same bits. */
+   per point; for a continuous one, of every material's block sums; 0 for an invalid mix or size); other tiles
+   go by bands or groups of points (see "Cost" above), with too little scratch (null, 0 is fine) by runs or
+   point by point. Any scratch gives the same bits. */
 size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *mix, uint32_t width, uint32_t height);
 size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *mix, const dsn_grid *grid, uint32_t width,
                                             uint32_t height);
