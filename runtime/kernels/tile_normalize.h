@@ -146,7 +146,7 @@ inline void interleave_3(simd_vector r, simd_vector g, simd_vector b, simd_vecto
 /* A strip row's values, normalized from its sums (one vector per channel), in the vectors store_strip
    takes. */
 template <uint32_t Channels>
-inline void normalized_strip(const split_vectors *v, const simd_vector *sums, simd_vector *values) {
+DSN_SIMD_INLINE void normalized_strip(const split_vectors *v, const simd_vector *sums, simd_vector *values) {
     const simd_vector ones = set_16(1);
     simd_vector pair_low = unpack_low_16(sums[0], sums[1]), pair_high = unpack_high_16(sums[0], sums[1]);
     simd_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);

@@ -106,7 +106,7 @@ inline int store_whole_strip(const simd_vector *values, uint8_t *out, int) {
 /* The first `pixels` pixels of a normalized strip row: whole strips as store_whole_strip can, else 8
    pixels (a 128-bit lane of each vector) at a time. */
 template <uint32_t Channels, typename Value>
-inline void store_strip(const simd_vector *values, uint32_t pixels, Value *out, int stream) {
+DSN_SIMD_INLINE void store_strip(const simd_vector *values, uint32_t pixels, Value *out, int stream) {
     const uint32_t vectors = 2 * Channels;
     if (pixels == lane && store_whole_strip<Channels>(values, out, stream)) return;
     for (uint32_t part = 0; part * 8 < pixels; part++) {
