@@ -843,10 +843,10 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    material, once per point where the samples around it agree), a hash, and one texton. A lattice point
    whose materials' lattice textons share one size, channel count and value size takes the kernels'
    vector walk, as one noise's point does (16 impulses of a cell tested at once; where the samples agree,
-   the AVX-512 copy hashes the 16 impulses' materials at once too); so does a continuous point whose
-   samples agree, with 8-bit textons of one size and channel count, in the AVX-512 copy (the continuous
-   point's vector evaluator, each of 16 candidates gathering its own material's texels: the textons must
-   lie within 2^30 bytes of material 0's); other points walk in scalar code. Tiles
+   the AVX2 and AVX-512 copies hash the 16 impulses' materials at once too); so does a continuous point
+   whose samples agree, with 8-bit textons of one size and channel count, in the AVX2 and AVX-512 copies
+   (the continuous point's vector evaluator, each of 8 or 16 candidates gathering its own material's
+   texels: the textons must lie within 2^30 bytes of material 0's); other points walk in scalar code. Tiles
    and batches walk their points in groups. A lattice tile whose samples agree over its reach and whose
    impulses draw two materials of the mix's channel count, 8-bit textons that the x86 strip path holds
    (tile_render.h), goes by that path for both at once, with or without scratch: each rectangle's impulses

@@ -102,7 +102,8 @@ inline vector_256 lane_byte(vector_256 words, int index) {
    elsewhere, as add_bilinear's, without a branch: one gather per texel column and row, 4 bytes from each
    texel (its channels first). Reads reach at most 3 bytes past the window's last texel: into the asset's
    4-byte CRC (format.h: total_size), which the loader guarantees lies in the buffer after the texton and the
-   pyramid. */
+   pyramid. `moved` adds a byte offset per lane: a mixed point's lane reads its own material's texton
+   (MixedVisit), whose asset's CRC follows it alike. */
 struct WindowTexels {
     vector_256 top_left, top_right, bottom_left, bottom_right; /* 4 bytes each, channels first */
     vector_256 across, down;
@@ -111,7 +112,7 @@ struct WindowTexels {
 template <uint32_t Channels>
 DSN_POINT_INLINE void window_texels_8(const unsigned char *values, uint32_t width, uint32_t height,
                                       uint32_t stride, vector_256 s_x, vector_256 s_y, vector_256 reach,
-                                      WindowTexels *texels) {
+                                      WindowTexels *texels, vector_256 moved = zero_256()) {
     const vector_256 weight_bits = set_8x32(bilinear_weight_mask), one = set_8x32(1);
     const vector_256 column = subtract_32(shift_right_logical_32(s_x, 16), one),
                      row = subtract_32(shift_right_logical_32(s_y, 16), one);
@@ -122,7 +123,7 @@ DSN_POINT_INLINE void window_texels_8(const unsigned char *values, uint32_t widt
                      bottom = bitwise_and(reach, at_most(add_32(row, one), last_row));
     /* Byte offset of the top-left texel (unread where it is outside). */
     const vector_256 entry = add_32(multiply_32(row, set_8x32(stride)), column);
-    const vector_256 at = Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry;
+    const vector_256 at = add_32(Channels == 3 ? add_32(shift_left_32(entry, 1), entry) : entry, moved);
     const vector_256 below = add_32(at, set_8x32(stride * Channels));
     const unsigned char *next = values + Channels;
     texels->top_left = gather_masked_32<1>(values, at, bitwise_and(top, left));
@@ -922,9 +923,16 @@ int point_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t 
 }
 #endif
 
-#if defined(__AVX512F__) && defined(__AVX512BW__)
 /* ---- A mix's point where its weights are uniform (mix_point.cpp): each candidate reads its material's
    texton (kernels.h's dsn_point_materials), the materials' textons of one size, channels and bits ---- */
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+typedef vector_512 mixed_sums;
+inline vector_512 zero_sums() { return zero_512(); }
+#else
+typedef vector_256 mixed_sums;
+inline vector_256 zero_sums() { return zero_256(); }
+#endif
 
 /* The visit of a mixed point: the point's (material 0's texton, window, cell bases), the materials as
    lanes (the thresholds their hashes meet; where each texton lies from material 0's, in bytes, which the
@@ -934,8 +942,8 @@ struct MixedVisit {
     PointVisit<Channels> point;
     uint32_t count;
     uint32_t threshold[3], moved[3]; /* level l: material l + 1 or a later one (broadcast where used) */
-    uint32_t reached[3];             /* 0xFFFF, or 0 where no hash meets the level's threshold */
-    vector_512 sums[dsn_point_materials_most][Channels];
+    uint32_t reached[3];             /* all ones, or 0 where no hash meets the level's threshold */
+    mixed_sums sums[dsn_point_materials_most][Channels];
 };
 
 /* The materials as lanes, the sums zero; false where a texton lies 2^30 bytes or more from material 0's. */
@@ -949,23 +957,27 @@ inline bool mixed_visit_begin(const dsn_point_materials *materials, MixedVisit<C
         if (moved + (uint64_t(1) << 30) >= (uint64_t(1) << 31)) return false;
         visit->moved[level] = uint32_t(moved);
         visit->threshold[level] = uint32_t(materials->thresholds[level]);
-        visit->reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFu;
+        visit->reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFFFFFu;
     }
     for (uint32_t m = 0; m < dsn_point_materials_most; m++)
-        for (uint32_t c = 0; c < Channels; c++) visit->sums[m][c] = zero_512();
+        for (uint32_t c = 0; c < Channels; c++) visit->sums[m][c] = zero_sums();
     return true;
 }
 
-/* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash
-   dsn_cell_stream(key, 2^31 + 2^30 + k) (the fraction's stream moved by 2^30 0x9E3779B9, 2^30 modulo
-   2^32), its texels read from that material's texton, and its read added to that material's sums. */
+/* The candidates' material hashes dsn_cell_stream(key, 2^31 + 2^30 + k): the fraction's stream moved by
+   2^30 0x9E3779B9 (2^30 modulo 2^32). */
+const uint32_t material_stream_step = 0x40000000u;
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash, its
+   texels read from that material's texton, and its read added to that material's sums. */
 template <uint32_t Channels>
-DSN_POINT_INLINE void visit_mixed_16(MixedVisit<Channels> *visit, const PointCandidates &candidates,
-                                     uint32_t first, uint32_t valid) {
+DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandidates &candidates,
+                                  uint32_t first, uint32_t valid) {
     vector_512 s_x, s_y;
     const mask_16 reach = candidate_offsets_16(&visit->point, candidates, first, valid, &s_x, &s_y);
     const vector_512 hashes =
-        mix32_lanes(add_32(load_16x32(candidates.stream + first), set_16x32(0x40000000u)));
+        mix32_lanes(add_32(load_16x32(candidates.stream + first), set_16x32(material_stream_step)));
     uint32_t at_least[4] = {0, 0, 0, 0};
     vector_512 moved = zero_512();
     for (uint32_t level = 0; level < 3; level++) {
@@ -981,12 +993,53 @@ DSN_POINT_INLINE void visit_mixed_16(MixedVisit<Channels> *visit, const PointCan
             texels, visit->sums[m],
             static_cast<mask_16>((m == 0 ? 0xFFFFu : at_least[m - 1]) & ~at_least[m]));
 }
+const uint32_t mixed_lanes = 16;
+#else
+/* The AVX2 copy: candidates first .. first + 7 of which the first `valid` exist, each read once from its
+   material's texton (window_texels_8's moved gathers); the read's 64-bit halves (bilinear_8's even and
+   odd lanes) added to each material's sums under that material's lanes. */
+template <uint32_t Channels>
+DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandidates &candidates,
+                                  uint32_t first, uint32_t valid) {
+    const PointVisit<Channels> &point = visit->point;
+    vector_256 s_x, s_y;
+    const vector_256 reach = candidate_offsets_8(&point, candidates, first, valid, &s_x, &s_y);
+    const vector_256 hashes =
+        mix32_lanes(add_32(load_8x32(candidates.stream + first), set_8x32(material_stream_step)));
+    vector_256 at_least[4] = {zero_256(), zero_256(), zero_256(), zero_256()};
+    vector_256 moved = zero_256();
+    for (uint32_t level = 0; level < 3; level++) {
+        at_least[level] =
+            bitwise_and(at_most(set_8x32(visit->threshold[level]), hashes), set_8x32(visit->reached[level]));
+        moved = blend_bytes(moved, set_8x32(visit->moved[level]), at_least[level]);
+    }
+    WindowTexels texels;
+    window_texels_8<Channels>(point.texton, point.width, point.height, point.width, s_x, s_y, reach, &texels,
+                              moved);
+    vector_256 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
+    for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++) {
+        const vector_256 lanes = and_not(at_least[m], m == 0 ? set_8x32(0xFFFFFFFFu) : at_least[m - 1]);
+        even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
+    }
+    for (uint32_t c = 0; c < Channels; c++) {
+        const int byte = static_cast<int>(c);
+        vector_256 even, odd;
+        bilinear_8(lane_byte(texels.top_left, byte), lane_byte(texels.top_right, byte),
+                   lane_byte(texels.bottom_left, byte), lane_byte(texels.bottom_right, byte), texels.across,
+                   texels.down, &even, &odd);
+        for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++)
+            visit->sums[m][c] = add_64(
+                visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
+    }
+}
+const uint32_t mixed_lanes = 8;
+#endif
 
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_candidates(MixedVisit<Channels> *visit, PointCandidates *candidates) {
     clear_past_candidates(candidates);
-    for (uint32_t first = 0; first < candidates->count; first += 16u)
-        visit_mixed_16<Channels>(visit, *candidates, first, candidates->count - first);
+    for (uint32_t first = 0; first < candidates->count; first += mixed_lanes)
+        visit_mixed<Channels>(visit, *candidates, first, candidates->count - first);
     candidates->count = 0;
 }
 
@@ -1013,24 +1066,19 @@ int point_mixed(const dsn_noise_state *noise, const dsn_point_materials *materia
             value[DSN_MAX_CHANNELS * m + c] = c < Channels ? lane_total(visit.sums[m][c]) : 0u;
     return 1;
 }
-#endif
 
 /* The kernel entry (kernels.h's dsn_continuous_point_entry), one copy per channel count: the point's sums,
    and where slope_x is not null its derivative's (point_slopes), or where materials is not null each
-   material's (point_mixed, the AVX-512 copy alone, weights uniform); 0 for a noise it does not take, or a
+   material's (point_mixed, weights uniform); 0 for a noise it does not take, or a
    point with more than point_vector_cells cells along an axis. */
 inline int continuous_point_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                  uint64_t *slope_x, uint64_t *slope_y, const dsn_point_materials *materials) {
     if (!point_vector_takes(noise)) return 0;
     const bool rgb = noise->asset.channels == 3;
     if (materials != 0) {
-#if defined(__AVX512F__) && defined(__AVX512BW__)
         if (slope_x != 0 || materials->pick != 0 || materials->count > dsn_point_materials_most) return 0;
         return rgb ? point_mixed<3>(noise, materials, x, y, value)
                    : point_mixed<1>(noise, materials, x, y, value);
-#else
-        return 0;
-#endif
     }
 #if DSN_GRADIENTS
     if (slope_x != 0)

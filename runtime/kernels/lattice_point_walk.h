@@ -280,12 +280,18 @@ inline void flush_cells(const unsigned char *texton, uint32_t width, uint16_t *m
 
 /* ---- The mixed point (mix_point.cpp): each hit adds its material's texton ---- */
 
+#if (defined(__AVX512F__) && defined(__AVX512BW__)) || defined(__AVX2__)
+#define DSN_MATERIAL_MASKS 1
+#else
+#define DSN_MATERIAL_MASKS 0
+#endif
+
 /* What the mixed walk keeps of each buffered cell beside its masks and entries: its key, its origin and
    its impulses' fields (16 offset_y + offset_x), from which a hit's material comes. */
 typedef struct material_slots {
     uint32_t keys[9], origins_x[9], origins_y[9];
     unsigned char fields[9 * 16];
-#if defined(__AVX512F__) && defined(__AVX512BW__)
+#if DSN_MATERIAL_MASKS
     /* Where the weights are uniform, the cells' impulses of material m or a later one, bit k for impulse
        k: at_least[m - 1][slot], hashed 16 at a time as the cell is buffered (material_masks). */
     uint16_t at_least[3][12];
@@ -293,7 +299,6 @@ typedef struct material_slots {
 } material_slots;
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-#define DSN_MATERIAL_MASKS 1
 /* The uniform weights' thresholds as 32-bit lanes, with the levels that no hash reaches (2^32) marked. */
 typedef struct material_thresholds {
     vector_512 threshold[3];
@@ -324,8 +329,43 @@ inline void material_masks(const material_thresholds *thresholds, uint32_t level
                                       thresholds->reached[level])
                            : uint16_t(0);
 }
-#else
-#define DSN_MATERIAL_MASKS 0
+#elif defined(__AVX2__)
+/* The AVX2 copy's: the 16 impulses as two vectors of 8. */
+typedef struct material_thresholds {
+    vector_256 threshold[3];
+    uint32_t reached[3];      /* 0xFFFF, or 0 where no hash reaches the level */
+    vector_256 lane_steps[2]; /* lane k of half h: (8 h + k) 0x9E3779B9 (dsn_cell_stream's Weyl step) */
+} material_thresholds;
+
+inline material_thresholds thresholds_of(const dsn_point_materials *materials) {
+    material_thresholds out;
+    for (uint32_t level = 0; level < 3; level++) {
+        out.threshold[level] = set_8x32(uint32_t(materials->thresholds[level]));
+        out.reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFu;
+    }
+    for (uint32_t half = 0; half < 2; half++)
+        out.lane_steps[half] = multiply_32(
+            add_32(set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7), set_8x32(8u * half)), set_8x32(0x9E3779B9u));
+    return out;
+}
+
+inline void material_masks(const material_thresholds *thresholds, uint32_t levels, uint32_t key,
+                           uint32_t slot, material_slots *slots) {
+    const vector_256 start = set_8x32(key + 0xC0000000u * 0x9E3779B9u);
+    const vector_256 hashes[2] = {mix32_lanes(add_32(start, thresholds->lane_steps[0])),
+                                  mix32_lanes(add_32(start, thresholds->lane_steps[1]))};
+    for (uint32_t level = 0; level < 3; level++) {
+        uint32_t bits = 0;
+        for (uint32_t half = 0; half < 2; half++) {
+            const vector_256 threshold = thresholds->threshold[level];
+            /* hash >= threshold, unsigned: the threshold is the smaller of the two */
+            const vector_256 met = equal_32(minimum_unsigned_32(threshold, hashes[half]), threshold);
+            bits |= uint32_t(top_bits_of_32(met)) << (8u * half);
+        }
+        slots->at_least[level][slot] =
+            level < levels ? uint16_t(bits & thresholds->reached[level]) : uint16_t(0);
+    }
+}
 #endif
 
 /* The material of impulse k of the cell with this key, at lattice position (x, y) (kernels.h's
