@@ -1022,6 +1022,67 @@ TEST_CASE(
           DSN_ERR_CONTINUOUS_MISMATCH);
 }
 
+TEST_CASE("mix: filtered points where the weights mix read 8-bit levels through every kernel's vector "
+          "reads, with the bits of the one-by-one reads") {
+    // Every material's impulses are found by one walk and read per material; the AVX2 and AVX-512 copies
+    // read 8-bit levels on vectors, the default copy one by one. Three materials with pyramids: RGB 8-bit
+    // 31 x 31 (the lead, period 29 along x), RGB 8-bit 9 x 9 with other means and RGB 16-bit 13 x 13 (read
+    // one by one in every copy); and a grey 8-bit 13 x 13 with an RGB 8-bit 9 x 9.
+    auto fields = [](uint32_t channels, uint32_t radius, uint32_t bits, uint64_t seed) {
+        auto made =
+            with_means(random_texton_asset(channels, radius, bits, seed), 1 << 22, -(1 << 21), 1 << 20);
+        made.pyramid = dsn::texton_pyramid(made);
+        return made;
+    };
+    auto lead = make_noise(fields(3, 15, 8, 201), 202, 0, 29, 0);
+    auto small = make_noise(fields(3, 4, 8, 203), 204);
+    auto wide = make_noise(fields(3, 6, 16, 205), 206);
+    auto grey = make_noise(fields(1, 6, 8, 207), 208);
+    const dsn_mix three = make_mix({&lead->noise, &small->noise, &wide->noise});
+    const dsn_mix grey_lead = make_mix({&grey->noise, &small->noise});
+    const Control thirds = constant({90, 80, 85});
+    const Control ramp(3, 5, 4, 3, [](uint32_t i, uint32_t j) {
+        return std::vector<uint8_t>{uint8_t(50 * i), uint8_t(255 - 50 * i), uint8_t(20 * j)};
+    });
+    const Control halves = constant({128, 128});
+    const Control grey_ramp(2, 5, 4, 3, [](uint32_t i, uint32_t j) {
+        return std::vector<uint8_t>{uint8_t(50 * i + j), uint8_t(255 - 50 * i)};
+    });
+    // Levels of detail about 0.6, 1.6 and 2.6, and one anisotropic by 4:1 with 4 taps.
+    const dsn_footprint footprints[] = {{kOne * 3 / 2, 0, 0, kOne * 3 / 2, 1},
+                                        {3 * kOne, kOne / 3, -kOne / 3, 3 * kOne, 4},
+                                        {6 * kOne, 0, 0, 6 * kOne, 1},
+                                        {4 * kOne, 0, 0, kOne, 4}};
+    const struct {
+        const dsn_mix *mix;
+        const Control *control;
+    } cases[] = {{&three, &thirds}, {&three, &ramp}, {&grey_lead, &halves}, {&grey_lead, &grey_ramp}};
+    std::vector<int64_t> xs, ys;
+    renderer_points(209, 60, &xs, &ys);
+    size_t differences = 0, compared = 0, spread = 0;
+    for (const auto &mixed : cases)
+        for (const dsn_footprint &footprint : footprints)
+            for (size_t k = 0; k < xs.size(); k++) {
+                const dsn_mix reference = on_kernel(*mixed.mix, DSN_KERNEL_DEFAULT);
+                int32_t expected[3];
+                REQUIRE(dsn_mix_filtered_point_fixed(&reference, &mixed.control->control, xs[k], ys[k],
+                                                     &footprint, expected) == DSN_OK);
+                spread += expected[0] != expected[1];
+                for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1;
+                     kernel <= dsn_mix_state_of(mixed.mix)->material[0].tile_kernel; kernel++) {
+                    const dsn_mix copy = on_kernel(*mixed.mix, kernel);
+                    int32_t value[3];
+                    REQUIRE(dsn_mix_filtered_point_fixed(&copy, &mixed.control->control, xs[k], ys[k],
+                                                         &footprint, value) == DSN_OK);
+                    differences += std::memcmp(value, expected, sizeof value) != 0;
+                    compared++;
+                }
+            }
+    INFO(compared << " points compared");
+    CHECK(spread > 0); // the values are noise, not a constant
+    CHECK(differences == 0);
+}
+
 namespace {
 
 // The covariance of one material's continuous noise at a lag, channels c and d (theory above).

@@ -1,7 +1,8 @@
 /* runtime/core/level_read.h - one pyramid level read at an impulse-to-point offset, bilinearly, as the
    filtered walks read it (the tap-by-tap walk, filtered_walk.cpp, and a mix's filtered point,
    mix_filtered.cpp): the offset divided by the level's spacing, then the continuous mode's read of the
-   level's values, optionally with its slopes. Compiled with DSN_FILTERING. Internal to libdsn; not
+   level's values, optionally with its slopes; and the same read's exact test on a candidate's offset, as
+   the kernels' vector reads take it. Compiled with DSN_FILTERING. Internal to libdsn; not
    installed (everything here has internal linkage). */
 #ifndef DSN_LEVEL_READ_H
 #define DSN_LEVEL_READ_H
@@ -56,6 +57,30 @@ inline void add_level(const dsn_walked_level &level, uint32_t channels, uint32_t
         sums[c] += static_cast<uint64_t>((65536 - down) * upper + down * lower); /* each term < 2^47 */
         if (Slopes) add_slopes(a, b, d, e, across, down, &slopes[0][c], &slopes[1][c]);
     }
+}
+
+/* The exact test of one level along one axis for one tap, as the walk's bracket of floor(offset / 2^l),
+   on a candidate's c, the impulse-to-point offset plus tap_shift (Q32.32): with u = c + start (modulo
+   2^64) the impulse is in reach when u < limit, and then (u + bias) >> l is bracket's shifted value.
+   Closed: the gradient's, which keeps the offsets at the entry edge of the level's reach (add_level's:
+   floor(offset / 2^l) = -(radius + 1) texels, the 2^l values of u below 0), start and limit moved up by
+   2^l and the bias 0. */
+struct LevelTest {
+    uint64_t start, limit, bias;
+};
+
+inline LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64_t tap_shift,
+                            bool closed) {
+    const uint32_t l = level.level;
+    const int64_t spacing_texel = static_cast<int64_t>(one_texel) << l, spacing = static_cast<int64_t>(1)
+                                                                                  << l;
+    const int64_t edge = closed ? 0 : spacing;
+    LevelTest test;
+    test.start =
+        static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - edge - tap_shift);
+    test.limit = static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - edge);
+    test.bias = static_cast<uint64_t>(edge);
+    return test;
 }
 
 } // namespace

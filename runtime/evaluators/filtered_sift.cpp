@@ -15,6 +15,7 @@
 #include "core/continuous_sift.h"
 #include "core/filtered_internal.h"
 #include "core/impulse_position.h"
+#include "core/level_read.h"
 #include "core/normalize_fixed.h"
 #include "core/poisson_count.h"
 #include "kernels/bilinear_read.h"
@@ -79,28 +80,6 @@ bool tap_axis(const uint64_t *coordinates, uint32_t taps, uint32_t radius, uint3
     out->reach_limit = 2 * reach + most - least;
     for (uint32_t t = 0; t < taps; t++) out->tap_shift[t] = reach + most - relative[t];
     return true;
-}
-
-/* The exact test of one level along one axis for one tap, as the walk's bracket of floor(offset / 2^l):
-   with u = c + start (modulo 2^64) the impulse is in reach when u < limit, and then (u + bias) >> l is
-   bracket's shifted value. Closed: the gradient's, which keeps the offsets at the entry edge of the
-   level's reach (level_read.h's add_level: floor(offset / 2^l) = -(radius + 1) texels, the 2^l values of
-   u below 0), start and limit moved up by 2^l and the bias 0. */
-struct LevelTest {
-    uint64_t start, limit, bias;
-};
-
-LevelTest level_test(const dsn_walked_level &level, uint32_t level_radius, int64_t tap_shift, bool closed) {
-    const uint32_t l = level.level;
-    const int64_t spacing_texel = static_cast<int64_t>(one_texel) << l, spacing = static_cast<int64_t>(1)
-                                                                                  << l;
-    const int64_t edge = closed ? 0 : spacing;
-    LevelTest test;
-    test.start =
-        static_cast<uint64_t>(static_cast<int64_t>(level_radius + 1u) * spacing_texel - edge - tap_shift);
-    test.limit = static_cast<uint64_t>(static_cast<int64_t>(2u * level_radius + 2u) * spacing_texel - edge);
-    test.bias = static_cast<uint64_t>(edge);
-    return test;
 }
 
 /* The level test on the kernel's narrow offsets C = floor(c / 2^16) modulo 2^32, every c of an axis

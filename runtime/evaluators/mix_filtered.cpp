@@ -1,8 +1,9 @@
 /* runtime/evaluators/mix_filtered.cpp - the filtered evaluation of a mix (dsn.h, "Mixing"): per material,
    filtered_point.cpp's steps (its plan, its one or two levels, their blend over the taps, one rounding)
    over the impulses that picked it, with its offsets and mean weighted by the point's weight of the
-   material, the materials' values then summed; where the weights are one material's alone, that
-   material's own filtered point or tile. Compiled with DSN_MIXING and DSN_FILTERING. */
+   material, the materials' values then summed; every material's sums from one walk over the impulses;
+   where the weights are one material's alone, that material's own filtered point or tile. Compiled with
+   DSN_MIXING and DSN_FILTERING. */
 #include "core/cell_walk.h"
 #include "core/continuous_sift.h"
 #include "core/filtered_internal.h"
@@ -11,6 +12,7 @@
 #include "core/level_read.h"
 #include "core/poisson_count.h"
 #include "evaluators/mix_evaluation.h"
+#include "kernels/kernels.h"
 
 #if DSN_MIXING && DSN_FILTERING
 
@@ -67,22 +69,70 @@ MixRegion filtered_region(const dsn_mix_state *mix, const dsn_mix_control *contr
                       y + static_cast<uint64_t>(high[1]), 64u);
 }
 
-/* The sums of `count` levels of material m at each tap of its plan around (x, y), over the impulses of
-   material 0's process that picked m: filtered_walk.cpp's tap-by-tap walk, each impulse within reach of
-   the levels picking its material first. */
-void material_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                   uint32_t m, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
-                   const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums) {
+/* What the filtered mix reads of a material: the one or two levels its plan blends and their walk radii;
+   no levels where the material takes no part in the walk (its plan fades, or another material's walk). */
+struct MaterialLevels {
+    dsn_walked_level walked[2];
+    uint32_t count, radius_x, radius_y;
+};
+
+/* A material's impulses in reach of a tap, waiting for their reads: their impulse-to-point offsets
+   (Q32.32), with room for the kernel's reads of whole vectors past the last. */
+const uint32_t waiting_most = 64;
+struct WaitingImpulses {
+    int64_t x[waiting_most + 16], y[waiting_most + 16];
+    uint32_t count;
+};
+
+/* The waiting impulses' reads of each of a material's levels added to its sums at the tap (level_sums[l]):
+   by the kernel's vector reads for 8-bit levels where it has them (each candidate's c its offset, so the
+   tests' tap_shift is 0), else one by one (add_level). */
+void read_waiting(const dsn_noise_state *material, const MaterialLevels &own, WaitingImpulses *waiting,
+                  uint64_t (*level_sums)[DSN_MAX_CHANNELS]) {
+    const dsn_asset *asset = &material->asset;
+    dsn_filter_level_reads_entry *vector_reads =
+        asset->bits == 8 ? dsn_kernel_entries_of(material->tile_kernel)->filter_level_reads : 0;
+    for (uint32_t l = 0; l < own.count; l++) {
+        const dsn_walked_level &level = own.walked[l];
+        if (vector_reads != 0) {
+            const LevelTest test_x = level_test(level, level.radius_x, 0, false),
+                            test_y = level_test(level, level.radius_y, 0, false);
+            const uint64_t tests[5] = {test_x.start, test_x.limit, test_y.start, test_y.limit, test_x.bias};
+            const uint32_t unused_narrow_tests[6] = {0, 0, 0, 0, 0, 0};
+            vector_reads(&level, asset->channels, waiting->x, waiting->y, 0, 0, waiting->count, tests,
+                         unused_narrow_tests, level_sums[l], 0);
+        } else {
+            for (uint32_t i = 0; i < waiting->count; i++)
+                add_level<false>(level, asset->channels, asset->bits, waiting->x[i], waiting->y[i],
+                                 level_sums[l], 0);
+        }
+    }
+    waiting->count = 0;
+}
+
+/* The sums of every material's levels at each tap of `plan` around (x, y), over the impulses of material
+   0's process: filtered_walk.cpp's tap-by-tap walk within the largest of the materials' reaches, each
+   impulse within it picking its material first, then waiting for that material's reads where it lies
+   within its levels' reach. */
+void materials_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                    uint64_t x, uint64_t y, const dsn_filter_plan *plan, const MaterialLevels *levels,
+                    dsn_filter_sums *sums) {
     const dsn_noise_state *lead = &mix->material[0];
-    const dsn_asset *asset = &mix->material[m].asset;
     const uint32_t shift = lead->cell_shift;
-    uint32_t radius_x, radius_y;
-    dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
+    uint32_t radius_x = 0, radius_y = 0;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        radius_x = levels[m].radius_x > radius_x ? levels[m].radius_x : radius_x;
+        radius_y = levels[m].radius_y > radius_y ? levels[m].radius_y : radius_y;
+    }
+    WaitingImpulses waiting[DSN_MIX_MAX_MATERIALS];
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         const uint64_t tap_x = x + static_cast<uint64_t>(plan->offset_x[tap]);
         const uint64_t tap_y = y + static_cast<uint64_t>(plan->offset_y[tap]);
-        for (uint32_t l = 0; l < 2; l++)
-            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
+        for (uint32_t m = 0; m < mix->count; m++) {
+            waiting[m].count = 0;
+            for (uint32_t l = 0; l < 2; l++)
+                for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[m][tap][l][c] = 0;
+        }
         const PointAxis wx = point_axis(tap_x, radius_x, shift, lead->period[0]);
         const PointAxis wy = point_axis(tap_y, radius_y, shift, lead->period[1]);
         for (uint32_t sy = 0; sy < wy.axis.span_count; sy++) {
@@ -101,49 +151,83 @@ void material_sums(const dsn_mix_state *mix, const dsn_mix_control *control, con
                             int64_t dx, dy;
                             if (!impulse_offset(wy, span_y, origin_y, dsn_impulse_bits_y(hash), &dy) ||
                                 !impulse_offset(wx, span_x, origin_x, dsn_impulse_bits_x(hash), &dx) ||
-                                !within_reach(dx, radius_x) || !within_reach(dy, radius_y) ||
-                                impulse_material(control, mix->count, region, key, k,
-                                                 tap_x - static_cast<uint64_t>(dx),
-                                                 tap_y - static_cast<uint64_t>(dy)) != m)
+                                !within_reach(dx, radius_x) || !within_reach(dy, radius_y))
                                 continue;
-                            for (uint32_t l = 0; l < count; l++)
-                                add_level<false>(levels[l], asset->channels, asset->bits, dx, dy,
-                                                 sums[tap][l], 0);
+                            const uint32_t m = impulse_material(control, mix->count, region, key, k,
+                                                                tap_x - static_cast<uint64_t>(dx),
+                                                                tap_y - static_cast<uint64_t>(dy));
+                            const MaterialLevels &own = levels[m];
+                            if (own.count == 0 || !within_reach(dx, own.radius_x) ||
+                                !within_reach(dy, own.radius_y))
+                                continue;
+                            WaitingImpulses *own_waiting = &waiting[m];
+                            own_waiting->x[own_waiting->count] = dx;
+                            own_waiting->y[own_waiting->count] = dy;
+                            if (++own_waiting->count == waiting_most)
+                                read_waiting(&mix->material[m], own, own_waiting, sums[m][tap]);
                         }
                     }
                 }
             }
         }
+        for (uint32_t m = 0; m < mix->count; m++)
+            read_waiting(&mix->material[m], levels[m], &waiting[m], sums[m][tap]);
     }
 }
 
-/* Material m's term of the filtered mix at (x, y): filtered_point.cpp's steps on a copy of the material
-   whose offsets and mean are weighted by `weight` (Q2.14), over its impulses. */
-void material_value(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                    uint32_t m, uint64_t x, uint64_t y, const dsn_filter_plan *plan, uint32_t weight,
-                    int32_t *out) {
-    dsn_noise_state weighted = mix->material[m];
-    for (uint32_t c = 0; c < weighted.asset.channels; c++) {
-        weighted.offset[c] = weighted_offset(weighted.offset[c], weight);
+/* Material m with its offsets and mean weighted by `weight` (Q2.14): filtered_point.cpp's steps on it
+   give the material's term of the mix. */
+void weighted_material(const dsn_mix_state *mix, uint32_t m, uint32_t weight, dsn_noise_state *weighted) {
+    *weighted = mix->material[m];
+    for (uint32_t c = 0; c < weighted->asset.channels; c++) {
+        weighted->offset[c] = weighted_offset(weighted->offset[c], weight);
         for (uint32_t l = 0; l < 8; l++)
-            weighted.level_offset[l][c] = weighted_offset(weighted.level_offset[l][c], weight);
-        weighted.asset.mean[c] = static_cast<int32_t>(weighted_offset(weighted.asset.mean[c], weight));
+            weighted->level_offset[l][c] = weighted_offset(weighted->level_offset[l][c], weight);
+        weighted->asset.mean[c] = static_cast<int32_t>(weighted_offset(weighted->asset.mean[c], weight));
     }
-    if (dsn_internal_filter_fade(&weighted, plan, out)) return;
-    dsn_walked_level walked[2];
-    const uint32_t count = dsn_internal_filter_walked_levels(&weighted, plan, walked);
-    dsn_filter_sums sums;
-    material_sums(mix, control, region, m, x, y, plan, walked, count, sums);
+}
+
+/* Material m's term from its sums (filtered_point.cpp's blend over the taps and one rounding). */
+void material_value(const dsn_noise_state *weighted, const dsn_filter_plan *plan, const MaterialLevels &own,
+                    const dsn_filter_sums sums, int32_t *out) {
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
-        for (uint32_t l = 0; l < count; l++) {
+        for (uint32_t l = 0; l < own.count; l++) {
             int64_t values[DSN_MAX_CHANNELS] = {0, 0, 0};
-            dsn_internal_filter_level_values(&weighted, &walked[l], sums[tap][l], values);
-            dsn_internal_filter_add_level(&weighted, plan, l, values, totals);
+            dsn_internal_filter_level_values(weighted, &own.walked[l], sums[tap][l], values);
+            dsn_internal_filter_add_level(weighted, plan, l, values, totals);
         }
-        if (count == 1) dsn_internal_filter_add_mean(&weighted, plan, totals);
+        if (own.count == 1) dsn_internal_filter_add_mean(weighted, plan, totals);
     }
-    dsn_internal_filter_round(&weighted, plan, totals, out);
+    dsn_internal_filter_round(weighted, plan, totals, out);
+}
+
+/* The materials' terms where the weights mix: the levels of each material whose plan does not fade, the
+   sums of all by one walk (the plans' taps are the footprint's alone: a material's pyramid clamps only
+   its level of detail), then each term from its sums, with its weighted offsets and mean. */
+void mixed_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                 uint64_t x, uint64_t y, const MixPlans plans, const uint32_t *weights,
+                 int32_t (*terms)[DSN_MAX_CHANNELS]) {
+    MaterialLevels levels[DSN_MIX_MAX_MATERIALS];
+    dsn_noise_state weighted;
+    bool walked = false;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        MaterialLevels &own = levels[m];
+        own.count = own.radius_x = own.radius_y = 0;
+        weighted_material(mix, m, weights[m], &weighted);
+        if (dsn_internal_filter_fade(&weighted, &plans[m], terms[m])) continue;
+        own.count = dsn_internal_filter_walked_levels(&weighted, &plans[m], own.walked);
+        dsn_filter_walk_radii(own.walked, own.count, &own.radius_x, &own.radius_y);
+        walked = true;
+    }
+    if (!walked) return;
+    dsn_filter_sums sums[DSN_MIX_MAX_MATERIALS];
+    materials_sums(mix, control, region, x, y, &plans[0], levels, sums);
+    for (uint32_t m = 0; m < mix->count; m++)
+        if (levels[m].count != 0) {
+            weighted_material(mix, m, weights[m], &weighted);
+            material_value(&weighted, &plans[m], levels[m], sums[m], terms[m]);
+        }
 }
 
 void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
@@ -163,12 +247,10 @@ void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, ui
     MixWeights at_point;
     mix_weights_at(control, mix->count, x, y, &at_point);
     point_weights(at_point, mix->count, weights);
+    int32_t terms[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
+    mixed_terms(mix, control, region, x, y, plans, weights, terms);
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
-    for (uint32_t m = 0; m < mix->count; m++) {
-        int32_t value[DSN_MAX_CHANNELS];
-        material_value(mix, control, region, m, x, y, &plans[m], weights[m], value);
-        add_material_value(mix, m, value, totals);
-    }
+    for (uint32_t m = 0; m < mix->count; m++) add_material_value(mix, m, terms[m], totals);
     store_totals(mix, totals, out);
 }
 

@@ -583,7 +583,8 @@ inline void add_sifted_pair(PointCandidates *candidates, uint32_t key, uint32_t 
 /* Buffers the candidates of the pair that holds impulses first .. first + 7 of the cell with this key,
    whose impulses are `count` (none when count <= first); indices: the cell's (cell_indices). */
 DSN_POINT_INLINE void add_pair(PointCandidates *candidates, uint32_t key, uint32_t first, uint32_t count,
-                     const FieldLanes &lanes, const CellAxis &x, const CellAxis &y, uint32_t indices) {
+                               const FieldLanes &lanes, const CellAxis &x, const CellAxis &y,
+                               uint32_t indices) {
     const uint64_t pair = dsn_position_pair(key, first >> 3);
     const uint32_t present = count <= first ? 0u : count - first < 8u ? count - first : 8u;
     const uint32_t sifted = gather_lanes(candidate_lanes(pair, lanes, x, y), lanes) & ((1u << present) - 1u);

@@ -136,8 +136,13 @@ int main() {
         }
     }
     // The deepest of the mixing controls (50/50: the kernels' walks; the transition: each impulse's pick).
-    size_t lattice_stack = 0, continuous_stack = 0;
+    size_t lattice_stack = 0, continuous_stack = 0, filtered_stack = 0, own_filtered_stack = 0;
     for (const dsn_mix_control *control : {&controls[0], &controls[1]}) {
+        filtered_stack =
+            std::max(filtered_stack, bench::painted_stack([&] {
+                         int32_t value[3];
+                         dsn_mix_filtered_point_fixed(&mix, control, one / 3, one / 5, &footprint, value);
+                     }));
         lattice_stack = std::max(lattice_stack, bench::painted_stack([&] {
                                      int32_t value[3];
                                      dsn_mix_lattice_point_fixed(&mix, control, 3, 4, value);
@@ -148,8 +153,14 @@ int main() {
                          dsn_mix_continuous_point_fixed(&mix, control, one / 3, one / 5, value);
                      }));
     }
-    std::printf("  stack (painted) of a mix point call: lattice %zu bytes, continuous %zu bytes\n",
-                lattice_stack, continuous_stack);
+    own_filtered_stack = bench::painted_stack([&] {
+        int32_t value[3];
+        dsn_filtered_point_fixed(&a->noise, one / 3, one / 5, &footprint, value);
+    });
+    std::printf(
+        "  stack (painted) of a mix point call: lattice %zu bytes, continuous %zu bytes, filtered %zu "
+        "bytes (one material's filtered point: %zu bytes)\n",
+        lattice_stack, continuous_stack, filtered_stack, own_filtered_stack);
     std::printf(
         "  stack (painted) of a mixed tile call, 16 x 4 pixels: lattice %zu bytes, continuous %zu bytes\n",
         bench::painted_stack([&] {
