@@ -299,21 +299,47 @@ typedef struct material_slots {
 } material_slots;
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
+/* A cell's 16 impulses as one vector of 16 lanes (AVX-512) or two of 8 (AVX2). */
+typedef vector_512 material_vector;
+const uint32_t material_lanes = 16;
+inline material_vector lane_indices() {
+    return set_lanes_16x32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+/* Bit k: lane k's hash at least the threshold (unsigned). */
+inline uint32_t at_least_bits(material_vector hashes, material_vector threshold) {
+    return greater_equal_unsigned_32(hashes, threshold);
+}
+#elif DSN_MATERIAL_MASKS
+typedef vector_256 material_vector;
+const uint32_t material_lanes = 8;
+inline material_vector lane_indices() { return set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7); }
+inline uint32_t at_least_bits(material_vector hashes, material_vector threshold) {
+    /* the threshold is the smaller of the two */
+    return uint32_t(top_bits_of_32(equal_32(minimum_unsigned_32(threshold, hashes), threshold)));
+}
+#endif
+
+#if DSN_MATERIAL_MASKS
+const uint32_t material_vectors = 16 / material_lanes;
+
 /* The uniform weights' thresholds as 32-bit lanes, with the levels that no hash reaches (2^32) marked. */
 typedef struct material_thresholds {
-    vector_512 threshold[3];
-    uint32_t reached[3];   /* 0xFFFF, or 0 where no hash reaches the level */
-    vector_512 lane_steps; /* lane k: k 0x9E3779B9 (dsn_cell_stream's Weyl step) */
+    material_vector threshold[3];
+    uint32_t reached[3]; /* 0xFFFF, or 0 where no hash reaches the level */
+    /* lane k of vector v: (material_lanes v + k) 0x9E3779B9 (dsn_cell_stream's Weyl step) */
+    material_vector lane_steps[material_vectors];
 } material_thresholds;
 
 inline material_thresholds thresholds_of(const dsn_point_materials *materials) {
     material_thresholds out;
     for (uint32_t level = 0; level < 3; level++) {
-        out.threshold[level] = set_16x32(uint32_t(materials->thresholds[level]));
+        out.threshold[level] = all_lanes_32<material_vector>(uint32_t(materials->thresholds[level]));
         out.reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFu;
     }
-    out.lane_steps = multiply_32(set_lanes_16x32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-                                 set_16x32(0x9E3779B9u));
+    for (uint32_t v = 0; v < material_vectors; v++)
+        out.lane_steps[v] =
+            multiply_32(add_32(lane_indices(), all_lanes_32<material_vector>(material_lanes * v)),
+                        all_lanes_32<material_vector>(0x9E3779B9u));
     return out;
 }
 
@@ -321,47 +347,14 @@ inline material_thresholds thresholds_of(const dsn_point_materials *materials) {
    2^30 + k) at once against the thresholds. */
 inline void material_masks(const material_thresholds *thresholds, uint32_t levels, uint32_t key,
                            uint32_t slot, material_slots *slots) {
-    const vector_512 hashes =
-        mix32_lanes(add_32(set_16x32(key + 0xC0000000u * 0x9E3779B9u), thresholds->lane_steps));
-    for (uint32_t level = 0; level < 3; level++)
-        slots->at_least[level][slot] =
-            level < levels ? uint16_t(greater_equal_unsigned_32(hashes, thresholds->threshold[level]) &
-                                      thresholds->reached[level])
-                           : uint16_t(0);
-}
-#elif defined(__AVX2__)
-/* The AVX2 copy's: the 16 impulses as two vectors of 8. */
-typedef struct material_thresholds {
-    vector_256 threshold[3];
-    uint32_t reached[3];      /* 0xFFFF, or 0 where no hash reaches the level */
-    vector_256 lane_steps[2]; /* lane k of half h: (8 h + k) 0x9E3779B9 (dsn_cell_stream's Weyl step) */
-} material_thresholds;
-
-inline material_thresholds thresholds_of(const dsn_point_materials *materials) {
-    material_thresholds out;
-    for (uint32_t level = 0; level < 3; level++) {
-        out.threshold[level] = set_8x32(uint32_t(materials->thresholds[level]));
-        out.reached[level] = materials->thresholds[level] >> 32 ? 0u : 0xFFFFu;
-    }
-    for (uint32_t half = 0; half < 2; half++)
-        out.lane_steps[half] = multiply_32(
-            add_32(set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7), set_8x32(8u * half)), set_8x32(0x9E3779B9u));
-    return out;
-}
-
-inline void material_masks(const material_thresholds *thresholds, uint32_t levels, uint32_t key,
-                           uint32_t slot, material_slots *slots) {
-    const vector_256 start = set_8x32(key + 0xC0000000u * 0x9E3779B9u);
-    const vector_256 hashes[2] = {mix32_lanes(add_32(start, thresholds->lane_steps[0])),
-                                  mix32_lanes(add_32(start, thresholds->lane_steps[1]))};
+    const material_vector start = all_lanes_32<material_vector>(key + 0xC0000000u * 0x9E3779B9u);
+    material_vector hashes[material_vectors];
+    for (uint32_t v = 0; v < material_vectors; v++)
+        hashes[v] = mix32_lanes(add_32(start, thresholds->lane_steps[v]));
     for (uint32_t level = 0; level < 3; level++) {
         uint32_t bits = 0;
-        for (uint32_t half = 0; half < 2; half++) {
-            const vector_256 threshold = thresholds->threshold[level];
-            /* hash >= threshold, unsigned: the threshold is the smaller of the two */
-            const vector_256 met = equal_32(minimum_unsigned_32(threshold, hashes[half]), threshold);
-            bits |= uint32_t(top_bits_of_32(met)) << (8u * half);
-        }
+        for (uint32_t v = 0; v < material_vectors; v++)
+            bits |= at_least_bits(hashes[v], thresholds->threshold[level]) << (material_lanes * v);
         slots->at_least[level][slot] =
             level < levels ? uint16_t(bits & thresholds->reached[level]) : uint16_t(0);
     }
