@@ -1,14 +1,17 @@
-/* runtime/evaluators/mix_evaluation.h - what the mix's evaluators share (mix_point.cpp: lattice and
-   continuous; mix_filtered.cpp: filtered): the checks of a call and its zeroed output, a material's own
-   evaluators where the weights are that material's alone (tile_material), its weighted offsets, the
-   saturated sums of the materials' values, and the continuous point that an unfiltered footprint gives.
-   Internal to libdsn; not installed. */
+/* runtime/evaluators/mix_evaluation.h - what the mix's evaluators share (mix_point.cpp: the walks, lattice
+   and continuous; mix_tile.cpp: the tiles; mix_filtered.cpp: filtered): the checks of a call and its zeroed
+   output, a material's own evaluators where the weights are that material's alone (tile_material), its
+   weighted offsets, the saturated sums of the materials' values, the region of the weights that a lattice
+   window reads and a uniform region's draws, and mix_point.cpp's walks that the others take: groups of
+   continuous points, bands and runs of lattice rows (the tiles), and the continuous point that an
+   unfiltered footprint gives. Internal to libdsn; not installed. */
 #ifndef DSN_MIX_EVALUATION_H
 #define DSN_MIX_EVALUATION_H
 
 #include "core/continuous_internal.h"
 #include "core/mix_weights.h"
 #include "core/normalize_fixed.h"
+#include "kernels/kernels.h"
 
 #if DSN_MIXING
 
@@ -27,6 +30,17 @@ inline int64_t weighted_offset(int64_t offset, uint32_t weight) {
                          static_cast<int64_t>(bias >> mix_weight_bits);
     const int64_t low = offset - high * (static_cast<int64_t>(1) << mix_weight_bits); /* in [0, 2^14) */
     return high * static_cast<int64_t>(weight) + ((low * static_cast<int64_t>(weight)) >> mix_weight_bits);
+}
+
+/* A material's offset (its mean minus its sums' expectation, per channel) weighted by its weight (of
+   2^14) at a point: the impulses that draw the material are that share of the process's, so its expected
+   sums take that share, and so must its mean. */
+inline void material_weighted_offset(const dsn_noise_state *material, uint32_t weight, int64_t *offset) {
+    /* (read once: GCC cannot tell that the stores through offset leave it alone, and reloading it after each
+       made a transition's lattice tile 20% slower in mix_bench) */
+    const uint32_t channels = material->asset.channels;
+    for (uint32_t c = 0; c < channels && c < DSN_MAX_CHANNELS; c++)
+        offset[c] = weighted_offset(material->offset[c], weight);
 }
 
 /* The value of one material's own noise (the mix where the weights are that material's alone) as the mix's
@@ -117,12 +131,69 @@ inline void store_totals(const dsn_mix_state *mix, const int64_t *totals, int32_
                                          : static_cast<int32_t>(totals[c]);
 }
 
+/* Continuous points near each other (part of a continuous tile's row, neighbours in a batch) are walked at
+   once, up to group_points of them (dsn_internal_mix_continuous_points). */
+const uint32_t group_points = 16;
+
+/* The points of a run: a row of lattice points (x0 + i, y), 1 .. run_points of them, with contiguous
+   coordinates (on a periodic axis not across the int32 sign change, where the reduction breaks them). */
+const uint32_t run_points = 32;
+
+/* The region of grid samples that the impulses reaching a window of `rows` rows of `length` points may
+   read: their floors lie within the lattice reach of it. */
+inline MixRegion window_region(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0,
+                               uint32_t length, uint32_t y0, uint32_t rows) {
+    const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
+    const uint32_t longest = length > rows ? length : rows;
+    return mix_region(control, mix->count, static_cast<uint64_t>(x0 - reach_x) << 32,
+                      static_cast<uint64_t>(y0 - reach_y) << 32,
+                      static_cast<uint64_t>(x0 + length - 1u + reach_x) << 32,
+                      static_cast<uint64_t>(y0 + rows - 1u + reach_y) << 32, 16u + longest - 1u);
+}
+
+/* The smallest hash that draws past material m, for m < dsn_point_materials_most - 1, where a region's
+   weights are uniform (mix_weights.h's draw_threshold): 2^32, above every hash, past the last material and
+   where no weight is set (every impulse then draws material 0). */
+inline void uniform_thresholds(const dsn_mix_state *mix, const MixRegion &region, uint64_t *thresholds) {
+    const uint32_t total = region.weights.cumulative[mix->count - 1u];
+    for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
+        thresholds[m] = total != 0 && m + 1u < mix->count
+                            ? draw_threshold(region.weights.cumulative[m], total)
+                            : static_cast<uint64_t>(1) << 32;
+}
+
 } // namespace
 
 /* The mix's values at the continuous point (x, y), Q32.32, for a mix and control that passed check_call
    (mix_point.cpp). */
 void dsn_internal_mix_continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x,
                                        uint64_t y, int32_t *out);
+
+/* The values of `count` continuous points (count <= group_points): as a group where they lie close
+   together and the weights mix around them, else point by point (a material's own evaluator where its
+   weights hold alone). */
+void dsn_internal_mix_continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
+                                        const uint64_t *xs, const uint64_t *ys, uint32_t count,
+                                        int32_t (*values)[DSN_MAX_CHANNELS]);
+
+/* The output of a band's points (or a run's), the first point at index `first` of out. */
+typedef struct dsn_mix_band_target {
+    void *out;
+    dsn_output_kind kind;
+    size_t first;
+} dsn_mix_band_target;
+
+/* A band of `rows` rows of `width` points from (x0, y): its sums of every material from one walk over the
+   impulses that reach it (each found once, its texton added to the points it reaches) into `scratch`
+   (mix_tile.cpp's band_row_bytes a row), then each point's output. */
+void dsn_internal_mix_walk_band(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0,
+                                uint32_t width, uint32_t y, uint32_t rows, uint32_t *scratch,
+                                const dsn_mix_band_target &target);
+
+/* A run of `length` points (at most run_points) from (x, y): walked as a band of one row, its sums on the
+   stack. */
+void dsn_internal_mix_walk_run(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x,
+                               uint32_t length, uint32_t y, const dsn_mix_band_target &target);
 
 #endif /* DSN_MIXING */
 

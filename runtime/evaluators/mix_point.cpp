@@ -1,27 +1,23 @@
-/* runtime/evaluators/mix_point.cpp - the mixing of materials (dsn.h, "Mixing"): one walk over the impulses
-   of material 0's process within the largest reach, each impulse picking its material from the weights
-   at its position (mix_weights.h) and adding that material's texton to the material's sums; then each
-   material's sums normalized with the point's weight on its mean, and summed. Lattice and continuous,
+/* runtime/evaluators/mix_point.cpp - the mixing of materials (dsn.h, "Mixing") by walks: one walk over the
+   impulses of material 0's process within the largest reach, each impulse picking its material from the
+   weights at its position (mix_weights.h) and adding that material's texton to the material's sums; then
+   each material's sums normalized with the point's weight on its mean, and summed. Lattice and continuous,
    per point (through the kernels' vector walks where the materials' textons share one size, kernels.h's
-   dsn_point_materials; else the scalar walks here); tiles and batches by groups of points (a lattice tile
-   by bands of rows or runs of a row, continuous points near each other together), but where the weights
-   agree over a tile's reach: there each material's own tile code sums the impulses that draw it (the
-   kernels' two-material strips, a lattice pass per material, a continuous splat per material), and
-   the materials' values are added. */
+   dsn_point_materials; else the scalar walks here) and by groups of points walked at once: continuous
+   points near each other (a batch's, or a continuous tile's row), a band of a lattice tile's rows, a run of
+   a row. Which tiles take the walks, and the tile paths where the weights agree over a tile's reach, are
+   mix_tile.cpp's. */
 #include "core/bilinear_texton.h"
 #include "core/cell_walk.h"
 #include "core/continuous_internal.h"
 #include "core/continuous_sift.h"
-#include "core/grid_points.h"
 #include "core/impulse_position.h"
 #include "core/lattice_impulses.h"
 #include "core/mix_weights.h"
 #include "core/normalize_fixed.h"
 #include "core/poisson_count.h"
-#include "evaluators/grid_splat.h"
 #include "evaluators/mix_evaluation.h"
 #include "kernels/kernels.h"
-#include "kernels/splat_cells.h"
 
 #if DSN_MIXING
 
@@ -58,9 +54,8 @@ void visit_candidates(uint32_t key, uint32_t count, const FieldLanes &lanes, con
     }
 }
 
-/* Continuous points near each other (a run of a tile's row, neighbours in a batch), walked at once: up to
-   group_points of them, within group_extent texels of each other along each axis. */
-const uint32_t group_points = 16, group_extent = 32;
+/* How far apart along each axis, in texels, the points of a group (group_points) may lie. */
+const uint32_t group_extent = 32;
 
 /* The points of a group along one axis: their box [low, low + extent] (Q32.32) and the window of cells
    [floor(low) - 1, floor(low + extent) + 1] with the mix's reach (a point's window, point_axis, for a
@@ -188,23 +183,6 @@ bool lattice_axis(const axis_cell &on_axis, uint32_t span, const FieldLanes &lan
     return true;
 }
 
-/* The points of a run: a row of lattice points (x0 + i, y), 1 .. run_points of them, with contiguous
-   coordinates (on a periodic axis not across the int32 sign change, where the reduction breaks them). */
-const uint32_t run_points = 32;
-static_assert(DSN_MIX_MAX_MATERIALS == 4, "the runs' sums are listed for four materials");
-
-/* The region of grid samples that the impulses reaching a window of `rows` rows of `length` points may
-   read: their floors lie within the lattice reach of it. */
-MixRegion window_region(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0,
-                        uint32_t length, uint32_t y0, uint32_t rows) {
-    const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
-    const uint32_t longest = length > rows ? length : rows;
-    return mix_region(control, mix->count, static_cast<uint64_t>(x0 - reach_x) << 32,
-                      static_cast<uint64_t>(y0 - reach_y) << 32,
-                      static_cast<uint64_t>(x0 + length - 1u + reach_x) << 32,
-                      static_cast<uint64_t>(y0 + rows - 1u + reach_y) << 32, 16u + longest - 1u);
-}
-
 /* sums[v] += values first .. first + count - 1 of a lattice texton (8- or 16-bit, channels interleaved):
    a texton row's entries added to consecutive points of a run. */
 inline void add_texton_values(const dsn_asset *asset, const dsn_texton_window *texton, uint32_t first,
@@ -305,8 +283,7 @@ typedef int64_t MixOffsets[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
 /* Each material's offset weighted by its weight at a point. */
 void weighted_offsets(const dsn_mix_state *mix, const uint32_t *weights, MixOffsets offsets) {
     for (uint32_t m = 0; m < mix->count; m++)
-        for (uint32_t c = 0; c < mix->material[m].asset.channels && c < DSN_MAX_CHANNELS; c++)
-            offsets[m][c] = weighted_offset(mix->material[m].offset[c], weights[m]);
+        material_weighted_offset(&mix->material[m], weights[m], offsets[m]);
 }
 
 /* Each material's sums normalized from its weighted offset, summed per channel (a grey material's value
@@ -375,17 +352,6 @@ dsn_texton_window texton_read(const dsn_noise_state *material, bool lattice) {
                                       material->asset.height,
                                       {material->radius[0], material->radius[1]}};
     return texton;
-}
-
-/* The smallest hash that draws past material m, for m < dsn_point_materials_most - 1, where a region's
-   weights are uniform (mix_weights.h's draw_threshold): 2^32, above every hash, past the last material and
-   where no weight is set (every impulse then draws material 0). */
-void uniform_thresholds(const dsn_mix_state *mix, const MixRegion &region, uint64_t *thresholds) {
-    const uint32_t total = region.weights.cumulative[mix->count - 1u];
-    for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
-        thresholds[m] = total != 0 && m + 1u < mix->count
-                            ? draw_threshold(region.weights.cumulative[m], total)
-                            : static_cast<uint64_t>(1) << 32;
 }
 
 /* The materials as the kernels' mixed points take them (kernels.h's dsn_point_materials): their textons
@@ -541,405 +507,6 @@ void point_sums(const dsn_mix_state *mix, const uint32_t *const *planes, size_t 
         }
 }
 
-/* The rows of a band that dsn_mix_lattice_tile_scratch_size asks for. Walking the impulses that reach a
-   band costs (rows + 2 reach) / rows of walking them once (about 2 for 32 rows of a 31 x 31 texton, which
-   bench measures no slower than 64). A band of material passes asks for up to 128, the strip path's
-   tallest rectangle (tile_strips.h); a walked band is at most 32 rows of it. */
-const uint32_t band_most_rows = 128, walk_most_rows = 32;
-
-/* The bytes of one row of a band's values: every material's (lattice_window_sums's layout: a walk's
-   sums, or each material pass's values). */
-size_t band_row_bytes(const dsn_mix_state *mix, uint32_t width) {
-    size_t values = 0;
-    for (uint32_t m = 0; m < mix->count; m++) values += mix->material[m].asset.channels;
-    return values * width * sizeof(uint32_t);
-}
-
-/* The output of a band's points, the band's first point at index `first` of out. */
-struct BandTarget {
-    void *out;
-    dsn_output_kind kind;
-    size_t first;
-};
-
-/* A band of `rows` rows of `width` points from (x0, y): its sums of every material from one walk over the
-   impulses that reach it (each found once, its texton added to the points it reaches) into `scratch`
-   (band_row_bytes a row), then each point's output. */
-void walk_band(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t width,
-               uint32_t y, uint32_t rows, uint32_t *scratch, const BandTarget &target) {
-    uint32_t *planes[DSN_MIX_MAX_MATERIALS] = {scratch, scratch, scratch, scratch};
-    uint32_t *next = scratch;
-    for (uint32_t m = 0; m < mix->count; m++) {
-        const size_t values = static_cast<size_t>(rows) * width * mix->material[m].asset.channels;
-        planes[m] = next;
-        for (size_t v = 0; v < values; v++) next[v] = 0;
-        next += values;
-    }
-    const MixRegion region = window_region(mix, control, x0, width, y, rows);
-    lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
-    /* where the region is uniform, the weighted offsets of every point of the band */
-    MixOffsets uniform_offsets = {};
-    if (region.uniform) {
-        /* (zeroed: GCC cannot tell point_weights fills them) */
-        uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
-        point_weights(region.weights, mix->count, weights);
-        weighted_offsets(mix, weights, uniform_offsets);
-    }
-    for (uint32_t j = 0; j < rows; j++)
-        for (uint32_t i = 0; i < width; i++) {
-            const size_t point = static_cast<size_t>(j) * width + i;
-            LatticeSums sums;
-            point_sums(mix, planes, point, sums);
-            int32_t value[DSN_MAX_CHANNELS];
-            if (region.uniform)
-                mix_output_from(mix, uniform_offsets, sums, value);
-            else
-                lattice_output(mix, control, region, x0 + i, y + j, sums, value);
-            dsn_store_pixel(target.out, target.kind, (target.first + point) * mix->channels, value,
-                            mix->channels);
-        }
-}
-
-/* Material m as a band's kernels render it: its lattice noise on the mix's process, normalized from its
-   offset weighted by `weight`. The strip path sizes its rectangles for the density of the impulses it
-   sums (tile_strips.h's choose_rectangle): here the material's share of the process's, rounded up (an
-   estimate only: the path counts a rectangle's impulses and takes the 32-bit sums where too many). */
-void pass_noise(const dsn_mix_state *mix, uint32_t m, uint32_t weight, dsn_noise_state *pass) {
-    const dsn_noise_state *material = &mix->material[m], *lead = &mix->material[0];
-#if DSN_READS_SECTIONS
-    dsn_noise_state view;
-    *pass = *dsn_internal_lattice_view(material, &view);
-#else
-    *pass = *material;
-#endif
-    for (uint32_t c = 0; c < material->asset.channels && c < DSN_MAX_CHANNELS; c++)
-        pass->offset[c] = weighted_offset(material->offset[c], weight);
-    const uint64_t share =
-        (static_cast<uint64_t>(lead->impacts_q16) * weight + (1u << mix_weight_bits) - 1u) >> mix_weight_bits;
-    pass->impacts_q16 = share != 0 ? static_cast<uint32_t>(share) : 1u;
-    pass->asset.support_size = lead->asset.support_size;
-}
-
-/* Material m's values over a band into `values` (its channels per point): the kernel's lattice tile of
-   pass_noise from the impulses of the mix's process that draw it (`filter`). */
-void material_pass(const dsn_mix_state *mix, uint32_t m, uint32_t weight, const dsn_impulse_filter *filter,
-                   uint32_t x0, uint32_t width, uint32_t y, uint32_t rows, int32_t *values) {
-    dsn_noise_state pass;
-    pass_noise(mix, m, weight, &pass);
-    dsn_kernel_entries_of(pass.tile_kernel)
-        ->lattice_tile(&pass, x0, y, width, rows, values, 0, 0, dsn_output_fixed,
-                       static_cast<uint32_t *>(static_cast<void *>(values)), filter);
-}
-
-/* The materials that impulses draw where a region's weights are uniform (a material no hash draws has no
-   impulse and a zero weight: its values are zero), the impulses each keeps, and the point weights. */
-struct DrawnMaterials {
-    uint32_t count, materials[DSN_MIX_MAX_MATERIALS], weights[DSN_MIX_MAX_MATERIALS];
-    dsn_impulse_filter filters[DSN_MIX_MAX_MATERIALS];
-};
-
-void drawn_materials(const dsn_mix_state *mix, const MixRegion &region, DrawnMaterials *drawn) {
-    uint64_t thresholds[dsn_point_materials_most - 1];
-    uniform_thresholds(mix, region, thresholds);
-    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) drawn->weights[m] = 0; /* (GCC cannot tell) */
-    point_weights(region.weights, mix->count, drawn->weights);
-    drawn->count = 0;
-    for (uint32_t m = 0; m < mix->count; m++) {
-        const dsn_impulse_filter filter = {
-            m == 0 ? 0u : thresholds[m - 1u],
-            m + 1u < dsn_point_materials_most ? thresholds[m] : static_cast<uint64_t>(1) << 32};
-        if (filter.low >= filter.high) continue;
-        drawn->materials[drawn->count] = m;
-        drawn->filters[drawn->count++] = filter;
-    }
-}
-
-/* Rows of two drawn materials with the mix's channels by the kernel's mixed tile (kernels.h's
-   lattice_mix_tile), where it takes them: each material's normalized values added before they are
-   stored, in one walk of the strips, with no scratch. False where it does not (having perhaps written
-   part of the rows). */
-bool mixed_band(const dsn_mix_state *mix, const DrawnMaterials &drawn, uint32_t x0, uint32_t width,
-                uint32_t y, uint32_t rows, const BandTarget &target) {
-    dsn_lattice_mix_tile_entry *tile = dsn_kernel_entries_of(mix->material[0].tile_kernel)->lattice_mix_tile;
-    if (tile == 0) return false;
-    dsn_noise_state passes[2];
-    for (uint32_t k = 0; k < 2; k++) {
-        const uint32_t m = drawn.materials[k];
-        if (mix->material[m].asset.channels != mix->channels) return false;
-        pass_noise(mix, m, drawn.weights[m], &passes[k]);
-    }
-    const dsn_noise_state *const noises[2] = {&passes[0], &passes[1]};
-    const size_t value_bytes = target.kind == dsn_output_u8 ? 1u : 4u;
-    void *const out = static_cast<unsigned char *>(target.out) + target.first * mix->channels * value_bytes;
-    return tile(noises, drawn.filters, 2u, x0, y, width, rows, out, target.kind) != 0;
-}
-
-inline int32_t saturated(int64_t total) {
-    const int64_t low = total < INT32_MIN ? INT32_MIN : total;
-    return static_cast<int32_t>(low > INT32_MAX ? INT32_MAX : low);
-}
-
-/* sum_planes of two planes with the mix's channels: blocks of 16 values summed into a local array (a loop
-   of constant length into memory nothing else points at, which compilers vectorize), then stored. */
-template <typename Store>
-void sum_two_planes(const int32_t *first, const int32_t *second, size_t values, const Store &store) {
-    const size_t block = 16;
-    size_t v = 0;
-    for (; v + block <= values; v += block) {
-        int32_t sums[block];
-        for (size_t k = 0; k < block; k++) sums[k] = saturating_add(first[v + k], second[v + k]);
-        for (size_t k = 0; k < block; k++) store(v + k, sums[k]);
-    }
-    for (; v < values; v++) store(v, saturating_add(first[v], second[v]));
-}
-
-/* sum_planes where every plane has the mix's channels: value by value, the planes' count a constant. */
-template <uint32_t Count, typename Store>
-void sum_full_planes(const int32_t *const *planes, size_t values, const Store &store) {
-    for (size_t v = 0; v < values; v++) {
-        int64_t total = planes[0][v];
-        for (uint32_t k = 1; k < Count; k++) total += planes[k][v];
-        store(v, saturated(total));
-    }
-}
-
-/* The sum of the materials' values (their planes, a grey material's value in each channel) at each
-   value of a band, saturated to int32, stored by store(index, value). Where a grey material mixes with
-   RGB ones, chunk by chunk, plane after plane. */
-template <typename Store>
-void sum_planes(const dsn_mix_state *mix, const int32_t *const *planes, const uint32_t *channels,
-                uint32_t count, size_t points, const Store &store) {
-    const uint32_t mix_channels = mix->channels;
-    bool full = true;
-    for (uint32_t k = 0; k < count; k++) full = full && channels[k] == mix_channels;
-    if (full) {
-        const size_t values = points * mix_channels;
-        if (count == 1) sum_full_planes<1>(planes, values, store);
-        if (count == 2) sum_two_planes(planes[0], planes[1], values, store);
-        if (count == 3) sum_full_planes<3>(planes, values, store);
-        if (count == 4) sum_full_planes<4>(planes, values, store);
-        return;
-    }
-    const size_t chunk_points = 64;
-    for (size_t first = 0; first < points; first += chunk_points) {
-        const size_t chunk = points - first < chunk_points ? points - first : chunk_points;
-        const size_t values = chunk * mix_channels;
-        int64_t totals[chunk_points * DSN_MAX_CHANNELS];
-        for (size_t v = 0; v < values; v++) totals[v] = 0;
-        for (uint32_t k = 0; k < count; k++) {
-            const int32_t *plane = planes[k] + first * channels[k];
-            if (channels[k] == mix_channels) {
-                for (size_t v = 0; v < values; v++) totals[v] += plane[v];
-            } else {
-                for (size_t p = 0; p < chunk; p++)
-                    for (uint32_t c = 0; c < mix_channels; c++) totals[p * mix_channels + c] += plane[p];
-            }
-        }
-        for (size_t v = 0; v < values; v++) store(first * mix_channels + v, saturated(totals[v]));
-    }
-}
-
-/* A band whose weights are uniform over its reach: the kernel's two-material strips where they take it
-   (mixed_band), else one material pass for each material that impulses draw, into its plane
-   (lattice_window_sums's layout), then each value the sum of the materials', as mix_output_from sums
-   them. */
-void pass_band(const dsn_mix_state *mix, const MixRegion &region, uint32_t x0, uint32_t width, uint32_t y,
-               uint32_t rows, int32_t *scratch, const BandTarget &target) {
-    const size_t points = static_cast<size_t>(rows) * width;
-    DrawnMaterials drawn;
-    drawn_materials(mix, region, &drawn);
-    if (drawn.count == 2 && mixed_band(mix, drawn, x0, width, y, rows, target)) return;
-    const int32_t *planes[DSN_MIX_MAX_MATERIALS];
-    uint32_t channels[DSN_MIX_MAX_MATERIALS], count = 0;
-    int32_t *next = scratch;
-    /* Fixed output: the first material with the mix's channels goes straight into the band's output, which
-       the sum then reads and overwrites in place (each value read before it is written), one plane less
-       to write and read. */
-    int32_t *const in_place = target.kind == dsn_output_fixed
-                                  ? static_cast<int32_t *>(target.out) + target.first * mix->channels
-                                  : 0;
-    for (uint32_t d = 0; d < drawn.count; d++) {
-        const uint32_t m = drawn.materials[d];
-        const dsn_impulse_filter &filter = drawn.filters[d];
-        const bool every = filter.low == 0 && filter.high == static_cast<uint64_t>(1) << 32;
-        channels[count] = mix->material[m].asset.channels;
-        const bool direct = count == 0 && in_place != 0 && channels[count] == mix->channels;
-        int32_t *const values = direct ? in_place : next;
-        material_pass(mix, m, drawn.weights[m], every ? 0 : &filter, x0, width, y, rows, values);
-        planes[count] = values;
-        if (!direct) next += points * channels[count];
-        count++;
-    }
-    if (count == 1 && planes[0] == in_place) return;
-    void *const out = target.out;
-    const size_t first = target.first * mix->channels;
-    if (target.kind == dsn_output_fixed)
-        sum_planes(mix, planes, channels, count, points,
-                   [&](size_t index, int32_t value) { static_cast<int32_t *>(out)[first + index] = value; });
-    else if (target.kind == dsn_output_float)
-        sum_planes(mix, planes, channels, count, points, [&](size_t index, int32_t value) {
-            static_cast<float *>(out)[first + index] = dsn_fixed_to_float(value);
-        });
-    else
-        sum_planes(mix, planes, channels, count, points, [&](size_t index, int32_t value) {
-            static_cast<uint8_t *>(out)[first + index] = dsn_fixed_to_u8(value);
-        });
-}
-
-/* A lattice tile of a mix whose weights mix over its reach, in bands of as many rows as the scratch holds:
-   a band whose weights are uniform over its reach by material passes (pass_band), the others walked in
-   bands of up to walk_most_rows (walk_band). False, writing nothing, where the scratch holds no row, or
-   where an axis with a period crosses the int32 sign change within the tile (the reduction modulo the
-   period breaks the coordinates' contiguity there): the runs then go. */
-bool lattice_tile_by_bands(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t y0,
-                           uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
-                           size_t scratch_size) {
-    const uint32_t until_x = 0x80000000u - x0, until_y = 0x80000000u - y0;
-    if ((mix->material[0].period[0] != 0 && until_x != 0 && until_x < width) ||
-        (mix->material[0].period[1] != 0 && until_y != 0 && until_y < height) || scratch == 0)
-        return false;
-    /* the values 4-byte aligned (the caller's scratch need not be) */
-    const size_t misalignment = reinterpret_cast<uintptr_t>(scratch) % sizeof(uint32_t);
-    const size_t skip = misalignment ? sizeof(uint32_t) - misalignment : 0u;
-    const size_t fitting = scratch_size > skip ? (scratch_size - skip) / band_row_bytes(mix, width) : 0u;
-    if (fitting == 0) return false;
-    const uint32_t band_rows = static_cast<uint32_t>(fitting < band_most_rows ? fitting : band_most_rows);
-    const uint32_t walk_rows = band_rows < walk_most_rows ? band_rows : walk_most_rows;
-    void *const first = static_cast<unsigned char *>(scratch) + skip;
-    for (uint32_t j0 = 0; j0 < height; j0 += band_rows) {
-        const uint32_t rows = height - j0 < band_rows ? height - j0 : band_rows, y = y0 + j0;
-        const MixRegion region = window_region(mix, control, x0, width, y, rows);
-        if (region.uniform) {
-            const BandTarget target = {out, kind, static_cast<size_t>(j0) * width};
-            pass_band(mix, region, x0, width, y, rows, static_cast<int32_t *>(first), target);
-            continue;
-        }
-        for (uint32_t k = 0; k < rows; k += walk_rows) {
-            const uint32_t walked = rows - k < walk_rows ? rows - k : walk_rows;
-            const BandTarget target = {out, kind, static_cast<size_t>(j0 + k) * width};
-            walk_band(mix, control, x0, width, y + k, walked, static_cast<uint32_t *>(first), target);
-        }
-    }
-    return true;
-}
-
-/* A lattice tile of a mix whose weights mix over its reach: row by row, in runs of up to run_points. */
-void lattice_tile_by_runs(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0, uint32_t y0,
-                          uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
-    for (uint32_t j = 0; j < height; j++)
-        for (uint32_t i = 0; i < width;) {
-            const uint32_t x = x0 + i, y = y0 + j, until_sign_change = 0x80000000u - x;
-            uint32_t length = width - i < run_points ? width - i : run_points;
-            if (mix->material[0].period[0] != 0 && until_sign_change != 0 && until_sign_change < length)
-                length = until_sign_change;
-            uint32_t run_sums[DSN_MIX_MAX_MATERIALS][run_points * DSN_MAX_CHANNELS] = {};
-            uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
-                                                                    run_sums[3]};
-            const MixRegion region = window_region(mix, control, x, length, y, 1u);
-            lattice_window_sums(mix, control, region, x, length, y, 1u, material_sums);
-            for (uint32_t p = 0; p < length; p++) {
-                LatticeSums sums;
-                const uint32_t *const planes[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
-                                                                       run_sums[3]};
-                point_sums(mix, planes, p, sums);
-                int32_t value[DSN_MAX_CHANNELS];
-                lattice_output(mix, control, region, x + p, y, sums, value);
-                dsn_store_pixel(out, kind, (static_cast<size_t>(j) * width + i + p) * mix->channels, value,
-                                mix->channels);
-            }
-            i += length;
-        }
-}
-
-/* ---- Continuous tiles where the weights are uniform ---- */
-
-#if !DSN_SMALL_CODE
-/* The scratch of a continuous tile by materials: every material's block sums (grid_splat.h), 8-aligned. */
-size_t materials_sums_size(const dsn_mix_state *mix, uint32_t width, uint32_t height) {
-    size_t bytes = sizeof(uint64_t) - 1u;
-    for (uint32_t m = 0; m < mix->count; m++)
-        bytes += dsn_internal_splat_block_pixels(width, height) * mix->material[m].asset.channels *
-                 sizeof(uint64_t);
-    return bytes;
-}
-
-/* A continuous tile whose weights are uniform over its reach, block by block (grid_splat.h): each drawn
-   material's impulses (its hash filter) splatted with its texton into its own block sums, each row of them
-   normalized by the kernel from the material's weighted offset, and each value the materials' values
-   summed (64-bit, saturated; a grey material's in every channel). 8-bit textons are read from cell records
-   for the first two materials (64 KB of stack each, as one material's tile). False, writing nothing, where
-   a material's grid is not splatted or the scratch does not hold every material's block sums. */
-bool continuous_tile_by_materials(const dsn_mix_state *mix, const DrawnMaterials &drawn, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, void *out, dsn_output_kind kind,
-                                  void *scratch, size_t scratch_size) {
-    if (scratch == 0 || scratch_size < materials_sums_size(mix, width, height)) return false;
-    dsn_noise_state passes[DSN_MIX_MAX_MATERIALS];
-    dsn_grid_splat splats[DSN_MIX_MAX_MATERIALS];
-    uint64_t *sums[DSN_MIX_MAX_MATERIALS];
-    uint64_t *next = dsn_internal_aligned_sums(scratch);
-    const size_t block_pixels = dsn_internal_splat_block_pixels(width, height);
-#if DSN_SPLAT_CELLS
-    const uint32_t celled = 2;
-    alignas(64) uint64_t cells[celled][splat_cell_capacity]; /* RGB cells on 32-byte boundaries */
-#endif
-    for (uint32_t d = 0; d < drawn.count; d++) {
-        const uint32_t m = drawn.materials[d];
-        const dsn_noise_state *material = &mix->material[m];
-        passes[d] = *material;
-        for (uint32_t c = 0; c < material->asset.channels && c < DSN_MAX_CHANNELS; c++)
-            passes[d].offset[c] = weighted_offset(material->offset[c], drawn.weights[m]);
-        const dsn_splat_texture texture = {material->asset.texton,
-                                           material->asset.width,
-                                           material->asset.height,
-                                           material->asset.width,
-                                           material->asset.channels,
-                                           material->asset.bits,
-                                           0};
-        if (!dsn_internal_grid_splat_init(&passes[d], grid, width, height, &texture, &splats[d]))
-            return false;
-        const bool every = drawn.filters[d].low == 0 && drawn.filters[d].high == static_cast<uint64_t>(1)
-                                                                                     << 32;
-        splats[d].filter = every ? 0 : &drawn.filters[d];
-#if DSN_SPLAT_CELLS
-        if (d < celled && make_splat_cells(splats[d].setup.texture, cells[d], splat_cell_capacity,
-                                           &splats[d].setup.cell_row, 0) != 0)
-            splats[d].setup.cells = cells[d];
-#endif
-        sums[d] = next;
-        next += block_pixels * material->asset.channels;
-    }
-    const uint32_t channels = mix->channels;
-    const dsn_kernel_entries *kernel = dsn_kernel_entries_of(mix->material[0].tile_kernel);
-    for (uint32_t top = 0; top < height; top += dsn_splat_block_rows)
-        for (uint32_t left = 0; left < width; left += dsn_splat_block_columns) {
-            const dsn_splat_block block = dsn_internal_splat_block(left, top, width, height);
-            for (uint32_t d = 0; d < drawn.count; d++)
-                dsn_internal_grid_splat_block(&passes[d], &splats[d], &block, sums[d]);
-            for (uint32_t j = 0; j < block.rows; j++) {
-                int64_t totals[dsn_splat_block_columns * DSN_MAX_CHANNELS];
-                for (uint32_t v = 0; v < block.columns * channels; v++) totals[v] = 0;
-                for (uint32_t d = 0; d < drawn.count; d++) {
-                    int32_t values[dsn_splat_block_columns * DSN_MAX_CHANNELS];
-                    kernel->continuous_splat_normalize(&passes[d],
-                                                       sums[d] + static_cast<size_t>(j) * block.stride,
-                                                       block.plane, block.columns, values);
-                    const uint32_t own = passes[d].asset.channels;
-                    for (uint32_t i = 0; i < block.columns; i++)
-                        for (uint32_t c = 0; c < channels; c++)
-                            totals[i * channels + c] += values[i * own + (own == 1 ? 0u : c)];
-                }
-                const size_t first = (static_cast<size_t>(top + j) * width + left) * channels;
-                for (uint32_t i = 0; i < block.columns; i++) {
-                    int32_t value[DSN_MAX_CHANNELS];
-                    store_totals(mix, totals + i * channels, value);
-                    dsn_store_pixel(out, kind, first + i * channels, value, channels);
-                }
-            }
-        }
-    return true;
-}
-#endif /* !DSN_SMALL_CODE */
-
 /* ---- The API ---- */
 
 int lattice_point_as(const dsn_mix *handle, const dsn_mix_control *control, int32_t x, int32_t y, void *out,
@@ -963,116 +530,6 @@ int continuous_point_as(const dsn_mix *handle, const dsn_mix_control *control, i
     int32_t value[DSN_MAX_CHANNELS];
     continuous_point(mix, control, static_cast<uint64_t>(x), static_cast<uint64_t>(y), value);
     dsn_store_pixel(out, kind, 0, value, mix->channels);
-    return DSN_OK;
-}
-
-int lattice_tile_as(const dsn_mix *handle, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                    uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
-                    size_t scratch_size) {
-    const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    const size_t points = static_cast<size_t>(width) * height;
-    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
-    if (out == 0) return DSN_ERR_NULL;
-    const int err = check_call(mix, control, false);
-    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
-    const uint32_t reach_x = mix->lattice_radius[0], reach_y = mix->lattice_radius[1];
-    const uint32_t only =
-        tile_material(mix, control, static_cast<uint64_t>(static_cast<uint32_t>(x0) - reach_x) << 32,
-                      static_cast<uint64_t>(static_cast<uint32_t>(y0) - reach_y) << 32,
-                      static_cast<uint64_t>(static_cast<uint32_t>(x0) + width - 1u + reach_x) << 32,
-                      static_cast<uint64_t>(static_cast<uint32_t>(y0) + height - 1u + reach_y) << 32);
-    if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
-        const dsn_noise *material = dsn_mix_material_noise(mix, only);
-        if (kind == dsn_output_fixed)
-            return dsn_lattice_tile_fixed(material, x0, y0, width, height, static_cast<int32_t *>(out), 0, 0);
-        if (scratch_size >= dsn_lattice_tile_scratch_size(material, width, height))
-            return kind == dsn_output_float
-                       ? dsn_lattice_tile_float(material, x0, y0, width, height, static_cast<float *>(out),
-                                                scratch, scratch_size)
-                       : dsn_lattice_tile_u8(material, x0, y0, width, height, static_cast<uint8_t *>(out),
-                                             scratch, scratch_size);
-    }
-    /* weights uniform over the whole tile, two materials drawn: the kernel's mixed strips, where they take
-       them, with or without scratch */
-    const MixRegion region =
-        window_region(mix, control, static_cast<uint32_t>(x0), width, static_cast<uint32_t>(y0), height);
-    if (region.uniform) {
-        DrawnMaterials drawn;
-        drawn_materials(mix, region, &drawn);
-        const BandTarget target = {out, kind, 0};
-        if (drawn.count == 2 && mixed_band(mix, drawn, static_cast<uint32_t>(x0), width,
-                                           static_cast<uint32_t>(y0), height, target))
-            return DSN_OK;
-    }
-    if (!lattice_tile_by_bands(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width,
-                               height, out, kind, scratch, scratch_size))
-        lattice_tile_by_runs(mix, control, static_cast<uint32_t>(x0), static_cast<uint32_t>(y0), width,
-                             height, out, kind);
-    return DSN_OK;
-}
-
-int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, const dsn_grid *grid,
-                       uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
-                       size_t scratch_size) {
-    const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    const size_t points = static_cast<size_t>(width) * height;
-    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
-    if (out == 0) return DSN_ERR_NULL;
-    int err = check_call(mix, control, true);
-    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
-    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
-    int64_t low_x, low_y, high_x, high_y;
-    if (grid_box(grid, width, height, &low_x, &low_y, &high_x, &high_y)) {
-        /* the impulses' floors lie within radius + 1 texels of the box, itself within a texel of the points
-         */
-        const int64_t reach_x = static_cast<int64_t>(mix->radius[0] + 2u) << 32;
-        const int64_t reach_y = static_cast<int64_t>(mix->radius[1] + 2u) << 32;
-        const uint64_t origin_x = static_cast<uint64_t>(grid->origin_x),
-                       origin_y = static_cast<uint64_t>(grid->origin_y);
-        const MixRegion region =
-            mix_region(control, mix->count, origin_x + static_cast<uint64_t>(low_x - reach_x),
-                       origin_y + static_cast<uint64_t>(low_y - reach_y),
-                       origin_x + static_cast<uint64_t>(high_x + reach_x),
-                       origin_y + static_cast<uint64_t>(high_y + reach_y), 1024u);
-        const uint32_t only = region.single ? region.only : mix->count;
-        if (only < mix->count && mix->material[only].asset.channels == mix->channels) {
-            const dsn_noise *material = dsn_mix_material_noise(mix, only);
-            if (scratch_size >= dsn_continuous_tile_scratch_size(material, grid, width, height)) {
-                if (kind == dsn_output_fixed)
-                    return dsn_continuous_tile_fixed(material, grid, width, height,
-                                                     static_cast<int32_t *>(out), scratch, scratch_size);
-                if (kind == dsn_output_float)
-                    return dsn_continuous_tile_float(material, grid, width, height, static_cast<float *>(out),
-                                                     scratch, scratch_size);
-                return dsn_continuous_tile_u8(material, grid, width, height, static_cast<uint8_t *>(out),
-                                              scratch, scratch_size);
-            }
-        }
-#if !DSN_SMALL_CODE
-        if (region.uniform) {
-            DrawnMaterials drawn;
-            drawn_materials(mix, region, &drawn);
-            if (continuous_tile_by_materials(mix, drawn, grid, width, height, out, kind, scratch,
-                                             scratch_size))
-                return DSN_OK;
-        }
-#endif
-    }
-    /* a row's points in groups */
-    uint64_t xs[group_points], ys[group_points];
-    uint32_t grouped = 0;
-    dsn_grid_points(grid, width, height, mix->channels, [&](size_t index, uint64_t x, uint64_t y) {
-        xs[grouped] = x;
-        ys[grouped] = y;
-        grouped++;
-        const size_t column = (index / mix->channels) % width;
-        if (grouped < group_points && column + 1u < width) return;
-        int32_t values[group_points][DSN_MAX_CHANNELS];
-        continuous_points(mix, control, xs, ys, grouped, values);
-        for (uint32_t p = 0; p < grouped; p++)
-            dsn_store_pixel(out, kind, index - (grouped - 1u - p) * mix->channels, values[p], mix->channels);
-        grouped = 0;
-    });
     return DSN_OK;
 }
 
@@ -1113,6 +570,68 @@ void dsn_internal_mix_continuous_point(const dsn_mix_state *mix, const dsn_mix_c
     continuous_point(mix, control, x, y, out);
 }
 
+void dsn_internal_mix_continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
+                                        const uint64_t *xs, const uint64_t *ys, uint32_t count,
+                                        int32_t (*values)[DSN_MAX_CHANNELS]) {
+    continuous_points(mix, control, xs, ys, count, values);
+}
+
+void dsn_internal_mix_walk_band(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x0,
+                                uint32_t width, uint32_t y, uint32_t rows, uint32_t *scratch,
+                                const dsn_mix_band_target &target) {
+    uint32_t *planes[DSN_MIX_MAX_MATERIALS] = {scratch, scratch, scratch, scratch};
+    uint32_t *next = scratch;
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const size_t values = static_cast<size_t>(rows) * width * mix->material[m].asset.channels;
+        planes[m] = next;
+        for (size_t v = 0; v < values; v++) next[v] = 0;
+        next += values;
+    }
+    const MixRegion region = window_region(mix, control, x0, width, y, rows);
+    lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
+    /* where the region is uniform, the weighted offsets of every point of the band */
+    MixOffsets uniform_offsets = {};
+    if (region.uniform) {
+        /* (zeroed: GCC cannot tell point_weights fills them) */
+        uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
+        point_weights(region.weights, mix->count, weights);
+        weighted_offsets(mix, weights, uniform_offsets);
+    }
+    for (uint32_t j = 0; j < rows; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            const size_t point = static_cast<size_t>(j) * width + i;
+            LatticeSums sums;
+            point_sums(mix, planes, point, sums);
+            int32_t value[DSN_MAX_CHANNELS];
+            if (region.uniform)
+                mix_output_from(mix, uniform_offsets, sums, value);
+            else
+                lattice_output(mix, control, region, x0 + i, y + j, sums, value);
+            dsn_store_pixel(target.out, target.kind, (target.first + point) * mix->channels, value,
+                            mix->channels);
+        }
+}
+
+static_assert(DSN_MIX_MAX_MATERIALS == 4, "the runs' sums are listed for four materials");
+
+void dsn_internal_mix_walk_run(const dsn_mix_state *mix, const dsn_mix_control *control, uint32_t x,
+                               uint32_t length, uint32_t y, const dsn_mix_band_target &target) {
+    uint32_t run_sums[DSN_MIX_MAX_MATERIALS][run_points * DSN_MAX_CHANNELS] = {};
+    uint32_t *const material_sums[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
+                                                            run_sums[3]};
+    const MixRegion region = window_region(mix, control, x, length, y, 1u);
+    lattice_window_sums(mix, control, region, x, length, y, 1u, material_sums);
+    for (uint32_t p = 0; p < length; p++) {
+        LatticeSums sums;
+        const uint32_t *const planes[DSN_MIX_MAX_MATERIALS] = {run_sums[0], run_sums[1], run_sums[2],
+                                                               run_sums[3]};
+        point_sums(mix, planes, p, sums);
+        int32_t value[DSN_MAX_CHANNELS];
+        lattice_output(mix, control, region, x + p, y, sums, value);
+        dsn_store_pixel(target.out, target.kind, (target.first + p) * mix->channels, value, mix->channels);
+    }
+}
+
 extern "C" {
 
 int dsn_mix_lattice_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x, int32_t y,
@@ -1150,18 +669,6 @@ int dsn_mix_continuous_batch_u8(const dsn_mix *mix, const dsn_mix_control *contr
     return continuous_batch_as(mix, control, xs, ys, count, out, dsn_output_u8);
 }
 
-int dsn_mix_lattice_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                            uint32_t width, uint32_t height, uint8_t *out, void *scratch,
-                            size_t scratch_size) {
-    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_u8, scratch, scratch_size);
-}
-
-int dsn_mix_continuous_tile_u8(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                               uint32_t width, uint32_t height, uint8_t *out, void *scratch,
-                               size_t scratch_size) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_u8, scratch, scratch_size);
-}
-
 int dsn_mix_continuous_point_fixed(const dsn_mix *mix, const dsn_mix_control *control, int64_t x, int64_t y,
                                    int32_t *out) {
     return continuous_point_as(mix, control, x, y, out, dsn_output_fixed);
@@ -1171,65 +678,6 @@ int dsn_mix_continuous_point_float(const dsn_mix *mix, const dsn_mix_control *co
                                    float *out) {
     return continuous_point_as(mix, control, dsn_coordinate_from_double(x), dsn_coordinate_from_double(y),
                                out, dsn_output_float);
-}
-
-size_t dsn_mix_lattice_tile_scratch_size(const dsn_mix *handle, uint32_t width, uint32_t height) {
-    const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    if (!dsn_mix_configured(mix) || tile_size_check(width, height) != DSN_OK) return 0;
-    /* the values of a whole band (and 3 bytes to align them) */
-    size_t most = band_row_bytes(mix, width) * (height < band_most_rows ? height : band_most_rows) +
-                  sizeof(uint32_t) - 1u;
-    for (uint32_t m = 0; m < mix->count; m++) {
-        const size_t size = dsn_lattice_tile_scratch_size(dsn_mix_material_noise(mix, m), width, height);
-        most = size > most ? size : most;
-    }
-    return most;
-}
-
-size_t dsn_mix_continuous_tile_scratch_size(const dsn_mix *handle, const dsn_grid *grid, uint32_t width,
-                                            uint32_t height) {
-    const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    size_t most = 0;
-    if (!dsn_mix_configured(mix)) return 0;
-    for (uint32_t m = 0; m < mix->count; m++) {
-        const size_t size =
-            dsn_continuous_tile_scratch_size(dsn_mix_material_noise(mix, m), grid, width, height);
-        most = size > most ? size : most;
-    }
-#if !DSN_SMALL_CODE
-    /* every material's block sums, where the grid is splatted (the scratch of one material's tile) */
-    if (most != 0 && tile_size_check(width, height) == DSN_OK) {
-        const size_t materials = materials_sums_size(mix, width, height);
-        most = materials > most ? materials : most;
-    }
-#endif
-    return most;
-}
-
-int dsn_mix_lattice_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, int32_t *out, void *scratch,
-                               size_t scratch_size) {
-    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_fixed, scratch, scratch_size);
-}
-
-int dsn_mix_lattice_tile_float(const dsn_mix *mix, const dsn_mix_control *control, int32_t x0, int32_t y0,
-                               uint32_t width, uint32_t height, float *out, void *scratch,
-                               size_t scratch_size) {
-    return lattice_tile_as(mix, control, x0, y0, width, height, out, dsn_output_float, scratch, scratch_size);
-}
-
-int dsn_mix_continuous_tile_fixed(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, int32_t *out, void *scratch,
-                                  size_t scratch_size) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_fixed, scratch,
-                              scratch_size);
-}
-
-int dsn_mix_continuous_tile_float(const dsn_mix *mix, const dsn_mix_control *control, const dsn_grid *grid,
-                                  uint32_t width, uint32_t height, float *out, void *scratch,
-                                  size_t scratch_size) {
-    return continuous_tile_as(mix, control, grid, width, height, out, dsn_output_float, scratch,
-                              scratch_size);
 }
 
 } // extern "C"

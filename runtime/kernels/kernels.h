@@ -27,7 +27,7 @@
 #define DSN_KERNEL_X86_COPIES 0
 #endif
 
-/* The impulses one material of a mixed tile keeps (mix_point.cpp, where the weights are uniform): impulse
+/* The impulses one material of a mixed tile keeps (mix_tile.cpp, where the weights are uniform): impulse
    k of the cell with key `key` where its hash dsn_cell_stream(key, 2^31 + 2^30 + k) lies in [low, high)
    (dsn_point_materials' thresholds on each side of the material). */
 typedef struct dsn_impulse_filter {
@@ -43,7 +43,7 @@ typedef void dsn_lattice_tile_entry(const dsn_noise_state *noise, uint32_t x0, u
                                     uint32_t height, void *out, void *dx, void *dy, dsn_output_kind kind,
                                     uint32_t *accumulator, const dsn_impulse_filter *filter);
 
-/* A lattice tile of a mix whose weights are the same over it (mix_point.cpp; tile_mix.h's render_mix_tile):
+/* A lattice tile of a mix whose weights are the same over it (mix_tile.cpp; tile_mix.h's render_mix_tile):
    `count` materials' noises (on the mix's process, each with its weighted offset), each summing the
    impulses its filter keeps, their normalized values added before they are stored, into `width` x
    `height` values of `kind`. 0 where the kernel does not take them (two materials of one channel count

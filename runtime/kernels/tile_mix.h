@@ -1,5 +1,5 @@
 /* runtime/kernels/tile_mix.h - a lattice tile of two mixed materials whose weights are the same over the
-   whole tile (mix_point.cpp's bands, dsn.h "Mixing"), on the strip path: each rectangle's impulses listed
+   whole tile (mix_tile.cpp's bands, dsn.h "Mixing"), on the strip path: each rectangle's impulses listed
    per material (those whose hash draws it, kernels.h's dsn_impulse_filter), each material's strips summed
    from its own texton, each normalized in lanes with its own gains and weighted offset, and the two
    materials' lanes added before they are stored. The bits are those of the mix's points: each material's
