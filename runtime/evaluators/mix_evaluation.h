@@ -78,6 +78,17 @@ inline int tile_size_check(uint32_t width, uint32_t height) {
                : DSN_OK;
 }
 
+/* The checks of a continuous or filtered tile call on a grid: DSN_OK, or the error with the output zeroed
+   as output_error zeroes it. */
+inline int grid_tile_check(const dsn_mix_state *mix, const dsn_mix_control *control, const dsn_grid *grid,
+                           uint32_t width, uint32_t height, void *out, dsn_output_kind kind) {
+    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
+    if (out == 0) return DSN_ERR_NULL;
+    int err = check_call(mix, control, true);
+    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
+    return output_error(err, mix, out, kind, static_cast<size_t>(width) * height);
+}
+
 /* The material whose weights a tile's whole reach has alone (its own tile function then gives the mix's
    bits), or count where the weights mix or may: positions [low, high] per axis, Q32.32. */
 inline uint32_t tile_material(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t low_x,

@@ -179,8 +179,8 @@ void materials_sums(const dsn_mix_state *mix, const dsn_mix_control *control, co
    give the material's term of the mix. */
 void weighted_material(const dsn_mix_state *mix, uint32_t m, uint32_t weight, dsn_noise_state *weighted) {
     *weighted = mix->material[m];
-    for (uint32_t c = 0; c < weighted->asset.channels; c++) {
-        weighted->offset[c] = weighted_offset(weighted->offset[c], weight);
+    material_weighted_offset(&mix->material[m], weight, weighted->offset);
+    for (uint32_t c = 0; c < weighted->asset.channels && c < DSN_MAX_CHANNELS; c++) {
         for (uint32_t l = 0; l < 8; l++)
             weighted->level_offset[l][c] = weighted_offset(weighted->level_offset[l][c], weight);
         weighted->asset.mean[c] = static_cast<int32_t>(weighted_offset(weighted->asset.mean[c], weight));
@@ -302,19 +302,14 @@ int filtered_tile_as(const dsn_mix *handle, const dsn_mix_control *control, cons
                      uint32_t max_taps, uint32_t width, uint32_t height, void *out, dsn_output_kind kind,
                      void *scratch, size_t scratch_size) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    const size_t points = static_cast<size_t>(width) * height;
-    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
-    if (out == 0) return DSN_ERR_NULL;
-    int err = check_call(mix, control, true);
-    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
+    int err = grid_tile_check(mix, control, grid, width, height, out, kind);
+    if (err != DSN_OK) return err;
+    /* the footprint of every pixel: the grid's steps */
+    const dsn_footprint footprint = {grid->column_step_x, grid->column_step_y, grid->row_step_x,
+                                     grid->row_step_y, max_taps};
     MixPlans plans;
-    if (err == DSN_OK) {
-        /* the footprint of every pixel: the grid's steps */
-        const dsn_footprint footprint = {grid->column_step_x, grid->column_step_y, grid->row_step_x,
-                                         grid->row_step_y, max_taps};
-        err = mix_plans(mix, &footprint, plans);
-    }
-    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    err = mix_plans(mix, &footprint, plans);
+    if (err != DSN_OK) return output_error(err, mix, out, kind, static_cast<size_t>(width) * height);
     const int single = single_material_tile(mix, control, grid, max_taps, plans, width, height, out, kind,
                                             scratch, scratch_size);
     if (single >= 0) return single;

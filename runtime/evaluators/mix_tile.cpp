@@ -403,12 +403,8 @@ int continuous_tile_as(const dsn_mix *handle, const dsn_mix_control *control, co
                        uint32_t width, uint32_t height, void *out, dsn_output_kind kind, void *scratch,
                        size_t scratch_size) {
     const dsn_mix_state *mix = dsn_mix_state_of(handle);
-    const size_t points = static_cast<size_t>(width) * height;
-    if (tile_size_check(width, height) != DSN_OK) return DSN_ERR_TILE_SIZE;
-    if (out == 0) return DSN_ERR_NULL;
-    int err = check_call(mix, control, true);
-    if (err == DSN_OK && grid == 0) err = DSN_ERR_NULL;
-    if (err != DSN_OK) return output_error(err, mix, out, kind, points);
+    const int err = grid_tile_check(mix, control, grid, width, height, out, kind);
+    if (err != DSN_OK) return err;
     int64_t low_x, low_y, high_x, high_y;
     if (grid_box(grid, width, height, &low_x, &low_y, &high_x, &high_y)) {
         /* the impulses' floors lie within radius + 1 texels of the box, itself within a texel of the points
