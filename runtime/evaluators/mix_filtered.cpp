@@ -70,7 +70,7 @@ MixRegion filtered_region(const dsn_mix_state *mix, const dsn_mix_control *contr
 }
 
 /* What the filtered mix reads of a material: the one or two levels its plan blends and their walk radii;
-   no levels where the material takes no part in the walk (its plan fades, or another material's walk). */
+   no levels where its plan fades (its impulses are then passed over). */
 struct MaterialLevels {
     dsn_walked_level walked[2];
     uint32_t count, radius_x, radius_y;
@@ -89,6 +89,7 @@ struct WaitingImpulses {
    tests' tap_shift is 0), else one by one (add_level). */
 void read_waiting(const dsn_noise_state *material, const MaterialLevels &own, WaitingImpulses *waiting,
                   uint64_t (*level_sums)[DSN_MAX_CHANNELS]) {
+    if (waiting->count == 0) return; /* (a tap that no impulse of the material reaches: no call) */
     const dsn_asset *asset = &material->asset;
     dsn_filter_level_reads_entry *vector_reads =
         asset->bits == 8 ? dsn_kernel_entries_of(material->tile_kernel)->filter_level_reads : 0;
