@@ -88,17 +88,27 @@ struct SurfaceLanes {
     static bool none(Mask mask) { return top_bits_of_32(mask) == 0; }
     static Vector load(const int64_t *at, Mask mask) { return load_masked_4x64(at, mask); }
     static void store(uint64_t *at, Vector value) { store_4x64(at, value); }
-    static uint32_t store_kept(int64_t *const *at, Mask mask, const Vector *values, uint32_t lanes) {
-        int64_t stored[3][4];
-        for (int v = 0; v < 3; v++) store_4x64(stored[v], values[v]);
-        /* A lane's two 32-bit halves share its bits; lanes past `lanes` are not read. */
-        const uint32_t bits = static_cast<uint32_t>(top_bits_of_32(mask));
-        uint32_t kept = 0;
-        for (uint32_t slot = 0; slot < lanes && slot < 4; slot++) {
-            for (int v = 0; v < 3; v++) at[v][kept] = stored[v][slot];
-            kept += (bits >> (2u * slot)) & 1u;
-        }
-        return kept;
+    /* Each vector packed by a permutation and stored whole: its lanes past the kept ones land at most 3
+       entries past the last kept one, and never past the list's end, as kept <= k for the listing's
+       step k (a multiple of 4, at most dsn_surface_impulses_most - 4). */
+    static uint32_t store_kept(int64_t *const *at, Mask mask, const Vector *values, uint32_t) {
+        /* Row b: the 32-bit lane order that packs the 64-bit lanes of mask bits b first, in order. */
+        /* clang-format off */
+        static const int32_t packed[16][8] = {
+            {0, 1, 2, 3, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7},
+            {2, 3, 0, 1, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7},
+            {4, 5, 0, 1, 2, 3, 6, 7}, {0, 1, 4, 5, 2, 3, 6, 7},
+            {2, 3, 4, 5, 0, 1, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7},
+            {6, 7, 0, 1, 2, 3, 4, 5}, {0, 1, 6, 7, 2, 3, 4, 5},
+            {2, 3, 6, 7, 0, 1, 4, 5}, {0, 1, 2, 3, 6, 7, 4, 5},
+            {4, 5, 6, 7, 0, 1, 2, 3}, {0, 1, 4, 5, 6, 7, 2, 3},
+            {2, 3, 4, 5, 6, 7, 0, 1}, {0, 1, 2, 3, 4, 5, 6, 7}};
+        /* clang-format on */
+        const uint32_t bits = static_cast<uint32_t>(top_bits_of_64(mask));
+        const Vector order =
+            load_8x32(static_cast<const uint32_t *>(static_cast<const void *>(packed[bits])));
+        for (int v = 0; v < 3; v++) store_4x64(at[v], permute_32(values[v], order));
+        return static_cast<uint32_t>(__builtin_popcount(bits));
     }
     static Mask below(Mask within, Vector a, Vector b) {
         const Vector top = set_4x64(INT64_MIN);
