@@ -21,6 +21,7 @@
 #include "offline/bake_internal.h"
 #include "runtime/core/bilinear_texton.h"
 #include "runtime/core/cell_hash.h"
+#include "runtime/core/level_read.h"
 #include "runtime/core/surface_walk.h"
 #include "runtime/kernels/kernels.h"
 
@@ -426,15 +427,32 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("surface kernels: the reads of listed impulses are the walk's windowed bilinear reads") {
+TEST_CASE("surface kernels: the reads of listed impulses are the walks' windowed bilinear reads, of the "
+          "texton and of a level") {
+    // The texton as the unfiltered point reads it (level 0, its whole window), and as a filtered point reads
+    // a level: divided by 2^level, a window inside it (a margin left out, so rows are wider than the window),
+    // offsets out to twice its reach (a filtered walk lists impulses for the widest level).
     std::mt19937_64 random(29);
     size_t compared = 0;
     for (const uint32_t channels : {1u, 3u})
-        for (const uint32_t bits : {8u, 16u})
-            for (const uint32_t radius : {0u, 2u, 7u, 15u}) {
-                auto noise = make_noise(random_texton_asset(channels, radius, bits, 5 + radius), 3);
+        for (const uint32_t radius : {0u, 2u, 7u, 15u})
+            for (const uint32_t level : {0u, 1u, 3u}) {
+                auto noise = make_noise(random_texton_asset(channels, radius, 8, 5 + radius), 3);
                 const dsn_asset &asset = dsn_state(&noise->noise)->asset;
-                const int64_t reach = int64_t(radius + 1) << 32;
+                const uint32_t margin = radius > 0 && level > 0 ? 1u : 0u;
+                dsn_walked_level walked;
+                walked.values = asset.texton + (margin * asset.width + margin) * channels;
+                walked.width = asset.width - 2 * margin;
+                walked.height = asset.height - 2 * margin;
+                walked.stride = asset.width;
+                walked.radius_x = (walked.width - 1) / 2;
+                walked.radius_y = (walked.height - 1) / 2;
+                walked.level = level;
+                walked.exponent = 0;
+                const dsn_surface_texels texels = {walked.values, walked.width, walked.height,
+                                                   walked.stride, channels,     level};
+                const int64_t reach = int64_t(walked.radius_x + 1) << (32 + level);
+                const int64_t listed_reach = level == 0 ? reach : 2 * reach;
                 for (int round = 0; round < 300; round++) {
                     const uint32_t cell_shift = uint32_t(random() % 9);
                     const int64_t across_reach = int64_t(3) << (30 + cell_shift);
@@ -444,7 +462,7 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walk's windowed
                         // Offsets anywhere within the reaches, on texel edges, and at their ends.
                         int64_t *offsets[3] = {&listed.along_tangent[k], &listed.along_bitangent[k],
                                                &listed.across[k]};
-                        const int64_t reaches[3] = {reach, reach, across_reach};
+                        const int64_t reaches[3] = {listed_reach, listed_reach, across_reach};
                         for (int v = 0; v < 3; v++) {
                             const int64_t span = 2 * reaches[v] - 1;
                             int64_t offset = int64_t(random() % uint64_t(span)) - (reaches[v] - 1);
@@ -457,11 +475,16 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walk's windowed
                     uint64_t expected[3] = {0, 0, 0};
                     for (uint32_t k = 0; k < count; k++) {
                         const uint32_t window = slab_window(listed.across[k], cell_shift);
-                        uint32_t row = 0, row_weight = 0, column = 0, column_weight = 0;
-                        REQUIRE(bracket(listed.along_tangent[k], radius, &column, &column_weight));
-                        REQUIRE(bracket(listed.along_bitangent[k], radius, &row, &row_weight));
                         uint64_t texton[3] = {0, 0, 0};
-                        add_bilinear(&asset, row, row_weight, column, column_weight, texton);
+                        if (level == 0) {
+                            uint32_t row = 0, row_weight = 0, column = 0, column_weight = 0;
+                            REQUIRE(bracket(listed.along_tangent[k], radius, &column, &column_weight));
+                            REQUIRE(bracket(listed.along_bitangent[k], radius, &row, &row_weight));
+                            add_bilinear(&asset, row, row_weight, column, column_weight, texton);
+                        } else {
+                            add_level<false>(walked, channels, 8, listed.along_tangent[k],
+                                             listed.along_bitangent[k], texton, nullptr);
+                        }
                         for (uint32_t c = 0; c < channels; c++) expected[c] += windowed(texton[c], window);
                     }
                     for (uint32_t kernel = DSN_KERNEL_DEFAULT;
@@ -469,17 +492,11 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walk's windowed
                         dsn_surface_reads_entry *reads = dsn_kernel_entries_of(kernel)->surface_reads;
                         if (reads == nullptr) continue;
                         uint64_t sums[3] = {7, 8, 9};
-                        const int taken = reads(&asset, &listed, count, cell_shift, sums);
+                        reads(&texels, &listed, count, cell_shift, sums);
                         CAPTURE(kernel);
                         CAPTURE(channels);
-                        CAPTURE(bits);
                         CAPTURE(radius);
-                        if (bits == 16) { // not read: nothing added
-                            CHECK(taken == 0);
-                            CHECK((sums[0] == 7 && sums[1] == 8 && sums[2] == 9));
-                            continue;
-                        }
-                        REQUIRE(taken == 1);
+                        CAPTURE(level);
                         for (uint32_t c = 0; c < channels; c++) CHECK(sums[c] == 7 + c + expected[c]);
                         compared++;
                     }

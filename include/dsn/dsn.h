@@ -1056,9 +1056,10 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
    Cost: the cubes within the reach of the point's oriented box (the texton's reach along T and B, H
    along N) are walked, each cube first tested against that box; a cube's impulses are placed and tested
    against the slab and the texton's reach 8 at a time on AVX-512 (4 on AVX2), and those kept are read as
-   many at a time (8-bit textons), else one by one: make bench's surface_bench reports a point at 6-12
-   times a continuous point (a filtered one at 13-25 times the plane's filtered point: each tap walks its
-   own box). Stack: under 2 KB, a filtered point under 3 KB. Not in the small build (DSN_SURFACE).
+   many at a time (8-bit textons and levels), else one by one: make bench's surface_bench reports a point
+   at 5-12 times a continuous point (a filtered one at 7-14 times the plane's filtered point: each tap
+   walks its own box). Stack: under 2 KB, a filtered point under 3 KB. Not in the small build
+   (DSN_SURFACE).
    dsn/dsn.glsl evaluates the unfiltered point and the frame in a shader with the same bits
    (dsn_surface_point, dsn_surface_frame_from_float_bits: dsn/gpu.h packs what they read). */
 #ifndef DSN_SURFACE /* 1: the surface noise (this section); default 0 in the small build */

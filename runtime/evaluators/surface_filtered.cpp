@@ -13,15 +13,22 @@
 namespace {
 
 /* The filtered point's visitor: the one or two levels read at the impulse's offsets (Q32.32 texels along
-   the tangent and bitangent), weighted by the window, into each level's sums (Q.32, stored-value units). */
+   the tangent and bitangent), weighted by the window, into each level's sums (Q.32, stored-value units);
+   by the kernel's reads for 8-bit levels, where it has them. */
 struct LevelSums {
     const dsn_noise_state *noise;
     const dsn_walked_level *levels;
     uint32_t count;
+    dsn_surface_reads_entry *reads; /* the kernel's for 8-bit levels, or null */
+    dsn_surface_texels texels[2];
     uint64_t sums[2][DSN_MAX_CHANNELS];
 
     void visit_listed(const dsn_surface_impulses &listed, uint32_t listed_count, uint32_t cell_shift) {
-        visit_each(this, listed, listed_count, cell_shift);
+        if (reads == 0) {
+            visit_each(this, listed, listed_count, cell_shift);
+            return;
+        }
+        for (uint32_t l = 0; l < count; l++) reads(&texels[l], &listed, listed_count, cell_shift, sums[l]);
     }
 
     void visit(int64_t along_tangent, int64_t along_bitangent, uint32_t window) {
@@ -57,15 +64,22 @@ int filtered_value(const dsn_noise_state *noise, const int64_t *position, const 
     uint32_t radius_x, radius_y;
     dsn_filter_walk_radii(walked, count, &radius_x, &radius_y);
     int64_t offsets[2][DSN_MAX_CHANNELS], totals[DSN_MAX_CHANNELS] = {0, 0, 0};
-    for (uint32_t l = 0; l < count; l++)
+    dsn_surface_texels texels[2];
+    for (uint32_t l = 0; l < count; l++) {
         surface_offset(noise, dsn_internal_level_offset(noise, walked[l].level), offsets[l]);
+        const dsn_surface_texels level = {walked[l].values, walked[l].width,       walked[l].height,
+                                          walked[l].stride, noise->asset.channels, walked[l].level};
+        texels[l] = level;
+    }
+    dsn_surface_reads_entry *const reads =
+        noise->asset.bits == 8 ? dsn_kernel_entries_of(noise->tile_kernel)->surface_reads : 0;
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         int64_t at[3];
         tap_position(position, frame, plan->offset_x[tap], plan->offset_y[tap], at);
         SurfaceWalk walk;
         surface_walk(noise, at, frame, radius_x + 1u, radius_y + 1u, &walk);
         if (walk_too_costly(noise, &walk)) return DSN_ERR_COST;
-        LevelSums level_sums = {noise, walked, count, {{0, 0, 0}, {0, 0, 0}}};
+        LevelSums level_sums = {noise, walked, count, reads, {texels[0], texels[1]}, {{0, 0, 0}, {0, 0, 0}}};
         visit_impulses(noise, &walk, &level_sums);
         for (uint32_t l = 0; l < count; l++) {
             int64_t values[DSN_MAX_CHANNELS] = {0, 0, 0};

@@ -12,11 +12,14 @@ namespace {
    (columns) and bitangent (rows), weighted by the window, into the channel sums (Q.32). */
 struct TextonSums {
     const dsn_noise_state *noise;
-    dsn_surface_reads_entry *reads; /* the kernel's, or null */
+    dsn_surface_reads_entry *reads; /* the kernel's for an 8-bit texton, or null */
+    dsn_surface_texels texels;
     uint64_t sums[DSN_MAX_CHANNELS];
 
     void visit_listed(const dsn_surface_impulses &listed, uint32_t count, uint32_t cell_shift) {
-        if (reads == 0 || !reads(&noise->asset, &listed, count, cell_shift, sums))
+        if (reads != 0)
+            reads(&texels, &listed, count, cell_shift, sums);
+        else
             visit_each(this, listed, count, cell_shift);
     }
 
@@ -57,7 +60,11 @@ int dsn_internal_surface_point(const dsn_noise_state *noise, const int64_t *posi
     if (walk_too_costly(noise, &walk)) return DSN_ERR_COST;
     for (int axis = 0; axis < 2; axis++) /* bracket's: offsets in (-(radius + 1), radius + 1) */
         walk.reach[axis] = static_cast<int64_t>(noise->radius[axis] + 1u) * static_cast<int64_t>(one_texel);
-    TextonSums texton = {noise, dsn_kernel_entries_of(noise->tile_kernel)->surface_reads, {0, 0, 0}};
+    const dsn_asset *asset = &noise->asset;
+    TextonSums texton = {noise,
+                         asset->bits == 8 ? dsn_kernel_entries_of(noise->tile_kernel)->surface_reads : 0,
+                         {asset->texton, asset->width, asset->height, asset->width, asset->channels, 0},
+                         {0, 0, 0}};
     int64_t offset[DSN_MAX_CHANNELS];
     visit_impulses(noise, &walk, &texton);
     surface_offset(noise, noise->offset, offset);

@@ -217,14 +217,24 @@ typedef struct dsn_surface_impulses {
    reaches, into out; returns how many. */
 typedef uint32_t dsn_surface_impulses_entry(const dsn_surface_cube *cube, dsn_surface_impulses *out);
 
-/* The unfiltered surface point's reads of `count` listed impulses (surface_impulses.h's
-   surface_texton_reads), each within the texton's reach ((radius + 1) texels along the tangent and
-   bitangent) and 3/4 of a cube across: the bilinear texton at its offsets along the tangent and
-   bitangent, times the slab's window at its offset across (core/surface_walk.h's slab_window and
-   windowed), added to sums[0 .. channels - 1] modulo 2^64. Returns 1, or 0 with nothing added for a texton
-   the kernel does not read (then the caller reads each impulse itself). */
-typedef int dsn_surface_reads_entry(const dsn_asset *asset, const dsn_surface_impulses *listed,
-                                    uint32_t count, uint32_t cell_shift, uint64_t *sums);
+/* A window of 8-bit texels as the surface reads take it (surface_impulses.h's surface_reads): the
+   texton, or a pyramid level's walked window (filtered_internal.h's dsn_walked_level), `channels` values a
+   texel, its rows `stride` texels apart, its radius (width - 1) / 2 texels along the tangent and
+   (height - 1) / 2 along the bitangent. An offset is divided by 2^level, rounded down, before it is read.
+   The reads may touch the 4 bytes before the window's first texel and the 4 past its last: in the asset's
+   buffer, which has its header before any texel and its CRC after (format.h). */
+typedef struct dsn_surface_texels {
+    const unsigned char *values;
+    uint32_t width, height, stride, channels, level;
+} dsn_surface_texels;
+
+/* The surface point's reads of `count` listed impulses (surface_impulses.h's surface_reads), each within
+   3/4 of a cube across: the bilinear read of `texels` at its offsets along the tangent and bitangent (0
+   beyond the window's reach), times the slab's window at its offset across (core/surface_walk.h's
+   slab_window and windowed), added to sums[0 .. channels - 1] modulo 2^64: the unfiltered point's texton
+   reads, and the filtered point's level reads (core/level_read.h's add_level, windowed). */
+typedef void dsn_surface_reads_entry(const dsn_surface_texels *texels, const dsn_surface_impulses *listed,
+                                     uint32_t count, uint32_t cell_shift, uint64_t *sums);
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,

@@ -4,10 +4,10 @@
    Q32.32, and those within the cube's reaches listed. On AVX-512, 8 impulses at once in 64-bit lanes (the
    dot products are 32 x 32-bit products: a position field has 16 bits, a frame component 31 and a sign),
    kept ones stored compressed; on AVX2 4 at once; elsewhere one at a time; the same bits everywhere. Also,
-   on AVX-512 and AVX2, the unfiltered point's reads of the listed impulses of an 8-bit texton, 8 or 4 at
-   a time: the slab's window, the bilinear texton and their product in 64-bit lanes (elsewhere the point
-   reads them one by one, surface_point.cpp). Internal to libdsn; not installed (everything here has internal
-   linkage). */
+   on AVX-512 and AVX2, the reads of the listed impulses of an 8-bit texton or pyramid level, 8 or 4 at a
+   time: the slab's window, the bilinear read and their product in 64-bit lanes (elsewhere the points read
+   them one by one, surface_point.cpp and surface_filtered.cpp). Internal to libdsn; not installed (everything
+   here has internal linkage). */
 #ifndef DSN_SURFACE_IMPULSES_H
 #define DSN_SURFACE_IMPULSES_H
 
@@ -252,15 +252,17 @@ DSN_SIMD_INLINE LaneVector windowed_lanes(LaneVector value, LaneVector window) {
     return subtract_64(shift_right_logical_64(add_64(product, bias), 16), shift_right_logical_64(bias, 16));
 }
 
-/* The reads of one vector of listed impulses (those of `lanes`), added to sums[c] lane by lane. Each row's
-   two texels come from one 8-byte read from 4 bytes before the right texel, as continuous_point_vector.h's
-   texton_pairs_16 reads them (within 4 bytes before the texton and 4 past it: the asset's header and CRC,
-   in the buffer the loader checked): the left texel's channels end at byte 3, the right one's start at
-   byte 4; each is 0 outside the texton. The bilinear sum is add_bilinear's integer, in its row form. */
+/* The reads of one vector of listed impulses (those of `lanes`; their offsets already divided by the
+   level's spacing), added to sums[c] lane by lane. Each row's two texels come from one 8-byte read from 4
+   bytes before the right texel, as continuous_point_vector.h's texton_pairs_16 reads them (within 4 bytes
+   before the window and 4 past it: kernels.h's dsn_surface_texels): the left texel's channels end at byte
+   3, the right one's start at byte 4; each is 0 outside the window. The bilinear sum is add_bilinear's
+   integer, in its row form. */
 template <uint32_t Channels>
-DSN_SIMD_INLINE void add_reads(const dsn_asset *asset, LaneVector along_tangent, LaneVector along_bitangent,
-                               LaneVector window, LaneMask lanes, LaneVector *sums) {
-    const uint32_t width = asset->width, height = asset->height;
+DSN_SIMD_INLINE void add_reads(const dsn_surface_texels *texels, LaneVector along_tangent,
+                               LaneVector along_bitangent, LaneVector window, LaneMask lanes,
+                               LaneVector *sums) {
+    const uint32_t width = texels->width, height = texels->height;
     const LaneVector weight_bits = all_lanes(bilinear_weight_mask), one = all_lanes(1);
     const LaneVector shifted_x =
         add_64(along_tangent, all_lanes(static_cast<int64_t>((width + 1u) / 2u) << 32));
@@ -276,11 +278,11 @@ DSN_SIMD_INLINE void add_reads(const dsn_asset *asset, LaneVector along_tangent,
                    right = SurfaceLanes::below(lanes, right_column, columns);
     const LaneMask top = SurfaceLanes::below(SurfaceLanes::either(left, right), row, rows),
                    bottom = SurfaceLanes::below(SurfaceLanes::either(left, right), lower_row, rows);
-    const LaneVector entry = add_64(multiply_even_unsigned_32(row, columns), right_column);
+    const LaneVector entry = add_64(multiply_even_unsigned_32(row, all_lanes(texels->stride)), right_column);
     const LaneVector at = subtract_64(multiply_even_unsigned_32(entry, all_lanes(Channels)), all_lanes(4));
-    const LaneVector below = add_64(at, all_lanes(width * Channels));
-    const LaneVector upper_words = SurfaceLanes::gather(asset->texton, at, top),
-                     lower_words = SurfaceLanes::gather(asset->texton, below, bottom);
+    const LaneVector below = add_64(at, all_lanes(texels->stride * Channels));
+    const LaneVector upper_words = SurfaceLanes::gather(texels->values, at, top),
+                     lower_words = SurfaceLanes::gather(texels->values, below, bottom);
     const LaneVector scale = all_lanes(65536);
     for (uint32_t c = 0; c < Channels; c++) {
         const LaneVector a = SurfaceLanes::byte(upper_words, 4u - Channels + c, left),
@@ -297,18 +299,28 @@ DSN_SIMD_INLINE void add_reads(const dsn_asset *asset, LaneVector along_tangent,
     }
 }
 
+/* Every lane's offset divided by 2^level, rounded down (floor_shift, through a 2^63 bias). */
+DSN_SIMD_INLINE LaneVector level_offsets(LaneVector offsets, uint32_t level) {
+    if (level == 0) return offsets;
+    const LaneVector bias = all_lanes(INT64_MIN);
+    return subtract_64(shift_right_logical_64(add_64(offsets, bias), level),
+                       shift_right_logical_64(bias, level));
+}
+
 /* The reads of the listed impulses, a vector at a time, each lane's sums added to sums at the end. */
 template <uint32_t Channels>
-void texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
-                  uint32_t cell_shift, uint64_t *sums) {
+void texel_reads(const dsn_surface_texels *texels, const dsn_surface_impulses *listed, uint32_t count,
+                 uint32_t cell_shift, uint64_t *sums) {
     const uint32_t width = SurfaceLanes::count;
     LaneVector lanes[Channels];
     for (uint32_t c = 0; c < Channels; c++) lanes[c] = all_lanes(0);
     for (uint32_t k = 0; k < count; k += width) {
         const LaneMask valid = SurfaceLanes::first(count - k);
         const LaneVector window = window_lanes(SurfaceLanes::load(listed->across + k, valid), cell_shift);
-        add_reads<Channels>(asset, SurfaceLanes::load(listed->along_tangent + k, valid),
-                            SurfaceLanes::load(listed->along_bitangent + k, valid), window, valid, lanes);
+        add_reads<Channels>(
+            texels, level_offsets(SurfaceLanes::load(listed->along_tangent + k, valid), texels->level),
+            level_offsets(SurfaceLanes::load(listed->along_bitangent + k, valid), texels->level), window,
+            valid, lanes);
     }
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t parts[SurfaceLanes::count];
@@ -317,17 +329,15 @@ void texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, ui
     }
 }
 
-/* The kernel's surface_reads (kernels.h): 8-bit textons only. */
-int surface_texton_reads(const dsn_asset *asset, const dsn_surface_impulses *listed, uint32_t count,
-                         uint32_t cell_shift, uint64_t *sums) {
-    if (asset->bits != 8) return 0;
-    if (asset->channels == 3)
-        texton_reads<3>(asset, listed, count, cell_shift, sums);
+/* The kernel's surface_reads (kernels.h). */
+void surface_reads(const dsn_surface_texels *texels, const dsn_surface_impulses *listed, uint32_t count,
+                   uint32_t cell_shift, uint64_t *sums) {
+    if (texels->channels == 3)
+        texel_reads<3>(texels, listed, count, cell_shift, sums);
     else
-        texton_reads<1>(asset, listed, count, cell_shift, sums);
-    return 1;
+        texel_reads<1>(texels, listed, count, cell_shift, sums);
 }
-#define DSN_SURFACE_READS_ENTRY surface_texton_reads
+#define DSN_SURFACE_READS_ENTRY surface_reads
 #endif
 
 } // namespace
