@@ -1058,7 +1058,7 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
    against the slab and the texton's reach 8 at a time on AVX-512 (4 on AVX2), and those kept are read as
    many at a time (8-bit textons and levels), else one by one: make bench's surface_bench reports a point
    at 5-12 times a continuous point (a filtered one at 7-14 times the plane's filtered point: each tap
-   walks its own box). Stack: under 2 KB, a filtered point under 3 KB. Not in the small build
+   walks its own box). Stack: about 2 KB, a filtered point under 3 KB. Not in the small build
    (DSN_SURFACE).
    dsn/dsn.glsl evaluates the unfiltered point and the frame in a shader with the same bits
    (dsn_surface_point, dsn_surface_frame_from_float_bits: dsn/gpu.h packs what they read). */

@@ -199,7 +199,8 @@ typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint3
    frame (Q2.30), and the reaches (Q32.32) beyond which the caller reads nothing along the tangent and
    bitangent (reach_u, reach_v; an impulse whose floored offset u has |u| >= reach_u is left out) and across
    the slab (reach_across: likewise, the offset across the plane floored to Q32.32). */
-enum { dsn_surface_impulses_most = 32 };
+/* 16: a cube holds 8 impulses at the usual mean, rarely more than 16; the list is on the point's stack. */
+enum { dsn_surface_impulses_most = 16 };
 typedef struct dsn_surface_cube {
     int64_t origin_dot[3];
     int32_t frame[3][3];
