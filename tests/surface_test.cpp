@@ -319,8 +319,8 @@ TEST_CASE(
 }
 
 // The impulses of one cube as dsn.h defines them: impulse index's 16-bit fields times 2^cell_shift, dotted
-// with each frame vector, subtracted from the origin's dot product and floored to Q32.32; those with every
-// offset within its reach, in index order.
+// with each frame vector and subtracted from the origin's dot product (Q.46, as listed); those with every
+// offset floored to Q32.32 within its reach, in index order.
 std::vector<std::array<int64_t, 3>> defined_impulses(const dsn_surface_cube &cube) {
     std::vector<std::array<int64_t, 3>> kept;
     const int64_t reaches[3] = {cube.reach_u, cube.reach_v, cube.reach_across};
@@ -333,8 +333,9 @@ std::vector<std::array<int64_t, 3>> defined_impulses(const dsn_surface_cube &cub
             for (int i = 0; i < 3; i++)
                 dot += int64_t(((pair >> (16 * i)) & 0xFFFFu) << cube.cell_shift) * cube.frame[v][i];
             const int64_t offset = int64_t(uint64_t(cube.origin_dot[v]) - uint64_t(dot));
-            offsets[size_t(v)] = offset >= 0 ? offset / 16384 : -((-(offset + 1)) / 16384) - 1; // floor
-            within = within && offsets[size_t(v)] < reaches[v] && offsets[size_t(v)] > -reaches[v];
+            const int64_t floored = offset >= 0 ? offset / 16384 : -((-(offset + 1)) / 16384) - 1;
+            offsets[size_t(v)] = offset;
+            within = within && floored < reaches[v] && floored > -reaches[v];
         }
         if (within) kept.push_back(offsets);
     }
@@ -431,7 +432,9 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walks' windowed
           "texton and of a level") {
     // The texton as the unfiltered point reads it (level 0, its whole window), and as a filtered point reads
     // a level: divided by 2^level, a window inside it (a margin left out, so rows are wider than the window),
-    // offsets out to twice its reach (a filtered walk lists impulses for the widest level).
+    // offsets out to twice its reach (a filtered walk lists impulses for the widest level). The listed
+    // offsets are Q.46, read moved by a tap's move (none in some rounds) and floored to Q32.32: the offsets
+    // below are those floored ones.
     std::mt19937_64 random(29);
     size_t compared = 0;
     for (const uint32_t channels : {1u, 3u})
@@ -458,10 +461,14 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walks' windowed
                     const int64_t across_reach = int64_t(3) << (30 + cell_shift);
                     dsn_surface_impulses listed;
                     const uint32_t count = 1 + uint32_t(random() % dsn_surface_impulses_most);
+                    int64_t moved[3] = {0, 0, 0};
+                    if (round % 2 == 1)
+                        for (int64_t &move : moved)
+                            move = int64_t(random() % (uint64_t(1) << 48)) - (int64_t(1) << 47);
+                    int64_t floored[3][dsn_surface_impulses_most];
                     for (uint32_t k = 0; k < count; k++) {
                         // Offsets anywhere within the reaches, on texel edges, and at their ends.
-                        int64_t *offsets[3] = {&listed.along_tangent[k], &listed.along_bitangent[k],
-                                               &listed.across[k]};
+                        int64_t *offsets[3] = {&floored[0][k], &floored[1][k], &floored[2][k]};
                         const int64_t reaches[3] = {listed_reach, listed_reach, across_reach};
                         for (int v = 0; v < 3; v++) {
                             const int64_t span = 2 * reaches[v] - 1;
@@ -471,19 +478,24 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walks' windowed
                             if (random() % 16 == 0) offset = random() & 1 ? reaches[v] - 1 : 1 - reaches[v];
                             *offsets[v] = offset;
                         }
+                        int64_t *listed_offsets[3] = {&listed.along_tangent[k], &listed.along_bitangent[k],
+                                                      &listed.across[k]};
+                        for (int v = 0; v < 3; v++) // any Q.46 offset that floors to it once moved
+                            *listed_offsets[v] = int64_t(uint64_t(*offsets[v]) * 16384u +
+                                                         (random() & 0x3FFFu) - uint64_t(moved[v]));
                     }
                     uint64_t expected[3] = {0, 0, 0};
                     for (uint32_t k = 0; k < count; k++) {
-                        const uint32_t window = slab_window(listed.across[k], cell_shift);
+                        const uint32_t window = slab_window(floored[2][k], cell_shift);
                         uint64_t texton[3] = {0, 0, 0};
                         if (level == 0) {
                             uint32_t row = 0, row_weight = 0, column = 0, column_weight = 0;
-                            REQUIRE(bracket(listed.along_tangent[k], radius, &column, &column_weight));
-                            REQUIRE(bracket(listed.along_bitangent[k], radius, &row, &row_weight));
+                            REQUIRE(bracket(floored[0][k], radius, &column, &column_weight));
+                            REQUIRE(bracket(floored[1][k], radius, &row, &row_weight));
                             add_bilinear(&asset, row, row_weight, column, column_weight, texton);
                         } else {
-                            add_level<false>(walked, channels, 8, listed.along_tangent[k],
-                                             listed.along_bitangent[k], texton, nullptr);
+                            add_level<false>(walked, channels, 8, floored[0][k], floored[1][k], texton,
+                                             nullptr);
                         }
                         for (uint32_t c = 0; c < channels; c++) expected[c] += windowed(texton[c], window);
                     }
@@ -492,7 +504,7 @@ TEST_CASE("surface kernels: the reads of listed impulses are the walks' windowed
                         dsn_surface_reads_entry *reads = dsn_kernel_entries_of(kernel)->surface_reads;
                         if (reads == nullptr) continue;
                         uint64_t sums[3] = {7, 8, 9};
-                        reads(&texels, &listed, count, cell_shift, sums);
+                        reads(&texels, &listed, count, cell_shift, moved, sums);
                         CAPTURE(kernel);
                         CAPTURE(channels);
                         CAPTURE(radius);
@@ -626,6 +638,113 @@ double filtered_surface_value(const dsn_noise &noise, Vector p, const dsn_surfac
 }
 
 } // namespace
+
+namespace {
+
+// The filtered surface as dsn.h states it, tap by tap: each tap's own walk around its position (the point
+// moved along the tangent and bitangent, floored to Q.16, projected, floored to Q32.32), each level read one
+// impulse at a time (level_read.h's add_level) and weighted by the window, in the default kernel.
+struct ReferenceLevels {
+    const dsn_noise_state *noise;
+    const dsn_walked_level *levels;
+    uint32_t count;
+    uint64_t sums[2][DSN_MAX_CHANNELS];
+
+    void visit_listed(const dsn_surface_impulses &listed, uint32_t listed_count, uint32_t cell_shift) {
+        const int64_t unmoved[3] = {0, 0, 0};
+        visit_each(this, listed, listed_count, cell_shift, unmoved);
+    }
+    void visit(int64_t along_tangent, int64_t along_bitangent, uint32_t window) {
+        for (uint32_t l = 0; l < count; l++) {
+            uint64_t level[DSN_MAX_CHANNELS] = {0, 0, 0};
+            add_level<false>(levels[l], noise->asset.channels, noise->asset.bits, along_tangent,
+                             along_bitangent, level, nullptr);
+            for (uint32_t c = 0; c < noise->asset.channels; c++) sums[l][c] += windowed(level[c], window);
+        }
+    }
+};
+
+int reference_filtered(const dsn_noise &handle, const int64_t *position, const dsn_surface_frame &frame,
+                       const dsn_footprint &footprint, int32_t *out) {
+    dsn_noise copy = handle;
+    dsn_noise_state *noise = dsn_state(&copy);
+    noise->tile_kernel = DSN_KERNEL_DEFAULT;
+    dsn_filter_plan plan;
+    REQUIRE(dsn_internal_filter_plan(&footprint, noise->asset.pyramid_levels, &plan) == DSN_OK);
+    REQUIRE(plan.taps > 1); // (the footprints below: minified)
+    if (dsn_internal_filter_fade(noise, &plan, out)) return DSN_ERR_UNSUPPORTED; // past the pyramid: no walk
+    dsn_walked_level walked[2];
+    const uint32_t count = dsn_internal_filter_walked_levels(noise, &plan, walked);
+    uint32_t radius_x, radius_y;
+    dsn_filter_walk_radii(walked, count, &radius_x, &radius_y);
+    int64_t offsets[2][DSN_MAX_CHANNELS], totals[DSN_MAX_CHANNELS] = {0, 0, 0};
+    for (uint32_t l = 0; l < count; l++)
+        surface_offset(noise, dsn_internal_level_offset(noise, walked[l].level), offsets[l]);
+    for (uint32_t tap = 0; tap < plan.taps; tap++) {
+        const int64_t u = plan.offset_x[tap] >> 16, v = plan.offset_y[tap] >> 16; // floors
+        int64_t at[3];
+        for (int i = 0; i < 3; i++)
+            at[i] = int64_t(uint64_t(position[i]) +
+                            uint64_t((u * frame.tangent[i] + v * frame.bitangent[i]) >> 14));
+        SurfaceWalk walk;
+        surface_walk(noise, at, &frame, radius_x + 1u, radius_y + 1u, &walk);
+        if (walk_too_costly(noise, &walk)) return DSN_ERR_COST;
+        ReferenceLevels levels = {noise, walked, count, {{0, 0, 0}, {0, 0, 0}}};
+        visit_impulses(noise, &walk, &levels);
+        for (uint32_t l = 0; l < count; l++) {
+            int64_t values[DSN_MAX_CHANNELS] = {0, 0, 0};
+            dsn_internal_filter_level_values_from(noise, &walked[l], levels.sums[l], offsets[l], values);
+            dsn_internal_filter_add_level(noise, &plan, l, values, totals);
+        }
+        if (count == 1) dsn_internal_filter_add_mean(noise, &plan, totals);
+    }
+    dsn_internal_filter_finish(noise, &plan, totals, out);
+    return DSN_OK;
+}
+
+} // namespace
+
+TEST_CASE("filtered surface: several taps read from one walk give the tap-by-tap walks' bits") {
+    // Anisotropic footprints in every direction of the tangent plane, 2 to 16 taps, their spread within
+    // one tap's reach (one walk for all) and wider (a walk per tap), at random points and frames; grey and
+    // RGB, 8-bit (the kernels' level reads) and 16-bit (one by one).
+    std::mt19937_64 random(41);
+    std::uniform_real_distribution<double> coordinate(-400, 400), angle(0, 6.283185307179586);
+    std::uniform_real_distribution<float> direction(-1, 1);
+    int compared = 0;
+    for (const uint32_t channels : {1u, 3u})
+        for (const uint32_t bits : {8u, 16u}) {
+            dsn::AssetFields fields = random_texton_asset(channels, 7, bits, 60 + channels + bits);
+            fields.pyramid = dsn::texton_pyramid(fields);
+            auto noise = make_noise(fields, 11, 20u << 16);
+            for (int k = 0; k < 60; k++) {
+                const float n[3] = {direction(random), direction(random), direction(random)};
+                dsn_surface_frame frame;
+                if (dsn_surface_frame_from_float(n, nullptr, &frame) != DSN_OK) continue;
+                const int64_t position[3] = {dsn_coordinate_from_double(coordinate(random)),
+                                             dsn_coordinate_from_double(coordinate(random)),
+                                             dsn_coordinate_from_double(coordinate(random))};
+                const double minor = 1.5 + 2 * (k % 3), major = minor * (2 + k % 7) * (k % 4 == 3 ? 8 : 1);
+                const double a = angle(random), c = std::cos(a), s = std::sin(a);
+                dsn_footprint footprint;
+                REQUIRE(dsn_footprint_from_float(&footprint, major * c, major * s, -minor * s, minor * c,
+                                                 2 + uint32_t(k % 15)) == DSN_OK);
+                int32_t expected[3] = {0, 0, 0}, value[3] = {0, 0, 0};
+                const int expected_err =
+                    reference_filtered(noise->noise, position, frame, footprint, expected);
+                if (expected_err == DSN_ERR_UNSUPPORTED) continue;
+                CAPTURE(k);
+                CAPTURE(channels);
+                CAPTURE(bits);
+                CHECK(dsn_surface_filtered_point_fixed(&noise->noise, position, &frame, &footprint, value) ==
+                      expected_err);
+                for (uint32_t ch = 0; ch < channels; ch++) CHECK(value[ch] == expected[ch]);
+                compared++;
+            }
+        }
+    MESSAGE("filtered surface points compared with the tap-by-tap walks: " << compared);
+    CHECK(compared > 160); // most footprints lie within the pyramid
+}
 
 TEST_CASE("filtered surface: a texel's footprint is the point; minified, it follows the box-filtered noise") {
     dsn::AssetFields fields = random_texton_asset(1, 15, 8, 77);

@@ -1057,8 +1057,9 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
    along N) are walked, each cube first tested against that box; a cube's impulses are placed and tested
    against the slab and the texton's reach 8 at a time on AVX-512 (4 on AVX2), and those kept are read as
    many at a time (8-bit textons and levels), else one by one: make bench's surface_bench reports a point
-   at 5-12 times a continuous point (a filtered one at 7-14 times the plane's filtered point: each tap
-   walks its own box). Stack: about 2 KB, a filtered point under 3 KB. Not in the small build
+   at 5-12 times a continuous point (a filtered one at 7-12 times the plane's filtered point: its taps
+   share one walk over a box that holds each one's, where they lie within a tap's reach of the point).
+   Stack: about 2 KB, a filtered point about 4 KB (the sums of up to 16 taps). Not in the small build
    (DSN_SURFACE).
    dsn/dsn.glsl evaluates the unfiltered point and the frame in a shader with the same bits
    (dsn_surface_point, dsn_surface_frame_from_float_bits: dsn/gpu.h packs what they read). */

@@ -94,8 +94,8 @@ inline void surface_walk(const dsn_noise_state *noise, const int64_t *position,
    those within the walk's reaches and 3/4 of a cube across the slab, where the window is 0 (it is 0 from
    35/48 of a cube, and 2^-16 texel more for the floors). An impulse's offset from the point, floored to
    Q.16, is the cube origin's less its position in the cube (a whole number of 2^-16 texels), so its dot
-   products with the frame vectors (Q.46, then floored to Q32.32) are the origin's less the position's,
-   exactly. */
+   products with the frame vectors (Q.46, floored to Q32.32 where they are read) are the origin's less the
+   position's, exactly. */
 template <typename Visitor>
 void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
                 dsn_surface_impulses_entry *list_impulses, Visitor *visitor) {
@@ -110,13 +110,22 @@ void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
     }
 }
 
-/* The visitor's visit of each listed impulse that the window keeps (what a visitor's visit_listed does
-   where no kernel reads them all at once). */
+/* An impulse's offset (Q.46) moved by `moved` (Q.46) and floored to Q32.32. */
+inline int64_t moved_offset(int64_t offset, int64_t moved) {
+    return floor_shift(signed_from_bits(static_cast<uint64_t>(offset) + static_cast<uint64_t>(moved)), 14);
+}
+
+/* The visitor's visit of each listed impulse that the window keeps, its offsets moved by moved[0 .. 2]
+   (Q.46; a filtered point's tap, else 0) and floored to Q32.32 (what a visitor's visit_listed does where
+   no kernel reads them all at once). */
 template <typename Visitor>
-void visit_each(Visitor *visitor, const dsn_surface_impulses &listed, uint32_t count, uint32_t cell_shift) {
+void visit_each(Visitor *visitor, const dsn_surface_impulses &listed, uint32_t count, uint32_t cell_shift,
+                const int64_t *moved) {
     for (uint32_t k = 0; k < count; k++) {
-        const uint32_t window = slab_window(listed.across[k], cell_shift);
-        if (window != 0) visitor->visit(listed.along_tangent[k], listed.along_bitangent[k], window);
+        const uint32_t window = slab_window(moved_offset(listed.across[k], moved[2]), cell_shift);
+        if (window != 0)
+            visitor->visit(moved_offset(listed.along_tangent[k], moved[0]),
+                           moved_offset(listed.along_bitangent[k], moved[1]), window);
     }
 }
 

@@ -17,10 +17,11 @@ struct TextonSums {
     uint64_t sums[DSN_MAX_CHANNELS];
 
     void visit_listed(const dsn_surface_impulses &listed, uint32_t count, uint32_t cell_shift) {
+        const int64_t unmoved[3] = {0, 0, 0};
         if (reads != 0)
-            reads(&texels, &listed, count, cell_shift, sums);
+            reads(&texels, &listed, count, cell_shift, unmoved, sums);
         else
-            visit_each(this, listed, count, cell_shift);
+            visit_each(this, listed, count, cell_shift, unmoved);
     }
 
     void visit(int64_t along_tangent, int64_t along_bitangent, uint32_t window) {

@@ -208,7 +208,8 @@ typedef struct dsn_surface_cube {
     uint32_t key, first, count, cell_shift;
 } dsn_surface_cube;
 /* The impulses a surface kernel keeps, in index order: their offsets from the point along the tangent,
-   the bitangent and the normal, each floored to Q32.32 (surface_walk.h says how). */
+   the bitangent and the normal, Q.46, exact (surface_walk.h says how); the offset that the reaches test
+   and the reads read is this floored to Q32.32, after a filtered point's tap adds its move. */
 typedef struct dsn_surface_impulses {
     int64_t along_tangent[dsn_surface_impulses_most], along_bitangent[dsn_surface_impulses_most],
         across[dsn_surface_impulses_most];
@@ -233,9 +234,12 @@ typedef struct dsn_surface_texels {
    3/4 of a cube across: the bilinear read of `texels` at its offsets along the tangent and bitangent (0
    beyond the window's reach), times the slab's window at its offset across (core/surface_walk.h's
    slab_window and windowed), added to sums[0 .. channels - 1] modulo 2^64: the unfiltered point's texton
-   reads, and the filtered point's level reads (core/level_read.h's add_level, windowed). */
+   reads, and the filtered point's level reads (core/level_read.h's add_level, windowed). Each impulse's
+   three offsets are first moved by moved[0 .. 2] (Q.46: a filtered point's tap, else 0) and floored to
+   Q32.32. */
 typedef void dsn_surface_reads_entry(const dsn_surface_texels *texels, const dsn_surface_impulses *listed,
-                                     uint32_t count, uint32_t cell_shift, uint64_t *sums);
+                                     uint32_t count, uint32_t cell_shift, const int64_t *moved,
+                                     uint64_t *sums);
 
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,

@@ -1,13 +1,13 @@
 /* runtime/kernels/surface_impulses.h - the impulses of one cube of the surface walk (core/surface_walk.h)
    that the slab and the reaches keep, as a kernel (kernels.h): each impulse's position hashed from the
-   cube's key, its offsets from the point along the frame's three vectors taken exactly and floored to
-   Q32.32, and those within the cube's reaches listed. On AVX-512, 8 impulses at once in 64-bit lanes (the
-   dot products are 32 x 32-bit products: a position field has 16 bits, a frame component 31 and a sign),
-   kept ones stored compressed; on AVX2 4 at once; elsewhere one at a time; the same bits everywhere. Also,
-   on AVX-512 and AVX2, the reads of the listed impulses of an 8-bit texton or pyramid level, 8 or 4 at a
-   time: the slab's window, the bilinear read and their product in 64-bit lanes (elsewhere the points read
-   them one by one, surface_point.cpp and surface_filtered.cpp). Internal to libdsn; not installed (everything
-   here has internal linkage). */
+   cube's key, its offsets from the point along the frame's three vectors taken exactly (Q.46), and those
+   whose offsets floored to Q32.32 lie within the cube's reaches listed. On AVX-512, 8 impulses at once in
+   64-bit lanes (the dot products are 32 x 32-bit products: a position field has 16 bits, a frame component 31
+   and a sign), kept ones stored compressed; on AVX2 4 at once; elsewhere one at a time; the same bits
+   everywhere. Also, on AVX-512 and AVX2, the reads of the listed impulses of an 8-bit texton or pyramid
+   level, 8 or 4 at a time: the slab's window, the bilinear read and their product in 64-bit lanes (elsewhere
+   the points read them one by one, surface_point.cpp and surface_filtered.cpp). Internal to libdsn; not
+   installed (everything here has internal linkage). */
 #ifndef DSN_SURFACE_IMPULSES_H
 #define DSN_SURFACE_IMPULSES_H
 
@@ -156,17 +156,20 @@ DSN_SIMD_INLINE void impulse_fields(LaneVector indices, LaneVector *fields) {
     fields[2] = bitwise_and(shift_right_logical_64(pair, 32), field_mask);
 }
 
-/* One offset of the impulses (one frame vector's dot products with their 16-bit fields, a 32 x 32-bit
-   product each, subtracted from the origin's and floored to Q32.32 through a 2^63 bias as floor_shift
-   does). */
+/* Every lane divided by 2^bits, rounded down (floor_shift, through a 2^63 bias). */
+DSN_SIMD_INLINE LaneVector floor_lanes(LaneVector value, uint32_t bits) {
+    const LaneVector bias = all_lanes(INT64_MIN);
+    return subtract_64(shift_right_logical_64(add_64(value, bias), bits), shift_right_logical_64(bias, bits));
+}
+
+/* One offset of the impulses, Q.46: one frame vector's dot products with their 16-bit fields (a 32 x
+   32-bit product each) subtracted from the origin's. */
 DSN_SIMD_INLINE LaneVector offset_lanes(const LaneVector *fields, const int32_t *vector, int64_t origin_dot,
                                         uint32_t cell_shift) {
     const LaneVector dot = add_64(add_64(multiply_even_32(fields[0], all_lanes(vector[0])),
                                          multiply_even_32(fields[1], all_lanes(vector[1]))),
                                   multiply_even_32(fields[2], all_lanes(vector[2])));
-    const LaneVector offset = subtract_64(all_lanes(origin_dot), shift_left_64(dot, cell_shift));
-    const LaneVector bias = all_lanes(INT64_MIN);
-    return subtract_64(shift_right_logical_64(add_64(offset, bias), 14), shift_right_logical_64(bias, 14));
+    return subtract_64(all_lanes(origin_dot), shift_left_64(dot, cell_shift));
 }
 
 uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *out) {
@@ -181,12 +184,13 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
         /* Across the slab first: it leaves out about half. */
         LaneVector offsets[3];
         offsets[2] = offset_lanes(fields, cube->frame[2], cube->origin_dot[2], cube->cell_shift);
-        LaneMask keep = lanes_within(SurfaceLanes::first(cube->count - k), offsets[2], cube->reach_across);
+        LaneMask keep = lanes_within(SurfaceLanes::first(cube->count - k), floor_lanes(offsets[2], 14),
+                                     cube->reach_across);
         if (SurfaceLanes::none(keep)) continue;
         offsets[0] = offset_lanes(fields, cube->frame[0], cube->origin_dot[0], cube->cell_shift);
-        keep = lanes_within(keep, offsets[0], cube->reach_u);
+        keep = lanes_within(keep, floor_lanes(offsets[0], 14), cube->reach_u);
         offsets[1] = offset_lanes(fields, cube->frame[1], cube->origin_dot[1], cube->cell_shift);
-        keep = lanes_within(keep, offsets[1], cube->reach_v);
+        keep = lanes_within(keep, floor_lanes(offsets[1], 14), cube->reach_v);
         int64_t *const at[3] = {outputs[0] + kept, outputs[1] + kept, outputs[2] + kept};
         kept += SurfaceLanes::store_kept(at, keep, offsets, cube->count - k);
     }
@@ -195,12 +199,12 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
 
 #else
 
-/* One offset of an impulse (one frame vector's dot product with its 16-bit fields), floored to Q32.32. */
+/* One offset of an impulse, Q.46 (one frame vector's dot product with its 16-bit fields, subtracted from
+   the origin's). */
 inline int64_t impulse_offset(const int64_t *fields, const int32_t *vector, int64_t origin_dot,
                               uint32_t cell_shift) {
     const int64_t dot = fields[0] * vector[0] + fields[1] * vector[1] + fields[2] * vector[2];
-    return floor_shift(
-        signed_from_bits(static_cast<uint64_t>(origin_dot) - (static_cast<uint64_t>(dot) << cell_shift)), 14);
+    return signed_from_bits(static_cast<uint64_t>(origin_dot) - (static_cast<uint64_t>(dot) << cell_shift));
 }
 
 uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *out) {
@@ -212,10 +216,12 @@ uint32_t surface_impulses(const dsn_surface_cube *cube, dsn_surface_impulses *ou
                                    static_cast<int64_t>((pair >> 32) & 0xFFFFu)};
         /* Across the slab first: it leaves out about half. */
         const int64_t across = impulse_offset(fields, cube->frame[2], cube->origin_dot[2], cube->cell_shift);
-        if (!within_reach(across, cube->reach_across)) continue;
+        if (!within_reach(floor_shift(across, 14), cube->reach_across)) continue;
         const int64_t u = impulse_offset(fields, cube->frame[0], cube->origin_dot[0], cube->cell_shift);
         const int64_t v = impulse_offset(fields, cube->frame[1], cube->origin_dot[1], cube->cell_shift);
-        if (!within_reach(u, cube->reach_u) || !within_reach(v, cube->reach_v)) continue;
+        if (!within_reach(floor_shift(u, 14), cube->reach_u) ||
+            !within_reach(floor_shift(v, 14), cube->reach_v))
+            continue;
         out->along_tangent[kept] = u;
         out->along_bitangent[kept] = v;
         out->across[kept] = across;
@@ -299,28 +305,25 @@ DSN_SIMD_INLINE void add_reads(const dsn_surface_texels *texels, LaneVector alon
     }
 }
 
-/* Every lane's offset divided by 2^level, rounded down (floor_shift, through a 2^63 bias). */
-DSN_SIMD_INLINE LaneVector level_offsets(LaneVector offsets, uint32_t level) {
-    if (level == 0) return offsets;
-    const LaneVector bias = all_lanes(INT64_MIN);
-    return subtract_64(shift_right_logical_64(add_64(offsets, bias), level),
-                       shift_right_logical_64(bias, level));
-}
-
-/* The reads of the listed impulses, a vector at a time, each lane's sums added to sums at the end. */
+/* The reads of the listed impulses moved by `moved` (Q.46), a vector at a time: each offset floored to
+   Q32.32 and divided by the level's spacing (one floor: by 2^(14 + level)), each lane's sums added to sums
+   at the end. */
 template <uint32_t Channels>
 void texel_reads(const dsn_surface_texels *texels, const dsn_surface_impulses *listed, uint32_t count,
-                 uint32_t cell_shift, uint64_t *sums) {
-    const uint32_t width = SurfaceLanes::count;
+                 uint32_t cell_shift, const int64_t *moved, uint64_t *sums) {
+    const uint32_t width = SurfaceLanes::count, along_shift = 14u + texels->level;
+    const LaneVector moved_u = all_lanes(moved[0]), moved_v = all_lanes(moved[1]),
+                     moved_across = all_lanes(moved[2]);
     LaneVector lanes[Channels];
     for (uint32_t c = 0; c < Channels; c++) lanes[c] = all_lanes(0);
     for (uint32_t k = 0; k < count; k += width) {
         const LaneMask valid = SurfaceLanes::first(count - k);
-        const LaneVector window = window_lanes(SurfaceLanes::load(listed->across + k, valid), cell_shift);
-        add_reads<Channels>(
-            texels, level_offsets(SurfaceLanes::load(listed->along_tangent + k, valid), texels->level),
-            level_offsets(SurfaceLanes::load(listed->along_bitangent + k, valid), texels->level), window,
-            valid, lanes);
+        const LaneVector across = add_64(SurfaceLanes::load(listed->across + k, valid), moved_across);
+        const LaneVector window = window_lanes(floor_lanes(across, 14), cell_shift);
+        const LaneVector u = add_64(SurfaceLanes::load(listed->along_tangent + k, valid), moved_u),
+                         v = add_64(SurfaceLanes::load(listed->along_bitangent + k, valid), moved_v);
+        add_reads<Channels>(texels, floor_lanes(u, along_shift), floor_lanes(v, along_shift), window, valid,
+                            lanes);
     }
     for (uint32_t c = 0; c < Channels; c++) {
         uint64_t parts[SurfaceLanes::count];
@@ -331,11 +334,11 @@ void texel_reads(const dsn_surface_texels *texels, const dsn_surface_impulses *l
 
 /* The kernel's surface_reads (kernels.h). */
 void surface_reads(const dsn_surface_texels *texels, const dsn_surface_impulses *listed, uint32_t count,
-                   uint32_t cell_shift, uint64_t *sums) {
+                   uint32_t cell_shift, const int64_t *moved, uint64_t *sums) {
     if (texels->channels == 3)
-        texel_reads<3>(texels, listed, count, cell_shift, sums);
+        texel_reads<3>(texels, listed, count, cell_shift, moved, sums);
     else
-        texel_reads<1>(texels, listed, count, cell_shift, sums);
+        texel_reads<1>(texels, listed, count, cell_shift, moved, sums);
 }
 #define DSN_SURFACE_READS_ENTRY surface_reads
 #endif
