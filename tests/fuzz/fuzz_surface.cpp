@@ -1,10 +1,11 @@
 // fuzz_surface.cpp - the surface noise's inputs (dsn.h, "Surface noise"): bytes -> a small asset (grey or
 // RGB, 8 or 16 bits, any odd size up to 31, any values), a density and a seed -> init; then float vectors of
 // any bits (NaN, infinities, subnormals, zero, parallel tangents) through dsn_surface_frame_from_float, and
-// frames of any int32 components, at positions of any int64. Invariants: a frame either fails with its
-// output zeroed or is unit and orthogonal to 2^-26; an evaluation either succeeds or fails with its
-// output zeroed (DSN_ERR_ARGUMENT exactly for a frame out of range); the same call gives the same bits;
-// the batch gives the points' bits.
+// frames of any int32 components, at positions of any int64; with the asset's pyramid (one input in two),
+// the filtered point too, under footprints of any int64 steps and any taps. Invariants: a frame either fails
+// with its output zeroed or is unit and orthogonal to 2^-26; an evaluation either succeeds or fails with its
+// output zeroed (DSN_ERR_ARGUMENT exactly for a frame out of range, or a footprint's max_taps 0 or above
+// DSN_FILTER_MAX_TAPS); the same call gives the same bits; the batch gives the points' bits.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include "dsn/asset_writer.h"
 #include "dsn/dsn.h"
 #include "fuzz_input.h"
+#include "offline/bake_internal.h"
 
 namespace {
 
@@ -81,11 +83,36 @@ void check_frame(FuzzInput &input, dsn_surface_frame *frame) {
     fuzz_require(std::fabs(dot(frame->tangent, frame->bitangent)) < tolerance);
 }
 
+// The filtered point under a footprint of any steps (shifted down by any amount, so that small ones come
+// too) and any taps: an error with its output zeroed, or the same bits twice.
+void check_filtered(FuzzInput &input, const dsn_noise &noise, const int64_t *position,
+                    const dsn_surface_frame &frame, uint32_t channels) {
+    dsn_footprint footprint;
+    int64_t *steps[4] = {&footprint.column_step_x, &footprint.column_step_y, &footprint.row_step_x,
+                         &footprint.row_step_y};
+    for (int64_t *step : steps)
+        *step = int64_t(uint64_t(input.u32()) | uint64_t(input.u32()) << 32) >> (input.byte() % 64u);
+    footprint.max_taps = input.byte() % (DSN_FILTER_MAX_TAPS + 2u);
+    int32_t out[DSN_MAX_CHANNELS] = {7, 7, 7}, again[DSN_MAX_CHANNELS] = {9, 9, 9};
+    const int err = dsn_surface_filtered_point_fixed(&noise, position, &frame, &footprint, out);
+    if (footprint.max_taps == 0 || footprint.max_taps > DSN_FILTER_MAX_TAPS)
+        fuzz_require(err == DSN_ERR_ARGUMENT);
+    fuzz_require(err == DSN_OK || err == DSN_ERR_ARGUMENT || err == DSN_ERR_COST);
+    if (err != DSN_OK) {
+        fuzz_require(zeroed(out, channels));
+        return;
+    }
+    fuzz_require(dsn_surface_filtered_point_fixed(&noise, position, &frame, &footprint, again) == DSN_OK);
+    fuzz_require(std::memcmp(out, again, channels * sizeof out[0]) == 0);
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     FuzzInput input(data, size);
-    const dsn::AssetFields fields = asset_from(input);
+    dsn::AssetFields fields = asset_from(input);
+    const bool filtered = input.byte() & 1u;
+    if (filtered) fields.pyramid = dsn::texton_pyramid(fields);
     const std::vector<unsigned char> bytes = dsn::encode_asset(fields);
     dsn_asset asset;
     if (dsn_asset_load(&asset, bytes.data(), bytes.size()) != DSN_OK) return 0;
@@ -124,6 +151,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         }
         fuzz_require(dsn_surface_point_fixed(&noise, position, &frame, again) == DSN_OK);
         fuzz_require(std::memcmp(out, again, channels * sizeof out[0]) == 0);
+        if (filtered) check_filtered(input, noise, position, frame, channels);
         positions.insert(positions.end(), position, position + 3);
         frames.push_back(frame);
         values.insert(values.end(), out, out + channels);
