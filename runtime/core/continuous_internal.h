@@ -81,6 +81,13 @@ inline void normalize_q32(const dsn_noise_state *noise, const uint64_t *sums, in
    or DSN_ERR_CONTINUOUS_MISMATCH (continuous_point.cpp). */
 int dsn_internal_continuous_check(const dsn_noise_state *noise);
 
+/* dsn_internal_continuous_check of a noise known to be configured (a mix's materials, checked with it):
+   whether its texton may be read between texels (baked for it, or allowed by the flag). */
+inline bool dsn_continuous_reads(const dsn_noise_state *noise) {
+    return noise->asset.interpolation == DSN_INTERPOLATION_BILINEAR ||
+           (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) != 0;
+}
+
 /* A batch chunk's coordinates as the kernels read them: Q32.32 ones where they are, float64 ones converted
    into `chunk` (dsn_coordinate_from_double). */
 inline const int64_t *dsn_chunk_coordinates(const int64_t *values, uint32_t first, uint32_t, int64_t *) {

@@ -128,10 +128,7 @@ uint32_t values_written(const dsn_noise_state *noise) { return dsn_values_per_po
 
 int dsn_internal_continuous_check(const dsn_noise_state *noise) {
     if (!dsn_configured(noise)) return DSN_ERR_NULL;
-    if (noise->asset.interpolation != DSN_INTERPOLATION_BILINEAR &&
-        (noise->flags & DSN_FLAG_ALLOW_LATTICE_CONTINUOUS) == 0)
-        return DSN_ERR_CONTINUOUS_MISMATCH;
-    return DSN_OK;
+    return dsn_continuous_reads(noise) ? DSN_OK : DSN_ERR_CONTINUOUS_MISMATCH;
 }
 
 int dsn_internal_continuous_point_as(const dsn_noise *handle, int64_t x, int64_t y, void *out,

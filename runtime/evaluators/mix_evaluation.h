@@ -58,10 +58,8 @@ inline int check_call(const dsn_mix_state *mix, const dsn_mix_control *control, 
     if (!dsn_mix_configured(mix)) return DSN_ERR_NULL;
     const int err = mix_control_check(control);
     if (err != DSN_OK || !continuous) return err;
-    for (uint32_t m = 0; m < mix->count; m++) {
-        const int mode = dsn_internal_continuous_check(&mix->material[m]);
-        if (mode != DSN_OK) return mode;
-    }
+    for (uint32_t m = 0; m < mix->count; m++)
+        if (!dsn_continuous_reads(&mix->material[m])) return DSN_ERR_CONTINUOUS_MISMATCH;
     return DSN_OK;
 }
 

@@ -253,15 +253,27 @@ inline uint32_t sift_two_pairs(vector_128 pairs, const FieldLanes &lanes, const 
 }
 
 /* bilinear_8 on 16 lanes, the 16 values added to sum's 64-bit lanes. */
-/* The rows' interpolations upper and lower (32-bit lanes) interpolated down the column, added to sum. */
-DSN_POINT_INLINE void add_column_16(vector_512 upper, vector_512 lower, vector_512 down, vector_512 *sum) {
+/* The rows' interpolations upper and lower (32-bit lanes) interpolated down the column: the even lanes'
+   values in even's 64-bit lanes, the odd lanes' in odd's. */
+DSN_POINT_INLINE void column_16(vector_512 upper, vector_512 lower, vector_512 down, vector_512 *even,
+                                vector_512 *odd) {
     const vector_512 scale = set_16x32(65536);
     const vector_512 difference = subtract_32(lower, upper);
-    const vector_512 even = add_64(multiply_even_32(upper, scale), multiply_even_32(down, difference));
-    const vector_512 odd =
-        add_64(multiply_even_32(shift_right_logical_64(upper, 32), scale),
-               multiply_even_32(shift_right_logical_64(down, 32), shift_right_logical_64(difference, 32)));
+    *even = add_64(multiply_even_32(upper, scale), multiply_even_32(down, difference));
+    *odd = add_64(multiply_even_32(shift_right_logical_64(upper, 32), scale),
+                  multiply_even_32(shift_right_logical_64(down, 32), shift_right_logical_64(difference, 32)));
+}
+
+DSN_POINT_INLINE void add_column_16(vector_512 upper, vector_512 lower, vector_512 down, vector_512 *sum) {
+    vector_512 even, odd;
+    column_16(upper, lower, down, &even, &odd);
     *sum = add_64(*sum, add_64(even, odd));
+}
+
+DSN_POINT_INLINE void bilinear_16(vector_512 a, vector_512 b, vector_512 d, vector_512 e, vector_512 across,
+                                  vector_512 down, vector_512 *even, vector_512 *odd) {
+    column_16(add_32(shift_left_32(a, 16), multiply_32(across, subtract_32(b, a))),
+              add_32(shift_left_32(d, 16), multiply_32(across, subtract_32(e, d))), down, even, odd);
 }
 
 DSN_POINT_INLINE void add_bilinear_16(vector_512 a, vector_512 b, vector_512 d, vector_512 e,
@@ -388,25 +400,15 @@ DSN_POINT_INLINE void texton_pairs_16(const unsigned char *texton, uint32_t widt
     }
 }
 
-/* The bilinear reads of texton_pairs_16's texels added to sums, those of the lanes `of` (the others read
-   as zeros). */
-template <uint32_t Channels>
-DSN_POINT_INLINE void add_texel_pairs_16(const TextonTexels16 &texels, vector_512 *sums,
-                                         mask_16 of = static_cast<mask_16>(0xFFFFu)) {
-    vector_512 texel[4];
-    for (uint32_t t = 0; t < 4; t++) texel[t] = blend_32(of, zero_512(), texels.texel[t]);
-    for (uint32_t c = 0; c < Channels; c++)
-        add_bilinear_16(lane_byte_16(texel[0], 4u - Channels + c), lane_byte_16(texel[1], c),
-                        lane_byte_16(texel[2], 4u - Channels + c), lane_byte_16(texel[3], c), texels.across,
-                        texels.down, &sums[c]);
-}
-
 template <uint32_t Channels>
 DSN_POINT_INLINE void add_texton_pairs_16(const unsigned char *texton, uint32_t width, uint32_t height,
                                           vector_512 s_x, vector_512 s_y, mask_16 reach, vector_512 *sums) {
     TextonTexels16 texels;
     texton_pairs_16<Channels>(texton, width, height, s_x, s_y, reach, &texels);
-    add_texel_pairs_16<Channels>(texels, sums);
+    for (uint32_t c = 0; c < Channels; c++)
+        add_bilinear_16(lane_byte_16(texels.texel[0], 4u - Channels + c), lane_byte_16(texels.texel[1], c),
+                        lane_byte_16(texels.texel[2], 4u - Channels + c), lane_byte_16(texels.texel[3], c),
+                        texels.across, texels.down, &sums[c]);
 }
 
 /* candidate_offsets_8 on 16 lanes: candidates first .. first + 15 of which the first `valid` exist. */
@@ -970,8 +972,17 @@ inline bool mixed_visit_begin(const dsn_point_materials *materials, MixedVisit<C
 const uint32_t material_stream_step = 0x40000000u;
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
+/* Bits 0, 2, 4, .. 14 of a 16-bit mask, packed into 8 bits. */
+inline uint32_t even_bits(uint32_t mask) {
+    uint32_t bits = mask & 0x5555u;
+    bits = (bits | bits >> 1) & 0x3333u;
+    bits = (bits | bits >> 2) & 0x0F0Fu;
+    return (bits | bits >> 4) & 0x00FFu;
+}
+
 /* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash, its
-   texels read from that material's texton, and its read added to that material's sums. */
+   texels read from that material's texton, and its read (bilinear_16's even and odd 64-bit lanes) added
+   to that material's sums under that material's lanes. */
 template <uint32_t Channels>
 DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandidates &candidates,
                                   uint32_t first, uint32_t valid) {
@@ -989,10 +1000,22 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandid
     TextonTexels16 texels;
     texton_pairs_16<Channels>(visit->point.texton, visit->point.width, visit->point.height, s_x, s_y, reach,
                               &texels, moved);
-    for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++)
-        add_texel_pairs_16<Channels>(
-            texels, visit->sums[m],
-            static_cast<mask_16>((m == 0 ? 0xFFFFu : at_least[m - 1]) & ~at_least[m]));
+    vector_512 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
+    for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++) {
+        const vector_512 lanes =
+            blend_32(static_cast<mask_16>((m == 0 ? 0xFFFFu : at_least[m - 1]) & ~at_least[m]), zero_512(),
+                     set_16x32(0xFFFFFFFFu));
+        even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
+    }
+    for (uint32_t c = 0; c < Channels; c++) {
+        vector_512 even, odd;
+        bilinear_16(lane_byte_16(texels.texel[0], 4u - Channels + c), lane_byte_16(texels.texel[1], c),
+                    lane_byte_16(texels.texel[2], 4u - Channels + c), lane_byte_16(texels.texel[3], c),
+                    texels.across, texels.down, &even, &odd);
+        for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++)
+            visit->sums[m][c] = add_64(
+                visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
+    }
 }
 const uint32_t mixed_lanes = 16;
 #else
