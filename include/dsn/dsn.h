@@ -1055,12 +1055,12 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
 
    Cost: the cubes within the reach of the point's oriented box (the texton's reach along T and B, H
    along N) are walked, each cube first tested against that box; a cube's impulses are placed and tested
-   against the slab and the texton's reach 8 at a time on AVX-512 (4 on AVX2), and those kept are read as
-   many at a time (8-bit textons and levels), else one by one: make bench's surface_bench reports a point
-   at 5-12 times a continuous point (a filtered one at 7-12 times the plane's filtered point: its taps
-   share one walk over a box that holds each one's, where they lie within a tap's reach of the point).
-   Stack: about 2 KB, a filtered point about 4 KB (the sums of up to 16 taps). Not in the small build
-   (DSN_SURFACE).
+   against the slab and the texton's reach 8 at a time on AVX-512 (4 on AVX2), and those kept, gathered
+   from cube to cube (about 2 a cube), are read as many at a time (8-bit textons and levels), else one by
+   one: make bench's surface_bench reports a point at 5-11 times a continuous point (a filtered one at 6-12
+   times the plane's filtered point: its taps share one walk over a box that holds each one's, where they
+   lie within a tap's reach of the point). Stack: under 2.5 KB, a filtered point under 4.5 KB (the sums of
+   up to 16 taps). Not in the small build (DSN_SURFACE).
    dsn/dsn.glsl evaluates the unfiltered point and the frame in a shader with the same bits
    (dsn_surface_point, dsn_surface_frame_from_float_bits: dsn/gpu.h packs what they read). */
 #ifndef DSN_SURFACE /* 1: the surface noise (this section); default 0 in the small build */

@@ -89,16 +89,30 @@ inline void surface_walk(const dsn_noise_state *noise, const int64_t *position,
     walk->reach[0] = walk->reach[1] = static_cast<int64_t>(1) << 62; /* the visitor's own test: none here */
 }
 
+/* Listed impulses waiting for the visitor: the kernels read them a vector at a time, and a cube keeps
+   about 2 of the usual 31 x 31 texton's, so the walk hands them over in fuller lists (the offsets are the
+   point's, whatever their cube). */
+struct PendingImpulses {
+    dsn_surface_impulses listed;
+    uint32_t count;
+};
+
+template <typename Visitor>
+void visit_pending(PendingImpulses *pending, uint32_t cell_shift, Visitor *visitor) {
+    if (pending->count != 0) visitor->visit_listed(pending->listed, pending->count, cell_shift);
+    pending->count = 0;
+}
+
 /* The impulses of one cube (its key and origin set by visit_impulses), listed by the kernel
-   (surface_impulses.h) up to dsn_surface_impulses_most at a time and handed to the visitor's visit_listed:
-   those within the walk's reaches and 3/4 of a cube across the slab, where the window is 0 (it is 0 from
-   35/48 of a cube, and 2^-16 texel more for the floors). An impulse's offset from the point, floored to
-   Q.16, is the cube origin's less its position in the cube (a whole number of 2^-16 texels), so its dot
-   products with the frame vectors (Q.46, floored to Q32.32 where they are read) are the origin's less the
-   position's, exactly. */
+   (surface_impulses.h) up to dsn_surface_impulses_most at a time and added to the pending list, which
+   goes to the visitor's visit_listed when the next would not fit: those within the walk's reaches and 3/4
+   of a cube across the slab, where the window is 0 (it is 0 from 35/48 of a cube, and 2^-16 texel more for
+   the floors). An impulse's offset from the point, floored to Q.16, is the cube origin's less its position
+   in the cube (a whole number of 2^-16 texels), so its dot products with the frame vectors (Q.46, floored
+   to Q32.32 where they are read) are the origin's less the position's, exactly. */
 template <typename Visitor>
 void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
-                dsn_surface_impulses_entry *list_impulses, Visitor *visitor) {
+                dsn_surface_impulses_entry *list_impulses, PendingImpulses *pending, Visitor *visitor) {
     const uint32_t shift = noise->cell_shift;
     const uint32_t count = dsn_cell_impulse_count(noise, impulses_of->key);
     const uint32_t most = dsn_surface_impulses_most;
@@ -106,7 +120,14 @@ void visit_cube(const dsn_noise_state *noise, dsn_surface_cube *impulses_of,
     for (uint32_t first = 0; first < count; first += most) {
         impulses_of->first = first;
         impulses_of->count = count - first < most ? count - first : most;
-        visitor->visit_listed(listed, list_impulses(impulses_of, &listed), shift);
+        const uint32_t kept = list_impulses(impulses_of, &listed);
+        if (pending->count + kept > most) visit_pending(pending, shift, visitor);
+        for (uint32_t k = 0; k < kept; k++) {
+            pending->listed.along_tangent[pending->count + k] = listed.along_tangent[k];
+            pending->listed.along_bitangent[pending->count + k] = listed.along_bitangent[k];
+            pending->listed.across[pending->count + k] = listed.across[k];
+        }
+        pending->count += kept;
     }
 }
 
@@ -170,6 +191,8 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
                                     0,
                                     0,
                                     shift};
+    PendingImpulses pending;
+    pending.count = 0;
     int64_t first_offset[3], along[3][3], corner[3] = {0, 0, 0};
     for (int i = 0; i < 3; i++) {
         const uint64_t middle = (static_cast<uint64_t>(walk->cubes[i].first << shift) << 32) +
@@ -198,7 +221,7 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
                     magnitude(dot[2]) <= walk->box_bound[2]) {
                     impulses_of.key = dsn_cell_key_in_row(noise, (walk->cubes[0].first + x) & mask, row_key);
                     for (int v = 0; v < 3; v++) impulses_of.origin_dot[v] = dot[v] + corner[v];
-                    visit_cube(noise, &impulses_of, list_impulses, visitor);
+                    visit_cube(noise, &impulses_of, list_impulses, &pending, visitor);
                 }
                 for (int v = 0; v < 3; v++) dot[v] -= along[v][0];
             }
@@ -206,6 +229,7 @@ void visit_impulses(const dsn_noise_state *noise, const SurfaceWalk *walk, Visit
         }
         for (int v = 0; v < 3; v++) plane_dot[v] -= along[v][2];
     }
+    visit_pending(&pending, shift, visitor);
 }
 
 /* The surface offset of a level's offset (dsn.h): less 3/32 of its expected sum (the mean less the
