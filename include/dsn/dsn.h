@@ -89,8 +89,9 @@
                         32-bit accumulator path, under 1 KB of stack per tile call, slower.
      DSN_X86_DISPATCH   default: undefined (0); the Makefile defines it to 1 on x86-64. 1 builds the
                         evaluation kernels twice more, runtime/kernels/kernel_avx2.cpp with -mavx2 and
-                        runtime/kernels/kernel_avx512.cpp with -mavx512f -mavx512bw (the build must pass those
-                        flags to those two files), and dsn_noise_init picks from the table of kernels
+                        runtime/kernels/kernel_avx512.cpp with -mavx512f -mavx512bw -mavx512dq (the build
+                        must pass those flags to those two files; without -mavx512dq the same bits, its
+                        hashes slower), and dsn_noise_init picks from the table of kernels
                         (runtime/kernels/kernel_table.cpp) the widest copy that the CPU and the OS run; on AMD
                         Zen 4, which runs 512-bit vectors as two halves, AVX-512 but for the lattice tiles
                         of RGB noises whose texton the AVX2 copy's strips hold, which it makes faster there.
