@@ -26,6 +26,9 @@ inline int64_t step(uint64_t k) { return signed_from_bits(k * impulse_index_step
 /* 2 reach - 1 (reach in 1 .. 2^62), for within_reach's comparison. */
 inline uint64_t reach_span(int64_t reach) { return static_cast<uint64_t>(reach) * 2u - 1u; }
 
+/* A vector's whole stores of kept impulses stay within the list (store_kept). */
+static_assert(dsn_surface_impulses_most % 8 == 0, "the lists hold whole vectors of 8 lanes");
+
 /* Whether |value| < reach (reach in 1 .. 2^62), as one unsigned comparison. */
 inline bool within_reach(int64_t value, int64_t reach) {
     return static_cast<uint64_t>(value) + static_cast<uint64_t>(reach - 1) < reach_span(reach);
@@ -47,11 +50,11 @@ struct SurfaceLanes {
     static bool none(Mask mask) { return mask == 0; }
     static Vector load(const int64_t *at, Mask mask) { return load_masked_8x64(at, mask); }
     static void store(uint64_t *at, Vector value) { store_8x64(at, value); }
-    /* The lanes of mask of each value stored from at[v] on, packed in order; how many. */
+    /* The lanes of mask of each value stored from at[v] on, packed in order; how many. Whole vectors are
+       stored: they write entries past the last kept one, and never past the list's end, as kept <= k for
+       the listing's step k (a multiple of 8, at most dsn_surface_impulses_most - 8). */
     static uint32_t store_kept(int64_t *const *at, Mask mask, const Vector *values, uint32_t) {
-        store_compressed_8x64(at[0], mask, values[0]);
-        store_compressed_8x64(at[1], mask, values[1]);
-        store_compressed_8x64(at[2], mask, values[2]);
+        for (uint32_t v = 0; v < 3; v++) store_8x64(at[v], compress_64(mask, values[v]));
         return static_cast<uint32_t>(__builtin_popcount(mask));
     }
     /* The lanes of `within` where a < b, unsigned. */
