@@ -1058,7 +1058,7 @@ int dsn_mix_filtered_tile_u8(const dsn_mix *mix, const dsn_mix_control *control,
    along N) are walked, each cube first tested against that box; a cube's impulses are placed and tested
    against the slab and the texton's reach 8 at a time on AVX-512 (4 on AVX2), and those kept, gathered
    from cube to cube (about 2 a cube), are read as many at a time (8-bit textons and levels), else one by
-   one: make bench's surface_bench reports a point at 5-11 times a continuous point (a filtered one at 6-12
+   one: make bench's surface_bench reports a point at 4-9 times a continuous point (a filtered one at 5-8
    times the plane's filtered point: its taps share one walk over a box that holds each one's, where they
    lie within a tap's reach of the point). Stack: under 2.5 KB, a filtered point under 4.5 KB (the sums of
    up to 16 taps). Not in the small build (DSN_SURFACE).
