@@ -972,14 +972,6 @@ inline bool mixed_visit_begin(const dsn_point_materials *materials, MixedVisit<C
 const uint32_t material_stream_step = 0x40000000u;
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-/* Bits 0, 2, 4, .. 14 of a 16-bit mask, packed into 8 bits. */
-inline uint32_t even_bits(uint32_t mask) {
-    uint32_t bits = mask & 0x5555u;
-    bits = (bits | bits >> 1) & 0x3333u;
-    bits = (bits | bits >> 2) & 0x0F0Fu;
-    return (bits | bits >> 4) & 0x00FFu;
-}
-
 /* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash, its
    texels read from that material's texton, and its read (bilinear_16's even and odd 64-bit lanes) added
    to that material's sums under that material's lanes. */

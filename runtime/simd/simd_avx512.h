@@ -419,10 +419,6 @@ DSN_SIMD_INLINE vector_512 multiply_64(vector_512 x, uint64_t factor) {
     return _mm512_mullo_epi64(x, _mm512_set1_epi64(static_cast<long long>(factor)));
 }
 #endif
-/* a + b in the 64-bit lanes of mask, a in the others. */
-DSN_SIMD_INLINE vector_512 add_64_where(mask_8 mask, vector_512 a, vector_512 b) {
-    return _mm512_mask_add_epi64(a, mask, a, b);
-}
 DSN_SIMD_INLINE vector_512 subtract_64(vector_512 a, vector_512 b) { return _mm512_sub_epi64(a, b); }
 /* The low 32 bits of each 64-bit lane, signed, multiplied into the 64-bit lane (exact). */
 DSN_SIMD_INLINE vector_512 multiply_even_32(vector_512 a, vector_512 b) { return _mm512_mul_epi32(a, b); }
@@ -479,12 +475,12 @@ DSN_SIMD_INLINE mask_16 greater_equal_unsigned_32(mask_16 within, vector_512 a, 
 DSN_SIMD_INLINE vector_512 blend_32(mask_16 mask, vector_512 a, vector_512 b) {
     return _mm512_mask_blend_epi32(mask, a, b);
 }
-/* The even 16-bit lanes of a, the odd ones of b. */
 /* Each 128-bit quarter's 32-bit lanes reordered by Order (two bits a lane, as _mm_shuffle_epi32). */
 template <int Order>
 DSN_SIMD_INLINE vector_512 shuffle_32(vector_512 a) {
     return _mm512_shuffle_epi32(a, static_cast<_MM_PERM_ENUM>(Order));
 }
+/* The even 16-bit lanes of a, the odd ones of b. */
 DSN_SIMD_INLINE vector_512 blend_odd_16(vector_512 a, vector_512 b) {
     return _mm512_mask_blend_epi16(0xAAAAAAAAu, a, b);
 }
@@ -511,7 +507,7 @@ DSN_SIMD_INLINE vector_512 shuffle_bytes(vector_512 a, vector_512 order) {
     return _mm512_shuffle_epi8(a, order);
 }
 /* The 64-bit lanes of mask packed to the front, in order, zeros after (in a register: the compressing
-   store to memory is microcoded on AMD Zen 4, tens of times slower). */
+   store to memory is microcoded on AMD Zen 4). */
 DSN_SIMD_INLINE vector_512 compress_64(mask_8 mask, vector_512 a) {
     return _mm512_maskz_compress_epi64(mask, a);
 }
