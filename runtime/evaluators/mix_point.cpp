@@ -344,34 +344,18 @@ uint32_t pick_at(const void *context, uint32_t key, uint32_t k, uint32_t x, uint
                             static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, true);
 }
 
-/* The texton a material's point reads: its lattice texton in lattice mode, else its texton. */
-dsn_texton_window texton_read(const dsn_noise_state *material, bool lattice) {
-    if (lattice) return dsn_lattice_texton_window(material);
-    const dsn_texton_window texton = {material->asset.texton,
-                                      material->asset.width,
-                                      material->asset.height,
-                                      {material->radius[0], material->radius[1]}};
-    return texton;
-}
-
 /* The materials as the kernels' mixed points take them (kernels.h's dsn_point_materials): their textons
-   (the lattice ones in lattice mode), which must all have the lead's window, channels and bits (the
-   mix's reach is then the lead's), and the region's weights as the hashes' thresholds where it is
-   uniform, else `pick`. False where a texton differs. */
+   (the lattice ones in lattice mode), which must all have the lead's window, channels and bits (mix_init
+   tells: the mix's reach is then the lead's), and the region's weights as the hashes' thresholds where it
+   is uniform, else `pick`. False where a texton differs. */
 bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lattice, const ImpulsePick *pick,
                      dsn_point_materials *materials) {
-    const dsn_noise_state *lead = &mix->material[0];
+    if ((mix->alike & (lattice ? dsn_mix_alike_lattice_textons : dsn_mix_alike_textons)) == 0) return false;
     const dsn_point_materials none = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0};
     *materials = none;
-    const dsn_texton_window first = texton_read(lead, lattice);
     for (uint32_t m = 0; m < mix->count; m++) {
         const dsn_noise_state *material = &mix->material[m];
-        const dsn_texton_window own = texton_read(material, lattice);
-        if (own.width != first.width || own.height != first.height || own.radius[0] != first.radius[0] ||
-            own.radius[1] != first.radius[1] || material->asset.channels != lead->asset.channels ||
-            material->asset.bits != lead->asset.bits)
-            return false;
-        materials->values[m] = own.values;
+        materials->values[m] = lattice ? dsn_lattice_texton_window(material).values : material->asset.texton;
     }
     if (region.uniform) {
         uniform_thresholds(mix, region, materials->thresholds);

@@ -46,15 +46,40 @@ dsn_noise_state material_on_process(const dsn_noise_state *noise, const dsn_nois
     return material;
 }
 
+/* Whether two windows have one size and radius. */
+bool same_window(const dsn_texton_window &a, const dsn_texton_window &b) {
+    return a.width == b.width && a.height == b.height && a.radius[0] == b.radius[0] &&
+           a.radius[1] == b.radius[1];
+}
+
+/* The mix's dsn_mix_alike_* bits (mix_state.h). */
+uint32_t alike_textons(const dsn_mix_state *mix) {
+    const dsn_noise_state *lead = &mix->material[0];
+    uint32_t alike = dsn_mix_alike_textons | dsn_mix_alike_lattice_textons;
+    for (uint32_t m = 1; m < mix->count; m++) {
+        const dsn_noise_state *material = &mix->material[m];
+        if (material->asset.channels != lead->asset.channels || material->asset.bits != lead->asset.bits)
+            return 0;
+        if (!same_window(dsn_continuous_texton_window(material), dsn_continuous_texton_window(lead)))
+            alike &= ~static_cast<uint32_t>(dsn_mix_alike_textons);
+        if (!same_window(dsn_lattice_texton_window(material), dsn_lattice_texton_window(lead)))
+            alike &= ~static_cast<uint32_t>(dsn_mix_alike_lattice_textons);
+    }
+    return alike;
+}
+
 } // namespace
 
+/* As dsn_internal_state_check: each word times its own odd constant, summed (independent products, a few
+   cycles on every call), then mixed so that every input bit moves the result. */
 uint32_t dsn_internal_mix_check(const dsn_mix_state *mix) {
-    uint32_t sum = dsn_mix32(mix->count | mix->channels << 8 | 0x4D490000u);
-    sum = dsn_mix32(sum + (mix->radius[0] | mix->radius[1] << 16));
-    sum = dsn_mix32(sum + (mix->lattice_radius[0] | mix->lattice_radius[1] << 16));
+    uint32_t sum = 0x4D495821u;
+    sum += (mix->count | mix->channels << 8 | mix->alike << 16) * 0x165667B1u;
+    sum += (mix->radius[0] | mix->radius[1] << 16) * 0xD3A2646Du;
+    sum += (mix->lattice_radius[0] | mix->lattice_radius[1] << 16) * 0xFD7046C5u;
     for (uint32_t m = 0; m < mix->count && m < DSN_MIX_MAX_MATERIALS; m++)
-        sum = dsn_mix32(sum + mix->material[m].check + m);
-    return sum;
+        sum += mix->material[m].check * (0x9E3779B1u + 0x3C6EF372u * m); /* odd factors */
+    return dsn_mix32(sum);
 }
 
 extern "C" {
@@ -83,6 +108,7 @@ int dsn_mix_init(dsn_mix *handle, const dsn_noise *const *materials, uint32_t co
         }
         mix->material[m] = material;
     }
+    mix->alike = alike_textons(mix);
     /* The continuous walk covers X - 1 .. X + 1 with its radius, the lattice walk the point with its own. */
     const uint64_t continuous =
         dsn_internal_walk_cost(lead, 2u * mix->radius[0] + 3u, 2u * mix->radius[1] + 3u);

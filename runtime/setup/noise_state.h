@@ -89,13 +89,19 @@ typedef struct dsn_texton_window {
     uint32_t width, height, radius[2];
 } dsn_texton_window;
 
+/* The continuous evaluators' texton: the asset's texton. */
+inline dsn_texton_window dsn_continuous_texton_window(const dsn_noise_state *noise) {
+    const dsn_asset *asset = &noise->asset;
+    const dsn_texton_window texton = {
+        asset->texton, asset->width, asset->height, {noise->radius[0], noise->radius[1]}};
+    return texton;
+}
+
 /* The lattice evaluators' texton: the asset's lattice texton (format 1.3) where it has one, else its
    texton. The per-point walk reads it so, without a copy of the noise (dsn_internal_lattice_view). */
 inline dsn_texton_window dsn_lattice_texton_window(const dsn_noise_state *noise) {
     const dsn_asset *asset = &noise->asset;
-    const dsn_texton_window texton = {
-        asset->texton, asset->width, asset->height, {noise->radius[0], noise->radius[1]}};
-    if (asset->lattice_texton == 0) return texton;
+    if (asset->lattice_texton == 0) return dsn_continuous_texton_window(noise);
     const dsn_texton_window lattice = {asset->lattice_texton,
                                        asset->lattice_width,
                                        asset->lattice_height,
