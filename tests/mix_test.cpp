@@ -1083,6 +1083,66 @@ TEST_CASE("mix: filtered points where the weights mix read 8-bit levels through 
     CHECK(differences == 0);
 }
 
+TEST_CASE("mix: filtered points where the weights are uniform (each material's sifted walk over the "
+          "impulses that draw it) have the bits of the mix's walk") {
+    // Equal weights in every sample: the draws and the point's weights depend on the weights' ratios alone,
+    // so a control whose samples vary in size only (the mix's walk: its region is not uniform) gives the
+    // bits of a constant one (each material's sifted walk, its impulses kept by their hashes). Three
+    // materials (thresholds at 1/3 and 2/3; 8-bit 31 x 31 with a period, 8-bit 9 x 9, 16-bit 13 x 13), and
+    // a grey lead with an RGB material (1/2), through every kernel.
+    auto fields = [](uint32_t channels, uint32_t radius, uint32_t bits, uint64_t seed) {
+        auto made =
+            with_means(random_texton_asset(channels, radius, bits, seed), -(1 << 21), 1 << 22, 1 << 20);
+        made.pyramid = dsn::texton_pyramid(made);
+        return made;
+    };
+    auto lead = make_noise(fields(3, 15, 8, 301), 302, 0, 29, 0);
+    auto small = make_noise(fields(3, 4, 8, 303), 304);
+    auto wide = make_noise(fields(3, 6, 16, 305), 306);
+    auto grey = make_noise(fields(1, 6, 8, 307), 308);
+    const dsn_mix three = make_mix({&lead->noise, &small->noise, &wide->noise});
+    const dsn_mix grey_lead = make_mix({&grey->noise, &small->noise});
+    const Control thirds = constant({70, 70, 70}), halves = constant({200, 200});
+    const Control thirds_varying(3, 3, 2, 2, [](uint32_t i, uint32_t j) {
+        const uint8_t w = uint8_t((i + j) % 2 ? 70 : 13 + 40 * i);
+        return std::vector<uint8_t>{w, w, w};
+    });
+    const Control halves_varying(2, 3, 2, 2, [](uint32_t i, uint32_t j) {
+        const uint8_t w = uint8_t((i + j) % 2 ? 200 : 255 - 70 * i);
+        return std::vector<uint8_t>{w, w};
+    });
+    const dsn_footprint footprints[] = {{kOne * 3 / 2, 0, 0, kOne * 3 / 2, 1},
+                                        {3 * kOne, kOne / 3, -kOne / 3, 3 * kOne, 4},
+                                        {6 * kOne, 0, 0, 6 * kOne, 1},
+                                        {4 * kOne, 0, 0, kOne, 4}};
+    const struct {
+        const dsn_mix *mix;
+        const Control *uniform, *varying;
+    } cases[] = {{&three, &thirds, &thirds_varying}, {&grey_lead, &halves, &halves_varying}};
+    std::vector<int64_t> xs, ys;
+    renderer_points(309, 50, &xs, &ys);
+    size_t differences = 0, compared = 0, spread = 0;
+    for (const auto &mixed : cases)
+        for (uint32_t kernel = DSN_KERNEL_DEFAULT;
+             kernel <= dsn_mix_state_of(mixed.mix)->material[0].tile_kernel; kernel++) {
+            const dsn_mix copy = on_kernel(*mixed.mix, kernel);
+            for (const dsn_footprint &footprint : footprints)
+                for (size_t k = 0; k < xs.size(); k++) {
+                    int32_t walked[3], kept[3];
+                    REQUIRE(dsn_mix_filtered_point_fixed(&copy, &mixed.varying->control, xs[k], ys[k],
+                                                         &footprint, walked) == DSN_OK);
+                    REQUIRE(dsn_mix_filtered_point_fixed(&copy, &mixed.uniform->control, xs[k], ys[k],
+                                                         &footprint, kept) == DSN_OK);
+                    differences += std::memcmp(walked, kept, sizeof kept) != 0;
+                    spread += kept[0] != kept[1];
+                    compared++;
+                }
+        }
+    INFO(compared << " points compared");
+    CHECK(spread > 0);
+    CHECK(differences == 0);
+}
+
 namespace {
 
 // The covariance of one material's continuous noise at a lag, channels c and d (theory above).

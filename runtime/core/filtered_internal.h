@@ -86,6 +86,15 @@ void dsn_internal_filter_slopes_walked(const dsn_noise_state *noise, uint64_t x,
 void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums);
+#if DSN_MIXING
+struct dsn_impulse_filter;
+/* dsn_internal_filter_sums_sifted over the impulses that `filter` keeps (one material of a mix whose
+   weights are uniform, on the mix's impulse process: mix_filtered.cpp). */
+void dsn_internal_filter_sums_kept(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                   const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                   uint32_t count, const struct dsn_impulse_filter *filter,
+                                   dsn_filter_sums sums);
+#endif
 #if DSN_GRADIENTS
 /* dsn_internal_filter_slopes_walked's sums and slopes from sifted walks: each tap with its copies moved by
    one 2^-16 texel step of each level along x and y, whose level sums less the tap's are the slopes. */

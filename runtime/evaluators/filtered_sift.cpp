@@ -287,6 +287,7 @@ struct TapGroup {
                                    it reads (the gradient's moved taps read one or none) */
     bool one_spot;              /* the taps are one tap and its moved copies */
     dsn_filter_slopes *slopes;  /* null, or where the kernel's reads add the taps' slopes (closed tests) */
+    const dsn_impulse_filter *filter; /* null, or the impulses one material of a mix keeps (DSN_MIXING) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -446,6 +447,10 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, uint32_t count, const
             const uint64_t shifted_y =
                 static_cast<uint64_t>(y.shifted_base) - (static_cast<uint64_t>(bits_y) << position_shift);
             if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue; /* beyond every tap */
+            if (group.filter != 0 &&
+                static_cast<uint64_t>(dsn_cell_stream(key, 0xC0000000u + first + lane)) - group.filter->low >=
+                    group.filter->high - group.filter->low)
+                continue; /* another material's */
             if (list->count >= (group.taps == 1 ? one_tap_buffer_size : buffer_size))
                 visit<Channels, Bytes>(group, list, grid, sums);
             list->x[list->count] = static_cast<int64_t>(shifted_x);
@@ -515,10 +520,10 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                     room -= cells[end].count;
                 }
                 if (end > i) {
-                    list->count =
-                        group.list_candidates(cells + i, end - i, shift, list->count,
-                                              group.narrow ? 0 : list->x, group.narrow ? 0 : list->y,
-                                              list->narrow_x, list->narrow_y, list->cell_end + list->cells);
+                    list->count = group.list_candidates(
+                        cells + i, end - i, shift, list->count, group.narrow ? 0 : list->x,
+                        group.narrow ? 0 : list->y, list->narrow_x, list->narrow_y,
+                        list->cell_end + list->cells, group.filter);
                     for (; i < end; i++) record_cell(list, cells[i].x.shifted_base, cells[i].y.shifted_base);
                 } else { /* an empty buffer has room for any cell (kernel_listing_takes) */
                     visit<Channels, Bytes>(group, list, grid, sums);
@@ -592,6 +597,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->tap_levels = tap_levels;
     group->one_spot = one_spot;
     group->slopes = 0;
+    group->filter = 0;
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
@@ -603,48 +609,54 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
 template <uint32_t Channels, uint32_t Bytes>
 void sum_taps(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *y, uint32_t taps,
               const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
-              const uint32_t *tap_levels, bool one_spot) {
+              const uint32_t *tap_levels, bool one_spot, const dsn_impulse_filter *filter) {
     TapGroup group;
     if (tap_group(noise, x, y, 0, taps, levels, count, listed, tap_levels, one_spot, &group)) {
+        group.filter = filter;
         sum_group<Channels, Bytes>(noise, group, sums);
         return;
     }
     for (uint32_t t = 0; t < taps; t++) {
         tap_group(noise, x, y, t, 1, levels, count, listed, tap_levels, false, &group); /* no spread */
+        group.filter = filter;
         sum_group<Channels, Bytes>(noise, group, sums);
     }
 }
 
-/* The sums at the points (tap_x, tap_y), zeroed first; one_spot: TapGroup's. */
+/* The sums at the points (tap_x, tap_y), zeroed first; one_spot, filter: TapGroup's. */
 void sum_points(const dsn_noise_state *noise, const uint64_t *tap_x, const uint64_t *tap_y, uint32_t taps,
                 const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
-                const uint32_t *tap_levels, bool one_spot) {
+                const uint32_t *tap_levels, bool one_spot, const dsn_impulse_filter *filter) {
     for (uint32_t tap = 0; tap < taps; tap++)
         for (uint32_t l = 0; l < 2; l++)
             for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = 0;
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3) {
         if (asset->bits == 8)
-            sum_taps<3, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
+            sum_taps<3, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot,
+                           filter);
         else
-            sum_taps<3, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
+            sum_taps<3, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot,
+                           filter);
     } else {
         if (asset->bits == 8)
-            sum_taps<1, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
+            sum_taps<1, 1>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot,
+                           filter);
         else
-            sum_taps<1, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot);
+            sum_taps<1, 2>(noise, tap_x, tap_y, taps, levels, count, sums, listed, tap_levels, one_spot,
+                           filter);
     }
 }
 
 void sum_taps_of_asset(const dsn_noise_state *noise, uint64_t x, uint64_t y, const dsn_filter_plan *plan,
-                       const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums,
-                       uint64_t *listed) {
+                       const dsn_walked_level *levels, uint32_t count, dsn_filter_sums sums, uint64_t *listed,
+                       const dsn_impulse_filter *filter) {
     uint64_t tap_x[DSN_FILTER_MAX_TAPS], tap_y[DSN_FILTER_MAX_TAPS];
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
         tap_x[tap] = x + static_cast<uint64_t>(plan->offset_x[tap]);
         tap_y[tap] = y + static_cast<uint64_t>(plan->offset_y[tap]);
     }
-    sum_points(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed, 0, false);
+    sum_points(noise, tap_x, tap_y, plan->taps, levels, count, sums, listed, 0, false, filter);
 }
 
 #if DSN_GRADIENTS
@@ -718,8 +730,16 @@ bool start_wraps(uint64_t coordinate, uint64_t step) {
 void dsn_internal_filter_sums_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
                                      const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                      uint32_t count, dsn_filter_sums sums) {
-    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, 0);
+    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, 0, 0);
 }
+
+#if DSN_MIXING
+void dsn_internal_filter_sums_kept(const dsn_noise_state *noise, uint64_t x, uint64_t y,
+                                   const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                   uint32_t count, const dsn_impulse_filter *filter, dsn_filter_sums sums) {
+    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, 0, filter);
+}
+#endif
 
 #if DSN_GRADIENTS
 void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x, uint64_t y,
@@ -760,7 +780,7 @@ void dsn_internal_filter_slopes_sifted(const dsn_noise_state *noise, uint64_t x,
         }
         dsn_filter_sums point_sums;
         sum_points(noise, point_x, point_y, taps * points_per_tap, levels, count, point_sums, 0, point_levels,
-                   taps == 1);
+                   taps == 1, 0);
         /* The sums step by exactly 2^8 times the slopes over one weight step (the bilinear read is linear
            in its weights and the reach's edge reads 0): the walk's slopes. */
         for (uint32_t t = 0; t < taps; t++) {
@@ -784,7 +804,7 @@ uint64_t dsn_internal_filter_listing_only(const dsn_noise_state *noise, uint64_t
                                           uint32_t count) {
     dsn_filter_sums sums;
     uint64_t listed = 0;
-    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, &listed);
+    sum_taps_of_asset(noise, x, y, plan, levels, count, sums, &listed, 0);
     return listed;
 }
 

@@ -171,6 +171,15 @@ inline void uniform_thresholds(const dsn_mix_state *mix, const MixRegion &region
                             : static_cast<uint64_t>(1) << 32;
 }
 
+/* The impulses that draw material m where the weights are uniform: those whose hashes lie between
+   uniform_thresholds' on each side of it (none, low == high, where no hash draws it). */
+inline dsn_impulse_filter material_filter(const uint64_t *thresholds, uint32_t m) {
+    const dsn_impulse_filter filter = {m == 0 ? 0u : thresholds[m - 1u],
+                                       m + 1u < dsn_point_materials_most ? thresholds[m]
+                                                                         : static_cast<uint64_t>(1) << 32};
+    return filter;
+}
+
 } // namespace
 
 /* The mix's values at the continuous point (x, y), Q32.32, for a mix and control that passed check_call

@@ -203,9 +203,54 @@ void material_value(const dsn_noise_state *weighted, const dsn_filter_plan *plan
     dsn_internal_filter_round(weighted, plan, totals, out);
 }
 
-/* The materials' terms where the weights mix: the levels of each material whose plan does not fade, the
-   sums of all by one walk (the plans' taps are the footprint's alone: a material's pyramid clamps only
-   its level of detail), then each term from its sums, with its weighted offsets and mean. */
+/* The terms of the materials with levels where the weights are uniform: each material's sums by the
+   sifted walk of one noise (filtered_sift.cpp, on vectors where the kernel lists candidates) over the
+   impulses that draw it, every material's impulses listed again (the listing costs less than the scalar
+   walk's pick per impulse: make bench's mix_bench), then its term. The same impulses and reads as
+   materials_sums's, so the same sums. `weighted`: room for a weighted material. Kept out of line, as
+   walked_terms is, so that the sifted walk's stack is not under walked_terms's frame. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+void kept_terms(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, uint64_t y, const MixPlans plans,
+                const uint32_t *weights, const MaterialLevels *levels, dsn_noise_state *weighted,
+                int32_t (*terms)[DSN_MAX_CHANNELS]) {
+    uint64_t thresholds[dsn_point_materials_most - 1];
+    uniform_thresholds(mix, region, thresholds);
+    for (uint32_t m = 0; m < mix->count; m++) {
+        if (levels[m].count == 0) continue;
+        dsn_filter_sums sums;
+        const dsn_impulse_filter filter = material_filter(thresholds, m);
+        if (filter.low < filter.high)
+            dsn_internal_filter_sums_kept(&mix->material[m], x, y, &plans[m], levels[m].walked,
+                                          levels[m].count, &filter, sums);
+        else
+            __builtin_memset(sums, 0, sizeof sums);
+        weighted_material(mix, m, weights[m], weighted);
+        material_value(weighted, &plans[m], levels[m], sums, terms[m]);
+    }
+}
+
+/* The terms of the materials with levels where the weights vary: the sums of all by one walk
+   (materials_sums), then each term. Kept out of line (see kept_terms). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+void walked_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region, uint64_t x,
+                  uint64_t y, const MixPlans plans, const uint32_t *weights, const MaterialLevels *levels,
+                  dsn_noise_state *weighted, int32_t (*terms)[DSN_MAX_CHANNELS]) {
+    dsn_filter_sums sums[DSN_MIX_MAX_MATERIALS];
+    materials_sums(mix, control, region, x, y, &plans[0], levels, sums);
+    for (uint32_t m = 0; m < mix->count; m++)
+        if (levels[m].count != 0) {
+            weighted_material(mix, m, weights[m], weighted);
+            material_value(weighted, &plans[m], levels[m], sums[m], terms[m]);
+        }
+}
+
+/* The materials' terms where the weights mix: the levels of each material whose plan does not fade, their
+   sums (the plans' taps are the footprint's alone: a material's pyramid clamps only its level of detail),
+   then each term from its sums, with its weighted offsets and mean. */
 void mixed_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                  uint64_t x, uint64_t y, const MixPlans plans, const uint32_t *weights,
                  int32_t (*terms)[DSN_MAX_CHANNELS]) {
@@ -222,13 +267,10 @@ void mixed_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const
         walked = true;
     }
     if (!walked) return;
-    dsn_filter_sums sums[DSN_MIX_MAX_MATERIALS];
-    materials_sums(mix, control, region, x, y, &plans[0], levels, sums);
-    for (uint32_t m = 0; m < mix->count; m++)
-        if (levels[m].count != 0) {
-            weighted_material(mix, m, weights[m], &weighted);
-            material_value(&weighted, &plans[m], levels[m], sums[m], terms[m]);
-        }
+    if (region.uniform)
+        kept_terms(mix, region, x, y, plans, weights, levels, &weighted, terms);
+    else
+        walked_terms(mix, control, region, x, y, plans, weights, levels, &weighted, terms);
 }
 
 void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,

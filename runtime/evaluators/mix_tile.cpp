@@ -71,9 +71,7 @@ void drawn_materials(const dsn_mix_state *mix, const MixRegion &region, DrawnMat
     point_weights(region.weights, mix->count, drawn->weights);
     drawn->count = 0;
     for (uint32_t m = 0; m < mix->count; m++) {
-        const dsn_impulse_filter filter = {
-            m == 0 ? 0u : thresholds[m - 1u],
-            m + 1u < dsn_point_materials_most ? thresholds[m] : static_cast<uint64_t>(1) << 32};
+        const dsn_impulse_filter filter = material_filter(thresholds, m);
         if (filter.low >= filter.high) continue;
         drawn->materials[drawn->count] = m;
         drawn->filters[drawn->count++] = filter;

@@ -28,6 +28,33 @@ inline uint32_t narrow_base(int64_t shifted_base) {
     return static_cast<uint32_t>(static_cast<uint64_t>(shifted_base) >> 16);
 }
 
+/* A mix's material filter (kernels.h's dsn_impulse_filter, DSN_MIXING) on the 32-bit lanes of the listing's
+   vectors: an impulse's hash h is kept where h - low < span modulo 2^32, span = high - low (below 2^32: the
+   filter of a material that draws every impulse is null). */
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+typedef vector_512 filter_vector;
+#else
+typedef vector_256 filter_vector;
+#endif
+struct KeptLanes {
+    filter_vector low, span;
+};
+
+inline KeptLanes kept_lanes_of(const dsn_impulse_filter *filter) {
+    const uint32_t low = filter != 0 ? static_cast<uint32_t>(filter->low) : 0u,
+                   span = filter != 0 ? static_cast<uint32_t>(filter->high - filter->low) : 0u;
+    const KeptLanes kept = {all_lanes_32<filter_vector>(low), all_lanes_32<filter_vector>(span)};
+    return kept;
+}
+
+/* The lanes whose impulse the filter keeps, from their streams dsn_cell_stream(key, 2^31 + k) less the
+   mix: their material hashes, dsn_cell_stream(key, 2^31 + 2^30 + k), are the streams' plus 2^30 0x9E3779B9
+   = 2^30 modulo 2^32, mixed. */
+inline uint32_t kept_lanes(filter_vector streams, const KeptLanes &kept) {
+    const filter_vector hashes = mix32_lanes(add_32(streams, all_lanes_32<filter_vector>(0x40000000u)));
+    return less_unsigned_32_bits(subtract_32(hashes, kept.low), kept.span);
+}
+
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* shifted_base - bits 2^position_shift for the 16 candidates of `bits` (32-bit lanes), in order. */
 inline void store_shifted_16(int64_t *at, vector_512 base, vector_512 bits, vector_128 position_shift) {
@@ -39,11 +66,12 @@ inline void store_shifted_16(int64_t *at, vector_512 base, vector_512 bits, vect
 
 /* kernels.h's filter_candidates, two pairs at a time (impulses first .. first + 15 of a cell), on 512-bit
    vectors: both sifted in one 128-bit vector (sift_two_pairs) and their candidates compressed to the front.
-   Wide: xs, ys are written (a loop of its own without them: fewer live registers). */
-template <bool Wide>
+   Wide: xs, ys are written (a loop of its own without them: fewer live registers). Filtered: only the
+   impulses that `filter` keeps (kept_lanes). */
+template <bool Wide, bool Filtered>
 uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
                            uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
-                           uint32_t *ends) {
+                           uint32_t *ends, const KeptLanes &kept) {
     const FieldLanes lanes = field_lanes(cell_shift);
     const vector_128 position_shift = shift_count(static_cast<int>(16u + cell_shift)),
                      cell_shift_vector = shift_count(static_cast<int>(cell_shift));
@@ -62,10 +90,11 @@ uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             uint32_t sifted = sift_two_pairs(pairs, lanes, cell.x, cell.y);
             if (cell.count - first < 16u)
                 sifted &= (1u << (cell.count - first)) - 1u; /* impulses that do not exist */
-            const mask_16 keep = static_cast<mask_16>(sifted);
             /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
             const vector_512 streams =
                 add_32(set_16x32(cell.key + (0x80000000u + first) * 0x9E3779B9u), weyl);
+            if (Filtered) sifted &= kept_lanes(streams, kept);
+            const mask_16 keep = static_cast<mask_16>(sifted);
             /* hashed and placed before the sift's mask is known (lanewise: the same values), off its
                chain; then only what is stored is compressed */
             vector_512 bits_x, bits_y;
@@ -89,11 +118,17 @@ uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
 
 uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
                            uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
-                           uint32_t *ends) {
-    return xs != 0 ? listed_candidates<true>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
-                                             narrow_ys, ends)
-                   : listed_candidates<false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
-                                              narrow_ys, ends);
+                           uint32_t *ends, const dsn_impulse_filter *filter) {
+    const KeptLanes kept = kept_lanes_of(filter);
+    if (filter != 0)
+        return xs != 0 ? listed_candidates<true, true>(cells, cell_count, cell_shift, count, xs, ys,
+                                                       narrow_xs, narrow_ys, ends, kept)
+                       : listed_candidates<false, true>(cells, cell_count, cell_shift, count, xs, ys,
+                                                        narrow_xs, narrow_ys, ends, kept);
+    return xs != 0 ? listed_candidates<true, false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
+                                                    narrow_ys, ends, kept)
+                   : listed_candidates<false, false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
+                                                     narrow_ys, ends, kept);
 }
 #else
 /* shifted_base - bits 2^position_shift for the 8 candidates of `bits` (32-bit lanes), in order. */
@@ -107,8 +142,11 @@ inline void store_shifted(int64_t *at, vector_256 base, vector_256 bits, vector_
 /* kernels.h's filter_candidates, a pair at a time. */
 uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
                            uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
-                           uint32_t *ends) {
+                           uint32_t *ends, const dsn_impulse_filter *filter) {
     const FieldLanes lanes = field_lanes(cell_shift);
+    const KeptLanes kept = kept_lanes_of(filter);
+    /* lane * 0x9E3779B9 modulo 2^32 */
+    const vector_256 weyl = multiply_32(set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7), set_8x32(0x9E3779B9u));
     const vector_128 position_shift = shift_count(static_cast<int>(16u + cell_shift)),
                      cell_shift_vector = shift_count(static_cast<int>(cell_shift));
     for (uint32_t k = 0; k < cell_count; k++) {
@@ -119,8 +157,11 @@ uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
         for (uint32_t first = 0; first < cell.count; first += 8u) {
             const uint64_t pair = dsn_position_pair(cell.key, first >> 3);
             const uint32_t present = cell.count - first < 8u ? cell.count - first : 8u;
-            const uint32_t sifted =
+            uint32_t sifted =
                 gather_lanes(candidate_lanes(pair, lanes, cell.x, cell.y), lanes) & ((1u << present) - 1u);
+            if (filter != 0)
+                sifted &=
+                    kept_lanes(add_32(set_8x32(cell.key + (0x80000000u + first) * 0x9E3779B9u), weyl), kept);
             vector_256 streams, fields;
             /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
             const uint32_t packed =

@@ -187,11 +187,13 @@ typedef struct dsn_filter_cell {
    xs[count], ys[count] on (unless xs is null), cell by cell, the same offsets / 2^16 modulo 2^32 from
    narrow_xs[count],
    narrow_ys[count] on, and where each cell's end in ends[0 .. cell_count - 1]; returns the new count.
-   Writes up to 16 values past the last candidate: the caller leaves room for the sum of the cells' counts
-   plus 16. */
+   Where `filter` is not null (DSN_MIXING: one material of a mix whose weights are uniform) only the
+   impulses it keeps are candidates. Writes up to 16 values past the last candidate: the caller leaves
+   room for the sum of the cells' counts plus 16. */
 typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
                                              uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
-                                             uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends);
+                                             uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends,
+                                             const dsn_impulse_filter *filter);
 
 /* One cube of the surface walk (core/surface_walk.h's visit_cube), as the surface kernel reads it: its key
    and the impulses first .. first + count - 1 of it (count <= dsn_surface_impulses_most), the offsets of

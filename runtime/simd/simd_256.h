@@ -161,6 +161,11 @@ DSN_SIMD_INLINE vector_256 greater_32(vector_256 a, vector_256 b) { return _mm25
 DSN_SIMD_INLINE vector_256 greater_64(vector_256 a, vector_256 b) { return _mm256_cmpgt_epi64(a, b); }
 /* The top bit of 32-bit lane k in bit k (an int, as the instruction's). */
 DSN_SIMD_INLINE int top_bits_of_32(vector_256 a) { return _mm256_movemask_ps(_mm256_castsi256_ps(a)); }
+/* Bit k: lane k of a below lane k of b, unsigned (no unsigned comparison before AVX-512: a < b exactly when
+   min(a, b) is not b). */
+DSN_SIMD_INLINE uint32_t less_unsigned_32_bits(vector_256 a, vector_256 b) {
+    return ~static_cast<uint32_t>(top_bits_of_32(equal_32(minimum_unsigned_32(a, b), b))) & 0xFFu;
+}
 /* Bit k: the top bit of 64-bit lane k. */
 DSN_SIMD_INLINE int top_bits_of_64(vector_256 a) { return _mm256_movemask_pd(_mm256_castsi256_pd(a)); }
 

@@ -455,6 +455,8 @@ DSN_SIMD_INLINE mask_16 less_unsigned_32(mask_16 within, vector_512 a, vector_51
 }
 /* Comparisons of unsigned 32-bit lanes; `within`: only the lanes of that mask, the others 0. */
 DSN_SIMD_INLINE mask_16 less_unsigned_32(vector_512 a, vector_512 b) { return _mm512_cmplt_epu32_mask(a, b); }
+/* less_unsigned_32 as bits, as simd_256.h's for 8 lanes. */
+DSN_SIMD_INLINE uint32_t less_unsigned_32_bits(vector_512 a, vector_512 b) { return less_unsigned_32(a, b); }
 DSN_SIMD_INLINE mask_16 less_equal_unsigned_32(vector_512 a, vector_512 b) {
     return _mm512_cmple_epu32_mask(a, b);
 }
