@@ -845,9 +845,10 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    whose materials' lattice textons share one size, channel count and value size takes the kernels'
    vector walk, as one noise's point does (16 impulses of a cell tested at once; where the samples agree,
    the AVX2 and AVX-512 copies hash the 16 impulses' materials at once too); so does a continuous point
-   whose samples agree, with 8-bit textons of one size and channel count, in the AVX2 and AVX-512 copies
-   (the continuous point's vector evaluator, each of 8 or 16 candidates gathering its own material's
-   texels: the textons must lie within 2^30 bytes of material 0's); other points walk in scalar code. Tiles
+   with 8-bit textons of one size and channel count, in the AVX2 and AVX-512 copies (the continuous
+   point's vector evaluator, each of 8 or 16 candidates gathering its own material's texels: the textons
+   must lie within 2^30 bytes of material 0's; where the samples around the point differ, each candidate
+   in reach reads its weights at its position, one by one); other points walk in scalar code. Tiles
    and batches walk their points in groups. A lattice tile whose samples agree over its reach and whose
    impulses draw two materials of the mix's channel count, 8-bit textons that the x86 strip path holds
    (tile_render.h), goes by that path for both at once, with or without scratch: each rectangle's impulses
@@ -868,19 +869,18 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    points within 32 texels of each other (each impulse found once per group, read at the points it
    reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
    instead, faster); other points go one by one. make bench's mix_bench
-   reports both against one material, and the stack it paints: a lattice or continuous point call under
-   5 KB, a filtered one about 27 KB on x86 where the weights are uniform (a material's sifted walk, as
-   one material's filtered point call, about 24 KB, which it makes where the weights are one material's)
-   and 15 KB where they vary, a mixed tile call under 4 KB but
-   where a tile or band goes by material passes (then a material's tile call's, as
-   dsn_lattice_tile_fixed's, and a copy of the material) or by the two-material strips (two materials' strip
-   paths: about 128 KB on x86, twice one material's tile call), and a continuous tile splatted by materials
-   (the cell records of two materials: about 160 KB on x86, under twice one material's). Gradients have no mix
-   yet. Where the weights are uniform over its reach, the filtered mix sums each material as one
-   material's filtered point does (every tap at once, the AVX2 and AVX-512 copies listing the candidates
-   on vectors), over the impulses whose hashes draw that material; where they vary, it finds each impulse
-   once per tap (within the largest of the materials' reaches), then reads each material's impulses, on
-   vectors for 8-bit levels in the AVX2 and AVX-512 copies. dsn/dsn.glsl
+   reports both against one material, and the stack it paints: a lattice point call under 3 KB, a
+   continuous one under 7 KB, a filtered one about 27 KB on x86 where the weights are uniform (a material's
+   sifted walk, as one material's filtered point call, about 24 KB, which it makes where the weights are one
+   material's) and 15 KB where they vary, a mixed tile call under 4 KB but where a tile or band goes by
+   material passes (then a material's tile call's, as dsn_lattice_tile_fixed's, and a copy of the material) or
+   by the two-material strips (two materials' strip paths: about 128 KB on x86, twice one material's tile
+   call), and a continuous tile splatted by materials (the cell records of two materials: about 160 KB on x86,
+   under twice one material's). Gradients have no mix yet. Where the weights are uniform over its reach, the
+   filtered mix sums each material as one material's filtered point does (every tap at once, the AVX2 and
+   AVX-512 copies listing the candidates on vectors), over the impulses whose hashes draw that material; where
+   they vary, it finds each impulse once per tap (within the largest of the materials' reaches), then reads
+   each material's impulses, on vectors for 8-bit levels in the AVX2 and AVX-512 copies. dsn/dsn.glsl
    evaluates the lattice and continuous mix per point with these bits, from the words of dsn_gpu_mix_pack
    (dsn/gpu.h). Not in the small build (DSN_MIXING). */
 #if DSN_MIXING

@@ -197,17 +197,24 @@ inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint
     return region;
 }
 
-/* The material of impulse k of the cell with this key, at Q32.32 position (x, y) (its floor is read);
-   unbranched as pick_material's. */
-inline uint32_t impulse_material(const dsn_mix_control *control, uint32_t count, const MixRegion &region,
-                                 uint32_t key, uint32_t k, uint64_t x, uint64_t y, bool unbranched = false) {
+/* The material of the impulse whose material hash (dsn_cell_stream(key, 2^31 + 2^30 + k) of impulse k of
+   the cell with key `key`) is `hash`, at Q32.32 position (x, y) (its floor is read); unbranched as
+   pick_material's. */
+inline uint32_t hashed_material(const dsn_mix_control *control, uint32_t count, const MixRegion &region,
+                                uint32_t hash, uint64_t x, uint64_t y, bool unbranched = false) {
     if (region.single) return region.only;
-    const uint32_t hash = dsn_cell_stream(key, 0xC0000000u + k);
     if (region.uniform) return pick_material(region.weights, count, hash, unbranched);
     const uint64_t whole = ~static_cast<uint64_t>(0xFFFFFFFFu);
     MixWeights weights;
     mix_weights_at(control, count, x & whole, y & whole, &weights);
     return pick_material(weights, count, hash, unbranched);
+}
+
+/* The material of impulse k of the cell with this key, at Q32.32 position (x, y): hashed_material's. */
+inline uint32_t impulse_material(const dsn_mix_control *control, uint32_t count, const MixRegion &region,
+                                 uint32_t key, uint32_t k, uint64_t x, uint64_t y, bool unbranched = false) {
+    if (region.single) return region.only; /* (no hash needed) */
+    return hashed_material(control, count, region, dsn_cell_stream(key, 0xC0000000u + k), x, y, unbranched);
 }
 
 } // namespace

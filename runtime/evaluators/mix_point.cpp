@@ -338,10 +338,10 @@ struct ImpulsePick {
     const MixRegion *region;
 };
 
-uint32_t pick_at(const void *context, uint32_t key, uint32_t k, uint32_t x, uint32_t y) {
+uint32_t pick_at(const void *context, uint32_t hash, uint32_t x, uint32_t y) {
     const ImpulsePick *pick = static_cast<const ImpulsePick *>(context);
-    return impulse_material(pick->control, pick->mix->count, *pick->region, key, k,
-                            static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, true);
+    return hashed_material(pick->control, pick->mix->count, *pick->region, hash,
+                           static_cast<uint64_t>(x) << 32, static_cast<uint64_t>(y) << 32, true);
 }
 
 /* The materials as the kernels' mixed points take them (kernels.h's dsn_point_materials): their textons
@@ -385,14 +385,19 @@ bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
 }
 
 /* The continuous sums of every material at `count` points (xs[p], ys[p]) from the kernel's vector
-   evaluator, the materials made once, where the region's weights are uniform and it takes the mix
-   (point_materials; the AVX-512 copy, 8-bit textons). False where it does not (sums then undefined). */
-bool kernel_continuous_sums(const dsn_mix_state *mix, const MixRegion &region, const uint64_t *xs,
-                            const uint64_t *ys, uint32_t count, ContinuousSums *sums) {
+   evaluator, the materials made once, where it takes the mix (point_materials; the AVX2 and AVX-512
+   copies, 8-bit textons) and the region's weights are uniform, or where `picks` (a point alone: each
+   candidate in reach then reads its weights; a group's walk reads each impulse's once for the group). False
+   where it does not (sums then undefined). */
+bool kernel_continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                            bool picks, const uint64_t *xs, const uint64_t *ys, uint32_t count,
+                            ContinuousSums *sums) {
     const dsn_noise_state *lead = &mix->material[0];
     dsn_continuous_point_entry *point = dsn_kernel_entries_of(lead->tile_kernel)->continuous_point;
+    const ImpulsePick pick = {mix, control, &region};
     dsn_point_materials materials;
-    if (point == 0 || !region.uniform || !point_materials(mix, region, false, 0, &materials)) return false;
+    if (point == 0 || (!region.uniform && !picks) || !point_materials(mix, region, false, &pick, &materials))
+        return false;
     for (uint32_t p = 0; p < count; p++) {
         uint64_t flat[DSN_MAX_CHANNELS * DSN_MIX_MAX_MATERIALS];
         if (!point(lead, xs[p], ys[p], flat, 0, 0, &materials)) return false;
@@ -415,7 +420,7 @@ void continuous_point(const dsn_mix_state *mix, const dsn_mix_control *control, 
         return;
     }
     ContinuousSums sums[1] = {};
-    if (!kernel_continuous_sums(mix, region, &x, &y, 1u, sums)) {
+    if (!kernel_continuous_sums(mix, control, region, true, &x, &y, 1u, sums)) {
         __builtin_memset(sums, 0, sizeof sums);
         const dsn_noise_state *lead = &mix->material[0];
         GroupAxis gx, gy;
@@ -456,7 +461,7 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
     /* Where the weights are uniform, each point by the kernel's vector evaluator where it takes the mix
        (faster than the group's scalar walk: make bench's mix_bench); else the group's walk. */
     ContinuousSums sums[group_points] = {};
-    if (!kernel_continuous_sums(mix, region, xs, ys, count, sums)) {
+    if (!kernel_continuous_sums(mix, control, region, false, xs, ys, count, sums)) {
         for (uint32_t p = 0; p < count; p++) __builtin_memset(sums[p], 0, sizeof sums[p]);
         continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
     }

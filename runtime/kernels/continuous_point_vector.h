@@ -926,8 +926,8 @@ int point_slopes(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t 
 }
 #endif
 
-/* ---- A mix's point where its weights are uniform (mix_point.cpp): each candidate reads its material's
-   texton (kernels.h's dsn_point_materials), the materials' textons of one size, channels and bits ---- */
+/* ---- A mix's point (mix_point.cpp): each candidate reads its material's texton (kernels.h's
+   dsn_point_materials), the materials' textons of one size, channels and bits ---- */
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 typedef vector_512 mixed_sums;
@@ -937,23 +937,54 @@ typedef vector_256 mixed_sums;
 inline vector_256 zero_sums() { return zero_256(); }
 #endif
 
+/* Where the weights vary, a candidate's material is picked at the integer parts of its position, found
+   from its S along each axis (the walk's floor(shifted / 2^16), shifted = point - impulse + radius + 1 in
+   texels): the impulse's position times 2^16 is an integer (a cell's 16-bit position grid), so it is
+   floor((point + radius + 1) 2^16) - S exactly, and its integer part lies within radius + 2 of the
+   point's: taken modulo 2^16 from 32-bit lanes, then as a signed step from the point's. */
+struct PickAxis {
+    uint32_t whole;   /* the point's integer part, modulo 2^32 */
+    uint32_t shifted; /* floor((point + radius + 1) 2^16), modulo 2^32 */
+};
+
+inline PickAxis pick_axis(uint64_t coordinate, uint32_t radius) {
+    const PickAxis axis = {
+        static_cast<uint32_t>(coordinate >> 32),
+        static_cast<uint32_t>((coordinate + (static_cast<uint64_t>(radius + 1u) << 32)) >> 16)};
+    return axis;
+}
+
+/* The integer part of a candidate's position along an axis from its S. */
+inline uint32_t impulse_whole(const PickAxis &axis, uint32_t s) {
+    const uint32_t low = ((axis.shifted - s) >> 16) - axis.whole; /* the step, modulo 2^16 */
+    return axis.whole + static_cast<uint32_t>(static_cast<int32_t>(static_cast<int16_t>(low & 0xFFFFu)));
+}
+
 /* The visit of a mixed point: the point's (material 0's texton, window, cell bases), the materials as
-   lanes (the thresholds their hashes meet; where each texton lies from material 0's, in bytes, which the
-   gathers' 32-bit offsets add), and each material's sums. */
-template <uint32_t Channels>
+   lanes (the thresholds their hashes meet, or the pick and its axes; where each texton lies from material
+   0's, in bytes, which the gathers' 32-bit offsets add), and each material's sums. Picked: the weights
+   vary, and the pick gives the materials (its call kept out of the copy that compares the thresholds). */
+template <uint32_t Channels, bool Picked>
 struct MixedVisit {
     PointVisit<Channels> point;
     uint32_t count;
     uint32_t threshold[3], moved[3]; /* level l: material l + 1 or a later one (broadcast where used) */
     uint32_t reached[3];             /* all ones, or 0 where no hash meets the level's threshold */
+    uint32_t (*pick)(const void *context, uint32_t hash, uint32_t x, uint32_t y); /* or null */
+    const void *context;
+    PickAxis pick_x, pick_y;
     mixed_sums sums[dsn_point_materials_most][Channels];
 };
 
-/* The materials as lanes, the sums zero; false where a texton lies 2^30 bytes or more from material 0's. */
-template <uint32_t Channels>
-inline bool mixed_visit_begin(const dsn_point_materials *materials, MixedVisit<Channels> *visit) {
+/* The materials as lanes for the point (x, y) of the lead `noise`, the sums zero; false where a texton lies
+   2^30 bytes or more from material 0's. */
+template <uint32_t Channels, bool Picked>
+inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_materials *materials, uint64_t x,
+                              uint64_t y, MixedVisit<Channels, Picked> *visit) {
     const uint64_t lead = reinterpret_cast<uintptr_t>(materials->values[0]);
     visit->count = materials->count;
+    visit->pick = materials->pick, visit->context = materials->context;
+    visit->pick_x = pick_axis(x, noise->radius[0]), visit->pick_y = pick_axis(y, noise->radius[1]);
     for (uint32_t level = 0; level < 3; level++) {
         const uint32_t m = level + 1u < materials->count ? level + 1u : 0u;
         const uint64_t moved = uint64_t(reinterpret_cast<uintptr_t>(materials->values[m])) - lead;
@@ -971,24 +1002,44 @@ inline bool mixed_visit_begin(const dsn_point_materials *materials, MixedVisit<C
    2^30 0x9E3779B9 (2^30 modulo 2^32). */
 const uint32_t material_stream_step = 0x40000000u;
 
+/* Bit `lane` of at_least[l] for each level l below the material the visit's pick gives each candidate in
+   `reach` (bit per lane), from the lanes' hashes and S (stored). */
+template <class Visit>
+inline void picked_levels(const Visit *visit, const uint32_t *hashes, const uint32_t *s_x,
+                          const uint32_t *s_y, uint32_t reach, uint32_t *at_least) {
+    for (; reach != 0; reach &= reach - 1u) {
+        const uint32_t lane = static_cast<uint32_t>(__builtin_ctz(reach));
+        const uint32_t m = visit->pick(visit->context, hashes[lane], impulse_whole(visit->pick_x, s_x[lane]),
+                                       impulse_whole(visit->pick_y, s_y[lane]));
+        for (uint32_t level = 0; level < 3; level++)
+            at_least[level] |= static_cast<uint32_t>(m > level) << lane;
+    }
+}
+
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash, its
    texels read from that material's texton, and its read (bilinear_16's even and odd 64-bit lanes) added
    to that material's sums under that material's lanes. */
-template <uint32_t Channels>
-DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandidates &candidates,
+template <uint32_t Channels, bool Picked>
+DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const PointCandidates &candidates,
                                   uint32_t first, uint32_t valid) {
     vector_512 s_x, s_y;
     const mask_16 reach = candidate_offsets_16(&visit->point, candidates, first, valid, &s_x, &s_y);
     const vector_512 hashes =
         mix32_lanes(add_32(load_16x32(candidates.stream + first), set_16x32(material_stream_step)));
     uint32_t at_least[4] = {0, 0, 0, 0};
-    vector_512 moved = zero_512();
-    for (uint32_t level = 0; level < 3; level++) {
-        at_least[level] =
-            greater_equal_unsigned_32(hashes, set_16x32(visit->threshold[level])) & visit->reached[level];
-        moved = blend_32(static_cast<mask_16>(at_least[level]), moved, set_16x32(visit->moved[level]));
+    if (Picked) {
+        uint32_t hash_lanes[16], x_lanes[16], y_lanes[16];
+        store_16x32(hash_lanes, hashes), store_16x32(x_lanes, s_x), store_16x32(y_lanes, s_y);
+        picked_levels(visit, hash_lanes, x_lanes, y_lanes, reach, at_least);
+    } else {
+        for (uint32_t level = 0; level < 3; level++)
+            at_least[level] =
+                greater_equal_unsigned_32(hashes, set_16x32(visit->threshold[level])) & visit->reached[level];
     }
+    vector_512 moved = zero_512();
+    for (uint32_t level = 0; level < 3; level++)
+        moved = blend_32(static_cast<mask_16>(at_least[level]), moved, set_16x32(visit->moved[level]));
     TextonTexels16 texels;
     texton_pairs_16<Channels>(visit->point.texton, visit->point.width, visit->point.height, s_x, s_y, reach,
                               &texels, moved);
@@ -1014,8 +1065,8 @@ const uint32_t mixed_lanes = 16;
 /* The AVX2 copy: candidates first .. first + 7 of which the first `valid` exist, each read once from its
    material's texton (window_texels_8's moved gathers); the read's 64-bit halves (bilinear_8's even and
    odd lanes) added to each material's sums under that material's lanes. */
-template <uint32_t Channels>
-DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandidates &candidates,
+template <uint32_t Channels, bool Picked>
+DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const PointCandidates &candidates,
                                   uint32_t first, uint32_t valid) {
     const PointVisit<Channels> &point = visit->point;
     vector_256 s_x, s_y;
@@ -1023,12 +1074,22 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandid
     const vector_256 hashes =
         mix32_lanes(add_32(load_8x32(candidates.stream + first), set_8x32(material_stream_step)));
     vector_256 at_least[4] = {zero_256(), zero_256(), zero_256(), zero_256()};
-    vector_256 moved = zero_256();
-    for (uint32_t level = 0; level < 3; level++) {
-        at_least[level] =
-            bitwise_and(at_most(set_8x32(visit->threshold[level]), hashes), set_8x32(visit->reached[level]));
-        moved = blend_bytes(moved, set_8x32(visit->moved[level]), at_least[level]);
+    if (Picked) {
+        uint32_t hash_lanes[8], x_lanes[8], y_lanes[8], picked[3] = {0, 0, 0};
+        store_8x32(hash_lanes, hashes), store_8x32(x_lanes, s_x), store_8x32(y_lanes, s_y);
+        picked_levels(visit, hash_lanes, x_lanes, y_lanes, static_cast<uint32_t>(top_bits_of_32(reach)),
+                      picked);
+        const vector_256 lane_bits = set_lanes_8x32(1, 2, 4, 8, 16, 32, 64, 128);
+        for (uint32_t level = 0; level < 3; level++)
+            at_least[level] = equal_32(bitwise_and(set_8x32(picked[level]), lane_bits), lane_bits);
+    } else {
+        for (uint32_t level = 0; level < 3; level++)
+            at_least[level] = bitwise_and(at_most(set_8x32(visit->threshold[level]), hashes),
+                                          set_8x32(visit->reached[level]));
     }
+    vector_256 moved = zero_256();
+    for (uint32_t level = 0; level < 3; level++)
+        moved = blend_bytes(moved, set_8x32(visit->moved[level]), at_least[level]);
     WindowTexels texels;
     window_texels_8<Channels>(point.texton, point.width, point.height, point.width, s_x, s_y, reach, &texels,
                               moved);
@@ -1051,23 +1112,24 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels> *visit, const PointCandid
 const uint32_t mixed_lanes = 8;
 #endif
 
-template <uint32_t Channels>
-DSN_POINT_INLINE void visit_candidates(MixedVisit<Channels> *visit, PointCandidates *candidates) {
+template <uint32_t Channels, bool Picked>
+DSN_POINT_INLINE void visit_candidates(MixedVisit<Channels, Picked> *visit, PointCandidates *candidates) {
     clear_past_candidates(candidates);
     for (uint32_t first = 0; first < candidates->count; first += mixed_lanes)
-        visit_mixed<Channels>(visit, *candidates, first, candidates->count - first);
+        visit_mixed<Channels, Picked>(visit, *candidates, first, candidates->count - first);
     candidates->count = 0;
 }
 
 /* Each material's sums at the point, material m's channel c at value[3 m + c] (0 past the channels); 0
-   where mixed_visit_begin is false, or for a point with more than point_vector_cells cells along an axis. */
-template <uint32_t Channels>
+   where mixed_visit_begin is false, or for a point with more than point_vector_cells cells along an axis. A
+   pick's materials are those of the candidates in reach (the others read nothing). */
+template <uint32_t Channels, bool Picked>
 int point_mixed(const dsn_noise_state *noise, const dsn_point_materials *materials, uint64_t x, uint64_t y,
                 uint64_t *value) {
-    MixedVisit<Channels> visit;
+    MixedVisit<Channels, Picked> visit;
     const FieldLanes lanes = field_lanes(noise->cell_shift);
     AxisCells columns, rows;
-    if (!mixed_visit_begin<Channels>(materials, &visit) ||
+    if (!mixed_visit_begin<Channels, Picked>(noise, materials, x, y, &visit) ||
         !point_cells<false>(noise, x, y, lanes, &columns, &rows))
         return 0;
     uint32_t keys[point_vector_cells * point_vector_cells], counts[point_vector_cells * point_vector_cells];
@@ -1085,16 +1147,19 @@ int point_mixed(const dsn_noise_state *noise, const dsn_point_materials *materia
 
 /* The kernel entry (kernels.h's dsn_continuous_point_entry), one copy per channel count: the point's sums,
    and where slope_x is not null its derivative's (point_slopes), or where materials is not null each
-   material's (point_mixed, weights uniform); 0 for a noise it does not take, or a
+   material's (point_mixed); 0 for a noise it does not take, or a
    point with more than point_vector_cells cells along an axis. */
 inline int continuous_point_sums(const dsn_noise_state *noise, uint64_t x, uint64_t y, uint64_t *value,
                                  uint64_t *slope_x, uint64_t *slope_y, const dsn_point_materials *materials) {
     if (!point_vector_takes(noise)) return 0;
     const bool rgb = noise->asset.channels == 3;
     if (materials != 0) {
-        if (slope_x != 0 || materials->pick != 0 || materials->count > dsn_point_materials_most) return 0;
-        return rgb ? point_mixed<3>(noise, materials, x, y, value)
-                   : point_mixed<1>(noise, materials, x, y, value);
+        if (slope_x != 0 || materials->count > dsn_point_materials_most) return 0;
+        if (materials->pick != 0)
+            return rgb ? point_mixed<3, true>(noise, materials, x, y, value)
+                       : point_mixed<1, true>(noise, materials, x, y, value);
+        return rgb ? point_mixed<3, false>(noise, materials, x, y, value)
+                   : point_mixed<1, false>(noise, materials, x, y, value);
     }
 #if DSN_GRADIENTS
     if (slope_x != 0)

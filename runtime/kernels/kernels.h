@@ -57,19 +57,20 @@ typedef int dsn_lattice_mix_tile_entry(const dsn_noise_state *const *noises,
    lattice tiles then take that path, unless the noise is too dense for any rectangle (32-bit path). */
 typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
 
-/* The materials of a mixed lattice point (mix_point.cpp): `count` lattice textons of the same window,
-   channels and bits (the walk's texton gives those), each impulse of the lead noise's process adding its
-   material's. Where `pick` is null every impulse's weights are the same, and impulse k of the cell with
-   key `key` takes the number of thresholds[0 .. 2] at or below its hash dsn_cell_stream(key, 2^31 + 2^30 +
-   k) (mix_weights.h's pick_material by draw_threshold: the hashes that draw material m or a later one are
-   those at or above thresholds[m - 1]; 2^32, above every hash, past count - 1); else pick(context, key, k,
-   x, y) gives the material of that impulse at lattice position (x, y). */
+/* The materials of a mixed point (mix_point.cpp): `count` textons (lattice ones for a lattice point) of
+   the same window, channels and bits (the walk's texton gives those), each impulse of the lead noise's
+   process adding its material's. Impulse k of the cell with key `key` has the material hash
+   dsn_cell_stream(key, 2^31 + 2^30 + k). Where `pick` is null every impulse's weights are the same, and an
+   impulse takes the number of thresholds[0 .. 2] at or below its hash (mix_weights.h's pick_material by
+   draw_threshold: the hashes that draw material m or a later one are those at or above thresholds[m - 1];
+   2^32, above every hash, past count - 1); else pick(context, hash, x, y) gives the material of the
+   impulse of that hash whose position's integer parts are (x, y) (modulo 2^32). */
 enum { dsn_point_materials_most = 4 }; /* DSN_MIX_MAX_MATERIALS, in builds without the mix too */
 typedef struct dsn_point_materials {
     uint32_t count;
     const unsigned char *values[dsn_point_materials_most];
     uint64_t thresholds[dsn_point_materials_most - 1];
-    uint32_t (*pick)(const void *context, uint32_t key, uint32_t k, uint32_t x, uint32_t y);
+    uint32_t (*pick)(const void *context, uint32_t hash, uint32_t x, uint32_t y);
     const void *context;
 } dsn_point_materials;
 
