@@ -1042,24 +1042,46 @@ TEST_CASE(
           DSN_ERR_CONTINUOUS_MISMATCH);
 }
 
+namespace {
+
+// Four materials with pyramids and these means: RGB 8-bit 31 x 31 (period 29 along x), RGB 8-bit 9 x 9,
+// RGB 16-bit 13 x 13 and grey 8-bit 13 x 13, their textons and seeds from `seed` on.
+struct PyramidMaterials {
+    std::unique_ptr<Noise> lead, small, wide, grey;
+};
+
+PyramidMaterials pyramid_materials(uint64_t seed, std::array<int32_t, 3> means) {
+    auto fields = [&](uint32_t channels, uint32_t radius, uint32_t bits, uint64_t texton_seed) {
+        auto made = with_means(random_texton_asset(channels, radius, bits, texton_seed), means[0], means[1],
+                               means[2]);
+        made.pyramid = dsn::texton_pyramid(made);
+        return made;
+    };
+    PyramidMaterials out;
+    out.lead = make_noise(fields(3, 15, 8, seed), seed + 1, 0, 29, 0);
+    out.small = make_noise(fields(3, 4, 8, seed + 2), seed + 3);
+    out.wide = make_noise(fields(3, 6, 16, seed + 4), seed + 5);
+    out.grey = make_noise(fields(1, 6, 8, seed + 6), seed + 7);
+    return out;
+}
+
+// Levels of detail about 0.6, 1.6 and 2.6, and one anisotropic by 4:1 with 4 taps.
+const dsn_footprint pyramid_footprints[] = {{kOne * 3 / 2, 0, 0, kOne * 3 / 2, 1},
+                                            {3 * kOne, kOne / 3, -kOne / 3, 3 * kOne, 4},
+                                            {6 * kOne, 0, 0, 6 * kOne, 1},
+                                            {4 * kOne, 0, 0, kOne, 4}};
+
+} // namespace
+
 TEST_CASE("mix: filtered points where the weights mix read 8-bit levels through every kernel's vector "
           "reads, with the bits of the one-by-one reads") {
     // Every material's impulses are found by one walk and read per material; the AVX2 and AVX-512 copies
     // read 8-bit levels on vectors, the default copy one by one. Three materials with pyramids: RGB 8-bit
     // 31 x 31 (the lead, period 29 along x), RGB 8-bit 9 x 9 with other means and RGB 16-bit 13 x 13 (read
     // one by one in every copy); and a grey 8-bit 13 x 13 with an RGB 8-bit 9 x 9.
-    auto fields = [](uint32_t channels, uint32_t radius, uint32_t bits, uint64_t seed) {
-        auto made =
-            with_means(random_texton_asset(channels, radius, bits, seed), 1 << 22, -(1 << 21), 1 << 20);
-        made.pyramid = dsn::texton_pyramid(made);
-        return made;
-    };
-    auto lead = make_noise(fields(3, 15, 8, 201), 202, 0, 29, 0);
-    auto small = make_noise(fields(3, 4, 8, 203), 204);
-    auto wide = make_noise(fields(3, 6, 16, 205), 206);
-    auto grey = make_noise(fields(1, 6, 8, 207), 208);
-    const dsn_mix three = make_mix({&lead->noise, &small->noise, &wide->noise});
-    const dsn_mix grey_lead = make_mix({&grey->noise, &small->noise});
+    const PyramidMaterials made = pyramid_materials(201, {1 << 22, -(1 << 21), 1 << 20});
+    const dsn_mix three = make_mix({&made.lead->noise, &made.small->noise, &made.wide->noise});
+    const dsn_mix grey_lead = make_mix({&made.grey->noise, &made.small->noise});
     const Control thirds = constant({90, 80, 85});
     const Control ramp(3, 5, 4, 3, [](uint32_t i, uint32_t j) {
         return std::vector<uint8_t>{uint8_t(50 * i), uint8_t(255 - 50 * i), uint8_t(20 * j)};
@@ -1068,11 +1090,6 @@ TEST_CASE("mix: filtered points where the weights mix read 8-bit levels through 
     const Control grey_ramp(2, 5, 4, 3, [](uint32_t i, uint32_t j) {
         return std::vector<uint8_t>{uint8_t(50 * i + j), uint8_t(255 - 50 * i)};
     });
-    // Levels of detail about 0.6, 1.6 and 2.6, and one anisotropic by 4:1 with 4 taps.
-    const dsn_footprint footprints[] = {{kOne * 3 / 2, 0, 0, kOne * 3 / 2, 1},
-                                        {3 * kOne, kOne / 3, -kOne / 3, 3 * kOne, 4},
-                                        {6 * kOne, 0, 0, 6 * kOne, 1},
-                                        {4 * kOne, 0, 0, kOne, 4}};
     const struct {
         const dsn_mix *mix;
         const Control *control;
@@ -1081,7 +1098,7 @@ TEST_CASE("mix: filtered points where the weights mix read 8-bit levels through 
     renderer_points(209, 60, &xs, &ys);
     size_t differences = 0, compared = 0, spread = 0;
     for (const auto &mixed : cases)
-        for (const dsn_footprint &footprint : footprints)
+        for (const dsn_footprint &footprint : pyramid_footprints)
             for (size_t k = 0; k < xs.size(); k++) {
                 const dsn_mix reference = on_kernel(*mixed.mix, DSN_KERNEL_DEFAULT);
                 int32_t expected[3];
@@ -1110,18 +1127,9 @@ TEST_CASE("mix: filtered points where the weights are uniform (each material's s
     // bits of a constant one (each material's sifted walk, its impulses kept by their hashes). Three
     // materials (thresholds at 1/3 and 2/3; 8-bit 31 x 31 with a period, 8-bit 9 x 9, 16-bit 13 x 13), and
     // a grey lead with an RGB material (1/2), through every kernel.
-    auto fields = [](uint32_t channels, uint32_t radius, uint32_t bits, uint64_t seed) {
-        auto made =
-            with_means(random_texton_asset(channels, radius, bits, seed), -(1 << 21), 1 << 22, 1 << 20);
-        made.pyramid = dsn::texton_pyramid(made);
-        return made;
-    };
-    auto lead = make_noise(fields(3, 15, 8, 301), 302, 0, 29, 0);
-    auto small = make_noise(fields(3, 4, 8, 303), 304);
-    auto wide = make_noise(fields(3, 6, 16, 305), 306);
-    auto grey = make_noise(fields(1, 6, 8, 307), 308);
-    const dsn_mix three = make_mix({&lead->noise, &small->noise, &wide->noise});
-    const dsn_mix grey_lead = make_mix({&grey->noise, &small->noise});
+    const PyramidMaterials made = pyramid_materials(301, {-(1 << 21), 1 << 22, 1 << 20});
+    const dsn_mix three = make_mix({&made.lead->noise, &made.small->noise, &made.wide->noise});
+    const dsn_mix grey_lead = make_mix({&made.grey->noise, &made.small->noise});
     const Control thirds = constant({70, 70, 70}), halves = constant({200, 200});
     const Control thirds_varying(3, 3, 2, 2, [](uint32_t i, uint32_t j) {
         const uint8_t w = uint8_t((i + j) % 2 ? 70 : 13 + 40 * i);
@@ -1131,10 +1139,6 @@ TEST_CASE("mix: filtered points where the weights are uniform (each material's s
         const uint8_t w = uint8_t((i + j) % 2 ? 200 : 255 - 70 * i);
         return std::vector<uint8_t>{w, w};
     });
-    const dsn_footprint footprints[] = {{kOne * 3 / 2, 0, 0, kOne * 3 / 2, 1},
-                                        {3 * kOne, kOne / 3, -kOne / 3, 3 * kOne, 4},
-                                        {6 * kOne, 0, 0, 6 * kOne, 1},
-                                        {4 * kOne, 0, 0, kOne, 4}};
     const struct {
         const dsn_mix *mix;
         const Control *uniform, *varying;
@@ -1146,7 +1150,7 @@ TEST_CASE("mix: filtered points where the weights are uniform (each material's s
         for (uint32_t kernel = DSN_KERNEL_DEFAULT;
              kernel <= dsn_mix_state_of(mixed.mix)->material[0].tile_kernel; kernel++) {
             const dsn_mix copy = on_kernel(*mixed.mix, kernel);
-            for (const dsn_footprint &footprint : footprints)
+            for (const dsn_footprint &footprint : pyramid_footprints)
                 for (size_t k = 0; k < xs.size(); k++) {
                     int32_t walked[3], kept[3];
                     REQUIRE(dsn_mix_filtered_point_fixed(&copy, &mixed.varying->control, xs[k], ys[k],
