@@ -203,6 +203,7 @@ void material_value(const dsn_noise_state *weighted, const dsn_filter_plan *plan
     dsn_internal_filter_round(weighted, plan, totals, out);
 }
 
+#if !DSN_SMALL_CODE
 /* The terms of the materials with levels where the weights are uniform: each material's sums by the
    sifted walk of one noise (filtered_sift.cpp, on vectors where the kernel lists candidates) over the
    impulses that draw it, every material's impulses listed again (the listing costs less than the scalar
@@ -230,6 +231,7 @@ void kept_terms(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, u
         material_value(weighted, &plans[m], levels[m], sums, terms[m]);
     }
 }
+#endif
 
 /* The terms of the materials with levels where the weights vary: the sums of all by one walk
    (materials_sums), then each term. Kept out of line (see kept_terms). */
@@ -267,10 +269,13 @@ void mixed_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const
         walked = true;
     }
     if (!walked) return;
-    if (region.uniform)
+#if !DSN_SMALL_CODE /* (the small build has no sifted walk) */
+    if (region.uniform) {
         kept_terms(mix, region, x, y, plans, weights, levels, &weighted, terms);
-    else
-        walked_terms(mix, control, region, x, y, plans, weights, levels, &weighted, terms);
+        return;
+    }
+#endif
+    walked_terms(mix, control, region, x, y, plans, weights, levels, &weighted, terms);
 }
 
 void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
