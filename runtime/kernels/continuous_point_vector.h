@@ -1002,17 +1002,16 @@ inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_mate
    2^30 0x9E3779B9 (2^30 modulo 2^32). */
 const uint32_t material_stream_step = 0x40000000u;
 
-/* Bit `lane` of at_least[l] for each level l below the material the visit's pick gives each candidate in
+/* Bit k of at_least[l], for each level l below the material the visit's pick gives candidate lane k in
    `reach` (bit per lane), from the lanes' hashes and S (stored). */
 template <class Visit>
 inline void picked_levels(const Visit *visit, const uint32_t *hashes, const uint32_t *s_x,
                           const uint32_t *s_y, uint32_t reach, uint32_t *at_least) {
     for (; reach != 0; reach &= reach - 1u) {
-        const uint32_t lane = static_cast<uint32_t>(__builtin_ctz(reach));
-        const uint32_t m = visit->pick(visit->context, hashes[lane], impulse_whole(visit->pick_x, s_x[lane]),
-                                       impulse_whole(visit->pick_y, s_y[lane]));
-        for (uint32_t level = 0; level < 3; level++)
-            at_least[level] |= static_cast<uint32_t>(m > level) << lane;
+        const uint32_t k = static_cast<uint32_t>(__builtin_ctz(reach));
+        const uint32_t m = visit->pick(visit->context, hashes[k], impulse_whole(visit->pick_x, s_x[k]),
+                                       impulse_whole(visit->pick_y, s_y[k]));
+        for (uint32_t level = 0; level < 3; level++) at_least[level] |= static_cast<uint32_t>(m > level) << k;
     }
 }
 
