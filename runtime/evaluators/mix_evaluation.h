@@ -115,12 +115,14 @@ inline bool grid_box(const dsn_grid *grid, uint32_t width, uint32_t height, int6
     return true;
 }
 
-/* Material m's value (its channels) added to the mix's totals: a grey material's value to each channel.
-   (The bound DSN_MAX_CHANNELS, which init guarantees, keeps GCC's -O3 from warning of reads past it.) */
+/* Material m's value (its channels) added to the mix's totals: a grey material's value to each channel
+   (channels are 1 or 3, as the loader allows). */
 inline void add_material_value(const dsn_mix_state *mix, uint32_t m, const int32_t *value, int64_t *totals) {
-    const uint32_t channels = mix->material[m].asset.channels;
-    for (uint32_t c = 0; c < mix->channels && c < DSN_MAX_CHANNELS; c++)
-        totals[c] += value[channels == 1 ? 0 : c];
+    const uint32_t grey = mix->material[m].asset.channels == 1 ? 0u : 1u;
+    totals[0] += value[0];
+    if (mix->channels == 1) return;
+    totals[1] += value[grey];
+    totals[2] += value[2 * grey];
 }
 
 /* a + b saturated to int32 (the 64-bit sum saturated, exactly), in 32-bit operations: the overflow where

@@ -384,8 +384,8 @@ bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
     return true;
 }
 
-/* The continuous sums of every material at `count` points (xs[p], ys[p]) from the kernel's vector
-   evaluator, the materials made once, where it takes the mix (point_materials; the AVX2 and AVX-512
+/* The continuous sums of every material at `count` points (xs[p], ys[p]), into zeroed sums, from the kernel's
+   vector evaluator, the materials made once, where it takes the mix (point_materials; the AVX2 and AVX-512
    copies, 8-bit textons) and the region's weights are uniform, or where `picks` (a point alone: each
    candidate in reach then reads its weights; a group's walk reads each impulse's once for the group). False
    where it does not (sums then undefined). */
@@ -401,9 +401,8 @@ bool kernel_continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *con
     for (uint32_t p = 0; p < count; p++) {
         uint64_t flat[DSN_MAX_CHANNELS * DSN_MIX_MAX_MATERIALS];
         if (!point(lead, xs[p], ys[p], flat, 0, 0, &materials)) return false;
-        for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
-            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
-                sums[p][m][c] = m < mix->count ? flat[DSN_MAX_CHANNELS * m + c] : 0u;
+        for (uint32_t m = 0; m < mix->count && m < DSN_MIX_MAX_MATERIALS; m++)
+            __builtin_memcpy(sums[p][m], flat + DSN_MAX_CHANNELS * m, sizeof sums[p][m]);
     }
     return true;
 }

@@ -970,9 +970,12 @@ struct MixedVisit {
     uint32_t count;
     uint32_t threshold[3], moved[3]; /* level l: material l + 1 or a later one (broadcast where used) */
     uint32_t reached[3];             /* all ones, or 0 where no hash meets the level's threshold */
+    uint32_t levels;                 /* count - 1: the levels that a material lies past */
     uint32_t (*pick)(const void *context, uint32_t hash, uint32_t x, uint32_t y); /* or null */
     const void *context;
     PickAxis pick_x, pick_y;
+    /* sums[0]: every candidate's read (material 0's sums once the others' are taken away, exactly, modulo
+       2^64); sums[m], m > 0: material m's */
     mixed_sums sums[dsn_point_materials_most][Channels];
 };
 
@@ -983,6 +986,7 @@ inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_mate
                               uint64_t y, MixedVisit<Channels, Picked> *visit) {
     const uint64_t lead = reinterpret_cast<uintptr_t>(materials->values[0]);
     visit->count = materials->count;
+    visit->levels = materials->count - 1u;
     visit->pick = materials->pick, visit->context = materials->context;
     visit->pick_x = pick_axis(x, noise->radius[0]), visit->pick_y = pick_axis(y, noise->radius[1]);
     for (uint32_t level = 0; level < 3; level++) {
@@ -1032,21 +1036,20 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         store_16x32(hash_lanes, hashes), store_16x32(x_lanes, s_x), store_16x32(y_lanes, s_y);
         picked_levels(visit, hash_lanes, x_lanes, y_lanes, reach, at_least);
     } else {
-        for (uint32_t level = 0; level < 3; level++)
+        for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
             at_least[level] =
                 greater_equal_unsigned_32(hashes, set_16x32(visit->threshold[level])) & visit->reached[level];
     }
     vector_512 moved = zero_512();
-    for (uint32_t level = 0; level < 3; level++)
+    for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
         moved = blend_32(static_cast<mask_16>(at_least[level]), moved, set_16x32(visit->moved[level]));
     TextonTexels16 texels;
     texton_pairs_16<Channels>(visit->point.texton, visit->point.width, visit->point.height, s_x, s_y, reach,
                               &texels, moved);
     vector_512 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
-    for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++) {
-        const vector_512 lanes =
-            blend_32(static_cast<mask_16>((m == 0 ? 0xFFFFu : at_least[m - 1]) & ~at_least[m]), zero_512(),
-                     set_16x32(0xFFFFFFFFu));
+    for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++) {
+        const vector_512 lanes = blend_32(static_cast<mask_16>(at_least[m - 1] & ~at_least[m]), zero_512(),
+                                          set_16x32(0xFFFFFFFFu));
         even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
     }
     for (uint32_t c = 0; c < Channels; c++) {
@@ -1054,7 +1057,8 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         bilinear_16(lane_byte_16(texels.texel[0], 4u - Channels + c), lane_byte_16(texels.texel[1], c),
                     lane_byte_16(texels.texel[2], 4u - Channels + c), lane_byte_16(texels.texel[3], c),
                     texels.across, texels.down, &even, &odd);
-        for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++)
+        visit->sums[0][c] = add_64(visit->sums[0][c], add_64(even, odd));
+        for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++)
             visit->sums[m][c] = add_64(
                 visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
     }
@@ -1082,19 +1086,19 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         for (uint32_t level = 0; level < 3; level++)
             at_least[level] = equal_32(bitwise_and(set_8x32(picked[level]), lane_bits), lane_bits);
     } else {
-        for (uint32_t level = 0; level < 3; level++)
+        for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
             at_least[level] = bitwise_and(at_most(set_8x32(visit->threshold[level]), hashes),
                                           set_8x32(visit->reached[level]));
     }
     vector_256 moved = zero_256();
-    for (uint32_t level = 0; level < 3; level++)
+    for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
         moved = blend_bytes(moved, set_8x32(visit->moved[level]), at_least[level]);
     WindowTexels texels;
     window_texels_8<Channels>(point.texton, point.width, point.height, point.width, s_x, s_y, reach, &texels,
                               moved);
     vector_256 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
-    for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++) {
-        const vector_256 lanes = and_not(at_least[m], m == 0 ? set_8x32(0xFFFFFFFFu) : at_least[m - 1]);
+    for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++) {
+        const vector_256 lanes = and_not(at_least[m], at_least[m - 1]);
         even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
     }
     for (uint32_t c = 0; c < Channels; c++) {
@@ -1103,7 +1107,8 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         bilinear_8(lane_byte(texels.top_left, byte), lane_byte(texels.top_right, byte),
                    lane_byte(texels.bottom_left, byte), lane_byte(texels.bottom_right, byte), texels.across,
                    texels.down, &even, &odd);
-        for (uint32_t m = 0; m < dsn_point_materials_most && m < visit->count; m++)
+        visit->sums[0][c] = add_64(visit->sums[0][c], add_64(even, odd));
+        for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++)
             visit->sums[m][c] = add_64(
                 visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
     }
@@ -1138,9 +1143,14 @@ int point_mixed(const dsn_noise_state *noise, const dsn_point_materials *materia
     candidates.count = 0;
     visit_cells(lanes, columns, rows, keys, counts, columns.count, 1, &visit, &candidates);
     visit_candidates(&visit, &candidates);
-    for (uint32_t m = 0; m < materials->count; m++)
-        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
+    for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) {
+        uint64_t others = 0;
+        for (uint32_t m = 1; m < materials->count; m++) {
             value[DSN_MAX_CHANNELS * m + c] = c < Channels ? lane_total(visit.sums[m][c]) : 0u;
+            others += value[DSN_MAX_CHANNELS * m + c];
+        }
+        value[c] = c < Channels ? lane_total(visit.sums[0][c]) - others : 0u;
+    }
     return 1;
 }
 
