@@ -52,6 +52,12 @@ static inline uint32_t dsn_cell_stream(uint32_t key, uint32_t index) {
     return dsn_mix32(key + index * 0x9E3779B9u);
 }
 
+/* The hash from which impulse k of the cell with key `key` draws its material in a mix: value
+   2^31 + 2^30 + k of the cell's stream. */
+static inline uint32_t dsn_material_hash(uint32_t key, uint32_t k) {
+    return dsn_cell_stream(key, 0xC0000000u + k);
+}
+
 /* The SplitMix64 finalizer (S. Vigna, after D. Stafford's Mix13): a bijection of the 64-bit integers. */
 DSN_SHARED uint64_t dsn_mix64(uint64_t x) {
     x ^= x >> 30;

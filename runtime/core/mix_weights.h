@@ -214,7 +214,7 @@ inline uint32_t hashed_material(const dsn_mix_control *control, uint32_t count, 
 inline uint32_t impulse_material(const dsn_mix_control *control, uint32_t count, const MixRegion &region,
                                  uint32_t key, uint32_t k, uint64_t x, uint64_t y, bool unbranched = false) {
     if (region.single) return region.only; /* (no hash needed) */
-    return hashed_material(control, count, region, dsn_cell_stream(key, 0xC0000000u + k), x, y, unbranched);
+    return hashed_material(control, count, region, dsn_material_hash(key, k), x, y, unbranched);
 }
 
 } // namespace

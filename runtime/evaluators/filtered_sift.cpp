@@ -447,9 +447,7 @@ void list_cell(const dsn_noise_state *noise, uint32_t key, uint32_t count, const
             const uint64_t shifted_y =
                 static_cast<uint64_t>(y.shifted_base) - (static_cast<uint64_t>(bits_y) << position_shift);
             if (shifted_x - 1u >= limit_x || shifted_y - 1u >= limit_y) continue; /* beyond every tap */
-            if (group.filter != 0 &&
-                static_cast<uint64_t>(dsn_cell_stream(key, 0xC0000000u + first + lane)) - group.filter->low >=
-                    group.filter->high - group.filter->low)
+            if (group.filter != 0 && !dsn_filter_keeps(group.filter, key, first + lane))
                 continue; /* another material's */
             if (list->count >= (group.taps == 1 ? one_tap_buffer_size : buffer_size))
                 visit<Channels, Bytes>(group, list, grid, sums);

@@ -385,7 +385,6 @@ void splat_block(const dsn_noise_state *noise, const dsn_grid_splat &splat, cons
     Footprint footprint;
     footprint_init(&footprint, x, y, block, high_x - low_x, high_y - low_y);
     const dsn_impulse_filter *filter = splat.filter; /* the impulses a mixed tile's material keeps */
-    const uint64_t filter_span = filter != 0 ? filter->high - filter->low : 0u;
     for (uint32_t sy = 0; sy < spans_y.span_count; sy++) {
         const FrameSpan span_y = frame_span(y, spans_y, sy);
         for (uint32_t sx = 0; sx < spans_x.span_count; sx++) {
@@ -400,10 +399,7 @@ void splat_block(const dsn_noise_state *noise, const dsn_grid_splat &splat, cons
                     const uint32_t key = dsn_cell_key_in_row(noise, cell_x, row_key);
                     const uint32_t count = dsn_cell_impulse_count(noise, key);
                     for (uint32_t k = 0; k < count; k++) {
-                        if (filter != 0 &&
-                            static_cast<uint64_t>(dsn_cell_stream(key, 0xC0000000u + k)) - filter->low >=
-                                filter_span)
-                            continue;
+                        if (filter != 0 && !dsn_filter_keeps(filter, key, k)) continue;
                         const uint32_t hash = dsn_impulse_hash(noise, key, k);
                         const uint32_t bits_x = dsn_impulse_bits_x(hash), bits_y = dsn_impulse_bits_y(hash);
                         /* The period: impulses past its end are discarded, as per point. */

@@ -16,6 +16,7 @@
 
 #include <stdint.h>
 
+#include "core/cell_hash.h"
 #include "core/normalize_fixed.h"
 #include "setup/noise_state.h"
 
@@ -33,6 +34,11 @@
 typedef struct dsn_impulse_filter {
     uint64_t low, high;
 } dsn_impulse_filter;
+
+/* Whether the filter keeps impulse k of the cell with key `key`. */
+static inline int dsn_filter_keeps(const dsn_impulse_filter *filter, uint32_t key, uint32_t k) {
+    return static_cast<uint64_t>(dsn_material_hash(key, k)) - filter->low < filter->high - filter->low;
+}
 
 /* A whole lattice tile (tile_render.h's render_tile): `width` x `height` values of `kind` from (x0, y0)
    into out, with the 32-bit accumulator of its fallback path (out itself for fixed output); where dx is

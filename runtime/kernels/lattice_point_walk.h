@@ -365,7 +365,7 @@ inline void material_masks(const material_thresholds *thresholds, uint32_t level
    dsn_point_materials). */
 inline uint32_t material_of(const dsn_point_materials *materials, uint32_t key, uint32_t k, uint32_t x,
                             uint32_t y) {
-    const uint32_t hash = dsn_cell_stream(key, 0xC0000000u + k);
+    const uint32_t hash = dsn_material_hash(key, k);
     if (materials->pick != 0) return materials->pick(materials->context, hash, x, y);
     return uint32_t(hash >= materials->thresholds[0]) + uint32_t(hash >= materials->thresholds[1]) +
            uint32_t(hash >= materials->thresholds[2]);

@@ -41,7 +41,7 @@ int64_t value_bound(const dsn_noise_state *noise) {
 struct keep_either {
     keep_material first, second;
     uint32_t operator()(uint32_t key, uint32_t k) const {
-        const uint64_t hash = dsn_cell_stream(key, 0xC0000000u + k);
+        const uint64_t hash = dsn_material_hash(key, k);
         return uint32_t(hash - first.low < first.span) | uint32_t(hash - second.low < second.span) << 1;
     }
 };

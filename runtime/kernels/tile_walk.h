@@ -111,7 +111,7 @@ struct keep_every {
 struct keep_material {
     uint64_t low, span;
     uint32_t operator()(uint32_t key, uint32_t k) const {
-        return uint32_t(uint64_t(dsn_cell_stream(key, 0xC0000000u + k)) - low < span);
+        return uint32_t(uint64_t(dsn_material_hash(key, k)) - low < span);
     }
 };
 #endif
