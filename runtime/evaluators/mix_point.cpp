@@ -366,8 +366,8 @@ bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lat
     return true;
 }
 
-/* The lattice sums of every material at (x, y) from the kernel's vector walk, where it takes the mix
-   (point_materials). False, writing nothing, elsewhere. */
+/* The lattice sums of every material at (x, y), into zeroed sums, from the kernel's vector walk, where it
+   takes the mix (point_materials). False, writing nothing, elsewhere. */
 bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                          uint32_t x, uint32_t y, LatticeSums sums) {
     const dsn_noise_state *lead = &mix->material[0];
@@ -378,9 +378,8 @@ bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
     const dsn_texton_window texton = dsn_lattice_texton_window(lead);
     uint32_t flat[3 * DSN_MIX_MAX_MATERIALS];
     if (!walk(lead, &texton, x, y, 1u, flat, &materials)) return false;
-    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++)
-        for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++)
-            sums[m][c] = m < mix->count && c < lead->asset.channels ? flat[3 * m + c] : 0u;
+    for (uint32_t m = 0; m < mix->count && m < DSN_MIX_MAX_MATERIALS; m++)
+        __builtin_memcpy(sums[m], flat + 3 * m, sizeof sums[m]);
     return true;
 }
 
