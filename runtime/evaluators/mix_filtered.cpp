@@ -181,8 +181,9 @@ void materials_sums(const dsn_mix_state *mix, const dsn_mix_control *control, co
 void weighted_material(const dsn_mix_state *mix, uint32_t m, uint32_t weight, dsn_noise_state *weighted) {
     *weighted = mix->material[m];
     material_weighted_offset(&mix->material[m], weight, weighted->offset);
+    const uint32_t levels = weighted->asset.pyramid_levels; /* (the offsets past them are zero) */
     for (uint32_t c = 0; c < weighted->asset.channels && c < DSN_MAX_CHANNELS; c++) {
-        for (uint32_t l = 0; l < 8; l++)
+        for (uint32_t l = 0; l < levels && l < 8; l++)
             weighted->level_offset[l][c] = weighted_offset(weighted->level_offset[l][c], weight);
         weighted->asset.mean[c] = static_cast<int32_t>(weighted_offset(weighted->asset.mean[c], weight));
     }
@@ -203,79 +204,85 @@ void material_value(const dsn_noise_state *weighted, const dsn_filter_plan *plan
     dsn_internal_filter_round(weighted, plan, totals, out);
 }
 
+/* Material m's levels for its plan (none where the plan fades, its term then set), its material weighted
+   into `weighted`. */
+void material_levels(const dsn_mix_state *mix, uint32_t m, const MixPlans plans, const uint32_t *weights,
+                     dsn_noise_state *weighted, MaterialLevels *own, int32_t *term) {
+    own->count = own->radius_x = own->radius_y = 0;
+    weighted_material(mix, m, weights[m], weighted);
+    if (dsn_internal_filter_fade(weighted, &plans[m], term)) return;
+    own->count = dsn_internal_filter_walked_levels(weighted, &plans[m], own->walked);
+    dsn_filter_walk_radii(own->walked, own->count, &own->radius_x, &own->radius_y);
+}
+
 #if !DSN_SMALL_CODE
-/* The terms of the materials with levels where the weights are uniform: each material's sums by the
-   sifted walk of one noise (filtered_sift.cpp, on vectors where the kernel lists candidates) over the
-   impulses that draw it, every material's impulses listed again (the listing costs less than the scalar
-   walk's pick per impulse: make bench's mix_bench), then its term. The same impulses and reads as
-   materials_sums's, so the same sums. `weighted`: room for a weighted material. Kept out of line, as
-   walked_terms is, so that the sifted walk's stack is not under walked_terms's frame. */
+/* The terms of the materials where the weights are uniform: each material's sums by the sifted walk of one
+   noise (filtered_sift.cpp, on vectors where the kernel lists candidates) over the impulses that draw it,
+   every material's impulses listed again (the listing costs less than the scalar walk's pick per impulse:
+   make bench's mix_bench), then its term, each material weighted once. The same impulses and reads as
+   materials_sums's, so the same sums. Kept out of line, as walked_terms is, so that the sifted walk's
+   stack is not under walked_terms's frame. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 void kept_terms(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, uint64_t y, const MixPlans plans,
-                const uint32_t *weights, const MaterialLevels *levels, dsn_noise_state *weighted,
-                int32_t (*terms)[DSN_MAX_CHANNELS]) {
+                const uint32_t *weights, int32_t (*terms)[DSN_MAX_CHANNELS]) {
     uint64_t thresholds[dsn_point_materials_most - 1];
     uniform_thresholds(mix, region, thresholds);
+    dsn_noise_state weighted;
     for (uint32_t m = 0; m < mix->count; m++) {
-        if (levels[m].count == 0) continue;
+        MaterialLevels own;
+        material_levels(mix, m, plans, weights, &weighted, &own, terms[m]);
+        if (own.count == 0) continue;
         dsn_filter_sums sums;
         const dsn_impulse_filter filter = material_filter(thresholds, m);
         if (filter.low < filter.high)
-            dsn_internal_filter_sums_kept(&mix->material[m], x, y, &plans[m], levels[m].walked,
-                                          levels[m].count, &filter, sums);
+            dsn_internal_filter_sums_kept(&mix->material[m], x, y, &plans[m], own.walked, own.count, &filter,
+                                          sums);
         else
             __builtin_memset(sums, 0, sizeof sums);
-        weighted_material(mix, m, weights[m], weighted);
-        material_value(weighted, &plans[m], levels[m], sums, terms[m]);
+        material_value(&weighted, &plans[m], own, sums, terms[m]);
     }
 }
 #endif
 
-/* The terms of the materials with levels where the weights vary: the sums of all by one walk
+/* The terms of the materials where the weights vary: each material's levels, the sums of all by one walk
    (materials_sums), then each term. Kept out of line (see kept_terms). */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 void walked_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region, uint64_t x,
-                  uint64_t y, const MixPlans plans, const uint32_t *weights, const MaterialLevels *levels,
-                  dsn_noise_state *weighted, int32_t (*terms)[DSN_MAX_CHANNELS]) {
-    dsn_filter_sums sums[DSN_MIX_MAX_MATERIALS];
-    materials_sums(mix, control, region, x, y, &plans[0], levels, sums);
-    for (uint32_t m = 0; m < mix->count; m++)
-        if (levels[m].count != 0) {
-            weighted_material(mix, m, weights[m], weighted);
-            material_value(weighted, &plans[m], levels[m], sums[m], terms[m]);
-        }
-}
-
-/* The materials' terms where the weights mix: the levels of each material whose plan does not fade, their
-   sums (the plans' taps are the footprint's alone: a material's pyramid clamps only its level of detail),
-   then each term from its sums, with its weighted offsets and mean. */
-void mixed_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
-                 uint64_t x, uint64_t y, const MixPlans plans, const uint32_t *weights,
-                 int32_t (*terms)[DSN_MAX_CHANNELS]) {
+                  uint64_t y, const MixPlans plans, const uint32_t *weights, int32_t (*terms)[DSN_MAX_CHANNELS]) {
     MaterialLevels levels[DSN_MIX_MAX_MATERIALS];
     dsn_noise_state weighted;
     bool walked = false;
     for (uint32_t m = 0; m < mix->count; m++) {
-        MaterialLevels &own = levels[m];
-        own.count = own.radius_x = own.radius_y = 0;
-        weighted_material(mix, m, weights[m], &weighted);
-        if (dsn_internal_filter_fade(&weighted, &plans[m], terms[m])) continue;
-        own.count = dsn_internal_filter_walked_levels(&weighted, &plans[m], own.walked);
-        dsn_filter_walk_radii(own.walked, own.count, &own.radius_x, &own.radius_y);
-        walked = true;
+        material_levels(mix, m, plans, weights, &weighted, &levels[m], terms[m]);
+        walked = walked || levels[m].count != 0;
     }
     if (!walked) return;
+    dsn_filter_sums sums[DSN_MIX_MAX_MATERIALS];
+    materials_sums(mix, control, region, x, y, &plans[0], levels, sums);
+    for (uint32_t m = 0; m < mix->count; m++)
+        if (levels[m].count != 0) {
+            weighted_material(mix, m, weights[m], &weighted);
+            material_value(&weighted, &plans[m], levels[m], sums[m], terms[m]);
+        }
+}
+
+/* The materials' terms where the weights mix: for each material whose plan does not fade, its levels and
+   sums (the plans' taps are the footprint's alone: a material's pyramid clamps only its level of detail),
+   then its term from its sums, with its weighted offsets and mean. */
+void mixed_terms(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                 uint64_t x, uint64_t y, const MixPlans plans, const uint32_t *weights,
+                 int32_t (*terms)[DSN_MAX_CHANNELS]) {
 #if !DSN_SMALL_CODE /* (the small build has no sifted walk) */
     if (region.uniform) {
-        kept_terms(mix, region, x, y, plans, weights, levels, &weighted, terms);
+        kept_terms(mix, region, x, y, plans, weights, terms);
         return;
     }
 #endif
-    walked_terms(mix, control, region, x, y, plans, weights, levels, &weighted, terms);
+    walked_terms(mix, control, region, x, y, plans, weights, terms);
 }
 
 void filtered_point(const dsn_mix_state *mix, const dsn_mix_control *control, uint64_t x, uint64_t y,
