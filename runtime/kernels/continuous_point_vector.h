@@ -970,7 +970,6 @@ struct MixedVisit {
     uint32_t count;
     uint32_t threshold[3], moved[3]; /* level l: material l + 1 or a later one (broadcast where used) */
     uint32_t reached[3];             /* all ones, or 0 where no hash meets the level's threshold */
-    uint32_t levels;                 /* count - 1: the levels that a material lies past */
     uint32_t (*pick)(const void *context, uint32_t hash, uint32_t x, uint32_t y); /* or null */
     const void *context;
     PickAxis pick_x, pick_y;
@@ -986,7 +985,6 @@ inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_mate
                               uint64_t y, MixedVisit<Channels, Picked> *visit) {
     const uint64_t lead = reinterpret_cast<uintptr_t>(materials->values[0]);
     visit->count = materials->count;
-    visit->levels = materials->count - 1u;
     visit->pick = materials->pick, visit->context = materials->context;
     visit->pick_x = pick_axis(x, noise->radius[0]), visit->pick_y = pick_axis(y, noise->radius[1]);
     for (uint32_t level = 0; level < 3; level++) {
@@ -1036,12 +1034,12 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         store_16x32(hash_lanes, hashes), store_16x32(x_lanes, s_x), store_16x32(y_lanes, s_y);
         picked_levels(visit, hash_lanes, x_lanes, y_lanes, reach, at_least);
     } else {
-        for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
+        for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
             at_least[level] =
                 greater_equal_unsigned_32(hashes, set_16x32(visit->threshold[level])) & visit->reached[level];
     }
     vector_512 moved = zero_512();
-    for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
+    for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
         moved = blend_32(static_cast<mask_16>(at_least[level]), moved, set_16x32(visit->moved[level]));
     TextonTexels16 texels;
     texton_pairs_16<Channels>(visit->point.texton, visit->point.width, visit->point.height, s_x, s_y, reach,
@@ -1086,12 +1084,12 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         for (uint32_t level = 0; level < 3; level++)
             at_least[level] = equal_32(bitwise_and(set_8x32(picked[level]), lane_bits), lane_bits);
     } else {
-        for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
+        for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
             at_least[level] = bitwise_and(at_most(set_8x32(visit->threshold[level]), hashes),
                                           set_8x32(visit->reached[level]));
     }
     vector_256 moved = zero_256();
-    for (uint32_t level = 0; level < 3 && level < visit->levels; level++)
+    for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
         moved = blend_bytes(moved, set_8x32(visit->moved[level]), at_least[level]);
     WindowTexels texels;
     window_texels_8<Channels>(point.texton, point.width, point.height, point.width, s_x, s_y, reach, &texels,
