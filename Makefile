@@ -43,7 +43,7 @@ TEST_FLAGS = $(OFFLINE_FLAGS) -Itests
 ifneq ($(filter x86_64%,$(shell $(CXX) -dumpmachine 2>/dev/null)),)
 RUNTIME_DISPATCH_FLAGS := -DDSN_X86_DISPATCH=1
 KERNEL_AVX2_FLAGS := -mavx2
-KERNEL_AVX512_FLAGS := -mavx512f -mavx512bw -mavx512dq
+KERNEL_AVX512_FLAGS := -mavx512f -mavx512bw -mavx512dq -mavx512vl
 endif
 RUNTIME_SOURCES := $(wildcard runtime/*/*.cpp)
 RUNTIME_OBJECTS := $(RUNTIME_SOURCES:%.cpp=$(BUILD)/obj/%.o)

@@ -155,13 +155,15 @@ TEST_CASE("init records the last kernel this CPU runs: the widest, or on AMD Zen
         // widest must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs it.
         REQUIRE(dsn_internal_kernel_count == 4);
         __builtin_cpu_init();
-        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw"))
+        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl"))
             expected = amd_family() == 0x19 ? DSN_KERNEL_AVX512_AVX2_TILES : DSN_KERNEL_AVX512;
         else if (__builtin_cpu_supports("avx2"))
             expected = DSN_KERNEL_AVX2;
         if (expected < DSN_KERNEL_AVX512)
-            MESSAGE("this CPU has no AVX-512 (F and BW)" << (expected == DSN_KERNEL_AVX2 ? "" : " nor AVX2")
-                                                         << ": the kernel for it is not tested");
+            MESSAGE("this CPU has no AVX-512 (F, BW, DQ and VL)"
+                    << (expected == DSN_KERNEL_AVX2 ? "" : " nor AVX2")
+                    << ": the kernel for it is not tested");
     } else {
         MESSAGE("the runtime is built without the x86 kernels (DSN_X86_DISPATCH): only the default one is "
                 "tested");

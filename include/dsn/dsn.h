@@ -89,13 +89,14 @@
                         32-bit accumulator path, under 1 KB of stack per tile call, slower.
      DSN_X86_DISPATCH   default: undefined (0); the Makefile defines it to 1 on x86-64. 1 builds the
                         evaluation kernels twice more, runtime/kernels/kernel_avx2.cpp with -mavx2 and
-                        runtime/kernels/kernel_avx512.cpp with -mavx512f -mavx512bw -mavx512dq (the build
-                        must pass those flags to those two files; without -mavx512dq the same bits, its
-                        hashes slower), and dsn_noise_init picks from the table of kernels
-                        (runtime/kernels/kernel_table.cpp) the widest copy that the CPU and the OS run; on AMD
-                        Zen 4, which runs 512-bit vectors as two halves, AVX-512 but for the lattice tiles
-                        of RGB noises whose texton the AVX2 copy's strips hold, which it makes faster there.
-                        Left at 0 there is one copy, built with the runtime's own flags.
+                        runtime/kernels/kernel_avx512.cpp with -mavx512f -mavx512bw -mavx512dq
+                        -mavx512vl (the build must pass those flags to those two files; without
+                        -mavx512dq or -mavx512vl the same bits, its hashes slower), and dsn_noise_init
+                        picks from the table of kernels (runtime/kernels/kernel_table.cpp) the widest copy
+                        that the CPU and the OS run; on AMD Zen 4, which runs 512-bit vectors as two
+                        halves, AVX-512 but for the lattice tiles of RGB noises whose texton the AVX2
+                        copy's strips hold, which it makes faster there. Left at 0 there is one copy,
+                        built with the runtime's own flags.
 
    Stack, as make bench measures it on x86-64 (painted, the deepest of its cases): a per-point call uses
    under 1 KB (its fast path keeps the impulses of the nearby cells on the stack), a continuous per-point

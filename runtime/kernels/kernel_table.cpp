@@ -38,11 +38,12 @@ int leaf_7_has(uint32_t bits) {
 /* AVX2: EBX bit 5, with the XMM and YMM state saved (XCR0 bits 1 and 2). */
 int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && os_saves(0x6u); }
 
-/* AVX-512 F, DQ and BW: EBX bits 16, 17 and 30, with the opmask and ZMM state saved too (XCR0 bits 5 to
-   7). AVX2 as well, which every such CPU has: the table's rows run those before them. (Every CPU with BW
-   has DQ; the kernel's 64-bit multiplies use it where the Makefile's flags let them.) */
+/* AVX-512 F, DQ, BW and VL: EBX bits 16, 17, 30 and 31, with the opmask and ZMM state saved too (XCR0
+   bits 5 to 7). AVX2 as well, which every such CPU has: the table's rows run those before them. (Every CPU
+   with BW has DQ and VL; the kernel's 64-bit multiplies use them on every width where the Makefile's flags
+   let them.) */
 int cpu_runs_avx512(void) {
-    return leaf_7_has((1u << 5) | (1u << 16) | (1u << 17) | (1u << 30)) && os_saves(0xE6u);
+    return leaf_7_has((1u << 5) | (1u << 16) | (1u << 17) | (1u << 30) | (1u << 31)) && os_saves(0xE6u);
 }
 
 /* AMD Zen 4 (vendor AuthenticAMD, family 19h, with AVX-512) runs a 512-bit instruction as two 256-bit

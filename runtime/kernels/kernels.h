@@ -4,12 +4,12 @@
 
    Every build has the default kernel (kernel_default.cpp), built with the runtime's own flags. On
    x86-64 the Makefile also builds kernel_avx2.cpp with -mavx2 and kernel_avx512.cpp with -mavx512f
-   -mavx512bw -mavx512dq and defines DSN_X86_DISPATCH=1 for the whole runtime: init then records the last row
-   of the table whose CPU check passes: the widest kernel this CPU (and its OS) runs, or on AMD Zen 4 the
-   AVX-512 kernel with AVX2's lattice tiles of RGB noises (kernel_table.cpp says why). Built any other way
-   (other CPUs, other build systems, the small build) there is the default kernel alone and no CPU check.
-   Adding a kernel is one file defining its entries (dsn_internal_entries_NAME, built with its flags by the
-   Makefile) and one row of the table (with its id below); adding a kind of kernel is one member of
+   -mavx512bw -mavx512dq -mavx512vl and defines DSN_X86_DISPATCH=1 for the whole runtime: init then records
+   the last row of the table whose CPU check passes: the widest kernel this CPU (and its OS) runs, or on AMD
+   Zen 4 the AVX-512 kernel with AVX2's lattice tiles of RGB noises (kernel_table.cpp says why). Built any
+   other way (other CPUs, other build systems, the small build) there is the default kernel alone and no CPU
+   check. Adding a kernel is one file defining its entries (dsn_internal_entries_NAME, built with its flags by
+   the Makefile) and one row of the table (with its id below); adding a kind of kernel is one member of
    dsn_kernel_entries, filled by every kernel file. */
 #ifndef DSN_KERNELS_H
 #define DSN_KERNELS_H
