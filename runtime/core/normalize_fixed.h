@@ -58,24 +58,28 @@ static inline void dsn_map_output(const dsn_noise_state *noise, int32_t *out) {
    zeros for a difference of sums (a gradient), which the mean does not reach. */
 static inline void dsn_normalize_from(const dsn_noise_state *noise, const int64_t *offset,
                                       const uint32_t *sums, int32_t *out) {
-    const uint32_t channels = noise->asset.channels, shift = noise->gain_shift;
+    const uint32_t shift = noise->gain_shift;
     const int64_t *gain = noise->gain;
-#if !DSN_SMALL_CODE
-    if (channels == 3) {
-        /* written out: the loops over a count known only at run time cost as much as their products */
-        const int64_t q0 = dsn_signed_sum(sums[0]), q1 = dsn_signed_sum(sums[1]),
-                      q2 = dsn_signed_sum(sums[2]);
-        out[0] = dsn_round_saturate(offset[0] + gain[0] * q0 + gain[1] * q1 + gain[2] * q2, shift);
-        out[1] = dsn_round_saturate(offset[1] + gain[3] * q0 + gain[4] * q1 + gain[5] * q2, shift);
-        out[2] = dsn_round_saturate(offset[2] + gain[6] * q0 + gain[7] * q1 + gain[8] * q2, shift);
-        return;
-    }
-#endif
+#if DSN_SMALL_CODE
+    const uint32_t channels = noise->asset.channels;
     for (uint32_t c = 0; c < channels; c++) {
         int64_t accumulated = offset[c];
         for (uint32_t k = 0; k < channels; k++) accumulated += gain[c * 3 + k] * dsn_signed_sum(sums[k]);
         out[c] = dsn_round_saturate(accumulated, shift);
     }
+#else
+    /* 1 or 3 channels (the loader's check) written out: loops over a count known only at run time cost as
+       much as their products */
+    const int64_t q0 = dsn_signed_sum(sums[0]);
+    if (noise->asset.channels == 1) {
+        out[0] = dsn_round_saturate(offset[0] + gain[0] * q0, shift);
+        return;
+    }
+    const int64_t q1 = dsn_signed_sum(sums[1]), q2 = dsn_signed_sum(sums[2]);
+    out[0] = dsn_round_saturate(offset[0] + gain[0] * q0 + gain[1] * q1 + gain[2] * q2, shift);
+    out[1] = dsn_round_saturate(offset[1] + gain[3] * q0 + gain[4] * q1 + gain[5] * q2, shift);
+    out[2] = dsn_round_saturate(offset[2] + gain[6] * q0 + gain[7] * q1 + gain[8] * q2, shift);
+#endif
 }
 
 /* Q_k sums (uint32, modulo 2^32) -> Q16.16 outputs. */

@@ -293,7 +293,7 @@ void mix_output_from(const dsn_mix_state *mix, const MixOffsets offsets, const S
                      int32_t *out) {
     int64_t totals[DSN_MAX_CHANNELS] = {0, 0, 0};
     for (uint32_t m = 0; m < mix->count; m++) {
-        int32_t values[DSN_MAX_CHANNELS] = {0, 0, 0}; /* (GCC cannot tell that a material has channels) */
+        int32_t values[DSN_MAX_CHANNELS];
         normalize_material(&mix->material[m], offsets[m], sums[m], values);
         add_material_value(mix, m, values, totals);
     }
