@@ -361,6 +361,16 @@ inline void material_masks(const material_thresholds *thresholds, uint32_t level
 }
 #endif
 
+/* What the hits of the cell (cell_x, cell_y) buffered in `slot` need to pick their materials by hash:
+   its key, origin and fields (material_masks has made the masks instead where the weights are uniform). */
+inline void keep_cell(uint32_t key, uint32_t cell_x, uint32_t cell_y, vector_128 fields, uint32_t slot,
+                      material_slots *slots) {
+    slots->keys[slot] = key;
+    slots->origins_x[slot] = cell_x << 4;
+    slots->origins_y[slot] = cell_y << 4;
+    store_16x8(slots->fields + 16 * slot, fields);
+}
+
 /* The material of impulse k of the cell with this key, at lattice position (x, y) (kernels.h's
    dsn_point_materials). */
 inline uint32_t material_of(const dsn_point_materials *materials, uint32_t key, uint32_t k, uint32_t x,
@@ -535,12 +545,13 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
             cell_hits<Points>(fields, absent_impulses(count), column_range, row_range, corner, widths_less_16,
                               entries + 16 * slot, masks + slot, live);
             if (Mixed) {
-                slots.keys[slot] = key;
-                slots.origins_x[slot] = cell_x << 4;
-                slots.origins_y[slot] = cell_y << 4;
-                store_16x8(slots.fields + 16 * slot, fields);
 #if DSN_MATERIAL_MASKS
-                if (masked) material_masks(&thresholds, materials->count - 1u, key, slot, &slots);
+                if (masked)
+                    material_masks(&thresholds, materials->count - 1u, key, slot, &slots);
+                else
+                    keep_cell(key, cell_x, cell_y, fields, slot, &slots);
+#else
+                keep_cell(key, cell_x, cell_y, fields, slot, &slots);
 #endif
             }
             slot++;
