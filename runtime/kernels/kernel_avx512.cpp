@@ -1,6 +1,6 @@
 /* runtime/kernels/kernel_avx512.cpp - the AVX-512 kernel: the evaluation code built for AVX-512 F and BW, and
    DQ and VL where given (the Makefile compiles this file with -mavx512f -mavx512bw -mavx512dq -mavx512vl on
-   x86-64: DQ's 64-bit multiply hashes the impulses, with VL on 128 and 256 bits too), 32 pixels per strip,
+   x86-64: DQ's 64-bit multiply hashes the impulses, with VL on 128 bits too), 32 pixels per strip,
    summed two rows per load from paired planes of the texton (simd_avx512.h). Runs only where init found
    AVX-512 (kernel_table.cpp); its bits are those of every other kernel. Empty unless
    DSN_KERNEL_X86_COPIES. */

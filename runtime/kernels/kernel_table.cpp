@@ -40,8 +40,7 @@ int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && os_saves(0x6u); }
 
 /* AVX-512 F, DQ, BW and VL: EBX bits 16, 17, 30 and 31, with the opmask and ZMM state saved too (XCR0
    bits 5 to 7). AVX2 as well, which every such CPU has: the table's rows run those before them. (Every CPU
-   with BW has DQ and VL; the kernel's 64-bit multiplies use them on every width where the Makefile's flags
-   let them.) */
+   with BW has DQ and VL; the kernel's 64-bit multiplies use them where the Makefile's flags let them.) */
 int cpu_runs_avx512(void) {
     return leaf_7_has((1u << 5) | (1u << 16) | (1u << 17) | (1u << 30) | (1u << 31)) && os_saves(0xE6u);
 }

@@ -420,12 +420,9 @@ DSN_SIMD_INLINE vector_512 multiply_64(vector_512 x, uint64_t factor) {
 }
 #endif
 #if defined(__AVX512DQ__) && defined(__AVX512VL__)
-/* The same on 128 and 256 bits (the lattice point's pair hashes, the batch's 256-bit groups). */
+/* The same on 128 bits (the lattice point's pair hashes). */
 DSN_SIMD_INLINE vector_128 multiply_64(vector_128 x, uint64_t factor) {
     return _mm_mullo_epi64(x, _mm_set1_epi64x(static_cast<long long>(factor)));
-}
-DSN_SIMD_INLINE vector_256 multiply_64(vector_256 x, uint64_t factor) {
-    return _mm256_mullo_epi64(x, _mm256_set1_epi64x(static_cast<long long>(factor)));
 }
 #endif
 DSN_SIMD_INLINE vector_512 subtract_64(vector_512 a, vector_512 b) { return _mm512_sub_epi64(a, b); }
