@@ -53,6 +53,7 @@ Bytes with_sections(const Bytes &sections, uint16_t minor = 1, uint32_t channels
 Bytes section(uint32_t kind, const Bytes &payload, size_t padding, unsigned char pad = 0,
               uint32_t size_field = 0xFFFFFFFFu) {
     Bytes bytes(8);
+    bytes.reserve(8 + payload.size() + padding);
     dsn_write_u32le(&bytes[0], kind);
     dsn_write_u32le(&bytes[4], size_field == 0xFFFFFFFFu ? uint32_t(payload.size()) : size_field);
     bytes.insert(bytes.end(), payload.begin(), payload.end());
@@ -349,6 +350,7 @@ Bytes with_payload(const Bytes &valid, const Bytes &payload) {
     Bytes padded = payload;
     padded.resize((payload.size() + 3) / 4 * 4, 0);
     Bytes bytes(valid.begin(), valid.begin() + long(kPayload));
+    bytes.reserve(valid.size() + padded.size());
     dsn_write_u32le(&bytes[DSN_FORMAT_HEADER_SIZE + 4], uint32_t(payload.size()));
     bytes.insert(bytes.end(), padded.begin(), padded.end());
     bytes.insert(bytes.end(), valid.begin() + long(kPayload + (old_size + 3) / 4 * 4), valid.end());

@@ -407,7 +407,7 @@ TEST_CASE("continuous affine: the splat's normalization of every kernel, saturat
         bool low = false, high = false;
         for (uint32_t p = 0; p < plane; p++) {
             uint64_t pixel[3];
-            int32_t value[3];
+            int32_t value[3] = {0, 0, 0};
             for (uint32_t c = 0; c < channels; c++) pixel[c] = sums[c * plane + p];
             normalize_q32_unmapped(dsn_state(&noise->noise), pixel, value);
             for (uint32_t c = 0; c < channels; c++) {

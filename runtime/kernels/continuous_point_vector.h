@@ -1044,8 +1044,11 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
     TextonTexels16 texels;
     texton_pairs_16<Channels>(visit->point.texton, visit->point.width, visit->point.height, s_x, s_y, reach,
                               &texels, moved);
+    /* The count read once: the sums' vector stores may alias it as far as the compiler knows, and a
+       second read would leave lanes it cannot prove set. */
+    const uint32_t count = visit->count;
     vector_512 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
-    for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++) {
+    for (uint32_t m = 1; m < dsn_point_materials_most && m < count; m++) {
         const vector_512 lanes = blend_32(static_cast<mask_16>(at_least[m - 1] & ~at_least[m]), zero_512(),
                                           set_16x32(0xFFFFFFFFu));
         even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
@@ -1056,7 +1059,7 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
                     lane_byte_16(texels.texel[2], 4u - Channels + c), lane_byte_16(texels.texel[3], c),
                     texels.across, texels.down, &even, &odd);
         visit->sums[0][c] = add_64(visit->sums[0][c], add_64(even, odd));
-        for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++)
+        for (uint32_t m = 1; m < dsn_point_materials_most && m < count; m++)
             visit->sums[m][c] = add_64(
                 visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
     }
@@ -1094,8 +1097,9 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
     WindowTexels texels;
     window_texels_8<Channels>(point.texton, point.width, point.height, point.width, s_x, s_y, reach, &texels,
                               moved);
+    const uint32_t count = visit->count; // read once, as in the AVX-512 copy
     vector_256 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
-    for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++) {
+    for (uint32_t m = 1; m < dsn_point_materials_most && m < count; m++) {
         const vector_256 lanes = and_not(at_least[m], at_least[m - 1]);
         even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
     }
@@ -1106,7 +1110,7 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
                    lane_byte(texels.bottom_left, byte), lane_byte(texels.bottom_right, byte), texels.across,
                    texels.down, &even, &odd);
         visit->sums[0][c] = add_64(visit->sums[0][c], add_64(even, odd));
-        for (uint32_t m = 1; m < dsn_point_materials_most && m < visit->count; m++)
+        for (uint32_t m = 1; m < dsn_point_materials_most && m < count; m++)
             visit->sums[m][c] = add_64(
                 visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
     }
