@@ -154,11 +154,15 @@ TEST_CASE("init records the last kernel this CPU runs: the widest, or on AMD Zen
         // The Makefile builds the AVX2 and AVX-512 kernels on every x86-64 host (DSN_X86_DISPATCH): the
         // widest must be chosen exactly when the CPU (as libgcc reads CPUID and XCR0) runs it.
         REQUIRE(dsn_internal_kernel_count == 4);
+        // Both x86 kernels also need what -mavx2 implies (the popcnt instruction among them).
         __builtin_cpu_init();
-        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("sse3") &&
+                          __builtin_cpu_supports("ssse3") && __builtin_cpu_supports("sse4.1") &&
+                          __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("popcnt");
+        if (avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl"))
             expected = amd_family() == 0x19 ? DSN_KERNEL_AVX512_AVX2_TILES : DSN_KERNEL_AVX512;
-        else if (__builtin_cpu_supports("avx2"))
+        else if (avx2)
             expected = DSN_KERNEL_AVX2;
         if (expected < DSN_KERNEL_AVX512)
             MESSAGE("this CPU has no AVX-512 (F, BW, DQ and VL)"

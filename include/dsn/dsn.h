@@ -93,7 +93,8 @@
                         -mavx512vl (the build must pass those flags to those two files; without
                         -mavx512dq or -mavx512vl the same bits, its hashes slower), and dsn_noise_init
                         picks from the table of kernels (runtime/kernels/kernel_table.cpp) the widest copy
-                        that the CPU and the OS run; on AMD Zen 4, which runs 512-bit vectors as two
+                        that the CPU and the OS run (with what -mavx2 implies: SSE4.2 and POPCNT among
+                        them); on AMD Zen 4, which runs 512-bit vectors as two
                         halves, AVX-512 but for the lattice tiles of RGB noises whose texton the AVX2
                         copy's strips hold, which it makes faster there. Left at 0 there is one copy,
                         built with the runtime's own flags.

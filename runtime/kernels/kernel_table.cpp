@@ -17,11 +17,15 @@ namespace {
 
 /* The x86 CPU checks. A vector register file is usable only when the CPU has the instructions and the
    OS saves the registers on a context switch: CPUID leaf 1 says AVX and OSXSAVE (ECX bits 28 and 27),
-   then XCR0 says which register states the OS saves. */
-int os_saves(uint32_t xcr0_bits) {
+   then XCR0 says which register states the OS saves. Leaf 1 must also say what GCC's -mavx2 implies and
+   so lets the compiler use in both x86 kernels (the popcnt instruction among them): SSE3, SSSE3, SSE4.1,
+   SSE4.2 and POPCNT (ECX bits 0, 9, 19, 20 and 23). Every CPU with AVX2 has them; a virtual CPU might
+   not say so. */
+int avx_usable(uint32_t xcr0_bits) {
     unsigned int eax = 0, ebx = 0, ecx = 0, edx = 0;
-    const unsigned int osxsave_and_avx = (1u << 27) | (1u << 28);
-    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx) || (ecx & osxsave_and_avx) != osxsave_and_avx) return 0;
+    const unsigned int leaf_1_bits =
+        (1u << 27) | (1u << 28) | (1u << 0) | (1u << 9) | (1u << 19) | (1u << 20) | (1u << 23);
+    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx) || (ecx & leaf_1_bits) != leaf_1_bits) return 0;
     uint32_t xcr0 = 0, xcr0_high = 0;
     __asm__("xgetbv" : "=a"(xcr0), "=d"(xcr0_high) : "c"(0));
     return (xcr0 & xcr0_bits) == xcr0_bits;
@@ -36,13 +40,13 @@ int leaf_7_has(uint32_t bits) {
 }
 
 /* AVX2: EBX bit 5, with the XMM and YMM state saved (XCR0 bits 1 and 2). */
-int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && os_saves(0x6u); }
+int cpu_runs_avx2(void) { return leaf_7_has(1u << 5) && avx_usable(0x6u); }
 
 /* AVX-512 F, DQ, BW and VL: EBX bits 16, 17, 30 and 31, with the opmask and ZMM state saved too (XCR0
    bits 5 to 7). AVX2 as well, which every such CPU has: the table's rows run those before them. (Every CPU
    with BW has DQ and VL; the kernel's 64-bit multiplies use them where the Makefile's flags let them.) */
 int cpu_runs_avx512(void) {
-    return leaf_7_has((1u << 5) | (1u << 16) | (1u << 17) | (1u << 30) | (1u << 31)) && os_saves(0xE6u);
+    return leaf_7_has((1u << 5) | (1u << 16) | (1u << 17) | (1u << 30) | (1u << 31)) && avx_usable(0xE6u);
 }
 
 /* AMD Zen 4 (vendor AuthenticAMD, family 19h, with AVX-512) runs a 512-bit instruction as two 256-bit
