@@ -94,10 +94,10 @@
                         -mavx512dq or -mavx512vl the same bits, its hashes slower), and dsn_noise_init
                         picks from the table of kernels (runtime/kernels/kernel_table.cpp) the widest copy
                         that the CPU and the OS run (with what -mavx2 implies: SSE4.2 and POPCNT among
-                        them); on AMD Zen 4, which runs 512-bit vectors as two
-                        halves, AVX-512 but for the lattice tiles of RGB noises whose texton the AVX2
-                        copy's strips hold, which it makes faster there. Left at 0 there is one copy,
-                        built with the runtime's own flags.
+                        them); on AMD Zen 4, which runs 512-bit vectors as two halves, AVX-512 but for
+                        the lattice tiles of RGB noises whose texton the AVX2 copy's strips hold, which
+                        it makes faster there. Left at 0 there is one copy, built with the runtime's
+                        own flags.
 
    Stack, as make bench measures it on x86-64 (painted, the deepest of its cases): a per-point call uses
    under 1 KB (its fast path keeps the impulses of the nearby cells on the stack), a continuous per-point
