@@ -107,38 +107,66 @@ inline simd_vector difference_lanes(const split_vectors *v, const difference_vec
     return shift_right(add_32(add_32(d->half, a), b), v->shift);
 }
 
-/* A strip row's value and both differences (out[0], out[1], out[2], each 2 Channels vectors as
-   normalize_strip makes them) from the sums of its points, of the points right of them and of those below
-   (one vector per channel each). The parts of the point's own sums are computed once for all three. */
+/* The parts of a strip row's sums (one vector per channel) for each output channel c: parts[2 h][c] = A
+   and parts[2 h + 1][c] = B + P_l (tile_normalize.h) of half h (the pixels of unpack_low_16, then
+   unpack_high_16). */
 template <uint32_t Channels>
-inline void gradient_lanes(const split_vectors *v, const difference_vectors *d, const simd_vector *here,
-                           const simd_vector *east, const simd_vector *south, simd_vector (*out)[6]) {
+DSN_SIMD_INLINE void sum_parts(const split_vectors *v, const simd_vector *sums, simd_vector (*parts)[3]) {
     const simd_vector ones = set_16(1);
-    const simd_vector *sums[3] = {here, east, south};
-    simd_vector lanes[3][2][3];
+#pragma GCC unroll 2
     for (uint32_t h = 0; h < 2; h++) {
-        simd_vector pair[3], third[3];
-        for (uint32_t k = 0; k < 3; k++) {
-            pair[k] = h ? unpack_high_16(sums[k][0], sums[k][1]) : unpack_low_16(sums[k][0], sums[k][1]);
-            third[k] = h ? unpack_high_16(sums[k][2], ones) : unpack_low_16(sums[k][2], ones);
-        }
+        const simd_vector pair = h ? unpack_high_16(sums[0], sums[1]) : unpack_low_16(sums[0], sums[1]);
+        const simd_vector third = h ? unpack_high_16(sums[2], ones) : unpack_low_16(sums[2], ones);
 #pragma GCC unroll 3
         for (uint32_t c = 0; c < Channels; c++) {
-            const simd_vector a = high_part(v, c, pair[0], third[0]), b = low_part(v, c, pair[0], third[0]);
-            lanes[0][h][c] = value_lanes(v, c, a, b);
-            for (uint32_t k = 1; k < 3; k++)
-                lanes[k][h][c] = difference_lanes(v, d, subtract_32(high_part(v, c, pair[k], third[k]), a),
-                                                  low_part(v, c, pair[k], third[k]), b);
+            parts[2 * h][c] = high_part(v, c, pair, third);
+            parts[2 * h + 1][c] = low_part(v, c, pair, third);
         }
     }
-    for (uint32_t k = 0; k < 3; k++) {
-        if (Channels == 3) {
-            interleave_3(lanes[k][0][0], lanes[k][0][1], lanes[k][0][2], out[k]);
-            interleave_3(lanes[k][1][0], lanes[k][1][1], lanes[k][1][2], out[k] + 3);
-        } else {
-            out[k][0] = lanes[k][0][0];
-            out[k][1] = lanes[k][1][0];
-        }
+}
+
+/* The first `pixels` pixels of one output of a strip row from its lanes (half by half, channel by
+   channel), as normalize_strip stores them. */
+template <uint32_t Channels, typename Value>
+DSN_SIMD_INLINE void store_lanes(simd_vector (*lanes)[3], uint32_t pixels, Value *out) {
+    simd_vector values[6];
+    if (Channels == 3) {
+        interleave_3(lanes[0][0], lanes[0][1], lanes[0][2], values);
+        interleave_3(lanes[1][0], lanes[1][1], lanes[1][2], values + 3);
+    } else {
+        values[0] = lanes[0][0];
+        values[1] = lanes[1][0];
+    }
+    store_strip<Channels>(values, pixels, out, 0);
+}
+
+/* A strip row's value and both differences, normalized from the sums of its points, of the points right
+   of them and of those below (one vector per channel each), each output stored as soon as it is made:
+   the point's own parts are computed once for all three. */
+template <uint32_t Channels, typename Value>
+DSN_SIMD_INLINE void store_gradient_strip(const split_vectors *v, const difference_vectors *d,
+                                          const simd_vector *here, const simd_vector *east,
+                                          const simd_vector *south, uint32_t pixels, Value *out, Value *dx,
+                                          Value *dy) {
+    simd_vector own[4][3], lanes[2][3];
+    sum_parts<Channels>(v, here, own);
+#pragma GCC unroll 2
+    for (uint32_t h = 0; h < 2; h++)
+#pragma GCC unroll 3
+        for (uint32_t c = 0; c < Channels; c++)
+            lanes[h][c] = value_lanes(v, c, own[2 * h][c], own[2 * h + 1][c]);
+    store_lanes<Channels>(lanes, pixels, out);
+#pragma GCC unroll 2
+    for (uint32_t k = 0; k < 2; k++) {
+        simd_vector moved[4][3];
+        sum_parts<Channels>(v, k ? south : east, moved);
+#pragma GCC unroll 2
+        for (uint32_t h = 0; h < 2; h++)
+#pragma GCC unroll 3
+            for (uint32_t c = 0; c < Channels; c++)
+                lanes[h][c] = difference_lanes(v, d, subtract_32(moved[2 * h][c], own[2 * h][c]),
+                                               moved[2 * h + 1][c], own[2 * h + 1][c]);
+        store_lanes<Channels>(lanes, pixels, k ? dy : dx);
     }
 }
 
@@ -179,14 +207,14 @@ void gradient_row(const dsn_noise_state *noise, const gradient_setup *setup, con
             }
             continue;
         }
-        simd_vector here[3], east[3], south[3], values[3][6];
+        simd_vector here[3], east[3], south[3];
         load_sums(sums, row, s * lane, 0, here);
         load_sums(sums, row, s * lane, 1, east);
         load_sums(sums, row + 1, s * lane, 0, south);
-        gradient_lanes<Channels>(&setup->strips.split, &setup->difference, here, east, south, values);
-        store_strip<Channels>(values[0], pixels, static_cast<Value *>(target->out) + index * Channels, 0);
-        store_strip<Channels>(values[1], pixels, static_cast<Value *>(target->dx) + index * Channels, 0);
-        store_strip<Channels>(values[2], pixels, static_cast<Value *>(target->dy) + index * Channels, 0);
+        store_gradient_strip<Channels>(&setup->strips.split, &setup->difference, here, east, south, pixels,
+                                       static_cast<Value *>(target->out) + index * Channels,
+                                       static_cast<Value *>(target->dx) + index * Channels,
+                                       static_cast<Value *>(target->dy) + index * Channels);
     }
 }
 
