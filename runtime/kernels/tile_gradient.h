@@ -125,21 +125,6 @@ DSN_SIMD_INLINE void sum_parts(const split_vectors *v, const simd_vector *sums, 
     }
 }
 
-/* The first `pixels` pixels of one output of a strip row from its lanes (half by half, channel by
-   channel), as normalize_strip stores them. */
-template <uint32_t Channels, typename Value>
-DSN_SIMD_INLINE void store_lanes(simd_vector (*lanes)[3], uint32_t pixels, Value *out) {
-    simd_vector values[6];
-    if (Channels == 3) {
-        interleave_3(lanes[0][0], lanes[0][1], lanes[0][2], values);
-        interleave_3(lanes[1][0], lanes[1][1], lanes[1][2], values + 3);
-    } else {
-        values[0] = lanes[0][0];
-        values[1] = lanes[1][0];
-    }
-    store_strip<Channels>(values, pixels, out, 0);
-}
-
 /* A strip row's value and both differences, normalized from the sums of its points, of the points right
    of them and of those below (one vector per channel each), each output stored as soon as it is made:
    the point's own parts are computed once for all three. */

@@ -97,11 +97,12 @@ int mix_rectangle(mix_tile_material *materials, const tile_run *walk_x, const ti
                          size_t(walk_y->offset + y + r) * target->row_values + walk_x->offset * Channels;
             for (uint32_t s = 0; s * lane < walk_x->length; s++) {
                 const uint32_t pixels = walk_x->length - s * lane < lane ? walk_x->length - s * lane : lane;
-                simd_vector values[6], second[6];
-                normalized_strip<Channels>(&materials[0].setup.split, sums[0][s] + 3 * r, values);
-                normalized_strip<Channels>(&materials[1].setup.split, sums[1][s] + 3 * r, second);
-                for (uint32_t i = 0; i < 2 * Channels; i++) values[i] = add_32(values[i], second[i]);
-                store_strip<Channels>(values, pixels, out + s * lane * Channels, 0);
+                simd_vector lanes[2][3], second[2][3];
+                normalized_lanes<Channels>(&materials[0].setup.split, sums[0][s] + 3 * r, lanes);
+                normalized_lanes<Channels>(&materials[1].setup.split, sums[1][s] + 3 * r, second);
+                for (uint32_t h = 0; h < 2; h++)
+                    for (uint32_t c = 0; c < Channels; c++) lanes[h][c] = add_32(lanes[h][c], second[h][c]);
+                store_lanes<Channels>(lanes, pixels, out + s * lane * Channels);
             }
         }
     }

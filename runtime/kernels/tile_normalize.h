@@ -143,28 +143,50 @@ inline void interleave_3(simd_vector r, simd_vector g, simd_vector b, simd_vecto
     out[2] = as_integers(shuffle<_MM_SHUFFLE(2, 0, 2, 0)>(third, last));
 }
 
+/* A strip row's values, normalized from its sums (one vector per channel), as lanes: lanes[0][c] channel c
+   of the pixels of unpack_low_16, lanes[1][c] of those of unpack_high_16. */
+template <uint32_t Channels>
+DSN_SIMD_INLINE void normalized_lanes(const split_vectors *v, const simd_vector *sums,
+                                      simd_vector (*lanes)[3]) {
+    const simd_vector ones = set_16(1);
+    simd_vector pair_low = unpack_low_16(sums[0], sums[1]), pair_high = unpack_high_16(sums[0], sums[1]);
+    simd_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);
+    /* Channel by channel, both halves: each constant is read once (AVX2's 16 registers cannot hold them
+       all, and the compiler would spill them to the stack rather than read them again). */
+#pragma GCC unroll 3
+    for (uint32_t c = 0; c < Channels; c++) {
+        lanes[0][c] = normalize_lanes(v, c, pair_low, third_low);
+        lanes[1][c] = normalize_lanes(v, c, pair_high, third_high);
+    }
+}
+
+/* Lanes (normalized_lanes) in the vectors store_strip takes. */
+template <uint32_t Channels>
+DSN_SIMD_INLINE void interleave_lanes(simd_vector (*lanes)[3], simd_vector *values) {
+    if (Channels == 3) {
+        interleave_3(lanes[0][0], lanes[0][1], lanes[0][2], values);
+        interleave_3(lanes[1][0], lanes[1][1], lanes[1][2], values + 3);
+    } else {
+        values[0] = lanes[0][0];
+        values[1] = lanes[1][0];
+    }
+}
+
+/* The first `pixels` pixels of a strip row from its lanes (normalized_lanes). */
+template <uint32_t Channels, typename Value>
+DSN_SIMD_INLINE void store_lanes(simd_vector (*lanes)[3], uint32_t pixels, Value *out) {
+    simd_vector values[6];
+    interleave_lanes<Channels>(lanes, values);
+    store_strip<Channels>(values, pixels, out, 0);
+}
+
 /* A strip row's values, normalized from its sums (one vector per channel), in the vectors store_strip
    takes. */
 template <uint32_t Channels>
 DSN_SIMD_INLINE void normalized_strip(const split_vectors *v, const simd_vector *sums, simd_vector *values) {
-    const simd_vector ones = set_16(1);
-    simd_vector pair_low = unpack_low_16(sums[0], sums[1]), pair_high = unpack_high_16(sums[0], sums[1]);
-    simd_vector third_low = unpack_low_16(sums[2], ones), third_high = unpack_high_16(sums[2], ones);
-    if (Channels == 3) {
-        /* Channel by channel, both halves: each constant is read once (AVX2's 16 registers cannot hold
-           them all, and the compiler would spill them to the stack rather than read them again). */
-        simd_vector low[3], high[3];
-#pragma GCC unroll 3
-        for (uint32_t c = 0; c < 3; c++) {
-            low[c] = normalize_lanes(v, c, pair_low, third_low);
-            high[c] = normalize_lanes(v, c, pair_high, third_high);
-        }
-        interleave_3(low[0], low[1], low[2], values);
-        interleave_3(high[0], high[1], high[2], values + 3);
-    } else {
-        values[0] = normalize_lanes(v, 0, pair_low, third_low);
-        values[1] = normalize_lanes(v, 0, pair_high, third_high);
-    }
+    simd_vector lanes[2][3];
+    normalized_lanes<Channels>(v, sums, lanes);
+    interleave_lanes<Channels>(lanes, values);
 }
 
 /* The first `pixels` pixels of a strip row from its sums (one vector per channel); `stream`: written
