@@ -46,23 +46,56 @@ inline uint64_t slopes_from_step(uint64_t difference) {
     return static_cast<uint64_t>(floor_shift(signed_from_bits(difference), 8));
 }
 
+/* One output channel of normalize_q32_channels from its row of gains and the sums' whole parts w and
+   fractions f (zero past the noise's channels). */
+inline int32_t normalized_q32_channel(int64_t offset, const int64_t *gain, int64_t w0, int64_t f0, int64_t w1,
+                                      int64_t f1, int64_t w2, int64_t f2, uint32_t shift) {
+    const int64_t fractions = gain[0] * f0 + gain[1] * f1 + gain[2] * f2; /* |gain| < 2^29: each below 2^61 */
+    const int64_t accumulated = offset + gain[0] * w0 + gain[1] * w1 + gain[2] * w2 +
+                                dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
+    return dsn_round_saturate(accumulated, shift);
+}
+
 /* The lattice normalization of sums that carry 32 more fraction bits: the integer parts go through
    it as in lattice mode, the fractions are added once, rounded down, before the final rounding; from
-   `offset` (the noise's own, or zeros for a derivative, which the mean does not reach). */
+   `offset` (the noise's own, or zeros for a derivative, which the mean does not reach). For a noise of
+   `Channels` channels (1 or 3), written out: each sum split into its whole part (its floor, modulo 2^32)
+   and fraction once, not once per output channel. */
+template <uint32_t Channels>
+inline void normalize_q32_channels(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
+                                   int32_t *out) {
+    const uint64_t low = 0xFFFFFFFFu;
+    const int64_t w0 = dsn_signed_sum(static_cast<uint32_t>(sums[0] >> 32));
+    const int64_t w1 = Channels == 3 ? dsn_signed_sum(static_cast<uint32_t>(sums[1] >> 32)) : 0;
+    const int64_t w2 = Channels == 3 ? dsn_signed_sum(static_cast<uint32_t>(sums[2] >> 32)) : 0;
+    const int64_t f0 = static_cast<int64_t>(sums[0] & low);
+    const int64_t f1 = Channels == 3 ? static_cast<int64_t>(sums[1] & low) : 0;
+    const int64_t f2 = Channels == 3 ? static_cast<int64_t>(sums[2] & low) : 0;
+    for (uint32_t c = 0; c < Channels; c++)
+        out[c] = normalized_q32_channel(offset[c], noise->gain + 3 * c, w0, f0, w1, f1, w2, f2, noise->gain_shift);
+}
+
+/* normalize_q32_channels for the noise's 1 or 3 channels (the loader's check), but in the small build,
+   whose one loop over the count read at run time takes fewer bytes. */
 inline void normalize_q32_from(const dsn_noise_state *noise, const int64_t *offset, const uint64_t *sums,
                                int32_t *out) {
+#if DSN_SMALL_CODE
     const uint32_t channels = noise->asset.channels;
     for (uint32_t c = 0; c < channels; c++) {
         int64_t accumulated = offset[c], fractions = 0;
         for (uint32_t k = 0; k < channels; k++) {
-            const int64_t whole = dsn_signed_sum(static_cast<uint32_t>(sums[k] >> 32)); /* floor, mod 2^32 */
-            const int64_t fraction = static_cast<int64_t>(sums[k] & 0xFFFFFFFFu);
-            accumulated += noise->gain[c * 3 + k] * whole;
-            fractions += noise->gain[c * 3 + k] * fraction; /* |gain| < 2^29: each term below 2^61 */
+            accumulated += noise->gain[c * 3 + k] * dsn_signed_sum(static_cast<uint32_t>(sums[k] >> 32));
+            fractions += noise->gain[c * 3 + k] * static_cast<int64_t>(sums[k] & 0xFFFFFFFFu);
         }
         accumulated += dsn_signed_sum(static_cast<uint32_t>(static_cast<uint64_t>(fractions) >> 32));
         out[c] = dsn_round_saturate(accumulated, noise->gain_shift);
     }
+#else
+    if (noise->asset.channels == 3)
+        normalize_q32_channels<3>(noise, offset, sums, out);
+    else
+        normalize_q32_channels<1>(noise, offset, sums, out);
+#endif
 }
 
 /* The value: then the histogram mapping (normalize_q32), or not yet (normalize_q32_unmapped). */

@@ -156,6 +156,22 @@ inline bool axis_samples(int64_t first, int64_t last, uint32_t size, bool period
     return count <= most;
 }
 
+/* The samples that the positions [low, high] (Q32.32) of one axis read (axis_samples); false across the
+   2^31 seam of the relative positions (last < first) or past `most`. A grid one sample wide on this axis
+   is read whole wherever the positions lie (a control constant along it). */
+inline bool region_samples(uint64_t low, uint64_t high, int32_t origin, uint32_t spacing_shift, uint32_t size,
+                           bool periodic, int64_t most, uint32_t *start, uint32_t *length) {
+    if (size == 1) {
+        *start = 0;
+        *length = 1;
+        return true;
+    }
+    const MixAxis first = mix_axis(low, origin, spacing_shift, size, periodic);
+    const MixAxis last = mix_axis(high, origin, spacing_shift, size, periodic);
+    return last.index >= first.index &&
+           axis_samples(first.index, last.index, size, periodic, most, start, length);
+}
+
 /* The region of positions [low, high] (Q32.32 per axis, high - low below 2^31 texels): uniform when the
    samples it reads (at most `most` per axis) all hold the same weights. */
 inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint64_t low_x, uint64_t low_y,
@@ -165,18 +181,12 @@ inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint
     region.single = false;
     region.only = 0;
     region.weights = MixWeights();
-    const bool periodic_x = (control->flags & DSN_MIX_PERIODIC_X) != 0;
-    const bool periodic_y = (control->flags & DSN_MIX_PERIODIC_Y) != 0;
-    const uint32_t shift = control->spacing_shift, width = control->width, height = control->height;
-    const MixAxis first_x = mix_axis(low_x, control->origin_x, shift, width, periodic_x);
-    const MixAxis last_x = mix_axis(high_x, control->origin_x, shift, width, periodic_x);
-    const MixAxis first_y = mix_axis(low_y, control->origin_y, shift, height, periodic_y);
-    const MixAxis last_y = mix_axis(high_y, control->origin_y, shift, height, periodic_y);
+    const uint32_t width = control->width, height = control->height;
     uint32_t start_x, columns, start_y, rows;
-    /* A region across the 2^31 seam of the relative positions has last < first: not uniform. */
-    if (last_x.index < first_x.index || last_y.index < first_y.index ||
-        !axis_samples(first_x.index, last_x.index, width, periodic_x, most, &start_x, &columns) ||
-        !axis_samples(first_y.index, last_y.index, height, periodic_y, most, &start_y, &rows))
+    if (!region_samples(low_x, high_x, control->origin_x, control->spacing_shift, width,
+                        (control->flags & DSN_MIX_PERIODIC_X) != 0, most, &start_x, &columns) ||
+        !region_samples(low_y, high_y, control->origin_y, control->spacing_shift, height,
+                        (control->flags & DSN_MIX_PERIODIC_Y) != 0, most, &start_y, &rows))
         return region;
     const uint8_t *reference = control->weights + (static_cast<size_t>(start_y) * width + start_x) * count;
     for (uint32_t j = 0, row = start_y; j < rows; j++, row = row + 1u == height ? 0u : row + 1u)

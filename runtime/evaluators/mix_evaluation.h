@@ -134,12 +134,13 @@ inline int32_t saturating_add(int32_t a, int32_t b) {
     return static_cast<int32_t>((overflow >> 31) != 0 ? limit : sum);
 }
 
+inline int32_t saturated_total(int64_t total) {
+    return total > INT32_MAX ? INT32_MAX : total < INT32_MIN ? INT32_MIN : static_cast<int32_t>(total);
+}
+
 /* The totals as the mix's output, saturated to int32. */
 inline void store_totals(const dsn_mix_state *mix, const int64_t *totals, int32_t *out) {
-    for (uint32_t c = 0; c < mix->channels; c++)
-        out[c] = totals[c] > INT32_MAX   ? INT32_MAX
-                 : totals[c] < INT32_MIN ? INT32_MIN
-                                         : static_cast<int32_t>(totals[c]);
+    for (uint32_t c = 0; c < mix->channels; c++) out[c] = saturated_total(totals[c]);
 }
 
 /* Continuous points near each other (part of a continuous tile's row, neighbours in a batch) are walked at

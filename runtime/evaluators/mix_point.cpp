@@ -300,9 +300,35 @@ void mix_output_from(const dsn_mix_state *mix, const MixOffsets offsets, const S
     store_totals(mix, totals, out);
 }
 
+/* mix_output_from with weighted_offsets for materials of the mix's `Channels` channels each (those alike
+   in their textons): the same sums, each material's offset weighted as it is used. */
+template <uint32_t Channels, typename Sum>
+void alike_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*sums)[DSN_MAX_CHANNELS],
+                  int32_t *out) {
+    int64_t totals[Channels] = {};
+    for (uint32_t m = 0; m < mix->count; m++) {
+        const dsn_noise_state *material = &mix->material[m];
+        int64_t offset[DSN_MAX_CHANNELS];
+        for (uint32_t c = 0; c < Channels; c++) offset[c] = weighted_offset(material->offset[c], weights[m]);
+        int32_t values[DSN_MAX_CHANNELS] = {0, 0, 0}; /* (each material fills Channels; GCC cannot tell) */
+        normalize_material(material, offset, sums[m], values);
+        for (uint32_t c = 0; c < Channels; c++) totals[c] += values[c];
+    }
+    for (uint32_t c = 0; c < Channels; c++) out[c] = saturated_total(totals[c]);
+}
+
 template <typename Sum>
 void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*sums)[DSN_MAX_CHANNELS],
                 int32_t *out) {
+#if !DSN_SMALL_CODE
+    if (mix->alike != 0) {
+        if (mix->channels == 3)
+            alike_output<3>(mix, weights, sums, out);
+        else
+            alike_output<1>(mix, weights, sums, out);
+        return;
+    }
+#endif
     MixOffsets offsets = {};
     weighted_offsets(mix, weights, offsets);
     mix_output_from(mix, offsets, sums, out);

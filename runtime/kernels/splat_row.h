@@ -595,7 +595,7 @@ void splat_normalize_vector(const dsn_noise_state *noise, const int64_t *offset,
     for (; done < count; done++) {
         uint64_t pixel_sums[Channels];
         for (uint32_t c = 0; c < Channels; c++) pixel_sums[c] = sums[c * plane + done];
-        normalize_q32_from(noise, offset, pixel_sums, out + done * Channels);
+        normalize_q32_channels<Channels>(noise, offset, pixel_sums, out + done * Channels);
     }
 }
 #endif
