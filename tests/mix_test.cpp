@@ -258,6 +258,7 @@ TEST_CASE("mix: draw_threshold is the smallest hash that pick_material's draw ta
         const uint64_t threshold = draw_threshold(running, total);
         CAPTURE(total);
         CAPTURE(running);
+        CHECK(draw_threshold_in_digits(running, total) == threshold); // the 32-bit targets' copy
         REQUIRE(threshold <= (uint64_t(1) << 32));
         // floor(hash total / 2^32) >= running exactly from the threshold on
         if (threshold < (uint64_t(1) << 32)) CHECK(((threshold * total) >> 32) >= running);

@@ -108,14 +108,25 @@ inline uint32_t pick_material(const MixWeights &weights, uint32_t count, uint32_
 }
 
 /* The smallest hash that draws past running sum `running` of `total` (pick_material: floor(hash total /
-   2^32) >= running): ceil(2^32 running / total), 2^32 where no hash does (running = total); in three
-   32-bit divisions, as running <= total < 2^18 (no 64-bit division on 32-bit targets). */
-inline uint64_t draw_threshold(uint32_t running, uint32_t total) {
+   2^32) >= running): ceil(2^32 running / total), 2^32 where no hash does (running = total). In three
+   32-bit divisions, the long division in digits of 14, 14 and 4 bits, as running <= total < 2^18 (no
+   64-bit division helper on 32-bit targets); draw_threshold takes one 64-bit division where that is one
+   instruction. */
+inline uint64_t draw_threshold_in_digits(uint32_t running, uint32_t total) {
     const uint32_t first = (running << 14) / total, first_rest = (running << 14) % total;
     const uint32_t second = (first_rest << 14) / total, second_rest = (first_rest << 14) % total;
     const uint32_t third = (second_rest << 4) / total, third_rest = (second_rest << 4) % total;
     return (static_cast<uint64_t>(first) << 18) + (static_cast<uint64_t>(second) << 4) + third +
            (third_rest != 0 ? 1u : 0u);
+}
+
+inline uint64_t draw_threshold(uint32_t running, uint32_t total) {
+#if defined(__x86_64__) || defined(__aarch64__)
+    const uint64_t scaled = static_cast<uint64_t>(running) << 32;
+    return scaled / total + (scaled % total != 0 ? 1u : 0u);
+#else
+    return draw_threshold_in_digits(running, total);
+#endif
 }
 
 /* The point's weights w_m in Q2.14, summing to 2^14: differences of floor(2^14 cumulative / T) (T < 2^18,
