@@ -278,6 +278,19 @@ void normalize_material(const dsn_noise_state *material, const int64_t *offset, 
     dsn_normalize_from(material, offset, sums, out);
 }
 
+/* normalize_material for a material of `Channels` channels: the continuous sums' copy written for it,
+   inline; the lattice normalization (already written out for 1 and 3 channels). */
+template <uint32_t Channels>
+void normalize_channels(const dsn_noise_state *material, const int64_t *offset, const uint64_t *sums,
+                        int32_t *out) {
+    normalize_q32_channels<Channels>(material, offset, sums, out);
+}
+template <uint32_t Channels>
+void normalize_channels(const dsn_noise_state *material, const int64_t *offset, const uint32_t *sums,
+                        int32_t *out) {
+    dsn_normalize_from(material, offset, sums, out);
+}
+
 typedef int64_t MixOffsets[DSN_MIX_MAX_MATERIALS][DSN_MAX_CHANNELS];
 
 /* Each material's offset weighted by its weight at a point. */
@@ -311,7 +324,7 @@ void alike_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (
         int64_t offset[DSN_MAX_CHANNELS];
         for (uint32_t c = 0; c < Channels; c++) offset[c] = weighted_offset(material->offset[c], weights[m]);
         int32_t values[DSN_MAX_CHANNELS] = {0, 0, 0}; /* (each material fills Channels; GCC cannot tell) */
-        normalize_material(material, offset, sums[m], values);
+        normalize_channels<Channels>(material, offset, sums[m], values);
         for (uint32_t c = 0; c < Channels; c++) totals[c] += values[c];
     }
     for (uint32_t c = 0; c < Channels; c++) out[c] = saturated_total(totals[c]);
