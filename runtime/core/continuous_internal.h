@@ -72,7 +72,8 @@ inline void normalize_q32_channels(const dsn_noise_state *noise, const int64_t *
     const int64_t f1 = Channels == 3 ? static_cast<int64_t>(sums[1] & low) : 0;
     const int64_t f2 = Channels == 3 ? static_cast<int64_t>(sums[2] & low) : 0;
     for (uint32_t c = 0; c < Channels; c++)
-        out[c] = normalized_q32_channel(offset[c], noise->gain + 3 * c, w0, f0, w1, f1, w2, f2, noise->gain_shift);
+        out[c] =
+            normalized_q32_channel(offset[c], noise->gain + 3 * c, w0, f0, w1, f1, w2, f2, noise->gain_shift);
 }
 
 /* normalize_q32_channels for the noise's 1 or 3 channels (the loader's check), but in the small build,
