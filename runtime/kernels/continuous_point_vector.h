@@ -1018,6 +1018,14 @@ inline void picked_levels(const Visit *visit, const uint32_t *hashes, const uint
 }
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
+/* Bits 0, 2, .. 14 of a lane mask as bits 0 .. 7: the candidates of bilinear_16's even 64-bit lanes. */
+inline mask_8 even_bits(uint32_t lanes) {
+    lanes &= 0x5555u;
+    lanes = (lanes | lanes >> 1) & 0x3333u;
+    lanes = (lanes | lanes >> 2) & 0x0F0Fu;
+    return static_cast<mask_8>(lanes | lanes >> 4);
+}
+
 /* Candidates first .. first + 15 of which the first `valid` exist: each one's material from its hash, its
    texels read from that material's texton, and its read (bilinear_16's even and odd 64-bit lanes) added
    to that material's sums under that material's lanes. */
@@ -1047,11 +1055,10 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
     /* The count read once: the sums' vector stores may alias it as far as the compiler knows, and a
        second read would leave lanes it cannot prove set. */
     const uint32_t count = visit->count;
-    vector_512 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
+    mask_8 even_lanes[dsn_point_materials_most], odd_lanes[dsn_point_materials_most];
     for (uint32_t m = 1; m < dsn_point_materials_most && m < count; m++) {
-        const vector_512 lanes = blend_32(static_cast<mask_16>(at_least[m - 1] & ~at_least[m]), zero_512(),
-                                          set_16x32(0xFFFFFFFFu));
-        even_lanes[m] = shuffle_32<0xA0>(lanes), odd_lanes[m] = shuffle_32<0xF5>(lanes);
+        const uint32_t lanes = at_least[m - 1] & ~at_least[m];
+        even_lanes[m] = even_bits(lanes), odd_lanes[m] = even_bits(lanes >> 1);
     }
     for (uint32_t c = 0; c < Channels; c++) {
         vector_512 even, odd;
@@ -1060,8 +1067,8 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
                     texels.across, texels.down, &even, &odd);
         visit->sums[0][c] = add_64(visit->sums[0][c], add_64(even, odd));
         for (uint32_t m = 1; m < dsn_point_materials_most && m < count; m++)
-            visit->sums[m][c] = add_64(
-                visit->sums[m][c], add_64(bitwise_and(even, even_lanes[m]), bitwise_and(odd, odd_lanes[m])));
+            visit->sums[m][c] =
+                add_64_where(odd_lanes[m], add_64_where(even_lanes[m], visit->sums[m][c], even), odd);
     }
 }
 const uint32_t mixed_lanes = 16;

@@ -412,6 +412,10 @@ DSN_SIMD_INLINE vector_512 add_32_where(mask_16 mask, vector_512 a, vector_512 b
     return _mm512_mask_add_epi32(a, mask, a, b);
 }
 DSN_SIMD_INLINE vector_512 add_64(vector_512 a, vector_512 b) { return _mm512_add_epi64(a, b); }
+/* a + b in the 64-bit lanes of mask, a in the others. */
+DSN_SIMD_INLINE vector_512 add_64_where(mask_8 mask, vector_512 a, vector_512 b) {
+    return _mm512_mask_add_epi64(a, mask, a, b);
+}
 #if defined(__AVX512DQ__)
 /* x * factor modulo 2^64 in every 64-bit lane: one instruction with AVX512DQ (simd_mix64.h's multiply_64
    otherwise). */
