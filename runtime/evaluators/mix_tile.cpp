@@ -274,6 +274,18 @@ size_t materials_sums_size(const dsn_mix_state *mix, uint32_t width, uint32_t he
     return bytes;
 }
 
+/* A material's normalized row (`own` channels a pixel) added to the mix's totals (`channels` a pixel): a
+   grey material's value to each channel. */
+void add_row_values(const int32_t *values, uint32_t own, uint32_t channels, uint32_t columns,
+                    int64_t *totals) {
+    if (own == channels) {
+        for (uint32_t v = 0; v < columns * channels; v++) totals[v] += values[v];
+        return;
+    }
+    for (uint32_t i = 0; i < columns; i++)
+        for (uint32_t c = 0; c < channels; c++) totals[i * channels + c] += values[i];
+}
+
 /* A continuous tile whose weights are uniform over its reach, block by block (grid_splat.h): each drawn
    material's impulses (its hash filter) splatted with its texton into its own block sums, each row of them
    normalized by the kernel from the material's weighted offset, and each value the materials' values
@@ -326,24 +338,24 @@ bool continuous_tile_by_materials(const dsn_mix_state *mix, const DrawnMaterials
             for (uint32_t d = 0; d < drawn.count; d++)
                 dsn_internal_grid_splat_block(&passes[d], &splats[d], &block, sums[d]);
             for (uint32_t j = 0; j < block.rows; j++) {
+                const uint32_t count = block.columns * channels;
                 int64_t totals[dsn_splat_block_columns * DSN_MAX_CHANNELS];
-                for (uint32_t v = 0; v < block.columns * channels; v++) totals[v] = 0;
+                for (uint32_t v = 0; v < count; v++) totals[v] = 0;
                 for (uint32_t d = 0; d < drawn.count; d++) {
                     int32_t values[dsn_splat_block_columns * DSN_MAX_CHANNELS];
                     kernel->continuous_splat_normalize(&passes[d],
                                                        sums[d] + static_cast<size_t>(j) * block.stride,
                                                        block.plane, block.columns, values);
-                    const uint32_t own = passes[d].asset.channels;
-                    for (uint32_t i = 0; i < block.columns; i++)
-                        for (uint32_t c = 0; c < channels; c++)
-                            totals[i * channels + c] += values[i * own + (own == 1 ? 0u : c)];
+                    add_row_values(values, passes[d].asset.channels, channels, block.columns, totals);
                 }
+                int32_t row[dsn_splat_block_columns * DSN_MAX_CHANNELS];
+                for (uint32_t v = 0; v < count; v++) row[v] = saturated_total(totals[v]);
                 const size_t first = (static_cast<size_t>(top + j) * width + left) * channels;
-                for (uint32_t i = 0; i < block.columns; i++) {
-                    int32_t value[DSN_MAX_CHANNELS];
-                    store_totals(mix, totals + i * channels, value);
-                    dsn_store_pixel(out, kind, first + i * channels, value, channels);
-                }
+                if (kind == dsn_output_fixed)
+                    __builtin_memcpy(static_cast<int32_t *>(out) + first, row, count * sizeof row[0]);
+                else
+                    for (uint32_t i = 0; i < block.columns; i++)
+                        dsn_store_pixel(out, kind, first + i * channels, row + i * channels, channels);
             }
         }
     return true;
