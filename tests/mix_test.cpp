@@ -1126,11 +1126,15 @@ TEST_CASE("mix: filtered points where the weights are uniform (each material's s
     // Equal weights in every sample: the draws and the point's weights depend on the weights' ratios alone,
     // so a control whose samples vary in size only (the mix's walk: its region is not uniform) gives the
     // bits of a constant one (each material's sifted walk, its impulses kept by their hashes). Three
-    // materials (thresholds at 1/3 and 2/3; 8-bit 31 x 31 with a period, 8-bit 9 x 9, 16-bit 13 x 13), and
-    // a grey lead with an RGB material (1/2), through every kernel.
+    // materials (thresholds at 1/3 and 2/3; 8-bit 31 x 31 with a period, 8-bit 9 x 9, 16-bit 13 x 13), a
+    // grey lead with an RGB material (1/2), and two RGB 8-bit 31 x 31 materials (1/2: listed together in
+    // one walk by the AVX2 and AVX-512 copies, each impulse into its material's list), through every
+    // kernel.
     const PyramidMaterials made = pyramid_materials(301, {-(1 << 21), 1 << 22, 1 << 20});
+    const PyramidMaterials alike = pyramid_materials(311, {1 << 21, -(1 << 20), 1 << 22});
     const dsn_mix three = make_mix({&made.lead->noise, &made.small->noise, &made.wide->noise});
     const dsn_mix grey_lead = make_mix({&made.grey->noise, &made.small->noise});
+    const dsn_mix two_alike = make_mix({&made.lead->noise, &alike.lead->noise});
     const Control thirds = constant({70, 70, 70}), halves = constant({200, 200});
     const Control thirds_varying(3, 3, 2, 2, [](uint32_t i, uint32_t j) {
         const uint8_t w = uint8_t((i + j) % 2 ? 70 : 13 + 40 * i);
@@ -1143,7 +1147,9 @@ TEST_CASE("mix: filtered points where the weights are uniform (each material's s
     const struct {
         const dsn_mix *mix;
         const Control *uniform, *varying;
-    } cases[] = {{&three, &thirds, &thirds_varying}, {&grey_lead, &halves, &halves_varying}};
+    } cases[] = {{&three, &thirds, &thirds_varying},
+                 {&grey_lead, &halves, &halves_varying},
+                 {&two_alike, &halves, &halves_varying}};
     std::vector<int64_t> xs, ys;
     renderer_points(309, 50, &xs, &ys);
     size_t differences = 0, compared = 0, spread = 0;

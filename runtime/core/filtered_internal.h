@@ -94,6 +94,15 @@ void dsn_internal_filter_sums_kept(const dsn_noise_state *noise, uint64_t x, uin
                                    const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                    uint32_t count, const struct dsn_impulse_filter *filter,
                                    dsn_filter_sums sums);
+/* dsn_internal_filter_sums_kept of a mix's two materials in one walk: `noise`'s sums over the impulses that
+   `filter` keeps into sums, `other`'s over the rest into other_sums, each over its own `count` levels at the
+   plan's taps. False, summing nothing, where the pair does not take it: 8-bit levels of the same channels
+   read and listed by the kernel, and the same walk for both (walk radii and process). */
+bool dsn_internal_filter_sums_split(const dsn_noise_state *noise, const dsn_noise_state *other, uint64_t x,
+                                    uint64_t y, const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                    const dsn_walked_level *other_levels, uint32_t count,
+                                    const struct dsn_impulse_filter *filter, dsn_filter_sums sums,
+                                    dsn_filter_sums other_sums);
 #endif
 #if DSN_GRADIENTS
 /* dsn_internal_filter_slopes_walked's sums and slopes from sifted walks: each tap with its copies moved by

@@ -274,6 +274,17 @@ void take(const LevelAccumulator &sums, uint64_t *out) {
         out[c] += interior[c] - (sums.interior_count << (31u + 8u * Bytes)) + sums.border[c];
 }
 
+struct TapGroup;
+
+/* A mix of two materials alike whose weights are uniform (DSN_MIXING): the candidates that the group's
+   filter leaves are the other material's, listed in the same walk into its own list, visited with its own
+   group and summed into its own sums. */
+struct RestListing {
+    const TapGroup *group;
+    CandidateList *list;
+    uint64_t (*sums)[2][DSN_MAX_CHANNELS];
+};
+
 /* The taps that one walk serves, and the levels they read. */
 struct TapGroup {
     const dsn_walked_level *levels;
@@ -288,6 +299,8 @@ struct TapGroup {
     bool one_spot;              /* the taps are one tap and its moved copies */
     dsn_filter_slopes *slopes;  /* null, or where the kernel's reads add the taps' slopes (closed tests) */
     const dsn_impulse_filter *filter; /* null, or the impulses one material of a mix keeps (DSN_MIXING) */
+    const RestListing *rest;          /* null, or where the impulses the filter leaves go (the kernel's
+                                         listing only) */
     uint32_t level_count, first, taps;
     TapAxis x, y;
 };
@@ -467,6 +480,13 @@ bool kernel_listing_takes(const dsn_noise_state *noise, const TapGroup &group) {
                buffer_capacity;
 }
 
+/* The list as the kernel's listing fills it (narrow: the narrow offsets alone). */
+dsn_filter_list filter_list(CandidateList *list, bool narrow) {
+    const dsn_filter_list listing = {list->count,    narrow ? 0 : list->x, narrow ? 0 : list->y,
+                                     list->narrow_x, list->narrow_y,       list->cell_end + list->cells};
+    return listing;
+}
+
 /* Up to cell_batch cells of the box along x from which its impulses may reach it (cell_axis_within). */
 struct BoxColumns {
     uint32_t cell[cell_batch];
@@ -511,20 +531,30 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                                                in_y, list, grid, sums);
                 continue;
             }
+            const RestListing *rest = group.rest;
             for (uint32_t i = 0; i < batch;) {
-                uint32_t end = i, room = buffer_capacity - candidates_overrun - list->count;
+                const uint32_t filled =
+                    rest != 0 && rest->list->count > list->count ? rest->list->count : list->count;
+                uint32_t end = i, room = buffer_capacity - candidates_overrun - filled;
                 for (; end < batch && list->cells + (end - i) < listed_cells_most; end++) {
                     if (cells[end].count > room) break;
                     room -= cells[end].count;
                 }
                 if (end > i) {
-                    list->count = group.list_candidates(
-                        cells + i, end - i, shift, list->count, group.narrow ? 0 : list->x,
-                        group.narrow ? 0 : list->y, list->narrow_x, list->narrow_y,
-                        list->cell_end + list->cells, group.filter);
-                    for (; i < end; i++) record_cell(list, cells[i].x.shifted_base, cells[i].y.shifted_base);
+                    dsn_filter_list kept = filter_list(list, group.narrow), others;
+                    if (rest != 0) others = filter_list(rest->list, group.narrow);
+                    group.list_candidates(cells + i, end - i, shift, &kept, rest != 0 ? &others : 0,
+                                          group.filter);
+                    list->count = kept.count;
+                    if (rest != 0) rest->list->count = others.count;
+                    for (; i < end; i++) {
+                        record_cell(list, cells[i].x.shifted_base, cells[i].y.shifted_base);
+                        if (rest != 0)
+                            record_cell(rest->list, cells[i].x.shifted_base, cells[i].y.shifted_base);
+                    }
                 } else { /* an empty buffer has room for any cell (kernel_listing_takes) */
                     visit<Channels, Bytes>(group, list, grid, sums);
+                    if (rest != 0) visit<Channels, Bytes>(*rest->group, rest->list, 0, rest->sums);
                 }
             }
         }
@@ -574,6 +604,7 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
     }
     list_box<Channels, Bytes>(noise, group, lanes, &list, grid, sums);
     visit<Channels, Bytes>(group, &list, grid, sums);
+    if (group.rest != 0) visit<Channels, Bytes>(*group.rest->group, group.rest->list, 0, group.rest->sums);
     if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);
 }
 
@@ -596,6 +627,7 @@ bool tap_group(const dsn_noise_state *noise, const uint64_t *x, const uint64_t *
     group->one_spot = one_spot;
     group->slopes = 0;
     group->filter = 0;
+    group->rest = 0;
     if (!tap_axis(x + first, taps, radius_x, noise->cell_shift, noise->period[0], &group->x) ||
         !tap_axis(y + first, taps, radius_y, noise->cell_shift, noise->period[1], &group->y))
         return false;
@@ -736,6 +768,43 @@ void dsn_internal_filter_sums_kept(const dsn_noise_state *noise, uint64_t x, uin
                                    const dsn_filter_plan *plan, const dsn_walked_level *levels,
                                    uint32_t count, const dsn_impulse_filter *filter, dsn_filter_sums sums) {
     sum_taps_of_asset(noise, x, y, plan, levels, count, sums, 0, filter);
+}
+
+bool dsn_internal_filter_sums_split(const dsn_noise_state *noise, const dsn_noise_state *other, uint64_t x,
+                                    uint64_t y, const dsn_filter_plan *plan, const dsn_walked_level *levels,
+                                    const dsn_walked_level *other_levels, uint32_t count,
+                                    const dsn_impulse_filter *filter, dsn_filter_sums sums,
+                                    dsn_filter_sums other_sums) {
+    const uint32_t channels = noise->asset.channels;
+    uint32_t radius_x, radius_y, other_x, other_y;
+    dsn_filter_walk_radii(levels, count, &radius_x, &radius_y);
+    dsn_filter_walk_radii(other_levels, count, &other_x, &other_y);
+    /* the same walk for both (tap_axis's inputs), 8-bit levels of the same channels read by the kernel */
+    if (noise->asset.bits != 8 || other->asset.bits != 8 || other->asset.channels != channels ||
+        radius_x != other_x || radius_y != other_y || noise->cell_shift != other->cell_shift ||
+        noise->period[0] != other->period[0] || noise->period[1] != other->period[1] ||
+        noise->tile_kernel != other->tile_kernel)
+        return false;
+    uint64_t tap_x[DSN_FILTER_MAX_TAPS], tap_y[DSN_FILTER_MAX_TAPS];
+    for (uint32_t tap = 0; tap < plan->taps; tap++) {
+        tap_x[tap] = x + static_cast<uint64_t>(plan->offset_x[tap]);
+        tap_y[tap] = y + static_cast<uint64_t>(plan->offset_y[tap]);
+    }
+    TapGroup group, rest_group;
+    if (!tap_group(noise, tap_x, tap_y, 0, plan->taps, levels, count, 0, 0, false, &group) ||
+        !tap_group(other, tap_x, tap_y, 0, plan->taps, other_levels, count, 0, 0, false, &rest_group) ||
+        group.vector_reads == 0 || !kernel_listing_takes(noise, group) || group.narrow != rest_group.narrow)
+        return false;
+    for (uint32_t tap = 0; tap < plan->taps; tap++)
+        for (uint32_t l = 0; l < 2; l++)
+            for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[tap][l][c] = other_sums[tap][l][c] = 0;
+    CandidateList rest_list;
+    rest_list.count = rest_list.cells = 0;
+    const RestListing rest = {&rest_group, &rest_list, other_sums};
+    group.filter = filter;
+    group.rest = &rest;
+    channels == 3 ? sum_group<3, 1>(noise, group, sums) : sum_group<1, 1>(noise, group, sums);
+    return true;
 }
 #endif
 

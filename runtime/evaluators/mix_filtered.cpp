@@ -216,12 +216,45 @@ void material_levels(const dsn_mix_state *mix, uint32_t m, const MixPlans plans,
 }
 
 #if !DSN_SMALL_CODE
-/* The terms of the materials where the weights are uniform: each material's sums by the sifted walk of one
-   noise (filtered_sift.cpp, on vectors where the kernel lists candidates) over the impulses that draw it,
-   every material's impulses listed again (the listing costs less than the scalar walk's pick per impulse:
-   make bench's mix_bench), then its term, each material weighted once. The same impulses and reads as
-   materials_sums's, so the same sums. Kept out of line, as walked_terms is, so that the sifted walk's
-   stack is not under walked_terms's frame. */
+/* Whether two plans have the same taps (the footprint's alone: a material's pyramid clamps only its level
+   of detail). */
+bool same_taps(const dsn_filter_plan &a, const dsn_filter_plan &b) {
+    if (a.taps != b.taps) return false;
+    for (uint32_t tap = 0; tap < a.taps; tap++)
+        if (a.offset_x[tap] != b.offset_x[tap] || a.offset_y[tap] != b.offset_y[tap]) return false;
+    return true;
+}
+
+/* kept_terms for a mix of two materials that the sifted walk lists together (dsn_internal_filter_sums_split:
+   both drawn, with the same taps and walk): each impulse listed once for the material it draws. False,
+   setting nothing, elsewhere. */
+bool split_terms(const dsn_mix_state *mix, const uint64_t *thresholds, uint64_t x, uint64_t y,
+                 const MixPlans plans, const uint32_t *weights, int32_t (*terms)[DSN_MAX_CHANNELS]) {
+    if (mix->count != 2 || thresholds[0] == 0 || thresholds[0] >> 32 != 0 || !same_taps(plans[0], plans[1]))
+        return false;
+    dsn_noise_state weighted[2];
+    MaterialLevels own[2];
+    for (uint32_t m = 0; m < 2; m++) {
+        material_levels(mix, m, plans, weights, &weighted[m], &own[m], terms[m]);
+        if (own[m].count == 0) return false;
+    }
+    if (own[0].count != own[1].count) return false;
+    const dsn_impulse_filter filter = material_filter(thresholds, 0);
+    dsn_filter_sums sums[2];
+    if (!dsn_internal_filter_sums_split(&mix->material[0], &mix->material[1], x, y, &plans[0], own[0].walked,
+                                        own[1].walked, own[0].count, &filter, sums[0], sums[1]))
+        return false;
+    for (uint32_t m = 0; m < 2; m++) material_value(&weighted[m], &plans[m], own[m], sums[m], terms[m]);
+    return true;
+}
+
+/* The terms of the materials where the weights are uniform: two materials listed together where they
+   take it (split_terms), else each material's sums by the sifted walk of one noise (filtered_sift.cpp, on
+   vectors where the kernel lists candidates) over the impulses that draw it, every material's impulses
+   listed again (the listing costs less than the scalar walk's pick per impulse: make bench's mix_bench),
+   then its term, each material weighted once. The same impulses and reads as materials_sums's, so the
+   same sums. Kept out of line, as walked_terms is, so that the sifted walk's stack is not under
+   walked_terms's frame. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
@@ -229,6 +262,7 @@ void kept_terms(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, u
                 const uint32_t *weights, int32_t (*terms)[DSN_MAX_CHANNELS]) {
     uint64_t thresholds[dsn_point_materials_most - 1];
     uniform_thresholds(mix, region, thresholds);
+    if (split_terms(mix, thresholds, x, y, plans, weights, terms)) return;
     dsn_noise_state weighted;
     for (uint32_t m = 0; m < mix->count; m++) {
         MaterialLevels own;

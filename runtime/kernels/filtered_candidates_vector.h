@@ -6,7 +6,8 @@
    continuous evaluator's), then their fraction hash and 16-bit positions in 32-bit lanes, their shifted
    offsets in 64-bit lanes (where the caller reads them) and those offsets / 2^16 in 32-bit lanes, 8
    stored at once (AVX-512: two pairs at once, hashed and placed on all 16 lanes while the sift runs, and
-   only what is stored compressed). Only the
+   only what is stored compressed); for a mix, only the impulses of one material, or each impulse into the
+   list of the material it draws where two materials share the walk. Only the
    sift bounds them: a candidate may lie up to a texel beyond the box, which the level tests, exact for any
    offset of that size, leave out as the walk does. Internal to libdsn; not installed (everything here has
    internal linkage). */
@@ -64,23 +65,48 @@ inline void store_shifted_16(int64_t *at, vector_512 base, vector_512 bits, vect
     store_8x64(at + 8, subtract_64(base, high));
 }
 
+/* Two pairs' impulses placed in lanes: their 16-bit positions and narrow offsets, and the cell's bases. */
+struct PlacedLanes {
+    vector_512 base_x, base_y, bits_x, bits_y, narrow_x, narrow_y;
+    vector_128 position_shift;
+};
+
+/* The lanes of `keep` appended to `list`, compressed to the front (Wide: their shifted offsets too). */
+template <bool Wide>
+inline void append_lanes_16(dsn_filter_list *list, uint32_t keep, const PlacedLanes &placed) {
+    const mask_16 lanes = static_cast<mask_16>(keep);
+    const uint32_t count = list->count;
+    if (Wide) {
+        store_shifted_16(list->xs + count, placed.base_x, compress_32(lanes, placed.bits_x),
+                         placed.position_shift);
+        store_shifted_16(list->ys + count, placed.base_y, compress_32(lanes, placed.bits_y),
+                         placed.position_shift);
+    }
+    store_16x32(list->narrow_xs + count, compress_32(lanes, placed.narrow_x));
+    store_16x32(list->narrow_ys + count, compress_32(lanes, placed.narrow_y));
+    list->count = count + mask_count(keep);
+}
+
 /* kernels.h's filter_candidates, two pairs at a time (impulses first .. first + 15 of a cell), on 512-bit
    vectors: both sifted in one 128-bit vector (sift_two_pairs) and their candidates compressed to the front.
    Wide: xs, ys are written (a loop of its own without them: fewer live registers). Filtered: only the
-   impulses that `filter` keeps (kept_lanes). */
-template <bool Wide, bool Filtered>
-uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
-                           uint32_t *ends, const KeptLanes &kept) {
+   impulses that `filter` keeps (kept_lanes) go to `kept`; Split: the others to `rest`, from the same
+   lanes. */
+template <bool Wide, bool Filtered, bool Split>
+void listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                       dsn_filter_list *kept_list, dsn_filter_list *rest_list, const KeptLanes &kept) {
     const FieldLanes lanes = field_lanes(cell_shift);
-    const vector_128 position_shift = shift_count(static_cast<int>(16u + cell_shift)),
-                     cell_shift_vector = shift_count(static_cast<int>(cell_shift));
+    const vector_128 cell_shift_vector = shift_count(static_cast<int>(cell_shift));
     /* lane * 0x9E3779B9 modulo 2^32 */
     const vector_512 weyl = multiply_32(set_lanes_16x32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
                                         set_16x32(0x9E3779B9u));
+    /* (copies: the stores through the lists' arrays could otherwise alias their counts) */
+    dsn_filter_list kept_out = *kept_list, rest_out = Split ? *rest_list : *kept_list;
+    PlacedLanes placed;
+    placed.position_shift = shift_count(static_cast<int>(16u + cell_shift));
     for (uint32_t k = 0; k < cell_count; k++) {
         const dsn_filter_cell &cell = cells[k];
-        const vector_512 base_x = set_8x64(cell.x.shifted_base), base_y = set_8x64(cell.y.shifted_base);
+        placed.base_x = set_8x64(cell.x.shifted_base), placed.base_y = set_8x64(cell.y.shifted_base);
         const vector_512 narrow_base_x = set_16x32(narrow_base(cell.x.shifted_base)),
                          narrow_base_y = set_16x32(narrow_base(cell.y.shifted_base));
         for (uint32_t first = 0; first < cell.count; first += 16u) {
@@ -93,42 +119,35 @@ uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, ui
             /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
             const vector_512 streams =
                 add_32(set_16x32(cell.key + (0x80000000u + first) * 0x9E3779B9u), weyl);
-            if (Filtered) sifted &= kept_lanes(streams, kept);
-            const mask_16 keep = static_cast<mask_16>(sifted);
+            const uint32_t kept_bits = Filtered ? kept_lanes(streams, kept) : 0xFFFFu;
             /* hashed and placed before the sift's mask is known (lanewise: the same values), off its
                chain; then only what is stored is compressed */
-            vector_512 bits_x, bits_y;
-            impulse_bits_16(widen_bytes_16x32(pairs), mix32_lanes(streams), &bits_x, &bits_y);
-            const vector_512 narrow_x =
-                                 subtract_32(narrow_base_x, shift_left_32_by(bits_x, cell_shift_vector)),
-                             narrow_y =
-                                 subtract_32(narrow_base_y, shift_left_32_by(bits_y, cell_shift_vector));
-            if (Wide) {
-                store_shifted_16(xs + count, base_x, compress_32(keep, bits_x), position_shift);
-                store_shifted_16(ys + count, base_y, compress_32(keep, bits_y), position_shift);
-            }
-            store_16x32(narrow_xs + count, compress_32(keep, narrow_x));
-            store_16x32(narrow_ys + count, compress_32(keep, narrow_y));
-            count += mask_count(sifted);
+            impulse_bits_16(widen_bytes_16x32(pairs), mix32_lanes(streams), &placed.bits_x, &placed.bits_y);
+            placed.narrow_x = subtract_32(narrow_base_x, shift_left_32_by(placed.bits_x, cell_shift_vector));
+            placed.narrow_y = subtract_32(narrow_base_y, shift_left_32_by(placed.bits_y, cell_shift_vector));
+            append_lanes_16<Wide>(&kept_out, sifted & kept_bits, placed);
+            if (Split) append_lanes_16<Wide>(&rest_out, sifted & ~kept_bits, placed);
         }
-        ends[k] = count;
+        kept_out.ends[k] = kept_out.count;
+        if (Split) rest_out.ends[k] = rest_out.count;
     }
-    return count;
+    kept_list->count = kept_out.count;
+    if (Split) rest_list->count = rest_out.count;
 }
 
-uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
-                           uint32_t *ends, const dsn_impulse_filter *filter) {
-    const KeptLanes kept = kept_lanes_of(filter);
-    if (filter != 0)
-        return xs != 0 ? listed_candidates<true, true>(cells, cell_count, cell_shift, count, xs, ys,
-                                                       narrow_xs, narrow_ys, ends, kept)
-                       : listed_candidates<false, true>(cells, cell_count, cell_shift, count, xs, ys,
-                                                        narrow_xs, narrow_ys, ends, kept);
-    return xs != 0 ? listed_candidates<true, false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
-                                                    narrow_ys, ends, kept)
-                   : listed_candidates<false, false>(cells, cell_count, cell_shift, count, xs, ys, narrow_xs,
-                                                     narrow_ys, ends, kept);
+void filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                       dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
+    const KeptLanes lanes = kept_lanes_of(filter);
+    const bool wide = kept->xs != 0;
+    if (filter == 0)
+        wide ? listed_candidates<true, false, false>(cells, cell_count, cell_shift, kept, rest, lanes)
+             : listed_candidates<false, false, false>(cells, cell_count, cell_shift, kept, rest, lanes);
+    else if (rest == 0)
+        wide ? listed_candidates<true, true, false>(cells, cell_count, cell_shift, kept, rest, lanes)
+             : listed_candidates<false, true, false>(cells, cell_count, cell_shift, kept, rest, lanes);
+    else
+        wide ? listed_candidates<true, true, true>(cells, cell_count, cell_shift, kept, rest, lanes)
+             : listed_candidates<false, true, true>(cells, cell_count, cell_shift, kept, rest, lanes);
 }
 #else
 /* shifted_base - bits 2^position_shift for the 8 candidates of `bits` (32-bit lanes), in order. */
@@ -139,49 +158,59 @@ inline void store_shifted(int64_t *at, vector_256 base, vector_256 bits, vector_
     store_4x64(at + 4, subtract_64(base, high));
 }
 
-/* kernels.h's filter_candidates, a pair at a time. */
-uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                           uint32_t count, int64_t *xs, int64_t *ys, uint32_t *narrow_xs, uint32_t *narrow_ys,
-                           uint32_t *ends, const dsn_impulse_filter *filter) {
-    const FieldLanes lanes = field_lanes(cell_shift);
-    const KeptLanes kept = kept_lanes_of(filter);
-    /* lane * 0x9E3779B9 modulo 2^32 */
-    const vector_256 weyl = multiply_32(set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7), set_8x32(0x9E3779B9u));
+/* The candidates of a pair that `keep` marks (impulses first .. first + 7 of the cell), packed to the front
+   and appended to `list`. */
+inline void append_pair_8(dsn_filter_list *list, const dsn_filter_cell &cell, uint32_t first, uint64_t pair,
+                          uint32_t keep, uint32_t cell_shift) {
     const vector_128 position_shift = shift_count(static_cast<int>(16u + cell_shift)),
                      cell_shift_vector = shift_count(static_cast<int>(cell_shift));
+    vector_256 streams, fields;
+    /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
+    const uint32_t packed =
+        pack_pair_8(pair, keep, cell.key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
+    vector_256 bits_x, bits_y;
+    impulse_bits_8(fields, mix32_lanes(streams), &bits_x, &bits_y);
+    const uint32_t count = list->count;
+    if (list->xs != 0) {
+        store_shifted(list->xs + count, set_4x64(cell.x.shifted_base), bits_x, position_shift);
+        store_shifted(list->ys + count, set_4x64(cell.y.shifted_base), bits_y, position_shift);
+    }
+    store_8x32(list->narrow_xs + count, subtract_32(set_8x32(narrow_base(cell.x.shifted_base)),
+                                                    shift_left_32_by(bits_x, cell_shift_vector)));
+    store_8x32(list->narrow_ys + count, subtract_32(set_8x32(narrow_base(cell.y.shifted_base)),
+                                                    shift_left_32_by(bits_y, cell_shift_vector)));
+    list->count = count + packed;
+}
+
+/* kernels.h's filter_candidates, a pair at a time; with `rest`, the pair's other candidates packed and
+   placed again. */
+void filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                       dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
+    const FieldLanes lanes = field_lanes(cell_shift);
+    const KeptLanes kept_lanes_vector = kept_lanes_of(filter);
+    /* lane * 0x9E3779B9 modulo 2^32 */
+    const vector_256 weyl = multiply_32(set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7), set_8x32(0x9E3779B9u));
+    dsn_filter_list kept_out = *kept, rest_out = rest != 0 ? *rest : *kept; /* (copies: see above) */
     for (uint32_t k = 0; k < cell_count; k++) {
         const dsn_filter_cell &cell = cells[k];
-        const vector_256 base_x = set_4x64(cell.x.shifted_base), base_y = set_4x64(cell.y.shifted_base);
-        const vector_256 narrow_base_x = set_8x32(narrow_base(cell.x.shifted_base)),
-                         narrow_base_y = set_8x32(narrow_base(cell.y.shifted_base));
         for (uint32_t first = 0; first < cell.count; first += 8u) {
             const uint64_t pair = dsn_position_pair(cell.key, first >> 3);
             const uint32_t present = cell.count - first < 8u ? cell.count - first : 8u;
-            uint32_t sifted =
+            const uint32_t sifted =
                 gather_lanes(candidate_lanes(pair, lanes, cell.x, cell.y), lanes) & ((1u << present) - 1u);
-            if (filter != 0)
-                sifted &=
-                    kept_lanes(add_32(set_8x32(cell.key + (0x80000000u + first) * 0x9E3779B9u), weyl), kept);
-            vector_256 streams, fields;
-            /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
-            const uint32_t packed =
-                pack_pair_8(pair, sifted, cell.key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
-            const vector_256 fraction = mix32_lanes(streams);
-            vector_256 bits_x, bits_y;
-            impulse_bits_8(fields, fraction, &bits_x, &bits_y);
-            if (xs != 0) {
-                store_shifted(xs + count, base_x, bits_x, position_shift);
-                store_shifted(ys + count, base_y, bits_y, position_shift);
-            }
-            store_8x32(narrow_xs + count,
-                       subtract_32(narrow_base_x, shift_left_32_by(bits_x, cell_shift_vector)));
-            store_8x32(narrow_ys + count,
-                       subtract_32(narrow_base_y, shift_left_32_by(bits_y, cell_shift_vector)));
-            count += packed;
+            const uint32_t kept_bits =
+                filter != 0
+                    ? kept_lanes(add_32(set_8x32(cell.key + (0x80000000u + first) * 0x9E3779B9u), weyl),
+                                 kept_lanes_vector)
+                    : 0xFFu;
+            append_pair_8(&kept_out, cell, first, pair, sifted & kept_bits, cell_shift);
+            if (rest != 0) append_pair_8(&rest_out, cell, first, pair, sifted & ~kept_bits, cell_shift);
         }
-        ends[k] = count;
+        kept_out.ends[k] = kept_out.count;
+        if (rest != 0) rest_out.ends[k] = rest_out.count;
     }
-    return count;
+    kept->count = kept_out.count;
+    if (rest != 0) rest->count = rest_out.count;
 }
 
 #endif

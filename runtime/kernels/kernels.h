@@ -188,19 +188,25 @@ typedef struct dsn_filter_cell {
     dsn_filter_cell_axis x, y;
 } dsn_filter_cell;
 
+/* A list of the filtered sift's candidates as the listing fills it: `count` of them so far, their shifted
+   offsets (CellAxis's shifted_base less the 16-bit position's) at xs, ys (null: not written), the same
+   offsets / 2^16 modulo 2^32 at narrow_xs, narrow_ys, and each listed cell's end in it at ends. */
+typedef struct dsn_filter_list {
+    uint32_t count;
+    int64_t *xs, *ys;
+    uint32_t *narrow_xs, *narrow_ys, *ends;
+} dsn_filter_list;
+
 /* The candidates of the filtered sift (filtered_candidates_vector.h's filter_candidates), for cells of
    side 2^cell_shift <= 16: the impulses of `cell_count` cells whose lattice fields let them reach the
-   box, their shifted offsets (CellAxis's shifted_base less the 16-bit position's) stored from
-   xs[count], ys[count] on (unless xs is null), cell by cell, the same offsets / 2^16 modulo 2^32 from
-   narrow_xs[count],
-   narrow_ys[count] on, and where each cell's end in ends[0 .. cell_count - 1]; returns the new count.
-   Where `filter` is not null (DSN_MIXING: one material of a mix whose weights are uniform) only the
-   impulses it keeps are candidates. Writes up to 16 values past the last candidate: the caller leaves
-   room for the sum of the cells' counts plus 16. */
-typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
-                                             uint32_t cell_shift, uint32_t count, int64_t *xs, int64_t *ys,
-                                             uint32_t *narrow_xs, uint32_t *narrow_ys, uint32_t *ends,
-                                             const dsn_impulse_filter *filter);
+   box, cell by cell, appended to `kept` (each cell's end at kept->ends[0 .. cell_count - 1]). Where `filter`
+   is not null (DSN_MIXING: a mix whose weights are uniform) only the impulses it keeps go to `kept`, and
+   where `rest` is not null too (a mix of two materials) the others go to `rest`, listed alike. Writes up to
+   16 values past a list's last candidate: the caller leaves room for the sum of the cells' counts plus
+   16 in each. */
+typedef void dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
+                                         uint32_t cell_shift, dsn_filter_list *kept, dsn_filter_list *rest,
+                                         const dsn_impulse_filter *filter);
 
 /* One cube of the surface walk (core/surface_walk.h's visit_cube), as the surface kernel reads it: its key
    and the impulses first .. first + count - 1 of it (count <= dsn_surface_impulses_most), the offsets of
