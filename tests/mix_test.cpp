@@ -255,14 +255,50 @@ TEST_CASE("mix: draw_threshold is the smallest hash that pick_material's draw ta
         const uint32_t running = trial % 5 == 0   ? total
                                  : trial % 7 == 0 ? 0u
                                                   : uint32_t(random() % (total + 1u));
-        const uint64_t threshold = draw_threshold(running, total);
+        uint32_t upto = 0, upto_in_digits = 0;
+        const uint64_t threshold = draw_threshold(running, total, &upto);
         CAPTURE(total);
         CAPTURE(running);
-        CHECK(draw_threshold_in_digits(running, total) == threshold); // the 32-bit targets' copy
+        CHECK(draw_threshold_in_digits(running, total, &upto_in_digits) == threshold); // the 32-bit targets'
+        // and the point weights' running sum from the same division, point_weights's
+        CHECK(upto == (running << 14) / total);
+        CHECK(upto_in_digits == upto);
         REQUIRE(threshold <= (uint64_t(1) << 32));
         // floor(hash total / 2^32) >= running exactly from the threshold on
         if (threshold < (uint64_t(1) << 32)) CHECK(((threshold * total) >> 32) >= running);
         if (threshold > 0) CHECK((((threshold - 1u) * total) >> 32) < running);
+    }
+}
+
+TEST_CASE("mix: a uniform region's draws are point_weights's weights and draw_threshold's thresholds") {
+    std::mt19937_64 random(23);
+    for (int trial = 0; trial < 4000; trial++) {
+        const uint32_t count = 1u + uint32_t(trial % 4);
+        MixWeights weights = MixWeights();
+        uint32_t total = 0, nonzero = 0, only = 0;
+        for (uint32_t m = 0; m < count; m++) {
+            const uint32_t weight = random() % 3 == 0 ? 0u : uint32_t(random() % 256u);
+            total += weight << 8;
+            weights.cumulative[m] = total;
+            if (weight != 0) nonzero++, only = m;
+        }
+        CAPTURE(trial);
+        UniformDraws draws;
+        uniform_draws(weights, count, &draws);
+        uint32_t expected[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
+        point_weights(weights, count, expected);
+        for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) CHECK(draws.weights[m] == expected[m]);
+        for (uint32_t m = 0; m + 1 < DSN_MIX_MAX_MATERIALS; m++) {
+            uint32_t upto = 0;
+            CHECK(draws.thresholds[m] == (total != 0 && m + 1 < count
+                                              ? draw_threshold(weights.cumulative[m], total, &upto)
+                                              : uint64_t(1) << 32));
+        }
+        if (nonzero <= 1) { // the region's single material: the same draws without a division
+            UniformDraws single;
+            single_draws(only, &single);
+            CHECK(std::memcmp(&single, &draws, sizeof draws) == 0);
+        }
     }
 }
 
@@ -361,10 +397,15 @@ TEST_CASE("mix: lattice points of materials of one texton size, through every ke
                 UniformPick uniform = {MixWeights(), count};
                 mix_weights_at(&control->control, count, 0, 0, &uniform.weights);
                 const uint32_t total = uniform.weights.cumulative[count - 1];
-                for (uint32_t m = 0; m < 3; m++)
-                    by_thresholds.thresholds[m] = m + 1 < count
-                                                      ? draw_threshold(uniform.weights.cumulative[m], total)
-                                                      : uint64_t(1) << 32;
+                UniformDraws draws;
+                uniform_draws(uniform.weights, count, &draws);
+                for (uint32_t m = 0; m < 3; m++) {
+                    uint32_t upto = 0;
+                    by_thresholds.thresholds[m] =
+                        m + 1 < count ? draw_threshold(uniform.weights.cumulative[m], total, &upto)
+                                      : uint64_t(1) << 32;
+                    CHECK(draws.thresholds[m] == by_thresholds.thresholds[m]);
+                }
                 dsn_point_materials by_pick = by_thresholds;
                 by_pick.pick = uniform_pick;
                 by_pick.context = &uniform;

@@ -108,24 +108,27 @@ inline uint32_t pick_material(const MixWeights &weights, uint32_t count, uint32_
 }
 
 /* The smallest hash that draws past running sum `running` of `total` (pick_material: floor(hash total /
-   2^32) >= running): ceil(2^32 running / total), 2^32 where no hash does (running = total). In three
-   32-bit divisions, the long division in digits of 14, 14 and 4 bits, as running <= total < 2^18 (no
-   64-bit division helper on 32-bit targets); draw_threshold takes one 64-bit division where that is one
-   instruction. */
-inline uint64_t draw_threshold_in_digits(uint32_t running, uint32_t total) {
+   2^32) >= running): ceil(2^32 running / total), 2^32 where no hash does (running = total); and in *upto
+   floor(2^14 running / total), point_weights's running sum, from the same division (floor(floor(2^32
+   running / total) / 2^18)). In three 32-bit divisions, the long division in digits of 14, 14 and 4 bits, as
+   running <= total < 2^18 (no 64-bit division helper on 32-bit targets); draw_threshold takes one 64-bit
+   division where that is one instruction. */
+inline uint64_t draw_threshold_in_digits(uint32_t running, uint32_t total, uint32_t *upto) {
     const uint32_t first = (running << 14) / total, first_rest = (running << 14) % total;
     const uint32_t second = (first_rest << 14) / total, second_rest = (first_rest << 14) % total;
     const uint32_t third = (second_rest << 4) / total, third_rest = (second_rest << 4) % total;
+    *upto = first;
     return (static_cast<uint64_t>(first) << 18) + (static_cast<uint64_t>(second) << 4) + third +
            (third_rest != 0 ? 1u : 0u);
 }
 
-inline uint64_t draw_threshold(uint32_t running, uint32_t total) {
+inline uint64_t draw_threshold(uint32_t running, uint32_t total, uint32_t *upto) {
 #if defined(__x86_64__) || defined(__aarch64__)
-    const uint64_t scaled = static_cast<uint64_t>(running) << 32;
-    return scaled / total + (scaled % total != 0 ? 1u : 0u);
+    const uint64_t scaled = static_cast<uint64_t>(running) << 32, quotient = scaled / total;
+    *upto = static_cast<uint32_t>(quotient >> 18);
+    return quotient + (scaled % total != 0 ? 1u : 0u);
 #else
-    return draw_threshold_in_digits(running, total);
+    return draw_threshold_in_digits(running, total, upto);
 #endif
 }
 
@@ -142,6 +145,40 @@ inline void point_weights(const MixWeights &weights, uint32_t count, uint32_t *o
     }
 }
 
+/* What uniform weights give every point and impulse: each material's weight at a point (point_weights),
+   and the thresholds that impulses' material hashes meet, thresholds[m] for material m + 1 or a later one
+   (draw_threshold; 2^32, above every hash, past the last material and where no weight is set: every
+   impulse then draws material 0). */
+struct UniformDraws {
+    uint32_t weights[DSN_MIX_MAX_MATERIALS];
+    uint64_t thresholds[DSN_MIX_MAX_MATERIALS - 1];
+};
+
+/* The draws of uniform weights, one division per material but the last (whose running sum is the total). */
+inline void uniform_draws(const MixWeights &weights, uint32_t count, UniformDraws *draws) {
+    const uint32_t total = weights.cumulative[count - 1u];
+    uint32_t before = 0;
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) {
+        uint32_t upto = 1u << mix_weight_bits;
+        const uint64_t threshold = total != 0 && m + 1u < count
+                                       ? draw_threshold(weights.cumulative[m], total, &upto)
+                                       : static_cast<uint64_t>(1) << 32;
+        if (m + 1u < DSN_MIX_MAX_MATERIALS) draws->thresholds[m] = threshold;
+        draws->weights[m] = m < count ? upto - before : 0u;
+        before = upto;
+    }
+}
+
+/* The draws where material `only` has all the weight (or none has any: material 0): uniform_draws's,
+   without a division. */
+inline void single_draws(uint32_t only, UniformDraws *draws) {
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) {
+        if (m + 1u < DSN_MIX_MAX_MATERIALS)
+            draws->thresholds[m] = m < only ? 0u : static_cast<uint64_t>(1) << 32;
+        draws->weights[m] = m == only ? 1u << mix_weight_bits : 0u;
+    }
+}
+
 /* Where the weights are the same at every position the point's impulses can take, the walk reads them
    once: a region of the grid. */
 struct MixRegion {
@@ -149,6 +186,7 @@ struct MixRegion {
     MixWeights weights; /* the weights everywhere, when uniform */
     bool single;        /* uniform with one material of non-zero weight: no impulse needs its hash */
     uint32_t only;      /* that material */
+    UniformDraws draws; /* when uniform */
 };
 
 /* The samples that a run of lower-sample indices first .. last (and the samples after them) reads along an
@@ -215,6 +253,10 @@ inline MixRegion mix_region(const dsn_mix_control *control, uint32_t count, uint
         if (reference[m] != 0) nonzero++, region.only = m;
     }
     region.single = nonzero <= 1u; /* no weight at all: material 0, as pick_material gives */
+    if (region.single)
+        single_draws(region.only, &region.draws);
+    else
+        uniform_draws(region.weights, count, &region.draws);
     return region;
 }
 

@@ -163,19 +163,9 @@ inline MixRegion window_region(const dsn_mix_state *mix, const dsn_mix_control *
                       static_cast<uint64_t>(y0 + rows - 1u + reach_y) << 32, 16u + longest - 1u);
 }
 
-/* The smallest hash that draws past material m, for m < dsn_point_materials_most - 1, where a region's
-   weights are uniform (mix_weights.h's draw_threshold): 2^32, above every hash, past the last material and
-   where no weight is set (every impulse then draws material 0). */
-inline void uniform_thresholds(const dsn_mix_state *mix, const MixRegion &region, uint64_t *thresholds) {
-    const uint32_t total = region.weights.cumulative[mix->count - 1u];
-    for (uint32_t m = 0; m + 1u < dsn_point_materials_most; m++)
-        thresholds[m] = total != 0 && m + 1u < mix->count
-                            ? draw_threshold(region.weights.cumulative[m], total)
-                            : static_cast<uint64_t>(1) << 32;
-}
-
 /* The impulses that draw material m where the weights are uniform: those whose hashes lie between
-   uniform_thresholds' on each side of it (none, low == high, where no hash draws it). */
+   the uniform draws' thresholds (mix_weights.h) on each side of it (none, low == high, where no hash draws
+   it). */
 inline dsn_impulse_filter material_filter(const uint64_t *thresholds, uint32_t m) {
     const dsn_impulse_filter filter = {m == 0 ? 0u : thresholds[m - 1u],
                                        m + 1u < dsn_point_materials_most ? thresholds[m]

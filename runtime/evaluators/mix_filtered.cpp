@@ -260,8 +260,7 @@ __attribute__((noinline))
 #endif
 void kept_terms(const dsn_mix_state *mix, const MixRegion &region, uint64_t x, uint64_t y, const MixPlans plans,
                 const uint32_t *weights, int32_t (*terms)[DSN_MAX_CHANNELS]) {
-    uint64_t thresholds[dsn_point_materials_most - 1];
-    uniform_thresholds(mix, region, thresholds);
+    const uint64_t *thresholds = region.draws.thresholds;
     if (split_terms(mix, thresholds, x, y, plans, weights, terms)) return;
     dsn_noise_state weighted;
     for (uint32_t m = 0; m < mix->count; m++) {

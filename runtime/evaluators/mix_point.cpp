@@ -352,9 +352,13 @@ void mix_output(const dsn_mix_state *mix, const uint32_t *weights, const Sum (*s
 template <typename Sum>
 void point_output(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                   uint64_t x, uint64_t y, const Sum (*sums)[DSN_MAX_CHANNELS], int32_t *out) {
+    if (region.uniform) {
+        mix_output(mix, region.draws.weights, sums, out);
+        return;
+    }
     uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0}; /* (GCC cannot tell point_weights fills them) */
-    MixWeights at_point = region.weights;
-    if (!region.uniform) mix_weights_at(control, mix->count, x, y, &at_point);
+    MixWeights at_point;
+    mix_weights_at(control, mix->count, x, y, &at_point);
     point_weights(at_point, mix->count, weights);
     mix_output(mix, weights, sums, out);
 }
@@ -397,7 +401,8 @@ bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lat
         materials->values[m] = lattice ? dsn_lattice_texton_window(material).values : material->asset.texton;
     }
     if (region.uniform) {
-        uniform_thresholds(mix, region, materials->thresholds);
+        for (uint32_t level = 0; level + 1u < dsn_point_materials_most; level++)
+            materials->thresholds[level] = region.draws.thresholds[level];
     } else {
         materials->pick = pick_at;
         materials->context = pick;
@@ -617,12 +622,7 @@ void dsn_internal_mix_walk_band(const dsn_mix_state *mix, const dsn_mix_control 
     lattice_window_sums(mix, control, region, x0, width, y, rows, planes);
     /* where the region is uniform, the weighted offsets of every point of the band */
     MixOffsets uniform_offsets = {};
-    if (region.uniform) {
-        /* (zeroed: GCC cannot tell point_weights fills them) */
-        uint32_t weights[DSN_MIX_MAX_MATERIALS] = {0, 0, 0, 0};
-        point_weights(region.weights, mix->count, weights);
-        weighted_offsets(mix, weights, uniform_offsets);
-    }
+    if (region.uniform) weighted_offsets(mix, region.draws.weights, uniform_offsets);
     for (uint32_t j = 0; j < rows; j++)
         for (uint32_t i = 0; i < width; i++) {
             const size_t point = static_cast<size_t>(j) * width + i;

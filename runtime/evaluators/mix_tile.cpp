@@ -65,13 +65,10 @@ struct DrawnMaterials {
 };
 
 void drawn_materials(const dsn_mix_state *mix, const MixRegion &region, DrawnMaterials *drawn) {
-    uint64_t thresholds[dsn_point_materials_most - 1];
-    uniform_thresholds(mix, region, thresholds);
-    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) drawn->weights[m] = 0; /* (GCC cannot tell) */
-    point_weights(region.weights, mix->count, drawn->weights);
+    for (uint32_t m = 0; m < DSN_MIX_MAX_MATERIALS; m++) drawn->weights[m] = region.draws.weights[m];
     drawn->count = 0;
     for (uint32_t m = 0; m < mix->count; m++) {
-        const dsn_impulse_filter filter = material_filter(thresholds, m);
+        const dsn_impulse_filter filter = material_filter(region.draws.thresholds, m);
         if (filter.low >= filter.high) continue;
         drawn->materials[drawn->count] = m;
         drawn->filters[drawn->count++] = filter;
