@@ -226,8 +226,8 @@ bool same_taps(const dsn_filter_plan &a, const dsn_filter_plan &b) {
 }
 
 /* kept_terms for a mix of two materials that the sifted walk lists together (dsn_internal_filter_sums_split:
-   both drawn, with the same taps and walk): each impulse listed once for the material it draws. False,
-   setting nothing, elsewhere. */
+   both drawn, with the same taps and walk): each impulse listed once for the material it draws. False
+   elsewhere (kept_terms then makes every term). */
 bool split_terms(const dsn_mix_state *mix, const uint64_t *thresholds, uint64_t x, uint64_t y,
                  const MixPlans plans, const uint32_t *weights, int32_t (*terms)[DSN_MAX_CHANNELS]) {
     if (mix->count != 2 || thresholds[0] == 0 || thresholds[0] >> 32 != 0 || !same_taps(plans[0], plans[1]))
