@@ -497,8 +497,8 @@ struct BoxColumns {
 /* The candidates of the box's cells in these columns: for each row of cells, the keys and counts of the
    columns' cells first (their chains of dependent loads then overlap), then the cells listed: by the
    kernel, those at once for which the buffer has room (the buffer visited where it has none for the
-   next), or else one by one. */
-template <uint32_t Channels, uint32_t Bytes>
+   next), or else one by one. Split: the group's rest (RestListing) listed in the same calls. */
+template <uint32_t Channels, uint32_t Bytes, bool Split>
 void list_columns(const dsn_noise_state *noise, const TapGroup &group, const BoxColumns &columns,
                   CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
     const uint32_t shift = noise->cell_shift, batch = columns.count;
@@ -531,7 +531,7 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                                                in_y, list, grid, sums);
                 continue;
             }
-            const RestListing *rest = group.rest;
+            const RestListing *rest = Split ? group.rest : 0; /* (a constant without: no rest code) */
             for (uint32_t i = 0; i < batch;) {
                 const uint32_t filled =
                     rest != 0 && rest->list->count > list->count ? rest->list->count : list->count;
@@ -543,9 +543,8 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
                 if (end > i) {
                     dsn_filter_list kept = filter_list(list, group.narrow), others;
                     if (rest != 0) others = filter_list(rest->list, group.narrow);
-                    group.list_candidates(cells + i, end - i, shift, &kept, rest != 0 ? &others : 0,
-                                          group.filter);
-                    list->count = kept.count;
+                    list->count = group.list_candidates(cells + i, end - i, shift, &kept,
+                                                        rest != 0 ? &others : 0, group.filter);
                     if (rest != 0) rest->list->count = others.count;
                     for (; i < end; i++) {
                         record_cell(list, cells[i].x.shifted_base, cells[i].y.shifted_base);
@@ -562,7 +561,7 @@ void list_columns(const dsn_noise_state *noise, const TapGroup &group, const Box
 }
 
 /* The box's candidates, cell_batch columns of cells at a time. */
-template <uint32_t Channels, uint32_t Bytes>
+template <uint32_t Channels, uint32_t Bytes, bool Split>
 void list_box(const dsn_noise_state *noise, const TapGroup &group, const FieldLanes &lanes,
               CandidateList *list, SplatGrid *grid, dsn_filter_sums sums) {
     BoxColumns columns;
@@ -578,12 +577,12 @@ void list_box(const dsn_noise_state *noise, const TapGroup &group, const FieldLa
             columns.cell[columns.count] = cell;
             columns.axis[columns.count] = axis;
             if (++columns.count == cell_batch) {
-                list_columns<Channels, Bytes>(noise, group, columns, list, grid, sums);
+                list_columns<Channels, Bytes, Split>(noise, group, columns, list, grid, sums);
                 columns.count = 0;
             }
         }
     }
-    if (columns.count != 0) list_columns<Channels, Bytes>(noise, group, columns, list, grid, sums);
+    if (columns.count != 0) list_columns<Channels, Bytes, Split>(noise, group, columns, list, grid, sums);
 }
 
 template <uint32_t Channels, uint32_t Bytes>
@@ -602,7 +601,10 @@ void sum_group(const dsn_noise_state *noise, const TapGroup &group, dsn_filter_s
         grid->level_index = group.level_count - 1u;
         for (uint32_t i = 0; i < (coarser.width + 2u) * (coarser.height + 2u); i++) grid->weights[i] = 0;
     }
-    list_box<Channels, Bytes>(noise, group, lanes, &list, grid, sums);
+    if (group.rest != 0)
+        list_box<Channels, Bytes, true>(noise, group, lanes, &list, grid, sums);
+    else
+        list_box<Channels, Bytes, false>(noise, group, lanes, &list, grid, sums);
     visit<Channels, Bytes>(group, &list, grid, sums);
     if (group.rest != 0) visit<Channels, Bytes>(*group.rest->group, group.rest->list, 0, group.rest->sums);
     if (grid != 0) take_splat<Channels, Bytes>(*grid, coarser, sums[group.first][grid->level_index]);

@@ -93,8 +93,8 @@ inline void append_lanes_16(dsn_filter_list *list, uint32_t keep, const PlacedLa
    impulses that `filter` keeps (kept_lanes) go to `kept`; Split: the others to `rest`, from the same
    lanes. */
 template <bool Wide, bool Filtered, bool Split>
-void listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                       dsn_filter_list *kept_list, dsn_filter_list *rest_list, const KeptLanes &kept) {
+uint32_t listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           dsn_filter_list *kept_list, dsn_filter_list *rest_list, const KeptLanes &kept) {
     const FieldLanes lanes = field_lanes(cell_shift);
     const vector_128 cell_shift_vector = shift_count(static_cast<int>(cell_shift));
     /* lane * 0x9E3779B9 modulo 2^32 */
@@ -133,21 +133,23 @@ void listed_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32
     }
     kept_list->count = kept_out.count;
     if (Split) rest_list->count = rest_out.count;
+    return kept_out.count;
 }
 
-void filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                       dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
     const KeptLanes lanes = kept_lanes_of(filter);
     const bool wide = kept->xs != 0;
     if (filter == 0)
-        wide ? listed_candidates<true, false, false>(cells, cell_count, cell_shift, kept, rest, lanes)
-             : listed_candidates<false, false, false>(cells, cell_count, cell_shift, kept, rest, lanes);
+        return wide
+                   ? listed_candidates<true, false, false>(cells, cell_count, cell_shift, kept, rest, lanes)
+                   : listed_candidates<false, false, false>(cells, cell_count, cell_shift, kept, rest, lanes);
     else if (rest == 0)
-        wide ? listed_candidates<true, true, false>(cells, cell_count, cell_shift, kept, rest, lanes)
-             : listed_candidates<false, true, false>(cells, cell_count, cell_shift, kept, rest, lanes);
+        return wide ? listed_candidates<true, true, false>(cells, cell_count, cell_shift, kept, rest, lanes)
+                    : listed_candidates<false, true, false>(cells, cell_count, cell_shift, kept, rest, lanes);
     else
-        wide ? listed_candidates<true, true, true>(cells, cell_count, cell_shift, kept, rest, lanes)
-             : listed_candidates<false, true, true>(cells, cell_count, cell_shift, kept, rest, lanes);
+        return wide ? listed_candidates<true, true, true>(cells, cell_count, cell_shift, kept, rest, lanes)
+                    : listed_candidates<false, true, true>(cells, cell_count, cell_shift, kept, rest, lanes);
 }
 #else
 /* shifted_base - bits 2^position_shift for the 8 candidates of `bits` (32-bit lanes), in order. */
@@ -158,41 +160,57 @@ inline void store_shifted(int64_t *at, vector_256 base, vector_256 bits, vector_
     store_4x64(at + 4, subtract_64(base, high));
 }
 
-/* The candidates of a pair that `keep` marks (impulses first .. first + 7 of the cell), packed to the front
-   and appended to `list`. */
-inline void append_pair_8(dsn_filter_list *list, const dsn_filter_cell &cell, uint32_t first, uint64_t pair,
-                          uint32_t keep, uint32_t cell_shift) {
-    const vector_128 position_shift = shift_count(static_cast<int>(16u + cell_shift)),
-                     cell_shift_vector = shift_count(static_cast<int>(cell_shift));
+/* A cell's lanes as its pairs' candidates are placed: its bases, and the shifts of the positions. */
+struct CellLanes {
+    vector_256 base_x, base_y, narrow_base_x, narrow_base_y;
+    vector_128 position_shift, cell_shift;
+};
+
+inline CellLanes cell_lanes(const dsn_filter_cell &cell, uint32_t cell_shift) {
+    const CellLanes out = {set_4x64(cell.x.shifted_base),
+                           set_4x64(cell.y.shifted_base),
+                           set_8x32(narrow_base(cell.x.shifted_base)),
+                           set_8x32(narrow_base(cell.y.shifted_base)),
+                           shift_count(static_cast<int>(16u + cell_shift)),
+                           shift_count(static_cast<int>(cell_shift))};
+    return out;
+}
+
+/* The candidates of a pair that `keep` marks (impulses first .. first + 7 of the cell with this key),
+   packed to the front and appended to `list`. */
+DSN_POINT_INLINE void append_pair_8(dsn_filter_list *list, const CellLanes &cell, uint32_t key,
+                                    uint32_t first, uint64_t pair, uint32_t keep) {
     vector_256 streams, fields;
     /* dsn_cell_stream(key, 2^31 + k) of impulse k = first + lane */
     const uint32_t packed =
-        pack_pair_8(pair, keep, cell.key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
+        pack_pair_8(pair, keep, key + (0x80000000u + first) * 0x9E3779B9u, &streams, &fields);
     vector_256 bits_x, bits_y;
     impulse_bits_8(fields, mix32_lanes(streams), &bits_x, &bits_y);
     const uint32_t count = list->count;
     if (list->xs != 0) {
-        store_shifted(list->xs + count, set_4x64(cell.x.shifted_base), bits_x, position_shift);
-        store_shifted(list->ys + count, set_4x64(cell.y.shifted_base), bits_y, position_shift);
+        store_shifted(list->xs + count, cell.base_x, bits_x, cell.position_shift);
+        store_shifted(list->ys + count, cell.base_y, bits_y, cell.position_shift);
     }
-    store_8x32(list->narrow_xs + count, subtract_32(set_8x32(narrow_base(cell.x.shifted_base)),
-                                                    shift_left_32_by(bits_x, cell_shift_vector)));
-    store_8x32(list->narrow_ys + count, subtract_32(set_8x32(narrow_base(cell.y.shifted_base)),
-                                                    shift_left_32_by(bits_y, cell_shift_vector)));
+    store_8x32(list->narrow_xs + count,
+               subtract_32(cell.narrow_base_x, shift_left_32_by(bits_x, cell.cell_shift)));
+    store_8x32(list->narrow_ys + count,
+               subtract_32(cell.narrow_base_y, shift_left_32_by(bits_y, cell.cell_shift)));
     list->count = count + packed;
 }
 
-/* kernels.h's filter_candidates, a pair at a time; with `rest`, the pair's other candidates packed and
-   placed again. */
-void filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
-                       dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
+/* kernels.h's filter_candidates, a pair at a time; Split: the pair's other candidates packed and placed
+   again, into `rest`. */
+template <bool Split>
+uint32_t listed_pairs(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                      dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
     const FieldLanes lanes = field_lanes(cell_shift);
     const KeptLanes kept_lanes_vector = kept_lanes_of(filter);
     /* lane * 0x9E3779B9 modulo 2^32 */
     const vector_256 weyl = multiply_32(set_lanes_8x32(0, 1, 2, 3, 4, 5, 6, 7), set_8x32(0x9E3779B9u));
-    dsn_filter_list kept_out = *kept, rest_out = rest != 0 ? *rest : *kept; /* (copies: see above) */
+    dsn_filter_list kept_out = *kept, rest_out = Split ? *rest : *kept; /* (copies: see above) */
     for (uint32_t k = 0; k < cell_count; k++) {
         const dsn_filter_cell &cell = cells[k];
+        const CellLanes placed = cell_lanes(cell, cell_shift);
         for (uint32_t first = 0; first < cell.count; first += 8u) {
             const uint64_t pair = dsn_position_pair(cell.key, first >> 3);
             const uint32_t present = cell.count - first < 8u ? cell.count - first : 8u;
@@ -203,14 +221,23 @@ void filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32
                     ? kept_lanes(add_32(set_8x32(cell.key + (0x80000000u + first) * 0x9E3779B9u), weyl),
                                  kept_lanes_vector)
                     : 0xFFu;
-            append_pair_8(&kept_out, cell, first, pair, sifted & kept_bits, cell_shift);
-            if (rest != 0) append_pair_8(&rest_out, cell, first, pair, sifted & ~kept_bits, cell_shift);
+            append_pair_8(&kept_out, placed, cell.key, first, pair, sifted & kept_bits);
+            if (Split) append_pair_8(&rest_out, placed, cell.key, first, pair, sifted & ~kept_bits);
         }
         kept_out.ends[k] = kept_out.count;
-        if (rest != 0) rest_out.ends[k] = rest_out.count;
+        if (Split) rest_out.ends[k] = rest_out.count;
     }
     kept->count = kept_out.count;
-    if (rest != 0) rest->count = rest_out.count;
+    if (Split) rest->count = rest_out.count;
+    return kept_out.count;
+}
+
+uint32_t filter_candidates(const dsn_filter_cell *cells, uint32_t cell_count, uint32_t cell_shift,
+                           dsn_filter_list *kept, dsn_filter_list *rest, const dsn_impulse_filter *filter) {
+    if (rest != 0 && filter != 0)
+        return listed_pairs<true>(cells, cell_count, cell_shift, kept, rest, filter);
+    else
+        return listed_pairs<false>(cells, cell_count, cell_shift, kept, rest, filter);
 }
 
 #endif

@@ -203,10 +203,10 @@ typedef struct dsn_filter_list {
    is not null (DSN_MIXING: a mix whose weights are uniform) only the impulses it keeps go to `kept`, and
    where `rest` is not null too (a mix of two materials) the others go to `rest`, listed alike. Writes up to
    16 values past a list's last candidate: the caller leaves room for the sum of the cells' counts plus
-   16 in each. */
-typedef void dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
-                                         uint32_t cell_shift, dsn_filter_list *kept, dsn_filter_list *rest,
-                                         const dsn_impulse_filter *filter);
+   16 in each. Returns kept's new count (also in kept->count). */
+typedef uint32_t dsn_filter_candidates_entry(const dsn_filter_cell *cells, uint32_t cell_count,
+                                             uint32_t cell_shift, dsn_filter_list *kept,
+                                             dsn_filter_list *rest, const dsn_impulse_filter *filter);
 
 /* One cube of the surface walk (core/surface_walk.h's visit_cube), as the surface kernel reads it: its key
    and the impulses first .. first + count - 1 of it (count <= dsn_surface_impulses_most), the offsets of
