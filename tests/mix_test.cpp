@@ -389,7 +389,7 @@ TEST_CASE("mix: lattice points of materials of one texton size, through every ke
             // draw give the default kernel's sums.
             const dsn_texton_window texton = dsn_lattice_texton_window(lead);
             dsn_point_materials by_thresholds = {
-                count, {nullptr, nullptr, nullptr, nullptr}, {0, 0, 0}, nullptr, nullptr};
+                count, {nullptr, nullptr, nullptr, nullptr}, {0, 0, 0}, nullptr, nullptr, nullptr};
             for (uint32_t m = 0; m < count; m++)
                 by_thresholds.values[m] = dsn_lattice_texton_window(&state->material[m]).values;
             size_t kernel_differences = 0, walked = 0;
@@ -508,6 +508,102 @@ TEST_CASE(
                 differences += tile != reference;
             }
             CHECK(differences == 0);
+        }
+    }
+}
+
+TEST_CASE("mix: continuous points where the weights vary, their materials read from the control on vectors "
+          "(the AVX2 and AVX-512 copies), are the generic walk's") {
+    // As above, the 16-bit twins as the reference. Controls of every kind the lanes read (mix_pick_lanes.h):
+    // periodic and clamped axes, samples 1, 4, 16, 2^9 and 2^16 texels apart (the fraction shifted up and
+    // down), origins on both sides, samples of no weight; points near the controls and anywhere, some
+    // where a periodic axis's window crosses the wrap of position - origin (the pick goes impulse by
+    // impulse there).
+    std::mt19937_64 random(31);
+    for (const uint32_t channels : {3u, 1u}) {
+        CAPTURE(channels);
+        std::vector<std::unique_ptr<Noise>> noises, wide;
+        for (uint32_t m = 0; m < 4; m++) {
+            dsn::AssetFields fields = random_texton_asset(channels, 15, 8, 60 + m);
+            noises.push_back(make_noise(fields, 9 + m, 30u << 16));
+            fields.bits = 16;
+            wide.push_back(make_noise(fields, 9 + m, 30u << 16));
+        }
+        for (uint32_t count = 2; count <= 4; count++) {
+            CAPTURE(count);
+            std::vector<const dsn_noise *> list, wide_list;
+            for (uint32_t m = 0; m < count; m++)
+                list.push_back(&noises[m]->noise), wide_list.push_back(&wide[m]->noise);
+            dsn_mix mix, wide_mix;
+            REQUIRE(dsn_mix_init(&mix, list.data(), count) == DSN_OK);
+            REQUIRE(dsn_mix_init(&wide_mix, wide_list.data(), count) == DSN_OK);
+            const auto weights_at = [&](uint32_t i, uint32_t j) {
+                std::vector<uint8_t> weights(count);
+                for (uint32_t m = 0; m < count; m++)
+                    weights[m] = (i * 3 + j + m) % 5 == 0 ? 0 : uint8_t((i * 89 + j * 43 + m * 67) % 256);
+                if ((i + j) % 11 == 4) weights.assign(count, 0);
+                return weights;
+            };
+            struct Kind {
+                uint32_t width, height, spacing_shift, flags;
+                int32_t origin_x, origin_y;
+            };
+            const Kind kinds[] = {{64, 48, 2, DSN_MIX_PERIODIC_X, -40, 13},
+                                  {40, 40, 0, 0, 5, -7},
+                                  {45, 38, 0, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 3, 2},
+                                  {20, 30, 9, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, -3000, 1000},
+                                  {9, 7, 4, DSN_MIX_PERIODIC_Y, 70, -90},
+                                  {3, 2, 16, DSN_MIX_PERIODIC_X, 0, 0},
+                                  {9, 9, 2, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 1, -2}};
+            size_t differences = 0, points = 0, laned = 0;
+            for (const Kind &kind : kinds) {
+                Control control(count, kind.width, kind.height, kind.spacing_shift, weights_at, kind.flags);
+                control.control.origin_x = kind.origin_x, control.control.origin_y = kind.origin_y;
+                const uint64_t extent_x = uint64_t(kind.width) << kind.spacing_shift,
+                               extent_y = uint64_t(kind.height) << kind.spacing_shift;
+                for (int k = 0; k < 120; k++) {
+                    // a third anywhere, a third near the control, a third by the wrap of x - origin_x
+                    int64_t x = int64_t(random()), y = int64_t(random());
+                    if (k % 3 != 0) {
+                        x = int64_t((uint64_t(uint32_t(kind.origin_x)) + random() % (extent_x + 80) - 40)
+                                    << 32) +
+                            int64_t(random() >> 32);
+                        y = int64_t((uint64_t(uint32_t(kind.origin_y)) + random() % (extent_y + 80) - 40)
+                                    << 32) +
+                            int64_t(random() >> 32);
+                    }
+                    if (k % 3 == 2)
+                        x = int64_t(uint64_t(uint32_t(kind.origin_x) + 0x80000000u - 20u + random() % 40)
+                                    << 32) +
+                            int64_t(random() >> 32);
+                    const uint32_t reach_x = dsn_mix_state_of(&mix)->material[0].radius[0] + 2u,
+                                   reach_y = dsn_mix_state_of(&mix)->material[0].radius[1] + 2u;
+                    PickWindowAxis ax, ay;
+                    laned += pick_window_axis(kind.origin_x, kind.spacing_shift, kind.width,
+                                              (kind.flags & DSN_MIX_PERIODIC_X) != 0,
+                                              uint32_t(uint64_t(x) >> 32), reach_x, &ax) &&
+                             pick_window_axis(kind.origin_y, kind.spacing_shift, kind.height,
+                                              (kind.flags & DSN_MIX_PERIODIC_Y) != 0,
+                                              uint32_t(uint64_t(y) >> 32), reach_y, &ay);
+                    int32_t reference[3] = {};
+                    REQUIRE(dsn_mix_continuous_point_fixed(&wide_mix, &control.control, x, y, reference) ==
+                            DSN_OK);
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT;
+                         kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
+                        const dsn_mix copy = on_kernel(mix, kernel);
+                        int32_t point[3] = {};
+                        REQUIRE(dsn_mix_continuous_point_fixed(&copy, &control.control, x, y, point) ==
+                                DSN_OK);
+                        differences += std::memcmp(point, reference, sizeof point) != 0;
+                        points++;
+                    }
+                }
+            }
+            CHECK(differences == 0);
+            CHECK(points >= 840);
+            // most points take the lanes; most of those by a periodic x's wrap (a sixth) do not
+            CHECK(laned >= 580);
+            CHECK(laned <= 740);
         }
     }
 }

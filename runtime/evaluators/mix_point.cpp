@@ -394,7 +394,7 @@ uint32_t pick_at(const void *context, uint32_t hash, uint32_t x, uint32_t y) {
 bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lattice, const ImpulsePick *pick,
                      dsn_point_materials *materials) {
     if ((mix->alike & (lattice ? dsn_mix_alike_lattice_textons : dsn_mix_alike_textons)) == 0) return false;
-    const dsn_point_materials none = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0};
+    const dsn_point_materials none = {mix->count, {0, 0, 0, 0}, {0, 0, 0}, 0, 0, 0};
     *materials = none;
     for (uint32_t m = 0; m < mix->count; m++) {
         const dsn_noise_state *material = &mix->material[m];
@@ -406,6 +406,7 @@ bool point_materials(const dsn_mix_state *mix, const MixRegion &region, bool lat
     } else {
         materials->pick = pick_at;
         materials->context = pick;
+        materials->control = pick->control;
     }
     return true;
 }

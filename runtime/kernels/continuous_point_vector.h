@@ -18,6 +18,7 @@
 #include "core/continuous_internal.h"
 #include "core/continuous_sift.h"
 #include "kernels/continuous_lanes.h"
+#include "kernels/mix_pick_lanes.h"
 
 namespace {
 /* The noises the vector evaluator takes (continuous_batch.cpp asks too, built without AVX2): 8-bit
@@ -937,33 +938,11 @@ typedef vector_256 mixed_sums;
 inline vector_256 zero_sums() { return zero_256(); }
 #endif
 
-/* Where the weights vary, a candidate's material is picked at the integer parts of its position, found
-   from its S along each axis (the walk's floor(shifted / 2^16), shifted = point - impulse + radius + 1 in
-   texels): the impulse's position times 2^16 is an integer (a cell's 16-bit position grid), so it is
-   floor((point + radius + 1) 2^16) - S exactly, and its integer part lies within radius + 2 of the
-   point's: taken modulo 2^16 from 32-bit lanes, then as a signed step from the point's. */
-struct PickAxis {
-    uint32_t whole;   /* the point's integer part, modulo 2^32 */
-    uint32_t shifted; /* floor((point + radius + 1) 2^16), modulo 2^32 */
-};
-
-inline PickAxis pick_axis(uint64_t coordinate, uint32_t radius) {
-    const PickAxis axis = {
-        static_cast<uint32_t>(coordinate >> 32),
-        static_cast<uint32_t>((coordinate + (static_cast<uint64_t>(radius + 1u) << 32)) >> 16)};
-    return axis;
-}
-
-/* The integer part of a candidate's position along an axis from its S. */
-inline uint32_t impulse_whole(const PickAxis &axis, uint32_t s) {
-    const uint32_t low = ((axis.shifted - s) >> 16) - axis.whole; /* the step, modulo 2^16 */
-    return axis.whole + static_cast<uint32_t>(static_cast<int32_t>(static_cast<int16_t>(low & 0xFFFFu)));
-}
-
 /* The visit of a mixed point: the point's (material 0's texton, window, cell bases), the materials as
    lanes (the thresholds their hashes meet, or the pick and its axes; where each texton lies from material
    0's, in bytes, which the gathers' 32-bit offsets add), and each material's sums. Picked: the weights
-   vary, and the pick gives the materials (its call kept out of the copy that compares the thresholds). */
+   vary, and the pick gives the materials (its call kept out of the copy that compares the thresholds), or
+   where the lanes take the control around the point (mix_pick_lanes.h), the lanes. */
 template <uint32_t Channels, bool Picked>
 struct MixedVisit {
     PointVisit<Channels> point;
@@ -973,6 +952,10 @@ struct MixedVisit {
     uint32_t (*pick)(const void *context, uint32_t hash, uint32_t x, uint32_t y); /* or null */
     const void *context;
     PickAxis pick_x, pick_y;
+#if DSN_MIXING
+    bool lanes_pick;
+    PickWindow window;
+#endif
     /* sums[0]: every candidate's read (material 0's sums once the others' are taken away, exactly, modulo
        2^64); sums[m], m > 0: material m's */
     mixed_sums sums[dsn_point_materials_most][Channels];
@@ -987,6 +970,12 @@ inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_mate
     visit->count = materials->count;
     visit->pick = materials->pick, visit->context = materials->context;
     visit->pick_x = pick_axis(x, noise->radius[0]), visit->pick_y = pick_axis(y, noise->radius[1]);
+#if DSN_MIXING
+    visit->lanes_pick =
+        Picked && materials->control != 0 &&
+        pick_window(materials->control, materials->count, visit->pick_x.whole, visit->pick_y.whole,
+                    noise->radius[0] + 2u, noise->radius[1] + 2u, &visit->window);
+#endif
     for (uint32_t level = 0; level < 3; level++) {
         const uint32_t m = level + 1u < materials->count ? level + 1u : 0u;
         const uint64_t moved = uint64_t(reinterpret_cast<uintptr_t>(materials->values[m])) - lead;
@@ -1003,19 +992,6 @@ inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_mate
 /* The candidates' material hashes dsn_cell_stream(key, 2^31 + 2^30 + k): the fraction's stream moved by
    2^30 0x9E3779B9 (2^30 modulo 2^32). */
 const uint32_t material_stream_step = 0x40000000u;
-
-/* Bit k of at_least[l], for each level l below the material the visit's pick gives candidate lane k in
-   `reach` (bit per lane), from the lanes' hashes and S (stored). */
-template <class Visit>
-inline void picked_levels(const Visit *visit, const uint32_t *hashes, const uint32_t *s_x,
-                          const uint32_t *s_y, uint32_t reach, uint32_t *at_least) {
-    for (; reach != 0; reach &= reach - 1u) {
-        const uint32_t k = static_cast<uint32_t>(__builtin_ctz(reach));
-        const uint32_t m = visit->pick(visit->context, hashes[k], impulse_whole(visit->pick_x, s_x[k]),
-                                       impulse_whole(visit->pick_y, s_y[k]));
-        for (uint32_t level = 0; level < 3; level++) at_least[level] |= static_cast<uint32_t>(m > level) << k;
-    }
-}
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* Bits 0, 2, .. 14 of a lane mask as bits 0 .. 7: the candidates of bilinear_16's even 64-bit lanes. */
@@ -1040,7 +1016,19 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
     if (Picked) {
         uint32_t hash_lanes[16], x_lanes[16], y_lanes[16];
         store_16x32(hash_lanes, hashes), store_16x32(x_lanes, s_x), store_16x32(y_lanes, s_y);
-        picked_levels(visit, hash_lanes, x_lanes, y_lanes, reach, at_least);
+#if DSN_MIXING
+        if (visit->lanes_pick) {
+            for (uint32_t half = 0; half < 16; half += 8) {
+                vector_256 levels[3];
+                picked_level_lanes(visit->window, load_8x32(hash_lanes + half),
+                                   impulse_wholes(visit->pick_x, load_8x32(x_lanes + half)),
+                                   impulse_wholes(visit->pick_y, load_8x32(y_lanes + half)), levels);
+                for (uint32_t level = 0; level < 3; level++)
+                    at_least[level] |= (static_cast<uint32_t>(top_bits_of_32(levels[level])) << half) & reach;
+            }
+        } else
+#endif
+            picked_levels(visit, hash_lanes, x_lanes, y_lanes, reach, at_least);
     } else {
         for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
             at_least[level] =
@@ -1086,13 +1074,23 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         mix32_lanes(add_32(load_8x32(candidates.stream + first), set_8x32(material_stream_step)));
     vector_256 at_least[4] = {zero_256(), zero_256(), zero_256(), zero_256()};
     if (Picked) {
-        uint32_t hash_lanes[8], x_lanes[8], y_lanes[8], picked[3] = {0, 0, 0};
-        store_8x32(hash_lanes, hashes), store_8x32(x_lanes, s_x), store_8x32(y_lanes, s_y);
-        picked_levels(visit, hash_lanes, x_lanes, y_lanes, static_cast<uint32_t>(top_bits_of_32(reach)),
-                      picked);
-        const vector_256 lane_bits = set_lanes_8x32(1, 2, 4, 8, 16, 32, 64, 128);
-        for (uint32_t level = 0; level < 3; level++)
-            at_least[level] = equal_32(bitwise_and(set_8x32(picked[level]), lane_bits), lane_bits);
+#if DSN_MIXING
+        if (visit->lanes_pick) {
+            picked_level_lanes(visit->window, hashes, impulse_wholes(visit->pick_x, s_x),
+                               impulse_wholes(visit->pick_y, s_y), at_least);
+            for (uint32_t level = 0; level < 3; level++)
+                at_least[level] = bitwise_and(at_least[level], reach);
+        } else
+#endif
+        {
+            uint32_t hash_lanes[8], x_lanes[8], y_lanes[8], picked[3] = {0, 0, 0};
+            store_8x32(hash_lanes, hashes), store_8x32(x_lanes, s_x), store_8x32(y_lanes, s_y);
+            picked_levels(visit, hash_lanes, x_lanes, y_lanes, static_cast<uint32_t>(top_bits_of_32(reach)),
+                          picked);
+            const vector_256 lane_bits = set_lanes_8x32(1, 2, 4, 8, 16, 32, 64, 128);
+            for (uint32_t level = 0; level < 3; level++)
+                at_least[level] = equal_32(bitwise_and(set_8x32(picked[level]), lane_bits), lane_bits);
+        }
     } else {
         for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
             at_least[level] = bitwise_and(at_most(set_8x32(visit->threshold[level]), hashes),

@@ -70,7 +70,10 @@ typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
    impulse takes the number of thresholds[0 .. 2] at or below its hash (mix_weights.h's pick_material by
    draw_threshold: the hashes that draw material m or a later one are those at or above thresholds[m - 1];
    2^32, above every hash, past count - 1); else pick(context, hash, x, y) gives the material of the
-   impulse of that hash whose position's integer parts are (x, y) (modulo 2^32). */
+   impulse of that hash whose position's integer parts are (x, y) (modulo 2^32), and where `control` is
+   not null (DSN_MIXING) the x86 copies' continuous point may read the materials from it instead (the
+   mix's weights, whose pick that is: mix_pick_lanes.h). */
+struct dsn_mix_control;
 enum { dsn_point_materials_most = 4 }; /* DSN_MIX_MAX_MATERIALS, in builds without the mix too */
 typedef struct dsn_point_materials {
     uint32_t count;
@@ -78,6 +81,7 @@ typedef struct dsn_point_materials {
     uint64_t thresholds[dsn_point_materials_most - 1];
     uint32_t (*pick)(const void *context, uint32_t hash, uint32_t x, uint32_t y);
     const void *context;
+    const struct dsn_mix_control *control;
 } dsn_point_materials;
 
 /* A lattice point (lattice_point_walk.h's lattice_point_sums): the sums, modulo 2^32, of the texton values
