@@ -512,9 +512,11 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("mix: continuous points where the weights vary, their materials read from the control on vectors "
-          "(the AVX2 and AVX-512 copies), are the generic walk's") {
-    // As above, the 16-bit twins as the reference. Controls of every kind the lanes read (mix_pick_lanes.h):
+TEST_CASE(
+    "mix: continuous and lattice points where the weights vary, their materials read from the control on "
+    "vectors (the AVX2 and AVX-512 copies), are the generic walk's") {
+    // The continuous points against the 16-bit twins as above, the lattice points against a tile of one
+    // without scratch (the generic walk). Controls of every kind the lanes read (mix_pick_lanes.h):
     // periodic and clamped axes, samples 1, 4, 16, 2^9 and 2^16 texels apart (the fraction shifted up and
     // down), origins on both sides, samples of no weight; points near the controls and anywhere, some
     // where a periodic axis's window crosses the wrap of position - origin (the pick goes impulse by
@@ -588,13 +590,21 @@ TEST_CASE("mix: continuous points where the weights vary, their materials read f
                     int32_t reference[3] = {};
                     REQUIRE(dsn_mix_continuous_point_fixed(&wide_mix, &control.control, x, y, reference) ==
                             DSN_OK);
+                    const int32_t lattice_x = int32_t(uint64_t(x) >> 32),
+                                  lattice_y = int32_t(uint64_t(y) >> 32);
+                    int32_t lattice_reference[3] = {};
+                    REQUIRE(dsn_mix_lattice_tile_fixed(&mix, &control.control, lattice_x, lattice_y, 1, 1,
+                                                       lattice_reference, nullptr, 0) == DSN_OK);
                     for (uint32_t kernel = DSN_KERNEL_DEFAULT;
                          kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
                         const dsn_mix copy = on_kernel(mix, kernel);
-                        int32_t point[3] = {};
+                        int32_t point[3] = {}, lattice[3] = {};
                         REQUIRE(dsn_mix_continuous_point_fixed(&copy, &control.control, x, y, point) ==
                                 DSN_OK);
+                        REQUIRE(dsn_mix_lattice_point_fixed(&copy, &control.control, lattice_x, lattice_y,
+                                                            lattice) == DSN_OK);
                         differences += std::memcmp(point, reference, sizeof point) != 0;
+                        differences += std::memcmp(lattice, lattice_reference, sizeof lattice) != 0;
                         points++;
                     }
                 }

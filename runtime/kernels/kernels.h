@@ -71,8 +71,8 @@ typedef int dsn_lattice_strips_take_entry(const dsn_noise_state *noise);
    draw_threshold: the hashes that draw material m or a later one are those at or above thresholds[m - 1];
    2^32, above every hash, past count - 1); else pick(context, hash, x, y) gives the material of the
    impulse of that hash whose position's integer parts are (x, y) (modulo 2^32), and where `control` is
-   not null (DSN_MIXING) the x86 copies' continuous point may read the materials from it instead (the
-   mix's weights, whose pick that is: mix_pick_lanes.h). */
+   not null (DSN_MIXING) the AVX2 and AVX-512 copies' continuous and lattice points may read the materials
+   from it instead (the mix's weights, whose pick that is: mix_pick_lanes.h). */
 struct dsn_mix_control;
 enum { dsn_point_materials_most = 4 }; /* DSN_MIX_MAX_MATERIALS, in builds without the mix too */
 typedef struct dsn_point_materials {

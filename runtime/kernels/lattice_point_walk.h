@@ -10,6 +10,7 @@
 #include "core/lattice_impulses.h"
 #include "core/poisson_count.h"
 #include "kernels/kernels.h"
+#include "kernels/mix_pick_lanes.h"
 
 #if defined(__SSE2__) && !DSN_SMALL_CODE
 #include "simd/simd_mix64.h"
@@ -295,6 +296,9 @@ typedef struct material_slots {
     /* Where the weights are uniform, the cells' impulses of material m or a later one, bit k for impulse
        k: at_least[m - 1][slot], hashed 16 at a time as the cell is buffered (material_masks). */
     uint16_t at_least[3][12];
+#if DSN_MIXING
+    const PickWindow *window; /* else, where not null, the hits' materials read from it on vectors */
+#endif
 #endif
 } material_slots;
 
@@ -381,9 +385,47 @@ inline uint32_t material_of(const dsn_point_materials *materials, uint32_t key, 
            uint32_t(hash >= materials->thresholds[2]);
 }
 
+#if DSN_MATERIAL_MASKS && DSN_MIXING
+/* The hits of one word of masks (bit 16 s + k: impulse k of slot first + s) of material 1 or more, 2 or
+   more and 3 (at_least[0 .. 2]), their materials read from the control on vectors (mix_pick_lanes.h): the
+   hits' hashes and positions (their cells' origins plus their fields' offsets) listed, then picked 8 at a
+   time. */
+inline void picked_hits(const PickWindow *window, uint64_t hits, const material_slots *slots, uint32_t first,
+                        uint64_t *at_least) {
+    uint32_t streams[64 + 8], xs[64 + 8], ys[64 + 8];
+    uint32_t listed = 0;
+    for (uint64_t left = hits; left != 0; left &= left - 1, listed++) {
+        const uint32_t bit = uint32_t(__builtin_ctzll(left)), slot = first + (bit >> 4);
+        const uint32_t field = slots->fields[16 * first + bit];
+        /* dsn_material_hash's stream, hashed on the lanes */
+        streams[listed] = slots->keys[slot] + (0xC0000000u + (bit & 15u)) * 0x9E3779B9u;
+        xs[listed] = slots->origins_x[slot] + (field & 15u);
+        ys[listed] = slots->origins_y[slot] + (field >> 4);
+    }
+    for (uint32_t k = listed; k < listed + 8u; k++) streams[k] = xs[k] = ys[k] = 0; /* a last group's rest */
+    uint64_t listed_levels[3] = {0, 0, 0};                                          /* bit k: listed hit k */
+    for (uint32_t group = 0; group < listed; group += 8) {
+        vector_256 levels[3];
+        picked_level_lanes(*window, mix32_lanes(load_8x32(streams + group)), load_8x32(xs + group),
+                           load_8x32(ys + group), levels);
+        for (uint32_t level = 0; level < 3; level++)
+            listed_levels[level] |= uint64_t(uint32_t(top_bits_of_32(levels[level]))) << group;
+    }
+    /* each listed hit's bits back to its own bit of the word */
+    for (uint64_t left = hits; left != 0; left &= left - 1) {
+        const uint64_t lowest = left & (~left + 1u);
+        for (uint32_t level = 0; level < 3; level++) {
+            at_least[level] |= lowest & (0u - (listed_levels[level] & 1u));
+            listed_levels[level] >>= 1;
+        }
+    }
+}
+#endif
+
 /* The hits of one word of masks (bit 16 s + k: impulse k of slot first + s) split by material: of[m] the
    hits of material m. Built as the hits of material 1 or more, 2 or more and 3 by masks, not branches:
    the materials of neighbouring impulses are as unpredictable as a mix's weights make them. */
+template <bool Laned>
 inline void split_by_material(const dsn_point_materials *materials, uint64_t hits,
                               const material_slots *slots, uint32_t first, uint64_t *of) {
     uint64_t one_or_more = 0, two_or_more = 0, three = 0, to_hash = hits;
@@ -394,6 +436,14 @@ inline void split_by_material(const dsn_point_materials *materials, uint64_t hit
         __builtin_memcpy(&three, slots->at_least[2] + first, sizeof three);
         to_hash = 0;
     }
+#if DSN_MIXING
+    if (Laned && slots->window != 0) {
+        uint64_t at_least[3] = {0, 0, 0};
+        picked_hits(slots->window, hits, slots, first, at_least);
+        one_or_more = at_least[0], two_or_more = at_least[1], three = at_least[2];
+        to_hash = 0;
+    }
+#endif
 #endif
     for (uint64_t left = to_hash; left != 0; left &= left - 1) {
         const uint32_t bit = uint32_t(__builtin_ctzll(left)), slot = first + (bit >> 4);
@@ -413,7 +463,7 @@ inline void split_by_material(const dsn_point_materials *materials, uint64_t hit
 }
 
 /* The buffered hits of the mixed point summed into each material's sums (sums + 3 m). */
-template <uint32_t Channels, uint32_t Bits>
+template <uint32_t Channels, uint32_t Bits, bool Laned>
 inline void flush_materials(const dsn_point_materials *materials, uint16_t *masks, uint32_t cells,
                             const uint16_t *entries, material_slots *slots, uint32_t *sums) {
     for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
@@ -426,7 +476,7 @@ inline void flush_materials(const dsn_point_materials *materials, uint16_t *mask
     for (uint32_t word = 0; word < 3; word++) {
         uint64_t hits, of[dsn_point_materials_most];
         __builtin_memcpy(&hits, masks + 4 * word, sizeof hits);
-        split_by_material(materials, hits, slots, 4 * word, of);
+        split_by_material<Laned>(materials, hits, slots, 4 * word, of);
         for (uint32_t m = 0; m < dsn_point_materials_most; m++)
             if (m < materials->count)
                 sum_hits<Channels, Bits>(materials->values[m], of[m], entries + 64 * word, 0u, &hit[m]);
@@ -437,12 +487,12 @@ inline void flush_materials(const dsn_point_materials *materials, uint16_t *mask
 
 /* The buffered hits flushed: into each material's sums for the mixed point (Mixed), else into each
    point's. */
-template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed>
+template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed, bool Laned>
 inline void flush_walked(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
                          const uint16_t *entries, hit_sums *hit, material_slots *slots,
                          const dsn_point_materials *materials, uint32_t *sums) {
     if (Mixed)
-        flush_materials<Channels, Bits>(materials, masks, cells, entries, slots, sums);
+        flush_materials<Channels, Bits, Laned>(materials, masks, cells, entries, slots, sums);
     else
         flush_cells<Channels, Bits, Points>(texton, width, masks, cells, entries, hit, sums);
 }
@@ -471,7 +521,7 @@ inline uint32_t live_range(uint32_t reach, uint32_t size) { return reach < size 
 /* The sums of the point (x, y), and where Points is 3 of the points (x + 1, y) and (x, y + 1) too (sums +
    3, sums + 6: the lattice gradient's neighbours), from one walk over the cells that reach any of them;
    where Mixed (Points 1), each material's sums of the point (sums + 3 m). */
-template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed>
+template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed, bool Laned>
 void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
                         uint32_t *sums, const dsn_point_materials *materials) {
     const uint32_t reached = Points == 1 ? 0u : 1u; /* the window grows by one column and one row */
@@ -501,9 +551,18 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
     uint16_t entries[9 * 16], masks[12 * Points];
     material_slots slots; /* (filled for the mixed point alone) */
 #if DSN_MATERIAL_MASKS
-    const bool masked = Mixed && materials->pick == 0;
+    const bool thresholded = Mixed && materials->pick == 0;
     material_thresholds thresholds;
-    if (masked) thresholds = thresholds_of(materials);
+    if (thresholded) thresholds = thresholds_of(materials);
+#if DSN_MIXING
+    PickWindow window;
+    if (Laned)
+        slots.window = materials->pick != 0 && materials->control != 0 &&
+                               pick_window(materials->control, materials->count, x, y, texton->radius[0],
+                                           texton->radius[1], &window)
+                           ? &window
+                           : 0;
+#endif
 #endif
     uint32_t slot = 0;
     hit_sums hit = {0, zero_128()};
@@ -536,8 +595,8 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
                 live[2] = column_live[0] & row_live[1];
             }
             if (slot == 9) {
-                flush_walked<Channels, Bits, Points, Mixed>(texton->values, width, masks, 9, entries, &hit,
-                                                            &slots, materials, sums);
+                flush_walked<Channels, Bits, Points, Mixed, Laned>(texton->values, width, masks, 9, entries,
+                                                                   &hit, &slots, materials, sums);
                 slot = 0;
             }
             const uint32_t count = dsn_poisson_count_two_steps(noise, key);
@@ -546,7 +605,7 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
                               entries + 16 * slot, masks + slot, live);
             if (Mixed) {
 #if DSN_MATERIAL_MASKS
-                if (masked)
+                if (thresholded)
                     material_masks(&thresholds, materials->count - 1u, key, slot, &slots);
                 else
                     keep_cell(key, cell_x, cell_y, fields, slot, &slots);
@@ -569,8 +628,8 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
             }
         }
     }
-    flush_walked<Channels, Bits, Points, Mixed>(texton->values, width, masks, slot, entries, &hit, &slots,
-                                                materials, sums);
+    flush_walked<Channels, Bits, Points, Mixed, Laned>(texton->values, width, masks, slot, entries, &hit,
+                                                       &slots, materials, sums);
 }
 
 /* Whether the 16 x 16 cells' vector walk takes the noise. dsn_poisson_count_two_steps reads up to
@@ -583,18 +642,20 @@ bool cells16_walk(const dsn_noise_state *noise) {
 
 /* The sums of Points points, or of each material (zeroed first), by the walk of the noise's channels and
    value size. */
-template <uint32_t Points, bool Mixed>
+template <uint32_t Points, bool Mixed, bool Laned>
 inline void walk_points(const dsn_noise_state *noise, const dsn_texton_window *texton, uint32_t x, uint32_t y,
                         uint32_t *sums, const dsn_point_materials *materials) {
     const uint32_t values = 3 * (Mixed ? materials->count : Points);
     for (uint32_t i = 0; i < values; i++) sums[i] = 0;
     const dsn_asset *asset = &noise->asset;
     if (asset->channels == 3)
-        asset->bits == 8 ? accumulate_cells16<3, 8, Points, Mixed>(noise, texton, x, y, sums, materials)
-                         : accumulate_cells16<3, 16, Points, Mixed>(noise, texton, x, y, sums, materials);
+        asset->bits == 8
+            ? accumulate_cells16<3, 8, Points, Mixed, Laned>(noise, texton, x, y, sums, materials)
+            : accumulate_cells16<3, 16, Points, Mixed, Laned>(noise, texton, x, y, sums, materials);
     else
-        asset->bits == 8 ? accumulate_cells16<1, 8, Points, Mixed>(noise, texton, x, y, sums, materials)
-                         : accumulate_cells16<1, 16, Points, Mixed>(noise, texton, x, y, sums, materials);
+        asset->bits == 8
+            ? accumulate_cells16<1, 8, Points, Mixed, Laned>(noise, texton, x, y, sums, materials)
+            : accumulate_cells16<1, 16, Points, Mixed, Laned>(noise, texton, x, y, sums, materials);
 }
 
 /* The kernel entry (kernels.h's dsn_lattice_point_entry): the sums of `points` points (1, or 3: the point
@@ -607,10 +668,12 @@ inline int lattice_point_sums(const dsn_noise_state *noise, const dsn_texton_win
         (materials != 0 && (points != 1 || materials->count > dsn_point_materials_most)))
         return 0;
     if (materials != 0)
-        walk_points<1, true>(noise, texton, x, y, sums, materials);
+        materials->pick != 0 && materials->control != 0
+            ? walk_points<1, true, true>(noise, texton, x, y, sums, materials)
+            : walk_points<1, true, false>(noise, texton, x, y, sums, materials);
     else
-        points == 3 ? walk_points<3, false>(noise, texton, x, y, sums, 0)
-                    : walk_points<1, false>(noise, texton, x, y, sums, 0);
+        points == 3 ? walk_points<3, false, false>(noise, texton, x, y, sums, 0)
+                    : walk_points<1, false, false>(noise, texton, x, y, sums, 0);
     return 1;
 }
 

@@ -1,9 +1,10 @@
-/* runtime/kernels/mix_pick_lanes.h - the materials of a mixed continuous point's candidates where the
-   weights vary (the AVX2 and AVX-512 copies' point, continuous_point_vector.h): each candidate's integer
-   position from its S, then its material, impulse by impulse through the caller's pick, or 8 at a time
-   on AVX2 vectors from the control itself (mix_weights.h's mix_weights_at and pick_material in 32-bit
-   lanes, its samples gathered 4 bytes at a time: the same integers, so the same materials). Internal to
-   libdsn; not installed (everything here has internal linkage). */
+/* runtime/kernels/mix_pick_lanes.h - the materials of a mixed point's impulses where the weights vary, in
+   the AVX2 and AVX-512 copies: the continuous point's candidates' integer positions from their S
+   (continuous_point_vector.h), then their materials, impulse by impulse through the caller's pick, or 8 at
+   a time on AVX2 vectors from the control itself, as the lattice point's hits too (lattice_point_walk.h's
+   picked_hits): mix_weights.h's mix_weights_at and pick_material in 32-bit lanes, the samples gathered 4
+   bytes at a time, the same integers, so the same materials. Internal to libdsn; not installed
+   (everything here has internal linkage). */
 #ifndef DSN_MIX_PICK_LANES_H
 #define DSN_MIX_PICK_LANES_H
 
@@ -134,8 +135,8 @@ inline vector_256 sample_words(const PickWindow &window, vector_256 offsets) {
 
 /* Lane k of levels[l] all ones where candidate k's material (pick_material's, unbranched, from its hash at
    its integer position (x, y)) is past l, for l < count - 1; zero elsewhere. */
-DSN_SIMD_INLINE void picked_level_lanes(const PickWindow &window, vector_256 hashes, vector_256 x, vector_256 y,
-                               vector_256 *levels) {
+DSN_SIMD_INLINE void picked_level_lanes(const PickWindow &window, vector_256 hashes, vector_256 x,
+                                        vector_256 y, vector_256 *levels) {
     const AxisLanes ax = axis_lanes(window, window.x, x), ay = axis_lanes(window, window.y, y);
     const vector_256 count = set_8x32(window.count), row = set_8x32(window.row_bytes);
     const vector_256 top = multiply_32(ay.first, row), bottom = multiply_32(ay.second, row);
