@@ -581,12 +581,9 @@ TEST_CASE(
                     const uint32_t reach_x = dsn_mix_state_of(&mix)->material[0].radius[0] + 2u,
                                    reach_y = dsn_mix_state_of(&mix)->material[0].radius[1] + 2u;
                     PickWindowAxis ax, ay;
-                    laned += pick_window_axis(kind.origin_x, kind.spacing_shift, kind.width,
-                                              (kind.flags & DSN_MIX_PERIODIC_X) != 0,
-                                              uint32_t(uint64_t(x) >> 32), reach_x, &ax) &&
-                             pick_window_axis(kind.origin_y, kind.spacing_shift, kind.height,
-                                              (kind.flags & DSN_MIX_PERIODIC_Y) != 0,
-                                              uint32_t(uint64_t(y) >> 32), reach_y, &ay);
+                    laned += lanes_read_control(&control.control, count,
+                                                uint32_t(uint64_t(x) >> 32) - reach_x, 2 * reach_x,
+                                                uint32_t(uint64_t(y) >> 32) - reach_y, 2 * reach_y, &ax, &ay);
                     int32_t reference[3] = {};
                     REQUIRE(dsn_mix_continuous_point_fixed(&wide_mix, &control.control, x, y, reference) ==
                             DSN_OK);
@@ -607,6 +604,25 @@ TEST_CASE(
                         differences += std::memcmp(lattice, lattice_reference, sizeof lattice) != 0;
                         points++;
                     }
+                }
+                // A tile near the control (its groups of points each by the kernel's point where the lanes
+                // read the group's weights, else the groups' walk) against the twins' tile.
+                const dsn_grid grid = {int64_t(uint64_t(uint32_t(kind.origin_x) + 7u) << 32) + kOne / 3,
+                                       int64_t(uint64_t(uint32_t(kind.origin_y) + 5u) << 32) + kOne / 7,
+                                       int64_t(0.606 * double(kOne)),
+                                       int64_t(0.35 * double(kOne)),
+                                       int64_t(-0.35 * double(kOne)),
+                                       int64_t(0.606 * double(kOne))};
+                std::vector<int32_t> tile_reference(24 * 5 * channels);
+                REQUIRE(dsn_mix_continuous_tile_fixed(&wide_mix, &control.control, &grid, 24, 5,
+                                                      tile_reference.data(), nullptr, 0) == DSN_OK);
+                for (uint32_t kernel = DSN_KERNEL_DEFAULT;
+                     kernel <= dsn_mix_state_of(&mix)->material[0].tile_kernel; kernel++) {
+                    const dsn_mix copy = on_kernel(mix, kernel);
+                    std::vector<int32_t> tile(tile_reference.size());
+                    REQUIRE(dsn_mix_continuous_tile_fixed(&copy, &control.control, &grid, 24, 5, tile.data(),
+                                                          nullptr, 0) == DSN_OK);
+                    differences += tile != tile_reference;
                 }
             }
             CHECK(differences == 0);

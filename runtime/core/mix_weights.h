@@ -58,20 +58,20 @@ inline MixAxis mix_axis(uint64_t position, int32_t origin, uint32_t spacing_shif
     return axis;
 }
 
-/* One axis of the control as the x86 copies' continuous point reads it on vectors for the candidates of
-   one point (kernels/mix_pick_lanes.h), whose integer positions p lie within `reach` texels of the
-   point's: mix_axis's lower sample index is base + ((p - origin) ^ 2^31) / 2^shift - low, modulo 2^32,
-   then clamped (as an int32) or, periodic, less `size` where it reaches it. A clamped axis takes every
-   p as mix_axis does (low 0, base -2^31 / 2^shift); a periodic one from the window's first texel, its
-   index wrapped once here, which needs the window on one side of the signed wrap of p - origin (the
-   indices then grow with p) and at most `size` samples past its first: false elsewhere. */
+/* One axis of the control as the AVX2 and AVX-512 copies read it on vectors (kernels/mix_pick_lanes.h)
+   for impulses whose integer positions p lie in [first, first + span] (modulo 2^32): mix_axis's lower
+   sample index is base + ((p - origin) ^ 2^31) / 2^shift - low, modulo 2^32, then clamped (as an int32)
+   or, periodic, less `size` where it reaches it. A clamped axis takes every p as mix_axis does (low 0,
+   base -2^31 / 2^shift); a periodic one from the window's first texel, its index wrapped once here, which
+   needs the window on one side of the signed wrap of p - origin (the indices then grow with p) and at most
+   `size` samples past its first: false elsewhere. */
 struct PickWindowAxis {
     uint32_t origin, low, base, size;
     bool periodic;
 };
 
-inline bool pick_window_axis(int32_t origin, uint32_t shift, uint32_t size, bool periodic, uint32_t whole,
-                             uint32_t reach, PickWindowAxis *axis) {
+inline bool pick_window_axis(int32_t origin, uint32_t shift, uint32_t size, bool periodic, uint32_t first,
+                             uint32_t span, PickWindowAxis *axis) {
     axis->origin = static_cast<uint32_t>(origin);
     axis->size = size;
     axis->periodic = periodic;
@@ -81,12 +81,24 @@ inline bool pick_window_axis(int32_t origin, uint32_t shift, uint32_t size, bool
         axis->base = 0u - bias;
         return true;
     }
-    const uint32_t first = (whole - reach - axis->origin) ^ 0x80000000u;
-    if (first > 0xFFFFFFFFu - 2u * reach) return false;
-    axis->low = first >> shift;
-    if (((first + 2u * reach) >> shift) - axis->low > size) return false;
+    const uint32_t biased = (first - axis->origin) ^ 0x80000000u;
+    if (biased > 0xFFFFFFFFu - span) return false;
+    axis->low = biased >> shift;
+    if (((biased + span) >> shift) - axis->low > size) return false;
     axis->base = wrapped_sample(static_cast<int64_t>(axis->low) - static_cast<int64_t>(bias), size);
     return true;
+}
+
+/* Whether the lanes read the control for impulses whose integer positions lie in [first_x, first_x +
+   span_x] x [first_y, first_y + span_y]: both axes (pick_window_axis), and at least 4 bytes to gather. */
+inline bool lanes_read_control(const dsn_mix_control *control, uint32_t count, uint32_t first_x,
+                               uint32_t span_x, uint32_t first_y, uint32_t span_y, PickWindowAxis *x,
+                               PickWindowAxis *y) {
+    return control->width * control->height * count >= 4u &&
+           pick_window_axis(control->origin_x, control->spacing_shift, control->width,
+                            (control->flags & DSN_MIX_PERIODIC_X) != 0, first_x, span_x, x) &&
+           pick_window_axis(control->origin_y, control->spacing_shift, control->height,
+                            (control->flags & DSN_MIX_PERIODIC_Y) != 0, first_y, span_y, y);
 }
 
 /* The weights V_m at a position, in [0, 65280] (dsn.h), and their running sums: cumulative[m] =

@@ -430,9 +430,10 @@ bool kernel_lattice_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
 
 /* The continuous sums of every material at `count` points (xs[p], ys[p]), into zeroed sums, from the kernel's
    vector evaluator, the materials made once, where it takes the mix (point_materials; the AVX2 and AVX-512
-   copies, 8-bit textons) and the region's weights are uniform, or where `picks` (a point alone: each
-   candidate in reach then reads its weights; a group's walk reads each impulse's once for the group). False
-   where it does not (sums then undefined). */
+   copies, 8-bit textons) and the region's weights are uniform, or where `picks`: a point alone, or a group
+   whose candidates' weights the kernel's lanes read (each candidate in reach then reads its weights; where
+   the lanes do not read them, a group's walk reads each impulse's once for the group). False where it does
+   not (sums then undefined). */
 bool kernel_continuous_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                             bool picks, const uint64_t *xs, const uint64_t *ys, uint32_t count,
                             ContinuousSums *sums) {
@@ -484,6 +485,7 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
     int64_t offsets_x[group_points], offsets_y[group_points];
     MixRegion region;
     region.single = true;
+    bool laned = false; /* the kernels' lanes read each candidate's weights (mix_pick_lanes.h) */
     if (count > 1 &&
         group_axis(xs, count, mix->radius[0], lead->cell_shift, lead->period[0], &gx, offsets_x) &&
         group_axis(ys, count, mix->radius[1], lead->cell_shift, lead->period[1], &gy, offsets_y)) {
@@ -496,15 +498,21 @@ void continuous_points(const dsn_mix_state *mix, const dsn_mix_control *control,
                             static_cast<uint64_t>(low_y - reach_y) << 32,
                             static_cast<uint64_t>(high_x + reach_x) << 32,
                             static_cast<uint64_t>(high_y + reach_y) << 32, 16u + group_extent);
+        PickWindowAxis lanes_x, lanes_y; /* (a point's candidates lie within radius + 2 of it) */
+        laned =
+            !region.uniform &&
+            lanes_read_control(control, mix->count, low_x - reach_x - 1u, high_x - low_x + 2u * reach_x + 2u,
+                               low_y - reach_y - 1u, high_y - low_y + 2u * reach_y + 2u, &lanes_x, &lanes_y);
     }
     if (region.single) {
         for (uint32_t p = 0; p < count; p++) continuous_point(mix, control, xs[p], ys[p], values[p]);
         return;
     }
-    /* Where the weights are uniform, each point by the kernel's vector evaluator where it takes the mix
-       (faster than the group's scalar walk: make bench's mix_bench); else the group's walk. */
+    /* Where the weights are uniform, or vary where the kernel's lanes read them, each point by the kernel's
+       vector evaluator where it takes the mix (faster than the group's scalar walk: make bench's
+       mix_bench); else the group's walk. */
     ContinuousSums sums[group_points] = {};
-    if (!kernel_continuous_sums(mix, control, region, false, xs, ys, count, sums)) {
+    if (!kernel_continuous_sums(mix, control, region, laned, xs, ys, count, sums)) {
         for (uint32_t p = 0; p < count; p++) __builtin_memset(sums[p], 0, sizeof sums[p]);
         continuous_group_sums(mix, control, region, gx, gy, offsets_x, offsets_y, count, sums);
     }

@@ -72,25 +72,20 @@ struct PickWindow {
     PickWindowAxis x, y;
 };
 
-/* The window of the control that holds the candidates of the point whose integer parts are (whole_x,
-   whole_y), all within (reach_x, reach_y) texels of it; false where the lanes do not take it (mix_weights.h's
-   pick_window_axis; a control of fewer than 4 bytes). */
+/* The window of the control that holds the impulses whose integer positions lie within (reach_x, reach_y)
+   texels of (whole_x, whole_y); false where the lanes do not take it (mix_weights.h's lanes_read_control). */
 inline bool pick_window(const dsn_mix_control *control, uint32_t count, uint32_t whole_x, uint32_t whole_y,
                         uint32_t reach_x, uint32_t reach_y, PickWindow *window) {
-    const uint32_t bytes = control->width * control->height * count; /* at most 2^26 (mix_control_check) */
     const uint32_t shift = control->spacing_shift;
     window->weights = control->weights;
     window->row_bytes = control->width * count;
-    window->last_word = bytes - 4u;
+    window->last_word = control->width * control->height * count - 4u; /* (at most 2^26 bytes) */
     window->count = count;
     window->shift = shift_count(static_cast<int>(shift));
     window->fraction_down = shift >= 8u;
     window->fraction_shift = shift_count(static_cast<int>(shift >= 8u ? shift - 8u : 8u - shift));
-    return bytes >= 4u &&
-           pick_window_axis(control->origin_x, shift, control->width,
-                            (control->flags & DSN_MIX_PERIODIC_X) != 0, whole_x, reach_x, &window->x) &&
-           pick_window_axis(control->origin_y, shift, control->height,
-                            (control->flags & DSN_MIX_PERIODIC_Y) != 0, whole_y, reach_y, &window->y);
+    return lanes_read_control(control, count, whole_x - reach_x, 2u * reach_x, whole_y - reach_y,
+                              2u * reach_y, &window->x, &window->y);
 }
 
 /* mix_axis of 8 integer positions: both samples' indices and the upper one's 8-bit weight. */
