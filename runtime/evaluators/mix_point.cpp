@@ -183,22 +183,13 @@ bool lattice_axis(const axis_cell &on_axis, uint32_t span, const FieldLanes &lan
     return true;
 }
 
-/* sums[v] += values first .. first + count - 1 of a lattice texton (8- or 16-bit, channels interleaved):
-   a texton row's entries added to consecutive points of a run. */
-inline void add_texton_values(const dsn_asset *asset, const dsn_texton_window *texton, uint32_t first,
-                              uint32_t count, uint32_t *sums) {
-    if (asset->bits == 8)
-        for (uint32_t v = 0; v < count; v++) sums[v] += texton_value<8>(texton->values, first + v);
-    else
-        for (uint32_t v = 0; v < count; v++) sums[v] += texton_value<16>(texton->values, first + v);
-}
-
 /* The lattice sums of every material over a window of `rows` rows of `length` points from (x0, y0): point
    i of row j's sums of material m at sums[m][(j length + i) channels + c], that material's channels
    apart: lattice_impulses.h's walk with the mix's reach over the window, each position pair hashed once
    and its impulses tested at once on their fields (exactly, lattice_axis), each impulse that reaches the
    window adding its material's lattice texton rows and columns to the points it reaches (dsn_reach_at
-   per axis). A run of a row is a window of one row, a point a run of one. */
+   per axis; the kernel's rows, kernels.h's dsn_lattice_rows_entry). A run of a row is a window of one row, a
+   point a run of one. */
 void lattice_window_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                          uint32_t x0, uint32_t length, uint32_t y0, uint32_t rows, uint32_t *const *sums) {
     const dsn_noise_state *lead = &mix->material[0];
@@ -208,6 +199,7 @@ void lattice_window_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
     const uint32_t half_mask = (1u << lanes.half_bits) - 1u, drop = lanes.half_bits - shift;
     dsn_texton_window textons[DSN_MIX_MAX_MATERIALS];
     for (uint32_t m = 0; m < mix->count; m++) textons[m] = dsn_lattice_texton_window(&mix->material[m]);
+    dsn_lattice_rows_entry *const add_rows = dsn_kernel_entries_of(lead->tile_kernel)->lattice_rows;
     dsn_axis ax, ay;
     dsn_axis_init(&ax, x0, length, reach_x, shift, lead->period[0]);
     dsn_axis_init(&ay, y0, rows, reach_y, shift, lead->period[1]);
@@ -250,15 +242,17 @@ void lattice_window_sums(const dsn_mix_state *mix, const dsn_mix_control *contro
                         dsn_reach_at(own_end, length, texton->width, &reach);
                         dsn_reach_at(own_end_row, rows, texton->height, &reach_rows);
                         const dsn_asset *asset = &mix->material[m].asset;
-                        for (uint32_t r = 0; r < reach_rows.count; r++) {
-                            const uint32_t texton_row = reach_rows.first_texton + r;
-                            const uint32_t window_row = reach_rows.first_index + r;
-                            add_texton_values(
-                                asset, texton,
-                                (texton_row * texton->width + reach.first_texton) * asset->channels,
-                                reach.count * asset->channels,
-                                sums[m] + (window_row * length + reach.first_index) * asset->channels);
-                        }
+                        const size_t texel = asset->channels * (asset->bits / 8u);
+                        add_rows(
+                            texton->values + (static_cast<size_t>(reach_rows.first_texton) * texton->width +
+                                              reach.first_texton) *
+                                                 texel,
+                            texton->width * texel, asset->bits, reach_rows.count,
+                            reach.count * asset->channels,
+                            sums[m] +
+                                (static_cast<size_t>(reach_rows.first_index) * length + reach.first_index) *
+                                    asset->channels,
+                            static_cast<size_t>(length) * asset->channels);
                     });
                 }
             }

@@ -260,6 +260,13 @@ typedef void dsn_surface_reads_entry(const dsn_surface_texels *texels, const dsn
                                      uint32_t count, uint32_t cell_shift, const int64_t *moved,
                                      uint64_t *sums);
 
+/* Rows of a lattice texton added to rows of 32-bit sums, modulo 2^32 (tile_walk.h's add_texton_rows): `rows`
+   rows of `count` values of `bits` bits (8 or 16) from `values`, rows `stride` bytes apart, to as many rows
+   of sums from `sums`, rows sums_stride values apart. One impulse of a mixed lattice band (mix_point.cpp's
+   lattice_window_sums). */
+typedef void dsn_lattice_rows_entry(const unsigned char *values, size_t stride, uint32_t bits, uint32_t rows,
+                                    uint32_t count, uint32_t *sums, size_t sums_stride);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,
    continuous_splat_normalize, lattice_point and continuous_point in the small build (DSN_SMALL_CODE),
@@ -268,7 +275,8 @@ typedef void dsn_surface_reads_entry(const dsn_surface_texels *texels, const dsn
    without AVX2 (filtered_sift.cpp then reads, or lists, each candidate itself), and
    continuous_gradient_runs too (continuous_tile.cpp then splats three grids); surface_impulses and
    surface_reads without the surface noise (DSN_SURFACE 0), surface_reads in kernels built without
-   AVX2 too; lattice_mix_tile without the mix (DSN_MIXING 0) or the strip path (tile_render.h). */
+   AVX2 too; lattice_mix_tile without the mix (DSN_MIXING 0) or the strip path (tile_render.h);
+   lattice_rows without the mix. */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
@@ -283,6 +291,7 @@ typedef struct dsn_kernel_entries {
     dsn_surface_impulses_entry *surface_impulses;
     dsn_surface_reads_entry *surface_reads;
     dsn_lattice_mix_tile_entry *lattice_mix_tile;
+    dsn_lattice_rows_entry *lattice_rows;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -89,6 +89,18 @@ inline void add_row_of_width(uint32_t *dst, const unsigned char *src, uint32_t c
 #endif
 }
 
+#if DSN_MIXING
+/* The kernel entry (kernels.h's dsn_lattice_rows_entry): add_row_of_width row by row. */
+inline void add_texton_rows(const unsigned char *values, size_t stride, uint32_t bits, uint32_t rows,
+                            uint32_t count, uint32_t *sums, size_t sums_stride) {
+    for (uint32_t row = 0; row < rows; row++)
+        add_row_of_width(sums + row * sums_stride, values + row * stride, count, bits);
+}
+#define DSN_LATTICE_ROWS_ENTRY add_texton_rows
+#else
+#define DSN_LATTICE_ROWS_ENTRY 0
+#endif
+
 /* One candidate cell along one axis: the end e (dsn_reach_at) of an impulse at in-cell offset 0 (one
    at offset t has e = end - t), and the last in-cell offset before the period's cut (the impulses past it
    are discarded). */
