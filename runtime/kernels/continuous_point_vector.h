@@ -1014,21 +1014,18 @@ DSN_POINT_INLINE void visit_mixed(MixedVisit<Channels, Picked> *visit, const Poi
         mix32_lanes(add_32(load_16x32(candidates.stream + first), set_16x32(material_stream_step)));
     uint32_t at_least[4] = {0, 0, 0, 0};
     if (Picked) {
-        uint32_t hash_lanes[16], x_lanes[16], y_lanes[16];
-        store_16x32(hash_lanes, hashes), store_16x32(x_lanes, s_x), store_16x32(y_lanes, s_y);
 #if DSN_MIXING
         if (visit->lanes_pick) {
-            for (uint32_t half = 0; half < 16; half += 8) {
-                vector_256 levels[3];
-                picked_level_lanes(visit->window, load_8x32(hash_lanes + half),
-                                   impulse_wholes(visit->pick_x, load_8x32(x_lanes + half)),
-                                   impulse_wholes(visit->pick_y, load_8x32(y_lanes + half)), levels);
-                for (uint32_t level = 0; level < 3; level++)
-                    at_least[level] |= (static_cast<uint32_t>(top_bits_of_32(levels[level])) << half) & reach;
-            }
+            picked_level_bits(visit->window, hashes, impulse_wholes(visit->pick_x, s_x),
+                              impulse_wholes(visit->pick_y, s_y), at_least);
+            for (uint32_t level = 0; level < 3; level++) at_least[level] &= reach;
         } else
 #endif
+        {
+            uint32_t hash_lanes[16], x_lanes[16], y_lanes[16];
+            store_16x32(hash_lanes, hashes), store_16x32(x_lanes, s_x), store_16x32(y_lanes, s_y);
             picked_levels(visit, hash_lanes, x_lanes, y_lanes, reach, at_least);
+        }
     } else {
         for (uint32_t level = 0; level < 3 && level + 1u < visit->count; level++)
             at_least[level] =

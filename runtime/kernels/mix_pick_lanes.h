@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "simd/simd.h" /* the 256-bit operations (simd_256.h) on AVX2 and AVX-512 */
+#include "simd/simd_mix64.h" /* simd.h, and all_lanes_32 */
 #if DSN_MIXING
 #include "core/mix_weights.h"
 #endif
@@ -55,11 +55,24 @@ inline void picked_levels(const Visit *visit, const uint32_t *hashes, const uint
 }
 
 #if DSN_MIXING
-/* impulse_whole of 8 lanes. */
-inline vector_256 impulse_wholes(const PickAxis &axis, vector_256 s) {
-    const vector_256 step =
-        subtract_32(shift_right_logical_32(subtract_32(set_8x32(axis.shifted), s), 16), set_8x32(axis.whole));
-    return add_32(set_8x32(axis.whole), shift_right_arithmetic_32(shift_left_32(step, 16), 16));
+/* The lanes are 8 (AVX2's vector_256) or 16 (AVX-512's vector_512) at a time, written once for both
+   (all_lanes_32 broadcasts); the gathers of 4 bytes from byte offsets: */
+DSN_SIMD_INLINE vector_256 gathered_words(const void *base, vector_256 offsets) {
+    return gather_32<1>(base, offsets);
+}
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+DSN_SIMD_INLINE vector_512 gathered_words(const void *base, vector_512 offsets) {
+    return gather_masked_32<1>(base, offsets, static_cast<mask_16>(0xFFFFu));
+}
+#endif
+
+/* impulse_whole of every lane. */
+template <class Vector>
+DSN_SIMD_INLINE Vector impulse_wholes(const PickAxis &axis, Vector s) {
+    const Vector step =
+        subtract_32(shift_right_logical_32(subtract_32(all_lanes_32<Vector>(axis.shifted), s), 16),
+                    all_lanes_32<Vector>(axis.whole));
+    return add_32(all_lanes_32<Vector>(axis.whole), shift_right_arithmetic_32(shift_left_32(step, 16), 16));
 }
 
 /* The control around one point as the lanes read it (mix_weights.h's pick_window_axis for each axis), and
@@ -88,87 +101,114 @@ inline bool pick_window(const dsn_mix_control *control, uint32_t count, uint32_t
                               2u * reach_y, &window->x, &window->y);
 }
 
-/* mix_axis of 8 integer positions: both samples' indices and the upper one's 8-bit weight. */
+/* mix_axis of every lane's integer position: both samples' indices and the upper one's 8-bit weight. */
+template <class Vector>
 struct AxisLanes {
-    vector_256 first, second, fraction;
+    Vector first, second, fraction;
 };
 
-inline AxisLanes axis_lanes(const PickWindow &window, const PickWindowAxis &axis, vector_256 positions) {
-    const vector_256 biased =
-        bitwise_xor(subtract_32(positions, set_8x32(axis.origin)), set_8x32(0x80000000u));
-    const vector_256 index =
-        add_32(subtract_32(shift_right_logical_32_by(biased, window.shift), set_8x32(axis.low)),
-               set_8x32(axis.base));
-    const vector_256 size = set_8x32(axis.size), one = set_8x32(1);
-    AxisLanes lanes;
+template <class Vector>
+DSN_SIMD_INLINE AxisLanes<Vector> axis_lanes(const PickWindow &window, const PickWindowAxis &axis,
+                                             Vector positions) {
+    const Vector biased = bitwise_xor(subtract_32(positions, all_lanes_32<Vector>(axis.origin)),
+                                      all_lanes_32<Vector>(0x80000000u));
+    const Vector index =
+        add_32(subtract_32(shift_right_logical_32_by(biased, window.shift), all_lanes_32<Vector>(axis.low)),
+               all_lanes_32<Vector>(axis.base));
+    const Vector size = all_lanes_32<Vector>(axis.size), one = all_lanes_32<Vector>(1);
+    AxisLanes<Vector> lanes;
     if (axis.periodic) {
         /* index < 2 size: less size where that does not wrap below zero */
         lanes.first = minimum_unsigned_32(index, subtract_32(index, size));
-        const vector_256 next = add_32(lanes.first, one);
+        const Vector next = add_32(lanes.first, one);
         lanes.second = minimum_unsigned_32(next, subtract_32(next, size));
     } else {
         /* clamped as int32; the upper one as min(max(index, -1), size - 2) + 1, which cannot overflow */
-        lanes.first = minimum_32(maximum_32(index, zero_256()), set_8x32(axis.size - 1u));
-        lanes.second =
-            add_32(minimum_32(maximum_32(index, set_8x32(0xFFFFFFFFu)), set_8x32(axis.size - 2u)), one);
+        lanes.first =
+            minimum_32(maximum_32(index, all_lanes_32<Vector>(0)), all_lanes_32<Vector>(axis.size - 1u));
+        lanes.second = add_32(minimum_32(maximum_32(index, all_lanes_32<Vector>(0xFFFFFFFFu)),
+                                         all_lanes_32<Vector>(axis.size - 2u)),
+                              one);
     }
     lanes.fraction =
         bitwise_and(window.fraction_down ? shift_right_logical_32_by(biased, window.fraction_shift)
                                          : shift_left_32_by(biased, window.fraction_shift),
-                    set_8x32(0xFFu));
+                    all_lanes_32<Vector>(0xFFu));
     return lanes;
 }
 
 /* The 4 bytes of the control from each lane's byte offset, read so that they end by its last byte (the
    caller's buffer may end there) and moved down to the lane's low bytes; the offsets of the lanes out of
    reach may be anything (their reads stay in the control). */
-inline vector_256 sample_words(const PickWindow &window, vector_256 offsets) {
-    const vector_256 read = minimum_unsigned_32(offsets, set_8x32(window.last_word));
-    return shift_right_logical_32_per_lane(gather_32<1>(window.weights, read),
+template <class Vector>
+DSN_SIMD_INLINE Vector sample_words(const PickWindow &window, Vector offsets) {
+    const Vector read = minimum_unsigned_32(offsets, all_lanes_32<Vector>(window.last_word));
+    return shift_right_logical_32_per_lane(gathered_words(window.weights, read),
                                            shift_left_32(subtract_32(offsets, read), 3));
 }
 
-/* Lane k of levels[l] all ones where candidate k's material (pick_material's, unbranched, from its hash at
-   its integer position (x, y)) is past l, for l < count - 1; zero elsewhere. */
-DSN_SIMD_INLINE void picked_level_lanes(const PickWindow &window, vector_256 hashes, vector_256 x,
-                                        vector_256 y, vector_256 *levels) {
-    const AxisLanes ax = axis_lanes(window, window.x, x), ay = axis_lanes(window, window.y, y);
-    const vector_256 count = set_8x32(window.count), row = set_8x32(window.row_bytes);
-    const vector_256 top = multiply_32(ay.first, row), bottom = multiply_32(ay.second, row);
-    const vector_256 left = multiply_32(ax.first, count), right = multiply_32(ax.second, count);
-    const vector_256 top_left = sample_words(window, add_32(top, left)),
-                     top_right = sample_words(window, add_32(top, right)),
-                     bottom_left = sample_words(window, add_32(bottom, left)),
-                     bottom_right = sample_words(window, add_32(bottom, right));
+/* Each lane's running sums of the weights at its integer position (x, y) (mix_weights_at's cumulative[0 ..
+   count - 1]), and its draw floor(hash total / 2^32) (pick_material's): the material is the number of
+   levels l < count - 1 with draw >= cumulative[l], or 0 where the total is 0. */
+template <class Vector>
+DSN_SIMD_INLINE void drawn_lanes(const PickWindow &window, Vector hashes, Vector x, Vector y,
+                                 Vector *cumulative, Vector *draw) {
+    const AxisLanes<Vector> ax = axis_lanes(window, window.x, x), ay = axis_lanes(window, window.y, y);
+    const Vector count = all_lanes_32<Vector>(window.count), row = all_lanes_32<Vector>(window.row_bytes);
+    const Vector top = multiply_32(ay.first, row), bottom = multiply_32(ay.second, row);
+    const Vector left = multiply_32(ax.first, count), right = multiply_32(ax.second, count);
+    const Vector top_left = sample_words(window, add_32(top, left)),
+                 top_right = sample_words(window, add_32(top, right)),
+                 bottom_left = sample_words(window, add_32(bottom, left)),
+                 bottom_right = sample_words(window, add_32(bottom, right));
     /* mix_weights_at's interpolation as 256 a + f (b - a), the same integers */
-    const vector_256 byte = set_8x32(0xFFu);
-    vector_256 cumulative[dsn_point_materials_most], total = zero_256();
+    const Vector byte = all_lanes_32<Vector>(0xFFu);
+    Vector total = all_lanes_32<Vector>(0);
     for (uint32_t m = 0; m < window.count && m < dsn_point_materials_most; m++) {
         const uint32_t at = 8u * m;
-        const vector_256 a = bitwise_and(shift_right_logical_32(top_left, at), byte),
-                         b = bitwise_and(shift_right_logical_32(top_right, at), byte),
-                         c = bitwise_and(shift_right_logical_32(bottom_left, at), byte),
-                         d = bitwise_and(shift_right_logical_32(bottom_right, at), byte);
-        const vector_256 upper = add_32(shift_left_32(a, 8), multiply_32(ax.fraction, subtract_32(b, a)));
-        const vector_256 lower = add_32(shift_left_32(c, 8), multiply_32(ax.fraction, subtract_32(d, c)));
+        const Vector a = bitwise_and(shift_right_logical_32(top_left, at), byte),
+                     b = bitwise_and(shift_right_logical_32(top_right, at), byte),
+                     c = bitwise_and(shift_right_logical_32(bottom_left, at), byte),
+                     d = bitwise_and(shift_right_logical_32(bottom_right, at), byte);
+        const Vector upper = add_32(shift_left_32(a, 8), multiply_32(ax.fraction, subtract_32(b, a)));
+        const Vector lower = add_32(shift_left_32(c, 8), multiply_32(ax.fraction, subtract_32(d, c)));
         total =
             add_32(total, shift_right_logical_32(add_32(shift_left_32(upper, 8),
                                                         multiply_32(ay.fraction, subtract_32(lower, upper))),
                                                  8));
         cumulative[m] = total;
     }
-    /* the draw floor(hash total / 2^32): the even lanes' 64-bit products' high halves moved down, the odd
-       lanes' in place */
-    const vector_256 even = shift_right_logical_64(multiply_even_unsigned_32(hashes, total), 32);
-    const vector_256 odd =
+    /* the even lanes' 64-bit products' high halves moved down, the odd lanes' in place */
+    const Vector even = shift_right_logical_64(multiply_even_unsigned_32(hashes, total), 32);
+    const Vector odd =
         multiply_even_unsigned_32(shift_right_logical_64(hashes, 32), shift_right_logical_64(total, 32));
-    const vector_256 draw = bitwise_or(even, bitwise_and(odd, set_lanes_8x32(0, -1, 0, -1, 0, -1, 0, -1)));
-    /* every sum below 2^18: signed compares; no weight at all draws material 0 */
-    const vector_256 weighed = greater_32(total, zero_256());
+    *draw = bitwise_or(even, bitwise_and(odd, shift_left_64(all_lanes_32<Vector>(0xFFFFFFFFu), 32)));
+}
+
+/* Lane k of levels[l] all ones where lane k's material (drawn_lanes's) is past l, for l < count - 1; zero
+   elsewhere: 8 lanes. Every sum is below 2^18: signed compares. */
+DSN_SIMD_INLINE void picked_level_lanes(const PickWindow &window, vector_256 hashes, vector_256 x,
+                                        vector_256 y, vector_256 *levels) {
+    vector_256 cumulative[dsn_point_materials_most], draw;
+    drawn_lanes(window, hashes, x, y, cumulative, &draw);
+    const vector_256 weighed = greater_32(cumulative[window.count - 1u], zero_256());
     for (uint32_t level = 0; level < 3; level++)
         levels[level] =
             level + 1u < window.count ? and_not(greater_32(cumulative[level], draw), weighed) : zero_256();
 }
+
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+/* picked_level_lanes of 16 lanes, bit k of levels[l] for lane k. */
+DSN_SIMD_INLINE void picked_level_bits(const PickWindow &window, vector_512 hashes, vector_512 x,
+                                       vector_512 y, uint32_t *levels) {
+    vector_512 cumulative[dsn_point_materials_most], draw;
+    drawn_lanes(window, hashes, x, y, cumulative, &draw);
+    const uint32_t weighed = greater_32(cumulative[window.count - 1u], zero_512());
+    for (uint32_t level = 0; level < 3; level++)
+        levels[level] =
+            level + 1u < window.count ? ~uint32_t(greater_32(cumulative[level], draw)) & weighed : 0u;
+}
+#endif
 #endif /* DSN_MIXING */
 
 } // namespace

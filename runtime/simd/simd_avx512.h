@@ -440,6 +440,11 @@ DSN_SIMD_INLINE vector_512 maximum_32(vector_512 a, vector_512 b) { return _mm51
 DSN_SIMD_INLINE vector_512 maximum_64(vector_512 a, vector_512 b) { return _mm512_max_epi64(a, b); }
 DSN_SIMD_INLINE vector_512 minimum_64(vector_512 a, vector_512 b) { return _mm512_min_epi64(a, b); }
 DSN_SIMD_INLINE vector_512 minimum_unsigned_32(vector_512 a, vector_512 b) { return _mm512_min_epu32(a, b); }
+DSN_SIMD_INLINE vector_512 minimum_32(vector_512 a, vector_512 b) { return _mm512_min_epi32(a, b); }
+/* Lane k by counts' lane k. */
+DSN_SIMD_INLINE vector_512 shift_right_logical_32_per_lane(vector_512 a, vector_512 counts) {
+    return _mm512_srlv_epi32(a, counts);
+}
 /* 8 32-bit lanes, signed, widened into 64-bit lanes. */
 DSN_SIMD_INLINE vector_512 widen_signed_32x64(vector_256 a) { return _mm512_cvtepi32_epi64(a); }
 /* The low 32 bits of each 64-bit lane. */
@@ -457,6 +462,7 @@ DSN_SIMD_INLINE mask_64 greater_unsigned_8(vector_512 a, vector_512 b) {
 DSN_SIMD_INLINE mask_64 top_bits_of_bytes(vector_512 a) { return _mm512_movepi8_mask(a); }
 DSN_SIMD_INLINE uint64_t mask_bits(mask_64 mask) { return _cvtmask64_u64(mask); }
 DSN_SIMD_INLINE mask_16 less_32(vector_512 a, vector_512 b) { return _mm512_cmplt_epi32_mask(a, b); }
+DSN_SIMD_INLINE mask_16 greater_32(vector_512 a, vector_512 b) { return _mm512_cmpgt_epi32_mask(a, b); }
 DSN_SIMD_INLINE mask_8 less_unsigned_64(mask_8 within, vector_512 a, vector_512 b) {
     return _mm512_mask_cmplt_epu64_mask(within, a, b);
 }
