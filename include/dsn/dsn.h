@@ -849,9 +849,13 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    the AVX2 and AVX-512 copies hash the 16 impulses' materials at once too); so does a continuous point
    with 8-bit textons of one size and channel count, in the AVX2 and AVX-512 copies (the continuous
    point's vector evaluator, each of 8 or 16 candidates gathering its own material's texels: the textons
-   must lie within 2^30 bytes of material 0's; where the samples around the point differ, each candidate
-   in reach reads its weights at its position, one by one); other points walk in scalar code. Tiles
-   and batches walk their points in groups. A lattice tile whose samples agree over its reach and whose
+   must lie within 2^30 bytes of material 0's); other points walk in scalar code. Where the samples
+   around a point differ, each impulse in reach reads its weights at its position: in those AVX2 and
+   AVX-512 walks 8 or 16 impulses at once (the samples gathered from the caller's grid, never past its
+   last byte), where the grid holds 4 bytes or more and a periodic axis's samples around the point do not
+   wrap more than once (grid width or height at least the reach's span in samples, and the point not
+   within the reach of the int32 wrap of x - origin), else one by one. Tiles and batches walk their points
+   in groups. A lattice tile whose samples agree over its reach and whose
    impulses draw two materials of the mix's channel count, 8-bit textons that the x86 strip path holds
    (tile_render.h), goes by that path for both at once, with or without scratch: each rectangle's impulses
    listed per material (a hash test per impulse), each material's strips summed from its texton and
@@ -861,17 +865,17 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    strips where they take it, else as one lattice tile of each material that impulses draw, from those
    impulses alone, by that material's own tile code (strips or splats) normalized with its weighted
    offset, then each value the sum of the materials'; the other bands are walked in bands of up to 32
-   rows (each impulse found once per band, its texton added to the points it reaches). Without scratch
-   a lattice tile's rows go in runs of up to 32 points (each impulse found once per run). A continuous
-   tile whose samples agree over its reach, given dsn_mix_continuous_tile_scratch_size() bytes of
+   rows (each impulse found once per band, its texton added to the points it reaches, 16 8-bit values a step).
+   Without scratch a lattice tile's rows go in runs of up to 32 points (each impulse found once per run). A
+   continuous tile whose samples agree over its reach, given dsn_mix_continuous_tile_scratch_size() bytes of
    scratch, is splatted as one material's tile is, block by block, each material's impulses (a hash test
    per impulse) into its own block sums with its texton, each normalized with its weighted offset, then
    each value the sum of the materials'. Other continuous tiles' rows and a batch's neighbours go in
    groups of up to 16
    points within 32 texels of each other (each impulse found once per group, read at the points it
-   reaches; where the group's samples agree and the vector evaluator takes the mix, each point by it
-   instead, faster); other points go one by one. make bench's mix_bench
-   reports both against one material, and the stack it paints: a lattice point call under 3 KB, a
+   reaches; where the vector evaluator takes the mix and the group's samples agree, or its impulses read
+   their weights 8 or 16 at once, each point by it instead, faster); other points go one by one. make bench's
+   mix_bench reports both against one material, and the stack it paints: a lattice point call under 3 KB, a
    continuous one under 7 KB, a filtered one about 27 KB on x86 where the weights are uniform (a material's
    sifted walk, as one material's filtered point call, about 24 KB, which it makes where the weights are one
    material's), about 43 KB where two materials alike share that walk (both materials' candidates) and 15 KB

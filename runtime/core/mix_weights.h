@@ -75,6 +75,7 @@ inline bool pick_window_axis(int32_t origin, uint32_t shift, uint32_t size, bool
     axis->origin = static_cast<uint32_t>(origin);
     axis->size = size;
     axis->periodic = periodic;
+    axis->low = axis->base = 0; /* (written whatever the answer) */
     const uint32_t bias = 0x80000000u >> shift;
     if (!periodic) {
         axis->low = 0;
@@ -94,11 +95,12 @@ inline bool pick_window_axis(int32_t origin, uint32_t shift, uint32_t size, bool
 inline bool lanes_read_control(const dsn_mix_control *control, uint32_t count, uint32_t first_x,
                                uint32_t span_x, uint32_t first_y, uint32_t span_y, PickWindowAxis *x,
                                PickWindowAxis *y) {
-    return control->width * control->height * count >= 4u &&
-           pick_window_axis(control->origin_x, control->spacing_shift, control->width,
-                            (control->flags & DSN_MIX_PERIODIC_X) != 0, first_x, span_x, x) &&
-           pick_window_axis(control->origin_y, control->spacing_shift, control->height,
-                            (control->flags & DSN_MIX_PERIODIC_Y) != 0, first_y, span_y, y);
+    /* both axes written whatever the answer */
+    const bool along_x = pick_window_axis(control->origin_x, control->spacing_shift, control->width,
+                                          (control->flags & DSN_MIX_PERIODIC_X) != 0, first_x, span_x, x);
+    const bool along_y = pick_window_axis(control->origin_y, control->spacing_shift, control->height,
+                                          (control->flags & DSN_MIX_PERIODIC_Y) != 0, first_y, span_y, y);
+    return control->width * control->height * count >= 4u && along_x && along_y;
 }
 
 /* The weights V_m at a position, in [0, 65280] (dsn.h), and their running sums: cumulative[m] =

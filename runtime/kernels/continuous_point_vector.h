@@ -971,10 +971,15 @@ inline bool mixed_visit_begin(const dsn_noise_state *noise, const dsn_point_mate
     visit->pick = materials->pick, visit->context = materials->context;
     visit->pick_x = pick_axis(x, noise->radius[0]), visit->pick_y = pick_axis(y, noise->radius[1]);
 #if DSN_MIXING
-    visit->lanes_pick =
-        Picked && materials->control != 0 &&
-        pick_window(materials->control, materials->count, visit->pick_x.whole, visit->pick_y.whole,
-                    noise->radius[0] + 2u, noise->radius[1] + 2u, &visit->window);
+    visit->lanes_pick = false;
+    if (Picked) {
+        const PickWindow unread = {}; /* (written whatever pick_window answers: no warning in any build) */
+        visit->window = unread;
+        visit->lanes_pick =
+            materials->control != 0 &&
+            pick_window(materials->control, materials->count, visit->pick_x.whole, visit->pick_y.whole,
+                        noise->radius[0] + 2u, noise->radius[1] + 2u, &visit->window);
+    }
 #endif
     for (uint32_t level = 0; level < 3; level++) {
         const uint32_t m = level + 1u < materials->count ? level + 1u : 0u;

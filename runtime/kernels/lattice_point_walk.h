@@ -555,7 +555,7 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
     material_thresholds thresholds;
     if (thresholded) thresholds = thresholds_of(materials);
 #if DSN_MIXING
-    PickWindow window;
+    PickWindow window = {};
     if (Laned)
         slots.window = materials->pick != 0 && materials->control != 0 &&
                                pick_window(materials->control, materials->count, x, y, texton->radius[0],
