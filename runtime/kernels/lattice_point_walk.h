@@ -296,11 +296,12 @@ typedef struct material_slots {
     /* Where the weights are uniform, the cells' impulses of material m or a later one, bit k for impulse
        k: at_least[m - 1][slot], hashed 16 at a time as the cell is buffered (material_masks). */
     uint16_t at_least[3][12];
-#if DSN_MIXING
-    const PickWindow *window; /* else, where not null, the hits' materials read from it on vectors */
-#endif
 #endif
 } material_slots;
+
+/* Where the weights vary, the control as mix_pick_lanes.h's lanes read it (AVX2 and AVX-512 copies), or
+   null: the pick then goes hit by hit. */
+struct PickWindow;
 
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* A cell's 16 impulses as one vector of 16 lanes (AVX-512) or two of 8 (AVX2). */
@@ -426,7 +427,7 @@ inline void picked_hits(const PickWindow *window, uint64_t hits, const material_
    hits of material m. Built as the hits of material 1 or more, 2 or more and 3 by masks, not branches:
    the materials of neighbouring impulses are as unpredictable as a mix's weights make them. */
 template <bool Laned>
-inline void split_by_material(const dsn_point_materials *materials, uint64_t hits,
+inline void split_by_material(const dsn_point_materials *materials, const PickWindow *picks, uint64_t hits,
                               const material_slots *slots, uint32_t first, uint64_t *of) {
     uint64_t one_or_more = 0, two_or_more = 0, three = 0, to_hash = hits;
 #if DSN_MATERIAL_MASKS
@@ -437,13 +438,17 @@ inline void split_by_material(const dsn_point_materials *materials, uint64_t hit
         to_hash = 0;
     }
 #if DSN_MIXING
-    if (Laned && slots->window != 0) {
+    if (Laned && picks != 0) {
         uint64_t at_least[3] = {0, 0, 0};
-        picked_hits(slots->window, hits, slots, first, at_least);
+        picked_hits(picks, hits, slots, first, at_least);
         one_or_more = at_least[0], two_or_more = at_least[1], three = at_least[2];
         to_hash = 0;
     }
+#else
+    (void)picks;
 #endif
+#else
+    (void)picks;
 #endif
     for (uint64_t left = to_hash; left != 0; left &= left - 1) {
         const uint32_t bit = uint32_t(__builtin_ctzll(left)), slot = first + (bit >> 4);
@@ -464,8 +469,8 @@ inline void split_by_material(const dsn_point_materials *materials, uint64_t hit
 
 /* The buffered hits of the mixed point summed into each material's sums (sums + 3 m). */
 template <uint32_t Channels, uint32_t Bits, bool Laned>
-inline void flush_materials(const dsn_point_materials *materials, uint16_t *masks, uint32_t cells,
-                            const uint16_t *entries, material_slots *slots, uint32_t *sums) {
+inline void flush_materials(const dsn_point_materials *materials, const PickWindow *picks, uint16_t *masks,
+                            uint32_t cells, const uint16_t *entries, material_slots *slots, uint32_t *sums) {
     for (uint32_t s = cells; s < 12; s++) masks[s] = 0;
 #if DSN_MATERIAL_MASKS
     for (uint32_t s = cells; s < 12; s++)
@@ -476,7 +481,7 @@ inline void flush_materials(const dsn_point_materials *materials, uint16_t *mask
     for (uint32_t word = 0; word < 3; word++) {
         uint64_t hits, of[dsn_point_materials_most];
         __builtin_memcpy(&hits, masks + 4 * word, sizeof hits);
-        split_by_material<Laned>(materials, hits, slots, 4 * word, of);
+        split_by_material<Laned>(materials, picks, hits, slots, 4 * word, of);
         for (uint32_t m = 0; m < dsn_point_materials_most; m++)
             if (m < materials->count)
                 sum_hits<Channels, Bits>(materials->values[m], of[m], entries + 64 * word, 0u, &hit[m]);
@@ -490,9 +495,9 @@ inline void flush_materials(const dsn_point_materials *materials, uint16_t *mask
 template <uint32_t Channels, uint32_t Bits, uint32_t Points, bool Mixed, bool Laned>
 inline void flush_walked(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
                          const uint16_t *entries, hit_sums *hit, material_slots *slots,
-                         const dsn_point_materials *materials, uint32_t *sums) {
+                         const dsn_point_materials *materials, const PickWindow *picks, uint32_t *sums) {
     if (Mixed)
-        flush_materials<Channels, Bits, Laned>(materials, masks, cells, entries, slots, sums);
+        flush_materials<Channels, Bits, Laned>(materials, picks, masks, cells, entries, slots, sums);
     else
         flush_cells<Channels, Bits, Points>(texton, width, masks, cells, entries, hit, sums);
 }
@@ -554,15 +559,14 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
     const bool thresholded = Mixed && materials->pick == 0;
     material_thresholds thresholds;
     if (thresholded) thresholds = thresholds_of(materials);
-#if DSN_MIXING
-    PickWindow window = {};
-    if (Laned)
-        slots.window = materials->pick != 0 && materials->control != 0 &&
-                               pick_window(materials->control, materials->count, x, y, texton->radius[0],
-                                           texton->radius[1], &window)
-                           ? &window
-                           : 0;
 #endif
+    const PickWindow *picks = 0; /* (the mixed point's, where Laned) */
+#if DSN_MATERIAL_MASKS && DSN_MIXING
+    PickWindow window = {};
+    if (Laned && materials->pick != 0 && materials->control != 0 &&
+        pick_window(materials->control, materials->count, x, y, texton->radius[0], texton->radius[1],
+                    &window))
+        picks = &window;
 #endif
     uint32_t slot = 0;
     hit_sums hit = {0, zero_128()};
@@ -596,7 +600,7 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
             }
             if (slot == 9) {
                 flush_walked<Channels, Bits, Points, Mixed, Laned>(texton->values, width, masks, 9, entries,
-                                                                   &hit, &slots, materials, sums);
+                                                                   &hit, &slots, materials, picks, sums);
                 slot = 0;
             }
             const uint32_t count = dsn_poisson_count_two_steps(noise, key);
@@ -629,7 +633,7 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
         }
     }
     flush_walked<Channels, Bits, Points, Mixed, Laned>(texton->values, width, masks, slot, entries, &hit,
-                                                       &slots, materials, sums);
+                                                       &slots, materials, picks, sums);
 }
 
 /* Whether the 16 x 16 cells' vector walk takes the noise. dsn_poisson_count_two_steps reads up to
