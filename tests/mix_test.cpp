@@ -110,6 +110,28 @@ dsn_mix on_kernel(const dsn_mix &mix, uint32_t kernel) {
     return copy;
 }
 
+// Four 8-bit materials of `channels` channels (31 x 31, 30 impacts) and their twins stored in 16 bits (the
+// same values and scales: the same noises), which the kernels' vector evaluators leave to the generic walk;
+// mixes of the first `count` of each.
+struct TwinMaterials {
+    std::vector<std::unique_ptr<Noise>> narrow, wide;
+    TwinMaterials(uint32_t channels, uint32_t asset_seed, uint32_t noise_seed) {
+        for (uint32_t m = 0; m < 4; m++) {
+            dsn::AssetFields fields = random_texton_asset(channels, 15, 8, asset_seed + m);
+            narrow.push_back(make_noise(fields, noise_seed + m, 30u << 16));
+            fields.bits = 16;
+            wide.push_back(make_noise(fields, noise_seed + m, 30u << 16));
+        }
+    }
+    void mixes(uint32_t count, dsn_mix *mix, dsn_mix *wide_mix) const {
+        std::vector<const dsn_noise *> list, wide_list;
+        for (uint32_t m = 0; m < count; m++)
+            list.push_back(&narrow[m]->noise), wide_list.push_back(&wide[m]->noise);
+        REQUIRE(dsn_mix_init(mix, list.data(), count) == DSN_OK);
+        REQUIRE(dsn_mix_init(wide_mix, wide_list.data(), count) == DSN_OK);
+    }
+};
+
 } // namespace
 
 TEST_CASE("mix: where the weights are material 0's, the bits of its own noise, lattice and continuous") {
@@ -438,31 +460,20 @@ TEST_CASE("mix: lattice points of materials of one texton size, through every ke
 TEST_CASE(
     "mix: continuous points of materials of one texton size, through the kernels' vector evaluator, are "
     "the generic walk's") {
-    // The reference: the same textons stored in 16 bits (the same values and scales: the same noise), which
-    // the vector evaluator leaves to the generic walk.
+    // The reference: the twins stored in 16 bits (TwinMaterials).
     std::mt19937_64 random(29);
     for (const uint32_t channels : {3u, 1u}) {
         CAPTURE(channels);
-        std::vector<std::unique_ptr<Noise>> noises, wide;
-        for (uint32_t m = 0; m < 4; m++) {
-            dsn::AssetFields fields = random_texton_asset(channels, 15, 8, 50 + m);
-            noises.push_back(make_noise(fields, 3 + m, 30u << 16));
-            fields.bits = 16;
-            wide.push_back(make_noise(fields, 3 + m, 30u << 16));
-        }
+        const TwinMaterials twins(channels, 50, 3);
         // the twins are one noise
         int32_t narrow_value[3] = {}, wide_value[3] = {};
-        dsn_continuous_point_fixed(&noises[0]->noise, kOne / 3, kOne / 7, narrow_value);
-        dsn_continuous_point_fixed(&wide[0]->noise, kOne / 3, kOne / 7, wide_value);
+        dsn_continuous_point_fixed(&twins.narrow[0]->noise, kOne / 3, kOne / 7, narrow_value);
+        dsn_continuous_point_fixed(&twins.wide[0]->noise, kOne / 3, kOne / 7, wide_value);
         REQUIRE(std::memcmp(narrow_value, wide_value, sizeof narrow_value) == 0);
         for (uint32_t count = 2; count <= 4; count++) {
             CAPTURE(count);
-            std::vector<const dsn_noise *> list, wide_list;
-            for (uint32_t m = 0; m < count; m++)
-                list.push_back(&noises[m]->noise), wide_list.push_back(&wide[m]->noise);
             dsn_mix mix, wide_mix;
-            REQUIRE(dsn_mix_init(&mix, list.data(), count) == DSN_OK);
-            REQUIRE(dsn_mix_init(&wide_mix, wide_list.data(), count) == DSN_OK);
+            twins.mixes(count, &mix, &wide_mix);
             const std::vector<uint8_t> uneven_weights = {30, 200, 0, 90};
             const Control even = constant(std::vector<uint8_t>(count, 128));
             const Control uneven =
@@ -524,21 +535,11 @@ TEST_CASE(
     std::mt19937_64 random(31);
     for (const uint32_t channels : {3u, 1u}) {
         CAPTURE(channels);
-        std::vector<std::unique_ptr<Noise>> noises, wide;
-        for (uint32_t m = 0; m < 4; m++) {
-            dsn::AssetFields fields = random_texton_asset(channels, 15, 8, 60 + m);
-            noises.push_back(make_noise(fields, 9 + m, 30u << 16));
-            fields.bits = 16;
-            wide.push_back(make_noise(fields, 9 + m, 30u << 16));
-        }
+        const TwinMaterials twins(channels, 60, 9);
         for (uint32_t count = 2; count <= 4; count++) {
             CAPTURE(count);
-            std::vector<const dsn_noise *> list, wide_list;
-            for (uint32_t m = 0; m < count; m++)
-                list.push_back(&noises[m]->noise), wide_list.push_back(&wide[m]->noise);
             dsn_mix mix, wide_mix;
-            REQUIRE(dsn_mix_init(&mix, list.data(), count) == DSN_OK);
-            REQUIRE(dsn_mix_init(&wide_mix, wide_list.data(), count) == DSN_OK);
+            twins.mixes(count, &mix, &wide_mix);
             const auto weights_at = [&](uint32_t i, uint32_t j) {
                 std::vector<uint8_t> weights(count);
                 for (uint32_t m = 0; m < count; m++)
