@@ -56,8 +56,8 @@ static inline void dsn_map_output(const dsn_noise_state *noise, int32_t *out) {
 
 /* Q_k sums (uint32, modulo 2^32) -> Q16.16 values before the mapping, from `offset`: the noise's own, or
    zeros for a difference of sums (a gradient), which the mean does not reach. */
-static inline void dsn_normalize_from(const dsn_noise_state *noise, const int64_t *offset,
-                                      const uint32_t *sums, int32_t *out) {
+DSN_INLINE void dsn_normalize_from(const dsn_noise_state *noise, const int64_t *offset, const uint32_t *sums,
+                                   int32_t *out) {
     const uint32_t shift = noise->gain_shift;
     const int64_t *gain = noise->gain;
 #if DSN_SMALL_CODE

@@ -1,5 +1,6 @@
-/* runtime/core/shared_inline.h - how the helpers shared by the evaluators are compiled (DSN_SHARED): inlined
-   where speed matters, one out-of-line copy each in the small build. Internal to libdsn; not installed. */
+/* runtime/core/shared_inline.h - how the helpers shared by the evaluators are compiled (DSN_SHARED,
+   DSN_INLINE): inlined where speed matters, one out-of-line copy each in the small build. Internal to libdsn;
+   not installed. */
 #ifndef DSN_SHARED_INLINE_H
 #define DSN_SHARED_INLINE_H
 
@@ -13,6 +14,14 @@
 #define DSN_SHARED inline __attribute__((noinline, noclone))
 #else
 #define DSN_SHARED static inline
+#endif
+
+/* A small helper called several times in a row (the three normalizations of a lattice point's gradient),
+   where GCC would keep the calls: inlined at each, but in the small build. */
+#if !DSN_SMALL_CODE && defined(__GNUC__)
+#define DSN_INLINE static inline __attribute__((always_inline))
+#else
+#define DSN_INLINE static inline
 #endif
 
 #endif /* DSN_SHARED_INLINE_H */

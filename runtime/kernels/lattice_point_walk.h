@@ -133,7 +133,11 @@ inline vector_128 rgb_values(const unsigned char *entry) {
         uint32_t bytes;
         __builtin_memcpy(&bytes, entry, sizeof bytes);
         const vector_128 values = set_low_32(static_cast<int>(bytes)); /* the bits unchanged */
+#if defined(__AVX2__)
+        return widen_signed_8_to_16(values);
+#else
         return shift_right_arithmetic_16(unpack_low_8(values, values), 8);
+#endif
     }
     const vector_128 values = load_low_8x8(entry);
     return shift_right_arithmetic_32(unpack_low_16(values, values), 16);
@@ -147,6 +151,18 @@ inline void add_hit_value(const unsigned char *entry, hit_sums *sums) {
     else
         sums->rgb = Bits == 8 ? add_16(sums->rgb, rgb_values<Bits>(entry))
                               : add_32(sums->rgb, rgb_values<Bits>(entry));
+}
+
+/* add_hit_value where `in` is 1, else adding zeros (the values read at `entry`, a texel of the texton, and
+   masked). */
+template <uint32_t Channels, uint32_t Bits>
+inline void add_hit_value_if(const unsigned char *entry, uint32_t in, hit_sums *sums) {
+    if (Channels == 1) {
+        sums->grey += grey_value<Bits>(entry) & (0u - in);
+        return;
+    }
+    const vector_128 values = bitwise_and(rgb_values<Bits>(entry), set_2x64(-int64_t(in)));
+    sums->rgb = Bits == 8 ? add_16(sums->rgb, values) : add_32(sums->rgb, values);
 }
 
 /* Number of set bits (SWAR: the popcnt instruction is not in the SSE2 baseline). */
@@ -165,9 +181,46 @@ template <uint32_t Channels, uint32_t Bits>
 inline void sum_hits(const unsigned char *texton, uint64_t hits, const uint16_t *entries, uint32_t moved,
                      hit_sums *sums) {
     for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
-        const uint16_t index = uint16_t(entries[__builtin_ctzll(hits)] + moved);
+        const uint16_t index = uint16_t(entries[lowest_bit(hits)] + moved);
         add_hit_value<Channels, Bits>(texton + size_t(index) * Channels * (Bits / 8), sums);
     }
+}
+
+/* The hits of three 64-bit words (bit b of word w: hit 64 w + b), visited in one loop: the empty words
+   dropped first, then each word moved down as the one before it empties, by masks rather than branches
+   (hit_words_of, next_hit). For a few hits spread over the words (the gradient's edge hits): each loop's
+   exit is hard to predict, and costs more than the moves. Many hits keep a loop per word, whose step
+   is one instruction long where the moves make it five. */
+typedef struct hit_words {
+    uint64_t bits[3];
+    uint32_t base[3]; /* the hit number of each word's bit 0 */
+} hit_words;
+
+/* Where words->bits[at] is empty, the words past it move down one. */
+inline void drop_if_empty(hit_words *words, uint32_t at) {
+    const uint64_t moves = uint64_t(0) - uint64_t(words->bits[at] == 0);
+    for (uint32_t w = at; w < 2; w++) {
+        words->bits[w] = (words->bits[w] & ~moves) | (words->bits[w + 1] & moves);
+        words->base[w] ^= (words->base[w] ^ words->base[w + 1]) & uint32_t(moves);
+    }
+    words->bits[2] &= ~moves;
+}
+
+/* The words with the empty ones dropped. */
+inline hit_words hit_words_of(uint64_t first, uint64_t second, uint64_t third) {
+    hit_words words = {{first, second, third}, {0, 64, 128}};
+    drop_if_empty(&words, 1);
+    drop_if_empty(&words, 0);
+    return words;
+}
+
+/* The next hit's number, taken from the words: to be called as many times as they have hits (popcount64
+   of each word, summed). */
+inline uint32_t next_hit(hit_words *words) {
+    const uint32_t hit = words->base[0] + lowest_bit(words->bits[0]);
+    words->bits[0] &= words->bits[0] - 1;
+    drop_if_empty(words, 0);
+    return hit;
 }
 
 /* Adds the hit sums to the channel sums (sign-extended, modulo 2^32) and clears them. */
@@ -207,15 +260,36 @@ inline void sum_buffered_hits(const unsigned char *texton, uint16_t *masks, uint
 
 /* The hits common to a point and its right and lower neighbours (the gradient's three points), each
    visited once: its entry read for the point, the next for the right neighbour, one row down for the lower
-   one. RGB 8-bit: the point's texel and the next, adjacent, read by two 4-byte loads
-   into one vector (16-bit lanes 0-2 and 4-6) and summed by one addition, in point->rgb until the flush
-   splits them (flush_three). */
+   one. RGB 8-bit: the point's texel and the next, adjacent, read into one vector and summed by one
+   addition, in point->rgb until the flush splits them (flush_three): by two 4-byte loads on SSE2 (16-bit
+   lanes 0-2 and 4-6); by one sign-extending load of 8 bytes where SSE4.1 is there (AVX2 and AVX-512
+   copies: lanes 0-2 and 3-5), which reads 2 bytes past the next texel, and the lower texel by one of 4
+   bytes into 32-bit lanes. */
+#if defined(__AVX2__)
+const uint32_t common_right_lane = 3; /* the lane of sum_common_hits' right texel, RGB 8-bit */
+#else
+const uint32_t common_right_lane = 4;
+#endif
+
 template <uint32_t Channels, uint32_t Bits>
 inline void sum_common_hits(const unsigned char *texton, uint32_t width, uint64_t hits,
                             const uint16_t *entries, hit_sums *point, hit_sums *right, hit_sums *lower) {
     const size_t texel = Channels * (Bits / 8);
+#if defined(__AVX2__)
+    if (Channels == 3 && Bits == 8) {
+        /* A common hit's entry is the point's own, a texel of the texton, so the lower one's, index + width,
+           is below 255 * 256 with no wrap: its texel is at lower_texton + index texels. */
+        const unsigned char *lower_texton = texton + size_t(width) * texel;
+        for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
+            const size_t at = size_t(entries[lowest_bit(hits)]) * texel;
+            point->rgb = add_16(point->rgb, load_signed_8x8_to_16(texton + at));
+            lower->rgb = add_32(lower->rgb, load_signed_8x4_to_32(lower_texton + at));
+        }
+        return;
+    }
+#endif
     for (uint32_t left = popcount64(hits); left != 0; left--, hits &= hits - 1) {
-        const uint16_t index = entries[__builtin_ctzll(hits)];
+        const uint16_t index = entries[lowest_bit(hits)];
         const unsigned char *entry = texton + size_t(index) * texel;
         if (Channels == 3 && Bits == 8) {
             uint32_t here, next;
@@ -232,9 +306,32 @@ inline void sum_common_hits(const unsigned char *texton, uint32_t width, uint64_
     }
 }
 
+/* The hits of the three points not common to all three (a column or row at a window's edge), bit 64 w + b
+   set in edges[w] where some point's word hits[p][w] has it: one visit each, without a branch, adding its
+   texel to each point it hits and zeros to the others (texel 0 read, masked). */
+template <uint32_t Channels, uint32_t Bits>
+inline void sum_edge_hits(const unsigned char *texton, uint32_t width, const uint64_t (*hits)[3],
+                          const uint64_t *edges, const uint16_t *entries, hit_sums *point, hit_sums *right,
+                          hit_sums *lower) {
+    const size_t texel = Channels * (Bits / 8);
+    hit_words words = hit_words_of(edges[0], edges[1], edges[2]);
+    for (uint32_t left = popcount64(edges[0]) + popcount64(edges[1]) + popcount64(edges[2]); left != 0;
+         left--) {
+        const uint32_t hit = next_hit(&words);
+        const uint32_t word = hit >> 6, bit = hit & 63u, entry = entries[hit];
+        const uint32_t in[3] = {uint32_t(hits[0][word] >> bit) & 1u, uint32_t(hits[1][word] >> bit) & 1u,
+                                uint32_t(hits[2][word] >> bit) & 1u};
+        add_hit_value_if<Channels, Bits>(texton + size_t(entry & (0u - in[0])) * texel, in[0], point);
+        add_hit_value_if<Channels, Bits>(texton + size_t(((entry + 1u) & 0xFFFFu) & (0u - in[1])) * texel,
+                                         in[1], right);
+        add_hit_value_if<Channels, Bits>(texton + size_t(((entry + width) & 0xFFFFu) & (0u - in[2])) * texel,
+                                         in[2], lower);
+    }
+}
+
 /* The buffered hits of the three points: those common to all three by sum_common_hits, the rest (a column
-   or row at a window's edge) point by point. A lane sums at most the 9 x 16 hits of one point between two
-   flushes. */
+   or row at a window's edge) by sum_edge_hits. A lane sums at most the 9 x 16 hits of one point between
+   two flushes. */
 template <uint32_t Channels, uint32_t Bits>
 inline void flush_three(const unsigned char *texton, uint32_t width, uint16_t *masks, uint32_t cells,
                         const uint16_t *entries, uint32_t *sums) {
@@ -242,24 +339,27 @@ inline void flush_three(const unsigned char *texton, uint32_t width, uint16_t *m
     /* Named sums, not arrays: kept in registers. */
     hit_sums point = {0, zero_128()}, right = point, lower = point, point_edge = point, right_edge = point,
              lower_edge = point;
+    uint64_t hits[3][3], edges[3];
     for (uint32_t word = 0; word < 3; word++) {
-        uint64_t hits[3];
         for (uint32_t p = 0; p < 3; p++)
-            __builtin_memcpy(&hits[p], masks + 12 * p + 4 * word, sizeof hits[p]);
-        const uint64_t common = hits[0] & hits[1] & hits[2];
-        const uint16_t *cell_entries = entries + 64 * word;
-        sum_common_hits<Channels, Bits>(texton, width, common, cell_entries, &point, &right, &lower);
-        sum_hits<Channels, Bits>(texton, hits[0] & ~common, cell_entries, 0u, &point_edge);
-        sum_hits<Channels, Bits>(texton, hits[1] & ~common, cell_entries, 1u, &right_edge);
-        sum_hits<Channels, Bits>(texton, hits[2] & ~common, cell_entries, width, &lower_edge);
+            __builtin_memcpy(&hits[p][word], masks + 12 * p + 4 * word, sizeof hits[p][word]);
+        const uint64_t common = hits[0][word] & hits[1][word] & hits[2][word];
+        edges[word] = (hits[0][word] | hits[1][word] | hits[2][word]) & ~common;
+        sum_common_hits<Channels, Bits>(texton, width, common, entries + 64 * word, &point, &right, &lower);
     }
-    if (Channels == 3 && Bits == 8) /* the right neighbour's common hits in lanes 4-6 of the point's */
-        right.rgb = shift_right_bytes<8>(point.rgb);
+    sum_edge_hits<Channels, Bits>(texton, width, hits, edges, entries, &point_edge, &right_edge, &lower_edge);
+    if (Channels == 3 && Bits == 8) /* the right neighbour's common hits in lanes 3-5 or 4-6 of the point's */
+        right.rgb = shift_right_bytes<common_right_lane * 2>(point.rgb);
     flush_hit_sums<Channels, Bits>(&point, sums);
     flush_hit_sums<Channels, Bits>(&point_edge, sums);
     flush_hit_sums<Channels, Bits>(&right, sums + 3);
     flush_hit_sums<Channels, Bits>(&right_edge, sums + 3);
-    flush_hit_sums<Channels, Bits>(&lower, sums + 6);
+#if defined(__AVX2__)
+    if (Channels == 3 && Bits == 8) /* sum_common_hits' lower sums in 32-bit lanes, as 16-bit values' */
+        flush_hit_sums<Channels, 16>(&lower, sums + 6);
+    else
+#endif
+        flush_hit_sums<Channels, Bits>(&lower, sums + 6);
     flush_hit_sums<Channels, Bits>(&lower_edge, sums + 6);
 }
 
@@ -396,7 +496,7 @@ inline void picked_hits(const PickWindow *window, uint64_t hits, const material_
     uint32_t streams[64 + 8], xs[64 + 8], ys[64 + 8];
     uint32_t listed = 0;
     for (uint64_t left = hits; left != 0; left &= left - 1, listed++) {
-        const uint32_t bit = uint32_t(__builtin_ctzll(left)), slot = first + (bit >> 4);
+        const uint32_t bit = lowest_bit(left), slot = first + (bit >> 4);
         const uint32_t field = slots->fields[16 * first + bit];
         /* dsn_material_hash's stream, hashed on the lanes */
         streams[listed] = slots->keys[slot] + (0xC0000000u + (bit & 15u)) * 0x9E3779B9u;
@@ -451,7 +551,7 @@ inline void split_by_material(const dsn_point_materials *materials, const PickWi
     (void)picks;
 #endif
     for (uint64_t left = to_hash; left != 0; left &= left - 1) {
-        const uint32_t bit = uint32_t(__builtin_ctzll(left)), slot = first + (bit >> 4);
+        const uint32_t bit = lowest_bit(left), slot = first + (bit >> 4);
         const uint32_t field = slots->fields[16 * first + bit];
         const uint32_t m =
             material_of(materials, slots->keys[slot], bit & 15u, slots->origins_x[slot] + (field & 15u),
@@ -539,13 +639,20 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
        every x86 compiler) */
     const vector_128 widths_less_16 = set_8x16(static_cast<int16_t>((width - 16) & 0xFFFFu)),
                      sixteen = set_8x16(16);
-    /* Only the first and last columns cut the texton: a column j between them is within it whole. Its
-       reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at most 2 radius - 1 < width; and column
-       j + 1 is reached, so its reach is at least 16. (With the neighbours every column's ranges are
-       computed: the walk's columns may reach one point and not the other.) */
-    const lane_range first_range = x_range_of(reach_x, width),
-                     last_range = x_range_of(reach_x - 16 * (columns - 1), width),
-                     whole_range = {zero_128(), set_16x8(15)};
+    /* Only the first and last columns cut the texton: a column j between them is within it whole, for the
+       point and for its right neighbour. Its reach, reach_x - 16 j with reach_x <= 2 radius + 15, is at
+       most 2 radius - 1, and the neighbour's 2 radius, both below the width (2 radius + 1 or + 2); and
+       column j + 1 is reached, so its reach is at least 16. The edge columns may reach one of the point
+       and its neighbour and not the other: `live` says which (all ones or 0). */
+    const uint32_t last_reach = reach_x - 16 * (columns - 1);
+    const lane_range whole = {zero_128(), set_16x8(15)};
+    const lane_range first_ranges[2] = {x_range_of(reach_x, width), x_range_of(reach_x + reached, width)},
+                     last_ranges[2] = {x_range_of(last_reach, width),
+                                       x_range_of(last_reach + reached, width)},
+                     whole_ranges[2] = {whole, whole};
+    const uint32_t first_live[2] = {live_range(reach_x, width), live_range(reach_x + reached, width)},
+                   last_live[2] = {live_range(last_reach, width), live_range(last_reach + reached, width)},
+                   whole_live[2] = {0xFFFFu, 0xFFFFu};
     /* The hits of up to 9 cells wait until all are tested (the 3 x 3 cells of the usual 31 x 31 texton:
        one wait per point): cell s's mask in masks[s], its entries at entries[16 s]. Visiting hits ends
        with a loop exit that depends on the last cell's mask, hard to predict. When the masks were made
@@ -584,16 +691,11 @@ void accumulate_cells16(const dsn_noise_state *noise, const dsn_texton_window *t
             const uint32_t key = dsn_mix32((cell_x ^ noise->seed_column) + row_key);
             const vector_128 key_vector = set_low_32(static_cast<int>(key)); /* the bits unchanged */
             const uint32_t column_reach = reach_x - 16 * j;
-            lane_range column_range[2] = {j == 0             ? first_range
-                                          : j + 1 == columns ? last_range
-                                                             : whole_range,
-                                          whole_range};
+            const bool first = j == 0, last = j + 1 == columns;
+            const lane_range *column_range = first ? first_ranges : last ? last_ranges : whole_ranges;
             uint32_t live[3] = {0, 0, 0};
             if (Points == 3) {
-                column_range[0] = x_range_of(column_reach, width);
-                column_range[1] = x_range_of(column_reach + 1u, width);
-                const uint32_t column_live[2] = {live_range(column_reach, width),
-                                                 live_range(column_reach + 1u, width)};
+                const uint32_t *column_live = first ? first_live : last ? last_live : whole_live;
                 live[0] = column_live[0] & row_live[0];
                 live[1] = column_live[1] & row_live[0];
                 live[2] = column_live[0] & row_live[1];

@@ -45,6 +45,18 @@ DSN_SIMD_INLINE void store_4x64(int64_t *at, vector_256 value) {
 DSN_SIMD_INLINE void store_4x64(uint64_t *at, vector_256 value) {
     _mm256_storeu_si256(static_cast<__m256i *>(static_cast<void *>(at)), value);
 }
+/* 128-bit sign-extending loads (SSE4.1, which both copies have), for the lattice point's texel sums:
+   the 8 signed bytes at `at` as 16-bit lanes, and the 4 at `at` as 32-bit lanes. */
+DSN_SIMD_INLINE vector_128 load_signed_8x8_to_16(const unsigned char *at) {
+    return _mm_cvtepi8_epi16(_mm_loadl_epi64(static_cast<const __m128i *>(static_cast<const void *>(at))));
+}
+DSN_SIMD_INLINE vector_128 load_signed_8x4_to_32(const unsigned char *at) {
+    int32_t bytes;
+    __builtin_memcpy(&bytes, at, sizeof bytes);
+    return _mm_cvtepi8_epi32(_mm_cvtsi32_si128(bytes));
+}
+/* The low 8 bytes of a, signed, as 16-bit lanes. */
+DSN_SIMD_INLINE vector_128 widen_signed_8_to_16(vector_128 a) { return _mm_cvtepi8_epi16(a); }
 /* Lane k: the 32 bits at base + Scale offsets[k] bytes where mask's lane k has its top bit set, else 0. */
 template <int Scale>
 DSN_SIMD_INLINE vector_256 gather_masked_32(const void *base, vector_256 offsets, vector_256 mask) {
