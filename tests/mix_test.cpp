@@ -1285,6 +1285,74 @@ TEST_CASE("mix: filtered points where the weights mix read 8-bit levels through 
     CHECK(differences == 0);
 }
 
+TEST_CASE("mix: filtered points where the weights vary, their materials picked on vectors (the AVX2 and "
+          "AVX-512 copies), are the default copy's") {
+    // Each tap's impulses listed, then their materials picked 8 at a time from the control where the lanes
+    // read it around the tap (kernels.h's dsn_mix_picks_entry), else one by one, as the default copy
+    // always does. Controls larger than a tap's reach, samples 1, 4 and 16 texels apart, periodic and
+    // clamped axes, origins on both sides; points near the controls, anywhere, and by the wrap of x -
+    // origin_x; levels of detail about 0.6 and 1.6 and one anisotropic footprint.
+    const PyramidMaterials made = pyramid_materials(401, {1 << 22, -(1 << 21), 1 << 20});
+    const dsn_mix three = make_mix({&made.lead->noise, &made.small->noise, &made.wide->noise});
+    const dsn_mix two = make_mix({&made.lead->noise, &made.small->noise});
+    std::mt19937_64 random(43);
+    size_t differences = 0, compared = 0;
+    for (const dsn_mix *mix : {&two, &three}) {
+        const uint32_t count = dsn_mix_state_of(mix)->count;
+        const auto weights_at = [&](uint32_t i, uint32_t j) {
+            std::vector<uint8_t> weights(count);
+            for (uint32_t m = 0; m < count; m++)
+                weights[m] = (i * 3 + j + m) % 5 == 0 ? 0 : uint8_t((i * 89 + j * 43 + m * 67) % 256);
+            if ((i + j) % 11 == 4) weights.assign(count, 0);
+            return weights;
+        };
+        struct Kind {
+            uint32_t width, height, spacing_shift, flags;
+            int32_t origin_x, origin_y;
+        };
+        const Kind kinds[] = {{90, 70, 0, 0, 5, -7},
+                              {64, 48, 2, DSN_MIX_PERIODIC_X, -40, 13},
+                              {80, 60, 0, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 3, 2},
+                              {12, 9, 4, DSN_MIX_PERIODIC_Y, 70, -90}};
+        for (const Kind &kind : kinds) {
+            Control control(count, kind.width, kind.height, kind.spacing_shift, weights_at, kind.flags);
+            control.control.origin_x = kind.origin_x, control.control.origin_y = kind.origin_y;
+            const uint64_t extent_x = uint64_t(kind.width) << kind.spacing_shift,
+                           extent_y = uint64_t(kind.height) << kind.spacing_shift;
+            for (int k = 0; k < 30; k++) {
+                int64_t x = int64_t(random()), y = int64_t(random());
+                if (k % 3 != 0) {
+                    x = int64_t((uint64_t(uint32_t(kind.origin_x)) + random() % (extent_x + 80) - 40) << 32) +
+                        int64_t(random() >> 32);
+                    y = int64_t((uint64_t(uint32_t(kind.origin_y)) + random() % (extent_y + 80) - 40) << 32) +
+                        int64_t(random() >> 32);
+                }
+                if (k % 3 == 2)
+                    x = int64_t(uint64_t(uint32_t(kind.origin_x) + 0x80000000u - 20u + random() % 40) << 32) +
+                        int64_t(random() >> 32);
+                for (const dsn_footprint &footprint :
+                     {pyramid_footprints[0], pyramid_footprints[1], pyramid_footprints[3]}) {
+                    const dsn_mix reference = on_kernel(*mix, DSN_KERNEL_DEFAULT);
+                    int32_t expected[3];
+                    REQUIRE(dsn_mix_filtered_point_fixed(&reference, &control.control, x, y, &footprint,
+                                                         expected) == DSN_OK);
+                    for (uint32_t kernel = DSN_KERNEL_DEFAULT + 1;
+                         kernel <= dsn_mix_state_of(mix)->material[0].tile_kernel; kernel++) {
+                        const dsn_mix copy = on_kernel(*mix, kernel);
+                        int32_t value[3];
+                        REQUIRE(dsn_mix_filtered_point_fixed(&copy, &control.control, x, y, &footprint,
+                                                             value) == DSN_OK);
+                        differences += std::memcmp(value, expected, sizeof value) != 0;
+                        compared++;
+                    }
+                }
+            }
+        }
+    }
+    INFO(compared << " points compared");
+    CHECK(differences == 0);
+}
+
 TEST_CASE("mix: filtered points where the weights are uniform (each material's sifted walk over the "
           "impulses that draw it) have the bits of the mix's walk") {
     // Equal weights in every sample: the draws and the point's weights depend on the weights' ratios alone,

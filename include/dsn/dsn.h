@@ -878,7 +878,7 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    mix_bench reports both against one material, and the stack it paints: a lattice point call under 3 KB, a
    continuous one under 7 KB, a filtered one about 27 KB on x86 where the weights are uniform (a material's
    sifted walk, as one material's filtered point call, about 24 KB, which it makes where the weights are one
-   material's), about 43 KB where two materials alike share that walk (both materials' candidates) and 15 KB
+   material's), about 43 KB where two materials alike share that walk (both materials' candidates) and 18 KB
    where they vary, a mixed tile call under 4 KB but where a tile or band goes by
    material passes (then a material's tile call's, as dsn_lattice_tile_fixed's, and a copy of the material) or
    by the two-material strips (two materials' strip paths: about 128 KB on x86, twice one material's tile
@@ -888,8 +888,9 @@ int dsn_filtered_tile_gradient_float(const dsn_noise *noise, const dsn_grid *gri
    AVX-512 copies listing the candidates on vectors), over the impulses whose hashes draw that material (two
    materials with 8-bit levels of one size and channels in one walk there, each candidate listed into its
    material's list); where
-   they vary, it finds each impulse once per tap (within the largest of the materials' reaches), then reads
-   each material's impulses, on vectors for 8-bit levels in the AVX2 and AVX-512 copies. dsn/dsn.glsl
+   they vary, it finds each impulse once per tap (within the largest of the materials' reaches), picks the
+   materials of a tap's impulses together (8 at a time from the control in the AVX2 and AVX-512 copies),
+   then reads each material's impulses, on vectors for 8-bit levels in those copies. dsn/dsn.glsl
    evaluates the lattice and continuous mix per point with these bits, from the words of dsn_gpu_mix_pack
    (dsn/gpu.h). Not in the small build (DSN_MIXING). */
 #if DSN_MIXING

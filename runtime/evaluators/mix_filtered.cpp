@@ -111,10 +111,58 @@ void read_waiting(const dsn_noise_state *material, const MaterialLevels &own, Wa
     waiting->count = 0;
 }
 
+/* The impulses of one tap within the largest reach, listed to pick their materials together: their
+   impulse-to-point offsets (Q32.32), material hashes and integer positions. */
+const uint32_t listed_most = 64;
+struct ListedImpulses {
+    int64_t x[listed_most], y[listed_most];
+    uint32_t hashes[listed_most], whole_x[listed_most], whole_y[listed_most];
+    uint32_t count;
+};
+
+/* Where a tap lists its impulses: the tap, the largest of the materials' reaches, and the sums of its
+   levels for each material (sums[m][tap]). */
+struct ListingTap {
+    uint64_t x, y;
+    uint32_t radius_x, radius_y, tap;
+};
+
+/* The listed impulses' materials: 8 at a time by the kernel's lanes where it has them and they read the
+   control around the tap (every listed impulse lies within the largest radius + 1 of it, so its integer
+   position within radius + 2 of the tap's), else one by one (hashed_material); then each impulse waits for
+   its material's reads where it lies within its levels' reach. */
+void pick_listed(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
+                 const ListingTap &tap, const MaterialLevels *levels, ListedImpulses *listed,
+                 WaitingImpulses *waiting, dsn_filter_sums *sums) {
+    uint32_t materials[listed_most];
+    dsn_mix_picks_entry *picks =
+        region.single || region.uniform ? 0 : dsn_kernel_entries_of(mix->material[0].tile_kernel)->mix_picks;
+    if (picks == 0 || !picks(control, mix->count, static_cast<uint32_t>(tap.x >> 32),
+                             static_cast<uint32_t>(tap.y >> 32), tap.radius_x + 2u, tap.radius_y + 2u,
+                             listed->hashes, listed->whole_x, listed->whole_y, listed->count, materials))
+        for (uint32_t i = 0; i < listed->count; i++)
+            materials[i] = hashed_material(control, mix->count, region, listed->hashes[i],
+                                           static_cast<uint64_t>(listed->whole_x[i]) << 32,
+                                           static_cast<uint64_t>(listed->whole_y[i]) << 32);
+    for (uint32_t i = 0; i < listed->count; i++) {
+        const uint32_t m = materials[i];
+        const MaterialLevels &own = levels[m];
+        if (own.count == 0 || !within_reach(listed->x[i], own.radius_x) ||
+            !within_reach(listed->y[i], own.radius_y))
+            continue;
+        WaitingImpulses *own_waiting = &waiting[m];
+        own_waiting->x[own_waiting->count] = listed->x[i];
+        own_waiting->y[own_waiting->count] = listed->y[i];
+        if (++own_waiting->count == waiting_most)
+            read_waiting(&mix->material[m], own, own_waiting, sums[m][tap.tap]);
+    }
+    listed->count = 0;
+}
+
 /* The sums of every material's levels at each tap of `plan` around (x, y), over the impulses of material
    0's process: filtered_walk.cpp's tap-by-tap walk within the largest of the materials' reaches, each
-   impulse within it picking its material first, then waiting for that material's reads where it lies
-   within its levels' reach. */
+   impulse within it listed, the listed impulses then picking their materials (pick_listed) and waiting
+   for their material's reads. */
 void materials_sums(const dsn_mix_state *mix, const dsn_mix_control *control, const MixRegion &region,
                     uint64_t x, uint64_t y, const dsn_filter_plan *plan, const MaterialLevels *levels,
                     dsn_filter_sums *sums) {
@@ -126,16 +174,18 @@ void materials_sums(const dsn_mix_state *mix, const dsn_mix_control *control, co
         radius_y = levels[m].radius_y > radius_y ? levels[m].radius_y : radius_y;
     }
     WaitingImpulses waiting[DSN_MIX_MAX_MATERIALS];
+    ListedImpulses listed;
+    listed.count = 0;
     for (uint32_t tap = 0; tap < plan->taps; tap++) {
-        const uint64_t tap_x = x + static_cast<uint64_t>(plan->offset_x[tap]);
-        const uint64_t tap_y = y + static_cast<uint64_t>(plan->offset_y[tap]);
+        const ListingTap at = {x + static_cast<uint64_t>(plan->offset_x[tap]),
+                               y + static_cast<uint64_t>(plan->offset_y[tap]), radius_x, radius_y, tap};
         for (uint32_t m = 0; m < mix->count; m++) {
             waiting[m].count = 0;
             for (uint32_t l = 0; l < 2; l++)
                 for (uint32_t c = 0; c < DSN_MAX_CHANNELS; c++) sums[m][tap][l][c] = 0;
         }
-        const PointAxis wx = point_axis(tap_x, radius_x, shift, lead->period[0]);
-        const PointAxis wy = point_axis(tap_y, radius_y, shift, lead->period[1]);
+        const PointAxis wx = point_axis(at.x, radius_x, shift, lead->period[0]);
+        const PointAxis wy = point_axis(at.y, radius_y, shift, lead->period[1]);
         for (uint32_t sy = 0; sy < wy.axis.span_count; sy++) {
             const dsn_span span_y = dsn_axis_span(&wy.axis, sy);
             for (uint32_t j = 0; j < span_y.cell_count; j++) {
@@ -154,23 +204,22 @@ void materials_sums(const dsn_mix_state *mix, const dsn_mix_control *control, co
                                 !impulse_offset(wx, span_x, origin_x, dsn_impulse_bits_x(hash), &dx) ||
                                 !within_reach(dx, radius_x) || !within_reach(dy, radius_y))
                                 continue;
-                            const uint32_t m = impulse_material(control, mix->count, region, key, k,
-                                                                tap_x - static_cast<uint64_t>(dx),
-                                                                tap_y - static_cast<uint64_t>(dy));
-                            const MaterialLevels &own = levels[m];
-                            if (own.count == 0 || !within_reach(dx, own.radius_x) ||
-                                !within_reach(dy, own.radius_y))
-                                continue;
-                            WaitingImpulses *own_waiting = &waiting[m];
-                            own_waiting->x[own_waiting->count] = dx;
-                            own_waiting->y[own_waiting->count] = dy;
-                            if (++own_waiting->count == waiting_most)
-                                read_waiting(&mix->material[m], own, own_waiting, sums[m][tap]);
+                            const uint32_t n = listed.count;
+                            listed.x[n] = dx;
+                            listed.y[n] = dy;
+                            listed.hashes[n] = region.single ? 0u : dsn_material_hash(key, k);
+                            listed.whole_x[n] =
+                                static_cast<uint32_t>((at.x - static_cast<uint64_t>(dx)) >> 32);
+                            listed.whole_y[n] =
+                                static_cast<uint32_t>((at.y - static_cast<uint64_t>(dy)) >> 32);
+                            if (++listed.count == listed_most)
+                                pick_listed(mix, control, region, at, levels, &listed, waiting, sums);
                         }
                     }
                 }
             }
         }
+        pick_listed(mix, control, region, at, levels, &listed, waiting, sums);
         for (uint32_t m = 0; m < mix->count; m++)
             read_waiting(&mix->material[m], levels[m], &waiting[m], sums[m][tap]);
     }

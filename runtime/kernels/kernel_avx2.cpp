@@ -33,5 +33,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx2 = {
     DSN_SURFACE_IMPULSES_ENTRY,
     DSN_SURFACE_READS_ENTRY,
     DSN_LATTICE_MIX_TILE_ENTRY,
-    DSN_LATTICE_ROWS_ENTRY};
+    DSN_LATTICE_ROWS_ENTRY,
+    DSN_MIX_PICKS_ENTRY};
 #endif

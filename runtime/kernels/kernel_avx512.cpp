@@ -37,7 +37,8 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512 = {
     DSN_SURFACE_IMPULSES_ENTRY,
     DSN_SURFACE_READS_ENTRY,
     DSN_LATTICE_MIX_TILE_ENTRY,
-    DSN_LATTICE_ROWS_ENTRY};
+    DSN_LATTICE_ROWS_ENTRY,
+    DSN_MIX_PICKS_ENTRY};
 
 extern const dsn_kernel_entries dsn_internal_entries_avx2;
 
@@ -73,5 +74,6 @@ extern const dsn_kernel_entries dsn_internal_entries_avx512_avx2_tiles = {
     continuous_splat_normalize, continuous_point_or<&dsn_internal_entries_default>,
     DSN_FILTER_READS_ENTRY,     DSN_FILTER_CANDIDATES_ENTRY,
     DSN_SURFACE_IMPULSES_ENTRY, DSN_SURFACE_READS_ENTRY,
-    DSN_LATTICE_MIX_TILE_ENTRY, DSN_LATTICE_ROWS_ENTRY};
+    DSN_LATTICE_MIX_TILE_ENTRY, DSN_LATTICE_ROWS_ENTRY,
+    DSN_MIX_PICKS_ENTRY};
 #endif

@@ -267,6 +267,16 @@ typedef void dsn_surface_reads_entry(const dsn_surface_texels *texels, const dsn
 typedef void dsn_lattice_rows_entry(const unsigned char *values, size_t stride, uint32_t bits, uint32_t rows,
                                     uint32_t count, uint32_t *sums, size_t sums_stride);
 
+/* The materials of n impulses of a mix whose weights vary, as mix_weights.h's hashed_material picks them
+   (mix_weights_at and pick_material at their integer positions, 8 at a time: mix_pick_lanes.h's
+   pick_materials): impulse i's material hash hashes[i] and integer position (x[i], y[i]), each within
+   reach_x and reach_y texels of (whole_x, whole_y), its material into materials[i]. Returns 0, writing
+   nothing, where the lanes do not read the control around that point (pick_window). One tap of a mixed
+   filtered point (mix_filtered.cpp's materials_sums). */
+typedef int dsn_mix_picks_entry(const struct dsn_mix_control *control, uint32_t count, uint32_t whole_x,
+                                uint32_t whole_y, uint32_t reach_x, uint32_t reach_y, const uint32_t *hashes,
+                                const uint32_t *x, const uint32_t *y, uint32_t n, uint32_t *materials);
+
 /* What one kernel computes: one member per kind of kernel. continuous_batch is null where the batch
    functions are compiled out (DSN_CONTINUOUS_BATCH 0, dsn.h); continuous_splat_runs,
    continuous_splat_normalize, lattice_point and continuous_point in the small build (DSN_SMALL_CODE),
@@ -276,7 +286,7 @@ typedef void dsn_lattice_rows_entry(const unsigned char *values, size_t stride, 
    continuous_gradient_runs too (continuous_tile.cpp then splats three grids); surface_impulses and
    surface_reads without the surface noise (DSN_SURFACE 0), surface_reads in kernels built without
    AVX2 too; lattice_mix_tile without the mix (DSN_MIXING 0) or the strip path (tile_render.h);
-   lattice_rows without the mix. */
+   lattice_rows without the mix; mix_picks without the mix or AVX2. */
 typedef struct dsn_kernel_entries {
     dsn_lattice_tile_entry *lattice_tile;
     dsn_lattice_strips_take_entry *lattice_strips_take;
@@ -292,6 +302,7 @@ typedef struct dsn_kernel_entries {
     dsn_surface_reads_entry *surface_reads;
     dsn_lattice_mix_tile_entry *lattice_mix_tile;
     dsn_lattice_rows_entry *lattice_rows;
+    dsn_mix_picks_entry *mix_picks;
 } dsn_kernel_entries;
 
 /* Values of dsn_noise_state.tile_kernel: a kernel's id is its row in the table. The rows go from the

@@ -2,9 +2,9 @@
    the AVX2 and AVX-512 copies: the continuous point's candidates' integer positions from their S
    (continuous_point_vector.h), then their materials, impulse by impulse through the caller's pick, or 8 at
    a time on AVX2 vectors from the control itself, as the lattice point's hits too (lattice_point_walk.h's
-   picked_hits): mix_weights.h's mix_weights_at and pick_material in 32-bit lanes, the samples gathered 4
-   bytes at a time, the same integers, so the same materials. Internal to libdsn; not installed
-   (everything here has internal linkage). */
+   picked_hits) and the filtered point's listed impulses (the pick_materials entry): mix_weights.h's
+   mix_weights_at and pick_material in 32-bit lanes, the samples gathered 4 bytes at a time, the same
+   integers, so the same materials. Internal to libdsn; not installed (internal linkage throughout). */
 #ifndef DSN_MIX_PICK_LANES_H
 #define DSN_MIX_PICK_LANES_H
 
@@ -197,6 +197,34 @@ DSN_SIMD_INLINE void picked_level_lanes(const PickWindow &window, vector_256 has
             level + 1u < window.count ? and_not(greater_32(cumulative[level], draw), weighed) : zero_256();
 }
 
+/* The kernel entry (kernels.h's dsn_mix_picks_entry): picked_level_lanes 8 impulses at a time, each lane's
+   material the number of levels it is past; the last group's lanes past n read the point itself, hash 0. */
+inline int pick_materials(const dsn_mix_control *control, uint32_t count, uint32_t whole_x, uint32_t whole_y,
+                          uint32_t reach_x, uint32_t reach_y, const uint32_t *hashes, const uint32_t *x,
+                          const uint32_t *y, uint32_t n, uint32_t *materials) {
+    PickWindow window;
+    if (count > dsn_point_materials_most ||
+        !pick_window(control, count, whole_x, whole_y, reach_x, reach_y, &window))
+        return 0;
+    for (uint32_t done = 0; done < n; done += 8u) {
+        uint32_t lanes[3][8], picked[8];
+        const uint32_t in_group = n - done < 8u ? n - done : 8u;
+        for (uint32_t k = 0; k < 8u; k++) {
+            const bool listed = k < in_group;
+            lanes[0][k] = listed ? hashes[done + k] : 0u;
+            lanes[1][k] = listed ? x[done + k] : whole_x;
+            lanes[2][k] = listed ? y[done + k] : whole_y;
+        }
+        vector_256 levels[3];
+        picked_level_lanes(window, load_8x32(lanes[0]), load_8x32(lanes[1]), load_8x32(lanes[2]), levels);
+        /* each level past is -1 in its lane */
+        store_8x32(picked, subtract_32(zero_256(), add_32(add_32(levels[0], levels[1]), levels[2])));
+        for (uint32_t k = 0; k < in_group; k++) materials[done + k] = picked[k];
+    }
+    return 1;
+}
+#define DSN_MIX_PICKS_ENTRY pick_materials
+
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 /* picked_level_lanes of 16 lanes, bit k of levels[l] for lane k. */
 DSN_SIMD_INLINE void picked_level_bits(const PickWindow &window, vector_512 hashes, vector_512 x,
@@ -213,5 +241,9 @@ DSN_SIMD_INLINE void picked_level_bits(const PickWindow &window, vector_512 hash
 
 } // namespace
 #endif /* __AVX2__ */
+
+#ifndef DSN_MIX_PICKS_ENTRY
+#define DSN_MIX_PICKS_ENTRY 0
+#endif
 
 #endif /* DSN_MIX_PICK_LANES_H */
