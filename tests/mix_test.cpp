@@ -132,6 +132,46 @@ struct TwinMaterials {
     }
 };
 
+// Where the weights vary: `count` weights at sample (i, j), some of them 0, and some samples of no weight.
+std::vector<uint8_t> varying_weights(uint32_t count, uint32_t i, uint32_t j) {
+    std::vector<uint8_t> weights(count);
+    for (uint32_t m = 0; m < count; m++)
+        weights[m] = (i * 3 + j + m) % 5 == 0 ? 0 : uint8_t((i * 89 + j * 43 + m * 67) % 256);
+    if ((i + j) % 11 == 4) weights.assign(count, 0);
+    return weights;
+}
+
+// A control's size, spacing, axes and origin, its weights varying_weights's.
+struct ControlKind {
+    uint32_t width, height, spacing_shift, flags;
+    int32_t origin_x, origin_y;
+};
+
+Control varying_control(uint32_t count, const ControlKind &kind) {
+    Control control(
+        count, kind.width, kind.height, kind.spacing_shift,
+        [count](uint32_t i, uint32_t j) { return varying_weights(count, i, j); }, kind.flags);
+    control.control.origin_x = kind.origin_x, control.control.origin_y = kind.origin_y;
+    return control;
+}
+
+// Test point k of a control: a third anywhere, a third near the control, a third by the wrap of x -
+// origin_x.
+void point_by_control(const ControlKind &kind, int k, std::mt19937_64 &random, int64_t *x, int64_t *y) {
+    const uint64_t extent_x = uint64_t(kind.width) << kind.spacing_shift, extent_y = uint64_t(kind.height)
+                                                                                     << kind.spacing_shift;
+    *x = int64_t(random()), *y = int64_t(random());
+    if (k % 3 != 0) {
+        *x = int64_t((uint64_t(uint32_t(kind.origin_x)) + random() % (extent_x + 80) - 40) << 32) +
+             int64_t(random() >> 32);
+        *y = int64_t((uint64_t(uint32_t(kind.origin_y)) + random() % (extent_y + 80) - 40) << 32) +
+             int64_t(random() >> 32);
+    }
+    if (k % 3 == 2)
+        *x = int64_t(uint64_t(uint32_t(kind.origin_x) + 0x80000000u - 20u + random() % 40) << 32) +
+             int64_t(random() >> 32);
+}
+
 } // namespace
 
 TEST_CASE("mix: where the weights are material 0's, the bits of its own noise, lattice and continuous") {
@@ -540,45 +580,19 @@ TEST_CASE(
             CAPTURE(count);
             dsn_mix mix, wide_mix;
             twins.mixes(count, &mix, &wide_mix);
-            const auto weights_at = [&](uint32_t i, uint32_t j) {
-                std::vector<uint8_t> weights(count);
-                for (uint32_t m = 0; m < count; m++)
-                    weights[m] = (i * 3 + j + m) % 5 == 0 ? 0 : uint8_t((i * 89 + j * 43 + m * 67) % 256);
-                if ((i + j) % 11 == 4) weights.assign(count, 0);
-                return weights;
-            };
-            struct Kind {
-                uint32_t width, height, spacing_shift, flags;
-                int32_t origin_x, origin_y;
-            };
-            const Kind kinds[] = {{64, 48, 2, DSN_MIX_PERIODIC_X, -40, 13},
-                                  {40, 40, 0, 0, 5, -7},
-                                  {45, 38, 0, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 3, 2},
-                                  {20, 30, 9, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, -3000, 1000},
-                                  {9, 7, 4, DSN_MIX_PERIODIC_Y, 70, -90},
-                                  {3, 2, 16, DSN_MIX_PERIODIC_X, 0, 0},
-                                  {9, 9, 2, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 1, -2}};
+            const ControlKind kinds[] = {{64, 48, 2, DSN_MIX_PERIODIC_X, -40, 13},
+                                         {40, 40, 0, 0, 5, -7},
+                                         {45, 38, 0, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 3, 2},
+                                         {20, 30, 9, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, -3000, 1000},
+                                         {9, 7, 4, DSN_MIX_PERIODIC_Y, 70, -90},
+                                         {3, 2, 16, DSN_MIX_PERIODIC_X, 0, 0},
+                                         {9, 9, 2, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 1, -2}};
             size_t differences = 0, points = 0, laned = 0;
-            for (const Kind &kind : kinds) {
-                Control control(count, kind.width, kind.height, kind.spacing_shift, weights_at, kind.flags);
-                control.control.origin_x = kind.origin_x, control.control.origin_y = kind.origin_y;
-                const uint64_t extent_x = uint64_t(kind.width) << kind.spacing_shift,
-                               extent_y = uint64_t(kind.height) << kind.spacing_shift;
+            for (const ControlKind &kind : kinds) {
+                const Control control = varying_control(count, kind);
                 for (int k = 0; k < 120; k++) {
-                    // a third anywhere, a third near the control, a third by the wrap of x - origin_x
-                    int64_t x = int64_t(random()), y = int64_t(random());
-                    if (k % 3 != 0) {
-                        x = int64_t((uint64_t(uint32_t(kind.origin_x)) + random() % (extent_x + 80) - 40)
-                                    << 32) +
-                            int64_t(random() >> 32);
-                        y = int64_t((uint64_t(uint32_t(kind.origin_y)) + random() % (extent_y + 80) - 40)
-                                    << 32) +
-                            int64_t(random() >> 32);
-                    }
-                    if (k % 3 == 2)
-                        x = int64_t(uint64_t(uint32_t(kind.origin_x) + 0x80000000u - 20u + random() % 40)
-                                    << 32) +
-                            int64_t(random() >> 32);
+                    int64_t x, y;
+                    point_by_control(kind, k, random, &x, &y);
                     const uint32_t reach_x = dsn_mix_state_of(&mix)->material[0].radius[0] + 2u,
                                    reach_y = dsn_mix_state_of(&mix)->material[0].radius[1] + 2u;
                     PickWindowAxis ax, ay;
@@ -1299,37 +1313,15 @@ TEST_CASE("mix: filtered points where the weights vary, their materials picked o
     size_t differences = 0, compared = 0;
     for (const dsn_mix *mix : {&two, &three}) {
         const uint32_t count = dsn_mix_state_of(mix)->count;
-        const auto weights_at = [&](uint32_t i, uint32_t j) {
-            std::vector<uint8_t> weights(count);
-            for (uint32_t m = 0; m < count; m++)
-                weights[m] = (i * 3 + j + m) % 5 == 0 ? 0 : uint8_t((i * 89 + j * 43 + m * 67) % 256);
-            if ((i + j) % 11 == 4) weights.assign(count, 0);
-            return weights;
-        };
-        struct Kind {
-            uint32_t width, height, spacing_shift, flags;
-            int32_t origin_x, origin_y;
-        };
-        const Kind kinds[] = {{90, 70, 0, 0, 5, -7},
-                              {64, 48, 2, DSN_MIX_PERIODIC_X, -40, 13},
-                              {80, 60, 0, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 3, 2},
-                              {12, 9, 4, DSN_MIX_PERIODIC_Y, 70, -90}};
-        for (const Kind &kind : kinds) {
-            Control control(count, kind.width, kind.height, kind.spacing_shift, weights_at, kind.flags);
-            control.control.origin_x = kind.origin_x, control.control.origin_y = kind.origin_y;
-            const uint64_t extent_x = uint64_t(kind.width) << kind.spacing_shift,
-                           extent_y = uint64_t(kind.height) << kind.spacing_shift;
+        const ControlKind kinds[] = {{90, 70, 0, 0, 5, -7},
+                                     {64, 48, 2, DSN_MIX_PERIODIC_X, -40, 13},
+                                     {80, 60, 0, DSN_MIX_PERIODIC_X | DSN_MIX_PERIODIC_Y, 3, 2},
+                                     {12, 9, 4, DSN_MIX_PERIODIC_Y, 70, -90}};
+        for (const ControlKind &kind : kinds) {
+            const Control control = varying_control(count, kind);
             for (int k = 0; k < 30; k++) {
-                int64_t x = int64_t(random()), y = int64_t(random());
-                if (k % 3 != 0) {
-                    x = int64_t((uint64_t(uint32_t(kind.origin_x)) + random() % (extent_x + 80) - 40) << 32) +
-                        int64_t(random() >> 32);
-                    y = int64_t((uint64_t(uint32_t(kind.origin_y)) + random() % (extent_y + 80) - 40) << 32) +
-                        int64_t(random() >> 32);
-                }
-                if (k % 3 == 2)
-                    x = int64_t(uint64_t(uint32_t(kind.origin_x) + 0x80000000u - 20u + random() % 40) << 32) +
-                        int64_t(random() >> 32);
+                int64_t x, y;
+                point_by_control(kind, k, random, &x, &y);
                 for (const dsn_footprint &footprint :
                      {pyramid_footprints[0], pyramid_footprints[1], pyramid_footprints[3]}) {
                     const dsn_mix reference = on_kernel(*mix, DSN_KERNEL_DEFAULT);
