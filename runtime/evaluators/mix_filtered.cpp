@@ -120,8 +120,8 @@ struct ListedImpulses {
     uint32_t count;
 };
 
-/* Where a tap lists its impulses: the tap, the largest of the materials' reaches, and the sums of its
-   levels for each material (sums[m][tap]). */
+/* Where a tap lists its impulses: the tap, the largest of the materials' reaches, and the tap's index
+   in each material's sums (sums[m][tap]). */
 struct ListingTap {
     uint64_t x, y;
     uint32_t radius_x, radius_y, tap;
